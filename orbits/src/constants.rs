@@ -1,0 +1,22 @@
+//! Physical and system constants (SI). Values from the cited ICDs and standards.
+
+/// Speed of light in vacuum (m/s), IS-GPS-200 and BDS ICD.
+pub const C_MPS: f64 = 299_792_458.0;
+/// WGS-84 Earth gravitational constant used by GPS (m^3/s^2), IS-GPS-200 20.3.3.4.3.
+pub const GM_GPS: f64 = 3.986_005e14;
+/// CGCS2000 Earth gravitational constant used by BeiDou (m^3/s^2), BDS-SIS-ICD.
+pub const GM_BDS: f64 = 3.986_004_418e14;
+/// WGS-84 Earth rotation rate (rad/s), IS-GPS-200.
+pub const OMEGA_E_GPS: f64 = 7.292_115_146_7e-5;
+/// CGCS2000 Earth rotation rate (rad/s), BDS-SIS-ICD.
+pub const OMEGA_E_BDS: f64 = 7.292_115e-5;
+/// WGS-84 semi-major axis (m).
+pub const WGS84_A_M: f64 = 6_378_137.0;
+/// WGS-84 flattening.
+pub const WGS84_F: f64 = 1.0 / 298.257_223_563;
+/// EGM-96 / EGM-2008 unnormalised zonal harmonic J2.
+pub const J2: f64 = 1.082_626_683_55e-3;
+/// GPS L1 carrier frequency (Hz).
+pub const F_GPS_L1_HZ: f64 = 1_575.42e6;
+/// BeiDou B1I carrier frequency (Hz).
+pub const F_BDS_B1I_HZ: f64 = 1_561.098e6;

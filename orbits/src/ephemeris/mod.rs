@@ -1,0 +1,40 @@
+//! GNSS satellites and their broadcast ephemerides: identifiers, the GPS LNAV and BeiDou
+//! D1/D2 user algorithms, RINEX 2/3/4 navigation files, SP3 precise orbits, ephemeris
+//! selection, and the embedded default constellations.
+
+pub mod broadcast;
+pub mod config;
+pub mod nominal;
+pub mod rinex_nav;
+pub mod sat_id;
+pub mod sp3;
+pub mod store;
+
+pub use broadcast::{BoundEphemeris, BroadcastEphemeris, OrbitClass};
+pub use sat_id::{SatId, System};
+pub use store::EphemerisStore;
+
+/// Error reading or using navigation data.
+#[derive(Debug, thiserror::Error)]
+pub enum NavError {
+    /// The file could not be opened or read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    /// The file content is malformed.
+    #[error("{path}:{line}: {message}")]
+    Format {
+        path: String,
+        line: usize,
+        message: String,
+    },
+    /// No usable (healthy, in-fit) ephemeris for a satellite at the requested time.
+    #[error("no ephemeris for {sat} at {epoch} in {source_name}")]
+    NoEphemeris {
+        sat: String,
+        epoch: String,
+        source_name: String,
+    },
+}

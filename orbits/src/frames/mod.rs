@@ -1,0 +1,8 @@
+//! Reference frames: ECI <-> ECEF (Earth rotation), WGS-84 geodetic <-> ECEF, NED, the
+//! orbital frame of thesis section 2.5.1, and yaw/pitch/roll (3-2-1) with quaternions.
+
+pub mod earth_rotation;
+pub mod euler;
+pub mod geodetic;
+pub mod ned;
+pub mod orbital;

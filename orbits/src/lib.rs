@@ -1,0 +1,21 @@
+//! Orbits: time scales, reference frames, GNSS broadcast ephemerides, the LEO numerical
+//! propagator, receiving platforms with their attitude, and visibility geometry.
+//!
+//! Conventions (see `DESIGN.md`): SI units inside; time inside hot loops is `f64` seconds
+//! since the scenario start ([`time::TimeOrigin`]); rotation matrices are named
+//! `c_from_to` and map a vector's components from frame `from` to frame `to`.
+
+pub mod attitude;
+pub mod check;
+pub mod constants;
+pub mod ephemeris;
+pub mod frames;
+pub mod platform;
+pub mod propagate;
+pub mod time;
+pub mod visibility;
+
+/// A 3-vector of `f64` (frame and unit are carried by the variable name).
+pub type Vec3 = nalgebra::Vector3<f64>;
+/// A 3x3 matrix of `f64`, usually a rotation `c_from_to`.
+pub type Mat3 = nalgebra::Matrix3<f64>;

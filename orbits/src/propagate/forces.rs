@@ -1,0 +1,1 @@
+//! Accelerations: central body, zonal harmonics J2..J6, atmospheric drag.

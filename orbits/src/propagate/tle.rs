@@ -1,0 +1,1 @@
+//! Initial state from a TLE through SGP4.

@@ -1,0 +1,1 @@
+//! Carrier and code tracking.

@@ -1,0 +1,1 @@
+//! Scenarios: TOML schema, checks with located errors, and the bundled scenario files.

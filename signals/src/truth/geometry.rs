@@ -1,0 +1,1 @@
+//! Geometry truth: light time, range and its derivatives, Doppler, azimuth/elevation.

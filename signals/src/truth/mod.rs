@@ -1,0 +1,4 @@
+//! Truth for every antenna x satellite: geometry now; clocks, atmosphere and antenna terms
+//! join it with the synthesiser.
+
+pub mod geometry;

@@ -1,0 +1,1 @@
+//! Validation: compare estimates with truth and the thesis tables.
