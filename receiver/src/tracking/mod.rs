@@ -1,1 +1,3 @@
 //! Carrier and code tracking.
+
+pub mod error_budget;
