@@ -1,1 +1,5 @@
-//! Validation: compare estimates with truth and the thesis tables.
+//! Validation: compare what SkyForge computes with truth and with the thesis tables.
+
+pub mod report;
+pub mod stats;
+pub mod thesis;

@@ -2,3 +2,5 @@
 //! join it with the synthesiser.
 
 pub mod geometry;
+pub mod interp;
+pub mod light_time;

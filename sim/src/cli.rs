@@ -1,0 +1,78 @@
+//! Command-line interface definition.
+
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+/// SkyForge: simulate GPS and BeiDou constellations and a receiving platform (a LEO
+/// satellite, a ground site or a trajectory), and write what its antennas see.
+#[derive(Debug, Parser)]
+#[command(name = "skyforge", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run a scenario and write its truth (DIR/truth.h5).
+    ///
+    /// SCENARIO is a TOML file or the name of a bundled scenario (see `skyforge scenarios
+    /// list`). Nothing is written when the scenario has an error (exit code 2).
+    Run {
+        /// Scenario file or bundled scenario name, e.g. `thesis-leo`.
+        scenario: String,
+        /// Output directory; created, must not exist unless --force is given.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Random seed overriding the scenario's `seed` (recorded in the outputs).
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+        /// Replace an existing output directory.
+        #[arg(long)]
+        force: bool,
+    },
+    /// List or show the bundled scenarios.
+    Scenarios {
+        #[command(subcommand)]
+        action: ScenariosAction,
+    },
+    /// Compare SkyForge with reference results.
+    Validate {
+        #[command(subcommand)]
+        suite: ValidateSuite,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum ScenariosAction {
+    /// List bundled scenario names with a one-line summary.
+    List,
+    /// Print a bundled scenario's TOML text.
+    Show {
+        /// Bundled scenario name.
+        name: String,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum ValidateSuite {
+    /// Reproduce the thesis tables (../shared/reference/THESIS_TARGETS.md).
+    ///
+    /// Prints thesis value, SkyForge value, ratio, tolerance and verdict for every row;
+    /// exits 0 whenever it ran, whatever the verdicts.
+    Thesis {
+        /// Run only these table IDs (repeatable), e.g. --only V-1.2.1 --only T-3.2.
+        #[arg(long, value_name = "ID")]
+        only: Vec<String>,
+        /// Write DIR/results.json.
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+        /// Replace an existing output directory.
+        #[arg(long)]
+        force: bool,
+        /// Real-data folder for rows that use real broadcast files [env: SKYFORGE_DATA;
+        /// default: ../shared/data].
+        #[arg(long, value_name = "DIR")]
+        data: Option<PathBuf>,
+    },
+}

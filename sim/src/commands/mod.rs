@@ -1,0 +1,34 @@
+//! One module per subcommand.
+
+mod run;
+mod scenarios;
+mod validate;
+
+use crate::cli::{Cli, Command, ScenariosAction, ValidateSuite};
+
+/// Run the parsed command line.
+pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Run {
+            scenario,
+            out,
+            seed,
+            force,
+        } => run::run(&scenario, &out, seed, force),
+        Command::Scenarios {
+            action: ScenariosAction::List,
+        } => scenarios::list(),
+        Command::Scenarios {
+            action: ScenariosAction::Show { name },
+        } => scenarios::show(&name),
+        Command::Validate {
+            suite:
+                ValidateSuite::Thesis {
+                    only,
+                    out,
+                    force,
+                    data,
+                },
+        } => validate::thesis(only, out.as_deref(), force, data),
+    }
+}

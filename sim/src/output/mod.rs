@@ -1,0 +1,4 @@
+//! Output writers and the all-or-nothing output directory.
+
+pub mod staged_dir;
+pub mod truth_h5;

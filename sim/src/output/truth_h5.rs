@@ -1,0 +1,332 @@
+//! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
+//! The schema is documented in `docs/truth-h5.md`; change both together.
+
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, Extents, Group, H5Type, Location};
+use ndarray::ArrayView2;
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_signals::antenna::Antenna;
+use skyforge_signals::signal::SignalId;
+use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
+use std::path::Path;
+
+/// Schema version written to the root attribute `schema_version`.
+pub const SCHEMA_VERSION: &str = "1";
+
+/// Rows per HDF5 chunk along the time axis.
+const TIME_CHUNK: usize = 600;
+
+/// A per-link field: dataset name, unit, description, accessor.
+type LinkField = (
+    &'static str,
+    &'static str,
+    &'static str,
+    fn(&LinkGeometry) -> f64,
+);
+
+/// Per antenna x satellite datasets, `[epoch, satellite]`, NaN where not visible.
+const LINK_FIELDS: &[LinkField] = &[
+    (
+        "range_m",
+        "m",
+        "geometric range c*tau, antenna phase centre to satellite APC",
+        |l| l.range_m,
+    ),
+    ("range_rate_mps", "m/s", "d(range)/dt", |l| l.range_rate_mps),
+    ("range_accel_mps2", "m/s^2", "d2(range)/dt2", |l| {
+        l.range_accel_mps2
+    }),
+    ("range_jerk_mps3", "m/s^3", "d3(range)/dt3", |l| {
+        l.range_jerk_mps3
+    }),
+    (
+        "doppler_hz",
+        "Hz",
+        "geometric Doppler -range_rate/lambda at the satellite's carrier",
+        |l| l.doppler_hz,
+    ),
+    ("doppler_rate_hzps", "Hz/s", "d(doppler)/dt", |l| {
+        l.doppler_rate_hzps
+    }),
+    ("doppler_accel_hzps2", "Hz/s^2", "d2(doppler)/dt2", |l| {
+        l.doppler_accel_hzps2
+    }),
+    ("light_time_s", "s", "signal travel time tau", |l| {
+        l.light_time_s
+    }),
+    (
+        "azimuth_rad",
+        "rad",
+        "azimuth in the local NED frame of the antenna",
+        |l| l.azimuth_rad,
+    ),
+    (
+        "elevation_rad",
+        "rad",
+        "elevation above the local horizon of the antenna",
+        |l| l.elevation_rad,
+    ),
+    (
+        "antenna_azimuth_rad",
+        "rad",
+        "azimuth in the antenna frame",
+        |l| l.antenna_azimuth_rad,
+    ),
+    (
+        "antenna_elevation_rad",
+        "rad",
+        "90 deg minus the off-boresight angle",
+        |l| l.antenna_elevation_rad,
+    ),
+    (
+        "sat_clock_s",
+        "s",
+        "satellite clock offset at transmit time incl. relativity, excl. TGD",
+        |l| l.sat_clock_s,
+    ),
+    (
+        "sat_clock_drift",
+        "s/s",
+        "satellite clock drift at transmit time",
+        |l| l.sat_clock_drift,
+    ),
+];
+
+/// Run metadata written as root attributes.
+#[derive(Debug, Clone)]
+pub struct RunMeta {
+    pub scenario: String,
+    pub source: String,
+    pub start_epoch: String,
+    pub seed: u64,
+    pub step_s: f64,
+}
+
+/// Streams geometry chunks into `truth.h5`.
+#[derive(Debug)]
+pub struct TruthWriter {
+    file: hdf5::File,
+    t_s: Dataset,
+    platform: [Dataset; 4],
+    antennas: Vec<(Vec<Dataset>, Dataset)>,
+    rows: usize,
+    n_sat: usize,
+}
+
+fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+    let v: VarLenUnicode = value
+        .parse()
+        .map_err(|e| hdf5::Error::from(format!("{e}")))?;
+    loc.new_attr::<VarLenUnicode>()
+        .create(name)?
+        .write_scalar(&v)
+}
+
+fn f64_attr(loc: &Location, name: &str, values: &[f64]) -> hdf5::Result<()> {
+    loc.new_attr::<f64>()
+        .shape([values.len()])
+        .create(name)?
+        .write_raw(values)
+}
+
+fn series<T: H5Type>(
+    group: &Group,
+    name: &str,
+    width: usize,
+    unit: &str,
+    description: &str,
+) -> hdf5::Result<Dataset> {
+    let ds = if width == 0 {
+        group
+            .new_dataset::<T>()
+            .chunk((TIME_CHUNK,))
+            .shape(Extents::resizable(0.into()))
+            .lzf()
+            .create(name)?
+    } else {
+        group
+            .new_dataset::<T>()
+            .chunk((TIME_CHUNK, width))
+            .shape(Extents::from([(0, None), (width, Some(width))].as_slice()))
+            .lzf()
+            .create(name)?
+    };
+    text_attr(&ds, "units", unit)?;
+    text_attr(&ds, "description", description)?;
+    Ok(ds)
+}
+
+fn append<T: H5Type>(ds: &Dataset, rows: usize, data: &[T], width: usize) -> hdf5::Result<()> {
+    let n = data.len() / width.max(1);
+    if width == 0 {
+        ds.resize((rows + n,))?;
+        ds.write_slice(data, rows..rows + n)
+    } else {
+        ds.resize((rows + n, width))?;
+        let view = ArrayView2::from_shape((n, width), data)
+            .map_err(|e| hdf5::Error::from(e.to_string()))?;
+        ds.write_slice(view, (rows..rows + n, ..))
+    }
+}
+
+impl TruthWriter {
+    /// Create the file and its (empty, resizable) datasets.
+    pub fn create(
+        path: &Path,
+        meta: &RunMeta,
+        sats: &[SatId],
+        antennas: &[Antenna],
+    ) -> hdf5::Result<Self> {
+        let file = hdf5::File::create(path)?;
+        text_attr(&file, "schema_version", SCHEMA_VERSION)?;
+        text_attr(
+            &file,
+            "generator",
+            concat!("skyforge ", env!("CARGO_PKG_VERSION")),
+        )?;
+        text_attr(&file, "scenario", &meta.scenario)?;
+        text_attr(&file, "scenario_source", &meta.source)?;
+        text_attr(&file, "start_epoch", &meta.start_epoch)?;
+        file.new_attr::<u64>()
+            .create("seed")?
+            .write_scalar(&meta.seed)?;
+        f64_attr(&file, "step_s", &[meta.step_s])?;
+
+        let time = file.create_group("time")?;
+        let t_s = series::<f64>(
+            &time,
+            "t_s",
+            0,
+            "s",
+            "receive time, seconds since start_epoch (GPST)",
+        )?;
+        let pg = file.create_group("platform")?;
+        let platform = [
+            series::<f64>(
+                &pg,
+                "r_ecef_m",
+                3,
+                "m",
+                "centre-of-mass position, ECEF (WGS-84)",
+            )?,
+            series::<f64>(&pg, "v_ecef_mps", 3, "m/s", "centre-of-mass velocity, ECEF")?,
+            series::<f64>(
+                &pg,
+                "q_body_ecef",
+                4,
+                "1",
+                "body-to-ECEF rotation quaternion (w, x, y, z)",
+            )?,
+            series::<f64>(
+                &pg,
+                "attitude_ypr_rad",
+                3,
+                "rad",
+                "yaw, pitch, roll (3-2-1) of the body relative to the reference frame (orbital for a LEO, NED otherwise)",
+            )?,
+        ];
+        let sg = file.create_group("satellites")?;
+        let ids: Vec<VarLenUnicode> = sats
+            .iter()
+            .filter_map(|s| s.to_string().parse().ok())
+            .collect();
+        sg.new_dataset_builder().with_data(&ids).create("id")?;
+        let carriers: Vec<f64> = sats
+            .iter()
+            .map(|s| SignalId::primary_for(*s).carrier_hz())
+            .collect();
+        let ds = sg
+            .new_dataset_builder()
+            .with_data(&carriers)
+            .create("carrier_hz")?;
+        text_attr(&ds, "units", "Hz")?;
+
+        let ag = file.create_group("antennas")?;
+        let mut ants = Vec::new();
+        for ant in antennas {
+            let g = ag.create_group(&ant.name)?;
+            f64_attr(&g, "nominal_body_m", ant.nominal_body_m.as_slice())?;
+            f64_attr(&g, "true_body_m", ant.true_body_m.as_slice())?;
+            f64_attr(&g, "boresight_body", ant.boresight_body.as_slice())?;
+            f64_attr(&g, "fov_half_angle_rad", &[ant.fov_half_angle_rad])?;
+            f64_attr(&g, "elevation_mask_rad", &[ant.elevation_mask_rad])?;
+            f64_attr(&g, "pco_m", ant.pco_m.as_slice())?;
+            let fields = LINK_FIELDS
+                .iter()
+                .map(|(name, unit, desc, _)| series::<f64>(&g, name, sats.len(), unit, desc))
+                .collect::<hdf5::Result<Vec<_>>>()?;
+            let visible = series::<u8>(
+                &g,
+                "visible",
+                sats.len(),
+                "1",
+                "1 when inside field of view and mask and not Earth-blocked",
+            )?;
+            ants.push((fields, visible));
+        }
+        Ok(Self {
+            file,
+            t_s,
+            platform,
+            antennas: ants,
+            rows: 0,
+            n_sat: sats.len(),
+        })
+    }
+
+    /// Append one chunk of epochs.
+    pub fn append(&mut self, chunk: &GeometryChunk) -> hdf5::Result<()> {
+        let rows = self.rows;
+        append(&self.t_s, rows, &chunk.t_s, 0)?;
+        let mut r = Vec::with_capacity(3 * chunk.t_s.len());
+        let mut v = Vec::with_capacity(3 * chunk.t_s.len());
+        let mut q = Vec::with_capacity(4 * chunk.t_s.len());
+        let mut ypr = Vec::with_capacity(3 * chunk.t_s.len());
+        for st in &chunk.platform {
+            r.extend(st.r_ecef_m.iter());
+            v.extend(st.v_ecef_mps.iter());
+            let quat = nalgebra::UnitQuaternion::from_matrix(&st.c_body_ecef);
+            q.extend([quat.w, quat.i, quat.j, quat.k]);
+            ypr.extend([
+                st.attitude.yaw_rad,
+                st.attitude.pitch_rad,
+                st.attitude.roll_rad,
+            ]);
+        }
+        for (ds, data, w) in [
+            (&self.platform[0], &r, 3),
+            (&self.platform[1], &v, 3),
+            (&self.platform[2], &q, 4),
+            (&self.platform[3], &ypr, 3),
+        ] {
+            append(ds, rows, data, w)?;
+        }
+        let n = chunk.t_s.len();
+        let mut buf = vec![0.0f64; n * self.n_sat];
+        let mut vis = vec![0u8; n * self.n_sat];
+        for (a, (fields, visible)) in self.antennas.iter().enumerate() {
+            for ((_, _, _, get), ds) in LINK_FIELDS.iter().zip(fields) {
+                for k in 0..n {
+                    for s in 0..self.n_sat {
+                        buf[k * self.n_sat + s] = get(chunk.link(k, a, s));
+                    }
+                }
+                append(ds, rows, &buf, self.n_sat)?;
+            }
+            for k in 0..n {
+                for s in 0..self.n_sat {
+                    vis[k * self.n_sat + s] = u8::from(chunk.link(k, a, s).visible);
+                }
+            }
+            append(visible, rows, &vis, self.n_sat)?;
+        }
+        self.rows += n;
+        Ok(())
+    }
+
+    /// Flush and close.
+    pub fn finish(self) -> hdf5::Result<()> {
+        self.file.flush()?;
+        self.file.close()
+    }
+}

@@ -1,0 +1,136 @@
+//! Result rows of a validation run, their verdicts, the printed table and `results.json`.
+
+use serde::Serialize;
+use std::io::Write;
+use std::path::Path;
+
+/// Outcome of one compared row.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Verdict {
+    /// Inside the tolerance.
+    Reproduced,
+    /// Outside the tolerance; the measured value is reported.
+    Deviates,
+    /// Outside the tolerance with a physical reason checked by a test.
+    Explained,
+}
+
+impl Verdict {
+    /// `Reproduced` when `ok`, else `Deviates`.
+    pub fn from_ok(ok: bool) -> Self {
+        if ok {
+            Verdict::Reproduced
+        } else {
+            Verdict::Deviates
+        }
+    }
+}
+
+/// One row of a thesis table: the keys of `results.json`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    pub table: String,
+    pub row: String,
+    pub quantity: String,
+    pub unit: String,
+    /// The thesis value (`None` where the thesis prints a word, e.g. "fail").
+    pub thesis: Option<f64>,
+    pub ours: Option<f64>,
+    pub tolerance: String,
+    pub verdict: Verdict,
+    pub note: String,
+}
+
+impl Row {
+    /// ours / thesis, when both are numbers and thesis is non-zero.
+    pub fn ratio(&self) -> Option<f64> {
+        match (self.thesis, self.ours) {
+            (Some(t), Some(o)) if t != 0.0 => Some(o / t),
+            _ => None,
+        }
+    }
+}
+
+fn cell(v: Option<f64>) -> String {
+    match v {
+        Some(x) if x != 0.0 && (x.abs() >= 1e5 || x.abs() < 1e-3) => format!("{x:.4e}"),
+        Some(x) => format!("{x:.5}"),
+        None => "-".to_string(),
+    }
+}
+
+/// Print the rows as an aligned table.
+pub fn print_table(rows: &[Row], out: &mut impl Write) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{:<8} {:<44} {:>12} {:>12} {:>8} {:<26} {}",
+        "table", "row", "thesis", "skyforge", "ratio", "tolerance", "verdict"
+    )?;
+    for r in rows {
+        let ratio = r.ratio().map_or("-".to_string(), |x| format!("{x:.3}"));
+        let verdict = serde_json::to_value(r.verdict)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string));
+        writeln!(
+            out,
+            "{:<8} {:<44} {:>12} {:>12} {:>8} {:<26} {}",
+            r.table,
+            format!("{} [{}]", r.row, r.unit),
+            cell(r.thesis),
+            cell(r.ours),
+            ratio,
+            r.tolerance,
+            verdict.unwrap_or_default()
+        )?;
+    }
+    Ok(())
+}
+
+/// Write `rows` to `path` as a JSON array (via a temporary file, renamed when complete).
+pub fn write_json(rows: &[Row], path: &Path) -> std::io::Result<()> {
+    let tmp = path.with_extension("json.partial");
+    let text = serde_json::to_string_pretty(rows).map_err(std::io::Error::other)?;
+    std::fs::write(&tmp, text + "\n")?;
+    std::fs::rename(&tmp, path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn json_has_the_documented_keys() {
+        let row = Row {
+            table: "T-3.2".into(),
+            row: "r".into(),
+            quantity: "q".into(),
+            unit: "deg".into(),
+            thesis: None,
+            ours: Some(1.0),
+            tolerance: "t".into(),
+            verdict: Verdict::Explained,
+            note: String::new(),
+        };
+        let v = serde_json::to_value(vec![row]).unwrap();
+        let obj = v[0].as_object().unwrap();
+        let mut keys: Vec<&str> = obj.keys().map(String::as_str).collect();
+        keys.sort();
+        assert_eq!(
+            keys,
+            [
+                "note",
+                "ours",
+                "quantity",
+                "row",
+                "table",
+                "thesis",
+                "tolerance",
+                "unit",
+                "verdict"
+            ]
+        );
+        assert_eq!(obj["verdict"], "explained");
+        assert!(obj["thesis"].is_null());
+    }
+}

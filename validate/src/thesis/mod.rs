@@ -1,0 +1,55 @@
+//! The thesis acceptance tables (`../shared/reference/THESIS_TARGETS.md`): each module runs
+//! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
+//! printed number.
+
+mod geometry_run;
+pub mod loop_budget;
+pub mod visibility;
+
+use crate::report::Row;
+use std::path::PathBuf;
+
+/// Table identifiers `validate thesis --only` accepts, in run order.
+pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2"];
+
+/// Why a validation could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum ValidateError {
+    #[error("bundled scenario: {0}")]
+    Scenario(#[from] skyforge_scenarios::ScenarioError),
+    #[error("geometry: {0}")]
+    Geometry(String),
+    #[error("unknown table {id:?}; known tables: {known}")]
+    UnknownTable { id: String, known: String },
+}
+
+/// What to run.
+#[derive(Debug, Clone, Default)]
+pub struct Options {
+    /// Table IDs to run (empty: all).
+    pub only: Vec<String>,
+    /// The real-data folder (`SKYFORGE_DATA`); tables add real-data rows when it exists.
+    pub data_dir: Option<PathBuf>,
+}
+
+/// Run the selected tables and return their rows.
+pub fn run(opts: &Options) -> Result<Vec<Row>, ValidateError> {
+    for id in &opts.only {
+        if !TABLES.iter().any(|t| t.eq_ignore_ascii_case(id)) {
+            return Err(ValidateError::UnknownTable {
+                id: id.clone(),
+                known: TABLES.join(", "),
+            });
+        }
+    }
+    let wanted =
+        |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| id.eq_ignore_ascii_case(t));
+    let mut rows = Vec::new();
+    if wanted("V-1.2.1") {
+        rows.extend(visibility::rows(opts.data_dir.as_deref())?);
+    }
+    if wanted("T-3.2") {
+        rows.extend(loop_budget::rows()?);
+    }
+    Ok(rows)
+}
