@@ -1,1 +1,2 @@
-//! End-to-end tests of the `skyforge` binary live in `tests/tests/`.
+//! Whole-pipeline tests across the SkyForge crates live in `tests/tests/`; the CLI's
+//! end-to-end tests live in `sim/tests/` (they need the `skyforge` binary).

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The test suite: formatting, lints, the default tests, and the real-data tier.
+#   scripts/test.sh              real-data tier runs when the data folder exists
+#   scripts/test.sh --real-data  the real-data tier is required (CI)
+# The data folder is $SKYFORGE_DATA, default ../shared/data (relative to the repo root).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+require_data=0
+[ "${1:-}" = "--real-data" ] && require_data=1
+
+scripts/deps.sh
+echo "test: cargo fmt --check"
+cargo fmt --all -- --check
+echo "test: cargo clippy"
+cargo clippy --workspace --all-targets -- -D warnings
+echo "test: default suite"
+cargo test --workspace
+
+data="${SKYFORGE_DATA:-$(pwd)/../shared/data}"
+if [ -d "$data" ]; then
+  echo "test: real-data tier with SKYFORGE_DATA=$data"
+  SKYFORGE_DATA="$data" cargo test --workspace -- --ignored
+elif [ $require_data -eq 1 ]; then
+  echo "test: REAL-DATA FOLDER MISSING: $data (set SKYFORGE_DATA)" >&2
+  exit 1
+else
+  echo "test: ************************************************************"
+  echo "test: real-data tier SKIPPED: no data folder at $data (set SKYFORGE_DATA)"
+  echo "test: ************************************************************"
+fi

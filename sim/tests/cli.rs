@@ -1,0 +1,206 @@
+//! End-to-end tests of the `skyforge` binary.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn skyforge(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .unwrap()
+}
+
+fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// The bundled thesis LEO scenario shortened to `duration_s`.
+fn short_thesis(dir: &Path, duration_s: u32) -> std::path::PathBuf {
+    let o = skyforge(&["scenarios", "show", "thesis-leo"], dir);
+    assert!(o.status.success(), "{}", text(&o));
+    let toml = String::from_utf8(o.stdout).unwrap();
+    let line = toml
+        .lines()
+        .find(|l| l.trim_start().starts_with("duration_s"))
+        .unwrap();
+    let short = toml.replacen(line, &format!("duration_s = {duration_s}"), 1);
+    let path = dir.join("short.toml");
+    std::fs::write(&path, short).unwrap();
+    path
+}
+
+#[test]
+fn run_writes_truth_h5_with_the_documented_schema() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scenario = short_thesis(tmp.path(), 120);
+    let o = skyforge(
+        &[
+            "run",
+            scenario.to_str().unwrap(),
+            "--out",
+            "out",
+            "--seed",
+            "7",
+        ],
+        tmp.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("mean visible"));
+
+    let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
+    assert_eq!(file.attr("seed").unwrap().read_scalar::<u64>().unwrap(), 7);
+    let t: Vec<f64> = file.dataset("time/t_s").unwrap().read_raw().unwrap();
+    assert_eq!(t.len(), 121);
+    assert_eq!((t[0], t[120]), (0.0, 120.0));
+    let r = file.dataset("platform/r_ecef_m").unwrap();
+    assert_eq!(r.shape(), vec![121, 3]);
+    let r: Vec<f64> = r.read_raw().unwrap();
+    let radius = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+    // Osculating a = 6971.593 km, e = 0.000846: the radius lies within a(1 +/- e).
+    assert!(
+        (radius - 6_971_593.0).abs() < 6_971_593.0 * 0.000846 + 1.0,
+        "radius {radius}"
+    );
+    let n_sat = file.dataset("satellites/id").unwrap().shape()[0];
+    assert!(n_sat > 50, "GPS + BeiDou satellites: {n_sat}");
+    for ant in ["ant1", "ant2", "ant3"] {
+        let g = file.group(&format!("antennas/{ant}")).unwrap();
+        let range = g.dataset("range_m").unwrap();
+        assert_eq!(range.shape(), vec![121, n_sat]);
+        let units: hdf5::types::VarLenUnicode = range.attr("units").unwrap().read_scalar().unwrap();
+        assert_eq!(units.as_str(), "m");
+        let visible: Vec<u8> = g.dataset("visible").unwrap().read_raw().unwrap();
+        let range: Vec<f64> = range.read_raw().unwrap();
+        for (v, r) in visible.iter().zip(&range) {
+            assert_eq!(*v == 1, r.is_finite());
+        }
+        let per_epoch = visible.iter().map(|&v| v as usize).sum::<usize>() as f64 / 121.0;
+        assert!(
+            (4.0..40.0).contains(&per_epoch),
+            "{ant}: {per_epoch} visible per epoch"
+        );
+    }
+}
+
+#[test]
+fn a_bad_scenario_exits_2_names_the_place_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scenario = short_thesis(tmp.path(), 60);
+    let text_in = std::fs::read_to_string(&scenario).unwrap();
+    let line = text_in
+        .lines()
+        .find(|l| l.trim_start().starts_with("eccentricity"))
+        .unwrap();
+    std::fs::write(&scenario, text_in.replacen(line, "eccentricity = 1.5", 1)).unwrap();
+    let o = skyforge(&["run", "short.toml", "--out", "out"], tmp.path());
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let msg = text(&o);
+    let line_no = text_in.lines().position(|l| l == line).unwrap() + 1;
+    assert!(msg.contains(&format!("short.toml:{line_no}:")), "{msg}");
+    assert!(msg.contains("eccentricity") && msg.contains("1.5"), "{msg}");
+    assert!(!tmp.path().join("out").exists());
+    assert_eq!(
+        std::fs::read_dir(tmp.path()).unwrap().count(),
+        1,
+        "stray files"
+    );
+}
+
+#[test]
+fn an_existing_output_needs_force() {
+    let tmp = tempfile::tempdir().unwrap();
+    let scenario = short_thesis(tmp.path(), 10);
+    std::fs::create_dir(tmp.path().join("out")).unwrap();
+    std::fs::write(tmp.path().join("out/keep.txt"), "x").unwrap();
+    let o = skyforge(
+        &["run", scenario.to_str().unwrap(), "--out", "out"],
+        tmp.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(tmp.path().join("out/keep.txt").exists());
+    let o = skyforge(
+        &["run", scenario.to_str().unwrap(), "--out", "out", "--force"],
+        tmp.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(!tmp.path().join("out/keep.txt").exists());
+    assert!(tmp.path().join("out/truth.h5").exists());
+}
+
+#[test]
+fn scenarios_list_and_show() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = skyforge(&["scenarios", "list"], tmp.path());
+    assert!(o.status.success());
+    for name in [
+        "thesis-leo",
+        "thesis/v-1.2.1",
+        "thesis/t-3.2",
+        "ground-static",
+    ] {
+        assert!(text(&o).contains(name), "{name} missing from {}", text(&o));
+    }
+    let o = skyforge(&["scenarios", "show", "no-such"], tmp.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).contains("thesis-leo"));
+}
+
+#[test]
+fn validate_thesis_writes_every_row_of_both_tables() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = skyforge(
+        &[
+            "validate",
+            "thesis",
+            "--only",
+            "V-1.2.1",
+            "--only",
+            "T-3.2",
+            "--out",
+            "v",
+            "--data",
+            "no-data-here",
+        ],
+        tmp.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let rows: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("v/results.json")).unwrap())
+            .unwrap();
+    let rows = rows.as_array().unwrap();
+    let count = |table: &str| rows.iter().filter(|r| r["table"] == table).count();
+    // V-1.2.1: GPS, BD, GPS+BD x (max, min, mean) with BDS-3, plus BD and GPS+BD with BDS-2.
+    assert_eq!(count("V-1.2.1"), 15);
+    // T-3.2: 25 components, 2 dynamics rows, 20 totals.
+    assert_eq!(count("T-3.2"), 47);
+    for r in rows {
+        for key in [
+            "table",
+            "row",
+            "quantity",
+            "unit",
+            "thesis",
+            "ours",
+            "tolerance",
+            "verdict",
+            "note",
+        ] {
+            assert!(r.get(key).is_some(), "{key} missing in {r}");
+        }
+        assert!(["reproduced", "deviates", "explained"].contains(&r["verdict"].as_str().unwrap()));
+    }
+    // The component values are formulas of the thesis: all of them must match.
+    for r in rows
+        .iter()
+        .filter(|r| r["quantity"] == "phase error component")
+    {
+        assert_eq!(r["verdict"], "reproduced", "{r}");
+    }
+    let o = skyforge(&["validate", "thesis", "--only", "T-9.9"], tmp.path());
+    assert_eq!(o.status.code(), Some(2));
+}

@@ -1,0 +1,128 @@
+//! Geometry truth of the bundled thesis LEO scenario checked against independent
+//! computations: the light time in an explicitly inertial frame, and the sub-millimetre
+//! interpolation the synthesiser will rely on.
+
+use skyforge_orbits::constants::C_MPS;
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_orbits::platform::PlatformWindow;
+use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
+use skyforge_signals::truth::interp::QuinticHermite;
+use skyforge_signals::truth::light_time;
+
+/// Ten minutes of 1 Hz geometry of the thesis LEO (all antennas, GPS + BeiDou).
+fn thesis_chunk() -> (skyforge_scenarios::World, PlatformWindow, GeometryChunk, Vec<SatId>) {
+    let scenario = skyforge_scenarios::resolve("thesis-leo").unwrap();
+    let mut world = scenario.build().unwrap();
+    let sats = world.satellites.clone();
+    let truth = GeometryTruth::new(&world.ephemerides, &sats, &world.antennas, 1.0);
+    let margin = truth.window_margin_s();
+    let window = world.platform.window(-margin, 600.0 + margin).unwrap();
+    let chunk = truth.chunk(&window, 0.0, 601);
+    drop(truth);
+    (world, window, chunk, sats)
+}
+
+#[test]
+fn light_time_closes_in_an_inertial_frame_and_interpolation_is_sub_millimetre() {
+    let (world, window, chunk, sats) = thesis_chunk();
+    let mut links = 0;
+    let mut worst_interp_m: f64 = 0.0;
+    let mut worst_rate_mps: f64 = 0.0;
+    let mut worst_inertial_m: f64 = 0.0;
+    for (a, ant) in world.antennas.iter().enumerate() {
+        for (s, sat) in sats.iter().enumerate() {
+            for k in (0..600).step_by(7) {
+                let (l0, l1) = (chunk.link(k, a, s), chunk.link(k + 1, a, s));
+                if !(l0.visible && l1.visible) {
+                    continue;
+                }
+                links += 1;
+                let t_mid = k as f64 + 0.5;
+                let st = window.state(t_mid);
+                let r_ant = st.r_ecef_m + st.c_body_ecef * ant.true_body_m;
+                let eph = world.ephemerides.select(*sat, chunk.t_s[k]).unwrap();
+                let direct = light_time::solve(eph, &r_ant, t_mid, l0.light_time_s);
+
+                // Interpolation between the 1 Hz epochs against the direct solution.
+                let q = QuinticHermite::new(
+                    chunk.t_s[k],
+                    chunk.t_s[k + 1],
+                    [l0.range_m, l0.range_rate_mps, l0.range_accel_mps2],
+                    [l1.range_m, l1.range_rate_mps, l1.range_accel_mps2],
+                );
+                worst_interp_m = worst_interp_m.max((q.value(t_mid) - direct.range_m()).abs());
+                let h = 1e-3;
+                let ahead = light_time::solve(
+                    eph,
+                    &(window.state(t_mid + h).r_ecef_m
+                        + window.state(t_mid + h).c_body_ecef * ant.true_body_m),
+                    t_mid + h,
+                    direct.tau_s,
+                );
+                let behind = light_time::solve(
+                    eph,
+                    &(window.state(t_mid - h).r_ecef_m
+                        + window.state(t_mid - h).c_body_ecef * ant.true_body_m),
+                    t_mid - h,
+                    direct.tau_s,
+                );
+                let rate = (ahead.range_m() - behind.range_m()) / (2.0 * h);
+                worst_rate_mps = worst_rate_mps.max((q.rate(t_mid) - rate).abs());
+
+                // The same path in the ECI frame: satellite at transmit time, antenna at
+                // receive time, each rotated with its own epoch's Earth angle.
+                let t_tx = t_mid - direct.tau_s;
+                let (r_sat_eci, _) =
+                    world
+                        .earth
+                        .ecef_to_eci(t_tx, &eph.position_ecef(t_tx), &Default::default());
+                let (r_ant_eci, _) = world.earth.ecef_to_eci(t_mid, &r_ant, &Default::default());
+                worst_inertial_m = worst_inertial_m
+                    .max(((r_sat_eci - r_ant_eci).norm() - C_MPS * direct.tau_s).abs());
+            }
+        }
+    }
+    assert!(links > 500, "too few visible links checked: {links}");
+    println!(
+        "links {links}: interpolation {worst_interp_m:.3e} m, rate {worst_rate_mps:.3e} m/s, inertial closure {worst_inertial_m:.3e} m"
+    );
+    assert!(
+        worst_interp_m < 1e-4,
+        "quintic interpolation error {worst_interp_m} m at 1 Hz"
+    );
+    assert!(
+        worst_rate_mps < 1e-5,
+        "interpolated range rate error {worst_rate_mps} m/s"
+    );
+    assert!(
+        worst_inertial_m < 1e-3,
+        "light time does not close in ECI: {worst_inertial_m} m"
+    );
+}
+
+#[test]
+fn doppler_is_minus_range_rate_over_wavelength_and_angles_are_consistent() {
+    let (world, _, chunk, sats) = thesis_chunk();
+    let mut seen = 0;
+    for a in 0..world.antennas.len() {
+        for (s, sat) in sats.iter().enumerate() {
+            let f = skyforge_signals::signal::SignalId::primary_for(*sat).carrier_hz();
+            for k in 0..chunk.t_s.len() {
+                let l = chunk.link(k, a, s);
+                if !l.visible {
+                    assert!(l.range_m.is_nan());
+                    continue;
+                }
+                seen += 1;
+                assert!((l.doppler_hz + l.range_rate_mps * f / C_MPS).abs() < 1e-9 * f);
+                assert!((l.range_m - C_MPS * l.light_time_s).abs() < 1e-6);
+                // +/-80 deg field of view about zenith: antenna elevation at least 10 deg.
+                assert!(l.antenna_elevation_rad >= 10f64.to_radians() - 1e-9);
+                // A LEO-to-MEO/GEO range lies between 19,000 and 48,000 km.
+                assert!((1.9e7..4.8e7).contains(&l.range_m), "{sat}: {}", l.range_m);
+                assert!(l.doppler_hz.abs() < 6.0e4);
+            }
+        }
+    }
+    assert!(seen > 1000);
+}
