@@ -1,6 +1,9 @@
 //! `[platform.leo]` configuration: initial state, force model, integrator.
 
+use super::tle::Tle;
+use crate::Vec3;
 use crate::check::Invalid;
+use crate::constants::{GM_GPS, OMEGA_E_GPS, WGS84_A_M};
 
 /// `[platform.leo]`: exactly one of `elements`, `tle`, `state` gives the initial state.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
@@ -144,6 +147,369 @@ impl LeoConfig {
     /// Physical checks: exactly one initial state; e in [0, 1); perigee above the surface;
     /// positive mass, area, Cd; sane tolerances; TLE readable.
     pub fn check(&self) -> Result<(), Invalid> {
-        todo!()
+        self.check_one_initial_state()?;
+        if let Some(elements) = &self.elements {
+            elements.check().map_err(|e| e.within("elements"))?;
+        }
+        if let Some(tle) = &self.tle {
+            tle.check().map_err(|e| e.within("tle"))?;
+        }
+        if let Some(state) = &self.state {
+            state.check().map_err(|e| e.within("state"))?;
+        }
+        self.forces.check().map_err(|e| e.within("forces"))?;
+        self.integrator.check().map_err(|e| e.within("integrator"))
+    }
+
+    fn check_one_initial_state(&self) -> Result<(), Invalid> {
+        const ALLOWED: &str = "exactly one of `elements`, `tle`, `state` gives the initial state";
+        let given: Vec<&str> = [
+            ("elements", self.elements.is_some()),
+            ("tle", self.tle.is_some()),
+            ("state", self.state.is_some()),
+        ]
+        .into_iter()
+        .filter_map(|(name, present)| present.then_some(name))
+        .collect();
+        match given.as_slice() {
+            [_] => Ok(()),
+            [] => Err(Invalid::new("elements", "missing", ALLOWED)),
+            [first, second, ..] => Err(Invalid::new(
+                *second,
+                format!("given together with `{first}`"),
+                ALLOWED,
+            )),
+        }
+    }
+}
+
+/// Lowest allowed perigee / initial altitude above the equatorial radius (m): the
+/// propagator stops with [`super::PropagateError::Decayed`] below it.
+pub const MIN_ALTITUDE_M: f64 = 80e3;
+
+fn finite(field: &str, value: f64) -> Result<f64, Invalid> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Invalid::new(field, value, "must be a finite number"))
+    }
+}
+
+fn positive(field: &str, value: f64) -> Result<f64, Invalid> {
+    if value.is_finite() && value > 0.0 {
+        Ok(value)
+    } else {
+        Err(Invalid::new(field, value, "must be a finite number > 0"))
+    }
+}
+
+impl KeplerianElementsConfig {
+    fn check(&self) -> Result<(), Invalid> {
+        let a_m = positive("semi_major_axis_km", self.semi_major_axis_km)? * 1e3;
+        let e = finite("eccentricity", self.eccentricity)?;
+        if !(0.0..1.0).contains(&e) {
+            return Err(Invalid::new(
+                "eccentricity",
+                e,
+                "must be in [0, 1) (a closed orbit)",
+            ));
+        }
+        let i = finite("inclination_deg", self.inclination_deg)?;
+        if !(0.0..=180.0).contains(&i) {
+            return Err(Invalid::new(
+                "inclination_deg",
+                i,
+                "must be in [0, 180] deg",
+            ));
+        }
+        finite("raan_deg", self.raan_deg)?;
+        finite("arg_perigee_deg", self.arg_perigee_deg)?;
+        finite("mean_anomaly_deg", self.mean_anomaly_deg)?;
+        let perigee_altitude_m = a_m * (1.0 - e) - WGS84_A_M;
+        if perigee_altitude_m < MIN_ALTITUDE_M {
+            return Err(Invalid::new(
+                "semi_major_axis_km",
+                self.semi_major_axis_km,
+                format!(
+                    "perigee altitude a (1 - e) - 6378.137 km = {:.1} km: must be >= 80 km \
+                     (above the surface and the lower atmosphere)",
+                    perigee_altitude_m * 1e-3
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl TleConfig {
+    fn check(&self) -> Result<(), Invalid> {
+        match Tle::parse(self) {
+            Ok(_) => Ok(()),
+            Err(err) => {
+                let msg = err.to_string();
+                let (field, value) = if msg.contains("line 2") {
+                    ("line2", self.line2.as_str())
+                } else if msg.contains("line 1") {
+                    ("line1", self.line1.as_str())
+                } else {
+                    ("", "")
+                };
+                let value = if field.is_empty() {
+                    format!("{:?} / {:?}", self.line1, self.line2)
+                } else {
+                    format!("{value:?}")
+                };
+                Err(Invalid::new(
+                    field,
+                    value,
+                    format!("must be a valid two-line element set ({msg})"),
+                ))
+            }
+        }
+    }
+}
+
+impl StateVectorConfig {
+    fn check(&self) -> Result<(), Invalid> {
+        for (k, &x) in self.position_m.iter().enumerate() {
+            finite(&format!("position_m[{k}]"), x)?;
+        }
+        for (k, &x) in self.velocity_mps.iter().enumerate() {
+            finite(&format!("velocity_mps[{k}]"), x)?;
+        }
+        let r = Vec3::from(self.position_m);
+        let altitude_m = r.norm() - WGS84_A_M;
+        if altitude_m < MIN_ALTITUDE_M {
+            return Err(Invalid::new(
+                "position_m",
+                format!("{:?}", self.position_m),
+                format!(
+                    "|r| - 6378.137 km = {:.1} km: must be >= 80 km above the surface",
+                    altitude_m * 1e-3
+                ),
+            ));
+        }
+        // Inertial speed; |v_eci| = |v_ecef + w x r| in any Earth-rotation-only frame.
+        let v = Vec3::from(self.velocity_mps);
+        let v_inertial = match self.frame {
+            StateFrame::Eci => v,
+            StateFrame::Ecef => v + Vec3::new(-OMEGA_E_GPS * r.y, OMEGA_E_GPS * r.x, 0.0),
+        };
+        let v_escape = (2.0 * GM_GPS / r.norm()).sqrt();
+        if v_inertial.norm() >= v_escape {
+            return Err(Invalid::new(
+                "velocity_mps",
+                format!("{:?}", self.velocity_mps),
+                format!(
+                    "inertial speed {:.1} m/s must be below the escape speed {:.1} m/s",
+                    v_inertial.norm(),
+                    v_escape
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl ForceModelConfig {
+    fn check(&self) -> Result<(), Invalid> {
+        positive("drag_coefficient", self.drag_coefficient)?;
+        positive("area_m2", self.area_m2)?;
+        positive("mass_kg", self.mass_kg)?;
+        Ok(())
+    }
+}
+
+impl IntegratorConfig {
+    fn check(&self) -> Result<(), Invalid> {
+        for (field, value) in [("rel_tol", self.rel_tol), ("abs_tol_m", self.abs_tol_m)] {
+            if !(value > 0.0 && value <= 1e-3) {
+                return Err(Invalid::new(field, value, "must be in (0, 1e-3]"));
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn thesis_elements() -> KeplerianElementsConfig {
+        KeplerianElementsConfig {
+            semi_major_axis_km: 6971.593,
+            eccentricity: 0.000846,
+            inclination_deg: 34.911,
+            raan_deg: -78.005,
+            arg_perigee_deg: 47.757,
+            mean_anomaly_deg: 351.636,
+        }
+    }
+
+    fn leo(elements: KeplerianElementsConfig) -> LeoConfig {
+        LeoConfig {
+            elements: Some(elements),
+            tle: None,
+            state: None,
+            forces: ForceModelConfig::default(),
+            integrator: IntegratorConfig::default(),
+        }
+    }
+
+    fn iss_tle() -> TleConfig {
+        TleConfig {
+            line1: "1 25544U 98067A   20194.88612269 -.00002218  00000-0 -31515-4 0  9992".into(),
+            line2: "2 25544  51.6461 221.2784 0001413  89.1723 280.4612 15.49507896236008".into(),
+        }
+    }
+
+    fn field_of(cfg: &LeoConfig) -> String {
+        cfg.check().unwrap_err().field
+    }
+
+    #[test]
+    fn thesis_orbit_with_defaults_is_valid() {
+        assert_eq!(leo(thesis_elements()).check(), Ok(()));
+    }
+
+    #[test]
+    fn empty_table_deserialises_to_the_defaults() {
+        use serde::Deserialize;
+        use serde::de::value::{Error, MapDeserializer};
+        let empty = MapDeserializer::<_, Error>::new(std::iter::empty::<(&str, &str)>());
+        let cfg = LeoConfig::deserialize(empty).unwrap();
+        assert_eq!(cfg.forces, ForceModelConfig::default());
+        assert_eq!(cfg.integrator, IntegratorConfig::default());
+        assert_eq!(cfg.check().unwrap_err().field, "elements");
+    }
+
+    #[test]
+    fn exactly_one_initial_state() {
+        let mut cfg = leo(thesis_elements());
+        cfg.elements = None;
+        let err = cfg.check().unwrap_err();
+        assert_eq!(err.field, "elements");
+        assert!(err.allowed.contains("exactly one"));
+        let mut both = leo(thesis_elements());
+        both.tle = Some(iss_tle());
+        assert_eq!(field_of(&both), "tle");
+        let mut state_too = leo(thesis_elements());
+        state_too.state = Some(StateVectorConfig {
+            frame: StateFrame::Eci,
+            position_m: [7e6, 0.0, 0.0],
+            velocity_mps: [0.0, 7.5e3, 0.0],
+        });
+        assert_eq!(field_of(&state_too), "state");
+    }
+
+    #[test]
+    fn element_ranges() {
+        let bad = |f: fn(&mut KeplerianElementsConfig)| {
+            let mut el = thesis_elements();
+            f(&mut el);
+            field_of(&leo(el))
+        };
+        assert_eq!(bad(|e| e.eccentricity = 1.0), "elements.eccentricity");
+        assert_eq!(bad(|e| e.eccentricity = -0.1), "elements.eccentricity");
+        assert_eq!(
+            bad(|e| e.semi_major_axis_km = 0.0),
+            "elements.semi_major_axis_km"
+        );
+        assert_eq!(
+            bad(|e| e.semi_major_axis_km = f64::NAN),
+            "elements.semi_major_axis_km"
+        );
+        assert_eq!(
+            bad(|e| e.inclination_deg = 181.0),
+            "elements.inclination_deg"
+        );
+        assert_eq!(bad(|e| e.raan_deg = f64::INFINITY), "elements.raan_deg");
+        assert_eq!(
+            bad(|e| e.arg_perigee_deg = f64::NAN),
+            "elements.arg_perigee_deg"
+        );
+        assert_eq!(
+            bad(|e| e.mean_anomaly_deg = f64::NAN),
+            "elements.mean_anomaly_deg"
+        );
+    }
+
+    #[test]
+    fn perigee_below_80_km_is_rejected() {
+        let mut el = thesis_elements();
+        // Perigee at 6971.593 (1 - 0.08) - 6378.137 = 35.7 km.
+        el.eccentricity = 0.08;
+        let err = leo(el).check().unwrap_err();
+        assert_eq!(err.field, "elements.semi_major_axis_km");
+        assert!(err.allowed.contains("80 km"), "{}", err.allowed);
+        let mut ok = thesis_elements();
+        ok.semi_major_axis_km = 6378.137 + 81.0;
+        ok.eccentricity = 0.0;
+        assert_eq!(leo(ok).check(), Ok(()));
+    }
+
+    #[test]
+    fn force_and_integrator_ranges() {
+        let mut cfg = leo(thesis_elements());
+        cfg.forces.mass_kg = 0.0;
+        assert_eq!(field_of(&cfg), "forces.mass_kg");
+        let mut cfg = leo(thesis_elements());
+        cfg.forces.area_m2 = -1.0;
+        assert_eq!(field_of(&cfg), "forces.area_m2");
+        let mut cfg = leo(thesis_elements());
+        cfg.forces.drag_coefficient = f64::NAN;
+        assert_eq!(field_of(&cfg), "forces.drag_coefficient");
+        let mut cfg = leo(thesis_elements());
+        cfg.integrator.rel_tol = 0.0;
+        assert_eq!(field_of(&cfg), "integrator.rel_tol");
+        let mut cfg = leo(thesis_elements());
+        cfg.integrator.abs_tol_m = 2e-3;
+        assert_eq!(field_of(&cfg), "integrator.abs_tol_m");
+    }
+
+    #[test]
+    fn state_vector_checks() {
+        let state = |frame, position_m, velocity_mps| LeoConfig {
+            elements: None,
+            tle: None,
+            state: Some(StateVectorConfig {
+                frame,
+                position_m,
+                velocity_mps,
+            }),
+            forces: ForceModelConfig::default(),
+            integrator: IntegratorConfig::default(),
+        };
+        let ok = state(StateFrame::Ecef, [7.0e6, 0.0, 0.0], [0.0, 7.0e3, 0.0]);
+        assert_eq!(ok.check(), Ok(()));
+        let inside = state(StateFrame::Eci, [6.4e6, 0.0, 0.0], [0.0, 7.9e3, 0.0]);
+        assert_eq!(field_of(&inside), "state.position_m");
+        let nan = state(StateFrame::Eci, [7.0e6, f64::NAN, 0.0], [0.0, 7.5e3, 0.0]);
+        assert_eq!(field_of(&nan), "state.position_m[1]");
+        let nan_v = state(
+            StateFrame::Eci,
+            [7.0e6, 0.0, 0.0],
+            [0.0, 7.5e3, f64::INFINITY],
+        );
+        assert_eq!(field_of(&nan_v), "state.velocity_mps[2]");
+        // Escape speed at 7000 km is 10.67 km/s; in ECEF the Earth rotation adds 0.51 km/s.
+        let escaping = state(StateFrame::Eci, [7.0e6, 0.0, 0.0], [0.0, 10.8e3, 0.0]);
+        assert_eq!(field_of(&escaping), "state.velocity_mps");
+        let escaping_ecef = state(StateFrame::Ecef, [7.0e6, 0.0, 0.0], [0.0, 10.3e3, 0.0]);
+        assert_eq!(field_of(&escaping_ecef), "state.velocity_mps");
+    }
+
+    #[test]
+    fn tle_lines_must_parse() {
+        let mut cfg = leo(thesis_elements());
+        cfg.elements = None;
+        cfg.tle = Some(iss_tle());
+        assert_eq!(cfg.check(), Ok(()));
+        let mut bad = iss_tle();
+        bad.line2.replace_range(8..9, "X");
+        cfg.tle = Some(bad);
+        let err = cfg.check().unwrap_err();
+        assert_eq!(err.field, "tle.line2");
+        assert!(err.allowed.contains("two-line element"), "{}", err.allowed);
     }
 }

@@ -1,32 +1,272 @@
 //! The LEO propagator: integrates forward on demand and hands out dense-output windows, so
 //! memory stays bounded however long the scenario is.
+//!
+//! The equations of motion `r'' = a(t, r, r')` of [`ForceModel`] are integrated in the
+//! scenario ECI frame by the adaptive Dormand-Prince 5(4) of [`super::dormand_prince`]
+//! with the configured relative tolerance; the absolute tolerance is `abs_tol_m` on the
+//! position and `abs_tol_m x 1e-3 /s` on the velocity (1e-3 rad/s is about a LEO's mean
+//! motion, so both halves of the state are weighted alike).
+
+use std::collections::VecDeque;
 
 use super::PropagateError;
+use super::atmosphere::geodetic_height_m;
+use super::config::{LeoConfig, MIN_ALTITUDE_M, StateFrame};
+use super::dormand_prince::{DenseStep, DormandPrince, Settings, State6};
+use super::elements::KeplerianElements;
+use super::forces::ForceModel;
+use super::tle::Tle;
 use crate::Vec3;
+use crate::frames::earth_rotation::EarthRotation;
+use crate::time::TimeOrigin;
+
+/// Velocity absolute tolerance per metre of position tolerance (1/s).
+const VELOCITY_TOL_PER_S: f64 = 1e-3;
+/// Step-size limits (s).
+const H_MIN_S: f64 = 1e-6;
+const H_MAX_S: f64 = 300.0;
+/// History kept behind the end of the last window: at least this long (s) ...
+const KEEP_HISTORY_S: f64 = 60.0;
+/// ... and at least this many steps.
+const KEEP_MIN_STEPS: usize = 2;
+/// Slack when comparing window bounds with step bounds (s).
+const TIME_EPS_S: f64 = 1e-9;
 
 /// A dense-output trajectory over a time window (ECI).
 #[derive(Debug, Clone)]
-pub struct DenseTrajectory {}
+pub struct DenseTrajectory {
+    /// Consecutive integrator steps covering the window (never empty).
+    steps: Vec<DenseStep>,
+    force: ForceModel,
+}
 
 impl DenseTrajectory {
-    /// First and last time covered (s since the scenario start).
+    /// First and last time covered (s since the scenario start): the bounds of the
+    /// integrator steps kept for the window, which contain the requested window.
     pub fn span(&self) -> (f64, f64) {
-        todo!()
+        let first = self.steps.first().map_or(f64::NAN, DenseStep::t_start_s);
+        let last = self.steps.last().map_or(f64::NAN, DenseStep::t_end_s);
+        (first, last)
     }
+
     /// ECI position, velocity and acceleration at `t_s` (inside the span).
+    ///
+    /// Position and velocity come from the 4th-order dense output of the step holding
+    /// `t_s`; the acceleration is the force model evaluated at that interpolated state
+    /// (more accurate than differentiating the interpolant). Outside the span the nearest
+    /// step is extrapolated, which is accurate only a small fraction of a step away.
     pub fn state_eci(&self, t_s: f64) -> (Vec3, Vec3, Vec3) {
-        todo!("{t_s}")
+        let (r, v) = self.position_velocity_eci(t_s);
+        let a = self.force.acceleration_eci(t_s, &r, &v);
+        (r, v, a)
+    }
+
+    /// ECI position and velocity at `t_s` (as [`Self::state_eci`], without the force
+    /// evaluation).
+    pub fn position_velocity_eci(&self, t_s: f64) -> (Vec3, Vec3) {
+        let index = self
+            .steps
+            .partition_point(|s| s.t_end_s() < t_s)
+            .min(self.steps.len().saturating_sub(1));
+        let y = self.steps[index].state_at(t_s);
+        split(&y)
     }
 }
 
 /// A numerically propagated LEO.
 #[derive(Debug, Clone)]
-pub struct LeoPropagator {}
+pub struct LeoPropagator {
+    force: ForceModel,
+    integrator: DormandPrince,
+    /// Accepted steps not yet dropped, in time order.
+    history: VecDeque<DenseStep>,
+    r0_eci_m: Vec3,
+    v0_eci_mps: Vec3,
+    /// Set once the propagation failed (decay, step underflow); repeated afterwards.
+    stopped: Option<PropagateError>,
+}
 
 impl LeoPropagator {
-    /// Dense output covering `[t0_s, t1_s]`. Windows must move forward: `t0_s` may reach
-    /// back at most into the last integrator steps kept from the previous window.
-    pub fn window(&mut self, t0_s: f64, t1_s: f64) -> Result<DenseTrajectory, PropagateError> {
-        todo!("{t0_s} {t1_s}")
+    /// A propagator starting at `t = 0` (the scenario start of `origin`) from the initial
+    /// state `cfg` gives: elements (osculating, ECI, mu = `GM_GPS`), a TLE (SGP4 to the
+    /// start, TEME taken as ECI, see [`super::tle`]) or a state vector (ECEF converted with
+    /// `earth` at `t = 0`). The configuration is checked first.
+    pub fn new(
+        cfg: &LeoConfig,
+        origin: &TimeOrigin,
+        earth: &EarthRotation,
+    ) -> Result<LeoPropagator, PropagateError> {
+        cfg.check()?;
+        let (r0_eci_m, v0_eci_mps) = initial_state_eci(cfg, origin, earth)?;
+        let h = r0_eci_m.cross(&v0_eci_mps);
+        let inclination_rad = (h.z / h.norm()).clamp(-1.0, 1.0).acos();
+        let force = ForceModel::new(&cfg.forces, origin.start(), inclination_rad);
+        let abs_pos = cfg.integrator.abs_tol_m;
+        let abs_vel = abs_pos * VELOCITY_TOL_PER_S;
+        let settings = Settings {
+            rel_tol: cfg.integrator.rel_tol,
+            abs_tol: State6::new(abs_pos, abs_pos, abs_pos, abs_vel, abs_vel, abs_vel),
+            h_min_s: H_MIN_S,
+            h_max_s: H_MAX_S,
+            h_initial_s: None,
+        };
+        let y0 = join(&r0_eci_m, &v0_eci_mps);
+        let mut f = |t: f64, y: &State6| derivative(&force, t, y);
+        let integrator = DormandPrince::new(&mut f, 0.0, y0, settings);
+        Ok(Self {
+            force,
+            integrator,
+            history: VecDeque::new(),
+            r0_eci_m,
+            v0_eci_mps,
+            stopped: None,
+        })
     }
+
+    /// The ECI position (m) and velocity (m/s) at `t = 0`.
+    pub fn initial_state_eci(&self) -> (Vec3, Vec3) {
+        (self.r0_eci_m, self.v0_eci_mps)
+    }
+
+    /// Osculating elements (mu = `GM_GPS`) of the initial state.
+    pub fn initial_elements(&self) -> KeplerianElements {
+        KeplerianElements::from_cartesian(&self.r0_eci_m, &self.v0_eci_mps, self.force.gm())
+    }
+
+    /// The resolved force model.
+    pub fn force_model(&self) -> &ForceModel {
+        &self.force
+    }
+
+    /// Dense output covering `[t0_s, t1_s]`. Windows must move forward: `t0_s` may reach
+    /// back at most into the last integrator steps kept from the previous window (at least
+    /// the last 2 steps and the last 60 s before the previous window's end).
+    ///
+    /// Errors: [`PropagateError::WindowBeforeHistory`] for a start before the kept history
+    /// (or a non-finite bound); [`PropagateError::Decayed`] when the integration reaching
+    /// `t1_s` passes below 80 km geodetic height; [`PropagateError::StepUnderflow`] when the
+    /// tolerance cannot be met. After a failure, windows that need to integrate further
+    /// repeat the error.
+    pub fn window(&mut self, t0_s: f64, t1_s: f64) -> Result<DenseTrajectory, PropagateError> {
+        let t1_s = t1_s.max(t0_s);
+        let kept_from_s = self
+            .history
+            .front()
+            .map_or(self.integrator.t_s(), DenseStep::t_start_s);
+        if !(t0_s >= kept_from_s - TIME_EPS_S && t1_s.is_finite()) {
+            return Err(PropagateError::WindowBeforeHistory { t0_s, kept_from_s });
+        }
+        while self.history.is_empty() || self.integrator.t_s() < t1_s {
+            if let Some(err) = &self.stopped {
+                return Err(err.clone());
+            }
+            self.advance()?;
+        }
+        let steps: Vec<DenseStep> = self
+            .history
+            .iter()
+            .filter(|s| s.t_end_s() >= t0_s - TIME_EPS_S && s.t_start_s() <= t1_s + TIME_EPS_S)
+            .cloned()
+            .collect();
+        self.prune(t1_s);
+        Ok(DenseTrajectory {
+            steps,
+            force: self.force.clone(),
+        })
+    }
+
+    /// Take one integrator step and check the altitude at its end.
+    fn advance(&mut self) -> Result<(), PropagateError> {
+        let force = &self.force;
+        let mut f = |t: f64, y: &State6| derivative(force, t, y);
+        let step = match self.integrator.step(&mut f) {
+            Ok(step) => step,
+            Err(underflow) => {
+                let err = PropagateError::StepUnderflow { t_s: underflow.t_s };
+                self.stopped = Some(err.clone());
+                return Err(err);
+            }
+        };
+        let (r_end, _) = split(&step.end_state());
+        let t_end_s = step.t_end_s();
+        self.history.push_back(step);
+        let altitude_m = geodetic_height_m(&r_end);
+        if altitude_m < MIN_ALTITUDE_M {
+            let err = PropagateError::Decayed {
+                t_s: t_end_s,
+                altitude_m,
+            };
+            self.stopped = Some(err.clone());
+            return Err(err);
+        }
+        Ok(())
+    }
+
+    /// Drop the steps that ended more than [`KEEP_HISTORY_S`] before `t_end_s`, keeping at
+    /// least [`KEEP_MIN_STEPS`].
+    fn prune(&mut self, t_end_s: f64) {
+        let keep_from_s = t_end_s - KEEP_HISTORY_S;
+        while self.history.len() > KEEP_MIN_STEPS
+            && self
+                .history
+                .front()
+                .is_some_and(|s| s.t_end_s() < keep_from_s)
+        {
+            self.history.pop_front();
+        }
+    }
+}
+
+/// The initial ECI state from whichever source `cfg` names.
+fn initial_state_eci(
+    cfg: &LeoConfig,
+    origin: &TimeOrigin,
+    earth: &EarthRotation,
+) -> Result<(Vec3, Vec3), PropagateError> {
+    if let Some(el) = &cfg.elements {
+        let elements = KeplerianElements {
+            a_m: el.semi_major_axis_km * 1e3,
+            e: el.eccentricity,
+            i_rad: el.inclination_deg.to_radians(),
+            raan_rad: el.raan_deg.to_radians(),
+            argp_rad: el.arg_perigee_deg.to_radians(),
+            mean_anomaly_rad: el.mean_anomaly_deg.to_radians(),
+        };
+        return Ok(elements.to_cartesian(crate::constants::GM_GPS));
+    }
+    if let Some(tle) = &cfg.tle {
+        return Tle::parse(tle)?.state_teme(origin.start());
+    }
+    match &cfg.state {
+        Some(state) => {
+            let r = Vec3::from(state.position_m);
+            let v = Vec3::from(state.velocity_mps);
+            Ok(match state.frame {
+                StateFrame::Eci => (r, v),
+                StateFrame::Ecef => earth.ecef_to_eci(0.0, &r, &v),
+            })
+        }
+        // `check` guarantees one source; keep the error rather than a panic.
+        None => Err(crate::check::Invalid::new(
+            "elements",
+            "missing",
+            "exactly one of `elements`, `tle`, `state` gives the initial state",
+        )
+        .into()),
+    }
+}
+
+/// `d/dt (r, v) = (v, a)`.
+fn derivative(force: &ForceModel, t_s: f64, y: &State6) -> State6 {
+    let (r, v) = split(y);
+    let a = force.acceleration_eci(t_s, &r, &v);
+    join(&v, &a)
+}
+
+fn split(y: &State6) -> (Vec3, Vec3) {
+    (Vec3::new(y[0], y[1], y[2]), Vec3::new(y[3], y[4], y[5]))
+}
+
+fn join(a: &Vec3, b: &Vec3) -> State6 {
+    State6::new(a.x, a.y, a.z, b.x, b.y, b.z)
 }

@@ -1,11 +1,13 @@
 //! The LEO numerical propagator: two-body + J2 (J3..J6 optional) + atmospheric drag,
 //! integrated by an adaptive Dormand-Prince 5(4) with dense output.
 
+pub mod atmosphere;
 pub mod config;
 pub mod dormand_prince;
 pub mod elements;
 pub mod forces;
 pub mod leo;
+pub mod sun;
 pub mod tle;
 
 /// Error during propagation.
@@ -23,4 +25,7 @@ pub enum PropagateError {
     /// A TLE could not be read or propagated.
     #[error("TLE: {0}")]
     Tle(String),
+    /// The `[platform.leo]` configuration failed its checks (field path relative to it).
+    #[error("invalid LEO configuration: {0}")]
+    Config(#[from] crate::check::Invalid),
 }
