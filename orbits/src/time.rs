@@ -1,7 +1,19 @@
 //! Time scales (GPST, BDT, UTC with leap seconds through `hifitime`) and the scenario time
 //! origin. Inside hot loops time is `f64` seconds since [`TimeOrigin::start`].
+//!
+//! Week numbers follow the GNSS interface documents: GPS week 0 starts at
+//! 1980-01-06 00:00:00 GPST (= UTC then), IS-GPS-200 section 3.3.4 and 20.3.3.3.1.1;
+//! BeiDou week 0 starts at 2006-01-01 00:00:00 BDT (= UTC then), BDS-SIS-ICD section 4.2.
+//! Since GPST - UTC was 0 s in 1980 and BDT - UTC was 0 s in 2006 (TAI - UTC = 19 s and
+//! 33 s), BDT = GPST - 14 s for all time. Weeks are continuous (no 1024/8192 roll-over).
 
-use hifitime::Epoch;
+use hifitime::{Duration, Epoch, TimeScale};
+use std::str::FromStr;
+
+/// Nanoseconds in one second.
+const NS_PER_S: i128 = 1_000_000_000;
+/// Seconds in one week.
+const S_PER_WEEK: i128 = 604_800;
 
 /// Error parsing or converting a time.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -12,6 +24,10 @@ pub enum TimeError {
 }
 
 /// The instant `t = 0` of a scenario; converts between epochs and `f64` seconds.
+///
+/// Differences are taken exactly (integer nanoseconds in GPST, a uniform scale without
+/// leap seconds) and only then converted to `f64`, so `t` is exact to rounding of the
+/// `f64` itself (about 0.1 ns after a day).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TimeOrigin {
     start: Epoch,
@@ -28,35 +44,273 @@ impl TimeOrigin {
     }
     /// Seconds from the start to `epoch` (exact difference, then to `f64`).
     pub fn seconds_since_start(&self, epoch: Epoch) -> f64 {
-        todo!("{epoch}")
+        let dt = epoch.to_time_scale(TimeScale::GPST) - self.start.to_time_scale(TimeScale::GPST);
+        nanoseconds_to_seconds(dt.total_nanoseconds())
     }
-    /// The epoch `t_s` seconds after the start.
+    /// The epoch `t_s` seconds after the start, in GPST, rounded to the nanosecond.
     pub fn epoch_at(&self, t_s: f64) -> Epoch {
-        todo!("{t_s}")
+        self.start.to_time_scale(TimeScale::GPST) + seconds_to_duration(t_s)
     }
 }
 
+/// `ns` nanoseconds as `f64` seconds, splitting whole and fractional seconds (both with
+/// the sign of `ns`) so that no precision is lost before the final rounding.
+fn nanoseconds_to_seconds(ns: i128) -> f64 {
+    let whole_s = ns / NS_PER_S;
+    let frac_ns = ns % NS_PER_S;
+    whole_s as f64 + frac_ns as f64 * 1e-9
+}
+
+/// `t_s` seconds as a duration, rounded to the nanosecond.
+fn seconds_to_duration(t_s: f64) -> Duration {
+    let whole_s = t_s.floor();
+    let frac_ns = ((t_s - whole_s) * 1e9).round();
+    Duration::from_total_nanoseconds(whole_s as i128 * NS_PER_S + frac_ns as i128)
+}
+
 /// Parse an epoch such as `2023-03-12T00:00:00 GPST`, `... UTC`, `... BDT`.
+///
+/// The time scale is mandatory (a trailing `Z` counts as UTC): a bare date is rejected
+/// rather than silently read as UTC, 18 s away from GPST. Any scale hifitime knows is
+/// accepted (`GPST`/`GPS`, `BDT`/`BDS`, `UTC`, `GST`, `TAI`, `TT`, ...).
 pub fn parse_epoch(text: &str) -> Result<Epoch, TimeError> {
-    todo!("{text}")
+    let error = |reason: &str| TimeError::Parse {
+        text: text.to_string(),
+        reason: reason.to_string(),
+    };
+    let trimmed = text.trim();
+    let last_token = trimmed.split_whitespace().last().unwrap_or("");
+    let has_scale =
+        TimeScale::from_str(last_token).is_ok() && trimmed.contains(char::is_whitespace);
+    if !has_scale && !trimmed.ends_with('Z') {
+        return Err(error(
+            "add the time scale, e.g. `2023-03-12T00:00:00 GPST` (GPST, BDT, UTC, GST, TAI)",
+        ));
+    }
+    Epoch::from_str(trimmed).map_err(|e| {
+        error(&format!(
+            "{e}; expected e.g. `2023-03-12T00:00:00 GPST`, `2023-03-12T00:00:00.5 UTC`"
+        ))
+    })
+}
+
+/// Continuous week and seconds of week of a duration since a week-0 start.
+/// Before week 0 the week saturates at 0 and the seconds of week are negative.
+fn week_sow(since_week0: Duration) -> (u32, f64) {
+    let ns = since_week0.total_nanoseconds();
+    let ns_per_week = S_PER_WEEK * NS_PER_S;
+    let week = ns.div_euclid(ns_per_week).clamp(0, i128::from(u32::MAX));
+    let sow_ns = ns - week * ns_per_week;
+    (week as u32, nanoseconds_to_seconds(sow_ns))
+}
+
+/// Duration since a week-0 start of week `week`, `sow` seconds, rounded to the nanosecond.
+fn duration_from_week_sow(week: u32, sow: f64) -> Duration {
+    Duration::from_total_nanoseconds(i128::from(week) * S_PER_WEEK * NS_PER_S)
+        + seconds_to_duration(sow)
 }
 
 /// GPS week number (continuous, no roll-over) and seconds of week.
 pub fn gpst_week_sow(epoch: Epoch) -> (u32, f64) {
-    todo!("{epoch}")
+    week_sow(epoch.to_gpst_duration())
 }
 
 /// BeiDou week number and seconds of week (BDT).
 pub fn bdt_week_sow(epoch: Epoch) -> (u32, f64) {
-    todo!("{epoch}")
+    week_sow(epoch.to_bdt_duration())
 }
 
 /// The epoch at GPS week `week` and seconds of week `sow`.
 pub fn epoch_from_gpst(week: u32, sow: f64) -> Epoch {
-    todo!("{week} {sow}")
+    Epoch::from_gpst_duration(duration_from_week_sow(week, sow))
 }
 
 /// The epoch at BDT week `week` and seconds of week `sow`.
 pub fn epoch_from_bdt(week: u32, sow: f64) -> Epoch {
-    todo!("{week} {sow}")
+    Epoch::from_bdt_duration(duration_from_week_sow(week, sow))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn parse(text: &str) -> Epoch {
+        match parse_epoch(text) {
+            Ok(e) => e,
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    #[test]
+    fn published_gps_week_of_2020_06_25() {
+        // 2020-06-25 is a Thursday of GPS week 2111 (IGS file names of day 177: week 2111,
+        // day 4), so 4 days into the week: 345600 s.
+        let (week, sow) = gpst_week_sow(parse("2020-06-25T00:00:00 GPST"));
+        assert_eq!(week, 2111);
+        assert_eq!(sow, 345_600.0);
+        assert_eq!(
+            epoch_from_gpst(2111, 345_600.0),
+            parse("2020-06-25T00:00:00 GPST")
+        );
+    }
+
+    #[test]
+    fn gps_week_zero_starts_1980_01_06() {
+        assert_eq!(gpst_week_sow(parse("1980-01-06T00:00:00 UTC")), (0, 0.0));
+        // GPS week 1024 (first roll-over) began 1999-08-22 00:00:00 GPST.
+        assert_eq!(
+            gpst_week_sow(parse("1999-08-22T00:00:00 GPST")),
+            (1024, 0.0)
+        );
+    }
+
+    #[test]
+    fn bdt_week_zero_is_gps_week_1356_plus_14_s() {
+        // BDS-SIS-ICD: BDT starts 2006-01-01 00:00:00 UTC, which is GPS week 1356 sow 14
+        // (GPST - UTC = 14 s at that time).
+        let bdt0 = parse("2006-01-01T00:00:00 UTC");
+        assert_eq!(bdt_week_sow(bdt0), (0, 0.0));
+        assert_eq!(gpst_week_sow(bdt0), (1356, 14.0));
+        assert_eq!(epoch_from_bdt(0, 0.0), bdt0);
+    }
+
+    #[test]
+    fn bdt_is_gpst_minus_14_s() {
+        // Mid-week (a week start in GPST is still the previous week in BDT).
+        let e = parse("2023-03-15T00:00:00 GPST");
+        let (gw, gs) = gpst_week_sow(e);
+        let (bw, bs) = bdt_week_sow(e);
+        assert_eq!(gw - bw, 1356);
+        assert_eq!(gs - bs, 14.0);
+        // The same clock reading in BDT is 14 s later than in GPST.
+        let b = parse("2023-03-15T00:00:00 BDT");
+        assert_eq!(TimeOrigin::new(e).seconds_since_start(b), 14.0);
+    }
+
+    #[test]
+    fn gpst_minus_utc_is_18_s_in_2020() {
+        // IERS Bulletin C: TAI - UTC = 37 s since 2017-01-01, so GPST - UTC = 18 s.
+        let gpst = parse("2020-06-25T00:00:00 GPST");
+        let utc = parse("2020-06-25T00:00:00 UTC");
+        assert_eq!(TimeOrigin::new(gpst).seconds_since_start(utc), 18.0);
+        // ... and 16 s in the first half of 2015 (TAI - UTC = 35 s until the 2015-06-30 leap
+        // second).
+        let gpst = parse("2015-03-01T00:00:00 GPST");
+        let utc = parse("2015-03-01T00:00:00 UTC");
+        assert_eq!(TimeOrigin::new(gpst).seconds_since_start(utc), 16.0);
+    }
+
+    #[test]
+    fn origin_counts_leap_second_across_2016_12_31() {
+        // A leap second was inserted at the end of 2016: 2 UTC seconds span 3 SI seconds.
+        let o = TimeOrigin::new(parse("2016-12-31T23:59:59 UTC"));
+        assert_eq!(o.seconds_since_start(parse("2017-01-01T00:00:00 UTC")), 2.0);
+    }
+
+    #[test]
+    fn origin_sub_nanosecond_precision() {
+        let o = TimeOrigin::new(parse("2023-03-12T00:00:00 GPST"));
+        let e = o.epoch_at(-1e-9);
+        assert_eq!(o.seconds_since_start(e), -1e-9);
+        assert_eq!(
+            o.seconds_since_start(o.epoch_at(86_400.123_456_789)),
+            86_400.123_456_789
+        );
+    }
+
+    #[test]
+    fn parse_rejects_missing_scale_and_garbage() {
+        for bad in [
+            "2023-03-12T00:00:00",
+            "",
+            "GPST",
+            "yesterday GPST",
+            "2023-13-40T00:00:00 UTC",
+        ] {
+            match parse_epoch(bad) {
+                Err(TimeError::Parse { text, reason }) => {
+                    assert_eq!(text, bad);
+                    assert!(!reason.is_empty());
+                }
+                Ok(e) => panic!("{bad:?} parsed as {e}"),
+            }
+        }
+    }
+
+    #[test]
+    fn parse_survives_odd_numbers() {
+        for odd in [
+            "2023-03-12T00:00:00.99999999999 GPST",
+            "99999-01-01T00:00:00 UTC",
+            "-5-01-01T00:00:00 UTC",
+            "2023-03-12T25:61:61 UTC",
+            "2023-02-29T00:00:00 GPST",
+            "2023-03-12T00:00:00+99:99 UTC",
+            "4294967296-01-01T00:00:00 UTC",
+            "JD 2452312.5 GPST",
+            "MJD 1e300 UTC",
+            "SEC nan GPST",
+        ] {
+            let _ = parse_epoch(odd);
+        }
+    }
+
+    #[test]
+    fn parse_accepts_scales_and_fractions() {
+        let z = parse("2023-03-12T00:00:00Z");
+        assert_eq!(z, parse("2023-03-12T00:00:00 UTC"));
+        let half = parse("2023-03-12T00:00:00.5 GPST");
+        let o = TimeOrigin::new(parse("2023-03-12T00:00:00 GPST"));
+        assert_eq!(o.seconds_since_start(half), 0.5);
+        assert_eq!(
+            o.seconds_since_start(parse("2023-03-12T00:00:00 BDS")),
+            14.0
+        );
+    }
+
+    proptest! {
+        #[test]
+        fn gpst_week_sow_round_trip(week in 0u32..5000, sow_ns in 0i64..604_800_000_000_000) {
+            let sow = sow_ns as f64 * 1e-9;
+            let e = epoch_from_gpst(week, sow);
+            let (w, s) = gpst_week_sow(e);
+            prop_assert_eq!(w, week);
+            prop_assert!((s - sow).abs() < 1e-9);
+        }
+
+        #[test]
+        fn bdt_week_sow_round_trip(week in 0u32..3000, sow_ns in 0i64..604_800_000_000_000) {
+            let sow = sow_ns as f64 * 1e-9;
+            let (w, s) = bdt_week_sow(epoch_from_bdt(week, sow));
+            prop_assert_eq!(w, week);
+            prop_assert!((s - sow).abs() < 1e-9);
+        }
+
+        #[test]
+        fn origin_round_trip(t_ns in -1_000_000_000_000_000i64..1_000_000_000_000_000) {
+            let o = TimeOrigin::new(epoch_from_gpst(2111, 345_600.0));
+            let t_s = t_ns as f64 * 1e-9;
+            let back = o.seconds_since_start(o.epoch_at(t_s));
+            prop_assert!((back - t_s).abs() <= 1e-9);
+        }
+
+        #[test]
+        fn parse_display_round_trip(week in 200u32..3000, sow_s in 0u32..604_800) {
+            let e = epoch_from_gpst(week, f64::from(sow_s));
+            for ts in [TimeScale::GPST, TimeScale::UTC, TimeScale::BDT] {
+                let text = e.to_time_scale(ts).to_string();
+                let back = parse_epoch(&text);
+                prop_assert!(back.is_ok(), "{text}");
+                if let Ok(b) = back {
+                    prop_assert_eq!(TimeOrigin::new(e).seconds_since_start(b), 0.0, "{}", text);
+                }
+            }
+        }
+
+        #[test]
+        fn parse_never_panics(text in "\\PC{0,40}") {
+            let _ = parse_epoch(&text);
+        }
+    }
 }

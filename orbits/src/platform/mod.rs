@@ -1,12 +1,42 @@
 //! The receiving platform: a numerically propagated LEO, a static ground site, or a
 //! trajectory from CSV, each with its attitude.
+//!
+//! Reference frames of the attitude (thesis section 2.5.1): the orbital frame for a LEO
+//! (built from the ECI position and velocity, see [`leo`]), the local NED frame otherwise
+//! (at the site, or at the current trajectory position). The body frame is the reference
+//! frame turned by the profile's yaw/pitch/roll (3-2-1, thesis eq. 2.5-6), so with zero
+//! attitude a LEO's Zb points to the Earth centre and a ground receiver's -Zb points up.
+//!
+//! [`Platform::window`] hands out a [`PlatformWindow`]: an immutable, `Send + Sync` value
+//! holding only what the window needs (a LEO's dense output for the window; ground sites
+//! and trajectories share their data through `Arc`), so many threads can query it.
 
 pub mod config;
+pub(crate) mod csv_table;
 pub mod ground;
+pub(crate) mod hermite;
+mod leo;
 pub mod trajectory;
 
+use crate::attitude::AttitudeProfile;
+use crate::check::Invalid;
+use crate::frames::earth_rotation::EarthRotation;
 use crate::frames::euler::YawPitchRoll;
+use crate::frames::geodetic::ecef_to_geodetic;
+use crate::frames::ned::c_ecef_ned;
+use crate::propagate::leo::{DenseTrajectory, LeoPropagator};
+use crate::time::TimeOrigin;
 use crate::{Mat3, Vec3};
+use config::PlatformConfig;
+use ground::GroundSite;
+use std::path::Path;
+use std::sync::Arc;
+use trajectory::Trajectory;
+
+/// How far (s) a window may reach beyond the data of a trajectory or attitude table; there
+/// the motion (attitude) continues at the end velocity (angular rate). It lets
+/// finite-difference stencils straddle the scenario edges.
+pub const EDGE_MARGIN_S: f64 = 5.0;
 
 /// The platform at one instant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -37,26 +67,182 @@ pub enum PlatformError {
     /// A window outside the data a trajectory file covers.
     #[error("time {t_s} s is outside the trajectory ({first_s} .. {last_s} s)")]
     OutsideTrajectory { t_s: f64, first_s: f64, last_s: f64 },
+    /// A window outside the data an attitude table covers.
+    #[error("time {t_s} s is outside the attitude table ({first_s} .. {last_s} s)")]
+    OutsideAttitude { t_s: f64, first_s: f64, last_s: f64 },
+    /// An invalid `[platform]` setting (field path relative to `[platform]`).
+    #[error("invalid platform setting: {0}")]
+    Config(#[from] Invalid),
+}
+
+/// Which kind of platform, and so which attitude reference frame.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PlatformKind {
+    /// Numerically propagated LEO; attitude relative to the orbital frame.
+    Leo,
+    /// Static ground site; attitude relative to NED.
+    Ground,
+    /// Trajectory from CSV; attitude relative to NED at the current position.
+    Trajectory,
+}
+
+/// How the platform moves.
+#[derive(Debug)]
+enum Motion {
+    Leo {
+        propagator: Box<LeoPropagator>,
+        earth: EarthRotation,
+    },
+    Ground(GroundSite),
+    Trajectory(Arc<Trajectory>),
 }
 
 /// A receiving platform.
 #[derive(Debug)]
-pub struct Platform {}
+pub struct Platform {
+    motion: Motion,
+    attitude: AttitudeProfile,
+}
+
+/// How the platform moves within one window.
+#[derive(Debug, Clone)]
+enum WindowMotion {
+    Leo {
+        dense: DenseTrajectory,
+        earth: EarthRotation,
+    },
+    Ground(GroundSite),
+    Trajectory(Arc<Trajectory>),
+}
 
 /// The platform over a window of time; cheap to query from many threads.
 #[derive(Debug, Clone)]
-pub struct PlatformWindow {}
+pub struct PlatformWindow {
+    t0_s: f64,
+    t1_s: f64,
+    motion: WindowMotion,
+    attitude: AttitudeProfile,
+}
 
 impl Platform {
+    /// Builds the platform of `[platform]`. Exactly one of `leo`, `ground`, `trajectory`
+    /// must be given; relative CSV paths start at `base_dir` (the scenario file's folder).
+    /// A LEO's ECI frame is [`EarthRotation::at_origin`] of the scenario start.
+    pub fn new(
+        cfg: &PlatformConfig,
+        origin: &TimeOrigin,
+        base_dir: &Path,
+    ) -> Result<Platform, PlatformError> {
+        let attitude = AttitudeProfile::from_config(&cfg.attitude, base_dir)?;
+        let motion = match (&cfg.leo, &cfg.ground, &cfg.trajectory) {
+            (Some(leo), None, None) => {
+                let earth = EarthRotation::at_origin(origin.start());
+                let propagator = Box::new(LeoPropagator::new(leo, origin, &earth)?);
+                Motion::Leo { propagator, earth }
+            }
+            (None, Some(ground), None) => Motion::Ground(GroundSite::from_config(ground)?),
+            (None, None, Some(trajectory)) => Motion::Trajectory(Arc::new(Trajectory::from_csv(
+                &base_dir.join(&trajectory.csv),
+            )?)),
+            _ => {
+                let given = [
+                    ("leo", cfg.leo.is_some()),
+                    ("ground", cfg.ground.is_some()),
+                    ("trajectory", cfg.trajectory.is_some()),
+                ];
+                let names: Vec<&str> = given.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
+                return Err(Invalid::new(
+                    "",
+                    format!("[{}]", names.join(", ")),
+                    "give exactly one of [platform.leo], [platform.ground], [platform.trajectory]",
+                )
+                .into());
+            }
+        };
+        Ok(Self { motion, attitude })
+    }
+
+    /// The kind of platform.
+    pub fn kind(&self) -> PlatformKind {
+        match self.motion {
+            Motion::Leo { .. } => PlatformKind::Leo,
+            Motion::Ground(_) => PlatformKind::Ground,
+            Motion::Trajectory(_) => PlatformKind::Trajectory,
+        }
+    }
+
+    /// The attitude profile (relative to the reference frame of [`Self::kind`]).
+    pub fn attitude(&self) -> &AttitudeProfile {
+        &self.attitude
+    }
+
     /// The platform's state over `[t0_s, t1_s]` (windows move forward in time).
+    ///
+    /// Trajectory and attitude tables must cover the window up to [`EDGE_MARGIN_S`]; a LEO
+    /// window follows the propagator's rules.
     pub fn window(&mut self, t0_s: f64, t1_s: f64) -> Result<PlatformWindow, PlatformError> {
-        todo!("{t0_s} {t1_s}")
+        if let Some((first_s, last_s)) = self.attitude.span()
+            && let Some(t_s) = [t0_s, t1_s]
+                .into_iter()
+                .find(|t| !(first_s - EDGE_MARGIN_S..=last_s + EDGE_MARGIN_S).contains(t))
+        {
+            return Err(PlatformError::OutsideAttitude {
+                t_s,
+                first_s,
+                last_s,
+            });
+        }
+        let motion = match &mut self.motion {
+            Motion::Leo { propagator, earth } => WindowMotion::Leo {
+                dense: propagator.window(t0_s, t1_s)?,
+                earth: *earth,
+            },
+            Motion::Ground(site) => WindowMotion::Ground(*site),
+            Motion::Trajectory(trajectory) => {
+                trajectory.check_covers(t0_s, t1_s)?;
+                WindowMotion::Trajectory(Arc::clone(trajectory))
+            }
+        };
+        Ok(PlatformWindow {
+            t0_s,
+            t1_s,
+            motion,
+            attitude: self.attitude.clone(),
+        })
     }
 }
 
 impl PlatformWindow {
+    /// The window `[t0_s, t1_s]` this was made for.
+    pub fn span(&self) -> (f64, f64) {
+        (self.t0_s, self.t1_s)
+    }
+
     /// The state at `t_s` within the window.
     pub fn state(&self, t_s: f64) -> PlatformState {
-        todo!("{t_s}")
+        let attitude = self.attitude.at(t_s);
+        match &self.motion {
+            WindowMotion::Leo { dense, earth } => {
+                let (r_eci_m, v_eci_mps) = dense.position_velocity_eci(t_s);
+                leo::leo_state(earth, t_s, &r_eci_m, &v_eci_mps, attitude)
+            }
+            WindowMotion::Ground(site) => PlatformState {
+                r_ecef_m: site.r_ecef_m,
+                v_ecef_mps: Vec3::zeros(),
+                c_body_ecef: site.c_ned_ecef * attitude.c_body_ref(),
+                attitude,
+            },
+            WindowMotion::Trajectory(trajectory) => {
+                let (r_ecef_m, v_ecef_mps) = trajectory.state_ecef(t_s);
+                let g = ecef_to_geodetic(&r_ecef_m);
+                let c_ned_ecef = c_ecef_ned(g.lat_rad, g.lon_rad).transpose();
+                PlatformState {
+                    r_ecef_m,
+                    v_ecef_mps,
+                    c_body_ecef: c_ned_ecef * attitude.c_body_ref(),
+                    attitude,
+                }
+            }
+        }
     }
 }
