@@ -1,9 +1,11 @@
 //! The receiving platform: a numerically propagated LEO, a static ground site, or a
 //! trajectory from CSV, each with its attitude.
 //!
-//! Reference frames of the attitude (thesis section 2.5.1): the orbital frame for a LEO
-//! (built from the ECI position and velocity, see [`leo`]), the local NED frame otherwise
-//! (at the site, or at the current trajectory position). The body frame is the reference
+//! Reference frames of the attitude (thesis section 2.5.1): the orbital frame for a LEO,
+//! built from the ECI position and velocity, with
+//! `c_body_ecef = c_eci_ecef(t) * c_orbital_eci(r_eci, v_eci) * c_body_orbital`; the local
+//! NED frame otherwise (at the site, or at the current trajectory position), with
+//! `c_body_ecef = c_ned_ecef * c_body_ned`. The body frame is the reference
 //! frame turned by the profile's yaw/pitch/roll (3-2-1, thesis eq. 2.5-6), so with zero
 //! attitude a LEO's Zb points to the Earth centre and a ground receiver's -Zb points up.
 //!
