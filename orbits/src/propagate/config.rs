@@ -323,7 +323,7 @@ impl ForceModelConfig {
 impl IntegratorConfig {
     fn check(&self) -> Result<(), Invalid> {
         for (field, value) in [("rel_tol", self.rel_tol), ("abs_tol_m", self.abs_tol_m)] {
-            if !(value > 0.0 && value <= 1e-3) {
+            if value.is_nan() || value <= 0.0 || value > 1e-3 {
                 return Err(Invalid::new(field, value, "must be in (0, 1e-3]"));
             }
         }

@@ -184,7 +184,7 @@ impl DormandPrince {
         let mut h = self.h_s;
         let mut rejected = false;
         loop {
-            if !(h >= self.settings.h_min_s) {
+            if h.is_nan() || h < self.settings.h_min_s {
                 return Err(StepUnderflow { t_s: self.t_s });
             }
             let trial = self.attempt(f, h);

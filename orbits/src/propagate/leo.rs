@@ -5,7 +5,9 @@
 //! scenario ECI frame by the adaptive Dormand-Prince 5(4) of [`super::dormand_prince`]
 //! with the configured relative tolerance; the absolute tolerance is `abs_tol_m` on the
 //! position and `abs_tol_m x 1e-3 /s` on the velocity (1e-3 rad/s is about a LEO's mean
-//! motion, so both halves of the state are weighted alike).
+//! motion, so both halves of the state are weighted alike). With the default tolerances
+//! (1e-12, 1e-4 m) a two-body LEO stays within 0.5 m of the analytical Kepler solution over
+//! 24 h (5 mm with 1e-13, 1e-6 m); see `tests/propagate_oracles.rs`.
 
 use std::collections::VecDeque;
 
@@ -153,7 +155,7 @@ impl LeoPropagator {
             .history
             .front()
             .map_or(self.integrator.t_s(), DenseStep::t_start_s);
-        if !(t0_s >= kept_from_s - TIME_EPS_S && t1_s.is_finite()) {
+        if t0_s.is_nan() || t0_s < kept_from_s - TIME_EPS_S || !t1_s.is_finite() {
             return Err(PropagateError::WindowBeforeHistory { t0_s, kept_from_s });
         }
         while self.history.is_empty() || self.integrator.t_s() < t1_s {
@@ -269,4 +271,199 @@ fn split(y: &State6) -> (Vec3, Vec3) {
 
 fn join(a: &Vec3, b: &Vec3) -> State6 {
     State6::new(a.x, a.y, a.z, b.x, b.y, b.z)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::propagate::config::{
+        ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, StateVectorConfig, TleConfig,
+    };
+    use hifitime::{Duration, Epoch, TimeScale};
+
+    fn start() -> Epoch {
+        Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST)
+    }
+
+    fn thesis() -> LeoConfig {
+        LeoConfig {
+            elements: Some(KeplerianElementsConfig {
+                semi_major_axis_km: 6971.593,
+                eccentricity: 0.000846,
+                inclination_deg: 34.911,
+                raan_deg: -78.005,
+                arg_perigee_deg: 47.757,
+                mean_anomaly_deg: 351.636,
+            }),
+            tle: None,
+            state: None,
+            forces: ForceModelConfig::default(),
+            integrator: IntegratorConfig::default(),
+        }
+    }
+
+    fn build(cfg: &LeoConfig, start: Epoch) -> Result<LeoPropagator, PropagateError> {
+        LeoPropagator::new(
+            cfg,
+            &TimeOrigin::new(start),
+            &EarthRotation::at_origin(start),
+        )
+    }
+
+    #[test]
+    fn initial_state_comes_from_the_elements() {
+        let leo = build(&thesis(), start()).unwrap();
+        let el = leo.initial_elements();
+        assert!((el.a_m - 6_971_593.0).abs() < 1e-6);
+        assert!((el.e - 0.000846).abs() < 1e-12);
+        assert!((el.i_rad.to_degrees() - 34.911).abs() < 1e-10);
+        assert!((el.raan_rad.to_degrees() - (360.0 - 78.005)).abs() < 1e-9);
+        let (r, _) = leo.initial_state_eci();
+        assert!((r.norm() - 6_971_593.0).abs() < 0.000846 * 6_971_593.0 + 1.0);
+    }
+
+    #[test]
+    fn consecutive_overlapping_windows_reproduce_one_long_window() {
+        let mut long = build(&thesis(), start()).unwrap();
+        let reference = long.window(0.0, 7500.0).unwrap();
+        let mut leo = build(&thesis(), start()).unwrap();
+        let mut t0 = 0.0;
+        while t0 < 7000.0 {
+            let t1 = t0 + 300.0;
+            let w = leo.window(t0, t1).unwrap();
+            let (first, last) = w.span();
+            assert!(
+                first <= t0 && last >= t1,
+                "span {first}..{last} for {t0}..{t1}"
+            );
+            for k in 0..=30 {
+                let t = t0 + 10.0 * f64::from(k);
+                let (r, v, a) = w.state_eci(t);
+                let (r_ref, v_ref, a_ref) = reference.state_eci(t);
+                assert_eq!((r, v, a), (r_ref, v_ref, a_ref), "t = {t}");
+            }
+            // The next window reaches 10 s back into this one.
+            t0 = t1 - 10.0;
+        }
+    }
+
+    #[test]
+    fn acceleration_is_the_force_model_at_the_interpolated_state() {
+        let mut leo = build(&thesis(), start()).unwrap();
+        let w = leo.window(100.0, 200.0).unwrap();
+        let (r, v, a) = w.state_eci(123.4);
+        assert_eq!(a, leo.force_model().acceleration_eci(123.4, &r, &v));
+        // And it is consistent with the velocity's rate of change.
+        let (_, v1, _) = w.state_eci(123.5);
+        let (_, v0, _) = w.state_eci(123.3);
+        assert!(((v1 - v0) / 0.2 - a).norm() < 1e-6 * a.norm());
+    }
+
+    #[test]
+    fn window_starting_before_the_kept_history_is_refused() {
+        let mut leo = build(&thesis(), start()).unwrap();
+        leo.window(0.0, 3600.0).unwrap();
+        // 60 s of history are kept behind the previous end.
+        leo.window(3541.0, 3700.0).unwrap();
+        match leo.window(1000.0, 4000.0) {
+            Err(PropagateError::WindowBeforeHistory { t0_s, kept_from_s }) => {
+                assert_eq!(t0_s, 1000.0);
+                assert!(
+                    kept_from_s > 3000.0 && kept_from_s <= 3640.0,
+                    "{kept_from_s}"
+                );
+            }
+            other => panic!("unexpected {other:?}"),
+        }
+        assert!(matches!(
+            leo.window(f64::NAN, 4000.0),
+            Err(PropagateError::WindowBeforeHistory { .. })
+        ));
+    }
+
+    #[test]
+    fn zero_length_window_at_the_start() {
+        let mut leo = build(&thesis(), start()).unwrap();
+        let w = leo.window(0.0, 0.0).unwrap();
+        let (r, v, _) = w.state_eci(0.0);
+        let (r0, v0) = leo.initial_state_eci();
+        assert!((r - r0).norm() < 1e-9 && (v - v0).norm() < 1e-12);
+    }
+
+    #[test]
+    fn heavy_drag_decays_with_an_error() {
+        let mut cfg = thesis();
+        if let Some(el) = cfg.elements.as_mut() {
+            el.semi_major_axis_km = 6378.137 + 150.0;
+            el.eccentricity = 0.0;
+        }
+        cfg.forces.area_m2 = 10.0;
+        let mut leo = build(&cfg, start()).unwrap();
+        let err = leo.window(0.0, 86_400.0).unwrap_err();
+        match err {
+            PropagateError::Decayed { t_s, altitude_m } => {
+                assert!(t_s > 0.0 && t_s < 86_400.0);
+                assert!(
+                    altitude_m < MIN_ALTITUDE_M && altitude_m > 0.0,
+                    "{altitude_m}"
+                );
+            }
+            ref other => panic!("unexpected {other:?}"),
+        }
+        // The failure repeats for any window that needs to go further.
+        assert_eq!(leo.window(86_000.0, 86_400.0).unwrap_err(), err);
+    }
+
+    #[test]
+    fn ecef_state_is_converted_with_the_earth_rotation() {
+        let eci = build(&thesis(), start()).unwrap();
+        let (r_eci, v_eci) = eci.initial_state_eci();
+        let earth = EarthRotation::at_origin(start());
+        let (r_ecef, v_ecef) = earth.eci_to_ecef(0.0, &r_eci, &v_eci);
+        let cfg = LeoConfig {
+            elements: None,
+            state: Some(StateVectorConfig {
+                frame: StateFrame::Ecef,
+                position_m: r_ecef.into(),
+                velocity_mps: v_ecef.into(),
+            }),
+            ..thesis()
+        };
+        let leo = build(&cfg, start()).unwrap();
+        let (r, v) = leo.initial_state_eci();
+        assert!((r - r_eci).norm() < 1e-6, "{}", (r - r_eci).norm());
+        assert!((v - v_eci).norm() < 1e-9);
+        // ECEF and ECI differ (the test is not vacuous).
+        assert!((r_ecef - r_eci).norm() > 1e3);
+    }
+
+    #[test]
+    fn tle_state_is_sgp4_at_the_scenario_start() {
+        let tle = TleConfig {
+            line1: "1 25544U 98067A   20194.88612269 -.00002218  00000-0 -31515-4 0  9992".into(),
+            line2: "2 25544  51.6461 221.2784 0001413  89.1723 280.4612 15.49507896236008".into(),
+        };
+        let parsed = Tle::parse(&tle).unwrap();
+        let scenario_start = parsed.epoch() + Duration::from_seconds(3600.0);
+        let cfg = LeoConfig {
+            elements: None,
+            tle: Some(tle),
+            ..thesis()
+        };
+        let leo = build(&cfg, scenario_start).unwrap();
+        let (r, v) = leo.initial_state_eci();
+        let (r_ref, v_ref) = parsed.state_teme(scenario_start).unwrap();
+        assert_eq!((r, v), (r_ref, v_ref));
+        assert!((r.norm() - 6.79e6).abs() < 30e3, "{}", r.norm());
+    }
+
+    #[test]
+    fn invalid_configuration_is_refused() {
+        let mut cfg = thesis();
+        cfg.forces.mass_kg = -1.0;
+        match build(&cfg, start()) {
+            Err(PropagateError::Config(invalid)) => assert_eq!(invalid.field, "forces.mass_kg"),
+            other => panic!("unexpected {other:?}"),
+        }
+    }
 }
