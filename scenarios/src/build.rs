@@ -1,0 +1,251 @@
+//! From a checked scenario to the simulation's world: time origin, Earth rotation,
+//! ephemerides, platform and antennas. Checks that need files run here; nothing is
+//! written anywhere.
+
+use crate::error::ScenarioError;
+use crate::parse::locate_invalid;
+use crate::schema::Scenario;
+use skyforge_orbits::check::Invalid;
+use skyforge_orbits::ephemeris::config::{ConstellationConfig, ConstellationSource};
+use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System, nominal};
+use skyforge_orbits::frames::earth_rotation::EarthRotation;
+use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, PlatformKind};
+use skyforge_orbits::propagate::PropagateError;
+use skyforge_orbits::time::TimeOrigin;
+use skyforge_signals::antenna::{Antenna, AntennaConfig};
+use std::path::Path;
+
+/// Everything a simulation run needs, built from a [`Scenario`].
+#[derive(Debug)]
+pub struct World {
+    /// `t = 0` of the scenario.
+    pub origin: TimeOrigin,
+    /// ECI <-> ECEF rotation of the scenario.
+    pub earth: EarthRotation,
+    /// Ephemerides of every enabled constellation (after the `prns` filters).
+    pub ephemerides: EphemerisStore,
+    /// Satellites with at least one ephemeris, in order.
+    pub satellites: Vec<SatId>,
+    /// The receiving platform.
+    pub platform: Platform,
+    /// The resolved antennas, in file order.
+    pub antennas: Vec<Antenna>,
+    /// Length of the span (s).
+    pub duration_s: f64,
+    /// Truth geometry step (s) = 1 / `truth.geometry_rate_hz`.
+    pub step_s: f64,
+}
+
+impl Scenario {
+    /// Build the world: load the constellations (embedded or RINEX, `prns` applied), the
+    /// platform and the antennas. Fails, located in the scenario text, on a missing or
+    /// unreadable navigation file, a file without any healthy ephemeris of its system
+    /// valid at the start, a requested PRN without one, or a platform that cannot be
+    /// built (unreadable CSV, unusable TLE, a trajectory or attitude table that does not
+    /// cover the span).
+    pub fn build(&self) -> Result<World, ScenarioError> {
+        let origin = TimeOrigin::new(self.time.start);
+        let earth = EarthRotation::at_origin(self.time.start);
+        let mut ephemerides = EphemerisStore::default();
+        let constellations = [
+            (System::Gps, "gnss.gps", &self.gnss.gps),
+            (System::Beidou, "gnss.beidou", &self.gnss.beidou),
+        ];
+        for (system, table, config) in constellations {
+            if config.enabled {
+                ephemerides.extend(self.constellation(system, table, config, &origin)?);
+            }
+        }
+        let satellites = ephemerides.satellites();
+        let platform = self.platform(&origin)?;
+        let antennas = self.antennas.iter().map(AntennaConfig::resolve).collect();
+        Ok(World {
+            origin,
+            earth,
+            ephemerides,
+            satellites,
+            platform,
+            antennas,
+            duration_s: self.time.duration_s,
+            step_s: 1.0 / self.truth.geometry_rate_hz,
+        })
+    }
+
+    /// One constellation's ephemerides, bound to `origin`, filtered and checked.
+    fn constellation(
+        &self,
+        system: System,
+        table: &str,
+        config: &ConstellationConfig,
+        origin: &TimeOrigin,
+    ) -> Result<EphemerisStore, ScenarioError> {
+        let start = self.time.start;
+        let (all, field, value, described) = match config.source {
+            ConstellationSource::Embedded => {
+                let all = match system {
+                    System::Gps => nominal::gps(start),
+                    System::Beidou => nominal::beidou(config.embedded_set, start),
+                };
+                let described = "the embedded constellation".to_string();
+                (
+                    all,
+                    format!("{table}.source"),
+                    "\"embedded\"".into(),
+                    described,
+                )
+            }
+            ConstellationSource::Rinex => {
+                let field = format!("{table}.nav_file");
+                let Some(nav_file) = &config.nav_file else {
+                    return Err(self.located(Invalid::new(
+                        field,
+                        "(missing)",
+                        "required when source = \"rinex\"",
+                    )));
+                };
+                let path = self.base_dir.join(nav_file);
+                let value = format!("{:?}", nav_file.display().to_string());
+                let all = self.read_nav(&path).map_err(|message| {
+                    self.located(Invalid::new(field.clone(), value.clone(), message))
+                })?;
+                (all, field, value, path.display().to_string())
+            }
+        };
+        let of_system: Vec<BroadcastEphemeris> =
+            all.into_iter().filter(|e| e.sat.system == system).collect();
+        let mut store = EphemerisStore::new(of_system, origin);
+        let usable_at_start = store
+            .satellites()
+            .into_iter()
+            .any(|sat| store.select(sat, 0.0).is_some());
+        if !usable_at_start {
+            return Err(self.located(Invalid::new(
+                field,
+                value,
+                format!(
+                    "{described} has no healthy {} ephemeris valid at the scenario start \
+                     ({start}); use a file for the scenario's day",
+                    system_name(system)
+                ),
+            )));
+        }
+        if let Some(prns) = &config.prns {
+            store.retain(|sat| prns.contains(&sat.prn));
+            for (i, &prn) in prns.iter().enumerate() {
+                let sat = SatId { system, prn };
+                if store.select(sat, 0.0).is_none() {
+                    return Err(self.located(Invalid::new(
+                        format!("{table}.prns[{i}]"),
+                        prn,
+                        format!(
+                            "{sat} has no healthy ephemeris valid at the scenario start \
+                             ({start}) in {described}"
+                        ),
+                    )));
+                }
+            }
+        }
+        Ok(store)
+    }
+
+    /// Read a navigation file; a missing or unreadable file becomes a message.
+    fn read_nav(&self, path: &Path) -> Result<Vec<BroadcastEphemeris>, String> {
+        if !path.is_file() {
+            return Err(format!(
+                "must name a readable RINEX navigation file; {} does not exist \
+                 (relative paths start at {})",
+                path.display(),
+                self.base_dir.display()
+            ));
+        }
+        read_nav_file(path).map_err(|e| format!("cannot use the navigation file: {e}"))
+    }
+
+    /// The platform of `[platform]`, with its CSV tables checked to cover the span.
+    fn platform(&self, origin: &TimeOrigin) -> Result<Platform, ScenarioError> {
+        let located = |e: PlatformError| self.located(self.platform_invalid(e));
+        let mut platform =
+            Platform::new(&self.platform, origin, &self.base_dir).map_err(located)?;
+        let end_s = self.time.duration_s;
+        if let Some((first_s, last_s)) = platform.attitude().span() {
+            let covered = first_s - EDGE_MARGIN_S..=last_s + EDGE_MARGIN_S;
+            if !covered.contains(&0.0) || !covered.contains(&end_s) {
+                return Err(located(PlatformError::OutsideAttitude {
+                    t_s: if covered.contains(&0.0) { end_s } else { 0.0 },
+                    first_s,
+                    last_s,
+                }));
+            }
+        }
+        if platform.kind() == PlatformKind::Trajectory {
+            // Cheap for a trajectory (shared data); checks that the table covers the span.
+            platform.window(0.0, end_s).map_err(located)?;
+        }
+        Ok(platform)
+    }
+
+    /// A platform error, attributed to the field that caused it.
+    fn platform_invalid(&self, error: PlatformError) -> Invalid {
+        let message = error.to_string();
+        let cfg = &self.platform;
+        let quoted = |path: &Path| format!("{:?}", path.display().to_string());
+        match error {
+            PlatformError::Config(invalid) => invalid.within("platform"),
+            PlatformError::Csv { path, .. } => {
+                let path = Path::new(&path);
+                let field = if cfg
+                    .trajectory
+                    .as_ref()
+                    .is_some_and(|t| path.ends_with(&t.csv))
+                {
+                    "platform.trajectory.csv"
+                } else if cfg.attitude.csv.as_ref().is_some_and(|c| path.ends_with(c)) {
+                    "platform.attitude.csv"
+                } else {
+                    "platform"
+                };
+                Invalid::new(field, quoted(path), message)
+            }
+            PlatformError::OutsideTrajectory { .. } => {
+                let value = cfg.trajectory.as_ref().map(|t| quoted(&t.csv));
+                Invalid::new(
+                    "platform.trajectory.csv",
+                    value.unwrap_or_default(),
+                    format!(
+                        "must cover the scenario span 0..{} s: {message}",
+                        self.time.duration_s
+                    ),
+                )
+            }
+            PlatformError::OutsideAttitude { .. } => {
+                let value = cfg.attitude.csv.as_ref().map(|c| quoted(c));
+                Invalid::new(
+                    "platform.attitude.csv",
+                    value.unwrap_or_default(),
+                    format!(
+                        "must cover the scenario span 0..{} s: {message}",
+                        self.time.duration_s
+                    ),
+                )
+            }
+            PlatformError::Propagate(PropagateError::Tle(_)) => {
+                Invalid::new("platform.leo.tle", "", message)
+            }
+            PlatformError::Propagate(_) => Invalid::new("platform.leo", "", message),
+        }
+    }
+
+    /// `invalid`, placed in this scenario's text.
+    fn located(&self, invalid: Invalid) -> ScenarioError {
+        locate_invalid(&self.text, &self.source, invalid)
+    }
+}
+
+/// The name users know a system by.
+fn system_name(system: System) -> &'static str {
+    match system {
+        System::Gps => "GPS",
+        System::Beidou => "BeiDou",
+    }
+}

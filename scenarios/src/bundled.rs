@@ -1,0 +1,44 @@
+//! The scenarios shipped inside the binary.
+
+/// A bundled scenario: its name (what `resolve` accepts), a one-line summary and its TOML.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Bundled {
+    /// Name, e.g. `thesis-leo`, `thesis/v-1.2.1`.
+    pub name: &'static str,
+    /// One line saying what it simulates.
+    pub summary: &'static str,
+    /// The scenario file.
+    pub text: &'static str,
+}
+
+const BUNDLED: &[Bundled] = &[
+    Bundled {
+        name: "thesis-leo",
+        summary: "Thesis LEO (a 6971.593 km, i 34.911 deg), 24 h, GPS + BeiDou, three antennas \
+                  with two 1 m baselines, earth-pointing",
+        text: include_str!("../bundled/thesis-leo.toml"),
+    },
+    Bundled {
+        name: "thesis/v-1.2.1",
+        summary: "Thesis section 1.2.1 visibility: the LEO, 24 h, one antenna with a +/-80 deg \
+                  field of view, GPS + BeiDou",
+        text: include_str!("../thesis/v-1.2.1.toml"),
+    },
+    Bundled {
+        name: "thesis/t-3.2",
+        summary: "Thesis section 3.2 PLL error budget: the LEO, 24 h, GPS only, one antenna \
+                  with a +/-80 deg field of view",
+        text: include_str!("../thesis/t-3.2.toml"),
+    },
+    Bundled {
+        name: "ground-static",
+        summary: "Static ground site at 30 N 114 E, 50 m, 1 h, GPS + BeiDou, one antenna \
+                  with a 10 deg elevation mask",
+        text: include_str!("../bundled/ground-static.toml"),
+    },
+];
+
+/// Every bundled scenario.
+pub fn bundled() -> &'static [Bundled] {
+    BUNDLED
+}

@@ -1,0 +1,328 @@
+//! Checks that need no file access: each domain table's own check, prefixed with its
+//! table path, plus the cross-field and whole-scenario rules the domain crates cannot see.
+
+use crate::schema::{GnssConfig, ScenarioFile, TimeFile, TruthConfig};
+use hifitime::{Epoch, TimeScale};
+use skyforge_orbits::attitude::{AttitudeConfig, AxisProfileConfig};
+use skyforge_orbits::check::Invalid;
+use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
+use skyforge_orbits::time::{TimeError, parse_epoch};
+use skyforge_signals::antenna::AntennaConfig;
+
+/// Highest GPS PRN (IS-GPS-200: PRNs 1..32 for the operational constellation).
+pub(crate) const GPS_MAX_PRN: u8 = 32;
+/// Highest BeiDou PRN (BDS-SIS-ICD B1I: PRNs 1..63).
+pub(crate) const BEIDOU_MAX_PRN: u8 = 63;
+/// Longest scenario (s): 366 days. Longer spans are outside what the embedded
+/// constellations (no station keeping) and broadcast ephemerides describe.
+pub(crate) const MAX_DURATION_S: f64 = 366.0 * 86_400.0;
+/// Highest truth geometry rate (Hz); the signal stage interpolates between samples.
+pub(crate) const MAX_GEOMETRY_RATE_HZ: f64 = 1000.0;
+/// Ground-site height limits (m above the WGS-84 ellipsoid): below the lowest dry land
+/// (about -430 m) with margin, up to the Karman line.
+const GROUND_HEIGHT_RANGE_M: (f64, f64) = (-1_000.0, 100_000.0);
+/// Ground-site ECEF norm limits (m): the WGS-84 polar radius (6 356 752 m) and equatorial
+/// radius (6 378 137 m), widened by the height limits above.
+const GROUND_ECEF_NORM_RANGE_M: (f64, f64) = (6_355_000.0, 6_480_000.0);
+
+/// Every check that needs no file, in file order; returns the start epoch.
+pub(crate) fn check(file: &ScenarioFile, gnss: &GnssConfig) -> Result<Epoch, Invalid> {
+    check_name(&file.name)?;
+    let start = check_time(&file.time, gnss.beidou.enabled)?;
+    check_truth(&file.truth, file.time.duration_s)?;
+    check_gnss(gnss)?;
+    check_platform(&file.platform)?;
+    check_antennas(&file.antennas)?;
+    Ok(start)
+}
+
+fn check_name(name: &str) -> Result<(), Invalid> {
+    if name.trim().is_empty() || name.chars().any(char::is_control) {
+        return Err(Invalid::new(
+            "name",
+            format!("{name:?}"),
+            "must be a non-empty name without control characters",
+        ));
+    }
+    Ok(())
+}
+
+/// `[time]`: a readable start between the GPS epoch (and, with BeiDou, the BDT epoch) and
+/// 2100; a duration in (0, 366 days].
+fn check_time(time: &TimeFile, beidou: bool) -> Result<Epoch, Invalid> {
+    let start = parse_epoch(&time.start).map_err(|e| {
+        let TimeError::Parse { reason, .. } = e;
+        Invalid::new(
+            "time.start",
+            format!("{:?}", time.start),
+            format!("must be an epoch with its time scale: {reason}"),
+        )
+    })?;
+    let gps_epoch = Epoch::from_gpst_seconds(0.0);
+    let bdt_epoch = Epoch::from_bdt_seconds(0.0);
+    let end_of_range = Epoch::from_gregorian_at_midnight(2100, 1, 1, TimeScale::UTC);
+    if start < gps_epoch || start >= end_of_range {
+        return Err(Invalid::new(
+            "time.start",
+            format!("{:?}", time.start),
+            "must be between the GPS epoch (1980-01-06T00:00:00 GPST) and 2100-01-01",
+        ));
+    }
+    if beidou && start < bdt_epoch {
+        return Err(Invalid::new(
+            "time.start",
+            format!("{:?}", time.start),
+            "must not precede the BeiDou epoch (2006-01-01T00:00:00 BDT) while gnss.beidou is \
+             enabled",
+        ));
+    }
+    let d = time.duration_s;
+    if !(d > 0.0 && d <= MAX_DURATION_S) {
+        return Err(Invalid::new(
+            "time.duration_s",
+            d,
+            format!("must be in (0, {MAX_DURATION_S}] s (a non-empty span of at most 366 days)"),
+        ));
+    }
+    Ok(start)
+}
+
+/// `[truth]`: a rate in (0, 1000] Hz with at least one step inside the span.
+fn check_truth(truth: &TruthConfig, duration_s: f64) -> Result<(), Invalid> {
+    let rate = truth.geometry_rate_hz;
+    if !(rate > 0.0 && rate <= MAX_GEOMETRY_RATE_HZ) {
+        return Err(Invalid::new(
+            "truth.geometry_rate_hz",
+            rate,
+            format!("must be in (0, {MAX_GEOMETRY_RATE_HZ}] Hz"),
+        ));
+    }
+    if 1.0 / rate > duration_s {
+        return Err(Invalid::new(
+            "truth.geometry_rate_hz",
+            rate,
+            format!(
+                "must be >= 1 / time.duration_s = {} Hz (one step must fit in the span)",
+                1.0 / duration_s
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn check_gnss(gnss: &GnssConfig) -> Result<(), Invalid> {
+    gnss.gps
+        .check(GPS_MAX_PRN)
+        .map_err(|e| e.within("gnss.gps"))?;
+    gnss.beidou
+        .check(BEIDOU_MAX_PRN)
+        .map_err(|e| e.within("gnss.beidou"))?;
+    if !gnss.gps.enabled && !gnss.beidou.enabled {
+        return Err(Invalid::new(
+            "gnss",
+            "gps and beidou disabled",
+            "at least one constellation must be enabled",
+        ));
+    }
+    Ok(())
+}
+
+/// `[platform]`: exactly one kind, each checked, plus the attitude profile.
+fn check_platform(platform: &PlatformConfig) -> Result<(), Invalid> {
+    let kinds: Vec<&str> = [
+        ("leo", platform.leo.is_some()),
+        ("ground", platform.ground.is_some()),
+        ("trajectory", platform.trajectory.is_some()),
+    ]
+    .into_iter()
+    .filter_map(|(name, present)| present.then_some(name))
+    .collect();
+    if kinds.len() != 1 {
+        let value = if kinds.is_empty() {
+            "none".to_string()
+        } else {
+            kinds.join(" + ")
+        };
+        return Err(Invalid::new(
+            "platform",
+            value,
+            "exactly one of [platform.leo], [platform.ground], [platform.trajectory] is required",
+        ));
+    }
+    if let Some(leo) = &platform.leo {
+        leo.check().map_err(|e| e.within("platform.leo"))?;
+    }
+    if let Some(ground) = &platform.ground {
+        check_ground(ground).map_err(|e| e.within("platform.ground"))?;
+    }
+    if let Some(trajectory) = &platform.trajectory
+        && trajectory.csv.as_os_str().is_empty()
+    {
+        return Err(Invalid::new(
+            "platform.trajectory.csv",
+            "\"\"",
+            "must name a CSV file",
+        ));
+    }
+    check_attitude(&platform.attitude).map_err(|e| e.within("platform.attitude"))
+}
+
+/// `[platform.ground]`: all of latitude/longitude/height, or `ecef_m`, on the Earth's
+/// surface give or take the height limits.
+fn check_ground(g: &GroundConfig) -> Result<(), Invalid> {
+    let geodetic = [
+        ("latitude_deg", g.latitude_deg),
+        ("longitude_deg", g.longitude_deg),
+        ("height_m", g.height_m),
+    ];
+    let given = geodetic.iter().filter(|(_, v)| v.is_some()).count();
+    match (given, g.ecef_m) {
+        (0, None) => Err(Invalid::new(
+            "",
+            "no position",
+            "give latitude_deg, longitude_deg and height_m, or ecef_m",
+        )),
+        (0, Some(ecef)) => check_ecef(&ecef),
+        (_, Some(_)) => Err(Invalid::new(
+            "ecef_m",
+            "given with latitude/longitude/height",
+            "give either latitude_deg, longitude_deg and height_m, or ecef_m, not both",
+        )),
+        (3, None) => {
+            let (lat, lon, h) = (
+                g.latitude_deg.unwrap_or_default(),
+                g.longitude_deg.unwrap_or_default(),
+                g.height_m.unwrap_or_default(),
+            );
+            check_range("latitude_deg", lat, (-90.0, 90.0), "deg")?;
+            check_range("longitude_deg", lon, (-360.0, 360.0), "deg (east positive)")?;
+            check_range(
+                "height_m",
+                h,
+                GROUND_HEIGHT_RANGE_M,
+                "m above the ellipsoid",
+            )
+        }
+        _ => {
+            let missing = geodetic
+                .iter()
+                .find(|(_, v)| v.is_none())
+                .map_or("", |(name, _)| *name);
+            Err(Invalid::new(
+                missing,
+                "(missing)",
+                "latitude_deg, longitude_deg and height_m must be given together",
+            ))
+        }
+    }
+}
+
+fn check_ecef(ecef: &[f64; 3]) -> Result<(), Invalid> {
+    if let Some(i) = ecef.iter().position(|x| !x.is_finite()) {
+        return Err(Invalid::new(
+            format!("ecef_m[{i}]"),
+            ecef[i],
+            "must be a finite number",
+        ));
+    }
+    let norm = ecef.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let (lo, hi) = GROUND_ECEF_NORM_RANGE_M;
+    if !(lo..=hi).contains(&norm) {
+        return Err(Invalid::new(
+            "ecef_m",
+            format!("[{}, {}, {}] (norm {norm:.0} m)", ecef[0], ecef[1], ecef[2]),
+            format!("must be a point near the Earth's surface: norm in [{lo}, {hi}] m"),
+        ));
+    }
+    Ok(())
+}
+
+fn check_range(field: &str, value: f64, (lo, hi): (f64, f64), unit: &str) -> Result<(), Invalid> {
+    if (lo..=hi).contains(&value) {
+        Ok(())
+    } else {
+        Err(Invalid::new(
+            field,
+            value,
+            format!("must be in [{lo}, {hi}] {unit}"),
+        ))
+    }
+}
+
+/// `[platform.attitude]`: finite profile values, `period_s >= 0` and `> 0` when the axis
+/// oscillates, and either a CSV or profiles.
+fn check_attitude(attitude: &AttitudeConfig) -> Result<(), Invalid> {
+    let axes = [
+        ("yaw", &attitude.yaw),
+        ("pitch", &attitude.pitch),
+        ("roll", &attitude.roll),
+    ];
+    for (name, axis) in axes {
+        check_axis(axis).map_err(|e| e.within(name))?;
+    }
+    if let Some(csv) = &attitude.csv {
+        if csv.as_os_str().is_empty() {
+            return Err(Invalid::new("csv", "\"\"", "must name a CSV file"));
+        }
+        let defaults = AxisProfileConfig::default();
+        if let Some((name, _)) = axes.iter().find(|(_, axis)| **axis != defaults) {
+            return Err(Invalid::new(
+                *name,
+                "a profile",
+                "give either csv or yaw/pitch/roll profiles, not both",
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn check_axis(axis: &AxisProfileConfig) -> Result<(), Invalid> {
+    let values = [
+        ("offset_deg", axis.offset_deg),
+        ("amplitude_deg", axis.amplitude_deg),
+        ("period_s", axis.period_s),
+        ("phase_deg", axis.phase_deg),
+    ];
+    if let Some((field, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
+        return Err(Invalid::new(*field, value, "must be a finite number"));
+    }
+    if axis.period_s < 0.0 {
+        return Err(Invalid::new(
+            "period_s",
+            axis.period_s,
+            "must be >= 0 (0 means a constant offset)",
+        ));
+    }
+    if axis.period_s == 0.0 && axis.amplitude_deg != 0.0 {
+        return Err(Invalid::new(
+            "period_s",
+            axis.period_s,
+            "must be > 0 when amplitude_deg is non-zero (0 means a constant offset)",
+        ));
+    }
+    Ok(())
+}
+
+/// `[[antennas]]`: at least one, each checked, unique names.
+fn check_antennas(antennas: &[AntennaConfig]) -> Result<(), Invalid> {
+    if antennas.is_empty() {
+        return Err(Invalid::new(
+            "antennas",
+            "none",
+            "at least one [[antennas]] table is required",
+        ));
+    }
+    for (i, antenna) in antennas.iter().enumerate() {
+        antenna
+            .check()
+            .map_err(|e| e.within(&format!("antennas[{i}]")))?;
+        if let Some(j) = antennas[..i].iter().position(|a| a.name == antenna.name) {
+            return Err(Invalid::new(
+                format!("antennas[{i}].name"),
+                format!("{:?}", antenna.name),
+                format!("must be unique; antennas[{j}] already has this name"),
+            ));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,141 @@
+//! Reading a scenario: TOML syntax, schema (serde), then the checks, every failure mapped
+//! to one located [`ScenarioError`].
+
+use crate::bundled::bundled;
+use crate::checks;
+use crate::error::{ScenarioError, shorten};
+use crate::locate::{Document, line_column};
+use crate::schema::{GnssConfig, Scenario, ScenarioFile, TimeSpan, default_constellation};
+use serde::Deserialize;
+use skyforge_orbits::check::Invalid;
+use std::path::{Path, PathBuf};
+
+/// Parse and check a scenario given as text. `source` names it in errors (a file path or
+/// `bundled:NAME`); relative paths inside it are resolved from `base_dir`. Runs every
+/// check that needs no file access; [`Scenario::build`] does the rest.
+pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
+    let doc = Document::parse(text).map_err(|e| syntax_error(text, source, &e))?;
+    let file = ScenarioFile::deserialize(toml::de::Deserializer::from(doc.into_root()))
+        .map_err(|e| schema_error(text, source, &e))?;
+    let gnss = GnssConfig {
+        gps: file.gnss.gps.clone().unwrap_or_else(default_constellation),
+        beidou: file
+            .gnss
+            .beidou
+            .clone()
+            .unwrap_or_else(default_constellation),
+    };
+    let start = checks::check(&file, &gnss).map_err(|e| locate_invalid(text, source, e))?;
+    Ok(Scenario {
+        name: file.name,
+        description: file.description,
+        seed: file.seed,
+        time: TimeSpan {
+            start,
+            duration_s: file.time.duration_s,
+        },
+        truth: file.truth,
+        gnss,
+        platform: file.platform,
+        antennas: file.antennas,
+        source: source.to_string(),
+        base_dir: base_dir.to_path_buf(),
+        text: text.to_string(),
+    })
+}
+
+/// Read, parse and check the scenario file at `path` (relative paths inside it are
+/// resolved from its directory).
+pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
+    let source = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| ScenarioError::unlocated(&source, "", "", format!("cannot read: {e}")))?;
+    let base_dir = match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    parse(&text, &source, &base_dir)
+}
+
+/// The scenario named by a command-line argument: an existing file, else a bundled
+/// scenario of that name (relative paths resolved from the current directory), else an
+/// error listing the bundled names.
+pub fn resolve(arg: &str) -> Result<Scenario, ScenarioError> {
+    let path = Path::new(arg);
+    if path.is_file() {
+        return load(path);
+    }
+    if let Some(found) = bundled().iter().find(|b| b.name == arg) {
+        let base_dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+        return parse(found.text, &format!("bundled:{}", found.name), &base_dir);
+    }
+    let names: Vec<&str> = bundled().iter().map(|b| b.name).collect();
+    Err(ScenarioError::unlocated(
+        arg,
+        "",
+        "",
+        format!(
+            "no such scenario file, and no bundled scenario of that name (bundled: {})",
+            names.join(", ")
+        ),
+    ))
+}
+
+/// A TOML syntax error, at its position, with the field it interrupts when known; the
+/// offending text is quoted in the message (the value stays empty: there is none yet).
+fn syntax_error(text: &str, source: &str, err: &toml::de::Error) -> ScenarioError {
+    let Some(span) = err.span() else {
+        let allowed = format!("TOML syntax error: {}", err.message());
+        return ScenarioError::unlocated(source, "", "", allowed);
+    };
+    let field = Document::parse_recoverable(text).path_at(span.start).0;
+    let allowed = match text.get(span.clone()).map(shorten) {
+        Some(snippet) if !snippet.is_empty() => {
+            format!("TOML syntax error at `{snippet}`: {}", err.message())
+        }
+        _ => format!("TOML syntax error: {}", err.message()),
+    };
+    ScenarioError::unlocated(source, field, "", allowed).at(Some(line_column(text, span.start)))
+}
+
+/// A schema error (unknown key, wrong type, missing key, bad enum value) at its position,
+/// with its field path and the value written there.
+fn schema_error(text: &str, source: &str, err: &toml::de::Error) -> ScenarioError {
+    let message = err.message();
+    let (Some(span), Ok(doc)) = (err.span(), Document::parse(text)) else {
+        return ScenarioError::unlocated(source, "", "", message);
+    };
+    let (path, value_span) = if doc.is_root(&span) {
+        (String::new(), span.clone())
+    } else {
+        doc.path_at(span.start)
+    };
+    let (field, value) = match missing_field(message) {
+        Some(name) if path.is_empty() => (name.to_string(), "(missing)".to_string()),
+        Some(name) => (format!("{path}.{name}"), "(missing)".to_string()),
+        None => (
+            path,
+            doc.snippet(&value_span).map(shorten).unwrap_or_default(),
+        ),
+    };
+    ScenarioError::unlocated(source, field, value, message).at(Some(doc.position(span.start)))
+}
+
+/// `name` from serde's "missing field `name`".
+fn missing_field(message: &str) -> Option<&str> {
+    message.strip_prefix("missing field `")?.split('`').next()
+}
+
+/// A failed check, placed at its field in the text (or the nearest enclosing header). A
+/// number the check reports is shown as written when the field holds that number.
+pub(crate) fn locate_invalid(text: &str, source: &str, invalid: Invalid) -> ScenarioError {
+    let Ok(doc) = Document::parse(text) else {
+        return ScenarioError::unlocated(source, invalid.field, invalid.value, invalid.allowed);
+    };
+    let position = doc.position(doc.span_of(&invalid.field).start);
+    let value = match doc.number_at(&invalid.field) {
+        Some(written) if invalid.value.parse::<f64>().is_ok() => written.to_string(),
+        _ => invalid.value,
+    };
+    ScenarioError::unlocated(source, invalid.field, value, invalid.allowed).at(Some(position))
+}

@@ -1,0 +1,224 @@
+//! Cross-field and whole-scenario checks: platform kind, ground site, attitude profile,
+//! antennas, constellations, defaults.
+
+mod common;
+
+use common::*;
+use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationSource};
+use std::path::Path;
+
+#[test]
+fn defaults_fill_everything_not_essential() {
+    let minimal = r#"
+name = "minimal"
+[time]
+start = "2023-03-12T00:00:00 GPST"
+duration_s = 60.0
+[platform.ground]
+latitude_deg = 30.0
+longitude_deg = 114.0
+height_m = 50.0
+[[antennas]]
+name = "a"
+position_body_m = [0.0, 0.0, 0.0]
+"#;
+    let s = parse_in(minimal, Path::new("/some/dir")).expect("minimal scenario");
+    assert_eq!(s.seed, 0);
+    assert_eq!(s.description, None);
+    assert_eq!(s.truth.geometry_rate_hz, 1.0);
+    for c in [&s.gnss.gps, &s.gnss.beidou] {
+        assert!(c.enabled);
+        assert_eq!(c.source, ConstellationSource::Embedded);
+        assert_eq!(c.prns, None);
+    }
+    assert_eq!(s.gnss.beidou.embedded_set, BeidouSet::Bds3);
+    let a = &s.antennas[0];
+    assert_eq!(a.boresight_body, [0.0, 0.0, -1.0]);
+    assert_eq!(a.fov_half_angle_deg, 90.0);
+    assert_eq!(a.elevation_mask_deg, -90.0);
+    assert_eq!(s.source, SOURCE);
+    assert_eq!(s.base_dir, Path::new("/some/dir"));
+    assert_eq!(s.text, minimal);
+}
+
+#[test]
+fn exactly_one_platform_kind() {
+    let two = replace(
+        BASE,
+        "[platform.leo.forces]",
+        "[platform.ground]\nlatitude_deg = 1.0\nlongitude_deg = 2.0\nheight_m = 3.0\n\n[platform.leo.forces]",
+    );
+    let err = parse_error(&two);
+    assert_eq!(err.field, "platform");
+    assert_eq!(err.value, "leo + ground");
+    let at = position_of(&two, "[platform.leo.elements]", "platform");
+    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+
+    let none = replace(
+        &ground("latitude_deg = 1.0\nlongitude_deg = 2.0\nheight_m = 3.0"),
+        "[platform.ground]",
+        "[platform.attitude]",
+    );
+    let err = parse_error(&none);
+    assert!(err.field.starts_with("platform"), "{err}");
+}
+
+#[test]
+fn ground_site_checks() {
+    let ok = ground("latitude_deg = 30.0\nlongitude_deg = 114.0\nheight_m = 50.0");
+    parse_in(&ok, Path::new(".")).expect("valid ground site");
+    let ok = ground("ecef_m = [-2267000.0, 5009000.0, 3221000.0]");
+    parse_in(&ok, Path::new(".")).expect("valid ECEF site");
+
+    let text = ground("latitude_deg = 95.0\nlongitude_deg = 114.0\nheight_m = 50.0");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "platform.ground.latitude_deg",
+        "95.0",
+        position_of(&text, "latitude_deg = 95.0", "95.0"),
+    );
+
+    let text = ground("latitude_deg = 30.0\nlongitude_deg = 114.0");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "platform.ground.height_m");
+    assert_eq!(
+        (err.line, err.column),
+        (
+            Some(position_of(&text, "[platform.ground]", "[").0),
+            Some(1)
+        )
+    );
+
+    let text = ground(
+        "latitude_deg = 30.0\nlongitude_deg = 114.0\nheight_m = 5.0\necef_m = [6378137.0, 0.0, 0.0]",
+    );
+    assert_eq!(parse_error(&text).field, "platform.ground.ecef_m");
+
+    let text = ground("ecef_m = [1000.0, 0.0, 0.0]");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "platform.ground.ecef_m");
+    let at = position_of(&text, "ecef_m = [1000.0", "[1000.0");
+    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+
+    let text = ground("ecef_m = [nan, 0.0, 0.0]");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "platform.ground.ecef_m[0]",
+        "nan",
+        position_of(&text, "[nan", "nan"),
+    );
+
+    let text = ground("");
+    assert_eq!(parse_error(&text).field, "platform.ground");
+}
+
+#[test]
+fn attitude_profile_checks() {
+    let with = |attitude: &str| {
+        replace(
+            BASE,
+            "[platform.leo.forces]",
+            &format!("[platform.attitude]\n{attitude}\n\n[platform.leo.forces]"),
+        )
+    };
+    parse_in(
+        &with("yaw = { amplitude_deg = 2.0, period_s = 600.0 }"),
+        Path::new("."),
+    )
+    .expect("sinusoid");
+
+    let text = with("pitch = { amplitude_deg = 2.0 }");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "platform.attitude.pitch.period_s");
+    assert_eq!(
+        (err.line, err.column),
+        (Some(position_of(&text, "pitch = {", "{").0), Some(9)),
+        "{err}"
+    );
+
+    let text = with("roll = { offset_deg = inf }");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "platform.attitude.roll.offset_deg",
+        "inf",
+        position_of(&text, "offset_deg = inf", "inf"),
+    );
+
+    let text = with("csv = \"attitude.csv\"\nyaw = { offset_deg = 1.0 }");
+    assert_eq!(parse_error(&text).field, "platform.attitude.yaw");
+}
+
+#[test]
+fn antenna_checks_are_located_per_antenna() {
+    let text = replace(
+        BASE,
+        "fov_half_angle_deg = 80.0",
+        "fov_half_angle_deg = 0.0",
+    );
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "antennas[1].fov_half_angle_deg",
+        "0.0",
+        position_of(&text, "fov_half_angle_deg = 0.0", "0.0"),
+    );
+
+    let text = replace(BASE, "name = \"ant2\"", "name = \"ant1\"");
+    let err = parse_error(&text);
+    let second = text.rfind("name = \"ant1\"").expect("second") + "name = ".len();
+    let line = text[..second].matches('\n').count() + 1;
+    assert_eq!(err.field, "antennas[1].name");
+    assert_eq!(err.value, "\"ant1\"");
+    assert_eq!((err.line, err.column), (Some(line), Some(8)), "{err}");
+
+    let text = replace(
+        BASE,
+        "position_body_m = [1.0, 0.0, 0.0]",
+        "position_body_m = [1.0, 0.0, nan]",
+    );
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "antennas[1].position_body_m[2]",
+        "nan",
+        position_of(&text, "[1.0, 0.0, nan]", "nan"),
+    );
+
+    let text = replace(
+        BASE,
+        "position_body_m = [1.0, 0.0, 0.0]",
+        "position_body_m = [1.0, 0.0]",
+    );
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "antennas[1].position_body_m",
+        "[1.0, 0.0]",
+        position_of(&text, "position_body_m = [1.0, 0.0]", "[1.0"),
+    );
+}
+
+#[test]
+fn at_least_one_constellation() {
+    let text = replace(BASE, "source = \"embedded\"", "enabled = false");
+    let text = replace(&text, "enabled = true", "enabled = false");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "gnss");
+    assert!(err.line.is_some());
+}
+
+#[test]
+fn bad_enum_value() {
+    let text = replace(BASE, "source = \"embedded\"", "source = \"almanac\"");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "gnss.gps.source",
+        "\"almanac\"",
+        position_of(&text, "source = \"almanac\"", "\"almanac\""),
+    );
+    assert!(err.allowed.contains("embedded"), "{err}");
+}

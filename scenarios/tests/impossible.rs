@@ -1,0 +1,271 @@
+//! Physically impossible or malformed input: one test per case the issue lists, each
+//! checking the field path, the value and that line/column point at it in the text.
+
+mod common;
+
+use common::*;
+use std::path::Path;
+
+#[test]
+fn base_scenario_is_valid() {
+    let s = parse_in(BASE, Path::new(".")).expect("BASE parses");
+    assert_eq!(s.name, "base");
+    assert_eq!(s.seed, 7);
+    assert_eq!(s.time.duration_s, 600.0);
+    assert_eq!(s.antennas.len(), 2);
+    assert!(s.gnss.gps.enabled && s.gnss.beidou.enabled);
+}
+
+#[test]
+fn eccentricity_of_one_or_more() {
+    for bad in ["1.2", "1.0"] {
+        let text = replace(
+            BASE,
+            "eccentricity = 0.000846",
+            &format!("eccentricity = {bad}"),
+        );
+        let err = parse_error(&text);
+        let at = position_of(&text, &format!("eccentricity = {bad}"), bad);
+        assert_error(&err, "platform.leo.elements.eccentricity", bad, at);
+    }
+}
+
+#[test]
+fn perigee_below_the_surface() {
+    // a (1 - e) = 6800 km * 0.95 = 6460 km would be fine; 6600 km * 0.9 = 5940 km is not.
+    let text = replace(
+        BASE,
+        "semi_major_axis_km = 6971.593",
+        "semi_major_axis_km = 6600.0",
+    );
+    let text = replace(&text, "eccentricity = 0.000846", "eccentricity = 0.1");
+    let err = parse_error(&text);
+    assert!(err.field.starts_with("platform.leo.elements"), "{err}");
+    let (key, value) = if err.field.ends_with("eccentricity") {
+        ("eccentricity = 0.1", "0.1")
+    } else {
+        ("semi_major_axis_km = 6600.0", "6600.0")
+    };
+    let at = position_of(&text, key, value);
+    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert!(err.to_string().starts_with(SOURCE), "{err}");
+}
+
+#[test]
+fn negative_mass() {
+    let text = replace(BASE, "mass_kg = 100.0", "mass_kg = -5.0");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "platform.leo.forces.mass_kg",
+        "-5.0",
+        position_of(&text, "mass_kg = -5.0", "-5.0"),
+    );
+}
+
+#[test]
+fn negative_area() {
+    let text = replace(BASE, "area_m2 = 1.0", "area_m2 = -1.5");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "platform.leo.forces.area_m2",
+        "-1.5",
+        position_of(&text, "area_m2 = -1.5", "-1.5"),
+    );
+}
+
+#[test]
+fn no_antennas() {
+    let start = BASE.find("[[antennas]]").expect("antennas");
+    let without = &BASE[..start];
+    let err = parse_error(without);
+    assert_error(&err, "antennas", "none", (1, 1));
+    let empty = format!("antennas = []\n{without}");
+    let err = parse_error(&empty);
+    assert_error(
+        &err,
+        "antennas",
+        "none",
+        position_of(&empty, "antennas = []", "[]"),
+    );
+}
+
+#[test]
+fn empty_or_reversed_time_span() {
+    for bad in ["0.0", "-600.0", "nan"] {
+        let text = replace(BASE, "duration_s = 600.0", &format!("duration_s = {bad}"));
+        let err = parse_error(&text);
+        let at = position_of(&text, &format!("duration_s = {bad}"), bad);
+        assert_error(&err, "time.duration_s", bad, at);
+    }
+}
+
+#[test]
+fn non_positive_step() {
+    for bad in ["0.0", "-1.0", "inf"] {
+        let text = replace(
+            BASE,
+            "geometry_rate_hz = 1.0",
+            &format!("geometry_rate_hz = {bad}"),
+        );
+        let err = parse_error(&text);
+        let at = position_of(&text, &format!("geometry_rate_hz = {bad}"), bad);
+        assert_error(&err, "truth.geometry_rate_hz", bad, at);
+    }
+    // A step longer than the span.
+    let text = replace(BASE, "geometry_rate_hz = 1.0", "geometry_rate_hz = 0.001");
+    let err = parse_error(&text);
+    let at = position_of(&text, "geometry_rate_hz = 0.001", "0.001");
+    assert_error(&err, "truth.geometry_rate_hz", "0.001", at);
+    assert!(err.allowed.contains("1 / time.duration_s"), "{err}");
+}
+
+#[test]
+fn unknown_prn() {
+    let text = replace(BASE, "source = \"embedded\"", "prns = [1, 40]");
+    let err = parse_error(&text);
+    assert!(err.field.starts_with("gnss.gps.prns"), "{err}");
+    let at = if err.field == "gnss.gps.prns[1]" {
+        position_of(&text, "prns = [1, 40]", "40")
+    } else {
+        position_of(&text, "prns = [1, 40]", "[1, 40]")
+    };
+    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert!(err.to_string().contains("40"), "{err}");
+
+    let text = replace(BASE, "enabled = true", "prns = [64]");
+    let err = parse_error(&text);
+    assert!(err.field.starts_with("gnss.beidou.prns"), "{err}");
+    assert!(err.to_string().contains("64"), "{err}");
+}
+
+#[test]
+fn missing_navigation_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let text = replace(
+        BASE,
+        "source = \"embedded\"",
+        "source = \"rinex\"\nnav_file = \"nav/missing.rnx\"",
+    );
+    let err = build_error(&text, dir.path());
+    let at = position_of(&text, "nav_file = \"nav/missing.rnx\"", "\"nav/");
+    assert_error(&err, "gnss.gps.nav_file", "\"nav/missing.rnx\"", at);
+    assert!(err.allowed.contains("missing.rnx"), "{err}");
+}
+
+#[test]
+fn unreadable_navigation_file() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(dir.path().join("garbage.rnx"), "this is not RINEX\n").expect("write");
+    std::fs::create_dir(dir.path().join("a_directory.rnx")).expect("mkdir");
+    for name in ["garbage.rnx", "a_directory.rnx"] {
+        let text = replace(
+            BASE,
+            "source = \"embedded\"",
+            &format!("source = \"rinex\"\nnav_file = \"{name}\""),
+        );
+        let err = build_error(&text, dir.path());
+        let at = position_of(&text, &format!("nav_file = \"{name}\""), "\"");
+        assert_error(&err, "gnss.gps.nav_file", &format!("\"{name}\""), at);
+    }
+}
+
+#[test]
+fn rinex_source_without_a_file() {
+    let text = replace(BASE, "source = \"embedded\"", "source = \"rinex\"");
+    let err = parse_error(&text);
+    assert!(err.field.starts_with("gnss.gps"), "{err}");
+    assert!(err.line.is_some(), "{err}");
+}
+
+#[test]
+fn unknown_key_is_rejected_where_it_is() {
+    let text = replace(BASE, "mass_kg = 100.0", "mass_kg = 100.0\nmass_lb = 220.0");
+    let err = parse_error(&text);
+    let at = position_of(&text, "mass_lb = 220.0", "mass_lb");
+    assert_error(&err, "platform.leo.forces.mass_lb", "220.0", at);
+    assert!(err.allowed.contains("unknown field `mass_lb`"), "{err}");
+    assert!(
+        err.allowed.contains("mass_kg"),
+        "lists what is allowed: {err}"
+    );
+
+    let text = format!("{BASE}\n[receiver]\nbandwidth_hz = 18.0\n");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "receiver");
+    assert_eq!(
+        (err.line, err.column),
+        (
+            Some(position_of(&text, "[receiver]", "receiver").0),
+            Some(2)
+        )
+    );
+}
+
+#[test]
+fn wrong_type_and_missing_field() {
+    let text = replace(BASE, "eccentricity = 0.000846", "eccentricity = \"small\"");
+    let err = parse_error(&text);
+    let at = position_of(&text, "eccentricity = \"small\"", "\"small\"");
+    assert_error(&err, "platform.leo.elements.eccentricity", "\"small\"", at);
+
+    let text = replace(BASE, "inclination_deg = 34.911\n", "");
+    let err = parse_error(&text);
+    let at = position_of(&text, "[platform.leo.elements]", "[");
+    assert_error(
+        &err,
+        "platform.leo.elements.inclination_deg",
+        "(missing)",
+        at,
+    );
+
+    let text = replace(BASE, "name = \"base\"\n", "");
+    let err = parse_error(&text);
+    assert_error(&err, "name", "(missing)", (1, 1));
+
+    let text = replace(BASE, "seed = 7", "seed = -7");
+    let err = parse_error(&text);
+    assert_error(&err, "seed", "-7", position_of(&text, "seed = -7", "-7"));
+
+    let text = replace(BASE, "name = \"ant2\"\n", "");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "antennas[1].name");
+    assert_eq!(err.value, "(missing)");
+    let second = text.rfind("[[antennas]]").expect("second antenna");
+    let line = text[..second].matches('\n').count() + 1;
+    assert_eq!((err.line, err.column), (Some(line), Some(1)), "{err}");
+}
+
+#[test]
+fn toml_syntax_error() {
+    let text = replace(
+        BASE,
+        "eccentricity = 0.000846",
+        "eccentricity = 0.000846 0.1",
+    );
+    let err = parse_error(&text);
+    let (line, _) = position_of(&text, "eccentricity = 0.000846 0.1", "0.1");
+    assert_eq!(err.line, Some(line), "{err}");
+    assert!(err.allowed.starts_with("TOML syntax error"), "{err}");
+    assert!(
+        err.to_string().starts_with(&format!("{SOURCE}:{line}:")),
+        "{err}"
+    );
+}
+
+#[test]
+fn bad_epoch() {
+    let text = replace(BASE, "2023-03-12T00:00:00 GPST", "2023-13-45T00:00:00 GPST");
+    let err = parse_error(&text);
+    let at = position_of(&text, "start = \"2023-13-45", "\"");
+    assert_error(&err, "time.start", "\"2023-13-45T00:00:00 GPST\"", at);
+
+    let text = replace(BASE, "2023-03-12T00:00:00 GPST", "2001-01-01T00:00:00 GPST");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "time.start");
+    assert!(err.allowed.contains("BeiDou"), "{err}");
+    // Without BeiDou an epoch before 2006 is fine.
+    let gps_only = replace(&text, "enabled = true", "enabled = false");
+    parse_in(&gps_only, Path::new(".")).expect("GPS-only 2001 scenario");
+}

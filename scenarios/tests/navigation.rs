@@ -1,0 +1,115 @@
+//! Navigation files in `build`: ephemerides valid at the start, per system, PRN filters.
+//! The file is a hand-made RINEX 3.05 record (own values, not copied from any station):
+//! G07, toc = toe = 2022-01-01T00:00:00 GPST (GPS week 2190, 518400 s of week), healthy.
+
+mod common;
+
+use common::*;
+use skyforge_orbits::ephemeris::{SatId, System};
+use std::path::Path;
+
+const NAV: &str = "     3.05           N: GNSS NAV DATA    G: GPS              RINEX VERSION / TYPE
+                                                            END OF HEADER
+G07 2022 01 01 00 00 00 1.000000000000E-05-1.000000000000E-12 0.000000000000E+00
+     1.000000000000E+01 2.000000000000E+01 4.500000000000E-09 1.000000000000E+00
+     1.000000000000E-06 1.000000000000E-02 5.000000000000E-06 5.153700000000E+03
+     5.184000000000E+05 1.000000000000E-08-1.000000000000E+00-1.000000000000E-08
+     9.600000000000E-01 2.000000000000E+02 5.000000000000E-01-8.000000000000E-09
+     1.000000000000E-10 1.000000000000E+00 2.190000000000E+03 0.000000000000E+00
+     2.000000000000E+00 0.000000000000E+00-1.000000000000E-08 1.000000000000E+01
+     5.112000000000E+05 4.000000000000E+00
+";
+
+/// [`BASE`] reading GPS from `brdc.rnx`, BeiDou disabled, starting at `start`.
+fn scenario(start: &str, gps_extra: &str) -> String {
+    let text = replace(
+        BASE,
+        "source = \"embedded\"",
+        &format!("source = \"rinex\"\nnav_file = \"brdc.rnx\"{gps_extra}"),
+    );
+    let text = replace(&text, "enabled = true", "enabled = false");
+    replace(&text, "2023-03-12T00:00:00 GPST", start)
+}
+
+fn nav_dir() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().expect("tempdir");
+    std::fs::write(dir.path().join("brdc.rnx"), NAV).expect("write nav file");
+    dir
+}
+
+#[test]
+fn a_file_valid_at_the_start_builds() {
+    let dir = nav_dir();
+    let text = scenario("2022-01-01T00:30:00 GPST", "");
+    let world = parse_in(&text, dir.path())
+        .expect("parses")
+        .build()
+        .unwrap_or_else(|e| panic!("{e}"));
+    let g07 = SatId {
+        system: System::Gps,
+        prn: 7,
+    };
+    assert_eq!(world.satellites, [g07]);
+    assert!(world.ephemerides.select(g07, 0.0).is_some());
+}
+
+#[test]
+fn a_file_without_ephemeris_for_the_requested_time() {
+    let dir = nav_dir();
+    let text = scenario("2023-03-12T00:00:00 GPST", "");
+    let err = build_error(&text, dir.path());
+    let at = position_of(&text, "nav_file = \"brdc.rnx\"", "\"brdc");
+    assert_error(&err, "gnss.gps.nav_file", "\"brdc.rnx\"", at);
+    assert!(
+        err.allowed
+            .contains("no healthy GPS ephemeris valid at the scenario start"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_file_without_ephemeris_of_the_system() {
+    let dir = nav_dir();
+    let text = replace(
+        BASE,
+        "enabled = true",
+        "source = \"rinex\"\nnav_file = \"brdc.rnx\"",
+    );
+    let text = replace(&text, "source = \"embedded\"", "enabled = false");
+    let text = replace(
+        &text,
+        "2023-03-12T00:00:00 GPST",
+        "2022-01-01T00:30:00 GPST",
+    );
+    let err = build_error(&text, dir.path());
+    let at = position_of(&text, "nav_file = \"brdc.rnx\"", "\"brdc");
+    assert_error(&err, "gnss.beidou.nav_file", "\"brdc.rnx\"", at);
+    assert!(err.allowed.contains("BeiDou"), "{err}");
+}
+
+#[test]
+fn a_requested_prn_without_ephemeris() {
+    let dir = nav_dir();
+    let text = scenario("2022-01-01T00:30:00 GPST", "\nprns = [7, 5]");
+    let err = build_error(&text, dir.path());
+    let at = position_of(&text, "prns = [7, 5]", "5]");
+    assert_error(&err, "gnss.gps.prns[1]", "5", at);
+    assert!(err.allowed.contains("G05"), "{err}");
+
+    let text = scenario("2022-01-01T00:30:00 GPST", "\nprns = [7]");
+    let world = parse_in(&text, dir.path()).expect("parses").build();
+    assert_eq!(world.map(|w| w.satellites.len()).ok(), Some(1));
+}
+
+#[test]
+fn relative_paths_start_at_the_scenario_directory() {
+    let dir = nav_dir();
+    let path = dir.path().join("scenario.toml");
+    std::fs::write(&path, scenario("2022-01-01T00:30:00 GPST", "")).expect("write");
+    let s = skyforge_scenarios::load(&path).expect("loads");
+    assert_eq!(s.base_dir, dir.path());
+    assert!(s.build().is_ok());
+    // The same text parsed against another directory does not find the file.
+    let elsewhere = build_error(&s.text, Path::new("/"));
+    assert_eq!(elsewhere.field, "gnss.gps.nav_file");
+}
