@@ -1,11 +1,31 @@
 //! Broadcast ephemeris parameters and the user algorithms: GPS LNAV (IS-GPS-200 table
 //! 20-IV, relativistic clock correction, TGD) and BeiDou D1/D2 (BDS-SIS-ICD, MEO/IGSO and
 //! the GEO transformation, BDT).
+//!
+//! Velocity is the analytic time derivative of the same model (not a finite difference), so
+//! position and velocity are exactly consistent; the tests check it against a central
+//! difference of the position.
 
-use super::sat_id::SatId;
+use super::sat_id::{SatId, System};
 use crate::Vec3;
+use crate::constants::{GM_BDS, GM_GPS, OMEGA_E_BDS, OMEGA_E_GPS};
 use crate::time::TimeOrigin;
-use hifitime::Epoch;
+use hifitime::{Epoch, TimeScale};
+use std::f64::consts::{PI, TAU};
+
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), IS-GPS-200 20.3.3.3.3.1.
+pub const F_REL_GPS: f64 = -4.442_807_633e-10;
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2) with the CGCS2000 mu,
+/// BDS-SIS-ICD-B1I-3.0 5.2.4 (clock correction).
+pub const F_REL_BDS: f64 = -4.442_807_309e-10;
+
+/// Tilt of the BeiDou GEO computation frame (-5 deg about X), BDS-SIS-ICD 5.2.4.
+const BDS_GEO_TILT_RAD: f64 = -5.0 * PI / 180.0;
+
+/// Convergence threshold of the Kepler-equation iteration (rad).
+const KEPLER_TOL_RAD: f64 = 1e-15;
+/// Iteration cap of the Kepler solver (Newton converges in 3-5 steps for e < 0.1).
+const KEPLER_MAX_ITER: usize = 30;
 
 /// How the orbit is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -13,7 +33,7 @@ pub enum OrbitClass {
     /// GPS, and BeiDou MEO/IGSO: the standard Keplerian user algorithm.
     Standard,
     /// BeiDou GEO: computed in an inertial-like frame, then rotated by -5 deg about X and
-    /// by the Earth rotation since toe about Z (BDS-SIS-ICD 5.2.4.12).
+    /// by the Earth rotation since toe about Z (BDS-SIS-ICD 5.2.4).
     BeidouGeo,
 }
 
@@ -58,6 +78,10 @@ pub struct BroadcastEphemeris {
 }
 
 /// An ephemeris bound to a scenario time origin: evaluates at `t_s` seconds since the start.
+///
+/// Built only by [`BroadcastEphemeris::bind`], which also precomputes the constants of the
+/// user algorithm (the public fields are read-only in spirit: changing `eph` afterwards
+/// does not update them; bind again instead).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BoundEphemeris {
     pub eph: BroadcastEphemeris,
@@ -65,30 +89,457 @@ pub struct BoundEphemeris {
     pub toe_s: f64,
     /// toc, seconds since the scenario start.
     pub toc_s: f64,
+    k: Precomputed,
+}
+
+/// Per-ephemeris constants of the user algorithm, computed once in `bind`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Precomputed {
+    /// Semi-major axis A = sqrt_a^2 (m).
+    a_m: f64,
+    /// Corrected mean motion n = sqrt(mu / A^3) + delta_n (rad/s).
+    n_rad_s: f64,
+    /// sqrt(1 - e^2).
+    sqrt_1_e2: f64,
+    /// Omega at tk = 0: Omega0 - OMEGA_E * toe_sow (rad).
+    node_at_toe_rad: f64,
+    /// dOmega/dtk: Omega_dot - OMEGA_E (standard) or Omega_dot (BeiDou GEO frame) (rad/s).
+    node_rate_rad_s: f64,
+    /// Earth rotation rate of the system (rad/s).
+    omega_e_rad_s: f64,
+    /// F e sqrt(A) (s), the amplitude of the relativistic clock term.
+    rel_amp_s: f64,
+    geo: bool,
+}
+
+/// The orbit in the (possibly rotating) computation frame at one instant, with what the
+/// velocity needs.
+struct PlaneState {
+    r_m: Vec3,
+    e_anom_rad: f64,
+    sin_2phi: f64,
+    cos_2phi: f64,
+    r_orb_m: f64,
+    u_rad: f64,
+    i_rad: f64,
+    node_rad: f64,
 }
 
 impl BroadcastEphemeris {
     /// Bind to a scenario origin.
     pub fn bind(&self, origin: &TimeOrigin) -> BoundEphemeris {
-        todo!("{origin:?}")
+        let toe_s = (self.toe - origin.start()).to_seconds();
+        let toc_s = (self.toc - origin.start()).to_seconds();
+        let (gm, omega_e, f_rel, scale) = match self.sat.system {
+            System::Gps => (GM_GPS, OMEGA_E_GPS, F_REL_GPS, TimeScale::GPST),
+            System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS, TimeScale::BDT),
+        };
+        let toe_sow = seconds_of_week(self.toe, scale);
+        let a_m = self.sqrt_a * self.sqrt_a;
+        let geo = self.class == OrbitClass::BeidouGeo;
+        let k = Precomputed {
+            a_m,
+            n_rad_s: (gm / (a_m * a_m * a_m)).sqrt() + self.delta_n,
+            sqrt_1_e2: (1.0 - self.e * self.e).sqrt(),
+            node_at_toe_rad: self.omega0 - omega_e * toe_sow,
+            node_rate_rad_s: if geo {
+                self.omega_dot
+            } else {
+                self.omega_dot - omega_e
+            },
+            omega_e_rad_s: omega_e,
+            rel_amp_s: f_rel * self.e * self.sqrt_a,
+            geo,
+        };
+        BoundEphemeris {
+            eph: self.clone(),
+            toe_s,
+            toc_s,
+            k,
+        }
     }
 }
 
+/// Seconds of week of `epoch` in `scale` (GPST or BDT), exact to the nanosecond.
+pub(crate) fn seconds_of_week(epoch: Epoch, scale: TimeScale) -> f64 {
+    let (_, ns) = epoch.to_time_scale(scale).to_time_of_week();
+    ns as f64 * 1e-9
+}
+
+/// Eccentric anomaly from the mean anomaly (Kepler's equation M = E - e sin E), Newton
+/// iteration to |dE| <= 1e-15 rad (IS-GPS-200 table 20-IV).
+fn eccentric_anomaly(m_rad: f64, e: f64) -> f64 {
+    let m = m_rad - TAU * (m_rad / TAU).round();
+    let mut ea = if e < 0.8 { m } else { PI.copysign(m) };
+    for _ in 0..KEPLER_MAX_ITER {
+        let (s, c) = ea.sin_cos();
+        let d = (ea - e * s - m) / (1.0 - e * c);
+        ea -= d;
+        if d.abs() <= KEPLER_TOL_RAD {
+            break;
+        }
+    }
+    ea
+}
+
 impl BoundEphemeris {
+    /// The user algorithm up to the position in the computation frame (ECEF for the
+    /// standard class, the BeiDou GEO inertial-like frame otherwise).
+    /// IS-GPS-200 table 20-IV; BDS-SIS-ICD 5.2.4.
+    #[inline]
+    fn plane_state(&self, tk: f64) -> PlaneState {
+        let p = &self.eph;
+        let k = &self.k;
+        let ea = eccentric_anomaly(p.m0 + k.n_rad_s * tk, p.e);
+        let (sin_e, cos_e) = ea.sin_cos();
+        let nu = (k.sqrt_1_e2 * sin_e).atan2(cos_e - p.e);
+        let phi = nu + p.omega;
+        let (sin_2phi, cos_2phi) = (2.0 * phi).sin_cos();
+        let u_rad = phi + p.cus * sin_2phi + p.cuc * cos_2phi;
+        let r_orb_m = k.a_m * (1.0 - p.e * cos_e) + p.crs * sin_2phi + p.crc * cos_2phi;
+        let i_rad = p.i0 + p.idot * tk + p.cis * sin_2phi + p.cic * cos_2phi;
+        let node_rad = k.node_at_toe_rad + k.node_rate_rad_s * tk;
+        let (sin_u, cos_u) = u_rad.sin_cos();
+        let (xp, yp) = (r_orb_m * cos_u, r_orb_m * sin_u);
+        let (sin_i, cos_i) = i_rad.sin_cos();
+        let (sin_o, cos_o) = node_rad.sin_cos();
+        PlaneState {
+            r_m: Vec3::new(
+                xp * cos_o - yp * cos_i * sin_o,
+                xp * sin_o + yp * cos_i * cos_o,
+                yp * sin_i,
+            ),
+            e_anom_rad: ea,
+            sin_2phi,
+            cos_2phi,
+            r_orb_m,
+            u_rad,
+            i_rad,
+            node_rad,
+        }
+    }
+
+    /// Rotation of the BeiDou GEO frame into ECEF: Rz(OMEGA_E tk) Rx(-5 deg)
+    /// (BDS-SIS-ICD 5.2.4; both are frame rotations, R(a) = [[1,0,0],[0,c,s],[0,-s,c]]).
+    #[inline]
+    fn geo_to_ecef(&self, tk: f64, v: Vec3) -> Vec3 {
+        let (s5, c5) = BDS_GEO_TILT_RAD.sin_cos();
+        let y = c5 * v.y + s5 * v.z;
+        let z = -s5 * v.y + c5 * v.z;
+        let (sz, cz) = (self.k.omega_e_rad_s * tk).sin_cos();
+        Vec3::new(cz * v.x + sz * y, -sz * v.x + cz * y, z)
+    }
+
     /// Antenna phase-centre position (ECEF at the same instant, m) at `t_s`.
     pub fn position_ecef(&self, t_s: f64) -> Vec3 {
-        todo!("{t_s}")
+        let tk = t_s - self.toe_s;
+        let st = self.plane_state(tk);
+        if self.k.geo {
+            self.geo_to_ecef(tk, st.r_m)
+        } else {
+            st.r_m
+        }
     }
-    /// Position and velocity (ECEF, m and m/s) at `t_s`.
+
+    /// Position and velocity (ECEF, m and m/s) at `t_s`. The velocity is the analytic
+    /// derivative of the user algorithm (IS-GPS-200 table 20-IV differentiated; for the
+    /// BeiDou GEO the rotating-frame term OMEGA_E x r is added).
     pub fn state_ecef(&self, t_s: f64) -> (Vec3, Vec3) {
-        todo!("{t_s}")
+        let tk = t_s - self.toe_s;
+        let p = &self.eph;
+        let k = &self.k;
+        let st = self.plane_state(tk);
+        let cos_e = st.e_anom_rad.cos();
+        let one_m_ecos = 1.0 - p.e * cos_e;
+        let e_dot = k.n_rad_s / one_m_ecos;
+        let nu_dot = k.sqrt_1_e2 * e_dot / one_m_ecos;
+        let (s2, c2) = (st.sin_2phi, st.cos_2phi);
+        let u_dot = nu_dot * (1.0 + 2.0 * (p.cus * c2 - p.cuc * s2));
+        let r_dot =
+            k.a_m * p.e * st.e_anom_rad.sin() * e_dot + 2.0 * nu_dot * (p.crs * c2 - p.crc * s2);
+        let i_dot = p.idot + 2.0 * nu_dot * (p.cis * c2 - p.cic * s2);
+        let node_dot = k.node_rate_rad_s;
+
+        let (sin_u, cos_u) = st.u_rad.sin_cos();
+        let yp = st.r_orb_m * sin_u;
+        let xp_dot = r_dot * cos_u - st.r_orb_m * u_dot * sin_u;
+        let yp_dot = r_dot * sin_u + st.r_orb_m * u_dot * cos_u;
+        let (sin_i, cos_i) = st.i_rad.sin_cos();
+        let (sin_o, cos_o) = st.node_rad.sin_cos();
+        let r = st.r_m;
+        let v = Vec3::new(
+            xp_dot * cos_o - yp_dot * cos_i * sin_o + yp * sin_i * sin_o * i_dot - r.y * node_dot,
+            xp_dot * sin_o + yp_dot * cos_i * cos_o - yp * sin_i * cos_o * i_dot + r.x * node_dot,
+            yp_dot * sin_i + yp * cos_i * i_dot,
+        );
+        if k.geo {
+            let r_ecef = self.geo_to_ecef(tk, r);
+            let w = k.omega_e_rad_s;
+            let v_ecef = self.geo_to_ecef(tk, v) + Vec3::new(w * r_ecef.y, -w * r_ecef.x, 0.0);
+            (r_ecef, v_ecef)
+        } else {
+            (r, v)
+        }
     }
+
+    /// Eccentric anomaly at `t_s` (rad).
+    fn eccentric_anomaly_at(&self, t_s: f64) -> f64 {
+        eccentric_anomaly(
+            self.eph.m0 + self.k.n_rad_s * (t_s - self.toe_s),
+            self.eph.e,
+        )
+    }
+
     /// Satellite clock offset (s) at `t_s`: polynomial plus relativistic correction, without TGD.
+    /// IS-GPS-200 20.3.3.3.3.1: af0 + af1 dt + af2 dt^2 + F e sqrt(A) sin(Ek), dt = t - toc.
     pub fn clock_offset_s(&self, t_s: f64) -> f64 {
-        todo!("{t_s}")
+        let dt = t_s - self.toc_s;
+        let p = &self.eph;
+        let rel = self.k.rel_amp_s * self.eccentric_anomaly_at(t_s).sin();
+        p.af0 + dt * (p.af1 + dt * p.af2) + rel
     }
-    /// Satellite clock drift (s/s) at `t_s`, including the relativistic term's derivative.
+
+    /// Satellite clock drift (s/s) at `t_s`, including the relativistic term's derivative
+    /// F e sqrt(A) cos(Ek) dEk/dt with dEk/dt = n / (1 - e cos Ek).
     pub fn clock_drift(&self, t_s: f64) -> f64 {
-        todo!("{t_s}")
+        let dt = t_s - self.toc_s;
+        let p = &self.eph;
+        let cos_e = self.eccentric_anomaly_at(t_s).cos();
+        let e_dot = self.k.n_rad_s / (1.0 - p.e * cos_e);
+        p.af1 + 2.0 * p.af2 * dt + self.k.rel_amp_s * cos_e * e_dot
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::constants::C_MPS;
+    use hifitime::Unit;
+    use proptest::prelude::*;
+
+    /// A GPS-like ephemeris with eccentricity and all harmonic terms non-zero.
+    fn gps_eph(toe: Epoch) -> BroadcastEphemeris {
+        BroadcastEphemeris {
+            sat: SatId::gps(7),
+            class: OrbitClass::Standard,
+            toe,
+            toc: toe,
+            sqrt_a: 5153.65,
+            e: 0.0125,
+            i0: 0.9898,
+            omega0: 2.337,
+            omega: 0.9395,
+            m0: -2.6358,
+            delta_n: 3.65e-9,
+            idot: -2.0e-11,
+            omega_dot: -7.465e-9,
+            cuc: -3.58e-6,
+            cus: 1.12e-5,
+            crc: 176.9,
+            crs: -66.8,
+            cic: -2.98e-8,
+            cis: -2.42e-7,
+            af0: 2.0375e-4,
+            af1: -3.865e-12,
+            af2: 1.0e-19,
+            tgd_s: 4.66e-9,
+            iode: 59,
+            iodc: 59,
+            health: 0,
+            fit_interval_s: 4.0 * 3600.0,
+        }
+    }
+
+    fn origin() -> TimeOrigin {
+        TimeOrigin::new(Epoch::from_gregorian(
+            2023,
+            3,
+            12,
+            0,
+            0,
+            0,
+            0,
+            TimeScale::GPST,
+        ))
+    }
+
+    fn toe() -> Epoch {
+        origin().start() + 2.0 * Unit::Hour
+    }
+
+    #[test]
+    fn relativistic_constants_match_minus_two_sqrt_mu_over_c2() {
+        let f_gps = -2.0 * GM_GPS.sqrt() / (C_MPS * C_MPS);
+        let f_bds = -2.0 * GM_BDS.sqrt() / (C_MPS * C_MPS);
+        assert!((f_gps - F_REL_GPS).abs() < 1e-18, "{f_gps:e}");
+        assert!((f_bds - F_REL_BDS).abs() < 1e-18, "{f_bds:e}");
+    }
+
+    #[test]
+    fn kepler_solution_satisfies_the_equation() {
+        for &e in &[0.0, 0.001, 0.02, 0.3, 0.7, 0.95] {
+            for i in 0..200 {
+                let m = -10.0 + 0.1 * f64::from(i);
+                let ea = eccentric_anomaly(m, e);
+                let resid = ea - e * ea.sin() - (m - TAU * (m / TAU).round());
+                assert!(resid.abs() < 4e-15, "e={e} m={m} resid={resid:e}");
+            }
+        }
+    }
+
+    #[test]
+    fn toe_seconds_of_week_in_system_scale() {
+        // 2023-03-12 00:00 GPST is the start of GPS week 2253; the same reading in BDT is
+        // the start of BDT week 897 (BDT = GPST - 14 s).
+        let gps = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let bdt = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::BDT);
+        assert_eq!(gps.to_time_scale(TimeScale::GPST).to_time_of_week().0, 2253);
+        assert_eq!(bdt.to_time_scale(TimeScale::BDT).to_time_of_week().0, 897);
+        assert_eq!(seconds_of_week(gps, TimeScale::GPST), 0.0);
+        assert_eq!(seconds_of_week(bdt, TimeScale::BDT), 0.0);
+        assert!(((bdt - gps).to_seconds() - 14.0).abs() < 1e-9);
+        assert_eq!(seconds_of_week(gps, TimeScale::BDT), 604_800.0 - 14.0);
+    }
+
+    #[test]
+    fn bind_maps_toe_and_toc_to_scenario_seconds() {
+        let b = gps_eph(toe()).bind(&origin());
+        assert_eq!(b.toe_s, 7200.0);
+        assert_eq!(b.toc_s, 7200.0);
+    }
+
+    #[test]
+    fn radius_without_harmonics_is_a_one_minus_e_cos_e() {
+        let mut eph = gps_eph(toe());
+        eph.crc = 0.0;
+        eph.crs = 0.0;
+        let b = eph.bind(&origin());
+        for i in 0..50 {
+            let t = 7200.0 + 600.0 * f64::from(i) - 14_400.0;
+            let ea = b.eccentric_anomaly_at(t);
+            let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * ea.cos());
+            let got = b.position_ecef(t).norm();
+            assert!(
+                (got - expect).abs() < 1e-6,
+                "t={t} got={got} expect={expect}"
+            );
+        }
+    }
+
+    #[test]
+    fn radius_with_harmonics_adds_the_radial_correction() {
+        let eph = gps_eph(toe());
+        let b = eph.bind(&origin());
+        let t = 9000.0;
+        let st = b.plane_state(t - b.toe_s);
+        let ea = st.e_anom_rad;
+        let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * ea.cos())
+            + eph.crs * st.sin_2phi
+            + eph.crc * st.cos_2phi;
+        assert!((b.position_ecef(t).norm() - expect).abs() < 1e-6);
+    }
+
+    /// Central difference with h = 0.05 s: truncation ~1e-9 m/s, rounding ~1e-7 m/s.
+    fn numeric_velocity(b: &BoundEphemeris, t: f64) -> Vec3 {
+        let h = 0.05;
+        (b.position_ecef(t + h) - b.position_ecef(t - h)) / (2.0 * h)
+    }
+
+    #[test]
+    fn velocity_is_the_derivative_of_position() {
+        let b = gps_eph(toe()).bind(&origin());
+        for i in 0..30 {
+            let t = 7200.0 - 7200.0 + 500.0 * f64::from(i);
+            let (r, v) = b.state_ecef(t);
+            assert_eq!(r, b.position_ecef(t));
+            let err = (v - numeric_velocity(&b, t)).norm();
+            assert!(err < 1e-5, "t={t} velocity error {err} m/s");
+        }
+    }
+
+    #[test]
+    fn geo_velocity_is_the_derivative_of_position() {
+        let mut eph = gps_eph(toe());
+        eph.sat = SatId::beidou(1);
+        eph.class = OrbitClass::BeidouGeo;
+        eph.sqrt_a = 6493.3;
+        eph.i0 = 0.09;
+        eph.e = 4.6e-4;
+        let b = eph.bind(&origin());
+        for i in 0..30 {
+            let t = 500.0 * f64::from(i);
+            let (r, v) = b.state_ecef(t);
+            assert_eq!(r, b.position_ecef(t));
+            let err = (v - numeric_velocity(&b, t)).norm();
+            assert!(err < 1e-5, "t={t} velocity error {err} m/s");
+        }
+    }
+
+    #[test]
+    fn clock_drift_is_the_derivative_of_clock_offset() {
+        let b = gps_eph(toe()).bind(&origin());
+        for i in 0..20 {
+            let t = 1000.0 * f64::from(i);
+            let h = 1.0;
+            let num = (b.clock_offset_s(t + h) - b.clock_offset_s(t - h)) / (2.0 * h);
+            let d = b.clock_drift(t);
+            assert!((num - d).abs() < 1e-17, "t={t} {num:e} vs {d:e}");
+        }
+    }
+
+    #[test]
+    fn relativistic_clock_term_amplitude() {
+        // For e = 0.0125 and sqrt(A) = 5153.65 the amplitude is |F| e sqrt(A) = 28.6 ns.
+        let mut eph = gps_eph(toe());
+        eph.af0 = 0.0;
+        eph.af1 = 0.0;
+        eph.af2 = 0.0;
+        let b = eph.bind(&origin());
+        let max = (0..4320)
+            .map(|i| b.clock_offset_s(f64::from(i) * 10.0).abs())
+            .fold(0.0, f64::max);
+        let expect = 4.442_807_633e-10 * 0.0125 * 5153.65;
+        assert!((max - expect).abs() < 1e-12, "{max:e} vs {expect:e}");
+    }
+
+    #[test]
+    fn period_is_two_pi_over_mean_motion() {
+        let mut eph = gps_eph(toe());
+        eph.delta_n = 0.0;
+        eph.omega_dot = OMEGA_E_GPS; // inertially fixed node in ECEF-rotating terms
+        eph.idot = 0.0;
+        eph.cuc = 0.0;
+        eph.cus = 0.0;
+        eph.crc = 0.0;
+        eph.crs = 0.0;
+        eph.cic = 0.0;
+        eph.cis = 0.0;
+        let b = eph.bind(&origin());
+        let a = eph.sqrt_a.powi(2);
+        let period = TAU / (GM_GPS / (a * a * a)).sqrt();
+        // With Omega_dot = OMEGA_E the node does not move in the computation frame, so the
+        // orbit closes after exactly one Keplerian period.
+        let r0 = b.position_ecef(b.toe_s);
+        let r1 = b.position_ecef(b.toe_s + period);
+        assert!((r1 - r0).norm() < 1e-5, "{}", (r1 - r0).norm());
+        let r_half = b.position_ecef(b.toe_s + period / 2.0);
+        assert!((r_half - r0).norm() > 2.0e7);
+    }
+
+    proptest! {
+        #[test]
+        fn position_is_finite_and_radius_bounded(
+            t in -1.0e5f64..1.0e5,
+            e in 0.0f64..0.05,
+            m0 in -PI..PI,
+        ) {
+            let mut eph = gps_eph(toe());
+            eph.e = e;
+            eph.m0 = m0;
+            let b = eph.bind(&origin());
+            let r = b.position_ecef(t).norm();
+            let a = eph.sqrt_a.powi(2);
+            prop_assert!(r > a * (1.0 - e) - 500.0 && r < a * (1.0 + e) + 500.0);
+        }
     }
 }

@@ -52,6 +52,97 @@ fn yes() -> bool {
 impl ConstellationConfig {
     /// Cross-field checks that need no file access (PRN range, nav_file iff rinex).
     pub fn check(&self, max_prn: u8) -> Result<(), Invalid> {
-        todo!("{max_prn}")
+        if let Some(prns) = &self.prns {
+            let mut seen = std::collections::BTreeSet::new();
+            for &prn in prns {
+                if prn == 0 || prn > max_prn {
+                    return Err(Invalid::new(
+                        "prns",
+                        prn,
+                        format!("each PRN must be in 1..={max_prn}"),
+                    ));
+                }
+                if !seen.insert(prn) {
+                    return Err(Invalid::new("prns", prn, "PRNs must not repeat"));
+                }
+            }
+        }
+        match (self.source, &self.nav_file) {
+            (ConstellationSource::Rinex, None) => Err(Invalid::new(
+                "nav_file",
+                "(missing)",
+                "required when source = \"rinex\"",
+            )),
+            (ConstellationSource::Embedded, Some(_)) => Err(Invalid::new(
+                "source",
+                "embedded",
+                "must be \"rinex\" when nav_file is given (or remove nav_file)",
+            )),
+            _ => Ok(()),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cfg(
+        source: ConstellationSource,
+        nav: Option<&str>,
+        prns: Option<Vec<u8>>,
+    ) -> ConstellationConfig {
+        ConstellationConfig {
+            enabled: true,
+            source,
+            nav_file: nav.map(PathBuf::from),
+            embedded_set: BeidouSet::Bds3,
+            prns,
+        }
+    }
+
+    #[test]
+    fn accepts_valid_configs() {
+        assert_eq!(
+            cfg(ConstellationSource::Embedded, None, None).check(32),
+            Ok(())
+        );
+        assert_eq!(
+            cfg(
+                ConstellationSource::Rinex,
+                Some("brdc.n"),
+                Some(vec![1, 32])
+            )
+            .check(32),
+            Ok(())
+        );
+    }
+
+    #[test]
+    fn prn_range_and_uniqueness() {
+        let e = cfg(ConstellationSource::Embedded, None, Some(vec![1, 33]))
+            .check(32)
+            .unwrap_err();
+        assert_eq!((e.field.as_str(), e.value.as_str()), ("prns", "33"));
+        let e = cfg(ConstellationSource::Embedded, None, Some(vec![0]))
+            .check(32)
+            .unwrap_err();
+        assert_eq!(e.field, "prns");
+        let e = cfg(ConstellationSource::Embedded, None, Some(vec![5, 6, 5]))
+            .check(63)
+            .unwrap_err();
+        assert_eq!((e.field.as_str(), e.value.as_str()), ("prns", "5"));
+    }
+
+    #[test]
+    fn nav_file_iff_rinex() {
+        let e = cfg(ConstellationSource::Rinex, None, None)
+            .check(32)
+            .unwrap_err();
+        assert_eq!(e.field, "nav_file");
+        let e = cfg(ConstellationSource::Embedded, Some("x.rnx"), None)
+            .check(32)
+            .unwrap_err();
+        assert_eq!((e.field.as_str(), e.value.as_str()), ("source", "embedded"));
     }
 }

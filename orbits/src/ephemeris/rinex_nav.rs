@@ -1,10 +1,707 @@
 //! RINEX navigation files, versions 2 (GPS), 3 (mixed) and 4 (message types), plain or
 //! gzip-compressed. Only GPS LNAV and BeiDou D1/D2 records are kept; others are skipped.
+//!
+//! Format facts used (RINEX 2.11, 3.05 and 4.00 specifications, "navigation message file"
+//! tables for GPS and BDS):
+//! - data records: an epoch line (satellite, epoch of clock `toc` in the system's time
+//!   scale, af0/af1/af2) followed by seven "broadcast orbit" lines of four 19-character
+//!   floating-point fields (Fortran `D` exponents allowed). Version 2 lines start with 3
+//!   blanks, versions 3/4 with 4. Blank or missing trailing fields read as zero.
+//! - version 4 prefixes each record with a `> EPH G05 LNAV` / `> EPH C19 D1` line; other
+//!   record types (STO, EOP, ION) and other message types (CNAV, CNV1..3) are skipped.
+//! - GPS: toe is GPS week (continuous) + seconds of week; health is the 6-bit SV health;
+//!   TGD is the L1/L2 P(Y) group delay; the fit interval is in hours.
+//! - BeiDou: toe is BDT week + seconds of week; health is SatH1; TGD1 (B1I) is kept; the
+//!   last line carries AODC.
+//!
+//! Choices (documented here, tested below):
+//! - GPS fit interval: the field in hours; 0, missing, or a value below 4 (some writers put
+//!   the 0/1 fit-interval *flag* there) means the standard 4 h.
+//! - BeiDou fit interval: 1 h. BeiDou uploads a new set every hour with toe on the hour,
+//!   and the ICD gives no fit interval, so a set is used within +-30 min of its toe (plus
+//!   the store's margin).
+//! - BeiDou GEO: classified by PRN (C01-C05 and C59-C63), not by the D1/D2 label.
+//! - toe week: the week field goes with toe; if toe and toc then differ by more than half
+//!   a week (a writer that put the transmission week), the week is corrected by one.
+//! - Records whose orbit is physically impossible (sqrt(A) outside 1000..10000 m^1/2,
+//!   e outside [0, 1), non-finite values) are format errors.
 
-use super::{NavError, broadcast::BroadcastEphemeris};
+use super::{
+    NavError,
+    broadcast::{BroadcastEphemeris, OrbitClass},
+    sat_id::{SatId, System},
+};
+use hifitime::{Epoch, TimeScale, Unit};
+use std::io::Read;
 use std::path::Path;
+
+/// Default GPS fit interval (s), IS-GPS-200 20.3.4.4 (fit interval flag 0).
+const GPS_DEFAULT_FIT_S: f64 = 4.0 * 3600.0;
+/// BeiDou validity interval (s): the hourly update period (see the module notes).
+const BDS_FIT_S: f64 = 3600.0;
+/// Seconds per week.
+const WEEK_S: f64 = 604_800.0;
 
 /// Read every GPS LNAV and BeiDou D1/D2 ephemeris in the file.
 pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
-    todo!("{path:?}")
+    let text = read_text_maybe_gz(path)?;
+    parse_nav(&text, &path.display().to_string())
+}
+
+/// Read a whole text file, gunzipping it when it starts with the gzip magic bytes.
+pub(crate) fn read_text_maybe_gz(path: &Path) -> Result<String, NavError> {
+    let io_err = |source| NavError::Io {
+        path: path.display().to_string(),
+        source,
+    };
+    let raw = std::fs::read(path).map_err(io_err)?;
+    let bytes = if raw.starts_with(&[0x1f, 0x8b]) {
+        let mut out = Vec::with_capacity(raw.len() * 4);
+        flate2::read::MultiGzDecoder::new(raw.as_slice())
+            .read_to_end(&mut out)
+            .map_err(io_err)?;
+        out
+    } else {
+        raw
+    };
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
+/// Parse the text of a RINEX 2/3/4 navigation file. `source` names the file in errors.
+pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, NavError> {
+    let p = Parser { source };
+    let lines: Vec<&str> = text.lines().map(|l| l.trim_end_matches('\r')).collect();
+    let first = lines.first().ok_or_else(|| p.err(1, "empty file"))?;
+    let version: f64 = first
+        .get(..9)
+        .unwrap_or(first)
+        .trim()
+        .parse()
+        .map_err(|_| p.err(1, "no RINEX version in columns 1-9"))?;
+    let file_type = first.get(20..21).unwrap_or("");
+    if file_type != "N" {
+        return Err(p.err(
+            1,
+            format!("file type {file_type:?} is not a navigation file (N)"),
+        ));
+    }
+    let end = lines
+        .iter()
+        .position(|l| l.get(60..).unwrap_or("").trim_end() == "END OF HEADER")
+        .ok_or_else(|| p.err(lines.len(), "no END OF HEADER"))?;
+    let body = Body {
+        lines: &lines,
+        start: end + 1,
+    };
+    match version {
+        v if (2.0..3.0).contains(&v) => p.parse_v2(&body),
+        v if (3.0..4.0).contains(&v) => p.parse_v3(&body),
+        v if (4.0..5.0).contains(&v) => p.parse_v4(&body),
+        v => Err(p.err(1, format!("unsupported RINEX version {v}"))),
+    }
+}
+
+/// The data section of the file (0-based index of its first line).
+struct Body<'a> {
+    lines: &'a [&'a str],
+    start: usize,
+}
+
+/// One record: its lines with their 1-based line numbers.
+type Record<'a> = Vec<(usize, &'a str)>;
+
+struct Parser<'a> {
+    source: &'a str,
+}
+
+/// The 31 numbers of a GPS/BeiDou record: clock line (3) + seven orbit lines (4 each).
+struct Fields {
+    v: [f64; 31],
+}
+
+impl Fields {
+    /// Orbit line `line` (1-7), field `k` (1-4).
+    fn orbit(&self, line: usize, k: usize) -> f64 {
+        self.v[3 + (line - 1) * 4 + (k - 1)]
+    }
+}
+
+impl Parser<'_> {
+    fn err(&self, line: usize, message: impl Into<String>) -> NavError {
+        NavError::Format {
+            path: self.source.to_string(),
+            line,
+            message: message.into(),
+        }
+    }
+
+    /// RINEX 2: GPS only; a record starts with the PRN in columns 1-2.
+    fn parse_v2(&self, body: &Body) -> Result<Vec<BroadcastEphemeris>, NavError> {
+        let mut out = Vec::new();
+        for rec in split_records(body, |l| !l.get(..2).unwrap_or(l).trim().is_empty()) {
+            let (n0, l0) = rec[0];
+            let head = l0
+                .get(..22)
+                .ok_or_else(|| self.err(n0, "epoch line too short"))?;
+            let t: Vec<&str> = head.split_whitespace().collect();
+            if t.len() != 7 {
+                return Err(self.err(n0, "expected PRN and 6 epoch fields in columns 1-22"));
+            }
+            let prn: u8 = t[0].parse().map_err(|_| self.err(n0, "bad PRN"))?;
+            let yy: i32 = t[1].parse().map_err(|_| self.err(n0, "bad year"))?;
+            let year = if yy < 80 { 2000 + yy } else { 1900 + yy };
+            let epoch = self.epoch(n0, year, &t[2..7], TimeScale::GPST)?;
+            let fields = self.fields(&rec, 22, 3)?;
+            out.push(self.ephemeris(
+                n0,
+                SatId::gps(self.prn(n0, System::Gps, prn)?),
+                epoch,
+                &fields,
+            )?);
+        }
+        Ok(out)
+    }
+
+    /// RINEX 3: a record starts with the system letter in column 1.
+    fn parse_v3(&self, body: &Body) -> Result<Vec<BroadcastEphemeris>, NavError> {
+        let mut out = Vec::new();
+        for rec in split_records(body, |l| l.starts_with(|c: char| c.is_ascii_alphabetic())) {
+            if let Some(eph) = self.v3_record(&rec)? {
+                out.push(eph);
+            }
+        }
+        Ok(out)
+    }
+
+    /// RINEX 4: a record starts with a `>` line naming its type and message.
+    fn parse_v4(&self, body: &Body) -> Result<Vec<BroadcastEphemeris>, NavError> {
+        let mut out = Vec::new();
+        for rec in split_records(body, |l| l.starts_with('>')) {
+            let (n0, l0) = rec[0];
+            let t: Vec<&str> = l0.split_whitespace().collect();
+            let wanted = match t.as_slice() {
+                [">", "EPH", sat, msg, ..] => {
+                    (sat.starts_with('G') && *msg == "LNAV")
+                        || (sat.starts_with('C') && (*msg == "D1" || *msg == "D2"))
+                }
+                [">", ..] => false,
+                _ => return Err(self.err(n0, "bad record type line")),
+            };
+            if !wanted {
+                continue;
+            }
+            if rec.len() < 2 {
+                return Err(self.err(n0, "EPH record without data lines"));
+            }
+            match self.v3_record(&rec[1..])? {
+                Some(eph) if eph.sat.to_string() == t[2] => out.push(eph),
+                Some(_) => return Err(self.err(rec[1].0, "satellite differs from the > line")),
+                None => return Err(self.err(rec[1].0, "EPH data line is not GPS/BeiDou")),
+            }
+        }
+        Ok(out)
+    }
+
+    /// A RINEX 3/4 data record (epoch line + orbit lines); `None` for other systems.
+    fn v3_record(&self, rec: &[(usize, &str)]) -> Result<Option<BroadcastEphemeris>, NavError> {
+        let (n0, l0) = rec[0];
+        let system = match l0.chars().next().and_then(System::from_letter) {
+            Some(s) => s,
+            None => return Ok(None),
+        };
+        let sat: SatId = l0
+            .get(..3)
+            .and_then(|s| s.parse().ok())
+            .ok_or_else(|| self.err(n0, "bad satellite id in columns 1-3"))?;
+        let head = l0
+            .get(4..23)
+            .ok_or_else(|| self.err(n0, "epoch line too short"))?;
+        let t: Vec<&str> = head.split_whitespace().collect();
+        if t.len() != 6 {
+            return Err(self.err(n0, "expected 6 epoch fields in columns 5-23"));
+        }
+        let year: i32 = t[0].parse().map_err(|_| self.err(n0, "bad year"))?;
+        let scale = match system {
+            System::Gps => TimeScale::GPST,
+            System::Beidou => TimeScale::BDT,
+        };
+        let epoch = self.epoch(n0, year, &t[1..6], scale)?;
+        let fields = self.fields(rec, 23, 4)?;
+        self.ephemeris(n0, sat, epoch, &fields).map(Some)
+    }
+
+    fn prn(&self, line: usize, system: System, prn: u8) -> Result<u8, NavError> {
+        if prn == 0 || prn > system.max_prn() {
+            return Err(self.err(line, format!("PRN {prn} out of range")));
+        }
+        Ok(prn)
+    }
+
+    /// Month, day, hour, minute, second (may be fractional) in `scale`.
+    fn epoch(
+        &self,
+        line: usize,
+        year: i32,
+        t: &[&str],
+        scale: TimeScale,
+    ) -> Result<Epoch, NavError> {
+        let bad = || self.err(line, "bad epoch");
+        let int = |s: &str| s.parse::<u8>().map_err(|_| bad());
+        let sec: f64 = t[4].parse().map_err(|_| bad())?;
+        if !(0.0..61.0).contains(&sec) {
+            return Err(bad());
+        }
+        let whole = sec.floor();
+        let nanos = ((sec - whole) * 1e9).round() as u32;
+        Epoch::maybe_from_gregorian(
+            year,
+            int(t[0])?,
+            int(t[1])?,
+            int(t[2])?,
+            int(t[3])?,
+            whole as u8,
+            nanos.min(999_999_999),
+            scale,
+        )
+        .map_err(|_| bad())
+    }
+
+    /// The 31 numbers: 3 on the epoch line from column `first_col`, then 4 per orbit line
+    /// from column `indent`. Orbit lines 1-6 are required; line 7 may be absent.
+    fn fields(
+        &self,
+        rec: &[(usize, &str)],
+        first_col: usize,
+        indent: usize,
+    ) -> Result<Fields, NavError> {
+        if rec.len() < 7 {
+            return Err(self.err(
+                rec[0].0,
+                format!("record has {} lines, expected 8", rec.len()),
+            ));
+        }
+        let mut v = [0.0; 31];
+        let (n0, l0) = rec[0];
+        for (k, x) in v.iter_mut().take(3).enumerate() {
+            *x = self.field(n0, l0, first_col + 19 * k)?;
+        }
+        for (j, &(n, l)) in rec.iter().skip(1).take(7).enumerate() {
+            if l.get(..indent).is_none_or(|s| !s.trim().is_empty()) && !l.trim().is_empty() {
+                return Err(self.err(n, "orbit line must start with blanks"));
+            }
+            for k in 0..4 {
+                v[3 + 4 * j + k] = self.field(n, l, indent + 19 * k)?;
+            }
+        }
+        Ok(Fields { v })
+    }
+
+    /// One 19-character field starting at `col`; blank or beyond the line end reads 0.
+    fn field(&self, line_no: usize, line: &str, col: usize) -> Result<f64, NavError> {
+        if col >= line.len() {
+            return Ok(0.0);
+        }
+        let s = line
+            .get(col..(col + 19).min(line.len()))
+            .ok_or_else(|| self.err(line_no, "non-ASCII text in a numeric field"))?
+            .trim();
+        if s.is_empty() {
+            return Ok(0.0);
+        }
+        let x: f64 = s
+            .replace(['D', 'd'], "E")
+            .parse()
+            .map_err(|_| self.err(line_no, format!("bad number {s:?}")))?;
+        if !x.is_finite() {
+            return Err(self.err(line_no, format!("non-finite number {s:?}")));
+        }
+        Ok(x)
+    }
+
+    /// Build the ephemeris from the record fields (RINEX 3.05 GPS and BDS navigation
+    /// message record tables; version 2 GPS records have the same layout).
+    fn ephemeris(
+        &self,
+        line: usize,
+        sat: SatId,
+        toc: Epoch,
+        f: &Fields,
+    ) -> Result<BroadcastEphemeris, NavError> {
+        let (scale, week_name) = match sat.system {
+            System::Gps => (TimeScale::GPST, "GPS week"),
+            System::Beidou => (TimeScale::BDT, "BDT week"),
+        };
+        let toe_sow = f.orbit(3, 1);
+        let week = f.orbit(5, 3);
+        if !(0.0..=WEEK_S).contains(&toe_sow) {
+            return Err(self.err(line, format!("toe {toe_sow} s outside the week")));
+        }
+        if !(0.0..100_000.0).contains(&week) || week.fract() != 0.0 {
+            return Err(self.err(line, format!("bad {week_name} {week}")));
+        }
+        let mut toe = Epoch::from_time_of_week(week as u32, (toe_sow * 1e9).round() as u64, scale);
+        let off_s = (toe - toc).to_seconds();
+        if off_s > WEEK_S / 2.0 {
+            toe -= Unit::Week * 1;
+        } else if off_s < -WEEK_S / 2.0 {
+            toe += Unit::Week * 1;
+        }
+        let sqrt_a = f.orbit(2, 4);
+        let e = f.orbit(2, 2);
+        if !(1000.0..10_000.0).contains(&sqrt_a) || !(0.0..1.0).contains(&e) {
+            return Err(self.err(line, format!("implausible orbit sqrt(A)={sqrt_a} e={e}")));
+        }
+        let count = |x: f64| -> Result<u32, NavError> {
+            if (0.0..=f64::from(u32::MAX)).contains(&x) {
+                Ok(x.round() as u32)
+            } else {
+                Err(self.err(line, format!("bad issue-of-data/health value {x}")))
+            }
+        };
+        let (class, tgd_s, iodc, fit_interval_s) = match sat.system {
+            System::Gps => {
+                let fit_h = f.orbit(7, 2);
+                let fit_s = if fit_h < 4.0 {
+                    GPS_DEFAULT_FIT_S
+                } else {
+                    fit_h * 3600.0
+                };
+                (
+                    OrbitClass::Standard,
+                    f.orbit(6, 3),
+                    count(f.orbit(6, 4))?,
+                    fit_s,
+                )
+            }
+            System::Beidou => {
+                let class = if sat.prn <= 5 || sat.prn >= 59 {
+                    OrbitClass::BeidouGeo
+                } else {
+                    OrbitClass::Standard
+                };
+                (class, f.orbit(6, 3), count(f.orbit(7, 2))?, BDS_FIT_S)
+            }
+        };
+        Ok(BroadcastEphemeris {
+            sat,
+            class,
+            toe,
+            toc,
+            sqrt_a,
+            e,
+            i0: f.orbit(4, 1),
+            omega0: f.orbit(3, 3),
+            omega: f.orbit(4, 3),
+            m0: f.orbit(1, 4),
+            delta_n: f.orbit(1, 3),
+            idot: f.orbit(5, 1),
+            omega_dot: f.orbit(4, 4),
+            cuc: f.orbit(2, 1),
+            cus: f.orbit(2, 3),
+            crc: f.orbit(4, 2),
+            crs: f.orbit(1, 2),
+            cic: f.orbit(3, 2),
+            cis: f.orbit(3, 4),
+            af0: f.v[0],
+            af1: f.v[1],
+            af2: f.v[2],
+            tgd_s,
+            iode: count(f.orbit(1, 1))?,
+            iodc,
+            health: count(f.orbit(6, 2))?,
+            fit_interval_s,
+        })
+    }
+}
+
+/// Split the body into records: a record is a line for which `starts` holds plus the
+/// following lines for which it does not. Blank lines are dropped; lines before the first
+/// record start are ignored.
+fn split_records<'a>(body: &Body<'a>, starts: impl Fn(&str) -> bool) -> Vec<Record<'a>> {
+    let mut out: Vec<Record<'a>> = Vec::new();
+    for (i, &l) in body.lines.iter().enumerate().skip(body.start) {
+        if l.trim().is_empty() {
+            continue;
+        }
+        if starts(l) {
+            out.push(vec![(i + 1, l)]);
+        } else if let Some(last) = out.last_mut() {
+            last.push((i + 1, l));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    const V2_HEADER: &str =
+        "     2              NAVIGATION DATA                         RINEX VERSION / TYPE
+                                                            END OF HEADER
+";
+
+    /// Two records from the IGS brdc0010.22n file (GPS, 2022-01-01); the second one edited
+    /// (health 63, fit-interval field 0, a last line with four fields) to cover those cases.
+    const V2_BODY: &str =
+        " 1 22  1  1  0  0  0.0 0.469126738608D-03-0.100044417195D-10 0.000000000000D+00
+    0.390000000000D+02-0.141125000000D+03 0.398838041777D-08-0.624294238235D+00
+   -0.736303627491D-05 0.112181392033D-01 0.469572842121D-05 0.515367499542D+04
+    0.518400000000D+06-0.316649675369D-07-0.103661124009D+01 0.195577740669D-06
+    0.986418769490D+00 0.299750000000D+03 0.884087601569D+00-0.813355308085D-08
+   -0.377872882780D-09 0.100000000000D+01 0.219000000000D+04 0.000000000000D+00
+    0.200000000000D+01 0.000000000000D+00 0.512227416039D-08 0.390000000000D+02
+    0.511218000000D+06 0.400000000000D+01
+ 2 22  1  1  0  0  0.0-0.647393986583D-03-0.113686837722D-11 0.000000000000D+00
+    0.410000000000D+02-0.142718750000D+03 0.455626121514D-08-0.453245129719D+00
+   -0.748783349991D-05 0.206388905644D-01 0.423192977905D-05 0.515366817474D+04
+    0.518400000000D+06-0.258907675743D-06-0.112496293255D+01 0.122934579849D-06
+    0.964744088915D+00 0.303625000000D+03-0.146476911829D+01-0.868964767299D-08
+   -0.262153776900D-09 0.100000000000D+01 0.219000000000D+04 0.000000000000D+00
+    0.200000000000D+01 0.630000000000D+02-0.176951289177D-07 0.410000000000D+02
+    0.512376000000D+06 0.000000000000D+00 0.000000000000D+00 0.000000000000D+00
+";
+
+    const V3_HEADER: &str =
+        "     3.05           NAVIGATION DATA     MIXED               RINEX VERSION / TYPE
+                                                            END OF HEADER
+";
+
+    /// A GLONASS record (skipped) and a BeiDou GEO record from ESBC00DNK 2020-06-24/25.
+    const V3_BODY: &str =
+        "R01 2020 06 24 23 15 00 6.355904042721e-05 0.000000000000e+00 3.420000000000e+05
+     1.090894238281e+04 1.407806396484e+00-1.862645149231e-09 0.000000000000e+00
+    -2.885726074219e+03 2.795855522156e+00-0.000000000000e+00 1.000000000000e+00
+     2.288353955078e+04-3.169984817505e-01-2.793967723846e-09 0.000000000000e+00
+                         .999999999999e+09 1.500000000000e+01
+C05 2020 06 24 22 00 00-5.154609680176e-04-6.708145150469e-11 0.000000000000e+00
+     1.000000000000e+00-4.142968750000e+02-3.141559429989e-09-1.101749161212e+00
+    -1.366203650832e-05 3.830116475001e-04-1.177610829473e-05 6.493378950119e+03
+     3.384000000000e+05-6.146728992462e-08 2.697580724014e+00 6.146728992462e-08
+     1.136268367853e-01 3.549843750000e+02-1.027125663175e+00 4.100527946305e-09
+     3.321566928024e-10 0.000000000000e+00 7.550000000000e+02
+     2.000000000000e+00 0.000000000000e+00 1.000000000000e-10-9.300000000000e-09
+     3.384276000000e+05 0.000000000000e+00
+";
+
+    const V4_HEADER: &str =
+        "     4.00           NAVIGATION DATA     M                   RINEX VERSION / TYPE
+                                                            END OF HEADER
+";
+
+    /// STO, GPS LNAV, BeiDou D2 (GEO C01) and CNV1 records from BRD400DLR 2023-03-12.
+    const V4_BODY: &str = "> STO C21 CNVX
+    2023 03 12 00 20 00 BDGA
+     2.286000000000e+03-2.502929419279e-08 2.664535259100e-14 6.776263578034e-21
+> EPH G01 LNAV
+G01 2023 03 12 00 00 00 2.037500962615e-04-3.865352482535e-12 0.000000000000e+00
+     5.900000000000e+01-6.681250000000e+01 3.651580674421e-09 2.337063183399e+00
+    -3.580003976822e-06 1.249682181515e-02 1.121312379837e-05 5.153656053543e+03
+     0.000000000000e+00-2.980232238770e-08-2.635778779840e+00-2.421438694000e-07
+     9.898042779154e-01 1.769375000000e+02 9.395220485102e-01-7.465310960167e-09
+    -2.000083311498e-11 1.000000000000e+00 2.253000000000e+03 0.000000000000e+00
+     2.000000000000e+00 0.000000000000e+00 4.656612873077e-09 5.900000000000e+01
+    -7.182000000000e+03 4.000000000000e+00
+> EPH C01 D2
+C01 2023 03 12 00 00 00 9.050882654265e-04-2.618349981276e-12 0.000000000000e+00
+     1.000000000000e+00-3.022187500000e+02-1.132904332870e-09 1.639863675133e+00
+    -1.014024019241e-05 4.634374054149e-04 1.808675006032e-05 6.493325918198e+03
+     0.000000000000e+00 2.887099981308e-08-2.843751285290e+00-8.102506399155e-08
+     9.005722671926e-02-5.558125000000e+02-2.556429343966e+00 2.302953070096e-09
+     4.485901141503e-10 0.000000000000e+00 8.970000000000e+02 0.000000000000e+00
+     2.000000000000e+00 0.000000000000e+00-5.400000000000e-09-9.700000000000e-09
+     0.000000000000e+00 0.000000000000e+00
+> EPH C19 CNV1
+C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
+    -2.287387847900e-03-5.843750000000e+00 3.871232680951e-09 8.650567350738e-01
+";
+
+    fn parse(text: &str) -> Result<Vec<BroadcastEphemeris>, NavError> {
+        parse_nav(text, "test.rnx")
+    }
+
+    fn gpst(y: i32, mo: u8, d: u8, h: u8) -> Epoch {
+        Epoch::from_gregorian(y, mo, d, h, 0, 0, 0, TimeScale::GPST)
+    }
+
+    #[test]
+    fn rinex2_gps_records() {
+        let ephs = parse(&format!("{V2_HEADER}{V2_BODY}")).unwrap();
+        assert_eq!(ephs.len(), 2);
+        let g1 = &ephs[0];
+        assert_eq!(g1.sat, SatId::gps(1));
+        assert_eq!(g1.class, OrbitClass::Standard);
+        assert_eq!(g1.toc, gpst(2022, 1, 1, 0));
+        // toe = week 2190, 518400 s = Saturday 2022-01-01 00:00 GPST.
+        assert_eq!(g1.toe, gpst(2022, 1, 1, 0));
+        assert_eq!(g1.sqrt_a, 0.515367499542e4);
+        assert_eq!(g1.e, 0.112181392033e-1);
+        assert_eq!(g1.crs, -0.141125e3);
+        assert_eq!(g1.af0, 0.469126738608e-3);
+        assert_eq!(g1.tgd_s, 0.512227416039e-8);
+        assert_eq!((g1.iode, g1.iodc, g1.health), (39, 39, 0));
+        assert_eq!(g1.fit_interval_s, 4.0 * 3600.0);
+        // The second record: health 63, fit-interval field 0 -> 4 h.
+        assert_eq!(ephs[1].health, 63);
+        assert_eq!(ephs[1].fit_interval_s, 4.0 * 3600.0);
+    }
+
+    #[test]
+    fn rinex3_mixed_skips_glonass_and_reads_beidou_geo() {
+        let ephs = parse(&format!("{V3_HEADER}{V3_BODY}")).unwrap();
+        assert_eq!(ephs.len(), 1);
+        let c5 = &ephs[0];
+        assert_eq!(c5.sat, SatId::beidou(5));
+        assert_eq!(c5.class, OrbitClass::BeidouGeo);
+        let bdt = |h| Epoch::from_gregorian(2020, 6, 24, h, 0, 0, 0, TimeScale::BDT);
+        assert_eq!(c5.toc, bdt(22));
+        // BDT week 755, sow 338400 = Wednesday 22:00 BDT.
+        assert_eq!(c5.toe, bdt(22));
+        assert_eq!(c5.tgd_s, 1.0e-10);
+        assert_eq!(c5.fit_interval_s, 3600.0);
+        assert_eq!(c5.iode, 1);
+    }
+
+    #[test]
+    fn rinex4_keeps_lnav_and_d2_only() {
+        let ephs = parse(&format!("{V4_HEADER}{V4_BODY}")).unwrap();
+        let sats: Vec<String> = ephs.iter().map(|e| e.sat.to_string()).collect();
+        assert_eq!(sats, ["G01", "C01"]);
+        assert_eq!(ephs[0].toe, gpst(2023, 3, 12, 0));
+        assert_eq!(ephs[1].class, OrbitClass::BeidouGeo);
+        assert_eq!(ephs[1].tgd_s, -5.4e-9);
+    }
+
+    /// Longitude, latitude (deg) and radius (m) of an ECEF position.
+    fn lon_lat_r(r: crate::Vec3) -> (f64, f64, f64) {
+        let lon = r.y.atan2(r.x).to_degrees();
+        (lon, (r.z / r.norm()).asin().to_degrees(), r.norm())
+    }
+
+    /// External oracle: the BDS-2 GEO on C05 is stationed at 58.75 deg E (BDS-2 GEO slots
+    /// 58.75/80/110.5/140/160 deg E). Its D2 record (ESBC00DNK, 2020-06-24) evaluated
+    /// with the GEO algorithm must stay there over a day, near the equator and at
+    /// geostationary radius. A sign error in either GEO rotation would make it wander by
+    /// +-10 deg in latitude or drift by 720 deg/day in longitude.
+    #[test]
+    fn beidou_geo_record_stays_at_its_slot() {
+        let ephs = parse(&format!("{V3_HEADER}{V3_BODY}")).unwrap();
+        let origin = crate::time::TimeOrigin::new(ephs[0].toe);
+        let b = ephs[0].bind(&origin);
+        for h in -12..=12 {
+            let (lon, lat, r) = lon_lat_r(b.position_ecef(f64::from(h) * 3600.0));
+            assert!((lon - 58.75).abs() < 0.5, "h={h} lon={lon}");
+            assert!(lat.abs() < 3.0, "h={h} lat={lat}");
+            assert!((r - 42_164e3).abs() < 50e3, "radius {r}");
+        }
+    }
+
+    /// The 2023 C01 D2 record: stationary over a day (longitude spread < 0.2 deg) on the
+    /// equator; its slot is 144.5 deg E since the 2019 replacement satellite (checked
+    /// loosely: the real-data tier covers the slots with more records).
+    #[test]
+    fn beidou_geo_c01_is_stationary() {
+        let ephs = parse(&format!("{V4_HEADER}{V4_BODY}")).unwrap();
+        let origin = crate::time::TimeOrigin::new(ephs[1].toe);
+        let b = ephs[1].bind(&origin);
+        let lons: Vec<f64> = (-12..=12)
+            .map(|h| lon_lat_r(b.position_ecef(f64::from(h) * 3600.0)))
+            .inspect(|&(_, lat, _)| assert!(lat.abs() < 3.0, "lat={lat}"))
+            .map(|(lon, _, _)| lon)
+            .collect();
+        let (lo, hi) = lons
+            .iter()
+            .fold((f64::MAX, f64::MIN), |(a, b), &x| (a.min(x), b.max(x)));
+        assert!(hi - lo < 0.2, "spread {lo}..{hi}");
+        assert!((lo - 144.5).abs() < 0.5, "{lo}");
+    }
+
+    #[test]
+    fn malformed_records_report_file_and_line() {
+        let bad = V2_BODY.replacen("0.515367499542D+04", "0.5153674995x2D+04", 1);
+        match parse(&format!("{V2_HEADER}{bad}")) {
+            Err(NavError::Format { path, line, .. }) => {
+                assert_eq!(path, "test.rnx");
+                assert_eq!(line, 5);
+            }
+            other => panic!("{other:?}"),
+        }
+        // A record cut after three lines.
+        let cut: String = V2_BODY.lines().take(3).map(|l| format!("{l}\n")).collect();
+        assert!(matches!(
+            parse(&format!("{V2_HEADER}{cut}")),
+            Err(NavError::Format { line: 3, .. })
+        ));
+        assert!(parse("").is_err());
+        assert!(parse(V2_HEADER.lines().next().unwrap()).is_err());
+    }
+
+    #[test]
+    fn short_last_line_and_missing_fields_read_as_zero() {
+        // The first V2 record's last line has two fields only.
+        let ephs = parse(&format!("{V2_HEADER}{V2_BODY}")).unwrap();
+        assert_eq!(ephs[0].fit_interval_s, 4.0 * 3600.0);
+    }
+
+    #[test]
+    fn gzip_is_detected_by_magic_bytes() {
+        use std::io::Write;
+        let dir = std::env::temp_dir().join(format!("skyforge-nav-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let text = format!("{V3_HEADER}{V3_BODY}");
+        let plain = dir.join("a.rnx");
+        std::fs::write(&plain, &text).unwrap();
+        let gz = dir.join("a.rnx.bin");
+        let mut enc = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::fast());
+        enc.write_all(text.as_bytes()).unwrap();
+        std::fs::write(&gz, enc.finish().unwrap()).unwrap();
+        let a = read_nav_file(&plain).unwrap();
+        let b = read_nav_file(&gz).unwrap();
+        assert_eq!(a, b);
+        assert_eq!(a.len(), 1);
+        assert!(matches!(
+            read_nav_file(&dir.join("missing.rnx")),
+            Err(NavError::Io { .. })
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    fn body_line() -> impl Strategy<Value = String> {
+        prop_oneof![
+            ".{0,90}",
+            "[ 0-9.DE+-]{0,82}",
+            Just("> EPH G05 LNAV".to_string()),
+            Just("> EPH C19 D1".to_string()),
+            Just("G05 2023 03 12 00 00 00 1.0e-04 0.0 0.0".to_string()),
+            Just("C01 2023 03 12 00 00 00".to_string()),
+            Just(" 5 22  1  1  0  0  0.0 0.1D-03".to_string()),
+            Just("     0.100000000000e+01 0.5153e+04".to_string()),
+        ]
+    }
+
+    proptest! {
+        #[test]
+        fn parser_never_panics(
+            header in prop_oneof![Just(V2_HEADER), Just(V3_HEADER), Just(V4_HEADER)],
+            lines in proptest::collection::vec(body_line(), 0..40),
+        ) {
+            let _ = parse(&format!("{header}{}", lines.join("\n")));
+        }
+
+        #[test]
+        fn corrupting_one_valid_line_never_panics(
+            which in 0usize..33,
+            col in 0usize..80,
+            ch in any::<char>(),
+        ) {
+            let text = format!("{V4_HEADER}{V4_BODY}");
+            let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+            let i = 2 + which % (lines.len() - 2);
+            let mut chars: Vec<char> = lines[i].chars().collect();
+            if col < chars.len() { chars[col] = ch; } else { chars.push(ch); }
+            lines[i] = chars.into_iter().collect();
+            let _ = parse(&lines.join("\n"));
+        }
+    }
 }

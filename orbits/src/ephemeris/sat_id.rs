@@ -9,6 +9,33 @@ pub enum System {
     Beidou,
 }
 
+impl System {
+    /// The RINEX system letter (`G`, `C`).
+    pub fn letter(self) -> char {
+        match self {
+            System::Gps => 'G',
+            System::Beidou => 'C',
+        }
+    }
+
+    /// The system of a RINEX system letter, if SkyForge supports it.
+    pub fn from_letter(letter: char) -> Option<System> {
+        match letter {
+            'G' => Some(System::Gps),
+            'C' => Some(System::Beidou),
+            _ => None,
+        }
+    }
+
+    /// Highest PRN number the system's signals define (GPS 1..=32, BeiDou 1..=63).
+    pub fn max_prn(self) -> u8 {
+        match self {
+            System::Gps => 32,
+            System::Beidou => 63,
+        }
+    }
+}
+
 /// A satellite: system and PRN (1-based). Displayed RINEX-style: `G05`, `C19`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct SatId {
@@ -16,12 +43,98 @@ pub struct SatId {
     pub prn: u8,
 }
 
+impl SatId {
+    /// A GPS satellite.
+    pub fn gps(prn: u8) -> Self {
+        Self {
+            system: System::Gps,
+            prn,
+        }
+    }
+
+    /// A BeiDou satellite.
+    pub fn beidou(prn: u8) -> Self {
+        Self {
+            system: System::Beidou,
+            prn,
+        }
+    }
+}
+
 impl std::fmt::Display for SatId {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let letter = match self.system {
-            System::Gps => 'G',
-            System::Beidou => 'C',
+        write!(f, "{}{:02}", self.system.letter(), self.prn)
+    }
+}
+
+/// Error parsing a satellite identifier.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("not a GPS/BeiDou satellite id {text:?} (expected e.g. G05, C19, \"G 5\")")]
+pub struct SatIdError {
+    /// The text that failed to parse.
+    pub text: String,
+}
+
+impl std::str::FromStr for SatId {
+    type Err = SatIdError;
+
+    /// Parse `G05`, `C19`, `G5` or the RINEX 2/3 blank-padded form `G 5`. The PRN must be in
+    /// `1..=System::max_prn()`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let err = || SatIdError {
+            text: s.to_string(),
         };
-        write!(f, "{letter}{:02}", self.prn)
+        let trimmed = s.trim();
+        let mut chars = trimmed.chars();
+        let system = chars
+            .next()
+            .and_then(|c| System::from_letter(c.to_ascii_uppercase()))
+            .ok_or_else(err)?;
+        let digits = chars.as_str().trim_start();
+        if digits.is_empty() || digits.len() > 2 || !digits.bytes().all(|b| b.is_ascii_digit()) {
+            return Err(err());
+        }
+        let prn: u8 = digits.parse().map_err(|_| err())?;
+        if prn == 0 || prn > system.max_prn() {
+            return Err(err());
+        }
+        Ok(SatId { system, prn })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    #[test]
+    fn parses_rinex_forms() {
+        assert_eq!("G05".parse::<SatId>(), Ok(SatId::gps(5)));
+        assert_eq!("C19".parse::<SatId>(), Ok(SatId::beidou(19)));
+        assert_eq!("G 5".parse::<SatId>(), Ok(SatId::gps(5)));
+        assert_eq!("g7".parse::<SatId>(), Ok(SatId::gps(7)));
+        assert_eq!(" C63 ".parse::<SatId>(), Ok(SatId::beidou(63)));
+    }
+
+    #[test]
+    fn rejects_bad_ids() {
+        for bad in [
+            "", "G", "G00", "G33", "C64", "E05", "R01", "G123", "G-1", "5", "G 0x",
+        ] {
+            assert!(bad.parse::<SatId>().is_err(), "{bad:?} accepted");
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn display_round_trips(gps in any::<bool>(), prn in 1u8..=32) {
+            let sat = if gps { SatId::gps(prn) } else { SatId::beidou(prn) };
+            prop_assert_eq!(sat.to_string().parse::<SatId>(), Ok(sat));
+        }
+
+        #[test]
+        fn never_panics(text in ".{0,6}") {
+            let _ = text.parse::<SatId>();
+        }
     }
 }
