@@ -2,6 +2,7 @@
 //! ephemerides, platform and antennas. Checks that need files run here; nothing is
 //! written anywhere.
 
+use crate::checks;
 use crate::error::ScenarioError;
 use crate::parse::locate_invalid;
 use crate::schema::Scenario;
@@ -44,7 +45,10 @@ impl Scenario {
     /// valid at the start, a requested PRN without one, or a platform that cannot be
     /// built (unreadable CSV, unusable TLE, a trajectory or attitude table that does not
     /// cover the span).
+    /// The checks of [`crate::parse`] run again first, so a scenario changed after parsing
+    /// (a field set by the caller) cannot build an impossible world.
     pub fn build(&self) -> Result<World, ScenarioError> {
+        checks::check(self).map_err(|e| self.located(e))?;
         let origin = TimeOrigin::new(self.time.start);
         let earth = EarthRotation::at_origin(self.time.start);
         let mut ephemerides = EphemerisStore::default();

@@ -1,7 +1,7 @@
 //! Checks that need no file access: each domain table's own check, prefixed with its
 //! table path, plus the cross-field and whole-scenario rules the domain crates cannot see.
 
-use crate::schema::{GnssConfig, ScenarioFile, TimeFile, TruthConfig};
+use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::attitude::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::check::Invalid;
@@ -25,15 +25,27 @@ const GROUND_HEIGHT_RANGE_M: (f64, f64) = (-1_000.0, 100_000.0);
 /// radius (6 378 137 m), widened by the height limits above.
 const GROUND_ECEF_NORM_RANGE_M: (f64, f64) = (6_355_000.0, 6_480_000.0);
 
-/// Every check that needs no file, in file order; returns the start epoch.
-pub(crate) fn check(file: &ScenarioFile, gnss: &GnssConfig) -> Result<Epoch, Invalid> {
-    check_name(&file.name)?;
-    let start = check_time(&file.time, gnss.beidou.enabled)?;
-    check_truth(&file.truth, file.time.duration_s)?;
-    check_gnss(gnss)?;
-    check_platform(&file.platform)?;
-    check_antennas(&file.antennas)?;
-    Ok(start)
+/// Every check that needs no file, in file order. [`crate::parse`] runs it on the parsed
+/// scenario, [`Scenario::build`] again on whatever the caller may have changed since.
+pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
+    check_name(&scenario.name)?;
+    check_time(&scenario.time, scenario.gnss.beidou.enabled)?;
+    check_truth(&scenario.truth, scenario.time.duration_s)?;
+    check_gnss(&scenario.gnss)?;
+    check_platform(&scenario.platform)?;
+    check_antennas(&scenario.antennas)
+}
+
+/// `time.start` as written: an epoch with its time scale.
+pub(crate) fn parse_start(text: &str) -> Result<Epoch, Invalid> {
+    parse_epoch(text).map_err(|e| {
+        let TimeError::Parse { reason, .. } = e;
+        Invalid::new(
+            "time.start",
+            format!("{text:?}"),
+            format!("must be an epoch with its time scale: {reason}"),
+        )
+    })
 }
 
 fn check_name(name: &str) -> Result<(), Invalid> {
@@ -47,31 +59,25 @@ fn check_name(name: &str) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// `[time]`: a readable start between the GPS epoch (and, with BeiDou, the BDT epoch) and
-/// 2100; a duration in (0, 366 days].
-fn check_time(time: &TimeFile, beidou: bool) -> Result<Epoch, Invalid> {
-    let start = parse_epoch(&time.start).map_err(|e| {
-        let TimeError::Parse { reason, .. } = e;
-        Invalid::new(
-            "time.start",
-            format!("{:?}", time.start),
-            format!("must be an epoch with its time scale: {reason}"),
-        )
-    })?;
+/// `[time]`: a start between the GPS epoch (and, with BeiDou, the BDT epoch) and 2100; a
+/// duration in (0, 366 days].
+fn check_time(time: &TimeSpan, beidou: bool) -> Result<(), Invalid> {
+    let start = time.start;
+    let shown = format!("{:?}", start.to_string());
     let gps_epoch = Epoch::from_gpst_seconds(0.0);
     let bdt_epoch = Epoch::from_bdt_seconds(0.0);
     let end_of_range = Epoch::from_gregorian_at_midnight(2100, 1, 1, TimeScale::UTC);
     if start < gps_epoch || start >= end_of_range {
         return Err(Invalid::new(
             "time.start",
-            format!("{:?}", time.start),
+            shown,
             "must be between the GPS epoch (1980-01-06T00:00:00 GPST) and 2100-01-01",
         ));
     }
     if beidou && start < bdt_epoch {
         return Err(Invalid::new(
             "time.start",
-            format!("{:?}", time.start),
+            shown,
             "must not precede the BeiDou epoch (2006-01-01T00:00:00 BDT) while gnss.beidou is \
              enabled",
         ));
@@ -84,7 +90,7 @@ fn check_time(time: &TimeFile, beidou: bool) -> Result<Epoch, Invalid> {
             format!("must be in (0, {MAX_DURATION_S}] s (a non-empty span of at most 366 days)"),
         ));
     }
-    Ok(start)
+    Ok(())
 }
 
 /// `[truth]`: a rate in (0, 1000] Hz with at least one step inside the span.

@@ -18,15 +18,12 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
     let file = ScenarioFile::deserialize(toml::de::Deserializer::from(doc.into_root()))
         .map_err(|e| schema_error(text, source, &e))?;
     let gnss = GnssConfig {
-        gps: file.gnss.gps.clone().unwrap_or_else(default_constellation),
-        beidou: file
-            .gnss
-            .beidou
-            .clone()
-            .unwrap_or_else(default_constellation),
+        gps: file.gnss.gps.unwrap_or_else(default_constellation),
+        beidou: file.gnss.beidou.unwrap_or_else(default_constellation),
     };
-    let start = checks::check(&file, &gnss).map_err(|e| locate_invalid(text, source, e))?;
-    Ok(Scenario {
+    let start =
+        checks::parse_start(&file.time.start).map_err(|e| locate_invalid(text, source, e))?;
+    let scenario = Scenario {
         name: file.name,
         description: file.description,
         seed: file.seed,
@@ -41,7 +38,9 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),
-    })
+    };
+    checks::check(&scenario).map_err(|e| locate_invalid(text, source, e))?;
+    Ok(scenario)
 }
 
 /// Read, parse and check the scenario file at `path` (relative paths inside it are
@@ -127,15 +126,48 @@ fn missing_field(message: &str) -> Option<&str> {
 }
 
 /// A failed check, placed at its field in the text (or the nearest enclosing header). A
-/// number the check reports is shown as written when the field holds that number.
+/// number the check reports is shown as written when the text holds that number there.
 pub(crate) fn locate_invalid(text: &str, source: &str, invalid: Invalid) -> ScenarioError {
     let Ok(doc) = Document::parse(text) else {
         return ScenarioError::unlocated(source, invalid.field, invalid.value, invalid.allowed);
     };
     let position = doc.position(doc.span_of(&invalid.field).start);
     let value = match doc.number_at(&invalid.field) {
-        Some(written) if invalid.value.parse::<f64>().is_ok() => written.to_string(),
+        Some(written) if same_number(written, &invalid.value) => written.to_string(),
         _ => invalid.value,
     };
     ScenarioError::unlocated(source, invalid.field, value, invalid.allowed).at(Some(position))
+}
+
+/// Whether TOML number text `written` and the check's `reported` value are the same
+/// number (NaN matches NaN).
+fn same_number(written: &str, reported: &str) -> bool {
+    let parse = |t: &str| match t.trim_start_matches('+') {
+        "nan" | "-nan" | "NaN" => Some(f64::NAN),
+        "inf" => Some(f64::INFINITY),
+        "-inf" => Some(f64::NEG_INFINITY),
+        t => t.parse::<f64>().ok(),
+    };
+    match (parse(written), parse(reported)) {
+        (Some(a), Some(b)) => a == b || (a.is_nan() && b.is_nan()),
+        _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::same_number;
+
+    #[test]
+    fn numbers_match_across_spellings() {
+        assert!(same_number("1.0", "1"));
+        assert!(same_number("1e3", "1000"));
+        assert!(same_number("-0.0", "-0"));
+        assert!(same_number("nan", "NaN"));
+        assert!(same_number("+inf", "inf"));
+        assert!(same_number("-inf", "-inf"));
+        assert!(!same_number("600.0", "-1"));
+        assert!(!same_number("0x10", "16")); // not worth decoding: the reported value is shown
+        assert!(!same_number("1.0", "(missing)"));
+    }
 }

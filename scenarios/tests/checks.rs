@@ -222,3 +222,17 @@ fn bad_enum_value() {
     );
     assert!(err.allowed.contains("embedded"), "{err}");
 }
+
+#[test]
+fn build_checks_a_scenario_changed_after_parsing() {
+    let mut s = parse_in(BASE, Path::new(".")).expect("BASE parses");
+    s.time.duration_s = -1.0;
+    let err = s.build().expect_err("negative duration");
+    // Located at the field in the original text, with the value actually checked.
+    let at = position_of(BASE, "duration_s = 600.0", "600.0");
+    assert_error(&err, "time.duration_s", "-1", at);
+
+    let mut s = parse_in(BASE, Path::new(".")).expect("BASE parses");
+    s.antennas.clear();
+    assert_eq!(s.build().expect_err("no antennas").field, "antennas");
+}
