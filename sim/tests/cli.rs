@@ -70,16 +70,31 @@ fn run_writes_truth_h5_with_the_documented_schema() {
     assert!(n_sat > 50, "GPS + BeiDou satellites: {n_sat}");
     for ant in ["ant1", "ant2", "ant3"] {
         let g = file.group(&format!("antennas/{ant}")).unwrap();
+        let visible = g.dataset("visible").unwrap();
+        assert_eq!(visible.shape(), vec![121, n_sat]);
+        let visible: Vec<u8> = visible.read_raw().unwrap();
         let range = g.dataset("range_m").unwrap();
-        assert_eq!(range.shape(), vec![121, n_sat]);
         let units: hdf5::types::VarLenUnicode = range.attr("units").unwrap().read_scalar().unwrap();
         assert_eq!(units.as_str(), "m");
-        let visible: Vec<u8> = g.dataset("visible").unwrap().read_raw().unwrap();
         let range: Vec<f64> = range.read_raw().unwrap();
-        for (v, r) in visible.iter().zip(&range) {
-            assert_eq!(*v == 1, r.is_finite());
-        }
-        let per_epoch = visible.iter().map(|&v| v as usize).sum::<usize>() as f64 / 121.0;
+        let epochs: Vec<u32> = g.dataset("epoch_index").unwrap().read_raw().unwrap();
+        let sats: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
+        // One value per visible link, in row-major order of the mask.
+        let expected: Vec<(u32, u16)> = (0..121u32)
+            .flat_map(|k| (0..n_sat as u16).map(move |s| (k, s)))
+            .filter(|&(k, s)| visible[k as usize * n_sat + s as usize] == 1)
+            .collect();
+        assert_eq!(
+            epochs
+                .iter()
+                .copied()
+                .zip(sats.iter().copied())
+                .collect::<Vec<_>>(),
+            expected
+        );
+        assert_eq!(range.len(), expected.len());
+        assert!(range.iter().all(|r| (1.9e7..4.8e7).contains(r)));
+        let per_epoch = expected.len() as f64 / 121.0;
         assert!(
             (4.0..40.0).contains(&per_epoch),
             "{ant}: {per_epoch} visible per epoch"

@@ -116,6 +116,24 @@ impl AntennaFrame {
     }
 }
 
+/// An antenna's phase-centre reference point and local NED frame at one sample time.
+#[derive(Debug, Clone, Copy)]
+struct AntennaAt {
+    r_ecef_m: Vec3,
+    c_ecef_ned: Mat3,
+}
+
+impl AntennaAt {
+    fn new(st: &PlatformState, ant: &Antenna) -> Self {
+        let r_ecef_m = st.r_ecef_m + st.c_body_ecef * ant.true_body_m;
+        let g = ecef_to_geodetic(&r_ecef_m);
+        Self {
+            r_ecef_m,
+            c_ecef_ned: c_ecef_ned(g.lat_rad, g.lon_rad),
+        }
+    }
+}
+
 /// Azimuth (from X towards Y, [0, 2pi)) and elevation above the XY plane of a vector.
 fn az_el_xyz(v: &Vec3) -> (f64, f64) {
     let az = v.y.atan2(v.x).rem_euclid(std::f64::consts::TAU);
@@ -155,6 +173,23 @@ impl Stencil {
     fn sample(&self, k: usize, j: isize) -> usize {
         let base = if self.shared { k + 2 } else { 5 * k + 2 };
         base.wrapping_add_signed(j)
+    }
+    /// The epoch whose ephemeris selection a sample uses (its own epoch, clamped).
+    fn epoch_of(&self, i: usize, n_epochs: usize) -> usize {
+        let k = if self.shared {
+            i.saturating_sub(2)
+        } else {
+            i / 5
+        };
+        k.min(n_epochs - 1)
+    }
+    /// The epochs whose stencils contain sample `i`.
+    fn epochs_using(&self, i: usize, n_epochs: usize) -> std::ops::Range<usize> {
+        if self.shared {
+            i.saturating_sub(4)..(i + 1).min(n_epochs)
+        } else {
+            i / 5..i / 5 + 1
+        }
     }
     fn sample_time(&self, t_first_s: f64, step_s: f64, i: usize) -> f64 {
         if self.shared {
@@ -221,21 +256,19 @@ impl<'a> GeometryTruth<'a> {
     /// `[t_first_s - margin, t_last + margin]` (see [`Self::window_margin_s`]).
     pub fn chunk(&self, window: &PlatformWindow, t_first_s: f64, n_epochs: usize) -> GeometryChunk {
         let (n_ant, n_sat) = (self.antennas.len(), self.satellites.len());
+        let n_links = n_ant * n_sat;
         let n_samples = self.stencil.n_samples(n_epochs);
         let sample_t: Vec<f64> = (0..n_samples)
             .map(|i| self.stencil.sample_time(t_first_s, self.step_s, i))
             .collect();
         let states: Vec<PlatformState> = sample_t.par_iter().map(|&t| window.state(t)).collect();
-        let antenna_pos: Vec<Vec3> = states
-            .iter()
-            .flat_map(|st| {
-                self.antennas
-                    .iter()
-                    .map(move |a| st.r_ecef_m + st.c_body_ecef * a.true_body_m)
-            })
+        let antennas: Vec<AntennaAt> = states
+            .par_iter()
+            .flat_map_iter(|st| self.antennas.iter().map(move |a| AntennaAt::new(st, a)))
             .collect();
-        // The ephemeris used for each epoch's satellite, fixed across the epoch's stencil so
-        // that an ephemeris change never lands inside a finite difference.
+        // The ephemeris used for each epoch's satellite; a stencil point whose own epoch
+        // selects another set is recomputed with the centre's, so that an ephemeris change
+        // never lands inside a finite difference.
         let t_epochs: Vec<f64> = (0..n_epochs)
             .map(|k| t_first_s + k as f64 * self.step_s)
             .collect();
@@ -247,71 +280,94 @@ impl<'a> GeometryTruth<'a> {
                     .map(move |&sat| self.store.select(sat, t))
             })
             .collect();
-        // Pass 1: quick screen at each epoch (approximate satellite position).
-        let screen: Vec<bool> = (0..n_epochs)
+        // Pass 1: quick screen of every link at each epoch, from one approximate satellite
+        // position per epoch and satellite. Holds the approximate range, NaN when screened out.
+        let screen: Vec<f64> = (0..n_epochs)
             .into_par_iter()
             .flat_map_iter(|k| {
                 let i = self.stencil.sample(k, 0);
-                (0..n_ant).flat_map(move |a| (0..n_sat).map(move |s| (k, i, a, s)))
-            })
-            .map(|(k, i, a, s)| {
-                ephs[k * n_sat + s].is_some_and(|eph| {
-                    let r_sat = eph.position_ecef(sample_t[i] - SCREEN_TAU_S);
-                    self.passes(
-                        a,
-                        &states[i],
-                        &antenna_pos[i * n_ant + a],
-                        &r_sat,
-                        SCREEN_MARGIN_RAD,
-                    )
+                let r_sats: Vec<Option<Vec3>> = (0..n_sat)
+                    .map(|s| {
+                        ephs[k * n_sat + s].map(|e| e.position_ecef(sample_t[i] - SCREEN_TAU_S))
+                    })
+                    .collect();
+                let ants = &antennas[i * n_ant..(i + 1) * n_ant];
+                let st = &states[i];
+                (0..n_links).map(move |l| {
+                    let (a, s) = (l / n_sat, l % n_sat);
+                    match r_sats[s] {
+                        Some(r_sat) if self.passes(a, &ants[a], st, &r_sat, SCREEN_MARGIN_RAD) => {
+                            (r_sat - ants[a].r_ecef_m).norm()
+                        }
+                        _ => f64::NAN,
+                    }
                 })
             })
             .collect();
-        // Pass 2: light-time solutions at every stencil point of a screened link.
-        let ranges: Vec<f64> = (0..n_epochs)
+        // Pass 2: one light-time solution per stencil sample of every screened link.
+        let solved: Vec<Option<LightTime>> = (0..n_samples)
             .into_par_iter()
-            .flat_map_iter(|k| (0..n_ant).flat_map(move |a| (0..n_sat).map(move |s| (k, a, s))))
-            .flat_map_iter(|(k, a, s)| {
-                let link = (k * n_ant + a) * n_sat + s;
-                let eph = if screen[link] {
-                    ephs[k * n_sat + s]
-                } else {
-                    None
-                };
-                let mut out = [f64::NAN; 5];
-                if let Some(eph) = eph {
-                    let mut tau = SCREEN_TAU_S;
-                    for (slot, j) in out.iter_mut().zip(-2..=2) {
-                        let i = self.stencil.sample(k, j);
-                        let lt =
-                            light_time::solve(eph, &antenna_pos[i * n_ant + a], sample_t[i], tau);
-                        tau = lt.tau_s;
-                        *slot = lt.range_m();
-                    }
-                }
-                out
+            .flat_map_iter(|i| {
+                let k_own = self.stencil.epoch_of(i, n_epochs);
+                let users = self.stencil.epochs_using(i, n_epochs);
+                let (screen, ephs, antennas, t) = (&screen, &ephs, &antennas, sample_t[i]);
+                (0..n_links).map(move |l| {
+                    let s = l % n_sat;
+                    let guess = users
+                        .clone()
+                        .map(|k| screen[k * n_links + l])
+                        .find(|r| !r.is_nan())?;
+                    let eph = ephs[k_own * n_sat + s]?;
+                    Some(light_time::solve(
+                        eph,
+                        &antennas[i * n_ant + l / n_sat].r_ecef_m,
+                        t,
+                        guess / C_MPS,
+                    ))
+                })
             })
             .collect();
         // Pass 3: derivatives, angles, exact visibility.
-        let links: Vec<LinkGeometry> = (0..n_epochs * n_ant * n_sat)
+        let links: Vec<LinkGeometry> = (0..n_epochs * n_links)
             .into_par_iter()
             .map(|link| {
-                let (k, a, s) = (link / (n_ant * n_sat), (link / n_sat) % n_ant, link % n_sat);
-                let rho = &ranges[5 * link..5 * link + 5];
-                match ephs[k * n_sat + s] {
-                    Some(eph) if screen[link] => {
-                        let i = self.stencil.sample(k, 0);
-                        self.link(
-                            eph,
-                            a,
-                            s,
-                            &states[i],
-                            &antenna_pos[i * n_ant + a],
-                            sample_t[i],
-                            rho,
-                        )
-                    }
-                    _ => LinkGeometry::NOT_VISIBLE,
+                let (k, l) = (link / n_links, link % n_links);
+                let (a, s) = (l / n_sat, l % n_sat);
+                let Some(eph) = ephs[k * n_sat + s].filter(|_| !screen[link].is_nan()) else {
+                    return LinkGeometry::NOT_VISIBLE;
+                };
+                let mut paths = [None; 5];
+                for (path, j) in paths.iter_mut().zip(-2..=2) {
+                    let i = self.stencil.sample(k, j);
+                    let own = ephs[self.stencil.epoch_of(i, n_epochs) * n_sat + s];
+                    *path = match (solved[i * n_links + l], own) {
+                        (Some(lt), Some(e)) if std::ptr::eq(e, eph) => Some(lt),
+                        _ => {
+                            let guess = solved[self.stencil.sample(k, 0) * n_links + l]
+                                .map_or(SCREEN_TAU_S, |c| c.tau_s);
+                            Some(light_time::solve(
+                                eph,
+                                &antennas[i * n_ant + a].r_ecef_m,
+                                sample_t[i],
+                                guess,
+                            ))
+                        }
+                    };
+                }
+                let i = self.stencil.sample(k, 0);
+                let rho = paths.map(|p| p.map_or(f64::NAN, |p| p.range_m()));
+                match paths[2] {
+                    Some(centre) => self.link(
+                        eph,
+                        a,
+                        s,
+                        &states[i],
+                        &antennas[i * n_ant + a],
+                        sample_t[i],
+                        &centre,
+                        &rho,
+                    ),
+                    None => LinkGeometry::NOT_VISIBLE,
                 }
             })
             .collect();
@@ -330,13 +386,13 @@ impl<'a> GeometryTruth<'a> {
     fn passes(
         &self,
         a: usize,
+        at: &AntennaAt,
         st: &PlatformState,
-        r_ant: &Vec3,
         r_sat: &Vec3,
         margin_rad: f64,
     ) -> bool {
         let ant = &self.antennas[a];
-        let los_ecef = (r_sat - r_ant).normalize();
+        let los_ecef = (r_sat - at.r_ecef_m).normalize();
         let los_body = st.c_body_ecef.transpose() * los_ecef;
         if !within_fov(
             &los_body,
@@ -346,8 +402,7 @@ impl<'a> GeometryTruth<'a> {
             return false;
         }
         if ant.elevation_mask_rad > -std::f64::consts::FRAC_PI_2 {
-            let g = ecef_to_geodetic(r_ant);
-            let (_, el) = az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los_ecef));
+            let (_, el) = az_el(&(at.c_ecef_ned * los_ecef));
             if el < ant.elevation_mask_rad - margin_rad {
                 return false;
             }
@@ -357,7 +412,7 @@ impl<'a> GeometryTruth<'a> {
         } else {
             GRAZING_HEIGHT_M
         };
-        !earth_blocked(r_ant, r_sat, grazing)
+        !earth_blocked(&at.r_ecef_m, r_sat, grazing)
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -367,12 +422,12 @@ impl<'a> GeometryTruth<'a> {
         a: usize,
         s: usize,
         st: &PlatformState,
-        r_ant: &Vec3,
+        at: &AntennaAt,
         t_s: f64,
-        rho: &[f64],
+        lt: &LightTime,
+        rho: &[f64; 5],
     ) -> LinkGeometry {
-        let lt: LightTime = light_time::solve(eph, r_ant, t_s, rho[2] / C_MPS);
-        if !self.passes(a, st, r_ant, &lt.r_sat_rx_frame_m, 0.0) {
+        if !self.passes(a, at, st, &lt.r_sat_rx_frame_m, 0.0) {
             return LinkGeometry::NOT_VISIBLE;
         }
         let h = self.stencil.h_s;
@@ -381,9 +436,8 @@ impl<'a> GeometryTruth<'a> {
             (-rho[0] + 16.0 * rho[1] - 30.0 * rho[2] + 16.0 * rho[3] - rho[4]) / (12.0 * h * h);
         let jerk = (-rho[0] + 2.0 * rho[1] - 2.0 * rho[3] + rho[4]) / (2.0 * h * h * h);
         let per_m = -self.carriers_hz[s] / C_MPS;
-        let los = lt.r_sat_rx_frame_m - r_ant;
-        let g = ecef_to_geodetic(r_ant);
-        let (azimuth_rad, elevation_rad) = az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los));
+        let los = lt.r_sat_rx_frame_m - at.r_ecef_m;
+        let (azimuth_rad, elevation_rad) = az_el(&(at.c_ecef_ned * los));
         let los_antenna = self.frames[a].c_body_antenna * (st.c_body_ecef.transpose() * los);
         let (antenna_azimuth_rad, antenna_elevation_rad) = az_el_xyz(&los_antenna);
         let t_tx = t_s - lt.tau_s;
