@@ -326,3 +326,39 @@ fn node_and_arg_lat(b: &BoundEphemeris, t: f64) -> (f64, f64) {
 fn angle_diff_deg(a: f64, b: f64) -> f64 {
     (a - b + 180.0).rem_euclid(360.0) - 180.0
 }
+
+/// How far a BeiDou set can be used from its toe: each set of the RINEX 4 file evaluated
+/// `dt` after its toe, against the set whose toe is at that instant. Supports the 6 h
+/// BeiDou validity (`rinex_nav`), which only matters at the end of a file.
+#[test]
+#[ignore = "real-data tier: cargo test -- --ignored"]
+fn beidou_sets_extrapolate_for_hours() {
+    let ephs = load("nav/BRD400DLR_S_20230710000_01D_MN.rnx.gz");
+    let start = Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);
+    let origin = TimeOrigin::new(start);
+    let mut by_sat: BTreeMap<SatId, Vec<BoundEphemeris>> = BTreeMap::new();
+    for e in ephs
+        .iter()
+        .filter(|e| e.sat.system == System::Beidou && e.health == 0)
+    {
+        by_sat.entry(e.sat).or_default().push(e.bind(&origin));
+    }
+    for dt_h in [1.0, 2.0, 3.0] {
+        let mut worst: f64 = 0.0;
+        let mut n = 0;
+        for sets in by_sat.values() {
+            for a in sets {
+                let t = a.toe_s + dt_h * 3600.0;
+                if let Some(b) = sets.iter().find(|b| (b.toe_s - t).abs() < 1.0) {
+                    worst = worst.max((a.position_ecef(t) - b.position_ecef(t)).norm());
+                    n += 1;
+                }
+            }
+        }
+        println!(
+            "BeiDou set used {dt_h} h after toe: worst 3D difference {worst:.1} m over {n} pairs"
+        );
+        assert!(n > 100, "too few pairs at {dt_h} h: {n}");
+        assert!(worst < 25.0, "{dt_h} h: {worst} m");
+    }
+}

@@ -17,9 +17,12 @@
 //! Choices (documented here, tested below):
 //! - GPS fit interval: the field in hours; 0, missing, or a value below 4 (some writers put
 //!   the 0/1 fit-interval *flag* there) means the standard 4 h.
-//! - BeiDou fit interval: 1 h. BeiDou uploads a new set every hour with toe on the hour,
-//!   and the ICD gives no fit interval, so a set is used within +-30 min of its toe (plus
-//!   the store's margin).
+//! - BeiDou fit interval: 6 h. The ICD gives none; BeiDou uploads a new set every hour
+//!   with toe on the hour, so the store's nearest-toe rule picks the hourly set wherever
+//!   the file has one, and the wider window only matters at the ends of a file (the last
+//!   set of a daily file has toe 23:00). Measured on the bundled RINEX 4 file
+//!   (`tests/real_data_ephemeris.rs`): a set used 1, 2, 3 h after its toe differs from the
+//!   newer set by at most 4.7, 7.2, 10.0 m.
 //! - BeiDou GEO: classified by PRN (C01-C05 and C59-C63), not by the D1/D2 label.
 //! - toe week: the week field goes with toe; if toe and toc then differ by more than half
 //!   a week (a writer that put the transmission week), the week is corrected by one.
@@ -37,8 +40,8 @@ use std::path::Path;
 
 /// Default GPS fit interval (s), IS-GPS-200 20.3.4.4 (fit interval flag 0).
 const GPS_DEFAULT_FIT_S: f64 = 4.0 * 3600.0;
-/// BeiDou validity interval (s): the hourly update period (see the module notes).
-const BDS_FIT_S: f64 = 3600.0;
+/// BeiDou validity interval (s), +-3 h about toe (see the module notes).
+const BDS_FIT_S: f64 = 6.0 * 3600.0;
 /// Seconds per week.
 const WEEK_S: f64 = 604_800.0;
 
@@ -559,7 +562,7 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
         // BDT week 755, sow 338400 = Wednesday 22:00 BDT.
         assert_eq!(c5.toe, bdt(22));
         assert_eq!(c5.tgd_s, 1.0e-10);
-        assert_eq!(c5.fit_interval_s, 3600.0);
+        assert_eq!(c5.fit_interval_s, BDS_FIT_S);
         assert_eq!(c5.iode, 1);
     }
 
