@@ -11,7 +11,9 @@ fn one_hour(c: &mut Criterion) {
     let truth = GeometryTruth::new(&world.ephemerides, &world.satellites, &world.antennas, 1.0);
     let mut group = c.benchmark_group("geometry");
     group.sample_size(10);
-    group.bench_function("thesis-leo 1 h, 3 antennas, 1 Hz", |b| b.iter(|| truth.chunk(&window, 0.0, 3601)));
+    group.bench_function("thesis-leo 1 h, 3 antennas, 1 Hz", |b| {
+        b.iter(|| truth.chunk(&window, 0.0, 3601))
+    });
     group.finish();
 }
 

@@ -64,8 +64,8 @@ fn cell(v: Option<f64>) -> String {
 pub fn print_table(rows: &[Row], out: &mut impl Write) -> std::io::Result<()> {
     writeln!(
         out,
-        "{:<8} {:<44} {:>12} {:>12} {:>8} {:<26} {}",
-        "table", "row", "thesis", "skyforge", "ratio", "tolerance", "verdict"
+        "table    {:<44} {:>12} {:>12} {:>8} {:<26} verdict",
+        "row", "thesis", "skyforge", "ratio", "tolerance"
     )?;
     for r in rows {
         let ratio = r.ratio().map_or("-".to_string(), |x| format!("{x:.3}"));

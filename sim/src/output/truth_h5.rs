@@ -153,12 +153,22 @@ fn series<T: H5Type>(
     description: &str,
 ) -> hdf5::Result<Dataset> {
     let mut builder = group.new_dataset::<T>();
-    if matches!(T::type_descriptor(), TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_)) {
+    if matches!(
+        T::type_descriptor(),
+        TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_)
+    ) {
         builder = builder.lzf();
     }
     let ds = if width == 0 {
-        let chunk = if name == "t_s" { TIME_CHUNK } else { LINK_CHUNK };
-        builder.chunk((chunk,)).shape(Extents::resizable(0.into())).create(name)?
+        let chunk = if name == "t_s" {
+            TIME_CHUNK
+        } else {
+            LINK_CHUNK
+        };
+        builder
+            .chunk((chunk,))
+            .shape(Extents::resizable(0.into()))
+            .create(name)?
     } else {
         builder
             .chunk((TIME_CHUNK, width))

@@ -16,11 +16,17 @@ pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2"];
 #[derive(Debug, thiserror::Error)]
 pub enum ValidateError {
     #[error("bundled scenario: {0}")]
-    Scenario(#[from] skyforge_scenarios::ScenarioError),
+    Scenario(Box<skyforge_scenarios::ScenarioError>),
     #[error("geometry: {0}")]
     Geometry(String),
     #[error("unknown table {id:?}; known tables: {known}")]
     UnknownTable { id: String, known: String },
+}
+
+impl From<skyforge_scenarios::ScenarioError> for ValidateError {
+    fn from(e: skyforge_scenarios::ScenarioError) -> Self {
+        ValidateError::Scenario(Box::new(e))
+    }
 }
 
 /// What to run.
