@@ -8,18 +8,21 @@ cd "$(dirname "$0")/.."
 require_data=0
 [ "${1:-}" = "--real-data" ] && require_data=1
 
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+
 scripts/deps.sh
 echo "test: cargo fmt --check"
 cargo fmt --all -- --check
 echo "test: cargo clippy"
 cargo clippy --workspace --all-targets -- -D warnings
 echo "test: default suite"
-cargo test --workspace
+cargo test --workspace 2>&1 | tee -a "$log"
 
 data="${SKYFORGE_DATA:-$(pwd)/../shared/data}"
 if [ -d "$data" ]; then
   echo "test: real-data tier with SKYFORGE_DATA=$data"
-  SKYFORGE_DATA="$data" cargo test --workspace -- --ignored
+  SKYFORGE_DATA="$data" cargo test --workspace -- --ignored 2>&1 | tee -a "$log"
 elif [ $require_data -eq 1 ]; then
   echo "test: REAL-DATA FOLDER MISSING: $data (set SKYFORGE_DATA)" >&2
   exit 1
@@ -28,3 +31,7 @@ else
   echo "test: real-data tier SKIPPED: no data folder at $data (set SKYFORGE_DATA)"
   echo "test: ************************************************************"
 fi
+
+# One closing line over every test binary above.
+awk '/^test result:/ { for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i } }
+     END { printf "tests: %d passed, %d failed\n", p, f }' "$log"
