@@ -1,5 +1,9 @@
-//! Signals: antennas, per-antenna geometry truth, and (later) the IF synthesiser.
+//! Signals: antennas, ranging codes, navigation messages, error models and per-antenna
+//! geometry truth (the IF synthesiser builds on these).
 
 pub mod antenna;
+pub mod codes;
+pub mod errors;
+pub mod navmsg;
 pub mod signal;
 pub mod truth;

@@ -1,0 +1,1 @@
+//! Error models: receiver oscillator, ionosphere, troposphere.

@@ -1,0 +1,1 @@
+//! GPS LNAV navigation message.
