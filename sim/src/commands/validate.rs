@@ -20,10 +20,11 @@ pub fn thesis(
         .or_else(|| std::env::var_os("SKYFORGE_DATA").map(PathBuf::from))
         .unwrap_or_else(|| PathBuf::from(DEFAULT_DATA_DIR));
     let staged = out.map(|dir| StagedDir::create(dir, force)).transpose()?;
-    let rows = match thesis::run(&Options {
+    let opts = Options {
         only,
         data_dir: Some(data_dir),
-    }) {
+    };
+    let rows = match thesis::run(&opts, |table| eprintln!("validate: running {table}")) {
         Err(ValidateError::UnknownTable { id, known }) => {
             return Err(BadInput(format!("unknown table {id:?}; known tables: {known}")).into());
         }

@@ -38,8 +38,9 @@ pub struct Options {
     pub data_dir: Option<PathBuf>,
 }
 
-/// Run the selected tables and return their rows.
-pub fn run(opts: &Options) -> Result<Vec<Row>, ValidateError> {
+/// Run the selected tables and return their rows; `starting` is told each table's ID
+/// before it runs (for progress output).
+pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, ValidateError> {
     for id in &opts.only {
         if !TABLES.iter().any(|t| t.eq_ignore_ascii_case(id)) {
             return Err(ValidateError::UnknownTable {
@@ -52,9 +53,11 @@ pub fn run(opts: &Options) -> Result<Vec<Row>, ValidateError> {
         |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| id.eq_ignore_ascii_case(t));
     let mut rows = Vec::new();
     if wanted("V-1.2.1") {
+        starting("V-1.2.1");
         rows.extend(visibility::rows(opts.data_dir.as_deref())?);
     }
     if wanted("T-3.2") {
+        starting("T-3.2");
         rows.extend(loop_budget::rows()?);
     }
     Ok(rows)
