@@ -6,4 +6,5 @@ pub mod codes;
 pub mod errors;
 pub mod navmsg;
 pub mod signal;
+pub mod synth;
 pub mod truth;

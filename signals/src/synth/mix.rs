@@ -1,0 +1,195 @@
+//! The per-channel mixing kernel: adds `amplitude * chip_sign(code phase) *
+//! exp(j 2 pi carrier phase)` to a block of complex samples held as separate I and Q
+//! arrays (so the compiler vectorises the inner loops).
+//!
+//! Within a block the code and carrier phases are linear in the sample index; the caller
+//! re-anchors them every block from the f64 truth, so nothing accumulates across blocks.
+//! The carrier uses `LANES` interleaved phasor recurrences, z[i + LANES] = z[i] w^LANES,
+//! started from exact values; over a 4096-sample block the f32 recurrence drifts by
+//! about 1e-4 rad (1e-5 m at L1), measured in this module's tests.
+
+/// Independent phasor recurrences run side by side (one SIMD register of f32 on AVX).
+const LANES: usize = 8;
+
+/// One channel over one block.
+#[derive(Debug, Clone, Copy)]
+pub struct ChannelBlock<'a> {
+    /// Signal amplitude (same units as the noise the caller adds).
+    pub amplitude: f32,
+    /// Carrier phase at the first sample (cycles; only the fraction matters).
+    pub carrier_phase_cycles: f64,
+    /// Carrier phase increment per sample (cycles): (IF + Doppler) / fs.
+    pub carrier_cycles_per_sample: f64,
+    /// Code phase at the first sample, in chips from `chip_signs[0]` (in [0, 1)).
+    pub code_phase_chips: f64,
+    /// Code phase increment per sample (chips): code rate / fs.
+    pub code_chips_per_sample: f64,
+    /// Sign (+1/-1) of each chip from the block's first chip on, with data bits and any
+    /// secondary code already applied; must cover the whole block.
+    pub chip_signs: &'a [i8],
+}
+
+impl ChannelBlock<'_> {
+    /// Number of chips a block of `n` samples touches (the length `chip_signs` needs).
+    pub fn chips_needed(code_phase_chips: f64, code_chips_per_sample: f64, n: usize) -> usize {
+        (code_phase_chips + code_chips_per_sample * n as f64).floor() as usize + 1
+    }
+}
+
+/// Reusable per-thread buffers of the kernel.
+#[derive(Debug, Default)]
+pub struct MixScratch {
+    code: Vec<f32>,
+}
+
+/// Fill `code[i]` with `amplitude * sign` of the chip under sample `i`.
+fn spread_code(code: &mut [f32], ch: &ChannelBlock<'_>) {
+    let n = code.len();
+    let mut start = 0usize;
+    for (k, &sign) in ch.chip_signs.iter().enumerate() {
+        if start >= n {
+            break;
+        }
+        // First sample whose code phase reaches chip k + 1.
+        let edge = ((k as f64 + 1.0 - ch.code_phase_chips) / ch.code_chips_per_sample).ceil();
+        let end = (edge.max(0.0) as usize).min(n);
+        let value = ch.amplitude * f32::from(sign);
+        code[start..end.max(start)].fill(value);
+        start = end.max(start);
+    }
+    debug_assert!(start >= n, "chip_signs too short for the block");
+}
+
+/// Add one channel to the block `(out_i, out_q)`.
+pub fn mix_into(
+    out_i: &mut [f32],
+    out_q: &mut [f32],
+    ch: &ChannelBlock<'_>,
+    scratch: &mut MixScratch,
+) {
+    let n = out_i.len().min(out_q.len());
+    scratch.code.resize(n, 0.0);
+    spread_code(&mut scratch.code[..n], ch);
+
+    // Lane l starts at phase p0 + l dp; every step advances all lanes by LANES dp.
+    let frac = ch.carrier_phase_cycles - ch.carrier_phase_cycles.floor();
+    let mut zr = [0f32; LANES];
+    let mut zi = [0f32; LANES];
+    for l in 0..LANES {
+        let (s, c) =
+            (std::f64::consts::TAU * (frac + l as f64 * ch.carrier_cycles_per_sample)).sin_cos();
+        zr[l] = c as f32;
+        zi[l] = s as f32;
+    }
+    let (ws, wc) = (std::f64::consts::TAU * LANES as f64 * ch.carrier_cycles_per_sample).sin_cos();
+    let (wr, wi) = (wc as f32, ws as f32);
+
+    let code = &scratch.code[..n];
+    let full = n / LANES * LANES;
+    for ((oi, oq), c) in out_i[..full]
+        .chunks_exact_mut(LANES)
+        .zip(out_q[..full].chunks_exact_mut(LANES))
+        .zip(code[..full].chunks_exact(LANES))
+    {
+        for l in 0..LANES {
+            oi[l] += c[l] * zr[l];
+            oq[l] += c[l] * zi[l];
+            let r = zr[l] * wr - zi[l] * wi;
+            zi[l] = zr[l] * wi + zi[l] * wr;
+            zr[l] = r;
+        }
+    }
+    for l in 0..n - full {
+        out_i[full + l] += code[full + l] * zr[l];
+        out_q[full + l] += code[full + l] * zi[l];
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Direct f64 evaluation of the same signal, sample by sample.
+    fn reference(ch: &ChannelBlock<'_>, n: usize) -> (Vec<f64>, Vec<f64>) {
+        (0..n)
+            .map(|i| {
+                let chip =
+                    (ch.code_phase_chips + i as f64 * ch.code_chips_per_sample).floor() as usize;
+                let a = f64::from(ch.amplitude) * f64::from(ch.chip_signs[chip]);
+                let p = std::f64::consts::TAU
+                    * (ch.carrier_phase_cycles + i as f64 * ch.carrier_cycles_per_sample);
+                (a * p.cos(), a * p.sin())
+            })
+            .unzip()
+    }
+
+    fn signs(n: usize) -> Vec<i8> {
+        // A fixed pseudo-random +-1 sequence (LCG), independent of the code generators.
+        let mut x: u32 = 12345;
+        (0..n)
+            .map(|_| {
+                x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                if x >> 31 == 0 { 1 } else { -1 }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn matches_direct_evaluation_over_a_block() {
+        let n = 4092;
+        let chips = signs(1100);
+        for (carrier, code0, f_over_fs) in [
+            (0.3, 0.0, 0.2443),
+            (12345.678, 0.71, -0.0107),
+            (-3.9, 0.999, 0.0),
+        ] {
+            let ch = ChannelBlock {
+                amplitude: 0.7,
+                carrier_phase_cycles: carrier,
+                carrier_cycles_per_sample: f_over_fs,
+                code_phase_chips: code0,
+                code_chips_per_sample: 1.023e6 / 4.092e6 * (1.0 + 3e-6),
+                chip_signs: &chips,
+            };
+            assert!(ChannelBlock::chips_needed(code0, ch.code_chips_per_sample, n) <= chips.len());
+            let (mut oi, mut oq) = (vec![0f32; n], vec![0f32; n]);
+            mix_into(&mut oi, &mut oq, &ch, &mut MixScratch::default());
+            let (ri, rq) = reference(&ch, n);
+            let mut worst_phase: f64 = 0.0;
+            let mut sign_errors = 0;
+            for i in 0..n {
+                let (a, b) = (f64::from(oi[i]), f64::from(oq[i]));
+                // Samples whose chip sign differs from the reference (only possible right
+                // at a chip edge, from rounding) are counted, not compared.
+                if a * ri[i] + b * rq[i] < 0.0 {
+                    sign_errors += 1;
+                    continue;
+                }
+                let dphi = (b * ri[i] - a * rq[i]).atan2(a * ri[i] + b * rq[i]);
+                worst_phase = worst_phase.max(dphi.abs());
+                assert!(((a * a + b * b).sqrt() - 0.7).abs() < 1e-3);
+            }
+            assert!(sign_errors <= 2, "{sign_errors} chip-edge disagreements");
+            assert!(worst_phase < 3e-4, "carrier phase error {worst_phase} rad");
+        }
+    }
+
+    #[test]
+    fn adds_to_what_is_already_there() {
+        let chips = signs(40);
+        let ch = ChannelBlock {
+            amplitude: 1.0,
+            carrier_phase_cycles: 0.0,
+            carrier_cycles_per_sample: 0.0,
+            code_phase_chips: 0.0,
+            code_chips_per_sample: 0.25,
+            chip_signs: &chips,
+        };
+        let (mut oi, mut oq) = (vec![2f32; 100], vec![0f32; 100]);
+        mix_into(&mut oi, &mut oq, &ch, &mut MixScratch::default());
+        for i in 0..100 {
+            assert_eq!(oi[i], 2.0 + f32::from(chips[i / 4]));
+            assert_eq!(oq[i], 0.0);
+        }
+    }
+}
