@@ -40,24 +40,22 @@ impl ChannelBlock<'_> {
 #[derive(Debug, Default)]
 pub struct MixScratch {
     code: Vec<f32>,
+    amps: Vec<f32>,
 }
 
-/// Fill `code[i]` with `amplitude * sign` of the chip under sample `i`.
-fn spread_code(code: &mut [f32], ch: &ChannelBlock<'_>) {
-    let n = code.len();
-    let mut start = 0usize;
-    for (k, &sign) in ch.chip_signs.iter().enumerate() {
-        if start >= n {
-            break;
-        }
-        // First sample whose code phase reaches chip k + 1.
-        let edge = ((k as f64 + 1.0 - ch.code_phase_chips) / ch.code_chips_per_sample).ceil();
-        let end = (edge.max(0.0) as usize).min(n);
-        let value = ch.amplitude * f32::from(sign);
-        code[start..end.max(start)].fill(value);
-        start = end.max(start);
+/// Fill `code[i]` with `amplitude * sign` of the chip under sample `i`. The code phase
+/// runs in 32.32 fixed point (2^-32 chip resolution, ~1e-7 m of code over a block).
+fn spread_code(code: &mut [f32], amps: &mut Vec<f32>, ch: &ChannelBlock<'_>) {
+    amps.clear();
+    amps.extend(ch.chip_signs.iter().map(|&s| ch.amplitude * f32::from(s)));
+    let scale = (1u64 << 32) as f64;
+    let p0 = (ch.code_phase_chips * scale) as u64;
+    let dp = (ch.code_chips_per_sample * scale) as u64;
+    let last = amps.len() - 1;
+    for (i, c) in code.iter_mut().enumerate() {
+        let chip = ((p0 + i as u64 * dp) >> 32) as usize;
+        *c = amps[chip.min(last)];
     }
-    debug_assert!(start >= n, "chip_signs too short for the block");
 }
 
 /// Add one channel to the block `(out_i, out_q)`.
@@ -69,7 +67,7 @@ pub fn mix_into(
 ) {
     let n = out_i.len().min(out_q.len());
     scratch.code.resize(n, 0.0);
-    spread_code(&mut scratch.code[..n], ch);
+    spread_code(&mut scratch.code[..n], &mut scratch.amps, ch);
 
     // Lane l starts at phase p0 + l dp; every step advances all lanes by LANES dp.
     let frac = ch.carrier_phase_cycles - ch.carrier_phase_cycles.floor();
