@@ -1,3 +1,7 @@
-//! IF/baseband synthesis: per-channel mixing of code, data and carrier into sample blocks.
+//! IF/baseband synthesis: per-channel mixing of code, data and carrier into sample blocks,
+//! front-end quantisation, and the sample-file formats with their SigMF metadata.
 
+pub mod format;
 pub mod mix;
+pub mod quantise;
+pub mod sigmf;
