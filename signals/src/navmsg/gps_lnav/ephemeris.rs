@@ -9,7 +9,7 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
 
 /// Grid of toe and toc (s): their LSB (IS-GPS-200 table 20-III).
 const TIME_GRID_S: i64 = 16;
-/// Fit intervals longer than this set the fit interval flag (IS-GPS-200 20.3.4.4: 0 = 4 h).
+/// Fit intervals longer than this set the fit interval flag (IS-GPS-200 20.3.3.4.3.1: 0 = 4 h).
 const FIT_4H_S: f64 = 4.0 * 3600.0;
 
 /// The subframe 1-3 content as broadcast: ICD integers (tables 20-I, 20-III).

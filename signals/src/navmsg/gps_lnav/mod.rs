@@ -21,9 +21,10 @@
 //! Time is counted in subframes and bits since the GPS epoch (1980-01-06 00:00:00 GPST):
 //! subframe `k` is transmitted (satellite time) from `6 k` s to `6 (k + 1)` s and data bit
 //! `b` from `0.02 b` s to `0.02 (b + 1)` s, so bit edges fall on every 20th C/A code
-//! period boundary counted from the week start (IS-GPS-200 20.3.4.1). A bit value `1`
-//! is a logic one of the data stream; with the usual BPSK mapping it multiplies the code
-//! by -1.
+//! period boundary counted from the week start (IS-GPS-200 20.3.2: 50 bps data
+//! synchronous with the C/A code epochs, subframes starting on multiples of 6 s of GPS
+//! time as the HOW TOW count implies). A bit value `1` is a logic one of the data
+//! stream; with the usual BPSK mapping it multiplies the code by -1.
 //!
 //! Quantisation residuals (measured by the tests in this module and in
 //! `tests/real_data_lnav.rs`): see [`LnavEncoder::broadcast_ephemeris`].
