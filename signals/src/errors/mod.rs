@@ -1,1 +1,6 @@
 //! Error models: receiver oscillator, ionosphere, troposphere.
+
+pub mod clock;
+pub mod ionosphere;
+pub mod seed;
+pub mod troposphere;

@@ -1,0 +1,289 @@
+//! Ionospheric group delay: the broadcast Klobuchar models of GPS and BeiDou, frequency
+//! scaling, and the reduction for a receiver above part of the ionosphere.
+//!
+//! Sign convention (metres): the ionosphere delays the code and advances the carrier by
+//! the same first-order amount, so a pseudorange gains `+d` and a carrier-phase range
+//! (`lambda * phi`) gains `-d` ([`IonoDelay`]; Yuan 2000 eqs. 5-20/5-21).
+//!
+//! Receiver height (Yuan 2000 section 5.4.1, L5309 and L5360 of the source text): the
+//! Klobuchar value is computed as for a ground user under the receiver (same elevation and
+//! azimuth, the book's method 1) and multiplied by the fraction of the ionospheric error
+//! that lies above the receiver, [`remaining_fraction`]: piecewise linear through the
+//! book's figures, 1 at or below 100 km (the book puts the neutral atmosphere below
+//! 100 km), 0.4 at 350 km ("60 % of the error is below 350 km"), 0.3 at 400 km, 0.1 at
+//! 500 km, 0 from 700 km ("the ionospheric delay is essentially below 700 km").
+//! `leo_scale` replaces that profile by a constant for receivers above 100 km.
+//! Elevations below 0 (seen from orbit) are evaluated at 0: the models do not describe
+//! limb paths.
+
+use skyforge_orbits::check::Invalid;
+use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
+use skyforge_orbits::ephemeris::System;
+use skyforge_orbits::frames::geodetic::Geodetic;
+use std::f64::consts::PI;
+
+/// Night-time (constant) vertical delay of both Klobuchar variants (s).
+const NIGHT_DELAY_S: f64 = 5e-9;
+/// Local time of the cosine peak (s): 14:00.
+const PEAK_LOCAL_TIME_S: f64 = 50_400.0;
+/// Smallest period of the cosine (s).
+const MIN_PERIOD_S: f64 = 72_000.0;
+/// Largest period of the BeiDou cosine (s), BDS-SIS-ICD-B1I 5.2.4.7.
+const BDS_MAX_PERIOD_S: f64 = 172_800.0;
+const SECONDS_PER_DAY: f64 = 86_400.0;
+/// Earth radius and shell height of the BeiDou model (m), BDS-SIS-ICD-B1I 5.2.4.7.
+const BDS_EARTH_RADIUS_M: f64 = 6_378_000.0;
+const BDS_SHELL_HEIGHT_M: f64 = 375_000.0;
+/// Height below which the whole ionosphere is above the receiver (m).
+pub const FULL_IONOSPHERE_BELOW_M: f64 = 100e3;
+/// (height m, fraction of the ground delay above it): Yuan 2000 section 5.4.1.
+const HEIGHT_PROFILE: [(f64, f64); 5] = [
+    (FULL_IONOSPHERE_BELOW_M, 1.0),
+    (350e3, 0.4),
+    (400e3, 0.3),
+    (500e3, 0.1),
+    (700e3, 0.0),
+];
+
+/// Broadcast Klobuchar coefficients: `alpha` (s, s/semicircle, s/semicircle^2,
+/// s/semicircle^3) and `beta` (s, s/semicircle, ...), as broadcast and as in RINEX.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KlobucharCoeffs {
+    pub alpha: [f64; 4],
+    pub beta: [f64; 4],
+}
+
+/// Default GPS set: `ION ALPHA` / `ION BETA` of the IGS broadcast file `brdc0010.22n`
+/// (2022-01-01).
+pub const GPS_DEFAULT_COEFFS: KlobucharCoeffs = KlobucharCoeffs {
+    alpha: [0.1211e-7, -0.7451e-8, -0.5960e-7, 0.1192e-6],
+    beta: [0.1167e6, -0.2458e6, -0.6554e5, 0.1114e7],
+};
+
+/// Default BeiDou set: `ION C05 D1D2` of 2023-03-12 00:00 BDT in the DLR broadcast file
+/// `BRD400DLR_S_20230710000_01D_MN.rnx`.
+pub const BDS_DEFAULT_COEFFS: KlobucharCoeffs = KlobucharCoeffs {
+    alpha: [
+        4.190951585770e-8,
+        4.395842552185e-7,
+        -2.861022949219e-6,
+        3.576278686523e-6,
+    ],
+    beta: [8.3968e4, 9.99424e5, -7.798784e6, 8.323072e6],
+};
+
+fn cubic(c: &[f64; 4], x: f64) -> f64 {
+    c[0] + x * (c[1] + x * (c[2] + x * c[3]))
+}
+
+/// GPS Klobuchar slant delay at L1 (s), IS-GPS-200 20.3.3.5.2.5 and figure 20-4.
+///
+/// Receiver geodetic latitude/longitude, satellite azimuth/elevation (rad); `gps_time_s`
+/// is GPS time in seconds from any midnight (seconds of week are fine).
+pub fn gps_klobuchar_l1_s(
+    c: &KlobucharCoeffs,
+    lat_rad: f64,
+    lon_rad: f64,
+    az_rad: f64,
+    el_rad: f64,
+    gps_time_s: f64,
+) -> f64 {
+    let el_sc = el_rad.max(0.0) / PI;
+    let psi_sc = 0.0137 / (el_sc + 0.11) - 0.022;
+    let lat_i_sc = (lat_rad / PI + psi_sc * az_rad.cos()).clamp(-0.416, 0.416);
+    let lon_i_sc = lon_rad / PI + psi_sc * az_rad.sin() / (lat_i_sc * PI).cos();
+    let lat_m_sc = lat_i_sc + 0.064 * ((lon_i_sc - 1.617) * PI).cos();
+    let t_s = (4.32e4 * lon_i_sc + gps_time_s).rem_euclid(SECONDS_PER_DAY);
+    let obliquity = 1.0 + 16.0 * (0.53 - el_sc).powi(3);
+    let amplitude_s = cubic(&c.alpha, lat_m_sc).max(0.0);
+    let period_s = cubic(&c.beta, lat_m_sc).max(MIN_PERIOD_S);
+    let x = 2.0 * PI * (t_s - PEAK_LOCAL_TIME_S) / period_s;
+    let vertical_s = if x.abs() < 1.57 {
+        NIGHT_DELAY_S + amplitude_s * (1.0 - x * x / 2.0 + x.powi(4) / 24.0)
+    } else {
+        NIGHT_DELAY_S
+    };
+    obliquity * vertical_s
+}
+
+/// BeiDou Klobuchar slant delay at B1I (s), BDS-SIS-ICD-B1I-3.0 section 5.2.4.7: pierce
+/// point on a 375 km shell over a 6378 km sphere, coefficients in the pierce point's
+/// geographic |latitude| (semicircles), period clamped to [72000, 172800] s, cosine
+/// (not its series), mapping `1 / sqrt(1 - (R cos E / (R + h))^2)`.
+///
+/// `bdt_s` is BeiDou time in seconds from any BDT midnight.
+pub fn bds_klobuchar_b1i_s(
+    c: &KlobucharCoeffs,
+    lat_rad: f64,
+    lon_rad: f64,
+    az_rad: f64,
+    el_rad: f64,
+    bdt_s: f64,
+) -> f64 {
+    let el = el_rad.max(0.0);
+    let k = BDS_EARTH_RADIUS_M / (BDS_EARTH_RADIUS_M + BDS_SHELL_HEIGHT_M) * el.cos();
+    let psi = PI / 2.0 - el - k.asin();
+    let lat_m = (lat_rad.sin() * psi.cos() + lat_rad.cos() * psi.sin() * az_rad.cos())
+        .clamp(-1.0, 1.0)
+        .asin();
+    let lon_m = lon_rad
+        + (psi.sin() * az_rad.sin() / lat_m.cos())
+            .clamp(-1.0, 1.0)
+            .asin();
+    let t_s = (bdt_s + lon_m * 43_200.0 / PI).rem_euclid(SECONDS_PER_DAY);
+    let lat_m_sc = (lat_m / PI).abs();
+    let a2_s = cubic(&c.alpha, lat_m_sc).max(0.0);
+    let a4_s = cubic(&c.beta, lat_m_sc).clamp(MIN_PERIOD_S, BDS_MAX_PERIOD_S);
+    let vertical_s = if (t_s - PEAK_LOCAL_TIME_S).abs() < a4_s / 4.0 {
+        NIGHT_DELAY_S + a2_s * (2.0 * PI * (t_s - PEAK_LOCAL_TIME_S) / a4_s).cos()
+    } else {
+        NIGHT_DELAY_S
+    };
+    vertical_s / (1.0 - k * k).sqrt()
+}
+
+/// First-order scaling of an ionospheric delay from `f_ref_hz` to `f_hz`: `(f_ref/f)^2`.
+pub fn scale_to_frequency(delay_at_ref: f64, f_ref_hz: f64, f_hz: f64) -> f64 {
+    delay_at_ref * (f_ref_hz / f_hz).powi(2)
+}
+
+/// Fraction of the ground ionospheric delay that lies above a receiver at `height_m`
+/// (module docs; Yuan 2000 section 5.4.1).
+pub fn remaining_fraction(height_m: f64) -> f64 {
+    let (h_first, f_first) = HEIGHT_PROFILE[0];
+    if height_m <= h_first {
+        return f_first;
+    }
+    for pair in HEIGHT_PROFILE.windows(2) {
+        let ((h0, f0), (h1, f1)) = (pair[0], pair[1]);
+        if height_m <= h1 {
+            return f0 + (f1 - f0) * (height_m - h0) / (h1 - h0);
+        }
+    }
+    0.0
+}
+
+/// The ionospheric effect on one signal (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct IonoDelay {
+    /// Added to the pseudorange (group delay, >= 0).
+    pub code_m: f64,
+    /// Added to the carrier-phase range: `-code_m` (phase advance).
+    pub carrier_m: f64,
+}
+
+/// Ionosphere model choice.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum IonoModel {
+    /// GPS satellites: IS-GPS-200 Klobuchar; BeiDou satellites: the BDS variant.
+    Klobuchar,
+    Off,
+}
+
+/// `[errors.ionosphere]`.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IonoConfig {
+    pub model: IonoModel,
+    /// Constant fraction of the ground delay for a receiver above 100 km, replacing the
+    /// height profile (in [0, 1]).
+    #[serde(default)]
+    pub leo_scale: Option<f64>,
+    /// GPS coefficients (default [`GPS_DEFAULT_COEFFS`]).
+    #[serde(default = "gps_default")]
+    pub gps: KlobucharCoeffs,
+    /// BeiDou coefficients (default [`BDS_DEFAULT_COEFFS`]).
+    #[serde(default = "bds_default")]
+    pub bds: KlobucharCoeffs,
+}
+
+fn gps_default() -> KlobucharCoeffs {
+    GPS_DEFAULT_COEFFS
+}
+fn bds_default() -> KlobucharCoeffs {
+    BDS_DEFAULT_COEFFS
+}
+
+impl Default for IonoConfig {
+    /// Klobuchar with the default coefficient sets and the height profile.
+    fn default() -> Self {
+        Self {
+            model: IonoModel::Klobuchar,
+            leo_scale: None,
+            gps: GPS_DEFAULT_COEFFS,
+            bds: BDS_DEFAULT_COEFFS,
+        }
+    }
+}
+
+impl IonoConfig {
+    /// Checks: `leo_scale` in [0, 1]; coefficients finite.
+    pub fn check(&self) -> Result<(), Invalid> {
+        if let Some(s) = self.leo_scale
+            && !(0.0..=1.0).contains(&s)
+        {
+            return Err(Invalid::new("leo_scale", s, "must be in [0, 1]"));
+        }
+        for (name, set) in [("gps", &self.gps), ("bds", &self.bds)] {
+            for (part, values) in [("alpha", &set.alpha), ("beta", &set.beta)] {
+                if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+                    return Err(Invalid::new(
+                        format!("{name}.{part}[{i}]"),
+                        values[i],
+                        "must be a finite number",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Fraction of the ground delay applied to a receiver at `height_m`.
+    pub fn height_factor(&self, height_m: f64) -> f64 {
+        match self.leo_scale {
+            Some(s) if height_m > FULL_IONOSPHERE_BELOW_M => s,
+            _ => remaining_fraction(height_m),
+        }
+    }
+
+    /// Delay of a signal at `carrier_hz` from a `system` satellite seen at `az_rad`,
+    /// `el_rad` from `rx`, at `t_system_s` (the system's own time scale, seconds from any
+    /// of its midnights).
+    pub fn delay(
+        &self,
+        system: System,
+        rx: &Geodetic,
+        az_rad: f64,
+        el_rad: f64,
+        t_system_s: f64,
+        carrier_hz: f64,
+    ) -> IonoDelay {
+        let code_m = match self.model {
+            IonoModel::Off => 0.0,
+            IonoModel::Klobuchar => {
+                let (delay_s, f_ref_hz) = match system {
+                    System::Gps => (
+                        gps_klobuchar_l1_s(
+                            &self.gps, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t_system_s,
+                        ),
+                        F_GPS_L1_HZ,
+                    ),
+                    System::Beidou => (
+                        bds_klobuchar_b1i_s(
+                            &self.bds, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t_system_s,
+                        ),
+                        F_BDS_B1I_HZ,
+                    ),
+                };
+                scale_to_frequency(delay_s * C_MPS, f_ref_hz, carrier_hz)
+                    * self.height_factor(rx.h_m)
+            }
+        };
+        IonoDelay {
+            code_m,
+            carrier_m: -code_m,
+        }
+    }
+}
