@@ -3,5 +3,6 @@
 
 pub mod format;
 pub mod mix;
+pub mod noise;
 pub mod quantise;
 pub mod sigmf;
