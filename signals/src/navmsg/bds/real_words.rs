@@ -1,0 +1,237 @@
+//! Subframes broadcast by BeiDou satellites, as external test vectors: BDT week 810
+//! (2015-07), C06 (IGSO, D1) and C01 (GEO, D2), recorded by a receiver and published as
+//! test data of GNSSTk (ARL:UT, `core/tests/NewNav/D1NavTestDataDef.hpp`,
+//! `D2NavTestDataDef.hpp`), with the values GNSSTk decodes from them
+//! (`PNBBDSD1NavDataFactory_T.cpp`). Words are in the ICD's layout: 30 bits, information
+//! bits then parity (words 2-10 de-interleaved).
+
+/// C06 D1 subframe 1, SOW 345600.
+pub(crate) const C06_SF1: [u32; 10] = [
+    0x3890_1541,
+    0x1800_0020,
+    0x0654_A846,
+    0x3005_2F4E,
+    0x2D07_0427,
+    0x3EC1_CDC2,
+    0x30BF_8085,
+    0x1C00_28C1,
+    0x3F47_E038,
+    0x1A8A_E13D,
+];
+/// C06 D1 subframe 2, SOW 345606.
+pub(crate) const C06_SF2: [u32; 10] = [
+    0x3890_2543,
+    0x1818_3473,
+    0x25F6_8C9D,
+    0x3FC8_2650,
+    0x1B1C_17A5,
+    0x070E_0107,
+    0x0B05_EE24,
+    0x1AD7_F7D4,
+    0x033C_AE4C,
+    0x3B50_A9BC,
+];
+/// C06 D1 subframe 3, SOW 345612.
+pub(crate) const C06_SF3: [u32; 10] = [
+    0x3890_354C,
+    0x1831_4682,
+    0x004D_0280,
+    0x3C6D_0016,
+    0x0557_FF9F,
+    0x190D_FFB2,
+    0x36E2_64FC,
+    0x363D_CF4D,
+    0x3AB5_3A34,
+    0x145A_B4D0,
+];
+/// C06 D1 subframe 5 page 1 (almanac of C25), SOW 345624.
+pub(crate) const C06_SF5_P1: [u32; 10] = [
+    0x3890_5548,
+    0x1860_065A,
+    0x2514_7FB3,
+    0x0014_5E6A,
+    0x37AE_7BD2,
+    0x1017_A0BF,
+    0x0A4A_290F,
+    0x3F65_00F6,
+    0x2411_BB10,
+    0x0A5E_AD64,
+];
+/// C06 D1 subframe 5 page 7 (health of PRNs 1-19).
+pub(crate) const C06_SF5_P7: [u32; 10] = [
+    0x3890_5548,
+    0x1B30_1C52,
+    0,
+    0,
+    0x0020_00C0,
+    0,
+    0,
+    0x0000_FF04,
+    0x0008_0739,
+    0x3E2C_2ADE,
+];
+/// C06 D1 subframe 5 page 8 (health of PRNs 20-30, WNa, toa).
+pub(crate) const C06_SF5_P8: [u32; 10] = [
+    0x3890_5548,
+    0x1BA8_205A,
+    0x2C16_0BEA,
+    0x0160_B0D1,
+    0x160B_057D,
+    0x20B0_5869,
+    0x0B05_4227,
+    0x22AA_AA44,
+    0x2AAA_AAB4,
+    0x2AAA_AAB4,
+];
+/// C06 D1 subframe 5 page 10 (UTC).
+pub(crate) const C06_SF5_P10: [u32; 10] = [
+    0x3890_5548,
+    0x1C98_28C1,
+    0x0404_3DE2,
+    0x3FFF_FFFF,
+    0x3F90_00B0,
+    0x0000_190D,
+    0x1555_554B,
+    0x1555_554B,
+    0x1555_554B,
+    0x1555_554B,
+];
+
+/// Words 6-10 of most C01 subframe 1 pages: reserved bits.
+const R: u32 = 0x1555_554B;
+/// C01 D2 subframe 1 pages 1-10, frames starting at SOW 345600, 345603, ..., 345627.
+pub(crate) const C01_SF1: [[u32; 10]; 10] = [
+    [
+        0x3890_1541,
+        0x1800_4027,
+        0x0065_4A7C,
+        0x2303_C840,
+        0x39B0_15EA,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x180C_8114,
+        0x304F_B0CA,
+        0x1CDC_2F71,
+        0x3807_55B6,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1818_C079,
+        0x0000_0000,
+        0x000D_C13C,
+        0x3C88_153A,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1825_0AEB,
+        0x0E4C_00E9,
+        0x01F8_D7D5,
+        0x373C_55E4,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1831_7E86,
+        0x31E9_F0F9,
+        0x047B_D7C7,
+        0x3C01_5552,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x183D_90BD,
+        0x35CA_72D3,
+        0x2EB5_040A,
+        0x3FFE_55F9,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1849_CEA7,
+        0x3002_B543,
+        0x1460_0143,
+        0x304F_55C6,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1856_21FD,
+        0x301E_AF12,
+        0x3C0C_B863,
+        0x0025_15CC,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x1862_6153,
+        0x0051_73D2,
+        0x0146_E114,
+        0x238B_552F,
+        R,
+        R,
+        R,
+        R,
+        R,
+    ],
+    [
+        0x3890_1541,
+        0x186E_8E6B,
+        0x08A8_AA59,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+        0x2AAA_AAB4,
+    ],
+];
+/// C01 D2 subframe 5 page 11 (ionospheric grid, no data), frame starting at SOW 345630.
+pub(crate) const C01_SF5_P11: [u32; 10] = [
+    0x3890_5548,
+    0x1878_2F08,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFF_FFFF,
+    0x3FFE_00F4,
+];
