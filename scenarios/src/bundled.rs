@@ -36,6 +36,11 @@ const BUNDLED: &[Bundled] = &[
                   with a 10 deg elevation mask",
         text: include_str!("../bundled/ground-static.toml"),
     },
+    Bundled {
+        name: "interop-gps-static",
+        summary: "90 s static GPS L1 C/A at 4 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        text: include_str!("../bundled/interop-gps-static.toml"),
+    },
 ];
 
 /// Every bundled scenario.

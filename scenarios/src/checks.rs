@@ -33,7 +33,11 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_truth(&scenario.truth, scenario.time.duration_s)?;
     check_gnss(&scenario.gnss)?;
     check_platform(&scenario.platform)?;
-    check_antennas(&scenario.antennas)
+    check_antennas(&scenario.antennas)?;
+    match &scenario.signal {
+        Some(signal) => signal.check().map_err(|e| e.within("signal")),
+        None => Ok(()),
+    }
 }
 
 /// `time.start` as written: an epoch with its time scale.

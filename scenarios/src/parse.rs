@@ -35,6 +35,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         gnss,
         platform: file.platform,
         antennas: file.antennas,
+        signal: file.signal,
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),

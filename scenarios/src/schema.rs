@@ -7,6 +7,7 @@ use serde::Deserialize;
 use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationConfig, ConstellationSource};
 use skyforge_orbits::platform::config::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
+use skyforge_signals::synth::config::SignalConfig;
 use std::path::PathBuf;
 
 /// A checked scenario: every value parsed, defaulted and checked (checks that need files
@@ -29,6 +30,8 @@ pub struct Scenario {
     pub platform: PlatformConfig,
     /// `[[antennas]]`, at least one, unique names.
     pub antennas: Vec<AntennaConfig>,
+    /// `[signal]`: present when the scenario asks for I/Q samples.
+    pub signal: Option<SignalConfig>,
     /// Where the scenario came from: the file path as given, or `bundled:NAME`.
     pub source: String,
     /// Directory relative paths in the scenario are resolved from (the scenario file's
@@ -108,6 +111,8 @@ pub(crate) struct ScenarioFile {
     /// than a bare "missing field".
     #[serde(default)]
     pub antennas: Vec<AntennaConfig>,
+    #[serde(default)]
+    pub signal: Option<SignalConfig>,
 }
 
 /// `[time]` as written.

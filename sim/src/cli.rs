@@ -14,7 +14,8 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// Run a scenario and write its truth (DIR/truth.h5).
+    /// Run a scenario and write its truth (DIR/truth.h5); with a [signal] table, also its
+    /// I/Q samples, exactly as `synth` does.
     ///
     /// SCENARIO is a TOML file or the name of a bundled scenario (see `skyforge scenarios
     /// list`). Nothing is written when the scenario has an error (exit code 2).
@@ -25,6 +26,24 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: PathBuf,
         /// Random seed overriding the scenario's `seed` (recorded in the outputs).
+        #[arg(long, value_name = "N")]
+        seed: Option<u64>,
+        /// Replace an existing output directory.
+        #[arg(long)]
+        force: bool,
+    },
+    /// Synthesise the scenario's I/Q samples: one file per antenna (DIR/<antenna>.sigmf-data)
+    /// with SigMF metadata and a ready-to-run GNSS-SDR configuration, plus DIR/truth.h5.
+    ///
+    /// The scenario needs a [signal] table. GPS L1 C/A is synthesised; BeiDou B1I is not
+    /// yet. Nothing is written when the scenario has an error (exit code 2).
+    Synth {
+        /// Scenario file or bundled scenario name, e.g. `interop-gps-static`.
+        scenario: String,
+        /// Output directory; created, must not exist unless --force is given.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Random seed overriding the scenario's `seed` (noise streams derive from it).
         #[arg(long, value_name = "N")]
         seed: Option<u64>,
         /// Replace an existing output directory.

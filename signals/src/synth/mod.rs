@@ -1,8 +1,13 @@
-//! IF/baseband synthesis: per-channel mixing of code, data and carrier into sample blocks,
-//! front-end quantisation, and the sample-file formats with their SigMF metadata.
+//! IF/baseband synthesis: the signal configuration, transmitters (code + data), per-channel
+//! mixing, thermal noise, front-end quantisation, the per-antenna renderer, and the
+//! sample-file formats with their SigMF metadata.
 
+pub mod config;
 pub mod format;
+pub mod gnss_sdr;
 pub mod mix;
 pub mod noise;
 pub mod quantise;
+pub mod render;
 pub mod sigmf;
+pub mod transmitter;

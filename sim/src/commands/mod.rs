@@ -2,6 +2,7 @@
 
 mod run;
 mod scenarios;
+mod synth;
 mod validate;
 
 use crate::cli::{Cli, Command, ScenariosAction, ValidateSuite};
@@ -15,6 +16,12 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             seed,
             force,
         } => run::run(&scenario, &out, seed, force),
+        Command::Synth {
+            scenario,
+            out,
+            seed,
+            force,
+        } => synth::synth(&scenario, &out, seed, force),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

@@ -19,6 +19,9 @@ pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow
     if let Some(seed) = seed {
         scenario.seed = seed;
     }
+    if let Some(signal) = scenario.signal.clone() {
+        return super::synth::synthesise(&scenario, &signal, out, force);
+    }
     let world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;
     let meta = RunMeta {

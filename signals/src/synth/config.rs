@@ -1,0 +1,94 @@
+//! `[signal]`: what the synthesiser writes.
+
+use super::format::SampleFormat;
+use skyforge_orbits::check::Invalid;
+
+/// Synthesis block length (s): blocks are 1 ms, the C/A code period.
+pub const BLOCK_S: f64 = 1e-3;
+
+/// `[signal]`.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SignalConfig {
+    /// Complex (or real, for `ri8`) sample rate (Hz); a multiple of 1 kHz.
+    #[serde(default = "default_fs")]
+    pub sample_rate_hz: f64,
+    /// Intermediate frequency (Hz); 0 for complex baseband.
+    #[serde(default)]
+    pub if_hz: f64,
+    #[serde(default = "default_format")]
+    pub format: SampleFormat,
+    /// Quantisation word length: 1, 2, 4, 8 or 16 (default: the container's); ignored for cf32.
+    #[serde(default)]
+    pub bits: Option<u8>,
+    /// C/N0 of every satellite (dB-Hz).
+    #[serde(default = "default_cn0")]
+    pub cn0_dbhz: f64,
+}
+
+fn default_fs() -> f64 {
+    4.092e6
+}
+fn default_format() -> SampleFormat {
+    SampleFormat::Ci8
+}
+fn default_cn0() -> f64 {
+    45.0
+}
+
+impl SignalConfig {
+    /// Checks: the rate covers the widest signal (B1I main lobe, 4.092 MHz complex) and
+    /// gives whole samples per block; the IF lies inside Nyquist; C/N0 is plausible.
+    pub fn check(&self) -> Result<(), Invalid> {
+        let fs = self.sample_rate_hz;
+        let per_block = fs * BLOCK_S;
+        if !(fs.is_finite()
+            && fs >= 2.046e6
+            && (per_block - per_block.round()).abs() < 1e-6
+            && fs <= 1e9)
+        {
+            return Err(Invalid::new(
+                "sample_rate_hz",
+                fs,
+                "must be at least 2.046e6 (the C/A main lobe; 4.092e6 for B1I), at most 1e9, and a multiple of 1000",
+            ));
+        }
+        let nyquist = fs / 2.0;
+        if !(self.if_hz.is_finite() && self.if_hz.abs() < nyquist)
+            || (!self.format.is_complex() && self.if_hz <= 0.0)
+        {
+            return Err(Invalid::new(
+                "if_hz",
+                self.if_hz,
+                format!(
+                    "must lie inside Nyquist (|IF| < {nyquist} Hz), and be > 0 for real (ri8) output"
+                ),
+            ));
+        }
+        if let Some(b) = self.bits {
+            if !super::quantise::SUPPORTED_BITS.contains(&b) {
+                return Err(Invalid::new("bits", b, "must be one of 1, 2, 4, 8, 16"));
+            }
+            if self.format.max_bits().is_some_and(|max| b > max) {
+                return Err(Invalid::new(
+                    "bits",
+                    b,
+                    format!("does not fit the {:?} container", self.format),
+                ));
+            }
+        }
+        if !(self.cn0_dbhz.is_finite() && (10.0..=70.0).contains(&self.cn0_dbhz)) {
+            return Err(Invalid::new(
+                "cn0_dbhz",
+                self.cn0_dbhz,
+                "must be in [10, 70] dB-Hz",
+            ));
+        }
+        Ok(())
+    }
+
+    /// Samples per 1 ms block.
+    pub fn samples_per_block(&self) -> usize {
+        (self.sample_rate_hz * BLOCK_S).round() as usize
+    }
+}

@@ -1,0 +1,139 @@
+//! A ready-to-run GNSS-SDR configuration for one antenna's recording (GNSS-SDR 0.0.17
+//! option names: File_Signal_Source, PCPS acquisition, DLL/PLL tracking, telemetry
+//! decoders, hybrid observables, RTKLIB single-point PVT).
+
+use super::config::SignalConfig;
+use super::format::SampleFormat;
+use std::fmt::Write;
+
+/// Signals present in a recording.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SignalsPresent {
+    pub gps_l1ca: bool,
+    pub bds_b1i: bool,
+}
+
+/// The `.conf` text for `data_file` (a path GNSS-SDR opens relative to its working
+/// directory); `doppler_max_hz` widens acquisition for high dynamics; PVT outputs go to
+/// `output_prefix.*`.
+pub fn config(
+    cfg: &SignalConfig,
+    data_file: &str,
+    present: SignalsPresent,
+    doppler_max_hz: f64,
+    output_prefix: &str,
+) -> String {
+    let fs = cfg.sample_rate_hz.round() as u64;
+    let adapter = match cfg.format {
+        SampleFormat::Ci8 => "Ibyte_To_Complex",
+        SampleFormat::Ci16 => "Ishort_To_Complex",
+        SampleFormat::Cf32 | SampleFormat::Ri8 => "Pass_Through",
+    };
+    let mut s = String::new();
+    let mut line = |text: &str| {
+        let _ = writeln!(s, "{text}");
+    };
+    line("; GNSS-SDR configuration written by SkyForge for one antenna's recording.");
+    line("[GNSS-SDR]");
+    line(&format!("GNSS-SDR.internal_fs_sps={fs}"));
+    line("SignalSource.implementation=File_Signal_Source");
+    line(&format!("SignalSource.filename={data_file}"));
+    line(&format!(
+        "SignalSource.item_type={}",
+        cfg.format.gnss_sdr_item_type()
+    ));
+    line(&format!("SignalSource.sampling_frequency={fs}"));
+    line("SignalSource.samples=0");
+    line("SignalSource.repeat=false");
+    line("SignalSource.dump=false");
+    line("SignalSource.enable_throttle_control=false");
+    line("SignalConditioner.implementation=Signal_Conditioner");
+    line(&format!("DataTypeAdapter.implementation={adapter}"));
+    if cfg.format == SampleFormat::Ri8 || cfg.if_hz != 0.0 {
+        line("InputFilter.implementation=Freq_Xlating_Fir_Filter");
+        line(&format!(
+            "InputFilter.input_item_type={}",
+            if cfg.format == SampleFormat::Ri8 {
+                "byte"
+            } else {
+                "gr_complex"
+            }
+        ));
+        line("InputFilter.output_item_type=gr_complex");
+        line("InputFilter.taps_item_type=float");
+        line("InputFilter.number_of_taps=5");
+        line("InputFilter.number_of_bands=2");
+        line("InputFilter.band1_begin=0.0");
+        line("InputFilter.band1_end=0.45");
+        line("InputFilter.band2_begin=0.55");
+        line("InputFilter.band2_end=1.0");
+        line("InputFilter.ampl1_begin=1.0");
+        line("InputFilter.ampl1_end=1.0");
+        line("InputFilter.ampl2_begin=0.0");
+        line("InputFilter.ampl2_end=0.0");
+        line("InputFilter.band1_error=1.0");
+        line("InputFilter.band2_error=1.0");
+        line("InputFilter.filter_type=bandpass");
+        line("InputFilter.grid_density=16");
+        line(&format!("InputFilter.sampling_frequency={fs}"));
+        line(&format!("InputFilter.IF={}", cfg.if_hz));
+    } else {
+        line("InputFilter.implementation=Pass_Through");
+        line("InputFilter.item_type=gr_complex");
+    }
+    line("Resampler.implementation=Pass_Through");
+    line("Resampler.item_type=gr_complex");
+    line("Channels.in_acquisition=1");
+    if present.gps_l1ca {
+        line("Channels_1C.count=12");
+        line("Acquisition_1C.implementation=GPS_L1_CA_PCPS_Acquisition");
+        line("Acquisition_1C.item_type=gr_complex");
+        line("Acquisition_1C.coherent_integration_time_ms=1");
+        line("Acquisition_1C.pfa=0.01");
+        line(&format!(
+            "Acquisition_1C.doppler_max={}",
+            doppler_max_hz.round()
+        ));
+        line("Acquisition_1C.doppler_step=250");
+        line("Acquisition_1C.max_dwells=2");
+        line("Tracking_1C.implementation=GPS_L1_CA_DLL_PLL_Tracking");
+        line("Tracking_1C.item_type=gr_complex");
+        line("Tracking_1C.pll_bw_hz=25.0");
+        line("Tracking_1C.dll_bw_hz=2.0");
+        line("Tracking_1C.early_late_space_chips=0.5");
+        line("TelemetryDecoder_1C.implementation=GPS_L1_CA_Telemetry_Decoder");
+    }
+    if present.bds_b1i {
+        line("Channels_B1.count=12");
+        line("Acquisition_B1.implementation=BEIDOU_B1I_PCPS_Acquisition");
+        line("Acquisition_B1.item_type=gr_complex");
+        line("Acquisition_B1.coherent_integration_time_ms=1");
+        line("Acquisition_B1.pfa=0.01");
+        line(&format!(
+            "Acquisition_B1.doppler_max={}",
+            doppler_max_hz.round()
+        ));
+        line("Acquisition_B1.doppler_step=250");
+        line("Acquisition_B1.max_dwells=2");
+        line("Tracking_B1.implementation=BEIDOU_B1I_DLL_PLL_Tracking");
+        line("Tracking_B1.item_type=gr_complex");
+        line("Tracking_B1.pll_bw_hz=25.0");
+        line("Tracking_B1.dll_bw_hz=2.0");
+        line("TelemetryDecoder_B1.implementation=BEIDOU_B1I_Telemetry_Decoder");
+    }
+    line("Observables.implementation=Hybrid_Observables");
+    line("PVT.implementation=RTKLIB_PVT");
+    line("PVT.positioning_mode=Single");
+    line("PVT.elevation_mask=5");
+    line("PVT.iono_model=OFF");
+    line("PVT.trop_model=OFF");
+    line("PVT.output_rate_ms=1000");
+    line("PVT.display_rate_ms=1000");
+    line(&format!("PVT.nmea_dump_filename={output_prefix}.nmea"));
+    line("PVT.flag_nmea_tty_port=false");
+    line("PVT.flag_rtcm_server=false");
+    line("PVT.flag_rtcm_tty_port=false");
+    line("PVT.output_enabled=true");
+    line("PVT.dump=false");
+    s
+}

@@ -1,0 +1,221 @@
+//! `skyforge synth`: scenario -> per-antenna I/Q files (+ SigMF metadata, GNSS-SDR
+//! configuration) and the geometry truth of the transmitted signals.
+
+use crate::BadInput;
+use crate::output::staged_dir::StagedDir;
+use crate::output::truth_h5::{RunMeta, TruthWriter};
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
+use skyforge_scenarios::{Scenario, World};
+use skyforge_signals::errors::ionosphere::IonoConfig;
+use skyforge_signals::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, UtcParams};
+use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::gnss_sdr::{self, SignalsPresent};
+use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::sigmf::RecordingMeta;
+use skyforge_signals::synth::transmitter::Transmitter;
+use skyforge_signals::truth::geometry::{GeometryTruth, epoch_count};
+use std::io::Write;
+use std::path::Path;
+use std::time::Instant;
+
+/// Geometry epochs the renderer interpolates between (s).
+const GEOMETRY_STEP_S: f64 = 1.0;
+/// Geometry epochs per streamed chunk.
+const CHUNK_EPOCHS: usize = 10;
+/// Acquisition Doppler search written into the GNSS-SDR configuration (Hz): ground / LEO.
+const DOPPLER_MAX_GROUND_HZ: f64 = 5_000.0;
+const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
+
+/// The GPS transmitters of `world` with their LNAV encoders; BeiDou is not synthesised yet.
+fn gps_transmitters(world: &World) -> anyhow::Result<Vec<Transmitter>> {
+    let start = world.origin.start();
+    let ephs: Vec<BroadcastEphemeris> = world
+        .satellites
+        .iter()
+        .filter(|s| s.system == System::Gps)
+        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
+        .collect();
+    let almanac = Almanac::from_ephemerides(&ephs, start).context("GPS almanac")?;
+    let k = IonoConfig::default().gps;
+    let iono = IonoParams {
+        alpha: k.alpha,
+        beta: k.beta,
+    };
+    let utc = UtcParams::from_leap_seconds(start).context("GPS UTC parameters")?;
+    ephs.iter()
+        .map(|eph| {
+            let lnav = LnavEncoder::new(eph, &almanac, &iono, &utc, 0)
+                .with_context(|| format!("LNAV for {}", eph.sat))?;
+            Transmitter::gps_l1ca(eph.sat, lnav, start)
+                .ok_or_else(|| anyhow::anyhow!("no C/A code for {}", eph.sat))
+        })
+        .collect()
+}
+
+/// Run `scenario`'s signal synthesis into `out`.
+pub fn synth(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow::Result<()> {
+    let mut scenario = skyforge_scenarios::resolve(scenario)?;
+    if let Some(seed) = seed {
+        scenario.seed = seed;
+    }
+    let Some(signal) = scenario.signal.clone() else {
+        return Err(BadInput(format!(
+            "{}: the scenario has no [signal] table, so there is nothing to synthesise (see docs/scenario.md)",
+            scenario.source
+        ))
+        .into());
+    };
+    synthesise(&scenario, &signal, out, force)
+}
+
+/// Synthesise `scenario` with `signal` into `out`.
+pub fn synthesise(
+    scenario: &Scenario,
+    signal: &SignalConfig,
+    out: &Path,
+    force: bool,
+) -> anyhow::Result<()> {
+    let started = Instant::now();
+    let world = scenario.build()?;
+    if scenario.gnss.beidou.enabled {
+        eprintln!("synth: BeiDou B1I synthesis is not implemented yet; only GPS L1 C/A is written");
+    }
+    let transmitters = gps_transmitters(&world)?;
+    // The orbits the signals follow are the quantised broadcast ephemerides.
+    let quantised: Vec<BroadcastEphemeris> = transmitters
+        .iter()
+        .map(Transmitter::broadcast_ephemeris)
+        .collect();
+    let store = EphemerisStore::new(quantised, &world.origin);
+    let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
+    let staged = StagedDir::create(out, force)?;
+
+    let n_ant = world.antennas.len();
+    let mut synth = Synthesiser::new(signal, &transmitters, n_ant, scenario.seed)
+        .context("signal configuration")?;
+    let mut files = world
+        .antennas
+        .iter()
+        .map(|a| {
+            let path = staged.file(&format!("{}.sigmf-data", a.name));
+            std::fs::File::create(&path)
+                .map(std::io::BufWriter::new)
+                .with_context(|| format!("cannot create {}", path.display()))
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let meta = RunMeta {
+        scenario: scenario.name.clone(),
+        source: scenario.source.clone(),
+        start_epoch: world.origin.start().to_string(),
+        seed: scenario.seed,
+        step_s: GEOMETRY_STEP_S,
+    };
+    let truth_path = staged.file("truth.h5");
+    let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, &world.antennas)
+        .with_context(|| format!("cannot create {}", truth_path.display()))?;
+
+    let n_epochs = epoch_count(world.duration_s, GEOMETRY_STEP_S);
+    let bar = ProgressBar::new(n_epochs as u64).with_style(
+        ProgressStyle::with_template("{spinner} synth [{bar:40}] {pos}/{len} s ({eta} left)")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let mut platform = world.platform;
+    let truth = GeometryTruth::new(&store, &sats, &world.antennas, GEOMETRY_STEP_S);
+    let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); n_ant];
+    let n_tx = transmitters.len();
+    truth
+        .stream(
+            &mut platform,
+            world.duration_s,
+            CHUNK_EPOCHS,
+            |chunk| -> anyhow::Result<()> {
+                for k in 0..chunk.t_s.len() {
+                    let links = (0..n_ant * n_tx)
+                        .map(|l| {
+                            let g = chunk.link(k, l / n_tx, l % n_tx);
+                            g.visible.then_some(LinkEnd {
+                                range_m: g.range_m,
+                                range_rate_mps: g.range_rate_mps,
+                                range_accel_mps2: g.range_accel_mps2,
+                                sat_clock_s: g.sat_clock_s,
+                                sat_clock_drift: g.sat_clock_drift,
+                            })
+                        })
+                        .collect();
+                    synth.push_epoch(chunk.t_s[k], links, &mut bufs);
+                    for (file, buf) in files.iter_mut().zip(bufs.iter_mut()) {
+                        file.write_all(buf)?;
+                        buf.clear();
+                    }
+                }
+                bar.inc(chunk.t_s.len() as u64);
+                truth_writer.append(&chunk)?;
+                Ok(())
+            },
+        )
+        .map_err(|e| anyhow::anyhow!("{e:#}"))?;
+    for f in &mut files {
+        f.flush()?;
+    }
+    truth_writer.finish()?;
+    bar.finish_and_clear();
+
+    let leo = scenario.platform.leo.is_some();
+    let start_utc = format!(
+        "{}",
+        world.origin.start().to_time_scale(hifitime::TimeScale::UTC)
+    );
+    for ant in &world.antennas {
+        let data = format!("{}.sigmf-data", ant.name);
+        let meta = RecordingMeta {
+            format: signal.format,
+            sample_rate_hz: signal.sample_rate_hz,
+            centre_frequency_hz: skyforge_orbits::constants::F_GPS_L1_HZ - signal.if_hz,
+            if_hz: signal.if_hz,
+            datetime_utc: start_utc.clone(),
+            antenna_name: ant.name.clone(),
+            antenna_position_body_m: ant.nominal_body_m.into(),
+            scenario: scenario.name.clone(),
+            seed: scenario.seed,
+            description: format!(
+                "SkyForge synthesis of {} for antenna {}: GPS L1 C/A",
+                scenario.name, ant.name
+            ),
+        };
+        std::fs::write(
+            staged.file(&format!("{}.sigmf-meta", ant.name)),
+            serde_json::to_string_pretty(&meta.to_json())? + "\n",
+        )?;
+        let conf = gnss_sdr::config(
+            signal,
+            &data,
+            SignalsPresent {
+                gps_l1ca: true,
+                bds_b1i: false,
+            },
+            if leo {
+                DOPPLER_MAX_LEO_HZ
+            } else {
+                DOPPLER_MAX_GROUND_HZ
+            },
+            &ant.name,
+        );
+        std::fs::write(staged.file(&format!("{}.gnss-sdr.conf", ant.name)), conf)?;
+    }
+    let clipped = synth.clipped();
+    let dir = staged.commit()?;
+    println!("scenario   {} ({})", scenario.name, scenario.source);
+    println!(
+        "signals    GPS L1 C/A from {} satellites, {} antennas",
+        n_tx, n_ant
+    );
+    println!(
+        "samples    {} Hz {:?}, {} s, clipped components {clipped}",
+        signal.sample_rate_hz, signal.format, world.duration_s
+    );
+    println!("wrote      {}", dir.display());
+    println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
