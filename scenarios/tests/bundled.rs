@@ -15,7 +15,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis-leo",
             "thesis/v-1.2.1",
             "thesis/t-3.2",
-            "ground-static"
+            "ground-static",
+            "interop-gps-static"
         ]
     );
     for b in bundled() {

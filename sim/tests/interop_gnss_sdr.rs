@@ -1,0 +1,151 @@
+//! Interoperability tier: the real GNSS-SDR (Debian package `gnss-sdr`) decodes SkyForge's
+//! I/Q to a position fix. Run with `cargo test -p skyforge-sim --test interop_gnss_sdr --
+//! --ignored` (scripts/test.sh --ci installs gnss-sdr and runs it).
+
+use skyforge_orbits::Vec3;
+use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use std::path::Path;
+use std::process::Command;
+
+/// The site of the bundled `interop-gps-static` scenario.
+const SITE: (f64, f64, f64) = (30.0, 114.0, 50.0);
+/// The scenario's C/N0 (dB-Hz).
+const CN0_DBHZ: f64 = 45.0;
+
+fn ecef(lat_deg: f64, lon_deg: f64, h_m: f64) -> Vec3 {
+    geodetic_to_ecef(&Geodetic {
+        lat_rad: lat_deg.to_radians(),
+        lon_rad: lon_deg.to_radians(),
+        h_m,
+    })
+}
+
+/// `ddmm.mmmm` + hemisphere to degrees.
+fn nmea_angle(value: &str, hemi: &str) -> Option<f64> {
+    let v: f64 = value.parse().ok()?;
+    let deg = (v / 100.0).trunc() + (v % 100.0) / 60.0;
+    Some(if hemi == "S" || hemi == "W" {
+        -deg
+    } else {
+        deg
+    })
+}
+
+/// (lat, lon, height) of every GGA fix.
+fn fixes(nmea: &str) -> Vec<(f64, f64, f64)> {
+    nmea.lines()
+        .filter(|l| l.starts_with("$GPGGA") || l.starts_with("$GNGGA"))
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let lat = nmea_angle(f.get(2)?, f.get(3)?)?;
+            let lon = nmea_angle(f.get(4)?, f.get(5)?)?;
+            let alt: f64 = f.get(9)?.parse().ok()?;
+            let sep: f64 = f.get(11)?.parse().unwrap_or(0.0);
+            Some((lat, lon, alt + sep))
+        })
+        .collect()
+}
+
+/// PRN -> SNR (dB-Hz) from the last complete group of GSV sentences.
+fn last_gsv(nmea: &str) -> Vec<(u8, f64)> {
+    let gsv: Vec<&str> = nmea.lines().filter(|l| l.starts_with("$GPGSV")).collect();
+    let Some(last_first) = gsv.iter().rposition(|l| l.split(',').nth(2) == Some("1")) else {
+        return Vec::new();
+    };
+    let mut out = Vec::new();
+    for line in &gsv[last_first..] {
+        let body = line.split('*').next().unwrap_or("");
+        let f: Vec<&str> = body.split(',').collect();
+        for sat in f[4..].chunks(4) {
+            if let (Some(prn), Some(snr)) = (sat.first(), sat.get(3))
+                && let (Ok(prn), Ok(snr)) = (prn.parse::<u8>(), snr.parse::<f64>())
+            {
+                out.push((prn, snr));
+            }
+        }
+    }
+    out
+}
+
+/// GPS PRNs whose elevation stays above `mask_deg` for the whole run, from truth.h5.
+fn satellites_above(truth: &Path, mask_deg: f64) -> Vec<u8> {
+    let file = hdf5::File::open(truth).unwrap();
+    let ids: Vec<hdf5::types::VarLenUnicode> =
+        file.dataset("satellites/id").unwrap().read_raw().unwrap();
+    let g = file.group("antennas/ant1").unwrap();
+    let sat_index: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
+    let elevation: Vec<f64> = g.dataset("elevation_rad").unwrap().read_raw().unwrap();
+    let mut min_el = vec![f64::INFINITY; ids.len()];
+    for (&s, &e) in sat_index.iter().zip(&elevation) {
+        min_el[s as usize] = min_el[s as usize].min(e.to_degrees());
+    }
+    ids.iter()
+        .zip(&min_el)
+        .filter(|(_, el)| el.is_finite() && **el > mask_deg)
+        .filter_map(|(id, _)| id.as_str().strip_prefix('G')?.parse().ok())
+        .collect()
+}
+
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh --ci installs it)"]
+fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
+    assert!(
+        Command::new("gnss-sdr").arg("--version").output().is_ok(),
+        "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh --ci does) ***\n"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(["synth", "interop-gps-static", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = Command::new("gnss-sdr")
+        .arg("--config_file=ant1.gnss-sdr.conf")
+        .current_dir(&out)
+        .output()
+        .unwrap();
+    let log = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "gnss-sdr failed:\n{log}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let nmea = std::fs::read_to_string(out.join("ant1.nmea")).unwrap();
+
+    // Position: every fix after the first few within 10 m (3D) of the scenario site.
+    let truth = ecef(SITE.0, SITE.1, SITE.2);
+    let fixes = fixes(&nmea);
+    assert!(
+        fixes.len() >= 30,
+        "only {} fixes in 90 s:\n{log}",
+        fixes.len()
+    );
+    let errors: Vec<f64> = fixes
+        .iter()
+        .skip(3)
+        .map(|&(lat, lon, h)| (ecef(lat, lon, h) - truth).norm())
+        .collect();
+    let worst = errors.iter().cloned().fold(0.0, f64::max);
+    let mean = errors.iter().sum::<f64>() / errors.len() as f64;
+    println!(
+        "GNSS-SDR: {} fixes, 3D error mean {mean:.2} m, worst {worst:.2} m",
+        fixes.len()
+    );
+    assert!(worst < 10.0, "3D position error up to {worst} m");
+
+    // Every satellite above 10 deg is in GNSS-SDR's solution, at the scenario's C/N0 +/- 2 dB.
+    let gsv = last_gsv(&nmea);
+    for prn in satellites_above(&out.join("truth.h5"), 10.0) {
+        let snr = gsv.iter().find(|(p, _)| *p == prn).map(|(_, s)| *s);
+        println!("G{prn:02}: GNSS-SDR C/N0 {snr:?} dB-Hz");
+        let snr = snr.unwrap_or_else(|| {
+            panic!("G{prn:02} is above 10 deg but not in GNSS-SDR's solution: {gsv:?}")
+        });
+        assert!(
+            (snr - CN0_DBHZ).abs() <= 2.0,
+            "G{prn:02}: C/N0 {snr} dB-Hz, scenario {CN0_DBHZ}"
+        );
+    }
+}
