@@ -41,6 +41,11 @@ const BUNDLED: &[Bundled] = &[
         summary: "90 s static GPS L1 C/A at 4 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
         text: include_str!("../bundled/interop-gps-static.toml"),
     },
+    Bundled {
+        name: "interop-bds-static",
+        summary: "90 s static BeiDou B1I (GEO/IGSO/MEO) at 4.092 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        text: include_str!("../bundled/interop-bds-static.toml"),
+    },
 ];
 
 /// Every bundled scenario.

@@ -16,7 +16,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis/v-1.2.1",
             "thesis/t-3.2",
             "ground-static",
-            "interop-gps-static"
+            "interop-gps-static",
+            "interop-bds-static"
         ]
     );
     for b in bundled() {

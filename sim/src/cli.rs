@@ -32,11 +32,12 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Synthesise the scenario's I/Q samples: one file per antenna (DIR/<antenna>.sigmf-data)
-    /// with SigMF metadata and a ready-to-run GNSS-SDR configuration, plus DIR/truth.h5.
+    /// Synthesise the scenario's I/Q samples: one recording per antenna and band
+    /// (DIR/<antenna>.gps-l1ca.sigmf-data, DIR/<antenna>.bds-b1i.sigmf-data) with SigMF
+    /// metadata and a ready-to-run GNSS-SDR configuration, plus DIR/truth.h5.
     ///
-    /// The scenario needs a [signal] table. GPS L1 C/A is synthesised; BeiDou B1I is not
-    /// yet. Nothing is written when the scenario has an error (exit code 2).
+    /// The scenario needs a [signal] table. Nothing is written when the scenario has an
+    /// error (exit code 2).
     Synth {
         /// Scenario file or bundled scenario name, e.g. `interop-gps-static`.
         scenario: String,

@@ -124,7 +124,7 @@ pub fn config(
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
-    line("PVT.elevation_mask=5");
+    line("PVT.elevation_mask=10");
     line("PVT.iono_model=OFF");
     line("PVT.trop_model=OFF");
     line("PVT.output_rate_ms=1000");

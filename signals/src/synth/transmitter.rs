@@ -1,20 +1,50 @@
 //! A transmitting satellite as the synthesiser sees it: ranging code, data bits and the
 //! time scale its code and data are counted in.
 
+use crate::codes::bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 use crate::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, gps_ca};
+use crate::codes::neumann_hoffman::NH20;
+use crate::navmsg::bds::{BdsNavEncoder, BdsNavFormat};
 use crate::navmsg::gps_lnav::LnavEncoder;
 use crate::signal::SignalId;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
-/// Chips per LNAV data bit (20 C/A periods).
-const GPS_CHIPS_PER_BIT: u64 = 20 * 1023;
-
 /// Data modulating a signal.
 #[derive(Debug, Clone)]
 pub enum DataBits {
-    /// GPS LNAV, 50 bps, bit b from 0.02 b s after the GPS epoch.
+    /// GPS LNAV, 50 bps (20 C/A periods per bit), bit b from 0.02 b s after the GPS epoch.
     GpsLnav(Box<LnavEncoder>),
+    /// BeiDou D1 (50 bps, 20 B1I periods per bit, NH20 per period) or D2 (500 bps, 2
+    /// periods per bit, no NH), bit 0 at the encoder's BDT week start.
+    Bds(Box<BdsNavEncoder>),
+}
+
+impl DataBits {
+    /// Code periods per data bit.
+    fn periods_per_bit(&self) -> u64 {
+        match self {
+            DataBits::GpsLnav(_) => 20,
+            DataBits::Bds(e) => match e.format() {
+                BdsNavFormat::D1 => 20,
+                BdsNavFormat::D2 => 2,
+            },
+        }
+    }
+    /// Data bit `b` (0 or 1).
+    fn bit(&self, b: u64) -> u8 {
+        match self {
+            DataBits::GpsLnav(lnav) => lnav.bit(b),
+            DataBits::Bds(e) => e.bits(b, 1).first().copied().unwrap_or(0),
+        }
+    }
+    /// Secondary-code sign of code period `p` (+1/-1).
+    fn secondary(&self, p: u64) -> i8 {
+        match self {
+            DataBits::Bds(e) if e.format() == BdsNavFormat::D1 => NH20[(p % 20) as usize],
+            _ => 1,
+        }
+    }
 }
 
 /// One satellite's signal.
@@ -53,11 +83,31 @@ impl Transmitter {
         })
     }
 
+    /// BeiDou B1I with D1 or D2 data; chips and bits count from the encoder's BDT week
+    /// start, which must not be after `start`.
+    pub fn bds_b1i(sat: SatId, nav: BdsNavEncoder, start: Epoch) -> Option<Self> {
+        let code = bds_b1i(sat.prn)?;
+        let ns = (start - nav.week_start()).total_nanoseconds();
+        if ns < 0 {
+            return None;
+        }
+        Some(Self {
+            sat,
+            signal: SignalId::BdsB1I,
+            chip_rate_hz: BDS_B1I_CHIP_RATE_HZ,
+            code,
+            data: DataBits::Bds(Box::new(nav)),
+            start_whole_s: (ns / 1_000_000_000) as u64,
+            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+        })
+    }
+
     /// The ephemeris the data broadcast (quantised as the message carries it): the orbit
     /// and clock the signal must follow so that a receiver's decoded ephemeris is exact.
     pub fn broadcast_ephemeris(&self) -> BroadcastEphemeris {
         match &self.data {
             DataBits::GpsLnav(lnav) => lnav.broadcast_ephemeris(),
+            DataBits::Bds(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -70,21 +120,28 @@ impl Transmitter {
         (base.wrapping_add_signed(whole as i64), chips - whole)
     }
 
-    /// Append the signed chips `k0 .. k0 + count` (absolute indices, data bits applied) to
-    /// `out`; the data bit is looked up once per bit, not per chip.
+    /// Append the signed chips `k0 .. k0 + count` (absolute indices, data bits and any
+    /// secondary code applied) to `out`; data and secondary code are looked up once per
+    /// code period, not per chip.
     pub fn chip_signs(&self, k0: u64, count: usize, out: &mut Vec<i8>) {
         let len = self.code.len() as u64;
-        let mut k = k0;
-        let end = k0 + count as u64;
+        let per_bit = self.data.periods_per_bit();
+        let (mut k, end) = (k0, k0 + count as u64);
+        let mut cached: Option<(u64, u8)> = None;
         while k < end {
-            let (bit, bit_end) = match &self.data {
-                DataBits::GpsLnav(lnav) => {
-                    let b = k / GPS_CHIPS_PER_BIT;
-                    (lnav.bit(b), (b + 1) * GPS_CHIPS_PER_BIT)
+            let period = k / len;
+            let b = period / per_bit;
+            let bit = match cached {
+                Some((cb, v)) if cb == b => v,
+                _ => {
+                    let v = self.data.bit(b);
+                    cached = Some((b, v));
+                    v
                 }
             };
-            let stop = bit_end.min(end);
-            let sign = if bit == 1 { -1 } else { 1 };
+            let data_sign: i8 = if bit == 1 { -1 } else { 1 };
+            let sign = data_sign * self.data.secondary(period);
+            let stop = ((period + 1) * len).min(end);
             out.extend((k..stop).map(|c| sign * self.code[(c % len) as usize]));
             k = stop;
         }

@@ -9,7 +9,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::ionosphere::IonoConfig;
+use skyforge_signals::navmsg::bds::{BdsNavEncoder, Klobuchar};
 use skyforge_signals::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, UtcParams};
+use skyforge_signals::signal::SignalId;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr::{self, SignalsPresent};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
@@ -54,6 +56,41 @@ fn gps_transmitters(world: &World) -> anyhow::Result<Vec<Transmitter>> {
         .collect()
 }
 
+/// The BeiDou B1I transmitters of `world` with their D1/D2 encoders.
+fn bds_transmitters(world: &World) -> anyhow::Result<Vec<Transmitter>> {
+    let start = world.origin.start();
+    let ephs: Vec<BroadcastEphemeris> = world
+        .satellites
+        .iter()
+        .filter(|s| s.system == System::Beidou)
+        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
+        .collect();
+    let k = IonoConfig::default().bds;
+    let iono = Klobuchar {
+        alpha: k.alpha,
+        beta: k.beta,
+    };
+    let (week, _) = skyforge_orbits::time::bdt_week_sow(start);
+    ephs.iter()
+        .map(|eph| {
+            let nav = BdsNavEncoder::new(eph, &iono, &ephs, week)
+                .with_context(|| format!("D1/D2 for {}", eph.sat))?;
+            Transmitter::bds_b1i(eph.sat, nav, start)
+                .ok_or_else(|| anyhow::anyhow!("no B1I code for {}", eph.sat))
+        })
+        .collect()
+}
+
+/// The transmitters of one band, written to one recording per antenna.
+struct Band {
+    signal: SignalId,
+    /// File-name tag: `<antenna>.<tag>.sigmf-data`.
+    tag: &'static str,
+    /// Index of the band's first transmitter among all transmitters.
+    first: usize,
+    count: usize,
+}
+
 /// Run `scenario`'s signal synthesis into `out`.
 pub fn synth(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow::Result<()> {
     let mut scenario = skyforge_scenarios::resolve(scenario)?;
@@ -79,10 +116,34 @@ pub fn synthesise(
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let world = scenario.build()?;
-    if scenario.gnss.beidou.enabled {
-        eprintln!("synth: BeiDou B1I synthesis is not implemented yet; only GPS L1 C/A is written");
-    }
-    let transmitters = gps_transmitters(&world)?;
+    let gps = if scenario.gnss.gps.enabled {
+        gps_transmitters(&world)?
+    } else {
+        Vec::new()
+    };
+    let bds = if scenario.gnss.beidou.enabled {
+        bds_transmitters(&world)?
+    } else {
+        Vec::new()
+    };
+    let bands: Vec<Band> = [
+        Band {
+            signal: SignalId::GpsL1Ca,
+            tag: "gps-l1ca",
+            first: 0,
+            count: gps.len(),
+        },
+        Band {
+            signal: SignalId::BdsB1I,
+            tag: "bds-b1i",
+            first: gps.len(),
+            count: bds.len(),
+        },
+    ]
+    .into_iter()
+    .filter(|b| b.count > 0)
+    .collect();
+    let transmitters: Vec<Transmitter> = gps.into_iter().chain(bds).collect();
     // The orbits the signals follow are the quantised broadcast ephemerides.
     let quantised: Vec<BroadcastEphemeris> = transmitters
         .iter()
@@ -93,16 +154,32 @@ pub fn synthesise(
     let staged = StagedDir::create(out, force)?;
 
     let n_ant = world.antennas.len();
-    let mut synth = Synthesiser::new(signal, &transmitters, n_ant, scenario.seed)
-        .context("signal configuration")?;
-    let mut files = world
-        .antennas
+    let mut synths = bands
         .iter()
-        .map(|a| {
-            let path = staged.file(&format!("{}.sigmf-data", a.name));
-            std::fs::File::create(&path)
-                .map(std::io::BufWriter::new)
-                .with_context(|| format!("cannot create {}", path.display()))
+        .map(|b| {
+            Synthesiser::new(
+                signal,
+                &transmitters[b.first..b.first + b.count],
+                n_ant,
+                scenario.seed,
+            )
+            .context("signal configuration")
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    // files[band][antenna]
+    let mut files = bands
+        .iter()
+        .map(|b| {
+            world
+                .antennas
+                .iter()
+                .map(|a| {
+                    let path = staged.file(&format!("{}.{}.sigmf-data", a.name, b.tag));
+                    std::fs::File::create(&path)
+                        .map(std::io::BufWriter::new)
+                        .with_context(|| format!("cannot create {}", path.display()))
+                })
+                .collect::<anyhow::Result<Vec<_>>>()
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
     let meta = RunMeta {
@@ -124,7 +201,6 @@ pub fn synthesise(
     let mut platform = world.platform;
     let truth = GeometryTruth::new(&store, &sats, &world.antennas, GEOMETRY_STEP_S);
     let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); n_ant];
-    let n_tx = transmitters.len();
     truth
         .stream(
             &mut platform,
@@ -132,22 +208,25 @@ pub fn synthesise(
             CHUNK_EPOCHS,
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
-                    let links = (0..n_ant * n_tx)
-                        .map(|l| {
-                            let g = chunk.link(k, l / n_tx, l % n_tx);
-                            g.visible.then_some(LinkEnd {
-                                range_m: g.range_m,
-                                range_rate_mps: g.range_rate_mps,
-                                range_accel_mps2: g.range_accel_mps2,
-                                sat_clock_s: g.sat_clock_s,
-                                sat_clock_drift: g.sat_clock_drift,
+                    for ((band, synth), band_files) in bands.iter().zip(&mut synths).zip(&mut files)
+                    {
+                        let links = (0..n_ant * band.count)
+                            .map(|l| {
+                                let g = chunk.link(k, l / band.count, band.first + l % band.count);
+                                g.visible.then_some(LinkEnd {
+                                    range_m: g.range_m,
+                                    range_rate_mps: g.range_rate_mps,
+                                    range_accel_mps2: g.range_accel_mps2,
+                                    sat_clock_s: g.sat_clock_s,
+                                    sat_clock_drift: g.sat_clock_drift,
+                                })
                             })
-                        })
-                        .collect();
-                    synth.push_epoch(chunk.t_s[k], links, &mut bufs);
-                    for (file, buf) in files.iter_mut().zip(bufs.iter_mut()) {
-                        file.write_all(buf)?;
-                        buf.clear();
+                            .collect();
+                        synth.push_epoch(chunk.t_s[k], links, &mut bufs);
+                        for (file, buf) in band_files.iter_mut().zip(bufs.iter_mut()) {
+                            file.write_all(buf)?;
+                            buf.clear();
+                        }
                     }
                 }
                 bar.inc(chunk.t_s.len() as u64);
@@ -156,7 +235,7 @@ pub fn synthesise(
             },
         )
         .map_err(|e| anyhow::anyhow!("{e:#}"))?;
-    for f in &mut files {
+    for f in files.iter_mut().flatten() {
         f.flush()?;
     }
     truth_writer.finish()?;
@@ -167,50 +246,55 @@ pub fn synthesise(
         "{}",
         world.origin.start().to_time_scale(hifitime::TimeScale::UTC)
     );
-    for ant in &world.antennas {
-        let data = format!("{}.sigmf-data", ant.name);
-        let meta = RecordingMeta {
-            format: signal.format,
-            sample_rate_hz: signal.sample_rate_hz,
-            centre_frequency_hz: skyforge_orbits::constants::F_GPS_L1_HZ - signal.if_hz,
-            if_hz: signal.if_hz,
-            datetime_utc: start_utc.clone(),
-            antenna_name: ant.name.clone(),
-            antenna_position_body_m: ant.nominal_body_m.into(),
-            scenario: scenario.name.clone(),
-            seed: scenario.seed,
-            description: format!(
-                "SkyForge synthesis of {} for antenna {}: GPS L1 C/A",
-                scenario.name, ant.name
-            ),
-        };
-        std::fs::write(
-            staged.file(&format!("{}.sigmf-meta", ant.name)),
-            serde_json::to_string_pretty(&meta.to_json())? + "\n",
-        )?;
-        let conf = gnss_sdr::config(
-            signal,
-            &data,
-            SignalsPresent {
-                gps_l1ca: true,
-                bds_b1i: false,
-            },
-            if leo {
+    for band in &bands {
+        for ant in &world.antennas {
+            let name = format!("{}.{}", ant.name, band.tag);
+            let data = format!("{name}.sigmf-data");
+            let meta = RecordingMeta {
+                format: signal.format,
+                sample_rate_hz: signal.sample_rate_hz,
+                centre_frequency_hz: band.signal.carrier_hz() - signal.if_hz,
+                if_hz: signal.if_hz,
+                datetime_utc: start_utc.clone(),
+                antenna_name: ant.name.clone(),
+                antenna_position_body_m: ant.nominal_body_m.into(),
+                scenario: scenario.name.clone(),
+                seed: scenario.seed,
+                description: format!(
+                    "SkyForge synthesis of {} for antenna {}: {}",
+                    scenario.name,
+                    ant.name,
+                    band.signal.name()
+                ),
+            };
+            std::fs::write(
+                staged.file(&format!("{name}.sigmf-meta")),
+                serde_json::to_string_pretty(&meta.to_json())? + "\n",
+            )?;
+            let present = SignalsPresent {
+                gps_l1ca: band.signal == SignalId::GpsL1Ca,
+                bds_b1i: band.signal == SignalId::BdsB1I,
+            };
+            let doppler = if leo {
                 DOPPLER_MAX_LEO_HZ
             } else {
                 DOPPLER_MAX_GROUND_HZ
-            },
-            &ant.name,
-        );
-        std::fs::write(staged.file(&format!("{}.gnss-sdr.conf", ant.name)), conf)?;
+            };
+            let conf = gnss_sdr::config(signal, &data, present, doppler, &name);
+            std::fs::write(staged.file(&format!("{name}.gnss-sdr.conf")), conf)?;
+        }
     }
-    let clipped = synth.clipped();
+    let clipped: u64 = synths.iter().map(Synthesiser::clipped).sum();
     let dir = staged.commit()?;
     println!("scenario   {} ({})", scenario.name, scenario.source);
-    println!(
-        "signals    GPS L1 C/A from {} satellites, {} antennas",
-        n_tx, n_ant
-    );
+    for band in &bands {
+        println!(
+            "signals    {} from {} satellites, {} antennas",
+            band.signal.name(),
+            band.count,
+            n_ant
+        );
+    }
     println!(
         "samples    {} Hz {:?}, {} s, clipped components {clipped}",
         signal.sample_rate_hz, signal.format, world.duration_s
