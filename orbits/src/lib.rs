@@ -12,6 +12,7 @@ pub mod ephemeris;
 pub mod frames;
 pub mod platform;
 pub mod propagate;
+pub mod real_data;
 pub mod time;
 pub mod visibility;
 

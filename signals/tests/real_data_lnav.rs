@@ -19,17 +19,7 @@ use skyforge_signals::navmsg::gps_lnav::{Almanac, GPS_PI, IonoParams, LnavEncode
 use std::path::PathBuf;
 
 fn data_dir() -> PathBuf {
-    let dir = std::env::var_os("SKYFORGE_DATA")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| {
-            PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../shared/data"))
-        });
-    assert!(
-        dir.is_dir(),
-        "\n\n*** REAL-DATA FOLDER MISSING: {} ***\n*** set SKYFORGE_DATA to the shared/data folder ***\n",
-        dir.display()
-    );
-    dir
+    skyforge_orbits::real_data::require_dir()
 }
 
 fn gps_ephemerides() -> Vec<BroadcastEphemeris> {
