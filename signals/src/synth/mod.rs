@@ -3,6 +3,7 @@
 //! sample-file formats with their SigMF metadata.
 
 pub mod config;
+pub mod constellation;
 pub mod format;
 pub mod gnss_sdr;
 pub mod mix;

@@ -6,13 +6,11 @@ use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_scenarios::{Scenario, World};
-use skyforge_signals::errors::ionosphere::IonoConfig;
-use skyforge_signals::navmsg::bds::{BdsNavEncoder, Klobuchar};
-use skyforge_signals::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, UtcParams};
 use skyforge_signals::signal::SignalId;
 use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::gnss_sdr::{self, SignalsPresent};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
 use skyforge_signals::synth::sigmf::RecordingMeta;
@@ -30,54 +28,12 @@ const CHUNK_EPOCHS: usize = 10;
 const DOPPLER_MAX_GROUND_HZ: f64 = 5_000.0;
 const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
 
-/// The GPS transmitters of `world` with their LNAV encoders; BeiDou is not synthesised yet.
-fn gps_transmitters(world: &World) -> anyhow::Result<Vec<Transmitter>> {
-    let start = world.origin.start();
-    let ephs: Vec<BroadcastEphemeris> = world
+/// Every satellite's ephemeris at the scenario start (the set its message will carry).
+fn ephemerides_at_start(world: &World) -> Vec<BroadcastEphemeris> {
+    world
         .satellites
         .iter()
-        .filter(|s| s.system == System::Gps)
         .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
-        .collect();
-    let almanac = Almanac::from_ephemerides(&ephs, start).context("GPS almanac")?;
-    let k = IonoConfig::default().gps;
-    let iono = IonoParams {
-        alpha: k.alpha,
-        beta: k.beta,
-    };
-    let utc = UtcParams::from_leap_seconds(start).context("GPS UTC parameters")?;
-    ephs.iter()
-        .map(|eph| {
-            let lnav = LnavEncoder::new(eph, &almanac, &iono, &utc, 0)
-                .with_context(|| format!("LNAV for {}", eph.sat))?;
-            Transmitter::gps_l1ca(eph.sat, lnav, start)
-                .ok_or_else(|| anyhow::anyhow!("no C/A code for {}", eph.sat))
-        })
-        .collect()
-}
-
-/// The BeiDou B1I transmitters of `world` with their D1/D2 encoders.
-fn bds_transmitters(world: &World) -> anyhow::Result<Vec<Transmitter>> {
-    let start = world.origin.start();
-    let ephs: Vec<BroadcastEphemeris> = world
-        .satellites
-        .iter()
-        .filter(|s| s.system == System::Beidou)
-        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
-        .collect();
-    let k = IonoConfig::default().bds;
-    let iono = Klobuchar {
-        alpha: k.alpha,
-        beta: k.beta,
-    };
-    let (week, _) = skyforge_orbits::time::bdt_week_sow(start);
-    ephs.iter()
-        .map(|eph| {
-            let nav = BdsNavEncoder::new(eph, &iono, &ephs, week)
-                .with_context(|| format!("D1/D2 for {}", eph.sat))?;
-            Transmitter::bds_b1i(eph.sat, nav, start)
-                .ok_or_else(|| anyhow::anyhow!("no B1I code for {}", eph.sat))
-        })
         .collect()
 }
 
@@ -116,16 +72,11 @@ pub fn synthesise(
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let world = scenario.build()?;
-    let gps = if scenario.gnss.gps.enabled {
-        gps_transmitters(&world)?
-    } else {
-        Vec::new()
-    };
-    let bds = if scenario.gnss.beidou.enabled {
-        bds_transmitters(&world)?
-    } else {
-        Vec::new()
-    };
+    // The world holds only the enabled constellations.
+    let ephs = ephemerides_at_start(&world);
+    let start = world.origin.start();
+    let gps = constellation::gps_l1ca(&ephs, start).context("GPS transmitters")?;
+    let bds = constellation::bds_b1i(&ephs, start).context("BeiDou transmitters")?;
     let bands: Vec<Band> = [
         Band {
             signal: SignalId::GpsL1Ca,

@@ -1,0 +1,72 @@
+//! The transmitters of a constellation: each satellite's navigation-message encoder built
+//! from its broadcast ephemeris (with the constellation's almanac, ionosphere and UTC
+//! parameters), and its ranging code.
+
+use super::transmitter::Transmitter;
+use crate::errors::ionosphere::IonoConfig;
+use crate::navmsg::bds::{BdsNavEncoder, BdsNavError, Klobuchar};
+use crate::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
+use hifitime::Epoch;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+
+/// Why a constellation's transmitters could not be built.
+#[derive(Debug, thiserror::Error)]
+pub enum TransmitterError {
+    #[error("GPS LNAV: {0}")]
+    Lnav(#[from] LnavError),
+    #[error("BeiDou D1/D2: {0}")]
+    Bds(#[from] BdsNavError),
+    #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
+    NoSignal(SatId),
+}
+
+/// GPS L1 C/A transmitters for the GPS ephemerides among `ephs` (the ionosphere
+/// coefficients are the default Klobuchar set of `errors::ionosphere`).
+pub fn gps_l1ca(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let gps: Vec<&BroadcastEphemeris> = ephs
+        .iter()
+        .filter(|e| e.sat.system == System::Gps)
+        .collect();
+    let owned: Vec<BroadcastEphemeris> = gps.iter().map(|e| (*e).clone()).collect();
+    let almanac = Almanac::from_ephemerides(&owned, start)?;
+    let k = IonoConfig::default().gps;
+    let iono = IonoParams {
+        alpha: k.alpha,
+        beta: k.beta,
+    };
+    let utc = UtcParams::from_leap_seconds(start)?;
+    gps.iter()
+        .map(|eph| {
+            let lnav = LnavEncoder::new(eph, &almanac, &iono, &utc, 0)?;
+            Transmitter::gps_l1ca(eph.sat, lnav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+        })
+        .collect()
+}
+
+/// BeiDou B1I transmitters (D1 for MEO/IGSO, D2 for GEO) for the BeiDou ephemerides among
+/// `ephs`.
+pub fn bds_b1i(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let bds: Vec<BroadcastEphemeris> = ephs
+        .iter()
+        .filter(|e| e.sat.system == System::Beidou)
+        .cloned()
+        .collect();
+    let k = IonoConfig::default().bds;
+    let iono = Klobuchar {
+        alpha: k.alpha,
+        beta: k.beta,
+    };
+    let (week, _) = skyforge_orbits::time::bdt_week_sow(start);
+    bds.iter()
+        .map(|eph| {
+            let nav = BdsNavEncoder::new(eph, &iono, &bds, week)?;
+            Transmitter::bds_b1i(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+        })
+        .collect()
+}
