@@ -152,7 +152,7 @@ fn series<T: H5Type>(
     unit: &str,
     description: &str,
 ) -> hdf5::Result<Dataset> {
-    let mut builder = group.new_dataset::<T>();
+    let mut builder = group.new_dataset::<T>().obj_track_times(false);
     if matches!(
         T::type_descriptor(),
         TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_)
@@ -216,7 +216,10 @@ impl TruthWriter {
             .write_scalar(&meta.seed)?;
         f64_attr(&file, "step_s", &[meta.step_s])?;
 
-        let time = file.create_group("time")?;
+        let time = file
+            .create_group_builder()
+            .obj_track_times(false)
+            .create("time")?;
         let t_s = series::<f64>(
             &time,
             "t_s",
@@ -224,7 +227,10 @@ impl TruthWriter {
             "s",
             "receive time, seconds since start_epoch (GPST)",
         )?;
-        let pg = file.create_group("platform")?;
+        let pg = file
+            .create_group_builder()
+            .obj_track_times(false)
+            .create("platform")?;
         let platform = [
             series::<f64>(
                 &pg,
@@ -249,12 +255,18 @@ impl TruthWriter {
                 "yaw, pitch, roll (3-2-1) of the body relative to the reference frame (orbital for a LEO, NED otherwise)",
             )?,
         ];
-        let sg = file.create_group("satellites")?;
+        let sg = file
+            .create_group_builder()
+            .obj_track_times(false)
+            .create("satellites")?;
         let ids: Vec<VarLenUnicode> = sats
             .iter()
             .filter_map(|s| s.to_string().parse().ok())
             .collect();
-        sg.new_dataset_builder().with_data(&ids).create("id")?;
+        sg.new_dataset_builder()
+            .obj_track_times(false)
+            .with_data(&ids)
+            .create("id")?;
         let carriers: Vec<f64> = sats
             .iter()
             .map(|s| SignalId::primary_for(*s).carrier_hz())
@@ -265,10 +277,16 @@ impl TruthWriter {
             .create("carrier_hz")?;
         text_attr(&ds, "units", "Hz")?;
 
-        let ag = file.create_group("antennas")?;
+        let ag = file
+            .create_group_builder()
+            .obj_track_times(false)
+            .create("antennas")?;
         let mut ants = Vec::new();
         for ant in antennas {
-            let g = ag.create_group(&ant.name)?;
+            let g = ag
+                .create_group_builder()
+                .obj_track_times(false)
+                .create(ant.name.as_str())?;
             f64_attr(&g, "nominal_body_m", ant.nominal_body_m.as_slice())?;
             f64_attr(&g, "true_body_m", ant.true_body_m.as_slice())?;
             f64_attr(&g, "boresight_body", ant.boresight_body.as_slice())?;
