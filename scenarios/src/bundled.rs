@@ -46,6 +46,11 @@ const BUNDLED: &[Bundled] = &[
         summary: "90 s static BeiDou B1I (GEO/IGSO/MEO) at 4.092 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
         text: include_str!("../bundled/interop-bds-static.toml"),
     },
+    Bundled {
+        name: "interop-leo-gps",
+        summary: "90 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for GNSS-SDR with a widened Doppler search",
+        text: include_str!("../bundled/interop-leo-gps.toml"),
+    },
 ];
 
 /// Every bundled scenario.

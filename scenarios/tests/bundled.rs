@@ -17,7 +17,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis/t-3.2",
             "ground-static",
             "interop-gps-static",
-            "interop-bds-static"
+            "interop-bds-static",
+            "interop-leo-gps"
         ]
     );
     for b in bundled() {

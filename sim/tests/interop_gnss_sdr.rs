@@ -33,15 +33,27 @@ fn nmea_angle(value: &str, hemi: &str) -> Option<f64> {
 
 /// (lat, lon, height) of every GGA fix.
 fn fixes(nmea: &str) -> Vec<(f64, f64, f64)> {
+    timed_fixes(nmea)
+        .into_iter()
+        .map(|(_, lat, lon, h)| (lat, lon, h))
+        .collect()
+}
+
+/// (UTC seconds of day, lat, lon, height) of every GGA fix.
+fn timed_fixes(nmea: &str) -> Vec<(f64, f64, f64, f64)> {
     nmea.lines()
         .filter(|l| l.starts_with("$GPGGA") || l.starts_with("$GNGGA"))
         .filter_map(|l| {
             let f: Vec<&str> = l.split(',').collect();
+            let hms = f.get(1)?;
+            let sod = hms.get(0..2)?.parse::<f64>().ok()? * 3600.0
+                + hms.get(2..4)?.parse::<f64>().ok()? * 60.0
+                + hms.get(4..)?.parse::<f64>().ok()?;
             let lat = nmea_angle(f.get(2)?, f.get(3)?)?;
             let lon = nmea_angle(f.get(4)?, f.get(5)?)?;
             let alt: f64 = f.get(9)?.parse().ok()?;
             let sep: f64 = f.get(11)?.parse().unwrap_or(0.0);
-            Some((lat, lon, alt + sep))
+            Some((sod, lat, lon, alt + sep))
         })
         .collect()
 }
@@ -86,17 +98,16 @@ fn satellites_above(truth: &Path, mask_deg: f64) -> Vec<u8> {
         .collect()
 }
 
-#[test]
-#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh --ci installs it)"]
-fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
+/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's GPS
+/// recording, and return (output folder, GNSS-SDR's console log, its NMEA output).
+fn synth_and_receive(dir: &Path, scenario: &str) -> (std::path::PathBuf, String, String) {
     assert!(
         Command::new("gnss-sdr").arg("--version").output().is_ok(),
-        "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh --ci does) ***\n"
+        "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh does) ***\n"
     );
-    let tmp = tempfile::tempdir().unwrap();
-    let out = tmp.path().join("out");
+    let out = dir.join("out");
     let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(["synth", "interop-gps-static", "--out"])
+        .args(["synth", scenario, "--out"])
         .arg(&out)
         .output()
         .unwrap();
@@ -106,13 +117,21 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
         .current_dir(&out)
         .output()
         .unwrap();
-    let log = String::from_utf8_lossy(&o.stdout);
+    let log = String::from_utf8_lossy(&o.stdout).into_owned();
     assert!(
         o.status.success(),
         "gnss-sdr failed:\n{log}\n{}",
         String::from_utf8_lossy(&o.stderr)
     );
     let nmea = std::fs::read_to_string(out.join("ant1.gps-l1ca.nmea")).unwrap();
+    (out, log, nmea)
+}
+
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gps-static");
 
     // Position: GNSS-SDR's single-epoch fixes scatter by a few metres (code noise at
     // 45 dB-Hz through its 2 Hz DLL, times the DOP); the RMS 3D error and the error of the
@@ -156,4 +175,46 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
             "G{prn:02}: C/N0 {snr} dB-Hz, scenario {CN0_DBHZ}"
         );
     }
+}
+
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_fixes_on_the_thesis_leo() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-leo-gps");
+    // Truth: the platform's ECEF position at 1 Hz (the antenna sits at the centre of mass).
+    let file = hdf5::File::open(out.join("truth.h5")).unwrap();
+    let t: Vec<f64> = file.dataset("time/t_s").unwrap().read_raw().unwrap();
+    let r: Vec<f64> = file
+        .dataset("platform/r_ecef_m")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    // NMEA times are UTC; the scenario starts at 2023-03-12T00:00:00 GPST.
+    let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
+    let midnight_utc = hifitime::Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);
+    let offset_s = (midnight_utc - start).to_seconds();
+    let mut errors = Vec::new();
+    for (sod, lat, lon, h) in timed_fixes(&nmea) {
+        let ts = sod + offset_s;
+        let Some(i) = t.iter().position(|&x| x > ts).filter(|&i| i > 0) else {
+            continue;
+        };
+        let w = (ts - t[i - 1]) / (t[i] - t[i - 1]);
+        let at = |k: usize| Vec3::new(r[3 * k], r[3 * k + 1], r[3 * k + 2]);
+        let truth = at(i - 1) * (1.0 - w) + at(i) * w;
+        errors.push((ecef(lat, lon, h) - truth).norm());
+    }
+    assert!(
+        errors.len() >= 20,
+        "only {} LEO fixes in 90 s:\n{log}",
+        errors.len()
+    );
+    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
+    let worst = errors.iter().cloned().fold(0.0, f64::max);
+    println!(
+        "GNSS-SDR on the LEO: {} fixes, 3D error RMS {rms:.2} m, worst {worst:.2} m",
+        errors.len()
+    );
+    assert!(worst < 50.0, "a LEO fix {worst} m from truth");
 }
