@@ -142,7 +142,8 @@ impl Transmitter {
             let data_sign: i8 = if bit == 1 { -1 } else { 1 };
             let sign = data_sign * self.data.secondary(period);
             let stop = ((period + 1) * len).min(end);
-            out.extend((k..stop).map(|c| sign * self.code[(c % len) as usize]));
+            let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
+            out.extend(self.code[from..to].iter().map(|&c| sign * c));
             k = stop;
         }
     }
