@@ -253,6 +253,17 @@ fn synthesis_is_bit_identical_for_any_thread_count_and_follows_the_seed() {
         let b = std::fs::read(tmp.path().join("two").join(name)).unwrap();
         assert!(a == b, "{name} differs between 1 and 2 threads");
     }
+    let meta: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(tmp.path().join("one/ant1.gps-l1ca.sigmf-meta")).unwrap(),
+    )
+    .unwrap();
+    // 2023-03-12T00:00:00 GPST is 18 s earlier in UTC.
+    assert_eq!(
+        meta["captures"][0]["core:datetime"],
+        "2023-03-11T23:59:42.000000000Z"
+    );
+    assert_eq!(meta["global"]["core:datatype"], "ci8");
+    assert_eq!(meta["captures"][0]["core:frequency"], 1575.42e6);
     let a = std::fs::read(tmp.path().join("one/ant1.gps-l1ca.sigmf-data")).unwrap();
     let c = std::fs::read(tmp.path().join("other/ant1.gps-l1ca.sigmf-data")).unwrap();
     assert_eq!(a.len(), 2 * 4_000_000 * 2);

@@ -193,10 +193,9 @@ pub fn synthesise(
     bar.finish_and_clear();
 
     let leo = scenario.platform.leo.is_some();
-    let start_utc = format!(
-        "{}",
-        world.origin.start().to_time_scale(hifitime::TimeScale::UTC)
-    );
+    let (y, mo, d, h, mi, sec, ns) = world.origin.start().to_gregorian_utc();
+    // SigMF core:datetime: ISO-8601 UTC with a trailing Z.
+    let start_utc = format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{sec:02}.{ns:09}Z");
     for band in &bands {
         for ant in &world.antennas {
             let name = format!("{}.{}", ant.name, band.tag);
