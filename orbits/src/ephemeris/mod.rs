@@ -6,6 +6,7 @@ pub mod broadcast;
 pub mod config;
 pub mod nominal;
 pub mod rinex_nav;
+pub mod rinex_nav_write;
 pub mod sat_id;
 pub mod sp3;
 pub mod store;

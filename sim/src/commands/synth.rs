@@ -1,11 +1,13 @@
 //! `skyforge synth`: scenario -> per-antenna I/Q files (+ SigMF metadata, GNSS-SDR
-//! configuration) and the geometry truth of the transmitted signals.
+//! configuration), the geometry truth of the transmitted signals, and a RINEX 3.04
+//! navigation file of the ephemerides as broadcast.
 
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::signal::SignalId;
@@ -100,9 +102,17 @@ pub fn synthesise(
         .iter()
         .map(Transmitter::broadcast_ephemeris)
         .collect();
+    let staged = StagedDir::create(out, force)?;
+    let nav_path = staged.file("nav.rnx");
+    let mut nav = std::io::BufWriter::new(
+        std::fs::File::create(&nav_path)
+            .with_context(|| format!("cannot create {}", nav_path.display()))?,
+    );
+    write_nav(&quantised, "skyforge", &mut nav)
+        .and_then(|()| nav.flush())
+        .context("writing nav.rnx")?;
     let store = EphemerisStore::new(quantised, &world.origin);
     let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
-    let staged = StagedDir::create(out, force)?;
 
     let n_ant = world.antennas.len();
     let mut synths = bands

@@ -1,0 +1,189 @@
+//! Writing RINEX 3.04 mixed navigation files: GPS LNAV and BeiDou D1/D2 records, with the
+//! record layout the reader in [`super::rinex_nav`] expects (RINEX 3.04 tables A6 and
+//! A14). The header date is the first record's toc, not the wall clock, so that the same
+//! scenario writes the same bytes.
+
+use super::broadcast::BroadcastEphemeris;
+use super::sat_id::System;
+use hifitime::{Epoch, TimeScale};
+use std::io::{self, Write};
+
+/// A value in Fortran `D19.12` style (mantissa in [1, 10), exponent of two digits).
+fn d19(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{:>19}", "0.000000000000E+00");
+    }
+    let s = format!("{x:.12E}");
+    let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
+    let exp: i32 = exp.parse().unwrap_or(0);
+    let sign = if exp < 0 { '-' } else { '+' };
+    format!("{:>19}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+}
+
+/// Time scale and week/seconds of `epoch` for a system's records.
+fn week_sow(system: System, epoch: Epoch) -> (TimeScale, u32, f64) {
+    let (week, sow) = match system {
+        System::Gps => crate::time::gpst_week_sow(epoch),
+        System::Beidou => crate::time::bdt_week_sow(epoch),
+    };
+    let scale = match system {
+        System::Gps => TimeScale::GPST,
+        System::Beidou => TimeScale::BDT,
+    };
+    (scale, week, sow)
+}
+
+fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
+    writeln!(
+        out,
+        "    {}{}{}{}",
+        d19(v[0]),
+        d19(v[1]),
+        d19(v[2]),
+        d19(v[3])
+    )
+}
+
+/// Write `ephemerides` as a RINEX 3.04 navigation file, `program` naming the writer.
+pub fn write_nav(
+    ephemerides: &[BroadcastEphemeris],
+    program: &str,
+    out: &mut impl Write,
+) -> io::Result<()> {
+    let systems: Vec<System> = ephemerides.iter().map(|e| e.sat.system).collect();
+    let letter = match (
+        systems.contains(&System::Gps),
+        systems.contains(&System::Beidou),
+    ) {
+        (true, false) => 'G',
+        (false, true) => 'C',
+        _ => 'M',
+    };
+    writeln!(
+        out,
+        "{:>9}{:11}{:<20}{:<20}RINEX VERSION / TYPE",
+        "3.04", "", "N: GNSS NAV DATA", letter
+    )?;
+    let date = ephemerides
+        .first()
+        .map_or((1980, 1, 6, 0, 0, 0, 0), |e| e.toc.to_gregorian_utc());
+    let stamp = format!(
+        "{:04}{:02}{:02} {:02}{:02}{:02} UTC",
+        date.0, date.1, date.2, date.3, date.4, date.5
+    );
+    writeln!(
+        out,
+        "{:<20}{:<20}{:<20}PGM / RUN BY / DATE",
+        program, "", stamp
+    )?;
+    writeln!(out, "{:60}END OF HEADER", "")?;
+    for e in ephemerides {
+        let (scale, week, toe_sow) = week_sow(e.sat.system, e.toe);
+        let (y, mo, d, h, mi, s, _) = e.toc.to_gregorian(scale);
+        writeln!(
+            out,
+            "{}{:02} {y:04} {mo:02} {d:02} {h:02} {mi:02} {s:02}{}{}{}",
+            e.sat.system.letter(),
+            e.sat.prn,
+            d19(e.af0),
+            d19(e.af1),
+            d19(e.af2)
+        )?;
+        orbit_line(out, [f64::from(e.iode), e.crs, e.delta_n, e.m0])?;
+        orbit_line(out, [e.cuc, e.e, e.cus, e.sqrt_a])?;
+        orbit_line(out, [toe_sow, e.cic, e.omega0, e.cis])?;
+        orbit_line(out, [e.i0, e.crc, e.omega, e.omega_dot])?;
+        // Transmission time: taken as toc (the set is broadcast from then on in SkyForge).
+        let (_, _, toc_sow) = week_sow(e.sat.system, e.toc);
+        match e.sat.system {
+            System::Gps => {
+                orbit_line(out, [e.idot, 1.0, f64::from(week), 0.0])?;
+                orbit_line(out, [2.0, f64::from(e.health), e.tgd_s, f64::from(e.iodc)])?;
+                // Fit interval: the standard 4 h (an unlimited nominal fit has no code).
+                orbit_line(out, [toc_sow, 4.0, 0.0, 0.0])?;
+            }
+            System::Beidou => {
+                orbit_line(out, [e.idot, 0.0, f64::from(week), 0.0])?;
+                orbit_line(out, [2.0, f64::from(e.health), e.tgd_s, 0.0])?;
+                orbit_line(out, [toc_sow, f64::from(e.iodc), 0.0, 0.0])?;
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ephemeris::config::BeidouSet;
+    use crate::ephemeris::nominal;
+    use crate::ephemeris::rinex_nav::parse_nav;
+
+    #[test]
+    fn d19_is_fortran_style() {
+        assert_eq!(d19(-1.169201079756e-4), "-1.169201079756E-04");
+        assert_eq!(d19(26559700.0), " 2.655970000000E+07");
+        assert_eq!(d19(0.0), " 0.000000000000E+00");
+        assert_eq!(d19(1.0), " 1.000000000000E+00");
+    }
+
+    #[test]
+    fn nominal_gps_and_beidou_survive_a_round_trip() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let mut ephs = nominal::gps(start);
+        ephs.extend(nominal::beidou(BeidouSet::Bds3, start));
+        for e in &mut ephs {
+            // Values as a message carries them: non-zero clocks and harmonics, IOD.
+            e.af0 = 1.234e-5;
+            e.af1 = -3.4e-12;
+            e.crs = 12.5;
+            e.cuc = 1.1e-6;
+            e.tgd_s = -5.1e-9;
+            e.iode = 77;
+            e.iodc = 77;
+            e.fit_interval_s = if e.sat.system == System::Gps {
+                4.0 * 3600.0
+            } else {
+                e.fit_interval_s
+            };
+        }
+        let mut buf = Vec::new();
+        write_nav(&ephs, "skyforge", &mut buf).unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        assert!(
+            text.lines().all(|l| l.len() <= 80),
+            "a line longer than 80 characters"
+        );
+        let back = parse_nav(&text, "round-trip.rnx").unwrap();
+        assert_eq!(back.len(), ephs.len());
+        for (a, b) in ephs.iter().zip(&back) {
+            assert_eq!(
+                (a.sat, a.class, a.toe, a.toc),
+                (b.sat, b.class, b.toe, b.toc),
+                "{}",
+                a.sat
+            );
+            assert_eq!((a.iode, a.health), (b.iode, b.health));
+            for (x, y) in [
+                (a.sqrt_a, b.sqrt_a),
+                (a.e, b.e),
+                (a.i0, b.i0),
+                (a.omega0, b.omega0),
+                (a.omega, b.omega),
+                (a.m0, b.m0),
+                (a.omega_dot, b.omega_dot),
+                (a.af0, b.af0),
+                (a.af1, b.af1),
+                (a.crs, b.crs),
+                (a.cuc, b.cuc),
+                (a.tgd_s, b.tgd_s),
+            ] {
+                assert!(
+                    (x - y).abs() <= 1e-12 * x.abs().max(1e-30),
+                    "{}: {x} vs {y}",
+                    a.sat
+                );
+            }
+        }
+    }
+}
