@@ -43,7 +43,7 @@ const BUNDLED: &[Bundled] = &[
     },
     Bundled {
         name: "interop-bds-static",
-        summary: "90 s static BeiDou B1I (GEO/IGSO/MEO) at 4.092 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        summary: "90 s static BeiDou B1I (GEO/IGSO/MEO) at 4 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
         text: include_str!("../bundled/interop-bds-static.toml"),
     },
     Bundled {
