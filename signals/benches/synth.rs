@@ -34,6 +34,7 @@ fn synth(c: &mut Criterion) {
         format: SampleFormat::Ci8,
         bits: Some(8),
         cn0_dbhz: 45.0,
+        truth_rate_hz: 0,
     };
     let mut group = c.benchmark_group("synth");
     group.sample_size(10);

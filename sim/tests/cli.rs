@@ -269,3 +269,47 @@ fn synthesis_is_bit_identical_for_any_thread_count_and_follows_the_seed() {
     assert_eq!(a.len(), 2 * 4_000_000 * 2);
     assert!(a != c, "a different seed must give different noise");
 }
+
+#[test]
+fn synthesis_writes_signal_truth_at_one_kilohertz() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = skyforge(&["scenarios", "show", "interop-gps-static"], tmp.path());
+    let toml =
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .replacen("duration_s = 90.0", "duration_s = 2.0", 1);
+    std::fs::write(tmp.path().join("short.toml"), toml).unwrap();
+    let o = skyforge(&["synth", "short.toml", "--out", "out"], tmp.path());
+    assert!(o.status.success(), "{}", text(&o));
+    let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
+    let g = file.group("antennas/ant1").unwrap();
+    let s = g.group("signal").unwrap();
+    let t: Vec<f64> = s.dataset("t_s").unwrap().read_raw().unwrap();
+    let sat: Vec<u16> = s.dataset("sat_index").unwrap().read_raw().unwrap();
+    let pr: Vec<f64> = s.dataset("pseudorange_m").unwrap().read_raw().unwrap();
+    let phase: Vec<f64> = s
+        .dataset("carrier_phase_cycles")
+        .unwrap()
+        .read_raw()
+        .unwrap();
+    // Geometry at 1 Hz: the links visible at t = 0 and 1 s.
+    let epochs: Vec<u32> = g.dataset("epoch_index").unwrap().read_raw().unwrap();
+    let gsat: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
+    let range: Vec<f64> = g.dataset("range_m").unwrap().read_raw().unwrap();
+    let clock: Vec<f64> = g.dataset("sat_clock_s").unwrap().read_raw().unwrap();
+    let links_at = |k: u32| epochs.iter().filter(|&&e| e == k).count();
+    // One record per visible link and millisecond of [0, 2) s.
+    assert_eq!(t.len(), 1000 * (links_at(0) + links_at(1)));
+    let lambda = 299_792_458.0 / 1575.42e6;
+    for (i, (&ti, &si)) in t.iter().zip(&sat).enumerate() {
+        // No atmosphere or receiver clock yet: phase x wavelength is the pseudorange.
+        assert!((phase[i] * lambda - pr[i]).abs() < 1e-6);
+        if ti == 1.0 {
+            let j = (0..epochs.len())
+                .find(|&j| epochs[j] == 1 && gsat[j] == si)
+                .unwrap();
+            let expected = range[j] - 299_792_458.0 * clock[j];
+            assert!((pr[i] - expected).abs() < 1e-6, "{} vs {expected}", pr[i]);
+        }
+    }
+}

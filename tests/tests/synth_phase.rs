@@ -71,6 +71,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
         format: SampleFormat::Cf32,
         bits: None,
         cn0_dbhz: 70.0,
+        truth_rate_hz: 0,
     };
     let mut synth = Synthesiser::new(&cfg, std::slice::from_ref(tx), 2, 7).unwrap();
     let mut out = vec![Vec::new(), Vec::new()];

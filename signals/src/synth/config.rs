@@ -24,6 +24,10 @@ pub struct SignalConfig {
     /// C/N0 of every satellite (dB-Hz).
     #[serde(default = "default_cn0")]
     pub cn0_dbhz: f64,
+    /// Rate of the signal truth written beside the samples (Hz): a divisor of 1000, or 0
+    /// for none.
+    #[serde(default = "default_truth_rate")]
+    pub truth_rate_hz: u32,
 }
 
 fn default_fs() -> f64 {
@@ -34,6 +38,9 @@ fn default_format() -> SampleFormat {
 }
 fn default_cn0() -> f64 {
     45.0
+}
+fn default_truth_rate() -> u32 {
+    1000
 }
 
 impl SignalConfig {
@@ -84,7 +91,19 @@ impl SignalConfig {
                 "must be in [10, 70] dB-Hz",
             ));
         }
+        if self.truth_rate_hz != 0 && 1000 % self.truth_rate_hz != 0 {
+            return Err(Invalid::new(
+                "truth_rate_hz",
+                self.truth_rate_hz,
+                "must divide 1000 (1 ms blocks), or be 0",
+            ));
+        }
         Ok(())
+    }
+
+    /// Blocks between signal-truth records (0: none).
+    pub fn truth_every_blocks(&self) -> u64 {
+        1000u32.checked_div(self.truth_rate_hz).map_or(0, u64::from)
     }
 
     /// Samples per 1 ms block.

@@ -29,6 +29,25 @@ pub struct LinkEnd {
     pub sat_clock_drift: f64,
 }
 
+/// Signal truth of one link at the start of one block: what an ideal receiver with a
+/// perfect clock would measure (no atmosphere, receiver clock or antenna terms yet, so
+/// carrier phase x wavelength equals the pseudorange).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkTruth {
+    /// Receive time (s since the scenario start): the block's first sample.
+    pub t_s: f64,
+    pub antenna: usize,
+    /// Index of the transmitter in the synthesiser's list.
+    pub tx: usize,
+    /// c (t_receive - t_transmit in satellite time) = range - c dt_sv (m).
+    pub pseudorange_m: f64,
+    /// Accumulated carrier phase (cycles), RINEX sign (grows with the pseudorange); its
+    /// integer ambiguity is zero by construction.
+    pub carrier_phase_cycles: f64,
+    /// Doppler (Hz), -d(pseudorange)/dt / lambda.
+    pub doppler_hz: f64,
+}
+
 /// A link over one geometry interval.
 #[derive(Debug, Clone, Copy)]
 struct Segment {
@@ -68,6 +87,9 @@ pub struct Synthesiser<'a> {
     quantiser: Quantiser,
     clipped: u64,
     previous: Option<(f64, Vec<Option<LinkEnd>>)>,
+    /// Record truth every `truth_every` blocks (0: none).
+    truth_every: u64,
+    truth: Vec<LinkTruth>,
 }
 
 /// Noise standard deviation per component (float units before quantisation).
@@ -99,7 +121,20 @@ impl<'a> Synthesiser<'a> {
             quantiser,
             clipped: 0,
             previous: None,
+            truth_every: 0,
+            truth: Vec::new(),
         })
+    }
+
+    /// Record [`LinkTruth`] every `every` blocks (1 ms each); 0 turns it off.
+    pub fn with_truth_every(mut self, every: u64) -> Self {
+        self.truth_every = every;
+        self
+    }
+
+    /// The link truth recorded since the last call.
+    pub fn take_truth(&mut self) -> Vec<LinkTruth> {
+        std::mem::take(&mut self.truth)
     }
 
     /// Components clipped by the quantiser so far.
@@ -148,6 +183,26 @@ impl<'a> Synthesiser<'a> {
             })
             .collect();
         let (b0, b1) = ((t0 / BLOCK_S).round() as u64, (t1 / BLOCK_S).round() as u64);
+        if self.truth_every > 0 {
+            for b in (b0..b1).filter(|b| b % self.truth_every == 0) {
+                let t = b as f64 * BLOCK_S;
+                for (a, segs) in segments.iter().enumerate() {
+                    for seg in segs {
+                        let fc = self.transmitters[seg.tx].signal.carrier_hz();
+                        let (tau, dt) = seg.at(t);
+                        let rate = seg.range.rate(t) - C_MPS * seg.drift;
+                        self.truth.push(LinkTruth {
+                            t_s: t,
+                            antenna: a,
+                            tx: seg.tx,
+                            pseudorange_m: C_MPS * (tau - dt),
+                            carrier_phase_cycles: fc * (tau - dt),
+                            doppler_hz: -rate * fc / C_MPS,
+                        });
+                    }
+                }
+            }
+        }
         for (a, sink) in out.iter_mut().enumerate().take(self.n_antennas) {
             let noise = &self.noise[a];
             let rendered: Vec<(Vec<u8>, u64)> = (b0..b1)

@@ -4,7 +4,7 @@
 
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
-use crate::output::truth_h5::{RunMeta, TruthWriter};
+use crate::output::truth_h5::{RunMeta, SignalRecord, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
@@ -124,6 +124,7 @@ pub fn synthesise(
                 n_ant,
                 scenario.seed,
             )
+            .map(|s| s.with_truth_every(signal.truth_every_blocks()))
             .context("signal configuration")
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
@@ -153,6 +154,9 @@ pub fn synthesise(
     let truth_path = staged.file("truth.h5");
     let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, &world.antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
+    if signal.truth_rate_hz > 0 {
+        truth_writer.create_signal(&world.antennas, signal.cn0_dbhz)?;
+    }
 
     let n_epochs = epoch_count(world.duration_s, GEOMETRY_STEP_S);
     let bar = ProgressBar::new(n_epochs as u64).with_style(
@@ -187,6 +191,19 @@ pub fn synthesise(
                         for (file, buf) in band_files.iter_mut().zip(bufs.iter_mut()) {
                             file.write_all(buf)?;
                             buf.clear();
+                        }
+                        let mut per_antenna: Vec<Vec<SignalRecord>> = vec![Vec::new(); n_ant];
+                        for r in synth.take_truth() {
+                            per_antenna[r.antenna].push(SignalRecord {
+                                t_s: r.t_s,
+                                sat_index: (band.first + r.tx) as u16,
+                                pseudorange_m: r.pseudorange_m,
+                                carrier_phase_cycles: r.carrier_phase_cycles,
+                                doppler_hz: r.doppler_hz,
+                            });
+                        }
+                        for (a, records) in per_antenna.iter().enumerate() {
+                            truth_writer.append_signal(a, records)?;
                         }
                     }
                 }

@@ -112,8 +112,31 @@ pub struct TruthWriter {
     t_s: Dataset,
     platform: [Dataset; 4],
     antennas: Vec<AntennaSets>,
+    /// Per antenna: the signal-truth datasets, once created.
+    signal: Vec<SignalSets>,
     rows: usize,
     n_sat: usize,
+}
+
+/// Signal truth of one antenna: one row per link and truth epoch.
+#[derive(Debug)]
+struct SignalSets {
+    t_s: Dataset,
+    sat_index: Dataset,
+    pseudorange_m: Dataset,
+    carrier_phase_cycles: Dataset,
+    doppler_hz: Dataset,
+    rows: usize,
+}
+
+/// One signal-truth record for [`TruthWriter::append_signal`].
+#[derive(Debug, Clone, Copy)]
+pub struct SignalRecord {
+    pub t_s: f64,
+    pub sat_index: u16,
+    pub pseudorange_m: f64,
+    pub carrier_phase_cycles: f64,
+    pub doppler_hz: f64,
 }
 
 /// The datasets of one antenna and how many links they hold.
@@ -328,9 +351,83 @@ impl TruthWriter {
             t_s,
             platform,
             antennas: ants,
+            signal: Vec::new(),
             rows: 0,
             n_sat: sats.len(),
         })
+    }
+
+    /// Create the signal-truth datasets `antennas/<name>/signal/*` (one row per visible
+    /// link and truth epoch), with the scenario's C/N0 as an attribute.
+    pub fn create_signal(&mut self, antennas: &[Antenna], cn0_dbhz: f64) -> hdf5::Result<()> {
+        for ant in antennas {
+            let g = self
+                .file
+                .group(&format!("antennas/{}", ant.name))?
+                .create_group_builder()
+                .obj_track_times(false)
+                .create("signal")?;
+            f64_attr(&g, "cn0_dbhz", &[cn0_dbhz])?;
+            self.signal.push(SignalSets {
+                t_s: series::<f64>(
+                    &g,
+                    "t_s",
+                    0,
+                    "s",
+                    "receive time of the record (block start)",
+                )?,
+                sat_index: series::<u16>(&g, "sat_index", 0, "1", "row of satellites/id")?,
+                pseudorange_m: series::<f64>(
+                    &g,
+                    "pseudorange_m",
+                    0,
+                    "m",
+                    "c (receive time - transmit time in satellite time); ideal receiver clock",
+                )?,
+                carrier_phase_cycles: series::<f64>(
+                    &g,
+                    "carrier_phase_cycles",
+                    0,
+                    "cycles",
+                    "accumulated carrier phase, RINEX sign, integer ambiguity zero",
+                )?,
+                doppler_hz: series::<f64>(
+                    &g,
+                    "doppler_hz",
+                    0,
+                    "Hz",
+                    "-d(pseudorange)/dt / wavelength",
+                )?,
+                rows: 0,
+            });
+        }
+        Ok(())
+    }
+
+    /// Append signal-truth records of antenna `a`.
+    pub fn append_signal(&mut self, a: usize, records: &[SignalRecord]) -> hdf5::Result<()> {
+        let Some(sets) = self.signal.get_mut(a) else {
+            return Ok(());
+        };
+        let rows = sets.rows;
+        let col = |f: fn(&SignalRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
+        append(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
+        append(
+            &sets.sat_index,
+            rows,
+            &records.iter().map(|r| r.sat_index).collect::<Vec<u16>>(),
+            0,
+        )?;
+        append(&sets.pseudorange_m, rows, &col(|r| r.pseudorange_m), 0)?;
+        append(
+            &sets.carrier_phase_cycles,
+            rows,
+            &col(|r| r.carrier_phase_cycles),
+            0,
+        )?;
+        append(&sets.doppler_hz, rows, &col(|r| r.doppler_hz), 0)?;
+        sets.rows += records.len();
+        Ok(())
     }
 
     /// Append one chunk of epochs.
