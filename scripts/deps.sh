@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Install the system packages SkyForge needs, when they are missing:
 #   libhdf5-dev, pkg-config  (HDF5 output through the hdf5-metno crate)
-#   plus any packages named as arguments (scripts/test.sh adds gnss-sdr, the third-party
-#   receiver of the interoperability tests)
+#   plus any packages named as arguments (scripts/test.sh adds gnss-sdr and rtklib, the
+#   third-party programs of the interoperability tests)
 # Uses apt-get (Debian/Ubuntu) and needs root or sudo. Prints what it does.
 set -euo pipefail
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite: formatting, lints, the default tests, the interoperability tier (the
-# real GNSS-SDR from Debian's gnss-sdr package, installed here when missing) and the
-# real-data tier.
+# real GNSS-SDR and RTKLIB from Debian's gnss-sdr and rtklib packages, installed here when
+# missing) and the real-data tier.
 #   scripts/test.sh              real-data tier runs when the data folder exists
 #   scripts/test.sh --real-data  the real-data tier is required (CI)
 # The data folder is $SKYFORGE_DATA, default ../shared/data (relative to the repo root).
@@ -13,7 +13,7 @@ require_data=0
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
-scripts/deps.sh gnss-sdr
+scripts/deps.sh gnss-sdr rtklib
 echo "test: cargo fmt --check"
 cargo fmt --all -- --check
 echo "test: cargo clippy"
@@ -29,8 +29,8 @@ elif [ $require_data -eq 1 ]; then
   echo "test: REAL-DATA FOLDER MISSING: $data (set SKYFORGE_DATA)" >&2
   exit 1
 else
-  echo "test: interoperability tier (GNSS-SDR)"
-  cargo test -p skyforge-sim --test interop_gnss_sdr -- --ignored 2>&1 | tee -a "$log"
+  echo "test: interoperability tier (GNSS-SDR, RTKLIB)"
+  cargo test -p skyforge-sim --test interop_gnss_sdr --test interop_rtklib -- --ignored 2>&1 | tee -a "$log"
   echo "test: ************************************************************"
   echo "test: real-data tier SKIPPED: no data folder at $data (set SKYFORGE_DATA)"
   echo "test: ************************************************************"

@@ -3,12 +3,13 @@
 //! navigation file of the ephemerides as broadcast.
 
 use crate::BadInput;
+use crate::output::rinex_obs::{Calendar, ObsRecord, ObsWriter};
 use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, SignalRecord, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::signal::SignalId;
 use skyforge_signals::synth::config::SignalConfig;
@@ -166,6 +167,23 @@ pub fn synthesise(
     let mut platform = world.platform;
     let truth = GeometryTruth::new(&store, &sats, &world.antennas, GEOMETRY_STEP_S);
     let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); n_ant];
+    // RINEX observation truth per antenna, opened at the first epoch (approximate position).
+    type Obs = ObsWriter<std::io::BufWriter<std::fs::File>>;
+    let mut obs: Vec<Option<Obs>> = (0..n_ant).map(|_| None).collect();
+    let systems: Vec<System> = bands
+        .iter()
+        .map(|b| match b.signal {
+            SignalId::GpsL1Ca => System::Gps,
+            SignalId::BdsB1I => System::Beidou,
+        })
+        .collect();
+    let calendar = |t: f64| -> Calendar {
+        let (y, mo, d, h, mi, sec, ns) = world
+            .origin
+            .epoch_at(t)
+            .to_gregorian(hifitime::TimeScale::GPST);
+        (y, mo, d, h, mi, f64::from(sec) + f64::from(ns) * 1e-9)
+    };
     truth
         .stream(
             &mut platform,
@@ -173,6 +191,8 @@ pub fn synthesise(
             CHUNK_EPOCHS,
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
+                    let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
+                    let mut whole_t = None;
                     for ((band, synth), band_files) in bands.iter().zip(&mut synths).zip(&mut files)
                     {
                         let links = (0..n_ant * band.count)
@@ -194,6 +214,16 @@ pub fn synthesise(
                         }
                         let mut per_antenna: Vec<Vec<SignalRecord>> = vec![Vec::new(); n_ant];
                         for r in synth.take_truth() {
+                            if r.t_s.fract() == 0.0 {
+                                whole_t = Some(r.t_s);
+                                whole_second[r.antenna].push(ObsRecord {
+                                    sat: sats[band.first + r.tx],
+                                    pseudorange_m: r.pseudorange_m,
+                                    carrier_phase_cycles: r.carrier_phase_cycles,
+                                    doppler_hz: r.doppler_hz,
+                                    cn0_dbhz: signal.cn0_dbhz,
+                                });
+                            }
                             per_antenna[r.antenna].push(SignalRecord {
                                 t_s: r.t_s,
                                 sat_index: (band.first + r.tx) as u16,
@@ -206,6 +236,32 @@ pub fn synthesise(
                             truth_writer.append_signal(a, records)?;
                         }
                     }
+                    if let Some(t) = whole_t {
+                        for (a, records) in whole_second.iter_mut().enumerate() {
+                            records.sort_by_key(|r| r.sat);
+                            let writer = match &mut obs[a] {
+                                Some(w) => w,
+                                empty => {
+                                    let st = &chunk.platform[k];
+                                    let r0 = st.r_ecef_m
+                                        + st.c_body_ecef * world.antennas[a].true_body_m;
+                                    let path =
+                                        staged.file(&format!("{}.obs.rnx", world.antennas[a].name));
+                                    let file =
+                                        std::io::BufWriter::new(std::fs::File::create(&path)?);
+                                    empty.insert(ObsWriter::new(
+                                        file,
+                                        &world.antennas[a].name,
+                                        &r0,
+                                        calendar(t),
+                                        1.0,
+                                        &systems,
+                                    )?)
+                                }
+                            };
+                            writer.epoch(calendar(t), records)?;
+                        }
+                    }
                 }
                 bar.inc(chunk.t_s.len() as u64);
                 truth_writer.append(&chunk)?;
@@ -215,6 +271,9 @@ pub fn synthesise(
         .map_err(|e| anyhow::anyhow!("{e:#}"))?;
     for f in files.iter_mut().flatten() {
         f.flush()?;
+    }
+    for w in obs.into_iter().flatten() {
+        w.finish()?;
     }
     truth_writer.finish()?;
     bar.finish_and_clear();

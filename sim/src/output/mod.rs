@@ -1,4 +1,5 @@
 //! Output writers and the all-or-nothing output directory.
 
+pub mod rinex_obs;
 pub mod staged_dir;
 pub mod truth_h5;

@@ -1,0 +1,81 @@
+//! Interoperability tier: RTKLIB (Debian package `rtklib`, `rnx2rtkp`) reads the RINEX 3.04
+//! observation truth and the navigation file `skyforge synth` writes, and its single-point
+//! solution (no atmosphere models: the signal has no atmosphere yet) recovers the site.
+
+use skyforge_orbits::Vec3;
+use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use std::process::Command;
+
+#[test]
+#[ignore = "interop tier: needs rtklib (scripts/test.sh installs it)"]
+fn rtklib_single_point_solution_from_our_rinex_recovers_the_site() {
+    assert!(
+        Command::new("rnx2rtkp").output().is_ok(),
+        "\n*** rnx2rtkp is not installed: apt-get install rtklib (scripts/test.sh does) ***\n"
+    );
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(["scenarios", "show", "interop-gps-static"])
+        .output()
+        .unwrap();
+    let toml =
+        String::from_utf8(o.stdout)
+            .unwrap()
+            .replacen("duration_s = 90.0", "duration_s = 10.0", 1);
+    std::fs::write(dir.join("short.toml"), toml).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(["synth", "short.toml", "--out", "out"])
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let out = dir.join("out");
+    std::fs::write(
+        out.join("spp.conf"),
+        "pos1-posmode=single\npos1-elmask=5\npos1-ionoopt=off\npos1-tropopt=off\npos1-sateph=brdc\npos1-navsys=1\nout-solformat=xyz\n",
+    )
+    .unwrap();
+    let o = Command::new("rnx2rtkp")
+        .args(["-k", "spp.conf", "-o", "spp.pos", "ant1.obs.rnx", "nav.rnx"])
+        .current_dir(&out)
+        .output()
+        .unwrap();
+    assert!(
+        o.status.success(),
+        "rnx2rtkp failed: {}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let pos = std::fs::read_to_string(out.join("spp.pos")).unwrap();
+    let site = geodetic_to_ecef(&Geodetic {
+        lat_rad: 30f64.to_radians(),
+        lon_rad: 114f64.to_radians(),
+        h_m: 50.0,
+    });
+    let errors: Vec<f64> = pos
+        .lines()
+        .filter(|l| !l.starts_with('%'))
+        .filter_map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .skip(2)
+                .take(3)
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (f.len() == 3).then(|| (Vec3::new(f[0], f[1], f[2]) - site).norm())
+        })
+        .collect();
+    println!(
+        "RTKLIB single point: {} epochs, worst 3D error {:.4} m",
+        errors.len(),
+        errors.iter().cloned().fold(0.0, f64::max)
+    );
+    assert!(
+        errors.len() >= 9,
+        "{} RTKLIB solutions:\n{pos}",
+        errors.len()
+    );
+    for e in errors {
+        assert!(e < 0.01, "RTKLIB solution {e} m from the site");
+    }
+}
