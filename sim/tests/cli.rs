@@ -19,9 +19,9 @@ fn text(o: &Output) -> String {
     )
 }
 
-/// The bundled thesis LEO scenario shortened to `duration_s`.
-fn short_thesis(dir: &Path, duration_s: u32) -> std::path::PathBuf {
-    let o = skyforge(&["scenarios", "show", "thesis-leo"], dir);
+/// Bundled scenario `name` shortened to `duration_s`, written to `dir/short.toml`.
+fn short_scenario(dir: &Path, name: &str, duration_s: u32) -> std::path::PathBuf {
+    let o = skyforge(&["scenarios", "show", name], dir);
     assert!(o.status.success(), "{}", text(&o));
     let toml = String::from_utf8(o.stdout).unwrap();
     let line = toml
@@ -37,7 +37,7 @@ fn short_thesis(dir: &Path, duration_s: u32) -> std::path::PathBuf {
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {
     let tmp = tempfile::tempdir().unwrap();
-    let scenario = short_thesis(tmp.path(), 120);
+    let scenario = short_scenario(tmp.path(), "thesis-leo", 120);
     let o = skyforge(
         &[
             "run",
@@ -105,7 +105,7 @@ fn run_writes_truth_h5_with_the_documented_schema() {
 #[test]
 fn a_bad_scenario_exits_2_names_the_place_and_writes_nothing() {
     let tmp = tempfile::tempdir().unwrap();
-    let scenario = short_thesis(tmp.path(), 60);
+    let scenario = short_scenario(tmp.path(), "thesis-leo", 60);
     let text_in = std::fs::read_to_string(&scenario).unwrap();
     let line = text_in
         .lines()
@@ -129,7 +129,7 @@ fn a_bad_scenario_exits_2_names_the_place_and_writes_nothing() {
 #[test]
 fn an_existing_output_needs_force() {
     let tmp = tempfile::tempdir().unwrap();
-    let scenario = short_thesis(tmp.path(), 10);
+    let scenario = short_scenario(tmp.path(), "thesis-leo", 10);
     std::fs::create_dir(tmp.path().join("out")).unwrap();
     std::fs::write(tmp.path().join("out/keep.txt"), "x").unwrap();
     let o = skyforge(
@@ -223,12 +223,7 @@ fn validate_thesis_writes_every_row_of_both_tables() {
 #[test]
 fn synthesis_is_bit_identical_for_any_thread_count_and_follows_the_seed() {
     let tmp = tempfile::tempdir().unwrap();
-    let o = skyforge(&["scenarios", "show", "interop-gps-static"], tmp.path());
-    let toml =
-        String::from_utf8(o.stdout)
-            .unwrap()
-            .replacen("duration_s = 90.0", "duration_s = 2.0", 1);
-    std::fs::write(tmp.path().join("short.toml"), toml).unwrap();
+    short_scenario(tmp.path(), "interop-gps-static", 2);
     let run = |threads: &str, seed: &str, out: &str| {
         let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
             .args(["synth", "short.toml", "--out", out, "--seed", seed])
@@ -273,12 +268,7 @@ fn synthesis_is_bit_identical_for_any_thread_count_and_follows_the_seed() {
 #[test]
 fn synthesis_writes_signal_truth_at_one_kilohertz() {
     let tmp = tempfile::tempdir().unwrap();
-    let o = skyforge(&["scenarios", "show", "interop-gps-static"], tmp.path());
-    let toml =
-        String::from_utf8(o.stdout)
-            .unwrap()
-            .replacen("duration_s = 90.0", "duration_s = 2.0", 1);
-    std::fs::write(tmp.path().join("short.toml"), toml).unwrap();
+    short_scenario(tmp.path(), "interop-gps-static", 2);
     let o = skyforge(&["synth", "short.toml", "--out", "out"], tmp.path());
     assert!(o.status.success(), "{}", text(&o));
     let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();

@@ -16,17 +16,6 @@ use skyforge_signals::truth::interp::QuinticHermite;
 const FS_HZ: f64 = 4.0e6;
 const BLOCKS: usize = 200;
 
-fn link_end(chunk: &GeometryChunk, k: usize, a: usize, s: usize) -> Option<LinkEnd> {
-    let g = chunk.link(k, a, s);
-    g.visible.then_some(LinkEnd {
-        range_m: g.range_m,
-        range_rate_mps: g.range_rate_mps,
-        range_accel_mps2: g.range_accel_mps2,
-        sat_clock_s: g.sat_clock_s,
-        sat_clock_drift: g.sat_clock_drift,
-    })
-}
-
 fn range_curve(chunk: &GeometryChunk, a: usize, s: usize) -> QuinticHermite {
     let (g0, g1) = (chunk.link(1, a, s), chunk.link(2, a, s));
     QuinticHermite::new(
@@ -78,7 +67,9 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     for k in 1..=2 {
         synth.push_epoch(
             chunk.t_s[k],
-            (0..2).map(|a| link_end(&chunk, k, a, s)).collect(),
+            (0..2)
+                .map(|a| LinkEnd::from_geometry(chunk.link(k, a, s)))
+                .collect(),
             &mut out,
         );
     }

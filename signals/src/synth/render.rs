@@ -15,6 +15,7 @@ use super::mix::{ChannelBlock, MixScratch, mix_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
 use super::transmitter::Transmitter;
+use crate::truth::geometry::LinkGeometry;
 use crate::truth::interp::QuinticHermite;
 use rayon::prelude::*;
 use skyforge_orbits::constants::C_MPS;
@@ -27,6 +28,19 @@ pub struct LinkEnd {
     pub range_accel_mps2: f64,
     pub sat_clock_s: f64,
     pub sat_clock_drift: f64,
+}
+
+impl LinkEnd {
+    /// The link end of a geometry-truth link, `None` when not visible.
+    pub fn from_geometry(g: &LinkGeometry) -> Option<Self> {
+        g.visible.then_some(Self {
+            range_m: g.range_m,
+            range_rate_mps: g.range_rate_mps,
+            range_accel_mps2: g.range_accel_mps2,
+            sat_clock_s: g.sat_clock_s,
+            sat_clock_drift: g.sat_clock_drift,
+        })
+    }
 }
 
 /// Signal truth of one link at the start of one block: what an ideal receiver with a

@@ -197,14 +197,11 @@ pub fn synthesise(
                     {
                         let links = (0..n_ant * band.count)
                             .map(|l| {
-                                let g = chunk.link(k, l / band.count, band.first + l % band.count);
-                                g.visible.then_some(LinkEnd {
-                                    range_m: g.range_m,
-                                    range_rate_mps: g.range_rate_mps,
-                                    range_accel_mps2: g.range_accel_mps2,
-                                    sat_clock_s: g.sat_clock_s,
-                                    sat_clock_drift: g.sat_clock_drift,
-                                })
+                                LinkEnd::from_geometry(chunk.link(
+                                    k,
+                                    l / band.count,
+                                    band.first + l % band.count,
+                                ))
                             })
                             .collect();
                         synth.push_epoch(chunk.t_s[k], links, &mut bufs);
