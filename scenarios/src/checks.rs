@@ -34,6 +34,11 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_gnss(&scenario.gnss)?;
     check_platform(&scenario.platform)?;
     check_antennas(&scenario.antennas)?;
+    scenario
+        .errors
+        .ionosphere
+        .check()
+        .map_err(|e| e.within("errors.ionosphere"))?;
     match &scenario.signal {
         Some(signal) => signal.check().map_err(|e| e.within("signal")),
         None => Ok(()),

@@ -36,6 +36,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         platform: file.platform,
         antennas: file.antennas,
         signal: file.signal,
+        errors: file.errors,
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),

@@ -7,6 +7,7 @@ use serde::Deserialize;
 use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationConfig, ConstellationSource};
 use skyforge_orbits::platform::config::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
+use skyforge_signals::errors::ionosphere::IonoConfig;
 use skyforge_signals::synth::config::SignalConfig;
 use std::path::PathBuf;
 
@@ -32,6 +33,8 @@ pub struct Scenario {
     pub antennas: Vec<AntennaConfig>,
     /// `[signal]`: present when the scenario asks for I/Q samples.
     pub signal: Option<SignalConfig>,
+    /// `[errors]`: error sources applied to the signal.
+    pub errors: ErrorsConfig,
     /// Where the scenario came from: the file path as given, or `bundled:NAME`.
     pub source: String,
     /// Directory relative paths in the scenario are resolved from (the scenario file's
@@ -113,6 +116,17 @@ pub(crate) struct ScenarioFile {
     pub antennas: Vec<AntennaConfig>,
     #[serde(default)]
     pub signal: Option<SignalConfig>,
+    #[serde(default)]
+    pub errors: ErrorsConfig,
+}
+
+/// `[errors]`: error sources applied to the synthesised signal.
+#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorsConfig {
+    /// `[errors.ionosphere]` (default: Klobuchar with the default coefficient sets).
+    #[serde(default)]
+    pub ionosphere: IonoConfig,
 }
 
 /// `[time]` as written.

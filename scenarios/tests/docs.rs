@@ -46,6 +46,9 @@ fn every_accepted_key_is_documented() {
     // Tables of the minimal example get the key inside; the others are added after it.
     let in_minimal = ["time", "platform.ground"];
     let added = [
+        "signal",
+        "errors",
+        "errors.ionosphere",
         "platform.leo",
         "platform.leo.forces",
         "platform.leo.integrator",

@@ -15,7 +15,8 @@ const FS_HZ: f64 = 4.092e6;
 fn synth(c: &mut Criterion) {
     let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").expect("epoch");
     let ephs = nominal::gps(start);
-    let txs = constellation::gps_l1ca(&ephs[..CHANNELS], start).expect("transmitters");
+    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
+    let txs = constellation::gps_l1ca(&ephs[..CHANNELS], start, &iono.gps).expect("transmitters");
     // Plausible ground-receiver links: 20-26 Mm, +-800 m/s.
     let links: Vec<Option<LinkEnd>> = (0..CHANNELS)
         .map(|k| {
@@ -25,6 +26,7 @@ fn synth(c: &mut Criterion) {
                 range_accel_mps2: 0.1,
                 sat_clock_s: 1e-5,
                 sat_clock_drift: 1e-11,
+                iono_m: 5.0,
             })
         })
         .collect();

@@ -282,6 +282,13 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
         .unwrap()
         .read_raw()
         .unwrap();
+    let iono: Vec<f64> = s.dataset("iono_m").unwrap().read_raw().unwrap();
+    // A ground site under the default Klobuchar ionosphere: metres of delay.
+    assert!(
+        iono.iter().all(|&i| (0.5..50.0).contains(&i)),
+        "iono {:?}",
+        &iono[..3]
+    );
     // Geometry at 1 Hz: the links visible at t = 0 and 1 s.
     let epochs: Vec<u32> = g.dataset("epoch_index").unwrap().read_raw().unwrap();
     let gsat: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
@@ -292,13 +299,13 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
     assert_eq!(t.len(), 1000 * (links_at(0) + links_at(1)));
     let lambda = 299_792_458.0 / 1575.42e6;
     for (i, (&ti, &si)) in t.iter().zip(&sat).enumerate() {
-        // No atmosphere or receiver clock yet: phase x wavelength is the pseudorange.
-        assert!((phase[i] * lambda - pr[i]).abs() < 1e-6);
+        // Code delayed, carrier advanced by the ionosphere; no other terms yet.
+        assert!((phase[i] * lambda - (pr[i] - 2.0 * iono[i])).abs() < 1e-6);
         if ti == 1.0 {
             let j = (0..epochs.len())
                 .find(|&j| epochs[j] == 1 && gsat[j] == si)
                 .unwrap();
-            let expected = range[j] - 299_792_458.0 * clock[j];
+            let expected = range[j] - 299_792_458.0 * clock[j] + iono[i];
             assert!((pr[i] - expected).abs() < 1e-6, "{} vs {expected}", pr[i]);
         }
     }

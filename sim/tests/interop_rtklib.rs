@@ -1,6 +1,7 @@
 //! Interoperability tier: RTKLIB (Debian package `rtklib`, `rnx2rtkp`) reads the RINEX 3.04
 //! observation truth and the navigation file `skyforge synth` writes, and its single-point
-//! solution (no atmosphere models: the signal has no atmosphere yet) recovers the site.
+//! solution, with RTKLIB's own broadcast (Klobuchar) ionosphere correction and no
+//! troposphere (the signal has none yet), recovers the site.
 
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
@@ -33,7 +34,7 @@ fn rtklib_single_point_solution_from_our_rinex_recovers_the_site() {
     let out = dir.join("out");
     std::fs::write(
         out.join("spp.conf"),
-        "pos1-posmode=single\npos1-elmask=5\npos1-ionoopt=off\npos1-tropopt=off\npos1-sateph=brdc\npos1-navsys=1\nout-solformat=xyz\n",
+        "pos1-posmode=single\npos1-elmask=5\npos1-ionoopt=brdc\npos1-tropopt=off\npos1-sateph=brdc\npos1-navsys=1\nout-solformat=xyz\n",
     )
     .unwrap();
     let o = Command::new("rnx2rtkp")

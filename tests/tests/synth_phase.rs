@@ -36,7 +36,8 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
         .iter()
         .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
         .collect();
-    let txs = constellation::gps_l1ca(&ephs, start).unwrap();
+    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
+    let txs = constellation::gps_l1ca(&ephs, start, &iono.gps).unwrap();
     let store = EphemerisStore::new(
         txs.iter().map(|t| t.broadcast_ephemeris()).collect(),
         &world.origin,

@@ -44,10 +44,20 @@ fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
     )
 }
 
-/// Write `ephemerides` as a RINEX 3.04 navigation file, `program` naming the writer.
+/// A value in Fortran `D12.4` style, for header lines.
+fn d12(x: f64) -> String {
+    let s = d19(x);
+    let (mantissa, exp) = s.trim().split_once('E').unwrap_or(("0.0", "+00"));
+    let m: f64 = mantissa.parse().unwrap_or(0.0);
+    format!("{:>12}", format!("{m:.4}E{exp}"))
+}
+
+/// Write `ephemerides` as a RINEX 3.04 navigation file, `program` naming the writer, with
+/// `IONOSPHERIC CORR` header lines for each (system, alpha, beta) in `iono`.
 pub fn write_nav(
     ephemerides: &[BroadcastEphemeris],
     program: &str,
+    iono: &[(System, [f64; 4], [f64; 4])],
     out: &mut impl Write,
 ) -> io::Result<()> {
     let systems: Vec<System> = ephemerides.iter().map(|e| e.sat.system).collect();
@@ -76,6 +86,22 @@ pub fn write_nav(
         "{:<20}{:<20}{:<20}PGM / RUN BY / DATE",
         program, "", stamp
     )?;
+    for (system, alpha, beta) in iono {
+        let tag = match system {
+            System::Gps => "GPS",
+            System::Beidou => "BDS",
+        };
+        for (part, v) in [('A', alpha), ('B', beta)] {
+            writeln!(
+                out,
+                "{tag}{part} {}{}{}{}       IONOSPHERIC CORR",
+                d12(v[0]),
+                d12(v[1]),
+                d12(v[2]),
+                d12(v[3])
+            )?;
+        }
+    }
     writeln!(out, "{:60}END OF HEADER", "")?;
     for e in ephemerides {
         let (scale, week, toe_sow) = week_sow(e.sat.system, e.toe);
@@ -119,6 +145,13 @@ mod tests {
     use crate::ephemeris::nominal;
     use crate::ephemeris::rinex_nav::parse_nav;
 
+    fn text_has_iono(buf: &[u8]) -> bool {
+        let text = String::from_utf8_lossy(buf);
+        text.lines().any(|l| {
+            l.starts_with("GPSA   1.1176E-08") && l.len() == 76 && l.ends_with("IONOSPHERIC CORR")
+        })
+    }
+
     #[test]
     fn d19_is_fortran_style() {
         assert_eq!(d19(-1.169201079756e-4), "-1.169201079756E-04");
@@ -148,7 +181,18 @@ mod tests {
             };
         }
         let mut buf = Vec::new();
-        write_nav(&ephs, "skyforge", &mut buf).unwrap();
+        write_nav(
+            &ephs,
+            "skyforge",
+            &[(
+                System::Gps,
+                [1.1176e-8, 0.0, -5.9605e-8, 1.1921e-7],
+                [1.0e5, 0.0, -1.9661e5, 0.0],
+            )],
+            &mut buf,
+        )
+        .unwrap();
+        assert!(text_has_iono(&buf));
         let text = String::from_utf8(buf).unwrap();
         assert!(
             text.lines().all(|l| l.len() <= 80),

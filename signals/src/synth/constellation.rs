@@ -3,7 +3,7 @@
 //! parameters), and its ranging code.
 
 use super::transmitter::Transmitter;
-use crate::errors::ionosphere::IonoConfig;
+use crate::errors::ionosphere::KlobucharCoeffs;
 use crate::navmsg::bds::{BdsNavEncoder, BdsNavError, Klobuchar};
 use crate::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use hifitime::Epoch;
@@ -20,11 +20,12 @@ pub enum TransmitterError {
     NoSignal(SatId),
 }
 
-/// GPS L1 C/A transmitters for the GPS ephemerides among `ephs` (the ionosphere
-/// coefficients are the default Klobuchar set of `errors::ionosphere`).
+/// GPS L1 C/A transmitters for the GPS ephemerides among `ephs`, broadcasting the
+/// Klobuchar coefficients `coeffs`.
 pub fn gps_l1ca(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
+    coeffs: &KlobucharCoeffs,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     let gps: Vec<&BroadcastEphemeris> = ephs
         .iter()
@@ -32,10 +33,9 @@ pub fn gps_l1ca(
         .collect();
     let owned: Vec<BroadcastEphemeris> = gps.iter().map(|e| (*e).clone()).collect();
     let almanac = Almanac::from_ephemerides(&owned, start)?;
-    let k = IonoConfig::default().gps;
     let iono = IonoParams {
-        alpha: k.alpha,
-        beta: k.beta,
+        alpha: coeffs.alpha,
+        beta: coeffs.beta,
     };
     let utc = UtcParams::from_leap_seconds(start)?;
     gps.iter()
@@ -47,20 +47,20 @@ pub fn gps_l1ca(
 }
 
 /// BeiDou B1I transmitters (D1 for MEO/IGSO, D2 for GEO) for the BeiDou ephemerides among
-/// `ephs`.
+/// `ephs`, broadcasting the Klobuchar coefficients `coeffs`.
 pub fn bds_b1i(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
+    coeffs: &KlobucharCoeffs,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     let bds: Vec<BroadcastEphemeris> = ephs
         .iter()
         .filter(|e| e.sat.system == System::Beidou)
         .cloned()
         .collect();
-    let k = IonoConfig::default().bds;
     let iono = Klobuchar {
-        alpha: k.alpha,
-        beta: k.beta,
+        alpha: coeffs.alpha,
+        beta: coeffs.beta,
     };
     let (week, _) = skyforge_orbits::time::bdt_week_sow(start);
     bds.iter()

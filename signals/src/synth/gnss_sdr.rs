@@ -14,13 +14,14 @@ pub struct SignalsPresent {
 }
 
 /// The `.conf` text for `data_file` (a path GNSS-SDR opens relative to its working
-/// directory); `doppler_max_hz` widens acquisition for high dynamics; PVT outputs go to
-/// `output_prefix.*`.
+/// directory); `doppler_max_hz` widens acquisition for high dynamics; `broadcast_iono`
+/// turns on the PVT's broadcast ionosphere correction; PVT outputs go to `output_prefix.*`.
 pub fn config(
     cfg: &SignalConfig,
     data_file: &str,
     present: SignalsPresent,
     doppler_max_hz: f64,
+    broadcast_iono: bool,
     output_prefix: &str,
 ) -> String {
     let fs = cfg.sample_rate_hz.round() as u64;
@@ -125,7 +126,11 @@ pub fn config(
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
     line("PVT.elevation_mask=10");
-    line("PVT.iono_model=OFF");
+    line(if broadcast_iono {
+        "PVT.iono_model=Broadcast"
+    } else {
+        "PVT.iono_model=OFF"
+    });
     line("PVT.trop_model=OFF");
     line("PVT.output_rate_ms=1000");
     line("PVT.display_rate_ms=1000");

@@ -28,6 +28,9 @@ pub struct LinkEnd {
     pub range_accel_mps2: f64,
     pub sat_clock_s: f64,
     pub sat_clock_drift: f64,
+    /// Ionospheric group delay at the signal's carrier (m): delays the code, advances the
+    /// carrier by the same amount.
+    pub iono_m: f64,
 }
 
 impl LinkEnd {
@@ -39,13 +42,14 @@ impl LinkEnd {
             range_accel_mps2: g.range_accel_mps2,
             sat_clock_s: g.sat_clock_s,
             sat_clock_drift: g.sat_clock_drift,
+            iono_m: 0.0,
         })
     }
 }
 
 /// Signal truth of one link at the start of one block: what an ideal receiver with a
-/// perfect clock would measure (no atmosphere, receiver clock or antenna terms yet, so
-/// carrier phase x wavelength equals the pseudorange).
+/// perfect clock would measure (no troposphere, receiver clock or antenna terms yet, so
+/// carrier phase x wavelength equals the pseudorange minus twice the ionospheric delay).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinkTruth {
     /// Receive time (s since the scenario start): the block's first sample.
@@ -60,6 +64,8 @@ pub struct LinkTruth {
     pub carrier_phase_cycles: f64,
     /// Doppler (Hz), -d(pseudorange)/dt / lambda.
     pub doppler_hz: f64,
+    /// Ionospheric group delay in the pseudorange (m); the carrier phase has -iono_m.
+    pub iono_m: f64,
 }
 
 /// A link over one geometry interval.
@@ -70,13 +76,22 @@ struct Segment {
     clock_t0_s: f64,
     clock_s: f64,
     drift: f64,
+    /// Ionospheric delay (m) at the interval start and its rate (m/s), linear in between.
+    iono_m: f64,
+    iono_rate_mps: f64,
 }
 
 impl Segment {
-    /// (light time, satellite clock offset) at receive time `t`.
-    fn at(&self, t: f64) -> (f64, f64) {
+    /// (geometric light time, satellite clock offset, ionospheric delay in m) at receive
+    /// time `t`.
+    fn at(&self, t: f64) -> (f64, f64, f64) {
         let tau = self.range.value(t) / C_MPS;
-        (tau, self.clock_s + self.drift * (t - tau - self.clock_t0_s))
+        let iono = self.iono_m + self.iono_rate_mps * (t - self.clock_t0_s - tau);
+        (
+            tau,
+            self.clock_s + self.drift * (t - tau - self.clock_t0_s),
+            iono,
+        )
     }
 }
 
@@ -191,6 +206,8 @@ impl<'a> Synthesiser<'a> {
                             clock_t0_s: t0 - s.range_m / C_MPS,
                             clock_s: s.sat_clock_s,
                             drift: s.sat_clock_drift,
+                            iono_m: s.iono_m,
+                            iono_rate_mps: (e.iono_m - s.iono_m) / (t1 - t0),
                         })
                     })
                     .collect()
@@ -203,15 +220,16 @@ impl<'a> Synthesiser<'a> {
                 for (a, segs) in segments.iter().enumerate() {
                     for seg in segs {
                         let fc = self.transmitters[seg.tx].signal.carrier_hz();
-                        let (tau, dt) = seg.at(t);
+                        let (tau, dt, iono) = seg.at(t);
                         let rate = seg.range.rate(t) - C_MPS * seg.drift;
                         self.truth.push(LinkTruth {
                             t_s: t,
                             antenna: a,
                             tx: seg.tx,
-                            pseudorange_m: C_MPS * (tau - dt),
-                            carrier_phase_cycles: fc * (tau - dt),
+                            pseudorange_m: C_MPS * (tau - dt) + iono,
+                            carrier_phase_cycles: fc * (tau - dt - iono / C_MPS),
                             doppler_hz: -rate * fc / C_MPS,
+                            iono_m: iono,
                         });
                     }
                 }
@@ -256,15 +274,16 @@ impl<'a> Synthesiser<'a> {
         for seg in segments {
             let tx = &self.transmitters[seg.tx];
             let fc = tx.signal.carrier_hz();
-            let ((tau0, dt0), (tau1, dt1)) = (seg.at(t0), seg.at(t1));
-            let (tsv0, tsv1) = (t0 - tau0 + dt0, t1 - tau1 + dt1);
+            let ((tau0, dt0, i0), (tau1, dt1, i1)) = (seg.at(t0), seg.at(t1));
+            // The code is delayed by the ionosphere, the carrier advanced.
+            let (tsv0, tsv1) = (t0 - tau0 - i0 / C_MPS + dt0, t1 - tau1 - i1 / C_MPS + dt1);
             let (k0, code_phase) = tx.chip_at(tsv0);
             let code_per_sample = tx.chip_rate_hz * (tsv1 - tsv0) / n as f64;
             let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, n);
             s.chips.clear();
             tx.chip_signs(k0, needed, &mut s.chips);
-            let phi0 = if_phase0 - fc * (tau0 - dt0);
-            let phi1 = if_phase0 + if_cycles_per_block - fc * (tau1 - dt1);
+            let phi0 = if_phase0 - fc * (tau0 - i0 / C_MPS - dt0);
+            let phi1 = if_phase0 + if_cycles_per_block - fc * (tau1 - i1 / C_MPS - dt1);
             let ch = ChannelBlock {
                 amplitude: self.amplitude,
                 carrier_phase_cycles: phi0,

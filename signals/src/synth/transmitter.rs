@@ -111,6 +111,18 @@ impl Transmitter {
         }
     }
 
+    /// The Klobuchar coefficients the data broadcast (as quantised in the message), when
+    /// the message carries them (GPS LNAV).
+    pub fn broadcast_iono(&self) -> Option<([f64; 4], [f64; 4])> {
+        match &self.data {
+            DataBits::GpsLnav(lnav) => {
+                let p = lnav.iono();
+                Some((p.alpha, p.beta))
+            }
+            DataBits::Bds(_) => None,
+        }
+    }
+
     /// Absolute chip index (since the time-scale epoch) and code phase within it (chips) of
     /// satellite time `t_sv_s` (seconds since the scenario start).
     pub fn chip_at(&self, t_sv_s: f64) -> (u64, f64) {

@@ -10,7 +10,10 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
+use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
+use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
 use skyforge_scenarios::{Scenario, World};
+use skyforge_signals::errors::ionosphere::{IonoModel, KlobucharCoeffs};
 use skyforge_signals::signal::SignalId;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
@@ -78,8 +81,13 @@ pub fn synthesise(
     // The world holds only the enabled constellations.
     let ephs = ephemerides_at_start(&world);
     let start = world.origin.start();
-    let gps = constellation::gps_l1ca(&ephs, start).context("GPS transmitters")?;
-    let bds = constellation::bds_b1i(&ephs, start).context("BeiDou transmitters")?;
+    let mut iono = scenario.errors.ionosphere.clone();
+    let gps = constellation::gps_l1ca(&ephs, start, &iono.gps).context("GPS transmitters")?;
+    let bds = constellation::bds_b1i(&ephs, start, &iono.bds).context("BeiDou transmitters")?;
+    // The signal follows the coefficients as broadcast (quantised in the message).
+    if let Some((alpha, beta)) = gps.first().and_then(Transmitter::broadcast_iono) {
+        iono.gps = KlobucharCoeffs { alpha, beta };
+    }
     let bands: Vec<Band> = [
         Band {
             signal: SignalId::GpsL1Ca,
@@ -109,7 +117,15 @@ pub fn synthesise(
         std::fs::File::create(&nav_path)
             .with_context(|| format!("cannot create {}", nav_path.display()))?,
     );
-    write_nav(&quantised, "skyforge", &mut nav)
+    let iono_header: Vec<(System, [f64; 4], [f64; 4])> = if iono.model == IonoModel::Off {
+        Vec::new()
+    } else {
+        vec![
+            (System::Gps, iono.gps.alpha, iono.gps.beta),
+            (System::Beidou, iono.bds.alpha, iono.bds.beta),
+        ]
+    };
+    write_nav(&quantised, "skyforge", &iono_header, &mut nav)
         .and_then(|()| nav.flush())
         .context("writing nav.rnx")?;
     let store = EphemerisStore::new(quantised, &world.origin);
@@ -191,17 +207,41 @@ pub fn synthesise(
             CHUNK_EPOCHS,
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
+                    // Ionosphere per link: the receiver's geodetic position, the link's
+                    // azimuth/elevation, the system's time of day.
+                    let st = &chunk.platform[k];
+                    let geodetic: Vec<Geodetic> = world
+                        .antennas
+                        .iter()
+                        .map(|a| ecef_to_geodetic(&(st.r_ecef_m + st.c_body_ecef * a.true_body_m)))
+                        .collect();
+                    let at = world.origin.epoch_at(chunk.t_s[k]);
+                    let sow = |system: System| match system {
+                        System::Gps => gpst_week_sow(at).1,
+                        System::Beidou => bdt_week_sow(at).1,
+                    };
                     let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
                     let mut whole_t = None;
                     for ((band, synth), band_files) in bands.iter().zip(&mut synths).zip(&mut files)
                     {
                         let links = (0..n_ant * band.count)
                             .map(|l| {
-                                LinkEnd::from_geometry(chunk.link(
-                                    k,
-                                    l / band.count,
-                                    band.first + l % band.count,
-                                ))
+                                let (a, s) = (l / band.count, band.first + l % band.count);
+                                let g = chunk.link(k, a, s);
+                                let sat = sats[s];
+                                LinkEnd::from_geometry(g).map(|end| LinkEnd {
+                                    iono_m: iono
+                                        .delay(
+                                            sat.system,
+                                            &geodetic[a],
+                                            g.azimuth_rad,
+                                            g.elevation_rad,
+                                            sow(sat.system),
+                                            band.signal.carrier_hz(),
+                                        )
+                                        .code_m,
+                                    ..end
+                                })
                             })
                             .collect();
                         synth.push_epoch(chunk.t_s[k], links, &mut bufs);
@@ -227,6 +267,7 @@ pub fn synthesise(
                                 pseudorange_m: r.pseudorange_m,
                                 carrier_phase_cycles: r.carrier_phase_cycles,
                                 doppler_hz: r.doppler_hz,
+                                iono_m: r.iono_m,
                             });
                         }
                         for (a, records) in per_antenna.iter().enumerate() {
@@ -313,7 +354,10 @@ pub fn synthesise(
             } else {
                 DOPPLER_MAX_GROUND_HZ
             };
-            let conf = gnss_sdr::config(signal, &data, present, doppler, &name);
+            // A ground receiver is told to correct the broadcast ionosphere; the LEO (mostly
+            // above it) is not.
+            let iono_on = iono.model != IonoModel::Off && !leo;
+            let conf = gnss_sdr::config(signal, &data, present, doppler, iono_on, &name);
             std::fs::write(staged.file(&format!("{name}.gnss-sdr.conf")), conf)?;
         }
     }

@@ -126,6 +126,7 @@ struct SignalSets {
     pseudorange_m: Dataset,
     carrier_phase_cycles: Dataset,
     doppler_hz: Dataset,
+    iono_m: Dataset,
     rows: usize,
 }
 
@@ -137,6 +138,7 @@ pub struct SignalRecord {
     pub pseudorange_m: f64,
     pub carrier_phase_cycles: f64,
     pub doppler_hz: f64,
+    pub iono_m: f64,
 }
 
 /// The datasets of one antenna and how many links they hold.
@@ -398,6 +400,13 @@ impl TruthWriter {
                     "Hz",
                     "-d(pseudorange)/dt / wavelength",
                 )?,
+                iono_m: series::<f64>(
+                    &g,
+                    "iono_m",
+                    0,
+                    "m",
+                    "ionospheric group delay in the pseudorange; the carrier phase carries -iono_m",
+                )?,
                 rows: 0,
             });
         }
@@ -426,6 +435,7 @@ impl TruthWriter {
             0,
         )?;
         append(&sets.doppler_hz, rows, &col(|r| r.doppler_hz), 0)?;
+        append(&sets.iono_m, rows, &col(|r| r.iono_m), 0)?;
         sets.rows += records.len();
         Ok(())
     }
