@@ -224,11 +224,7 @@ impl Parser<'_> {
             return Err(self.err(n0, "expected 6 epoch fields in columns 5-23"));
         }
         let year: i32 = t[0].parse().map_err(|_| self.err(n0, "bad year"))?;
-        let scale = match system {
-            System::Gps => TimeScale::GPST,
-            System::Beidou => TimeScale::BDT,
-        };
-        let epoch = self.epoch(n0, year, &t[1..6], scale)?;
+        let epoch = self.epoch(n0, year, &t[1..6], system.time_scale())?;
         let fields = self.fields(rec, 23, 4)?;
         self.ephemeris(n0, sat, epoch, &fields).map(Some)
     }
@@ -330,9 +326,10 @@ impl Parser<'_> {
         toc: Epoch,
         f: &Fields,
     ) -> Result<BroadcastEphemeris, NavError> {
-        let (scale, week_name) = match sat.system {
-            System::Gps => (TimeScale::GPST, "GPS week"),
-            System::Beidou => (TimeScale::BDT, "BDT week"),
+        let scale = sat.system.time_scale();
+        let week_name = match sat.system {
+            System::Gps => "GPS week",
+            System::Beidou => "BDT week",
         };
         let toe_sow = f.orbit(3, 1);
         let week = f.orbit(5, 3);

@@ -5,32 +5,31 @@
 
 use super::broadcast::BroadcastEphemeris;
 use super::sat_id::System;
-use hifitime::{Epoch, TimeScale};
+use hifitime::Epoch;
 use std::io::{self, Write};
 
-/// A value in Fortran `D19.12` style (mantissa in [1, 10), exponent of two digits).
-fn d19(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{:>19}", "0.000000000000E+00");
-    }
-    let s = format!("{x:.12E}");
+/// `x` in Fortran `Dw.d` style: mantissa in [1, 10) with `decimals` digits, a two-digit
+/// exponent, right-aligned in `width` characters.
+fn fortran(x: f64, decimals: usize, width: usize) -> String {
+    let x = if x.is_finite() { x } else { 0.0 };
+    let s = format!("{x:.decimals$E}");
     let (mantissa, exp) = s.split_once('E').unwrap_or((&s, "0"));
     let exp: i32 = exp.parse().unwrap_or(0);
     let sign = if exp < 0 { '-' } else { '+' };
-    format!("{:>19}", format!("{mantissa}E{sign}{:02}", exp.abs()))
+    format!("{:>width$}", format!("{mantissa}E{sign}{:02}", exp.abs()))
 }
 
-/// Time scale and week/seconds of `epoch` for a system's records.
-fn week_sow(system: System, epoch: Epoch) -> (TimeScale, u32, f64) {
-    let (week, sow) = match system {
+/// A record value, `D19.12`.
+fn d19(x: f64) -> String {
+    fortran(x, 12, 19)
+}
+
+/// Week number and seconds of week of `epoch` in `system`'s time scale.
+fn week_sow(system: System, epoch: Epoch) -> (u32, f64) {
+    match system {
         System::Gps => crate::time::gpst_week_sow(epoch),
         System::Beidou => crate::time::bdt_week_sow(epoch),
-    };
-    let scale = match system {
-        System::Gps => TimeScale::GPST,
-        System::Beidou => TimeScale::BDT,
-    };
-    (scale, week, sow)
+    }
 }
 
 fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
@@ -42,14 +41,6 @@ fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
         d19(v[2]),
         d19(v[3])
     )
-}
-
-/// A value in Fortran `D12.4` style, for header lines.
-fn d12(x: f64) -> String {
-    let s = d19(x);
-    let (mantissa, exp) = s.trim().split_once('E').unwrap_or(("0.0", "+00"));
-    let m: f64 = mantissa.parse().unwrap_or(0.0);
-    format!("{:>12}", format!("{m:.4}E{exp}"))
 }
 
 /// Write `ephemerides` as a RINEX 3.04 navigation file, `program` naming the writer, with
@@ -95,17 +86,17 @@ pub fn write_nav(
             writeln!(
                 out,
                 "{tag}{part} {}{}{}{}       IONOSPHERIC CORR",
-                d12(v[0]),
-                d12(v[1]),
-                d12(v[2]),
-                d12(v[3])
+                fortran(v[0], 4, 12),
+                fortran(v[1], 4, 12),
+                fortran(v[2], 4, 12),
+                fortran(v[3], 4, 12)
             )?;
         }
     }
     writeln!(out, "{:60}END OF HEADER", "")?;
     for e in ephemerides {
-        let (scale, week, toe_sow) = week_sow(e.sat.system, e.toe);
-        let (y, mo, d, h, mi, s, _) = e.toc.to_gregorian(scale);
+        let (week, toe_sow) = week_sow(e.sat.system, e.toe);
+        let (y, mo, d, h, mi, s, _) = e.toc.to_gregorian(e.sat.system.time_scale());
         writeln!(
             out,
             "{}{:02} {y:04} {mo:02} {d:02} {h:02} {mi:02} {s:02}{}{}{}",
@@ -120,7 +111,7 @@ pub fn write_nav(
         orbit_line(out, [toe_sow, e.cic, e.omega0, e.cis])?;
         orbit_line(out, [e.i0, e.crc, e.omega, e.omega_dot])?;
         // Transmission time: taken as toc (the set is broadcast from then on in SkyForge).
-        let (_, _, toc_sow) = week_sow(e.sat.system, e.toc);
+        let (_, toc_sow) = week_sow(e.sat.system, e.toc);
         match e.sat.system {
             System::Gps => {
                 orbit_line(out, [e.idot, 1.0, f64::from(week), 0.0])?;
@@ -144,6 +135,7 @@ mod tests {
     use crate::ephemeris::config::BeidouSet;
     use crate::ephemeris::nominal;
     use crate::ephemeris::rinex_nav::parse_nav;
+    use hifitime::TimeScale;
 
     fn text_has_iono(buf: &[u8]) -> bool {
         let text = String::from_utf8_lossy(buf);

@@ -10,6 +10,14 @@ pub enum System {
 }
 
 impl System {
+    /// The time scale the system's messages (toe, toc, week numbers) are expressed in.
+    pub fn time_scale(self) -> hifitime::TimeScale {
+        match self {
+            System::Gps => hifitime::TimeScale::GPST,
+            System::Beidou => hifitime::TimeScale::BDT,
+        }
+    }
+
     /// The RINEX system letter (`G`, `C`).
     pub fn letter(self) -> char {
         match self {
