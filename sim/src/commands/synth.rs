@@ -5,7 +5,7 @@
 use crate::BadInput;
 use crate::output::rinex_obs::{Calendar, ObsRecord, ObsWriter};
 use crate::output::staged_dir::StagedDir;
-use crate::output::truth_h5::{RunMeta, SignalRecord, TruthWriter};
+use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
@@ -249,29 +249,21 @@ pub fn synthesise(
                             file.write_all(buf)?;
                             buf.clear();
                         }
-                        let mut per_antenna: Vec<Vec<SignalRecord>> = vec![Vec::new(); n_ant];
-                        for r in synth.take_truth() {
-                            if r.t_s.fract() == 0.0 {
-                                whole_t = Some(r.t_s);
-                                whole_second[r.antenna].push(ObsRecord {
-                                    sat: sats[band.first + r.tx],
-                                    pseudorange_m: r.pseudorange_m,
-                                    carrier_phase_cycles: r.carrier_phase_cycles,
-                                    doppler_hz: r.doppler_hz,
-                                    cn0_dbhz: signal.cn0_dbhz,
-                                });
-                            }
-                            per_antenna[r.antenna].push(SignalRecord {
-                                t_s: r.t_s,
-                                sat_index: (band.first + r.tx) as u16,
+                        let truth = synth.take_truth();
+                        for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
+                            whole_t = Some(r.t_s);
+                            whole_second[r.antenna].push(ObsRecord {
+                                sat: sats[band.first + r.tx],
                                 pseudorange_m: r.pseudorange_m,
                                 carrier_phase_cycles: r.carrier_phase_cycles,
                                 doppler_hz: r.doppler_hz,
-                                iono_m: r.iono_m,
+                                cn0_dbhz: signal.cn0_dbhz,
                             });
                         }
-                        for (a, records) in per_antenna.iter().enumerate() {
-                            truth_writer.append_signal(a, records)?;
+                        for a in 0..n_ant {
+                            let records: Vec<_> =
+                                truth.iter().filter(|r| r.antenna == a).copied().collect();
+                            truth_writer.append_signal(a, &records, band.first)?;
                         }
                     }
                     if let Some(t) = whole_t {

@@ -7,6 +7,7 @@ use ndarray::ArrayView2;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::signal::SignalId;
+use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
 use std::path::Path;
 
@@ -128,17 +129,6 @@ struct SignalSets {
     doppler_hz: Dataset,
     iono_m: Dataset,
     rows: usize,
-}
-
-/// One signal-truth record for [`TruthWriter::append_signal`].
-#[derive(Debug, Clone, Copy)]
-pub struct SignalRecord {
-    pub t_s: f64,
-    pub sat_index: u16,
-    pub pseudorange_m: f64,
-    pub carrier_phase_cycles: f64,
-    pub doppler_hz: f64,
-    pub iono_m: f64,
 }
 
 /// The datasets of one antenna and how many links they hold.
@@ -413,20 +403,22 @@ impl TruthWriter {
         Ok(())
     }
 
-    /// Append signal-truth records of antenna `a`.
-    pub fn append_signal(&mut self, a: usize, records: &[SignalRecord]) -> hdf5::Result<()> {
+    /// Append signal-truth records of antenna `a`; a record's transmitter `tx` is
+    /// satellite `first_sat + tx` of `satellites/id`.
+    pub fn append_signal(
+        &mut self,
+        a: usize,
+        records: &[LinkTruth],
+        first_sat: usize,
+    ) -> hdf5::Result<()> {
         let Some(sets) = self.signal.get_mut(a) else {
             return Ok(());
         };
         let rows = sets.rows;
-        let col = |f: fn(&SignalRecord) -> f64| records.iter().map(f).collect::<Vec<f64>>();
+        let col = |f: fn(&LinkTruth) -> f64| records.iter().map(f).collect::<Vec<f64>>();
         append(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
-        append(
-            &sets.sat_index,
-            rows,
-            &records.iter().map(|r| r.sat_index).collect::<Vec<u16>>(),
-            0,
-        )?;
+        let sats: Vec<u16> = records.iter().map(|r| (first_sat + r.tx) as u16).collect();
+        append(&sets.sat_index, rows, &sats, 0)?;
         append(&sets.pseudorange_m, rows, &col(|r| r.pseudorange_m), 0)?;
         append(
             &sets.carrier_phase_cycles,
