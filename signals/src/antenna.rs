@@ -176,6 +176,103 @@ impl AntennaGrid {
     }
 }
 
+impl AntennaGrid {
+    /// Bilinear interpolation at (`zenith_deg`, `azimuth_deg`) (call after [`Self::check`]).
+    ///
+    /// - Zenith: clamped to the first and last rows.
+    /// - Azimuth: taken modulo 360, then periodic when the axis covers the circle, i.e. when
+    ///   the wrap gap `azimuth[0] + 360 - azimuth[last]` is no wider than the widest step of
+    ///   the axis (ANTEX `0:5:360`, or `0:5:355`): across the gap the values of the last and
+    ///   first columns are blended. Otherwise (a sector grid) the azimuth is clamped to the
+    ///   axis ends.
+    /// - A single row or column means the value is constant along that axis (ANTEX NOAZI).
+    pub fn value_at(&self, zenith_deg: f64, azimuth_deg: f64) -> f64 {
+        let n_az = self.azimuth_deg.len();
+        let (i0, i1, wz) = clamped_bracket(&self.zenith_deg, zenith_deg);
+        let (j0, j1, wa) = self.azimuth_bracket(azimuth_deg);
+        let at = |i: usize, j: usize| self.values.get(i * n_az + j).copied().unwrap_or(f64::NAN);
+        let row0 = at(i0, j0) * (1.0 - wa) + at(i0, j1) * wa;
+        let row1 = at(i1, j0) * (1.0 - wa) + at(i1, j1) * wa;
+        row0 * (1.0 - wz) + row1 * wz
+    }
+
+    /// Neighbouring azimuth columns and the weight of the second (rules in [`Self::value_at`]).
+    fn azimuth_bracket(&self, azimuth_deg: f64) -> (usize, usize, f64) {
+        let axis = &self.azimuth_deg;
+        let (Some(&first), Some(&last)) = (axis.first(), axis.last()) else {
+            return (0, 0, 0.0);
+        };
+        if axis.len() < 2 {
+            return (0, 0, 0.0);
+        }
+        let widest_step = axis.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+        let wrap_gap = first + 360.0 - last;
+        if wrap_gap > widest_step {
+            return clamped_bracket(axis, azimuth_deg.rem_euclid(360.0));
+        }
+        // Periodic: express the azimuth in [first, first + 360).
+        let az = first + (azimuth_deg - first).rem_euclid(360.0);
+        if az > last {
+            let w = if wrap_gap > 0.0 {
+                (az - last) / wrap_gap
+            } else {
+                0.0
+            };
+            return (axis.len() - 1, 0, w.clamp(0.0, 1.0));
+        }
+        clamped_bracket(axis, az)
+    }
+}
+
+/// Indices `(k0, k1)` of the axis entries around `x` and the weight of `k1`; `x` outside the
+/// axis is clamped to its ends.
+fn clamped_bracket(axis: &[f64], x: f64) -> (usize, usize, f64) {
+    let n = axis.len();
+    match (axis.first(), axis.last()) {
+        (Some(&first), Some(&last)) if n >= 2 && x > first => {
+            if x >= last {
+                return (n - 1, n - 1, 0.0);
+            }
+            // First entry strictly above x; 1 <= k1 <= n - 1 here.
+            let k1 = axis.partition_point(|&a| a <= x).clamp(1, n - 1);
+            let (a0, a1) = (axis[k1 - 1], axis[k1]);
+            (k1 - 1, k1, (x - a0) / (a1 - a0))
+        }
+        _ => (0, 0, 0.0),
+    }
+}
+
+impl Antenna {
+    /// Carrier and code delay (m) caused by the phase-centre offset and variation for a
+    /// line of sight at antenna-frame azimuth `az_rad` (from X towards Y) and elevation
+    /// `el_rad` (above the XY plane, Z = boresight): `-pco . u + pcv(90 deg - el, az)` with
+    /// `u = (cos el cos az, cos el sin az, sin el)`.
+    ///
+    /// ANTEX 1.4 convention (with X, Y, Z read as North, East, Up): the offset is the vector
+    /// from the reference point to the mean phase centre, so an offset towards the satellite
+    /// shortens the path; the variation is added to the range measured to the mean phase
+    /// centre. Positive result = longer apparent range. The same value applies to code and
+    /// carrier (no separate group-delay pattern is modelled).
+    pub fn phase_centre_delay_m(&self, az_rad: f64, el_rad: f64) -> f64 {
+        let (sin_el, cos_el) = el_rad.sin_cos();
+        let (sin_az, cos_az) = az_rad.sin_cos();
+        let u = Vec3::new(cos_el * cos_az, cos_el * sin_az, sin_el);
+        let pcv_m = self.pcv_m.as_ref().map_or(0.0, |grid| {
+            grid.value_at(90.0 - el_rad.to_degrees(), az_rad.to_degrees())
+        });
+        -self.pco_m.dot(&u) + pcv_m
+    }
+
+    /// Gain (dBi) towards antenna-frame azimuth `az_rad` and elevation `el_rad` (angles as
+    /// in [`Self::phase_centre_delay_m`]): the pattern interpolated at zenith
+    /// `90 deg - el`, or 0 dBi without a pattern.
+    pub fn gain_dbi_at(&self, az_rad: f64, el_rad: f64) -> f64 {
+        self.gain_dbi.as_ref().map_or(0.0, |grid| {
+            grid.value_at(90.0 - el_rad.to_degrees(), az_rad.to_degrees())
+        })
+    }
+}
+
 /// A grid axis: non-empty, finite, strictly increasing, within `[0, max_deg]`.
 fn check_axis(field: &str, axis: &[f64], max_deg: f64) -> Result<(), Invalid> {
     if axis.is_empty() {
@@ -379,6 +476,144 @@ mod tests {
                 ..antenna()
             };
             assert_eq!(config.check().expect_err(field).field, field);
+        }
+    }
+
+    /// A 3 x 4 grid whose value at (zenith z, azimuth a) is `1 + 0.01 z + 0.001 a +
+    /// 1e-5 z a`: bilinear in (z, a), so bilinear interpolation must reproduce it exactly.
+    fn bilinear_grid() -> AntennaGrid {
+        let zenith_deg = vec![0.0, 30.0, 90.0];
+        let azimuth_deg = vec![0.0, 90.0, 200.0, 360.0];
+        let values = zenith_deg
+            .iter()
+            .flat_map(|&z| azimuth_deg.iter().map(move |&a| bilinear(z, a)))
+            .collect();
+        AntennaGrid {
+            zenith_deg,
+            azimuth_deg,
+            values,
+        }
+    }
+
+    fn bilinear(z: f64, a: f64) -> f64 {
+        1.0 + 0.01 * z + 0.001 * a + 1e-5 * z * a
+    }
+
+    #[test]
+    fn grid_is_exact_at_nodes_and_linear_along_edges() {
+        let g = bilinear_grid();
+        assert_eq!(g.check(), Ok(()));
+        for &z in &g.zenith_deg {
+            for &a in &g.azimuth_deg[..3] {
+                assert!((g.value_at(z, a) - bilinear(z, a)).abs() < 1e-12, "{z} {a}");
+            }
+        }
+        // Along the zenith edge at azimuth 90 and the azimuth edge at zenith 90.
+        for (z, a) in [
+            (15.0, 90.0),
+            (60.0, 90.0),
+            (90.0, 45.0),
+            (90.0, 280.0),
+            (0.0, 359.0),
+        ] {
+            assert!((g.value_at(z, a) - bilinear(z, a)).abs() < 1e-12, "{z} {a}");
+        }
+        // Zenith clamped beyond the last row (a LEO antenna sees below its horizon).
+        assert!((g.value_at(120.0, 90.0) - bilinear(90.0, 90.0)).abs() < 1e-12);
+        assert!((g.value_at(-5.0, 90.0) - bilinear(0.0, 90.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn azimuth_wraps_when_the_axis_covers_the_circle() {
+        // 0..350 step 10 (no 360 column): the gap 350 -> 360 is one step, so it wraps.
+        // Column j holds 10 j; row values differ by 1000 so rows cannot be confused.
+        let azimuth_deg: Vec<f64> = (0..36).map(|j| 10.0 * f64::from(j)).collect();
+        let values = [0.0, 1000.0]
+            .iter()
+            .flat_map(|&row| azimuth_deg.iter().map(move |&a| row + a))
+            .collect();
+        let g = AntennaGrid {
+            zenith_deg: vec![0.0, 90.0],
+            azimuth_deg,
+            values,
+        };
+        assert_eq!(g.check(), Ok(()));
+        // 359 deg: 0.9 of the way from the 350 column (350) to the 0 column (0): 35.
+        assert!((g.value_at(0.0, 359.0) - 35.0).abs() < 1e-9);
+        assert!((g.value_at(0.0, 355.0) - 175.0).abs() < 1e-9);
+        // -1 deg is 359 deg; 360 is 0; 725 is 5.
+        assert!((g.value_at(0.0, -1.0) - 35.0).abs() < 1e-9);
+        assert!(g.value_at(0.0, 360.0).abs() < 1e-9);
+        assert!((g.value_at(0.0, 725.0) - 5.0).abs() < 1e-9);
+        // Second row, half-way in zenith.
+        assert!((g.value_at(45.0, 359.0) - 535.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn sector_grid_clamps_and_single_axis_is_constant() {
+        let sector = AntennaGrid {
+            zenith_deg: vec![0.0, 90.0],
+            azimuth_deg: vec![0.0, 45.0, 90.0],
+            values: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
+        };
+        assert_eq!(sector.check(), Ok(()));
+        assert!((sector.value_at(0.0, 180.0) - 3.0).abs() < 1e-12);
+        assert!((sector.value_at(90.0, 300.0) - 6.0).abs() < 1e-12);
+        assert!((sector.value_at(45.0, 22.5) - 3.0).abs() < 1e-12);
+        // ANTEX NOAZI: one azimuth column.
+        let noazi = AntennaGrid {
+            zenith_deg: vec![0.0, 10.0, 20.0],
+            azimuth_deg: vec![0.0],
+            values: vec![0.0, -1.0, -4.0],
+        };
+        for az in [0.0, 90.0, 359.0] {
+            assert!((noazi.value_at(15.0, az) + 2.5).abs() < 1e-12);
+        }
+        // One zenith row: constant in zenith.
+        let one_row = AntennaGrid {
+            zenith_deg: vec![30.0],
+            azimuth_deg: vec![0.0, 180.0],
+            values: vec![2.0, 4.0],
+        };
+        assert!((one_row.value_at(80.0, 90.0) - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn phase_centre_delay_and_gain_by_hand() {
+        let mut a = antenna().resolve();
+        a.pco_m = Vec3::new(0.02, -0.01, 0.1);
+        // Boresight: u = Z, delay = -pco_z.
+        let zenith = a.phase_centre_delay_m(0.0, std::f64::consts::FRAC_PI_2);
+        assert!((zenith + 0.1).abs() < 1e-15);
+        // Horizon towards +Y (az 90 deg): u = Y, delay = -pco_y = +0.01.
+        let east = a.phase_centre_delay_m(std::f64::consts::FRAC_PI_2, 0.0);
+        assert!((east - 0.01).abs() < 1e-15);
+        // 30 deg elevation at az 0: u = (cos 30, 0, sin 30): -(0.02 * 0.866.. + 0.05).
+        let el = 30f64.to_radians();
+        let expected = -(0.02 * 3f64.sqrt() / 2.0 + 0.1 * 0.5);
+        assert!((a.phase_centre_delay_m(0.0, el) - expected).abs() < 1e-15);
+        assert_eq!(a.gain_dbi_at(0.0, el), 0.0);
+        // With a PCV grid (zenith 60 deg = elevation 30 deg) and a gain pattern.
+        a.pcv_m = Some(AntennaGrid {
+            zenith_deg: vec![0.0, 90.0],
+            azimuth_deg: vec![0.0],
+            values: vec![0.0, 0.009],
+        });
+        a.gain_dbi = Some(AntennaGrid {
+            zenith_deg: vec![0.0, 90.0],
+            azimuth_deg: vec![0.0],
+            values: vec![3.0, -3.0],
+        });
+        assert!((a.phase_centre_delay_m(0.0, el) - (expected + 0.006)).abs() < 1e-15);
+        assert!((a.gain_dbi_at(1.0, el) - (-1.0)).abs() < 1e-12);
+    }
+
+    proptest::proptest! {
+        /// Bilinear data is reproduced exactly anywhere inside the grid.
+        #[test]
+        fn bilinear_data_is_reproduced(z in 0.0..90.0f64, a in 0.0..360.0f64) {
+            let g = bilinear_grid();
+            proptest::prop_assert!((g.value_at(z, a) - bilinear(z, a)).abs() < 1e-9);
         }
     }
 }
