@@ -2,5 +2,6 @@
 
 pub mod clock;
 pub mod ionosphere;
+pub mod link_budget;
 pub mod seed;
 pub mod troposphere;
