@@ -1,6 +1,7 @@
 //! Error models: receiver oscillator, ionosphere, troposphere.
 
 pub mod clock;
+pub mod events;
 pub mod ionosphere;
 pub mod link_budget;
 pub mod seed;
