@@ -4,6 +4,7 @@
 
 pub mod config;
 pub mod constellation;
+pub mod filter;
 pub mod format;
 pub mod gnss_sdr;
 pub mod mix;
