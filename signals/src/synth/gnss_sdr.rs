@@ -1,10 +1,22 @@
 //! A ready-to-run GNSS-SDR configuration for one antenna's recording (GNSS-SDR 0.0.17
 //! option names: File_Signal_Source, PCPS acquisition, DLL/PLL tracking, telemetry
 //! decoders, hybrid observables, RTKLIB single-point PVT).
+//!
+//! Known GNSS-SDR 0.0.17 limitation: its B1I code generator produces replicas for PRN
+//! 1-33 only (for a higher PRN it returns without writing a code, so acquisition
+//! correlates against zeros); BeiDou satellites C34-C63 in a recording are never acquired.
+//! It decodes D2 (GEO) navigation data for C01-C05. The `.conf` says so in a comment.
 
 use super::config::SignalConfig;
 use super::format::SampleFormat;
 use std::fmt::Write;
+
+/// Highest BeiDou PRN for which GNSS-SDR 0.0.17 generates a B1I replica (read from the
+/// Debian binary: its generator rejects PRN - 1 > 32 before looking up the phase table).
+pub const GNSS_SDR_0017_BDS_PRN_MAX: u8 = 33;
+
+/// B1I channels: enough for every BDS-2 satellite in view over Asia (up to 15).
+const BDS_CHANNELS: usize = 16;
 
 /// Signals present in a recording.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -105,7 +117,12 @@ pub fn config(
         line("TelemetryDecoder_1C.implementation=GPS_L1_CA_Telemetry_Decoder");
     }
     if present.bds_b1i {
-        line("Channels_B1.count=12");
+        line(&format!(
+            "; GNSS-SDR 0.0.17 has B1I replicas for PRN 1-{GNSS_SDR_0017_BDS_PRN_MAX} only: C{:02}-C63 are not acquired.",
+            GNSS_SDR_0017_BDS_PRN_MAX + 1
+        ));
+        // GEO + IGSO + MEO over Asia: more satellites in view than GPS.
+        line(&format!("Channels_B1.count={BDS_CHANNELS}"));
         line("Acquisition_B1.implementation=BEIDOU_B1I_PCPS_Acquisition");
         line("Acquisition_B1.item_type=gr_complex");
         line("Acquisition_B1.coherent_integration_time_ms=1");
@@ -141,4 +158,50 @@ pub fn config(
     line("PVT.output_enabled=true");
     line("PVT.dump=false");
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn bds_conf() -> String {
+        let cfg = SignalConfig {
+            sample_rate_hz: 4e6,
+            if_hz: 0.0,
+            format: SampleFormat::Ci8,
+            bits: Some(8),
+            cn0_dbhz: 45.0,
+            truth_rate_hz: 1000,
+        };
+        let present = SignalsPresent {
+            gps_l1ca: false,
+            bds_b1i: true,
+        };
+        config(&cfg, "a.sigmf-data", present, 5000.0, true, "a")
+    }
+
+    /// GNSS-SDR's INI reader takes `;` comments, `[section]` headers and `key=value`.
+    #[test]
+    fn every_line_is_a_comment_a_section_or_a_key_value_pair() {
+        for l in bds_conf().lines() {
+            let ok = l.starts_with(';')
+                || (l.starts_with('[') && l.ends_with(']'))
+                || l.split_once('=')
+                    .is_some_and(|(k, v)| !k.is_empty() && !v.is_empty());
+            assert!(ok, "{l}");
+        }
+    }
+
+    /// The embedded BDS-2 set has 15 satellites, all of which may be in view over Asia.
+    #[test]
+    fn beidou_has_a_channel_for_every_bds2_satellite_and_states_the_prn_limit() {
+        let conf = bds_conf();
+        let count: usize = conf
+            .lines()
+            .find_map(|l| l.strip_prefix("Channels_B1.count="))
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(0);
+        assert!(count >= 15, "{count} channels");
+        assert!(conf.contains("PRN 1-33 only"));
+    }
 }
