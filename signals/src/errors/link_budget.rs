@@ -22,8 +22,9 @@
 //!
 //! The default system noise temperature is the 290 K reference temperature (IEEE Std
 //! 100), i.e. `N0 = -204.0 dBW/Hz`, the density commonly used for GNSS link budgets; with
-//! it the GPS minimum gives 45.5 dB-Hz. A real front end (sky ~100 K plus an LNA noise
-//! figure of 2 dB: ~270 K more) is closer to 400-500 K, 1.5-2.4 dB lower; set
+//! it the GPS minimum gives 45.5 dB-Hz. It is also what a good front end achieves: a
+//! sky-pointing antenna (~100 K) plus an LNA of 2 dB noise figure (`290 (10^0.2 - 1)` =
+//! 170 K) make ~270 K. A 4 dB noise figure (438 K) gives ~540 K, 2.7 dB less C/N0; set
 //! `system_noise_temperature_k` to model a given receiver.
 
 use skyforge_orbits::check::Invalid;
