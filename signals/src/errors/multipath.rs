@@ -342,6 +342,10 @@ pub fn tap_path(tap: &TapConfig, t_s: f64) -> Path {
     }
 }
 
+/// Search reach beyond the direct path's correlation triangle and the early-late window
+/// (chips); bounds the cost for long reflections, which cannot move the lock point.
+const MAX_SEARCH_DELAY_CHIPS: f64 = 2.0;
+
 /// Number of bisection steps: halves the search step (<= 0.05 chip) to ~1e-16 chip.
 const BISECTION_STEPS: u32 = 60;
 
@@ -352,8 +356,9 @@ const BISECTION_STEPS: u32 = 60;
 ///
 /// Each path's `phase_rad` is taken as its full carrier phase relative to the direct path
 /// at the correlator ([`Path::at_carrier`]). The result is the stable zero of
-/// `D(tau) = |y_e|^2 - |y_l|^2` (D rising through zero) nearest to 0, located on a grid of
-/// `min(spacing / 8, 0.05)` chips and refined by bisection; positive = the pseudorange is
+/// `D(tau) = |y_e|^2 - |y_l|^2` (D rising through zero) nearest to 0, searched within
+/// `1 + spacing / 2 + min(longest delay, 2)` chips on a grid of `min(spacing / 8, 0.05)`
+/// chips and refined by bisection; positive = the pseudorange is
 /// too long. NaN when no stable zero exists within reach (only when the reflections
 /// together are about as strong as the direct path).
 pub fn dll_bias_m(paths: &[Path], chip_m: f64, code_len_chips: u32, spacing_chips: f64) -> f64 {
@@ -365,7 +370,8 @@ pub fn dll_bias_m(paths: &[Path], chip_m: f64, code_len_chips: u32, spacing_chip
         early.0 * early.0 + early.1 * early.1 - late.0 * late.0 - late.1 * late.1
     };
     let max_delay_chips = paths.iter().map(|p| p.delay_m / chip_m).fold(0.0, f64::max);
-    let reach = 1.0 + half_spacing + max_delay_chips;
+    // A lock point further out would be tracking a reflection, not a biased direct path.
+    let reach = 1.0 + half_spacing + max_delay_chips.min(MAX_SEARCH_DELAY_CHIPS);
     let step = (spacing_chips / 8.0).min(0.05);
     if !(chip_m > 0.0 && step > 0.0 && reach.is_finite()) {
         return f64::NAN;
