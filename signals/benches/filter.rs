@@ -7,17 +7,22 @@ use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
 fn filter(c: &mut Criterion) {
     let fs = 4.092e6;
     let n = 4092;
-    let cfg = FilterConfig {
-        bandwidth_hz: 2.046e6,
-        taps: 63,
-    };
     let mut group = c.benchmark_group("filter");
     group.throughput(Throughput::Elements(n as u64));
-    for (name, if_hz, complex) in [
-        ("complex baseband, 63 taps, 4092 samples", 0.0, true),
-        ("complex at IF, 63 taps, 4092 samples", 0.5e6, true),
-        ("real IF, 63 taps, 4092 samples", 1.023e6, false),
+    for (name, bandwidth_hz, if_hz, complex) in [
+        (
+            "complex baseband, 63 taps, 4092 samples",
+            2.046e6,
+            0.0,
+            true,
+        ),
+        ("complex at IF, 63 taps, 4092 samples", 2.046e6, 0.5e6, true),
+        ("real IF, 63 taps, 4092 samples", 2.0e6, 1.023e6, false),
     ] {
+        let cfg = FilterConfig {
+            bandwidth_hz,
+            taps: 63,
+        };
         let Ok(f) = BandFilter::new(&cfg, fs, if_hz, complex) else {
             panic!("bench filter configuration rejected");
         };

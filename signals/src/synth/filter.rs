@@ -233,8 +233,8 @@ impl BandFilter {
         }
         for (j, &h) in self.re.iter().enumerate().skip(1) {
             let (lo, hi) = (&x[m - j..m - j + n], &x[m + j..m + j + n]);
-            for ((o, &a), &b) in out.iter_mut().zip(lo).zip(hi) {
-                *o += h * (a + b);
+            for k in 0..n {
+                out[k] += h * (lo[k] + hi[k]);
             }
         }
     }
@@ -252,13 +252,13 @@ impl BandFilter {
             *o = h0 * x;
         }
         for (j, (&a, &b)) in self.re.iter().zip(&self.im).enumerate().skip(1) {
+            // Equal-length slices: the indexed loop below needs no bounds checks.
             let (il, ih) = (&xi[m - j..m - j + n], &xi[m + j..m + j + n]);
             let (ql, qh) = (&xq[m - j..m - j + n], &xq[m + j..m + j + n]);
-            for ((((o, &il), &ih), &ql), &qh) in oi.iter_mut().zip(il).zip(ih).zip(ql).zip(qh) {
-                *o += a * (il + ih) - b * (ql - qh);
-            }
-            for ((((o, &il), &ih), &ql), &qh) in oq.iter_mut().zip(il).zip(ih).zip(ql).zip(qh) {
-                *o += a * (ql + qh) + b * (il - ih);
+            let (oi, oq) = (&mut oi[..n], &mut oq[..n]);
+            for k in 0..n {
+                oi[k] += a * (il[k] + ih[k]) - b * (ql[k] - qh[k]);
+                oq[k] += a * (ql[k] + qh[k]) + b * (il[k] - ih[k]);
             }
         }
     }
