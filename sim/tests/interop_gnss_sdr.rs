@@ -7,7 +7,7 @@ use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 use std::path::Path;
 use std::process::Command;
 
-/// The site of the bundled `interop-gps-static` scenario.
+/// The site of the bundled `interop-gps-static` and `interop-bds-static` scenarios.
 const SITE: (f64, f64, f64) = (30.0, 114.0, 50.0);
 /// The scenario's C/N0 (dB-Hz).
 const CN0_DBHZ: f64 = 45.0;
@@ -58,9 +58,12 @@ fn timed_fixes(nmea: &str) -> Vec<(f64, f64, f64, f64)> {
         .collect()
 }
 
-/// PRN -> SNR (dB-Hz) from the last complete group of GSV sentences.
-fn last_gsv(nmea: &str) -> Vec<(u8, f64)> {
-    let gsv: Vec<&str> = nmea.lines().filter(|l| l.starts_with("$GPGSV")).collect();
+/// PRN -> SNR (dB-Hz) from the last complete group of GSV sentences of `talker` (`GP`
+/// for GPS, `BD` for BeiDou). A trailing NMEA 4.1 signal-ID field forms a chunk of one
+/// and is skipped.
+fn last_gsv(nmea: &str, talker: &str) -> Vec<(u8, f64)> {
+    let tag = format!("${talker}GSV");
+    let gsv: Vec<&str> = nmea.lines().filter(|l| l.starts_with(&tag)).collect();
     let Some(last_first) = gsv.iter().rposition(|l| l.split(',').nth(2) == Some("1")) else {
         return Vec::new();
     };
@@ -79,8 +82,9 @@ fn last_gsv(nmea: &str) -> Vec<(u8, f64)> {
     out
 }
 
-/// GPS PRNs whose elevation stays above `mask_deg` for the whole run, from truth.h5.
-fn satellites_above(truth: &Path, mask_deg: f64) -> Vec<u8> {
+/// PRNs of `system` (`'G'`, `'C'`) whose elevation stays above `mask_deg` for the whole
+/// run, from truth.h5.
+fn satellites_above(truth: &Path, system: char, mask_deg: f64) -> Vec<u8> {
     let file = hdf5::File::open(truth).unwrap();
     let ids: Vec<hdf5::types::VarLenUnicode> =
         file.dataset("satellites/id").unwrap().read_raw().unwrap();
@@ -94,13 +98,18 @@ fn satellites_above(truth: &Path, mask_deg: f64) -> Vec<u8> {
     ids.iter()
         .zip(&min_el)
         .filter(|(_, el)| el.is_finite() && **el > mask_deg)
-        .filter_map(|(id, _)| id.as_str().strip_prefix('G')?.parse().ok())
+        .filter_map(|(id, _)| id.as_str().strip_prefix(system)?.parse().ok())
         .collect()
 }
 
-/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's GPS
-/// recording, and return (output folder, GNSS-SDR's console log, its NMEA output).
-fn synth_and_receive(dir: &Path, scenario: &str) -> (std::path::PathBuf, String, String) {
+/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's recording of
+/// `band` (`gps-l1ca`, `bds-b1i`), and return (output folder, GNSS-SDR's console log, its
+/// NMEA output).
+fn synth_and_receive(
+    dir: &Path,
+    scenario: &str,
+    band: &str,
+) -> (std::path::PathBuf, String, String) {
     assert!(
         Command::new("gnss-sdr").arg("--version").output().is_ok(),
         "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh does) ***\n"
@@ -113,7 +122,7 @@ fn synth_and_receive(dir: &Path, scenario: &str) -> (std::path::PathBuf, String,
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let o = Command::new("gnss-sdr")
-        .arg("--config_file=ant1.gps-l1ca.gnss-sdr.conf")
+        .arg(format!("--config_file=ant1.{band}.gnss-sdr.conf"))
         .current_dir(&out)
         .output()
         .unwrap();
@@ -123,21 +132,17 @@ fn synth_and_receive(dir: &Path, scenario: &str) -> (std::path::PathBuf, String,
         "gnss-sdr failed:\n{log}\n{}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let nmea = std::fs::read_to_string(out.join("ant1.gps-l1ca.nmea")).unwrap();
+    let nmea = std::fs::read_to_string(out.join(format!("ant1.{band}.nmea"))).unwrap();
     (out, log, nmea)
 }
 
-#[test]
-#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
-fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
-    let tmp = tempfile::tempdir().unwrap();
-    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gps-static");
-
-    // Position: GNSS-SDR's single-epoch fixes scatter by a few metres (code noise at
-    // 45 dB-Hz through its 2 Hz DLL, times the DOP); the RMS 3D error and the error of the
-    // averaged position must both stay within 10 m. The worst single epoch is reported.
+/// Position check of a static run: GNSS-SDR's single-epoch fixes scatter by a few metres
+/// (code noise at 45 dB-Hz through its 2 Hz DLL, times the DOP); the RMS 3D error and the
+/// error of the averaged position must both stay within 10 m of `SITE`. The worst single
+/// epoch is reported.
+fn assert_static_fixes(nmea: &str, log: &str, label: &str) {
     let truth = ecef(SITE.0, SITE.1, SITE.2);
-    let fixes = fixes(&nmea);
+    let fixes = fixes(nmea);
     assert!(
         fixes.len() >= 30,
         "only {} fixes in 90 s:\n{log}",
@@ -153,35 +158,83 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
     let mean_point = points.iter().fold(Vec3::zeros(), |acc, p| acc + p) / points.len() as f64;
     let mean_error = (mean_point - truth).norm();
     println!(
-        "GNSS-SDR: {} fixes, 3D error RMS {rms:.2} m, worst epoch {worst:.2} m, averaged position {mean_error:.2} m",
+        "GNSS-SDR {label}: {} fixes, 3D error RMS {rms:.2} m, worst epoch {worst:.2} m, averaged position {mean_error:.2} m",
         fixes.len()
     );
-    assert!(rms < 10.0, "RMS 3D position error {rms} m");
+    assert!(rms < 10.0, "{label}: RMS 3D position error {rms} m");
     assert!(
         mean_error < 10.0,
-        "averaged position {mean_error} m from the site"
+        "{label}: averaged position {mean_error} m from the site"
     );
+}
 
-    // Every satellite above 10 deg is in GNSS-SDR's solution, at the scenario's C/N0 +/- 2 dB.
-    let gsv = last_gsv(&nmea);
-    for prn in satellites_above(&out.join("truth.h5"), 10.0) {
+/// Every PRN of `prns` is in GNSS-SDR's last GSV group at the scenario's C/N0 +/- 2 dB.
+fn assert_in_solution_at_scenario_cn0(gsv: &[(u8, f64)], system: char, prns: &[u8]) {
+    for &prn in prns {
         let snr = gsv.iter().find(|(p, _)| *p == prn).map(|(_, s)| *s);
-        println!("G{prn:02}: GNSS-SDR C/N0 {snr:?} dB-Hz");
+        println!("{system}{prn:02}: GNSS-SDR C/N0 {snr:?} dB-Hz");
         let snr = snr.unwrap_or_else(|| {
-            panic!("G{prn:02} is above 10 deg but not in GNSS-SDR's solution: {gsv:?}")
+            panic!("{system}{prn:02} is above 10 deg but not in GNSS-SDR's solution: {gsv:?}")
         });
         assert!(
             (snr - CN0_DBHZ).abs() <= 2.0,
-            "G{prn:02}: C/N0 {snr} dB-Hz, scenario {CN0_DBHZ}"
+            "{system}{prn:02}: C/N0 {snr} dB-Hz, scenario {CN0_DBHZ}"
         );
     }
 }
 
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gps-static", "gps-l1ca");
+    assert_static_fixes(&nmea, &log, "GPS");
+    let above = satellites_above(&out.join("truth.h5"), 'G', 10.0);
+    assert_in_solution_at_scenario_cn0(&last_gsv(&nmea, "GP"), 'G', &above);
+}
+
+/// BeiDou B1I (the BDS-2 set, GEO + IGSO + MEO; see the scenario file for why): every
+/// satellite above 10 deg that GNSS-SDR 0.0.17 can acquire (PRN 1-33) is tracked, has its
+/// ephemeris decoded -- from D2 for the GEOs C01-C05, from D1 for the others -- and is in
+/// the solution at 45 +/- 2 dB-Hz; the fixes are within 10 m of the site.
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
+    use skyforge_signals::synth::gnss_sdr::GNSS_SDR_0017_BDS_PRN_MAX;
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-bds-static", "bds-b1i");
+    assert_static_fixes(&nmea, &log, "BeiDou");
+
+    let (supported, unsupported): (Vec<u8>, Vec<u8>) =
+        satellites_above(&out.join("truth.h5"), 'C', 10.0)
+            .into_iter()
+            .partition(|&prn| prn <= GNSS_SDR_0017_BDS_PRN_MAX);
+    for prn in &unsupported {
+        println!("C{prn:02}: above 10 deg, no B1I replica in GNSS-SDR 0.0.17 (not checked)");
+    }
+    // D2 (GEO, C01-C05 in GNSS-SDR) and D1 ephemerides as GNSS-SDR reports them.
+    let is_geo = |prn: u8| (1..=5).contains(&prn);
+    for &prn in &supported {
+        let decoded = format!("ephemeris from satellite Beidou PRN {prn:02}");
+        let message = if is_geo(prn) { "D2" } else { "D1" };
+        assert!(
+            log.contains(&decoded),
+            "C{prn:02}: no {message} ephemeris decoded by GNSS-SDR:\n{log}"
+        );
+        println!("C{prn:02}: {message} ephemeris decoded");
+    }
+    assert!(
+        supported.iter().any(|&p| is_geo(p)) && supported.iter().any(|&p| !is_geo(p)),
+        "the scenario must put a GEO (D2) and a MEO/IGSO (D1) above 10 deg: {supported:?}"
+    );
+    assert_in_solution_at_scenario_cn0(&last_gsv(&nmea, "BD"), 'C', &supported);
+}
+
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn gnss_sdr_fixes_on_the_thesis_leo() {
     let tmp = tempfile::tempdir().unwrap();
-    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-leo-gps");
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-leo-gps", "gps-l1ca");
     // Truth: the platform's ECEF position at 1 Hz (the antenna sits at the centre of mass).
     let file = hdf5::File::open(out.join("truth.h5")).unwrap();
     let t: Vec<f64> = file.dataset("time/t_s").unwrap().read_raw().unwrap();
