@@ -35,7 +35,9 @@ const INITIAL_PHASE: u16 = stage(2) | stage(4) | stage(6) | stage(8) | stage(10)
 ///
 /// BDS-SIS-ICD-B1I-3.0 §4.3, table "Phase assignment of G2 sequence" (PRN 1-37 as in
 /// BDS-SIS-ICD-2.0 Table 4-2; PRN 38-63, three stages each, from the 3.0 table as quoted
-/// identically by two independent public B1I generators, see the tests).
+/// identically by two independent public B1I generators, see the tests, and by the
+/// 63-entry table of GNSS-SDR's current source; the Debian GNSS-SDR 0.0.17 binary
+/// generates PRN 1-33 only).
 #[rustfmt::skip]
 const G2_PHASE_ASSIGNMENT: [&[u32]; BDS_B1I_PRN_MAX as usize] = [
     // PRN 1-10
