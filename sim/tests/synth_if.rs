@@ -35,6 +35,9 @@ struct BlockTruth {
     doppler_hz: f64,
 }
 
+/// Truth of one satellite for every 1 ms block of the run (index = block).
+type Blocks = Vec<Option<BlockTruth>>;
+
 /// The bundled GPS interop scenario, 2 s of real samples at an IF, two satellites.
 fn write_scenario(dir: &Path) {
     let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
@@ -73,7 +76,7 @@ fn write_scenario(dir: &Path) {
 }
 
 /// Per PRN, the truth of every 1 ms block (index = block), from truth.h5.
-fn read_truth(path: &Path) -> (Vec<(u8, Vec<Option<BlockTruth>>)>, f64) {
+fn read_truth(path: &Path) -> (Vec<(u8, Blocks)>, f64) {
     let file = hdf5::File::open(path).expect("open truth.h5");
     let ids: Vec<hdf5::types::VarLenUnicode> = file
         .dataset("satellites/id")
