@@ -241,7 +241,7 @@ impl Scenario {
     }
 
     /// `invalid`, placed in this scenario's text.
-    fn located(&self, invalid: Invalid) -> ScenarioError {
+    pub fn located(&self, invalid: Invalid) -> ScenarioError {
         locate_invalid(&self.text, &self.source, invalid)
     }
 }

@@ -39,11 +39,65 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         .ionosphere
         .check()
         .map_err(|e| e.within("errors.ionosphere"))?;
+    check_errors(scenario)?;
     match &scenario.signal {
         Some(signal) => signal.check().map_err(|e| e.within("signal")),
         None => Ok(()),
     }
 }
+
+/// `[errors]` beyond the ionosphere: each table's own check, plus what needs the rest of
+/// the scenario (antenna names, the span, the clock staying within the renderer's reach).
+fn check_errors(scenario: &Scenario) -> Result<(), Invalid> {
+    let errors = &scenario.errors;
+    errors
+        .troposphere
+        .check()
+        .map_err(|e| e.within("errors.troposphere"))?;
+    if let Some(clock) = &errors.receiver_clock {
+        clock
+            .check()
+            .map_err(|e| e.within("errors.receiver_clock"))?;
+        // The deterministic part of the clock offset must stay within one geometry
+        // interval of true time (the renderer extrapolates the range at most that far).
+        let reach = clock.bias_s.abs() + clock.drift.abs() * scenario.time.duration_s;
+        if reach > MAX_RECEIVER_CLOCK_OFFSET_S {
+            return Err(Invalid::new(
+                "errors.receiver_clock.drift",
+                clock.drift,
+                format!(
+                    "|bias_s| + |drift| x duration_s = {reach:.3} s; must stay below {MAX_RECEIVER_CLOCK_OFFSET_S} s"
+                ),
+            ));
+        }
+    }
+    errors
+        .multipath
+        .check()
+        .map_err(|e| e.within("errors.multipath"))?;
+    let names: Vec<&str> = scenario.antennas.iter().map(|a| a.name.as_str()).collect();
+    errors
+        .multipath
+        .check_antennas(&names)
+        .map_err(|e| e.within("errors.multipath"))?;
+    for (i, event) in errors.events.iter().enumerate() {
+        let within = format!("errors.events[{i}]");
+        event
+            .check(scenario.time.duration_s)
+            .map_err(|e| e.within(&within))?;
+        if let Some(a) = event.antenna.as_deref().filter(|a| !names.contains(a)) {
+            return Err(Invalid::new(
+                format!("{within}.antenna"),
+                format!("{a:?}"),
+                format!("must name an antenna of [[antennas]]: {}", names.join(", ")),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Largest deterministic receiver clock offset over the span (s): one geometry interval.
+const MAX_RECEIVER_CLOCK_OFFSET_S: f64 = 1.0;
 
 /// `time.start` as written: an epoch with its time scale.
 pub(crate) fn parse_start(text: &str) -> Result<Epoch, Invalid> {

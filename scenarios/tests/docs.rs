@@ -49,6 +49,11 @@ fn every_accepted_key_is_documented() {
         "signal",
         "errors",
         "errors.ionosphere",
+        "errors.troposphere",
+        "errors.receiver_clock",
+        "errors.multipath",
+        "signal.link_budget",
+        "signal.filter",
         "platform.leo",
         "platform.leo.forces",
         "platform.leo.integrator",
@@ -83,6 +88,17 @@ fn every_accepted_key_is_documented() {
         texts.push((
             table.to_string(),
             format!("{minimal}\n[{table}]\n{unknown}"),
+        ));
+    }
+    // Arrays of tables: the unknown key is reported before the missing required ones.
+    for table in [
+        "errors.events",
+        "errors.multipath.taps",
+        "errors.multipath.surfaces",
+    ] {
+        texts.push((
+            table.to_string(),
+            format!("{minimal}\n[[{table}]]\n{unknown}"),
         ));
     }
     for (table, text) in texts {

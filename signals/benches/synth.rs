@@ -27,6 +27,10 @@ fn synth(c: &mut Criterion) {
                 sat_clock_s: 1e-5,
                 sat_clock_drift: 1e-11,
                 iono_m: 5.0,
+                tropo_m: 2.5,
+                antenna_m: 0.0,
+                cn0_dbhz: 45.0,
+                reflections: Vec::new(),
             })
         })
         .collect();
@@ -35,8 +39,8 @@ fn synth(c: &mut Criterion) {
         if_hz: 0.0,
         format: SampleFormat::Ci8,
         bits: Some(8),
-        cn0_dbhz: 45.0,
         truth_rate_hz: 0,
+        ..SignalConfig::default()
     };
     let mut group = c.benchmark_group("synth");
     group.sample_size(10);

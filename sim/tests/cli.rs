@@ -283,6 +283,14 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
         .read_raw()
         .unwrap();
     let iono: Vec<f64> = s.dataset("iono_m").unwrap().read_raw().unwrap();
+    let tropo: Vec<f64> = s.dataset("tropo_m").unwrap().read_raw().unwrap();
+    // A site at 50 m under the default Saastamoinen troposphere: 2.3 m at the zenith, about
+    // 25 m at 5 deg.
+    assert!(
+        tropo.iter().all(|&d| (2.2..30.0).contains(&d)),
+        "tropo {:?}",
+        &tropo[..3]
+    );
     // A ground site under the default Klobuchar ionosphere: metres of delay.
     assert!(
         iono.iter().all(|&i| (0.5..50.0).contains(&i)),
@@ -299,13 +307,14 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
     assert_eq!(t.len(), 1000 * (links_at(0) + links_at(1)));
     let lambda = 299_792_458.0 / 1575.42e6;
     for (i, (&ti, &si)) in t.iter().zip(&sat).enumerate() {
-        // Code delayed, carrier advanced by the ionosphere; no other terms yet.
+        // Code delayed, carrier advanced by the ionosphere; every other term (troposphere
+        // here) is common to both.
         assert!((phase[i] * lambda - (pr[i] - 2.0 * iono[i])).abs() < 1e-6);
         if ti == 1.0 {
             let j = (0..epochs.len())
                 .find(|&j| epochs[j] == 1 && gsat[j] == si)
                 .unwrap();
-            let expected = range[j] - 299_792_458.0 * clock[j] + iono[i];
+            let expected = range[j] - 299_792_458.0 * clock[j] + iono[i] + tropo[i];
             assert!((pr[i] - expected).abs() < 1e-6, "{} vs {expected}", pr[i]);
         }
     }

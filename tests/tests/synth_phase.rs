@@ -1,15 +1,21 @@
 //! Issue #3 acceptance: for two antennas 1 m apart (the thesis LEO's ant1 and ant2), the
 //! synthesised carrier-phase difference equals the truth (the light-time ranges of the
-//! two antennas) to 0.1 mm. Checked by correlating the samples against the known code and
+//! two antennas, their phase-centre offset and variation, and a reflected path on the
+//! second antenna) to 0.1 mm. Checked by correlating the samples against the known code and
 //! carrier, independently of the receiver crate.
 
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
+use skyforge_signals::antenna::AntennaGrid;
 use skyforge_signals::codes::gps_ca::gps_ca;
+use skyforge_signals::errors::ionosphere::{IonoConfig, IonoModel};
+use skyforge_signals::errors::multipath::{MultipathConfig, TapConfig};
+use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::format::SampleFormat;
-use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
+use skyforge_signals::synth::render::Synthesiser;
 use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
 use skyforge_signals::truth::interp::QuinticHermite;
 
@@ -30,6 +36,7 @@ fn range_curve(chunk: &GeometryChunk, a: usize, s: usize) -> QuinticHermite {
 fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     let scenario = skyforge_scenarios::resolve("thesis-leo").unwrap();
     let mut world = scenario.build().unwrap();
+    assert_eq!(world.antennas[0].pco_m, skyforge_orbits::Vec3::zeros());
     let start = world.origin.start();
     let ephs: Vec<BroadcastEphemeris> = world
         .satellites
@@ -43,6 +50,37 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
         &world.origin,
     );
     let sats: Vec<SatId> = txs.iter().map(|t| t.sat).collect();
+    // The second antenna gets a phase-centre offset, a phase-centre variation grid
+    // (5 mm x sin(zenith) cos(azimuth)) and a reflected path.
+    world.antennas[1].pco_m = skyforge_orbits::Vec3::new(0.002, -0.003, 0.06);
+    let (zen, az): (Vec<f64>, Vec<f64>) = (
+        (0..=18).map(|i| f64::from(i) * 5.0).collect(),
+        (0..=36).map(|j| f64::from(j) * 10.0).collect(),
+    );
+    let values = zen
+        .iter()
+        .flat_map(|z| {
+            az.iter()
+                .map(move |a| 0.005 * z.to_radians().sin() * a.to_radians().cos())
+        })
+        .collect();
+    world.antennas[1].pcv_m = Some(AntennaGrid {
+        zenith_deg: zen,
+        azimuth_deg: az,
+        values,
+    });
+    let tap = TapConfig {
+        antenna: Some(world.antennas[1].name.clone()),
+        satellite: None,
+        delay_m: 2.0,
+        relative_amplitude: 0.3,
+        phase_deg: 40.0,
+        doppler_hz: 0.0,
+    };
+    let multipath = MultipathConfig {
+        taps: vec![tap.clone()],
+        surfaces: Vec::new(),
+    };
     let antennas = &world.antennas[..2];
     assert!((antennas[1].true_body_m - antennas[0].true_body_m).norm() - 1.0 < 1e-12);
     let truth = GeometryTruth::new(&store, &sats, antennas, 1.0);
@@ -57,23 +95,54 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     // Synthesise the interval [1 s, 2 s] for this satellite alone, as float samples.
     let cfg = SignalConfig {
         sample_rate_hz: FS_HZ,
-        if_hz: 0.0,
         format: SampleFormat::Cf32,
-        bits: None,
         cn0_dbhz: 70.0,
         truth_rate_hz: 0,
+        ..SignalConfig::default()
+    };
+    let iono = IonoConfig {
+        model: IonoModel::Off,
+        ..IonoConfig::default()
+    };
+    let tropo = TropoConfig {
+        model: TropoModel::Off,
+        ..TropoConfig::default()
+    };
+    let terms = LinkTerms {
+        signal: &cfg,
+        ionosphere: &iono,
+        troposphere: &tropo,
+        multipath: &multipath,
+        antennas,
     };
     let mut synth = Synthesiser::new(&cfg, std::slice::from_ref(tx), 2, 7).unwrap();
     let mut out = vec![Vec::new(), Vec::new()];
     for k in 1..=2 {
-        synth.push_epoch(
-            chunk.t_s[k],
-            (0..2)
-                .map(|a| LinkEnd::from_geometry(chunk.link(k, a, s)))
-                .collect(),
-            &mut out,
-        );
+        let links = (0..2)
+            .map(|a| {
+                let at = AntennaEpoch::new(&chunk.platform[k], &antennas[a]);
+                terms.link_end(
+                    chunk.t_s[k],
+                    0.0,
+                    a,
+                    &at,
+                    tx.sat,
+                    tx.signal,
+                    chunk.link(k, a, s),
+                )
+            })
+            .collect();
+        synth.push_epoch(chunk.t_s[k], links, &mut out);
     }
+    // Phase-centre delay of each antenna at the two epochs (linear in between).
+    let centre = |a: usize, k: usize| {
+        let g = chunk.link(k, a, s);
+        antennas[a].phase_centre_delay_m(g.antenna_azimuth_rad, g.antenna_elevation_rad)
+    };
+    let centre_at = |a: usize, t: f64| {
+        let (c1, c2) = (centre(a, 1), centre(a, 2));
+        c1 + (c2 - c1) * (t - chunk.t_s[1]) / (chunk.t_s[2] - chunk.t_s[1])
+    };
     let samples: Vec<Vec<(f32, f32)>> = out
         .iter()
         .map(|bytes| {
@@ -120,9 +189,21 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
                 za.1 += x * sn + y * cs;
             }
         }
-        // z1 conj(z2), rotated by the true phase difference (phi1 - phi2 = (rho2 - rho1)/lambda).
+        // z1 conj(z2), rotated by the true phase difference: phi1 - phi2 = (rho2 + c2 - rho1
+        // - c1) / lambda (c: phase-centre delays) minus the phase the reflection adds to
+        // antenna 2's correlation: arg(R(d) + a R(d + delay) e^{j(theta - 2 pi delay /
+        // lambda)}), R the triangular code correlation, d antenna 2's code offset from the
+        // replica.
         let tm = t0 + 0.5e-3;
-        let truth_cycles = (r2.value(tm) - r1.value(tm)) / lambda;
+        let chip_m = C_MPS / tx.chip_rate_hz;
+        let corr = |x: f64| (1.0 - x.abs() / chip_m).max(0.0);
+        let d = r2.value(tm) + centre_at(1, tm) - r1.value(tm);
+        let psi = tap.phase_deg.to_radians() - std::f64::consts::TAU * tap.delay_m / lambda;
+        let reflected = tap.relative_amplitude * corr(d + tap.delay_m);
+        let mp = (reflected * psi.sin()).atan2(corr(d) + reflected * psi.cos());
+        let truth_cycles = (r2.value(tm) + centre_at(1, tm) - r1.value(tm) - centre_at(0, tm))
+            / lambda
+            - mp / std::f64::consts::TAU;
         let (re, im) = (
             z[0].0 * z[1].0 + z[0].1 * z[1].1,
             z[0].1 * z[1].0 - z[0].0 * z[1].1,

@@ -332,13 +332,13 @@ pub fn surface_path(
 }
 
 /// The path of tap `tap` at time `t_s` (s from the scenario start): its delay and
-/// amplitude, phase `phase_deg + 360 doppler_hz t_s` in radians, wrapped to `[0, 2 pi)`.
+/// amplitude, phase `phase_deg + 360 doppler_hz t_s` in radians, not wrapped (the renderer
+/// interpolates it linearly between epochs, which a wrap would break).
 pub fn tap_path(tap: &TapConfig, t_s: f64) -> Path {
-    let cycles = tap.phase_deg / 360.0 + tap.doppler_hz * t_s;
     Path {
         delay_m: tap.delay_m,
         relative_amplitude: tap.relative_amplitude,
-        phase_rad: std::f64::consts::TAU * (cycles - cycles.floor()),
+        phase_rad: std::f64::consts::TAU * (tap.phase_deg / 360.0 + tap.doppler_hz * t_s),
     }
 }
 
@@ -626,8 +626,9 @@ mod tests {
         let p = tap_path(&tap, 2.0);
         assert!((p.phase_rad - 1.5 * PI).abs() < 1e-12);
         assert_eq!((p.delay_m, p.relative_amplitude), (10.0, 0.3));
-        // After 1e6 s the phase is 90 deg again, without loss of precision.
-        assert!((tap_path(&tap, 1e6).phase_rad - FRAC_PI_2).abs() < 1e-9);
+        // After 1e6 s the phase has grown by 250 000 whole cycles, unwrapped.
+        let late = tap_path(&tap, 1e6).phase_rad - 250_000.0 * std::f64::consts::TAU;
+        assert!((late - FRAC_PI_2).abs() < 1e-9);
         // A quarter-wavelength delay rotates the carrier by -90 deg: 180 - 90 = 90 deg.
         let lambda = 0.19;
         let q = Path {

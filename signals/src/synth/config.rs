@@ -1,7 +1,11 @@
 //! `[signal]`: what the synthesiser writes.
 
+use super::filter::FilterConfig;
 use super::format::SampleFormat;
+use crate::errors::link_budget::LinkBudgetConfig;
 use skyforge_orbits::check::Invalid;
+use skyforge_orbits::ephemeris::SatId;
+use std::collections::BTreeMap;
 
 /// Synthesis block length (s): blocks are 1 ms, the C/A code period.
 pub const BLOCK_S: f64 = 1e-3;
@@ -21,13 +25,50 @@ pub struct SignalConfig {
     /// Quantisation word length: 1, 2, 4, 8 or 16 (default: the container's); ignored for cf32.
     #[serde(default)]
     pub bits: Option<u8>,
-    /// C/N0 of every satellite (dB-Hz).
+    /// C/N0 of every satellite (dB-Hz), unless `link_budget` or `cn0_by_satellite_dbhz`
+    /// says otherwise.
     #[serde(default = "default_cn0")]
     pub cn0_dbhz: f64,
+    /// `[signal.cn0_by_satellite_dbhz]`: fixed C/N0 of named satellites (`G05 = 40.0`),
+    /// overriding `cn0_dbhz` and the link budget.
+    #[serde(default)]
+    pub cn0_by_satellite_dbhz: BTreeMap<String, f64>,
+    /// `[signal.link_budget]`: C/N0 of each link from transmitter EIRP, free-space loss,
+    /// the antenna gain pattern and the system noise temperature.
+    #[serde(default)]
+    pub link_budget: Option<LinkBudgetConfig>,
+    /// `[signal.filter]`: an optional band-limiting front-end filter.
+    #[serde(default)]
+    pub filter: Option<FilterConfig>,
     /// Rate of the signal truth written beside the samples (Hz): a divisor of 1000, or 0
     /// for none.
     #[serde(default = "default_truth_rate")]
     pub truth_rate_hz: u32,
+}
+
+/// Checks a C/N0 value.
+fn check_cn0(field: &str, cn0: f64) -> Result<(), Invalid> {
+    if !(cn0.is_finite() && (10.0..=70.0).contains(&cn0)) {
+        return Err(Invalid::new(field, cn0, "must be in [10, 70] dB-Hz"));
+    }
+    Ok(())
+}
+
+impl Default for SignalConfig {
+    /// Every key at its documented default.
+    fn default() -> Self {
+        Self {
+            sample_rate_hz: default_fs(),
+            if_hz: 0.0,
+            format: default_format(),
+            bits: None,
+            cn0_dbhz: default_cn0(),
+            cn0_by_satellite_dbhz: BTreeMap::new(),
+            link_budget: None,
+            filter: None,
+            truth_rate_hz: default_truth_rate(),
+        }
+    }
 }
 
 fn default_fs() -> f64 {
@@ -84,12 +125,25 @@ impl SignalConfig {
                 ));
             }
         }
-        if !(self.cn0_dbhz.is_finite() && (10.0..=70.0).contains(&self.cn0_dbhz)) {
-            return Err(Invalid::new(
-                "cn0_dbhz",
-                self.cn0_dbhz,
-                "must be in [10, 70] dB-Hz",
-            ));
+        check_cn0("cn0_dbhz", self.cn0_dbhz)?;
+        for (sat, &cn0) in &self.cn0_by_satellite_dbhz {
+            let field = format!("cn0_by_satellite_dbhz.{sat}");
+            if sat.parse::<SatId>().is_err() {
+                return Err(Invalid::new(
+                    field,
+                    format!("{sat:?}"),
+                    "keys must be satellites such as G05 or C23",
+                ));
+            }
+            check_cn0(&field, cn0)?;
+        }
+        if let Some(budget) = &self.link_budget {
+            budget.check().map_err(|e| e.within("link_budget"))?;
+        }
+        if let Some(filter) = &self.filter {
+            filter
+                .check(fs, self.if_hz, self.format.is_complex())
+                .map_err(|e| e.within("filter"))?;
         }
         if self.truth_rate_hz != 0 && 1000 % self.truth_rate_hz != 0 {
             return Err(Invalid::new(
@@ -99,6 +153,16 @@ impl SignalConfig {
             ));
         }
         Ok(())
+    }
+
+    /// The C/N0 (dB-Hz) of satellite `sat`'s fixed setting, or `None` when the link budget
+    /// decides.
+    pub fn fixed_cn0_dbhz(&self, sat: SatId) -> Option<f64> {
+        self.cn0_by_satellite_dbhz
+            .iter()
+            .find(|(k, _)| k.parse::<SatId>().is_ok_and(|s| s == sat))
+            .map(|(_, &v)| v)
+            .or_else(|| self.link_budget.is_none().then_some(self.cn0_dbhz))
     }
 
     /// Blocks between signal-truth records (0: none).

@@ -172,6 +172,7 @@ mod tests {
             bits: Some(8),
             cn0_dbhz: 45.0,
             truth_rate_hz: 1000,
+            ..SignalConfig::default()
         };
         let present = SignalsPresent {
             gps_l1ca: false,

@@ -7,6 +7,8 @@ pub mod constellation;
 pub mod filter;
 pub mod format;
 pub mod gnss_sdr;
+pub mod link;
+pub mod link_terms;
 pub mod mix;
 pub mod noise;
 pub mod quantise;

@@ -1,107 +1,56 @@
-//! Renders the antennas' sample streams, one 1 ms block at a time, from geometry truth at
-//! its epochs (range, rate and acceleration, interpolated by a quintic Hermite polynomial
-//! between epochs) and each transmitter's code and data.
+//! Renders the antennas' sample streams, one 1 ms block at a time, from the links' state at
+//! the geometry epochs ([`LinkEnd`], interpolated by [`Segment`]), each transmitter's code
+//! and data, the receiver clock, fault events, thermal noise, an optional band-limiting
+//! filter and the quantiser.
 //!
-//! Signal model of a link (receive time t, light time tau(t), satellite clock offset
-//! dt_sv at transmit time, receiver clock ideal for now):
-//! satellite time at transmission t_sv = t - tau + dt_sv, code phase = chip rate x t_sv,
-//! data bit from t_sv; complex baseband carrier phase (cycles) = IF t - f_c (tau - dt_sv).
-//! Within a block both phases are linear in the sample index (the 1 ms curvature error is
-//! below 1e-6 rad at LEO dynamics); every block is re-anchored from f64.
+//! Signal model of one path (module docs of [`super::link`] for `D_code`, `D_carr`):
+//! sample `k` is taken at receiver-clock time `t_rx = k / fs`, i.e. at true time
+//! `t = t_rx - dt_rx(t_rx)`; there the code is read at satellite time `t - D_code(t) -
+//! (event code + path delay) / c` and the complex baseband phase (cycles) is
+//! `IF t_rx - f_c (D_carr(t) + dt_rx + (event carrier + path delay) / c) - event cycles +
+//! path phase / 2 pi`: the local oscillator runs on the receiver clock, so its offset
+//! enters the carrier phase like the code. Within a block both phases are linear in the
+//! sample index (the 1 ms curvature error is below 1e-6 rad at LEO dynamics); every block is
+//! re-anchored from f64. Events and C/N0 are evaluated once per block (1 ms resolution).
 
 use super::config::{BLOCK_S, SignalConfig};
+use super::filter::BandFilter;
 use super::format::SampleFormat;
 use super::mix::{ChannelBlock, MixScratch, mix_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
 use super::transmitter::Transmitter;
-use crate::truth::geometry::LinkGeometry;
-use crate::truth::interp::QuinticHermite;
+use crate::errors::clock::{ClockModel, ClockSample};
+use crate::errors::events::{EventEffect, EventSchedule};
+use crate::errors::multipath::{Path, dll_bias_m};
 use rayon::prelude::*;
 use skyforge_orbits::constants::C_MPS;
+use std::f64::consts::TAU;
 
-/// One end of a link's geometry interval.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LinkEnd {
-    pub range_m: f64,
-    pub range_rate_mps: f64,
-    pub range_accel_mps2: f64,
-    pub sat_clock_s: f64,
-    pub sat_clock_drift: f64,
-    /// Ionospheric group delay at the signal's carrier (m): delays the code, advances the
-    /// carrier by the same amount.
-    pub iono_m: f64,
-}
+use super::link::Segment;
+pub use super::link::{LinkEnd, LinkTruth};
 
-impl LinkEnd {
-    /// The link end of a geometry-truth link, `None` when not visible.
-    pub fn from_geometry(g: &LinkGeometry) -> Option<Self> {
-        g.visible.then_some(Self {
-            range_m: g.range_m,
-            range_rate_mps: g.range_rate_mps,
-            range_accel_mps2: g.range_accel_mps2,
-            sat_clock_s: g.sat_clock_s,
-            sat_clock_drift: g.sat_clock_drift,
-            iono_m: 0.0,
-        })
-    }
-}
-
-/// Signal truth of one link at the start of one block: what an ideal receiver with a
-/// perfect clock would measure (no troposphere, receiver clock or antenna terms yet, so
-/// carrier phase x wavelength equals the pseudorange minus twice the ionospheric delay).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LinkTruth {
-    /// Receive time (s since the scenario start): the block's first sample.
-    pub t_s: f64,
-    pub antenna: usize,
-    /// Index of the transmitter in the synthesiser's list.
-    pub tx: usize,
-    /// c (t_receive - t_transmit in satellite time) = range - c dt_sv (m).
-    pub pseudorange_m: f64,
-    /// Accumulated carrier phase (cycles), RINEX sign (grows with the pseudorange); its
-    /// integer ambiguity is zero by construction.
-    pub carrier_phase_cycles: f64,
-    /// Doppler (Hz), -d(pseudorange)/dt / lambda.
-    pub doppler_hz: f64,
-    /// Ionospheric group delay in the pseudorange (m); the carrier phase has -iono_m.
-    pub iono_m: f64,
-}
-
-/// A link over one geometry interval.
-#[derive(Debug, Clone, Copy)]
-struct Segment {
-    tx: usize,
-    range: QuinticHermite,
-    clock_t0_s: f64,
-    clock_s: f64,
-    drift: f64,
-    /// Ionospheric delay (m) at the interval start and its rate (m/s), linear in between.
-    iono_m: f64,
-    iono_rate_mps: f64,
-}
-
-impl Segment {
-    /// (geometric light time, satellite clock offset, ionospheric delay in m) at receive
-    /// time `t`.
-    fn at(&self, t: f64) -> (f64, f64, f64) {
-        let tau = self.range.value(t) / C_MPS;
-        let iono = self.iono_m + self.iono_rate_mps * (t - self.clock_t0_s - tau);
-        (
-            tau,
-            self.clock_s + self.drift * (t - tau - self.clock_t0_s),
-            iono,
-        )
-    }
-}
+/// Early-late spacing of the DLL the multipath code truth is given for (chips).
+const TRUTH_DLL_SPACING_CHIPS: f64 = 1.0;
 
 /// Per-thread buffers.
 #[derive(Debug, Default)]
 struct Scratch {
     i: Vec<f32>,
     q: Vec<f32>,
+    fi: Vec<f32>,
+    fq: Vec<f32>,
     chips: Vec<i8>,
     mix: MixScratch,
+}
+
+/// One path of one link over one block, ready to mix.
+struct PathBlock {
+    amplitude: f32,
+    /// Satellite time of the code at the span's first and end sample (s).
+    t_sv: (f64, f64),
+    /// Baseband carrier phase at the span's first and end sample (cycles).
+    phase: (f64, f64),
 }
 
 /// Synthesises the sample streams of every antenna.
@@ -111,7 +60,6 @@ pub struct Synthesiser<'a> {
     transmitters: &'a [Transmitter],
     n_antennas: usize,
     n: usize,
-    amplitude: f32,
     noise: Vec<ThermalNoise>,
     quantiser: Quantiser,
     clipped: u64,
@@ -119,9 +67,13 @@ pub struct Synthesiser<'a> {
     /// Record truth every `truth_every` blocks (0: none).
     truth_every: u64,
     truth: Vec<LinkTruth>,
+    /// Receiver clocks: none (ideal), one shared by every antenna, or one per antenna.
+    clocks: Vec<ClockModel>,
+    events: Option<EventSchedule>,
+    filter: Option<BandFilter>,
 }
 
-/// Noise standard deviation per component (float units before quantisation).
+/// Noise standard deviation per component (float units before filtering and quantisation).
 const NOISE_SIGMA: f32 = 1.0;
 
 impl<'a> Synthesiser<'a> {
@@ -132,26 +84,22 @@ impl<'a> Synthesiser<'a> {
         n_antennas: usize,
         seed: u64,
     ) -> Result<Self, QuantiseError> {
-        let fs = cfg.sample_rate_hz;
-        let cn0 = 10f64.powf(cfg.cn0_dbhz / 10.0);
-        // Complex: C = A^2, N0 = 2 sigma^2 / fs. Real: C = A^2 / 2, N0 = 2 sigma^2 / fs.
-        let per_component = if cfg.format.is_complex() { 2.0 } else { 4.0 };
-        let amplitude = ((per_component * cn0 / fs).sqrt() * f64::from(NOISE_SIGMA)) as f32;
-        let quantiser = Quantiser::new(cfg.format, cfg.bits, NOISE_SIGMA)?;
         Ok(Self {
             cfg: cfg.clone(),
             transmitters,
             n_antennas,
             n: cfg.samples_per_block(),
-            amplitude,
             noise: (0..n_antennas)
                 .map(|a| ThermalNoise::new(seed, a as u32, NOISE_SIGMA))
                 .collect(),
-            quantiser,
+            quantiser: Quantiser::new(cfg.format, cfg.bits, NOISE_SIGMA)?,
             clipped: 0,
             previous: None,
             truth_every: 0,
             truth: Vec::new(),
+            clocks: Vec::new(),
+            events: None,
+            filter: None,
         })
     }
 
@@ -159,6 +107,28 @@ impl<'a> Synthesiser<'a> {
     pub fn with_truth_every(mut self, every: u64) -> Self {
         self.truth_every = every;
         self
+    }
+
+    /// Receiver clock: one model shared by all antennas, or one per antenna (`clocks.len()
+    /// == n_antennas`). Models must step at [`BLOCK_S`]; clones of one model give the same
+    /// clock to several synthesisers (bands) of one receiver.
+    pub fn with_clocks(mut self, clocks: Vec<ClockModel>) -> Self {
+        self.clocks = clocks;
+        self
+    }
+
+    /// Fault events; their satellite is the transmitter's.
+    pub fn with_events(mut self, events: EventSchedule) -> Self {
+        self.events = (!events.is_empty()).then_some(events);
+        self
+    }
+
+    /// A band-limiting front-end filter; the quantiser's scale follows the filtered noise.
+    pub fn with_filter(mut self, filter: BandFilter) -> Result<Self, QuantiseError> {
+        let sigma = NOISE_SIGMA * filter.noise_power_gain().sqrt() as f32;
+        self.quantiser = Quantiser::new(self.cfg.format, self.cfg.bits, sigma)?;
+        self.filter = Some(filter);
+        Ok(self)
     }
 
     /// The link truth recorded since the last call.
@@ -171,14 +141,53 @@ impl<'a> Synthesiser<'a> {
         self.clipped
     }
 
-    /// Hand over the geometry of the epoch at `t_s` (`links[a * n_tx + tx]`, `None` when
-    /// not visible). The blocks between the previous epoch and this one are rendered and
-    /// appended, per antenna, to `out[a]`.
+    /// The container format.
+    pub fn format(&self) -> SampleFormat {
+        self.cfg.format
+    }
+
+    /// Hand over the links at the epoch `t_s` (true time; `links[a * n_tx + tx]`, `None`
+    /// when not visible). The blocks whose receiver time lies between the previous epoch
+    /// and this one are rendered and appended, per antenna, to `out[a]`.
     pub fn push_epoch(&mut self, t_s: f64, links: Vec<Option<LinkEnd>>, out: &mut [Vec<u8>]) {
         if let Some((t_prev, prev)) = self.previous.take() {
             self.render_interval(t_prev, &prev, t_s, &links, out);
         }
         self.previous = Some((t_s, links));
+    }
+
+    /// Signal amplitude (noise units) of a path at `cn0_dbhz`.
+    fn amplitude(&self, cn0_dbhz: f64) -> f64 {
+        // Complex: C = A^2, N0 = 2 sigma^2 / fs. Real: C = A^2 / 2, N0 = 2 sigma^2 / fs.
+        let per_component = if self.cfg.format.is_complex() {
+            2.0
+        } else {
+            4.0
+        };
+        (per_component * 10f64.powf(cn0_dbhz / 10.0) / self.cfg.sample_rate_hz).sqrt()
+            * f64::from(NOISE_SIGMA)
+    }
+
+    /// The clock samples of each receiver clock for blocks `b0..b1` (one empty list for an
+    /// ideal clock).
+    fn clock_samples(&mut self, b0: u64, b1: u64) -> Vec<Vec<ClockSample>> {
+        let n = (b1 - b0) as usize;
+        let run = |c: &mut ClockModel| {
+            let mut v = vec![
+                ClockSample {
+                    t_s: 0.0,
+                    phase_s: 0.0,
+                    freq: 0.0
+                };
+                n
+            ];
+            c.fill(&mut v);
+            v
+        };
+        if self.clocks.is_empty() {
+            return vec![Vec::new()];
+        }
+        self.clocks.iter_mut().map(run).collect()
     }
 
     fn render_interval(
@@ -194,56 +203,47 @@ impl<'a> Synthesiser<'a> {
             .map(|a| {
                 (0..n_tx)
                     .filter_map(|tx| {
-                        let (s, e) = (start[a * n_tx + tx]?, end[a * n_tx + tx]?);
-                        Some(Segment {
-                            tx,
-                            range: QuinticHermite::new(
-                                t0,
-                                t1,
-                                [s.range_m, s.range_rate_mps, s.range_accel_mps2],
-                                [e.range_m, e.range_rate_mps, e.range_accel_mps2],
-                            ),
-                            clock_t0_s: t0 - s.range_m / C_MPS,
-                            clock_s: s.sat_clock_s,
-                            drift: s.sat_clock_drift,
-                            iono_m: s.iono_m,
-                            iono_rate_mps: (e.iono_m - s.iono_m) / (t1 - t0),
-                        })
+                        let (s, e) = (start[a * n_tx + tx].as_ref()?, end[a * n_tx + tx].as_ref()?);
+                        Some(Segment::new(tx, t0, t1, s, e))
                     })
                     .collect()
             })
             .collect();
         let (b0, b1) = ((t0 / BLOCK_S).round() as u64, (t1 / BLOCK_S).round() as u64);
+        let clocks = self.clock_samples(b0, b1);
+        let clock_of = |a: usize| -> &[ClockSample] {
+            let c = if clocks.len() > 1 {
+                &clocks[a]
+            } else {
+                &clocks[0]
+            };
+            c.as_slice()
+        };
         if self.truth_every > 0 {
             for b in (b0..b1).filter(|b| b % self.truth_every == 0) {
-                let t = b as f64 * BLOCK_S;
                 for (a, segs) in segments.iter().enumerate() {
+                    let clock = clock_of(a).get((b - b0) as usize).copied();
                     for seg in segs {
-                        let fc = self.transmitters[seg.tx].signal.carrier_hz();
-                        let (tau, dt, iono) = seg.at(t);
-                        let rate = seg.range.rate(t) - C_MPS * seg.drift;
-                        self.truth.push(LinkTruth {
-                            t_s: t,
-                            antenna: a,
-                            tx: seg.tx,
-                            pseudorange_m: C_MPS * (tau - dt) + iono,
-                            carrier_phase_cycles: fc * (tau - dt - iono / C_MPS),
-                            doppler_hz: -rate * fc / C_MPS,
-                            iono_m: iono,
-                        });
+                        if let Some(r) = self.truth_record(seg, a, b, clock) {
+                            self.truth.push(r);
+                        }
                     }
                 }
             }
         }
         for (a, sink) in out.iter_mut().enumerate().take(self.n_antennas) {
             let noise = &self.noise[a];
+            let clock = clock_of(a);
+            let this = &*self;
             let rendered: Vec<(Vec<u8>, u64)> = (b0..b1)
                 .into_par_iter()
                 .map_init(
-                    || (Scratch::default(), noise.clone(), self.quantiser.clone()),
+                    || (Scratch::default(), noise.clone(), this.quantiser.clone()),
                     |(scratch, noise, quantiser), b| {
                         let before = quantiser.clipped();
-                        let bytes = self.render_block(&segments[a], b, scratch, noise, quantiser);
+                        let cs = clock.get((b - b0) as usize).copied();
+                        let bytes =
+                            this.render_block(&segments[a], a, b, cs, scratch, noise, quantiser);
                         (bytes, quantiser.clipped() - before)
                     },
                 )
@@ -255,53 +255,189 @@ impl<'a> Synthesiser<'a> {
         }
     }
 
+    /// Receiver clock offset (s) and its rate at receiver time `t_rx` in block `b`.
+    fn rx_clock(clock: Option<ClockSample>, b: u64, t_rx: f64) -> (f64, f64) {
+        clock.map_or((0.0, 0.0), |c| {
+            (c.phase_s + c.freq * (t_rx - b as f64 * BLOCK_S), c.freq)
+        })
+    }
+
+    /// The active events on link (`a`, `tx`) at true time `t`.
+    fn effect(&self, t: f64, a: usize, tx: usize) -> EventEffect {
+        self.events.as_ref().map_or(EventEffect::NONE, |e| {
+            e.effect(t, a, self.transmitters[tx].sat)
+        })
+    }
+
+    fn truth_record(
+        &self,
+        seg: &Segment,
+        a: usize,
+        b: u64,
+        clock: Option<ClockSample>,
+    ) -> Option<LinkTruth> {
+        let t_rx = b as f64 * BLOCK_S;
+        let (dt_rx, freq) = Self::rx_clock(clock, b, t_rx);
+        let t = t_rx - dt_rx;
+        let ev = self.effect(t, a, seg.tx);
+        if ev.amplitude_factor <= 0.0 {
+            return None;
+        }
+        let tx = &self.transmitters[seg.tx];
+        let fc = tx.signal.carrier_hz();
+        let s = seg.at(t);
+        let (multipath_code_m, multipath_carrier_m) = if seg.has_reflections() {
+            let chip_m = C_MPS / tx.chip_rate_hz;
+            let lambda = C_MPS / fc;
+            // Relative carrier phase of each path at the correlator.
+            let paths: Vec<Path> = seg
+                .reflections_at(t)
+                .map(|p| p.at_carrier(lambda))
+                .collect();
+            let code_len = (tx.chip_rate_hz * BLOCK_S).round() as u32;
+            (
+                dll_bias_m(&paths, chip_m, code_len, TRUTH_DLL_SPACING_CHIPS),
+                multipath_carrier_m(&paths, chip_m, lambda),
+            )
+        } else {
+            (0.0, 0.0)
+        };
+        Some(LinkTruth {
+            t_s: t_rx,
+            antenna: a,
+            tx: seg.tx,
+            pseudorange_m: C_MPS * (s.code_delay_s + dt_rx) + ev.code_m,
+            carrier_phase_cycles: fc * (s.carrier_delay_s + dt_rx + ev.carrier_m / C_MPS)
+                + ev.carrier_cycles,
+            doppler_hz: -fc * (seg.carrier_delay_rate(t) * (1.0 - freq) + freq),
+            cn0_dbhz: s.cn0_dbhz + 20.0 * ev.amplitude_factor.log10(),
+            iono_m: s.iono_m,
+            tropo_m: s.tropo_m,
+            antenna_m: s.antenna_m,
+            rx_clock_m: C_MPS * dt_rx,
+            sat_clock_m: C_MPS * s.sat_clock_s,
+            event_code_m: ev.code_m,
+            event_carrier_cycles: ev.carrier_cycles + ev.carrier_m / C_MPS * fc,
+            multipath_code_m,
+            multipath_carrier_m,
+        })
+    }
+
+    #[allow(clippy::too_many_arguments)]
     fn render_block(
         &self,
         segments: &[Segment],
+        a: usize,
         b: u64,
+        clock: Option<ClockSample>,
         s: &mut Scratch,
         noise: &mut ThermalNoise,
         quantiser: &mut Quantiser,
     ) -> Vec<u8> {
         let n = self.n;
+        let fs = self.cfg.sample_rate_hz;
+        // The filter needs `half` samples beyond each end of the block.
+        let half = self.filter.as_ref().map_or(0, BandFilter::half);
+        let m = n + 2 * half;
         s.i.clear();
-        s.i.resize(n, 0.0);
+        s.i.resize(m, 0.0);
         s.q.clear();
-        s.q.resize(n, 0.0);
-        let (t0, t1) = (b as f64 * BLOCK_S, (b + 1) as f64 * BLOCK_S);
-        let if_cycles_per_block = self.cfg.if_hz * BLOCK_S;
-        let if_phase0 = ((if_cycles_per_block - if_cycles_per_block.floor()) * b as f64).fract();
+        s.q.resize(m, 0.0);
+        let t_block = b as f64 * BLOCK_S;
+        let (t_rx0, t_rx1) = (t_block - half as f64 / fs, t_block + (n + half) as f64 / fs);
+        let (dt0, _) = Self::rx_clock(clock, b, t_rx0);
+        let (dt1, _) = Self::rx_clock(clock, b, t_rx1);
+        let (t0, t1) = (t_rx0 - dt0, t_rx1 - dt1);
+        // IF phase at the span's first sample, kept exact over long runs.
+        let if_per_block = self.cfg.if_hz * BLOCK_S;
+        let if_phase0 = ((if_per_block - if_per_block.floor()) * b as f64).fract()
+            - self.cfg.if_hz * half as f64 / fs;
+        let if_span = self.cfg.if_hz * m as f64 / fs;
         for seg in segments {
+            let ev = self.effect(t0, a, seg.tx);
+            if ev.amplitude_factor <= 0.0 {
+                continue;
+            }
             let tx = &self.transmitters[seg.tx];
             let fc = tx.signal.carrier_hz();
-            let ((tau0, dt0, i0), (tau1, dt1, i1)) = (seg.at(t0), seg.at(t1));
-            // The code is delayed by the ionosphere, the carrier advanced.
-            let (tsv0, tsv1) = (t0 - tau0 - i0 / C_MPS + dt0, t1 - tau1 - i1 / C_MPS + dt1);
-            let (k0, code_phase) = tx.chip_at(tsv0);
-            let code_per_sample = tx.chip_rate_hz * (tsv1 - tsv0) / n as f64;
-            let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, n);
-            s.chips.clear();
-            tx.chip_signs(k0, needed, &mut s.chips);
-            let phi0 = if_phase0 - fc * (tau0 - i0 / C_MPS - dt0);
-            let phi1 = if_phase0 + if_cycles_per_block - fc * (tau1 - i1 / C_MPS - dt1);
-            let ch = ChannelBlock {
-                amplitude: self.amplitude,
-                carrier_phase_cycles: phi0,
-                carrier_cycles_per_sample: (phi1 - phi0) / n as f64,
-                code_phase_chips: code_phase,
-                code_chips_per_sample: code_per_sample,
-                chip_signs: &s.chips,
+            let (l0, l1) = (seg.at(t0), seg.at(t1));
+            let amplitude = self.amplitude(l0.cn0_dbhz) * ev.amplitude_factor;
+            // One path with extra delay `delay` (m, code and carrier) and phase (rad).
+            let path = |amp: f64, delay: (f64, f64), phase: (f64, f64)| PathBlock {
+                amplitude: amp as f32,
+                t_sv: (
+                    t0 - l0.code_delay_s - (ev.code_m + delay.0) / C_MPS,
+                    t1 - l1.code_delay_s - (ev.code_m + delay.1) / C_MPS,
+                ),
+                phase: (
+                    if_phase0
+                        - fc * (l0.carrier_delay_s + dt0 + (ev.carrier_m + delay.0) / C_MPS)
+                        - ev.carrier_cycles
+                        + phase.0 / TAU,
+                    if_phase0 + if_span
+                        - fc * (l1.carrier_delay_s + dt1 + (ev.carrier_m + delay.1) / C_MPS)
+                        - ev.carrier_cycles
+                        + phase.1 / TAU,
+                ),
             };
-            mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+            mix_path(tx, &path(amplitude, (0.0, 0.0), (0.0, 0.0)), m, s);
+            for (r0, r1) in seg.reflections_at(t0).zip(seg.reflections_at(t1)) {
+                if r0.relative_amplitude > 0.0 {
+                    let p = path(
+                        amplitude * r0.relative_amplitude,
+                        (r0.delay_m, r1.delay_m),
+                        (r0.phase_rad, r1.phase_rad),
+                    );
+                    mix_path(tx, &p, m, s);
+                }
+            }
         }
+        // Noise is keyed by the absolute sample index, offset by the filter margin.
         noise.add(b * n as u64, &mut s.i, &mut s.q);
         let mut bytes = Vec::with_capacity(n * self.cfg.format.bytes_per_sample());
-        quantiser.write(&s.i, &s.q, &mut bytes);
+        match &self.filter {
+            Some(f) => {
+                s.fi.clear();
+                s.fi.resize(n, 0.0);
+                s.fq.clear();
+                s.fq.resize(n, 0.0);
+                f.apply(&s.i, &s.q, &mut s.fi, &mut s.fq);
+                quantiser.write(&s.fi, &s.fq, &mut bytes);
+            }
+            None => quantiser.write(&s.i, &s.q, &mut bytes),
+        }
         bytes
     }
+}
 
-    /// The container format.
-    pub fn format(&self) -> SampleFormat {
-        self.cfg.format
+/// Mix one path over a span of `m` samples into the scratch block.
+fn mix_path(tx: &Transmitter, p: &PathBlock, m: usize, s: &mut Scratch) {
+    let (k0, code_phase) = tx.chip_at(p.t_sv.0);
+    let code_per_sample = tx.chip_rate_hz * (p.t_sv.1 - p.t_sv.0) / m as f64;
+    let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, m);
+    s.chips.clear();
+    tx.chip_signs(k0, needed, &mut s.chips);
+    let ch = ChannelBlock {
+        amplitude: p.amplitude,
+        carrier_phase_cycles: p.phase.0,
+        carrier_cycles_per_sample: (p.phase.1 - p.phase.0) / m as f64,
+        code_phase_chips: code_phase,
+        code_chips_per_sample: code_per_sample,
+        chip_signs: &s.chips,
+    };
+    mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+}
+
+/// Carrier-phase error (m, RINEX sign) of a composite signal whose prompt correlator sits
+/// on the direct path: minus the phase of `1 + sum a R(delay) e^{j phase}` in metres, with
+/// the ideal triangular correlation R of chips `chip_m` long (`phase` the path's relative
+/// carrier phase at the correlator).
+fn multipath_carrier_m(paths: &[Path], chip_m: f64, lambda_m: f64) -> f64 {
+    let (mut re, mut im) = (1.0, 0.0);
+    for p in paths {
+        let r = (1.0 - p.delay_m.abs() / chip_m).max(0.0);
+        re += p.relative_amplitude * r * p.phase_rad.cos();
+        im += p.relative_amplitude * r * p.phase_rad.sin();
     }
+    -im.atan2(re) * lambda_m / TAU
 }

@@ -10,15 +10,20 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
 use skyforge_scenarios::{Scenario, World};
+use skyforge_signals::errors::clock::ClockModel;
+use skyforge_signals::errors::events::EventSchedule;
 use skyforge_signals::errors::ionosphere::{IonoModel, KlobucharCoeffs};
+use skyforge_signals::errors::seed::stream_rng;
 use skyforge_signals::signal::SignalId;
+use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
+use skyforge_signals::synth::filter::BandFilter;
 use skyforge_signals::synth::gnss_sdr::{self, SignalsPresent};
-use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
+use skyforge_signals::synth::render::Synthesiser;
 use skyforge_signals::synth::sigmf::RecordingMeta;
 use skyforge_signals::synth::transmitter::Transmitter;
 use skyforge_signals::truth::geometry::{GeometryTruth, epoch_count};
@@ -132,19 +137,72 @@ pub fn synthesise(
     let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
 
     let n_ant = world.antennas.len();
+    let errors = &scenario.errors;
+    // One oscillator for the receiver, or one per antenna; every band gets a clone, so
+    // the bands of one receiver share its clock.
+    let clocks: Vec<ClockModel> = match &errors.receiver_clock {
+        None => Vec::new(),
+        Some(osc) => {
+            let h = osc
+                .power_law()
+                .map_err(|e| scenario.located(e.within("errors.receiver_clock")))?;
+            let count = if osc.per_antenna { n_ant } else { 1 };
+            (0..count)
+                .map(|i| {
+                    ClockModel::new(
+                        &h,
+                        osc.bias_s,
+                        osc.drift,
+                        BLOCK_S,
+                        stream_rng(scenario.seed, "receiver-clock", i as u32),
+                    )
+                })
+                .collect::<Result<_, _>>()
+                .context("receiver clock")?
+        }
+    };
+    let antenna_names: Vec<&str> = world.antennas.iter().map(|a| a.name.as_str()).collect();
+    let events = EventSchedule::new(&errors.events, &antenna_names, &sats)
+        .map_err(|e| scenario.located(e.within("errors.events")))?;
+    let filter = signal
+        .filter
+        .as_ref()
+        .map(|f| {
+            BandFilter::new(
+                f,
+                signal.sample_rate_hz,
+                signal.if_hz,
+                signal.format.is_complex(),
+            )
+        })
+        .transpose()
+        .map_err(|e| scenario.located(e.within("signal.filter")))?;
     let mut synths = bands
         .iter()
         .map(|b| {
-            Synthesiser::new(
+            let s = Synthesiser::new(
                 signal,
                 &transmitters[b.first..b.first + b.count],
                 n_ant,
                 scenario.seed,
             )
-            .map(|s| s.with_truth_every(signal.truth_every_blocks()))
-            .context("signal configuration")
+            .context("signal configuration")?
+            .with_truth_every(signal.truth_every_blocks())
+            .with_clocks(clocks.clone())
+            .with_events(events.clone());
+            match &filter {
+                Some(f) => s.with_filter(f.clone()).context("signal configuration"),
+                None => Ok(s),
+            }
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
+    let terms = LinkTerms {
+        signal,
+        ionosphere: &iono,
+        troposphere: &errors.troposphere,
+        multipath: &errors.multipath,
+        antennas: &world.antennas,
+    };
     // files[band][antenna]
     let mut files = bands
         .iter()
@@ -172,7 +230,7 @@ pub fn synthesise(
     let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, &world.antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
     if signal.truth_rate_hz > 0 {
-        truth_writer.create_signal(&world.antennas, signal.cn0_dbhz)?;
+        truth_writer.create_signal(&world.antennas)?;
     }
 
     let n_epochs = epoch_count(world.duration_s, GEOMETRY_STEP_S);
@@ -207,13 +265,11 @@ pub fn synthesise(
             CHUNK_EPOCHS,
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
-                    // Ionosphere per link: the receiver's geodetic position, the link's
-                    // azimuth/elevation, the system's time of day.
                     let st = &chunk.platform[k];
-                    let geodetic: Vec<Geodetic> = world
+                    let at_antenna: Vec<AntennaEpoch> = world
                         .antennas
                         .iter()
-                        .map(|a| ecef_to_geodetic(&(st.r_ecef_m + st.c_body_ecef * a.true_body_m)))
+                        .map(|a| AntennaEpoch::new(st, a))
                         .collect();
                     let at = world.origin.epoch_at(chunk.t_s[k]);
                     let sow = |system: System| match system {
@@ -227,21 +283,16 @@ pub fn synthesise(
                         let links = (0..n_ant * band.count)
                             .map(|l| {
                                 let (a, s) = (l / band.count, band.first + l % band.count);
-                                let g = chunk.link(k, a, s);
                                 let sat = sats[s];
-                                LinkEnd::from_geometry(g).map(|end| LinkEnd {
-                                    iono_m: iono
-                                        .delay(
-                                            sat.system,
-                                            &geodetic[a],
-                                            g.azimuth_rad,
-                                            g.elevation_rad,
-                                            sow(sat.system),
-                                            band.signal.carrier_hz(),
-                                        )
-                                        .code_m,
-                                    ..end
-                                })
+                                terms.link_end(
+                                    chunk.t_s[k],
+                                    sow(sat.system),
+                                    a,
+                                    &at_antenna[a],
+                                    sat,
+                                    band.signal,
+                                    chunk.link(k, a, s),
+                                )
                             })
                             .collect();
                         synth.push_epoch(chunk.t_s[k], links, &mut bufs);
@@ -257,7 +308,7 @@ pub fn synthesise(
                                 pseudorange_m: r.pseudorange_m,
                                 carrier_phase_cycles: r.carrier_phase_cycles,
                                 doppler_hz: r.doppler_hz,
-                                cn0_dbhz: signal.cn0_dbhz,
+                                cn0_dbhz: r.cn0_dbhz,
                             });
                         }
                         for a in 0..n_ant {

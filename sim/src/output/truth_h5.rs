@@ -124,12 +124,92 @@ pub struct TruthWriter {
 struct SignalSets {
     t_s: Dataset,
     sat_index: Dataset,
-    pseudorange_m: Dataset,
-    carrier_phase_cycles: Dataset,
-    doppler_hz: Dataset,
-    iono_m: Dataset,
+    /// One dataset per entry of [`SIGNAL_FIELDS`].
+    fields: Vec<Dataset>,
     rows: usize,
 }
+
+/// Signal-truth datasets: name, unit, description, accessor (docs/truth-h5.md).
+type SignalField = (
+    &'static str,
+    &'static str,
+    &'static str,
+    fn(&LinkTruth) -> f64,
+);
+const SIGNAL_FIELDS: &[SignalField] = &[
+    (
+        "pseudorange_m",
+        "m",
+        "c (receive time in receiver time - transmit time in satellite time), direct path",
+        |r| r.pseudorange_m,
+    ),
+    (
+        "carrier_phase_cycles",
+        "cycles",
+        "accumulated carrier phase, RINEX sign, integer ambiguity zero, direct path",
+        |r| r.carrier_phase_cycles,
+    ),
+    ("doppler_hz", "Hz", "minus the carrier-phase rate", |r| {
+        r.doppler_hz
+    }),
+    (
+        "cn0_dbhz",
+        "dB-Hz",
+        "C/N0 of the direct path, events included",
+        |r| r.cn0_dbhz,
+    ),
+    (
+        "iono_m",
+        "m",
+        "ionospheric group delay in the pseudorange; the carrier phase carries -iono_m",
+        |r| r.iono_m,
+    ),
+    (
+        "tropo_m",
+        "m",
+        "tropospheric delay (code and carrier)",
+        |r| r.tropo_m,
+    ),
+    (
+        "antenna_m",
+        "m",
+        "phase-centre offset and variation delay (code and carrier)",
+        |r| r.antenna_m,
+    ),
+    (
+        "rx_clock_m",
+        "m",
+        "c x receiver clock offset (code and carrier)",
+        |r| r.rx_clock_m,
+    ),
+    (
+        "sat_clock_m",
+        "m",
+        "c x satellite clock offset at transmit time (subtracted)",
+        |r| r.sat_clock_m,
+    ),
+    ("event_code_m", "m", "code delay of active events", |r| {
+        r.event_code_m
+    }),
+    (
+        "event_carrier_cycles",
+        "cycles",
+        "carrier phase of active events",
+        |r| r.event_carrier_cycles,
+    ),
+    (
+        "multipath_code_m",
+        "m",
+        "DLL error from reflections, non-coherent early-minus-late, 1 chip spacing",
+        |r| r.multipath_code_m,
+    ),
+    (
+        "multipath_carrier_m",
+        "m",
+        "carrier-phase error from reflections, prompt on the direct path",
+        |r| r.multipath_carrier_m,
+    ),
+];
 
 /// The datasets of one antenna and how many links they hold.
 #[derive(Debug)]
@@ -350,8 +430,8 @@ impl TruthWriter {
     }
 
     /// Create the signal-truth datasets `antennas/<name>/signal/*` (one row per visible
-    /// link and truth epoch), with the scenario's C/N0 as an attribute.
-    pub fn create_signal(&mut self, antennas: &[Antenna], cn0_dbhz: f64) -> hdf5::Result<()> {
+    /// link and truth epoch).
+    pub fn create_signal(&mut self, antennas: &[Antenna]) -> hdf5::Result<()> {
         for ant in antennas {
             let g = self
                 .file
@@ -359,44 +439,19 @@ impl TruthWriter {
                 .create_group_builder()
                 .obj_track_times(false)
                 .create("signal")?;
-            f64_attr(&g, "cn0_dbhz", &[cn0_dbhz])?;
             self.signal.push(SignalSets {
                 t_s: series::<f64>(
                     &g,
                     "t_s",
                     0,
                     "s",
-                    "receive time of the record (block start)",
+                    "receive time in receiver-clock time (block start)",
                 )?,
                 sat_index: series::<u16>(&g, "sat_index", 0, "1", "row of satellites/id")?,
-                pseudorange_m: series::<f64>(
-                    &g,
-                    "pseudorange_m",
-                    0,
-                    "m",
-                    "c (receive time - transmit time in satellite time); ideal receiver clock",
-                )?,
-                carrier_phase_cycles: series::<f64>(
-                    &g,
-                    "carrier_phase_cycles",
-                    0,
-                    "cycles",
-                    "accumulated carrier phase, RINEX sign, integer ambiguity zero",
-                )?,
-                doppler_hz: series::<f64>(
-                    &g,
-                    "doppler_hz",
-                    0,
-                    "Hz",
-                    "-d(pseudorange)/dt / wavelength",
-                )?,
-                iono_m: series::<f64>(
-                    &g,
-                    "iono_m",
-                    0,
-                    "m",
-                    "ionospheric group delay in the pseudorange; the carrier phase carries -iono_m",
-                )?,
+                fields: SIGNAL_FIELDS
+                    .iter()
+                    .map(|(name, unit, desc, _)| series::<f64>(&g, name, 0, unit, desc))
+                    .collect::<hdf5::Result<_>>()?,
                 rows: 0,
             });
         }
@@ -419,15 +474,9 @@ impl TruthWriter {
         append(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
         let sats: Vec<u16> = records.iter().map(|r| (first_sat + r.tx) as u16).collect();
         append(&sets.sat_index, rows, &sats, 0)?;
-        append(&sets.pseudorange_m, rows, &col(|r| r.pseudorange_m), 0)?;
-        append(
-            &sets.carrier_phase_cycles,
-            rows,
-            &col(|r| r.carrier_phase_cycles),
-            0,
-        )?;
-        append(&sets.doppler_hz, rows, &col(|r| r.doppler_hz), 0)?;
-        append(&sets.iono_m, rows, &col(|r| r.iono_m), 0)?;
+        for (ds, (_, _, _, get)) in sets.fields.iter().zip(SIGNAL_FIELDS) {
+            append(ds, rows, &col(*get), 0)?;
+        }
         sets.rows += records.len();
         Ok(())
     }

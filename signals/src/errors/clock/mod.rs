@@ -92,8 +92,8 @@ const MAX_ABS_BIAS_S: f64 = 1.0;
 /// Largest accepted |initial fractional frequency offset| (1000 ppm).
 const MAX_ABS_DRIFT: f64 = 1e-3;
 
-/// `[receiver.oscillator]`: a `preset`, or explicit `h0` / `h_minus1` / `h_minus2`
-/// (absent ones are 0), plus the initial clock state.
+/// `[errors.receiver_clock]`: a `preset`, or explicit `h0` / `h_minus1` / `h_minus2`
+/// (absent ones are 0), plus the initial clock state and whether the antennas share it.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct OscillatorConfig {
@@ -114,6 +114,10 @@ pub struct OscillatorConfig {
     /// Initial fractional frequency offset, i.e. clock drift (s/s).
     #[serde(default)]
     pub drift: f64,
+    /// `false` (default): one oscillator drives every antenna's front end (one receiver);
+    /// `true`: each antenna has its own, independent oscillator (one receiver each).
+    #[serde(default)]
+    pub per_antenna: bool,
 }
 
 impl OscillatorConfig {
@@ -228,6 +232,7 @@ mod tests {
             h_minus2: None,
             bias_s: 0.0,
             drift: 0.0,
+            per_antenna: false,
         };
         assert!(base.check().is_ok());
         let field = |c: OscillatorConfig| c.check().err().map(|e| e.field);
