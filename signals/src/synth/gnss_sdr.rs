@@ -25,15 +25,24 @@ pub struct SignalsPresent {
     pub bds_b1i: bool,
 }
 
+/// The corrections GNSS-SDR's PVT applies: those of the errors in the signal.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PvtCorrections {
+    /// The broadcast (Klobuchar) ionosphere.
+    pub broadcast_iono: bool,
+    /// The Saastamoinen troposphere.
+    pub troposphere: bool,
+}
+
 /// The `.conf` text for `data_file` (a path GNSS-SDR opens relative to its working
-/// directory); `doppler_max_hz` widens acquisition for high dynamics; `broadcast_iono`
-/// turns on the PVT's broadcast ionosphere correction; PVT outputs go to `output_prefix.*`.
+/// directory); `doppler_max_hz` widens acquisition for high dynamics; `corrections` are
+/// turned on in the PVT; PVT outputs go to `output_prefix.*`.
 pub fn config(
     cfg: &SignalConfig,
     data_file: &str,
     present: SignalsPresent,
     doppler_max_hz: f64,
-    broadcast_iono: bool,
+    corrections: PvtCorrections,
     output_prefix: &str,
 ) -> String {
     let fs = cfg.sample_rate_hz.round() as u64;
@@ -143,12 +152,16 @@ pub fn config(
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
     line("PVT.elevation_mask=10");
-    line(if broadcast_iono {
+    line(if corrections.broadcast_iono {
         "PVT.iono_model=Broadcast"
     } else {
         "PVT.iono_model=OFF"
     });
-    line("PVT.trop_model=OFF");
+    line(if corrections.troposphere {
+        "PVT.trop_model=Saastamoinen"
+    } else {
+        "PVT.trop_model=OFF"
+    });
     line("PVT.output_rate_ms=1000");
     line("PVT.display_rate_ms=1000");
     line(&format!("PVT.nmea_dump_filename={output_prefix}.nmea"));
@@ -178,7 +191,11 @@ mod tests {
             gps_l1ca: false,
             bds_b1i: true,
         };
-        config(&cfg, "a.sigmf-data", present, 5000.0, true, "a")
+        let corrections = PvtCorrections {
+            broadcast_iono: true,
+            troposphere: true,
+        };
+        config(&cfg, "a.sigmf-data", present, 5000.0, corrections, "a")
     }
 
     /// GNSS-SDR's INI reader takes `;` comments, `[section]` headers and `key=value`.

@@ -16,12 +16,13 @@ use skyforge_signals::errors::clock::ClockModel;
 use skyforge_signals::errors::events::EventSchedule;
 use skyforge_signals::errors::ionosphere::{IonoModel, KlobucharCoeffs};
 use skyforge_signals::errors::seed::stream_rng;
+use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::signal::SignalId;
 use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::filter::BandFilter;
-use skyforge_signals::synth::gnss_sdr::{self, SignalsPresent};
+use skyforge_signals::synth::gnss_sdr::{self, PvtCorrections, SignalsPresent};
 use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
 use skyforge_signals::synth::render::Synthesiser;
 use skyforge_signals::synth::sigmf::RecordingMeta;
@@ -400,7 +401,12 @@ pub fn synthesise(
             // A ground receiver is told to correct the broadcast ionosphere; the LEO (mostly
             // above it) is not.
             let iono_on = iono.model != IonoModel::Off && !leo;
-            let conf = gnss_sdr::config(signal, &data, present, doppler, iono_on, &name);
+            let corrections = PvtCorrections {
+                broadcast_iono: iono_on,
+                // The troposphere model applies below its ceiling only, i.e. on the ground.
+                troposphere: scenario.errors.troposphere.model != TropoModel::Off && !leo,
+            };
+            let conf = gnss_sdr::config(signal, &data, present, doppler, corrections, &name);
             std::fs::write(staged.file(&format!("{name}.gnss-sdr.conf")), conf)?;
         }
     }
