@@ -99,8 +99,8 @@ fn read_truth(path: &Path) -> (Vec<(u8, Blocks)>, f64) {
         .and_then(|d| d.read_raw())
         .expect("sat_index");
     let cn0: Vec<f64> = s
-        .attr("cn0_dbhz")
-        .and_then(|a| a.read_raw())
+        .dataset("cn0_dbhz")
+        .and_then(|d| d.read_raw())
         .expect("cn0_dbhz");
     let per_prn = PRNS
         .iter()
