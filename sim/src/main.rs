@@ -5,6 +5,7 @@ mod commands;
 mod output;
 
 use clap::Parser;
+use std::path::PathBuf;
 use std::process::ExitCode;
 
 /// Exit code for bad user input (scenario errors, existing output without `--force`).
@@ -15,18 +16,38 @@ const EXIT_BAD_INPUT: u8 = 2;
 #[error("{0}")]
 pub struct BadInput(String);
 
+/// The output directory of a command that writes one.
+fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
+    match &args.command {
+        cli::Command::Run { out, .. } | cli::Command::Synth { out, .. } => Some(out.clone()),
+        cli::Command::Validate {
+            suite: cli::ValidateSuite::Thesis { out, .. },
+        } => out.clone(),
+        cli::Command::Scenarios { .. } => None,
+    }
+}
+
 fn main() -> ExitCode {
     let args = cli::Cli::parse();
+    let out = output_dir(&args);
     match commands::dispatch(args) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            if e.downcast_ref::<BadInput>().is_some()
+            let bad_input = e.downcast_ref::<BadInput>().is_some()
                 || e.downcast_ref::<skyforge_scenarios::ScenarioError>()
-                    .is_some()
-            {
+                    .is_some();
+            if bad_input {
                 ExitCode::from(EXIT_BAD_INPUT)
             } else {
+                // A run that failed while writing (e.g. a full disk): outputs are staged and
+                // the staging directory is removed on failure, so say where nothing went.
+                if let Some(out) = out {
+                    eprintln!(
+                        "error: the output directory {} was not written; partial files were removed",
+                        out.display()
+                    );
+                }
                 ExitCode::FAILURE
             }
         }

@@ -15,14 +15,26 @@ pub struct StagedDir {
 }
 
 impl StagedDir {
-    /// Check `target` (must not exist unless `force`) and create the staging directory.
+    /// Check `target` (must not exist unless `force`, must be creatable) and create the
+    /// staging directory. An output path that cannot be written (below a regular file, in
+    /// a read-only directory, an existing file in its place) is bad input: one message
+    /// naming `target` and the reason, and nothing is left behind.
     pub fn create(target: &Path, force: bool) -> anyhow::Result<Self> {
+        let unwritable = |reason: String| {
+            BadInput(format!(
+                "cannot write the output directory {}: {reason}",
+                target.display()
+            ))
+        };
         if target.exists() && !force {
             return Err(BadInput(format!(
                 "output directory {} already exists; pass --force to replace it",
                 target.display()
             ))
             .into());
+        }
+        if target.exists() && !target.is_dir() {
+            return Err(unwritable("it exists and is not a directory".into()).into());
         }
         let name = target
             .file_name()
@@ -32,15 +44,21 @@ impl StagedDir {
             .parent()
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
+        // create_dir_all reports "File exists" when a path component is a regular file.
+        if let Some(file) = parent.ancestors().find(|a| a.is_file()) {
+            return Err(
+                unwritable(format!("{} is a file, not a directory", file.display())).into(),
+            );
+        }
         std::fs::create_dir_all(parent)
-            .with_context(|| format!("cannot create {}", parent.display()))?;
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())))?;
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)
                 .with_context(|| format!("cannot clear {}", staging.display()))?;
         }
         std::fs::create_dir(&staging)
-            .with_context(|| format!("cannot create {}", staging.display()))?;
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())))?;
         Ok(Self {
             target: target.to_path_buf(),
             staging,

@@ -1,0 +1,179 @@
+//! Output failures of `skyforge synth`: an output path that cannot be written and a disk
+//! that fills up mid-run give one clear message naming the path, a non-zero exit code,
+//! and leave no partial files behind.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn skyforge(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run skyforge")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// `interop-gps-static` (4 Msps ci8: 16 MB per second) shortened to `duration_s`, written
+/// to `dir/short.toml`.
+fn short_scenario(dir: &Path, duration_s: u32) {
+    let o = skyforge(&["scenarios", "show", "interop-gps-static"], dir);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let toml = String::from_utf8(o.stdout).expect("UTF-8 scenario");
+    let line = toml
+        .lines()
+        .find(|l| l.trim_start().starts_with("duration_s"))
+        .expect("duration_s in the bundled scenario");
+    let short = toml.replacen(line, &format!("duration_s = {duration_s}"), 1);
+    std::fs::write(dir.join("short.toml"), short).expect("write scenario");
+}
+
+/// Names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("read dir")
+        .map(|e| {
+            e.expect("dir entry")
+                .file_name()
+                .to_string_lossy()
+                .into_owned()
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+fn is_root() -> bool {
+    Command::new("id")
+        .arg("-u")
+        .output()
+        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
+}
+
+#[test]
+fn an_output_path_below_a_regular_file_is_refused_and_nothing_is_written() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    short_scenario(tmp.path(), 1);
+    std::fs::write(tmp.path().join("afile"), "keep").expect("write file");
+    // ENOTDIR fails for root too (root ignores permission bits, not file types).
+    for (out, reason) in [
+        ("afile/out", "afile is a file, not a directory"),
+        ("afile/deeper/out", "afile is a file, not a directory"),
+    ] {
+        let o = skyforge(&["synth", "short.toml", "--out", out], tmp.path());
+        assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+        let msg = stderr(&o);
+        assert_eq!(msg.lines().count(), 1, "one message: {msg}");
+        assert!(
+            msg.contains(&format!("output directory {out}")) && msg.contains(reason),
+            "{msg}"
+        );
+    }
+    // The file itself as the output directory, even with --force.
+    let o = skyforge(
+        &["synth", "short.toml", "--out", "afile", "--force"],
+        tmp.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("output directory afile: it exists and is not a directory"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(listing(tmp.path()), ["afile", "short.toml"]);
+    assert_eq!(
+        std::fs::read_to_string(tmp.path().join("afile")).expect("read file"),
+        "keep"
+    );
+}
+
+#[test]
+fn a_read_only_parent_is_refused_and_nothing_is_written() {
+    if is_root() {
+        println!(
+            "SKIPPED: running as root, which ignores directory permissions \
+             (the below-a-file test covers unwritable paths for root)"
+        );
+        return;
+    }
+    use std::os::unix::fs::PermissionsExt;
+    let tmp = tempfile::tempdir().expect("temp dir");
+    short_scenario(tmp.path(), 1);
+    let ro = tmp.path().join("ro");
+    std::fs::create_dir(&ro).expect("create dir");
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).expect("chmod");
+    let o = skyforge(&["synth", "short.toml", "--out", "ro/out"], tmp.path());
+    std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let msg = stderr(&o);
+    assert!(
+        msg.contains("output directory ro/out") && msg.contains("Permission denied"),
+        "{msg}"
+    );
+    assert!(listing(&ro).is_empty());
+}
+
+/// A small tmpfs mounted for the life of the value.
+struct Tmpfs(PathBuf);
+
+impl Tmpfs {
+    fn mount(dir: &Path, size: &str) -> Self {
+        std::fs::create_dir(dir).expect("create mount point");
+        let o = Command::new("mount")
+            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
+            .arg(dir)
+            .output()
+            .expect("run mount");
+        assert!(
+            o.status.success(),
+            "\n*** running as root but cannot mount a tmpfs for the full-disk test: {} ***\n",
+            stderr(&o)
+        );
+        Self(dir.to_path_buf())
+    }
+}
+
+impl Drop for Tmpfs {
+    fn drop(&mut self) {
+        let unmounted = Command::new("umount")
+            .arg(&self.0)
+            .status()
+            .is_ok_and(|s| s.success());
+        if !unmounted {
+            let _ = Command::new("umount").arg("-l").arg(&self.0).status();
+        }
+    }
+}
+
+#[test]
+fn a_full_disk_fails_clearly_and_removes_the_partial_output() {
+    if !is_root() {
+        println!("SKIPPED: mounting a small tmpfs needs root (CI runs as root)");
+        return;
+    }
+    let tmp = tempfile::tempdir().expect("temp dir");
+    // 2 s of 4 Msps ci8 is 16 MB: the 2 MB file system fills up during the run.
+    short_scenario(tmp.path(), 2);
+    let disk = Tmpfs::mount(&tmp.path().join("small"), "2m");
+    let o = skyforge(&["synth", "short.toml", "--out", "small/out"], tmp.path());
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let msg = stderr(&o);
+    println!("{msg}");
+    assert!(msg.contains("No space left on device"), "{msg}");
+    assert!(
+        msg.contains("output directory small/out was not written")
+            && msg.contains("partial files were removed"),
+        "{msg}"
+    );
+    // No staging directory, no partial files.
+    assert!(
+        listing(&disk.0).is_empty(),
+        "left behind: {:?}",
+        listing(&disk.0)
+    );
+    drop(disk);
+    assert_eq!(listing(tmp.path()), ["short.toml", "small"]);
+}
