@@ -5,12 +5,15 @@
 //! `errors::seed::stream_seed(seed, "thermal", antenna)` on stream `f`, so any block
 //! split, thread count or processing order yields the same samples. (ChaCha8 instead of
 //! ChaCha20: noise needs statistical quality, not cryptographic margin, and it is 2x
-//! cheaper.)
+//! cheaper.) Each component takes one 32-bit word of the stream (the frame's I words
+//! first, then its Q words) and becomes a normal deviate by table inversion of the
+//! normal distribution ([`normal_table`]).
+
+mod normal_table;
 
 use crate::errors::seed::stream_seed;
-use rand::{Rng, SeedableRng};
+use rand::{RngCore, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use rand_distr::StandardNormal;
 
 /// Complex samples per independently seeded noise frame.
 pub const NOISE_FRAME: usize = 1024;
@@ -20,6 +23,7 @@ pub const NOISE_FRAME: usize = 1024;
 pub struct ThermalNoise {
     key: [u8; 32],
     sigma: f32,
+    words: Vec<u32>,
     frame: Vec<f32>,
     frame_index: Option<u64>,
 }
@@ -27,9 +31,11 @@ pub struct ThermalNoise {
 impl ThermalNoise {
     /// Noise with standard deviation `sigma` per component for antenna `antenna`.
     pub fn new(seed: u64, antenna: u32, sigma: f32) -> Self {
+        normal_table::init();
         Self {
             key: stream_seed(seed, "thermal", antenna),
             sigma,
+            words: Vec::new(),
             frame: Vec::new(),
             frame_index: None,
         }
@@ -46,10 +52,11 @@ impl ThermalNoise {
         }
         let mut rng = ChaCha8Rng::from_seed(self.key);
         rng.set_stream(f);
-        self.frame.clear();
-        self.frame.extend(
-            (0..2 * NOISE_FRAME).map(|_| self.sigma * rng.sample::<f32, _>(StandardNormal)),
-        );
+        self.words.clear();
+        self.words
+            .extend(std::iter::repeat_with(|| rng.next_u32()).take(2 * NOISE_FRAME));
+        self.frame.resize(2 * NOISE_FRAME, 0.0);
+        normal_table::fill_normal(&self.words, self.sigma, &mut self.frame);
         self.frame_index = Some(f);
     }
 
@@ -63,9 +70,11 @@ impl ThermalNoise {
             self.load_frame(f);
             let take = (NOISE_FRAME - off).min(n - done);
             let (fi, fq) = self.frame.split_at(NOISE_FRAME);
-            for j in 0..take {
-                i[done + j] += fi[off + j];
-                q[done + j] += fq[off + j];
+            for (o, &x) in i[done..done + take].iter_mut().zip(&fi[off..off + take]) {
+                *o += x;
+            }
+            for (o, &x) in q[done..done + take].iter_mut().zip(&fq[off..off + take]) {
+                *o += x;
             }
             done += take;
         }
