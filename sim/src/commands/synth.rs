@@ -49,6 +49,11 @@ fn ephemerides_at_start(world: &World) -> Vec<BroadcastEphemeris> {
         .collect()
 }
 
+/// Error context naming an output file.
+fn writing(path: &Path) -> String {
+    format!("cannot write {}", path.display())
+}
+
 /// The transmitters of one band, written to one recording per antenna.
 struct Band {
     signal: SignalId,
@@ -133,7 +138,7 @@ pub fn synthesise(
     };
     write_nav(&quantised, "skyforge", &iono_header, &mut nav)
         .and_then(|()| nav.flush())
-        .context("writing nav.rnx")?;
+        .with_context(|| writing(&nav_path))?;
     let store = EphemerisStore::new(quantised, &world.origin);
     let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
 
@@ -214,7 +219,7 @@ pub fn synthesise(
                 .map(|a| {
                     let path = staged.file(&format!("{}.{}.sigmf-data", a.name, b.tag));
                     std::fs::File::create(&path)
-                        .map(std::io::BufWriter::new)
+                        .map(|f| (path.clone(), std::io::BufWriter::new(f)))
                         .with_context(|| format!("cannot create {}", path.display()))
                 })
                 .collect::<anyhow::Result<Vec<_>>>()
@@ -244,7 +249,7 @@ pub fn synthesise(
     let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); n_ant];
     // RINEX observation truth per antenna, opened at the first epoch (approximate position).
     type Obs = ObsWriter<std::io::BufWriter<std::fs::File>>;
-    let mut obs: Vec<Option<Obs>> = (0..n_ant).map(|_| None).collect();
+    let mut obs: Vec<Option<(std::path::PathBuf, Obs)>> = (0..n_ant).map(|_| None).collect();
     let systems: Vec<System> = bands
         .iter()
         .map(|b| match b.signal {
@@ -297,8 +302,8 @@ pub fn synthesise(
                             })
                             .collect();
                         synth.push_epoch(chunk.t_s[k], links, &mut bufs);
-                        for (file, buf) in band_files.iter_mut().zip(bufs.iter_mut()) {
-                            file.write_all(buf)?;
+                        for ((path, file), buf) in band_files.iter_mut().zip(bufs.iter_mut()) {
+                            file.write_all(buf).with_context(|| writing(path))?;
                             buf.clear();
                         }
                         let truth = synth.take_truth();
@@ -315,49 +320,60 @@ pub fn synthesise(
                         for a in 0..n_ant {
                             let records: Vec<_> =
                                 truth.iter().filter(|r| r.antenna == a).copied().collect();
-                            truth_writer.append_signal(a, &records, band.first)?;
+                            truth_writer
+                                .append_signal(a, &records, band.first)
+                                .with_context(|| writing(&truth_path))?;
                         }
                     }
                     if let Some(t) = whole_t {
                         for (a, records) in whole_second.iter_mut().enumerate() {
                             records.sort_by_key(|r| r.sat);
-                            let writer = match &mut obs[a] {
-                                Some(w) => w,
+                            let (path, writer) = match &mut obs[a] {
+                                Some((p, w)) => (&*p, w),
                                 empty => {
                                     let st = &chunk.platform[k];
                                     let r0 = st.r_ecef_m
                                         + st.c_body_ecef * world.antennas[a].true_body_m;
                                     let path =
                                         staged.file(&format!("{}.obs.rnx", world.antennas[a].name));
-                                    let file =
-                                        std::io::BufWriter::new(std::fs::File::create(&path)?);
-                                    empty.insert(ObsWriter::new(
-                                        file,
+                                    let file = std::fs::File::create(&path)
+                                        .with_context(|| writing(&path))?;
+                                    let w = ObsWriter::new(
+                                        std::io::BufWriter::new(file),
                                         &world.antennas[a].name,
                                         &r0,
                                         calendar(t),
                                         1.0,
                                         &systems,
-                                    )?)
+                                    )
+                                    .with_context(|| writing(&path))?;
+                                    let (p, w) = empty.insert((path, w));
+                                    (&*p, w)
                                 }
                             };
-                            writer.epoch(calendar(t), records)?;
+                            writer
+                                .epoch(calendar(t), records)
+                                .with_context(|| writing(path))?;
                         }
                     }
                 }
                 bar.inc(chunk.t_s.len() as u64);
-                truth_writer.append(&chunk)?;
+                truth_writer
+                    .append(&chunk)
+                    .with_context(|| writing(&truth_path))?;
                 Ok(())
             },
         )
         .map_err(|e| anyhow::anyhow!("{e:#}"))?;
-    for f in files.iter_mut().flatten() {
-        f.flush()?;
+    for (path, f) in files.iter_mut().flatten() {
+        f.flush().with_context(|| writing(path))?;
     }
-    for w in obs.into_iter().flatten() {
-        w.finish()?;
+    for (path, w) in obs.into_iter().flatten() {
+        w.finish().with_context(|| writing(&path))?;
     }
-    truth_writer.finish()?;
+    truth_writer
+        .finish()
+        .with_context(|| writing(&truth_path))?;
     bar.finish_and_clear();
 
     let leo = scenario.platform.leo.is_some();
@@ -385,10 +401,12 @@ pub fn synthesise(
                     band.signal.name()
                 ),
             };
+            let meta_path = staged.file(&format!("{name}.sigmf-meta"));
             std::fs::write(
-                staged.file(&format!("{name}.sigmf-meta")),
+                &meta_path,
                 serde_json::to_string_pretty(&meta.to_json())? + "\n",
-            )?;
+            )
+            .with_context(|| writing(&meta_path))?;
             let present = SignalsPresent {
                 gps_l1ca: band.signal == SignalId::GpsL1Ca,
                 bds_b1i: band.signal == SignalId::BdsB1I,
@@ -407,7 +425,8 @@ pub fn synthesise(
                 troposphere: scenario.errors.troposphere.model != TropoModel::Off && !leo,
             };
             let conf = gnss_sdr::config(signal, &data, present, doppler, corrections, &name);
-            std::fs::write(staged.file(&format!("{name}.gnss-sdr.conf")), conf)?;
+            let conf_path = staged.file(&format!("{name}.gnss-sdr.conf"));
+            std::fs::write(&conf_path, conf).with_context(|| writing(&conf_path))?;
         }
     }
     let clipped: u64 = synths.iter().map(Synthesiser::clipped).sum();
