@@ -163,6 +163,11 @@ fn a_full_disk_fails_clearly_and_removes_the_partial_output() {
     let msg = stderr(&o);
     println!("{msg}");
     assert!(msg.contains("No space left on device"), "{msg}");
+    // The file that could not be written is named (the sample file fills the disk).
+    assert!(
+        msg.contains("cannot write ") && msg.contains(".sigmf-data"),
+        "{msg}"
+    );
     assert!(
         msg.contains("output directory small/out was not written")
             && msg.contains("partial files were removed"),
