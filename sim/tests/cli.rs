@@ -319,3 +319,72 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
         }
     }
 }
+
+#[test]
+fn link_budget_and_per_antenna_clocks_reach_the_signal_truth() {
+    let tmp = tempfile::tempdir().unwrap();
+    let path = short_scenario(tmp.path(), "interop-gps-static", 1);
+    let extra = "\n[[antennas]]\nname = \"ant2\"\nposition_body_m = [0.0, 0.0, 0.0]\n\
+                 boresight_body = [0.0, 0.0, -1.0]\nelevation_mask_deg = 5.0\n\n\
+                 [signal.link_budget]\nsystem_noise_temperature_k = 290.0\n\n\
+                 [errors.receiver_clock]\npreset = \"tcxo\"\nbias_s = 2e-4\nper_antenna = true\n";
+    let toml = std::fs::read_to_string(&path).unwrap() + extra;
+    std::fs::write(&path, toml).unwrap();
+    let o = skyforge(&["synth", "short.toml", "--out", "out"], tmp.path());
+    assert!(o.status.success(), "{}", text(&o));
+    let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
+    let read = |ant: &str, name: &str| -> Vec<f64> {
+        file.dataset(&format!("antennas/{ant}/signal/{name}"))
+            .unwrap()
+            .read_raw()
+            .unwrap()
+    };
+    // C/N0 from the budget: default GPS EIRP, free-space loss over the link's range,
+    // 0 dBi (no gain pattern), kT at 290 K.
+    let eirp = skyforge_signals::errors::link_budget::default_gps_eirp_dbw();
+    let k_t = 10.0 * (1.380_649e-23f64 * 290.0).log10();
+    let (pr, cn0, rx, sat_clock, iono, tropo) = (
+        read("ant1", "pseudorange_m"),
+        read("ant1", "cn0_dbhz"),
+        read("ant1", "rx_clock_m"),
+        read("ant1", "sat_clock_m"),
+        read("ant1", "iono_m"),
+        read("ant1", "tropo_m"),
+    );
+    let lambda = 299_792_458.0 / 1575.42e6;
+    for i in 0..pr.len() {
+        let range = pr[i] - rx[i] + sat_clock[i] - iono[i] - tropo[i];
+        let fspl = 20.0 * (4.0 * std::f64::consts::PI * range / lambda).log10();
+        let expected = eirp - fspl - k_t;
+        assert!((cn0[i] - expected).abs() < 0.01, "{} vs {expected}", cn0[i]);
+    }
+    // Ranges of 20 200 km (zenith) to 25 200 km (5 deg): 47.4 to 45.5 dB-Hz.
+    let (lo, hi) = cn0
+        .iter()
+        .fold((f64::MAX, f64::MIN), |(l, h), c| (l.min(*c), h.max(*c)));
+    assert!(lo > 45.3 && hi < 47.5, "C/N0 {lo}..{hi}");
+    // Two independent oscillators started at the same bias: equal at t = 0, apart later;
+    // each shared by all satellites of its antenna.
+    let (t1, t2, rx2) = (
+        read("ant1", "t_s"),
+        read("ant2", "t_s"),
+        read("ant2", "rx_clock_m"),
+    );
+    let at = |t: &[f64], rx: &[f64], when: f64| -> Vec<f64> {
+        t.iter()
+            .zip(rx)
+            .filter(|(t, _)| **t == when)
+            .map(|(_, r)| *r)
+            .collect()
+    };
+    let (a0, b0) = (at(&t1, &rx, 0.0), at(&t2, &rx2, 0.0));
+    assert!((a0[0] - 2e-4 * 299_792_458.0).abs() < 1e-9 && (b0[0] - a0[0]).abs() < 1e-9);
+    let (a, b) = (at(&t1, &rx, 0.999), at(&t2, &rx2, 0.999));
+    assert!(a.iter().all(|x| *x == a[0]) && b.iter().all(|x| *x == b[0]));
+    assert!(
+        a[0] != b[0],
+        "independent oscillators: {} vs {}",
+        a[0],
+        b[0]
+    );
+}
