@@ -101,6 +101,22 @@ fn mid_tread(y: f32, max: i32) -> (i32, bool) {
     (round_half_away(y.clamp(-top, top)), y.abs() >= top + 0.5)
 }
 
+/// [`Quantiser::write`]'s arguments, for the CPU-feature dispatch.
+struct Write<'a> {
+    quantiser: &'a mut Quantiser,
+    i: &'a [f32],
+    q: &'a [f32],
+    out: &'a mut Vec<u8>,
+}
+
+impl pulp::WithSimd for Write<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) {
+        self.quantiser.write_block(self.i, self.q, self.out);
+    }
+}
+
 /// Quantises blocks of I/Q (or real) samples into a file container.
 #[derive(Debug, Clone)]
 pub struct Quantiser {
@@ -191,8 +207,20 @@ impl Quantiser {
     }
 
     /// Append the block to `out` in the container's byte layout (interleaved I/Q for
-    /// complex formats; only `i` for real IF).
+    /// complex formats; only `i` for real IF). Runs with the widest vector instructions
+    /// the CPU has; integer results, so identical on every path.
     pub fn write(&mut self, i: &[f32], q: &[f32], out: &mut Vec<u8>) {
+        pulp::Arch::new().dispatch(Write {
+            quantiser: self,
+            i,
+            q,
+            out,
+        });
+    }
+
+    /// [`Self::write`], compiled once per instruction set.
+    #[inline(always)]
+    fn write_block(&mut self, i: &[f32], q: &[f32], out: &mut Vec<u8>) {
         let n = if self.format.is_complex() {
             i.len().min(q.len())
         } else {
