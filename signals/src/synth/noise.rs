@@ -12,7 +12,7 @@
 mod normal_table;
 
 use crate::errors::seed::stream_seed;
-use rand::{RngCore, SeedableRng};
+use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 /// Complex samples per independently seeded noise frame.
@@ -52,9 +52,8 @@ impl ThermalNoise {
         }
         let mut rng = ChaCha8Rng::from_seed(self.key);
         rng.set_stream(f);
-        self.words.clear();
-        self.words
-            .extend(std::iter::repeat_with(|| rng.next_u32()).take(2 * NOISE_FRAME));
+        self.words.resize(2 * NOISE_FRAME, 0);
+        rng.fill(&mut self.words[..]);
         self.frame.resize(2 * NOISE_FRAME, 0.0);
         normal_table::fill_normal(&self.words, self.sigma, &mut self.frame);
         self.frame_index = Some(f);
