@@ -8,6 +8,7 @@ use skyforge_orbits::check::Invalid;
 use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{TimeError, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
+use skyforge_signals::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
 
 /// Highest GPS PRN (IS-GPS-200: PRNs 1..32 for the operational constellation).
 pub(crate) const GPS_MAX_PRN: u8 = 32;
@@ -40,10 +41,23 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         .check()
         .map_err(|e| e.within("errors.ionosphere"))?;
     check_errors(scenario)?;
-    match &scenario.signal {
-        Some(signal) => signal.check().map_err(|e| e.within("signal")),
-        None => Ok(()),
+    if let Some(signal) = &scenario.signal {
+        signal.check().map_err(|e| e.within("signal"))?;
+        let bands = [
+            (scenario.gnss.gps.enabled, "GPS L1 C/A", GPS_CA_CHIP_RATE_HZ),
+            (
+                scenario.gnss.beidou.enabled,
+                "BeiDou B1I",
+                BDS_B1I_CHIP_RATE_HZ,
+            ),
+        ];
+        for (_, name, chip_rate) in bands.into_iter().filter(|b| b.0) {
+            signal
+                .check_band(name, chip_rate)
+                .map_err(|e| e.within("signal"))?;
+        }
     }
+    Ok(())
 }
 
 /// `[errors]` beyond the ionosphere: each table's own check, plus what needs the rest of

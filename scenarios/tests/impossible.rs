@@ -269,3 +269,88 @@ fn bad_epoch() {
     let gps_only = replace(&text, "enabled = true", "enabled = false");
     parse_in(&gps_only, Path::new(".")).expect("GPS-only 2001 scenario");
 }
+
+/// BASE (GPS + BeiDou) with a `[signal]` table.
+fn with_signal(fields: &str) -> String {
+    format!("{BASE}\n[signal]\n{fields}\n")
+}
+
+#[test]
+fn sample_rate_below_the_signal_bandwidth() {
+    // 3 Msps complex holds the C/A main lobe but not B1I's (+-2.046 MHz).
+    let text = with_signal("sample_rate_hz = 3.0e6\nformat = \"ci8\"");
+    let err = parse_error(&text);
+    let at = position_of(&text, "sample_rate_hz = 3.0e6", "3.0e6");
+    assert_error(&err, "signal.sample_rate_hz", "3.0e6", at);
+    assert!(err.to_string().contains("BeiDou B1I"), "{err}");
+    // GPS alone is fine at 3 Msps; below the C/A main lobe it is not.
+    let gps_only = replace(
+        &text,
+        "[gnss.beidou]\nenabled = true",
+        "[gnss.beidou]\nenabled = false",
+    );
+    parse_in(&gps_only, Path::new(".")).expect("GPS at 3 Msps");
+    let text = replace(
+        &gps_only,
+        "sample_rate_hz = 3.0e6",
+        "sample_rate_hz = 1.5e6",
+    );
+    let err = parse_error(&text);
+    let at = position_of(&text, "sample_rate_hz = 1.5e6", "1.5e6");
+    assert_error(&err, "signal.sample_rate_hz", "1.5e6", at);
+    // A complex IF offset counts too: 4.092 Msps at IF 1 MHz cannot hold B1I.
+    let text = with_signal("sample_rate_hz = 4.092e6\nif_hz = 1.0e6");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "signal.sample_rate_hz",
+        "4.092e6",
+        position_of(&text, "sample_rate_hz = 4.092e6", "4.092e6"),
+    );
+}
+
+#[test]
+fn intermediate_frequency_outside_nyquist() {
+    let text = with_signal("sample_rate_hz = 8.0e6\nif_hz = 5.0e6");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "signal.if_hz",
+        "5.0e6",
+        position_of(&text, "if_hz = 5.0e6", "5.0e6"),
+    );
+    assert!(err.to_string().contains("Nyquist"), "{err}");
+    // Real samples: the main lobe must fit between 0 and fs/2 (16.368 Msps: 2.0-6.2 MHz
+    // for B1I), and a real recording needs an IF.
+    for bad in ["1.0e6", "7.0e6", "0.0"] {
+        let text = with_signal(&format!(
+            "sample_rate_hz = 16.368e6\nformat = \"ri8\"\nif_hz = {bad}"
+        ));
+        let err = parse_error(&text);
+        assert_eq!(err.field, "signal.if_hz", "{err}");
+        let at = position_of(&text, &format!("if_hz = {bad}"), bad);
+        assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    }
+    let ok = with_signal("sample_rate_hz = 16.368e6\nformat = \"ri8\"\nif_hz = 4.092e6");
+    parse_in(&ok, Path::new(".")).expect("B1I and C/A at IF 4.092 MHz, 16.368 Msps real");
+}
+
+#[test]
+fn quantisation_bits_not_in_the_list() {
+    for bad in ["3", "12", "0"] {
+        let text = with_signal(&format!("format = \"ci16\"\nbits = {bad}"));
+        let err = parse_error(&text);
+        let at = position_of(&text, &format!("bits = {bad}"), bad);
+        assert_error(&err, "signal.bits", bad, at);
+        assert!(err.to_string().contains("1, 2, 4, 8, 16"), "{err}");
+    }
+    // 16 bits do not fit an 8-bit container.
+    let text = with_signal("format = \"ci8\"\nbits = 16");
+    let err = parse_error(&text);
+    assert_error(
+        &err,
+        "signal.bits",
+        "16",
+        position_of(&text, "bits = 16", "16"),
+    );
+}

@@ -4,12 +4,12 @@
 //! channel-samples per second = 12 x 4.092e6 / time.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use std::io::Write;
 use skyforge_orbits::ephemeris::nominal;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::format::SampleFormat;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use std::io::Write;
 
 const CHANNELS: usize = 12;
 const FS_HZ: f64 = 4.092e6;
@@ -64,18 +64,21 @@ fn synth(c: &mut Criterion) {
     );
     let dir = tempfile::tempdir().expect("temporary directory");
     let mut file = std::fs::File::create(dir.path().join("ant1.ci8")).expect("sample file");
-    group.bench_function("12 GPS channels, 4.092 Msps ci8, noise, 1 s, to disk", |b| {
-        b.iter(|| {
-            let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
-            let mut out = vec![Vec::new()];
-            let t0 = second as f64;
-            synth.push_epoch(t0, links.clone(), &mut out);
-            synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
-            second += 1;
-            file.write_all(&out[0]).expect("write");
-            out[0].len()
-        });
-    });
+    group.bench_function(
+        "12 GPS channels, 4.092 Msps ci8, noise, 1 s, to disk",
+        |b| {
+            b.iter(|| {
+                let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
+                let mut out = vec![Vec::new()];
+                let t0 = second as f64;
+                synth.push_epoch(t0, links.clone(), &mut out);
+                synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
+                second += 1;
+                file.write_all(&out[0]).expect("write");
+                out[0].len()
+            });
+        },
+    );
     group.finish();
 }
 

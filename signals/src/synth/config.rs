@@ -10,6 +10,12 @@ use std::collections::BTreeMap;
 /// Synthesis block length (s): blocks are 1 ms, the C/A code period.
 pub const BLOCK_S: f64 = 1e-3;
 
+/// Fraction of a signal's main-lobe width (2 x chip rate) the recorded band may cut off.
+pub const MAIN_LOBE_MARGIN: f64 = 0.05;
+
+/// The lowest sample rate any signal can use: the GPS C/A main lobe with the margin.
+pub const MIN_SAMPLE_RATE_HZ: f64 = 2.0 * (1.0 - MAIN_LOBE_MARGIN) * 1.023e6;
+
 /// `[signal]`.
 #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -85,20 +91,22 @@ fn default_truth_rate() -> u32 {
 }
 
 impl SignalConfig {
-    /// Checks: the rate covers the widest signal (B1I main lobe, 4.092 MHz complex) and
-    /// gives whole samples per block; the IF lies inside Nyquist; C/N0 is plausible.
+    /// Checks: the rate gives whole samples per block; the IF lies inside Nyquist; C/N0
+    /// is plausible. Whether the band holds each signal is [`Self::check_band`].
     pub fn check(&self) -> Result<(), Invalid> {
         let fs = self.sample_rate_hz;
         let per_block = fs * BLOCK_S;
         if !(fs.is_finite()
-            && fs >= 2.046e6
+            && fs >= MIN_SAMPLE_RATE_HZ
             && (per_block - per_block.round()).abs() < 1e-6
             && fs <= 1e9)
         {
             return Err(Invalid::new(
                 "sample_rate_hz",
                 fs,
-                "must be at least 2.046e6 (the C/A main lobe; 4.092e6 for B1I), at most 1e9, and a multiple of 1000",
+                format!(
+                    "must be at least {MIN_SAMPLE_RATE_HZ:e} (the C/A main lobe, see check_band), at most 1e9, and a multiple of 1000"
+                ),
             ));
         }
         let nyquist = fs / 2.0;
@@ -150,6 +158,41 @@ impl SignalConfig {
                 "truth_rate_hz",
                 self.truth_rate_hz,
                 "must divide 1000 (1 ms blocks), or be 0",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The recorded band must hold the main lobe of signal `name` (chip rate `chip_rate_hz`,
+    /// BPSK: nulls at +-chip rate about the carrier) to within [`MAIN_LOBE_MARGIN`] of its
+    /// width: complex samples need `|IF| + (1 - margin) x chip rate <= fs/2`, real samples
+    /// `(1 - margin) x chip rate < IF < fs/2 - (1 - margin) x chip rate`. (The margin lets
+    /// the common 4 Msps B1I recordings through: they keep 97.8 % of the main lobe.)
+    pub fn check_band(&self, name: &str, chip_rate_hz: f64) -> Result<(), Invalid> {
+        let half = (1.0 - MAIN_LOBE_MARGIN) * chip_rate_hz;
+        let (fs, f_if) = (self.sample_rate_hz, self.if_hz);
+        let nyquist = fs / 2.0;
+        if self.format.is_complex() {
+            if f_if.abs() + half > nyquist {
+                let need = 2.0 * (f_if.abs() + half);
+                return Err(Invalid::new(
+                    "sample_rate_hz",
+                    fs,
+                    format!(
+                        "is below the {name} signal bandwidth: its main lobe (+-{chip_rate_hz:e} Hz about IF {f_if} Hz, {}% margin) needs at least {need:e} complex samples/s",
+                        MAIN_LOBE_MARGIN * 100.0
+                    ),
+                ));
+            }
+        } else if f_if - half <= 0.0 || f_if + half >= nyquist {
+            return Err(Invalid::new(
+                "if_hz",
+                f_if,
+                format!(
+                    "puts the {name} main lobe (+-{chip_rate_hz:e} Hz, {}% margin) outside 0..{nyquist} Hz for real samples at {fs:e}/s: the IF must lie in {half:e}..{:e} Hz",
+                    MAIN_LOBE_MARGIN * 100.0,
+                    nyquist - half
+                ),
             ));
         }
         Ok(())
