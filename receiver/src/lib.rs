@@ -1,5 +1,9 @@
 //! The bundled software receiver. It sees samples and what a real receiver could be told
-//! (ephemerides, approximate time and position), never simulator truth: this crate does not
-//! depend on `skyforge-signals`.
+//! (ephemerides, approximate time and position), never simulator truth: of
+//! `skyforge-signals` it uses only the signal definitions every receiver has (ranging
+//! codes, navigation-message formats), which `tests/tests/truth_firewall.rs` checks.
 
+pub mod acquisition;
+pub mod input;
+pub mod navdecode;
 pub mod tracking;
