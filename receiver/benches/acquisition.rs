@@ -1,0 +1,8 @@
+//! Placeholder until the acquisition benchmark lands (issue #4 speed bars).
+
+use criterion::{Criterion, criterion_group, criterion_main};
+
+fn placeholder(_c: &mut Criterion) {}
+
+criterion_group!(benches, placeholder);
+criterion_main!(benches);
