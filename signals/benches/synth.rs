@@ -47,20 +47,20 @@ fn synth(c: &mut Criterion) {
     let mut group = c.benchmark_group("synth");
     group.sample_size(10);
     group.throughput(Throughput::Elements((CHANNELS as f64 * FS_HZ) as u64));
+    // One second of signal for one antenna, rendered from scratch, as ci8 bytes.
     let mut second = 0u64;
+    let mut render_second = || {
+        let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
+        let mut out = vec![Vec::new()];
+        let t0 = second as f64;
+        synth.push_epoch(t0, links.clone(), &mut out);
+        synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
+        second += 1;
+        out.swap_remove(0)
+    };
     group.bench_function(
         "12 GPS channels, 4.092 Msps ci8, noise, 1 s, null sink",
-        |b| {
-            b.iter(|| {
-                let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
-                let mut out = vec![Vec::new()];
-                let t0 = second as f64;
-                synth.push_epoch(t0, links.clone(), &mut out);
-                synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
-                second += 1;
-                out[0].len()
-            });
-        },
+        |b| b.iter(|| render_second().len()),
     );
     let dir = tempfile::tempdir().expect("temporary directory");
     let mut file = std::fs::File::create(dir.path().join("ant1.ci8")).expect("sample file");
@@ -68,14 +68,9 @@ fn synth(c: &mut Criterion) {
         "12 GPS channels, 4.092 Msps ci8, noise, 1 s, to disk",
         |b| {
             b.iter(|| {
-                let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
-                let mut out = vec![Vec::new()];
-                let t0 = second as f64;
-                synth.push_epoch(t0, links.clone(), &mut out);
-                synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
-                second += 1;
-                file.write_all(&out[0]).expect("write");
-                out[0].len()
+                let bytes = render_second();
+                file.write_all(&bytes).expect("write");
+                bytes.len()
             });
         },
     );

@@ -4,15 +4,15 @@
 //! second antenna) to 0.1 mm. Checked by correlating the samples against the known code and
 //! carrier, independently of the receiver crate.
 
+mod common;
+
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_signals::antenna::AntennaGrid;
 use skyforge_signals::codes::gps_ca::gps_ca;
 use skyforge_signals::errors::ionosphere::{IonoConfig, IonoModel};
 use skyforge_signals::errors::multipath::{MultipathConfig, TapConfig};
 use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
 use skyforge_signals::synth::config::SignalConfig;
-use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::format::SampleFormat;
 use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
 use skyforge_signals::synth::render::Synthesiser;
@@ -37,19 +37,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     let scenario = skyforge_scenarios::resolve("thesis-leo").unwrap();
     let mut world = scenario.build().unwrap();
     assert_eq!(world.antennas[0].pco_m, skyforge_orbits::Vec3::zeros());
-    let start = world.origin.start();
-    let ephs: Vec<BroadcastEphemeris> = world
-        .satellites
-        .iter()
-        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
-        .collect();
-    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
-    let txs = constellation::gps_l1ca(&ephs, start, &iono.gps).unwrap();
-    let store = EphemerisStore::new(
-        txs.iter().map(|t| t.broadcast_ephemeris()).collect(),
-        &world.origin,
-    );
-    let sats: Vec<SatId> = txs.iter().map(|t| t.sat).collect();
+    let (txs, store, sats) = common::gps_transmitters(&world);
     // The second antenna gets a phase-centre offset, a phase-centre variation grid
     // (5 mm x sin(zenith) cos(azimuth)) and a reflected path.
     world.antennas[1].pco_m = skyforge_orbits::Vec3::new(0.002, -0.003, 0.06);

@@ -6,13 +6,13 @@
 //! receiver crate: the prompt must have the truth's amplitude and zero phase, and the
 //! early/late correlators must balance.
 
+mod common;
+
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
 use skyforge_signals::errors::events::{EventConfig, EventKind, EventSchedule};
 use skyforge_signals::errors::seed::stream_rng;
 use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
-use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::format::SampleFormat;
 use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser};
 use skyforge_signals::synth::transmitter::Transmitter;
@@ -69,19 +69,7 @@ fn correlate(tx: &Transmitter, samples: &[(f32, f32)], r: &LinkTruth) -> [(f64, 
 fn samples_follow_the_truth_of_every_term() {
     let scenario = skyforge_scenarios::resolve("interop-gps-static").unwrap();
     let mut world = scenario.build().unwrap();
-    let start = world.origin.start();
-    let ephs: Vec<BroadcastEphemeris> = world
-        .satellites
-        .iter()
-        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
-        .collect();
-    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
-    let txs = constellation::gps_l1ca(&ephs, start, &iono.gps).unwrap();
-    let store = EphemerisStore::new(
-        txs.iter().map(|t| t.broadcast_ephemeris()).collect(),
-        &world.origin,
-    );
-    let sats: Vec<SatId> = txs.iter().map(|t| t.sat).collect();
+    let (txs, store, sats) = common::gps_transmitters(&world);
     let truth = GeometryTruth::new(&store, &sats, &world.antennas[..1], 1.0);
     let window = world.platform.window(-2.0, 10.0).unwrap();
     let chunk = truth.chunk(&window, 0.0, 3);
