@@ -50,6 +50,11 @@ pub enum Command {
         /// Replace an existing output directory.
         #[arg(long)]
         force: bool,
+        /// Geometry epochs (1 s each) computed per streamed chunk: more costs memory,
+        /// fewer costs overhead. The output does not depend on it.
+        #[arg(long, value_name = "N", default_value_t = crate::commands::synth::DEFAULT_CHUNK_EPOCHS,
+              value_parser = clap::value_parser!(u32).range(1..=3600))]
+        chunk_epochs: u32,
     },
     /// List or show the bundled scenarios.
     Scenarios {

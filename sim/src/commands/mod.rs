@@ -2,7 +2,7 @@
 
 mod run;
 mod scenarios;
-mod synth;
+pub(crate) mod synth;
 mod validate;
 
 use crate::cli::{Cli, Command, ScenariosAction, ValidateSuite};
@@ -21,7 +21,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             out,
             seed,
             force,
-        } => synth::synth(&scenario, &out, seed, force),
+            chunk_epochs,
+        } => synth::synth(&scenario, &out, seed, force, chunk_epochs as usize),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

@@ -20,7 +20,13 @@ pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow
         scenario.seed = seed;
     }
     if let Some(signal) = scenario.signal.clone() {
-        return super::synth::synthesise(&scenario, &signal, out, force);
+        return super::synth::synthesise(
+            &scenario,
+            &signal,
+            out,
+            force,
+            super::synth::DEFAULT_CHUNK_EPOCHS as usize,
+        );
     }
     let world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;

@@ -34,8 +34,8 @@ use std::time::Instant;
 
 /// Geometry epochs the renderer interpolates between (s).
 const GEOMETRY_STEP_S: f64 = 1.0;
-/// Geometry epochs per streamed chunk.
-const CHUNK_EPOCHS: usize = 10;
+/// Geometry epochs per streamed chunk unless `synth --chunk-epochs` says otherwise.
+pub const DEFAULT_CHUNK_EPOCHS: u32 = 10;
 /// Acquisition Doppler search written into the GNSS-SDR configuration (Hz): ground / LEO.
 const DOPPLER_MAX_GROUND_HZ: f64 = 5_000.0;
 const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
@@ -65,7 +65,13 @@ struct Band {
 }
 
 /// Run `scenario`'s signal synthesis into `out`.
-pub fn synth(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow::Result<()> {
+pub fn synth(
+    scenario: &str,
+    out: &Path,
+    seed: Option<u64>,
+    force: bool,
+    chunk_epochs: usize,
+) -> anyhow::Result<()> {
     let mut scenario = skyforge_scenarios::resolve(scenario)?;
     if let Some(seed) = seed {
         scenario.seed = seed;
@@ -77,15 +83,17 @@ pub fn synth(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyh
         ))
         .into());
     };
-    synthesise(&scenario, &signal, out, force)
+    synthesise(&scenario, &signal, out, force, chunk_epochs)
 }
 
-/// Synthesise `scenario` with `signal` into `out`.
+/// Synthesise `scenario` with `signal` into `out`, computing geometry `chunk_epochs`
+/// epochs at a time.
 pub fn synthesise(
     scenario: &Scenario,
     signal: &SignalConfig,
     out: &Path,
     force: bool,
+    chunk_epochs: usize,
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let world = scenario.build()?;
@@ -268,7 +276,7 @@ pub fn synthesise(
         .stream(
             &mut platform,
             world.duration_s,
-            CHUNK_EPOCHS,
+            chunk_epochs,
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
                     let st = &chunk.platform[k];
