@@ -4,6 +4,7 @@
 
 pub mod broadcast;
 pub mod config;
+pub mod klobuchar;
 pub mod nominal;
 pub mod rinex_nav;
 pub mod rinex_nav_write;
