@@ -1,10 +1,12 @@
-//! Orbits: time scales, reference frames, GNSS broadcast ephemerides, the LEO numerical
+//! Orbits: time scales, reference frames, GNSS broadcast ephemerides (with the broadcast
+//! ionosphere and the standard troposphere every user applies), the LEO numerical
 //! propagator, receiving platforms with their attitude, and visibility geometry.
 //!
 //! Conventions (see `DESIGN.md`): SI units inside; time inside hot loops is `f64` seconds
 //! since the scenario start ([`time::TimeOrigin`]); rotation matrices are named
 //! `c_from_to` and map a vector's components from frame `from` to frame `to`.
 
+pub mod atmosphere;
 pub mod attitude;
 pub mod check;
 pub mod constants;
