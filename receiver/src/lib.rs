@@ -6,4 +6,5 @@
 pub mod acquisition;
 pub mod input;
 pub mod navdecode;
+pub mod pvt;
 pub mod tracking;

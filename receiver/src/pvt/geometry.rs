@@ -1,0 +1,86 @@
+//! One satellite as seen at the receive epoch: transmit time, clock, Sagnac-rotated
+//! position, range, line of sight and angles.
+
+use skyforge_orbits::Vec3;
+use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
+use skyforge_orbits::ephemeris::{BoundEphemeris, System};
+use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
+
+/// A receiver position this far from the geocentre is a position (m); before the first
+/// iteration the estimate is the geocentre and angles are meaningless.
+const MIN_POSITION_NORM_M: f64 = 6.0e6;
+
+/// The satellite of one measurement, for a receiver at `r_rx_m`.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct SatView {
+    /// Its velocity in that frame (m/s).
+    pub v_ecef_mps: Vec3,
+    /// Satellite clock offset for the signal: polynomial + relativity - group delay (s).
+    pub clock_s: f64,
+    /// Satellite clock drift (s/s).
+    pub clock_drift: f64,
+    /// Geometric range (m).
+    pub range_m: f64,
+    /// Unit vector receiver -> satellite (ECEF).
+    pub los: Vec3,
+    /// Azimuth and elevation at the receiver (rad), when the receiver position is known.
+    pub az_el_rad: Option<(f64, f64)>,
+}
+
+/// Earth rotation rate of the system's reference frame (rad/s).
+fn omega_e(system: System) -> f64 {
+    match system {
+        System::Gps => OMEGA_E_GPS,
+        System::Beidou => OMEGA_E_BDS,
+    }
+}
+
+/// Rotation about Z by `-angle` (the frame turning by `angle` while the signal flies).
+fn earth_turned(v: &Vec3, angle_rad: f64) -> Vec3 {
+    let (s, c) = angle_rad.sin_cos();
+    Vec3::new(c * v.x + s * v.y, -s * v.x + c * v.y, v.z)
+}
+
+/// The satellite of `eph` whose signal, received at `t_rx_s` (receiver time tag, s since
+/// the ephemeris origin), measured `pseudorange_m`.
+///
+/// The transmit time in satellite time is `t_rx - P / c` whatever the receiver clock (the
+/// pseudorange carries it); the satellite clock turns it into system time. The position
+/// is then rotated by the Earth's rotation during the flight time (IS-GPS-200
+/// 20.3.3.4.3.3.2), iterated twice for the flight time itself.
+pub(super) fn sat_view(
+    eph: &BoundEphemeris,
+    t_rx_s: f64,
+    pseudorange_m: f64,
+    r_rx_m: &Vec3,
+) -> SatView {
+    let t_sv = t_rx_s - pseudorange_m / C_MPS;
+    // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
+    let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
+    let t_tx = t_sv - clock_s;
+    let (r0, v0) = eph.state_ecef(t_tx);
+    let w = omega_e(eph.eph.sat.system);
+    let mut flight_s = (r0 - r_rx_m).norm() / C_MPS;
+    let mut r = r0;
+    for _ in 0..2 {
+        r = earth_turned(&r0, w * flight_s);
+        flight_s = (r - r_rx_m).norm() / C_MPS;
+    }
+    let v = earth_turned(&v0, w * flight_s);
+    let d = r - r_rx_m;
+    let range_m = d.norm();
+    let los = d / range_m;
+    let az_el_rad = (r_rx_m.norm() > MIN_POSITION_NORM_M).then(|| {
+        let g = ecef_to_geodetic(r_rx_m);
+        az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los))
+    });
+    SatView {
+        v_ecef_mps: v,
+        clock_s,
+        clock_drift: eph.clock_drift(t_tx),
+        range_m,
+        los,
+        az_el_rad,
+    }
+}

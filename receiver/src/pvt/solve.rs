@@ -1,0 +1,259 @@
+//! The iterated weighted least-squares position and clock solution.
+
+use super::geometry::{SatView, sat_view};
+use super::raim::chi2_threshold;
+use super::{Dop, Fix, IONOSPHERE_USER_CEILING_M, Measurement, PvtConfig, PvtError};
+use nalgebra::{DMatrix, DVector};
+use skyforge_orbits::Vec3;
+use skyforge_orbits::atmosphere::standard_slant_delay_m;
+use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
+use skyforge_orbits::ephemeris::klobuchar::{bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
+use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
+use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
+
+/// Iterations of the linearised solution; it converges in 4-6 from the geocentre.
+const MAX_ITERATIONS: usize = 15;
+/// Position step below which the iteration has converged (m).
+const CONVERGED_M: f64 = 1e-4;
+/// Relative humidity at sea level of the receiver's standard troposphere.
+const STANDARD_RH0: f64 = 0.5;
+
+/// Solve the position, receiver clock(s) and, with both systems, the inter-system bias
+/// from `meas` received at `t_rx_s` (receiver time tag, s since `origin`, GPST), with the
+/// ephemerides of `store` (bound to `origin`). `a_priori` starts the iteration (the
+/// geocentre otherwise). Applies the residual test of [`super::raim`] and excludes one
+/// satellite when it fails.
+pub fn solve(
+    meas: &[Measurement],
+    t_rx_s: f64,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    cfg: &PvtConfig,
+    a_priori: Option<Vec3>,
+) -> Result<Fix, PvtError> {
+    let mut fix = least_squares(meas, t_rx_s, store, origin, cfg, a_priori, &[])?;
+    if cfg.raim_pfa > 0.0 && fix.dof >= 2 && fix.chi2 > chi2_threshold(fix.dof, cfg.raim_pfa) {
+        // Exclude the satellite with the largest weighted residual and solve again.
+        let worst = fix
+            .used
+            .iter()
+            .map(|&(sat, res, el)| (sat, (res / sigma_m(cfg, Some(el))).abs()))
+            .max_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(sat, _)| sat);
+        if let Some(worst) = worst {
+            let mut again = least_squares(
+                meas,
+                t_rx_s,
+                store,
+                origin,
+                cfg,
+                Some(fix.r_ecef_m),
+                &[worst],
+            )?;
+            again.excluded.push(worst);
+            fix = again;
+        }
+    }
+    Ok(fix)
+}
+
+/// Standard deviation of a pseudorange at elevation `el` (m); 1 before angles exist.
+fn sigma_m(cfg: &PvtConfig, el: Option<f64>) -> f64 {
+    match el {
+        Some(el) => (cfg.sigma_a_m.powi(2) + (cfg.sigma_b_m / el.sin().max(0.05)).powi(2)).sqrt(),
+        None => 1.0,
+    }
+}
+
+/// Ionospheric delay (m) of a satellite's signal for a receiver at `r_rx_m`, or 0 when
+/// the receiver is above the ground model's reach or no coefficients are known.
+fn iono_m(
+    cfg: &PvtConfig,
+    origin: &TimeOrigin,
+    t_s: f64,
+    sat: SatId,
+    r_rx_m: &Vec3,
+    az: f64,
+    el: f64,
+) -> f64 {
+    let g = ecef_to_geodetic(r_rx_m);
+    if g.h_m > IONOSPHERE_USER_CEILING_M {
+        return 0.0;
+    }
+    let at = origin.epoch_at(t_s);
+    let gps = |c| gps_klobuchar_l1_s(c, g.lat_rad, g.lon_rad, az, el, gpst_week_sow(at).1);
+    let bds = |c| bds_klobuchar_b1i_s(c, g.lat_rad, g.lon_rad, az, el, bdt_week_sow(at).1);
+    let seconds = match (sat.system, &cfg.iono_gps, &cfg.iono_bds) {
+        (System::Gps, Some(c), _) => gps(c),
+        (System::Gps, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
+        (System::Beidou, _, Some(c)) => bds(c),
+        (System::Beidou, Some(c), None) => gps(c) * (F_GPS_L1_HZ / F_BDS_B1I_HZ).powi(2),
+        (_, None, None) => 0.0,
+    };
+    seconds * C_MPS
+}
+
+/// One least-squares solution without the satellites of `skip`.
+fn least_squares(
+    meas: &[Measurement],
+    t_rx_s: f64,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    cfg: &PvtConfig,
+    a_priori: Option<Vec3>,
+    skip: &[SatId],
+) -> Result<Fix, PvtError> {
+    let meas: Vec<&Measurement> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
+    let ephs = meas
+        .iter()
+        .map(|m| {
+            store
+                .select(m.sat, t_rx_s)
+                .ok_or(PvtError::NoEphemeris(m.sat))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    // Receiver clock columns: one per system present.
+    let systems: Vec<System> = [System::Gps, System::Beidou]
+        .into_iter()
+        .filter(|s| meas.iter().any(|m| m.sat.system == *s))
+        .collect();
+    let n_x = 3 + systems.len();
+    let mut r = a_priori.unwrap_or_else(Vec3::zeros);
+    let mut clocks = vec![0.0; systems.len()];
+    let mut last_step = f64::INFINITY;
+    for _ in 0..MAX_ITERATIONS {
+        let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
+        if rows.len() < n_x {
+            return Err(PvtError::TooFewSatellites {
+                have: rows.len(),
+                need: n_x,
+                clocks: systems.len(),
+            });
+        }
+        let (h, v, w) = matrices(&rows, n_x);
+        let hw = h.transpose() * DMatrix::from_diagonal(&w);
+        let n = &hw * &h;
+        let dx = n.clone().try_inverse().ok_or(PvtError::Singular)? * (&hw * &v);
+        r += Vec3::new(dx[0], dx[1], dx[2]);
+        for (c, d) in clocks.iter_mut().zip(dx.iter().skip(3)) {
+            *c += d;
+        }
+        last_step = dx.rows(0, 3).norm();
+        if last_step < CONVERGED_M {
+            let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
+            return finish(&rows, n_x, r, &clocks, &systems, t_rx_s);
+        }
+    }
+    Err(PvtError::NoConvergence { step_m: last_step })
+}
+
+/// One usable measurement, linearised at the current estimate.
+struct Row {
+    sat: SatId,
+    view: SatView,
+    /// Observed minus computed (m).
+    omc_m: f64,
+    /// Column of the satellite's system clock.
+    clock_col: usize,
+    weight: f64,
+    el_rad: Option<f64>,
+}
+
+#[allow(clippy::too_many_arguments)]
+fn linearise(
+    meas: &[&Measurement],
+    ephs: &[&skyforge_orbits::ephemeris::BoundEphemeris],
+    t_rx_s: f64,
+    origin: &TimeOrigin,
+    cfg: &PvtConfig,
+    r: &Vec3,
+    clocks: &[f64],
+    systems: &[System],
+) -> Vec<Row> {
+    let mut rows = Vec::with_capacity(meas.len());
+    for (m, eph) in meas.iter().zip(ephs) {
+        let view = sat_view(eph, t_rx_s, m.pseudorange_m, r);
+        let el = view.az_el_rad.map(|(_, el)| el);
+        if el.is_some_and(|el| el < cfg.elevation_mask_rad) {
+            continue;
+        }
+        let clock_col = systems.iter().position(|s| *s == m.sat.system).unwrap_or(0);
+        let mut predicted = view.range_m + clocks[clock_col] - C_MPS * view.clock_s;
+        if let Some((az, el)) = view.az_el_rad {
+            predicted += iono_m(cfg, origin, t_rx_s, m.sat, r, az, el);
+            if cfg.troposphere {
+                let g = ecef_to_geodetic(r);
+                predicted += standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0);
+            }
+        }
+        rows.push(Row {
+            sat: m.sat,
+            view,
+            omc_m: m.pseudorange_m - predicted,
+            clock_col: 3 + clock_col,
+            weight: sigma_m(cfg, el).powi(-2),
+            el_rad: el,
+        });
+    }
+    rows
+}
+
+/// Design matrix, observed-minus-computed vector and weights.
+fn matrices(rows: &[Row], n_x: usize) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
+    let mut h = DMatrix::zeros(rows.len(), n_x);
+    for (i, row) in rows.iter().enumerate() {
+        for k in 0..3 {
+            h[(i, k)] = -row.view.los[k];
+        }
+        h[(i, row.clock_col)] = 1.0;
+    }
+    let v = DVector::from_iterator(rows.len(), rows.iter().map(|r| r.omc_m));
+    let w = DVector::from_iterator(rows.len(), rows.iter().map(|r| r.weight));
+    (h, v, w)
+}
+
+/// The fix at the converged estimate: residuals, chi-square and DOP.
+fn finish(
+    rows: &[Row],
+    n_x: usize,
+    r: Vec3,
+    clocks: &[f64],
+    systems: &[System],
+    t_rx_s: f64,
+) -> Result<Fix, PvtError> {
+    let (h, v, w) = matrices(rows, n_x);
+    let q = (h.transpose() * &h)
+        .try_inverse()
+        .ok_or(PvtError::Singular)?;
+    let g = ecef_to_geodetic(&r);
+    let c = c_ecef_ned(g.lat_rad, g.lon_rad);
+    let q_pos = q.fixed_view::<3, 3>(0, 0).into_owned();
+    let q_ned = c * q_pos * c.transpose();
+    let pos = q_pos.trace();
+    let tdop = q[(3, 3)].sqrt();
+    let dop = Dop {
+        gdop: (pos + q[(3, 3)]).sqrt(),
+        pdop: pos.sqrt(),
+        hdop: (q_ned[(0, 0)] + q_ned[(1, 1)]).sqrt(),
+        vdop: q_ned[(2, 2)].sqrt(),
+        tdop,
+    };
+    let chi2 = v.iter().zip(w.iter()).map(|(r, w)| r * r * w).sum();
+    let gps_first = systems.first() == Some(&System::Gps);
+    Ok(Fix {
+        t_s: t_rx_s - clocks[0] / C_MPS,
+        r_ecef_m: r,
+        clock_bias_m: clocks[0],
+        inter_system_bias_m: (systems.len() == 2 && gps_first).then(|| clocks[1] - clocks[0]),
+        dop,
+        used: rows
+            .iter()
+            .map(|row| (row.sat, row.omc_m, row.el_rad.unwrap_or(f64::NAN)))
+            .collect(),
+        excluded: Vec::new(),
+        chi2,
+        dof: rows.len() - n_x,
+    })
+}
