@@ -7,6 +7,7 @@ pub mod config;
 pub mod klobuchar;
 pub mod nominal;
 pub mod rinex_nav;
+pub mod rinex_nav_iono;
 pub mod rinex_nav_write;
 pub mod sat_id;
 pub mod sp3;
