@@ -317,3 +317,33 @@ fn too_few_satellites_is_an_error() {
         "{err}"
     );
 }
+
+#[test]
+fn gga_and_rmc_carry_the_fix() {
+    use skyforge_receiver::pvt::nmea::{gga, gsa, rmc};
+    let w = world();
+    let r = site();
+    let v = Vec3::new(3.0, 4.0, 0.0);
+    let meas = measurements(&w, &[System::Gps], 100.0, &r, &v, (0.0, 0.0), true);
+    let fix = solve(&meas, 100.0, &w.store, &w.origin, &ground_config(), None).unwrap();
+    let vel = solve_velocity(&meas, 100.0, &w.store, &fix).unwrap();
+    let line = gga(&fix, 3723.5);
+    let f: Vec<&str> = line.split(',').collect();
+    assert_eq!(f[0], "$GPGGA");
+    assert_eq!(f[1], "010203.50");
+    let lat = f[2][..2].parse::<f64>().unwrap() + f[2][2..].parse::<f64>().unwrap() / 60.0;
+    let lon = f[4][..3].parse::<f64>().unwrap() + f[4][3..].parse::<f64>().unwrap() / 60.0;
+    assert!((lat - 30.0).abs() < 1e-6 && f[3] == "N", "{line}");
+    assert!((lon - 114.0).abs() < 1e-6 && f[5] == "E", "{line}");
+    assert!((f[9].parse::<f64>().unwrap() - 50.0).abs() < 0.01, "{line}");
+    assert_eq!(f[7].parse::<usize>().unwrap(), meas.len());
+    assert!(gsa(&fix).starts_with("$GPGSA,A,3,"));
+    // 5 m/s over ground; the course of an ECEF (3, 4, 0) m/s velocity at 114 E.
+    let line = rmc(&fix, &vel, 3723.5, "120323");
+    let f: Vec<&str> = line.split(',').collect();
+    let speed_mps = f[7].parse::<f64>().unwrap() * 1852.0 / 3600.0;
+    let g = skyforge_orbits::frames::geodetic::ecef_to_geodetic(&r);
+    let v_ned = c_ecef_ned(g.lat_rad, g.lon_rad) * v;
+    assert!((speed_mps - v_ned.x.hypot(v_ned.y)).abs() < 0.01, "{line}");
+    assert_eq!(f[9], "120323");
+}

@@ -10,6 +10,7 @@
 //! After the fix a residual test ([`raim`]) excludes one faulty satellite.
 
 mod geometry;
+pub mod nmea;
 pub mod raim;
 mod solve;
 mod velocity;
