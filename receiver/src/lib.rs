@@ -7,5 +7,6 @@ pub mod acquisition;
 pub mod fast_sync;
 pub mod input;
 pub mod navdecode;
+pub mod observables;
 pub mod pvt;
 pub mod tracking;
