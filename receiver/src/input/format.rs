@@ -1,0 +1,263 @@
+//! Sample containers and their decoders: interleaved little-endian complex `ci8`, `ci16`,
+//! `cf32`, and real `ri8`.
+//!
+//! Full scale: integer containers are scaled so that their full scale `2^(bits-1)` maps to
+//! 1.0 (`ci8`/`ri8`: `v / 128`, `ci16`: `v / 32768`; exact in f32); `cf32` components are
+//! passed through unchanged (their scale is whatever the writer used: SkyForge's float
+//! output has noise of standard deviation 1 per component).
+
+use super::error::InputError;
+use num_complex::Complex32;
+use std::str::FromStr;
+
+/// A sample container.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SampleFormat {
+    /// Complex, interleaved I/Q, signed 8-bit (SigMF `ci8`; gps-sdr-sim's 8-bit output).
+    Ci8,
+    /// Complex, interleaved I/Q, signed 16-bit little-endian (SigMF `ci16_le`; gps-sdr-sim's
+    /// 16-bit output).
+    Ci16,
+    /// Complex, interleaved I/Q, 32-bit IEEE float little-endian (SigMF `cf32_le`).
+    Cf32,
+    /// Real, signed 8-bit samples of a real IF signal (SigMF `ri8`).
+    Ri8,
+}
+
+/// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
+pub const ALLOWED_DATATYPES: &str =
+    "ci8, ci16_le (or ci16), cf32_le (or cf32), ri8 (all little-endian)";
+
+impl SampleFormat {
+    /// Every supported container.
+    pub const ALL: [SampleFormat; 4] = [
+        SampleFormat::Ci8,
+        SampleFormat::Ci16,
+        SampleFormat::Cf32,
+        SampleFormat::Ri8,
+    ];
+
+    /// Whether samples are complex (I/Q).
+    pub fn is_complex(self) -> bool {
+        !matches!(self, SampleFormat::Ri8)
+    }
+
+    /// Bytes per sample (both components for complex formats).
+    pub fn bytes_per_sample(self) -> usize {
+        match self {
+            SampleFormat::Ci8 => 2,
+            SampleFormat::Ci16 => 4,
+            SampleFormat::Cf32 => 8,
+            SampleFormat::Ri8 => 1,
+        }
+    }
+
+    /// SigMF `core:datatype` (SigMF 1.0 "Dataset Format": `<r|c><type><bits>[_le|_be]`, the
+    /// endianness suffix omitted for 8-bit types).
+    pub fn sigmf_datatype(self) -> &'static str {
+        match self {
+            SampleFormat::Ci8 => "ci8",
+            SampleFormat::Ci16 => "ci16_le",
+            SampleFormat::Cf32 => "cf32_le",
+            SampleFormat::Ri8 => "ri8",
+        }
+    }
+
+    /// Container value that maps to 1.0 in the decoded samples (1 for float).
+    pub fn full_scale(self) -> f32 {
+        match self {
+            SampleFormat::Ci8 | SampleFormat::Ri8 => 128.0,
+            SampleFormat::Ci16 => 32768.0,
+            SampleFormat::Cf32 => 1.0,
+        }
+    }
+
+    /// The format named by a SigMF `core:datatype` or a command-line `--format` value;
+    /// `origin` (a file or `--format`) goes into the error message.
+    pub fn parse(name: &str, origin: &str) -> Result<Self, InputError> {
+        let format = match name.trim().to_ascii_lowercase().as_str() {
+            "ci8" => SampleFormat::Ci8,
+            "ci16_le" | "ci16" => SampleFormat::Ci16,
+            "cf32_le" | "cf32" => SampleFormat::Cf32,
+            "ri8" => SampleFormat::Ri8,
+            _ => {
+                return Err(InputError::UnknownDatatype {
+                    origin: origin.to_owned(),
+                    found: name.to_owned(),
+                });
+            }
+        };
+        Ok(format)
+    }
+}
+
+impl std::fmt::Display for SampleFormat {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.sigmf_datatype())
+    }
+}
+
+impl FromStr for SampleFormat {
+    type Err = InputError;
+    /// A command-line `--format` value.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::parse(s, "--format")
+    }
+}
+
+/// Decodes interleaved `ci8` bytes into `out`, scaled by 1/128; returns the number of
+/// samples decoded (`min(bytes.len() / 2, out.len())`).
+pub fn decode_ci8(bytes: &[u8], out: &mut [Complex32]) -> usize {
+    const SCALE: f32 = 1.0 / 128.0;
+    let n = (bytes.len() / 2).min(out.len());
+    for (o, b) in out[..n].iter_mut().zip(bytes.chunks_exact(2)) {
+        *o = Complex32::new(f32::from(b[0] as i8) * SCALE, f32::from(b[1] as i8) * SCALE);
+    }
+    n
+}
+
+/// Decodes interleaved little-endian `ci16` bytes into `out`, scaled by 1/32768; returns
+/// the number of samples decoded.
+pub fn decode_ci16(bytes: &[u8], out: &mut [Complex32]) -> usize {
+    const SCALE: f32 = 1.0 / 32768.0;
+    let n = (bytes.len() / 4).min(out.len());
+    for (o, b) in out[..n].iter_mut().zip(bytes.chunks_exact(4)) {
+        *o = Complex32::new(
+            f32::from(i16::from_le_bytes([b[0], b[1]])) * SCALE,
+            f32::from(i16::from_le_bytes([b[2], b[3]])) * SCALE,
+        );
+    }
+    n
+}
+
+/// Decodes interleaved little-endian `cf32` bytes into `out` unchanged; returns the number
+/// of samples decoded.
+pub fn decode_cf32(bytes: &[u8], out: &mut [Complex32]) -> usize {
+    let n = (bytes.len() / 8).min(out.len());
+    for (o, b) in out[..n].iter_mut().zip(bytes.chunks_exact(8)) {
+        *o = Complex32::new(
+            f32::from_le_bytes([b[0], b[1], b[2], b[3]]),
+            f32::from_le_bytes([b[4], b[5], b[6], b[7]]),
+        );
+    }
+    n
+}
+
+/// Decodes real `ri8` bytes into `out`, scaled by 1/128; returns the number of samples
+/// decoded.
+pub fn decode_ri8(bytes: &[u8], out: &mut [f32]) -> usize {
+    const SCALE: f32 = 1.0 / 128.0;
+    let n = bytes.len().min(out.len());
+    for (o, &b) in out[..n].iter_mut().zip(bytes) {
+        *o = f32::from(b as i8) * SCALE;
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn zeros(n: usize) -> Vec<Complex32> {
+        vec![Complex32::new(0.0, 0.0); n]
+    }
+
+    #[test]
+    fn names_round_trip_and_unknown_names_list_the_allowed_ones() {
+        for f in SampleFormat::ALL {
+            assert_eq!(SampleFormat::parse(f.sigmf_datatype(), "x").unwrap(), f);
+        }
+        assert_eq!("CI16".parse::<SampleFormat>().unwrap(), SampleFormat::Ci16);
+        assert_eq!("cf32".parse::<SampleFormat>().unwrap(), SampleFormat::Cf32);
+        let e = "ci16_be".parse::<SampleFormat>().unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!("--format: unknown sample datatype \"ci16_be\"; allowed: {ALLOWED_DATATYPES}")
+        );
+    }
+
+    #[test]
+    fn extreme_codes_map_to_the_documented_full_scale() {
+        let mut out = zeros(2);
+        assert_eq!(decode_ci8(&[0x80, 0x7f, 0x01, 0xff], &mut out), 2);
+        assert_eq!(out[0], Complex32::new(-1.0, 127.0 / 128.0));
+        assert_eq!(out[1], Complex32::new(1.0 / 128.0, -1.0 / 128.0));
+        assert_eq!(decode_ci16(&[0x00, 0x80, 0xff, 0x7f], &mut out), 1);
+        assert_eq!(out[0], Complex32::new(-1.0, 32767.0 / 32768.0));
+        let mut real = [0.0f32; 3];
+        assert_eq!(decode_ri8(&[0x80, 0x00, 0x40], &mut real), 3);
+        assert_eq!(real, [-1.0, 0.0, 0.5]);
+    }
+
+    #[test]
+    fn partial_trailing_bytes_are_not_decoded() {
+        let mut out = zeros(4);
+        assert_eq!(decode_ci16(&[1, 0, 2, 0, 3, 0], &mut out), 1);
+        assert_eq!(decode_cf32(&[0; 15], &mut out), 1);
+        // The output length limits too.
+        assert_eq!(decode_ci8(&[1; 20], &mut out), 4);
+    }
+
+    proptest! {
+        #[test]
+        fn ci8_decodes_what_was_encoded(v in prop::collection::vec(any::<(i8, i8)>(), 0..300)) {
+            let bytes: Vec<u8> = v.iter().flat_map(|&(i, q)| [i as u8, q as u8]).collect();
+            let mut out = zeros(v.len());
+            prop_assert_eq!(decode_ci8(&bytes, &mut out), v.len());
+            for (o, &(i, q)) in out.iter().zip(&v) {
+                prop_assert_eq!(o.re * 128.0, f32::from(i));
+                prop_assert_eq!(o.im * 128.0, f32::from(q));
+            }
+        }
+
+        #[test]
+        fn ci16_decodes_what_was_encoded(v in prop::collection::vec(any::<(i16, i16)>(), 0..300)) {
+            let bytes: Vec<u8> = v
+                .iter()
+                .flat_map(|&(i, q)| [i.to_le_bytes(), q.to_le_bytes()].concat())
+                .collect();
+            let mut out = zeros(v.len());
+            prop_assert_eq!(decode_ci16(&bytes, &mut out), v.len());
+            for (o, &(i, q)) in out.iter().zip(&v) {
+                prop_assert_eq!(o.re * 32768.0, f32::from(i));
+                prop_assert_eq!(o.im * 32768.0, f32::from(q));
+            }
+        }
+
+        #[test]
+        fn cf32_decodes_what_was_encoded(
+            v in prop::collection::vec((-1e30f32..1e30, -1e30f32..1e30), 0..300)
+        ) {
+            let bytes: Vec<u8> = v
+                .iter()
+                .flat_map(|&(i, q)| [i.to_le_bytes(), q.to_le_bytes()].concat())
+                .collect();
+            let mut out = zeros(v.len());
+            prop_assert_eq!(decode_cf32(&bytes, &mut out), v.len());
+            for (o, &(i, q)) in out.iter().zip(&v) {
+                prop_assert_eq!((o.re, o.im), (i, q));
+            }
+        }
+
+        #[test]
+        fn ri8_decodes_what_was_encoded(v in prop::collection::vec(any::<i8>(), 0..300)) {
+            let bytes: Vec<u8> = v.iter().map(|&x| x as u8).collect();
+            let mut out = vec![0.0f32; v.len()];
+            prop_assert_eq!(decode_ri8(&bytes, &mut out), v.len());
+            for (o, &x) in out.iter().zip(&v) {
+                prop_assert_eq!(*o * 128.0, f32::from(x));
+            }
+        }
+
+        #[test]
+        fn arbitrary_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..200)) {
+            let mut out = zeros(64);
+            let mut real = vec![0.0f32; 64];
+            decode_ci8(&bytes, &mut out);
+            decode_ci16(&bytes, &mut out);
+            decode_cf32(&bytes, &mut out);
+            decode_ri8(&bytes, &mut real);
+        }
+    }
+}

@@ -1,0 +1,484 @@
+//! What one antenna's sample file holds: from its SigMF metadata (SigMF 1.0 `core`
+//! fields plus SkyForge's `skyforge:` extension, see `skyforge_signals` `synth::sigmf`), or
+//! from raw-file parameters given on the command line.
+
+use super::datetime::parse_utc;
+use super::error::{Finding, InputError};
+use super::format::SampleFormat;
+use super::signal::SignalBand;
+use hifitime::Epoch;
+use serde_json::{Map, Value};
+use std::path::{Path, PathBuf};
+
+/// Command-line description of sample files (`--format`, `--fs`, `--if`, `--signal`):
+/// required (format and rate) for raw files; for SigMF recordings, what is given fills in
+/// or overrides the metadata (an override that changes a value is reported).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct InputParams {
+    pub format: Option<SampleFormat>,
+    /// Sample rate (Hz; real samples per second for `ri8`).
+    pub sample_rate_hz: Option<f64>,
+    /// Where the signal's carrier sits in the recording (Hz): the real IF for `ri8`, the
+    /// offset from the centre for complex samples (0: baseband).
+    pub if_hz: Option<f64>,
+    pub signal: Option<SignalBand>,
+}
+
+/// One antenna's recording, as described by its metadata or the command line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Recording {
+    /// Antenna name (`skyforge:antenna`, else the file name without its extension).
+    pub antenna: String,
+    /// The sample file.
+    pub data_path: PathBuf,
+    /// The `.sigmf-meta` file, if any.
+    pub meta_path: Option<PathBuf>,
+    pub format: SampleFormat,
+    /// Sample rate (Hz).
+    pub sample_rate_hz: f64,
+    /// Where the carrier sits in the recording (Hz): see [`InputParams::if_hz`].
+    pub if_hz: f64,
+    /// Centre frequency of the recorded band (Hz; SigMF capture `core:frequency`).
+    pub centre_frequency_hz: Option<f64>,
+    /// The signal recorded, when the metadata or the command line tells.
+    pub signal: Option<SignalBand>,
+    /// UTC time of the first sample (`core:datetime` of the first capture).
+    pub start_utc: Option<Epoch>,
+    /// Index of the first sample in the recorder's sample stream (`core:global_index`).
+    pub global_index: Option<u64>,
+    /// Samples to skip at the start of the data (the first capture's `core:sample_start`).
+    pub first_sample: u64,
+    /// Non-sample bytes before the samples (`core:header_bytes`) and after them
+    /// (`core:trailing_bytes`).
+    pub header_bytes: u64,
+    pub trailing_bytes: u64,
+    /// Nominal antenna position in the body frame (m; `skyforge:antenna_position_body_m`).
+    pub antenna_position_body_m: Option<[f64; 3]>,
+    /// What the metadata reading found worth reporting.
+    pub findings: Vec<Finding>,
+}
+
+/// Whether `path` names a SigMF recording (`.sigmf-meta` or `.sigmf-data`).
+pub fn is_sigmf(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e == "sigmf-meta" || e == "sigmf-data")
+}
+
+/// File name without its last extension.
+fn stem(path: &Path) -> String {
+    path.file_stem().map_or_else(
+        || path.display().to_string(),
+        |s| s.to_string_lossy().into_owned(),
+    )
+}
+
+/// Typed access to one JSON object of a metadata file, with errors naming the field.
+struct Fields<'a> {
+    path: &'a Path,
+    section: &'static str,
+    obj: &'a Map<String, Value>,
+}
+
+impl Fields<'_> {
+    fn bad(&self, key: &str, v: &Value, expected: &str) -> InputError {
+        InputError::BadField {
+            path: self.path.to_owned(),
+            field: format!("{} {key}", self.section),
+            found: v.to_string(),
+            expected: expected.to_owned(),
+        }
+    }
+    fn f64(&self, key: &str) -> Result<Option<f64>, InputError> {
+        self.obj
+            .get(key)
+            .map(|v| v.as_f64().ok_or_else(|| self.bad(key, v, "a number")))
+            .transpose()
+    }
+    fn u64(&self, key: &str) -> Result<Option<u64>, InputError> {
+        self.obj
+            .get(key)
+            .map(|v| {
+                v.as_u64()
+                    .ok_or_else(|| self.bad(key, v, "a non-negative integer"))
+            })
+            .transpose()
+    }
+    fn str(&self, key: &str) -> Result<Option<&str>, InputError> {
+        self.obj
+            .get(key)
+            .map(|v| v.as_str().ok_or_else(|| self.bad(key, v, "a string")))
+            .transpose()
+    }
+    fn epoch(&self, key: &str) -> Result<Option<Epoch>, InputError> {
+        self.str(key)?
+            .map(|s| {
+                parse_utc(s).ok_or_else(|| {
+                    self.bad(
+                        key,
+                        &Value::from(s),
+                        "an ISO-8601 UTC time such as 2023-03-12T00:00:00.000Z",
+                    )
+                })
+            })
+            .transpose()
+    }
+    fn vec3(&self, key: &str) -> Result<Option<[f64; 3]>, InputError> {
+        self.obj
+            .get(key)
+            .map(|v| {
+                let xs: Option<Vec<f64>> = v
+                    .as_array()
+                    .map(|a| a.iter().filter_map(Value::as_f64).collect());
+                xs.and_then(|xs| <[f64; 3]>::try_from(xs).ok())
+                    .ok_or_else(|| self.bad(key, v, "three numbers [x, y, z] in metres"))
+            })
+            .transpose()
+    }
+}
+
+/// Capture segment `i` of `captures` (an empty one when there is none).
+fn capture_fields<'a>(
+    meta_path: &'a Path,
+    captures: &'a [Value],
+    i: usize,
+    empty: &'a Map<String, Value>,
+) -> Result<Fields<'a>, InputError> {
+    let obj = match captures.get(i) {
+        None => empty,
+        Some(c) => c.as_object().ok_or_else(|| InputError::NotSigmf {
+            path: meta_path.to_owned(),
+            detail: "a capture segment is not an object".into(),
+        })?,
+    };
+    Ok(Fields {
+        path: meta_path,
+        section: "captures[]",
+        obj,
+    })
+}
+
+impl Recording {
+    /// The recording at `path`: SigMF when it ends in `.sigmf-meta` or `.sigmf-data` (the
+    /// other file of the pair next to it), raw samples described by `params` otherwise.
+    pub fn open(path: &Path, params: &InputParams) -> Result<Self, InputError> {
+        let rec = if is_sigmf(path) {
+            Self::from_sigmf(path, params)?
+        } else {
+            Self::raw(path, params)?
+        };
+        rec.check()?;
+        Ok(rec)
+    }
+
+    /// A raw sample file: `params` must give the format and the sample rate; the IF
+    /// defaults to 0 and the signal to unknown.
+    pub fn raw(path: &Path, params: &InputParams) -> Result<Self, InputError> {
+        let (Some(format), Some(sample_rate_hz)) = (params.format, params.sample_rate_hz) else {
+            return Err(InputError::RawParametersNeeded {
+                path: path.to_owned(),
+            });
+        };
+        let if_hz = params.if_hz.unwrap_or(0.0);
+        Ok(Self {
+            antenna: stem(path),
+            data_path: path.to_owned(),
+            meta_path: None,
+            format,
+            sample_rate_hz,
+            if_hz,
+            centre_frequency_hz: params.signal.map(|s| s.carrier_hz() - if_hz),
+            signal: params.signal,
+            start_utc: None,
+            global_index: None,
+            first_sample: 0,
+            header_bytes: 0,
+            trailing_bytes: 0,
+            antenna_position_body_m: None,
+            findings: Vec::new(),
+        })
+    }
+
+    /// A SigMF recording named by its `.sigmf-meta` or `.sigmf-data` file.
+    pub fn from_sigmf(path: &Path, params: &InputParams) -> Result<Self, InputError> {
+        let meta_path = path.with_extension("sigmf-meta");
+        let text = std::fs::read_to_string(&meta_path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::InvalidData => InputError::NotSigmf {
+                path: meta_path.clone(),
+                detail: "not UTF-8 text".into(),
+            },
+            _ => InputError::io(&meta_path, e),
+        })?;
+        let json: Value = serde_json::from_str(&text).map_err(|e| InputError::NotSigmf {
+            path: meta_path.clone(),
+            detail: format!("invalid JSON: {e}"),
+        })?;
+        Self::from_sigmf_json(&meta_path, &json, params)
+    }
+
+    /// A SigMF recording from its parsed metadata `json` (read from `meta_path`; the
+    /// samples are in the `.sigmf-data` file beside it).
+    pub fn from_sigmf_json(
+        meta_path: &Path,
+        json: &Value,
+        params: &InputParams,
+    ) -> Result<Self, InputError> {
+        let not_sigmf = |detail: &str| InputError::NotSigmf {
+            path: meta_path.to_owned(),
+            detail: detail.to_owned(),
+        };
+        let global = json
+            .get("global")
+            .and_then(Value::as_object)
+            .ok_or_else(|| not_sigmf("no \"global\" object"))?;
+        let g = Fields {
+            path: meta_path,
+            section: "global",
+            obj: global,
+        };
+        let mut findings = Vec::new();
+        // Records a command-line value that replaces a different metadata value.
+        let overridden = |findings: &mut Vec<Finding>, field: &str, meta: String, given: String| {
+            if meta != given {
+                findings.push(Finding::Overridden {
+                    path: meta_path.to_owned(),
+                    field: field.to_owned(),
+                    metadata: meta,
+                    given,
+                });
+            }
+        };
+        let missing = |field: &'static str, why: &'static str| InputError::MissingField {
+            path: meta_path.to_owned(),
+            field,
+            why,
+        };
+
+        let format = match (g.str("core:datatype")?, params.format) {
+            (Some(d), given) => {
+                let meta = SampleFormat::parse(d, &meta_path.display().to_string())?;
+                if let Some(given) = given {
+                    overridden(
+                        &mut findings,
+                        "core:datatype",
+                        meta.to_string(),
+                        given.to_string(),
+                    );
+                }
+                given.unwrap_or(meta)
+            }
+            (None, Some(given)) => given,
+            (None, None) => {
+                return Err(missing(
+                    "global core:datatype",
+                    "the sample format; or give --format",
+                ));
+            }
+        };
+        let sample_rate_hz = match (g.f64("core:sample_rate")?, params.sample_rate_hz) {
+            (Some(meta), Some(given)) => {
+                overridden(
+                    &mut findings,
+                    "core:sample_rate",
+                    meta.to_string(),
+                    given.to_string(),
+                );
+                given
+            }
+            (meta, given) => given.or(meta).ok_or_else(|| {
+                missing(
+                    "global core:sample_rate",
+                    "the receiver needs the sample rate; or give --fs",
+                )
+            })?,
+        };
+        if let Some(n) = g.u64("core:num_channels")?
+            && n != 1
+        {
+            return Err(g.bad(
+                "core:num_channels",
+                &Value::from(n),
+                "1 (multi-channel datasets are not supported: give one file per antenna)",
+            ));
+        }
+
+        let captures: &[Value] = match json.get("captures") {
+            None => &[],
+            Some(Value::Array(a)) => a,
+            Some(_) => return Err(not_sigmf("\"captures\" is not an array")),
+        };
+        let empty = Map::new();
+        let capture = |i: usize| capture_fields(meta_path, captures, i, &empty);
+        let c0 = capture(0)?;
+        for i in 1..captures.len() {
+            let c = capture(i)?;
+            if let Some(n) = c.u64("core:header_bytes")?
+                && n > 0
+            {
+                return Err(c.bad(
+                    "core:header_bytes",
+                    &Value::from(n),
+                    "0 after the first capture (header bytes between segments are not supported)",
+                ));
+            }
+        }
+        if captures.len() > 1 {
+            findings.push(Finding::SeveralCaptures {
+                path: meta_path.to_owned(),
+                count: captures.len(),
+            });
+        }
+        let centre_frequency_hz = c0.f64("core:frequency")?;
+        let name = meta_path
+            .file_name()
+            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+        let meta_if_hz = g.f64("skyforge:if_hz")?;
+        let by_carrier = centre_frequency_hz
+            .zip(meta_if_hz)
+            .and_then(|(c, f_if)| SignalBand::from_carrier_hz(c + f_if));
+        let meta_signal = by_carrier
+            .or_else(|| centre_frequency_hz.and_then(|c| SignalBand::in_band(c, sample_rate_hz)))
+            .or_else(|| SignalBand::from_file_name(&name));
+        if let (Some(meta), Some(given)) = (meta_signal, params.signal) {
+            overridden(
+                &mut findings,
+                "the signal",
+                meta.to_string(),
+                given.to_string(),
+            );
+        }
+        let signal = params.signal.or(meta_signal);
+        let carrier_offset = signal
+            .zip(centre_frequency_hz)
+            .map(|(s, c)| s.carrier_hz() - c);
+        let if_hz = match (meta_if_hz.or(carrier_offset), params.if_hz) {
+            (Some(meta), Some(given)) => {
+                overridden(&mut findings, "the IF", meta.to_string(), given.to_string());
+                given
+            }
+            (meta, given) => given.or(meta).unwrap_or(0.0),
+        };
+        let antenna = match g.str("skyforge:antenna")? {
+            Some(a) => a.to_owned(),
+            None => name.trim_end_matches(".sigmf-meta").to_owned(),
+        };
+        Ok(Self {
+            antenna,
+            data_path: meta_path.with_extension("sigmf-data"),
+            meta_path: Some(meta_path.to_owned()),
+            format,
+            sample_rate_hz,
+            if_hz,
+            centre_frequency_hz,
+            signal,
+            start_utc: c0.epoch("core:datetime")?,
+            global_index: c0.u64("core:global_index")?,
+            first_sample: c0.u64("core:sample_start")?.unwrap_or(0),
+            header_bytes: c0.u64("core:header_bytes")?.unwrap_or(0),
+            trailing_bytes: g.u64("core:trailing_bytes")?.unwrap_or(0),
+            antenna_position_body_m: g.vec3("skyforge:antenna_position_body_m")?,
+            findings,
+        })
+    }
+
+    /// The file this description came from (the metadata, else the samples).
+    pub fn source_path(&self) -> &Path {
+        self.meta_path.as_deref().unwrap_or(&self.data_path)
+    }
+
+    /// Checks that the rate and IF can be processed: a positive finite rate; `|IF| < fs/2`;
+    /// a real (`ri8`) recording needs `0 < IF < fs/2` (at IF 0 the image would fall on
+    /// the signal).
+    pub fn check(&self) -> Result<(), InputError> {
+        let bad = |field: &str, found: f64, expected: String| InputError::BadField {
+            path: self.source_path().to_owned(),
+            field: field.to_owned(),
+            found: found.to_string(),
+            expected,
+        };
+        let fs = self.sample_rate_hz;
+        if !(fs.is_finite() && fs > 0.0) {
+            return Err(bad(
+                "the sample rate (core:sample_rate or --fs)",
+                fs,
+                "a positive number of samples per second".into(),
+            ));
+        }
+        let nyquist = fs / 2.0;
+        if !(self.if_hz.is_finite() && self.if_hz.abs() < nyquist) {
+            return Err(bad(
+                "the IF (skyforge:if_hz, carrier - core:frequency, or --if)",
+                self.if_hz,
+                format!("|IF| < fs / 2 = {nyquist} Hz"),
+            ));
+        }
+        if !self.format.is_complex() && self.if_hz <= 0.0 {
+            return Err(bad(
+                "the IF (skyforge:if_hz, carrier - core:frequency, or --if)",
+                self.if_hz,
+                format!("0 < IF < {nyquist} Hz for real (ri8) samples: give --if"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use serde_json::json;
+
+    fn foreign(centre_hz: f64) -> Value {
+        // A SigMF recording of another tool: no skyforge fields.
+        json!({
+            "global": {"core:datatype": "cf32_le", "core:sample_rate": 5e6, "core:version": "1.0.0"},
+            "captures": [
+                {"core:sample_start": 0, "core:frequency": centre_hz,
+                 "core:datetime": "2020-06-25T12:00:00Z", "core:global_index": 1000},
+                {"core:sample_start": 500, "core:frequency": centre_hz}
+            ],
+        })
+    }
+
+    #[test]
+    fn the_if_of_a_foreign_recording_is_the_carrier_minus_the_centre() {
+        let p = Path::new("/data/rx.sigmf-meta");
+        let r =
+            Recording::from_sigmf_json(p, &foreign(1561.098e6 - 250e3), &InputParams::default())
+                .unwrap();
+        assert_eq!(r.signal, Some(SignalBand::BdsB1I));
+        assert!((r.if_hz - 250e3).abs() < 1e-6, "{}", r.if_hz);
+        assert_eq!(r.antenna, "rx");
+        assert_eq!(r.data_path, Path::new("/data/rx.sigmf-data"));
+        assert_eq!(r.global_index, Some(1000));
+        assert_eq!(
+            r.findings,
+            [Finding::SeveralCaptures {
+                path: p.to_owned(),
+                count: 2
+            }]
+        );
+        // Centred between the bands at a wide rate: ambiguous, so unknown and IF 0.
+        let mut wide = foreign(1568e6);
+        wide["global"]["core:sample_rate"] = json!(40e6);
+        let r = Recording::from_sigmf_json(p, &wide, &InputParams::default()).unwrap();
+        assert_eq!((r.signal, r.if_hz), (None, 0.0));
+    }
+
+    #[test]
+    fn command_line_values_override_the_metadata_and_say_so() {
+        let p = Path::new("ant.sigmf-meta");
+        let params = InputParams {
+            sample_rate_hz: Some(5e6),
+            if_hz: Some(1e3),
+            ..InputParams::default()
+        };
+        let r = Recording::from_sigmf_json(p, &foreign(1575.42e6), &params).unwrap();
+        assert_eq!((r.sample_rate_hz, r.if_hz), (5e6, 1e3));
+        // The same rate is no override; the IF (0 from the carrier) is.
+        assert_eq!(
+            r.findings[1].to_string(),
+            "ant.sigmf-meta: the IF 1000 from the command line replaces 0 of the metadata"
+        );
+        assert_eq!(r.findings.len(), 2);
+    }
+}
