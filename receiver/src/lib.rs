@@ -4,6 +4,7 @@
 //! codes, navigation-message formats), which `tests/tests/truth_firewall.rs` checks.
 
 pub mod acquisition;
+pub mod assist;
 pub mod fast_sync;
 pub mod input;
 pub mod navdecode;

@@ -13,7 +13,9 @@ const MIN_POSITION_NORM_M: f64 = 6.0e6;
 
 /// The satellite of one measurement, for a receiver at `r_rx_m`.
 #[derive(Debug, Clone, Copy)]
-pub(super) struct SatView {
+pub struct SatView {
+    /// Position at transmit time in the ECEF frame of the receive instant (m).
+    pub r_ecef_m: Vec3,
     /// Its velocity in that frame (m/s).
     pub v_ecef_mps: Vec3,
     /// Satellite clock offset for the signal: polynomial + relativity - group delay (s).
@@ -49,12 +51,7 @@ fn earth_turned(v: &Vec3, angle_rad: f64) -> Vec3 {
 /// pseudorange carries it); the satellite clock turns it into system time. The position
 /// is then rotated by the Earth's rotation during the flight time (IS-GPS-200
 /// 20.3.3.4.3.3.2), iterated twice for the flight time itself.
-pub(super) fn sat_view(
-    eph: &BoundEphemeris,
-    t_rx_s: f64,
-    pseudorange_m: f64,
-    r_rx_m: &Vec3,
-) -> SatView {
+pub fn sat_view(eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64, r_rx_m: &Vec3) -> SatView {
     let t_sv = t_rx_s - pseudorange_m / C_MPS;
     // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
     let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
@@ -76,6 +73,7 @@ pub(super) fn sat_view(
         az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los))
     });
     SatView {
+        r_ecef_m: r,
         v_ecef_mps: v,
         clock_s,
         clock_drift: eph.clock_drift(t_tx),

@@ -15,12 +15,26 @@ pub mod raim;
 mod solve;
 mod velocity;
 
+pub use geometry::SatView;
 pub use solve::solve;
 pub use velocity::solve_velocity;
 
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
+
+/// The satellite of `eph` for a receiver at `r_rx_m` at time `t_s` (s since the ephemeris
+/// origin), before any measurement: the flight time from the geometry alone (a typical
+/// pseudorange of the range itself).
+pub fn predicted_view(
+    eph: &skyforge_orbits::ephemeris::BoundEphemeris,
+    t_s: f64,
+    r_rx_m: &Vec3,
+) -> SatView {
+    // Two passes: the first gives the range, the second the view at that flight time.
+    let first = geometry::sat_view(eph, t_s, 2.0e7, r_rx_m);
+    geometry::sat_view(eph, t_s, first.range_m, r_rx_m)
+}
 
 /// One pseudorange (and optionally Doppler) of one satellite at the receive epoch.
 #[derive(Debug, Clone, Copy, PartialEq)]
