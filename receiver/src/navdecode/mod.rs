@@ -1,1 +1,218 @@
 //! Navigation-message decoding: GPS LNAV and BeiDou D1/D2 bits to ephemeris, clock, ionosphere and time.
+//!
+//! Input: the data-bit stream a tracking channel produces after bit synchronisation (and,
+//! for BeiDou D1, after the NH code is wiped), one soft value per bit. The sign carries the
+//! bit with the BPSK mapping of the encoders (`+` is logic 0, `-` is logic 1); the magnitude
+//! (confidence) is not used by these hard-decision decoders. The polarity of the whole
+//! stream is unknown (the 180 deg ambiguity of a Costas loop) and may flip after a
+//! half-cycle slip: each subframe's polarity is taken from its preamble.
+//!
+//! Decoders are state machines fed bits one by one or in slices ([`NavDecoder::feed`]);
+//! they return [`NavEvent`]s: synchronisation gained or lost, each decoded subframe with
+//! the time of week of its first bit, parity failures, and, when complete, the ephemeris
+//! as the orbits crate's [`BroadcastEphemeris`], the Klobuchar coefficients and (GPS) the
+//! UTC parameters.
+//!
+//! - [`GpsLnavDecoder`]: IS-GPS-200 20.3.2-20.3.5 (preamble 10001011, word parity of table
+//!   20-XIV, subframes 1-3, subframe 4 page 18).
+//! - [`BdsDecoder`]: BDS-SIS-ICD-B1I-3.0 §5.2 (D1) and §5.3 (D2): preamble 11100010010,
+//!   BCH(15,11) single-error correction, de-interleaving of words 2-10, D1 subframes 1-3,
+//!   D2 subframe 1 pages 1-10.
+
+mod bds;
+mod bds_bch;
+mod bds_fields;
+mod framer;
+mod gps;
+mod gps_fields;
+mod gps_parity;
+
+pub use bds::BdsDecoder;
+pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder};
+
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+use skyforge_signals::navmsg::bds::Klobuchar;
+use skyforge_signals::navmsg::gps_lnav::IonoParams;
+use skyforge_signals::navmsg::gps_lnav::UtcParams;
+
+/// Bits per subframe, GPS LNAV and BeiDou D1/D2 alike.
+pub const SUBFRAME_BITS: usize = 300;
+
+/// An ephemeris decoded from the message, with the message fields that
+/// [`BroadcastEphemeris`] does not hold.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DecodedEphemeris {
+    /// Orbit and clock in SI units (angles in rad); toe and toc in the system time scale.
+    /// GPS: `health` is the 6-bit SV health, `tgd_s` is TGD, `iode`/`iodc` are IODE/IODC.
+    /// BeiDou: `health` is SatH1, `tgd_s` is TGD1 (B1I), `iode`/`iodc` are AODE/AODC.
+    pub eph: BroadcastEphemeris,
+    /// URA index (GPS, IS-GPS-200 20.3.3.3.1.3) or URAI (BeiDou), 0-15.
+    pub ura_index: u8,
+    /// BeiDou TGD2 (B2I group delay, s); `None` for GPS.
+    pub tgd2_s: Option<f64>,
+}
+
+/// One decoded subframe: where it starts in the bit stream and what time it carries.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SubframeInfo {
+    /// Index (counted from the first bit fed, from 0) of the subframe's first bit.
+    pub start_bit: u64,
+    /// Subframe ID (GPS, from the HOW) or FraID (BeiDou), 1-5.
+    pub id: u8,
+    /// Page number when the subframe is paged: GPS subframes 4/5 SV ID (data ID
+    /// stripped, e.g. 56 for page 18), BeiDou D1 subframes 4/5 and D2 subframes 1, 2, 5
+    /// Pnum; `None` otherwise.
+    pub page: Option<u8>,
+    /// Full week number if known (GPS: from subframe 1, resolved with the reference week;
+    /// BeiDou: BDT week from D1 subframe 1 or D2 subframe 1 page 1).
+    pub week: Option<u32>,
+    /// Time of week (s, system time) of the leading edge of the subframe's first bit.
+    /// GPS: HOW TOW count x 6 s - 6 s (the count refers to the next subframe,
+    /// IS-GPS-200 20.3.3.2). BeiDou D1: SOW; D2: SOW of the frame + 0.6 s x (FraID - 1).
+    pub tow_s: f64,
+    /// Whether the stream was inverted in this subframe (preamble received complemented).
+    pub inverted: bool,
+    /// Bits corrected by the BCH decoder (BeiDou; 0 for GPS).
+    pub corrected_bits: u32,
+}
+
+/// What a decoder reports while it is fed bits.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NavEvent {
+    /// Subframe synchronisation gained: a subframe starts at bit `start_bit`.
+    SyncAcquired {
+        /// Index of the first bit of the subframe.
+        start_bit: u64,
+        /// Whether the stream is inverted.
+        inverted: bool,
+    },
+    /// Subframe synchronisation lost (preambles missing or repeated failures); the
+    /// decoder searches again.
+    SyncLost {
+        /// Index of the expected subframe start where it gave up.
+        at_bit: u64,
+    },
+    /// A subframe passed its checks and was decoded.
+    Subframe(SubframeInfo),
+    /// A subframe failed its checks and was dropped: GPS word parity (bit k of
+    /// `words` set for word k + 1), BeiDou header inconsistent with the stream time,
+    /// or a missing preamble at an expected subframe start (`words` = 0).
+    SubframeDropped {
+        /// Index of the subframe's first bit.
+        start_bit: u64,
+        /// Failed words (bit k = word k + 1).
+        words: u16,
+    },
+    /// A complete, consistent ephemeris and clock set that differs from the previous one.
+    Ephemeris(Box<DecodedEphemeris>),
+    /// GPS subframe 4 page 18: Klobuchar coefficients and UTC parameters (emitted when they
+    /// change; needs the week from subframe 1 to resolve the 8-bit weeks).
+    GpsIonoUtc {
+        /// Klobuchar alpha/beta.
+        iono: IonoParams,
+        /// UTC parameters with full week numbers.
+        utc: UtcParams,
+    },
+    /// BeiDou Klobuchar coefficients (D1 subframe 1, D2 subframe 1 page 2), when they change.
+    BdsIono(Klobuchar),
+}
+
+/// Running counters of a decoder.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DecodeStats {
+    /// Bits fed so far.
+    pub bits: u64,
+    /// Subframes decoded.
+    pub subframes: u64,
+    /// Subframes dropped (parity, header or missing preamble).
+    pub dropped_subframes: u64,
+    /// GPS words that failed parity.
+    pub parity_failed_words: u64,
+    /// Bits corrected by BCH (BeiDou).
+    pub corrected_bits: u64,
+    /// Times synchronisation was lost.
+    pub sync_losses: u64,
+}
+
+/// Why a decoder cannot be built.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum NavDecodeError {
+    /// The satellite does not broadcast the message this decoder reads.
+    #[error("{sat}: {what}")]
+    WrongSatellite {
+        /// The satellite.
+        sat: String,
+        /// What was expected.
+        what: &'static str,
+    },
+}
+
+/// A navigation-message decoder fed with soft bits.
+pub trait NavDecoder: Send {
+    /// Feed the next bits (soft values, sign = bit, see the module notes); returns what
+    /// was decoded on the way, in stream order.
+    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent>;
+    /// Counters so far.
+    fn stats(&self) -> DecodeStats;
+    /// The satellite whose message this is.
+    fn satellite(&self) -> SatId;
+}
+
+/// The decoder for `sat`'s message: GPS LNAV, or BeiDou D1/D2 (by PRN: D2 for the GEO
+/// PRNs 1-5 and 59-63). GPS weeks are resolved near [`DEFAULT_GPS_REFERENCE_WEEK`].
+pub fn decoder_for(sat: SatId) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
+    Ok(match sat.system {
+        System::Gps => Box::new(GpsLnavDecoder::new(sat)?),
+        System::Beidou => Box::new(BdsDecoder::new(sat)?),
+    })
+}
+
+/// Hard decision: negative soft value is logic 1.
+fn hard_bit(soft: f32) -> u8 {
+    u8::from(soft < 0.0)
+}
+
+/// Seconds per week.
+const WEEK_S: f64 = 604_800.0;
+
+/// The week of a reference time given as seconds of week `ref_sow` relative to the week
+/// `week` in which another time (at `tx_sow`) lies: the reference is at most half a week
+/// away from the transmission (IS-GPS-200 20.3.3.4.3 note on toe/toc near week ends;
+/// the same rule for BDT).
+fn week_of_reference(week: u32, tx_sow: f64, ref_sow: f64) -> u32 {
+    let d = ref_sow - tx_sow;
+    if d > WEEK_S / 2.0 {
+        week.saturating_sub(1)
+    } else if d < -WEEK_S / 2.0 {
+        week + 1
+    } else {
+        week
+    }
+}
+
+/// Two's-complement value of the `len` low bits of `v`.
+fn sign_extend(v: u64, len: u32) -> i64 {
+    let shift = 64 - len;
+    ((v << shift) as i64) >> shift
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reference_week_follows_the_nearest_crossing() {
+        assert_eq!(week_of_reference(2000, 604_000.0, 3600.0), 2001);
+        assert_eq!(week_of_reference(2000, 100.0, 603_000.0), 1999);
+        assert_eq!(week_of_reference(2000, 300_000.0, 307_200.0), 2000);
+    }
+
+    #[test]
+    fn sign_extension_and_hard_bits() {
+        assert_eq!(sign_extend(0xFF, 8), -1);
+        assert_eq!(sign_extend(0x7F, 8), 127);
+        assert_eq!(sign_extend(0x80, 8), -128);
+        assert_eq!(sign_extend(0x3F_FFFF, 22), -1);
+        assert_eq!((hard_bit(0.3), hard_bit(-0.3)), (0, 1));
+    }
+}
