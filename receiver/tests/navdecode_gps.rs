@@ -288,6 +288,68 @@ fn toe_in_the_next_week_and_tow_wrap_at_the_week_end() {
     assert_eq!(dec.week(), Some(2191));
 }
 
+/// (start bit, TOW) of every decoded subframe.
+fn subframe_times(events: &[NavEvent]) -> Vec<(u64, f64)> {
+    events
+        .iter()
+        .filter_map(|e| match e {
+            NavEvent::Subframe(s) => Some((s.start_bit, s.tow_s)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn a_lost_bit_ends_the_lock_and_sync_is_found_again() {
+    let eph = ephemeris();
+    let enc = encoder(&eph);
+    let k0 = subframe_index_at(eph.toe).unwrap_or_else(|e| panic!("{e}"));
+    let mut bits = stream(&enc, k0, 20, 0);
+    bits.remove(1234); // a bit slip in tracking
+    let mut dec = GpsLnavDecoder::new(eph.sat).unwrap_or_else(|e| panic!("{e}"));
+    let events = dec.feed(&soft(&bits, false));
+    assert!(
+        events
+            .iter()
+            .any(|e| matches!(e, NavEvent::SyncLost { .. }))
+    );
+    let syncs: Vec<u64> = events
+        .iter()
+        .filter_map(|e| match e {
+            NavEvent::SyncAcquired { start_bit, .. } => Some(*start_bit),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(syncs.len(), 2, "{events:?}");
+    assert_eq!(syncs[1] % 300, 299, "one bit earlier after the slip");
+    for (start, tow) in subframe_times(&events) {
+        let abs = if start < 1234 { start } else { start + 1 };
+        assert_eq!(tow, (((k0 + abs / 300) % SUBFRAMES_PER_WEEK) * 6) as f64);
+    }
+    assert!(dec.stats().subframes >= 15, "{:?}", dec.stats());
+}
+
+#[test]
+fn restart_after_a_gap_resynchronises() {
+    let eph = ephemeris();
+    let enc = encoder(&eph);
+    let k0 = subframe_index_at(eph.toe).unwrap_or_else(|e| panic!("{e}"));
+    let bits = stream(&enc, k0, 20, 0);
+    let mut dec = GpsLnavDecoder::new(eph.sat).unwrap_or_else(|e| panic!("{e}"));
+    let mut events = dec.feed(&soft(&bits[..1000], false));
+    dec.restart();
+    assert!(!dec.is_synchronised());
+    // 1000 bits are missing: the stream continues at message bit 2000.
+    events.extend(dec.feed(&soft(&bits[2000..], false)));
+    let times = subframe_times(&events);
+    assert!(times.iter().any(|&(start, _)| start >= 1000));
+    for (start, tow) in times {
+        let abs = if start < 1000 { start } else { start + 1000 };
+        assert_eq!(tow, (((k0 + abs / 300) % SUBFRAMES_PER_WEEK) * 6) as f64);
+    }
+    assert!(events.iter().any(|e| matches!(e, NavEvent::Ephemeris(_))));
+}
+
 #[test]
 fn bit_by_bit_feeding_gives_the_same_events() {
     let (whole, _, _) = run(false, 4200);

@@ -5,7 +5,7 @@ use super::bds_fields::{self, Clock, Header};
 use super::framer::{FrameSpec, Framed, Framer};
 use super::{
     DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SUBFRAME_BITS,
-    SubframeInfo, WEEK_S,
+    SubframeInfo, WEEK_S, time_consistent,
 };
 use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
 use skyforge_signals::navmsg::bds::BdsNavFormat;
@@ -168,15 +168,8 @@ impl BdsDecoder {
         let (info, corrected) = decode_subframe(body);
         let h = Header::new(&info);
         let tow_s = start_tow_s(self.format, &h);
-        let expected = self.anchor.map(|(bit, tow)| {
-            let dt = (start_bit - bit) as f64 * subframe_s(self.format) / SUBFRAME_BITS as f64;
-            tow + dt
-        });
-        // Difference wrapped to half a week either side (a week end may fall in between).
-        let time_ok = expected.is_none_or(|t| {
-            ((t - tow_s + WEEK_S / 2.0).rem_euclid(WEEK_S) - WEEK_S / 2.0).abs() < 1e-6
-        });
-        if !(time_ok && valid(&h)) {
+        let bit_s = self.format.bit_period_s();
+        if !(valid(&h) && time_consistent(self.anchor, start_bit, tow_s, bit_s)) {
             self.stats.dropped_subframes += 1;
             out.push(NavEvent::SubframeDropped {
                 start_bit,
@@ -348,6 +341,11 @@ impl NavDecoder for BdsDecoder {
             }
         }
         out
+    }
+
+    fn restart(&mut self) {
+        self.framer.restart();
+        self.anchor = None;
     }
 
     fn stats(&self) -> DecodeStats {

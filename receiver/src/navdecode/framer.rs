@@ -80,6 +80,13 @@ impl Framer {
         self.bits.extend(soft.iter().map(|&s| hard_bit(s)));
     }
 
+    /// Forget the buffered bits and search again from the next bit pushed.
+    pub fn restart(&mut self) {
+        self.base = self.end();
+        self.bits.clear();
+        self.state = State::Search { next: self.base };
+    }
+
     /// Index of the next bit to be pushed.
     pub fn end(&self) -> u64 {
         self.base + self.bits.len() as u64

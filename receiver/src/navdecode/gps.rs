@@ -7,8 +7,10 @@ use super::gps_fields::{
 use super::gps_parity::{check_subframe, check_word};
 use super::{
     DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo, WEEK_S,
+    time_consistent,
 };
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_signals::navmsg::gps_lnav::BIT_PERIOD_S;
 use skyforge_signals::navmsg::gps_lnav::IonoParams;
 use skyforge_signals::navmsg::gps_lnav::PREAMBLE;
 use skyforge_signals::navmsg::gps_lnav::SUBFRAMES_PER_WEEK;
@@ -69,9 +71,10 @@ pub struct GpsLnavDecoder {
     reference_week: u32,
     framer: Framer,
     stats: DecodeStats,
-    /// Full week and time of week of the last decoded subframe.
+    /// Full week of the last decoded subframe.
     week: Option<u32>,
-    last_tow_s: Option<f64>,
+    /// Stream bit and time of week of the last accepted subframe start.
+    anchor: Option<(u64, f64)>,
     sf1: Option<Subframe1>,
     sf2: Option<Subframe2>,
     sf3: Option<Subframe3>,
@@ -102,7 +105,7 @@ impl GpsLnavDecoder {
             framer: Framer::new(SPEC),
             stats: DecodeStats::default(),
             week: None,
-            last_tow_s: None,
+            anchor: None,
             sf1: None,
             sf2: None,
             sf3: None,
@@ -140,25 +143,30 @@ impl GpsLnavDecoder {
         let mut bits = bits.to_vec();
         bits.iter_mut().take(2).for_each(|b| *b = 0);
         let src = match check_subframe(&bits) {
-            Ok(src) if Header::new(&src).preamble == PREAMBLE => src,
-            result => {
-                let words = result.err().unwrap_or(1);
-                self.stats.dropped_subframes += 1;
+            Ok(src) => src,
+            Err(words) => {
                 self.stats.parity_failed_words += u64::from(words.count_ones());
-                out.push(NavEvent::SubframeDropped { start_bit, words });
-                self.record(false, start_bit, out);
+                self.drop_subframe(start_bit, words, out);
                 return;
             }
         };
-        self.record(true, start_bit, out);
         let header = Header::new(&src);
         let tow_s = header.start_tow_s();
-        if let (Some(week), Some(last)) = (self.week, self.last_tow_s)
+        if header.preamble != PREAMBLE
+            || !(1..=5).contains(&header.id)
+            || !time_consistent(self.anchor, start_bit, tow_s, BIT_PERIOD_S)
+        {
+            // Parity passed but TLM/HOW contradict the stream (undetected errors).
+            self.drop_subframe(start_bit, 0b11, out);
+            return;
+        }
+        self.record(true, start_bit, out);
+        if let (Some(week), Some((_, last))) = (self.week, self.anchor)
             && tow_s < last - WEEK_S / 2.0
         {
             self.week = Some(week + 1);
         }
-        self.last_tow_s = Some(tow_s);
+        self.anchor = Some((start_bit, tow_s));
         let mut page = None;
         match header.id {
             1 => {
@@ -223,6 +231,12 @@ impl GpsLnavDecoder {
         }
     }
 
+    fn drop_subframe(&mut self, start_bit: u64, words: u16, out: &mut Vec<NavEvent>) {
+        self.stats.dropped_subframes += 1;
+        out.push(NavEvent::SubframeDropped { start_bit, words });
+        self.record(false, start_bit, out);
+    }
+
     fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
         if let Some(Framed::SyncLost { at_bit }) = self.framer.record(ok, start_bit) {
             self.sync_lost(at_bit, out);
@@ -231,6 +245,7 @@ impl GpsLnavDecoder {
 
     fn sync_lost(&mut self, at_bit: u64, out: &mut Vec<NavEvent>) {
         self.stats.sync_losses += 1;
+        self.anchor = None;
         out.push(NavEvent::SyncLost { at_bit });
     }
 }
@@ -245,10 +260,13 @@ impl NavDecoder for GpsLnavDecoder {
                 Framed::SyncAcquired {
                     start_bit,
                     inverted,
-                } => out.push(NavEvent::SyncAcquired {
-                    start_bit,
-                    inverted,
-                }),
+                } => {
+                    self.anchor = None;
+                    out.push(NavEvent::SyncAcquired {
+                        start_bit,
+                        inverted,
+                    });
+                }
                 Framed::SyncLost { at_bit } => self.sync_lost(at_bit, &mut out),
                 Framed::NoPreamble { start_bit } => {
                     self.stats.dropped_subframes += 1;
@@ -265,6 +283,11 @@ impl NavDecoder for GpsLnavDecoder {
             }
         }
         out
+    }
+
+    fn restart(&mut self) {
+        self.framer.restart();
+        self.anchor = None;
     }
 
     fn stats(&self) -> DecodeStats {

@@ -152,6 +152,10 @@ pub trait NavDecoder: Send {
     /// Feed the next bits (soft values, sign = bit, see the module notes); returns what
     /// was decoded on the way, in stream order.
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent>;
+    /// The bit stream was interrupted (e.g. the tracking loop lost lock): forget the
+    /// buffered bits and the synchronisation, keep what was decoded. Bit indices keep
+    /// counting from the bits fed so far.
+    fn restart(&mut self);
     /// Counters so far.
     fn stats(&self) -> DecodeStats;
     /// The satellite whose message this is.
@@ -190,6 +194,17 @@ fn week_of_reference(week: u32, tx_sow: f64, ref_sow: f64) -> u32 {
     }
 }
 
+/// Whether a subframe starting at stream bit `start_bit` with time of week `tow_s` fits
+/// the last accepted one (`anchor`: its start bit and time of week) given the bit period:
+/// the stream time between them must equal the difference of the broadcast times
+/// (modulo one week). Without an anchor anything fits.
+fn time_consistent(anchor: Option<(u64, f64)>, start_bit: u64, tow_s: f64, bit_s: f64) -> bool {
+    anchor.is_none_or(|(bit, tow)| {
+        let t = tow + start_bit.saturating_sub(bit) as f64 * bit_s;
+        ((t - tow_s + WEEK_S / 2.0).rem_euclid(WEEK_S) - WEEK_S / 2.0).abs() < 1e-6
+    })
+}
+
 /// Two's-complement value of the `len` low bits of `v`.
 fn sign_extend(v: u64, len: u32) -> i64 {
     let shift = 64 - len;
@@ -205,6 +220,16 @@ mod tests {
         assert_eq!(week_of_reference(2000, 604_000.0, 3600.0), 2001);
         assert_eq!(week_of_reference(2000, 100.0, 603_000.0), 1999);
         assert_eq!(week_of_reference(2000, 300_000.0, 307_200.0), 2000);
+    }
+
+    #[test]
+    fn stream_time_must_match_broadcast_time() {
+        let anchor = Some((1000, 604_794.0));
+        assert!(time_consistent(None, 5, 12.0, 0.02));
+        assert!(time_consistent(anchor, 1300, 0.0, 0.02));
+        assert!(time_consistent(anchor, 1600, 6.0, 0.02));
+        assert!(!time_consistent(anchor, 1600, 0.0, 0.02));
+        assert!(!time_consistent(anchor, 1301, 0.0, 0.02));
     }
 
     #[test]
