@@ -223,6 +223,15 @@ mod tests {
     }
 
     #[test]
+    fn decoder_for_picks_the_message_of_the_system() {
+        for sat in [SatId::gps(5), SatId::beidou(1), SatId::beidou(19)] {
+            let dec = decoder_for(sat).map(|d| d.satellite());
+            assert_eq!(dec, Ok(sat));
+        }
+        assert!(decoder_for(SatId::gps(40)).is_err());
+    }
+
+    #[test]
     fn stream_time_must_match_broadcast_time() {
         let anchor = Some((1000, 604_794.0));
         assert!(time_consistent(None, 5, 12.0, 0.02));
