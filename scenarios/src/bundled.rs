@@ -31,6 +31,12 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../thesis/t-3.2.toml"),
     },
     Bundled {
+        name: "thesis/t-5.4-2",
+        summary: "Thesis table 5.4-2 zero baseline: two front ends on one antenna position and one \
+                  oscillator, GPS L1 C/A + BDS-2 B1I, 60 s of I/Q at 45 dB-Hz",
+        text: include_str!("../thesis/t-5.4-2.toml"),
+    },
+    Bundled {
         name: "ground-static",
         summary: "Static ground site at 30 N 114 E, 50 m, 1 h, GPS + BeiDou, one antenna \
                   with a 10 deg elevation mask",

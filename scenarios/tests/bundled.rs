@@ -15,6 +15,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis-leo",
             "thesis/v-1.2.1",
             "thesis/t-3.2",
+            "thesis/t-5.4-2",
             "ground-static",
             "interop-gps-static",
             "interop-bds-static",
