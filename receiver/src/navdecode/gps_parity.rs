@@ -8,17 +8,7 @@
 
 /// Table 20-XIV: for D25..D30, whether the equation starts from D29* (`true`) or D30*,
 /// and the source bits d_i it sums.
-const PARITY_EQUATIONS: [(bool, &[u32]); 6] = [
-    (true, &[1, 2, 3, 5, 6, 10, 11, 12, 13, 14, 17, 18, 20, 23]),
-    (false, &[2, 3, 4, 6, 7, 11, 12, 13, 14, 15, 18, 19, 21, 24]),
-    (true, &[1, 3, 4, 5, 7, 8, 12, 13, 14, 15, 16, 19, 20, 22]),
-    (false, &[2, 4, 5, 6, 8, 9, 13, 14, 15, 16, 17, 20, 21, 23]),
-    (
-        false,
-        &[1, 3, 5, 6, 7, 9, 10, 14, 15, 16, 17, 18, 21, 22, 24],
-    ),
-    (true, &[3, 5, 6, 8, 9, 10, 11, 13, 15, 19, 22, 23, 24]),
-];
+use skyforge_signals::navmsg::gps_lnav::parity::EQUATIONS as PARITY_EQUATIONS;
 
 /// The 24 source bits (d1 at bit 23) of transmitted word `word` if its parity holds given
 /// `d29_star`, `d30_star` (the last two bits of the previous word), else `None`.

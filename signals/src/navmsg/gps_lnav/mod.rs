@@ -34,7 +34,7 @@ mod encoder;
 mod ephemeris;
 mod iono_utc;
 mod pages;
-mod parity;
+pub mod parity;
 mod scale;
 mod words;
 

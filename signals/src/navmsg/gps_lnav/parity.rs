@@ -7,7 +7,7 @@
 
 /// Source-bit lists of the six parity equations (IS-GPS-200 table 20-XIV), D25..D30, and
 /// whether the equation starts from D29* (`true`) or D30* (`false`) of the previous word.
-const EQUATIONS: [(bool, &[u32]); 6] = [
+pub const EQUATIONS: [(bool, &[u32]); 6] = [
     (true, &[1, 2, 3, 5, 6, 10, 11, 12, 13, 14, 17, 18, 20, 23]),
     (false, &[2, 3, 4, 6, 7, 11, 12, 13, 14, 15, 18, 19, 21, 24]),
     (true, &[1, 3, 4, 5, 7, 8, 12, 13, 14, 15, 16, 19, 20, 22]),
