@@ -1,8 +1,59 @@
-//! Placeholder until the acquisition benchmark lands (issue #4 speed bars).
+//! Acquisition speed (issue #4 speed bar): a cold PCPS search of 32 GPS PRNs over
+//! +/-10 kHz at 4.092 Msps with 1 ms coherent integration (replica FFTs included), and
+//! one PMF-FFT fine Doppler estimate (M = 1024, L = 64).
 
 use criterion::{Criterion, criterion_group, criterion_main};
+use num_complex::Complex32;
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use skyforge_receiver::acquisition::Signal;
+use skyforge_receiver::acquisition::pcps::{Pcps, PcpsConfig};
+use skyforge_receiver::acquisition::pmf_fft::PmfFft;
+use std::hint::black_box;
 
-fn placeholder(_c: &mut Criterion) {}
+/// One code period of PRN 7 at 45 dB-Hz, 2.7 kHz Doppler, in unit noise.
+fn samples(fs: f64, n: usize) -> Vec<Complex32> {
+    let mut rng = ChaCha8Rng::seed_from_u64(42);
+    let code = Signal::GpsL1Ca.code(7).unwrap_or_default();
+    let amp = (2.0 * 10f64.powf(4.5) / fs).sqrt();
+    (0..n)
+        .map(|i| {
+            let t = i as f64 / fs;
+            let chip = ((t * 1.023e6 + 300.0) as usize) % 1023;
+            let ph = std::f64::consts::TAU * 2700.0 * t;
+            let s = amp * f64::from(code.get(chip).copied().unwrap_or(1));
+            let (nre, nim): (f64, f64) = (
+                StandardNormal.sample(&mut rng),
+                StandardNormal.sample(&mut rng),
+            );
+            Complex32::new((s * ph.cos() + nre) as f32, (s * ph.sin() + nim) as f32)
+        })
+        .collect()
+}
 
-criterion_group!(benches, placeholder);
+fn pcps_cold(c: &mut Criterion) {
+    let fs = 4.092e6;
+    let Ok(pcps) = Pcps::new(PcpsConfig::cold(Signal::GpsL1Ca, fs)) else {
+        panic!("cold PCPS configuration refused");
+    };
+    let x = samples(fs, pcps.samples_needed());
+    let prns: Vec<u8> = (1..=32).collect();
+    let mut group = c.benchmark_group("acquisition");
+    group.sample_size(10);
+    group.bench_function("pcps_cold_32prn_pm10khz_4092ksps_1ms", |b| {
+        b.iter(|| black_box(pcps.search_prns(black_box(&x), &prns)))
+    });
+    let Ok(pmf) = PmfFft::new(1024, 64) else {
+        panic!("PMF-FFT M = 1024, L = 64 refused");
+    };
+    let chips: Vec<Complex32> = samples(1.023e6, 1024);
+    let mut scratch = pmf.scratch();
+    group.bench_function("pmf_fft_estimate_m1024_l64", |b| {
+        b.iter(|| black_box(pmf.estimate(black_box(&chips), &mut scratch)))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, pcps_cold);
 criterion_main!(benches);
