@@ -491,11 +491,11 @@ proptest! {
                 _ => m["captures"][0][k] = value.clone(),
             }
             let p = write(dir.path(), "z", &m, 64);
-            if let Ok(rec) = open(&p) {
-                if let Ok((mut reader, _)) = BlockReader::open(&[rec], 5) {
-                    let mut bufs = reader.buffers();
-                    while let Ok(Some(_)) = reader.read_block(&mut bufs) {}
-                }
+            if let Ok(rec) = open(&p)
+                && let Ok((mut reader, _)) = BlockReader::open(&[rec], 5)
+            {
+                let mut bufs = reader.buffers();
+                while let Ok(Some(_)) = reader.read_block(&mut bufs) {}
             }
         }
     }

@@ -107,10 +107,9 @@ fn correlation(y: &[Complex32], fs: f64, prn: u8, delay_s: f64) -> f64 {
     let mut sum = 0.0;
     for w in 0..windows {
         let mut acc = Complex64::new(0.0, 0.0);
-        for k in w * n..(w + 1) * n {
+        for (k, v) in y.iter().enumerate().skip(w * n).take(n) {
             let chips = (k as f64 / fs - delay_s) * 1.023e6;
             let chip = chips.rem_euclid(1023.0) as usize % 1023;
-            let v = y[k];
             acc += Complex64::new(f64::from(v.re), f64::from(v.im)) * f64::from(code[chip]);
         }
         sum += acc.norm() / n as f64;

@@ -105,13 +105,26 @@ impl FromStr for SampleFormat {
     }
 }
 
+/// Samples per inner loop of the integer decoders.
+const CHUNK: usize = 64;
+
 /// Decodes interleaved `ci8` bytes into `out`, scaled by 1/128; returns the number of
 /// samples decoded (`min(bytes.len() / 2, out.len())`).
 pub fn decode_ci8(bytes: &[u8], out: &mut [Complex32]) -> usize {
     const SCALE: f32 = 1.0 / 128.0;
     let n = (bytes.len() / 2).min(out.len());
-    for (o, b) in out[..n].iter_mut().zip(bytes.chunks_exact(2)) {
-        *o = Complex32::new(f32::from(b[0] as i8) * SCALE, f32::from(b[1] as i8) * SCALE);
+    // Components are converted as a flat run first (which vectorises), then paired.
+    let mut flat = [0.0f32; 2 * CHUNK];
+    for (o, b) in out[..n]
+        .chunks_mut(CHUNK)
+        .zip(bytes[..2 * n].chunks(2 * CHUNK))
+    {
+        for (f, &v) in flat.iter_mut().zip(b) {
+            *f = f32::from(v as i8) * SCALE;
+        }
+        for (c, p) in o.iter_mut().zip(flat.as_chunks::<2>().0) {
+            *c = Complex32::new(p[0], p[1]);
+        }
     }
     n
 }
@@ -121,11 +134,18 @@ pub fn decode_ci8(bytes: &[u8], out: &mut [Complex32]) -> usize {
 pub fn decode_ci16(bytes: &[u8], out: &mut [Complex32]) -> usize {
     const SCALE: f32 = 1.0 / 32768.0;
     let n = (bytes.len() / 4).min(out.len());
-    for (o, b) in out[..n].iter_mut().zip(bytes.chunks_exact(4)) {
-        *o = Complex32::new(
-            f32::from(i16::from_le_bytes([b[0], b[1]])) * SCALE,
-            f32::from(i16::from_le_bytes([b[2], b[3]])) * SCALE,
-        );
+    // As in decode_ci8: a flat run of components, then pairs.
+    let mut flat = [0.0f32; 2 * CHUNK];
+    for (o, b) in out[..n]
+        .chunks_mut(CHUNK)
+        .zip(bytes[..4 * n].chunks(4 * CHUNK))
+    {
+        for (f, w) in flat.iter_mut().zip(b.as_chunks::<2>().0) {
+            *f = f32::from(i16::from_le_bytes(*w)) * SCALE;
+        }
+        for (c, p) in o.iter_mut().zip(flat.as_chunks::<2>().0) {
+            *c = Complex32::new(p[0], p[1]);
+        }
     }
     n
 }
