@@ -324,6 +324,17 @@ fn truncated_and_short_files_are_reported_and_the_common_part_is_read() {
             400.0 / 4.092e6
         )
     );
+    let text = report.to_string();
+    assert!(
+        text.starts_with(&format!(
+            "2 antenna(s), gps-l1ca, 4092000 samples/s: 600 common samples ({} s)\n  first sample at ",
+            600.0 / 4.092e6
+        )),
+        "{text}"
+    );
+    for f in &report.findings {
+        assert!(text.contains(&format!("\n  note: {f}\n")), "{text}");
+    }
     let mut bufs = reader.buffers();
     let mut total = 0;
     while let Some(block) = reader.read_block(&mut bufs).unwrap() {
