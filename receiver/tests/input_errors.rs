@@ -449,6 +449,30 @@ fn start_times_and_global_indices_align_the_antennas() {
     );
 }
 
+#[test]
+fn header_bytes_sample_start_and_trailing_bytes_are_skipped() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut m = meta_json("h");
+    m["captures"][0]["core:header_bytes"] = json!(3);
+    m["captures"][0]["core:sample_start"] = json!(10);
+    m["global"]["core:trailing_bytes"] = json!(5);
+    // 3 header bytes, 100 samples, 5 trailing bytes: 90 samples from byte 3 + 20.
+    let rec = open(&write(dir.path(), "h", &m, 3 + 200 + 5)).unwrap();
+    let (mut reader, report) = BlockReader::open(&[rec], 1000).unwrap();
+    assert!(report.findings.is_empty(), "{report}");
+    assert_eq!(report.common_samples, 90);
+    let mut bufs = reader.buffers();
+    let block = reader.read_block(&mut bufs).unwrap().unwrap();
+    assert_eq!(block.len, 90);
+    // Byte k = k mod 251.
+    for (j, v) in bufs[0].iter().enumerate() {
+        let k = 23 + 2 * j;
+        assert_eq!(v.re * 128.0, f32::from(k as u8 as i8));
+        assert_eq!(v.im * 128.0, f32::from((k + 1) as u8 as i8));
+    }
+    assert_eq!(reader.read_block(&mut bufs).unwrap(), None);
+}
+
 fn a_clone(dir: &tempfile::TempDir) -> Recording {
     open(&dir.path().join("a.sigmf-meta")).unwrap()
 }

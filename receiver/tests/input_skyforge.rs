@@ -325,6 +325,9 @@ fn gps_sdr_sim_style_raw_iq_reads_with_command_line_parameters() {
         if_hz: None,
         signal: Some("gps-l1ca".parse().unwrap()),
     };
+    let (_, report) = BlockReader::open_paths(&[&path], &params, 2).unwrap();
+    assert_eq!(report.common_samples, 3);
+    assert_eq!(report.signal, Some(SignalBand::GpsL1Ca));
     let rec = Recording::open(&path, &params).unwrap();
     assert_eq!(rec.antenna, "gpssim");
     assert_eq!(rec.centre_frequency_hz, Some(1575.42e6));

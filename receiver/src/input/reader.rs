@@ -6,13 +6,13 @@
 use super::error::{Finding, InputError};
 use super::format::{SampleFormat, decode_cf32, decode_ci8, decode_ci16, decode_ri8};
 use super::if_mixer::IfMixer;
-use super::recording::Recording;
+use super::recording::{InputParams, Recording};
 use super::signal::SignalBand;
 use hifitime::{Duration, Epoch};
 use num_complex::Complex32;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Buffered bytes per file (blocks larger than this are read straight into the block
 /// buffer).
@@ -435,6 +435,20 @@ impl BlockReader {
         Ok((reader, report))
     }
 
+    /// [`Self::open`] of the recordings at `paths` (one per antenna), each described by
+    /// [`Recording::open`] with the command-line `params`.
+    pub fn open_paths<P: AsRef<Path>>(
+        paths: &[P],
+        params: &InputParams,
+        block_len: usize,
+    ) -> Result<(Self, InputReport), InputError> {
+        let recordings = paths
+            .iter()
+            .map(|p| Recording::open(p.as_ref(), params))
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::open(&recordings, block_len)
+    }
+
     /// Number of antennas.
     pub fn antennas(&self) -> usize {
         self.sources.len()
@@ -504,8 +518,6 @@ impl BlockReader {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::input::recording::InputParams;
-    use std::path::Path;
 
     fn rec(name: &str, start: Option<Epoch>) -> Recording {
         let params = InputParams {
