@@ -9,7 +9,8 @@ pub const LOCK_THRESHOLD_DEG: f64 = 15.0;
 pub const THESIS_VIBRATION_DEG: f64 = 2.0;
 
 /// Order of a PLL designed for minimum mean square error.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum LoopOrder {
     Second,
     Third,

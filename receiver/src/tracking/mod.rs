@@ -1,3 +1,36 @@
-//! Carrier and code tracking.
+//! Carrier and code tracking: the correlator kernel, discriminators, loop filters, lock
+//! detectors and C/N0, bit synchronisation, and the per-satellite channel tracker that
+//! ties them together.
 
+pub mod bit_sync;
+pub mod channel;
+pub mod correlator;
+pub mod discriminators;
 pub mod error_budget;
+pub mod lock;
+pub mod loop_filter;
+pub mod signal;
+
+/// Errors of the tracking stage.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrackingError {
+    /// A configuration value is out of range (the message names it and what is allowed).
+    #[error("invalid tracking configuration: {0}")]
+    InvalidConfig(String),
+    /// The PRN has no ranging code for the signal.
+    #[error("no {signal} ranging code for PRN {prn}")]
+    UnknownPrn {
+        /// Signal name.
+        signal: &'static str,
+        /// The PRN asked for.
+        prn: u8,
+    },
+    /// A block did not start where the previous one ended.
+    #[error("sample blocks must be contiguous: expected first sample {expected}, got {got}")]
+    NonContiguous {
+        /// The sample index the channel expected.
+        expected: u64,
+        /// The sample index it was given.
+        got: u64,
+    },
+}

@@ -1,0 +1,231 @@
+//! Bit (and secondary-code) synchronisation from the signs of 1 ms prompts.
+//!
+//! - GPS LNAV and BeiDou D2: a histogram of sign changes between successive code periods
+//!   over the period index modulo the bit length (20 or 2); data bits change sign only on
+//!   bit edges, so one bin collects every true transition (Kaplan & Hegarty, 2nd ed.,
+//!   section 5.12 "bit synchronization", the histogram method).
+//! - BeiDou D1: the 20-chip Neumann-Hoffman code is found by correlating the prompt signs
+//!   with it over `nh_bits` consecutive 20 ms windows at each of the 20 offsets; the NH
+//!   code starts together with each data bit (BDS-SIS-ICD-B1I-3.0 §5.2.1), so the offset
+//!   is also the bit edge.
+
+use std::collections::VecDeque;
+
+use skyforge_signals::codes::neumann_hoffman;
+
+use super::signal::DataModulation;
+
+/// Decision thresholds of the synchroniser.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct BitSyncConfig {
+    /// Histogram: transitions the winning bin needs before a decision.
+    pub min_transitions: u32,
+    /// Histogram: the winning bin must hold at least this many times the runner-up.
+    pub dominance: f64,
+    /// NH correlation: 20 ms windows summed per offset.
+    pub nh_bits: usize,
+}
+
+impl Default for BitSyncConfig {
+    fn default() -> Self {
+        Self {
+            min_transitions: 8,
+            dominance: 3.0,
+            nh_bits: 5,
+        }
+    }
+}
+
+/// Bit synchroniser of one channel. Feed it the in-phase prompt of every code period, in
+/// order; it returns the bit-edge phase (period index modulo the bit length at which bits
+/// start) once it has decided.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BitSynchroniser {
+    modulation: DataModulation,
+    config: BitSyncConfig,
+    histogram: [u32; 20],
+    last: Option<(u64, bool)>,
+    /// NH search: signs of consecutive periods, the first at `first_index`.
+    signs: VecDeque<i8>,
+    first_index: u64,
+    edge: Option<u32>,
+}
+
+impl BitSynchroniser {
+    /// A synchroniser for `modulation`.
+    pub fn new(modulation: DataModulation, config: BitSyncConfig) -> Self {
+        Self {
+            modulation,
+            config: BitSyncConfig {
+                nh_bits: config.nh_bits.max(1),
+                ..config
+            },
+            histogram: [0; 20],
+            last: None,
+            signs: VecDeque::new(),
+            first_index: 0,
+            edge: None,
+        }
+    }
+
+    /// The bit-edge phase once decided: bits start at period indices `k` with
+    /// `k % periods_per_bit == edge`.
+    pub fn edge_phase(&self) -> Option<u32> {
+        self.edge
+    }
+
+    /// Forget the evidence gathered so far (e.g. after the PLL lost lock).
+    pub fn restart(&mut self) {
+        *self = Self::new(self.modulation, self.config);
+    }
+
+    /// Add the in-phase prompt of code period `period_index`; returns the edge phase when
+    /// (or once) decided. A gap in the period indices restarts the evidence chain.
+    pub fn feed(&mut self, period_index: u64, prompt_i: f64) -> Option<u32> {
+        if self.edge.is_some() {
+            return self.edge;
+        }
+        let positive = prompt_i >= 0.0;
+        let contiguous = self.last.is_some_and(|(k, _)| k + 1 == period_index);
+        match self.modulation {
+            DataModulation::GpsLnav | DataModulation::BdsD2 => {
+                let ppb = u64::from(self.modulation.periods_per_bit());
+                if let Some((_, was)) = self.last.filter(|_| contiguous)
+                    && was != positive
+                {
+                    self.histogram[(period_index % ppb) as usize] += 1;
+                }
+                self.edge = self.histogram_decision(ppb as usize);
+            }
+            DataModulation::BdsD1 => {
+                if !contiguous {
+                    self.signs.clear();
+                    self.first_index = period_index;
+                }
+                self.signs.push_back(if positive { 1 } else { -1 });
+                self.edge = self.nh_decision();
+            }
+        }
+        self.last = Some((period_index, positive));
+        self.edge
+    }
+
+    fn histogram_decision(&self, ppb: usize) -> Option<u32> {
+        let bins = &self.histogram[..ppb];
+        let (best, &count) = bins.iter().enumerate().max_by_key(|(_, c)| **c)?;
+        let runner_up = bins
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != best)
+            .map(|(_, c)| *c)
+            .max()
+            .unwrap_or(0);
+        (count >= self.config.min_transitions
+            && f64::from(count) >= self.config.dominance * f64::from(runner_up))
+        .then_some(best as u32)
+    }
+
+    fn nh_decision(&mut self) -> Option<u32> {
+        const L: usize = neumann_hoffman::NH20_LENGTH;
+        let bits = self.config.nh_bits;
+        if self.signs.len() < L * bits + L - 1 {
+            return None;
+        }
+        let mut scores = [0i32; L];
+        for (r, score) in scores.iter_mut().enumerate() {
+            for b in 0..bits {
+                let corr: i32 = (0..L)
+                    .map(|m| {
+                        i32::from(self.signs[r + L * b + m]) * i32::from(neumann_hoffman::NH20[m])
+                    })
+                    .sum();
+                *score += corr.abs();
+            }
+        }
+        let (best, &top) = scores.iter().enumerate().max_by_key(|(_, s)| **s)?;
+        let runner_up = scores
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| *i != best)
+            .map(|(_, s)| *s)
+            .max()
+            .unwrap_or(0);
+        let full = (L * bits) as i32;
+        if 10 * top >= 7 * full && 10 * (top - runner_up) >= 3 * full {
+            return Some(((self.first_index + best as u64) % L as u64) as u32);
+        }
+        // Slide the search on by one window.
+        self.signs.drain(..L);
+        self.first_index += L as u64;
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Prompt I of period k for bits starting at `edge`, with `sign_at(k)` (NH or 1).
+    fn feed_bits(
+        sync: &mut BitSynchroniser,
+        ppb: u64,
+        edge: u64,
+        periods: u64,
+        nh: bool,
+    ) -> Option<(u64, u32)> {
+        let mut x: u32 = 99;
+        let mut bit = 1.0;
+        for k in 0..periods {
+            if k % ppb == edge {
+                x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                bit = if x >> 30 & 1 == 0 { 1.0 } else { -1.0 };
+            }
+            let chip = if nh {
+                f64::from(neumann_hoffman::NH20[((k + ppb - edge) % ppb) as usize])
+            } else {
+                1.0
+            };
+            // Start at period 1000 so the phase is not trivially the index.
+            if let Some(e) = sync.feed(1000 + k, bit * chip * 3.0) {
+                return Some((k, e));
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn gps_histogram_finds_the_edge() {
+        for edge in [0u64, 7, 19] {
+            let mut sync = BitSynchroniser::new(DataModulation::GpsLnav, BitSyncConfig::default());
+            let (after, e) = feed_bits(&mut sync, 20, edge, 2000, false).unwrap();
+            assert_eq!(u64::from(e), (1000 + edge) % 20);
+            assert!(after < 1000, "{after}");
+        }
+    }
+
+    #[test]
+    fn d2_histogram_finds_the_two_millisecond_edge() {
+        for edge in [0u64, 1] {
+            let mut sync = BitSynchroniser::new(DataModulation::BdsD2, BitSyncConfig::default());
+            let (_, e) = feed_bits(&mut sync, 2, edge, 200, false).unwrap();
+            assert_eq!(u64::from(e), (1000 + edge) % 2);
+        }
+    }
+
+    #[test]
+    fn nh_correlation_finds_the_code_start() {
+        for edge in [0u64, 5, 13, 19] {
+            let mut sync = BitSynchroniser::new(DataModulation::BdsD1, BitSyncConfig::default());
+            let (after, e) = feed_bits(&mut sync, 20, edge, 1000, true).unwrap();
+            assert_eq!(u64::from(e), (1000 + edge) % 20, "edge {edge}");
+            assert!(after < 140, "{after}");
+        }
+    }
+
+    #[test]
+    fn nh_signs_without_the_code_do_not_sync() {
+        let mut sync = BitSynchroniser::new(DataModulation::BdsD1, BitSyncConfig::default());
+        assert!(feed_bits(&mut sync, 20, 3, 2000, false).is_none());
+    }
+}

@@ -1,0 +1,735 @@
+//! The channel tracker: one satellite on one antenna, from the acquisition hand-over to
+//! per-integration records of code phase, carrier phase, Doppler, prompt, C/N0, lock and
+//! slip flags and data bits.
+//!
+//! Processing runs code period by code period (1 ms for GPS C/A and BeiDou B1I): each
+//! period is correlated in one call of the kernel, with the NCO state at its first sample.
+//! A period that straddles two input blocks is gathered in a buffer first, so how the
+//! caller cuts its samples into blocks does not change any result.
+//!
+//! Loops: FLL-assisted PLL of 2nd or 3rd order (Costas by default) and a 1st-order
+//! normalised early-minus-late envelope DLL with carrier aiding, updated at the end of
+//! every coherent integration. After bit synchronisation (and Neumann-Hoffman wipe-off on
+//! BeiDou D1) integrations grow to `coherent_ms` periods, never crossing a bit edge.
+
+use num_complex::Complex;
+use skyforge_signals::codes::neumann_hoffman;
+
+use super::TrackingError;
+use super::bit_sync::{BitSyncConfig, BitSynchroniser};
+use super::correlator::{Correlator, NcoState, TapSet};
+use super::discriminators::{FllDiscriminator, PllDiscriminator, dll_envelope_chips};
+use super::error_budget::LoopOrder;
+use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
+use super::loop_filter::{CarrierLoopFilter, aided_code_rate, dll_rate_correction};
+use super::signal::{DataModulation, SignalKind};
+
+/// What acquisition hands over to a tracking channel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Handover {
+    /// The signal.
+    pub signal: SignalKind,
+    /// Satellite PRN.
+    pub prn: u8,
+    /// Sample index the code phase refers to.
+    pub sample_index: u64,
+    /// Samples from `sample_index` to the start of the next code period (chip 0), in
+    /// `[0, samples per code period)`; fractional samples allowed.
+    pub code_phase_samples: f64,
+    /// Carrier Doppler (Hz).
+    pub doppler_hz: f64,
+    /// Doppler rate (Hz/s) if known (e.g. from assistance), else 0.
+    pub doppler_rate_hzps: f64,
+}
+
+/// Front-end description of the samples.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrontEnd {
+    /// Sample rate (Hz).
+    pub sample_rate_hz: f64,
+    /// Intermediate frequency of the carrier (Hz); 0 for complex baseband.
+    pub if_hz: f64,
+}
+
+/// Tracking loop configuration.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct TrackingConfig {
+    /// PLL order (2nd or 3rd).
+    pub pll_order: LoopOrder,
+    /// PLL noise bandwidth Bn (Hz).
+    pub pll_bandwidth_hz: f64,
+    /// PLL noise bandwidth after bit sync (Hz), for the longer coherent integrations;
+    /// `None` keeps `pll_bandwidth_hz`. A narrow PLL pulls in poorly from the hand-over
+    /// Doppler, so pull-in runs at `pll_bandwidth_hz`.
+    pub pll_narrow_bandwidth_hz: Option<f64>,
+    /// Time (s) over which the PLL bandwidth moves geometrically from
+    /// `pll_bandwidth_hz` to `pll_narrow_bandwidth_hz` after bit sync: a sudden switch
+    /// leaves the lightly damped 3rd-order loop (complex poles at damping 0.21 with the
+    /// Kaplan coefficients) ringing on the wide loop's rate noise.
+    pub pll_narrowing_s: f64,
+    /// PLL discriminator (Costas unless the signal is data-free).
+    pub pll_discriminator: PllDiscriminator,
+    /// FLL-assist noise bandwidth (Hz); 0 disables the FLL.
+    pub fll_bandwidth_hz: f64,
+    /// FLL discriminator.
+    pub fll_discriminator: FllDiscriminator,
+    /// Seconds of FLL assistance after hand-over (pull-in); infinity keeps it on. A strong
+    /// FLL holds the frequency so firmly that a narrow PLL pulls the phase in only after
+    /// the assistance ends.
+    pub fll_assist_s: f64,
+    /// DLL noise bandwidth Bn (Hz).
+    pub dll_bandwidth_hz: f64,
+    /// Early-to-late correlator spacing (chips).
+    pub early_late_spacing_chips: f64,
+    /// Coherent integration after bit sync (code periods, 1..=20; never beyond a bit).
+    pub coherent_ms: u32,
+    /// C/N0 estimator window (s) over the 1 ms prompts; at least 20 of them.
+    pub cn0_window_s: f64,
+    /// Time constant of the PLL lock indicator (s).
+    pub lock_indicator_tau_s: f64,
+    /// PLL lock threshold on the `cos 2 phi` indicator.
+    pub pll_lock_threshold: f64,
+    /// C/N0 below which the channel counts as unlocked (dB-Hz).
+    pub cn0_lock_threshold_dbhz: f64,
+    /// Time continuously out of lock before loss of lock is declared (s), counted from the
+    /// end of the FLL-assisted pull-in or from the first lock.
+    pub loss_of_lock_s: f64,
+    /// Half-cycle slip test: both parts of a bit split by a sign reversal must exceed this
+    /// many noise standard deviations.
+    pub slip_threshold_sigma: f64,
+    /// Bit synchronisation thresholds.
+    pub bit_sync: BitSyncConfig,
+}
+
+impl Default for TrackingConfig {
+    fn default() -> Self {
+        Self {
+            pll_order: LoopOrder::Third,
+            pll_bandwidth_hz: 15.0,
+            pll_narrow_bandwidth_hz: None,
+            pll_narrowing_s: 1.0,
+            pll_discriminator: PllDiscriminator::Costas,
+            fll_bandwidth_hz: 10.0,
+            fll_discriminator: FllDiscriminator::CrossDot,
+            fll_assist_s: 0.5,
+            dll_bandwidth_hz: 2.0,
+            early_late_spacing_chips: 1.0,
+            coherent_ms: 1,
+            cn0_window_s: 1.0,
+            lock_indicator_tau_s: 0.05,
+            pll_lock_threshold: 0.6,
+            cn0_lock_threshold_dbhz: 25.0,
+            loss_of_lock_s: 0.5,
+            slip_threshold_sigma: 4.0,
+            bit_sync: BitSyncConfig::default(),
+        }
+    }
+}
+
+impl TrackingConfig {
+    fn check(&self) -> Result<(), TrackingError> {
+        let positive = [
+            ("pll_bandwidth_hz", self.pll_bandwidth_hz),
+            ("dll_bandwidth_hz", self.dll_bandwidth_hz),
+            ("early_late_spacing_chips", self.early_late_spacing_chips),
+            ("cn0_window_s", self.cn0_window_s),
+            ("pll_narrowing_s", self.pll_narrowing_s),
+            ("lock_indicator_tau_s", self.lock_indicator_tau_s),
+            ("loss_of_lock_s", self.loss_of_lock_s),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(TrackingError::InvalidConfig(format!(
+                    "{name} must be positive and finite, got {v}"
+                )));
+            }
+        }
+        if let Some(bn) = self.pll_narrow_bandwidth_hz
+            && !(bn.is_finite() && bn > 0.0)
+        {
+            return Err(TrackingError::InvalidConfig(format!(
+                "pll_narrow_bandwidth_hz must be positive and finite, got {bn}"
+            )));
+        }
+        if !(self.fll_bandwidth_hz >= 0.0 && self.fll_assist_s >= 0.0) {
+            return Err(TrackingError::InvalidConfig(format!(
+                "fll_bandwidth_hz and fll_assist_s must be >= 0, got {} and {}",
+                self.fll_bandwidth_hz, self.fll_assist_s
+            )));
+        }
+        if !(1..=20).contains(&self.coherent_ms) {
+            return Err(TrackingError::InvalidConfig(format!(
+                "coherent_ms must be 1..=20, got {}",
+                self.coherent_ms
+            )));
+        }
+        if self.early_late_spacing_chips > 2.0 {
+            return Err(TrackingError::InvalidConfig(format!(
+                "early_late_spacing_chips must be at most 2, got {}",
+                self.early_late_spacing_chips
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// A data bit decided after bit synchronisation (sign ambiguous by the Costas half cycle).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DataBit {
+    /// +1 or -1.
+    pub value: i8,
+    /// Sum of the in-phase prompts over the bit (secondary code removed).
+    pub soft: f64,
+    /// First sample of the bit's first code period.
+    pub first_sample_index: u64,
+}
+
+/// One coherent integration of a channel. Phases and rates are the NCO's at
+/// `sample_index`, the first sample of the integration, where the prompt replica code
+/// phase is `code_phase_chips` (the code epoch is `code_phase_chips / code rate * fs`
+/// samples earlier).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TrackingRecord {
+    /// First sample of the integration.
+    pub sample_index: u64,
+    /// Prompt code phase at `sample_index` (chips into the code period, `[0, chips per
+    /// sample)`).
+    pub code_phase_chips: f64,
+    /// Code periods in the integration.
+    pub integration_periods: u32,
+    /// Integration length (s).
+    pub integration_s: f64,
+    /// Accumulated carrier phase of the replica at `sample_index` (cycles, integer part
+    /// kept): the integral of the Doppler since hand-over; grows with positive Doppler.
+    pub carrier_phase_cycles: f64,
+    /// Carrier Doppler of the NCO during the integration (Hz).
+    pub doppler_hz: f64,
+    /// Doppler rate estimate of the loop filter (Hz/s; 0 for a 2nd-order PLL).
+    pub doppler_rate_hzps: f64,
+    /// Code rate of the NCO during the integration (chips/s).
+    pub code_rate_chips_per_s: f64,
+    /// Early, prompt and late correlations (secondary code removed after sync).
+    pub early: Complex<f64>,
+    /// Prompt correlation.
+    pub prompt: Complex<f64>,
+    /// Late correlation.
+    pub late: Complex<f64>,
+    /// PLL discriminator output (cycles).
+    pub phase_error_cycles: f64,
+    /// DLL discriminator output (chips).
+    pub code_error_chips: f64,
+    /// C/N0 estimate (dB-Hz), once the estimator window has filled.
+    pub cn0_dbhz: Option<f64>,
+    /// PLL lock indicator (`cos 2 phi` estimate).
+    pub pll_lock_indicator: f64,
+    /// Phase lock (indicator and C/N0 above their thresholds).
+    pub locked: bool,
+    /// Bit synchronisation established.
+    pub bit_synced: bool,
+    /// A cycle slip was detected in or before this integration (half-cycle sign reversal
+    /// inside a bit, or the lock indicator dropping out of lock).
+    pub cycle_slip: bool,
+    /// Loss of lock declared: the channel stops.
+    pub loss_of_lock: bool,
+    /// Continuous lock time without slip (s).
+    pub lock_time_s: f64,
+    /// A data bit completed in this integration.
+    pub bit: Option<DataBit>,
+}
+
+/// NCO state at the start of an integration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct IntegrationStart {
+    sample_index: u64,
+    code_phase_chips: f64,
+    carrier_phase_cycles: f64,
+    doppler_hz: f64,
+    code_rate: f64,
+}
+
+/// Per-bit accumulation after bit sync.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct BitAccumulator {
+    first_sample_index: u64,
+    prompts: [f64; neumann_hoffman::NH20_LENGTH],
+    count: usize,
+}
+
+/// One satellite's tracking channel.
+#[derive(Debug, Clone)]
+pub struct ChannelTracker {
+    signal: SignalKind,
+    prn: u8,
+    modulation: DataModulation,
+    front_end: FrontEnd,
+    config: TrackingConfig,
+    correlator: Correlator,
+    carrier_filter: CarrierLoopFilter,
+    // NCO state at `next_index`, the first sample of the next code period.
+    next_index: u64,
+    code_phase_chips: f64,
+    carrier_phase_cycles: f64,
+    if_phase_cycles: f64,
+    doppler_hz: f64,
+    code_rate: f64,
+    period_index: u64,
+    time_s: f64,
+    pending: Vec<Complex<f32>>,
+    expected_block: Option<u64>,
+    // Integration in progress.
+    start: Option<IntegrationStart>,
+    acc: [Complex<f64>; 3],
+    acc_periods: u32,
+    acc_s: f64,
+    previous_prompt: Option<(Complex<f64>, f64)>,
+    // Lock and sync.
+    lock_indicator: PllLockIndicator,
+    cn0: Cn0Estimator,
+    loss_timer: LossOfLockTimer,
+    locked: bool,
+    ever_locked: bool,
+    lock_time_s: f64,
+    slip_pending: bool,
+    lost: bool,
+    sync: BitSynchroniser,
+    synced_at_s: Option<f64>,
+    bit: Option<BitAccumulator>,
+    last_cn0_dbhz: Option<f64>,
+}
+
+impl ChannelTracker {
+    /// A channel started from an acquisition hand-over.
+    pub fn new(
+        handover: Handover,
+        front_end: FrontEnd,
+        config: TrackingConfig,
+    ) -> Result<Self, TrackingError> {
+        config.check()?;
+        if !(front_end.sample_rate_hz.is_finite()
+            && front_end.sample_rate_hz > 0.0
+            && front_end.if_hz.is_finite())
+        {
+            return Err(TrackingError::InvalidConfig(format!(
+                "sample rate must be positive and IF finite: {front_end:?}"
+            )));
+        }
+        let signal = handover.signal;
+        let code = signal.code(handover.prn)?;
+        let fs = front_end.sample_rate_hz;
+        if fs < signal.chip_rate_hz() {
+            return Err(TrackingError::InvalidConfig(format!(
+                "sample rate {fs} Hz is too low for {}",
+                signal.name()
+            )));
+        }
+        let correlator = Correlator::new(
+            &code,
+            TapSet::Three {
+                early_late_spacing_chips: config.early_late_spacing_chips,
+            },
+        )?;
+        let mut carrier_filter = CarrierLoopFilter::new(
+            config.pll_order,
+            config.pll_bandwidth_hz,
+            if config.fll_assist_s > 0.0 {
+                config.fll_bandwidth_hz
+            } else {
+                0.0
+            },
+            handover.doppler_hz,
+        )?;
+        carrier_filter.set_rate_hzps(handover.doppler_rate_hzps);
+        let code_rate = aided_code_rate(
+            signal.chip_rate_hz(),
+            handover.doppler_hz,
+            signal.carrier_hz(),
+        );
+        let dp = code_rate / fs;
+        let samples_per_period = signal.code_length() as f64 / dp;
+        if !(handover.code_phase_samples.is_finite()
+            && (0.0..samples_per_period + 1.0).contains(&handover.code_phase_samples))
+        {
+            return Err(TrackingError::InvalidConfig(format!(
+                "hand-over code phase {} samples outside one code period ({samples_per_period})",
+                handover.code_phase_samples
+            )));
+        }
+        // The first code period starts between samples; begin at the first sample after it.
+        let lead = handover.code_phase_samples.ceil();
+        let modulation = signal.data_modulation(handover.prn);
+        Ok(Self {
+            signal,
+            prn: handover.prn,
+            modulation,
+            front_end,
+            config,
+            correlator,
+            carrier_filter,
+            next_index: handover.sample_index + lead as u64,
+            code_phase_chips: (lead - handover.code_phase_samples) * dp,
+            carrier_phase_cycles: 0.0,
+            if_phase_cycles: ((handover.sample_index as f64 + lead) * front_end.if_hz / fs)
+                .rem_euclid(1.0),
+            doppler_hz: handover.doppler_hz,
+            code_rate,
+            period_index: 0,
+            time_s: 0.0,
+            pending: Vec::new(),
+            expected_block: None,
+            start: None,
+            acc: [Complex::new(0.0, 0.0); 3],
+            acc_periods: 0,
+            acc_s: 0.0,
+            previous_prompt: None,
+            lock_indicator: PllLockIndicator::new(config.lock_indicator_tau_s),
+            cn0: Cn0Estimator::new(
+                ((config.cn0_window_s / signal.code_period_s()).round() as usize).max(20),
+                signal.code_period_s(),
+            ),
+            loss_timer: LossOfLockTimer::new(config.loss_of_lock_s),
+            locked: false,
+            ever_locked: false,
+            lock_time_s: 0.0,
+            slip_pending: false,
+            lost: false,
+            sync: BitSynchroniser::new(modulation, config.bit_sync),
+            synced_at_s: None,
+            bit: None,
+            last_cn0_dbhz: None,
+        })
+    }
+
+    /// The tracked signal.
+    pub fn signal(&self) -> SignalKind {
+        self.signal
+    }
+
+    /// The tracked PRN.
+    pub fn prn(&self) -> u8 {
+        self.prn
+    }
+
+    /// The data modulation of this PRN.
+    pub fn data_modulation(&self) -> DataModulation {
+        self.modulation
+    }
+
+    /// True once loss of lock has been declared; the channel then ignores further samples.
+    pub fn is_lost(&self) -> bool {
+        self.lost
+    }
+
+    /// Bit-edge phase once bit sync is established: bits start at code periods whose index
+    /// since hand-over modulo the bit length equals it.
+    pub fn bit_edge_phase(&self) -> Option<u32> {
+        self.sync.edge_phase()
+    }
+
+    /// Track over one block of samples whose first sample has index `first_sample_index`.
+    /// The first block may start anywhere (samples before the hand-over are skipped, a
+    /// later start moves the NCOs forward); later blocks must follow on without a gap.
+    pub fn process(
+        &mut self,
+        samples: &[Complex<f32>],
+        first_sample_index: u64,
+    ) -> Result<Vec<TrackingRecord>, TrackingError> {
+        match self.expected_block {
+            Some(expected) if expected != first_sample_index => {
+                return Err(TrackingError::NonContiguous {
+                    expected,
+                    got: first_sample_index,
+                });
+            }
+            Some(_) => {}
+            None => self.skip_to(first_sample_index),
+        }
+        let end = first_sample_index + samples.len() as u64;
+        self.expected_block = Some(end);
+        let mut records = Vec::new();
+        while !self.lost {
+            let n = self.period_length();
+            let period_end = self.next_index + n as u64;
+            // First sample of this period not yet held in `pending`.
+            let have = self.next_index + self.pending.len() as u64;
+            let from = (have.max(first_sample_index) - first_sample_index) as usize;
+            if period_end > end {
+                if have < end {
+                    self.pending.extend_from_slice(&samples[from..]);
+                }
+                break;
+            }
+            let to = (period_end - first_sample_index) as usize;
+            let nco = self.nco();
+            let corr = if self.pending.is_empty() {
+                self.correlator.correlate(&samples[from..to], &nco)
+            } else {
+                self.pending.extend_from_slice(&samples[from..to]);
+                self.correlator.correlate(&self.pending, &nco)
+            };
+            let corr = [corr[0], corr[1], corr[2]];
+            self.pending.clear();
+            if let Some(record) = self.finish_period(corr, n) {
+                records.push(record);
+            }
+        }
+        Ok(records)
+    }
+
+    /// NCO state at `next_index`.
+    fn nco(&self) -> NcoState {
+        let fs = self.front_end.sample_rate_hz;
+        NcoState {
+            carrier_phase_cycles: self.if_phase_cycles + self.carrier_phase_cycles.fract(),
+            carrier_cycles_per_sample: (self.front_end.if_hz + self.doppler_hz) / fs,
+            code_phase_chips: self.code_phase_chips,
+            code_chips_per_sample: self.code_rate / fs,
+        }
+    }
+
+    /// Samples in the code period starting at `next_index`.
+    fn period_length(&self) -> usize {
+        let dp = self.code_rate / self.front_end.sample_rate_hz;
+        ((self.signal.code_length() as f64 - self.code_phase_chips) / dp).ceil() as usize
+    }
+
+    /// Move the NCOs over one code period of `n` samples at the current rates.
+    fn advance(&mut self, n: usize) {
+        let fs = self.front_end.sample_rate_hz;
+        let dp = self.code_rate / fs;
+        self.code_phase_chips += n as f64 * dp - self.signal.code_length() as f64;
+        self.carrier_phase_cycles += n as f64 * self.doppler_hz / fs;
+        self.if_phase_cycles =
+            (self.if_phase_cycles + n as f64 * self.front_end.if_hz / fs).rem_euclid(1.0);
+        self.next_index += n as u64;
+        self.period_index += 1;
+        self.time_s += n as f64 / fs;
+    }
+
+    /// Before the first block: move on to the first code period starting at or after
+    /// `index` (open loop, at the hand-over rates).
+    fn skip_to(&mut self, index: u64) {
+        while self.next_index < index {
+            let n = self.period_length();
+            self.advance(n);
+        }
+    }
+
+    /// Fold one code period's correlations into the integration; returns the record when
+    /// the integration completes.
+    fn finish_period(&mut self, corr: [Complex<f64>; 3], n: usize) -> Option<TrackingRecord> {
+        let k = self.period_index;
+        let ppb = u64::from(self.modulation.periods_per_bit());
+        let edge = self.sync.edge_phase().map(u64::from);
+        // Position in the bit (after sync) and secondary-code wipe-off.
+        let position = edge.map(|e| (k + ppb - e % ppb) % ppb);
+        let nh = match (self.modulation, position) {
+            (DataModulation::BdsD1, Some(pos)) => f64::from(neumann_hoffman::nh20_level(pos)),
+            _ => 1.0,
+        };
+        let corr = corr.map(|c| c * nh);
+        if self.start.is_none() {
+            self.start = Some(IntegrationStart {
+                sample_index: self.next_index,
+                code_phase_chips: self.code_phase_chips,
+                carrier_phase_cycles: self.carrier_phase_cycles,
+                doppler_hz: self.doppler_hz,
+                code_rate: self.code_rate,
+            });
+        }
+        let period_start = self.next_index;
+        self.advance(n);
+        for (a, c) in self.acc.iter_mut().zip(corr) {
+            *a += c;
+        }
+        self.acc_periods += 1;
+        self.acc_s += n as f64 / self.front_end.sample_rate_hz;
+
+        // C/N0 from every code period's prompt, whatever the coherent integration: at long
+        // integrations the prompt SNR is so high that M2M4 would count the small amplitude
+        // changes from code tracking as noise.
+        self.cn0.push(corr[1]);
+        let mut bit = None;
+        match position {
+            None => {
+                if self.locked && self.sync.feed(k, corr[1].re).is_some() {
+                    self.synced_at_s = Some(self.time_s);
+                }
+            }
+            Some(pos) => bit = self.accumulate_bit(pos, ppb, corr[1].re, period_start),
+        }
+        let complete = match position {
+            None => true,
+            Some(pos) => {
+                self.acc_periods >= self.config.coherent_ms.min(ppb as u32) || pos + 1 == ppb
+            }
+        };
+        complete.then(|| self.close_integration(bit))
+    }
+
+    /// After bit sync: move the PLL bandwidth towards the narrow one, if configured.
+    fn narrow_pll(&mut self) {
+        if let (Some(narrow), Some(t0)) = (self.config.pll_narrow_bandwidth_hz, self.synced_at_s) {
+            let wide = self.config.pll_bandwidth_hz;
+            let x = ((self.time_s - t0) / self.config.pll_narrowing_s).clamp(0.0, 1.0);
+            // Positive and finite: both bandwidths checked in `TrackingConfig::check`.
+            let _ = self
+                .carrier_filter
+                .set_pll_bandwidth(wide * (narrow / wide).powf(x));
+        }
+    }
+
+    /// After sync: add a period's in-phase prompt to the bit; returns the bit at its end.
+    fn accumulate_bit(
+        &mut self,
+        pos: u64,
+        ppb: u64,
+        prompt_i: f64,
+        period_start: u64,
+    ) -> Option<DataBit> {
+        if pos == 0 {
+            self.bit = Some(BitAccumulator {
+                first_sample_index: period_start,
+                prompts: [0.0; neumann_hoffman::NH20_LENGTH],
+                count: 0,
+            });
+        }
+        let acc = self.bit.as_mut()?;
+        acc.prompts[acc.count] = prompt_i;
+        acc.count += 1;
+        if pos + 1 != ppb {
+            return None;
+        }
+        let acc = self.bit.take()?;
+        let prompts = &acc.prompts[..acc.count];
+        let soft: f64 = prompts.iter().sum();
+        if self.half_cycle_slip(prompts) {
+            self.slip_pending = true;
+        }
+        Some(DataBit {
+            value: if soft >= 0.0 { 1 } else { -1 },
+            soft,
+            first_sample_index: acc.first_sample_index,
+        })
+    }
+
+    /// A sign reversal inside one bit: some split into a leading and a trailing part
+    /// whose sums have opposite signs, each beyond `slip_threshold_sigma` noise standard
+    /// deviations (from the C/N0 estimate and the bit's mean amplitude).
+    fn half_cycle_slip(&self, prompts: &[f64]) -> bool {
+        let Some(cn0_dbhz) = self.last_cn0_dbhz.filter(|c| c.is_finite()) else {
+            return false;
+        };
+        let m = prompts.len();
+        if m < 2 {
+            return false;
+        }
+        let amplitude = prompts.iter().map(|p| p.abs()).sum::<f64>() / m as f64;
+        let snr_period = 10f64.powf(cn0_dbhz / 10.0) * self.signal.code_period_s();
+        // In-phase noise of one period: amplitude / sqrt(2 SNR).
+        let sigma = amplitude / (2.0 * snr_period).sqrt();
+        let k = self.config.slip_threshold_sigma;
+        let total: f64 = prompts.iter().sum();
+        let mut head = 0.0;
+        for (j, p) in prompts[..m - 1].iter().enumerate() {
+            head += p;
+            let tail = total - head;
+            let (nh, nt) = ((j + 1) as f64, (m - j - 1) as f64);
+            if head * tail < 0.0
+                && head.abs() > k * sigma * nh.sqrt()
+                && tail.abs() > k * sigma * nt.sqrt()
+            {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// End of a coherent integration: discriminators, loop filters, lock detectors, record.
+    fn close_integration(&mut self, bit: Option<DataBit>) -> TrackingRecord {
+        let [early, prompt, late] = self.acc;
+        let t = self.acc_s;
+        let start = self.start.take().unwrap_or(IntegrationStart {
+            sample_index: self.next_index,
+            code_phase_chips: self.code_phase_chips,
+            carrier_phase_cycles: self.carrier_phase_cycles,
+            doppler_hz: self.doppler_hz,
+            code_rate: self.code_rate,
+        });
+        let periods = self.acc_periods;
+        self.acc = [Complex::new(0.0, 0.0); 3];
+        self.acc_periods = 0;
+        self.acc_s = 0.0;
+
+        // Carrier loop.
+        let phase_error = self.config.pll_discriminator.phase_error_cycles(prompt);
+        let fll_on = self.time_s <= self.config.fll_assist_s && self.config.fll_bandwidth_hz > 0.0;
+        let freq_error = match self.previous_prompt {
+            Some((previous, t_prev)) if fll_on => self.config.fll_discriminator.frequency_error_hz(
+                previous,
+                prompt,
+                0.5 * (t_prev + t),
+            ),
+            _ => 0.0,
+        };
+        if !fll_on {
+            self.carrier_filter.disable_fll();
+        }
+        self.previous_prompt = Some((prompt, t));
+        self.narrow_pll();
+        self.doppler_hz = self.carrier_filter.update(phase_error, freq_error, t);
+
+        // Code loop, carrier aided.
+        let code_error = dll_envelope_chips(early, late, self.config.early_late_spacing_chips);
+        self.code_rate = aided_code_rate(
+            self.signal.chip_rate_hz(),
+            self.doppler_hz,
+            self.signal.carrier_hz(),
+        ) + dll_rate_correction(self.config.dll_bandwidth_hz, code_error);
+
+        // Lock detectors.
+        let indicator = self.lock_indicator.update(prompt, t);
+        let cn0 = self.cn0.cn0_dbhz().or(self.last_cn0_dbhz);
+        self.last_cn0_dbhz = cn0;
+        let locked = indicator >= self.config.pll_lock_threshold
+            && cn0.is_none_or(|c| c >= self.config.cn0_lock_threshold_dbhz);
+        if self.locked && !locked {
+            self.slip_pending = true;
+        }
+        self.locked = locked;
+        // Pull-in (the FLL-assist time) does not count towards loss of lock.
+        self.ever_locked |= locked;
+        let judged = self.ever_locked || self.time_s > self.config.fll_assist_s;
+        self.lost = judged && self.loss_timer.update(locked, t);
+        let cycle_slip = std::mem::take(&mut self.slip_pending);
+        self.lock_time_s = if locked && !cycle_slip {
+            self.lock_time_s + t
+        } else {
+            0.0
+        };
+
+        TrackingRecord {
+            sample_index: start.sample_index,
+            code_phase_chips: start.code_phase_chips,
+            integration_periods: periods,
+            integration_s: t,
+            carrier_phase_cycles: start.carrier_phase_cycles,
+            doppler_hz: start.doppler_hz,
+            doppler_rate_hzps: self.carrier_filter.rate_hzps(),
+            code_rate_chips_per_s: start.code_rate,
+            early,
+            prompt,
+            late,
+            phase_error_cycles: phase_error,
+            code_error_chips: code_error,
+            cn0_dbhz: cn0,
+            pll_lock_indicator: indicator,
+            locked,
+            bit_synced: self.sync.edge_phase().is_some(),
+            cycle_slip,
+            loss_of_lock: self.lost,
+            lock_time_s: self.lock_time_s,
+            bit,
+        }
+    }
+}
