@@ -49,6 +49,7 @@ pub struct InputReport {
     pub common_samples: u64,
     /// UTC time of the first delivered sample, when the metadata gives it.
     pub start_utc: Option<Epoch>,
+    /// The signal the recordings hold, when known.
     pub signal: Option<SignalBand>,
     /// Problems worked around and other notable facts.
     pub findings: Vec<Finding>,

@@ -15,12 +15,14 @@ use std::path::{Path, PathBuf};
 /// or overrides the metadata (an override that changes a value is reported).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct InputParams {
+    /// `--format`.
     pub format: Option<SampleFormat>,
     /// Sample rate (Hz; real samples per second for `ri8`).
     pub sample_rate_hz: Option<f64>,
     /// Where the signal's carrier sits in the recording (Hz): the real IF for `ri8`, the
     /// offset from the centre for complex samples (0: baseband).
     pub if_hz: Option<f64>,
+    /// `--signal`.
     pub signal: Option<SignalBand>,
 }
 
@@ -33,6 +35,7 @@ pub struct Recording {
     pub data_path: PathBuf,
     /// The `.sigmf-meta` file, if any.
     pub meta_path: Option<PathBuf>,
+    /// Sample container.
     pub format: SampleFormat,
     /// Sample rate (Hz).
     pub sample_rate_hz: f64,
