@@ -4,13 +4,14 @@
 
 mod geometry_run;
 pub mod loop_budget;
+pub mod pmf_fft;
 pub mod visibility;
 
 use crate::report::Row;
 use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
-pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2"];
+pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R"];
 
 /// Why a validation could not run.
 #[derive(Debug, thiserror::Error)]
@@ -19,6 +20,8 @@ pub enum ValidateError {
     Scenario(Box<skyforge_scenarios::ScenarioError>),
     #[error("geometry: {0}")]
     Geometry(String),
+    #[error("acquisition: {0}")]
+    Acquisition(#[from] skyforge_receiver::acquisition::AcquisitionError),
     #[error("unknown table {id:?}; known tables: {known}")]
     UnknownTable { id: String, known: String },
 }
@@ -59,6 +62,10 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
     if wanted("T-3.2") {
         starting("T-3.2");
         rows.extend(loop_budget::rows()?);
+    }
+    if wanted("T-3.3-R") {
+        starting("T-3.3-R");
+        rows.extend(pmf_fft::rows()?);
     }
     Ok(rows)
 }

@@ -116,12 +116,40 @@ impl PmfFft {
         self.p
     }
 
-    /// Buffers for [`Self::spectrum`] / [`Self::estimate`].
+    /// Buffers for the spectrum and estimate functions.
     pub fn scratch(&self) -> PmfScratch {
         PmfScratch {
             y: vec![Complex32::default(); 2 * self.p],
             fft: vec![Complex32::default(); self.fft.get_inplace_scratch_len()],
         }
+    }
+
+    /// The `P` partial matched filter outputs of eq. 3.3-16,
+    /// `(1/P)(1/L) sum_{n=iL}^{(i+1)L-1} x[n]`, from exactly `M` chip-rate samples.
+    pub fn filter_outputs(
+        &self,
+        chips: &[Complex32],
+        out: &mut [Complex32],
+    ) -> Result<(), AcquisitionError> {
+        if chips.len() != self.m {
+            return Err(AcquisitionError::TooFewSamples {
+                needed: self.m,
+                got: chips.len(),
+            });
+        }
+        if out.len() != self.p {
+            return Err(AcquisitionError::BadParameter {
+                name: "filter output slots",
+                value: out.len() as f64,
+                allowed: "exactly P = M / L",
+            });
+        }
+        let scale = 1.0 / self.m as f32;
+        for (o, filter) in out.iter_mut().zip(chips.chunks_exact(self.l)) {
+            let sum: Complex32 = filter.iter().sum();
+            *o = sum * scale;
+        }
+        Ok(())
     }
 
     /// Thesis eq. 3.3-16: `Y[k] = (1/P) sum_i ((1/L) sum_{n=iL}^{(i+1)L-1} x[n])
@@ -131,22 +159,33 @@ impl PmfFft {
         chips: &[Complex32],
         scratch: &'a mut PmfScratch,
     ) -> Result<&'a [Complex32], AcquisitionError> {
-        if chips.len() != self.m {
+        let (head, _) = scratch.y.split_at_mut(self.p);
+        self.filter_outputs(chips, head)?;
+        Ok(self.transform(scratch))
+    }
+
+    /// The spectrum from the `P` filter outputs (as [`Self::filter_outputs`] makes them).
+    pub fn spectrum_of_filters<'a>(
+        &self,
+        filters: &[Complex32],
+        scratch: &'a mut PmfScratch,
+    ) -> Result<&'a [Complex32], AcquisitionError> {
+        if filters.len() != self.p {
             return Err(AcquisitionError::TooFewSamples {
-                needed: self.m,
-                got: chips.len(),
+                needed: self.p,
+                got: filters.len(),
             });
         }
-        let scale = 1.0 / self.m as f32;
-        let (head, tail) = scratch.y.split_at_mut(self.p);
-        for (out, filter) in head.iter_mut().zip(chips.chunks_exact(self.l)) {
-            let sum: Complex32 = filter.iter().sum();
-            *out = sum * scale;
-        }
-        tail.fill(Complex32::default());
+        scratch.y[..self.p].copy_from_slice(filters);
+        Ok(self.transform(scratch))
+    }
+
+    /// Zero-pad the filter outputs in `scratch.y[..P]` to `N = 2P` and transform.
+    fn transform<'a>(&self, scratch: &'a mut PmfScratch) -> &'a [Complex32] {
+        scratch.y[self.p..].fill(Complex32::default());
         self.fft
             .process_with_scratch(&mut scratch.y, &mut scratch.fft);
-        Ok(&scratch.y)
+        &scratch.y
     }
 
     /// The coarse and fine Doppler estimates from `M` chip-rate samples.
@@ -155,23 +194,39 @@ impl PmfFft {
         chips: &[Complex32],
         scratch: &mut PmfScratch,
     ) -> Result<PmfEstimate, AcquisitionError> {
-        let (m, p) = (self.m, self.p);
-        let y = self.spectrum(chips, scratch)?;
-        let n = y.len();
-        let energy = |k: usize| f64::from(y[k % n].norm_sqr());
+        Ok(self.peak(self.spectrum(chips, scratch)?))
+    }
+
+    /// The coarse and fine Doppler estimates from the `P` filter outputs.
+    pub fn estimate_filters(
+        &self,
+        filters: &[Complex32],
+        scratch: &mut PmfScratch,
+    ) -> Result<PmfEstimate, AcquisitionError> {
+        Ok(self.peak(self.spectrum_of_filters(filters, scratch)?))
+    }
+
+    /// Peak bin, eq. 3.3-13 and eq. 3.3-14 on a spectrum of `N = 2P` bins.
+    fn peak(&self, y: &[Complex32]) -> PmfEstimate {
+        let n = y.len().max(1);
+        let energy = |k: usize| y.get(k % n).map_or(0.0, |v| f64::from(v.norm_sqr()));
         let k = (0..n)
             .max_by(|&a, &b| energy(a).total_cmp(&energy(b)))
             .unwrap_or(0);
         let delta = fine_offset(energy(k + n - 1), energy(k), energy(k + 1));
-        let peak_bin = if k < p { k as i64 } else { k as i64 - n as i64 };
-        let two_m = 2.0 * m as f64;
-        Ok(PmfEstimate {
+        let peak_bin = if k < self.p {
+            k as i64
+        } else {
+            k as i64 - n as i64
+        };
+        let two_m = 2.0 * self.m as f64;
+        PmfEstimate {
             peak_bin,
             delta,
             peak_energy: energy(k),
             coarse_fd_tc: peak_bin as f64 / two_m,
             fine_fd_tc: (peak_bin as f64 + delta) / two_m,
-        })
+        }
     }
 }
 
@@ -304,6 +359,19 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn estimating_from_filter_outputs_equals_estimating_from_chips() {
+        let pmf = PmfFft::new(1024, 128).unwrap();
+        let x = tone(1024, 2.3 / 2048.0, 0.4);
+        let mut f = vec![Complex32::default(); pmf.p()];
+        pmf.filter_outputs(&x, &mut f).unwrap();
+        let mut s = pmf.scratch();
+        let a = pmf.estimate(&x, &mut s).unwrap();
+        let b = pmf.estimate_filters(&f, &mut s).unwrap();
+        assert_eq!(a, b);
+        assert!(pmf.estimate_filters(&f[1..], &mut s).is_err());
     }
 
     #[test]
