@@ -1,9 +1,10 @@
 //! Parallel code-phase search (PCPS): for every Doppler bin, the circular correlation of
 //! one code period of carrier-wiped samples with the code replica, computed as
-//! `IFFT(FFT(x) . conj(FFT(c)))` (Borre et al., *A Software-Defined GPS and Galileo
-//! Receiver*, 2007, §6.3.3); `K` consecutive periods summed coherently, `N` such sums
-//! added in power, and a CFAR decision ([`super::cfar`]) against the noise power
-//! estimated from the correlation surface itself.
+//! `IFFT(FFT(x) . conj(FFT(c)))` (the parallel code phase search of Borre et al., *A
+//! Software-Defined GPS and Galileo Receiver*, 2007, ch. 6); `K` consecutive periods
+//! summed coherently, `N` such sums added in power, and a CFAR decision
+//! ([`super::cfar`]) against the noise power estimated from the correlation surface
+//! itself.
 //!
 //! Conventions: samples are complex baseband (or complex IF) `x(t) = c(t - tau) exp(j 2 pi
 //! (f_carrier + f_d) t) + noise`, `t = 0` at the first sample given. The search removes
@@ -240,36 +241,17 @@ impl Pcps {
         if !(step.is_finite() && step > 0.0) {
             return Err(bad("Doppler step (Hz)", step, "finite and > 0"));
         }
-        let w = config.window;
-        if !(w.half_width_hz.is_finite() && w.half_width_hz >= 0.0) {
-            return Err(bad(
-                "Doppler half-width (Hz)",
-                w.half_width_hz,
-                "finite and >= 0",
-            ));
-        }
-        if !w.centre_hz.is_finite() || !config.carrier_offset_hz.is_finite() {
-            return Err(bad(
-                "Doppler centre / carrier offset (Hz)",
-                w.centre_hz + config.carrier_offset_hz,
-                "finite",
-            ));
-        }
         if !(config.pfa > 0.0 && config.pfa < 1.0) {
             return Err(bad("false-alarm probability", config.pfa, "0 < p < 1"));
         }
-        let half_bins = (w.half_width_hz / step - 1e-9).ceil().max(0.0);
-        if half_bins > 1e6 {
+        if !config.carrier_offset_hz.is_finite() {
             return Err(bad(
-                "Doppler bins either side",
-                half_bins,
-                "at most 1e6 (widen the step)",
+                "carrier offset (Hz)",
+                config.carrier_offset_hz,
+                "finite",
             ));
         }
-        let half_bins = half_bins as i64;
-        let doppler_hz = (-half_bins..=half_bins)
-            .map(|j| w.centre_hz + j as f64 * step)
-            .collect();
+        let doppler_hz = doppler_bins(config.window, step)?;
         let period_samples = (fs * config.signal.code_period_s()).round() as usize;
         let fft_len = match config.bit_transition {
             BitTransition::Ignore => period_samples,
@@ -438,11 +420,8 @@ impl Pcps {
         code: &PreparedCode,
         window: DopplerWindow,
     ) -> Result<Acquisition, AcquisitionError> {
-        let plan = Pcps::new(PcpsConfig {
-            window,
-            ..self.config
-        })?;
-        let surface = self.surface_in(samples, code, &plan.doppler_hz)?;
+        let bins = doppler_bins(window, self.config.doppler_step())?;
+        let surface = self.surface_in(samples, code, &bins)?;
         self.decide(&surface, code.prn)
     }
 
@@ -504,6 +483,32 @@ impl Pcps {
             cells,
         })
     }
+}
+
+/// Bin centres `centre + j step`, `|j| <= ceil(half_width / step)`.
+fn doppler_bins(w: DopplerWindow, step: f64) -> Result<Vec<f64>, AcquisitionError> {
+    if !(w.half_width_hz.is_finite() && w.half_width_hz >= 0.0) {
+        return Err(bad(
+            "Doppler half-width (Hz)",
+            w.half_width_hz,
+            "finite and >= 0",
+        ));
+    }
+    if !w.centre_hz.is_finite() {
+        return Err(bad("Doppler centre (Hz)", w.centre_hz, "finite"));
+    }
+    let half_bins = (w.half_width_hz / step - 1e-9).ceil().max(0.0);
+    if half_bins > 1e6 {
+        return Err(bad(
+            "Doppler bins either side",
+            half_bins,
+            "at most 1e6 (widen the step)",
+        ));
+    }
+    let half_bins = half_bins as i64;
+    Ok((-half_bins..=half_bins)
+        .map(|j| w.centre_hz + j as f64 * step)
+        .collect())
 }
 
 /// Offset (in bin spacings, within +/-0.5) of the vertex of the parabola through
