@@ -9,9 +9,9 @@
 //! module's tests), far below any loop's thermal jitter.
 //!
 //! Code: the replica of a tap with offset `delta` (chips) carries chip
-//! `floor(p0 + delta + i dp) mod L` at sample `i`; the kernel walks the chips (one
-//! multiplication per chip, not per sample) and fills a per-tap buffer, so the per-sample
-//! loop is a plain multiply-accumulate the compiler vectorises. A positive offset is an
+//! `floor(p0 + delta + i dp) mod L` at sample `i`; the kernel walks the chips (integer
+//! chip boundaries, one fixed-width store per chip) and fills a per-tap buffer, so the
+//! per-sample loop is a plain multiply-accumulate the compiler vectorises. A positive offset is an
 //! early replica (ahead of the prompt), a negative offset a late one.
 //!
 //! The kernel runs with the widest vector instructions the CPU has (AVX-512, AVX2 or
@@ -163,26 +163,24 @@ impl Correlator {
         let n = samples.len();
         let n_taps = self.taps.len();
         self.replicas.resize(n_taps * (n + RUN), 0.0);
-        let offsets = self.taps.offsets_chips();
-        for (t, buf) in self.replicas.chunks_exact_mut(n + RUN).enumerate() {
-            fill_replica(
-                buf,
-                n,
-                &self.code,
-                nco.code_phase_chips + offsets[t],
-                nco.code_chips_per_sample,
-            );
-        }
+        let replica = Replica {
+            code: &self.code,
+            p0_chips: nco.code_phase_chips,
+            dp: nco.code_chips_per_sample,
+            offsets: self.taps.offsets_chips(),
+        };
         let carrier = CarrierStart::new(nco);
         self.out = match self.taps {
             TapSet::Three { .. } => pulp::Arch::new().dispatch(Kernel::<3> {
                 samples,
-                replicas: &self.replicas,
+                replicas: &mut self.replicas,
+                replica,
                 carrier,
             }),
             TapSet::Five { .. } => pulp::Arch::new().dispatch(Kernel::<5> {
                 samples,
-                replicas: &self.replicas,
+                replicas: &mut self.replicas,
+                replica,
                 carrier,
             }),
         };
@@ -194,34 +192,76 @@ impl Correlator {
 /// replica buffer past the block.
 const RUN: usize = 8;
 
-/// Fill `buf[i]`, `i < n`, with the chip `floor(phase0 + i dp) mod L` of `code`, walking
-/// the chips; `buf` holds `n + RUN` values (a short run is written as one `RUN`-wide store
-/// that the next chip overwrites). A non-positive rate holds the first chip.
+/// Fill `buf[i]`, `i < n`, with the chip `floor(phase0 + i dp) mod L` of `code`, chip by
+/// chip (for chips longer than `RUN - 1` samples). A non-positive or absurdly small rate
+/// holds the first chip.
+#[inline(always)]
 fn fill_replica(buf: &mut [f32], n: usize, code: &[f32], phase0_chips: f64, dp: f64) {
     let len = code.len();
     let first = phase0_chips.floor();
     let mut chip = (first.rem_euclid(len as f64) as usize).min(len - 1);
-    if dp <= 0.0 || !dp.is_finite() {
+    let samples_per_chip = 1.0 / dp;
+    if !(dp > 0.0 && samples_per_chip * ONE < 2f64.powi(62)) {
         buf[..n].fill(code[chip]);
         return;
     }
-    let inv_dp = 1.0 / dp;
-    // Every run is at most ceil(1 / dp) samples long.
-    let short = inv_dp <= (RUN - 1) as f64;
-    // Chips from the start phase to the end of the current chip.
-    let mut to_boundary = first + 1.0 - phase0_chips;
+    let step = (samples_per_chip * ONE) as u64;
+    let mut boundary = ((first + 1.0 - phase0_chips) * samples_per_chip * ONE) as u64;
     let mut start = 0;
     while start < n {
-        // First sample of the next chip: smallest i with i dp >= to_boundary.
-        let end = ((to_boundary * inv_dp).ceil().max(0.0) as usize).clamp(start, n);
-        let value = code[chip];
-        if short {
-            buf[start..start + RUN].copy_from_slice(&[value; RUN]);
-        } else {
-            buf[start..end].fill(value);
+        let end = (boundary.saturating_add(MASK) >> 32).min(n as u64) as usize;
+        buf[start..end.max(start)].fill(code[chip]);
+        start = end.max(start);
+        boundary = boundary.saturating_add(step);
+        chip += 1;
+        if chip == len {
+            chip = 0;
         }
-        start = end;
-        to_boundary += 1.0;
+    }
+}
+
+/// 1.0 in 32.32 fixed point.
+const ONE: f64 = (1u64 << 32) as f64;
+/// Adding it before the shift rounds a 32.32 value up.
+const MASK: u64 = (1 << 32) - 1;
+
+/// Fill one tap's replica `buf` (`n + RUN` values) with the chip
+/// `floor(phase0 + i dp) mod L` at sample `i < n`, for chips of at most `RUN - 1` samples:
+/// each run is written as one `RUN`-wide store that the next chip overwrites.
+///
+/// Chip boundaries are 32.32 fixed-point samples (integer arithmetic only): chip `k` of
+/// the walk ends at `ceil(b0 + k step)`; over a 2046-chip block the accumulated boundary
+/// error is below 5e-7 samples.
+#[inline(always)]
+fn fill_replica_short(buf: &mut [f32], n: usize, code: &[f32], phase0_chips: f64, dp: f64) {
+    let len = code.len();
+    let samples_per_chip = 1.0 / dp;
+    let first = phase0_chips.floor();
+    let mut chip = (first.rem_euclid(len as f64) as usize).min(len - 1);
+    let step = (samples_per_chip * ONE) as u64;
+    let mut boundary = ((first + 1.0 - phase0_chips) * samples_per_chip * ONE) as u64;
+    let mut start = 0;
+    // Chips ending at or before sample n - 1: no clamping.
+    let limit = (n.saturating_sub(1) as u64) << 32;
+    let mut fast = if boundary <= limit {
+        ((limit - boundary) / step + 1) as usize
+    } else {
+        0
+    };
+    while fast > 0 {
+        let run = fast.min(len - chip);
+        for &value in &code[chip..chip + run] {
+            buf[start..start + RUN].copy_from_slice(&[value; RUN]);
+            start = ((boundary + MASK) >> 32) as usize;
+            boundary += step;
+        }
+        fast -= run;
+        chip = (chip + run) % len;
+    }
+    while start < n {
+        buf[start..start + RUN].copy_from_slice(&[code[chip]; RUN]);
+        start = (boundary.saturating_add(MASK) >> 32).min(n as u64) as usize;
+        boundary = boundary.saturating_add(step);
         chip += 1;
         if chip == len {
             chip = 0;
@@ -261,10 +301,20 @@ impl CarrierStart {
     }
 }
 
+/// The code replica of one block: code, prompt phase and rate, tap offsets.
+#[derive(Debug, Clone, Copy)]
+struct Replica<'a> {
+    code: &'a [f32],
+    p0_chips: f64,
+    dp: f64,
+    offsets: [f64; MAX_TAPS],
+}
+
 /// [`Correlator::correlate`]'s arguments, for the CPU-feature dispatch.
 struct Kernel<'a, const T: usize> {
     samples: &'a [Complex<f32>],
-    replicas: &'a [f32],
+    replicas: &'a mut [f32],
+    replica: Replica<'a>,
     carrier: CarrierStart,
 }
 
@@ -272,6 +322,21 @@ impl<const T: usize> pulp::WithSimd for Kernel<'_, T> {
     type Output = [Complex<f64>; MAX_TAPS];
     #[inline(always)]
     fn with_simd<S: pulp::Simd>(self, _: S) -> Self::Output {
+        let n = self.samples.len();
+        let Replica {
+            code,
+            p0_chips,
+            dp,
+            offsets,
+        } = self.replica;
+        let short = dp > 0.0 && 1.0 / dp <= (RUN - 1) as f64;
+        for (t, buf) in self.replicas.chunks_exact_mut(n + RUN).enumerate() {
+            if short {
+                fill_replica_short(buf, n, code, p0_chips + offsets[t], dp);
+            } else {
+                fill_replica(buf, n, code, p0_chips + offsets[t], dp);
+            }
+        }
         accumulate::<T>(self.samples, self.replicas, self.carrier)
     }
 }
@@ -297,18 +362,22 @@ fn accumulate<const T: usize>(
     let full = n / LANES * LANES;
     for (c, x) in samples[..full].chunks_exact(LANES).enumerate() {
         let base = c * LANES;
-        let code: [&[f32]; T] = std::array::from_fn(|t| &codes[t][base..base + LANES]);
+        // x conj(z), then the carrier rotation.
+        let mut br = [0f32; LANES];
+        let mut bi = [0f32; LANES];
         for l in 0..LANES {
-            // x conj(z)
-            let br = x[l].re * zr[l] + x[l].im * zi[l];
-            let bi = x[l].im * zr[l] - x[l].re * zi[l];
-            for t in 0..T {
-                acc_r[t][l] += code[t][l] * br;
-                acc_i[t][l] += code[t][l] * bi;
-            }
+            br[l] = x[l].re * zr[l] + x[l].im * zi[l];
+            bi[l] = x[l].im * zr[l] - x[l].re * zi[l];
             let r = zr[l] * wr - zi[l] * wi;
             zi[l] = zr[l] * wi + zi[l] * wr;
             zr[l] = r;
+        }
+        for t in 0..T {
+            let code = &codes[t][base..base + LANES];
+            for l in 0..LANES {
+                acc_r[t][l] += code[l] * br[l];
+                acc_i[t][l] += code[l] * bi[l];
+            }
         }
     }
     for l in 0..n - full {
