@@ -377,3 +377,62 @@ fn gps_ten_ms_coherent_integration_after_bit_sync() {
     let (cn0_mean, _) = mean_std(&cn0s);
     assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
 }
+
+#[test]
+fn a_quarter_cycle_jump_drops_the_lock_indicator_and_flags_a_slip() {
+    let jump_at = 5_000_000; // 1.22 s
+    let sig = TestSignal {
+        phase_jump: Some((jump_at, 0.25)),
+        seed: 13,
+        ..TestSignal::gps_static()
+    };
+    let records = track(
+        &sig,
+        TrackingConfig::default(),
+        sig.handover(0.1, 10.0),
+        2.0,
+    );
+    let settled = after(&records, &sig, 1.0);
+    let slips: Vec<&TrackingRecord> = settled.iter().filter(|r| r.cycle_slip).collect();
+    assert!(!slips.is_empty());
+    let first = sig.time(slips[0].sample_index) - sig.time(jump_at);
+    assert!(
+        (0.0..0.1).contains(&first),
+        "first slip flag {first} s after the jump"
+    );
+    assert!(!slips[0].locked && slips[0].lock_time_s == 0.0);
+    // Lock comes back and the channel keeps tracking.
+    assert!(records.iter().all(|r| !r.loss_of_lock));
+    assert!(
+        records
+            .last()
+            .is_some_and(|r| r.locked && r.lock_time_s > 0.3)
+    );
+}
+
+#[test]
+fn second_order_pll_tracks_at_the_thermal_noise_formula() {
+    let sig = TestSignal {
+        doppler_rate_hzps: 0.0,
+        seed: 17,
+        ..TestSignal::gps_static()
+    };
+    let config = TrackingConfig {
+        pll_order: LoopOrder::Second,
+        pll_bandwidth_hz: 10.0,
+        ..TrackingConfig::default()
+    };
+    let records = track(&sig, config, sig.handover(0.2, -30.0), 4.0);
+    let settled = after(&records, &sig, 1.0);
+    assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
+    let diffs: Vec<f64> = settled
+        .iter()
+        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
+        .collect();
+    let (_, std) = mean_std(&phase_errors(&diffs));
+    let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
+    assert!(
+        (0.75..1.33).contains(&(std / expected)),
+        "{std} vs {expected}"
+    );
+}
