@@ -733,3 +733,110 @@ impl ChannelTracker {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn handover() -> Handover {
+        Handover {
+            signal: SignalKind::GpsL1Ca,
+            prn: 3,
+            sample_index: 0,
+            code_phase_samples: 100.0,
+            doppler_hz: 1000.0,
+            doppler_rate_hzps: 0.0,
+        }
+    }
+
+    const FRONT_END: FrontEnd = FrontEnd {
+        sample_rate_hz: 4.092e6,
+        if_hz: 0.0,
+    };
+
+    #[test]
+    fn config_reads_from_json_with_defaults() {
+        let config: TrackingConfig = serde_json::from_str(
+            r#"{"pll_order": "second", "pll_bandwidth_hz": 10.0,
+                "pll_discriminator": "four_quadrant", "fll_discriminator": "atan2",
+                "bit_sync": {"nh_bits": 3}}"#,
+        )
+        .expect("valid JSON config");
+        assert_eq!(config.pll_order, LoopOrder::Second);
+        assert_eq!(config.pll_discriminator, PllDiscriminator::FourQuadrant);
+        assert_eq!(config.fll_discriminator, FllDiscriminator::Atan2);
+        assert_eq!(config.bit_sync.nh_bits, 3);
+        assert_eq!(config.bit_sync.min_transitions, 8);
+        assert_eq!(
+            config.dll_bandwidth_hz,
+            TrackingConfig::default().dll_bandwidth_hz
+        );
+        assert!(serde_json::from_str::<TrackingConfig>(r#"{"pll_bw": 1.0}"#).is_err());
+    }
+
+    #[test]
+    fn bad_settings_are_rejected_with_their_name() {
+        let bad = [
+            TrackingConfig {
+                pll_bandwidth_hz: 0.0,
+                ..TrackingConfig::default()
+            },
+            TrackingConfig {
+                coherent_ms: 21,
+                ..TrackingConfig::default()
+            },
+            TrackingConfig {
+                early_late_spacing_chips: 2.5,
+                ..TrackingConfig::default()
+            },
+            TrackingConfig {
+                pll_narrow_bandwidth_hz: Some(f64::NAN),
+                ..TrackingConfig::default()
+            },
+            TrackingConfig {
+                fll_bandwidth_hz: -1.0,
+                ..TrackingConfig::default()
+            },
+        ];
+        for config in bad {
+            let err = ChannelTracker::new(handover(), FRONT_END, config).map(|_| ());
+            assert!(
+                matches!(err, Err(TrackingError::InvalidConfig(_))),
+                "{config:?}"
+            );
+        }
+        let low_rate = FrontEnd {
+            sample_rate_hz: 1e6,
+            if_hz: 0.0,
+        };
+        assert!(ChannelTracker::new(handover(), low_rate, TrackingConfig::default()).is_err());
+        let far = Handover {
+            code_phase_samples: 5000.0,
+            ..handover()
+        };
+        assert!(ChannelTracker::new(far, FRONT_END, TrackingConfig::default()).is_err());
+        let no_code = Handover {
+            prn: 0,
+            ..handover()
+        };
+        assert_eq!(
+            ChannelTracker::new(no_code, FRONT_END, TrackingConfig::default()).map(|_| ()),
+            Err(TrackingError::UnknownPrn {
+                signal: "GPS L1 C/A",
+                prn: 0
+            })
+        );
+    }
+
+    #[test]
+    fn the_first_period_starts_at_the_hand_over_code_epoch() {
+        let ch = ChannelTracker::new(handover(), FRONT_END, TrackingConfig::default())
+            .expect("valid channel");
+        assert_eq!(ch.next_index, 100);
+        assert!(ch.code_phase_chips.abs() < 1e-12);
+        let dp = ch.code_rate / FRONT_END.sample_rate_hz;
+        // 1023 chips at a code rate raised by the Doppler: just under 4092 samples.
+        assert_eq!(ch.period_length(), (1023.0 / dp).ceil() as usize);
+        assert_eq!(ch.data_modulation(), DataModulation::GpsLnav);
+    }
+}
