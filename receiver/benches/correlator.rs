@@ -1,11 +1,13 @@
 //! Correlator throughput (issue #4 speed bar: at least 5e8 channel-samples/s on the
 //! 2-core machine with 3 correlators and complex input). One 1 ms block at 4.092 Msps is
 //! correlated by 24 channels (12 GPS + 12 BeiDou PRNs, distinct Doppler and code phase),
-//! single-threaded and with rayon over the channels.
+//! single-threaded and with rayon over the channels. A second group runs whole channel
+//! trackers (correlator, loops, lock detectors, bit sync) over 0.2 s of a GPS signal.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_complex::Complex;
 use rayon::prelude::*;
+use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, Handover, TrackingConfig};
 use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
 use skyforge_receiver::tracking::signal::SignalKind;
 
@@ -81,5 +83,91 @@ fn correlators(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, correlators);
+/// 0.2 s of GPS PRN 1 at 1 kHz Doppler, code epoch at sample 0, in LCG noise (about
+/// 44 dB-Hz).
+fn gps_signal(n: usize) -> Vec<Complex<f32>> {
+    let code = SignalKind::GpsL1Ca.code(1).unwrap_or_default();
+    let dp = SignalKind::GpsL1Ca.chip_rate_hz() * (1.0 + 1000.0 / 1575.42e6) / FS_HZ;
+    let mut x: u32 = 7;
+    let mut noise = move || {
+        x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
+        ((x >> 16) as f32 / 32768.0 - 1.0) * 1.7
+    };
+    (0..n)
+        .map(|i| {
+            let chip = f64::from(code[((i as f64 * dp) as usize) % code.len()]);
+            let phi = std::f64::consts::TAU * 1000.0 * i as f64 / FS_HZ;
+            let a = 0.12 * chip;
+            Complex::new(
+                (a * phi.cos()) as f32 + noise(),
+                (a * phi.sin()) as f32 + noise(),
+            )
+        })
+        .collect()
+}
+
+fn channels_tracking(c: &mut Criterion) {
+    let n = (0.2 * FS_HZ) as usize;
+    let samples = gps_signal(n);
+    let handover = Handover {
+        signal: SignalKind::GpsL1Ca,
+        prn: 1,
+        sample_index: 0,
+        code_phase_samples: 0.0,
+        doppler_hz: 1010.0,
+        doppler_rate_hzps: 0.0,
+    };
+    let front_end = FrontEnd {
+        sample_rate_hz: FS_HZ,
+        if_hz: 0.0,
+    };
+    // The channel must hold lock over the whole span, or the figure would be inflated.
+    let mut check =
+        ChannelTracker::new(handover, front_end, TrackingConfig::default()).expect("valid channel");
+    let records = check.process(&samples, 0).expect("one block");
+    assert!(
+        records.len() >= 199,
+        "one record per code period: {}",
+        records.len()
+    );
+    assert!(
+        records
+            .iter()
+            .skip(150)
+            .all(|r| r.locked && !r.loss_of_lock),
+        "{:?}",
+        records
+            .iter()
+            .map(|r| (r.locked, r.pll_lock_indicator as f32))
+            .collect::<Vec<_>>()
+    );
+    let channels = 8;
+    let mut group = c.benchmark_group("channel_tracker_0.2s_4092ksps");
+    group.sample_size(10);
+    group.throughput(Throughput::Elements((channels * n) as u64));
+    group.bench_function(format!("{channels}ch_rayon_4092_sample_blocks"), |b| {
+        b.iter(|| {
+            (0..channels)
+                .into_par_iter()
+                .map(|_| {
+                    let mut ch =
+                        ChannelTracker::new(handover, front_end, TrackingConfig::default())
+                            .expect("valid channel");
+                    samples
+                        .chunks(4092)
+                        .enumerate()
+                        .map(|(k, block)| {
+                            ch.process(block, (k * 4092) as u64)
+                                .map(|r| r.len())
+                                .unwrap_or(0)
+                        })
+                        .sum::<usize>()
+                })
+                .sum::<usize>()
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, correlators, channels_tracking);
 criterion_main!(benches);
