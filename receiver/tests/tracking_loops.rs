@@ -436,3 +436,43 @@ fn second_order_pll_tracks_at_the_thermal_noise_formula() {
         "{std} vs {expected}"
     );
 }
+
+#[test]
+fn a_33_dbhz_signal_stays_locked_with_a_narrower_pll() {
+    // Kaplan's rule (3 sigma <= 15 deg for a Costas loop) puts a 15 Hz 3rd-order PLL at
+    // 1 ms past its threshold below about 35 dB-Hz; a 10 Hz PLL without FLL (whose
+    // frequency noise at 1 ms is tens of Hz here) holds 33 dB-Hz.
+    let sig = TestSignal {
+        cn0_dbhz: 33.0,
+        seed: 19,
+        ..TestSignal::gps_static()
+    };
+    let config = TrackingConfig {
+        pll_bandwidth_hz: 10.0,
+        fll_bandwidth_hz: 0.0,
+        ..TrackingConfig::default()
+    };
+    let records = track(&sig, config, sig.handover(0.2, 3.0), 3.0);
+    assert!(records.iter().all(|r| !r.loss_of_lock));
+    let settled = after(&records, &sig, 1.0);
+    let locked = settled.iter().filter(|r| r.locked).count();
+    assert!(
+        locked * 100 >= settled.len() * 99,
+        "{locked} of {}",
+        settled.len()
+    );
+    let cn0s: Vec<f64> = settled.iter().filter_map(|r| r.cn0_dbhz).collect();
+    let (cn0_mean, _) = mean_std(&cn0s);
+    assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
+    let diffs: Vec<f64> = settled
+        .iter()
+        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
+        .collect();
+    let (_, std) = mean_std(&phase_errors(&diffs));
+    let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
+    println!("33 dB-Hz: C/N0 {cn0_mean:.2}, phase std {std:.4} cycles (formula {expected:.4})");
+    assert!(
+        (0.7..1.5).contains(&(std / expected)),
+        "{std} vs {expected}"
+    );
+}

@@ -221,7 +221,8 @@ pub struct TrackingRecord {
     pub code_error_chips: f64,
     /// C/N0 estimate (dB-Hz), once the estimator window has filled.
     pub cn0_dbhz: Option<f64>,
-    /// PLL lock indicator (`cos 2 phi` estimate).
+    /// PLL lock indicator: the smoothed `cos 2 phi` estimate, corrected for the noise bias
+    /// `SNR / (1 + SNR)` of one prompt with the C/N0 estimate.
     pub pll_lock_indicator: f64,
     /// Phase lock (indicator and C/N0 above their thresholds).
     pub locked: bool,
@@ -688,9 +689,16 @@ impl ChannelTracker {
         ) + dll_rate_correction(self.config.dll_bandwidth_hz, code_error);
 
         // Lock detectors.
-        let indicator = self.lock_indicator.update(prompt, t);
         let cn0 = self.cn0.cn0_dbhz().or(self.last_cn0_dbhz);
         self.last_cn0_dbhz = cn0;
+        // Noise pulls the `cos 2 phi` estimate down to `SNR / (1 + SNR)` of a prompt in
+        // perfect lock; undo that with the C/N0 estimate so one threshold serves every
+        // C/N0 and integration time.
+        let raw = self.lock_indicator.update(prompt, t);
+        let indicator = match cn0.map(|c| 10f64.powf(c / 10.0) * t) {
+            Some(snr) if snr.is_finite() && snr > 0.0 => raw * (1.0 + 1.0 / snr),
+            _ => raw,
+        };
         let locked = indicator >= self.config.pll_lock_threshold
             && cn0.is_none_or(|c| c >= self.config.cn0_lock_threshold_dbhz);
         if self.locked && !locked {

@@ -81,12 +81,17 @@ impl Cn0Estimator {
         self.powers.push_back(prompt.norm_sqr());
     }
 
-    /// True once the window is full.
-    pub fn is_ready(&self) -> bool {
-        self.powers.len() == self.window
+    /// Prompts needed before the first estimate: the window, at most 200.
+    pub fn min_prompts(&self) -> usize {
+        self.window.min(200)
     }
 
-    /// The estimate (dB-Hz), `None` until the window has filled. A window whose moments
+    /// True once [`Self::min_prompts`] prompts are in (the window then keeps filling).
+    pub fn is_ready(&self) -> bool {
+        self.powers.len() >= self.min_prompts()
+    }
+
+    /// The estimate (dB-Hz), `None` until [`Self::is_ready`]. A window whose moments
     /// show no signal (`2 M2^2 <= M4`) or no noise gives -inf or +inf dB-Hz.
     pub fn cn0_dbhz(&self) -> Option<f64> {
         if !self.is_ready() {
@@ -163,7 +168,14 @@ mod tests {
     }
 
     #[test]
-    fn m2m4_needs_a_full_window() {
+    fn m2m4_needs_a_full_window_up_to_200_prompts() {
+        let mut est = Cn0Estimator::new(1000, 1e-3);
+        for p in prompts(30.0, 1.0, 0.0, 199, 4) {
+            est.push(p);
+        }
+        assert!(est.cn0_dbhz().is_none());
+        est.push(Complex::new(5.0, 0.0));
+        assert!(est.cn0_dbhz().is_some());
         let mut est = Cn0Estimator::new(10, 1e-3);
         for p in prompts(30.0, 1.0, 0.0, 9, 2) {
             est.push(p);
