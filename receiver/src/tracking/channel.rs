@@ -201,7 +201,8 @@ pub struct TrackingRecord {
     /// Integration length (s).
     pub integration_s: f64,
     /// Accumulated carrier phase of the replica at `sample_index` (cycles, integer part
-    /// kept): the integral of the Doppler since hand-over; grows with positive Doppler.
+    /// kept): the integral of the NCO Doppler since the first code epoch after hand-over (IF
+    /// excluded); grows with positive Doppler (RINEX sign is the opposite).
     pub carrier_phase_cycles: f64,
     /// Carrier Doppler of the NCO during the integration (Hz).
     pub doppler_hz: f64,
