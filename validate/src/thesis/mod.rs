@@ -2,6 +2,7 @@
 //! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
 //! printed number.
 
+pub mod fast_sync;
 mod geometry_run;
 pub mod loop_budget;
 pub mod pmf_fft;
@@ -11,7 +12,7 @@ use crate::report::Row;
 use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
-pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R"];
+pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R", "T-3.3-S"];
 
 /// Why a validation could not run.
 #[derive(Debug, thiserror::Error)]
@@ -22,6 +23,8 @@ pub enum ValidateError {
     Geometry(String),
     #[error("acquisition: {0}")]
     Acquisition(#[from] skyforge_receiver::acquisition::AcquisitionError),
+    #[error("tracking: {0}")]
+    Tracking(#[from] skyforge_receiver::tracking::TrackingError),
     #[error("unknown table {id:?}; known tables: {known}")]
     UnknownTable { id: String, known: String },
 }
@@ -66,6 +69,10 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
     if wanted("T-3.3-R") {
         starting("T-3.3-R");
         rows.extend(pmf_fft::rows()?);
+    }
+    if wanted("T-3.3-S") {
+        starting("T-3.3-S");
+        rows.extend(fast_sync::rows()?);
     }
     Ok(rows)
 }
