@@ -183,7 +183,6 @@ fn row(
     ours: f64,
     tolerance: String,
     verdict: Verdict,
-    note: String,
 ) -> Row {
     Row {
         table: TABLE.into(),
@@ -194,7 +193,7 @@ fn row(
         ours: Some(ours),
         tolerance,
         verdict,
-        note,
+        note: String::new(),
     }
 }
 
@@ -251,7 +250,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
                 3.0 * sigma_fine_hz
             ),
             Verdict::from_ok((fine - truth).abs() <= 3.0 * sigma_fine_hz),
-            String::new(),
         ),
         row(
             "initial Doppler error, coarse (peak bin)",
@@ -261,7 +259,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             coarse - truth,
             format!("abs <= half a bin = {half_bin_hz:.1} Hz"),
             Verdict::from_ok((coarse - truth).abs() <= half_bin_hz),
-            String::new(),
         ),
     ];
     let proposed = track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED)?;
@@ -290,7 +287,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
                 std,
                 "within a factor 1.6".into(),
                 Verdict::from_ok(std / th_std <= 1.6 && th_std / std <= 1.6),
-                String::new(),
             ));
             rows.push(row(
                 &format!("{name}: {what} error mean"),
@@ -300,7 +296,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
                 mean,
                 "abs below the std (no bias)".into(),
                 Verdict::from_ok(mean.abs() < std),
-                String::new(),
             ));
         }
         rows.push(row(
@@ -311,7 +306,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             run.convergence_s().unwrap_or(f64::NAN),
             "reported".into(),
             Verdict::from_ok(run.convergence_s().is_some()),
-            String::new(),
         ));
     }
     let ratio_phase = proposed.phase().1 / traditional.phase().1;
@@ -324,7 +318,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
         ratio_phase,
         "below 0.7".into(),
         Verdict::from_ok(ratio_phase < 0.7),
-        String::new(),
     ));
     rows.push(row(
         "proposed / traditional Doppler std",
@@ -334,7 +327,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
         ratio_doppler,
         "below 0.3".into(),
         Verdict::from_ok(ratio_doppler < 0.3),
-        String::new(),
     ));
     // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
     let fine_wide = track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL)?;
@@ -348,7 +340,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
         same,
         "within 1.25 (same accuracy)".into(),
         Verdict::from_ok((0.8..=1.25).contains(&same)),
-        String::new(),
     ));
     rows.push(row(
         "equal Q: convergence time, fine start",
@@ -361,7 +352,6 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             t_coarse.unwrap_or(f64::NAN)
         ),
         Verdict::from_ok(matches!((t_fine, t_coarse), (Some(f), Some(c)) if f < c)),
-        String::new(),
     ));
     Ok(rows)
 }
