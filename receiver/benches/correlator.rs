@@ -7,16 +7,16 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_complex::Complex;
 use rayon::prelude::*;
+use skyforge_receiver::signal::Signal;
 use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, Handover, TrackingConfig};
 use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
-use skyforge_receiver::tracking::signal::SignalKind;
 
 const FS_HZ: f64 = 4.092e6;
 const BLOCK: usize = 4092;
 
 fn channels(taps: TapSet) -> Vec<(Correlator, NcoState)> {
     (1..=12u8)
-        .flat_map(|prn| [(SignalKind::GpsL1Ca, prn), (SignalKind::BdsB1I, prn + 6)])
+        .flat_map(|prn| [(Signal::GpsL1Ca, prn), (Signal::BdsB1I, prn + 6)])
         .map(|(signal, prn)| {
             let code = signal.code(prn).unwrap_or_default();
             let nco = NcoState {
@@ -86,8 +86,8 @@ fn correlators(c: &mut Criterion) {
 /// 0.2 s of GPS PRN 1 at 1 kHz Doppler, code epoch at sample 0, in LCG noise (about
 /// 44 dB-Hz).
 fn gps_signal(n: usize) -> Vec<Complex<f32>> {
-    let code = SignalKind::GpsL1Ca.code(1).unwrap_or_default();
-    let dp = SignalKind::GpsL1Ca.chip_rate_hz() * (1.0 + 1000.0 / 1575.42e6) / FS_HZ;
+    let code = Signal::GpsL1Ca.code(1).unwrap_or_default();
+    let dp = Signal::GpsL1Ca.chip_rate_hz() * (1.0 + 1000.0 / 1575.42e6) / FS_HZ;
     let mut x: u32 = 7;
     let mut noise = move || {
         x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
@@ -110,7 +110,7 @@ fn channels_tracking(c: &mut Criterion) {
     let n = (0.2 * FS_HZ) as usize;
     let samples = gps_signal(n);
     let handover = Handover {
-        signal: SignalKind::GpsL1Ca,
+        signal: Signal::GpsL1Ca,
         prn: 1,
         sample_index: 0,
         code_phase_samples: 0.0,

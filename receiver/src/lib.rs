@@ -10,4 +10,5 @@ pub mod input;
 pub mod navdecode;
 pub mod observables;
 pub mod pvt;
+pub mod signal;
 pub mod tracking;

@@ -327,7 +327,7 @@ fn truncated_and_short_files_are_reported_and_the_common_part_is_read() {
     let text = report.to_string();
     assert!(
         text.starts_with(&format!(
-            "2 antenna(s), gps-l1ca, 4092000 samples/s: 600 common samples ({} s)\n  first sample at ",
+            "2 antenna(s), GPS L1 C/A, 4092000 samples/s: 600 common samples ({} s)\n  first sample at ",
             600.0 / 4.092e6
         )),
         "{text}"

@@ -6,7 +6,8 @@ use hifitime::Epoch;
 use num_complex::{Complex32, Complex64};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::nominal;
-use skyforge_receiver::input::{BlockReader, InputParams, Recording, SampleFormat, SignalBand};
+use skyforge_receiver::input::{BlockReader, InputParams, Recording, SampleFormat};
+use skyforge_receiver::signal::Signal;
 use skyforge_signals::codes::gps_ca::gps_ca;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
@@ -154,7 +155,7 @@ fn synthesised_ci8_recordings_of_two_antennas_hold_the_signal_where_the_geometry
         assert_eq!(r.format, SampleFormat::Ci8);
         assert_eq!(r.sample_rate_hz, fs);
         assert_eq!(r.if_hz, 0.0);
-        assert_eq!(r.signal, Some(SignalBand::GpsL1Ca));
+        assert_eq!(r.signal, Some(Signal::GpsL1Ca));
         assert_eq!(
             r.start_utc,
             Some(Epoch::from_gregorian_utc_at_midnight(2023, 3, 12))
@@ -164,7 +165,7 @@ fn synthesised_ci8_recordings_of_two_antennas_hold_the_signal_where_the_geometry
     let (_, report) = BlockReader::open(&recs, 4092).unwrap();
     assert_eq!(report.common_samples, 20 * 4092);
     assert!(report.findings.is_empty(), "{report}");
-    assert_eq!(report.signal, Some(SignalBand::GpsL1Ca));
+    assert_eq!(report.signal, Some(Signal::GpsL1Ca));
 
     let y = read_all(&recs, 4092);
     // Complex baseband: C = A^2, N0 = 2 sigma^2 / fs; the 8-bit writer puts sigma at 25.4
@@ -213,7 +214,7 @@ fn synthesised_real_if_recording_is_mixed_to_baseband() {
     );
     let rec = Recording::open(&path, &InputParams::default()).unwrap();
     assert_eq!((rec.format, rec.if_hz), (SampleFormat::Ri8, f_if));
-    assert_eq!(rec.signal, Some(SignalBand::GpsL1Ca));
+    assert_eq!(rec.signal, Some(Signal::GpsL1Ca));
     let (reader, _) = BlockReader::open(std::slice::from_ref(&rec), 1000).unwrap();
     assert_eq!(reader.output_if_hz(), 0.0);
     let y = read_all(&[rec], 1000);
@@ -327,7 +328,7 @@ fn gps_sdr_sim_style_raw_iq_reads_with_command_line_parameters() {
     };
     let (_, report) = BlockReader::open_paths(&[&path], &params, 2).unwrap();
     assert_eq!(report.common_samples, 3);
-    assert_eq!(report.signal, Some(SignalBand::GpsL1Ca));
+    assert_eq!(report.signal, Some(Signal::GpsL1Ca));
     let rec = Recording::open(&path, &params).unwrap();
     assert_eq!(rec.antenna, "gpssim");
     assert_eq!(rec.centre_frequency_hz, Some(1575.42e6));

@@ -4,11 +4,11 @@
 
 mod tracking_support;
 
+use skyforge_receiver::signal::Signal;
 use skyforge_receiver::tracking::channel::{
     ChannelTracker, FrontEnd, Handover, TrackingConfig, TrackingRecord,
 };
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
-use skyforge_receiver::tracking::signal::SignalKind;
 use tracking_support::{TestSignal, mean_std, phase_errors};
 
 /// Track `seconds` of `sig` from `handover`, generating 0.1 s at a time.
@@ -280,7 +280,7 @@ fn a_half_cycle_jump_sets_the_slip_flag() {
 #[test]
 fn bds_d1_finds_the_nh_code_and_integrates_twenty_ms() {
     let sig = TestSignal {
-        signal: SignalKind::BdsB1I,
+        signal: Signal::BdsB1I,
         prn: 19,
         code0_chips: 2046.0 * 20.0 * 1000.0 + 2046.0 * 7.0 + 100.25,
         seed: 21,
@@ -324,7 +324,7 @@ fn bds_d1_finds_the_nh_code_and_integrates_twenty_ms() {
 #[test]
 fn bds_d2_synchronises_on_two_millisecond_bits() {
     let sig = TestSignal {
-        signal: SignalKind::BdsB1I,
+        signal: Signal::BdsB1I,
         prn: 3,
         code0_chips: 2046.0 * 2.0 * 1000.0 + 2046.0 + 7.5,
         seed: 23,

@@ -14,10 +14,8 @@ pub mod format;
 pub mod if_mixer;
 pub mod reader;
 pub mod recording;
-pub mod signal;
 
 pub use error::{Finding, InputError};
 pub use format::SampleFormat;
 pub use reader::{AntennaInput, Block, BlockReader, InputReport};
 pub use recording::{InputParams, Recording};
-pub use signal::SignalBand;

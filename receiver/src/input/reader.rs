@@ -7,7 +7,7 @@ use super::error::{Finding, InputError};
 use super::format::{SampleFormat, decode_cf32, decode_ci8, decode_ci16, decode_ri8};
 use super::if_mixer::IfMixer;
 use super::recording::{InputParams, Recording};
-use super::signal::SignalBand;
+use crate::signal::Signal;
 use hifitime::{Duration, Epoch};
 use num_complex::Complex32;
 use std::fs::File;
@@ -50,7 +50,7 @@ pub struct InputReport {
     /// UTC time of the first delivered sample, when the metadata gives it.
     pub start_utc: Option<Epoch>,
     /// The signal the recordings hold, when known.
-    pub signal: Option<SignalBand>,
+    pub signal: Option<Signal>,
     /// Problems worked around and other notable facts.
     pub findings: Vec<Finding>,
 }
@@ -222,7 +222,7 @@ fn check_compatible(recordings: &[Recording]) -> Result<(), InputError> {
             && r.signal.is_some()
             && r.signal != other.signal
         {
-            let name = |s: Option<SignalBand>| s.map_or(String::new(), |s| s.to_string());
+            let name = |s: Option<Signal>| s.map_or(String::new(), |s| s.tag().to_string());
             return Err(InputError::SignalMismatch {
                 antenna,
                 path,

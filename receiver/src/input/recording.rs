@@ -5,7 +5,7 @@
 use super::datetime::parse_utc;
 use super::error::{Finding, InputError};
 use super::format::SampleFormat;
-use super::signal::SignalBand;
+use crate::signal::Signal;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
 use std::path::{Path, PathBuf};
@@ -23,7 +23,7 @@ pub struct InputParams {
     /// offset from the centre for complex samples (0: baseband).
     pub if_hz: Option<f64>,
     /// `--signal`.
-    pub signal: Option<SignalBand>,
+    pub signal: Option<Signal>,
 }
 
 /// One antenna's recording, as described by its metadata or the command line.
@@ -44,7 +44,7 @@ pub struct Recording {
     /// Centre frequency of the recorded band (Hz; SigMF capture `core:frequency`).
     pub centre_frequency_hz: Option<f64>,
     /// The signal recorded, when the metadata or the command line tells.
-    pub signal: Option<SignalBand>,
+    pub signal: Option<Signal>,
     /// UTC time of the first sample (`core:datetime` of the first capture).
     pub start_utc: Option<Epoch>,
     /// Index of the first sample in the recorder's sample stream (`core:global_index`).
@@ -337,10 +337,10 @@ impl Recording {
         let meta_if_hz = g.f64("skyforge:if_hz")?;
         let by_carrier = centre_frequency_hz
             .zip(meta_if_hz)
-            .and_then(|(c, f_if)| SignalBand::from_carrier_hz(c + f_if));
+            .and_then(|(c, f_if)| Signal::from_carrier_hz(c + f_if));
         let meta_signal = by_carrier
-            .or_else(|| centre_frequency_hz.and_then(|c| SignalBand::in_band(c, sample_rate_hz)))
-            .or_else(|| SignalBand::from_file_name(&name));
+            .or_else(|| centre_frequency_hz.and_then(|c| Signal::in_band(c, sample_rate_hz)))
+            .or_else(|| Signal::from_file_name(&name));
         if let (Some(meta), Some(given)) = (meta_signal, params.signal) {
             overridden(
                 &mut findings,
@@ -448,7 +448,7 @@ mod tests {
         let r =
             Recording::from_sigmf_json(p, &foreign(1561.098e6 - 250e3), &InputParams::default())
                 .unwrap();
-        assert_eq!(r.signal, Some(SignalBand::BdsB1I));
+        assert_eq!(r.signal, Some(Signal::BdsB1I));
         assert!((r.if_hz - 250e3).abs() < 1e-6, "{}", r.if_hz);
         assert_eq!(r.antenna, "rx");
         assert_eq!(r.data_path, Path::new("/data/rx.sigmf-data"));

@@ -13,7 +13,7 @@ use std::collections::VecDeque;
 
 use skyforge_signals::codes::neumann_hoffman;
 
-use super::signal::DataModulation;
+use crate::signal::DataModulation;
 
 /// Decision thresholds of the synchroniser.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]

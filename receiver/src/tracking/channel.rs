@@ -22,13 +22,13 @@ use super::discriminators::{FllDiscriminator, PllDiscriminator, dll_envelope_chi
 use super::error_budget::LoopOrder;
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{CarrierLoopFilter, aided_code_rate, dll_rate_correction};
-use super::signal::{DataModulation, SignalKind};
+use crate::signal::{DataModulation, Signal};
 
 /// What acquisition hands over to a tracking channel.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Handover {
     /// The signal.
-    pub signal: SignalKind,
+    pub signal: Signal,
     /// Satellite PRN.
     pub prn: u8,
     /// Sample index the code phase refers to.
@@ -261,7 +261,7 @@ struct BitAccumulator {
 /// One satellite's tracking channel.
 #[derive(Debug, Clone)]
 pub struct ChannelTracker {
-    signal: SignalKind,
+    signal: Signal,
     prn: u8,
     modulation: DataModulation,
     front_end: FrontEnd,
@@ -403,7 +403,7 @@ impl ChannelTracker {
     }
 
     /// The tracked signal.
-    pub fn signal(&self) -> SignalKind {
+    pub fn signal(&self) -> Signal {
         self.signal
     }
 
@@ -749,7 +749,7 @@ mod tests {
 
     fn handover() -> Handover {
         Handover {
-            signal: SignalKind::GpsL1Ca,
+            signal: Signal::GpsL1Ca,
             prn: 3,
             sample_index: 0,
             code_phase_samples: 100.0,
@@ -830,10 +830,11 @@ mod tests {
         };
         assert_eq!(
             ChannelTracker::new(no_code, FRONT_END, TrackingConfig::default()).map(|_| ()),
-            Err(TrackingError::UnknownPrn {
-                signal: "GPS L1 C/A",
-                prn: 0
-            })
+            Err(TrackingError::UnknownPrn(crate::signal::UnknownPrn {
+                signal: Signal::GpsL1Ca,
+                prn: 0,
+                max: 63
+            }))
         );
     }
 

@@ -9,7 +9,6 @@ pub mod discriminators;
 pub mod error_budget;
 pub mod lock;
 pub mod loop_filter;
-pub mod signal;
 
 /// Errors of the tracking stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -18,13 +17,8 @@ pub enum TrackingError {
     #[error("invalid tracking configuration: {0}")]
     InvalidConfig(String),
     /// The PRN has no ranging code for the signal.
-    #[error("no {signal} ranging code for PRN {prn}")]
-    UnknownPrn {
-        /// Signal name.
-        signal: &'static str,
-        /// The PRN asked for.
-        prn: u8,
-    },
+    #[error(transparent)]
+    UnknownPrn(#[from] crate::signal::UnknownPrn),
     /// A block did not start where the previous one ended.
     #[error("sample blocks must be contiguous: expected first sample {expected}, got {got}")]
     NonContiguous {

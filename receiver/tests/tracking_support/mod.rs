@@ -7,14 +7,14 @@
 use num_complex::Complex;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
+use skyforge_receiver::signal::{DataModulation, Signal};
 use skyforge_receiver::tracking::channel::Handover;
-use skyforge_receiver::tracking::signal::{DataModulation, SignalKind};
 use skyforge_signals::codes::neumann_hoffman::NH20;
 
 /// One satellite signal and its truth.
 #[derive(Debug, Clone)]
 pub struct TestSignal {
-    pub signal: SignalKind,
+    pub signal: Signal,
     pub prn: u8,
     pub fs_hz: f64,
     pub if_hz: f64,
@@ -38,7 +38,7 @@ impl TestSignal {
     /// A GPS C/A signal of PRN 7 at 4.092 Msps, 45 dB-Hz, Doppler 1.5 kHz + 0.5 Hz/s.
     pub fn gps_static() -> Self {
         Self {
-            signal: SignalKind::GpsL1Ca,
+            signal: Signal::GpsL1Ca,
             prn: 7,
             fs_hz: 4.092e6,
             if_hz: 0.0,
