@@ -9,9 +9,9 @@ use skyforge_orbits::ephemeris::nominal;
 use skyforge_receiver::input::{BlockReader, InputParams, Recording, SampleFormat};
 use skyforge_receiver::signal::Signal;
 use skyforge_signals::codes::gps_ca::gps_ca;
+use skyforge_signals::sample_format::SampleFormat as WriterFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
-use skyforge_signals::synth::format::SampleFormat as WriterFormat;
 use skyforge_signals::synth::quantise::Quantiser;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
 use skyforge_signals::synth::sigmf::RecordingMeta;
@@ -321,7 +321,7 @@ fn gps_sdr_sim_style_raw_iq_reads_with_command_line_parameters() {
     let bytes: Vec<u8> = iq.iter().flat_map(|v| v.to_le_bytes()).collect();
     std::fs::write(&path, bytes).unwrap();
     let params = InputParams {
-        format: Some("ci16".parse().unwrap()),
+        format: Some(WriterFormat::Ci16),
         sample_rate_hz: Some(2.6e6),
         if_hz: None,
         signal: Some("gps-l1ca".parse().unwrap()),

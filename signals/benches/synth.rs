@@ -5,9 +5,9 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use skyforge_orbits::ephemeris::nominal;
+use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
-use skyforge_signals::synth::format::SampleFormat;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
 use std::io::Write;
 

@@ -8,101 +8,21 @@
 
 use super::error::InputError;
 use num_complex::Complex32;
-use std::str::FromStr;
 
-/// A sample container.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
-pub enum SampleFormat {
-    /// Complex, interleaved I/Q, signed 8-bit (SigMF `ci8`; gps-sdr-sim's 8-bit output).
-    Ci8,
-    /// Complex, interleaved I/Q, signed 16-bit little-endian (SigMF `ci16_le`; gps-sdr-sim's
-    /// 16-bit output).
-    Ci16,
-    /// Complex, interleaved I/Q, 32-bit IEEE float little-endian (SigMF `cf32_le`).
-    Cf32,
-    /// Real, signed 8-bit samples of a real IF signal (SigMF `ri8`).
-    Ri8,
-}
+/// The sample containers (shared with the synthesiser that writes them).
+pub use skyforge_signals::sample_format::SampleFormat;
 
 /// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
 pub const ALLOWED_DATATYPES: &str =
     "ci8, ci16_le (or ci16), cf32_le (or cf32), ri8 (all little-endian)";
 
-impl SampleFormat {
-    /// Every supported container.
-    pub const ALL: [SampleFormat; 4] = [
-        SampleFormat::Ci8,
-        SampleFormat::Ci16,
-        SampleFormat::Cf32,
-        SampleFormat::Ri8,
-    ];
-
-    /// Whether samples are complex (I/Q).
-    pub fn is_complex(self) -> bool {
-        !matches!(self, SampleFormat::Ri8)
-    }
-
-    /// Bytes per sample (both components for complex formats).
-    pub fn bytes_per_sample(self) -> usize {
-        match self {
-            SampleFormat::Ci8 => 2,
-            SampleFormat::Ci16 => 4,
-            SampleFormat::Cf32 => 8,
-            SampleFormat::Ri8 => 1,
-        }
-    }
-
-    /// SigMF `core:datatype` (SigMF 1.0 "Dataset Format": `<r|c><type><bits>[_le|_be]`, the
-    /// endianness suffix omitted for 8-bit types).
-    pub fn sigmf_datatype(self) -> &'static str {
-        match self {
-            SampleFormat::Ci8 => "ci8",
-            SampleFormat::Ci16 => "ci16_le",
-            SampleFormat::Cf32 => "cf32_le",
-            SampleFormat::Ri8 => "ri8",
-        }
-    }
-
-    /// Container value that maps to 1.0 in the decoded samples (1 for float).
-    pub fn full_scale(self) -> f32 {
-        match self {
-            SampleFormat::Ci8 | SampleFormat::Ri8 => 128.0,
-            SampleFormat::Ci16 => 32768.0,
-            SampleFormat::Cf32 => 1.0,
-        }
-    }
-
-    /// The format named by a SigMF `core:datatype` or a command-line `--format` value;
-    /// `origin` (a file or `--format`) goes into the error message.
-    pub fn parse(name: &str, origin: &str) -> Result<Self, InputError> {
-        let format = match name.trim().to_ascii_lowercase().as_str() {
-            "ci8" => SampleFormat::Ci8,
-            "ci16_le" | "ci16" => SampleFormat::Ci16,
-            "cf32_le" | "cf32" => SampleFormat::Cf32,
-            "ri8" => SampleFormat::Ri8,
-            _ => {
-                return Err(InputError::UnknownDatatype {
-                    origin: origin.to_owned(),
-                    found: name.to_owned(),
-                });
-            }
-        };
-        Ok(format)
-    }
-}
-
-impl std::fmt::Display for SampleFormat {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.sigmf_datatype())
-    }
-}
-
-impl FromStr for SampleFormat {
-    type Err = InputError;
-    /// A command-line `--format` value.
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::parse(s, "--format")
-    }
+/// The format named by a SigMF `core:datatype` or a command-line `--format` value;
+/// `origin` (a file or `--format`) goes into the error message.
+pub fn parse_format(name: &str, origin: &str) -> Result<SampleFormat, InputError> {
+    SampleFormat::from_name(name).ok_or_else(|| InputError::UnknownDatatype {
+        origin: origin.to_owned(),
+        found: name.to_owned(),
+    })
 }
 
 /// Samples per inner loop of the integer decoders.
@@ -186,11 +106,17 @@ mod tests {
     #[test]
     fn names_round_trip_and_unknown_names_list_the_allowed_ones() {
         for f in SampleFormat::ALL {
-            assert_eq!(SampleFormat::parse(f.sigmf_datatype(), "x").unwrap(), f);
+            assert_eq!(parse_format(f.sigmf_datatype(), "x").unwrap(), f);
         }
-        assert_eq!("CI16".parse::<SampleFormat>().unwrap(), SampleFormat::Ci16);
-        assert_eq!("cf32".parse::<SampleFormat>().unwrap(), SampleFormat::Cf32);
-        let e = "ci16_be".parse::<SampleFormat>().unwrap_err().to_string();
+        assert_eq!(
+            parse_format("CI16", "--format").unwrap(),
+            SampleFormat::Ci16
+        );
+        assert_eq!(
+            parse_format("cf32", "--format").unwrap(),
+            SampleFormat::Cf32
+        );
+        let e = parse_format("ci16_be", "--format").unwrap_err().to_string();
         assert_eq!(
             e,
             format!("--format: unknown sample datatype \"ci16_be\"; allowed: {ALLOWED_DATATYPES}")

@@ -258,7 +258,7 @@ impl Recording {
 
         let format = match (g.str("core:datatype")?, params.format) {
             (Some(d), given) => {
-                let meta = SampleFormat::parse(d, &meta_path.display().to_string())?;
+                let meta = super::format::parse_format(d, &meta_path.display().to_string())?;
                 if let Some(given) = given {
                     overridden(
                         &mut findings,

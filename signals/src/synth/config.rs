@@ -1,8 +1,8 @@
 //! `[signal]`: what the synthesiser writes.
 
 use super::filter::FilterConfig;
-use super::format::SampleFormat;
 use crate::errors::link_budget::LinkBudgetConfig;
+use crate::sample_format::SampleFormat;
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::ephemeris::SatId;
 use std::collections::BTreeMap;

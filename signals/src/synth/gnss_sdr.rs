@@ -8,7 +8,7 @@
 //! It decodes D2 (GEO) navigation data for C01-C05. The `.conf` says so in a comment.
 
 use super::config::SignalConfig;
-use super::format::SampleFormat;
+use crate::sample_format::SampleFormat;
 use std::fmt::Write;
 
 /// Highest BeiDou PRN for which GNSS-SDR 0.0.17 generates a B1I replica (read from the

@@ -5,7 +5,6 @@
 pub mod config;
 pub mod constellation;
 pub mod filter;
-pub mod format;
 pub mod gnss_sdr;
 pub mod link;
 pub mod link_terms;

@@ -15,7 +15,6 @@
 
 use super::config::{BLOCK_S, SignalConfig};
 use super::filter::BandFilter;
-use super::format::SampleFormat;
 use super::mix::{ChannelBlock, MixScratch, mix_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
@@ -23,6 +22,7 @@ use super::transmitter::Transmitter;
 use crate::errors::clock::{ClockModel, ClockSample};
 use crate::errors::events::{EventEffect, EventSchedule};
 use crate::errors::multipath::{Path, dll_bias_m};
+use crate::sample_format::SampleFormat;
 use rayon::prelude::*;
 use skyforge_orbits::constants::C_MPS;
 use std::f64::consts::TAU;

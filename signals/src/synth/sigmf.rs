@@ -1,6 +1,6 @@
 //! SigMF 1.x metadata (`.sigmf-meta`) for one antenna's recording.
 
-use super::format::SampleFormat;
+use crate::sample_format::SampleFormat;
 use serde_json::{Value, json};
 
 /// What a recording's metadata says.
