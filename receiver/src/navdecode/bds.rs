@@ -2,7 +2,7 @@
 
 use super::bds_bch::decode_subframe;
 use super::bds_fields::{self, Clock, Header};
-use super::framer::{FrameSpec, Framed, Framer};
+use super::framer::{FrameSpec, FramedStream};
 use super::{
     DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SUBFRAME_BITS,
     SubframeInfo, WEEK_S, time_consistent,
@@ -96,10 +96,7 @@ fn confirm(format: BdsNavFormat, window: &[u8]) -> bool {
 pub struct BdsDecoder {
     sat: SatId,
     format: BdsNavFormat,
-    framer: Framer,
-    stats: DecodeStats,
-    /// Stream bit and time of week of the last accepted subframe start.
-    anchor: Option<(u64, f64)>,
+    stream: FramedStream,
     week: Option<u32>,
     /// D1: frame number (SOW / 30) and information bits of subframes 1-3.
     d1: [Option<(u32, Vec<u8>)>; 3],
@@ -127,9 +124,7 @@ impl BdsDecoder {
         Ok(Self {
             sat,
             format: BdsNavFormat::for_prn(sat.prn),
-            framer: Framer::new(SPEC),
-            stats: DecodeStats::default(),
-            anchor: None,
+            stream: FramedStream::new(SPEC),
             week: None,
             d1: [None, None, None],
             d2: vec![None; D2_PAGES],
@@ -160,7 +155,7 @@ impl BdsDecoder {
 
     /// Whether subframe synchronisation is held.
     pub fn is_synchronised(&self) -> bool {
-        self.framer.is_locked()
+        self.stream.framer.is_locked()
     }
 
     fn subframe(&mut self, start_bit: u64, inverted: bool, bits: &[u8], out: &mut Vec<NavEvent>) {
@@ -169,24 +164,24 @@ impl BdsDecoder {
         let h = Header::new(&info);
         let tow_s = start_tow_s(self.format, &h);
         let bit_s = self.format.bit_period_s();
-        if !(valid(&h) && time_consistent(self.anchor, start_bit, tow_s, bit_s)) {
-            self.stats.dropped_subframes += 1;
+        if !(valid(&h) && time_consistent(self.stream.anchor, start_bit, tow_s, bit_s)) {
+            self.stream.stats.dropped_subframes += 1;
             out.push(NavEvent::SubframeDropped {
                 start_bit,
                 words: 1,
             });
-            self.record(false, start_bit, out);
+            self.stream.record(false, start_bit, out);
             return;
         }
-        self.record(true, start_bit, out);
-        if let (Some(week), Some((_, last))) = (self.week, self.anchor)
+        self.stream.record(true, start_bit, out);
+        if let (Some(week), Some((_, last))) = (self.week, self.stream.anchor)
             && tow_s < last - WEEK_S / 2.0
         {
             self.week = Some(week + 1);
         }
-        self.anchor = Some((start_bit, tow_s));
-        self.stats.subframes += 1;
-        self.stats.corrected_bits += u64::from(corrected);
+        self.stream.anchor = Some((start_bit, tow_s));
+        self.stream.stats.subframes += 1;
+        self.stream.stats.corrected_bits += u64::from(corrected);
         let page = self.store(&h, info);
         out.push(NavEvent::Subframe(SubframeInfo {
             start_bit,
@@ -285,58 +280,22 @@ impl BdsDecoder {
             out.push(NavEvent::Ephemeris(Box::new(eph)));
         }
     }
-
-    fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
-        if let Some(Framed::SyncLost { at_bit }) = self.framer.record(ok, start_bit) {
-            self.sync_lost(at_bit, out);
-        }
-    }
-
-    fn sync_lost(&mut self, at_bit: u64, out: &mut Vec<NavEvent>) {
-        self.stats.sync_losses += 1;
-        self.anchor = None;
-        out.push(NavEvent::SyncLost { at_bit });
-    }
 }
 
 impl NavDecoder for BdsDecoder {
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stats.bits += soft_bits.len() as u64;
-        self.framer.push(soft_bits);
+        self.stream.stats.bits += soft_bits.len() as u64;
+        self.stream.framer.push(soft_bits);
         let mut out = Vec::new();
         let format = self.format;
-        while let Some(step) = self.framer.poll(|w| confirm(format, w)) {
-            match step {
-                Framed::SyncAcquired {
-                    start_bit,
-                    inverted,
-                } => {
-                    self.anchor = None;
-                    out.push(NavEvent::SyncAcquired {
-                        start_bit,
-                        inverted,
-                    });
-                }
-                Framed::SyncLost { at_bit } => self.sync_lost(at_bit, &mut out),
-                Framed::NoPreamble { start_bit } => {
-                    self.stats.dropped_subframes += 1;
-                    out.push(NavEvent::SubframeDropped {
-                        start_bit,
-                        words: 0,
-                    });
-                }
-                Framed::Subframe {
-                    start_bit,
-                    inverted,
-                    bits,
-                } => {
-                    let before = self.iono;
-                    self.subframe(start_bit, inverted, &bits, &mut out);
-                    if let Some(iono) = self.iono
-                        && before != Some(iono)
-                    {
-                        out.push(NavEvent::BdsIono(iono));
-                    }
+        while let Some(step) = self.stream.framer.poll(|w| confirm(format, w)) {
+            if let Some((start_bit, inverted, bits)) = self.stream.bookkeeping(step, &mut out) {
+                let before = self.iono;
+                self.subframe(start_bit, inverted, &bits, &mut out);
+                if let Some(iono) = self.iono
+                    && before != Some(iono)
+                {
+                    out.push(NavEvent::BdsIono(iono));
                 }
             }
         }
@@ -344,12 +303,11 @@ impl NavDecoder for BdsDecoder {
     }
 
     fn restart(&mut self) {
-        self.framer.restart();
-        self.anchor = None;
+        self.stream.restart();
     }
 
     fn stats(&self) -> DecodeStats {
-        self.stats
+        self.stream.stats
     }
 
     fn satellite(&self) -> SatId {

@@ -2,7 +2,7 @@
 //! a preamble search in both polarities confirmed by a message-specific header check, and
 //! the locked state that hands out one 300-bit subframe after another.
 
-use super::{SUBFRAME_BITS, hard_bit};
+use super::{DecodeStats, NavEvent, SUBFRAME_BITS, hard_bit};
 
 /// Consecutive failures (missing preamble or rejected subframe) that end the lock.
 const MAX_FAILURES: u8 = 3;
@@ -335,5 +335,83 @@ mod tests {
             .filter(|x| matches!(x, Framed::NoPreamble { .. }))
             .count();
         assert_eq!(no_preamble, 2, "{seen:?}");
+    }
+}
+
+/// What every decoder keeps around its framer: the statistics and the time anchor (stream
+/// bit and time of week of the last accepted subframe start), and the handling of the
+/// framer's bookkeeping steps.
+#[derive(Debug, Clone)]
+pub(crate) struct FramedStream {
+    pub framer: Framer,
+    pub stats: DecodeStats,
+    pub anchor: Option<(u64, f64)>,
+}
+
+impl FramedStream {
+    pub fn new(spec: FrameSpec) -> Self {
+        Self {
+            framer: Framer::new(spec),
+            stats: DecodeStats::default(),
+            anchor: None,
+        }
+    }
+
+    /// Sync acquired or lost and missing preambles become events (and counts); a subframe
+    /// (start bit, inversion, bits) is handed back for the message-specific decoding.
+    pub fn bookkeeping(
+        &mut self,
+        step: Framed,
+        out: &mut Vec<NavEvent>,
+    ) -> Option<(u64, bool, Vec<u8>)> {
+        match step {
+            Framed::SyncAcquired {
+                start_bit,
+                inverted,
+            } => {
+                self.anchor = None;
+                out.push(NavEvent::SyncAcquired {
+                    start_bit,
+                    inverted,
+                });
+                None
+            }
+            Framed::SyncLost { at_bit } => {
+                self.sync_lost(at_bit, out);
+                None
+            }
+            Framed::NoPreamble { start_bit } => {
+                self.stats.dropped_subframes += 1;
+                out.push(NavEvent::SubframeDropped {
+                    start_bit,
+                    words: 0,
+                });
+                None
+            }
+            Framed::Subframe {
+                start_bit,
+                inverted,
+                bits,
+            } => Some((start_bit, inverted, bits)),
+        }
+    }
+
+    /// Tell the framer whether the subframe at `start_bit` was accepted.
+    pub fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
+        if let Some(Framed::SyncLost { at_bit }) = self.framer.record(ok, start_bit) {
+            self.sync_lost(at_bit, out);
+        }
+    }
+
+    fn sync_lost(&mut self, at_bit: u64, out: &mut Vec<NavEvent>) {
+        self.stats.sync_losses += 1;
+        self.anchor = None;
+        out.push(NavEvent::SyncLost { at_bit });
+    }
+
+    /// Forget the stream (after a tracking gap).
+    pub fn restart(&mut self) {
+        self.framer.restart();
+        self.anchor = None;
     }
 }

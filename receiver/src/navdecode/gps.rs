@@ -1,6 +1,6 @@
 //! GPS LNAV decoder state machine (IS-GPS-200 20.3.2-20.3.5).
 
-use super::framer::{FrameSpec, Framed, Framer};
+use super::framer::{FrameSpec, FramedStream};
 use super::gps_fields::{
     self, Header, PAGE18_SV_ID, Page18, Subframe1, Subframe2, Subframe3, nearest_week,
 };
@@ -69,12 +69,9 @@ fn confirm(window: &[u8]) -> bool {
 pub struct GpsLnavDecoder {
     sat: SatId,
     reference_week: u32,
-    framer: Framer,
-    stats: DecodeStats,
+    stream: FramedStream,
     /// Full week of the last decoded subframe.
     week: Option<u32>,
-    /// Stream bit and time of week of the last accepted subframe start.
-    anchor: Option<(u64, f64)>,
     sf1: Option<Subframe1>,
     sf2: Option<Subframe2>,
     sf3: Option<Subframe3>,
@@ -102,10 +99,8 @@ impl GpsLnavDecoder {
         Ok(Self {
             sat,
             reference_week,
-            framer: Framer::new(SPEC),
-            stats: DecodeStats::default(),
+            stream: FramedStream::new(SPEC),
             week: None,
-            anchor: None,
             sf1: None,
             sf2: None,
             sf3: None,
@@ -132,7 +127,7 @@ impl GpsLnavDecoder {
 
     /// Whether subframe synchronisation is held.
     pub fn is_synchronised(&self) -> bool {
-        self.framer.is_locked()
+        self.stream.framer.is_locked()
     }
 
     /// Decode one polarity-corrected subframe.
@@ -145,7 +140,7 @@ impl GpsLnavDecoder {
         let src = match check_subframe(&bits) {
             Ok(src) => src,
             Err(words) => {
-                self.stats.parity_failed_words += u64::from(words.count_ones());
+                self.stream.stats.parity_failed_words += u64::from(words.count_ones());
                 self.drop_subframe(start_bit, words, out);
                 return;
             }
@@ -154,19 +149,19 @@ impl GpsLnavDecoder {
         let tow_s = header.start_tow_s();
         if header.preamble != PREAMBLE
             || !(1..=5).contains(&header.id)
-            || !time_consistent(self.anchor, start_bit, tow_s, BIT_PERIOD_S)
+            || !time_consistent(self.stream.anchor, start_bit, tow_s, BIT_PERIOD_S)
         {
             // Parity passed but TLM/HOW contradict the stream (undetected errors).
             self.drop_subframe(start_bit, 0b11, out);
             return;
         }
-        self.record(true, start_bit, out);
-        if let (Some(week), Some((_, last))) = (self.week, self.anchor)
+        self.stream.record(true, start_bit, out);
+        if let (Some(week), Some((_, last))) = (self.week, self.stream.anchor)
             && tow_s < last - WEEK_S / 2.0
         {
             self.week = Some(week + 1);
         }
-        self.anchor = Some((start_bit, tow_s));
+        self.stream.anchor = Some((start_bit, tow_s));
         let mut page = None;
         match header.id {
             1 => {
@@ -185,7 +180,7 @@ impl GpsLnavDecoder {
             }
             _ => {}
         }
-        self.stats.subframes += 1;
+        self.stream.stats.subframes += 1;
         out.push(NavEvent::Subframe(SubframeInfo {
             start_bit,
             id: header.id,
@@ -232,66 +227,31 @@ impl GpsLnavDecoder {
     }
 
     fn drop_subframe(&mut self, start_bit: u64, words: u16, out: &mut Vec<NavEvent>) {
-        self.stats.dropped_subframes += 1;
+        self.stream.stats.dropped_subframes += 1;
         out.push(NavEvent::SubframeDropped { start_bit, words });
-        self.record(false, start_bit, out);
-    }
-
-    fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
-        if let Some(Framed::SyncLost { at_bit }) = self.framer.record(ok, start_bit) {
-            self.sync_lost(at_bit, out);
-        }
-    }
-
-    fn sync_lost(&mut self, at_bit: u64, out: &mut Vec<NavEvent>) {
-        self.stats.sync_losses += 1;
-        self.anchor = None;
-        out.push(NavEvent::SyncLost { at_bit });
+        self.stream.record(false, start_bit, out);
     }
 }
 
 impl NavDecoder for GpsLnavDecoder {
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stats.bits += soft_bits.len() as u64;
-        self.framer.push(soft_bits);
+        self.stream.stats.bits += soft_bits.len() as u64;
+        self.stream.framer.push(soft_bits);
         let mut out = Vec::new();
-        while let Some(step) = self.framer.poll(confirm) {
-            match step {
-                Framed::SyncAcquired {
-                    start_bit,
-                    inverted,
-                } => {
-                    self.anchor = None;
-                    out.push(NavEvent::SyncAcquired {
-                        start_bit,
-                        inverted,
-                    });
-                }
-                Framed::SyncLost { at_bit } => self.sync_lost(at_bit, &mut out),
-                Framed::NoPreamble { start_bit } => {
-                    self.stats.dropped_subframes += 1;
-                    out.push(NavEvent::SubframeDropped {
-                        start_bit,
-                        words: 0,
-                    });
-                }
-                Framed::Subframe {
-                    start_bit,
-                    inverted,
-                    bits,
-                } => self.subframe(start_bit, inverted, &bits, &mut out),
+        while let Some(step) = self.stream.framer.poll(confirm) {
+            if let Some((start_bit, inverted, bits)) = self.stream.bookkeeping(step, &mut out) {
+                self.subframe(start_bit, inverted, &bits, &mut out);
             }
         }
         out
     }
 
     fn restart(&mut self) {
-        self.framer.restart();
-        self.anchor = None;
+        self.stream.restart();
     }
 
     fn stats(&self) -> DecodeStats {
-        self.stats
+        self.stream.stats
     }
 
     fn satellite(&self) -> SatId {
