@@ -1,7 +1,7 @@
 //! The bundled software receiver. It sees samples and what a real receiver could be told
 //! (ephemerides, approximate time and position), never simulator truth: of
 //! `skyforge-signals` it uses only the signal definitions every receiver has (ranging
-//! codes, navigation-message formats, sample-file formats), which
+//! codes, navigation-message formats, sample-file formats, NCO helpers), which
 //! `tests/tests/truth_firewall.rs` checks.
 
 pub mod acquisition;

@@ -5,6 +5,7 @@ pub mod antenna;
 pub mod codes;
 pub mod errors;
 pub mod navmsg;
+pub mod nco;
 pub mod sample_format;
 pub mod signal;
 pub mod synth;

@@ -9,7 +9,7 @@ use skyforge_orbits::atmosphere::standard_slant_delay_m;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::klobuchar::{bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
 
@@ -67,24 +67,34 @@ fn sigma_m(cfg: &PvtConfig, el: Option<f64>) -> f64 {
     }
 }
 
-/// Ionospheric delay (m) of a satellite's signal for a receiver at `r_rx_m`, or 0 when
-/// the receiver is above the ground model's reach or no coefficients are known.
-fn iono_m(
-    cfg: &PvtConfig,
-    origin: &TimeOrigin,
-    t_s: f64,
-    sat: SatId,
-    r_rx_m: &Vec3,
-    az: f64,
-    el: f64,
-) -> f64 {
-    let g = ecef_to_geodetic(r_rx_m);
+/// What the atmosphere models need of the receiver at one linearisation point: its
+/// geodetic position and the GPS / BeiDou seconds of week of the receive time.
+struct ReceiverPlace {
+    g: Geodetic,
+    gps_sow: f64,
+    bdt_sow: f64,
+}
+
+impl ReceiverPlace {
+    fn new(r: &Vec3, origin: &TimeOrigin, t_s: f64) -> Self {
+        let at = origin.epoch_at(t_s);
+        Self {
+            g: ecef_to_geodetic(r),
+            gps_sow: gpst_week_sow(at).1,
+            bdt_sow: bdt_week_sow(at).1,
+        }
+    }
+}
+
+/// Ionospheric delay (m) of a satellite's signal for a receiver at `place`, or 0 when the
+/// receiver is above the ground model's reach or no coefficients are known.
+fn iono_m(cfg: &PvtConfig, place: &ReceiverPlace, sat: SatId, az: f64, el: f64) -> f64 {
+    let g = &place.g;
     if g.h_m > IONOSPHERE_USER_CEILING_M {
         return 0.0;
     }
-    let at = origin.epoch_at(t_s);
-    let gps = |c| gps_klobuchar_l1_s(c, g.lat_rad, g.lon_rad, az, el, gpst_week_sow(at).1);
-    let bds = |c| bds_klobuchar_b1i_s(c, g.lat_rad, g.lon_rad, az, el, bdt_week_sow(at).1);
+    let gps = |c| gps_klobuchar_l1_s(c, g.lat_rad, g.lon_rad, az, el, place.gps_sow);
+    let bds = |c| bds_klobuchar_b1i_s(c, g.lat_rad, g.lon_rad, az, el, place.bdt_sow);
     let seconds = match (sat.system, &cfg.iono_gps, &cfg.iono_bds) {
         (System::Gps, Some(c), _) => gps(c),
         (System::Gps, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
@@ -173,6 +183,7 @@ fn linearise(
     systems: &[System],
 ) -> Vec<Row> {
     let mut rows = Vec::with_capacity(meas.len());
+    let place = ReceiverPlace::new(r, origin, t_rx_s);
     for (m, eph) in meas.iter().zip(ephs) {
         let view = sat_view(eph, t_rx_s, m.pseudorange_m, r);
         let el = view.az_el_rad.map(|(_, el)| el);
@@ -182,9 +193,9 @@ fn linearise(
         let clock_col = systems.iter().position(|s| *s == m.sat.system).unwrap_or(0);
         let mut predicted = view.range_m + clocks[clock_col] - C_MPS * view.clock_s;
         if let Some((az, el)) = view.az_el_rad {
-            predicted += iono_m(cfg, origin, t_rx_s, m.sat, r, az, el);
+            predicted += iono_m(cfg, &place, m.sat, az, el);
             if cfg.troposphere {
-                let g = ecef_to_geodetic(r);
+                let g = &place.g;
                 predicted += standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0);
             }
         }

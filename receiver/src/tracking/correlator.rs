@@ -20,6 +20,7 @@
 //! its data into blocks around that call.
 
 use num_complex::Complex;
+use skyforge_signals::nco::LanePhasors;
 
 use super::TrackingError;
 
@@ -280,23 +281,12 @@ struct CarrierStart {
 
 impl CarrierStart {
     fn new(nco: &NcoState) -> Self {
-        let frac = nco.carrier_phase_cycles - nco.carrier_phase_cycles.floor();
-        let (mut s, mut c) = (std::f64::consts::TAU * frac).sin_cos();
-        let (s1, c1) = (std::f64::consts::TAU * nco.carrier_cycles_per_sample).sin_cos();
-        let mut zr = [0f32; LANES];
-        let mut zi = [0f32; LANES];
-        for l in 0..LANES {
-            zr[l] = c as f32;
-            zi[l] = s as f32;
-            (c, s) = (c * c1 - s * s1, c * s1 + s * c1);
-        }
-        let step = std::f64::consts::TAU * LANES as f64 * nco.carrier_cycles_per_sample;
-        let (ws, wc) = step.sin_cos();
+        let z = LanePhasors::<LANES>::new(nco.carrier_phase_cycles, nco.carrier_cycles_per_sample);
         Self {
-            zr,
-            zi,
-            wr: wc as f32,
-            wi: ws as f32,
+            zr: z.re,
+            zi: z.im,
+            wr: z.step_re,
+            wi: z.step_im,
         }
     }
 }

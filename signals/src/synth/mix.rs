@@ -18,6 +18,8 @@
 
 /// Independent phasor recurrences run side by side (one AVX-512 register of f32, two on
 /// AVX2).
+use crate::nco::LanePhasors;
+
 const LANES: usize = 16;
 
 /// Longest chip run (samples) written with one fixed-width store; also the padding of the
@@ -158,20 +160,12 @@ fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &mut V
     spread_code(code, n, ch);
 
     // Lane l starts at phase p0 + l dp; every step advances all lanes by LANES dp.
-    // The lanes' start values in f64 from two sin_cos calls (phasor products; rounding
-    // error ~1e-15 rad after LANES steps).
-    let frac = ch.carrier_phase_cycles - ch.carrier_phase_cycles.floor();
-    let (mut s, mut c) = (std::f64::consts::TAU * frac).sin_cos();
-    let (s1, c1) = (std::f64::consts::TAU * ch.carrier_cycles_per_sample).sin_cos();
-    let mut zr = [0f32; LANES];
-    let mut zi = [0f32; LANES];
-    for l in 0..LANES {
-        zr[l] = c as f32;
-        zi[l] = s as f32;
-        (c, s) = (c * c1 - s * s1, c * s1 + s * c1);
-    }
-    let (ws, wc) = (std::f64::consts::TAU * LANES as f64 * ch.carrier_cycles_per_sample).sin_cos();
-    let (wr, wi) = (wc as f32, ws as f32);
+    let LanePhasors {
+        re: mut zr,
+        im: mut zi,
+        step_re: wr,
+        step_im: wi,
+    } = LanePhasors::<LANES>::new(ch.carrier_phase_cycles, ch.carrier_cycles_per_sample);
 
     let code = &code[..n];
     let full = n / LANES * LANES;
