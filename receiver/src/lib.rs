@@ -10,6 +10,7 @@ pub mod fast_sync;
 pub mod input;
 pub mod navdecode;
 pub mod observables;
+pub mod pipeline;
 pub mod pvt;
 pub mod signal;
 pub mod tracking;

@@ -1,0 +1,32 @@
+//! The whole receiver on a stream of sample blocks: acquisition (cold or assisted), one
+//! tracking channel per antenna x satellite, navigation decoding, observables on a common
+//! receive time and a PVT fix per antenna at every observation epoch.
+
+use crate::observables::Observation;
+use crate::pvt::{Fix, PvtError, VelocityFix};
+use hifitime::Epoch;
+
+/// The fix of one antenna at one epoch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AntennaFix {
+    /// Index of the antenna (order of the input files).
+    pub antenna: usize,
+    /// Position and clock, or why there is none.
+    pub fix: Result<Fix, PvtError>,
+    /// Velocity and clock drift from Doppler when the position fix exists.
+    pub velocity: Option<VelocityFix>,
+}
+
+/// What the receiver produced at one observation epoch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EpochReport {
+    /// The epoch's (fractional) sample index on the common sample clock.
+    pub sample_index: f64,
+    /// Receiver time of the epoch (GPST, the receiver's own clock: the recording's start
+    /// time plus samples / rate; the fix's clock bias says how far off it is).
+    pub t_rx: Epoch,
+    /// Observations of every antenna and satellite tracked at the epoch.
+    pub observations: Vec<Observation>,
+    /// One entry per antenna.
+    pub fixes: Vec<AntennaFix>,
+}
