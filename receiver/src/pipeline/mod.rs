@@ -2,6 +2,19 @@
 //! tracking channel per antenna x satellite, navigation decoding, observables on a common
 //! receive time and a PVT fix per antenna at every observation epoch.
 
+mod acquire;
+mod channel;
+mod config;
+mod navdata;
+mod receiver;
+mod timing;
+
+pub use config::{
+    AcquisitionFile, AcquisitionSettings, ApproximateState, AssistFile, ConfigValueError,
+    ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile,
+};
+pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};
+
 use crate::observables::Observation;
 use crate::pvt::{Fix, PvtError, VelocityFix};
 use hifitime::Epoch;

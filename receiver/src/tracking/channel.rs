@@ -128,7 +128,7 @@ impl Default for TrackingConfig {
 }
 
 impl TrackingConfig {
-    fn check(&self) -> Result<(), TrackingError> {
+    pub(crate) fn check(&self) -> Result<(), TrackingError> {
         let positive = [
             ("pll_bandwidth_hz", self.pll_bandwidth_hz),
             ("dll_bandwidth_hz", self.dll_bandwidth_hz),

@@ -1,0 +1,125 @@
+//! One antenna x satellite channel of the pipeline: its tracking loop, its navigation
+//! decoder and the transmit-time bookkeeping that turns code epochs into
+//! [`ChannelSample`]s for the observables.
+
+use super::navdata::NavData;
+use super::timing::CodeClock;
+use crate::navdecode::{NavDecoder, NavEvent, decoder_for};
+use crate::observables::ChannelSample;
+use crate::tracking::TrackingError;
+use crate::tracking::channel::{ChannelTracker, TrackingRecord};
+use num_complex::Complex32;
+use skyforge_orbits::ephemeris::SatId;
+use std::collections::VecDeque;
+
+/// A tracking channel and what follows it.
+pub(crate) struct Channel {
+    /// Input group (band) and antenna within it, and the receiver's antenna index.
+    pub(crate) group: usize,
+    pub(crate) local: usize,
+    pub(crate) antenna: usize,
+    pub(crate) sat: SatId,
+    tracker: ChannelTracker,
+    decoder: Box<dyn NavDecoder>,
+    clock: CodeClock,
+    sample_rate_hz: f64,
+    /// The last subframe arrived with inverted polarity (Costas lock at 180 deg).
+    inverted: bool,
+    /// A slip or unlocked stretch happened since the last sample handed on.
+    slip: bool,
+    /// Records of the last block, digested after the (parallel) tracking step.
+    records: Vec<TrackingRecord>,
+    /// Timed code epochs not yet handed to the observables, oldest first.
+    pub(crate) queue: VecDeque<ChannelSample>,
+}
+
+impl Channel {
+    pub(crate) fn new(
+        group: usize,
+        local: usize,
+        antenna: usize,
+        sat: SatId,
+        tracker: ChannelTracker,
+        sample_rate_hz: f64,
+    ) -> Result<Self, crate::navdecode::NavDecodeError> {
+        let code_period_s = tracker.signal().code_period_s();
+        Ok(Self {
+            group,
+            local,
+            antenna,
+            sat,
+            tracker,
+            decoder: decoder_for(sat)?,
+            clock: CodeClock::new(code_period_s),
+            sample_rate_hz,
+            inverted: false,
+            slip: true,
+            records: Vec::new(),
+            queue: VecDeque::new(),
+        })
+    }
+
+    /// Track one block (runs in parallel with the other channels).
+    pub(crate) fn track(
+        &mut self,
+        samples: &[Complex32],
+        first_sample: u64,
+    ) -> Result<(), TrackingError> {
+        self.records = self.tracker.process(samples, first_sample)?;
+        Ok(())
+    }
+
+    /// The channel declared loss of lock.
+    pub(crate) fn is_lost(&self) -> bool {
+        self.tracker.is_lost()
+    }
+
+    /// Whether the channel is anchored in time (a subframe was decoded).
+    pub(crate) fn is_timed(&self) -> bool {
+        self.clock.transmit_time(0).is_some()
+    }
+
+    /// Decode the last block's bits and time its code epochs. `approx_time` gives the
+    /// receiver's approximate GPST (s since the origin) at a sample, when it has one.
+    pub(crate) fn digest(&mut self, nav: &mut NavData, approx_time: &dyn Fn(f64) -> Option<f64>) {
+        let fs = self.sample_rate_hz;
+        for r in std::mem::take(&mut self.records) {
+            let k = self.clock.record(r.sample_index, r.integration_periods);
+            if let Some(bit) = r.bit {
+                self.clock.bit(bit.first_sample_index);
+                for event in self.decoder.feed(&[bit.soft as f32]) {
+                    if let NavEvent::Subframe(info) = &event {
+                        let approx = approx_time(bit.first_sample_index as f64);
+                        match nav.time_of_week(self.sat.system, info.week, info.tow_s, approx) {
+                            Some(t) if self.clock.subframe(info.start_bit, t) => {
+                                self.inverted = info.inverted;
+                            }
+                            _ => {}
+                        }
+                    }
+                    nav.absorb(&event);
+                }
+            }
+            if r.cycle_slip || r.loss_of_lock || !r.locked {
+                self.slip = true;
+            }
+            let Some(t_tx_s) = self.clock.transmit_time(k) else {
+                continue;
+            };
+            if !r.locked {
+                continue;
+            }
+            // The code epoch lies code_phase / code_rate before the record's first sample.
+            let lead_s = r.code_phase_chips / r.code_rate_chips_per_s;
+            self.queue.push_back(ChannelSample {
+                sample_index: r.sample_index as f64 - lead_s * fs,
+                t_tx_s,
+                nco_phase_cycles: r.carrier_phase_cycles - r.doppler_hz * lead_s,
+                doppler_hz: r.doppler_hz,
+                cn0_dbhz: r.cn0_dbhz.unwrap_or(f64::NAN),
+                slip: std::mem::take(&mut self.slip),
+                inverted: self.inverted,
+            });
+        }
+    }
+}

@@ -1,0 +1,542 @@
+//! The receiver loop over sample blocks: search, track (channels in parallel), decode,
+//! time the code epochs, form observations at the epochs of the receiver clock and solve
+//! a fix per antenna.
+
+use super::acquire::{Candidate, Search};
+use super::channel::Channel;
+use super::config::{ApproximateState, ReceiverConfig};
+use super::navdata::NavData;
+use super::{AntennaFix, EpochReport};
+use crate::acquisition::AcquisitionError;
+use crate::acquisition::pcps::DopplerWindow;
+use crate::assist::{Assistance, search_hints};
+use crate::navdecode::NavDecodeError;
+use crate::observables::{ObservablesBuilder, Observation};
+use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
+use crate::signal::Signal;
+use crate::tracking::TrackingError;
+use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover};
+use hifitime::Epoch;
+use num_complex::Complex32;
+use rayon::prelude::*;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+
+/// Typical signal flight time used to start a receiver clock that has no time tag (s).
+const NOMINAL_FLIGHT_S: f64 = 0.075;
+/// Code periods past an epoch every channel must have tracked before the epoch is formed.
+const EPOCH_MARGIN_PERIODS: f64 = 2.0;
+
+/// Why the receiver cannot go on.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PipelineError {
+    #[error("acquisition: {0}")]
+    Acquisition(#[from] AcquisitionError),
+    #[error("tracking: {0}")]
+    Tracking(#[from] TrackingError),
+    #[error("navigation decoder: {0}")]
+    Decoder(#[from] NavDecodeError),
+    #[error("invalid receiver setting {name} = {value}: {allowed}")]
+    InvalidSetting {
+        name: &'static str,
+        value: String,
+        allowed: &'static str,
+    },
+    #[error("band {band}: {got} antenna buffers of {len} samples given, {antennas} expected")]
+    BadBlock {
+        band: usize,
+        got: usize,
+        len: usize,
+        antennas: usize,
+    },
+}
+
+/// One band's recordings: the signal and, per recording (in the order of the buffers
+/// passed to [`Receiver::process`]), the receiver antenna it belongs to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandInput {
+    pub signal: Signal,
+    /// IF of the (complex) samples (Hz; 0 for baseband).
+    pub if_hz: f64,
+    pub antennas: Vec<usize>,
+}
+
+/// What the receiver is given besides the samples.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ReceiverSetup {
+    /// Sample rate shared by every recording (Hz).
+    pub sample_rate_hz: f64,
+    pub bands: Vec<BandInput>,
+    /// Antenna names (the receiver's antenna indices index this).
+    pub antenna_names: Vec<String>,
+    /// Time tag of sample 0 (the recorder's clock), if the recording has one.
+    pub start_time: Option<Epoch>,
+    /// Assistance: ephemerides and ionosphere (e.g. from a navigation file) and the
+    /// approximate state.
+    pub ephemerides: Vec<BroadcastEphemeris>,
+    pub iono_gps: Option<KlobucharCoeffs>,
+    pub iono_bds: Option<KlobucharCoeffs>,
+    pub approximate: Option<ApproximateState>,
+}
+
+/// Counters of a run.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ReceiverSummary {
+    /// Searches run and detections (over all antennas and satellites).
+    pub searches: usize,
+    pub detections: usize,
+    /// Channels that declared loss of lock.
+    pub losses_of_lock: usize,
+    /// Per antenna: satellites ever tracked, satellites timed (a subframe decoded).
+    pub tracked: Vec<Vec<SatId>>,
+    pub timed: Vec<Vec<SatId>>,
+    /// Epochs formed and fixes per antenna.
+    pub epochs: usize,
+    pub fixes: Vec<usize>,
+    /// Ephemerides known at the end.
+    pub ephemerides: usize,
+}
+
+/// The last fix of an antenna: time (s since the origin), position, velocity.
+type LastFix = (f64, Vec3, Vec3);
+
+/// The running receiver.
+pub struct Receiver {
+    setup: ReceiverSetup,
+    config: ReceiverConfig,
+    searches: Vec<Search>,
+    channels: Vec<Channel>,
+    nav: NavData,
+    observables: ObservablesBuilder,
+    /// GPST (s since the origin) of sample 0 in the receiver's clock, once known.
+    clock_offset_s: Option<f64>,
+    next_epoch: Option<i64>,
+    next_search_sample: u64,
+    last_fix: Vec<Option<LastFix>>,
+    summary: ReceiverSummary,
+}
+
+impl Receiver {
+    pub fn new(setup: ReceiverSetup, config: ReceiverConfig) -> Result<Self, PipelineError> {
+        let fs = setup.sample_rate_hz;
+        if !(fs.is_finite() && fs > 0.0) {
+            return Err(PipelineError::InvalidSetting {
+                name: "sample rate (Hz)",
+                value: fs.to_string(),
+                allowed: "positive",
+            });
+        }
+        let rate = config.observation_rate_hz;
+        if !(1.0..=100.0).contains(&rate) {
+            return Err(PipelineError::InvalidSetting {
+                name: "observation rate (Hz)",
+                value: rate.to_string(),
+                allowed: "1 to 100",
+            });
+        }
+        let interval = config.acquisition.reacquire_interval_s;
+        if !(interval.is_finite() && interval > 0.0) {
+            return Err(PipelineError::InvalidSetting {
+                name: "re-acquisition interval (s)",
+                value: interval.to_string(),
+                allowed: "positive",
+            });
+        }
+        config.tracking.check()?;
+        let searches = setup
+            .bands
+            .iter()
+            .map(|b| Search::new(b.signal, fs, b.if_hz, &config.acquisition))
+            .collect::<Result<Vec<_>, _>>()?;
+        let nav = NavData::new(
+            setup.ephemerides.clone(),
+            setup.iono_gps,
+            setup.iono_bds,
+            setup.start_time,
+        );
+        let antennas = setup.antenna_names.len();
+        let mut receiver = Self {
+            observables: ObservablesBuilder::new(fs),
+            searches,
+            channels: Vec::new(),
+            nav,
+            clock_offset_s: None,
+            next_epoch: None,
+            next_search_sample: 0,
+            last_fix: vec![None; antennas],
+            summary: ReceiverSummary {
+                tracked: vec![Vec::new(); antennas],
+                timed: vec![Vec::new(); antennas],
+                fixes: vec![0; antennas],
+                ..ReceiverSummary::default()
+            },
+            setup,
+            config,
+        };
+        receiver.set_clock_from_start_time();
+        Ok(receiver)
+    }
+
+    /// Samples each block must hold for a search (blocks shorter than this are tracked but
+    /// not searched).
+    pub fn samples_per_search(&self) -> usize {
+        self.searches
+            .iter()
+            .map(Search::samples_needed)
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Counters so far.
+    pub fn summary(&self) -> ReceiverSummary {
+        let mut s = self.summary.clone();
+        s.ephemerides = self
+            .nav
+            .store()
+            .satellites()
+            .iter()
+            .map(|&sat| self.nav.store().ephemerides(sat).len())
+            .sum();
+        s
+    }
+
+    /// The origin of the receiver's times (start of a GPS week), once known.
+    pub fn origin(&self) -> Option<&skyforge_orbits::time::TimeOrigin> {
+        self.nav.origin()
+    }
+
+    fn set_clock_from_start_time(&mut self) {
+        if let (None, Some(start), Some(origin)) = (
+            self.clock_offset_s,
+            self.setup.start_time,
+            self.nav.origin(),
+        ) {
+            self.clock_offset_s = Some(origin.seconds_since_start(start));
+        }
+    }
+
+    /// The receiver's GPST estimate (s since the origin) at a (fractional) sample.
+    fn receiver_time(&self, sample: f64) -> Option<f64> {
+        self.clock_offset_s
+            .map(|t0| t0 + sample / self.setup.sample_rate_hz)
+    }
+
+    /// Process one block: `bands[b][a]` holds band `b`'s recording `a`, each `len` samples
+    /// from sample `first_sample` on (blocks must follow each other without gaps). Returns
+    /// the epochs completed.
+    pub fn process(
+        &mut self,
+        bands: &[Vec<Vec<Complex32>>],
+        first_sample: u64,
+        len: usize,
+    ) -> Result<Vec<EpochReport>, PipelineError> {
+        for (b, band) in self.setup.bands.iter().enumerate() {
+            let ok = bands.get(b).is_some_and(|x| {
+                x.len() == band.antennas.len() && x.iter().all(|v| v.len() >= len)
+            });
+            if !ok {
+                return Err(PipelineError::BadBlock {
+                    band: b,
+                    got: bands.get(b).map_or(0, Vec::len),
+                    len,
+                    antennas: band.antennas.len(),
+                });
+            }
+        }
+        if first_sample >= self.next_search_sample && len >= self.samples_per_search() {
+            self.search(bands, first_sample, len)?;
+            let step = self.config.acquisition.reacquire_interval_s * self.setup.sample_rate_hz;
+            self.next_search_sample = first_sample + step as u64;
+        }
+        self.channels
+            .par_iter_mut()
+            .try_for_each(|ch| ch.track(&bands[ch.group][ch.local][..len], first_sample))?;
+        let approx = self.clock_offset_s;
+        let fs = self.setup.sample_rate_hz;
+        let approx_time = move |sample: f64| approx.map(|t0| t0 + sample / fs);
+        for ch in &mut self.channels {
+            ch.digest(&mut self.nav, &approx_time);
+            if ch.is_timed() && !self.summary.timed[ch.antenna].contains(&ch.sat) {
+                self.summary.timed[ch.antenna].push(ch.sat);
+            }
+        }
+        self.set_clock_from_start_time();
+        if self.clock_offset_s.is_none() {
+            // No time tag: start the clock one nominal flight time after the first timed
+            // code epoch; the PVT's clock bias absorbs the difference.
+            if let Some(s) = self.channels.iter().find_map(|c| c.queue.front()) {
+                self.clock_offset_s = Some(s.t_tx_s + NOMINAL_FLIGHT_S - s.sample_index / fs);
+            }
+        }
+        let lost: Vec<(usize, SatId)> = self
+            .channels
+            .iter()
+            .filter(|c| c.is_lost())
+            .map(|c| (c.antenna, c.sat))
+            .collect();
+        for &(antenna, sat) in &lost {
+            self.observables.drop_channel(antenna, sat);
+        }
+        self.summary.losses_of_lock += lost.len();
+        self.channels.retain(|c| !c.is_lost());
+        self.epochs(first_sample + len as u64)
+    }
+
+    /// Search every antenna of every band for the satellites it does not track.
+    fn search(
+        &mut self,
+        bands: &[Vec<Vec<Complex32>>],
+        first_sample: u64,
+        len: usize,
+    ) -> Result<(), PipelineError> {
+        let fs = self.setup.sample_rate_hz;
+        let t_s = self.receiver_time(first_sample as f64);
+        for (b, band) in self.setup.bands.iter().enumerate() {
+            let system = system_of(band.signal);
+            for (local, &antenna) in band.antennas.iter().enumerate() {
+                let tracked = |prn: u8| {
+                    self.channels
+                        .iter()
+                        .any(|c| c.antenna == antenna && c.sat.system == system && c.sat.prn == prn)
+                };
+                let candidates: Vec<Candidate> = self
+                    .candidates(band.signal, antenna, t_s)
+                    .into_iter()
+                    .filter(|c| !tracked(c.prn))
+                    .collect();
+                self.summary.searches += candidates.len();
+                let found = self.searches[b].run(&bands[b][local][..len], &candidates)?;
+                for (c, acq) in found {
+                    let handover = Handover {
+                        signal: band.signal,
+                        prn: c.prn,
+                        sample_index: first_sample,
+                        code_phase_samples: acq.code_phase_samples,
+                        doppler_hz: acq.doppler_hz,
+                        doppler_rate_hzps: c.doppler_rate_hzps,
+                    };
+                    let front_end = FrontEnd {
+                        sample_rate_hz: fs,
+                        if_hz: band.if_hz,
+                    };
+                    let tracker = ChannelTracker::new(handover, front_end, self.config.tracking)?;
+                    let sat = SatId { system, prn: c.prn };
+                    self.channels
+                        .push(Channel::new(b, local, antenna, sat, tracker, fs)?);
+                    self.summary.detections += 1;
+                    if !self.summary.tracked[antenna].contains(&sat) {
+                        self.summary.tracked[antenna].push(sat);
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// What to search for on `antenna`: the satellites predicted in view (ephemerides, an
+    /// approximate time and a position from the last fix or the assistance), else every
+    /// PRN over the cold window.
+    fn candidates(&self, signal: Signal, antenna: usize, t_s: Option<f64>) -> Vec<Candidate> {
+        let system = system_of(signal);
+        if let Some(a) = t_s.and_then(|t| self.assistance(antenna, t)) {
+            let store = self.nav.store();
+            if store.satellites().iter().any(|s| s.system == system) {
+                let floor = 2.0 * self.searches_step(signal);
+                return search_hints(store, &a)
+                    .into_iter()
+                    .filter(|h| h.sat.system == system)
+                    .map(|h| Candidate {
+                        prn: h.sat.prn,
+                        window: DopplerWindow {
+                            centre_hz: h.doppler_hz,
+                            half_width_hz: h.doppler_window_hz.max(floor),
+                        },
+                        doppler_rate_hzps: h.doppler_rate_hzps,
+                    })
+                    .collect();
+            }
+        }
+        let window = self.searches[self.band_of(signal)].cold_window();
+        let max_prn = match system {
+            System::Gps => 32,
+            System::Beidou => 63,
+        };
+        (1..=max_prn)
+            .map(|prn| Candidate {
+                prn,
+                window,
+                doppler_rate_hzps: 0.0,
+            })
+            .collect()
+    }
+
+    fn band_of(&self, signal: Signal) -> usize {
+        self.setup
+            .bands
+            .iter()
+            .position(|b| b.signal == signal)
+            .unwrap_or(0)
+    }
+
+    /// Doppler bin spacing of the signal's search (Hz).
+    fn searches_step(&self, signal: Signal) -> f64 {
+        let coherent_s = self.config.acquisition.coherent_ms as f64 * signal.code_period_s();
+        2.0 / (3.0 * coherent_s)
+    }
+
+    /// The assistance for `antenna` at `t_s`: its last fix, else the given approximate
+    /// state (coasting from the recording start).
+    fn assistance(&self, antenna: usize, t_s: f64) -> Option<Assistance> {
+        let approx = self.setup.approximate;
+        let mask = self.config.pvt.elevation_mask_rad;
+        if let Some((t_fix, r, v)) = self.last_fix[antenna] {
+            let dt = t_s - t_fix;
+            return Some(Assistance {
+                t_s,
+                time_uncertainty_s: 1e-3,
+                r_ecef_m: r + v * dt,
+                v_ecef_mps: v,
+                position_uncertainty_m: 100.0 + 10.0 * dt.abs(),
+                velocity_uncertainty_mps: 1.0 + 0.01 * dt.abs(),
+                oscillator_uncertainty: approx.map_or(1e-6, |a| a.oscillator_uncertainty),
+                elevation_mask_rad: mask,
+            });
+        }
+        let a = approx?;
+        let t0 = self.receiver_time(0.0)?;
+        let dt = t_s - t0;
+        Some(Assistance {
+            t_s,
+            time_uncertainty_s: a.time_uncertainty_s,
+            r_ecef_m: a.r_ecef_m + a.v_ecef_mps * dt,
+            v_ecef_mps: a.v_ecef_mps,
+            position_uncertainty_m: a.position_uncertainty_m + 10.0 * dt.abs(),
+            velocity_uncertainty_mps: a.velocity_uncertainty_mps + 0.01 * dt.abs(),
+            oscillator_uncertainty: a.oscillator_uncertainty,
+            elevation_mask_rad: mask,
+        })
+    }
+
+    /// Form every epoch whose samples every channel has tracked past, up to `end`.
+    fn epochs(&mut self, end: u64) -> Result<Vec<EpochReport>, PipelineError> {
+        let fs = self.setup.sample_rate_hz;
+        let rate = self.config.observation_rate_hz;
+        let Some(t0) = self.clock_offset_s else {
+            return Ok(Vec::new());
+        };
+        let next = *self
+            .next_epoch
+            .get_or_insert_with(|| ((t0 * rate).ceil()) as i64);
+        let margin = EPOCH_MARGIN_PERIODS * 1e-3 * fs;
+        let mut reports = Vec::new();
+        let mut k = next;
+        loop {
+            let t_k = k as f64 / rate;
+            let n_k = (t_k - t0) * fs;
+            if n_k + margin > end as f64 {
+                break;
+            }
+            if n_k >= 0.0 {
+                reports.push(self.epoch(n_k, t_k));
+            }
+            k += 1;
+        }
+        self.next_epoch = Some(k);
+        Ok(reports)
+    }
+
+    /// Observations and fixes at sample `n_k`, receiver time `t_k`.
+    fn epoch(&mut self, n_k: f64, t_k: f64) -> EpochReport {
+        for ch in &mut self.channels {
+            while let Some(s) = ch.queue.pop_front() {
+                self.observables.push(ch.antenna, ch.sat, s);
+                if s.sample_index > n_k {
+                    break;
+                }
+            }
+        }
+        let observations = self.observables.at(n_k, t_k);
+        self.summary.epochs += 1;
+        let fixes = (0..self.setup.antenna_names.len())
+            .map(|antenna| self.fix(antenna, &observations, t_k))
+            .collect();
+        let origin = self.nav.origin().map(|o| o.epoch_at(t_k));
+        EpochReport {
+            sample_index: n_k,
+            t_rx: origin.unwrap_or_default(),
+            observations,
+            fixes,
+        }
+    }
+
+    fn fix(&mut self, antenna: usize, observations: &[Observation], t_k: f64) -> AntennaFix {
+        let meas: Vec<Measurement> = observations
+            .iter()
+            .filter(|o| o.antenna == antenna && self.nav.has_ephemeris(o.sat, t_k))
+            .map(|o| Measurement {
+                sat: o.sat,
+                pseudorange_m: o.pseudorange_m,
+                doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
+                carrier_hz: carrier_hz(o.sat.system),
+            })
+            .collect();
+        let (Some(origin), store) = (self.nav.origin(), self.nav.store()) else {
+            return AntennaFix {
+                antenna,
+                fix: Err(crate::pvt::PvtError::TooFewSatellites {
+                    have: 0,
+                    need: 4,
+                    clocks: 1,
+                }),
+                velocity: None,
+            };
+        };
+        let cfg = PvtConfig {
+            iono_gps: self.nav.iono_gps,
+            iono_bds: self.nav.iono_bds,
+            ..self.config.pvt.clone()
+        };
+        let a_priori = self.last_fix[antenna].map(|f| f.1);
+        let fix: Result<Fix, _> = solve(&meas, t_k, store, origin, &cfg, a_priori);
+        let velocity = fix
+            .as_ref()
+            .ok()
+            .and_then(|f| solve_velocity(&meas, t_k, store, f).ok());
+        if let Ok(f) = &fix {
+            self.summary.fixes[antenna] += 1;
+            let v = velocity.map_or(Vec3::zeros(), |v| v.v_ecef_mps);
+            self.last_fix[antenna] = Some((t_k, f.r_ecef_m, v));
+        }
+        AntennaFix {
+            antenna,
+            fix,
+            velocity,
+        }
+    }
+}
+
+impl std::fmt::Debug for Receiver {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Receiver")
+            .field("setup", &self.setup)
+            .field("channels", &self.channels.len())
+            .field("clock_offset_s", &self.clock_offset_s)
+            .field("summary", &self.summary)
+            .finish_non_exhaustive()
+    }
+}
+
+fn system_of(signal: Signal) -> System {
+    match signal {
+        Signal::GpsL1Ca => System::Gps,
+        Signal::BdsB1I => System::Beidou,
+    }
+}
+
+fn carrier_hz(system: System) -> f64 {
+    match system {
+        System::Gps => Signal::GpsL1Ca.carrier_hz(),
+        System::Beidou => Signal::BdsB1I.carrier_hz(),
+    }
+}
