@@ -323,6 +323,7 @@ pub fn synthesise(
                                 carrier_phase_cycles: r.carrier_phase_cycles,
                                 doppler_hz: r.doppler_hz,
                                 cn0_dbhz: r.cn0_dbhz,
+                                loss_of_lock: false,
                             });
                         }
                         for a in 0..n_ant {

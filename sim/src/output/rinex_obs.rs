@@ -1,42 +1,183 @@
-//! RINEX 3.04 observation files of the signal truth: pseudorange, carrier phase, Doppler
-//! and C/N0 per satellite at whole seconds, one file per antenna (RINEX 3.04 section 5 and
-//! table A2; GPS L1 C/A observation codes 1C, BeiDou B1I 2I).
+//! RINEX 3.04 observation files: pseudorange, carrier phase, Doppler and C/N0 per satellite,
+//! one file per antenna. One writer serves both the signal truth of `skyforge synth` (whole
+//! seconds) and the bundled receiver's observations (receiver time tags with a fractional
+//! second, loss-of-lock indicators). RINEX 3.04 section 5, tables A2 (header) and A3 (data
+//! records); GPS L1 C/A observation codes 1C, BeiDou B1I 2I (tables 4 and 9).
 
+use hifitime::{Duration, Epoch, TimeScale};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::{SatId, System};
 use std::io::{self, Write};
 
-/// One satellite's observations at one epoch.
+/// One satellite's observations at one epoch. A value that is not finite is written as a
+/// missing observation (blanks).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ObsRecord {
     pub sat: SatId,
+    /// Pseudorange (m).
     pub pseudorange_m: f64,
+    /// RINEX-signed carrier phase (cycles).
     pub carrier_phase_cycles: f64,
+    /// Doppler (Hz, RINEX sign: positive when approaching).
     pub doppler_hz: f64,
+    /// C/N0 (dB-Hz): the `S` observation, and the signal strength indicator of the phase.
     pub cn0_dbhz: f64,
+    /// Lock lost between the previous epoch and this one, cycle slip possible: loss-of-lock
+    /// indicator bit 0, on the phase observation only (RINEX 3.04 table A3).
+    pub loss_of_lock: bool,
+}
+
+/// Calendar fields (GPS time) of an epoch.
+pub type Calendar = (i32, u8, u8, u8, u8, f64);
+
+/// `REC # / TYPE / VERS` receiver type of the synthesiser's truth files.
+pub const TRUTH_RECEIVER_TYPE: &str = "SKYFORGE TRUTH";
+/// `REC # / TYPE / VERS` receiver type of the bundled receiver's files.
+pub const RECEIVER_TYPE: &str = "SKYFORGE RECEIVER";
+
+/// What the header of an observation file says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsHeader<'a> {
+    /// `MARKER NAME` (the antenna's name).
+    pub marker: &'a str,
+    /// `REC # / TYPE / VERS` receiver type, e.g. [`RECEIVER_TYPE`].
+    pub receiver_type: &'a str,
+    /// `ANT # / TYPE` antenna type.
+    pub antenna_type: &'a str,
+    /// `APPROX POSITION XYZ` (m, ECEF); the record is left out when unknown (RINEX 3.04
+    /// table A2: optional for moving platforms).
+    pub approx_ecef_m: Option<Vec3>,
+    /// `TIME OF FIRST OBS` (GPS time).
+    pub first: Calendar,
+    /// `INTERVAL` (s); left out unless positive.
+    pub interval_s: f64,
+    /// The systems whose observation types the header declares.
+    pub systems: &'a [System],
 }
 
 /// Streams epochs of observations into a RINEX 3.04 observation file.
 #[derive(Debug)]
 pub struct ObsWriter<W: Write> {
     out: W,
+    systems: Vec<System>,
 }
 
-/// Calendar fields (GPS time) of an epoch.
-pub type Calendar = (i32, u8, u8, u8, u8, f64);
+/// The calendar epoch of `at` in GPS time.
+pub fn calendar_gpst(at: Epoch) -> Calendar {
+    let (y, mo, d, h, mi, s, ns) = at.to_gregorian(TimeScale::GPST);
+    (y, mo, d, h, mi, f64::from(s) + f64::from(ns) * 1e-9)
+}
+
+/// The RINEX signal strength indicator of a C/N0 (dB-Hz): `min(max(int(cn0 / 6), 1), 9)`,
+/// RINEX 3.04 section 5.7 and table 12 (< 12 dB-Hz -> 1, 12-17 -> 2, ..., >= 54 -> 9).
+/// `None` (blank: not known) for a value that is not finite.
+pub fn signal_strength_indicator(cn0_dbhz: f64) -> Option<u8> {
+    cn0_dbhz
+        .is_finite()
+        .then(|| (cn0_dbhz / 6.0).trunc().clamp(1.0, 9.0) as u8)
+}
+
+/// An epoch rounded to the 100 ns resolution of the RINEX epoch fields (F11.7 seconds),
+/// the rounding carried through minutes, hours, days, months and years.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Stamp {
+    year: i32,
+    month: u8,
+    day: u8,
+    hour: u8,
+    minute: u8,
+    second: u8,
+    /// Fraction of the second in units of 100 ns (0..10^7).
+    ticks: u32,
+}
+
+impl Stamp {
+    fn new(at: Calendar) -> io::Result<Self> {
+        let (y, mo, d, h, mi, s) = at;
+        let invalid = |what: String| {
+            io::Error::new(io::ErrorKind::InvalidInput, format!("epoch {at:?}: {what}"))
+        };
+        if !(0.0..61.0).contains(&s) {
+            return Err(invalid("seconds outside [0, 61)".into()));
+        }
+        let start_of_minute = Epoch::maybe_from_gregorian(y, mo, d, h, mi, 0, 0, TimeScale::GPST)
+            .map_err(|e| invalid(e.to_string()))?;
+        let ticks = (s * 1e7).round() as i64;
+        let rounded = start_of_minute + Duration::from_total_nanoseconds(i128::from(ticks) * 100);
+        let (year, month, day, hour, minute, second, ns) = rounded.to_gregorian(TimeScale::GPST);
+        Ok(Self {
+            year,
+            month,
+            day,
+            hour,
+            minute,
+            second,
+            ticks: ns / 100,
+        })
+    }
+
+    /// `yyyymmdd hhmmss` of the header's `PGM / RUN BY / DATE`.
+    fn compact(&self) -> String {
+        format!(
+            "{:04}{:02}{:02} {:02}{:02}{:02}",
+            self.year, self.month, self.day, self.hour, self.minute, self.second
+        )
+    }
+}
+
+/// One observation field: F14.3, loss-of-lock indicator I1, signal strength indicator I1
+/// (RINEX 3.04 table A3); a value that does not fit F14.3 or is not finite is blank.
+fn field(value: f64, lli: Option<u8>, ssi: Option<u8>) -> String {
+    let digit = |d: Option<u8>| d.map_or(' ', |d| char::from(b'0' + d.min(9)));
+    let text = format!("{value:14.3}");
+    if !value.is_finite() || text.len() > 14 {
+        return " ".repeat(16);
+    }
+    format!("{text}{}{}", digit(lli), digit(ssi))
+}
+
+/// The phase field: a phase that overflows F14.3 is brought back into range by whole
+/// multiples of 10^9 cycles and flagged with loss-of-lock bit 0 (RINEX 3.04 table A3).
+fn phase_field(cycles: f64, loss_of_lock: bool, ssi: Option<u8>) -> String {
+    let fits = |v: f64| format!("{v:14.3}").len() <= 14;
+    let (cycles, wrapped) = if cycles.is_finite() && !fits(cycles) {
+        (cycles % 1e9, true)
+    } else {
+        (cycles, false)
+    };
+    let lli = (loss_of_lock || wrapped).then_some(1);
+    field(cycles, lli, ssi)
+}
 
 impl<W: Write> ObsWriter<W> {
-    /// Write the header: marker `name` at `approx_ecef_m`, first epoch `first` (GPS time),
-    /// `interval_s`, and which systems are present.
+    /// Write the header of the synthesiser's truth: marker `name` at `approx_ecef_m`, first
+    /// epoch `first` (GPS time), `interval_s`, and which systems are present.
     pub fn new(
-        mut out: W,
+        out: W,
         name: &str,
         approx_ecef_m: &Vec3,
         first: Calendar,
         interval_s: f64,
         systems: &[System],
     ) -> io::Result<Self> {
-        let letter = match systems {
+        Self::with_header(
+            out,
+            &ObsHeader {
+                marker: name,
+                receiver_type: TRUTH_RECEIVER_TYPE,
+                antenna_type: "SKYFORGE",
+                approx_ecef_m: Some(*approx_ecef_m),
+                first,
+                interval_s,
+                systems,
+            },
+        )
+    }
+
+    /// Write the header `h` (RINEX 3.04 table A2).
+    pub fn with_header(mut out: W, h: &ObsHeader<'_>) -> io::Result<Self> {
+        let first = Stamp::new(h.first)?;
+        let letter = match h.systems {
             [System::Gps] => 'G',
             [System::Beidou] => 'C',
             _ => 'M',
@@ -51,12 +192,9 @@ impl<W: Write> ObsWriter<W> {
             "{:<20}{:<20}{:<20}PGM / RUN BY / DATE",
             "skyforge",
             "",
-            format!(
-                "{:04}{:02}{:02} {:02}{:02}{:02} GPS",
-                first.0, first.1, first.2, first.3, first.4, first.5 as u32
-            )
+            format!("{} GPS", first.compact())
         )?;
-        writeln!(out, "{:<60}MARKER NAME", name)?;
+        writeln!(out, "{:<60}MARKER NAME", h.marker)?;
         writeln!(out, "{:<60}MARKER TYPE", "NON_GEODETIC")?;
         writeln!(
             out,
@@ -67,56 +205,112 @@ impl<W: Write> ObsWriter<W> {
             out,
             "{:<20}{:<20}{:<20}REC # / TYPE / VERS",
             "0",
-            "SKYFORGE TRUTH",
+            h.receiver_type,
             env!("CARGO_PKG_VERSION")
         )?;
-        writeln!(out, "{:<20}{:<20}{:<20}ANT # / TYPE", "0", "SKYFORGE", "")?;
         writeln!(
             out,
-            "{:14.4}{:14.4}{:14.4}{:18}APPROX POSITION XYZ",
-            approx_ecef_m.x, approx_ecef_m.y, approx_ecef_m.z, ""
+            "{:<20}{:<20}{:<20}ANT # / TYPE",
+            "0", h.antenna_type, ""
         )?;
+        if let Some(r) = h.approx_ecef_m {
+            writeln!(
+                out,
+                "{:14.4}{:14.4}{:14.4}{:18}APPROX POSITION XYZ",
+                r.x, r.y, r.z, ""
+            )?;
+        }
         writeln!(
             out,
             "{:14.4}{:14.4}{:14.4}{:18}ANTENNA: DELTA H/E/N",
             0.0, 0.0, 0.0, ""
         )?;
-        for system in systems {
-            let (c, band) = match system {
-                System::Gps => ('G', "1C"),
-                System::Beidou => ('C', "2I"),
-            };
-            let types = format!(" C{band} L{band} D{band} S{band}");
-            writeln!(out, "{c}  {:>3}{:<54}SYS / # / OBS TYPES", 4, types)?;
+        for system in h.systems {
+            let types: String = ["C", "L", "D", "S"]
+                .iter()
+                .map(|t| format!(" {t}{}", band(*system)))
+                .collect();
+            writeln!(
+                out,
+                "{}  {:>3}{:<54}SYS / # / OBS TYPES",
+                system.letter(),
+                4,
+                types
+            )?;
         }
-        writeln!(out, "{:10.3}{:50}INTERVAL", interval_s, "")?;
+        writeln!(out, "{:<60}SIGNAL STRENGTH UNIT", "DBHZ")?;
+        if h.interval_s > 0.0 {
+            writeln!(out, "{:10.3}{:50}INTERVAL", h.interval_s, "")?;
+        }
         writeln!(
             out,
-            "  {:04}    {:02}    {:02}    {:02}    {:02}   {:10.7}     GPS{:9}TIME OF FIRST OBS",
-            first.0, first.1, first.2, first.3, first.4, first.5, ""
+            "{:6}{:6}{:6}{:6}{:6}{:5}.{:07}     GPS{:9}TIME OF FIRST OBS",
+            first.year,
+            first.month,
+            first.day,
+            first.hour,
+            first.minute,
+            first.second,
+            first.ticks,
+            ""
         )?;
+        // The phases are those of each system's reference signal (L1C, B1I), so no phase
+        // shift is applied (RINEX 3.04 section 9.1, table A23).
+        for system in h.systems {
+            writeln!(
+                out,
+                "{:<60}SYS / PHASE SHIFT",
+                format!("{} L{}", system.letter(), band(*system))
+            )?;
+        }
         writeln!(out, "{:60}END OF HEADER", "")?;
-        Ok(Self { out })
+        Ok(Self {
+            out,
+            systems: h.systems.to_vec(),
+        })
     }
 
-    /// Append one epoch (GPS time `at`) of observations.
+    /// Append one epoch (GPS time `at`, written rounded to 100 ns) of observations: epoch
+    /// flag 0, then one record per satellite with C, L, D, S; the phase carries the
+    /// loss-of-lock indicator and the signal strength indicator of the C/N0 (RINEX 3.04
+    /// table A3, notes 1 and 2). A satellite of a system the header does not declare is
+    /// an error.
     pub fn epoch(&mut self, at: Calendar, records: &[ObsRecord]) -> io::Result<()> {
+        if let Some(r) = records
+            .iter()
+            .find(|r| !self.systems.contains(&r.sat.system))
+        {
+            return Err(io::Error::new(
+                io::ErrorKind::InvalidInput,
+                format!(
+                    "{}: its system has no observation types in the header",
+                    r.sat
+                ),
+            ));
+        }
+        let t = Stamp::new(at)?;
         writeln!(
             self.out,
-            "> {:04} {:02} {:02} {:02} {:02}{:11.7}  0{:3}",
-            at.0,
-            at.1,
-            at.2,
-            at.3,
-            at.4,
-            at.5,
+            "> {:04} {:02} {:02} {:02} {:02}{:3}.{:07}  0{:3}",
+            t.year,
+            t.month,
+            t.day,
+            t.hour,
+            t.minute,
+            t.second,
+            t.ticks,
             records.len()
         )?;
         for r in records {
+            let ssi = signal_strength_indicator(r.cn0_dbhz);
             writeln!(
                 self.out,
-                "{}{:14.3}  {:14.3}  {:14.3}  {:14.3}  ",
-                r.sat, r.pseudorange_m, r.carrier_phase_cycles, r.doppler_hz, r.cn0_dbhz
+                "{}{}{}{}{}",
+                r.sat,
+                field(r.pseudorange_m, None, None),
+                phase_field(r.carrier_phase_cycles, r.loss_of_lock, ssi),
+                field(r.doppler_hz, None, None),
+                field(r.cn0_dbhz, None, None)
             )?;
         }
         Ok(())
@@ -126,5 +320,322 @@ impl<W: Write> ObsWriter<W> {
     pub fn finish(mut self) -> io::Result<W> {
         self.out.flush()?;
         Ok(self.out)
+    }
+}
+
+/// Band and attribute of the observation codes: GPS L1 C/A `1C`, BeiDou B1I `2I` (RINEX
+/// 3.04 tables 4 and 9).
+fn band(system: System) -> &'static str {
+    match system {
+        System::Gps => "1C",
+        System::Beidou => "2I",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gps(prn: u8) -> SatId {
+        SatId {
+            system: System::Gps,
+            prn,
+        }
+    }
+
+    fn record(sat: SatId, cn0_dbhz: f64, loss_of_lock: bool) -> ObsRecord {
+        ObsRecord {
+            sat,
+            pseudorange_m: 21_234_567.891,
+            carrier_phase_cycles: 111_587_654.321,
+            doppler_hz: -1234.567,
+            cn0_dbhz,
+            loss_of_lock,
+        }
+    }
+
+    fn header(systems: &[System], first: Calendar) -> ObsHeader<'_> {
+        ObsHeader {
+            marker: "ant1",
+            receiver_type: RECEIVER_TYPE,
+            antenna_type: "PATCH",
+            approx_ecef_m: None,
+            first,
+            interval_s: 0.1,
+            systems,
+        }
+    }
+
+    fn write(first: Calendar, epochs: &[(Calendar, Vec<ObsRecord>)]) -> String {
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&[System::Gps], first)).unwrap();
+        for (at, records) in epochs {
+            w.epoch(*at, records).unwrap();
+        }
+        String::from_utf8(w.finish().unwrap()).unwrap()
+    }
+
+    #[test]
+    fn signal_strength_follows_table_12() {
+        // RINEX 3.04 table 12: < 12 -> 1, 12-17 -> 2, 18-23 -> 3, 24-29 -> 4, 30-35 -> 5,
+        // 36-41 -> 6, 42-47 -> 7, 48-53 -> 8, >= 54 -> 9.
+        let rows = [
+            (-3.0, 1),
+            (0.0, 1),
+            (11.9, 1),
+            (12.0, 2),
+            (17.9, 2),
+            (18.0, 3),
+            (29.99, 4),
+            (30.0, 5),
+            (35.9, 5),
+            (36.0, 6),
+            (45.0, 7),
+            (48.0, 8),
+            (53.99, 8),
+            (54.0, 9),
+            (80.0, 9),
+        ];
+        for (cn0, ssi) in rows {
+            assert_eq!(signal_strength_indicator(cn0), Some(ssi), "{cn0} dB-Hz");
+        }
+        assert_eq!(signal_strength_indicator(f64::NAN), None);
+    }
+
+    #[test]
+    fn epoch_seconds_round_to_100_ns_and_carry_through_the_calendar() {
+        let line = |at: Calendar| {
+            write(at, &[(at, vec![])])
+                .lines()
+                .find(|l| l.starts_with('>'))
+                .unwrap()
+                .to_string()
+        };
+        assert_eq!(
+            line((2022, 1, 1, 0, 0, 12.000_000_1)),
+            "> 2022 01 01 00 00 12.0000001  0  0"
+        );
+        assert_eq!(
+            line((2022, 1, 1, 0, 0, 12.000_000_04)),
+            "> 2022 01 01 00 00 12.0000000  0  0"
+        );
+        assert_eq!(
+            line((2022, 1, 1, 0, 0, 7.5)),
+            "> 2022 01 01 00 00  7.5000000  0  0"
+        );
+        // 59.99999996 s rounds to the next minute, which here is the next year.
+        assert_eq!(
+            line((2022, 12, 31, 23, 59, 59.999_999_96)),
+            "> 2023 01 01 00 00  0.0000000  0  0"
+        );
+        // Fixed columns of table A3: '>' A1, 1X I4, 4(1X I2.2), F11.7, 2X I1, I3.
+        let l = line((2024, 2, 29, 13, 5, 1.234_567_8));
+        assert_eq!(&l[2..6], "2024");
+        assert_eq!(&l[18..29], "  1.2345678");
+        assert_eq!(&l[31..32], "0");
+    }
+
+    #[test]
+    fn epochs_next_to_calendar_boundaries_match_hifitime_rounding() {
+        // Around the ends of a minute, an hour, a leap day, a month and a year, every 7 ns
+        // from -70 ns to +70 ns: the epoch line must show hifitime's own rounding of the
+        // epoch to 100 ns.
+        let edges = [
+            (2022, 3, 5, 10, 16),
+            (2022, 3, 5, 11, 0),
+            (2024, 2, 29, 0, 0),
+            (2024, 3, 1, 0, 0),
+            (2023, 1, 1, 0, 0),
+        ];
+        for (y, mo, d, h, mi) in edges {
+            let edge = Epoch::from_gregorian(y, mo, d, h, mi, 0, 0, TimeScale::GPST);
+            for ns in (-70..=70).step_by(7) {
+                let at = edge + Duration::from_total_nanoseconds(ns);
+                let rounded = at.round(Duration::from_total_nanoseconds(100));
+                let (ry, rmo, rd, rh, rmi, rs, rns) = rounded.to_gregorian(TimeScale::GPST);
+                let expected = format!(
+                    "> {ry:04} {rmo:02} {rd:02} {rh:02} {rmi:02}{rs:3}.{:07}  0  0",
+                    rns / 100
+                );
+                let mut w =
+                    ObsWriter::with_header(Vec::new(), &header(&[System::Gps], calendar_gpst(at)))
+                        .unwrap();
+                w.epoch(calendar_gpst(at), &[]).unwrap();
+                let text = String::from_utf8(w.finish().unwrap()).unwrap();
+                let line = text.lines().find(|l| l.starts_with('>')).unwrap();
+                assert_eq!(line, expected, "{at} ({ns} ns from {edge})");
+            }
+        }
+    }
+
+    #[test]
+    fn the_header_carries_the_first_epoch_and_fixed_columns() {
+        let text = write((2022, 1, 1, 0, 0, 59.999_999_99), &[]);
+        let header: Vec<&str> = text.lines().collect();
+        for l in &header {
+            assert!(l.len() > 60 && l.len() <= 80, "{l:?}");
+        }
+        let label = |name: &str| {
+            header
+                .iter()
+                .find(|l| l[60..].trim_end() == name)
+                .unwrap_or_else(|| panic!("no {name}"))
+                .to_string()
+        };
+        // TIME OF FIRST OBS: 5I6, F13.7, 5X, A3.
+        let first = label("TIME OF FIRST OBS");
+        assert_eq!(&first[..30], "  2022     1     1     0     1");
+        assert_eq!(&first[30..43], "    0.0000000");
+        assert_eq!(&first[48..51], "GPS");
+        assert_eq!(&label("REC # / TYPE / VERS")[20..37], "SKYFORGE RECEIVER");
+        assert_eq!(&label("ANT # / TYPE")[20..25], "PATCH");
+        assert_eq!(
+            &label("SYS / # / OBS TYPES")[..22],
+            "G    4 C1C L1C D1C S1C"
+        );
+        assert_eq!(label("SYS / PHASE SHIFT")[..5].to_string(), "G L1C");
+        assert_eq!(label("SIGNAL STRENGTH UNIT")[..4].to_string(), "DBHZ");
+        assert!(!text.contains("APPROX POSITION XYZ"));
+        assert_eq!(header.last().unwrap()[60..].trim_end(), "END OF HEADER");
+    }
+
+    #[test]
+    fn loss_of_lock_and_strength_sit_after_the_phase() {
+        let at = (2022, 1, 1, 0, 0, 1.0);
+        let text = write(
+            at,
+            &[(
+                at,
+                vec![record(gps(7), 45.3, true), record(gps(12), 54.0, false)],
+            )],
+        );
+        let body = text.split("END OF HEADER").nth(1).unwrap();
+        let lines: Vec<&str> = body.lines().filter(|l| l.starts_with('G')).collect();
+        // Table A3: A1,I2.2 then per observation F14.3, LLI I1, SSI I1.
+        let obs = |l: &str, i: usize| l[3 + 16 * i..3 + 16 * (i + 1)].to_string();
+        let g07 = lines[0];
+        assert_eq!(&g07[..3], "G07");
+        assert_eq!(obs(g07, 0), "  21234567.891  ");
+        assert_eq!(
+            obs(g07, 1),
+            " 111587654.32117",
+            "LLI 1, SSI 7 (42-47 dB-Hz)"
+        );
+        assert_eq!(obs(g07, 2), "     -1234.567  ");
+        assert_eq!(obs(g07, 3), "        45.300  ");
+        let g12 = lines[1];
+        assert_eq!(
+            obs(g12, 1),
+            " 111587654.321 9",
+            "no LLI, SSI 9 (>= 54 dB-Hz)"
+        );
+    }
+
+    #[test]
+    fn overflowing_phase_is_wrapped_and_flagged_and_missing_values_are_blank() {
+        let mut r = record(gps(3), f64::NAN, false);
+        r.carrier_phase_cycles = 12_345_678_901.25;
+        r.doppler_hz = f64::NAN;
+        let at = (2022, 1, 1, 0, 0, 1.0);
+        let text = write(at, &[(at, vec![r])]);
+        let l = text.lines().find(|l| l.starts_with("G03")).unwrap();
+        assert_eq!(&l[19..35], " 345678901.2501 ");
+        assert_eq!(&l[35..], " ".repeat(32));
+    }
+
+    #[test]
+    fn undeclared_systems_are_refused() {
+        let at = (2022, 1, 1, 0, 0, 1.0);
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&[System::Gps], at)).unwrap();
+        let c19 = SatId {
+            system: System::Beidou,
+            prn: 19,
+        };
+        assert!(w.epoch(at, &[record(c19, 40.0, false)]).is_err());
+        assert!(
+            ObsWriter::with_header(
+                Vec::new(),
+                &header(&[System::Gps], (2022, 2, 30, 0, 0, 0.0))
+            )
+            .is_err()
+        );
+    }
+
+    #[test]
+    fn the_rinex_crate_reads_epochs_flags_and_strengths() {
+        use rinex::prelude::{Constellation, Observable};
+        let systems = [System::Gps, System::Beidou];
+        let c19 = SatId {
+            system: System::Beidou,
+            prn: 19,
+        };
+        let t0 = (2022, 1, 1, 0, 0, 12.000_000_1);
+        let t1 = (2022, 1, 1, 0, 0, 12.100_000_1);
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&systems, t0)).unwrap();
+        w.epoch(t0, &[record(gps(7), 45.0, true), record(c19, 30.0, false)])
+            .unwrap();
+        w.epoch(t1, &[record(gps(7), 45.0, false), record(c19, 11.0, true)])
+            .unwrap();
+        let bytes = w.finish().unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("ant1.obs.rnx");
+        std::fs::write(&path, bytes).unwrap();
+        let rnx = rinex::Rinex::from_file(&path).unwrap();
+        let start = Epoch::from_gregorian(2022, 1, 1, 0, 0, 12, 100, TimeScale::GPST);
+        let mut seen = Vec::new();
+        for (key, o) in rnx.signal_observations_iter() {
+            let Observable::PhaseRange(code) = &o.observable else {
+                continue;
+            };
+            let dt_s = (key.epoch.to_time_scale(TimeScale::GPST) - start).to_seconds();
+            let letter = match o.sv.constellation {
+                Constellation::GPS => 'G',
+                Constellation::BeiDou => 'C',
+                c => panic!("{c:?}"),
+            };
+            let lli = o.lli.map(|f| f.bits());
+            let ssi = o.snr.map(|s| format!("{s:x}"));
+            seen.push((
+                format!("{dt_s:.7}"),
+                format!("{letter}{:02} {code}", o.sv.prn),
+                lli,
+                ssi,
+                o.value,
+            ));
+        }
+        seen.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let phase = 111_587_654.321;
+        assert_eq!(
+            seen,
+            vec![
+                (
+                    "0.0000000".into(),
+                    "C19 L2I".into(),
+                    None,
+                    Some("5".into()),
+                    phase
+                ),
+                (
+                    "0.0000000".into(),
+                    "G07 L1C".into(),
+                    Some(1),
+                    Some("7".into()),
+                    phase
+                ),
+                (
+                    "0.1000000".into(),
+                    "C19 L2I".into(),
+                    Some(1),
+                    Some("1".into()),
+                    phase
+                ),
+                (
+                    "0.1000000".into(),
+                    "G07 L1C".into(),
+                    None,
+                    Some("7".into()),
+                    phase
+                ),
+            ]
+        );
     }
 }

@@ -1,0 +1,331 @@
+//! What `skyforge receive` writes at every observation epoch of the bundled receiver, into
+//! one directory (the caller's staged output directory):
+//! - `<antenna>.obs.rnx`: RINEX 3.04 observations with loss-of-lock and signal strength
+//!   indicators, tagged with the receiver time
+//!   ([`rinex_obs`](crate::output::rinex_obs)); the header is written at
+//!   the antenna's first fix (its approximate position) or, when a position was given,
+//!   at its first observations;
+//! - `pvt.csv`: one row per antenna and epoch with a fix ([`pvt_csv`]);
+//! - `<antenna>.nmea`: GGA, GSA and RMC sentences per fix ([`nmea_log`]);
+//! - `receiver.h5`: observations per antenna and satellite and the fixes per antenna, in
+//!   resizable datasets appended in chunks ([`receiver_h5`]).
+//!
+//! Times are the receiver's own clock (GPST scale): `t_rx`, the epoch's tag; the GPST of a
+//! fix is `t_rx - clock_bias_m / c`.
+
+mod nmea_log;
+mod pvt_csv;
+mod receiver_h5;
+mod rinex_files;
+#[cfg(test)]
+mod rtklib_interop;
+
+use anyhow::{Context, bail};
+use nmea_log::NmeaLog;
+use pvt_csv::PvtCsv;
+use receiver_h5::ReceiverH5;
+use rinex_files::RinexFiles;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::System;
+use skyforge_receiver::pipeline::EpochReport;
+use std::path::Path;
+
+/// What was written.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Summary {
+    /// Epochs written.
+    pub epochs: usize,
+    /// Per antenna (input order): observations (satellite x epoch) written.
+    pub observations: Vec<usize>,
+    /// Per antenna: position fixes written.
+    pub fixes: Vec<usize>,
+}
+
+/// The receiver's output files, fed one epoch at a time.
+#[derive(Debug)]
+pub struct ReceiverOutputs {
+    antenna_names: Vec<String>,
+    rinex: RinexFiles,
+    csv: PvtCsv,
+    nmea: Vec<NmeaLog>,
+    h5: ReceiverH5,
+    summary: Summary,
+}
+
+/// An antenna name must name files and HDF5 groups.
+fn check_name(name: &str, seen: &[String]) -> anyhow::Result<()> {
+    if name.is_empty()
+        || name == "."
+        || name == ".."
+        || name.contains(['/', '\\'])
+        || name.chars().any(char::is_control)
+    {
+        bail!(
+            "antenna name {name:?} cannot name output files (no '/', '\\', control characters, '.' or '..')"
+        );
+    }
+    if seen.iter().any(|s| s == name) {
+        bail!("antenna name {name:?} appears twice");
+    }
+    Ok(())
+}
+
+impl ReceiverOutputs {
+    /// Create the files in `dir` (an existing directory) for antennas `antenna_names`
+    /// (index = `AntennaFix::antenna`), receiving `systems`. `approx_ecef_m` is the
+    /// RINEX header position (m, ECEF); when `None`, each antenna's first fix gives it.
+    /// `interval_s` is the observation interval (RINEX `INTERVAL`).
+    pub fn create(
+        dir: &Path,
+        antenna_names: &[String],
+        systems: &[System],
+        approx_ecef_m: Option<Vec3>,
+        interval_s: f64,
+    ) -> anyhow::Result<Self> {
+        if systems.is_empty() {
+            bail!("no satellite system to write observations of");
+        }
+        let mut names: Vec<String> = Vec::with_capacity(antenna_names.len());
+        for name in antenna_names {
+            check_name(name, &names)?;
+            names.push(name.clone());
+        }
+        let nmea = names
+            .iter()
+            .map(|n| NmeaLog::create(&dir.join(format!("{n}.nmea"))))
+            .collect::<anyhow::Result<Vec<_>>>()?;
+        let h5_path = dir.join("receiver.h5");
+        let h5 = ReceiverH5::create(&h5_path, &names)
+            .with_context(|| format!("cannot create {}", h5_path.display()))?;
+        Ok(Self {
+            rinex: RinexFiles::new(dir, &names, systems, approx_ecef_m, interval_s),
+            csv: PvtCsv::create(&dir.join("pvt.csv"))?,
+            nmea,
+            h5,
+            summary: Summary {
+                epochs: 0,
+                observations: vec![0; names.len()],
+                fixes: vec![0; names.len()],
+            },
+            antenna_names: names,
+        })
+    }
+
+    /// Write one epoch: every antenna's observations and fixes.
+    pub fn write_epoch(&mut self, report: &EpochReport) -> anyhow::Result<()> {
+        let n = self.antenna_names.len();
+        let bad = report
+            .observations
+            .iter()
+            .map(|o| o.antenna)
+            .chain(report.fixes.iter().map(|f| f.antenna))
+            .find(|&a| a >= n);
+        if let Some(a) = bad {
+            bail!(
+                "the receiver reported antenna index {a} at {}, but there are {n} antennas",
+                report.t_rx
+            );
+        }
+        self.rinex.write_epoch(report)?;
+        self.h5.write_epoch(report)?;
+        for af in &report.fixes {
+            let Ok(fix) = &af.fix else {
+                continue;
+            };
+            let name = &self.antenna_names[af.antenna];
+            self.csv.row(name, report.t_rx, fix, af.velocity.as_ref())?;
+            self.nmea[af.antenna].write(report.t_rx, fix, af.velocity.as_ref())?;
+            self.summary.fixes[af.antenna] += 1;
+        }
+        for o in &report.observations {
+            self.summary.observations[o.antenna] += 1;
+        }
+        self.summary.epochs += 1;
+        Ok(())
+    }
+
+    /// Write what is buffered, close every file and say what was written.
+    pub fn finish(self) -> anyhow::Result<Summary> {
+        self.rinex.finish()?;
+        self.csv.finish()?;
+        for log in self.nmea {
+            log.finish()?;
+        }
+        self.h5.finish()?;
+        Ok(self.summary)
+    }
+}
+
+/// Error context naming an output file.
+fn writing(path: &Path) -> String {
+    format!("cannot write {}", path.display())
+}
+
+#[cfg(test)]
+pub(crate) mod test_support {
+    //! Hand-built epoch reports for the tests of the writers.
+
+    use hifitime::{Epoch, TimeScale};
+    use skyforge_orbits::Vec3;
+    use skyforge_orbits::ephemeris::{SatId, System};
+    use skyforge_receiver::observables::Observation;
+    use skyforge_receiver::pipeline::{AntennaFix, EpochReport};
+    use skyforge_receiver::pvt::{Dop, Fix, PvtError, VelocityFix};
+
+    pub fn gps(prn: u8) -> SatId {
+        SatId {
+            system: System::Gps,
+            prn,
+        }
+    }
+
+    pub fn bds(prn: u8) -> SatId {
+        SatId {
+            system: System::Beidou,
+            prn,
+        }
+    }
+
+    pub fn observation(antenna: usize, sat: SatId, k: usize, loss_of_lock: bool) -> Observation {
+        Observation {
+            antenna,
+            sat,
+            pseudorange_m: 2.0e7 + 1000.0 * f64::from(sat.prn) + 100.0 * k as f64,
+            carrier_phase_cycles: 1.05e8 + 1.25 * k as f64,
+            doppler_hz: -1500.0 + f64::from(sat.prn),
+            cn0_dbhz: 40.0 + f64::from(sat.prn) / 10.0,
+            lock_time_s: 0.1 * k as f64,
+            loss_of_lock,
+        }
+    }
+
+    /// A fix at `r_ecef_m` with `sats` used.
+    pub fn fix(r_ecef_m: Vec3, sats: &[SatId]) -> Fix {
+        Fix {
+            t_s: 0.0,
+            r_ecef_m,
+            clock_bias_m: 1500.0,
+            inter_system_bias_m: None,
+            dop: Dop {
+                gdop: 2.5,
+                pdop: 2.1,
+                hdop: 1.2,
+                vdop: 1.7,
+                tdop: 1.3,
+            },
+            used: sats.iter().map(|&s| (s, 0.5, 0.7)).collect(),
+            excluded: vec![],
+            chi2: 1.0,
+            dof: sats.len().saturating_sub(4),
+        }
+    }
+
+    /// Epoch `k` of a two-antenna run at 10 Hz starting 2022-01-01 00:00:30.0000001 GPST:
+    /// antenna 0 sees G07, G12, G19, C19 (G12 loses lock at epoch 2) and fixes from epoch 1
+    /// on (with velocity from epoch 2); antenna 1 sees G07 only and never fixes.
+    pub fn report(k: usize) -> EpochReport {
+        let t0 = Epoch::from_gregorian(2022, 1, 1, 0, 0, 30, 100, TimeScale::GPST);
+        let sats = [gps(7), gps(12), gps(19), bds(19)];
+        let mut observations: Vec<Observation> = sats
+            .iter()
+            .map(|&s| observation(0, s, k, k == 0 || (k == 2 && s == gps(12))))
+            .collect();
+        observations.push(observation(1, gps(7), k, k == 0));
+        let r = Vec3::new(-2_267_749.0, 5_009_154.0, 3_221_290.0);
+        let fix0 = if k >= 1 {
+            Ok(fix(r, &sats))
+        } else {
+            Err(PvtError::TooFewSatellites {
+                have: 3,
+                need: 5,
+                clocks: 2,
+            })
+        };
+        EpochReport {
+            sample_index: k as f64 * 409_200.0,
+            t_rx: t0 + hifitime::Duration::from_milliseconds(100.0 * k as f64),
+            observations,
+            fixes: vec![
+                AntennaFix {
+                    antenna: 0,
+                    fix: fix0,
+                    velocity: (k >= 2).then_some(VelocityFix {
+                        v_ecef_mps: Vec3::new(1.0, -2.0, 0.5),
+                        clock_drift_mps: 0.25,
+                    }),
+                },
+                AntennaFix {
+                    antenna: 1,
+                    fix: Err(PvtError::Singular),
+                    velocity: None,
+                },
+            ],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::test_support::report;
+    use super::*;
+
+    #[test]
+    fn a_run_writes_every_file_and_counts_what_it_wrote() {
+        let dir = tempfile::tempdir().unwrap();
+        let names = vec!["ant1".to_string(), "ant2".to_string()];
+        let mut out = ReceiverOutputs::create(
+            dir.path(),
+            &names,
+            &[System::Gps, System::Beidou],
+            None,
+            0.1,
+        )
+        .unwrap();
+        for k in 0..5 {
+            out.write_epoch(&report(k)).unwrap();
+        }
+        let summary = out.finish().unwrap();
+        assert_eq!(
+            summary,
+            Summary {
+                epochs: 5,
+                observations: vec![20, 5],
+                fixes: vec![4, 0],
+            }
+        );
+        for f in [
+            "ant1.obs.rnx",
+            "ant2.obs.rnx",
+            "pvt.csv",
+            "ant1.nmea",
+            "ant2.nmea",
+            "receiver.h5",
+        ] {
+            assert!(dir.path().join(f).is_file(), "{f}");
+        }
+        // The antenna without a fix has its observations all the same, with no position.
+        let ant2 = std::fs::read_to_string(dir.path().join("ant2.obs.rnx")).unwrap();
+        assert_eq!(ant2.lines().filter(|l| l.starts_with('>')).count(), 5);
+        assert!(!ant2.contains("APPROX POSITION XYZ"));
+        assert!(
+            std::fs::read_to_string(dir.path().join("ant2.nmea"))
+                .unwrap()
+                .is_empty()
+        );
+    }
+
+    #[test]
+    fn bad_antenna_names_and_indices_are_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let create = |names: &[&str]| {
+            let names: Vec<String> = names.iter().map(|s| s.to_string()).collect();
+            ReceiverOutputs::create(dir.path(), &names, &[System::Gps], None, 1.0)
+        };
+        assert!(create(&["a/b"]).is_err());
+        assert!(create(&["x", "x"]).is_err());
+        assert!(create(&[".."]).is_err());
+        let mut one = create(&["solo"]).unwrap();
+        let err = one.write_epoch(&report(1)).unwrap_err().to_string();
+        assert!(err.contains("antenna index 1"), "{err}");
+    }
+}
