@@ -1,0 +1,445 @@
+//! Zero-baseline double differences (thesis section 5.4, table 5.4-2): two receivers (or
+//! two channels) fed the same antenna signal, on one oscillator. The between-receiver
+//! single difference `SD_i = obs_A,i - obs_B,i` removes everything of the signal (range,
+//! satellite clock, atmosphere) and leaves the receivers' clock difference, their
+//! inter-channel biases and their independent noise; the double difference
+//! `DD_i = SD_i - SD_ref` against a reference satellite of the same system removes the
+//! clock difference. For independent noise of std `sigma` in each of the four terms,
+//! `std(DD) = 2 sigma`.
+//!
+//! - Epochs of A and B are paired when their tags differ by at most
+//!   [`DdOptions::max_tag_difference_s`]; B's observations are moved to A's tag with B's
+//!   Doppler (`dPR/dt = -lambda D`, `dphi/dt = -D`, RINEX signs), so a tag difference does
+//!   not leave `(rho_dot_i - rho_dot_ref) dt` in the double differences.
+//! - Reference satellite per system: the satellite with code and phase single differences
+//!   in the most common epochs (ties: the lowest PRN). An observation file carries no
+//!   elevation; over a short run the satellite seen longest is usually a high one, and
+//!   choosing it keeps the most double differences. Epochs without the reference give no
+//!   double differences.
+//! - Pseudorange DD (m): mean and std (n - 1) per satellite pair.
+//! - Carrier-phase DD: per arc (split at a loss-of-lock indicator of any of the four
+//!   phases or a missing epoch) the integer nearest the arc's mean (cycles) is removed and
+//!   the rest converted to metres; per pair `mean` is the count-weighted mean of what the
+//!   integers leave (a fractional or half-cycle bias shows here) and `std` the pooled
+//!   within-arc std (each arc's own mean removed, so a receiver whose ambiguities are not
+//!   integers still gets its noise measured).
+//! - Per system: the pairs pooled ([`ErrorStats::pooled`]).
+
+use super::ObsError;
+use super::error_stats::{ErrorStats, display};
+use super::rinex_read::{LLI_LOSS_OF_LOCK, ObsFile, SatObs};
+use hifitime::Epoch;
+use serde::{Serialize, Serializer};
+use skyforge_orbits::constants::C_MPS;
+use skyforge_orbits::ephemeris::{SatId, System};
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Settings of [`zero_baseline_with`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DdOptions {
+    /// Largest time-tag difference (s) for which an epoch of A and one of B are the same.
+    pub max_tag_difference_s: f64,
+}
+
+impl Default for DdOptions {
+    /// 1 us: receivers on one oscillator tag the same samples identically; anything above
+    /// a microsecond is a different epoch.
+    fn default() -> Self {
+        Self {
+            max_tag_difference_s: 1e-6,
+        }
+    }
+}
+
+/// One continuous carrier-phase double-difference arc.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DdArc {
+    /// Time tag (receiver A) of the arc's first epoch.
+    #[serde(serialize_with = "display")]
+    pub start: Epoch,
+    pub epochs: usize,
+    /// The integer removed (cycles).
+    pub integer_cycles: f64,
+    /// The arc's mean minus that integer (cycles).
+    pub fraction_cycles: f64,
+}
+
+/// The double differences of one satellite against the reference.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairDd {
+    #[serde(serialize_with = "display")]
+    pub sat: SatId,
+    #[serde(serialize_with = "display")]
+    pub reference: SatId,
+    pub pseudorange_m: ErrorStats,
+    pub carrier_phase_m: ErrorStats,
+    pub arcs: Vec<DdArc>,
+}
+
+/// The double differences of one system.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SystemDd {
+    #[serde(serialize_with = "system_name")]
+    pub system: System,
+    #[serde(serialize_with = "display")]
+    pub reference: SatId,
+    /// The pairs pooled.
+    pub pseudorange_m: ErrorStats,
+    pub carrier_phase_m: ErrorStats,
+    pub pairs: Vec<PairDd>,
+}
+
+/// The result of [`zero_baseline`].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ZeroBaseline {
+    pub receiver_a: PathBuf,
+    pub receiver_b: PathBuf,
+    /// Epochs of A paired with an epoch of B.
+    pub common_epochs: usize,
+    /// Largest |tag A - tag B| among them (s).
+    pub max_tag_difference_s: f64,
+    pub systems: Vec<SystemDd>,
+}
+
+impl ZeroBaseline {
+    /// The double differences of `system`, if it has any.
+    pub fn system(&self, system: System) -> Option<&SystemDd> {
+        self.systems.iter().find(|s| s.system == system)
+    }
+}
+
+fn system_name<S: Serializer>(s: &System, ser: S) -> Result<S::Ok, S::Error> {
+    ser.serialize_str(match s {
+        System::Gps => "GPS",
+        System::Beidou => "BeiDou",
+    })
+}
+
+/// Between-receiver single differences of one satellite at one common epoch.
+#[derive(Debug, Clone, Copy)]
+struct Sd {
+    code_m: Option<f64>,
+    phase_cycles: Option<f64>,
+    /// A loss of lock in either receiver's phase.
+    slip: bool,
+}
+
+/// [`zero_baseline_with`] with the default options.
+pub fn zero_baseline(a: &ObsFile, b: &ObsFile) -> Result<ZeroBaseline, ObsError> {
+    zero_baseline_with(a, b, &DdOptions::default())
+}
+
+/// Double differences of receivers `a` and `b` (see the module documentation).
+pub fn zero_baseline_with(
+    a: &ObsFile,
+    b: &ObsFile,
+    opts: &DdOptions,
+) -> Result<ZeroBaseline, ObsError> {
+    // Pair epochs (both lists are in time order).
+    let mut common: Vec<(usize, usize, f64)> = Vec::new();
+    let mut j = 0;
+    for (i, ea) in a.epochs.iter().enumerate() {
+        while j < b.epochs.len()
+            && (ea.time - b.epochs[j].time).to_seconds() > opts.max_tag_difference_s
+        {
+            j += 1;
+        }
+        if let Some(eb) = b.epochs.get(j) {
+            let dt = (ea.time - eb.time).to_seconds();
+            if dt.abs() <= opts.max_tag_difference_s {
+                common.push((i, j, dt));
+                j += 1;
+            }
+        }
+    }
+    if common.is_empty() {
+        return Err(ObsError::NoCommonEpoch {
+            tolerance_s: opts.max_tag_difference_s,
+        });
+    }
+    // Single differences per common epoch.
+    let sds: Vec<BTreeMap<SatId, Sd>> = common
+        .iter()
+        .map(|&(i, j, dt)| {
+            a.epochs[i]
+                .sats
+                .iter()
+                .filter_map(|sa| {
+                    let sb = b.epochs[j].sats.iter().find(|s| s.sat == sa.sat)?;
+                    (sb.signal == sa.signal).then(|| (sa.sat, single_difference(sa, sb, dt)))
+                })
+                .collect()
+        })
+        .collect();
+    let mut by_system: BTreeMap<System, BTreeMap<SatId, usize>> = BTreeMap::new();
+    for epoch in &sds {
+        for (sat, sd) in epoch {
+            let n = by_system
+                .entry(sat.system)
+                .or_default()
+                .entry(*sat)
+                .or_default();
+            *n += usize::from(sd.code_m.is_some() && sd.phase_cycles.is_some());
+        }
+    }
+    let mut systems = Vec::new();
+    for (system, counts) in by_system {
+        // Most epochs first, then the lowest PRN (BTreeMap order).
+        let Some((&reference, _)) = counts
+            .iter()
+            .rev()
+            .max_by_key(|&(_, &n)| n)
+            .filter(|&(_, &n)| n > 0)
+        else {
+            continue;
+        };
+        let lambda = wavelength(a, reference);
+        let pairs: Vec<PairDd> = counts
+            .keys()
+            .filter(|&&s| s != reference)
+            .map(|&sat| pair(&sds, &common, a, sat, reference, lambda))
+            .filter(|p| p.pseudorange_m.count > 0 || p.carrier_phase_m.count > 0)
+            .collect();
+        if pairs.is_empty() {
+            continue;
+        }
+        let code: Vec<ErrorStats> = pairs.iter().map(|p| p.pseudorange_m).collect();
+        let phase: Vec<ErrorStats> = pairs.iter().map(|p| p.carrier_phase_m).collect();
+        systems.push(SystemDd {
+            system,
+            reference,
+            pseudorange_m: ErrorStats::pooled(&code),
+            carrier_phase_m: ErrorStats::pooled(&phase),
+            pairs,
+        });
+    }
+    Ok(ZeroBaseline {
+        receiver_a: a.source.clone(),
+        receiver_b: b.source.clone(),
+        common_epochs: common.len(),
+        max_tag_difference_s: common.iter().fold(0.0, |m, c| f64::max(m, c.2.abs())),
+        systems,
+    })
+}
+
+/// Carrier wavelength (m) of `sat`'s signal in `f`.
+fn wavelength(f: &ObsFile, sat: SatId) -> f64 {
+    let signal = f
+        .epochs
+        .iter()
+        .flat_map(|e| &e.sats)
+        .find(|s| s.sat == sat)
+        .map(|s| s.signal);
+    signal.map_or(f64::NAN, |s| C_MPS / s.carrier_hz())
+}
+
+/// `a - b`, with `b` moved from its tag to `a`'s (`dt = tag_a - tag_b`) by its Doppler.
+fn single_difference(a: &SatObs, b: &SatObs, dt: f64) -> Sd {
+    let lambda = C_MPS / a.signal.carrier_hz();
+    let phase_rate = b.doppler_hz.map_or(0.0, |d| -d);
+    Sd {
+        code_m: a
+            .pseudorange_m
+            .zip(b.pseudorange_m)
+            .map(|(pa, pb)| pa - (pb + lambda * phase_rate * dt)),
+        phase_cycles: a
+            .carrier_phase_cycles
+            .zip(b.carrier_phase_cycles)
+            .map(|(pa, pb)| pa - (pb + phase_rate * dt)),
+        slip: (a.phase_lli | b.phase_lli) & LLI_LOSS_OF_LOCK != 0,
+    }
+}
+
+/// The double differences of `sat` against `reference` over all common epochs.
+fn pair(
+    sds: &[BTreeMap<SatId, Sd>],
+    common: &[(usize, usize, f64)],
+    a: &ObsFile,
+    sat: SatId,
+    reference: SatId,
+    lambda: f64,
+) -> PairDd {
+    let mut code = Vec::new();
+    // Phase arcs: (first common epoch, values in cycles).
+    let mut arcs: Vec<(usize, Vec<f64>)> = Vec::new();
+    let mut last_phase: Option<usize> = None;
+    for (k, epoch) in sds.iter().enumerate() {
+        let (Some(s), Some(r)) = (epoch.get(&sat), epoch.get(&reference)) else {
+            continue;
+        };
+        if let (Some(cs), Some(cr)) = (s.code_m, r.code_m) {
+            code.push(cs - cr);
+        }
+        if let (Some(ps), Some(pr)) = (s.phase_cycles, r.phase_cycles) {
+            let continues = last_phase == Some(k.wrapping_sub(1)) && !s.slip && !r.slip;
+            if !continues || arcs.is_empty() {
+                arcs.push((k, Vec::new()));
+            }
+            if let Some(arc) = arcs.last_mut() {
+                arc.1.push(ps - pr);
+            }
+            last_phase = Some(k);
+        }
+    }
+    let mut arc_out = Vec::new();
+    let mut arc_stats = Vec::new();
+    for (first, cycles) in &arcs {
+        let mean = cycles.iter().sum::<f64>() / cycles.len() as f64;
+        let n = mean.round();
+        let metres: Vec<f64> = cycles.iter().map(|c| (c - n) * lambda).collect();
+        arc_stats.push(ErrorStats::of(&metres));
+        arc_out.push(DdArc {
+            start: a.epochs[common[*first].0].time,
+            epochs: cycles.len(),
+            integer_cycles: n,
+            fraction_cycles: mean - n,
+        });
+    }
+    PairDd {
+        sat,
+        reference,
+        pseudorange_m: ErrorStats::of(&code),
+        carrier_phase_m: ErrorStats::pooled(&arc_stats),
+        arcs: arc_out,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::observables::test_rinex::{Rec, normal, obs_file, range, wavelength};
+    use rand::SeedableRng;
+    use rand_chacha::ChaCha8Rng;
+
+    /// name, zenith time (s), code bias in A and in B (m), ambiguity in A and B (cycles).
+    type Sat = (&'static str, f64, f64, f64, f64, f64);
+    const SATS: [Sat; 6] = [
+        ("G02", -21500.0, 0.3, 0.1, 11.0, -4.0),
+        ("G05", 21500.0, 0.0, -0.2, 3.0, 8.0),
+        ("G10", 9000.0, 0.5, 0.0, -2.0, 0.0),
+        ("G17", -9000.0, 0.0, 0.0, 5.0, 5.0),
+        ("C04", 15000.0, 0.0, 0.0, 1.0, 2.0),
+        ("C07", -15000.0, 0.2, -0.1, 0.0, 9.0),
+    ];
+
+    /// One receiver on the shared oscillator (tags `d = 1 ms` ahead of the sample clock),
+    /// 120 epochs; G10 only from epoch 20; receiver B (`b`) slips G05 by 3 cycles at epoch
+    /// 60; tags `tag_shift_s` later than A's.
+    fn receiver(
+        b: bool,
+        seed: u64,
+        sigma_code: f64,
+        sigma_phase: f64,
+        tag_shift_s: f64,
+    ) -> ObsFile {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let epochs: Vec<(f64, Vec<Rec>)> = (0..120)
+            .map(|k| {
+                let tag = 100.25 + k as f64 + tag_shift_s;
+                let t = tag - 1e-3;
+                let recs = SATS
+                    .iter()
+                    .filter(|s| s.0 != "G10" || k >= 20)
+                    .map(|&(sat, tz, bias_a, bias_b, n_a, n_b)| {
+                        let (rho, rate) = range(tz, t);
+                        let lambda = wavelength(sat);
+                        let slip = b && sat == "G05" && k >= 60;
+                        let (bias, n) = if b { (bias_b, n_b) } else { (bias_a, n_a) };
+                        let n = n + if slip { 3.0 } else { 0.0 };
+                        Rec {
+                            sat,
+                            pr: rho + bias + sigma_code * normal(&mut rng),
+                            phase: (rho + sigma_phase * normal(&mut rng)) / lambda + n,
+                            dop: -rate / lambda,
+                            cn0: 45.0,
+                            lli: u8::from(b && sat == "G05" && k == 60),
+                        }
+                    })
+                    .collect();
+                (tag, recs)
+            })
+            .collect();
+        obs_file(&epochs, "GPS")
+    }
+
+    fn sat(name: &str) -> &'static Sat {
+        SATS.iter().find(|s| s.0 == name).unwrap()
+    }
+
+    #[test]
+    fn zero_baseline_noise_and_biases_are_measured() {
+        let (sc, sp) = (0.5, 0.001);
+        let zb = zero_baseline(
+            &receiver(false, 1, sc, sp, 0.0),
+            &receiver(true, 2, sc, sp, 0.0),
+        )
+        .unwrap();
+        assert_eq!(zb.common_epochs, 120);
+        let gps = zb.system(System::Gps).unwrap();
+        // G10 misses 20 epochs; G02, G05, G17 tie: the lowest PRN.
+        assert_eq!(gps.reference.to_string(), "G02");
+        assert_eq!(gps.pairs.len(), 3);
+        let r = sat("G02");
+        for p in &gps.pairs {
+            let s = sat(&p.sat.to_string());
+            let n = if s.0 == "G10" { 100 } else { 120 };
+            assert_eq!(p.pseudorange_m.count, n);
+            // Independent noise in four terms: std 2 sigma.
+            let se = |sigma: f64, n: usize| 2.0 * sigma / (2.0 * n as f64).sqrt();
+            let code_std = p.pseudorange_m.std.unwrap();
+            assert!((code_std - 2.0 * sc).abs() < 3.0 * se(sc, n), "{code_std}");
+            let mean = (s.2 - s.3) - (r.2 - r.3);
+            let code_mean = p.pseudorange_m.mean.unwrap();
+            assert!((code_mean - mean).abs() < 3.0 * 2.0 * sc / (n as f64).sqrt());
+            let phase_std = p.carrier_phase_m.std.unwrap();
+            assert!(
+                (phase_std - 2.0 * sp).abs() < 3.0 * se(sp, n),
+                "{phase_std}"
+            );
+            assert!(p.carrier_phase_m.mean.unwrap().abs() < 4.0 * 2.0 * sp / (n as f64).sqrt());
+            let integer = (s.4 - s.5) - (r.4 - r.5);
+            match s.0 {
+                "G05" => {
+                    assert_eq!(p.arcs.len(), 2);
+                    assert_eq!(p.arcs[0].integer_cycles, integer);
+                    assert_eq!(p.arcs[1].integer_cycles, integer - 3.0);
+                    assert_eq!((p.arcs[0].epochs, p.arcs[1].epochs), (60, 60));
+                }
+                _ => {
+                    assert_eq!(p.arcs.len(), 1);
+                    assert_eq!(p.arcs[0].integer_cycles, integer);
+                }
+            }
+            assert!(p.arcs.iter().all(|a| a.fraction_cycles.abs() < 0.01));
+        }
+        let bds = zb.system(System::Beidou).unwrap();
+        assert_eq!(bds.reference.to_string(), "C04");
+        assert_eq!(bds.pairs.len(), 1);
+        // Pooled over GPS pairs: count and a std near 2 sigma.
+        assert_eq!(gps.pseudorange_m.count, 340);
+        assert!((gps.carrier_phase_m.std.unwrap() - 2.0 * sp).abs() < 0.2 * sp);
+    }
+
+    /// B tags 0.9 us later than A; without the Doppler move, each pair would keep
+    /// (rho_dot_i - rho_dot_ref) x 0.9 us, up to 0.8 mm.
+    #[test]
+    fn a_tag_difference_is_moved_out_with_the_doppler() {
+        let a = receiver(false, 3, 0.0, 0.0, 0.0);
+        let b = receiver(true, 4, 0.0, 0.0, 9e-7);
+        let zb = zero_baseline(&a, &b).unwrap();
+        assert!((zb.max_tag_difference_s - 9e-7).abs() < 1e-9);
+        for p in &zb.system(System::Gps).unwrap().pairs {
+            // Left: the file's 0.001-cycle rounding (0.2 mm) only.
+            let mean = p.carrier_phase_m.mean.unwrap();
+            assert!(mean.abs() < 1e-4, "{}: {mean}", p.sat);
+        }
+        let strict = DdOptions {
+            max_tag_difference_s: 5e-7,
+        };
+        assert!(matches!(
+            zero_baseline_with(&a, &b, &strict),
+            Err(ObsError::NoCommonEpoch { .. })
+        ));
+    }
+}

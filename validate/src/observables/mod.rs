@@ -1,0 +1,41 @@
+//! Receiver observations against truth: read RINEX 3 observation files, compare a
+//! receiver's pseudorange, carrier phase, Doppler and C/N0 with SkyForge's RINEX truth
+//! ([`compare()`]), and form zero-baseline double differences between two receivers
+//! ([`double_difference::zero_baseline`], thesis table 5.4-2).
+//!
+//! Signals: GPS L1 C/A (RINEX 3 codes `C1C L1C D1C S1C`) and BeiDou B1I (`C2I L2I D2I
+//! S2I`; RINEX 3.02 files, e.g. GNSS-SDR's, code B1I as band 1: `C1I L1I D1I S1I`).
+
+pub mod compare;
+pub mod double_difference;
+mod error_stats;
+mod fixed_effects;
+mod interpolate;
+pub mod rinex_read;
+#[cfg(test)]
+mod test_rinex;
+
+pub use compare::{ObsComparison, compare};
+pub use error_stats::{ErrorStats, SatErrors};
+pub use rinex_read::{ObsEpoch, ObsFile, SatObs, read_obs_file};
+
+use std::path::PathBuf;
+
+/// Why observations could not be read or compared.
+#[derive(Debug, thiserror::Error)]
+pub enum ObsError {
+    /// The file could not be read or parsed as RINEX.
+    #[error("{path}: {message}")]
+    Read { path: PathBuf, message: String },
+    /// The file is RINEX but not an observation file.
+    #[error("{0}: not a RINEX observation file")]
+    NotObservation(PathBuf),
+    /// No estimate epoch could be matched with the truth.
+    #[error(
+        "no estimate epoch overlaps the truth with a common satellite (estimate {estimate}, truth {truth})"
+    )]
+    NoOverlap { estimate: String, truth: String },
+    /// The two receivers of a double difference share no epoch.
+    #[error("the two receivers share no epoch within {tolerance_s} s")]
+    NoCommonEpoch { tolerance_s: f64 },
+}

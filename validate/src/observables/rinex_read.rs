@@ -1,0 +1,323 @@
+//! RINEX 3 observation files into per-epoch GPS L1 C/A and BeiDou B1I observations, through
+//! the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
+//!
+//! Checked on the two kinds of file this module exists for: SkyForge's truth (RINEX 3.04,
+//! `C2I` for B1I, GPS time) and GNSS-SDR 0.0.17's output (RINEX 3.02, B1I as `C1I`,
+//! BeiDou epochs in BDT, signal strength digit after every value). The crate keeps the
+//! loss-of-lock indicator of every value and the epoch flag; it parses the epoch's seconds
+//! to 100 ns, the resolution of the RINEX F11.7 field.
+
+use super::ObsError;
+use flate2::read::GzDecoder;
+use hifitime::{Epoch, TimeScale};
+use rinex::observation::EpochFlag;
+use rinex::prelude::{Constellation, Observable, Rinex};
+use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_signals::signal::SignalId;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufReader;
+use std::path::{Path, PathBuf};
+
+/// RINEX 3.04 section 5.7: LLI bit 0, loss of lock between the previous and this epoch.
+pub const LLI_LOSS_OF_LOCK: u8 = 0x01;
+/// RINEX 3.04 section 5.7: LLI bit 1, half-cycle ambiguity or slip possible.
+pub const LLI_HALF_CYCLE: u8 = 0x02;
+
+/// One satellite's observations of one signal at one epoch; a value is `None` when the
+/// file leaves it blank or does not list its observation code.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SatObs {
+    pub sat: SatId,
+    pub signal: SignalId,
+    pub pseudorange_m: Option<f64>,
+    /// Carrier phase (cycles), RINEX sign (grows with the range).
+    pub carrier_phase_cycles: Option<f64>,
+    /// Doppler (Hz), positive for an approaching satellite.
+    pub doppler_hz: Option<f64>,
+    /// Signal strength (`S` code), dB-Hz.
+    pub cn0_dbhz: Option<f64>,
+    /// Loss-of-lock indicator of the carrier phase ([`LLI_LOSS_OF_LOCK`],
+    /// [`LLI_HALF_CYCLE`]; 0 when blank). An epoch flagged 1 (power failure) sets
+    /// [`LLI_LOSS_OF_LOCK`] on every satellite of the epoch.
+    pub phase_lli: u8,
+}
+
+impl SatObs {
+    fn empty(sat: SatId, signal: SignalId) -> Self {
+        Self {
+            sat,
+            signal,
+            pseudorange_m: None,
+            carrier_phase_cycles: None,
+            doppler_hz: None,
+            cn0_dbhz: None,
+            phase_lli: 0,
+        }
+    }
+}
+
+/// One epoch of observations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsEpoch {
+    /// The epoch's time tag (the receiver's clock), in GPS time.
+    pub time: Epoch,
+    /// Observations, ordered by satellite.
+    pub sats: Vec<SatObs>,
+}
+
+/// The GPS L1 C/A and BeiDou B1I observations of one RINEX observation file, epochs in
+/// time order. Epochs flagged 6 (cycle-slip records, which repeat observations) and event
+/// epochs (flags 2-5, which carry no observations) are left out.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsFile {
+    /// Where the observations came from (file path, or a label for text).
+    pub source: PathBuf,
+    pub epochs: Vec<ObsEpoch>,
+}
+
+/// Which quantity an observation code holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Code,
+    Phase,
+    Doppler,
+    Strength,
+}
+
+/// The signal and quantity of observation `code` (e.g. `C1C`) of `system`, for a file of
+/// RINEX version `major.minor`. RINEX 3.02 names B1I band 1 (`C1I`); 3.03 renamed it band 2
+/// (`C2I`) and gave band 1 to B1C.
+fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(SignalId, Kind)> {
+    let b = code.as_bytes();
+    if b.len() != 3 {
+        return None;
+    }
+    let kind = match b[0] {
+        b'C' => Kind::Code,
+        b'L' => Kind::Phase,
+        b'D' => Kind::Doppler,
+        b'S' => Kind::Strength,
+        _ => return None,
+    };
+    let band_attr = &code[1..];
+    let signal = match (system, band_attr) {
+        (System::Gps, "1C") => SignalId::GpsL1Ca,
+        (System::Beidou, "2I") => SignalId::BdsB1I,
+        (System::Beidou, "1I") if (major, minor) < (3, 3) => SignalId::BdsB1I,
+        _ => return None,
+    };
+    Some((signal, kind))
+}
+
+/// Read a RINEX 3 observation file (plain, `.gz`, or Hatanaka `.crx[.gz]`).
+pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsError> {
+    let error = |message: String| ObsError::Read {
+        path: path.to_path_buf(),
+        message,
+    };
+    // Opened here: the crate's own `from_file` panics on a missing file.
+    let file = File::open(path).map_err(|e| error(e.to_string()))?;
+    let gz = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
+    let parsed = if gz {
+        Rinex::parse(&mut BufReader::new(GzDecoder::new(file)))
+    } else {
+        Rinex::parse(&mut BufReader::new(file))
+    };
+    let rinex = parsed.map_err(|e| error(e.to_string()))?;
+    from_rinex(&rinex, path)
+}
+
+/// Parse RINEX 3 observation `text`; `label` names it in errors.
+pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsError> {
+    let rinex = Rinex::parse(&mut BufReader::new(text.as_bytes())).map_err(|e| ObsError::Read {
+        path: PathBuf::from(label),
+        message: e.to_string(),
+    })?;
+    from_rinex(&rinex, Path::new(label))
+}
+
+fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsError> {
+    let record = rinex
+        .record
+        .as_obs()
+        .ok_or_else(|| ObsError::NotObservation(source.to_path_buf()))?;
+    let (major, minor) = (rinex.header.version.major, rinex.header.version.minor);
+    let mut epochs = Vec::with_capacity(record.len());
+    for (key, observations) in record {
+        let power_failure = match key.flag {
+            EpochFlag::Ok => false,
+            EpochFlag::PowerFailure => true,
+            _ => continue,
+        };
+        let mut sats: BTreeMap<SatId, SatObs> = BTreeMap::new();
+        for o in &observations.signals {
+            let system = match o.sv.constellation {
+                Constellation::GPS => System::Gps,
+                Constellation::BeiDou => System::Beidou,
+                _ => continue,
+            };
+            let code = match &o.observable {
+                Observable::PseudoRange(c)
+                | Observable::PhaseRange(c)
+                | Observable::Doppler(c)
+                | Observable::SSI(c) => c.as_str(),
+                _ => continue,
+            };
+            let Some((signal, kind)) = classify(system, code, major, minor) else {
+                continue;
+            };
+            let sat = SatId {
+                system,
+                prn: o.sv.prn,
+            };
+            let entry = sats
+                .entry(sat)
+                .or_insert_with(|| SatObs::empty(sat, signal));
+            match kind {
+                Kind::Code => entry.pseudorange_m = Some(o.value),
+                Kind::Phase => {
+                    entry.carrier_phase_cycles = Some(o.value);
+                    entry.phase_lli |= o.lli.map_or(0, |f| f.bits());
+                }
+                Kind::Doppler => entry.doppler_hz = Some(o.value),
+                Kind::Strength => entry.cn0_dbhz = Some(o.value),
+            }
+        }
+        if power_failure {
+            for s in sats.values_mut() {
+                s.phase_lli |= LLI_LOSS_OF_LOCK;
+            }
+        }
+        epochs.push(ObsEpoch {
+            time: key.epoch.to_time_scale(TimeScale::GPST),
+            sats: sats.into_values().collect(),
+        });
+    }
+    epochs.sort_by_key(|e| e.time);
+    Ok(ObsFile {
+        source: source.to_path_buf(),
+        epochs,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A RINEX 3.04 header with GPS and BeiDou in `time_system`.
+    fn header(version: &str, bds_band: char, time_system: &str) -> String {
+        let lines = [
+            format!("{version:>9}{:11}{:<20}{:<20}", "", "OBSERVATION DATA", "M"),
+            format!("G    4 C1C L1C D1C S1C{:38}", ""),
+            format!("C    4 C{b}I L{b}I D{b}I S{b}I{:38}", "", b = bds_band),
+            format!(
+                "  2023    03    12    00    00    0.0000000     {time_system:<3}{:9}",
+                ""
+            ),
+            format!("{:60}", ""),
+        ];
+        let labels = [
+            "RINEX VERSION / TYPE",
+            "SYS / # / OBS TYPES",
+            "SYS / # / OBS TYPES",
+            "TIME OF FIRST OBS",
+            "END OF HEADER",
+        ];
+        lines
+            .iter()
+            .zip(labels)
+            .map(|(l, lab)| format!("{l}{lab}\n"))
+            .collect()
+    }
+
+    /// RINEX 3 F14.3 value with LLI and signal-strength digits (`' '` for blank).
+    fn value(v: f64, lli: char, ssi: char) -> String {
+        format!("{v:14.3}{lli}{ssi}")
+    }
+
+    #[test]
+    fn reads_values_lli_and_both_bds_band_namings() {
+        for (version, band) in [("3.04", '2'), ("3.02", '1')] {
+            let mut text = header(version, band, "GPS");
+            text += "> 2023 03 12 00 00  1.5000000  0  2\n";
+            text += &format!(
+                "G05{}{}{}{}\n",
+                value(21035576.066, ' ', '7'),
+                value(110542679.964, '1', '7'),
+                value(-1423.232, ' ', ' '),
+                value(45.25, ' ', ' ')
+            );
+            text += &format!(
+                "C07{}{}{}{}\n",
+                value(36000000.5, ' ', ' '),
+                value(187000000.25, '2', ' '),
+                value(1195.909, ' ', ' '),
+                value(44.5, ' ', ' ')
+            );
+            let f = parse_obs_text(&text, "test").unwrap();
+            assert_eq!(f.epochs.len(), 1, "{version}");
+            let e = &f.epochs[0];
+            let t0 = Epoch::from_gregorian(2023, 3, 12, 0, 0, 1, 500_000_000, TimeScale::GPST);
+            assert_eq!(e.time, t0);
+            assert_eq!(e.sats.len(), 2, "{version}: {:?}", e.sats);
+            let g = e.sats[0];
+            assert_eq!(g.sat.to_string(), "G05");
+            assert_eq!(g.signal, SignalId::GpsL1Ca);
+            assert_eq!(g.pseudorange_m, Some(21035576.066));
+            assert_eq!(g.carrier_phase_cycles, Some(110542679.964));
+            assert_eq!(g.doppler_hz, Some(-1423.232));
+            assert_eq!(g.cn0_dbhz, Some(45.25));
+            assert_eq!(g.phase_lli, LLI_LOSS_OF_LOCK);
+            let c = e.sats[1];
+            assert_eq!(c.sat.to_string(), "C07");
+            assert_eq!(c.signal, SignalId::BdsB1I);
+            assert_eq!(c.carrier_phase_cycles, Some(187000000.25));
+            assert_eq!(c.phase_lli, LLI_HALF_CYCLE);
+        }
+    }
+
+    /// In RINEX 3.03+ band 1 of BeiDou is B1C, which SkyForge does not compare.
+    #[test]
+    fn bds_band_1_is_not_b1i_after_3_02() {
+        let mut text = header("3.04", '1', "GPS");
+        text += "> 2023 03 12 00 00  1.0000000  0  1\n";
+        text += &format!("C07{}\n", value(36000000.5, ' ', ' '));
+        let f = parse_obs_text(&text, "test").unwrap();
+        assert!(f.epochs[0].sats.is_empty());
+    }
+
+    /// BDT = GPST - 14 s (BDS-SIS-ICD-B1I-3.0 section 5.2: BDT started 2006-01-01 00:00:00
+    /// UTC, when GPST - UTC was 14 s).
+    #[test]
+    fn bdt_epochs_are_returned_in_gps_time() {
+        let mut text = header("3.02", '1', "BDT");
+        text += "> 2023 03 12 00 00 51.0000000  0  1\n";
+        text += &format!("C01{}\n", value(1433736.747, ' ', '7'));
+        let f = parse_obs_text(&text, "test").unwrap();
+        let gpst = Epoch::from_gregorian(2023, 3, 12, 0, 1, 5, 0, TimeScale::GPST);
+        assert_eq!(f.epochs[0].time.to_time_scale(TimeScale::GPST), gpst);
+        assert_eq!(f.epochs[0].time.time_scale, TimeScale::GPST);
+    }
+
+    #[test]
+    fn power_failure_epoch_flags_loss_of_lock_and_slip_records_are_skipped() {
+        let mut text = header("3.04", '2', "GPS");
+        text += "> 2023 03 12 00 00  1.0000000  1  1\n";
+        text += &format!("G05{}{}\n", value(2.0e7, ' ', ' '), value(1.0e8, ' ', ' '));
+        text += "> 2023 03 12 00 00  1.0000000  6  1\n";
+        text += &format!("G05{}{}\n", value(2.0e7, ' ', ' '), value(1.0e8, '1', ' '));
+        let f = parse_obs_text(&text, "test").unwrap();
+        assert_eq!(f.epochs.len(), 1);
+        assert_eq!(f.epochs[0].sats[0].phase_lli, LLI_LOSS_OF_LOCK);
+    }
+
+    #[test]
+    fn a_file_that_is_not_rinex_is_an_error() {
+        assert!(parse_obs_text("not a rinex file\n", "junk").is_err());
+        let missing = read_obs_file(Path::new("/nonexistent/obs.rnx"));
+        assert!(matches!(missing, Err(ObsError::Read { .. })));
+    }
+}
