@@ -12,6 +12,7 @@ mod error_stats;
 mod fixed_effects;
 mod interpolate;
 pub mod rinex_read;
+pub mod table;
 #[cfg(test)]
 mod test_rinex;
 

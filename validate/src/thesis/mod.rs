@@ -7,6 +7,7 @@ mod geometry_run;
 pub mod loop_budget;
 pub mod pmf_fft;
 pub mod visibility;
+pub mod zero_baseline;
 
 use crate::report::Row;
 use std::path::PathBuf;
@@ -25,6 +26,8 @@ pub enum ValidateError {
     Acquisition(#[from] skyforge_receiver::acquisition::AcquisitionError),
     #[error("tracking: {0}")]
     Tracking(#[from] skyforge_receiver::tracking::TrackingError),
+    #[error("observations: {0}")]
+    Observations(#[from] crate::observables::ObsError),
     #[error("unknown table {id:?}; known tables: {known}")]
     UnknownTable { id: String, known: String },
 }
