@@ -100,4 +100,22 @@ pub enum ValidateSuite {
         #[arg(long, value_name = "DIR")]
         data: Option<PathBuf>,
     },
+    /// Compare a receiver's RINEX observations with SkyForge's RINEX truth of the same
+    /// recording: pseudorange, carrier-phase, Doppler and C/N0 errors per satellite, per
+    /// system and overall (receiver clock and per-satellite/per-arc offsets removed).
+    Obs {
+        /// SkyForge's truth (DIR/<antenna>.obs.rnx of `skyforge synth`).
+        #[arg(long, value_name = "RINEX")]
+        truth: PathBuf,
+        /// The receiver's RINEX 3 observation file.
+        #[arg(long, value_name = "RINEX")]
+        estimate: PathBuf,
+        /// Also write the full comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Seconds added to the estimate's time tags (for tags in another time scale than
+        /// the header says, e.g. -14 for GPS-time tags in a file labelled BDT).
+        #[arg(long, value_name = "S", default_value_t = 0.0, allow_hyphen_values = true)]
+        tag_offset_s: f64,
+    },
 }

@@ -38,5 +38,14 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     data,
                 },
         } => validate::thesis(only, out.as_deref(), force, data),
+        Command::Validate {
+            suite:
+                ValidateSuite::Obs {
+                    truth,
+                    estimate,
+                    json,
+                    tag_offset_s,
+                },
+        } => validate::obs(&truth, &estimate, json.as_deref(), tag_offset_s),
     }
 }
