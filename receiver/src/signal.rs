@@ -69,6 +69,14 @@ impl Signal {
         }
     }
 
+    /// The constellation that transmits the signal.
+    pub fn system(self) -> skyforge_orbits::ephemeris::System {
+        match self {
+            Self::GpsL1Ca => skyforge_orbits::ephemeris::System::Gps,
+            Self::BdsB1I => skyforge_orbits::ephemeris::System::Beidou,
+        }
+    }
+
     /// Command-line and file-name tag (`gps-l1ca`, `bds-b1i`), as in SkyForge's
     /// `<antenna>.<tag>.sigmf-meta` file names.
     pub fn tag(self) -> &'static str {

@@ -76,7 +76,10 @@ fn mean_doppler_error(records: &[TrackingRecord], sig: &TestSignal) -> f64 {
 #[test]
 fn gps_45_dbhz_carrier_code_and_cn0_match_the_noise_formulas() {
     let sig = TestSignal::gps_static();
+    // The DLL stays wide after bit sync: the code noise is checked at 5 Hz, 1 chip.
     let config = TrackingConfig {
+        dll_narrow_bandwidth_hz: None,
+        narrow_early_late_spacing_chips: None,
         dll_bandwidth_hz: 5.0,
         ..TrackingConfig::default()
     };
@@ -164,14 +167,22 @@ fn dll_noise_matches_the_formula_at_an_incommensurate_sample_rate() {
         ..TrackingConfig::default()
     };
     let records = track(&sig, config, sig.handover(0.4, 20.0), 6.0);
-    let code: Vec<f64> = after(&records, &sig, 1.5)
+    // Pull-in at 5 Hz and 1 chip; after bit sync (within the first second) the DLL
+    // narrows to the configured bandwidth and spacing, which set the noise measured here.
+    let code: Vec<f64> = after(&records, &sig, 2.5)
         .iter()
         .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
         .collect();
     let (code_mean, code_std) = mean_std(&code);
     // Kaplan & Hegarty, non-coherent early-minus-late DLL thermal noise (infinite
     // bandwidth): sigma^2 = Bn d / (2 C/N0) (1 + 2 / (T C/N0 (2 - d))) chips^2.
-    let (bn, d, cn0, t) = (5.0, 1.0, 10f64.powf(4.5), 1e-3);
+    let (Some(bn), Some(d)) = (
+        config.dll_narrow_bandwidth_hz,
+        config.narrow_early_late_spacing_chips,
+    ) else {
+        panic!("the default narrows the DLL after bit sync");
+    };
+    let (cn0, t) = (10f64.powf(4.5), 1e-3);
     let dll = (bn * d / (2.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - d)))).sqrt();
     println!(
         "4.0 Msps: code error mean {code_mean:.4} chips, std {code_std:.5} (formula {dll:.5})"
@@ -450,6 +461,8 @@ fn a_33_dbhz_signal_stays_locked_with_a_narrower_pll() {
     let config = TrackingConfig {
         pll_bandwidth_hz: 10.0,
         fll_bandwidth_hz: 0.0,
+        dll_narrow_bandwidth_hz: None,
+        narrow_early_late_spacing_chips: None,
         ..TrackingConfig::default()
     };
     let records = track(&sig, config, sig.handover(0.2, 3.0), 3.0);

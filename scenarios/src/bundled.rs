@@ -57,6 +57,11 @@ const BUNDLED: &[Bundled] = &[
         summary: "90 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for GNSS-SDR with a widened Doppler search",
         text: include_str!("../bundled/interop-leo-gps.toml"),
     },
+    Bundled {
+        name: "receiver-leo-gps",
+        summary: "300 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for the bundled receiver's LEO acceptance",
+        text: include_str!("../bundled/receiver-leo-gps.toml"),
+    },
 ];
 
 /// Every bundled scenario.

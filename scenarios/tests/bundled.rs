@@ -19,7 +19,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "ground-static",
             "interop-gps-static",
             "interop-bds-static",
-            "interop-leo-gps"
+            "interop-leo-gps",
+            "receiver-leo-gps"
         ]
     );
     for b in bundled() {

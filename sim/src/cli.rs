@@ -56,6 +56,43 @@ pub enum Command {
               value_parser = clap::value_parser!(u32).range(1..=3600))]
         chunk_epochs: u32,
     },
+    /// Run the bundled receiver over sample recordings (SkyForge's SigMF files or raw
+    /// files described by --format/--fs/--if/--signal): acquisition, tracking, navigation
+    /// decoding, observables and PVT. Writes DIR/<antenna>.obs.rnx (RINEX 3.04),
+    /// DIR/receiver.h5, DIR/pvt.csv and DIR/<antenna>.nmea.
+    ///
+    /// Files of several antennas share one sample clock; GPS L1 and BeiDou B1 recordings
+    /// of the same antenna (same SigMF antenna name) give one combined fix.
+    Receive {
+        /// Recordings: .sigmf-meta/.sigmf-data files or raw sample files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Sample format of raw files: ci8, ci16, cf32 or ri8.
+        #[arg(long, value_name = "F")]
+        format: Option<String>,
+        /// Sample rate of raw files (Hz).
+        #[arg(long, value_name = "HZ")]
+        fs: Option<f64>,
+        /// Intermediate frequency of raw files (Hz; default 0).
+        #[arg(long = "if", value_name = "HZ")]
+        if_hz: Option<f64>,
+        /// Signal of raw files: gps-l1ca or bds-b1i.
+        #[arg(long, value_name = "S")]
+        signal: Option<String>,
+        /// Navigation file (RINEX 2/3/4) for assisted acquisition and immediate fixes.
+        #[arg(long, value_name = "NAV")]
+        assist: Option<PathBuf>,
+        /// Receiver configuration (TOML: [acquisition], [tracking], [observables], [pvt],
+        /// [assist]).
+        #[arg(long, value_name = "TOML")]
+        config: Option<PathBuf>,
+        /// Output directory; created, must not exist unless --force is given.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Replace an existing output directory.
+        #[arg(long)]
+        force: bool,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]
@@ -115,7 +152,12 @@ pub enum ValidateSuite {
         json: Option<PathBuf>,
         /// Seconds added to the estimate's time tags (for tags in another time scale than
         /// the header says, e.g. -14 for GPS-time tags in a file labelled BDT).
-        #[arg(long, value_name = "S", default_value_t = 0.0, allow_hyphen_values = true)]
+        #[arg(
+            long,
+            value_name = "S",
+            default_value_t = 0.0,
+            allow_hyphen_values = true
+        )]
         tag_offset_s: f64,
     },
 }

@@ -19,11 +19,16 @@ pub struct BadInput(String);
 /// The output directory of a command that writes one.
 fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
     match &args.command {
-        cli::Command::Run { out, .. } | cli::Command::Synth { out, .. } => Some(out.clone()),
+        cli::Command::Run { out, .. }
+        | cli::Command::Synth { out, .. }
+        | cli::Command::Receive { out, .. } => Some(out.clone()),
         cli::Command::Validate {
             suite: cli::ValidateSuite::Thesis { out, .. },
         } => out.clone(),
-        cli::Command::Scenarios { .. } => None,
+        cli::Command::Validate {
+            suite: cli::ValidateSuite::Obs { .. },
+        }
+        | cli::Command::Scenarios { .. } => None,
     }
 }
 

@@ -27,6 +27,8 @@ pub(crate) struct Channel {
     inverted: bool,
     /// A slip or unlocked stretch happened since the last sample handed on.
     slip: bool,
+    /// The carrier loop reported lock at least once.
+    ever_locked: bool,
     /// Records of the last block, digested after the (parallel) tracking step.
     records: Vec<TrackingRecord>,
     /// Timed code epochs not yet handed to the observables, oldest first.
@@ -54,6 +56,7 @@ impl Channel {
             sample_rate_hz,
             inverted: false,
             slip: true,
+            ever_locked: false,
             records: Vec::new(),
             queue: VecDeque::new(),
         })
@@ -72,6 +75,12 @@ impl Channel {
     /// The channel declared loss of lock.
     pub(crate) fn is_lost(&self) -> bool {
         self.tracker.is_lost()
+    }
+
+    /// Whether the carrier loop ever locked (a channel lost before that was a false or
+    /// too weak detection).
+    pub(crate) fn ever_locked(&self) -> bool {
+        self.ever_locked
     }
 
     /// Whether the channel is anchored in time (a subframe was decoded).
@@ -100,6 +109,7 @@ impl Channel {
                     nav.absorb(&event);
                 }
             }
+            self.ever_locked |= r.locked;
             if r.cycle_slip || r.loss_of_lock || !r.locked {
                 self.slip = true;
             }

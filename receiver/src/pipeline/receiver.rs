@@ -86,9 +86,12 @@ pub struct ReceiverSummary {
     /// Searches run and detections (over all antennas and satellites).
     pub searches: usize,
     pub detections: usize,
-    /// Channels that declared loss of lock.
+    /// Channels that declared loss of lock after having locked.
     pub losses_of_lock: usize,
-    /// Per antenna: satellites ever tracked, satellites timed (a subframe decoded).
+    /// Detections whose channel never locked (false alarms or too weak), dropped.
+    pub unconfirmed_detections: usize,
+    /// Per antenna: satellites tracked (carrier lock reached), satellites timed (a
+    /// subframe decoded).
     pub tracked: Vec<Vec<SatId>>,
     pub timed: Vec<Vec<SatId>>,
     /// Epochs formed and fixes per antenna.
@@ -257,6 +260,9 @@ impl Receiver {
         let approx_time = move |sample: f64| approx.map(|t0| t0 + sample / fs);
         for ch in &mut self.channels {
             ch.digest(&mut self.nav, &approx_time);
+            if ch.ever_locked() && !self.summary.tracked[ch.antenna].contains(&ch.sat) {
+                self.summary.tracked[ch.antenna].push(ch.sat);
+            }
             if ch.is_timed() && !self.summary.timed[ch.antenna].contains(&ch.sat) {
                 self.summary.timed[ch.antenna].push(ch.sat);
             }
@@ -269,16 +275,14 @@ impl Receiver {
                 self.clock_offset_s = Some(s.t_tx_s + NOMINAL_FLIGHT_S - s.sample_index / fs);
             }
         }
-        let lost: Vec<(usize, SatId)> = self
-            .channels
-            .iter()
-            .filter(|c| c.is_lost())
-            .map(|c| (c.antenna, c.sat))
-            .collect();
-        for &(antenna, sat) in &lost {
-            self.observables.drop_channel(antenna, sat);
+        for c in self.channels.iter().filter(|c| c.is_lost()) {
+            self.observables.drop_channel(c.antenna, c.sat);
+            if c.ever_locked() {
+                self.summary.losses_of_lock += 1;
+            } else {
+                self.summary.unconfirmed_detections += 1;
+            }
         }
-        self.summary.losses_of_lock += lost.len();
         self.channels.retain(|c| !c.is_lost());
         self.epochs(first_sample + len as u64)
     }
@@ -293,7 +297,7 @@ impl Receiver {
         let fs = self.setup.sample_rate_hz;
         let t_s = self.receiver_time(first_sample as f64);
         for (b, band) in self.setup.bands.iter().enumerate() {
-            let system = system_of(band.signal);
+            let system = band.signal.system();
             for (local, &antenna) in band.antennas.iter().enumerate() {
                 let tracked = |prn: u8| {
                     self.channels
@@ -325,9 +329,6 @@ impl Receiver {
                     self.channels
                         .push(Channel::new(b, local, antenna, sat, tracker, fs)?);
                     self.summary.detections += 1;
-                    if !self.summary.tracked[antenna].contains(&sat) {
-                        self.summary.tracked[antenna].push(sat);
-                    }
                 }
             }
         }
@@ -338,7 +339,7 @@ impl Receiver {
     /// approximate time and a position from the last fix or the assistance), else every
     /// PRN over the cold window.
     fn candidates(&self, signal: Signal, antenna: usize, t_s: Option<f64>) -> Vec<Candidate> {
-        let system = system_of(signal);
+        let system = signal.system();
         if let Some(a) = t_s.and_then(|t| self.assistance(antenna, t)) {
             let store = self.nav.store();
             if store.satellites().iter().any(|s| s.system == system) {
@@ -524,13 +525,6 @@ impl std::fmt::Debug for Receiver {
             .field("clock_offset_s", &self.clock_offset_s)
             .field("summary", &self.summary)
             .finish_non_exhaustive()
-    }
-}
-
-fn system_of(signal: Signal) -> System {
-    match signal {
-        Signal::GpsL1Ca => System::Gps,
-        Signal::BdsB1I => System::Beidou,
     }
 }
 

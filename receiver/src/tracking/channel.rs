@@ -82,6 +82,14 @@ pub struct TrackingConfig {
     pub dll_bandwidth_hz: f64,
     /// Early-to-late correlator spacing (chips).
     pub early_late_spacing_chips: f64,
+    /// DLL noise bandwidth after bit sync (Hz); `None` keeps `dll_bandwidth_hz`. The
+    /// carrier-aided DLL then only follows the code-carrier divergence, so a narrow loop
+    /// costs no dynamics and cuts the code noise (sigma^2 ~ Bn d).
+    pub dll_narrow_bandwidth_hz: Option<f64>,
+    /// Early-to-late spacing after bit sync (chips), at least one sample; `None` keeps
+    /// `early_late_spacing_chips`. Pull-in runs with the wide spacing, whose linear range
+    /// covers the hand-over code error (half a sample or more).
+    pub narrow_early_late_spacing_chips: Option<f64>,
     /// Coherent integration after bit sync (code periods, 1..=20; never beyond a bit).
     pub coherent_ms: u32,
     /// C/N0 estimator window (s) over the 1 ms prompts; at least 20 of them.
@@ -115,6 +123,8 @@ impl Default for TrackingConfig {
             fll_assist_s: 0.5,
             dll_bandwidth_hz: 2.0,
             early_late_spacing_chips: 1.0,
+            dll_narrow_bandwidth_hz: Some(0.25),
+            narrow_early_late_spacing_chips: Some(0.5),
             coherent_ms: 1,
             cn0_window_s: 1.0,
             lock_indicator_tau_s: 0.05,
@@ -145,12 +155,22 @@ impl TrackingConfig {
                 )));
             }
         }
-        if let Some(bn) = self.pll_narrow_bandwidth_hz
-            && !(bn.is_finite() && bn > 0.0)
-        {
-            return Err(TrackingError::InvalidConfig(format!(
-                "pll_narrow_bandwidth_hz must be positive and finite, got {bn}"
-            )));
+        let narrow = [
+            ("pll_narrow_bandwidth_hz", self.pll_narrow_bandwidth_hz),
+            ("dll_narrow_bandwidth_hz", self.dll_narrow_bandwidth_hz),
+            (
+                "narrow_early_late_spacing_chips",
+                self.narrow_early_late_spacing_chips,
+            ),
+        ];
+        for (name, v) in narrow {
+            if let Some(v) = v
+                && !(v.is_finite() && v > 0.0)
+            {
+                return Err(TrackingError::InvalidConfig(format!(
+                    "{name} must be positive and finite, got {v}"
+                )));
+            }
         }
         if !(self.fll_bandwidth_hz >= 0.0 && self.fll_assist_s >= 0.0) {
             return Err(TrackingError::InvalidConfig(format!(
@@ -164,11 +184,18 @@ impl TrackingConfig {
                 self.coherent_ms
             )));
         }
-        if self.early_late_spacing_chips > 2.0 {
-            return Err(TrackingError::InvalidConfig(format!(
-                "early_late_spacing_chips must be at most 2, got {}",
-                self.early_late_spacing_chips
-            )));
+        for d in [
+            Some(self.early_late_spacing_chips),
+            self.narrow_early_late_spacing_chips,
+        ]
+        .into_iter()
+        .flatten()
+        {
+            if d > 2.0 {
+                return Err(TrackingError::InvalidConfig(format!(
+                    "early-late spacing must be at most 2 chips, got {d}"
+                )));
+            }
         }
         Ok(())
     }
@@ -267,6 +294,9 @@ pub struct ChannelTracker {
     front_end: FrontEnd,
     config: TrackingConfig,
     correlator: Correlator,
+    /// DLL bandwidth and early-late spacing in use (wide until bit sync).
+    dll_bandwidth_hz: f64,
+    early_late_spacing_chips: f64,
     carrier_filter: CarrierLoopFilter,
     // NCO state at `next_index`, the first sample of the next code period.
     next_index: u64,
@@ -367,6 +397,8 @@ impl ChannelTracker {
             front_end,
             config,
             correlator,
+            dll_bandwidth_hz: config.dll_bandwidth_hz,
+            early_late_spacing_chips: config.early_late_spacing_chips,
             carrier_filter,
             next_index: handover.sample_index + lead as u64,
             code_phase_chips: (lead - handover.code_phase_samples) * dp,
@@ -581,6 +613,39 @@ impl ChannelTracker {
         }
     }
 
+    /// After bit sync: switch the DLL to its narrow bandwidth and spacing, if configured
+    /// (once; the new spacing takes effect from the next integration).
+    fn narrow_dll(&mut self) {
+        if self.synced_at_s.is_none() {
+            return;
+        }
+        if let Some(bn) = self.config.dll_narrow_bandwidth_hz {
+            self.dll_bandwidth_hz = bn;
+        }
+        // Never closer than one sample: early and late inside one sample step of the
+        // correlation staircase leave the discriminator a dead zone.
+        let chips_per_sample = self.signal.chip_rate_hz() / self.front_end.sample_rate_hz;
+        if let Some(d) = self
+            .config
+            .narrow_early_late_spacing_chips
+            .map(|d| d.max(chips_per_sample))
+            && d != self.early_late_spacing_chips
+        {
+            // The code was valid when the channel was made (same signal and PRN).
+            if let Ok(code) = self.signal.code(self.prn)
+                && let Ok(c) = Correlator::new(
+                    &code,
+                    TapSet::Three {
+                        early_late_spacing_chips: d,
+                    },
+                )
+            {
+                self.correlator = c;
+                self.early_late_spacing_chips = d;
+            }
+        }
+    }
+
     /// After sync: add a period's in-phase prompt to the bit; returns the bit at its end.
     fn accumulate_bit(
         &mut self,
@@ -682,12 +747,14 @@ impl ChannelTracker {
         self.doppler_hz = self.carrier_filter.update(phase_error, freq_error, t);
 
         // Code loop, carrier aided.
-        let code_error = dll_envelope_chips(early, late, self.config.early_late_spacing_chips);
+        let code_error = dll_envelope_chips(early, late, self.early_late_spacing_chips);
         self.code_rate = aided_code_rate(
             self.signal.chip_rate_hz(),
             self.doppler_hz,
             self.signal.carrier_hz(),
-        ) + dll_rate_correction(self.config.dll_bandwidth_hz, code_error);
+        ) + dll_rate_correction(self.dll_bandwidth_hz, code_error);
+        // After this integration's discriminator used the spacing it was correlated with.
+        self.narrow_dll();
 
         // Lock detectors.
         let cn0 = self.cn0.cn0_dbhz().or(self.last_cn0_dbhz);

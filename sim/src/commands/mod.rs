@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod receive;
 mod run;
 mod scenarios;
 pub(crate) mod synth;
@@ -23,6 +24,24 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             force,
             chunk_epochs,
         } => synth::synth(&scenario, &out, seed, force, chunk_epochs as usize),
+        Command::Receive {
+            files,
+            format,
+            fs,
+            if_hz,
+            signal,
+            assist,
+            config,
+            out,
+            force,
+        } => receive::receive(&receive::ReceiveArgs {
+            params: receive::input_params(format.as_deref(), fs, if_hz, signal.as_deref())?,
+            files,
+            assist,
+            config,
+            out,
+            force,
+        }),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

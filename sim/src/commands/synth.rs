@@ -8,6 +8,7 @@ use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
@@ -253,6 +254,8 @@ pub fn synthesise(
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let mut platform = world.platform;
+    // The platform's state at the start, for the receiver's assistance file.
+    let mut start_state: Option<(Vec3, Vec3)> = None;
     let truth = GeometryTruth::new(&store, &sats, &world.antennas, GEOMETRY_STEP_S);
     let mut bufs: Vec<Vec<u8>> = vec![Vec::new(); n_ant];
     // RINEX observation truth per antenna, opened at the first epoch (approximate position).
@@ -280,6 +283,7 @@ pub fn synthesise(
             |chunk| -> anyhow::Result<()> {
                 for k in 0..chunk.t_s.len() {
                     let st = &chunk.platform[k];
+                    start_state.get_or_insert((st.r_ecef_m, st.v_ecef_mps));
                     let at_antenna: Vec<AntennaEpoch> = world
                         .antennas
                         .iter()
@@ -438,6 +442,10 @@ pub fn synthesise(
             std::fs::write(&conf_path, conf).with_context(|| writing(&conf_path))?;
         }
     }
+    if let Some((r, v)) = start_state {
+        let path = staged.file("receiver.toml");
+        std::fs::write(&path, receiver_assistance_toml(&r, &v)).with_context(|| writing(&path))?;
+    }
     let clipped: u64 = synths.iter().map(Synthesiser::clipped).sum();
     let dir = staged.commit()?;
     println!("scenario   {} ({})", scenario.name, scenario.source);
@@ -456,4 +464,29 @@ pub fn synthesise(
     println!("wrote      {}", dir.display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// Position rounding of the assistance file (m): what an orbit prediction or a rough
+/// position fix would tell a receiver, not the truth.
+const ASSIST_POSITION_ROUNDING_M: f64 = 1000.0;
+/// Velocity rounding of the assistance file (m/s).
+const ASSIST_VELOCITY_ROUNDING_MPS: f64 = 1.0;
+
+/// `receiver.toml` for `skyforge receive --config`: the approximate state at the start
+/// (rounded, with uncertainties that cover the rounding many times over).
+fn receiver_assistance_toml(r_ecef_m: &Vec3, v_ecef_mps: &Vec3) -> String {
+    let round = |x: f64, step: f64| (x / step).round() * step;
+    let r = r_ecef_m.map(|x| round(x, ASSIST_POSITION_ROUNDING_M));
+    let v = v_ecef_mps.map(|x| round(x, ASSIST_VELOCITY_ROUNDING_MPS));
+    format!(
+        "# Settings for `skyforge receive --config receiver.toml` on these recordings.\n\
+         # [assist]: the approximate state at the first sample a receiver could be told\n\
+         # (an orbit prediction, a last fix), rounded to {} m and {} m/s.\n\
+         [assist]\n\
+         position_ecef_m = [{:.1}, {:.1}, {:.1}]\n\
+         velocity_ecef_mps = [{:.1}, {:.1}, {:.1}]\n\
+         position_uncertainty_m = 10000.0\n\
+         velocity_uncertainty_mps = 10.0\n",
+        ASSIST_POSITION_ROUNDING_M, ASSIST_VELOCITY_ROUNDING_MPS, r.x, r.y, r.z, v.x, v.y, v.z
+    )
 }
