@@ -1,9 +1,15 @@
 //! Interoperability tier: the real GNSS-SDR (Debian package `gnss-sdr`) decodes SkyForge's
-//! I/Q to a position fix. Run with `cargo test -p skyforge-sim --test interop_gnss_sdr --
+//! I/Q to a position fix; on the static GPS and BeiDou runs its RINEX observations are
+//! compared with SkyForge's observation truth (`interop_observables`). Run with `cargo test -p skyforge-sim --test interop_gnss_sdr --
 //! --ignored` (scripts/test.sh --ci installs gnss-sdr and runs it).
+
+mod interop_observables;
 
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_signals::codes::bds_b1i::BDS_B1I_CHIP_RATE_HZ;
+use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
+use skyforge_signals::signal::SignalId;
 use std::path::Path;
 use std::process::Command;
 
@@ -222,6 +228,13 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
     assert_static_fixes(&nmea, &log, "GPS");
     let above = satellites_above(&out.join("truth.h5"), 'G', 10.0);
     assert_in_solution_at_scenario_cn0(&last_gsv(&nmea, "GP"), 'G', &above);
+    interop_observables::check(
+        &out,
+        "gps-l1ca",
+        SignalId::GpsL1Ca,
+        GPS_CA_CHIP_RATE_HZ,
+        CN0_DBHZ,
+    );
 }
 
 /// BeiDou B1I (the BDS-2 set, GEO + IGSO + MEO; see the scenario file for why): every
@@ -261,6 +274,13 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
         "the scenario must put a GEO (D2) and a MEO/IGSO (D1) above 10 deg: {supported:?}"
     );
     assert_in_solution_at_scenario_cn0(&last_gsv(&nmea, "BD"), 'C', &supported);
+    interop_observables::check(
+        &out,
+        "bds-b1i",
+        SignalId::BdsB1I,
+        BDS_B1I_CHIP_RATE_HZ,
+        CN0_DBHZ,
+    );
 }
 
 #[test]

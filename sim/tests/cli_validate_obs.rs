@@ -1,0 +1,129 @@
+//! `skyforge validate obs`: a receiver's RINEX observations against the truth, from the
+//! command line, on small hand-written RINEX 3.04 files.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+/// RINEX 3.04 observation text: GPS G05, G07, G09 for `n` epochs tagged `t0_s + k` (within
+/// the minute), from a receiver whose tags are `offset_m / c` ahead of the sample clock:
+/// pseudoranges `base_i + rate_i (tag - offset_m / c) + offset_m + bump(i, k)` (m), phases
+/// the ranges without bump in L1 cycles.
+fn rinex(t0_s: f64, n: usize, offset_m: f64, bump: impl Fn(usize, usize) -> f64) -> String {
+    let lambda = 299_792_458.0 / 1_575.42e6;
+    let mut t = String::new();
+    for (body, label) in [
+        (
+            format!(
+                "{:>9}{:11}{:<20}{:<20}",
+                "3.04", "", "OBSERVATION DATA", "G"
+            ),
+            "RINEX VERSION / TYPE",
+        ),
+        ("G    4 C1C L1C D1C S1C".to_string(), "SYS / # / OBS TYPES"),
+        (
+            "  2023    03    12    00    00    0.0000000     GPS".to_string(),
+            "TIME OF FIRST OBS",
+        ),
+        (String::new(), "END OF HEADER"),
+    ] {
+        t += &format!("{body:<60}{label}\n");
+    }
+    for k in 0..n {
+        let tag = t0_s + k as f64;
+        t += &format!("> 2023 03 12 00 00 {tag:10.7}  0  3\n");
+        let sample_time = tag - offset_m / 299_792_458.0;
+        for (i, sat) in ["G05", "G07", "G09"].iter().enumerate() {
+            let rate = 100.0 * (i as f64 - 1.0);
+            let pr = 2.0e7 + 1e6 * i as f64 + rate * sample_time + offset_m;
+            let pr_bumped = pr + bump(i, k);
+            t += &format!(
+                "{sat}{:14.3}  {:14.3}  {:14.3}  {:14.3}  \n",
+                pr_bumped,
+                pr / lambda,
+                -rate / lambda,
+                45.0
+            );
+        }
+    }
+    t
+}
+
+fn run(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn validate_obs_prints_per_satellite_errors_and_writes_json() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("truth.rnx"),
+        rinex(0.0, 22, 0.0, |_, _| 0.0),
+    )
+    .unwrap();
+    // Receiver: tags at fractional seconds, 300 m (1 us) clock offset, G07 +/-1 m
+    // alternating code error.
+    let bump = |i: usize, k: usize| if i == 1 { [1.0, -1.0][k % 2] } else { 0.0 };
+    std::fs::write(dir.path().join("est.rnx"), rinex(1.25, 20, 300.0, bump)).unwrap();
+    let o = run(
+        &[
+            "validate",
+            "obs",
+            "--truth",
+            "truth.rnx",
+            "--estimate",
+            "est.rnx",
+            "--json",
+            "cmp.json",
+        ],
+        dir.path(),
+    );
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        o.status.success(),
+        "{stdout}{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for needle in ["G05", "G07", "G09", "overall", "20 matched"] {
+        assert!(stdout.contains(needle), "{needle}:\n{stdout}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("cmp.json")).unwrap())
+            .unwrap();
+    // 300 m of clock is 1 us of time offset.
+    let d = v["time_offset_s"]["mean"].as_f64().unwrap();
+    assert!((d - 300.0 / 299_792_458.0).abs() < 1e-9, "{d}");
+    // The alternating +/-1 m on one of three satellites, after removing the epoch means
+    // and satellite biases: residuals +/-2/3 on G07, -/+1/3 on the others, with 20 - 1
+    // epochs and 3 - 1 biases of 60 samples taken: sqrt((20 * (4/9 + 2/9)) / 38).
+    let std = v["pseudorange_m"]["overall"]["std"].as_f64().unwrap();
+    let expected = (20.0 * (4.0 / 9.0 + 2.0 / 9.0) / 38.0f64).sqrt();
+    assert!((std - expected).abs() < 1e-3, "{std} vs {expected}");
+    assert_eq!(v["pseudorange_m"]["per_satellite"][1]["sat"], "G07");
+}
+
+#[test]
+fn validate_obs_rejects_a_missing_file_as_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("truth.rnx"),
+        rinex(0.0, 22, 0.0, |_, _| 0.0),
+    )
+    .unwrap();
+    let o = run(
+        &[
+            "validate",
+            "obs",
+            "--truth",
+            "truth.rnx",
+            "--estimate",
+            "missing.rnx",
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("missing.rnx"));
+}
