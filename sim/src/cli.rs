@@ -121,9 +121,11 @@ pub enum ValidateSuite {
     /// Reproduce the thesis tables (../shared/reference/THESIS_TARGETS.md).
     ///
     /// Prints thesis value, SkyForge value, ratio, tolerance and verdict for every row;
-    /// exits 0 whenever it ran, whatever the verdicts.
+    /// exits 0 whenever it ran, whatever the verdicts. Tables: V-1.2.1, T-3.2, T-3.3-R,
+    /// T-3.3-S, T-5.4-2. T-5.4-2 synthesises its bundled scenario (60 s, four recordings,
+    /// about 2 GB in the temporary directory) and runs the receiver on it.
     Thesis {
-        /// Run only these table IDs (repeatable), e.g. --only V-1.2.1 --only T-3.2.
+        /// Run only these table IDs (repeatable), e.g. --only V-1.2.1 --only T-5.4-2.
         #[arg(long, value_name = "ID")]
         only: Vec<String>,
         /// Write DIR/results.json.

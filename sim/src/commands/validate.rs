@@ -1,5 +1,7 @@
 //! `skyforge validate thesis` and `skyforge validate obs`.
 
+mod zero_baseline;
+
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
@@ -7,11 +9,26 @@ use skyforge_validate::observables::compare::{CompareOptions, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{print_table, write_json};
-use skyforge_validate::thesis::{self, Options, ValidateError};
+use skyforge_validate::thesis::zero_baseline::TABLE as ZERO_BASELINE;
+use skyforge_validate::thesis::{self, Options};
 use std::path::{Path, PathBuf};
 
 /// Default real-data folder, relative to the working directory.
 const DEFAULT_DATA_DIR: &str = "../shared/data";
+
+/// Tables this command runs itself, after those of [`thesis::TABLES`]: they need the
+/// synthesiser and the receiver command, which live in this crate.
+const PIPELINE_TABLES: &[&str] = &[ZERO_BASELINE];
+
+/// Every table `--only` accepts, in run order.
+fn known_tables() -> String {
+    thesis::TABLES
+        .iter()
+        .chain(PIPELINE_TABLES)
+        .copied()
+        .collect::<Vec<_>>()
+        .join(", ")
+}
 
 /// Run the thesis tables, print them and optionally write `results.json`.
 pub fn thesis(
@@ -23,17 +40,36 @@ pub fn thesis(
     let data_dir = data
         .or_else(|| std::env::var_os("SKYFORGE_DATA").map(PathBuf::from))
         .unwrap_or_else(|| PathBuf::from(DEFAULT_DATA_DIR));
+    let is_in = |tables: &[&str], id: &str| tables.iter().any(|t| t.eq_ignore_ascii_case(id));
+    if let Some(id) = only
+        .iter()
+        .find(|id| !is_in(thesis::TABLES, id) && !is_in(PIPELINE_TABLES, id))
+    {
+        return Err(BadInput(format!(
+            "unknown table {id:?}; known tables: {}",
+            known_tables()
+        ))
+        .into());
+    }
     let staged = out.map(|dir| StagedDir::create(dir, force)).transpose()?;
-    let opts = Options {
-        only,
-        data_dir: Some(data_dir),
-    };
-    let rows = match thesis::run(&opts, |table| eprintln!("validate: running {table}")) {
-        Err(ValidateError::UnknownTable { id, known }) => {
-            return Err(BadInput(format!("unknown table {id:?}; known tables: {known}")).into());
-        }
-        other => other?,
-    };
+    let library_only: Vec<String> = only
+        .iter()
+        .filter(|id| is_in(thesis::TABLES, id))
+        .cloned()
+        .collect();
+    let mut rows = Vec::new();
+    // An empty list runs every table; a list naming only pipeline tables runs none there.
+    if only.is_empty() || !library_only.is_empty() {
+        let opts = Options {
+            only: library_only,
+            data_dir: Some(data_dir),
+        };
+        rows = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
+    }
+    if only.is_empty() || only.iter().any(|id| id.eq_ignore_ascii_case(ZERO_BASELINE)) {
+        eprintln!("validate: running {ZERO_BASELINE}");
+        rows.extend(zero_baseline::rows()?);
+    }
     print_table(&rows, &mut std::io::stdout().lock())?;
     if let Some(staged) = staged {
         write_json(&rows, &staged.file("results.json"))?;
