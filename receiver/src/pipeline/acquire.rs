@@ -14,6 +14,8 @@ pub(crate) struct Candidate {
     pub(crate) prn: u8,
     pub(crate) window: DopplerWindow,
     pub(crate) doppler_rate_hzps: f64,
+    /// The window is the blind one (no prediction for this satellite).
+    pub(crate) cold: bool,
 }
 
 /// The search plan of one signal.

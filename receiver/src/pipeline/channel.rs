@@ -29,6 +29,8 @@ pub(crate) struct Channel {
     slip: bool,
     /// The carrier loop reported lock at least once.
     ever_locked: bool,
+    /// Carrier Doppler of the last record (Hz).
+    doppler_hz: Option<f64>,
     /// Records of the last block, digested after the (parallel) tracking step.
     records: Vec<TrackingRecord>,
     /// Timed code epochs not yet handed to the observables, oldest first.
@@ -57,6 +59,7 @@ impl Channel {
             inverted: false,
             slip: true,
             ever_locked: false,
+            doppler_hz: None,
             records: Vec::new(),
             queue: VecDeque::new(),
         })
@@ -75,6 +78,11 @@ impl Channel {
     /// The channel declared loss of lock.
     pub(crate) fn is_lost(&self) -> bool {
         self.tracker.is_lost()
+    }
+
+    /// The carrier Doppler the loop tracks (Hz), once it has run a block.
+    pub(crate) fn doppler_hz(&self) -> Option<f64> {
+        self.doppler_hz
     }
 
     /// Whether the carrier loop ever locked (a channel lost before that was a false or
@@ -110,6 +118,7 @@ impl Channel {
                 }
             }
             self.ever_locked |= r.locked;
+            self.doppler_hz = Some(r.doppler_hz);
             if r.cycle_slip || r.loss_of_lock || !r.locked {
                 self.slip = true;
             }

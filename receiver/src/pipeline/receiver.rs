@@ -116,6 +116,8 @@ pub struct Receiver {
     clock_offset_s: Option<f64>,
     next_epoch: Option<i64>,
     next_search_sample: u64,
+    /// Searches run so far (rounds over every band and antenna).
+    search_rounds: usize,
     last_fix: Vec<Option<LastFix>>,
     summary: ReceiverSummary,
 }
@@ -167,6 +169,7 @@ impl Receiver {
             clock_offset_s: None,
             next_epoch: None,
             next_search_sample: 0,
+            search_rounds: 0,
             last_fix: vec![None; antennas],
             summary: ReceiverSummary {
                 tracked: vec![Vec::new(); antennas],
@@ -296,22 +299,53 @@ impl Receiver {
     ) -> Result<(), PipelineError> {
         let fs = self.setup.sample_rate_hz;
         let t_s = self.receiver_time(first_sample as f64);
+        let round = self.search_rounds;
+        self.search_rounds += 1;
         for (b, band) in self.setup.bands.iter().enumerate() {
             let system = band.signal.system();
+            let n_antennas = band.antennas.len();
+            let narrow = 2.0 * self.searches_step(band.signal);
+            // Doppler of each PRN found in this band this round (all antennas share the
+            // platform's motion and oscillator: within a few Hz of each other).
+            let mut found_here: Vec<(u8, f64)> = Vec::new();
             for (local, &antenna) in band.antennas.iter().enumerate() {
                 let tracked = |prn: u8| {
                     self.channels
                         .iter()
                         .any(|c| c.antenna == antenna && c.sat.system == system && c.sat.prn == prn)
                 };
+                let elsewhere = |prn: u8| {
+                    self.channels
+                        .iter()
+                        .filter(|c| c.group == b && c.sat.prn == prn)
+                        .find_map(Channel::doppler_hz)
+                        .or_else(|| found_here.iter().find(|f| f.0 == prn).map(|f| f.1))
+                };
                 let candidates: Vec<Candidate> = self
                     .candidates(band.signal, antenna, t_s)
                     .into_iter()
                     .filter(|c| !tracked(c.prn))
+                    .filter_map(|c| match (c.cold, elsewhere(c.prn)) {
+                        (false, _) => Some(c),
+                        // Seen by another antenna: search around its Doppler.
+                        (true, Some(doppler)) => Some(Candidate {
+                            window: DopplerWindow {
+                                centre_hz: doppler,
+                                half_width_hz: narrow,
+                            },
+                            ..c
+                        }),
+                        // Blind: every antenna at the first search, then each PRN on one
+                        // antenna per round in turn.
+                        (true, None) => (round == 0
+                            || (round + usize::from(c.prn) + local) % n_antennas == 0)
+                            .then_some(c),
+                    })
                     .collect();
                 self.summary.searches += candidates.len();
                 let found = self.searches[b].run(&bands[b][local][..len], &candidates)?;
                 for (c, acq) in found {
+                    found_here.push((c.prn, acq.doppler_hz));
                     let handover = Handover {
                         signal: band.signal,
                         prn: c.prn,
@@ -354,6 +388,7 @@ impl Receiver {
                             half_width_hz: h.doppler_window_hz.max(floor),
                         },
                         doppler_rate_hzps: h.doppler_rate_hzps,
+                        cold: false,
                     })
                     .collect();
             }
@@ -368,6 +403,7 @@ impl Receiver {
                 prn,
                 window,
                 doppler_rate_hzps: 0.0,
+                cold: true,
             })
             .collect()
     }
