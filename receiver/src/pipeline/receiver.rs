@@ -338,8 +338,8 @@ impl Receiver {
                         // Blind: every antenna at the first search, then each PRN on one
                         // antenna per round in turn.
                         (true, None) => (round == 0
-                            || (round + usize::from(c.prn) + local) % n_antennas == 0)
-                            .then_some(c),
+                            || (round + usize::from(c.prn) + local).is_multiple_of(n_antennas))
+                        .then_some(c),
                     })
                     .collect();
                 self.summary.searches += candidates.len();
