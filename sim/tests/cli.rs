@@ -524,3 +524,124 @@ fn ground_plane_surface_multipath_reaches_the_signal_truth() {
     }
     assert!(checked >= 8, "only {checked} links at t = 0");
 }
+
+/// A short GPS recording: synth `interop-gps-static` shortened to `duration_s` into
+/// `dir/sim`.
+fn short_gps_recording(dir: &Path, duration_s: u32) {
+    let scenario = short_scenario(dir, "interop-gps-static", duration_s);
+    let o = skyforge(&["synth", scenario.to_str().unwrap(), "--out", "sim"], dir);
+    assert!(o.status.success(), "{}", text(&o));
+}
+
+#[test]
+fn receive_tracks_decodes_and_fixes_on_a_short_recording() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    short_gps_recording(dir, 15);
+    let o = skyforge(
+        &[
+            "receive",
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "--assist",
+            "sim/nav.rnx",
+            "--out",
+            "rx",
+        ],
+        dir,
+    );
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    // 11 satellites above the mask at 45 dB-Hz: each tracked, timed by a subframe.
+    assert!(out.contains("tracked 11"), "{out}");
+    let rinex = std::fs::read_to_string(dir.join("rx/ant1.obs.rnx")).unwrap();
+    let epochs = rinex.lines().filter(|l| l.starts_with('>')).count();
+    assert!(epochs >= 2, "{epochs} epochs:\n{out}");
+    assert!(rinex.contains("SKYFORGE RECEIVER"));
+    let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
+    assert!(fixes.lines().count() >= 3, "{fixes}");
+    assert!(dir.join("rx/receiver.h5").is_file() && dir.join("rx/ant1.nmea").is_file());
+}
+
+/// `receive` with `args` in `dir` must exit 2 with a message containing every `needle`
+/// and leave no output directory.
+fn receive_refuses(dir: &Path, args: &[&str], needles: &[&str]) {
+    let mut all = vec!["receive"];
+    all.extend_from_slice(args);
+    all.extend_from_slice(&["--out", "rx"]);
+    let o = skyforge(&all, dir);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    for n in needles {
+        assert!(out.contains(n), "missing {n:?} in:\n{out}");
+    }
+    assert!(!out.contains("panicked"), "{out}");
+    assert!(!dir.join("rx").exists(), "output written:\n{out}");
+}
+
+#[test]
+fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    // Noise only: no satellite anywhere.
+    let noise: Vec<u8> = (0..800_000u32)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    std::fs::write(dir.join("noise.bin"), &noise).unwrap();
+    let raw = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
+    let mut args = vec!["noise.bin"];
+    args.extend_from_slice(&raw);
+    receive_refuses(dir, &args, &["no signal found", "noise.bin", "searches"]);
+    // Too short for one search.
+    std::fs::write(dir.join("short.bin"), &noise[..1000]).unwrap();
+    let mut args = vec!["short.bin"];
+    args.extend_from_slice(&raw);
+    receive_refuses(dir, &args, &["500 common samples", "a search needs"]);
+    // A raw file without its description.
+    receive_refuses(dir, &["noise.bin"], &["noise.bin", "--format"]);
+    // A missing file, an unknown signal, a bad configuration value and field.
+    receive_refuses(
+        dir,
+        &["gone.sigmf-meta"],
+        &["gone.sigmf-meta", "no such file"],
+    );
+    let mut args = vec!["noise.bin"];
+    args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gal-e1"]);
+    receive_refuses(dir, &args, &["--signal", "gal-e1", "gps-l1ca, bds-b1i"]);
+    std::fs::write(dir.join("rx.toml"), "[observables]\nrate_hz = 500.0\n").unwrap();
+    let mut args = vec!["noise.bin", "--config", "rx.toml"];
+    args.extend_from_slice(&raw);
+    receive_refuses(
+        dir,
+        &args,
+        &["rx.toml", "observables.rate_hz", "500", "1 to 100"],
+    );
+    std::fs::write(dir.join("rx.toml"), "[tracking]\npll_bw = 5.0\n").unwrap();
+    receive_refuses(dir, &args, &["rx.toml", "line 2", "pll_bw"]);
+}
+
+#[test]
+fn receive_refuses_recordings_that_do_not_share_a_sample_clock() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    short_gps_recording(dir, 1);
+    // A second antenna's recording at another sample rate.
+    let meta = std::fs::read_to_string(dir.join("sim/ant1.gps-l1ca.sigmf-meta")).unwrap();
+    let other = meta
+        .replace("\"ant1\"", "\"ant2\"")
+        .replace("4000000.0", "2000000.0");
+    assert_ne!(meta, other);
+    std::fs::write(dir.join("sim/ant2.gps-l1ca.sigmf-meta"), other).unwrap();
+    std::fs::copy(
+        dir.join("sim/ant1.gps-l1ca.sigmf-data"),
+        dir.join("sim/ant2.gps-l1ca.sigmf-data"),
+    )
+    .unwrap();
+    receive_refuses(
+        dir,
+        &[
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "sim/ant2.gps-l1ca.sigmf-meta",
+        ],
+        &["ant2", "2000000", "4000000"],
+    );
+}
