@@ -1,9 +1,9 @@
 //! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
 //! The schema is documented in `docs/truth-h5.md`; change both together.
 
-use hdf5::types::{TypeDescriptor, VarLenUnicode};
-use hdf5::{Dataset, Extents, Group, H5Type, Location};
-use ndarray::ArrayView2;
+use super::h5_datasets::{append_rows, create_rows, text_attr};
+use hdf5::types::VarLenUnicode;
+use hdf5::{Dataset, Group, H5Type, Location};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::signal::SignalId;
@@ -221,15 +221,6 @@ struct AntennaSets {
     links: usize,
 }
 
-fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
-    let v: VarLenUnicode = value
-        .parse()
-        .map_err(|e| hdf5::Error::from(format!("{e}")))?;
-    loc.new_attr::<VarLenUnicode>()
-        .create(name)?
-        .write_scalar(&v)
-}
-
 fn f64_attr(loc: &Location, name: &str, values: &[f64]) -> hdf5::Result<()> {
     loc.new_attr::<f64>()
         .shape([values.len()])
@@ -237,9 +228,8 @@ fn f64_attr(loc: &Location, name: &str, values: &[f64]) -> hdf5::Result<()> {
         .write_raw(values)
 }
 
-/// Create a resizable dataset: 1-D (`width == 0`) or `[epoch, width]`. Integer masks and
-/// indices are LZF-compressed (they shrink tenfold for almost nothing); floating-point
-/// geometry is stored raw, because compressing it cost 5 s per 24 h run for 20 % space.
+/// Create a resizable dataset: 1-D (`width == 0`) or `[epoch, width]`; 1-D datasets other
+/// than `t_s` hold one value per link and are chunked by [`LINK_CHUNK`].
 fn series<T: H5Type>(
     group: &Group,
     name: &str,
@@ -247,45 +237,12 @@ fn series<T: H5Type>(
     unit: &str,
     description: &str,
 ) -> hdf5::Result<Dataset> {
-    let mut builder = group.new_dataset::<T>().obj_track_times(false);
-    if matches!(
-        T::type_descriptor(),
-        TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_)
-    ) {
-        builder = builder.lzf();
-    }
-    let ds = if width == 0 {
-        let chunk = if name == "t_s" {
-            TIME_CHUNK
-        } else {
-            LINK_CHUNK
-        };
-        builder
-            .chunk((chunk,))
-            .shape(Extents::resizable(0.into()))
-            .create(name)?
+    let chunk_rows = if width == 0 && name != "t_s" {
+        LINK_CHUNK
     } else {
-        builder
-            .chunk((TIME_CHUNK, width))
-            .shape(Extents::from([(0, None), (width, Some(width))].as_slice()))
-            .create(name)?
+        TIME_CHUNK
     };
-    text_attr(&ds, "units", unit)?;
-    text_attr(&ds, "description", description)?;
-    Ok(ds)
-}
-
-fn append<T: H5Type>(ds: &Dataset, rows: usize, data: &[T], width: usize) -> hdf5::Result<()> {
-    let n = data.len() / width.max(1);
-    if width == 0 {
-        ds.resize((rows + n,))?;
-        ds.write_slice(data, rows..rows + n)
-    } else {
-        ds.resize((rows + n, width))?;
-        let view = ArrayView2::from_shape((n, width), data)
-            .map_err(|e| hdf5::Error::from(e.to_string()))?;
-        ds.write_slice(view, (rows..rows + n, ..))
-    }
+    create_rows::<T>(group, name, width, chunk_rows, unit, description)
 }
 
 impl TruthWriter {
@@ -471,11 +428,11 @@ impl TruthWriter {
         };
         let rows = sets.rows;
         let col = |f: fn(&LinkTruth) -> f64| records.iter().map(f).collect::<Vec<f64>>();
-        append(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
+        append_rows(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
         let sats: Vec<u16> = records.iter().map(|r| (first_sat + r.tx) as u16).collect();
-        append(&sets.sat_index, rows, &sats, 0)?;
+        append_rows(&sets.sat_index, rows, &sats, 0)?;
         for (ds, (_, _, _, get)) in sets.fields.iter().zip(SIGNAL_FIELDS) {
-            append(ds, rows, &col(*get), 0)?;
+            append_rows(ds, rows, &col(*get), 0)?;
         }
         sets.rows += records.len();
         Ok(())
@@ -484,7 +441,7 @@ impl TruthWriter {
     /// Append one chunk of epochs.
     pub fn append(&mut self, chunk: &GeometryChunk) -> hdf5::Result<()> {
         let rows = self.rows;
-        append(&self.t_s, rows, &chunk.t_s, 0)?;
+        append_rows(&self.t_s, rows, &chunk.t_s, 0)?;
         let mut r = Vec::with_capacity(3 * chunk.t_s.len());
         let mut v = Vec::with_capacity(3 * chunk.t_s.len());
         let mut q = Vec::with_capacity(4 * chunk.t_s.len());
@@ -506,7 +463,7 @@ impl TruthWriter {
             (&self.platform[2], &q, 4),
             (&self.platform[3], &ypr, 3),
         ] {
-            append(ds, rows, data, w)?;
+            append_rows(ds, rows, data, w)?;
         }
         let n = chunk.t_s.len();
         let mut vis = vec![0u8; n * self.n_sat];
@@ -522,9 +479,9 @@ impl TruthWriter {
                     }
                 }
             }
-            append(&sets.visible, rows, &vis, self.n_sat)?;
-            append(&sets.epoch_index, sets.links, &epochs, 0)?;
-            append(&sets.sat_index, sets.links, &sats, 0)?;
+            append_rows(&sets.visible, rows, &vis, self.n_sat)?;
+            append_rows(&sets.epoch_index, sets.links, &epochs, 0)?;
+            append_rows(&sets.sat_index, sets.links, &sats, 0)?;
             let mut values = Vec::with_capacity(epochs.len());
             for ((_, _, _, get), ds) in LINK_FIELDS.iter().zip(&sets.fields) {
                 values.clear();
@@ -534,7 +491,7 @@ impl TruthWriter {
                         .zip(&sats)
                         .map(|(&k, &s)| get(chunk.link(k as usize - rows, a, s as usize))),
                 );
-                append(ds, sets.links, &values, 0)?;
+                append_rows(ds, sets.links, &values, 0)?;
             }
             sets.links += epochs.len();
         }

@@ -15,10 +15,9 @@
 //! [`FLUSH_ROWS`] at a time, so memory stays bounded by satellites x `FLUSH_ROWS` rows
 //! however long the run.
 
-use hdf5::types::{TypeDescriptor, VarLenUnicode};
-use hdf5::{Dataset, Extents, Group, H5Type, Location};
+use crate::output::h5_datasets::{append_rows, create_rows, text_attr};
+use hdf5::{Dataset, Group, H5Type, Location};
 use hifitime::Epoch;
-use ndarray::ArrayView2;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::time::{epoch_from_gpst, gpst_week_sow};
 use skyforge_receiver::observables::Observation;
@@ -32,15 +31,6 @@ pub const SCHEMA_VERSION: &str = "1";
 
 /// Rows buffered per dataset before they are appended; also the HDF5 chunk length.
 const FLUSH_ROWS: usize = 1024;
-
-fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
-    let v: VarLenUnicode = value
-        .parse()
-        .map_err(|e| hdf5::Error::from(format!("{e}")))?;
-    loc.new_attr::<VarLenUnicode>()
-        .create(name)?
-        .write_scalar(&v)
-}
 
 fn week_attr(loc: &Location, week: u32) -> hdf5::Result<()> {
     loc.new_attr::<u32>()
@@ -66,26 +56,7 @@ impl<T: H5Type + Copy> Column<T> {
         unit: &str,
         description: &str,
     ) -> hdf5::Result<Self> {
-        let mut builder = group.new_dataset::<T>().obj_track_times(false);
-        if matches!(
-            T::type_descriptor(),
-            TypeDescriptor::Integer(_) | TypeDescriptor::Unsigned(_)
-        ) {
-            builder = builder.lzf();
-        }
-        let ds = if width == 0 {
-            builder
-                .chunk((FLUSH_ROWS,))
-                .shape(Extents::resizable(0.into()))
-                .create(name)?
-        } else {
-            builder
-                .chunk((FLUSH_ROWS, width))
-                .shape(Extents::from([(0, None), (width, Some(width))].as_slice()))
-                .create(name)?
-        };
-        text_attr(&ds, "units", unit)?;
-        text_attr(&ds, "description", description)?;
+        let ds = create_rows::<T>(group, name, width, FLUSH_ROWS, unit, description)?;
         Ok(Self {
             ds,
             width,
@@ -100,16 +71,7 @@ impl<T: H5Type + Copy> Column<T> {
         if n == 0 {
             return Ok(());
         }
-        let rows = self.rows..self.rows + n;
-        if self.width == 0 {
-            self.ds.resize((rows.end,))?;
-            self.ds.write_slice(&self.pending, rows)?;
-        } else {
-            self.ds.resize((rows.end, self.width))?;
-            let view = ArrayView2::from_shape((n, self.width), &self.pending)
-                .map_err(|e| hdf5::Error::from(e.to_string()))?;
-            self.ds.write_slice(view, (rows, ..))?;
-        }
+        append_rows(&self.ds, self.rows, &self.pending, self.width)?;
         self.rows += n;
         self.pending.clear();
         Ok(())
