@@ -1,6 +1,6 @@
 //! Validation: compare what SkyForge computes with truth and with the thesis tables.
 
-pub mod report;
 pub mod observables;
+pub mod report;
 pub mod stats;
 pub mod thesis;
