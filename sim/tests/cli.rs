@@ -1,38 +1,10 @@
 //! End-to-end tests of the `skyforge` binary.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn skyforge(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
-
-/// Bundled scenario `name` shortened to `duration_s`, written to `dir/short.toml`.
-fn short_scenario(dir: &Path, name: &str, duration_s: u32) -> std::path::PathBuf {
-    let o = skyforge(&["scenarios", "show", name], dir);
-    assert!(o.status.success(), "{}", text(&o));
-    let toml = String::from_utf8(o.stdout).unwrap();
-    let line = toml
-        .lines()
-        .find(|l| l.trim_start().starts_with("duration_s"))
-        .unwrap();
-    let short = toml.replacen(line, &format!("duration_s = {duration_s}"), 1);
-    let path = dir.join("short.toml");
-    std::fs::write(&path, short).unwrap();
-    path
-}
+use std::process::Command;
+use support::{short_scenario, skyforge, text};
 
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {

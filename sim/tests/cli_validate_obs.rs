@@ -1,8 +1,11 @@
 //! `skyforge validate obs`: a receiver's RINEX observations against the truth, from the
 //! command line, on small hand-written RINEX 3.04 files.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
+use support::{skyforge, text};
 
 /// RINEX 3.04 observation text: GPS G05, G07, G09 for `n` epochs tagged `t0_s + k` (within
 /// the minute), from a receiver whose tags are `offset_m / c` ahead of the sample clock:
@@ -48,45 +51,25 @@ fn rinex(t0_s: f64, n: usize, offset_m: f64, bump: impl Fn(usize, usize) -> f64)
     t
 }
 
-fn run(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .unwrap()
+/// `skyforge validate obs --truth truth.rnx <args>` in `dir`, after writing there a
+/// 22-epoch `truth.rnx` from a receiver without clock offset or code errors.
+fn validate_obs(dir: &Path, args: &[&str]) -> Output {
+    std::fs::write(dir.join("truth.rnx"), rinex(0.0, 22, 0.0, |_, _| 0.0)).unwrap();
+    let mut all = vec!["validate", "obs", "--truth", "truth.rnx"];
+    all.extend_from_slice(args);
+    skyforge(&all, dir)
 }
 
 #[test]
 fn validate_obs_prints_per_satellite_errors_and_writes_json() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("truth.rnx"),
-        rinex(0.0, 22, 0.0, |_, _| 0.0),
-    )
-    .unwrap();
     // Receiver: tags at fractional seconds, 300 m (1 us) clock offset, G07 +/-1 m
     // alternating code error.
     let bump = |i: usize, k: usize| if i == 1 { [1.0, -1.0][k % 2] } else { 0.0 };
     std::fs::write(dir.path().join("est.rnx"), rinex(1.25, 20, 300.0, bump)).unwrap();
-    let o = run(
-        &[
-            "validate",
-            "obs",
-            "--truth",
-            "truth.rnx",
-            "--estimate",
-            "est.rnx",
-            "--json",
-            "cmp.json",
-        ],
-        dir.path(),
-    );
+    let o = validate_obs(dir.path(), &["--estimate", "est.rnx", "--json", "cmp.json"]);
+    assert!(o.status.success(), "{}", text(&o));
     let stdout = String::from_utf8_lossy(&o.stdout);
-    assert!(
-        o.status.success(),
-        "{stdout}{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
     for needle in ["G05", "G07", "G09", "overall", "20 matched"] {
         assert!(stdout.contains(needle), "{needle}:\n{stdout}");
     }
@@ -108,22 +91,7 @@ fn validate_obs_prints_per_satellite_errors_and_writes_json() {
 #[test]
 fn validate_obs_rejects_a_missing_file_as_bad_input() {
     let dir = tempfile::tempdir().unwrap();
-    std::fs::write(
-        dir.path().join("truth.rnx"),
-        rinex(0.0, 22, 0.0, |_, _| 0.0),
-    )
-    .unwrap();
-    let o = run(
-        &[
-            "validate",
-            "obs",
-            "--truth",
-            "truth.rnx",
-            "--estimate",
-            "missing.rnx",
-        ],
-        dir.path(),
-    );
+    let o = validate_obs(dir.path(), &["--estimate", "missing.rnx"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("missing.rnx"));
 }

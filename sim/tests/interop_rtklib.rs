@@ -3,35 +3,24 @@
 //! solution, with RTKLIB's own broadcast (Klobuchar) ionosphere correction and no
 //! troposphere (switched off in the signal for this test), recovers the site.
 
-use skyforge_orbits::Vec3;
+mod support;
+
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 use std::process::Command;
+use support::{require_rnx2rtkp, rtklib_xyz_solutions, skyforge_ok};
 
 #[test]
 #[ignore = "interop tier: needs rtklib (scripts/test.sh installs it)"]
 fn rtklib_single_point_solution_from_our_rinex_recovers_the_site() {
-    assert!(
-        Command::new("rnx2rtkp").output().is_ok(),
-        "\n*** rnx2rtkp is not installed: apt-get install rtklib (scripts/test.sh does) ***\n"
-    );
+    require_rnx2rtkp();
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
-    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(["scenarios", "show", "interop-gps-static"])
-        .output()
-        .unwrap();
-    let toml = String::from_utf8(o.stdout)
-            .unwrap()
+    let toml = skyforge_ok(&["scenarios", "show", "interop-gps-static"], dir)
             .replacen("duration_s = 90.0", "duration_s = 10.0", 1)
             // The ionosphere is the term under test; RTKLIB's troposphere model is not ours.
             + "\n[errors.troposphere]\nmodel = \"off\"\n";
     std::fs::write(dir.join("short.toml"), toml).unwrap();
-    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(["synth", "short.toml", "--out", "out"])
-        .current_dir(dir)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    skyforge_ok(&["synth", "short.toml", "--out", "out"], dir);
     let out = dir.join("out");
     std::fs::write(
         out.join("spp.conf"),
@@ -54,18 +43,9 @@ fn rtklib_single_point_solution_from_our_rinex_recovers_the_site() {
         lon_rad: 114f64.to_radians(),
         h_m: 50.0,
     });
-    let errors: Vec<f64> = pos
-        .lines()
-        .filter(|l| !l.starts_with('%'))
-        .filter_map(|l| {
-            let f: Vec<f64> = l
-                .split_whitespace()
-                .skip(2)
-                .take(3)
-                .filter_map(|x| x.parse().ok())
-                .collect();
-            (f.len() == 3).then(|| (Vec3::new(f[0], f[1], f[2]) - site).norm())
-        })
+    let errors: Vec<f64> = rtklib_xyz_solutions(&pos)
+        .iter()
+        .map(|r| (r - site).norm())
         .collect();
     println!(
         "RTKLIB single point: {} epochs, worst 3D error {:.4} m",

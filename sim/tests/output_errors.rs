@@ -2,34 +2,18 @@
 //! that fills up mid-run give one clear message naming the path, a non-zero exit code,
 //! and leave no partial files behind.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-fn skyforge(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("run skyforge")
-}
+use support::{short_scenario, skyforge};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-/// `interop-gps-static` (4 Msps ci8: 16 MB per second) shortened to `duration_s`, written
-/// to `dir/short.toml`.
-fn short_scenario(dir: &Path, duration_s: u32) {
-    let o = skyforge(&["scenarios", "show", "interop-gps-static"], dir);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let toml = String::from_utf8(o.stdout).expect("UTF-8 scenario");
-    let line = toml
-        .lines()
-        .find(|l| l.trim_start().starts_with("duration_s"))
-        .expect("duration_s in the bundled scenario");
-    let short = toml.replacen(line, &format!("duration_s = {duration_s}"), 1);
-    std::fs::write(dir.join("short.toml"), short).expect("write scenario");
-}
+/// The scenario the tests shorten: 4 Msps ci8, 16 MB per second.
+const SCENARIO: &str = "interop-gps-static";
 
 /// Names in `dir`, sorted.
 fn listing(dir: &Path) -> Vec<String> {
@@ -56,7 +40,7 @@ fn is_root() -> bool {
 #[test]
 fn an_output_path_below_a_regular_file_is_refused_and_nothing_is_written() {
     let tmp = tempfile::tempdir().expect("temp dir");
-    short_scenario(tmp.path(), 1);
+    short_scenario(tmp.path(), SCENARIO, 1);
     std::fs::write(tmp.path().join("afile"), "keep").expect("write file");
     // ENOTDIR fails for root too (root ignores permission bits, not file types).
     for (out, reason) in [
@@ -101,7 +85,7 @@ fn a_read_only_parent_is_refused_and_nothing_is_written() {
     }
     use std::os::unix::fs::PermissionsExt;
     let tmp = tempfile::tempdir().expect("temp dir");
-    short_scenario(tmp.path(), 1);
+    short_scenario(tmp.path(), SCENARIO, 1);
     let ro = tmp.path().join("ro");
     std::fs::create_dir(&ro).expect("create dir");
     std::fs::set_permissions(&ro, std::fs::Permissions::from_mode(0o555)).expect("chmod");
@@ -156,7 +140,7 @@ fn a_full_disk_fails_clearly_and_removes_the_partial_output() {
     }
     let tmp = tempfile::tempdir().expect("temp dir");
     // 2 s of 4 Msps ci8 is 16 MB: the 2 MB file system fills up during the run.
-    short_scenario(tmp.path(), 2);
+    short_scenario(tmp.path(), SCENARIO, 2);
     let disk = Tmpfs::mount(&tmp.path().join("small"), "2m");
     let o = skyforge(&["synth", "short.toml", "--out", "small/out"], tmp.path());
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));

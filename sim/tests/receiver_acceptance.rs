@@ -11,29 +11,17 @@
 //! Minutes of 4 Msps I/Q (0.7 to 2.4 GB per run) are written to a temporary directory and
 //! removed after the receiver has read them; the tests run one at a time.
 
+mod support;
+
 use skyforge_orbits::Vec3;
 use skyforge_validate::observables::{ObsFile, compare, read_obs_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
+use support::{require_rnx2rtkp, rtklib_xyz_solutions, skyforge_ok};
 
 /// One end-to-end run at a time: each holds gigabytes of samples and both cores.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
-
-fn skyforge(dir: &Path, args: &[&str]) -> String {
-    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("skyforge runs");
-    let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
-    assert!(
-        o.status.success(),
-        "skyforge {args:?} failed:\n{stdout}\n{}",
-        String::from_utf8_lossy(&o.stderr)
-    );
-    stdout
-}
 
 /// Synthesise `scenario` into DIR/sim, receive its `band` recording(s) into DIR/rx (with
 /// the given extra arguments), delete the samples; returns (sim dir, rx dir, receive log).
@@ -43,12 +31,12 @@ fn synth_and_receive(
     band: &str,
     extra: &[&str],
 ) -> (PathBuf, PathBuf, String) {
-    skyforge(dir, &["synth", scenario, "--out", "sim"]);
+    skyforge_ok(&["synth", scenario, "--out", "sim"], dir);
     let sim = dir.join("sim");
     let meta = format!("sim/ant1.{band}.sigmf-meta");
     let mut args = vec!["receive", meta.as_str(), "--out", "rx"];
     args.extend_from_slice(extra);
-    let log = skyforge(dir, &args);
+    let log = skyforge_ok(&args, dir);
     println!("{log}");
     std::fs::remove_file(sim.join(format!("ant1.{band}.sigmf-data"))).expect("samples removed");
     (sim, dir.join("rx"), log)
@@ -265,10 +253,7 @@ fn leo_300_s_assisted_every_satellite_in_view_tracked_until_it_sets_and_pvt_with
 #[test]
 #[ignore = "interop tier: needs rtklib (scripts/test.sh installs it)"]
 fn rtklib_solves_from_the_receivers_rinex() {
-    assert!(
-        Command::new("rnx2rtkp").output().is_ok(),
-        "\n*** rnx2rtkp is not installed: apt-get install rtklib (scripts/test.sh does) ***\n"
-    );
+    require_rnx2rtkp();
     let _one = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     let tmp = tempfile::tempdir().expect("tempdir");
     let dir = tmp.path();
@@ -293,18 +278,9 @@ fn rtklib_solves_from_the_receivers_rinex() {
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let site = truth_site(&sim);
     let pos = std::fs::read_to_string(rx.join("spp.pos")).expect("spp.pos");
-    let errors: Vec<f64> = pos
-        .lines()
-        .filter(|l| !l.starts_with('%'))
-        .filter_map(|l| {
-            let f: Vec<f64> = l
-                .split_whitespace()
-                .skip(2)
-                .take(3)
-                .filter_map(|x| x.parse().ok())
-                .collect();
-            (f.len() == 3).then(|| (Vec3::new(f[0], f[1], f[2]) - site).norm())
-        })
+    let errors: Vec<f64> = rtklib_xyz_solutions(&pos)
+        .iter()
+        .map(|r| (r - site).norm())
         .collect();
     let receiver_epochs = read_obs_file(&rx.join("ant1.obs.rnx"))
         .expect("receiver RINEX")

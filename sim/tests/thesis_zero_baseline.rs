@@ -2,24 +2,10 @@
 //! (synthesis, receiver, double differences). The full run is in the ignored tier (60 s of
 //! four 4 Msps recordings); the default tier checks the table is known.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn skyforge(args: &[&str], cwd: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .unwrap()
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use support::{skyforge, text};
 
 #[test]
 fn an_unknown_table_is_refused_with_a_list_that_names_t_5_4_2() {

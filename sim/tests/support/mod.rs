@@ -1,0 +1,78 @@
+//! Helpers of the integration tests of the `skyforge` binary: running it, reading what it
+//! printed, shortening a bundled scenario, and reading RTKLIB's `rnx2rtkp` solutions.
+//! Shared by several test binaries, each using part of it.
+#![allow(dead_code)]
+
+use skyforge_orbits::Vec3;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Run `skyforge args` in `cwd`.
+pub fn skyforge(args: &[&str], cwd: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run skyforge")
+}
+
+/// Run `skyforge args` in `cwd`, which must succeed; returns its standard output.
+pub fn skyforge_ok(args: &[&str], cwd: &Path) -> String {
+    let o = skyforge(args, cwd);
+    assert!(
+        o.status.success(),
+        "skyforge {args:?} failed:\n{}",
+        text(&o)
+    );
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+/// Standard output followed by standard error.
+pub fn text(o: &Output) -> String {
+    format!(
+        "{}{}",
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr)
+    )
+}
+
+/// Bundled scenario `name` shortened to `duration_s`, written to `dir/short.toml`.
+pub fn short_scenario(dir: &Path, name: &str, duration_s: u32) -> PathBuf {
+    let o = skyforge(&["scenarios", "show", name], dir);
+    assert!(o.status.success(), "{}", text(&o));
+    let toml = String::from_utf8(o.stdout).expect("UTF-8 scenario");
+    let line = toml
+        .lines()
+        .find(|l| l.trim_start().starts_with("duration_s"))
+        .expect("duration_s in the bundled scenario");
+    let short = toml.replacen(line, &format!("duration_s = {duration_s}"), 1);
+    let path = dir.join("short.toml");
+    std::fs::write(&path, short).expect("write scenario");
+    path
+}
+
+/// Fail loudly when RTKLIB's `rnx2rtkp` is not installed.
+pub fn require_rnx2rtkp() {
+    assert!(
+        Command::new("rnx2rtkp").output().is_ok(),
+        "\n*** rnx2rtkp is not installed: apt-get install rtklib (scripts/test.sh does) ***\n"
+    );
+}
+
+/// The ECEF positions (m) of an `rnx2rtkp` solution file written with
+/// `out-solformat=xyz` and the default time format: header lines start with `%`, then one
+/// line per epoch of GPS week, seconds of week, x, y, z, ...
+pub fn rtklib_xyz_solutions(pos: &str) -> Vec<Vec3> {
+    pos.lines()
+        .filter(|l| !l.starts_with('%'))
+        .filter_map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .skip(2)
+                .take(3)
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (f.len() == 3).then(|| Vec3::new(f[0], f[1], f[2]))
+        })
+        .collect()
+}
