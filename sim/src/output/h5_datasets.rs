@@ -1,10 +1,19 @@
 //! Resizable HDF5 datasets shared by the writers of `truth.h5` and `receiver.h5`: creating
-//! a dataset that grows along its first axis, appending rows to it and writing its text
-//! attributes.
+//! a dataset that grows along its first axis, appending rows to it, writing text
+//! attributes and creating the groups that hold them.
 
 use hdf5::types::{TypeDescriptor, VarLenUnicode};
 use hdf5::{Dataset, Extents, Group, H5Type, Location};
 use ndarray::ArrayView2;
+
+/// Create the group `name` in `parent`, without modification times (the same run writes
+/// the same bytes).
+pub(crate) fn create_group(parent: &Group, name: &str) -> hdf5::Result<Group> {
+    parent
+        .create_group_builder()
+        .obj_track_times(false)
+        .create(name)
+}
 
 /// Write the UTF-8 string attribute `name` on `loc`.
 pub(crate) fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
@@ -80,12 +89,14 @@ mod tests {
     fn appended_rows_read_back_in_order_with_their_attributes() {
         let dir = tempfile::tempdir().unwrap();
         let file = hdf5::File::create(dir.path().join("rows.h5")).unwrap();
-        let scalar = create_rows::<u16>(&file, "index", 0, 4, "1", "an index").unwrap();
-        let matrix = create_rows::<f64>(&file, "r_m", 3, 4, "m", "a position").unwrap();
+        let group = create_group(&file, "series").unwrap();
+        let scalar = create_rows::<u16>(&group, "index", 0, 4, "1", "an index").unwrap();
+        let matrix = create_rows::<f64>(&group, "r_m", 3, 4, "m", "a position").unwrap();
         append_rows(&scalar, 0, &[1u16, 2, 3], 0).unwrap();
         append_rows(&scalar, 3, &[4u16, 5, 6, 7, 8], 0).unwrap();
         append_rows(&matrix, 0, &[1.0, 2.0, 3.0], 3).unwrap();
         append_rows(&matrix, 1, &[4.0, 5.0, 6.0, 7.0, 8.0, 9.0], 3).unwrap();
+        let scalar = file.dataset("series/index").unwrap();
         assert_eq!(scalar.read_raw::<u16>().unwrap(), [1, 2, 3, 4, 5, 6, 7, 8]);
         assert_eq!(matrix.shape(), [3, 3]);
         let m = matrix.read_2d::<f64>().unwrap();

@@ -1,7 +1,7 @@
 //! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
 //! The schema is documented in `docs/truth-h5.md`; change both together.
 
-use super::h5_datasets::{append_rows, create_rows, text_attr};
+use super::h5_datasets::{append_rows, create_group, create_rows, text_attr};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
 use skyforge_orbits::ephemeris::SatId;
@@ -268,10 +268,7 @@ impl TruthWriter {
             .write_scalar(&meta.seed)?;
         f64_attr(&file, "step_s", &[meta.step_s])?;
 
-        let time = file
-            .create_group_builder()
-            .obj_track_times(false)
-            .create("time")?;
+        let time = create_group(&file, "time")?;
         let t_s = series::<f64>(
             &time,
             "t_s",
@@ -279,10 +276,7 @@ impl TruthWriter {
             "s",
             "receive time, seconds since start_epoch (GPST)",
         )?;
-        let pg = file
-            .create_group_builder()
-            .obj_track_times(false)
-            .create("platform")?;
+        let pg = create_group(&file, "platform")?;
         let platform = [
             series::<f64>(
                 &pg,
@@ -307,10 +301,7 @@ impl TruthWriter {
                 "yaw, pitch, roll (3-2-1) of the body relative to the reference frame (orbital for a LEO, NED otherwise)",
             )?,
         ];
-        let sg = file
-            .create_group_builder()
-            .obj_track_times(false)
-            .create("satellites")?;
+        let sg = create_group(&file, "satellites")?;
         let ids: Vec<VarLenUnicode> = sats
             .iter()
             .filter_map(|s| s.to_string().parse().ok())
@@ -329,16 +320,10 @@ impl TruthWriter {
             .create("carrier_hz")?;
         text_attr(&ds, "units", "Hz")?;
 
-        let ag = file
-            .create_group_builder()
-            .obj_track_times(false)
-            .create("antennas")?;
+        let ag = create_group(&file, "antennas")?;
         let mut ants = Vec::new();
         for ant in antennas {
-            let g = ag
-                .create_group_builder()
-                .obj_track_times(false)
-                .create(ant.name.as_str())?;
+            let g = create_group(&ag, ant.name.as_str())?;
             f64_attr(&g, "nominal_body_m", ant.nominal_body_m.as_slice())?;
             f64_attr(&g, "true_body_m", ant.true_body_m.as_slice())?;
             f64_attr(&g, "boresight_body", ant.boresight_body.as_slice())?;
@@ -390,12 +375,8 @@ impl TruthWriter {
     /// link and truth epoch).
     pub fn create_signal(&mut self, antennas: &[Antenna]) -> hdf5::Result<()> {
         for ant in antennas {
-            let g = self
-                .file
-                .group(&format!("antennas/{}", ant.name))?
-                .create_group_builder()
-                .obj_track_times(false)
-                .create("signal")?;
+            let antenna = self.file.group(&format!("antennas/{}", ant.name))?;
+            let g = create_group(&antenna, "signal")?;
             self.signal.push(SignalSets {
                 t_s: series::<f64>(
                     &g,

@@ -15,7 +15,7 @@
 //! [`FLUSH_ROWS`] at a time, so memory stays bounded by satellites x `FLUSH_ROWS` rows
 //! however long the run.
 
-use crate::output::h5_datasets::{append_rows, create_rows, text_attr};
+use crate::output::h5_datasets::{append_rows, create_group, create_rows, text_attr};
 use hdf5::{Dataset, Group, H5Type, Location};
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::SatId;
@@ -277,18 +277,12 @@ impl ReceiverH5 {
             concat!("skyforge receive ", env!("CARGO_PKG_VERSION")),
         )?;
         text_attr(&file, "time_system", "GPST, receiver clock")?;
-        let group = |parent: &Group, name: &str| {
-            parent
-                .create_group_builder()
-                .obj_track_times(false)
-                .create(name)
-        };
-        let observations = group(&file, "observations")?;
+        let observations = create_group(&file, "observations")?;
         let obs_groups = names
             .iter()
-            .map(|n| group(&observations, n))
+            .map(|n| create_group(&observations, n))
             .collect::<hdf5::Result<Vec<_>>>()?;
-        let pvt_group = group(&file, "pvt")?;
+        let pvt_group = create_group(&file, "pvt")?;
         Ok(Self {
             file,
             obs_groups,
@@ -315,10 +309,7 @@ impl ReceiverH5 {
             let series = match self.obs.entry((o.antenna, o.sat)) {
                 std::collections::btree_map::Entry::Occupied(e) => e.into_mut(),
                 std::collections::btree_map::Entry::Vacant(e) => {
-                    let g = self.obs_groups[o.antenna]
-                        .create_group_builder()
-                        .obj_track_times(false)
-                        .create(o.sat.to_string().as_str())?;
+                    let g = create_group(&self.obs_groups[o.antenna], o.sat.to_string().as_str())?;
                     e.insert(ObsSeries::create(&g, week)?)
                 }
             };
@@ -334,11 +325,7 @@ impl ReceiverH5 {
             let series = match &mut self.pvt[af.antenna] {
                 Some(s) => s,
                 empty => {
-                    let g = self
-                        .pvt_group
-                        .create_group_builder()
-                        .obj_track_times(false)
-                        .create(self.names[af.antenna].as_str())?;
+                    let g = create_group(&self.pvt_group, self.names[af.antenna].as_str())?;
                     empty.insert(PvtSeries::create(&g, week)?)
                 }
             };
