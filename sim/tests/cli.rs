@@ -4,7 +4,7 @@ mod support;
 
 use std::path::Path;
 use std::process::Command;
-use support::{short_scenario, skyforge, text};
+use support::{results_json, short_scenario, skyforge, text};
 
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {
@@ -156,16 +156,13 @@ fn validate_thesis_writes_every_row_of_both_tables() {
         tmp.path(),
     );
     assert!(o.status.success(), "{}", text(&o));
-    let rows: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("v/results.json")).unwrap())
-            .unwrap();
-    let rows = rows.as_array().unwrap();
+    let rows = results_json(&tmp.path().join("v"));
     let count = |table: &str| rows.iter().filter(|r| r["table"] == table).count();
     // V-1.2.1: GPS, BD, GPS+BD x (max, min, mean) with BDS-3, plus BD and GPS+BD with BDS-2.
     assert_eq!(count("V-1.2.1"), 15);
     // T-3.2: 25 components, 2 dynamics rows, 20 totals.
     assert_eq!(count("T-3.2"), 47);
-    for r in rows {
+    for r in &rows {
         for key in [
             "table",
             "row",

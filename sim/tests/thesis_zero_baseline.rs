@@ -5,7 +5,7 @@
 mod support;
 
 use std::path::Path;
-use support::{skyforge, text};
+use support::{results_json, skyforge, text};
 
 #[test]
 fn an_unknown_table_is_refused_with_a_list_that_names_t_5_4_2() {
@@ -58,13 +58,10 @@ fn t_5_4_2_writes_every_row_with_a_verdict_and_physically_sane_values() {
         tmp.path(),
     );
     assert!(o.status.success(), "{}", text(&o));
-    let rows: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("v/results.json")).unwrap())
-            .unwrap();
-    let rows = rows.as_array().unwrap();
+    let rows = results_json(&tmp.path().join("v"));
     // GPS L1 and BD2 B1 x pseudorange and carrier phase x mean and std; nothing else.
     assert_eq!(rows.len(), 8, "{rows:?}");
-    for r in rows {
+    for r in &rows {
         assert_eq!(r["table"], "T-5.4-2", "{r}");
         assert_eq!(r["unit"], "m", "{r}");
         assert!(

@@ -1,5 +1,6 @@
 //! Helpers of the integration tests of the `skyforge` binary: running it, reading what it
-//! printed, shortening a bundled scenario, and reading RTKLIB's `rnx2rtkp` solutions.
+//! printed or wrote, shortening a bundled scenario, and reading RTKLIB's `rnx2rtkp`
+//! solutions.
 //! Shared by several test binaries, each using part of it.
 #![allow(dead_code)]
 
@@ -49,6 +50,12 @@ pub fn short_scenario(dir: &Path, name: &str, duration_s: u32) -> PathBuf {
     let path = dir.join("short.toml");
     std::fs::write(&path, short).expect("write scenario");
     path
+}
+
+/// The rows `skyforge validate thesis --out <out>` wrote to `out/results.json`.
+pub fn results_json(out: &Path) -> Vec<serde_json::Value> {
+    let json = std::fs::read_to_string(out.join("results.json")).expect("results.json");
+    serde_json::from_str(&json).expect("results.json: an array of rows")
 }
 
 /// Fail loudly when RTKLIB's `rnx2rtkp` is not installed.
