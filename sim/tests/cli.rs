@@ -614,3 +614,47 @@ fn receive_refuses_recordings_that_do_not_share_a_sample_clock() {
         &["ant2", "2000000", "4000000"],
     );
 }
+
+/// A raw file as gps-sdr-sim writes one (16-bit I/Q at 2.6 Msps, no metadata): described on
+/// the command line, tracked and decoded like a SigMF recording.
+#[test]
+fn receive_reads_a_raw_ci16_file_at_2_6_msps() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let scenario = short_scenario(dir, "interop-gps-static", 15);
+    let toml = std::fs::read_to_string(&scenario)
+        .unwrap()
+        .replacen("sample_rate_hz = 4.0e6", "sample_rate_hz = 2.6e6", 1)
+        .replacen("format = \"ci8\"", "format = \"ci16\"", 1)
+        .replacen("bits = 8", "bits = 16", 1);
+    std::fs::write(&scenario, toml).unwrap();
+    let o = skyforge(&["synth", scenario.to_str().unwrap(), "--out", "sim"], dir);
+    assert!(o.status.success(), "{}", text(&o));
+    std::fs::rename(
+        dir.join("sim/ant1.gps-l1ca.sigmf-data"),
+        dir.join("capture.bin"),
+    )
+    .unwrap();
+    let o = skyforge(
+        &[
+            "receive",
+            "capture.bin",
+            "--format",
+            "ci16",
+            "--fs",
+            "2.6e6",
+            "--signal",
+            "gps-l1ca",
+            "--assist",
+            "sim/nav.rnx",
+            "--out",
+            "rx",
+        ],
+        dir,
+    );
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    assert!(out.contains("tracked 11"), "{out}");
+    let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
+    assert!(fixes.lines().count() >= 3, "{out}\n{fixes}");
+}

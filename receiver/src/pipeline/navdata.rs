@@ -25,6 +25,9 @@ pub(crate) struct NavData {
     store: EphemerisStore,
     pub(crate) iono_gps: Option<KlobucharCoeffs>,
     pub(crate) iono_bds: Option<KlobucharCoeffs>,
+    /// A time near the data (the first assistance ephemeris' toe), for resolving a time of
+    /// week when neither the message nor the recording gives the week.
+    reference: Option<Epoch>,
 }
 
 impl NavData {
@@ -39,6 +42,7 @@ impl NavData {
         let mut nav = Self {
             iono_gps,
             iono_bds,
+            reference: assist.first().map(|e| e.toe),
             ..Self::default()
         };
         let week = approx_time
@@ -51,6 +55,11 @@ impl NavData {
             nav.set_origin_week(week);
         }
         nav
+    }
+
+    /// A GPST time (s since the origin) near the data when the assistance gave one.
+    pub(crate) fn reference_time(&self) -> Option<f64> {
+        Some(self.origin.as_ref()?.seconds_since_start(self.reference?))
     }
 
     pub(crate) fn origin(&self) -> Option<&TimeOrigin> {
@@ -127,11 +136,13 @@ impl NavData {
         match (gps_week, approx_s) {
             (Some(w), _) => Some((f64::from(w) - f64::from(origin_week)) * WEEK_S + gps_tow),
             // The week nearest the approximate time.
-            (None, Some(approx)) => {
+            (None, approx) => {
+                // Without a clock, the assistance data's epoch (within hours of the
+                // recording: half a week is the limit).
+                let approx = approx.or_else(|| self.reference_time())?;
                 let weeks = ((approx - gps_tow) / WEEK_S).round();
                 Some(weeks * WEEK_S + gps_tow)
             }
-            (None, None) => None,
         }
     }
 
