@@ -658,3 +658,35 @@ fn receive_reads_a_raw_ci16_file_at_2_6_msps() {
     let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
     assert!(fixes.lines().count() >= 3, "{out}\n{fixes}");
 }
+
+/// The configuration example in docs/receiver.md is a valid receiver configuration: the
+/// run gets past it and stops only because the file holds no signal.
+#[test]
+fn the_documented_receiver_configuration_is_accepted() {
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/receiver.md"))
+        .unwrap();
+    let start = doc.find("```toml\n").expect("a toml block") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("its end");
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(dir.join("receiver.toml"), &doc[start..end]).unwrap();
+    let noise: Vec<u8> = (0..400_000u32)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    std::fs::write(dir.join("noise.bin"), &noise).unwrap();
+    receive_refuses(
+        dir,
+        &[
+            "noise.bin",
+            "--format",
+            "ci8",
+            "--fs",
+            "4e6",
+            "--signal",
+            "gps-l1ca",
+            "--config",
+            "receiver.toml",
+        ],
+        &["no signal found"],
+    );
+}
