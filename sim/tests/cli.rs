@@ -502,32 +502,32 @@ fn short_gps_recording(dir: &Path, duration_s: u32) {
     assert!(o.status.success(), "{}", text(&o));
 }
 
+/// `receive <inputs> --assist sim/nav.rnx --out rx` in `dir` on a 15 s `interop-gps-static`
+/// recording: the 11 satellites above the mask at 45 dB-Hz are tracked and timed by a
+/// subframe, and fixes are written. Returns the command's output.
+fn receive_tracks_all_and_fixes(dir: &Path, inputs: &[&str]) -> String {
+    let mut args = vec!["receive"];
+    args.extend_from_slice(inputs);
+    args.extend_from_slice(&["--assist", "sim/nav.rnx", "--out", "rx"]);
+    let o = skyforge(&args, dir);
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    assert!(out.contains("tracked 11"), "{out}");
+    let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
+    assert!(fixes.lines().count() >= 3, "{out}\n{fixes}");
+    out
+}
+
 #[test]
 fn receive_tracks_decodes_and_fixes_on_a_short_recording() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     short_gps_recording(dir, 15);
-    let o = skyforge(
-        &[
-            "receive",
-            "sim/ant1.gps-l1ca.sigmf-meta",
-            "--assist",
-            "sim/nav.rnx",
-            "--out",
-            "rx",
-        ],
-        dir,
-    );
-    let out = text(&o);
-    assert!(o.status.success(), "{out}");
-    // 11 satellites above the mask at 45 dB-Hz: each tracked, timed by a subframe.
-    assert!(out.contains("tracked 11"), "{out}");
+    let out = receive_tracks_all_and_fixes(dir, &["sim/ant1.gps-l1ca.sigmf-meta"]);
     let rinex = std::fs::read_to_string(dir.join("rx/ant1.obs.rnx")).unwrap();
     let epochs = rinex.lines().filter(|l| l.starts_with('>')).count();
     assert!(epochs >= 2, "{epochs} epochs:\n{out}");
     assert!(rinex.contains("SKYFORGE RECEIVER"));
-    let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
-    assert!(fixes.lines().count() >= 3, "{fixes}");
     assert!(dir.join("rx/receiver.h5").is_file() && dir.join("rx/ant1.nmea").is_file());
 }
 
@@ -635,9 +635,9 @@ fn receive_reads_a_raw_ci16_file_at_2_6_msps() {
         dir.join("capture.bin"),
     )
     .unwrap();
-    let o = skyforge(
+    receive_tracks_all_and_fixes(
+        dir,
         &[
-            "receive",
             "capture.bin",
             "--format",
             "ci16",
@@ -645,18 +645,8 @@ fn receive_reads_a_raw_ci16_file_at_2_6_msps() {
             "2.6e6",
             "--signal",
             "gps-l1ca",
-            "--assist",
-            "sim/nav.rnx",
-            "--out",
-            "rx",
         ],
-        dir,
     );
-    let out = text(&o);
-    assert!(o.status.success(), "{out}");
-    assert!(out.contains("tracked 11"), "{out}");
-    let fixes = std::fs::read_to_string(dir.join("rx/pvt.csv")).unwrap();
-    assert!(fixes.lines().count() >= 3, "{out}\n{fixes}");
 }
 
 /// The configuration example in docs/receiver.md is a valid receiver configuration: the
