@@ -5,9 +5,10 @@
 //! 80 Hz/s, too wide for a blind search at every start.
 
 use crate::pvt::predicted_view;
+use crate::signal::Signal;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, GM_GPS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
+use skyforge_orbits::constants::{C_MPS, GM_GPS, OMEGA_E_GPS};
+use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 
 /// Half step of the central differences (s).
@@ -49,14 +50,6 @@ pub struct SearchHint {
     pub elevation_rad: f64,
 }
 
-/// Carrier frequency of the signal the receiver tracks for `system`.
-fn carrier_hz(system: System) -> f64 {
-    match system {
-        System::Gps => F_GPS_L1_HZ,
-        System::Beidou => F_BDS_B1I_HZ,
-    }
-}
-
 /// Acceleration (ECEF, m/s^2) of a body in free fall at `r`, `v` (ECEF): two-body
 /// gravity, Coriolis and centrifugal terms of the rotating frame.
 fn free_fall_ecef(r: &Vec3, v: &Vec3) -> Vec3 {
@@ -80,7 +73,7 @@ pub fn search_hints(store: &EphemerisStore, a: &Assistance) -> Vec<SearchHint> {
         .into_iter()
         .filter_map(|sat| {
             let eph = store.select(sat, a.t_s)?;
-            let f = carrier_hz(sat.system);
+            let f = Signal::of_system(sat.system).carrier_hz();
             // The receiver dt seconds later: coasting in orbit, or moving steadily on the
             // ground.
             let receiver_at = |dt: f64| {

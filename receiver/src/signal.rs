@@ -69,6 +69,14 @@ impl Signal {
         }
     }
 
+    /// The signal this receiver tracks for `system` (one per constellation).
+    pub fn of_system(system: skyforge_orbits::ephemeris::System) -> Self {
+        match system {
+            skyforge_orbits::ephemeris::System::Gps => Self::GpsL1Ca,
+            skyforge_orbits::ephemeris::System::Beidou => Self::BdsB1I,
+        }
+    }
+
     /// The constellation that transmits the signal.
     pub fn system(self) -> skyforge_orbits::ephemeris::System {
         match self {

@@ -6,25 +6,16 @@
 //! together when the whole stream is complemented, the check and the recovered source bits
 //! do not depend on the stream polarity, provided D29*, D30* come from the same stream.
 
-/// Table 20-XIV: for D25..D30, whether the equation starts from D29* (`true`) or D30*,
-/// and the source bits d_i it sums.
-use skyforge_signals::navmsg::gps_lnav::parity::EQUATIONS as PARITY_EQUATIONS;
+use skyforge_signals::navmsg::gps_lnav::parity::encode_word;
 
 /// The 24 source bits (d1 at bit 23) of transmitted word `word` if its parity holds given
-/// `d29_star`, `d30_star` (the last two bits of the previous word), else `None`.
+/// `d29_star`, `d30_star` (the last two bits of the previous word), else `None`: the
+/// source bits re-encoded with table 20-XIV must give the received word.
 pub(crate) fn check_word(word: u32, d29_star: u8, d30_star: u8) -> Option<u32> {
     let flip = if d30_star & 1 == 1 { 0x00FF_FFFF } else { 0 };
     let source = ((word >> 6) & 0x00FF_FFFF) ^ flip;
-    let d = |i: u32| (source >> (24 - i)) & 1;
-    let ok = PARITY_EQUATIONS
-        .iter()
-        .enumerate()
-        .all(|(k, (from_d29, terms))| {
-            let seed = u32::from(if *from_d29 { d29_star } else { d30_star } & 1);
-            let p = terms.iter().fold(seed, |acc, &i| acc ^ d(i));
-            p == (word >> (5 - k)) & 1
-        });
-    ok.then_some(source)
+    let previous = (u32::from(d29_star & 1) << 1) | u32::from(d30_star & 1);
+    (encode_word(source, previous) == word & 0x3FFF_FFFF).then_some(source)
 }
 
 /// Source words of a subframe given as bits: `bits[0]`, `bits[1]` are D29, D30 of the

@@ -55,6 +55,11 @@ impl Search {
         self.pcps.samples_needed()
     }
 
+    /// Doppler bin spacing of the search (Hz).
+    pub(crate) fn doppler_step_hz(&self) -> f64 {
+        self.pcps.config().doppler_step()
+    }
+
     /// The cold window.
     pub(crate) fn cold_window(&self) -> DopplerWindow {
         self.pcps.config().window

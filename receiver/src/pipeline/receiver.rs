@@ -21,7 +21,7 @@ use num_complex::Complex32;
 use rayon::prelude::*;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).
 const NOMINAL_FLIGHT_S: f64 = 0.075;
@@ -304,7 +304,7 @@ impl Receiver {
         for (b, band) in self.setup.bands.iter().enumerate() {
             let system = band.signal.system();
             let n_antennas = band.antennas.len();
-            let narrow = 2.0 * self.searches_step(band.signal);
+            let narrow = 2.0 * self.searches[b].doppler_step_hz();
             // Doppler of each PRN found in this band this round (all antennas share the
             // platform's motion and oscillator: within a few Hz of each other).
             let mut found_here: Vec<(u8, f64)> = Vec::new();
@@ -322,7 +322,7 @@ impl Receiver {
                         .or_else(|| found_here.iter().find(|f| f.0 == prn).map(|f| f.1))
                 };
                 let candidates: Vec<Candidate> = self
-                    .candidates(band.signal, antenna, t_s)
+                    .candidates(b, antenna, t_s)
                     .into_iter()
                     .filter(|c| !tracked(c.prn))
                     .filter_map(|c| match (c.cold, elsewhere(c.prn)) {
@@ -372,12 +372,13 @@ impl Receiver {
     /// What to search for on `antenna`: the satellites predicted in view (ephemerides, an
     /// approximate time and a position from the last fix or the assistance), else every
     /// PRN over the cold window.
-    fn candidates(&self, signal: Signal, antenna: usize, t_s: Option<f64>) -> Vec<Candidate> {
-        let system = signal.system();
+    fn candidates(&self, band: usize, antenna: usize, t_s: Option<f64>) -> Vec<Candidate> {
+        let search = &self.searches[band];
+        let system = self.setup.bands[band].signal.system();
         if let Some(a) = t_s.and_then(|t| self.assistance(antenna, t)) {
             let store = self.nav.store();
             if store.satellites().iter().any(|s| s.system == system) {
-                let floor = 2.0 * self.searches_step(signal);
+                let floor = 2.0 * search.doppler_step_hz();
                 return search_hints(store, &a)
                     .into_iter()
                     .filter(|h| h.sat.system == system)
@@ -393,12 +394,8 @@ impl Receiver {
                     .collect();
             }
         }
-        let window = self.searches[self.band_of(signal)].cold_window();
-        let max_prn = match system {
-            System::Gps => 32,
-            System::Beidou => 63,
-        };
-        (1..=max_prn)
+        let window = search.cold_window();
+        (1..=system.max_prn())
             .map(|prn| Candidate {
                 prn,
                 window,
@@ -406,20 +403,6 @@ impl Receiver {
                 cold: true,
             })
             .collect()
-    }
-
-    fn band_of(&self, signal: Signal) -> usize {
-        self.setup
-            .bands
-            .iter()
-            .position(|b| b.signal == signal)
-            .unwrap_or(0)
-    }
-
-    /// Doppler bin spacing of the signal's search (Hz).
-    fn searches_step(&self, signal: Signal) -> f64 {
-        let coherent_s = self.config.acquisition.coherent_ms as f64 * signal.code_period_s();
-        2.0 / (3.0 * coherent_s)
     }
 
     /// The assistance for `antenna` at `t_s`: its last fix, else the given approximate
@@ -515,7 +498,7 @@ impl Receiver {
                 sat: o.sat,
                 pseudorange_m: o.pseudorange_m,
                 doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
-                carrier_hz: carrier_hz(o.sat.system),
+                carrier_hz: Signal::of_system(o.sat.system).carrier_hz(),
             })
             .collect();
         let (Some(origin), store) = (self.nav.origin(), self.nav.store()) else {
@@ -561,12 +544,5 @@ impl std::fmt::Debug for Receiver {
             .field("clock_offset_s", &self.clock_offset_s)
             .field("summary", &self.summary)
             .finish_non_exhaustive()
-    }
-}
-
-fn carrier_hz(system: System) -> f64 {
-    match system {
-        System::Gps => Signal::GpsL1Ca.carrier_hz(),
-        System::Beidou => Signal::BdsB1I.carrier_hz(),
     }
 }

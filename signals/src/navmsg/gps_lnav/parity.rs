@@ -7,7 +7,7 @@
 
 /// Source-bit lists of the six parity equations (IS-GPS-200 table 20-XIV), D25..D30, and
 /// whether the equation starts from D29* (`true`) or D30* (`false`) of the previous word.
-pub const EQUATIONS: [(bool, &[u32]); 6] = [
+const EQUATIONS: [(bool, &[u32]); 6] = [
     (true, &[1, 2, 3, 5, 6, 10, 11, 12, 13, 14, 17, 18, 20, 23]),
     (false, &[2, 3, 4, 6, 7, 11, 12, 13, 14, 15, 18, 19, 21, 24]),
     (true, &[1, 3, 4, 5, 7, 8, 12, 13, 14, 15, 16, 19, 20, 22]),
@@ -47,7 +47,7 @@ const DATA_MASK: u32 = 0x00FF_FFFF;
 /// Encode 24 source bits into a transmitted 30-bit word, given the previous transmitted
 /// word (only its D29, D30 are used): D1..D24 are d1..d24 complemented when D30* = 1,
 /// D25..D30 are the parity bits of table 20-XIV.
-pub(crate) fn encode_word(source: u32, previous_word: u32) -> u32 {
+pub fn encode_word(source: u32, previous_word: u32) -> u32 {
     let d29_star = (previous_word >> 1) & 1;
     let d30_star = previous_word & 1;
     let source = source & DATA_MASK;
