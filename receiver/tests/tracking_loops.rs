@@ -60,6 +60,16 @@ fn bit_errors(records: &[TrackingRecord], sig: &TestSignal) -> (usize, usize) {
     (bits.len(), agree.min(bits.len() - agree))
 }
 
+/// Carrier-phase error (cycles) of each record against the truth, with the unknown
+/// initial phase, the integer ambiguity and the Costas half cycle removed.
+fn carrier_phase_errors(records: &[TrackingRecord], sig: &TestSignal) -> Vec<f64> {
+    let diffs: Vec<f64> = records
+        .iter()
+        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
+        .collect();
+    phase_errors(&diffs)
+}
+
 /// Mean NCO Doppler error (Hz) over the records, against the truth at each integration's
 /// middle.
 fn mean_doppler_error(records: &[TrackingRecord], sig: &TestSignal) -> f64 {
@@ -89,11 +99,7 @@ fn gps_45_dbhz_carrier_code_and_cn0_match_the_noise_formulas() {
     assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
 
     // Carrier phase against truth (ambiguity and the unknown initial phase removed).
-    let diffs: Vec<f64> = settled
-        .iter()
-        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
-        .collect();
-    let (_, phase_std) = mean_std(&phase_errors(&diffs));
+    let (_, phase_std) = mean_std(&carrier_phase_errors(&settled, &sig));
     let expected = thermal_jitter_deg(config.pll_bandwidth_hz, sig.cn0_dbhz, 1e-3) / 360.0;
     let wavelength_m = 299_792_458.0 / sig.signal.carrier_hz();
     println!(
@@ -213,11 +219,7 @@ fn leo_doppler_ramp_stays_locked_with_the_third_order_pll() {
     assert!(records.iter().all(|r| !r.loss_of_lock));
     let settled = after(&records, &sig, 1.0);
     assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
-    let diffs: Vec<f64> = settled
-        .iter()
-        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
-        .collect();
-    let errors = phase_errors(&diffs);
+    let errors = carrier_phase_errors(&settled, &sig);
     let worst = errors.iter().fold(0f64, |m, e| m.max(e.abs()));
     assert!(worst < 0.1, "worst phase error {worst} cycles");
     let doppler = mean_doppler_error(&after(&records, &sig, 3.5), &sig);
@@ -373,11 +375,7 @@ fn gps_ten_ms_coherent_integration_after_bit_sync() {
             .iter()
             .all(|r| r.integration_periods == 10 && r.locked && !r.cycle_slip)
     );
-    let diffs: Vec<f64> = settled
-        .iter()
-        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
-        .collect();
-    let (_, std) = mean_std(&phase_errors(&diffs));
+    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
     let expected = thermal_jitter_deg(5.0, sig.cn0_dbhz, 10e-3) / 360.0;
     println!("10 ms, Bn 5 Hz: carrier phase error std {std:.5} cycles (formula {expected:.5})");
     assert!(
@@ -436,11 +434,7 @@ fn second_order_pll_tracks_at_the_thermal_noise_formula() {
     let records = track(&sig, config, sig.handover(0.2, -30.0), 4.0);
     let settled = after(&records, &sig, 1.0);
     assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
-    let diffs: Vec<f64> = settled
-        .iter()
-        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
-        .collect();
-    let (_, std) = mean_std(&phase_errors(&diffs));
+    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
     let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
     assert!(
         (0.75..1.33).contains(&(std / expected)),
@@ -477,11 +471,7 @@ fn a_33_dbhz_signal_stays_locked_with_a_narrower_pll() {
     let cn0s: Vec<f64> = settled.iter().filter_map(|r| r.cn0_dbhz).collect();
     let (cn0_mean, _) = mean_std(&cn0s);
     assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
-    let diffs: Vec<f64> = settled
-        .iter()
-        .map(|r| r.carrier_phase_cycles - (sig.carrier_phase(r.sample_index) - sig.phase0_cycles))
-        .collect();
-    let (_, std) = mean_std(&phase_errors(&diffs));
+    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
     let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
     println!("33 dB-Hz: C/N0 {cn0_mean:.2}, phase std {std:.4} cycles (formula {expected:.4})");
     assert!(
