@@ -136,6 +136,16 @@ fn rinex_nav_satellites(dir: &Path) -> std::collections::BTreeSet<String> {
     sats
 }
 
+/// One of these tests at a time, from synthesis to the last check: GNSS-SDR is
+/// multi-threaded and the machine has two cores. In one CI run where the tests' analyses
+/// overlapped another test's GNSS-SDR run, GNSS-SDR's BeiDou fixes came out at 13.5 m RMS
+/// (worst 43.6 m) against 3.5-3.9 m in three runs alone; that the overlap caused it is a
+/// guess, not established.
+fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
+    static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
+}
+
 /// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's recording of
 /// `band` (`gps-l1ca`, `bds-b1i`), and return (output folder, GNSS-SDR's console log, its
 /// NMEA output).
@@ -144,9 +154,6 @@ fn synth_and_receive(
     scenario: &str,
     band: &str,
 ) -> (std::path::PathBuf, String, String) {
-    // One GNSS-SDR at a time: each is multi-threaded and the machine has two cores.
-    static ONE_AT_A_TIME: std::sync::Mutex<()> = std::sync::Mutex::new(());
-    let _turn = ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner());
     assert!(
         Command::new("gnss-sdr").arg("--version").output().is_ok(),
         "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh does) ***\n"
@@ -223,6 +230,7 @@ fn assert_in_solution_at_scenario_cn0(gsv: &[(u8, f64)], system: char, prns: &[u
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
+    let _turn = one_at_a_time();
     let tmp = tempfile::tempdir().unwrap();
     let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gps-static", "gps-l1ca");
     assert_static_fixes(&nmea, &log, "GPS");
@@ -244,6 +252,7 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
+    let _turn = one_at_a_time();
     use skyforge_signals::synth::gnss_sdr::GNSS_SDR_0017_BDS_PRN_MAX;
     let tmp = tempfile::tempdir().unwrap();
     let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-bds-static", "bds-b1i");
@@ -286,6 +295,7 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn gnss_sdr_fixes_on_the_thesis_leo() {
+    let _turn = one_at_a_time();
     let tmp = tempfile::tempdir().unwrap();
     let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-leo-gps", "gps-l1ca");
     // Truth: the platform's ECEF position at 1 Hz (the antenna sits at the centre of mass).
