@@ -25,8 +25,13 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).
 const NOMINAL_FLIGHT_S: f64 = 0.075;
-/// Code periods past an epoch every channel must have tracked before the epoch is formed.
-const EPOCH_MARGIN_PERIODS: f64 = 2.0;
+/// Code periods past an epoch every channel must have tracked before the epoch is formed:
+/// a channel reports an integration when it ends, so the first integration starting after
+/// the epoch is known only up to two of the longest (20 ms) integrations later. With it the
+/// epoch lies between two reported integration starts and the observables interpolate;
+/// extrapolating from the last two instead amplifies the loop noise (by up to 30 % in
+/// phase at 20 ms integrations).
+const EPOCH_MARGIN_PERIODS: f64 = 42.0;
 
 /// Why the receiver cannot go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

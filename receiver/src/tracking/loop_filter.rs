@@ -110,6 +110,14 @@ impl CarrierLoopFilter {
         Ok(())
     }
 
+    /// PLL noise bandwidth (Hz) in use.
+    pub fn pll_bandwidth_hz(&self) -> f64 {
+        match self.order {
+            LoopOrder::Second => self.w_pll * K2,
+            LoopOrder::Third => self.w_pll * K3,
+        }
+    }
+
     /// Turn the FLL assistance off (pure PLL from now on).
     pub fn disable_fll(&mut self) {
         self.w_fll = 0.0;
