@@ -161,5 +161,13 @@ pub enum ValidateSuite {
             allow_hyphen_values = true
         )]
         tag_offset_s: f64,
+        /// Only epochs measured at or after this sample time (truth time scale, e.g.
+        /// "2023-03-12T00:00:40 GPST"): with --to, the span another receiver's comparison
+        /// printed, to compare two receivers over the same epochs.
+        #[arg(long, value_name = "EPOCH", requires = "to")]
+        from: Option<String>,
+        /// Only epochs measured at or before this sample time (see --from).
+        #[arg(long, value_name = "EPOCH", requires = "from")]
+        to: Option<String>,
     },
 }

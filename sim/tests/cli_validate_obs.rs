@@ -95,3 +95,66 @@ fn validate_obs_rejects_a_missing_file_as_bad_input() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("missing.rnx"));
 }
+
+/// `--from`/`--to` keep the epochs measured in that sample-time span (the estimate's tags
+/// are 1.25 + k s, 1 us ahead of its sample times); a bad epoch or an empty span is bad
+/// input.
+#[test]
+fn validate_obs_restricts_the_comparison_to_a_sample_time_span() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("est.rnx"),
+        rinex(1.25, 20, 300.0, |_, _| 0.0),
+    )
+    .unwrap();
+    let span = [
+        "--from",
+        "2023-03-12T00:00:05 GPST",
+        "--to",
+        "2023-03-12T00:00:10 GPST",
+    ];
+    let mut args = vec!["--estimate", "est.rnx"];
+    args.extend_from_slice(&span);
+    let o = validate_obs(dir.path(), &args);
+    assert!(o.status.success(), "{}", text(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    // Sample times 5.25 .. 9.25 s: five epochs.
+    assert!(stdout.contains("5 matched"), "{stdout}");
+    assert!(
+        stdout.contains("sample times of the matched epochs: 2023-03-12T00:00:05.249998999 GPST"),
+        "{stdout}"
+    );
+
+    let o = validate_obs(
+        dir.path(),
+        &[
+            "--estimate",
+            "est.rnx",
+            "--from",
+            "yesterday",
+            "--to",
+            "2023-03-12T00:00:10 GPST",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(stderr.contains("--from \"yesterday\""), "{stderr}");
+
+    let o = validate_obs(
+        dir.path(),
+        &[
+            "--estimate",
+            "est.rnx",
+            "--from",
+            "2023-03-12T01:00:00 GPST",
+            "--to",
+            "2023-03-12T01:00:10 GPST",
+        ],
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("no estimate epoch was measured between"),
+        "{}",
+        text(&o)
+    );
+}

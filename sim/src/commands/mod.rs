@@ -64,7 +64,15 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     estimate,
                     json,
                     tag_offset_s,
+                    from,
+                    to,
                 },
-        } => validate::obs(&truth, &estimate, json.as_deref(), tag_offset_s),
+        } => validate::obs(
+            &truth,
+            &estimate,
+            json.as_deref(),
+            tag_offset_s,
+            from.zip(to).as_ref(),
+        ),
     }
 }

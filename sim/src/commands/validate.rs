@@ -5,13 +5,15 @@ mod zero_baseline;
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
-use skyforge_validate::observables::compare::{CompareOptions, compare_with};
+use hifitime::Epoch;
+use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{print_table, write_json};
 use skyforge_validate::thesis::zero_baseline::TABLE as ZERO_BASELINE;
 use skyforge_validate::thesis::{self, Options};
 use std::path::{Path, PathBuf};
+use std::str::FromStr;
 
 /// Default real-data folder, relative to the working directory.
 const DEFAULT_DATA_DIR: &str = "../shared/data";
@@ -86,11 +88,32 @@ pub fn obs(
     estimate: &Path,
     json: Option<&Path>,
     tag_offset_s: f64,
+    window: Option<&(String, String)>,
 ) -> anyhow::Result<()> {
+    let epoch = |option: &str, text: &str| {
+        Epoch::from_str(text.trim()).map_err(|e| {
+            BadInput(format!(
+                "--{option} {text:?}: not an epoch ({e}); write e.g. \"2023-03-12T00:00:40 GPST\""
+            ))
+        })
+    };
+    let window = match window {
+        Some((from, to)) => {
+            let (first, last) = (epoch("from", from)?, epoch("to", to)?);
+            if last < first {
+                return Err(BadInput(format!("--to {to:?} is before --from {from:?}")).into());
+            }
+            Some(SampleSpan { first, last })
+        }
+        None => None,
+    };
     let bad = |e: skyforge_validate::observables::ObsError| BadInput(e.to_string());
     let truth = read_obs_file(truth).map_err(bad)?;
     let estimate = read_obs_file(estimate).map_err(bad)?;
-    let opts = CompareOptions { tag_offset_s };
+    let opts = CompareOptions {
+        tag_offset_s,
+        window,
+    };
     let comparison = compare_with(&estimate, &truth, &opts).map_err(bad)?;
     print_comparison(&comparison, &mut std::io::stdout().lock())?;
     if let Some(path) = json {

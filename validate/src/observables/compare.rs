@@ -34,7 +34,7 @@ use super::error_stats::{ErrorStats, SatErrors, display};
 use super::fixed_effects::{self, Fit, Sample};
 use super::interpolate::Series;
 use super::rinex_read::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, SatObs};
-use hifitime::Epoch;
+use hifitime::{Duration, Epoch};
 use serde::{Serialize, Serializer};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
@@ -56,6 +56,19 @@ pub struct CompareOptions {
     /// are in another time scale than its header says ([`ObsComparison::tag_error`]
     /// measures such an error).
     pub tag_offset_s: f64,
+    /// Only estimate epochs whose measurements were taken within this sample-time span
+    /// (inclusive; truth time scale): side by side with another receiver, the span of its
+    /// matched epochs ([`ObsComparison::sample_span`]).
+    pub window: Option<SampleSpan>,
+}
+
+/// First and last sample time of a set of matched epochs (the truth's time scale).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SampleSpan {
+    #[serde(serialize_with = "display")]
+    pub first: Epoch,
+    #[serde(serialize_with = "display")]
+    pub last: Epoch,
 }
 
 /// Error statistics of one observable.
@@ -125,6 +138,8 @@ pub struct ObsComparison {
     /// Epochs in the estimate, and those matched with the truth.
     pub estimate_epochs: usize,
     pub matched_epochs: usize,
+    /// Sample times of the first and last matched epoch.
+    pub sample_span: SampleSpan,
     /// The estimate's time tag minus the sample-clock time of its measurement (s),
     /// per-epoch estimates.
     pub time_offset_s: ErrorStats,
@@ -226,6 +241,26 @@ pub fn compare_with(
         }
         d_epoch.push(d);
     }
+    if let Some(w) = opts.window {
+        // A microsecond of slack: spans come from another file's per-epoch offsets.
+        let (from, to) = (secs(w.first) - 1e-6, secs(w.last) + 1e-6);
+        for (d, &t) in d_epoch.iter_mut().zip(&t_est) {
+            if d.is_some_and(|d| !(from..=to).contains(&(t - d))) {
+                *d = None;
+            }
+        }
+        if d_epoch.iter().all(Option::is_none) {
+            return Err(ObsError::EmptyWindow {
+                first: w.first.to_string(),
+                last: w.last.to_string(),
+            });
+        }
+    }
+    let sample_times: Vec<f64> = d_epoch
+        .iter()
+        .zip(&t_est)
+        .filter_map(|(d, &t)| Some(t - (*d)?))
+        .collect();
 
     let mut matched: Vec<Matched> = Vec::new();
     let mut with_code: BTreeMap<SatId, bool> = BTreeMap::new();
@@ -275,6 +310,10 @@ pub fn compare_with(
         truth: truth.source.clone(),
         estimate_epochs: estimate.epochs.len(),
         matched_epochs,
+        sample_span: SampleSpan {
+            first: t_ref + Duration::from_seconds(sample_times[0]),
+            last: t_ref + Duration::from_seconds(sample_times[sample_times.len() - 1]),
+        },
         time_offset_s: ErrorStats::of(&d_epoch.iter().flatten().copied().collect::<Vec<_>>()),
         tag_error,
         pseudorange_m,
@@ -828,10 +867,48 @@ mod tests {
         assert!(worst > 1000.0, "{worst}");
         let opts = CompareOptions {
             tag_offset_s: -14.0,
+            ..CompareOptions::default()
         };
         let good = compare_with(&est, &truth(), &opts).unwrap();
         std_close(good.pseudorange_m.overall.std, SIGMA_CODE_M, 396, 3.0);
         assert!(good.tag_error.unwrap().delta_s.abs() < 0.01);
+    }
+
+    /// The estimate's sample times are 10.0004563 + k s (k = 0..100) after the truth's first
+    /// epoch: a window from 20 s to 39.5 s keeps k = 10..=29, and reports their span.
+    #[test]
+    fn a_sample_time_window_keeps_the_epochs_measured_inside_it() {
+        let truth = truth();
+        let t0 = truth.epochs[0].time;
+        let at = |s: f64| t0 + Duration::from_seconds(s);
+        let opts = CompareOptions {
+            window: Some(SampleSpan {
+                first: at(20.0),
+                last: at(39.5),
+            }),
+            ..CompareOptions::default()
+        };
+        let c = compare_with(&estimate(7, 0.0), &truth, &opts).unwrap();
+        assert_eq!((c.estimate_epochs, c.matched_epochs), (100, 20));
+        for (got, want) in [
+            (c.sample_span.first, 20.0004563),
+            (c.sample_span.last, 39.0004563),
+        ] {
+            let err = (got - at(want)).to_seconds();
+            assert!(err.abs() < 1e-6, "{got} vs {want}: {err}");
+        }
+        assert_eq!(c.pseudorange_m.per_satellite[0].stats.count, 20);
+        let outside = CompareOptions {
+            window: Some(SampleSpan {
+                first: at(200.0),
+                last: at(300.0),
+            }),
+            ..CompareOptions::default()
+        };
+        assert!(matches!(
+            compare_with(&estimate(7, 0.0), &truth, &outside),
+            Err(ObsError::EmptyWindow { .. })
+        ));
     }
 
     #[test]

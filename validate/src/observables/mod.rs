@@ -36,6 +36,9 @@ pub enum ObsError {
         "no estimate epoch overlaps the truth with a common satellite (estimate {estimate}, truth {truth})"
     )]
     NoOverlap { estimate: String, truth: String },
+    /// No estimate epoch lies in the requested sample-time window.
+    #[error("no estimate epoch was measured between {first} and {last}")]
+    EmptyWindow { first: String, last: String },
     /// The two receivers of a double difference share no epoch.
     #[error("the two receivers share no epoch within {tolerance_s} s")]
     NoCommonEpoch { tolerance_s: f64 },

@@ -53,6 +53,11 @@ pub fn print_comparison(c: &ObsComparison, out: &mut impl Write) -> std::io::Res
         cell(c.time_offset_s.mean, 1.0, 9),
         cell(c.time_offset_s.std, 1.0, 9),
     )?;
+    writeln!(
+        out,
+        "sample times of the matched epochs: {} .. {}",
+        c.sample_span.first, c.sample_span.last
+    )?;
     if let Some(t) = c.tag_error {
         writeln!(
             out,
