@@ -146,14 +146,8 @@ fn one_at_a_time() -> std::sync::MutexGuard<'static, ()> {
     ONE_AT_A_TIME.lock().unwrap_or_else(|e| e.into_inner())
 }
 
-/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's recording of
-/// `band` (`gps-l1ca`, `bds-b1i`), and return (output folder, GNSS-SDR's console log, its
-/// NMEA output).
-fn synth_and_receive(
-    dir: &Path,
-    scenario: &str,
-    band: &str,
-) -> (std::path::PathBuf, String, String) {
+/// Synthesise bundled `scenario` into `dir/out`; returns the output folder.
+fn synth(dir: &Path, scenario: &str) -> std::path::PathBuf {
     assert!(
         Command::new("gnss-sdr").arg("--version").output().is_ok(),
         "\n*** gnss-sdr is not installed: apt-get install gnss-sdr (scripts/test.sh does) ***\n"
@@ -165,9 +159,15 @@ fn synth_and_receive(
         .output()
         .unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    out
+}
+
+/// Run GNSS-SDR in `out` with configuration file `conf` (a name in `out`); returns its
+/// console log.
+fn run_gnss_sdr(out: &Path, conf: &str) -> String {
     let o = Command::new("gnss-sdr")
-        .arg(format!("--config_file=ant1.{band}.gnss-sdr.conf"))
-        .current_dir(&out)
+        .arg(format!("--config_file={conf}"))
+        .current_dir(out)
         .output()
         .unwrap();
     let log = String::from_utf8_lossy(&o.stdout).into_owned();
@@ -176,8 +176,50 @@ fn synth_and_receive(
         "gnss-sdr failed:\n{log}\n{}",
         String::from_utf8_lossy(&o.stderr)
     );
+    log
+}
+
+/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's recording of
+/// `band` (`gps-l1ca`, `bds-b1i`) with the .conf SkyForge wrote, and return (output
+/// folder, GNSS-SDR's console log, its NMEA output).
+fn synth_and_receive(
+    dir: &Path,
+    scenario: &str,
+    band: &str,
+) -> (std::path::PathBuf, String, String) {
+    let out = synth(dir, scenario);
+    let log = run_gnss_sdr(&out, &format!("ant1.{band}.gnss-sdr.conf"));
     let nmea = std::fs::read_to_string(out.join(format!("ant1.{band}.nmea"))).unwrap();
     (out, log, nmea)
+}
+
+/// Both receivers on `scenario`'s antenna-1 recording of `band` at the equal loops of
+/// `interop_observables::side_by_side` (GNSS-SDR's tracking block `role`), compared with
+/// the truth over the same epochs.
+fn side_by_side(scenario: &str, band: &str, role: &str) {
+    use interop_observables::side_by_side::{EQUAL_LOOPS, check};
+    let _turn = one_at_a_time();
+    let tmp = tempfile::tempdir().unwrap();
+    let out = synth(tmp.path(), scenario);
+    let conf = std::fs::read_to_string(out.join(format!("ant1.{band}.gnss-sdr.conf"))).unwrap();
+    std::fs::write(
+        out.join("equal.gnss-sdr.conf"),
+        EQUAL_LOOPS.gnss_sdr_conf(&conf, role),
+    )
+    .unwrap();
+    run_gnss_sdr(&out, "equal.gnss-sdr.conf");
+    std::fs::write(out.join("equal.toml"), EQUAL_LOOPS.receiver_toml()).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .arg("receive")
+        .arg(out.join(format!("ant1.{band}.sigmf-meta")))
+        .arg("--config")
+        .arg(out.join("equal.toml"))
+        .arg("--out")
+        .arg(out.join("rx"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    check(&out, band, &out.join("rx/ant1.obs.rnx"));
 }
 
 /// Position check of a static run: GNSS-SDR's single-epoch fixes scatter by a few metres
@@ -290,6 +332,20 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
         BDS_B1I_CHIP_RATE_HZ,
         CN0_DBHZ,
     );
+}
+
+/// Issue #4's side-by-side bar on GPS L1 C/A (`interop_observables::side_by_side`).
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn side_by_side_with_gnss_sdr_at_equal_loops_on_gps_l1ca() {
+    side_by_side("interop-gps-static", "gps-l1ca", "Tracking_1C");
+}
+
+/// Issue #4's side-by-side bar on BeiDou B1I, GEOs (D2) and MEO/IGSO (D1).
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn side_by_side_with_gnss_sdr_at_equal_loops_on_bds_b1i() {
+    side_by_side("interop-bds-static", "bds-b1i", "Tracking_B1");
 }
 
 #[test]

@@ -3,11 +3,13 @@
 //! carrier-phase noise of a third-party receiver on SkyForge's signals, at GNSS-SDR's loop
 //! bandwidths (read from the generated .conf), checked against the thermal-noise formulas.
 
+pub mod side_by_side;
+
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::tracking::error_budget::thermal_jitter_deg;
 use skyforge_signals::signal::SignalId;
 use skyforge_validate::observables::compare::{CompareOptions, ObsComparison, compare_with};
-use skyforge_validate::observables::read_obs_file;
+use skyforge_validate::observables::{ObsFile, read_obs_file};
 use std::path::{Path, PathBuf};
 
 /// GNSS-SDR's tracking settings (the .conf's `Tracking_*` keys).
@@ -92,35 +94,15 @@ fn gnss_sdr_obs_file(dir: &Path) -> PathBuf {
 /// result (a JSON line `GNSS_SDR_OBSERVABLES {...}` and a markdown table), and assert what
 /// must hold: every satellite GNSS-SDR reports is matched with the truth, with pseudorange
 /// and carrier phase; the code and phase error stds stay below twice the thermal-noise
-/// formulas at the scenario's C/N0 and GNSS-SDR's loop settings.
-///
-/// A time-tag error the pseudoranges measure in whole seconds is a time-scale label
-/// (GNSS-SDR 0.0.17 tags its BeiDou-only RINEX epochs in GPS time under a `BDT` header,
-/// 14 s off): it is reported and the tags are shifted back before the statistics.
+/// formulas at the scenario's C/N0 and GNSS-SDR's loop settings. Time-scale labels are
+/// handled as in [`compare_gnss_sdr`].
 pub fn check(out: &Path, band: &str, signal: SignalId, chip_rate_hz: f64, cn0_dbhz: f64) {
     let conf = std::fs::read_to_string(out.join(format!("ant1.{band}.gnss-sdr.conf"))).unwrap();
     let loops = loops(&conf);
-    let estimate_path = gnss_sdr_obs_file(out);
-    let estimate = read_obs_file(&estimate_path).unwrap();
-    let truth = read_obs_file(&out.join("ant1.obs.rnx")).unwrap();
-    let mut opts = CompareOptions::default();
-    let mut c = compare_with(&estimate, &truth, &opts).unwrap();
-    if let Some(tag) = c.tag_error
-        && tag.delta_s.abs() > 0.5
-        && (tag.delta_s - tag.delta_s.round()).abs() < 5.0 * tag.std_error_s.max(1e-3)
-    {
-        println!(
-            "{band}: GNSS-SDR's time tags are {:.4} s (+/- {:.4} s) off the times its pseudoranges belong to: a time-scale label; shifting them by {} s",
-            tag.delta_s,
-            tag.std_error_s,
-            -tag.delta_s.round()
-        );
-        opts.tag_offset_s = -tag.delta_s.round();
-        c = compare_with(&estimate, &truth, &opts).unwrap();
-    }
+    let (estimate, c, tag_offset_s) = compare_gnss_sdr(out, band);
     let sigma_code = dll_sigma_m(&loops, cn0_dbhz, chip_rate_hz);
     let sigma_phase = pll_sigma_m(&loops, cn0_dbhz, signal.carrier_hz());
-    report(band, &loops, &c, opts.tag_offset_s, sigma_code, sigma_phase);
+    report(band, &loops, &c, tag_offset_s, sigma_code, sigma_phase);
 
     assert!(
         c.satellites_without_truth.is_empty(),
@@ -154,6 +136,31 @@ pub fn check(out: &Path, band: &str, signal: SignalId, chip_rate_hz: f64, cn0_db
         phase < 2.0 * sigma_phase,
         "{band}: phase error std {phase} m, PLL thermal noise {sigma_phase} m"
     );
+}
+
+/// GNSS-SDR's observations in `out` against the truth there: (its observation file, the
+/// comparison, the tag offset applied). A time-tag error the pseudoranges measure in whole
+/// seconds is a time-scale label (GNSS-SDR 0.0.17 tags its BeiDou-only RINEX epochs in GPS
+/// time under a `BDT` header, 14 s off): the tags are shifted back by it.
+pub fn compare_gnss_sdr(out: &Path, band: &str) -> (ObsFile, ObsComparison, f64) {
+    let estimate = read_obs_file(&gnss_sdr_obs_file(out)).unwrap();
+    let truth = read_obs_file(&out.join("ant1.obs.rnx")).unwrap();
+    let mut opts = CompareOptions::default();
+    let mut c = compare_with(&estimate, &truth, &opts).unwrap();
+    if let Some(tag) = c.tag_error
+        && tag.delta_s.abs() > 0.5
+        && (tag.delta_s - tag.delta_s.round()).abs() < 5.0 * tag.std_error_s.max(1e-3)
+    {
+        println!(
+            "{band}: GNSS-SDR's time tags are {:.4} s (+/- {:.4} s) off the times its pseudoranges belong to: a time-scale label; shifting them by {} s",
+            tag.delta_s,
+            tag.std_error_s,
+            -tag.delta_s.round()
+        );
+        opts.tag_offset_s = -tag.delta_s.round();
+        c = compare_with(&estimate, &truth, &opts).unwrap();
+    }
+    (estimate, c, opts.tag_offset_s)
 }
 
 /// Print the JSON line and the markdown table.
