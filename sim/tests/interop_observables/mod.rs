@@ -194,9 +194,7 @@ fn report(
             .find(|s| s.sat == sat)
             .map(|s| s.stats)
     };
-    let f = |v: Option<f64>, scale: f64, d: usize| {
-        v.map_or("-".into(), |x| format!("{:.*}", d, x * scale))
-    };
+    let f = cell;
     for s in &c.pseudorange_m.per_satellite {
         let ph = find(&c.carrier_phase_m, s.sat);
         let dop = find(&c.doppler_hz, s.sat);
@@ -212,17 +210,28 @@ fn report(
             f(cn0.and_then(|p| p.mean), 1.0, 2),
         );
     }
-    println!(
-        "| **all** | {} | - | **{}** | **{}** | {} | {} |",
-        c.matched_epochs,
-        f(c.pseudorange_m.overall.std, 1.0, 2),
-        f(c.carrier_phase_m.overall.std, 1e3, 2),
-        f(c.doppler_hz.overall.std, 1.0, 2),
-        f(c.cn0_dbhz.overall.mean, 1.0, 2),
-    );
+    let [epochs, code, phase, doppler, cn0] = overall_cells(c, 2);
+    println!("| **all** | {epochs} | - | **{code}** | **{phase}** | {doppler} | {cn0} |");
     println!(
         "| theory | | | {:.2} (DLL) | {:.2} (PLL) | | |\n",
         sigma_code,
         sigma_phase * 1e3
     );
+}
+
+/// `v` times `scale` with `decimals` decimals, or `-`.
+pub fn cell(v: Option<f64>, scale: f64, decimals: usize) -> String {
+    v.map_or("-".into(), |x| format!("{:.*}", decimals, x * scale))
+}
+
+/// Matched epochs and the overall code std (m), phase std (mm), Doppler std (Hz) and C/N0
+/// bias (dB) of `c`, for a markdown table row.
+pub fn overall_cells(c: &ObsComparison, decimals: usize) -> [String; 5] {
+    [
+        c.matched_epochs.to_string(),
+        cell(c.pseudorange_m.overall.std, 1.0, decimals),
+        cell(c.carrier_phase_m.overall.std, 1e3, decimals),
+        cell(c.doppler_hz.overall.std, 1.0, decimals),
+        cell(c.cn0_dbhz.overall.mean, 1.0, 2),
+    ]
 }

@@ -16,7 +16,7 @@
 //!   1 ms records keep; with 20 ms integrations both receivers interpolate between the
 //!   integration boundaries 20 ms apart, i.e. form their observables the same way.
 
-use super::compare_gnss_sdr;
+use super::{compare_gnss_sdr, overall_cells};
 use skyforge_validate::observables::compare::{
     CompareOptions, ObsComparison, ObservableErrors, compare_with,
 };
@@ -177,18 +177,8 @@ fn report(band: &str, theirs: &ObsComparison, ours: &ObsComparison, tag_offset_s
         "\n| {band} | epochs | code std (m) | phase std (mm) | Doppler std (Hz) | C/N0 bias (dB) |"
     );
     println!("|---|---|---|---|---|---|");
-    let f = |v: Option<f64>, scale: f64, d: usize| {
-        v.map_or("-".into(), |x| format!("{:.*}", d, x * scale))
-    };
     for (who, c) in [("GNSS-SDR 0.0.17", theirs), ("SkyForge", ours)] {
-        println!(
-            "| {who} | {} | {} | {} | {} | {} |",
-            c.matched_epochs,
-            f(c.pseudorange_m.overall.std, 1.0, 3),
-            f(c.carrier_phase_m.overall.std, 1e3, 3),
-            f(c.doppler_hz.overall.std, 1.0, 3),
-            f(c.cn0_dbhz.overall.mean, 1.0, 2),
-        );
+        println!("| {who} | {} |", overall_cells(c, 3).join(" | "));
     }
     println!();
 }
