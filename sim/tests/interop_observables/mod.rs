@@ -109,22 +109,35 @@ pub fn check(out: &Path, band: &str, signal: SignalId, chip_rate_hz: f64, cn0_db
         "{band}: GNSS-SDR satellites without truth: {:?}",
         c.satellites_without_truth
     );
-    let tracked: Vec<String> = estimate
-        .epochs
-        .iter()
-        .flat_map(|e| e.sats.iter().map(|s| s.sat.to_string()))
-        .collect();
-    for sat in &tracked {
-        let matched = |e: &skyforge_validate::observables::compare::ObservableErrors| {
-            e.per_satellite
-                .iter()
-                .find(|s| s.sat.to_string() == *sat)
-                .map_or(0, |s| s.stats.count)
-        };
-        assert!(
-            matched(&c.pseudorange_m) >= 10 && matched(&c.carrier_phase_m) >= 10,
-            "{band}: {sat} tracked by GNSS-SDR but fewer than 10 epochs matched with the truth"
-        );
+    // Every epoch GNSS-SDR reports a satellite in is matched with the truth, but for the
+    // estimate epochs outside the truth (its first, tagged before the truth starts). How
+    // many epochs a satellite has is GNSS-SDR's affair: one CI run decoded C10 only two
+    // epochs before the end (other runs: 32).
+    let unmatched_epochs = c.estimate_epochs - c.matched_epochs;
+    let mut reported: std::collections::BTreeMap<String, (usize, usize)> = Default::default();
+    for e in &estimate.epochs {
+        for s in &e.sats {
+            let n = reported.entry(s.sat.to_string()).or_default();
+            n.0 += usize::from(s.pseudorange_m.is_some());
+            n.1 += usize::from(s.carrier_phase_cycles.is_some());
+        }
+    }
+    let matched = |e: &skyforge_validate::observables::compare::ObservableErrors, sat: &str| {
+        e.per_satellite
+            .iter()
+            .find(|s| s.sat.to_string() == sat)
+            .map_or(0, |s| s.stats.count)
+    };
+    for (sat, (code, phase)) in &reported {
+        for (what, n, m) in [
+            ("pseudorange", *code, matched(&c.pseudorange_m, sat)),
+            ("carrier phase", *phase, matched(&c.carrier_phase_m, sat)),
+        ] {
+            assert!(
+                n > 0 && m + unmatched_epochs >= n,
+                "{band}: {sat}: {n} epochs with a {what} from GNSS-SDR, {m} matched with the truth"
+            );
+        }
     }
     let code = c.pseudorange_m.overall.std.unwrap();
     let phase = c.carrier_phase_m.overall.std.unwrap();
