@@ -179,17 +179,23 @@ fn run_gnss_sdr(out: &Path, conf: &str) -> String {
     log
 }
 
-/// Synthesise bundled `scenario` into `dir/out`, run GNSS-SDR on antenna 1's recording of
-/// `band` (`gps-l1ca`, `bds-b1i`) with the .conf SkyForge wrote, and return (output
-/// folder, GNSS-SDR's console log, its NMEA output).
+/// Run GNSS-SDR in `out` on antenna 1's recording of `band` (`gps-l1ca`, `bds-b1i`) with
+/// the .conf SkyForge wrote; returns (its console log, its NMEA output).
+fn receive_band(out: &Path, band: &str) -> (String, String) {
+    let log = run_gnss_sdr(out, &format!("ant1.{band}.gnss-sdr.conf"));
+    let nmea = std::fs::read_to_string(out.join(format!("ant1.{band}.nmea"))).unwrap();
+    (log, nmea)
+}
+
+/// Synthesise bundled `scenario` into `dir/out` and run [`receive_band`] there; returns
+/// (output folder, GNSS-SDR's console log, its NMEA output).
 fn synth_and_receive(
     dir: &Path,
     scenario: &str,
     band: &str,
 ) -> (std::path::PathBuf, String, String) {
     let out = synth(dir, scenario);
-    let log = run_gnss_sdr(&out, &format!("ant1.{band}.gnss-sdr.conf"));
-    let nmea = std::fs::read_to_string(out.join(format!("ant1.{band}.nmea"))).unwrap();
+    let (log, nmea) = receive_band(&out, band);
     (out, log, nmea)
 }
 
@@ -335,8 +341,7 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
                 std::fs::remove_file(&path).unwrap();
             }
         }
-        log = run_gnss_sdr(&out, "ant1.bds-b1i.gnss-sdr.conf");
-        nmea = std::fs::read_to_string(out.join("ant1.bds-b1i.nmea")).unwrap();
+        (log, nmea) = receive_band(&out, "bds-b1i");
     }
     assert_static_fixes(&nmea, &log, "BeiDou");
 

@@ -14,6 +14,7 @@
 mod support;
 
 use skyforge_orbits::Vec3;
+use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
 use skyforge_validate::observables::{ObsFile, compare, read_obs_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -299,8 +300,7 @@ fn rtklib_solves_from_the_receivers_rinex() {
     assert!(rms(&errors) < 5.0, "3D RMS {} m", rms(&errors));
 }
 
-/// Mean C/N0 (dB-Hz) the receiver reports for `sat` in its RINEX, and the satellites in
-/// the truth RINEX.
+/// Mean C/N0 (dB-Hz) the receiver reports for `sat` in its RINEX `rx/ant1.obs.rnx`.
 fn mean_cn0(rx: &Path, sat: &str) -> f64 {
     let file = read_obs_file(&rx.join("ant1.obs.rnx")).expect("receiver RINEX");
     let values: Vec<f64> = file
@@ -355,8 +355,7 @@ fn the_other_signals_of_the_band_lower_the_measured_cn0_as_interference_predicts
         cn0.push(mean_cn0(&dir.join(rx), "G02"));
     }
     let c_n0 = 10f64.powf(4.5);
-    let chip_rate = 1.023e6;
-    let kappa = 2.0 / (3.0 * chip_rate);
+    let kappa = 2.0 / (3.0 * GPS_CA_CHIP_RATE_HZ);
     let expected = 10.0 * (1.0 + others as f64 * c_n0 * kappa).log10();
     let measured = cn0[1] - cn0[0];
     println!(

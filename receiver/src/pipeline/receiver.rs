@@ -15,7 +15,7 @@ use crate::observables::{ObservablesBuilder, Observation};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
 use crate::signal::Signal;
 use crate::tracking::TrackingError;
-use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover};
+use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover, MAX_COHERENT_MS};
 use hifitime::Epoch;
 use num_complex::Complex32;
 use rayon::prelude::*;
@@ -27,11 +27,11 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 const NOMINAL_FLIGHT_S: f64 = 0.075;
 /// Code periods past an epoch every channel must have tracked before the epoch is formed:
 /// a channel reports an integration when it ends, so the first integration starting after
-/// the epoch is known only up to two of the longest (20 ms) integrations later. With it the
-/// epoch lies between two reported integration starts and the observables interpolate;
-/// extrapolating from the last two instead amplifies the loop noise (by up to 30 % in
-/// phase at 20 ms integrations).
-const EPOCH_MARGIN_PERIODS: f64 = 42.0;
+/// the epoch is known only up to two of the longest integrations (plus a code period of
+/// slack) later. With it the epoch lies between two reported integration starts and the
+/// observables interpolate; extrapolating from the last two instead amplifies the loop
+/// noise (by up to 30 % in phase at 20 ms integrations).
+const EPOCH_MARGIN_PERIODS: f64 = (2 * MAX_COHERENT_MS + 2) as f64;
 
 /// Why the receiver cannot go on.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

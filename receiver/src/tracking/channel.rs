@@ -25,6 +25,9 @@ use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{CarrierLoopFilter, aided_code_rate, dll_rate_correction};
 use crate::signal::{DataModulation, Signal};
 
+/// Longest coherent integration after bit sync (code periods): one GPS or D1 bit.
+pub const MAX_COHERENT_MS: u32 = 20;
+
 /// Largest PLL `Bn T` (noise bandwidth x coherent integration) an integration may reach.
 /// The digital loop (bilinear filter, zero-delay NCO) realises its design noise bandwidth
 /// within 4 % up to 0.1, 7-12 % high at 0.15 and is unstable from about 0.3 (impulse
@@ -186,7 +189,7 @@ impl TrackingConfig {
                 self.fll_bandwidth_hz, self.fll_assist_s
             )));
         }
-        if !(1..=20).contains(&self.coherent_ms) {
+        if !(1..=MAX_COHERENT_MS).contains(&self.coherent_ms) {
             return Err(TrackingError::InvalidConfig(format!(
                 "coherent_ms must be 1..=20, got {}",
                 self.coherent_ms

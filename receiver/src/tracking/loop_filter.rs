@@ -28,12 +28,17 @@ const K3: f64 = 0.7845;
 const A3: f64 = 1.1;
 const B3: f64 = 2.4;
 
+/// `Bn / w0` of a PLL of `order`.
+fn bn_per_w0(order: LoopOrder) -> f64 {
+    match order {
+        LoopOrder::Second => K2,
+        LoopOrder::Third => K3,
+    }
+}
+
 /// Natural frequency `w0` (1/s) of a loop of `order` with noise bandwidth `bn_hz`.
 pub fn natural_frequency(order: LoopOrder, bn_hz: f64) -> f64 {
-    match order {
-        LoopOrder::Second => bn_hz / K2,
-        LoopOrder::Third => bn_hz / K3,
-    }
+    bn_hz / bn_per_w0(order)
 }
 
 /// FLL-assisted PLL loop filter; its state is the carrier Doppler estimate (Hz) and, for
@@ -112,10 +117,7 @@ impl CarrierLoopFilter {
 
     /// PLL noise bandwidth (Hz) in use.
     pub fn pll_bandwidth_hz(&self) -> f64 {
-        match self.order {
-            LoopOrder::Second => self.w_pll * K2,
-            LoopOrder::Third => self.w_pll * K3,
-        }
+        self.w_pll * bn_per_w0(self.order)
     }
 
     /// Turn the FLL assistance off (pure PLL from now on).

@@ -9,6 +9,7 @@ use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::tracking::error_budget::thermal_jitter_deg;
 use skyforge_signals::signal::SignalId;
 use skyforge_validate::observables::compare::{CompareOptions, ObsComparison, compare_with};
+use skyforge_validate::observables::table::cell;
 use skyforge_validate::observables::{ObsFile, read_obs_file};
 use std::path::{Path, PathBuf};
 
@@ -230,11 +231,6 @@ fn report(
         sigma_code,
         sigma_phase * 1e3
     );
-}
-
-/// `v` times `scale` with `decimals` decimals, or `-`.
-pub fn cell(v: Option<f64>, scale: f64, decimals: usize) -> String {
-    v.map_or("-".into(), |x| format!("{:.*}", decimals, x * scale))
 }
 
 /// Matched epochs and the overall code std (m), phase std (mm), Doppler std (Hz) and C/N0

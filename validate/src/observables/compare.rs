@@ -256,6 +256,7 @@ pub fn compare_with(
             });
         }
     }
+    // Sample times of the matched epochs (those with a time offset).
     let sample_times: Vec<f64> = d_epoch
         .iter()
         .zip(&t_est)
@@ -283,7 +284,7 @@ pub fn compare_with(
             matched.push(m);
         }
     }
-    let matched_epochs = d_epoch.iter().filter(|d| d.is_some()).count();
+    let matched_epochs = sample_times.len();
     if matched_epochs == 0 {
         return Err(no_overlap());
     }

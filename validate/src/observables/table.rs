@@ -6,7 +6,8 @@ use super::error_stats::ErrorStats;
 use skyforge_orbits::ephemeris::{SatId, System};
 use std::io::Write;
 
-fn cell(v: Option<f64>, scale: f64, decimals: usize) -> String {
+/// `v` times `scale` with `decimals` decimals, or `-`: one cell of a printed table.
+pub fn cell(v: Option<f64>, scale: f64, decimals: usize) -> String {
     v.map_or("-".to_string(), |x| format!("{:.*}", decimals, x * scale))
 }
 
