@@ -5,11 +5,11 @@
 //! 80 Hz/s, too wide for a blind search at every start.
 
 use crate::pvt::predicted_view;
-use crate::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, GM_GPS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_signals::signal::Signal;
 
 /// Half step of the central differences (s).
 const DIFF_STEP_S: f64 = 0.05;

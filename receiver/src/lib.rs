@@ -12,5 +12,5 @@ pub mod navdecode;
 pub mod observables;
 pub mod pipeline;
 pub mod pvt;
-pub mod signal;
+pub mod session;
 pub mod tracking;

@@ -9,10 +9,10 @@ use num_complex::Complex32;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
-use skyforge_receiver::acquisition::Signal;
 use skyforge_receiver::acquisition::cfar;
 use skyforge_receiver::acquisition::pcps::{BitTransition, DopplerWindow, Pcps, PcpsConfig};
 use skyforge_signals::codes::neumann_hoffman::NH20;
+use skyforge_signals::signal::Signal;
 
 /// L1 and B1 carrier frequencies (Hz), for the code Doppler.
 const F_L1_HZ: f64 = 1575.42e6;

@@ -4,11 +4,11 @@
 
 mod tracking_support;
 
-use skyforge_receiver::signal::Signal;
 use skyforge_receiver::tracking::channel::{
     ChannelTracker, FrontEnd, Handover, TrackingConfig, TrackingRecord,
 };
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
+use skyforge_signals::signal::Signal;
 use tracking_support::{TestSignal, mean_std, phase_errors};
 
 /// Track `seconds` of `sig` from `handover`, generating 0.1 s at a time.

@@ -24,4 +24,4 @@ pub use build::World;
 pub use bundled::{Bundled, bundled};
 pub use error::ScenarioError;
 pub use parse::{load, parse, resolve};
-pub use schema::{ErrorsConfig, GnssConfig, Scenario, TimeSpan, TruthConfig};
+pub use schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};

@@ -7,11 +7,7 @@ use serde::Deserialize;
 use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationConfig, ConstellationSource};
 use skyforge_orbits::platform::config::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
-use skyforge_signals::errors::clock::OscillatorConfig;
-use skyforge_signals::errors::events::EventConfig;
-use skyforge_signals::errors::ionosphere::IonoConfig;
-use skyforge_signals::errors::multipath::MultipathConfig;
-use skyforge_signals::errors::troposphere::TropoConfig;
+use skyforge_signals::errors::ErrorsConfig;
 use skyforge_signals::synth::config::SignalConfig;
 use std::path::PathBuf;
 
@@ -122,28 +118,6 @@ pub(crate) struct ScenarioFile {
     pub signal: Option<SignalConfig>,
     #[serde(default)]
     pub errors: ErrorsConfig,
-}
-
-/// `[errors]`: error sources applied to the synthesised signal.
-#[derive(Debug, Clone, PartialEq, Default, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ErrorsConfig {
-    /// `[errors.ionosphere]` (default: Klobuchar with the default coefficient sets).
-    #[serde(default)]
-    pub ionosphere: IonoConfig,
-    /// `[errors.troposphere]` (default: Saastamoinen with the standard atmosphere; only
-    /// receivers below the tropopause ceiling see it).
-    #[serde(default)]
-    pub troposphere: TropoConfig,
-    /// `[errors.receiver_clock]`: the receiver oscillator (absent: an ideal clock).
-    #[serde(default)]
-    pub receiver_clock: Option<OscillatorConfig>,
-    /// `[errors.multipath]`: reflected paths (absent: none).
-    #[serde(default)]
-    pub multipath: MultipathConfig,
-    /// `[[errors.events]]`: faults for robustness tests.
-    #[serde(default)]
-    pub events: Vec<EventConfig>,
 }
 
 /// `[time]` as written.

@@ -1,11 +1,13 @@
-//! Signals: antennas, ranging codes, navigation messages, error models and per-antenna
-//! geometry truth (the IF synthesiser builds on these).
+//! Signals: antennas, ranging codes, navigation messages, error models, per-antenna
+//! geometry truth, the observation vocabulary with its RINEX files, and the IF synthesiser
+//! with its streaming session.
 
 pub mod antenna;
 pub mod codes;
 pub mod errors;
 pub mod navmsg;
 pub mod nco;
+pub mod observation;
 pub mod sample_format;
 pub mod signal;
 pub mod synth;

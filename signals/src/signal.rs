@@ -1,35 +1,245 @@
-//! Signal identifiers that carry through truth, samples and observables.
+//! The GNSS signals SkyForge transmits and receives, one identifier through truth, samples
+//! and observables: carrier, ranging code, chip rate, data modulation per PRN, and the
+//! names users and files give them.
 
+use crate::codes::bds_b1i;
+use crate::codes::gps_ca;
 use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ};
-use skyforge_orbits::ephemeris::{SatId, System};
+use std::str::FromStr;
 
 /// A GNSS signal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum SignalId {
+pub enum Signal {
+    /// GPS L1 C/A: 1023 chips at 1.023 Mchip/s on 1575.42 MHz (IS-GPS-200 §3.3).
     GpsL1Ca,
+    /// BeiDou B1I: 2046 chips at 2.046 Mchip/s on 1561.098 MHz (BDS-SIS-ICD-B1I-3.0 §4).
     BdsB1I,
 }
 
-impl SignalId {
-    /// Carrier frequency (Hz).
-    pub fn carrier_hz(self) -> f64 {
+/// How navigation data (and any secondary code) modulate the ranging code.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum DataModulation {
+    /// GPS LNAV: 50 bit/s, bit edges on code epochs, 20 code periods per bit
+    /// (IS-GPS-200 §3.3.2.4).
+    GpsLnav,
+    /// BeiDou D1 (MEO/IGSO): 50 bit/s, each bit spread by the 20-chip Neumann-Hoffman code
+    /// (BDS-SIS-ICD-B1I-3.0 §5.2.1).
+    BdsD1,
+    /// BeiDou D2 (GEO, PRN 1-5 and 59-63): 500 bit/s, 2 code periods per bit, no secondary
+    /// code (BDS-SIS-ICD-B1I-3.0 §5.3).
+    BdsD2,
+}
+
+impl DataModulation {
+    /// Code periods per data bit.
+    pub fn periods_per_bit(self) -> u32 {
         match self {
-            SignalId::GpsL1Ca => F_GPS_L1_HZ,
-            SignalId::BdsB1I => F_BDS_B1I_HZ,
+            DataModulation::GpsLnav | DataModulation::BdsD1 => 20,
+            DataModulation::BdsD2 => 2,
         }
     }
-    /// The signal SkyForge generates for a satellite.
-    pub fn primary_for(sat: SatId) -> Self {
-        match sat.system {
-            System::Gps => SignalId::GpsL1Ca,
-            System::Beidou => SignalId::BdsB1I,
-        }
-    }
-    /// Short name, as in file names and HDF5 attributes.
+}
+
+/// A PRN without a ranging code for the signal.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error("PRN {prn} has no {signal} ranging code (allowed: 1..={max})")]
+pub struct UnknownPrn {
+    pub signal: Signal,
+    pub prn: u8,
+    pub max: u8,
+}
+
+/// A signal name that is not `gps-l1ca` or `bds-b1i`.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i")]
+pub struct UnknownSignal(pub String);
+
+/// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
+/// signal's nominal carrier for the two to be taken as the same.
+pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
+
+impl Signal {
+    /// Every signal.
+    pub const ALL: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
+
+    /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
     pub fn name(self) -> &'static str {
         match self {
-            SignalId::GpsL1Ca => "GPS L1 C/A",
-            SignalId::BdsB1I => "BDS B1I",
+            Signal::GpsL1Ca => "GPS L1 C/A",
+            Signal::BdsB1I => "BDS B1I",
         }
+    }
+
+    /// The signal SkyForge transmits and tracks for `system` (one per constellation).
+    pub fn of_system(system: skyforge_orbits::ephemeris::System) -> Self {
+        match system {
+            skyforge_orbits::ephemeris::System::Gps => Self::GpsL1Ca,
+            skyforge_orbits::ephemeris::System::Beidou => Self::BdsB1I,
+        }
+    }
+
+    /// The constellation that transmits the signal.
+    pub fn system(self) -> skyforge_orbits::ephemeris::System {
+        match self {
+            Self::GpsL1Ca => skyforge_orbits::ephemeris::System::Gps,
+            Self::BdsB1I => skyforge_orbits::ephemeris::System::Beidou,
+        }
+    }
+
+    /// Command-line and file-name tag (`gps-l1ca`, `bds-b1i`), as in SkyForge's
+    /// `<antenna>.<tag>.sigmf-meta` file names.
+    pub fn tag(self) -> &'static str {
+        match self {
+            Signal::GpsL1Ca => "gps-l1ca",
+            Signal::BdsB1I => "bds-b1i",
+        }
+    }
+
+    /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz);
+    /// BDS-SIS-ICD-B1I-3.0 §4.2.1 (1561.098 MHz).
+    pub fn carrier_hz(self) -> f64 {
+        match self {
+            Signal::GpsL1Ca => F_GPS_L1_HZ,
+            Signal::BdsB1I => F_BDS_B1I_HZ,
+        }
+    }
+
+    /// Chipping rate (chip/s).
+    pub fn chip_rate_hz(self) -> f64 {
+        match self {
+            Signal::GpsL1Ca => gps_ca::GPS_CA_CHIP_RATE_HZ,
+            Signal::BdsB1I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
+        }
+    }
+
+    /// Chips per code period.
+    pub fn code_length(self) -> usize {
+        match self {
+            Signal::GpsL1Ca => gps_ca::GPS_CA_CODE_LENGTH,
+            Signal::BdsB1I => bds_b1i::BDS_B1I_CODE_LENGTH,
+        }
+    }
+
+    /// Code period (s): 1 ms for both signals.
+    pub fn code_period_s(self) -> f64 {
+        self.code_length() as f64 / self.chip_rate_hz()
+    }
+
+    /// One code period of `prn` as signal levels (+1/-1), chip 0 first.
+    pub fn code(self, prn: u8) -> Result<Vec<i8>, UnknownPrn> {
+        let (code, max) = match self {
+            Signal::GpsL1Ca => (gps_ca::gps_ca(prn).map(Vec::from), gps_ca::GPS_CA_PRN_MAX),
+            Signal::BdsB1I => (bds_b1i::bds_b1i(prn), bds_b1i::BDS_B1I_PRN_MAX),
+        };
+        code.ok_or(UnknownPrn {
+            signal: self,
+            prn,
+            max,
+        })
+    }
+
+    /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
+    /// D2, the others D1 (BDS-SIS-ICD-B1I-3.0 §5.1).
+    pub fn data_modulation(self, prn: u8) -> DataModulation {
+        match self {
+            Signal::GpsL1Ca => DataModulation::GpsLnav,
+            Signal::BdsB1I if prn <= 5 || prn >= 59 => DataModulation::BdsD2,
+            Signal::BdsB1I => DataModulation::BdsD1,
+        }
+    }
+
+    /// The signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz`.
+    pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ)
+    }
+
+    /// The only signal whose carrier lies inside the band recorded about `centre_hz`
+    /// (complex: `|carrier - centre| < fs / 2`), or `None` when none or several do.
+    pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
+        let mut inside = Self::ALL
+            .into_iter()
+            .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0);
+        match (inside.next(), inside.next()) {
+            (Some(s), None) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The signal named by a `.<tag>` component of a file name
+    /// (`ant1.gps-l1ca.sigmf-meta`).
+    pub fn from_file_name(name: &str) -> Option<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|s| name.split('.').any(|part| part == s.tag()))
+    }
+}
+
+impl std::fmt::Display for Signal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Signal {
+    type Err = UnknownSignal;
+    /// A command-line `--signal` value (the tag, any case).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|b| b.tag().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| UnknownSignal(s.to_owned()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn codes_carriers_and_periods_follow_the_icds() {
+        assert_eq!(Signal::GpsL1Ca.code(1).unwrap().len(), 1023);
+        assert_eq!(Signal::BdsB1I.code(1).unwrap().len(), 2046);
+        for s in Signal::ALL {
+            assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
+        }
+        assert_eq!(Signal::GpsL1Ca.code(0).unwrap_err().prn, 0);
+        assert!(Signal::BdsB1I.code(64).is_err());
+        // GPS: 154 f0 with f0 = 10.23 MHz; BeiDou B1I: 1526 x 1.023 MHz.
+        assert_eq!(Signal::GpsL1Ca.carrier_hz(), 154.0 * 10.23e6);
+        assert!((Signal::BdsB1I.carrier_hz() - 1526.0 * 1.023e6).abs() < 1e-3);
+    }
+
+    #[test]
+    fn geo_prns_carry_d2() {
+        for prn in [1, 5, 59, 63] {
+            assert_eq!(Signal::BdsB1I.data_modulation(prn), DataModulation::BdsD2);
+        }
+        for prn in [6, 19, 58] {
+            assert_eq!(Signal::BdsB1I.data_modulation(prn), DataModulation::BdsD1);
+        }
+        assert_eq!(DataModulation::BdsD2.periods_per_bit(), 2);
+    }
+
+    #[test]
+    fn identified_by_carrier_band_file_name_and_tag() {
+        assert_eq!(
+            Signal::from_carrier_hz(1575.42e6 - 400.0),
+            Some(Signal::GpsL1Ca)
+        );
+        assert_eq!(Signal::from_carrier_hz(1575.0e6), None);
+        assert_eq!(
+            Signal::in_band(1561.098e6 - 1.0e6, 4e6),
+            Some(Signal::BdsB1I)
+        );
+        assert_eq!(Signal::in_band(1568.0e6, 40e6), None);
+        assert_eq!(
+            Signal::from_file_name("ant2.bds-b1i.sigmf-meta"),
+            Some(Signal::BdsB1I)
+        );
+        assert_eq!(Signal::from_file_name("ant2.sigmf-meta"), None);
+        assert_eq!("GPS-L1CA".parse::<Signal>(), Ok(Signal::GpsL1Ca));
+        assert!("l5".parse::<Signal>().is_err());
     }
 }

@@ -12,7 +12,7 @@ use skyforge_signals::errors::clock::{
     ClockModel, ClockSample, OscillatorPreset, PowerLaw, overlapping_adev, overlapping_avar,
     predicted_adev, predicted_avar,
 };
-use skyforge_signals::errors::seed::stream_rng;
+use skyforge_signals::errors::seed::{Stream, stream_rng};
 
 const DT_S: f64 = 0.01;
 const DURATION_S: f64 = 2000.0;
@@ -25,7 +25,7 @@ fn simulate(preset: OscillatorPreset, seed: u64) -> Vec<f64> {
         0.0,
         0.0,
         DT_S,
-        stream_rng(seed, "clock", 0),
+        stream_rng(seed, Stream::Named("clock"), 0),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     clock.next_block(n).iter().map(|s| s.phase_s).collect()
@@ -106,8 +106,14 @@ fn pure_white_fm_matches_closed_form() {
         h_minus1: 0.0,
         h_minus2: 0.0,
     };
-    let mut clock = ClockModel::new(&h, 0.0, 0.0, DT_S, stream_rng(11, "clock", 0))
-        .unwrap_or_else(|e| panic!("{e}"));
+    let mut clock = ClockModel::new(
+        &h,
+        0.0,
+        0.0,
+        DT_S,
+        stream_rng(11, Stream::Named("clock"), 0),
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
     let phase: Vec<f64> = clock
         .next_block(200_001)
         .iter()
@@ -136,8 +142,14 @@ fn pure_flicker_fm_floor_holds_from_10_dt_to_1e4_s() {
     let checks = [(10.0, 0.05), (100.0, 0.03), (1000.0, 0.05), (1e4, 0.10)];
     let mut sums = [0.0; 4];
     for seed in 0..SEEDS {
-        let mut clock = ClockModel::new(&h, 0.0, 0.0, 1.0, stream_rng(seed, "clock", 0))
-            .unwrap_or_else(|e| panic!("{e}"));
+        let mut clock = ClockModel::new(
+            &h,
+            0.0,
+            0.0,
+            1.0,
+            stream_rng(seed, Stream::Named("clock"), 0),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         let phase: Vec<f64> = clock
             .next_block(200_001)
             .iter()
@@ -159,8 +171,14 @@ fn pure_flicker_fm_floor_holds_from_10_dt_to_1e4_s() {
 fn stream_is_identical_for_any_block_size() {
     let h = OscillatorPreset::Quartz.power_law();
     let make = || {
-        ClockModel::new(&h, 1e-4, 3e-8, 0.001, stream_rng(42, "clock", 3))
-            .unwrap_or_else(|e| panic!("{e}"))
+        ClockModel::new(
+            &h,
+            1e-4,
+            3e-8,
+            0.001,
+            stream_rng(42, Stream::Named("clock"), 3),
+        )
+        .unwrap_or_else(|e| panic!("{e}"))
     };
     let whole = make().next_block(20_000);
     let mut chunked = Vec::with_capacity(20_000);
@@ -180,8 +198,14 @@ fn stream_is_identical_for_any_block_size() {
             && a.freq.to_bits() == b.freq.to_bits()
             && a.t_s.to_bits() == b.t_s.to_bits()
     }));
-    let other = ClockModel::new(&h, 1e-4, 3e-8, 0.001, stream_rng(42, "clock", 4))
-        .unwrap_or_else(|e| panic!("{e}"))
-        .next_block(10);
+    let other = ClockModel::new(
+        &h,
+        1e-4,
+        3e-8,
+        0.001,
+        stream_rng(42, Stream::Named("clock"), 4),
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+    .next_block(10);
     assert_ne!(other[9].phase_s, whole[9].phase_s);
 }

@@ -9,7 +9,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 use skyforge_signals::codes::bds_b1i::BDS_B1I_CHIP_RATE_HZ;
 use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
-use skyforge_signals::signal::SignalId;
+use skyforge_signals::signal::Signal;
 use std::path::Path;
 use std::process::Command;
 
@@ -308,7 +308,7 @@ fn gnss_sdr_tracks_and_fixes_on_interop_gps_static() {
     interop_observables::check(
         &out,
         "gps-l1ca",
-        SignalId::GpsL1Ca,
+        Signal::GpsL1Ca,
         GPS_CA_CHIP_RATE_HZ,
         CN0_DBHZ,
     );
@@ -373,7 +373,7 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
     interop_observables::check(
         &out,
         "bds-b1i",
-        SignalId::BdsB1I,
+        Signal::BdsB1I,
         BDS_B1I_CHIP_RATE_HZ,
         CN0_DBHZ,
     );

@@ -14,14 +14,11 @@ pub mod replica;
 /// The complex `f32` sample type the acquisition functions take.
 pub use num_complex::Complex32;
 
-/// The signals acquisition searches for.
-pub use crate::signal::Signal;
-
 /// Why an acquisition could not run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AcquisitionError {
     #[error(transparent)]
-    UnknownPrn(#[from] crate::signal::UnknownPrn),
+    UnknownPrn(#[from] skyforge_signals::signal::UnknownPrn),
     #[error("{name} = {value} is not allowed: {allowed}")]
     BadParameter {
         name: &'static str,

@@ -12,12 +12,13 @@
 //! in `[0, period)`, at which a code period (chip 0) starts in the buffer. Code Doppler
 //! is ignored within a correlation (1 ms).
 
+use super::AcquisitionError;
 use super::cfar;
 use super::replica::{mean_edge_delay_samples, sample_code, wipe_carrier};
-use super::{AcquisitionError, Signal};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
+use skyforge_signals::signal::Signal;
 use std::sync::Arc;
 
 /// How correlations handle sign changes between code periods (GPS data bits every

@@ -5,9 +5,9 @@
 use super::datetime::parse_utc;
 use super::error::{Finding, InputError};
 use super::format::SampleFormat;
-use crate::signal::Signal;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
+use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 
 /// Command-line description of sample files (`--format`, `--fs`, `--if`, `--signal`):

@@ -13,6 +13,8 @@
 
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
+use skyforge_signals::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
+use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
 /// What one channel knows at one of its code-period boundaries.
@@ -47,6 +49,26 @@ pub struct Observation {
     pub lock_time_s: f64,
     /// Loss of lock between the previous epoch and this one (RINEX LLI bit 0).
     pub loss_of_lock: bool,
+}
+
+impl Observation {
+    /// The observation in the project's vocabulary (what RINEX files hold): a Doppler that
+    /// is not finite is not measured.
+    pub fn record(&self) -> ObsRecord {
+        ObsRecord {
+            sat: self.sat,
+            signal: Signal::of_system(self.sat.system),
+            pseudorange_m: Some(self.pseudorange_m),
+            carrier_phase_cycles: Some(self.carrier_phase_cycles),
+            doppler_hz: self.doppler_hz.is_finite().then_some(self.doppler_hz),
+            cn0_dbhz: Some(self.cn0_dbhz),
+            phase_lli: if self.loss_of_lock {
+                LLI_LOSS_OF_LOCK
+            } else {
+                0
+            },
+        }
+    }
 }
 
 /// The channels' recent history and the observation epochs.

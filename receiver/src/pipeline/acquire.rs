@@ -4,9 +4,9 @@
 use super::config::AcquisitionSettings;
 use crate::acquisition::AcquisitionError;
 use crate::acquisition::pcps::{Acquisition, BitTransition, DopplerWindow, Pcps, PcpsConfig};
-use crate::signal::Signal;
 use num_complex::Complex32;
 use rayon::prelude::*;
+use skyforge_signals::signal::Signal;
 
 /// A satellite to search for, with its Doppler window and predicted Doppler rate.
 #[derive(Debug, Clone, Copy, PartialEq)]

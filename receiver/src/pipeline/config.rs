@@ -299,3 +299,29 @@ impl ReceiverFile {
         Ok((config, approximate))
     }
 }
+
+/// Position rounding of the assistance file (m): what an orbit prediction or a rough
+/// position fix would tell a receiver, not the truth.
+const ASSIST_POSITION_ROUNDING_M: f64 = 1000.0;
+/// Velocity rounding of the assistance file (m/s).
+const ASSIST_VELOCITY_ROUNDING_MPS: f64 = 1.0;
+
+/// `receiver.toml` for `skyforge receive --config` (what `synth` writes beside its
+/// recordings): the approximate state at the start, rounded, with uncertainties that cover
+/// the rounding many times over.
+pub fn assistance_toml(r_ecef_m: &Vec3, v_ecef_mps: &Vec3) -> String {
+    let round = |x: f64, step: f64| (x / step).round() * step;
+    let r = r_ecef_m.map(|x| round(x, ASSIST_POSITION_ROUNDING_M));
+    let v = v_ecef_mps.map(|x| round(x, ASSIST_VELOCITY_ROUNDING_MPS));
+    format!(
+        "# Settings for `skyforge receive --config receiver.toml` on these recordings.\n\
+         # [assist]: the approximate state at the first sample a receiver could be told\n\
+         # (an orbit prediction, a last fix), rounded to {} m and {} m/s.\n\
+         [assist]\n\
+         position_ecef_m = [{:.1}, {:.1}, {:.1}]\n\
+         velocity_ecef_mps = [{:.1}, {:.1}, {:.1}]\n\
+         position_uncertainty_m = 10000.0\n\
+         velocity_uncertainty_mps = 10.0\n",
+        ASSIST_POSITION_ROUNDING_M, ASSIST_VELOCITY_ROUNDING_MPS, r.x, r.y, r.z, v.x, v.y, v.z
+    )
+}

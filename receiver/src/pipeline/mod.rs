@@ -11,7 +11,7 @@ mod timing;
 
 pub use config::{
     AcquisitionFile, AcquisitionSettings, ApproximateState, AssistFile, ConfigValueError,
-    ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile,
+    ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile, assistance_toml,
 };
 pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};
 

@@ -13,7 +13,6 @@ use crate::assist::{Assistance, search_hints};
 use crate::navdecode::NavDecodeError;
 use crate::observables::{ObservablesBuilder, Observation};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
-use crate::signal::Signal;
 use crate::tracking::TrackingError;
 use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover, MAX_COHERENT_MS};
 use hifitime::Epoch;
@@ -22,6 +21,7 @@ use rayon::prelude::*;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
+use skyforge_signals::signal::Signal;
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).
 const NOMINAL_FLIGHT_S: f64 = 0.075;

@@ -13,7 +13,7 @@ use std::collections::VecDeque;
 
 use skyforge_signals::codes::neumann_hoffman;
 
-use crate::signal::DataModulation;
+use skyforge_signals::signal::DataModulation;
 
 /// Decision thresholds of the synchroniser.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]

@@ -23,7 +23,7 @@ use super::discriminators::{FllDiscriminator, PllDiscriminator, dll_envelope_chi
 use super::error_budget::LoopOrder;
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{CarrierLoopFilter, aided_code_rate, dll_rate_correction};
-use crate::signal::{DataModulation, Signal};
+use skyforge_signals::signal::{DataModulation, Signal};
 
 /// Longest coherent integration after bit sync (code periods): one GPS or D1 bit.
 pub const MAX_COHERENT_MS: u32 = 20;
@@ -924,11 +924,13 @@ mod tests {
         };
         assert_eq!(
             ChannelTracker::new(no_code, FRONT_END, TrackingConfig::default()).map(|_| ()),
-            Err(TrackingError::UnknownPrn(crate::signal::UnknownPrn {
-                signal: Signal::GpsL1Ca,
-                prn: 0,
-                max: 63
-            }))
+            Err(TrackingError::UnknownPrn(
+                skyforge_signals::signal::UnknownPrn {
+                    signal: Signal::GpsL1Ca,
+                    prn: 0,
+                    max: 63
+                }
+            ))
         );
     }
 

@@ -1,9 +1,10 @@
 //! Per-source random streams derived from the one scenario seed (DESIGN.md, "Randomness").
 //!
 //! Every noise source draws from its own `ChaCha20Rng`, keyed by
-//! [`stream_seed`]`(scenario seed, source id, index)`: the receiver oscillator of receiver
-//! `i` uses `("clock", i)`, and so on. A stream depends only on these three inputs, never
-//! on thread count, block size or the order in which other sources are drawn.
+//! [`stream_seed`]`(scenario seed, source, index)`: the receiver oscillator of receiver `i`
+//! uses `(Stream::ReceiverClock, i)`, and so on. A stream depends only on these three
+//! inputs, never on thread count, block size or the order in which other sources are
+//! drawn. Every source of the project is named once, in [`Stream`].
 //!
 //! Derivation: `source` is hashed with 64-bit FNV-1a (offset basis 0xcbf29ce484222325,
 //! prime 0x100000001b3); the inputs are chained through SplitMix64 (Steele, Lea & Flood,
@@ -17,6 +18,33 @@ use rand_chacha::ChaCha20Rng;
 const FNV_OFFSET_BASIS: u64 = 0xcbf2_9ce4_8422_2325;
 const FNV_PRIME: u64 = 0x0000_0100_0000_01b3;
 const SPLITMIX_GAMMA: u64 = 0x9e37_79b9_7f4a_7c15;
+
+/// The random sources of the project, each with the name its key is derived from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Stream {
+    /// The receiver oscillator's noise; index: the receiver (or antenna, with one
+    /// oscillator per antenna).
+    ReceiverClock,
+    /// Thermal noise of an antenna's samples; index: the antenna.
+    Thermal,
+    /// The random data symbols of validate's T-3.3-S signal; index 0.
+    FastSyncData,
+    /// A test's own stream, by name (never used by a scenario).
+    Named(&'static str),
+}
+
+impl Stream {
+    /// The name the stream's key is derived from (fixed: changing one changes every
+    /// output drawn from it).
+    pub fn name(self) -> &'static str {
+        match self {
+            Stream::ReceiverClock => "receiver-clock",
+            Stream::Thermal => "thermal",
+            Stream::FastSyncData => "t-3.3-s data",
+            Stream::Named(name) => name,
+        }
+    }
+}
 
 /// 64-bit FNV-1a hash of `bytes`.
 fn fnv1a64(bytes: &[u8]) -> u64 {
@@ -35,9 +63,9 @@ fn splitmix64(state: &mut u64) -> u64 {
 }
 
 /// The 32-byte ChaCha20 key of the stream `(seed, source, index)` (see the module docs).
-pub fn stream_seed(seed: u64, source: &str, index: u32) -> [u8; 32] {
+pub fn stream_seed(seed: u64, source: Stream, index: u32) -> [u8; 32] {
     let mut state = seed;
-    let mut state_b = splitmix64(&mut state) ^ fnv1a64(source.as_bytes());
+    let mut state_b = splitmix64(&mut state) ^ fnv1a64(source.name().as_bytes());
     let mut key_state = splitmix64(&mut state_b) ^ u64::from(index);
     let mut key = [0_u8; 32];
     for word in key.chunks_exact_mut(8) {
@@ -47,7 +75,7 @@ pub fn stream_seed(seed: u64, source: &str, index: u32) -> [u8; 32] {
 }
 
 /// The random stream `(seed, source, index)`.
-pub fn stream_rng(seed: u64, source: &str, index: u32) -> ChaCha20Rng {
+pub fn stream_rng(seed: u64, source: Stream, index: u32) -> ChaCha20Rng {
     ChaCha20Rng::from_seed(stream_seed(seed, source, index))
 }
 
@@ -74,10 +102,10 @@ mod tests {
 
     #[test]
     fn streams_differ_in_every_input_and_repeat_exactly() {
-        let base = stream_seed(7, "clock", 0);
-        assert_eq!(base, stream_seed(7, "clock", 0));
-        assert_ne!(base, stream_seed(8, "clock", 0));
-        assert_ne!(base, stream_seed(7, "clock", 1));
-        assert_ne!(base, stream_seed(7, "thermal", 0));
+        let base = stream_seed(7, Stream::ReceiverClock, 0);
+        assert_eq!(base, stream_seed(7, Stream::ReceiverClock, 0));
+        assert_ne!(base, stream_seed(8, Stream::ReceiverClock, 0));
+        assert_ne!(base, stream_seed(7, Stream::ReceiverClock, 1));
+        assert_ne!(base, stream_seed(7, Stream::Thermal, 0));
     }
 }

@@ -34,6 +34,45 @@ pub struct PvtCorrections {
     pub troposphere: bool,
 }
 
+/// Acquisition Doppler search written into the configuration (Hz): ground / LEO.
+const DOPPLER_MAX_GROUND_HZ: f64 = 5_000.0;
+const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
+
+/// The `.conf` text of the recording `name` (`<name>.sigmf-data`, PVT outputs
+/// `<name>.*`) of one `signal`: a LEO gets a widened Doppler search and no atmospheric
+/// corrections (it flies above the troposphere and mostly above the ionosphere); a ground
+/// receiver corrects the errors the signal carries (`iono_on`, `tropo_on`).
+pub fn recording_config(
+    cfg: &SignalConfig,
+    name: &str,
+    signal: crate::signal::Signal,
+    leo: bool,
+    iono_on: bool,
+    tropo_on: bool,
+) -> String {
+    let present = SignalsPresent {
+        gps_l1ca: signal == crate::signal::Signal::GpsL1Ca,
+        bds_b1i: signal == crate::signal::Signal::BdsB1I,
+    };
+    let doppler = if leo {
+        DOPPLER_MAX_LEO_HZ
+    } else {
+        DOPPLER_MAX_GROUND_HZ
+    };
+    let corrections = PvtCorrections {
+        broadcast_iono: iono_on && !leo,
+        troposphere: tropo_on && !leo,
+    };
+    config(
+        cfg,
+        &format!("{name}.sigmf-data"),
+        present,
+        doppler,
+        corrections,
+        name,
+    )
+}
+
 /// The `.conf` text for `data_file` (a path GNSS-SDR opens relative to its working
 /// directory); `doppler_max_hz` widens acquisition for high dynamics; `corrections` are
 /// turned on in the PVT; PVT outputs go to `output_prefix.*`.

@@ -8,7 +8,7 @@ use crate::antenna::Antenna;
 use crate::errors::ionosphere::IonoConfig;
 use crate::errors::multipath::{MultipathConfig, Path, surface_path, tap_path};
 use crate::errors::troposphere::TropoConfig;
-use crate::signal::SignalId;
+use crate::signal::Signal;
 use crate::truth::geometry::LinkGeometry;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
@@ -67,7 +67,7 @@ impl LinkTerms<'_> {
         a: usize,
         at: &AntennaEpoch,
         sat: SatId,
-        signal: SignalId,
+        signal: Signal,
         g: &LinkGeometry,
     ) -> Option<LinkEnd> {
         if !g.visible {

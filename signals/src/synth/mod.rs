@@ -1,6 +1,6 @@
 //! IF/baseband synthesis: the signal configuration, transmitters (code + data), per-channel
-//! mixing, thermal noise, front-end quantisation, the per-antenna renderer, and the
-//! sample-file formats with their SigMF metadata.
+//! mixing, thermal noise, front-end quantisation, the per-antenna renderer, the sample-file
+//! formats with their SigMF metadata, and the streaming session that drives them.
 
 pub mod config;
 pub mod constellation;
@@ -12,5 +12,6 @@ pub mod mix;
 pub mod noise;
 pub mod quantise;
 pub mod render;
+pub mod session;
 pub mod sigmf;
 pub mod transmitter;

@@ -2,7 +2,7 @@
 //! only on (scenario seed, antenna index, absolute sample index).
 //!
 //! Samples come in frames of [`NOISE_FRAME`]; frame `f` is drawn from ChaCha8 keyed by
-//! `errors::seed::stream_seed(seed, "thermal", antenna)` on stream `f`, so any block
+//! `errors::seed::stream_seed(seed, Stream::Thermal, antenna)` on stream `f`, so any block
 //! split, thread count or processing order yields the same samples. (ChaCha8 instead of
 //! ChaCha20: noise needs statistical quality, not cryptographic margin, and it is 2x
 //! cheaper.) Each component takes one 32-bit word of the stream (the frame's I words
@@ -11,7 +11,7 @@
 
 mod normal_table;
 
-use crate::errors::seed::stream_seed;
+use crate::errors::seed::{Stream, stream_seed};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -33,7 +33,7 @@ impl ThermalNoise {
     pub fn new(seed: u64, antenna: u32, sigma: f32) -> Self {
         normal_table::init();
         Self {
-            key: stream_seed(seed, "thermal", antenna),
+            key: stream_seed(seed, Stream::Thermal, antenna),
             sigma,
             words: Vec::new(),
             frame: Vec::new(),

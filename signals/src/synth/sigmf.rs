@@ -1,7 +1,15 @@
-//! SigMF 1.x metadata (`.sigmf-meta`) for one antenna's recording.
+//! SigMF 1.x recordings: the metadata (`.sigmf-meta`) of one antenna's recording, and
+//! [`SigmfRecordings`], the sample sink of a synthesis session that writes one
+//! `<antenna>.<tag>.sigmf-data` + `.sigmf-meta` pair per antenna and band.
 
+use super::session::{Band, SampleSink, SinkError};
+use crate::antenna::Antenna;
 use crate::sample_format::SampleFormat;
+use hifitime::Epoch;
 use serde_json::{Value, json};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
 
 /// What a recording's metadata says.
 #[derive(Debug, Clone, PartialEq)]
@@ -48,6 +56,113 @@ impl RecordingMeta {
             "annotations": [],
         })
     }
+}
+
+/// SigMF `core:datetime` of `at`: ISO-8601 UTC with nanoseconds and a trailing Z.
+pub fn sigmf_datetime(at: Epoch) -> String {
+    let (y, mo, d, h, mi, sec, ns) = at.to_gregorian_utc();
+    format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{sec:02}.{ns:09}Z")
+}
+
+/// The file-name stem of antenna `antenna`'s recording of `band`: `<antenna>.<tag>`.
+pub fn recording_name(antenna: &str, band: &Band) -> String {
+    format!("{antenna}.{}", band.signal.tag())
+}
+
+/// What every recording of a synthesis shares.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunInfo {
+    pub format: SampleFormat,
+    pub sample_rate_hz: f64,
+    pub if_hz: f64,
+    /// Time of the first sample.
+    pub start: Epoch,
+    pub scenario: String,
+    pub seed: u64,
+}
+
+/// The sample files of a synthesis: one per band and antenna, in a directory.
+#[derive(Debug)]
+pub struct SigmfRecordings {
+    dir: PathBuf,
+    bands: Vec<Band>,
+    antennas: Vec<(String, [f64; 3])>,
+    /// `files[band][antenna]`.
+    files: Vec<Vec<(PathBuf, BufWriter<File>)>>,
+}
+
+impl SigmfRecordings {
+    /// Create the (empty) data files of every band and antenna in `dir`.
+    pub fn create(dir: &Path, bands: &[Band], antennas: &[Antenna]) -> std::io::Result<Self> {
+        let files = bands
+            .iter()
+            .map(|b| {
+                antennas
+                    .iter()
+                    .map(|a| {
+                        let path = dir.join(format!("{}.sigmf-data", recording_name(&a.name, b)));
+                        let file = File::create(&path).map_err(|e| named(&path, e))?;
+                        Ok((path, BufWriter::new(file)))
+                    })
+                    .collect::<std::io::Result<Vec<_>>>()
+            })
+            .collect::<std::io::Result<Vec<_>>>()?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            bands: bands.to_vec(),
+            antennas: antennas
+                .iter()
+                .map(|a| (a.name.clone(), a.nominal_body_m.into()))
+                .collect(),
+            files,
+        })
+    }
+
+    /// Flush the data files and write each one's `.sigmf-meta`.
+    pub fn finish(self, run: &RunInfo) -> std::io::Result<()> {
+        for (path, mut f) in self.files.into_iter().flatten() {
+            f.flush().map_err(|e| named(&path, e))?;
+        }
+        for band in &self.bands {
+            for (antenna, position) in &self.antennas {
+                let name = recording_name(antenna, band);
+                let meta = RecordingMeta {
+                    format: run.format,
+                    sample_rate_hz: run.sample_rate_hz,
+                    centre_frequency_hz: band.signal.carrier_hz() - run.if_hz,
+                    if_hz: run.if_hz,
+                    datetime_utc: sigmf_datetime(run.start),
+                    antenna_name: antenna.clone(),
+                    antenna_position_body_m: *position,
+                    scenario: run.scenario.clone(),
+                    seed: run.seed,
+                    description: format!(
+                        "SkyForge synthesis of {} for antenna {antenna}: {}",
+                        run.scenario,
+                        band.signal.name()
+                    ),
+                };
+                let path = self.dir.join(format!("{name}.sigmf-meta"));
+                let text =
+                    serde_json::to_string_pretty(&meta.to_json()).map_err(std::io::Error::other)?;
+                std::fs::write(&path, text + "\n").map_err(|e| named(&path, e))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl SampleSink for SigmfRecordings {
+    fn samples(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), SinkError> {
+        let (path, file) = &mut self.files[band][antenna];
+        file.write_all(bytes).map_err(|e| named(path, e))?;
+        Ok(())
+    }
+}
+
+/// `e` with the file it happened on.
+fn named(path: &Path, e: std::io::Error) -> std::io::Error {
+    std::io::Error::new(e.kind(), format!("cannot write {}: {e}", path.display()))
 }
 
 #[cfg(test)]

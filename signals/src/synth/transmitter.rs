@@ -6,7 +6,7 @@ use crate::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use crate::codes::neumann_hoffman::NH20;
 use crate::navmsg::bds::{BdsNavEncoder, BdsNavFormat};
 use crate::navmsg::gps_lnav::LnavEncoder;
-use crate::signal::SignalId;
+use crate::signal::Signal;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
@@ -51,7 +51,7 @@ impl DataBits {
 #[derive(Debug, Clone)]
 pub struct Transmitter {
     pub sat: SatId,
-    pub signal: SignalId,
+    pub signal: Signal,
     pub chip_rate_hz: f64,
     code: Vec<i8>,
     data: DataBits,
@@ -74,7 +74,7 @@ impl Transmitter {
         let frac = (ns % 1_000_000_000) as f64 * 1e-9;
         Some(Self {
             sat,
-            signal: SignalId::GpsL1Ca,
+            signal: Signal::GpsL1Ca,
             chip_rate_hz: GPS_CA_CHIP_RATE_HZ,
             code,
             data: DataBits::GpsLnav(Box::new(lnav)),
@@ -93,7 +93,7 @@ impl Transmitter {
         }
         Some(Self {
             sat,
-            signal: SignalId::BdsB1I,
+            signal: Signal::BdsB1I,
             chip_rate_hz: BDS_B1I_CHIP_RATE_HZ,
             code,
             data: DataBits::Bds(Box::new(nav)),

@@ -11,7 +11,7 @@
 
 use super::light_time::{self, LightTime};
 use crate::antenna::Antenna;
-use crate::signal::SignalId;
+use crate::signal::Signal;
 use rayon::prelude::*;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{BoundEphemeris, EphemerisStore, SatId};
@@ -240,7 +240,7 @@ impl<'a> GeometryTruth<'a> {
                 .collect(),
             carriers_hz: satellites
                 .iter()
-                .map(|s| SignalId::primary_for(*s).carrier_hz())
+                .map(|s| Signal::of_system(s.system).carrier_hz())
                 .collect(),
             step_s,
             stencil: Stencil::new(step_s),

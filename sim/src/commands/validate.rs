@@ -1,7 +1,5 @@
 //! `skyforge validate thesis` and `skyforge validate obs`.
 
-mod zero_baseline;
-
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
@@ -10,27 +8,12 @@ use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compar
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{print_table, write_json};
-use skyforge_validate::thesis::zero_baseline::TABLE as ZERO_BASELINE;
 use skyforge_validate::thesis::{self, Options};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 /// Default real-data folder, relative to the working directory.
 const DEFAULT_DATA_DIR: &str = "../shared/data";
-
-/// Tables this command runs itself, after those of [`thesis::TABLES`]: they need the
-/// synthesiser and the receiver command, which live in this crate.
-const PIPELINE_TABLES: &[&str] = &[ZERO_BASELINE];
-
-/// Every table `--only` accepts, in run order.
-fn known_tables() -> String {
-    thesis::TABLES
-        .iter()
-        .chain(PIPELINE_TABLES)
-        .copied()
-        .collect::<Vec<_>>()
-        .join(", ")
-}
 
 /// Run the thesis tables, print them and optionally write `results.json`.
 pub fn thesis(
@@ -42,36 +25,20 @@ pub fn thesis(
     let data_dir = data
         .or_else(|| std::env::var_os("SKYFORGE_DATA").map(PathBuf::from))
         .unwrap_or_else(|| PathBuf::from(DEFAULT_DATA_DIR));
-    let is_in = |tables: &[&str], id: &str| tables.iter().any(|t| t.eq_ignore_ascii_case(id));
-    if let Some(id) = only
-        .iter()
-        .find(|id| !is_in(thesis::TABLES, id) && !is_in(PIPELINE_TABLES, id))
-    {
+    let known = |id: &str| thesis::TABLES.iter().any(|t| t.eq_ignore_ascii_case(id));
+    if let Some(id) = only.iter().find(|id| !known(id)) {
         return Err(BadInput(format!(
             "unknown table {id:?}; known tables: {}",
-            known_tables()
+            thesis::TABLES.join(", ")
         ))
         .into());
     }
     let staged = out.map(|dir| StagedDir::create(dir, force)).transpose()?;
-    let library_only: Vec<String> = only
-        .iter()
-        .filter(|id| is_in(thesis::TABLES, id))
-        .cloned()
-        .collect();
-    let mut rows = Vec::new();
-    // An empty list runs every table; a list naming only pipeline tables runs none there.
-    if only.is_empty() || !library_only.is_empty() {
-        let opts = Options {
-            only: library_only,
-            data_dir: Some(data_dir),
-        };
-        rows = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
-    }
-    if only.is_empty() || only.iter().any(|id| id.eq_ignore_ascii_case(ZERO_BASELINE)) {
-        eprintln!("validate: running {ZERO_BASELINE}");
-        rows.extend(zero_baseline::rows()?);
-    }
+    let opts = Options {
+        only,
+        data_dir: Some(data_dir),
+    };
+    let rows = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
     print_table(&rows, &mut std::io::stdout().lock())?;
     if let Some(staged) = staged {
         write_json(&rows, &staged.file("results.json"))?;
@@ -107,14 +74,14 @@ pub fn obs(
         }
         None => None,
     };
-    let bad = |e: skyforge_validate::observables::ObsError| BadInput(e.to_string());
-    let truth = read_obs_file(truth).map_err(bad)?;
-    let estimate = read_obs_file(estimate).map_err(bad)?;
+    let bad = |e: &dyn std::fmt::Display| BadInput(e.to_string());
+    let truth = read_obs_file(truth).map_err(|e| bad(&e))?;
+    let estimate = read_obs_file(estimate).map_err(|e| bad(&e))?;
     let opts = CompareOptions {
         tag_offset_s,
         window,
     };
-    let comparison = compare_with(&estimate, &truth, &opts).map_err(bad)?;
+    let comparison = compare_with(&estimate, &truth, &opts).map_err(|e| bad(&e))?;
     print_comparison(&comparison, &mut std::io::stdout().lock())?;
     if let Some(path) = json {
         let text = serde_json::to_string_pretty(&comparison)?;

@@ -2,6 +2,6 @@
 
 mod h5_datasets;
 pub mod receiver_out;
-pub mod rinex_obs;
 pub mod staged_dir;
+pub mod synth_sinks;
 pub mod truth_h5;

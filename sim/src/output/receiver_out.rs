@@ -2,7 +2,7 @@
 //! one directory (the caller's staged output directory):
 //! - `<antenna>.obs.rnx`: RINEX 3.04 observations with loss-of-lock and signal strength
 //!   indicators, tagged with the receiver time
-//!   ([`rinex_obs`](crate::output::rinex_obs)); the header is written at
+//!   ([`rinex_write`](skyforge_signals::observation::rinex_write)); the header is written at
 //!   the antenna's first fix (its approximate position) or, when a position was given,
 //!   at its first observations;
 //! - `pvt.csv`: one row per antenna and epoch with a fix ([`pvt_csv`]);
@@ -28,6 +28,7 @@ use rinex_files::RinexFiles;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
 use skyforge_receiver::pipeline::EpochReport;
+use skyforge_receiver::session::{EpochSink, SinkError};
 use std::path::Path;
 
 /// What was written.
@@ -153,6 +154,13 @@ impl ReceiverOutputs {
         }
         self.h5.finish()?;
         Ok(self.summary)
+    }
+}
+
+impl EpochSink for ReceiverOutputs {
+    fn epoch(&mut self, report: &EpochReport) -> Result<(), SinkError> {
+        self.write_epoch(report)
+            .map_err(|e| format!("{e:#}").into())
     }
 }
 

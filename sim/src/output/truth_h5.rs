@@ -6,7 +6,7 @@ use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::signal::SignalId;
+use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
 use std::path::Path;
@@ -312,7 +312,7 @@ impl TruthWriter {
             .create("id")?;
         let carriers: Vec<f64> = sats
             .iter()
-            .map(|s| SignalId::primary_for(*s).carrier_hz())
+            .map(|s| Signal::of_system(s.system).carrier_hz())
             .collect();
         let ds = sg
             .new_dataset_builder()

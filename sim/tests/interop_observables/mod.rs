@@ -7,7 +7,7 @@ pub mod side_by_side;
 
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::tracking::error_budget::thermal_jitter_deg;
-use skyforge_signals::signal::SignalId;
+use skyforge_signals::signal::Signal;
 use skyforge_validate::observables::compare::{CompareOptions, ObsComparison, compare_with};
 use skyforge_validate::observables::table::cell;
 use skyforge_validate::observables::{ObsFile, read_obs_file};
@@ -97,7 +97,7 @@ fn gnss_sdr_obs_file(dir: &Path) -> PathBuf {
 /// and carrier phase; the code and phase error stds stay below twice the thermal-noise
 /// formulas at the scenario's C/N0 and GNSS-SDR's loop settings. Time-scale labels are
 /// handled as in [`compare_gnss_sdr`].
-pub fn check(out: &Path, band: &str, signal: SignalId, chip_rate_hz: f64, cn0_dbhz: f64) {
+pub fn check(out: &Path, band: &str, signal: Signal, chip_rate_hz: f64, cn0_dbhz: f64) {
     let conf = std::fs::read_to_string(out.join(format!("ant1.{band}.gnss-sdr.conf"))).unwrap();
     let loops = loops(&conf);
     let (estimate, c, tag_offset_s) = compare_gnss_sdr(out, band);

@@ -33,11 +33,11 @@ use super::ObsError;
 use super::error_stats::{ErrorStats, SatErrors, display};
 use super::fixed_effects::{self, Fit, Sample};
 use super::interpolate::Series;
-use super::rinex_read::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, SatObs};
 use hifitime::{Duration, Epoch};
 use serde::{Serialize, Serializer};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_signals::observation::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -181,7 +181,7 @@ struct TruthSat {
 #[derive(Debug, Clone, Copy)]
 struct Matched {
     epoch: usize,
-    est: SatObs,
+    est: ObsRecord,
     pseudorange_m: Option<f64>,
     phase_cycles: Option<f64>,
     doppler_hz: Option<f64>,
@@ -367,7 +367,7 @@ fn median(v: &mut [f64]) -> Option<f64> {
 /// The time offset `d` of one estimate epoch tagged `t_s` (see the module documentation),
 /// starting from `d0`; `None` without a pseudorange that the truth covers.
 fn time_offset(
-    sats: &[SatObs],
+    sats: &[ObsRecord],
     truth: &BTreeMap<SatId, TruthSat>,
     t_s: f64,
     d0: f64,

@@ -27,11 +27,11 @@
 
 use super::ObsError;
 use super::error_stats::{ErrorStats, display};
-use super::rinex_read::{LLI_LOSS_OF_LOCK, ObsFile, SatObs};
 use hifitime::Epoch;
 use serde::{Serialize, Serializer};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_signals::observation::{LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -235,7 +235,7 @@ fn wavelength(f: &ObsFile, sat: SatId) -> f64 {
 }
 
 /// `a - b`, with `b` moved from its tag to `a`'s (`dt = tag_a - tag_b`) by its Doppler.
-fn single_difference(a: &SatObs, b: &SatObs, dt: f64) -> Sd {
+fn single_difference(a: &ObsRecord, b: &ObsRecord, dt: f64) -> Sd {
     let lambda = C_MPS / a.signal.carrier_hz();
     let phase_rate = b.doppler_hz.map_or(0.0, |d| -d);
     Sd {

@@ -11,26 +11,22 @@ pub mod double_difference;
 mod error_stats;
 mod fixed_effects;
 mod interpolate;
-pub mod rinex_read;
 pub mod table;
 #[cfg(test)]
 mod test_rinex;
 
 pub use compare::{ObsComparison, compare};
 pub use error_stats::{ErrorStats, SatErrors};
-pub use rinex_read::{ObsEpoch, ObsFile, SatObs, read_obs_file};
+pub use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsRecord, read_obs_file};
 
-use std::path::PathBuf;
+use skyforge_signals::observation::ObsReadError;
 
 /// Why observations could not be read or compared.
 #[derive(Debug, thiserror::Error)]
 pub enum ObsError {
-    /// The file could not be read or parsed as RINEX.
-    #[error("{path}: {message}")]
-    Read { path: PathBuf, message: String },
-    /// The file is RINEX but not an observation file.
-    #[error("{0}: not a RINEX observation file")]
-    NotObservation(PathBuf),
+    /// The file could not be read as RINEX observations.
+    #[error(transparent)]
+    Read(#[from] ObsReadError),
     /// No estimate epoch could be matched with the truth.
     #[error(
         "no estimate epoch overlaps the truth with a common satellite (estimate {estimate}, truth {truth})"

@@ -1,10 +1,10 @@
 //! Test support: simulated observations with known errors, written as RINEX 3.04 text
 //! by hand (validate cannot use sim's writer) and read back through the reader.
 
-use super::rinex_read::{ObsFile, parse_obs_text};
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
+use skyforge_signals::observation::{ObsFile, parse_obs_text};
 
 /// Standard normal by Box-Muller.
 pub fn normal(rng: &mut ChaCha8Rng) -> f64 {

@@ -13,7 +13,7 @@ use crate::report::Row;
 use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
-pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R", "T-3.3-S"];
+pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2"];
 
 /// Why a validation could not run.
 #[derive(Debug, thiserror::Error)]
@@ -28,6 +28,8 @@ pub enum ValidateError {
     Tracking(#[from] skyforge_receiver::tracking::TrackingError),
     #[error("observations: {0}")]
     Observations(#[from] crate::observables::ObsError),
+    #[error("{0}")]
+    Pipeline(String),
     #[error("unknown table {id:?}; known tables: {known}")]
     UnknownTable { id: String, known: String },
 }
@@ -76,6 +78,10 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
     if wanted("T-3.3-S") {
         starting("T-3.3-S");
         rows.extend(fast_sync::rows()?);
+    }
+    if wanted(zero_baseline::TABLE) {
+        starting(zero_baseline::TABLE);
+        rows.extend(zero_baseline::rows_from_chain()?);
     }
     Ok(rows)
 }

@@ -1,8 +1,10 @@
 //! T-5.4-2: raw measurement accuracy by zero-baseline double differences (thesis section
 //! 5.4, table 5.4-2), from the RINEX observations two receivers wrote for the two
 //! antennas of the bundled scenario [`SCENARIO`] (same antenna position, one oscillator,
-//! independent front-end noise). The receiver run itself happens elsewhere; this module
-//! turns its two observation files into the table's rows.
+//! independent front-end noise). [`rows_from_chain`] runs the whole chain
+//! ([`crate::pipeline`]: synthesis, the bundled receiver in its default configuration
+//! assisted by the broadcast ephemerides and the rounded start position); the rows come
+//! from the two antennas' observations.
 //!
 //! Rows: mean and std of the pseudorange and carrier-phase double differences (m) of GPS
 //! L1 C/A and BeiDou B1I, each pooled over every satellite paired with the system's
@@ -19,7 +21,9 @@
 
 use crate::observables::double_difference::{SystemDd, ZeroBaseline, zero_baseline};
 use crate::observables::{ErrorStats, ObsError, read_obs_file};
+use crate::pipeline::synth_and_receive;
 use crate::report::{Row, Verdict};
+use crate::thesis::ValidateError;
 use skyforge_orbits::ephemeris::System;
 use std::path::Path;
 
@@ -70,6 +74,38 @@ const TARGETS: [Target; 4] = [
         std_m: 2.2973e-3,
     },
 ];
+
+/// The antennas of [`SCENARIO`] whose observations are differenced.
+const ANTENNAS: [&str; 2] = ["ant1", "ant2"];
+
+/// What the receiver was given, appended to every row's note.
+const RECEIVER_NOTE: &str = "; receiver: its default configuration (the a-priori choice, \
+    not tuned to this table), assisted by the scenario's broadcast ephemerides (nav.rnx) and \
+    rounded start position (receiver.toml) as written by synth";
+
+/// Synthesise, receive and difference: the rows of T-5.4-2. The recordings (about 2 GB)
+/// go to a temporary directory, removed when done.
+pub fn rows_from_chain() -> Result<Vec<Row>, ValidateError> {
+    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
+    let work = tempfile::Builder::new()
+        .prefix("skyforge-t-5.4-2-")
+        .tempdir()
+        .map_err(|e| ValidateError::Pipeline(format!("temporary directory: {e}")))?;
+    let chain = synth_and_receive(&scenario, work.path(), None)
+        .map_err(|e| ValidateError::Pipeline(format!("{TABLE} on {SCENARIO}: {e}")))?;
+    let [a, b] = ANTENNAS.map(|name| chain.of(name));
+    let (Some(a), Some(b)) = (a, b) else {
+        return Err(ValidateError::Pipeline(format!(
+            "{TABLE}: the receiver reported antennas {:?}, not {ANTENNAS:?}",
+            chain.antennas
+        )));
+    };
+    let mut rows = rows(&zero_baseline(a, b)?);
+    for row in &mut rows {
+        row.note.push_str(RECEIVER_NOTE);
+    }
+    Ok(rows)
+}
 
 /// The rows of T-5.4-2 from the observation files of the two antennas.
 pub fn rows_from_obs(ant1: &Path, ant2: &Path) -> Result<Vec<Row>, ObsError> {

@@ -5,7 +5,7 @@
 //! (white FM, flicker FM, random-walk FM; IEEE Std 1139-2008). One [`ClockModel`] serves a
 //! whole receiver: every antenna of that receiver sees the same clock. When a scenario has
 //! several receivers, each gets its own model seeded from
-//! [`stream_seed`](crate::errors::seed::stream_seed)`(seed, "clock", receiver_index)`.
+//! [`stream_seed`](crate::errors::seed::stream_seed)`(seed, Stream::ReceiverClock, receiver_index)`.
 
 mod allan;
 mod model;

@@ -5,13 +5,15 @@
 //! `APPROX POSITION XYZ`, which RINEX 3.04 table A2 makes optional for moving platforms).
 
 use super::writing;
-use crate::output::rinex_obs::{
-    Calendar, ObsHeader, ObsRecord, ObsWriter, RECEIVER_TYPE, calendar_gpst,
-};
 use anyhow::Context;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
+use skyforge_receiver::observables::Observation;
 use skyforge_receiver::pipeline::EpochReport;
+use skyforge_signals::observation::ObsRecord;
+use skyforge_signals::observation::rinex_write::{
+    Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
+};
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -101,14 +103,7 @@ impl RinexFiles {
                 .observations
                 .iter()
                 .filter(|o| o.antenna == a)
-                .map(|o| ObsRecord {
-                    sat: o.sat,
-                    pseudorange_m: o.pseudorange_m,
-                    carrier_phase_cycles: o.carrier_phase_cycles,
-                    doppler_hz: o.doppler_hz,
-                    cn0_dbhz: o.cn0_dbhz,
-                    loss_of_lock: o.loss_of_lock,
-                })
+                .map(Observation::record)
                 .collect();
             records.sort_by_key(|r| r.sat);
             match &mut self.states[a] {

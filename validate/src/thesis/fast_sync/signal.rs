@@ -6,7 +6,7 @@
 use rand::Rng;
 use skyforge_orbits::constants::F_GPS_L1_HZ;
 use skyforge_receiver::acquisition::Complex32;
-use skyforge_signals::errors::seed::stream_rng;
+use skyforge_signals::errors::seed::{Stream, stream_rng};
 use skyforge_signals::synth::noise::ThermalNoise;
 
 /// The experiment's signal parameters.
@@ -57,7 +57,7 @@ pub struct SignalSource<'a> {
     spec: SignalSpec,
     code: &'a [i8],
     next: u64,
-    /// Data symbols: the project's seeded stream "t-3.3-s data".
+    /// Data symbols: the project's seeded stream [`Stream::FastSyncData`].
     rng: rand_chacha::ChaCha20Rng,
     /// Thermal noise: the synthesiser's generator; its in-phase part is the real noise.
     noise: ThermalNoise,
@@ -73,7 +73,7 @@ impl<'a> SignalSource<'a> {
             spec,
             code,
             next: 0,
-            rng: stream_rng(seed, "t-3.3-s data", 0),
+            rng: stream_rng(seed, Stream::FastSyncData, 0),
             symbols: Vec::new(),
             noise_i: Vec::new(),
             noise_q: Vec::new(),

@@ -1,5 +1,5 @@
-//! RINEX 3 observation files into per-epoch GPS L1 C/A and BeiDou B1I observations, through
-//! the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
+//! RINEX 3 observation files into per-epoch GPS L1 C/A and BeiDou B1I observations
+//! ([`ObsRecord`]), through the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
 //!
 //! Checked on the two kinds of file this module exists for: SkyForge's truth (RINEX 3.04,
 //! `C2I` for B1I, GPS time) and GNSS-SDR 0.0.17's output (RINEX 3.02, B1I as `C1I`,
@@ -7,74 +7,17 @@
 //! loss-of-lock indicator of every value and the epoch flag; it parses the epoch's seconds
 //! to 100 ns, the resolution of the RINEX F11.7 field.
 
-use super::ObsError;
+use super::record::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+use crate::signal::Signal;
 use flate2::read::GzDecoder;
-use hifitime::{Epoch, TimeScale};
+use hifitime::TimeScale;
 use rinex::observation::EpochFlag;
 use rinex::prelude::{Constellation, Observable, Rinex};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_signals::signal::SignalId;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::BufReader;
 use std::path::{Path, PathBuf};
-
-/// RINEX 3.04 section 5.7: LLI bit 0, loss of lock between the previous and this epoch.
-pub const LLI_LOSS_OF_LOCK: u8 = 0x01;
-/// RINEX 3.04 section 5.7: LLI bit 1, half-cycle ambiguity or slip possible.
-pub const LLI_HALF_CYCLE: u8 = 0x02;
-
-/// One satellite's observations of one signal at one epoch; a value is `None` when the
-/// file leaves it blank or does not list its observation code.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SatObs {
-    pub sat: SatId,
-    pub signal: SignalId,
-    pub pseudorange_m: Option<f64>,
-    /// Carrier phase (cycles), RINEX sign (grows with the range).
-    pub carrier_phase_cycles: Option<f64>,
-    /// Doppler (Hz), positive for an approaching satellite.
-    pub doppler_hz: Option<f64>,
-    /// Signal strength (`S` code), dB-Hz.
-    pub cn0_dbhz: Option<f64>,
-    /// Loss-of-lock indicator of the carrier phase ([`LLI_LOSS_OF_LOCK`],
-    /// [`LLI_HALF_CYCLE`]; 0 when blank). An epoch flagged 1 (power failure) sets
-    /// [`LLI_LOSS_OF_LOCK`] on every satellite of the epoch.
-    pub phase_lli: u8,
-}
-
-impl SatObs {
-    fn empty(sat: SatId, signal: SignalId) -> Self {
-        Self {
-            sat,
-            signal,
-            pseudorange_m: None,
-            carrier_phase_cycles: None,
-            doppler_hz: None,
-            cn0_dbhz: None,
-            phase_lli: 0,
-        }
-    }
-}
-
-/// One epoch of observations.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObsEpoch {
-    /// The epoch's time tag (the receiver's clock), in GPS time.
-    pub time: Epoch,
-    /// Observations, ordered by satellite.
-    pub sats: Vec<SatObs>,
-}
-
-/// The GPS L1 C/A and BeiDou B1I observations of one RINEX observation file, epochs in
-/// time order. Epochs flagged 6 (cycle-slip records, which repeat observations) and event
-/// epochs (flags 2-5, which carry no observations) are left out.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ObsFile {
-    /// Where the observations came from (file path, or a label for text).
-    pub source: PathBuf,
-    pub epochs: Vec<ObsEpoch>,
-}
 
 /// Which quantity an observation code holds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -88,7 +31,18 @@ enum Kind {
 /// The signal and quantity of observation `code` (e.g. `C1C`) of `system`, for a file of
 /// RINEX version `major.minor`. RINEX 3.02 names B1I band 1 (`C1I`); 3.03 renamed it band 2
 /// (`C2I`) and gave band 1 to B1C.
-fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(SignalId, Kind)> {
+/// Why an observation file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ObsReadError {
+    /// The file could not be read or parsed as RINEX.
+    #[error("{path}: {message}")]
+    Read { path: PathBuf, message: String },
+    /// The file is RINEX but not an observation file.
+    #[error("{0}: not a RINEX observation file")]
+    NotObservation(PathBuf),
+}
+
+fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal, Kind)> {
     let b = code.as_bytes();
     if b.len() != 3 {
         return None;
@@ -102,17 +56,17 @@ fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(SignalI
     };
     let band_attr = &code[1..];
     let signal = match (system, band_attr) {
-        (System::Gps, "1C") => SignalId::GpsL1Ca,
-        (System::Beidou, "2I") => SignalId::BdsB1I,
-        (System::Beidou, "1I") if (major, minor) < (3, 3) => SignalId::BdsB1I,
+        (System::Gps, "1C") => Signal::GpsL1Ca,
+        (System::Beidou, "2I") => Signal::BdsB1I,
+        (System::Beidou, "1I") if (major, minor) < (3, 3) => Signal::BdsB1I,
         _ => return None,
     };
     Some((signal, kind))
 }
 
 /// Read a RINEX 3 observation file (plain, `.gz`, or Hatanaka `.crx[.gz]`).
-pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsError> {
-    let error = |message: String| ObsError::Read {
+pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsReadError> {
+    let error = |message: String| ObsReadError::Read {
         path: path.to_path_buf(),
         message,
     };
@@ -131,19 +85,20 @@ pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsError> {
 }
 
 /// Parse RINEX 3 observation `text`; `label` names it in errors.
-pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsError> {
-    let rinex = Rinex::parse(&mut BufReader::new(text.as_bytes())).map_err(|e| ObsError::Read {
-        path: PathBuf::from(label),
-        message: e.to_string(),
-    })?;
+pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsReadError> {
+    let rinex =
+        Rinex::parse(&mut BufReader::new(text.as_bytes())).map_err(|e| ObsReadError::Read {
+            path: PathBuf::from(label),
+            message: e.to_string(),
+        })?;
     from_rinex(&rinex, Path::new(label))
 }
 
-fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsError> {
+fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
     let record = rinex
         .record
         .as_obs()
-        .ok_or_else(|| ObsError::NotObservation(source.to_path_buf()))?;
+        .ok_or_else(|| ObsReadError::NotObservation(source.to_path_buf()))?;
     let (major, minor) = (rinex.header.version.major, rinex.header.version.minor);
     let mut epochs = Vec::with_capacity(record.len());
     for (key, observations) in record {
@@ -152,7 +107,7 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsError> {
             EpochFlag::PowerFailure => true,
             _ => continue,
         };
-        let mut sats: BTreeMap<SatId, SatObs> = BTreeMap::new();
+        let mut sats: BTreeMap<SatId, ObsRecord> = BTreeMap::new();
         for o in &observations.signals {
             let system = match o.sv.constellation {
                 Constellation::GPS => System::Gps,
@@ -175,7 +130,7 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsError> {
             };
             let entry = sats
                 .entry(sat)
-                .or_insert_with(|| SatObs::empty(sat, signal));
+                .or_insert_with(|| ObsRecord::empty(sat, signal));
             match kind {
                 Kind::Code => entry.pseudorange_m = Some(o.value),
                 Kind::Phase => {
@@ -206,6 +161,8 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::observation::record::LLI_HALF_CYCLE;
+    use hifitime::Epoch;
 
     /// A RINEX 3.04 header with GPS and BeiDou in `time_system`.
     fn header(version: &str, bds_band: char, time_system: &str) -> String {
@@ -265,7 +222,7 @@ mod tests {
             assert_eq!(e.sats.len(), 2, "{version}: {:?}", e.sats);
             let g = e.sats[0];
             assert_eq!(g.sat.to_string(), "G05");
-            assert_eq!(g.signal, SignalId::GpsL1Ca);
+            assert_eq!(g.signal, Signal::GpsL1Ca);
             assert_eq!(g.pseudorange_m, Some(21035576.066));
             assert_eq!(g.carrier_phase_cycles, Some(110542679.964));
             assert_eq!(g.doppler_hz, Some(-1423.232));
@@ -273,7 +230,7 @@ mod tests {
             assert_eq!(g.phase_lli, LLI_LOSS_OF_LOCK);
             let c = e.sats[1];
             assert_eq!(c.sat.to_string(), "C07");
-            assert_eq!(c.signal, SignalId::BdsB1I);
+            assert_eq!(c.signal, Signal::BdsB1I);
             assert_eq!(c.carrier_phase_cycles, Some(187000000.25));
             assert_eq!(c.phase_lli, LLI_HALF_CYCLE);
         }
@@ -318,6 +275,6 @@ mod tests {
     fn a_file_that_is_not_rinex_is_an_error() {
         assert!(parse_obs_text("not a rinex file\n", "junk").is_err());
         let missing = read_obs_file(Path::new("/nonexistent/obs.rnx"));
-        assert!(matches!(missing, Err(ObsError::Read { .. })));
+        assert!(matches!(missing, Err(ObsReadError::Read { .. })));
     }
 }

@@ -4,28 +4,11 @@
 //! second, loss-of-lock indicators). RINEX 3.04 section 5, tables A2 (header) and A3 (data
 //! records); GPS L1 C/A observation codes 1C, BeiDou B1I 2I (tables 4 and 9).
 
+use super::record::{LLI_LOSS_OF_LOCK, ObsRecord};
 use hifitime::{Duration, Epoch, TimeScale};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_orbits::ephemeris::System;
 use std::io::{self, Write};
-
-/// One satellite's observations at one epoch. A value that is not finite is written as a
-/// missing observation (blanks).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ObsRecord {
-    pub sat: SatId,
-    /// Pseudorange (m).
-    pub pseudorange_m: f64,
-    /// RINEX-signed carrier phase (cycles).
-    pub carrier_phase_cycles: f64,
-    /// Doppler (Hz, RINEX sign: positive when approaching).
-    pub doppler_hz: f64,
-    /// C/N0 (dB-Hz): the `S` observation, and the signal strength indicator of the phase.
-    pub cn0_dbhz: f64,
-    /// Lock lost between the previous epoch and this one, cycle slip possible: loss-of-lock
-    /// indicator bit 0, on the phase observation only (RINEX 3.04 table A3).
-    pub loss_of_lock: bool,
-}
 
 /// Calendar fields (GPS time) of an epoch.
 pub type Calendar = (i32, u8, u8, u8, u8, f64);
@@ -127,8 +110,11 @@ impl Stamp {
 
 /// One observation field: F14.3, loss-of-lock indicator I1, signal strength indicator I1
 /// (RINEX 3.04 table A3); a value that does not fit F14.3 or is not finite is blank.
-fn field(value: f64, lli: Option<u8>, ssi: Option<u8>) -> String {
+fn field(value: Option<f64>, lli: Option<u8>, ssi: Option<u8>) -> String {
     let digit = |d: Option<u8>| d.map_or(' ', |d| char::from(b'0' + d.min(9)));
+    let Some(value) = value else {
+        return " ".repeat(16);
+    };
     let text = format!("{value:14.3}");
     if !value.is_finite() || text.len() > 14 {
         return " ".repeat(16);
@@ -138,15 +124,15 @@ fn field(value: f64, lli: Option<u8>, ssi: Option<u8>) -> String {
 
 /// The phase field: a phase that overflows F14.3 is brought back into range by whole
 /// multiples of 10^9 cycles and flagged with loss-of-lock bit 0 (RINEX 3.04 table A3).
-fn phase_field(cycles: f64, loss_of_lock: bool, ssi: Option<u8>) -> String {
+/// The loss-of-lock indicator `lli` is written when not 0.
+fn phase_field(cycles: Option<f64>, lli: u8, ssi: Option<u8>) -> String {
     let fits = |v: f64| format!("{v:14.3}").len() <= 14;
-    let (cycles, wrapped) = if cycles.is_finite() && !fits(cycles) {
-        (cycles % 1e9, true)
-    } else {
-        (cycles, false)
+    let (cycles, wrapped) = match cycles {
+        Some(c) if c.is_finite() && !fits(c) => (Some(c % 1e9), true),
+        c => (c, false),
     };
-    let lli = (loss_of_lock || wrapped).then_some(1);
-    field(cycles, lli, ssi)
+    let lli = if wrapped { lli | LLI_LOSS_OF_LOCK } else { lli };
+    field(cycles, (lli != 0).then_some(lli), ssi)
 }
 
 impl<W: Write> ObsWriter<W> {
@@ -302,13 +288,13 @@ impl<W: Write> ObsWriter<W> {
             records.len()
         )?;
         for r in records {
-            let ssi = signal_strength_indicator(r.cn0_dbhz);
+            let ssi = r.cn0_dbhz.and_then(signal_strength_indicator);
             writeln!(
                 self.out,
                 "{}{}{}{}{}",
                 r.sat,
                 field(r.pseudorange_m, None, None),
-                phase_field(r.carrier_phase_cycles, r.loss_of_lock, ssi),
+                phase_field(r.carrier_phase_cycles, r.phase_lli, ssi),
                 field(r.doppler_hz, None, None),
                 field(r.cn0_dbhz, None, None)
             )?;
@@ -335,6 +321,8 @@ fn band(system: System) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::signal::Signal;
+    use skyforge_orbits::ephemeris::SatId;
 
     fn gps(prn: u8) -> SatId {
         SatId {
@@ -345,12 +333,15 @@ mod tests {
 
     fn record(sat: SatId, cn0_dbhz: f64, loss_of_lock: bool) -> ObsRecord {
         ObsRecord {
-            sat,
-            pseudorange_m: 21_234_567.891,
-            carrier_phase_cycles: 111_587_654.321,
-            doppler_hz: -1234.567,
-            cn0_dbhz,
-            loss_of_lock,
+            phase_lli: u8::from(loss_of_lock),
+            ..ObsRecord::complete(
+                sat,
+                Signal::of_system(sat.system),
+                21_234_567.891,
+                111_587_654.321,
+                -1234.567,
+                cn0_dbhz,
+            )
         }
     }
 
@@ -538,8 +529,8 @@ mod tests {
     #[test]
     fn overflowing_phase_is_wrapped_and_flagged_and_missing_values_are_blank() {
         let mut r = record(gps(3), f64::NAN, false);
-        r.carrier_phase_cycles = 12_345_678_901.25;
-        r.doppler_hz = f64::NAN;
+        r.carrier_phase_cycles = Some(12_345_678_901.25);
+        r.doppler_hz = None;
         let at = (2022, 1, 1, 0, 0, 1.0);
         let text = write(at, &[(at, vec![r])]);
         let l = text.lines().find(|l| l.starts_with("G03")).unwrap();

@@ -1,0 +1,321 @@
+//! A receive session: recordings (SigMF or raw, several antennas on one sample clock,
+//! one or two bands) opened as block readers, the receiver configured from a TOML file and
+//! assisted from a navigation file, then run block by block with every epoch handed to an
+//! [`EpochSink`]. The caller picks the writers (RINEX, HDF5, CSV, NMEA, or anything that
+//! keeps the reports in memory) by implementing the trait.
+
+use crate::input::{BlockReader, InputParams, InputReport, Recording};
+use crate::pipeline::{
+    ApproximateState, BandInput, EpochReport, Receiver, ReceiverConfig, ReceiverFile,
+    ReceiverSetup, ReceiverSummary,
+};
+use skyforge_orbits::ephemeris::System;
+use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
+use skyforge_signals::signal::Signal;
+use std::path::{Path, PathBuf};
+
+/// Samples per block: 20 ms at the sample rate (covers every search of the default
+/// settings; longer searches get longer blocks).
+const BLOCK_S: f64 = 0.02;
+
+/// An error a sink reports (a file that cannot be written, say).
+pub type SinkError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Receives every epoch the receiver forms, in time order.
+pub trait EpochSink {
+    fn epoch(&mut self, report: &EpochReport) -> Result<(), SinkError>;
+}
+
+/// Why a session could not be set up or run.
+#[derive(Debug, thiserror::Error)]
+pub enum SessionError {
+    /// The input (files, settings, configuration) is unusable: the user's to fix.
+    #[error("{0}")]
+    Input(String),
+    /// The receiver failed on valid input.
+    #[error(transparent)]
+    Pipeline(#[from] crate::pipeline::PipelineError),
+    #[error("{0}")]
+    Sink(SinkError),
+}
+
+/// Read and check a receiver configuration file (`None`: the defaults, no approximate
+/// state).
+pub fn read_config(
+    path: Option<&Path>,
+) -> Result<(ReceiverConfig, Option<ApproximateState>), SessionError> {
+    let Some(path) = path else {
+        return Ok((ReceiverConfig::default(), None));
+    };
+    let input = |e: &dyn std::fmt::Display| SessionError::Input(format!("{}: {e}", path.display()));
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SessionError::Input(format!("{}: cannot read: {e}", path.display())))?;
+    let file: ReceiverFile = toml::from_str(&text).map_err(|e| input(&e))?;
+    file.resolve().map_err(|e| input(&e))
+}
+
+/// What a receiver can be told besides the samples.
+#[derive(Debug, Clone, Default)]
+pub struct Assistance {
+    /// A RINEX navigation file: ephemerides and ionosphere.
+    pub nav_file: Option<PathBuf>,
+    /// The approximate state at the first sample.
+    pub approximate: Option<ApproximateState>,
+}
+
+/// The recordings grouped by band, each group opened as one block reader.
+#[derive(Debug)]
+struct Bands {
+    readers: Vec<BlockReader>,
+    inputs: Vec<BandInput>,
+    reports: Vec<InputReport>,
+    antenna_names: Vec<String>,
+}
+
+fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionError> {
+    let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
+    let recordings = files
+        .iter()
+        .map(|f| Recording::open(f, params).map_err(|e| input(&e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut groups: Vec<(Signal, Vec<Recording>)> = Vec::new();
+    for r in recordings {
+        let Some(signal) = r.signal.or(params.signal) else {
+            return Err(SessionError::Input(format!(
+                "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca or bds-b1i",
+                r.source_path().display()
+            )));
+        };
+        match groups.iter_mut().find(|g| g.0 == signal) {
+            Some(g) => g.1.push(r),
+            None => groups.push((signal, vec![r])),
+        }
+    }
+    let mut bands = Bands {
+        readers: Vec::new(),
+        inputs: Vec::new(),
+        reports: Vec::new(),
+        antenna_names: Vec::new(),
+    };
+    let fs = groups
+        .first()
+        .and_then(|g| g.1.first())
+        .map(|r| r.sample_rate_hz)
+        .ok_or_else(|| SessionError::Input("no sample files given".into()))?;
+    let block_len = (BLOCK_S * fs).round() as usize;
+    for (signal, recs) in groups {
+        let (reader, report) = BlockReader::open(&recs, block_len).map_err(|e| input(&e))?;
+        if (reader.sample_rate_hz() - fs).abs() > 1e-6 * fs {
+            return Err(SessionError::Input(format!(
+                "the {} recordings are sampled at {} Hz, the {} ones at {fs} Hz: one receive run needs one sample clock",
+                signal.name(),
+                reader.sample_rate_hz(),
+                bands
+                    .inputs
+                    .first()
+                    .map_or("first", |b: &BandInput| b.signal.name()),
+            )));
+        }
+        let antennas = report
+            .antennas
+            .iter()
+            .map(|a| bands.antenna_index(&a.antenna))
+            .collect();
+        bands.inputs.push(BandInput {
+            signal,
+            if_hz: reader.output_if_hz(),
+            antennas,
+        });
+        bands.readers.push(reader);
+        bands.reports.push(report);
+    }
+    Ok(bands)
+}
+
+impl Bands {
+    /// The receiver's index of antenna `name`, added when new.
+    fn antenna_index(&mut self, name: &str) -> usize {
+        match self.antenna_names.iter().position(|n| n == name) {
+            Some(i) => i,
+            None => {
+                self.antenna_names.push(name.to_owned());
+                self.antenna_names.len() - 1
+            }
+        }
+    }
+
+    /// What was found in the input, for messages.
+    fn describe(&self) -> String {
+        let mut s = String::new();
+        for (b, r) in self.inputs.iter().zip(&self.reports) {
+            s.push_str(&format!(
+                "  {}: {} recording(s) at {} Hz, {:.1} s in common",
+                b.signal.name(),
+                r.antennas.len(),
+                r.sample_rate_hz,
+                r.duration_s()
+            ));
+            for a in &r.antennas {
+                s.push_str(&format!(
+                    "\n    {} ({}, {} samples)",
+                    a.antenna,
+                    a.path.display(),
+                    a.samples_in_file
+                ));
+            }
+            for f in &r.findings {
+                s.push_str(&format!("\n    note: {f}"));
+            }
+            s.push('\n');
+        }
+        s
+    }
+}
+
+/// A receiver with its recordings open, ready to run.
+#[derive(Debug)]
+pub struct ReceiveSession {
+    bands: Bands,
+    receiver: Receiver,
+    config: ReceiverConfig,
+    approximate: Option<ApproximateState>,
+}
+
+impl ReceiveSession {
+    /// Open `files` (described by `params` where they do not describe themselves), read
+    /// the assistance and set the receiver up with `config`.
+    pub fn open(
+        files: &[PathBuf],
+        params: &InputParams,
+        assistance: &Assistance,
+        config: ReceiverConfig,
+    ) -> Result<Self, SessionError> {
+        let bands = open_bands(files, params)?;
+        let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
+        let (ephemerides, iono_gps, iono_bds) = match &assistance.nav_file {
+            None => (Vec::new(), None, None),
+            Some(path) => {
+                let eph = read_nav_file(path).map_err(|e| input(&e))?;
+                let iono = read_iono_file(path).map_err(|e| input(&e))?;
+                (eph, iono.gps, iono.bds)
+            }
+        };
+        let setup = ReceiverSetup {
+            sample_rate_hz: bands.readers[0].sample_rate_hz(),
+            bands: bands.inputs.clone(),
+            antenna_names: bands.antenna_names.clone(),
+            start_time: bands.reports.iter().find_map(|r| r.start_utc),
+            ephemerides,
+            iono_gps,
+            iono_bds,
+            approximate: assistance.approximate,
+        };
+        let receiver = Receiver::new(setup, config.clone())
+            .map_err(|e| SessionError::Input(format!("receiver settings: {e}")))?;
+        Ok(Self {
+            bands,
+            receiver,
+            config,
+            approximate: assistance.approximate,
+        })
+    }
+
+    /// The antennas, in the receiver's index order.
+    pub fn antenna_names(&self) -> &[String] {
+        &self.bands.antenna_names
+    }
+
+    /// The systems received, one per band.
+    pub fn systems(&self) -> Vec<System> {
+        self.bands
+            .inputs
+            .iter()
+            .map(|b| b.signal.system())
+            .collect()
+    }
+
+    /// The configuration the receiver runs with.
+    pub fn config(&self) -> &ReceiverConfig {
+        &self.config
+    }
+
+    /// The approximate state the receiver was given.
+    pub fn approximate(&self) -> Option<ApproximateState> {
+        self.approximate
+    }
+
+    /// Samples every band holds in common.
+    pub fn common_samples(&self) -> u64 {
+        self.bands
+            .readers
+            .iter()
+            .map(BlockReader::common_samples)
+            .min()
+            .unwrap_or(0)
+    }
+
+    /// What was read, for messages.
+    pub fn describe_input(&self) -> String {
+        self.bands.describe()
+    }
+
+    /// Run over every common sample, handing each epoch to `sink`; `progress` is told the
+    /// samples processed and the counters after each block. Fails with
+    /// [`SessionError::Input`] when the recordings are too short for one search or hold no
+    /// detectable signal.
+    pub fn run(
+        &mut self,
+        sink: &mut dyn EpochSink,
+        mut progress: impl FnMut(u64, &ReceiverSummary),
+    ) -> Result<ReceiverSummary, SessionError> {
+        let mut buffers: Vec<Vec<Vec<_>>> = self
+            .bands
+            .readers
+            .iter()
+            .map(BlockReader::buffers)
+            .collect();
+        loop {
+            let mut block = None;
+            for (reader, bufs) in self.bands.readers.iter_mut().zip(buffers.iter_mut()) {
+                let b = reader
+                    .read_block(bufs)
+                    .map_err(|e| SessionError::Input(e.to_string()))?;
+                block = match (block, b) {
+                    (None, b) => b,
+                    (Some(a), Some(b)) => Some(if b.len < a.len { b } else { a }),
+                    (Some(_), None) => None,
+                };
+            }
+            let Some(block) = block else { break };
+            if block.len < self.receiver.samples_per_search() && block.first_sample == 0 {
+                return Err(SessionError::Input(format!(
+                    "the recordings hold {} common samples; a search needs {}\n{}",
+                    block.len,
+                    self.receiver.samples_per_search(),
+                    self.describe_input()
+                )));
+            }
+            let reports = self
+                .receiver
+                .process(&buffers, block.first_sample, block.len)?;
+            for r in &reports {
+                sink.epoch(r).map_err(SessionError::Sink)?;
+            }
+            progress(
+                block.first_sample + block.len as u64,
+                &self.receiver.summary(),
+            );
+        }
+        let summary = self.receiver.summary();
+        if summary.detections == 0 {
+            return Err(SessionError::Input(format!(
+                "no signal found: {} searches over {} antenna(s), none above the detection threshold.\nWhat was read:\n{}",
+                summary.searches,
+                self.bands.antenna_names.len(),
+                self.describe_input()
+            )));
+        }
+        Ok(summary)
+    }
+}

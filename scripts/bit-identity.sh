@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Bit-identity check for refactorings: the same scenarios and seeds through two skyforge
+# binaries (a base revision's and the working tree's) must write byte-identical files:
+# I/Q recordings, SigMF metadata, truth.h5, RINEX observation and navigation files, and
+# the bundled receiver's outputs (RINEX, receiver.h5, pvt.csv, NMEA) on those recordings.
+#
+#   scripts/bit-identity.sh --base-rev REV  [--work DIR] [SCENARIO...]
+#   scripts/bit-identity.sh --base-bin PATH [--work DIR] [SCENARIO...]
+#
+# --base-rev builds REV in a temporary git worktree (its own target directory);
+# --base-bin uses an already built binary. SCENARIO is a bundled name or a file; the
+# default list is the one issue #10 names: interop-gps-static, interop-bds-static,
+# thesis/t-5.4-2 and scenarios/check/leo-three-antennas.toml (multi-antenna LEO), plus
+# `run` of thesis-leo (24 h geometry truth). Exits 1 on the first difference, naming
+# the files that differ. Needs about 10 GB of disk under --work (default: a temporary
+# directory, removed at the end).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+base_rev="" base_bin="" work=""
+scenarios=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --base-rev) base_rev=$2; shift 2 ;;
+    --base-bin) base_bin=$2; shift 2 ;;
+    --work) work=$2; shift 2 ;;
+    *) scenarios+=("$1"); shift ;;
+  esac
+done
+if [ -z "$base_rev" ] && [ -z "$base_bin" ]; then
+  echo "usage: $0 --base-rev REV | --base-bin PATH [--work DIR] [SCENARIO...]" >&2
+  exit 2
+fi
+[ ${#scenarios[@]} -gt 0 ] || scenarios=(interop-gps-static interop-bds-static thesis/t-5.4-2 \
+  "$root/scenarios/check/leo-three-antennas.toml")
+if [ -z "$work" ]; then
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+fi
+mkdir -p "$work"
+
+if [ -n "$base_rev" ]; then
+  src="$work/base-src"
+  git -C "$root" worktree add --detach "$src" "$base_rev" >/dev/null
+  trap 'git -C "$root" worktree remove --force "$src"; rm -rf "$work"' EXIT
+  echo "bit-identity: building $base_rev"
+  CARGO_TARGET_DIR="$root/target/bit-identity-base" cargo build --quiet --manifest-path "$src/Cargo.toml" -p skyforge-sim
+  base_bin="$root/target/bit-identity-base/debug/skyforge"
+fi
+echo "bit-identity: building the working tree"
+cargo build --quiet --manifest-path "$root/Cargo.toml" -p skyforge-sim
+# A copy, so that a rebuild during the check does not change the binary under test.
+new_bin="$work/skyforge-new"
+cp "$root/target/debug/skyforge" "$new_bin"
+
+# Every file below $1 with its SHA-256, paths relative to $1.
+digest() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+
+# Compare directories $1/base/$2 and $1/new/$2.
+same() {
+  if ! diff <(digest "$1/base/$2") <(digest "$1/new/$2") >"$1/diff.txt"; then
+    echo "bit-identity: DIFFERENT in $2:" >&2
+    cat "$1/diff.txt" >&2
+    exit 1
+  fi
+  echo "bit-identity: identical: $2 ($(digest "$1/new/$2" | wc -l) files)"
+}
+
+# `run` of thesis-leo: geometry truth only.
+for which in base new; do
+  bin=$base_bin; [ $which = new ] && bin=$new_bin
+  "$bin" run thesis-leo --out "$work/$which/run-thesis-leo" >/dev/null
+done
+same "$work" run-thesis-leo
+rm -rf "$work"/{base,new}/run-thesis-leo
+
+for s in "${scenarios[@]}"; do
+  tag=$(basename "$s" .toml | tr '/' '-')
+  for which in base new; do
+    bin=$base_bin; [ $which = new ] && bin=$new_bin
+    out="$work/$which/$tag"
+    "$bin" synth "$s" --out "$out/synth" >/dev/null
+    args=("$out"/synth/*.sigmf-meta --assist "$out/synth/nav.rnx" --out "$out/receive")
+    [ -f "$out/synth/receiver.toml" ] && args+=(--config "$out/synth/receiver.toml")
+    "$bin" receive "${args[@]}" >/dev/null
+  done
+  same "$work" "$tag/synth"
+  same "$work" "$tag/receive"
+  rm -rf "$work"/{base,new}/"$tag"
+done
+echo "bit-identity: all outputs identical"

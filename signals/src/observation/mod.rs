@@ -1,0 +1,10 @@
+//! The observation vocabulary: one record per satellite, signal and epoch ([`ObsRecord`]),
+//! whoever measured it (the bundled receiver, the synthesiser's truth, another receiver's
+//! RINEX), and the one RINEX 3.04 observation writer and reader.
+
+pub mod record;
+pub mod rinex_read;
+pub mod rinex_write;
+
+pub use record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+pub use rinex_read::{ObsReadError, parse_obs_text, read_obs_file};

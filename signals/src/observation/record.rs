@@ -1,0 +1,87 @@
+//! One satellite's observations of one signal at one epoch: what a receiver reports, what
+//! the synthesiser's truth says and what a RINEX observation file holds.
+
+use crate::signal::Signal;
+use hifitime::Epoch;
+use skyforge_orbits::ephemeris::SatId;
+use std::path::PathBuf;
+
+/// RINEX 3.04 section 5.7: LLI bit 0, loss of lock between the previous and this epoch.
+pub const LLI_LOSS_OF_LOCK: u8 = 0x01;
+/// RINEX 3.04 section 5.7: LLI bit 1, half-cycle ambiguity or slip possible.
+pub const LLI_HALF_CYCLE: u8 = 0x02;
+
+/// One satellite's observations of one signal at one epoch; a value is `None` when it was
+/// not measured (a RINEX file leaves it blank or does not list its observation code).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ObsRecord {
+    pub sat: SatId,
+    pub signal: Signal,
+    pub pseudorange_m: Option<f64>,
+    /// Carrier phase (cycles), RINEX sign (grows with the range).
+    pub carrier_phase_cycles: Option<f64>,
+    /// Doppler (Hz), positive for an approaching satellite.
+    pub doppler_hz: Option<f64>,
+    /// Signal strength (`S` code), dB-Hz.
+    pub cn0_dbhz: Option<f64>,
+    /// Loss-of-lock indicator of the carrier phase ([`LLI_LOSS_OF_LOCK`],
+    /// [`LLI_HALF_CYCLE`]; 0 when blank).
+    pub phase_lli: u8,
+}
+
+impl ObsRecord {
+    /// No value measured yet.
+    pub fn empty(sat: SatId, signal: Signal) -> Self {
+        Self {
+            sat,
+            signal,
+            pseudorange_m: None,
+            carrier_phase_cycles: None,
+            doppler_hz: None,
+            cn0_dbhz: None,
+            phase_lli: 0,
+        }
+    }
+
+    /// Every value measured, lock kept.
+    pub fn complete(
+        sat: SatId,
+        signal: Signal,
+        pseudorange_m: f64,
+        carrier_phase_cycles: f64,
+        doppler_hz: f64,
+        cn0_dbhz: f64,
+    ) -> Self {
+        Self {
+            sat,
+            signal,
+            pseudorange_m: Some(pseudorange_m),
+            carrier_phase_cycles: Some(carrier_phase_cycles),
+            doppler_hz: Some(doppler_hz),
+            cn0_dbhz: Some(cn0_dbhz),
+            phase_lli: 0,
+        }
+    }
+
+    /// Lock lost between the previous epoch and this one (cycle slip possible).
+    pub fn loss_of_lock(&self) -> bool {
+        self.phase_lli & LLI_LOSS_OF_LOCK != 0
+    }
+}
+
+/// One epoch of observations.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsEpoch {
+    /// The epoch's time tag (the receiver's clock), in GPS time.
+    pub time: Epoch,
+    /// Observations, ordered by satellite.
+    pub sats: Vec<ObsRecord>,
+}
+
+/// The observations of one antenna (one RINEX observation file), epochs in time order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObsFile {
+    /// Where the observations came from (file path, or a label for text).
+    pub source: PathBuf,
+    pub epochs: Vec<ObsEpoch>,
+}

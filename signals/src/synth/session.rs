@@ -1,0 +1,485 @@
+//! A streaming synthesis session: from the scenario's world (origin, constellations,
+//! platform, antennas) and its signal and error settings to I/Q blocks per band and
+//! antenna, the geometry and signal truth of the transmitted signals and the observation
+//! truth at whole seconds, handed as they are made to small sink traits. The caller picks
+//! the writers (SigMF/raw files, HDF5, RINEX) by implementing the traits; nothing here
+//! knows about files except through them.
+//!
+//! Memory is bounded by one chunk of geometry epochs plus one geometry step of samples
+//! per antenna, whatever the duration.
+
+use super::config::{BLOCK_S, SignalConfig};
+use super::constellation::{self, TransmitterError};
+use super::filter::BandFilter;
+use super::link_terms::{AntennaEpoch, LinkTerms};
+use super::quantise::QuantiseError;
+use super::render::{LinkTruth, Synthesiser};
+use super::transmitter::Transmitter;
+use crate::antenna::Antenna;
+use crate::errors::clock::ClockModel;
+use crate::errors::events::EventSchedule;
+use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
+use crate::errors::seed::{Stream, stream_rng};
+use crate::errors::{ErrorsConfig, clock::OscillatorConfig};
+use crate::observation::ObsRecord;
+use crate::signal::Signal;
+use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
+use hifitime::Epoch;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::check::Invalid;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
+use skyforge_orbits::platform::{Platform, PlatformError};
+use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
+
+/// Geometry epochs the renderer interpolates between (s).
+pub const GEOMETRY_STEP_S: f64 = 1.0;
+
+/// An error a sink reports (a file that cannot be written, say).
+pub type SinkError = Box<dyn std::error::Error + Send + Sync>;
+
+/// Receives the sample bytes of every band and antenna, block by block, in time order.
+pub trait SampleSink {
+    /// Bytes of band `band`'s recording of antenna `antenna` (index into the world's
+    /// antennas), following the bytes given before.
+    fn samples(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), SinkError>;
+}
+
+/// Receives the truth of the transmitted signals.
+pub trait TruthSink {
+    /// Link truth of antenna `antenna` recorded by band `band` since the last call; a
+    /// record's transmitter `tx` is satellite `first_sat + tx` of the session's list.
+    fn signal(
+        &mut self,
+        antenna: usize,
+        records: &[LinkTruth],
+        first_sat: usize,
+    ) -> Result<(), SinkError>;
+    /// One chunk of geometry epochs, after its samples.
+    fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError>;
+}
+
+/// Receives the observation truth of each antenna at whole seconds.
+pub trait ObservationSink {
+    /// Antenna `antenna`'s observations at `at` (GPS time of the receiver clock), sorted by
+    /// satellite; `position_ecef_m` is the antenna's true position at the epoch.
+    fn epoch(
+        &mut self,
+        antenna: usize,
+        at: Epoch,
+        position_ecef_m: &Vec3,
+        records: &[ObsRecord],
+    ) -> Result<(), SinkError>;
+}
+
+/// A sink that keeps nothing: for the products a caller does not want.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Discard;
+
+impl SampleSink for Discard {
+    fn samples(&mut self, _: usize, _: usize, _: &[u8]) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+impl TruthSink for Discard {
+    fn signal(&mut self, _: usize, _: &[LinkTruth], _: usize) -> Result<(), SinkError> {
+        Ok(())
+    }
+    fn geometry(&mut self, _: &GeometryChunk) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+impl ObservationSink for Discard {
+    fn epoch(&mut self, _: usize, _: Epoch, _: &Vec3, _: &[ObsRecord]) -> Result<(), SinkError> {
+        Ok(())
+    }
+}
+
+/// Where a session's products go.
+pub struct Sinks<'s> {
+    pub samples: &'s mut dyn SampleSink,
+    pub truth: &'s mut dyn TruthSink,
+    pub observations: &'s mut dyn ObservationSink,
+    /// Told the number of geometry epochs completed after each chunk.
+    pub progress: &'s mut dyn FnMut(usize),
+}
+
+impl std::fmt::Debug for Sinks<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Sinks").finish_non_exhaustive()
+    }
+}
+
+/// Why a session could not be set up or run.
+#[derive(Debug, thiserror::Error)]
+pub enum SynthError {
+    /// A setting of the scenario is invalid; the field path is in the error.
+    #[error("{0}")]
+    Invalid(Invalid),
+    #[error("GPS transmitters: {0}")]
+    GpsTransmitters(TransmitterError),
+    #[error("BeiDou transmitters: {0}")]
+    BdsTransmitters(TransmitterError),
+    #[error("receiver clock: {0}")]
+    Clock(Invalid),
+    #[error("signal configuration: {0}")]
+    Quantiser(#[from] QuantiseError),
+    #[error(transparent)]
+    Platform(#[from] PlatformError),
+    #[error("{0}")]
+    Sink(SinkError),
+}
+
+/// The world a session synthesises: what the scenario builds.
+#[derive(Debug)]
+pub struct SynthWorld<'a> {
+    pub origin: &'a TimeOrigin,
+    /// Ephemerides of the enabled constellations (those valid at the start are broadcast).
+    pub ephemerides: &'a EphemerisStore,
+    pub satellites: &'a [SatId],
+    pub platform: Platform,
+    pub antennas: &'a [Antenna],
+    pub duration_s: f64,
+}
+
+/// The transmitters of one band, written to one recording per antenna.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Band {
+    pub signal: Signal,
+    /// Index of the band's first satellite in [`SynthSession::satellites`].
+    pub first: usize,
+    /// Its satellites.
+    pub count: usize,
+}
+
+/// What a finished session reports.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthReport {
+    /// The platform's centre-of-mass position and velocity (ECEF) at the start.
+    pub start_state: Option<(Vec3, Vec3)>,
+    /// Sample components clipped by the quantisers.
+    pub clipped: u64,
+}
+
+/// A synthesis set up and ready to stream.
+#[derive(Debug)]
+pub struct SynthSession<'a> {
+    world: SynthWorld<'a>,
+    signal: &'a SignalConfig,
+    errors: &'a ErrorsConfig,
+    seed: u64,
+    /// The ionosphere the signals follow (GPS coefficients as broadcast).
+    iono: IonoConfig,
+    bands: Vec<Band>,
+    transmitters: Vec<Transmitter>,
+    /// The ephemerides as broadcast (quantised in the messages): the orbits the signals
+    /// follow.
+    broadcast: Vec<BroadcastEphemeris>,
+    clocks: Vec<ClockModel>,
+    events: EventSchedule,
+    filter: Option<BandFilter>,
+}
+
+/// Every satellite's ephemeris at the start (the set its message will carry).
+fn ephemerides_at_start(world: &SynthWorld<'_>) -> Vec<BroadcastEphemeris> {
+    world
+        .satellites
+        .iter()
+        .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
+        .collect()
+}
+
+/// One oscillator for the receiver, or one per antenna; every band gets a clone, so the
+/// bands of one receiver share its clock.
+fn receiver_clocks(
+    osc: Option<&OscillatorConfig>,
+    n_antennas: usize,
+    seed: u64,
+) -> Result<Vec<ClockModel>, SynthError> {
+    let Some(osc) = osc else {
+        return Ok(Vec::new());
+    };
+    let h = osc
+        .power_law()
+        .map_err(|e| SynthError::Invalid(e.within("errors.receiver_clock")))?;
+    let count = if osc.per_antenna { n_antennas } else { 1 };
+    (0..count)
+        .map(|i| {
+            ClockModel::new(
+                &h,
+                osc.bias_s,
+                osc.drift,
+                BLOCK_S,
+                stream_rng(seed, Stream::ReceiverClock, i as u32),
+            )
+            .map_err(SynthError::Clock)
+        })
+        .collect()
+}
+
+impl<'a> SynthSession<'a> {
+    /// Set up the transmitters (navigation messages from the ephemerides valid at the
+    /// start), receiver clocks, fault events and front-end filter.
+    pub fn new(
+        world: SynthWorld<'a>,
+        signal: &'a SignalConfig,
+        errors: &'a ErrorsConfig,
+        seed: u64,
+    ) -> Result<Self, SynthError> {
+        let ephs = ephemerides_at_start(&world);
+        let start = world.origin.start();
+        let mut iono = errors.ionosphere.clone();
+        let gps = constellation::gps_l1ca(&ephs, start, &iono.gps)
+            .map_err(SynthError::GpsTransmitters)?;
+        let bds =
+            constellation::bds_b1i(&ephs, start, &iono.bds).map_err(SynthError::BdsTransmitters)?;
+        // The signal follows the coefficients as broadcast (quantised in the message).
+        if let Some((alpha, beta)) = gps.first().and_then(Transmitter::broadcast_iono) {
+            iono.gps = KlobucharCoeffs { alpha, beta };
+        }
+        let bands = [
+            (Signal::GpsL1Ca, 0, gps.len()),
+            (Signal::BdsB1I, gps.len(), bds.len()),
+        ]
+        .into_iter()
+        .filter(|b| b.2 > 0)
+        .map(|(signal, first, count)| Band {
+            signal,
+            first,
+            count,
+        })
+        .collect();
+        let transmitters: Vec<Transmitter> = gps.into_iter().chain(bds).collect();
+        let broadcast = transmitters
+            .iter()
+            .map(Transmitter::broadcast_ephemeris)
+            .collect();
+        let clocks = receiver_clocks(errors.receiver_clock.as_ref(), world.antennas.len(), seed)?;
+        let antenna_names: Vec<&str> = world.antennas.iter().map(|a| a.name.as_str()).collect();
+        let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
+        let events = EventSchedule::new(&errors.events, &antenna_names, &sats)
+            .map_err(|e| SynthError::Invalid(e.within("errors.events")))?;
+        let filter = signal
+            .filter
+            .as_ref()
+            .map(|f| {
+                BandFilter::new(
+                    f,
+                    signal.sample_rate_hz,
+                    signal.if_hz,
+                    signal.format.is_complex(),
+                )
+            })
+            .transpose()
+            .map_err(|e| SynthError::Invalid(e.within("signal.filter")))?;
+        Ok(Self {
+            world,
+            signal,
+            errors,
+            seed,
+            iono,
+            bands,
+            transmitters,
+            broadcast,
+            clocks,
+            events,
+            filter,
+        })
+    }
+
+    /// The bands with transmitters, GPS first.
+    pub fn bands(&self) -> &[Band] {
+        &self.bands
+    }
+
+    /// The transmitting satellites, band by band (the index [`Band::first`] counts in).
+    pub fn satellites(&self) -> Vec<SatId> {
+        self.transmitters.iter().map(|t| t.sat).collect()
+    }
+
+    /// The ephemerides as broadcast, one per satellite in [`Self::satellites`] order.
+    pub fn broadcast_ephemerides(&self) -> &[BroadcastEphemeris] {
+        &self.broadcast
+    }
+
+    /// The Klobuchar coefficients the signals follow, per system (empty when the
+    /// ionosphere is off): the RINEX navigation header's `IONOSPHERIC CORR`.
+    pub fn broadcast_iono(&self) -> Vec<(System, [f64; 4], [f64; 4])> {
+        if self.iono.model == IonoModel::Off {
+            return Vec::new();
+        }
+        vec![
+            (System::Gps, self.iono.gps.alpha, self.iono.gps.beta),
+            (System::Beidou, self.iono.bds.alpha, self.iono.bds.beta),
+        ]
+    }
+
+    /// Whether the signals carry an ionospheric delay.
+    pub fn ionosphere_on(&self) -> bool {
+        self.iono.model != IonoModel::Off
+    }
+
+    /// Stream the whole span into `sinks`, computing geometry `chunk_epochs` epochs at a
+    /// time.
+    pub fn run(self, chunk_epochs: usize, sinks: Sinks<'_>) -> Result<SynthReport, SynthError> {
+        let Self {
+            world,
+            signal,
+            errors,
+            seed,
+            iono,
+            bands,
+            transmitters,
+            broadcast,
+            clocks,
+            events,
+            filter,
+        } = self;
+        let n_ant = world.antennas.len();
+        let mut synths = bands
+            .iter()
+            .map(|b| {
+                let s = Synthesiser::new(
+                    signal,
+                    &transmitters[b.first..b.first + b.count],
+                    n_ant,
+                    seed,
+                )?
+                .with_truth_every(signal.truth_every_blocks())
+                .with_clocks(clocks.clone())
+                .with_events(events.clone());
+                match &filter {
+                    Some(f) => s.with_filter(f.clone()),
+                    None => Ok(s),
+                }
+            })
+            .collect::<Result<Vec<_>, QuantiseError>>()?;
+        let terms = LinkTerms {
+            signal,
+            ionosphere: &iono,
+            troposphere: &errors.troposphere,
+            multipath: &errors.multipath,
+            antennas: world.antennas,
+        };
+        let store = EphemerisStore::new(broadcast, world.origin);
+        let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
+        let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
+        let mut running = Running {
+            origin: world.origin,
+            antennas: world.antennas,
+            bands: &bands,
+            sats: &sats,
+            terms,
+            synths: &mut synths,
+            bufs: vec![Vec::new(); n_ant],
+            start_state: None,
+            sinks,
+        };
+        let mut platform = world.platform;
+        truth
+            .stream(&mut platform, world.duration_s, chunk_epochs, |chunk| {
+                running.chunk(&chunk)
+            })
+            .map_err(|e| match e {
+                StreamError::Platform(e) => SynthError::Platform(e),
+                StreamError::Sink(e) => SynthError::Sink(e),
+            })?;
+        Ok(SynthReport {
+            start_state: running.start_state,
+            clipped: synths.iter().map(Synthesiser::clipped).sum(),
+        })
+    }
+}
+
+/// The state of a running session.
+struct Running<'r, 't, 's> {
+    origin: &'r TimeOrigin,
+    antennas: &'r [Antenna],
+    bands: &'r [Band],
+    sats: &'r [SatId],
+    terms: LinkTerms<'r>,
+    synths: &'r mut [Synthesiser<'t>],
+    /// Per antenna: the bytes of the block being handed over.
+    bufs: Vec<Vec<u8>>,
+    start_state: Option<(Vec3, Vec3)>,
+    sinks: Sinks<'s>,
+}
+
+impl Running<'_, '_, '_> {
+    /// Render, hand over and record one chunk of geometry epochs.
+    fn chunk(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
+        for k in 0..chunk.t_s.len() {
+            self.epoch(chunk, k)?;
+        }
+        (self.sinks.progress)(chunk.t_s.len());
+        self.sinks.truth.geometry(chunk)
+    }
+
+    /// The samples up to geometry epoch `k` of `chunk`, their signal truth and, at a whole
+    /// second, the observation truth.
+    fn epoch(&mut self, chunk: &GeometryChunk, k: usize) -> Result<(), SinkError> {
+        let n_ant = self.antennas.len();
+        let st = &chunk.platform[k];
+        self.start_state.get_or_insert((st.r_ecef_m, st.v_ecef_mps));
+        let at_antenna: Vec<AntennaEpoch> = self
+            .antennas
+            .iter()
+            .map(|a| AntennaEpoch::new(st, a))
+            .collect();
+        let at = self.origin.epoch_at(chunk.t_s[k]);
+        let sow = |system: System| match system {
+            System::Gps => gpst_week_sow(at).1,
+            System::Beidou => bdt_week_sow(at).1,
+        };
+        let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
+        let mut whole_t = None;
+        for (b, (band, synth)) in self.bands.iter().zip(self.synths.iter_mut()).enumerate() {
+            let links = (0..n_ant * band.count)
+                .map(|l| {
+                    let (a, s) = (l / band.count, band.first + l % band.count);
+                    let sat = self.sats[s];
+                    self.terms.link_end(
+                        chunk.t_s[k],
+                        sow(sat.system),
+                        a,
+                        &at_antenna[a],
+                        sat,
+                        band.signal,
+                        chunk.link(k, a, s),
+                    )
+                })
+                .collect();
+            synth.push_epoch(chunk.t_s[k], links, &mut self.bufs);
+            for (a, buf) in self.bufs.iter_mut().enumerate() {
+                self.sinks.samples.samples(b, a, buf)?;
+                buf.clear();
+            }
+            let truth = synth.take_truth();
+            for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
+                whole_t = Some(r.t_s);
+                whole_second[r.antenna].push(ObsRecord::complete(
+                    self.sats[band.first + r.tx],
+                    band.signal,
+                    r.pseudorange_m,
+                    r.carrier_phase_cycles,
+                    r.doppler_hz,
+                    r.cn0_dbhz,
+                ));
+            }
+            for a in 0..n_ant {
+                let records: Vec<_> = truth.iter().filter(|r| r.antenna == a).copied().collect();
+                self.sinks.truth.signal(a, &records, band.first)?;
+            }
+        }
+        if let Some(t) = whole_t {
+            let at = self.origin.epoch_at(t);
+            for (a, records) in whole_second.iter_mut().enumerate() {
+                records.sort_by_key(|r| r.sat);
+                let r0 = st.r_ecef_m + st.c_body_ecef * self.antennas[a].true_body_m;
+                self.sinks.observations.epoch(a, at, &r0, records)?;
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,118 @@
+//! The writers `skyforge synth` plugs into a synthesis session: the geometry and signal
+//! truth into `truth.h5`, and the observation truth into one RINEX 3.04 file per antenna
+//! (`<antenna>.obs.rnx`, opened at its first epoch with the antenna's position there).
+
+use super::truth_h5::TruthWriter;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::System;
+use skyforge_signals::antenna::Antenna;
+use skyforge_signals::observation::ObsRecord;
+use skyforge_signals::observation::rinex_write::{ObsWriter, calendar_gpst};
+use skyforge_signals::synth::render::LinkTruth;
+use skyforge_signals::synth::session::{ObservationSink, SinkError, TruthSink};
+use skyforge_signals::truth::geometry::GeometryChunk;
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+/// Observation truth interval of the RINEX files (s).
+const OBS_INTERVAL_S: f64 = 1.0;
+
+/// `error` with the file it concerns.
+fn writing(path: &Path, error: impl std::fmt::Display) -> SinkError {
+    format!("cannot write {}: {error}", path.display()).into()
+}
+
+/// `truth.h5` as a truth sink.
+#[derive(Debug)]
+pub struct TruthFile {
+    pub path: PathBuf,
+    pub writer: TruthWriter,
+}
+
+impl TruthSink for TruthFile {
+    fn signal(
+        &mut self,
+        antenna: usize,
+        records: &[LinkTruth],
+        first_sat: usize,
+    ) -> Result<(), SinkError> {
+        self.writer
+            .append_signal(antenna, records, first_sat)
+            .map_err(|e| writing(&self.path, e))
+    }
+
+    fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
+        self.writer
+            .append(chunk)
+            .map_err(|e| writing(&self.path, e))
+    }
+}
+
+type Writer = ObsWriter<BufWriter<File>>;
+
+/// One RINEX observation truth file per antenna.
+#[derive(Debug)]
+pub struct ObsTruthFiles {
+    paths: Vec<PathBuf>,
+    names: Vec<String>,
+    systems: Vec<System>,
+    writers: Vec<Option<Writer>>,
+}
+
+impl ObsTruthFiles {
+    /// The files `dir/<antenna>.obs.rnx` of `antennas`, declaring `systems`; none is
+    /// created before its first epoch.
+    pub fn new(dir: &Path, antennas: &[Antenna], systems: &[System]) -> Self {
+        Self {
+            paths: antennas
+                .iter()
+                .map(|a| dir.join(format!("{}.obs.rnx", a.name)))
+                .collect(),
+            names: antennas.iter().map(|a| a.name.clone()).collect(),
+            systems: systems.to_vec(),
+            writers: antennas.iter().map(|_| None).collect(),
+        }
+    }
+
+    /// Flush and close every file.
+    pub fn finish(self) -> Result<(), SinkError> {
+        for (path, w) in self.paths.iter().zip(self.writers) {
+            if let Some(w) = w {
+                w.finish().map_err(|e| writing(path, e))?;
+            }
+        }
+        Ok(())
+    }
+}
+
+impl ObservationSink for ObsTruthFiles {
+    fn epoch(
+        &mut self,
+        antenna: usize,
+        at: hifitime::Epoch,
+        position_ecef_m: &Vec3,
+        records: &[ObsRecord],
+    ) -> Result<(), SinkError> {
+        let path = &self.paths[antenna];
+        let writer = match &mut self.writers[antenna] {
+            Some(w) => w,
+            empty => {
+                let file = File::create(path).map_err(|e| writing(path, e))?;
+                let w = ObsWriter::new(
+                    BufWriter::new(file),
+                    &self.names[antenna],
+                    position_ecef_m,
+                    calendar_gpst(at),
+                    OBS_INTERVAL_S,
+                    &self.systems,
+                )
+                .map_err(|e| writing(path, e))?;
+                empty.insert(w)
+            }
+        };
+        writer
+            .epoch(calendar_gpst(at), records)
+            .map_err(|e| writing(path, e))
+    }
+}
