@@ -153,10 +153,32 @@ impl UkfCarrier {
         [self.x[0], self.x[1], self.x[2]]
     }
 
+    /// Propagate the state by `dt_s` (eqs. 3.3-58, 3.3-59 with T = `dt_s`): for update
+    /// intervals that change length, as a receiver's integrations do after bit sync.
+    pub fn propagate(&mut self, dt_s: f64) {
+        let phi = transition(dt_s);
+        self.x = phi * self.x;
+        self.p = phi * self.p * phi.transpose() + process_noise(dt_s, self.cfg.q);
+    }
+
+    /// Set the coherent integration time of the next prompts (s) and their measurement
+    /// noise variances (normalised I and Q).
+    pub fn set_measurement(&mut self, coherent_s: f64, r: [f64; 2]) {
+        self.cfg.coherent_s = coherent_s;
+        self.cfg.r = r;
+    }
+
     /// Eqs. 3.3-65..3.3-73: update with the normalised prompt (signal amplitude 1) of the
     /// interval the NCO of [`Self::predict`] produced. Returns the decided data bit.
     pub fn update(&mut self, prompt: Complex64) -> f64 {
         let (theta_nco, omega_nco) = (self.x[0], self.x[1]);
+        self.update_with_nco(prompt, theta_nco, omega_nco)
+    }
+
+    /// [`Self::update`] for a prompt whose replica ran at phase `theta_nco` (rad) and
+    /// angular frequency `omega_nco` (rad/s) at the middle of the interval, when the NCO
+    /// did not follow the prediction exactly.
+    pub fn update_with_nco(&mut self, prompt: Complex64, theta_nco: f64, omega_nco: f64) -> f64 {
         let data = if prompt.re < 0.0 { -1.0 } else { 1.0 };
         // Sigma points from the Cholesky factor of (n + kappa) P (its columns).
         let n_k = N as f64 + self.cfg.kappa;

@@ -2,12 +2,46 @@
 //! state a receiver can be told (assistance).
 
 use crate::pvt::PvtConfig;
+use crate::tracking::carrier::CarrierMethod;
 use crate::tracking::channel::TrackingConfig;
 use skyforge_orbits::Vec3;
+
+/// The acquisition stage.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AcquisitionMethod {
+    /// Parallel code-phase search over Doppler bins (default).
+    #[default]
+    Pcps,
+    /// PCPS, then the Doppler refined by the PMF-FFT fine estimator of thesis sections
+    /// 3.3.1-3.3.2 (eqs. 3.3-13, 3.3-14).
+    PmfFft,
+}
+
+/// The stage after observables, at every epoch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum EpochStageKind {
+    /// Single-point position, velocity and time per antenna with RAIM (default).
+    #[default]
+    Pvt,
+}
+
+/// `[stages]`: which implementation runs each receiver stage, as GNSS-SDR's
+/// `implementation` keys choose its blocks.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct StagesFile {
+    pub acquisition: AcquisitionMethod,
+    pub carrier: CarrierMethod,
+    pub epoch: EpochStageKind,
+}
 
 /// How satellites are searched.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AcquisitionSettings {
+    /// The stage: PCPS alone or with the PMF-FFT fine Doppler.
+    pub method: AcquisitionMethod,
     /// Code periods summed coherently.
     pub coherent_ms: usize,
     /// Coherent sums added in power.
@@ -25,6 +59,7 @@ impl Default for AcquisitionSettings {
     /// (a ground receiver with a 1 ppm oscillator), a new search every 10 s.
     fn default() -> Self {
         Self {
+            method: AcquisitionMethod::Pcps,
             coherent_ms: 1,
             noncoherent: 2,
             pfa: 1e-3,
@@ -56,6 +91,8 @@ pub struct ReceiverConfig {
     /// Observation epochs per second (1 to 100), at whole multiples of the period in the
     /// receiver's time.
     pub observation_rate_hz: f64,
+    /// The stage after observables.
+    pub epoch_stage: EpochStageKind,
     pub pvt: PvtConfig,
 }
 
@@ -65,6 +102,7 @@ impl Default for ReceiverConfig {
             acquisition: AcquisitionSettings::default(),
             tracking: TrackingConfig::default(),
             observation_rate_hz: 1.0,
+            epoch_stage: EpochStageKind::Pvt,
             pvt: PvtConfig::default(),
         }
     }
@@ -75,6 +113,7 @@ impl Default for ReceiverConfig {
 #[derive(Debug, Clone, Default, PartialEq, serde::Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ReceiverFile {
+    pub stages: StagesFile,
     pub acquisition: AcquisitionFile,
     pub tracking: TrackingConfig,
     pub observables: ObservablesFile,
@@ -281,14 +320,19 @@ impl ReceiverFile {
         };
         let config = ReceiverConfig {
             acquisition: AcquisitionSettings {
+                method: self.stages.acquisition,
                 coherent_ms: a.coherent_ms,
                 noncoherent: a.noncoherent,
                 pfa: a.pfa,
                 cold_half_width_hz: a.doppler_half_width_hz,
                 reacquire_interval_s: a.reacquire_interval_s,
             },
-            tracking: self.tracking,
+            tracking: TrackingConfig {
+                carrier: self.stages.carrier,
+                ..self.tracking
+            },
             observation_rate_hz: self.observables.rate_hz,
+            epoch_stage: self.stages.epoch,
             pvt: PvtConfig {
                 elevation_mask_rad: p.elevation_mask_deg.to_radians(),
                 troposphere: p.troposphere,

@@ -10,8 +10,9 @@ mod receiver;
 mod timing;
 
 pub use config::{
-    AcquisitionFile, AcquisitionSettings, ApproximateState, AssistFile, ConfigValueError,
-    ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile, assistance_toml,
+    AcquisitionFile, AcquisitionMethod, AcquisitionSettings, ApproximateState, AssistFile,
+    ConfigValueError, EpochStageKind, ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile,
+    StagesFile, assistance_toml,
 };
 pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};
 

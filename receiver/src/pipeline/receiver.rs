@@ -2,7 +2,7 @@
 //! time the code epochs, form observations at the epochs of the receiver clock and solve
 //! a fix per antenna.
 
-use super::acquire::{Candidate, Search};
+use super::acquire::{AcquisitionStage, Candidate, acquisition_stage};
 use super::channel::Channel;
 use super::config::{ApproximateState, ReceiverConfig};
 use super::navdata::NavData;
@@ -113,7 +113,7 @@ type LastFix = (f64, Vec3, Vec3);
 pub struct Receiver {
     setup: ReceiverSetup,
     config: ReceiverConfig,
-    searches: Vec<Search>,
+    searches: Vec<Box<dyn AcquisitionStage>>,
     channels: Vec<Channel>,
     nav: NavData,
     observables: ObservablesBuilder,
@@ -157,7 +157,7 @@ impl Receiver {
         let searches = setup
             .bands
             .iter()
-            .map(|b| Search::new(b.signal, fs, b.if_hz, &config.acquisition))
+            .map(|b| acquisition_stage(b.signal, fs, b.if_hz, &config.acquisition))
             .collect::<Result<Vec<_>, _>>()?;
         let nav = NavData::new(
             setup.ephemerides.clone(),
@@ -194,7 +194,7 @@ impl Receiver {
     pub fn samples_per_search(&self) -> usize {
         self.searches
             .iter()
-            .map(Search::samples_needed)
+            .map(|s| s.samples_needed())
             .max()
             .unwrap_or(0)
     }

@@ -18,11 +18,12 @@ use skyforge_signals::codes::neumann_hoffman;
 
 use super::TrackingError;
 use super::bit_sync::{BitSyncConfig, BitSynchroniser};
+use super::carrier::{Carrier, CarrierMethod, CarrierTracker, IntegrationEnd, UkfSettings};
 use super::correlator::{Correlator, NcoState, TapSet};
 use super::discriminators::{FllDiscriminator, PllDiscriminator, dll_envelope_chips};
 use super::error_budget::LoopOrder;
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
-use super::loop_filter::{CarrierLoopFilter, aided_code_rate, dll_rate_correction};
+use super::loop_filter::{aided_code_rate, dll_rate_correction};
 use skyforge_signals::signal::{DataModulation, Signal};
 
 /// Longest coherent integration after bit sync (code periods): one GPS or D1 bit.
@@ -119,6 +120,11 @@ pub struct TrackingConfig {
     pub slip_threshold_sigma: f64,
     /// Bit synchronisation thresholds.
     pub bit_sync: BitSyncConfig,
+    /// The carrier tracking stage (chosen by the configuration's `[stages] carrier`).
+    #[serde(skip)]
+    pub carrier: CarrierMethod,
+    /// Settings of the UKF carrier stage (`[tracking.ukf]`).
+    pub ukf: UkfSettings,
 }
 
 impl Default for TrackingConfig {
@@ -144,6 +150,8 @@ impl Default for TrackingConfig {
             loss_of_lock_s: 0.5,
             slip_threshold_sigma: 4.0,
             bit_sync: BitSyncConfig::default(),
+            carrier: CarrierMethod::default(),
+            ukf: UkfSettings::default(),
         }
     }
 }
@@ -189,6 +197,7 @@ impl TrackingConfig {
                 self.fll_bandwidth_hz, self.fll_assist_s
             )));
         }
+        self.ukf.check()?;
         if !(1..=MAX_COHERENT_MS).contains(&self.coherent_ms) {
             return Err(TrackingError::InvalidConfig(format!(
                 "coherent_ms must be 1..=20, got {}",
@@ -308,7 +317,7 @@ pub struct ChannelTracker {
     /// DLL bandwidth and early-late spacing in use (wide until bit sync).
     dll_bandwidth_hz: f64,
     early_late_spacing_chips: f64,
-    carrier_filter: CarrierLoopFilter,
+    carrier: Carrier,
     // NCO state at `next_index`, the first sample of the next code period.
     next_index: u64,
     code_phase_chips: f64,
@@ -325,7 +334,6 @@ pub struct ChannelTracker {
     acc: [Complex<f64>; 3],
     acc_periods: u32,
     acc_s: f64,
-    previous_prompt: Option<(Complex<f64>, f64)>,
     // Lock and sync.
     lock_indicator: PllLockIndicator,
     cn0: Cn0Estimator,
@@ -372,17 +380,7 @@ impl ChannelTracker {
                 early_late_spacing_chips: config.early_late_spacing_chips,
             },
         )?;
-        let mut carrier_filter = CarrierLoopFilter::new(
-            config.pll_order,
-            config.pll_bandwidth_hz,
-            if config.fll_assist_s > 0.0 {
-                config.fll_bandwidth_hz
-            } else {
-                0.0
-            },
-            handover.doppler_hz,
-        )?;
-        carrier_filter.set_rate_hzps(handover.doppler_rate_hzps);
+        let carrier = Carrier::new(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
         let code_rate = aided_code_rate(
             signal.chip_rate_hz(),
             handover.doppler_hz,
@@ -410,7 +408,7 @@ impl ChannelTracker {
             correlator,
             dll_bandwidth_hz: config.dll_bandwidth_hz,
             early_late_spacing_chips: config.early_late_spacing_chips,
-            carrier_filter,
+            carrier,
             next_index: handover.sample_index + lead as u64,
             code_phase_chips: (lead - handover.code_phase_samples) * dp,
             carrier_phase_cycles: 0.0,
@@ -426,7 +424,6 @@ impl ChannelTracker {
             acc: [Complex::new(0.0, 0.0); 3],
             acc_periods: 0,
             acc_s: 0.0,
-            previous_prompt: None,
             lock_indicator: PllLockIndicator::new(config.lock_indicator_tau_s),
             cn0: Cn0Estimator::new(
                 ((config.cn0_window_s / signal.code_period_s()).round() as usize).max(20),
@@ -614,22 +611,12 @@ impl ChannelTracker {
     /// bit, and no longer than keeps the PLL's `Bn T` within [`MAX_BN_T`] at its current
     /// bandwidth, so integrations grow as the PLL narrows.
     fn coherent_periods(&self, periods_per_bit: u32) -> u32 {
-        let bn_t_per_period = self.carrier_filter.pll_bandwidth_hz() * self.signal.code_period_s();
-        // Saturating float-to-int cast: a huge quotient still ends at coherent_ms below.
-        let stable = ((MAX_BN_T / bn_t_per_period).floor() as u32).max(1);
+        let stable = match self.carrier.loop_bandwidth_hz() {
+            // Saturating float-to-int cast: a huge quotient still ends at coherent_ms below.
+            Some(bn) => ((MAX_BN_T / (bn * self.signal.code_period_s())).floor() as u32).max(1),
+            None => u32::MAX,
+        };
         self.config.coherent_ms.min(periods_per_bit).min(stable)
-    }
-
-    /// After bit sync: move the PLL bandwidth towards the narrow one, if configured.
-    fn narrow_pll(&mut self) {
-        if let (Some(narrow), Some(t0)) = (self.config.pll_narrow_bandwidth_hz, self.synced_at_s) {
-            let wide = self.config.pll_bandwidth_hz;
-            let x = ((self.time_s - t0) / self.config.pll_narrowing_s).clamp(0.0, 1.0);
-            // Positive and finite: both bandwidths checked in `TrackingConfig::check`.
-            let _ = self
-                .carrier_filter
-                .set_pll_bandwidth(wide * (narrow / wide).powf(x));
-        }
     }
 
     /// After bit sync: switch the DLL to its narrow bandwidth and spacing, if configured
@@ -748,30 +735,18 @@ impl ChannelTracker {
         self.acc_s = 0.0;
 
         // Carrier loop.
-        let phase_error = self.config.pll_discriminator.phase_error_cycles(prompt);
-        let fll_on = self.time_s <= self.config.fll_assist_s && self.config.fll_bandwidth_hz > 0.0;
-        let freq_error = match self.previous_prompt {
-            Some((previous, t_prev)) if fll_on => self.config.fll_discriminator.frequency_error_hz(
-                previous,
-                prompt,
-                0.5 * (t_prev + t),
-            ),
-            _ => 0.0,
-        };
-        if !fll_on {
-            self.carrier_filter.disable_fll();
-        }
-        self.previous_prompt = Some((prompt, t));
-        self.narrow_pll();
-        let doppler_used = self.doppler_hz;
-        self.doppler_hz = self.carrier_filter.update(phase_error, freq_error, t);
-        // Zero-delay carrier NCO: the next integration starts at the phase the new
-        // Doppler would have reached over this one. With the plain frequency NCO the
-        // correction acts one integration late, and the digital loop realises more than its
-        // design noise bandwidth (+8 % at 25 Hz and 1 ms, +40 % at 5 Hz and 20 ms); with
-        // this phase step it realises the design value within a few per cent at any
-        // `Bn T` up to 0.1 (`tests/tracking_loops.rs` measures it).
-        self.carrier_phase_cycles += (self.doppler_hz - doppler_used) * t;
+        let step = self.carrier.close(&IntegrationEnd {
+            prompt,
+            integration_s: t,
+            time_s: self.time_s,
+            synced_at_s: self.synced_at_s,
+            cn0_dbhz: self.last_cn0_dbhz,
+            nco_doppler_hz: self.doppler_hz,
+            nco_start_phase_cycles: start.carrier_phase_cycles,
+        });
+        let phase_error = step.phase_error_cycles;
+        self.doppler_hz = step.doppler_hz;
+        self.carrier_phase_cycles += step.phase_step_cycles;
 
         // Code loop, carrier aided.
         let code_error = dll_envelope_chips(early, late, self.early_late_spacing_chips);
@@ -818,7 +793,7 @@ impl ChannelTracker {
             integration_s: t,
             carrier_phase_cycles: start.carrier_phase_cycles,
             doppler_hz: start.doppler_hz,
-            doppler_rate_hzps: self.carrier_filter.rate_hzps(),
+            doppler_rate_hzps: self.carrier.rate_hzps(),
             code_rate_chips_per_s: start.code_rate,
             early,
             prompt,

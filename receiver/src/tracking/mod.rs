@@ -3,6 +3,7 @@
 //! ties them together.
 
 pub mod bit_sync;
+pub mod carrier;
 pub mod channel;
 pub mod correlator;
 pub mod discriminators;
