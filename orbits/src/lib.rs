@@ -7,7 +7,6 @@
 //! `c_from_to` and map a vector's components from frame `from` to frame `to`.
 
 pub mod atmosphere;
-pub mod attitude;
 pub mod check;
 pub mod constants;
 pub mod ephemeris;
