@@ -4,11 +4,14 @@
 //! input and equal to the encoder's quantised values, the SOW of every subframe, and the
 //! Klobuchar coefficients; one bit error in every word must be corrected by BCH.
 
+mod navdecode_support;
+
+use navdecode_support::{assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
 use skyforge_orbits::time::epoch_from_bdt;
-use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent, SubframeInfo};
+use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent};
 use skyforge_signals::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use std::f64::consts::PI;
 
@@ -73,11 +76,6 @@ fn encoder(eph: &BroadcastEphemeris) -> BdsNavEncoder {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn soft(bits: &[u8], invert: bool) -> Vec<f32> {
-    let s = if invert { -1.0 } else { 1.0 };
-    bits.iter().map(|&b| if b == 0 { s } else { -s }).collect()
-}
-
 /// Angle difference wrapped to [-pi, pi).
 fn angle_diff(a: f64, b: f64) -> f64 {
     (a - b + PI).rem_euclid(2.0 * PI) - PI
@@ -110,14 +108,7 @@ fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb
         ("af2", decoded.af2, reference.af2, p2(-66)),
         ("tgd1", decoded.tgd_s, reference.tgd_s, 0.1e-9),
     ];
-    for (name, a, b, lsb) in fields {
-        assert!(
-            (a - b).abs() <= tol_lsb * lsb,
-            "{} {name}: decoded {a:e}, reference {b:e}, {:.3e} LSB apart",
-            reference.sat,
-            (a - b).abs() / lsb
-        );
-    }
+    assert_within_lsb(reference.sat, &fields, tol_lsb);
     for (name, a, b) in [
         ("i0", decoded.i0, reference.i0),
         ("omega0", decoded.omega0, reference.omega0),
@@ -127,19 +118,8 @@ fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb
         let d = angle_diff(a, b).abs() / (sc * p2(-31));
         assert!(d <= tol_lsb, "{} {name}: {d:.3e} LSB", reference.sat);
     }
-    assert_eq!(decoded.toe, reference.toe, "toe");
-    assert_eq!(decoded.toc, reference.toc, "toc");
+    assert_same_toe_toc(decoded, reference);
     assert_eq!(decoded.class, reference.class);
-}
-
-fn subframes(events: &[NavEvent]) -> Vec<SubframeInfo> {
-    events
-        .iter()
-        .filter_map(|e| match e {
-            NavEvent::Subframe(s) => Some(*s),
-            _ => None,
-        })
-        .collect()
 }
 
 /// Feed `bits` (stream bit 0 = message bit `first_bit`) and check the subframe times.
@@ -198,13 +178,7 @@ fn d1_and_d2_round_trip_from_mid_subframe_in_both_polarities() {
                 events.first(),
                 Some(NavEvent::SyncAcquired { start_bit: 223, inverted }) if *inverted == invert
             ));
-            let ephs: Vec<_> = events
-                .iter()
-                .filter_map(|e| match e {
-                    NavEvent::Ephemeris(d) => Some(d),
-                    _ => None,
-                })
-                .collect();
+            let ephs = ephemerides(&events);
             assert_eq!(ephs.len(), 1, "C{prn}: one ephemeris, emitted once");
             let d = ephs[0];
             compare(&d.eph, &eph, 0.5 + 1e-6);
@@ -291,10 +265,7 @@ proptest! {
             let want = expected.iter().find(|e| e.0 == k).map_or(0, |e| e.1);
             prop_assert_eq!(s.corrected_bits, want, "subframe {}", k);
         }
-        let got = events.iter().find_map(|e| match e {
-            NavEvent::Ephemeris(d) => Some(d.eph.clone()),
-            _ => None,
-        });
+        let got = ephemerides(&events).first().map(|d| d.eph.clone());
         prop_assert!(got.is_some(), "no ephemeris");
         if let Some(got) = got {
             compare(&got, &enc.broadcast_ephemeris(), 1e-6);
