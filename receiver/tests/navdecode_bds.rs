@@ -9,7 +9,9 @@ mod navdecode_support;
 use navdecode_support::{assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 use skyforge_orbits::time::epoch_from_bdt;
 use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent};
 use skyforge_signals::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
@@ -36,15 +38,12 @@ fn extra() -> BdsExtraFields {
 fn ephemeris(prn: u8) -> BroadcastEphemeris {
     let geo = BdsNavFormat::for_prn(prn) == BdsNavFormat::D2;
     let toe = epoch_from_bdt(WEEK, TOE_SOW);
-    BroadcastEphemeris {
-        sat: SatId::beidou(prn),
-        class: if geo {
-            OrbitClass::BeidouGeo
-        } else {
-            OrbitClass::Standard
-        },
-        toe,
-        toc: epoch_from_bdt(WEEK, TOE_SOW - 3600.0),
+    let class = if geo {
+        OrbitClass::BeidouGeo
+    } else {
+        OrbitClass::Standard
+    };
+    let orbit = KeplerElements {
         sqrt_a: if geo { 6493.41 } else { 5282.62 },
         e: if geo { 2.1e-4 } else { 6.3e-4 },
         i0: if geo { 0.031 } else { 0.962 },
@@ -54,20 +53,34 @@ fn ephemeris(prn: u8) -> BroadcastEphemeris {
         delta_n: 3.9e-9,
         idot: -2.5e-10,
         omega_dot: -6.7e-9,
+    };
+    let harmonics = HarmonicCorrections {
         cuc: -1.1e-6,
         cus: 9.3e-6,
         crc: 170.4,
         crs: -20.1,
         cic: 3.2e-8,
         cis: -5.4e-8,
+    };
+    let clock = ClockParams {
         af0: -4.1e-4,
         af1: 7.2e-12,
         af2: -1.1e-19,
         tgd_s: 1.23e-8,
+    };
+    BroadcastEphemeris {
+        toc: epoch_from_bdt(WEEK, TOE_SOW - 3600.0),
         iode: 7,
         iodc: 12,
-        health: 0,
-        fit_interval_s: 6.0 * 3600.0,
+        ..BroadcastEphemeris::from_elements(
+            SatId::beidou(prn),
+            class,
+            toe,
+            orbit,
+            harmonics,
+            clock,
+            6.0 * 3600.0,
+        )
     }
 }
 

@@ -13,7 +13,9 @@
 //! argument of latitude *at toe*: Omega0 is set so that
 //! Omega(tk = 0) = Omega0 - OMEGA_E * toe_sow equals that longitude.
 
-use super::broadcast::{OrbitClass, seconds_of_week};
+use super::broadcast::{
+    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, seconds_of_week,
+};
 use super::{BroadcastEphemeris, SatId, System, config::BeidouSet};
 use crate::constants::{GM_BDS, GM_GPS, J2, OMEGA_E_BDS, OMEGA_E_GPS, WGS84_A_M};
 use hifitime::{Epoch, TimeScale};
@@ -270,35 +272,19 @@ fn wrap_pi(x: f64) -> f64 {
 
 /// The ephemeris template: circular, no corrections, zero clock, healthy.
 fn template(sat: SatId, class: OrbitClass, epoch: Epoch, a_m: f64) -> BroadcastEphemeris {
-    BroadcastEphemeris {
+    let orbit = KeplerElements {
+        sqrt_a: a_m.sqrt(),
+        ..KeplerElements::default()
+    };
+    BroadcastEphemeris::from_elements(
         sat,
         class,
-        toe: epoch,
-        toc: epoch,
-        sqrt_a: a_m.sqrt(),
-        e: 0.0,
-        i0: 0.0,
-        omega0: 0.0,
-        omega: 0.0,
-        m0: 0.0,
-        delta_n: 0.0,
-        idot: 0.0,
-        omega_dot: 0.0,
-        cuc: 0.0,
-        cus: 0.0,
-        crc: 0.0,
-        crs: 0.0,
-        cic: 0.0,
-        cis: 0.0,
-        af0: 0.0,
-        af1: 0.0,
-        af2: 0.0,
-        tgd_s: 0.0,
-        iode: 0,
-        iodc: 0,
-        health: 0,
-        fit_interval_s: NOMINAL_FIT_S,
-    }
+        epoch,
+        orbit,
+        HarmonicCorrections::default(),
+        ClockParams::default(),
+        NOMINAL_FIT_S,
+    )
 }
 
 /// A circular inclined orbit (standard user algorithm) in `slot` at toe.

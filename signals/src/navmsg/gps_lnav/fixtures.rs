@@ -4,17 +4,15 @@
 
 use super::{IonoParams, UtcParams};
 use hifitime::{Epoch, TimeScale};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 
 /// GPS PRN 1 of brdc0010.22n (IGS broadcast file, 2022-01-01 00:00 GPST, week 2190,
 /// toe = 518400 s), as printed there: real LNAV values.
 pub fn real_prn1() -> BroadcastEphemeris {
     let toe = Epoch::from_gregorian(2022, 1, 1, 0, 0, 0, 0, TimeScale::GPST);
-    BroadcastEphemeris {
-        sat: SatId::gps(1),
-        class: OrbitClass::Standard,
-        toe,
-        toc: toe,
+    let orbit = KeplerElements {
         sqrt_a: 0.515367499542e4,
         e: 0.112181392033e-1,
         i0: 0.986418769490,
@@ -24,20 +22,33 @@ pub fn real_prn1() -> BroadcastEphemeris {
         delta_n: 0.398838041777e-8,
         idot: -0.377872882780e-9,
         omega_dot: -0.813355308085e-8,
+    };
+    let harmonics = HarmonicCorrections {
         cuc: -0.736303627491e-5,
         cus: 0.469572842121e-5,
         crc: 0.29975e3,
         crs: -0.141125e3,
         cic: -0.316649675369e-7,
         cis: 0.195577740669e-6,
+    };
+    let clock = ClockParams {
         af0: 0.469126738608e-3,
         af1: -0.100044417195e-10,
         af2: 0.0,
         tgd_s: 0.512227416039e-8,
+    };
+    BroadcastEphemeris {
         iode: 39,
         iodc: 39,
-        health: 0,
-        fit_interval_s: 4.0 * 3600.0,
+        ..BroadcastEphemeris::from_elements(
+            SatId::gps(1),
+            OrbitClass::Standard,
+            toe,
+            orbit,
+            harmonics,
+            clock,
+            4.0 * 3600.0,
+        )
     }
 }
 
