@@ -10,6 +10,8 @@ pub mod atmosphere;
 pub mod check;
 pub mod constants;
 pub mod ephemeris;
+#[cfg(any(test, feature = "test-support"))]
+pub mod fixtures;
 pub mod frames;
 pub mod platform;
 pub mod propagate;

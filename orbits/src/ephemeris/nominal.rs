@@ -252,7 +252,7 @@ pub fn beidou(set: BeidouSet, epoch: Epoch) -> Vec<BroadcastEphemeris> {
 }
 
 /// Earth rotation rate, gravitational constant and time scale of a system.
-fn system_constants(system: System) -> (f64, f64, TimeScale) {
+pub(crate) fn system_constants(system: System) -> (f64, f64, TimeScale) {
     match system {
         System::Gps => (OMEGA_E_GPS, GM_GPS, TimeScale::GPST),
         System::Beidou => (OMEGA_E_BDS, GM_BDS, TimeScale::BDT),
@@ -322,6 +322,7 @@ mod tests {
     use super::*;
     use crate::Vec3;
     use crate::ephemeris::BoundEphemeris;
+    use crate::fixtures::{angle_diff_deg, node_and_arg_lat};
     use crate::time::TimeOrigin;
 
     fn epoch() -> Epoch {
@@ -339,26 +340,6 @@ mod tests {
             r.y.atan2(r.x).to_degrees(),
             (r.z / r.norm()).asin().to_degrees(),
         )
-    }
-
-    /// Node longitude (deg, Earth-fixed) and argument of latitude (deg) from the state
-    /// (osculating: the J2 node drift in the velocity moves them by up to ~0.005 deg).
-    fn node_and_arg_lat(b: &BoundEphemeris, t: f64) -> (f64, f64) {
-        let (r, v) = b.state_ecef(t);
-        let (omega_e, _, _) = system_constants(b.eph.sat.system);
-        let w = Vec3::new(0.0, 0.0, omega_e);
-        let h = r.cross(&(v + w.cross(&r)));
-        let node = Vec3::z().cross(&h).normalize();
-        let u = (r.dot(&node) / r.norm())
-            .clamp(-1.0, 1.0)
-            .acos()
-            .to_degrees();
-        let u = if r.z < 0.0 { 360.0 - u } else { u };
-        (node.y.atan2(node.x).to_degrees(), u)
-    }
-
-    fn angle_diff_deg(a: f64, b: f64) -> f64 {
-        (a - b + 180.0).rem_euclid(360.0) - 180.0
     }
 
     #[test]
