@@ -1,7 +1,7 @@
 //! Helpers shared by the GPS and BeiDou navigation-decoder round trips: soft bits, the
 //! events of one kind, and the field-by-field comparison in LSB.
 
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_receiver::navdecode::{DecodedEphemeris, NavEvent, SubframeInfo};
 
 /// Soft values (+1 for logic 0, -1 for logic 1), negated if `invert`.
@@ -32,13 +32,22 @@ pub fn subframes(events: &[NavEvent]) -> Vec<SubframeInfo> {
         .collect()
 }
 
-/// Asserts |decoded - reference| <= `tol_lsb` x lsb for every `(name, decoded, reference,
-/// lsb)` of satellite `sat`.
-pub fn assert_within_lsb(sat: SatId, fields: &[(&str, f64, f64, f64)], tol_lsb: f64) {
-    for &(name, a, b, lsb) in fields {
+/// A broadcast field: its name, how to read it and its LSB.
+pub type Field = (&'static str, fn(&BroadcastEphemeris) -> f64, f64);
+
+/// Asserts |decoded - reference| <= `tol_lsb` x LSB for every field of `fields`.
+pub fn assert_within_lsb(
+    decoded: &BroadcastEphemeris,
+    reference: &BroadcastEphemeris,
+    fields: &[Field],
+    tol_lsb: f64,
+) {
+    for &(name, field, lsb) in fields {
+        let (a, b) = (field(decoded), field(reference));
         assert!(
             (a - b).abs() <= tol_lsb * lsb,
-            "{sat} {name}: decoded {a:e}, reference {b:e}, {:.3e} LSB apart",
+            "{} {name}: decoded {a:e}, reference {b:e}, {:.3e} LSB apart",
+            reference.sat,
             (a - b).abs() / lsb
         );
     }

@@ -1,5 +1,5 @@
-//! Real LNAV values for tests: a GPS broadcast ephemeris and the ionosphere and UTC
-//! parameters of a real navigation file's header. Used by this module's tests and, through
+//! Real LNAV values for tests: a GPS broadcast ephemeris, the ionosphere and UTC
+//! parameters of a real navigation file's header, and a published parity matrix. Used by this module's tests and, through
 //! the `test-support` feature, by other crates' tests (the receiver's LNAV decoder).
 
 use super::{IonoParams, UtcParams};
@@ -83,3 +83,15 @@ pub fn utc_week_2190() -> UtcParams {
         ..header_utc()
     }
 }
+
+/// The LNAV parity matrix H printed in Tsui, "Fundamentals of GPS receivers" (eq. 5.3):
+/// rows D25..D30 over d1..d24, a transcription of IS-GPS-200 table 20-XIV independent
+/// of the encoder's and decoder's own.
+pub const TSUI_PARITY_MATRIX: [&str; 6] = [
+    "111011000111110011010010",
+    "011101100011111001101001",
+    "101110110001111100110100",
+    "010111011000111110011010",
+    "101011101100011111001101",
+    "001011011110101000100111",
+];
