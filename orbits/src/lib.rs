@@ -7,10 +7,11 @@
 //! `c_from_to` and map a vector's components from frame `from` to frame `to`.
 
 pub mod atmosphere;
-pub mod attitude;
 pub mod check;
 pub mod constants;
 pub mod ephemeris;
+#[cfg(any(test, feature = "test-support"))]
+pub mod fixtures;
 pub mod frames;
 pub mod platform;
 pub mod propagate;

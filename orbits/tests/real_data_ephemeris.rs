@@ -12,6 +12,7 @@ use skyforge_orbits::ephemeris::sp3::read_sp3;
 use skyforge_orbits::ephemeris::{
     BoundEphemeris, BroadcastEphemeris, EphemerisStore, OrbitClass, SatId, System, nominal,
 };
+use skyforge_orbits::fixtures::{angle_diff_deg, node_and_arg_lat};
 use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -297,24 +298,6 @@ fn beidou_meo_planes_match_the_embedded_assignment() {
         let d = angle_diff_deg(plane_nodes[(k + 1) % 3], plane_nodes[k]);
         assert!((d - 120.0).abs() < 5.0, "planes {k}->{}: {d}", k + 1);
     }
-}
-
-/// Osculating Earth-fixed node longitude and argument of latitude (deg).
-fn node_and_arg_lat(b: &BoundEphemeris, t: f64) -> (f64, f64) {
-    let (r, v) = b.state_ecef(t);
-    let w = Vec3::new(0.0, 0.0, skyforge_orbits::constants::OMEGA_E_BDS);
-    let h = r.cross(&(v + w.cross(&r)));
-    let node = Vec3::z().cross(&h).normalize();
-    let u = (r.dot(&node) / r.norm())
-        .clamp(-1.0, 1.0)
-        .acos()
-        .to_degrees();
-    let u = if r.z < 0.0 { 360.0 - u } else { u };
-    (node.y.atan2(node.x).to_degrees(), u)
-}
-
-fn angle_diff_deg(a: f64, b: f64) -> f64 {
-    (a - b + 180.0).rem_euclid(360.0) - 180.0
 }
 
 /// How far a BeiDou set can be used from its toe: each set of the RINEX 4 file evaluated

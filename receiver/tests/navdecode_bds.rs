@@ -4,11 +4,18 @@
 //! input and equal to the encoder's quantised values, the SOW of every subframe, and the
 //! Klobuchar coefficients; one bit error in every word must be corrected by BCH.
 
+mod navdecode_support;
+
+use navdecode_support::{
+    Field, assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes,
+};
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 use skyforge_orbits::time::epoch_from_bdt;
-use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent, SubframeInfo};
+use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent};
 use skyforge_signals::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use std::f64::consts::PI;
 
@@ -33,15 +40,12 @@ fn extra() -> BdsExtraFields {
 fn ephemeris(prn: u8) -> BroadcastEphemeris {
     let geo = BdsNavFormat::for_prn(prn) == BdsNavFormat::D2;
     let toe = epoch_from_bdt(WEEK, TOE_SOW);
-    BroadcastEphemeris {
-        sat: SatId::beidou(prn),
-        class: if geo {
-            OrbitClass::BeidouGeo
-        } else {
-            OrbitClass::Standard
-        },
-        toe,
-        toc: epoch_from_bdt(WEEK, TOE_SOW - 3600.0),
+    let class = if geo {
+        OrbitClass::BeidouGeo
+    } else {
+        OrbitClass::Standard
+    };
+    let orbit = KeplerElements {
         sqrt_a: if geo { 6493.41 } else { 5282.62 },
         e: if geo { 2.1e-4 } else { 6.3e-4 },
         i0: if geo { 0.031 } else { 0.962 },
@@ -51,31 +55,40 @@ fn ephemeris(prn: u8) -> BroadcastEphemeris {
         delta_n: 3.9e-9,
         idot: -2.5e-10,
         omega_dot: -6.7e-9,
+    };
+    let harmonics = HarmonicCorrections {
         cuc: -1.1e-6,
         cus: 9.3e-6,
         crc: 170.4,
         crs: -20.1,
         cic: 3.2e-8,
         cis: -5.4e-8,
+    };
+    let clock = ClockParams {
         af0: -4.1e-4,
         af1: 7.2e-12,
         af2: -1.1e-19,
         tgd_s: 1.23e-8,
+    };
+    BroadcastEphemeris {
+        toc: epoch_from_bdt(WEEK, TOE_SOW - 3600.0),
         iode: 7,
         iodc: 12,
-        health: 0,
-        fit_interval_s: 6.0 * 3600.0,
+        ..BroadcastEphemeris::from_elements(
+            SatId::beidou(prn),
+            class,
+            toe,
+            orbit,
+            harmonics,
+            clock,
+            6.0 * 3600.0,
+        )
     }
 }
 
 fn encoder(eph: &BroadcastEphemeris) -> BdsNavEncoder {
     BdsNavEncoder::with_extra_fields(eph, &iono(), std::slice::from_ref(eph), WEEK, &extra())
         .unwrap_or_else(|e| panic!("{e}"))
-}
-
-fn soft(bits: &[u8], invert: bool) -> Vec<f32> {
-    let s = if invert { -1.0 } else { 1.0 };
-    bits.iter().map(|&b| if b == 0 { s } else { -s }).collect()
 }
 
 /// Angle difference wrapped to [-pi, pi).
@@ -88,36 +101,24 @@ fn angle_diff(a: f64, b: f64) -> f64 {
 fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb: f64) {
     let p2 = |n: i32| 2f64.powi(n);
     let sc = PI;
-    let fields = [
-        ("sqrt_a", decoded.sqrt_a, reference.sqrt_a, p2(-19)),
-        ("e", decoded.e, reference.e, p2(-33)),
-        ("delta_n", decoded.delta_n, reference.delta_n, sc * p2(-43)),
-        ("idot", decoded.idot, reference.idot, sc * p2(-43)),
-        (
-            "omega_dot",
-            decoded.omega_dot,
-            reference.omega_dot,
-            sc * p2(-43),
-        ),
-        ("cuc", decoded.cuc, reference.cuc, p2(-31)),
-        ("cus", decoded.cus, reference.cus, p2(-31)),
-        ("cic", decoded.cic, reference.cic, p2(-31)),
-        ("cis", decoded.cis, reference.cis, p2(-31)),
-        ("crc", decoded.crc, reference.crc, p2(-6)),
-        ("crs", decoded.crs, reference.crs, p2(-6)),
-        ("af0", decoded.af0, reference.af0, p2(-33)),
-        ("af1", decoded.af1, reference.af1, p2(-50)),
-        ("af2", decoded.af2, reference.af2, p2(-66)),
-        ("tgd1", decoded.tgd_s, reference.tgd_s, 0.1e-9),
+    let fields: [Field; 15] = [
+        ("sqrt_a", |e| e.sqrt_a, p2(-19)),
+        ("e", |e| e.e, p2(-33)),
+        ("delta_n", |e| e.delta_n, sc * p2(-43)),
+        ("idot", |e| e.idot, sc * p2(-43)),
+        ("omega_dot", |e| e.omega_dot, sc * p2(-43)),
+        ("cuc", |e| e.cuc, p2(-31)),
+        ("cus", |e| e.cus, p2(-31)),
+        ("cic", |e| e.cic, p2(-31)),
+        ("cis", |e| e.cis, p2(-31)),
+        ("crc", |e| e.crc, p2(-6)),
+        ("crs", |e| e.crs, p2(-6)),
+        ("af0", |e| e.af0, p2(-33)),
+        ("af1", |e| e.af1, p2(-50)),
+        ("af2", |e| e.af2, p2(-66)),
+        ("tgd1", |e| e.tgd_s, 0.1e-9),
     ];
-    for (name, a, b, lsb) in fields {
-        assert!(
-            (a - b).abs() <= tol_lsb * lsb,
-            "{} {name}: decoded {a:e}, reference {b:e}, {:.3e} LSB apart",
-            reference.sat,
-            (a - b).abs() / lsb
-        );
-    }
+    assert_within_lsb(decoded, reference, &fields, tol_lsb);
     for (name, a, b) in [
         ("i0", decoded.i0, reference.i0),
         ("omega0", decoded.omega0, reference.omega0),
@@ -127,19 +128,8 @@ fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb
         let d = angle_diff(a, b).abs() / (sc * p2(-31));
         assert!(d <= tol_lsb, "{} {name}: {d:.3e} LSB", reference.sat);
     }
-    assert_eq!(decoded.toe, reference.toe, "toe");
-    assert_eq!(decoded.toc, reference.toc, "toc");
+    assert_same_toe_toc(decoded, reference);
     assert_eq!(decoded.class, reference.class);
-}
-
-fn subframes(events: &[NavEvent]) -> Vec<SubframeInfo> {
-    events
-        .iter()
-        .filter_map(|e| match e {
-            NavEvent::Subframe(s) => Some(*s),
-            _ => None,
-        })
-        .collect()
 }
 
 /// Feed `bits` (stream bit 0 = message bit `first_bit`) and check the subframe times.
@@ -198,13 +188,7 @@ fn d1_and_d2_round_trip_from_mid_subframe_in_both_polarities() {
                 events.first(),
                 Some(NavEvent::SyncAcquired { start_bit: 223, inverted }) if *inverted == invert
             ));
-            let ephs: Vec<_> = events
-                .iter()
-                .filter_map(|e| match e {
-                    NavEvent::Ephemeris(d) => Some(d),
-                    _ => None,
-                })
-                .collect();
+            let ephs = ephemerides(&events);
             assert_eq!(ephs.len(), 1, "C{prn}: one ephemeris, emitted once");
             let d = ephs[0];
             compare(&d.eph, &eph, 0.5 + 1e-6);
@@ -291,10 +275,7 @@ proptest! {
             let want = expected.iter().find(|e| e.0 == k).map_or(0, |e| e.1);
             prop_assert_eq!(s.corrected_bits, want, "subframe {}", k);
         }
-        let got = events.iter().find_map(|e| match e {
-            NavEvent::Ephemeris(d) => Some(d.eph.clone()),
-            _ => None,
-        });
+        let got = ephemerides(&events).first().map(|d| d.eph.clone());
         prop_assert!(got.is_some(), "no ephemeris");
         if let Some(got) = got {
             compare(&got, &enc.broadcast_ephemeris(), 1e-6);

@@ -5,67 +5,29 @@
 //! the page-18 ionosphere and UTC parameters. A bit error must be caught by parity and
 //! its subframe dropped.
 
-use hifitime::{Epoch, TimeScale};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
-use skyforge_receiver::navdecode::{
-    GpsLnavDecoder, NavDecoder, NavEvent, SUBFRAME_BITS, SubframeInfo,
+mod navdecode_support;
+
+use navdecode_support::{
+    Field, assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes,
 };
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
+use skyforge_receiver::navdecode::{GpsLnavDecoder, NavDecoder, NavEvent, SUBFRAME_BITS};
+use skyforge_signals::navmsg::gps_lnav::fixtures::{header_iono, real_prn1, utc_week_2190};
 use skyforge_signals::navmsg::gps_lnav::{
-    Almanac, GPS_PI, IonoParams, LnavEncoder, SUBFRAMES_PER_WEEK, UtcParams, subframe_index_at,
+    Almanac, GPS_PI, LnavEncoder, SUBFRAMES_PER_WEEK, UtcParams, subframe_index_at,
 };
 
-/// A realistic ephemeris (GPS PRN 1 of brdc0010.22n, 2022-01-01, with a non-zero af2 and
-/// a PRN/IODC changed to exercise more bits).
+/// A realistic ephemeris: GPS PRN 1 of brdc0010.22n, 2022-01-01 ([`real_prn1`]), with a
+/// non-zero af2, the signs of af0 and TGD flipped and the PRN/IODC changed to exercise
+/// more bits.
 fn ephemeris() -> BroadcastEphemeris {
-    let toe = Epoch::from_gregorian(2022, 1, 1, 0, 0, 0, 0, TimeScale::GPST);
     BroadcastEphemeris {
         sat: SatId::gps(27),
-        class: OrbitClass::Standard,
-        toe,
-        toc: toe,
-        sqrt_a: 0.515367499542e4,
-        e: 0.112181392033e-1,
-        i0: 0.986418769490,
-        omega0: -0.103661124009e1,
-        omega: 0.884087601569,
-        m0: -0.624294238235,
-        delta_n: 0.398838041777e-8,
-        idot: -0.377872882780e-9,
-        omega_dot: -0.813355308085e-8,
-        cuc: -0.736303627491e-5,
-        cus: 0.469572842121e-5,
-        crc: 0.29975e3,
-        crs: -0.141125e3,
-        cic: -0.316649675369e-7,
-        cis: 0.195577740669e-6,
         af0: -0.469126738608e-3,
-        af1: -0.100044417195e-10,
         af2: -2.0e-16,
         tgd_s: -0.512227416039e-8,
-        iode: 39,
         iodc: 256 + 39,
-        health: 0,
-        fit_interval_s: 4.0 * 3600.0,
-    }
-}
-
-fn iono() -> IonoParams {
-    IonoParams {
-        alpha: [4.6566e-09, 1.4901e-08, -5.9605e-08, -1.1921e-07],
-        beta: [8.1920e+04, 9.8304e+04, -6.5536e+04, -5.2429e+05],
-    }
-}
-
-fn utc() -> UtcParams {
-    UtcParams {
-        a0: 9.313_225_746_2e-10,
-        a1: 2.664_535_259e-15,
-        tot: 589_824,
-        wnt: 2190,
-        dt_ls: 18,
-        wn_lsf: 1929,
-        dn: 7,
-        dt_lsf: 18,
+        ..real_prn1()
     }
 }
 
@@ -74,7 +36,8 @@ const URA_INDEX: u8 = 5;
 fn encoder(eph: &BroadcastEphemeris) -> LnavEncoder {
     let almanac = Almanac::from_ephemerides(std::slice::from_ref(eph), eph.toe)
         .unwrap_or_else(|e| panic!("{e}"));
-    LnavEncoder::new(eph, &almanac, &iono(), &utc(), URA_INDEX).unwrap_or_else(|e| panic!("{e}"))
+    LnavEncoder::new(eph, &almanac, &header_iono(), &utc_week_2190(), URA_INDEX)
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// First subframe index at or after `from` that is subframe 4 page 18 (SV ID 56: page
@@ -88,51 +51,33 @@ fn page18_subframe(from: u64) -> u64 {
         .unwrap_or_else(|| panic!("no page 18 after {from}"))
 }
 
-/// Soft values (+1 for logic 0, -1 for logic 1), negated if `invert`.
-fn soft(bits: &[u8], invert: bool) -> Vec<f32> {
-    let s = if invert { -1.0 } else { 1.0 };
-    bits.iter().map(|&b| if b == 0 { s } else { -s }).collect()
-}
-
 /// |decoded - reference| <= tol_lsb x lsb for every broadcast field.
 fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb: f64) {
     let p2 = |n: i32| 2f64.powi(n);
     let sc = GPS_PI;
-    let fields = [
-        ("sqrt_a", decoded.sqrt_a, reference.sqrt_a, p2(-19)),
-        ("e", decoded.e, reference.e, p2(-33)),
-        ("i0", decoded.i0, reference.i0, sc * p2(-31)),
-        ("omega0", decoded.omega0, reference.omega0, sc * p2(-31)),
-        ("omega", decoded.omega, reference.omega, sc * p2(-31)),
-        ("m0", decoded.m0, reference.m0, sc * p2(-31)),
-        ("delta_n", decoded.delta_n, reference.delta_n, sc * p2(-43)),
-        ("idot", decoded.idot, reference.idot, sc * p2(-43)),
-        (
-            "omega_dot",
-            decoded.omega_dot,
-            reference.omega_dot,
-            sc * p2(-43),
-        ),
-        ("cuc", decoded.cuc, reference.cuc, p2(-29)),
-        ("cus", decoded.cus, reference.cus, p2(-29)),
-        ("cic", decoded.cic, reference.cic, p2(-29)),
-        ("cis", decoded.cis, reference.cis, p2(-29)),
-        ("crc", decoded.crc, reference.crc, p2(-5)),
-        ("crs", decoded.crs, reference.crs, p2(-5)),
-        ("af0", decoded.af0, reference.af0, p2(-31)),
-        ("af1", decoded.af1, reference.af1, p2(-43)),
-        ("af2", decoded.af2, reference.af2, p2(-55)),
-        ("tgd", decoded.tgd_s, reference.tgd_s, p2(-31)),
+    let fields: [Field; 19] = [
+        ("sqrt_a", |e| e.sqrt_a, p2(-19)),
+        ("e", |e| e.e, p2(-33)),
+        ("i0", |e| e.i0, sc * p2(-31)),
+        ("omega0", |e| e.omega0, sc * p2(-31)),
+        ("omega", |e| e.omega, sc * p2(-31)),
+        ("m0", |e| e.m0, sc * p2(-31)),
+        ("delta_n", |e| e.delta_n, sc * p2(-43)),
+        ("idot", |e| e.idot, sc * p2(-43)),
+        ("omega_dot", |e| e.omega_dot, sc * p2(-43)),
+        ("cuc", |e| e.cuc, p2(-29)),
+        ("cus", |e| e.cus, p2(-29)),
+        ("cic", |e| e.cic, p2(-29)),
+        ("cis", |e| e.cis, p2(-29)),
+        ("crc", |e| e.crc, p2(-5)),
+        ("crs", |e| e.crs, p2(-5)),
+        ("af0", |e| e.af0, p2(-31)),
+        ("af1", |e| e.af1, p2(-43)),
+        ("af2", |e| e.af2, p2(-55)),
+        ("tgd", |e| e.tgd_s, p2(-31)),
     ];
-    for (name, a, b, lsb) in fields {
-        assert!(
-            (a - b).abs() <= tol_lsb * lsb,
-            "{name}: decoded {a:e}, reference {b:e}, {:.3e} LSB apart",
-            (a - b).abs() / lsb
-        );
-    }
-    assert_eq!(decoded.toe, reference.toe, "toe");
-    assert_eq!(decoded.toc, reference.toc, "toc");
+    assert_within_lsb(decoded, reference, &fields, tol_lsb);
+    assert_same_toe_toc(decoded, reference);
     assert_eq!(
         (
             decoded.sat,
@@ -159,13 +104,7 @@ fn stream(enc: &LnavEncoder, first: u64, n: usize, skip: usize) -> Vec<u8> {
 
 /// Every subframe event's TOW and week must match the subframe index it came from.
 fn check_times(events: &[NavEvent], first_bit: u64) {
-    let subframes: Vec<&SubframeInfo> = events
-        .iter()
-        .filter_map(|e| match e {
-            NavEvent::Subframe(s) => Some(s),
-            _ => None,
-        })
-        .collect();
+    let subframes = subframes(events);
     assert!(!subframes.is_empty());
     for s in subframes {
         let abs = first_bit + s.start_bit;
@@ -218,13 +157,7 @@ fn round_trip_from_mid_subframe_in_both_polarities() {
             "one sync at the first preamble"
         );
         check_times(&events, first_bit);
-        let ephs: Vec<_> = events
-            .iter()
-            .filter_map(|e| match e {
-                NavEvent::Ephemeris(d) => Some(d),
-                _ => None,
-            })
-            .collect();
+        let ephs = ephemerides(&events);
         assert_eq!(ephs.len(), 1, "one ephemeris, emitted once");
         let d = ephs[0];
         compare(&d.eph, &eph, 0.5 + 1e-9);
@@ -253,7 +186,7 @@ fn round_trip_from_mid_subframe_in_both_polarities() {
         );
         // The header values of a real RINEX file lie on the ICD grid, so the quantised
         // broadcast values equal them to their printed digits.
-        for (a, b) in enc.iono().alpha.iter().zip(iono().alpha) {
+        for (a, b) in enc.iono().alpha.iter().zip(header_iono().alpha) {
             assert!((a - b).abs() <= 1e-4 * b.abs(), "alpha {a} vs {b}");
         }
         assert_eq!(dec.stats().dropped_subframes, 0);
@@ -277,12 +210,9 @@ fn toe_in_the_next_week_and_tow_wrap_at_the_week_end() {
     let mut dec = GpsLnavDecoder::new(eph.sat).unwrap_or_else(|e| panic!("{e}"));
     let events = dec.feed(&soft(&bits, true));
     check_times(&events, first * SUBFRAME_BITS as u64 + 29);
-    let d = events
-        .iter()
-        .find_map(|e| match e {
-            NavEvent::Ephemeris(d) => Some(d.clone()),
-            _ => None,
-        })
+    let d = ephemerides(&events)
+        .first()
+        .copied()
         .unwrap_or_else(|| panic!("no ephemeris: {events:?}"));
     compare(&d.eph, &enc.broadcast_ephemeris(), 1e-6);
     assert_eq!(dec.week(), Some(2191));
@@ -290,12 +220,9 @@ fn toe_in_the_next_week_and_tow_wrap_at_the_week_end() {
 
 /// (start bit, TOW) of every decoded subframe.
 fn subframe_times(events: &[NavEvent]) -> Vec<(u64, f64)> {
-    events
+    subframes(events)
         .iter()
-        .filter_map(|e| match e {
-            NavEvent::Subframe(s) => Some((s.start_bit, s.tow_s)),
-            _ => None,
-        })
+        .map(|s| (s.start_bit, s.tow_s))
         .collect()
 }
 
@@ -382,13 +309,7 @@ fn parity_errors_drop_the_subframe() {
     // The D30 error of word 10 spoils only its own subframe: word 10 always ends with
     // D29 = D30 = 0 (IS-GPS-200 20.3.5.2), so the next TLM is checked with those values.
     assert_eq!(dropped, [(300, 1 << 3), (600, 1 << 9)]);
-    let decoded_starts: Vec<u64> = events
-        .iter()
-        .filter_map(|e| match e {
-            NavEvent::Subframe(s) => Some(s.start_bit),
-            _ => None,
-        })
-        .collect();
+    let decoded_starts: Vec<u64> = subframes(&events).iter().map(|s| s.start_bit).collect();
     assert!(!decoded_starts.contains(&300) && !decoded_starts.contains(&600));
     // The second frame completes the ephemeris.
     let eph_at: Vec<_> = events

@@ -9,6 +9,7 @@ use skyforge_receiver::tracking::channel::{
 };
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
 use skyforge_signals::signal::Signal;
+use std::ops::Range;
 use tracking_support::{TestSignal, mean_std, phase_errors};
 
 /// Track `seconds` of `sig` from `handover`, generating 0.1 s at a time.
@@ -83,6 +84,92 @@ fn mean_doppler_error(records: &[TrackingRecord], sig: &TestSignal) -> f64 {
     mean_std(&errors).0
 }
 
+/// The C/N0 estimates (dB-Hz) of the records that carry one.
+fn cn0_estimates(records: &[TrackingRecord]) -> Vec<f64> {
+    records.iter().filter_map(|r| r.cn0_dbhz).collect()
+}
+
+/// Asserts that the mean C/N0 estimate of `records` is within 1 dB of the truth; returns it.
+fn assert_mean_cn0_near_truth(records: &[TrackingRecord], sig: &TestSignal) -> f64 {
+    let (cn0_mean, _) = mean_std(&cn0_estimates(records));
+    assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
+    cn0_mean
+}
+
+/// Carrier-phase error std (cycles) of `records` against the PLL thermal-noise formula
+/// for bandwidth `bn_hz` and integration time `t_s`: prints both and asserts their ratio
+/// lies in `ratio`; returns the std.
+fn assert_phase_noise(
+    label: &str,
+    records: &[TrackingRecord],
+    sig: &TestSignal,
+    bn_hz: f64,
+    t_s: f64,
+    ratio: Range<f64>,
+) -> f64 {
+    let (_, std) = mean_std(&carrier_phase_errors(records, sig));
+    let expected = thermal_jitter_deg(bn_hz, sig.cn0_dbhz, t_s) / 360.0;
+    println!("{label}: carrier phase error std {std:.5} cycles (formula {expected:.5})");
+    assert!(ratio.contains(&(std / expected)), "{std} vs {expected}");
+    std
+}
+
+/// Code-phase error of `records` against the DLL thermal-noise formula at 1 ms for
+/// bandwidth `bn` (Hz) and early-late spacing `d` (chips). Kaplan & Hegarty (2nd ed.,
+/// non-coherent early-minus-late DLL, infinite bandwidth): sigma^2 = Bn d / (2 C/N0)
+/// (1 + 2 / (T C/N0 (2 - d))) chips^2. Prints both, asserts |mean| < `max_mean_chips`
+/// and the std / formula ratio in `ratio`; returns the std (chips).
+fn assert_code_noise(
+    label: &str,
+    records: &[TrackingRecord],
+    sig: &TestSignal,
+    (bn, d): (f64, f64),
+    max_mean_chips: f64,
+    ratio: Range<f64>,
+) -> f64 {
+    let code: Vec<f64> = records
+        .iter()
+        .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
+        .collect();
+    let (code_mean, code_std) = mean_std(&code);
+    let (cn0, t) = (10f64.powf(sig.cn0_dbhz / 10.0), 1e-3);
+    let dll = (bn * d / (2.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - d)))).sqrt();
+    println!(
+        "{label}: code error mean {code_mean:.4} chips, std {code_std:.5} chips (formula {dll:.5})"
+    );
+    assert!(code_mean.abs() < max_mean_chips, "{code_mean}");
+    assert!(ratio.contains(&(code_std / dll)), "{code_std} vs {dll}");
+    code_std
+}
+
+/// BeiDou C19 (D1: NH-coded), 100.25 chips into code period 7 of a bit.
+fn bds_d1_signal(seed: u64) -> TestSignal {
+    TestSignal {
+        signal: Signal::BdsB1I,
+        prn: 19,
+        code0_chips: 2046.0 * 20.0 * 1000.0 + 2046.0 * 7.0 + 100.25,
+        seed,
+        ..TestSignal::gps_static()
+    }
+}
+
+/// The GPS test signal with a carrier-phase jump of `cycles` at sample `jump_at`, tracked
+/// for 2 s with the default configuration.
+fn track_phase_jump(jump_at: u64, cycles: f64, seed: u64) -> (TestSignal, Vec<TrackingRecord>) {
+    let sig = TestSignal {
+        phase_jump: Some((jump_at, cycles)),
+        seed,
+        ..TestSignal::gps_static()
+    };
+    let records = track(
+        &sig,
+        TrackingConfig::default(),
+        sig.handover(0.1, 10.0),
+        2.0,
+    );
+    (sig, records)
+}
+
 #[test]
 fn gps_45_dbhz_carrier_code_and_cn0_match_the_noise_formulas() {
     let sig = TestSignal::gps_static();
@@ -99,55 +186,39 @@ fn gps_45_dbhz_carrier_code_and_cn0_match_the_noise_formulas() {
     assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
 
     // Carrier phase against truth (ambiguity and the unknown initial phase removed).
-    let (_, phase_std) = mean_std(&carrier_phase_errors(&settled, &sig));
-    let expected = thermal_jitter_deg(config.pll_bandwidth_hz, sig.cn0_dbhz, 1e-3) / 360.0;
+    let phase_std = assert_phase_noise(
+        "45 dB-Hz",
+        &settled,
+        &sig,
+        config.pll_bandwidth_hz,
+        1e-3,
+        0.7..1.4,
+    );
     let wavelength_m = 299_792_458.0 / sig.signal.carrier_hz();
     println!(
-        "carrier phase error std {:.2} mm (thermal-noise formula {:.2} mm)",
-        phase_std * wavelength_m * 1e3,
-        expected * wavelength_m * 1e3
+        "carrier phase error std {:.2} mm",
+        phase_std * wavelength_m * 1e3
     );
     assert!(phase_std * wavelength_m < 3e-3);
-    assert!(
-        (0.7..1.4).contains(&(phase_std / expected)),
-        "{phase_std} vs {expected}"
-    );
 
-    // Code phase against truth; Kaplan & Hegarty (2nd ed., eq. for the non-coherent
-    // early-minus-late DLL, infinite bandwidth): sigma^2 = Bn d / (2 C/N0)
-    // (1 + 2 / (T C/N0 (2 - d))) chips^2.
-    let code: Vec<f64> = settled
-        .iter()
-        .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
-        .collect();
-    let (code_mean, code_std) = mean_std(&code);
-    let (bn, d, cn0, t) = (
-        config.dll_bandwidth_hz,
-        config.early_late_spacing_chips,
-        10f64.powf(sig.cn0_dbhz / 10.0),
-        1e-3,
+    // Code phase against truth. At exactly 4 samples per chip the chip edges of signal
+    // and replica keep the same sub-sample alignment, so the correlation is a staircase in
+    // code offset and the DLL wanders within a step: more noise than the formula (which
+    // the incommensurate-rate test below meets), here swept by the code Doppler of 1
+    // chip/s.
+    let code_std = assert_code_noise(
+        "45 dB-Hz, 5 Hz, 1 chip",
+        &settled,
+        &sig,
+        (config.dll_bandwidth_hz, config.early_late_spacing_chips),
+        0.01,
+        0.75..2.0,
     );
-    let dll = (bn * d / (2.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - d)))).sqrt();
     let chip_m = 299_792_458.0 / sig.signal.chip_rate_hz();
-    println!(
-        "code phase error mean {:.4} chips, std {:.5} chips = {:.3} m (DLL formula {:.5} chips)",
-        code_mean,
-        code_std,
-        code_std * chip_m,
-        dll
-    );
-    // At exactly 4 samples per chip the chip edges of signal and replica keep the same
-    // sub-sample alignment, so the correlation is a staircase in code offset and the DLL
-    // wanders within a step: more noise than the formula (which the incommensurate-rate
-    // test below meets), here swept by the code Doppler of 1 chip/s.
-    assert!(code_mean.abs() < 0.01, "{code_mean}");
-    assert!(
-        (0.75..2.0).contains(&(code_std / dll)),
-        "{code_std} vs {dll}"
-    );
+    println!("code phase error std {:.3} m", code_std * chip_m);
 
     // C/N0 and Doppler.
-    let cn0s: Vec<f64> = settled.iter().filter_map(|r| r.cn0_dbhz).collect();
+    let cn0s = cn0_estimates(&settled);
     let (cn0_mean, cn0_std) = mean_std(&cn0s);
     println!("C/N0 estimate {cn0_mean:.2} +- {cn0_std:.2} dB-Hz (truth 45)");
     assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0);
@@ -175,28 +246,19 @@ fn dll_noise_matches_the_formula_at_an_incommensurate_sample_rate() {
     let records = track(&sig, config, sig.handover(0.4, 20.0), 6.0);
     // Pull-in at 5 Hz and 1 chip; after bit sync (within the first second) the DLL
     // narrows to the configured bandwidth and spacing, which set the noise measured here.
-    let code: Vec<f64> = after(&records, &sig, 2.5)
-        .iter()
-        .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
-        .collect();
-    let (code_mean, code_std) = mean_std(&code);
-    // Kaplan & Hegarty, non-coherent early-minus-late DLL thermal noise (infinite
-    // bandwidth): sigma^2 = Bn d / (2 C/N0) (1 + 2 / (T C/N0 (2 - d))) chips^2.
     let (Some(bn), Some(d)) = (
         config.dll_narrow_bandwidth_hz,
         config.narrow_early_late_spacing_chips,
     ) else {
         panic!("the default narrows the DLL after bit sync");
     };
-    let (cn0, t) = (10f64.powf(4.5), 1e-3);
-    let dll = (bn * d / (2.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - d)))).sqrt();
-    println!(
-        "4.0 Msps: code error mean {code_mean:.4} chips, std {code_std:.5} (formula {dll:.5})"
-    );
-    assert!(code_mean.abs() < 0.005, "{code_mean}");
-    assert!(
-        (0.8..1.25).contains(&(code_std / dll)),
-        "{code_std} vs {dll}"
+    assert_code_noise(
+        "4.0 Msps",
+        &after(&records, &sig, 2.5),
+        &sig,
+        (bn, d),
+        0.005,
+        0.8..1.25,
     );
 }
 
@@ -261,17 +323,7 @@ fn an_outage_ends_in_loss_of_lock() {
 #[test]
 fn a_half_cycle_jump_sets_the_slip_flag() {
     let jump_at = 6_000_001; // 1.466 s, inside a bit
-    let sig = TestSignal {
-        phase_jump: Some((jump_at, 0.5)),
-        seed: 11,
-        ..TestSignal::gps_static()
-    };
-    let records = track(
-        &sig,
-        TrackingConfig::default(),
-        sig.handover(0.1, 10.0),
-        2.0,
-    );
+    let (sig, records) = track_phase_jump(jump_at, 0.5, 11);
     let slips: Vec<u64> = after(&records, &sig, 1.0)
         .iter()
         .filter(|r| r.cycle_slip)
@@ -292,13 +344,7 @@ fn a_half_cycle_jump_sets_the_slip_flag() {
 
 #[test]
 fn bds_d1_finds_the_nh_code_and_integrates_twenty_ms() {
-    let sig = TestSignal {
-        signal: Signal::BdsB1I,
-        prn: 19,
-        code0_chips: 2046.0 * 20.0 * 1000.0 + 2046.0 * 7.0 + 100.25,
-        seed: 21,
-        ..TestSignal::gps_static()
-    };
+    let sig = bds_d1_signal(21);
     let config = TrackingConfig {
         coherent_ms: 20,
         pll_narrow_bandwidth_hz: Some(5.0),
@@ -377,32 +423,14 @@ fn gps_ten_ms_coherent_integration_after_bit_sync() {
             .iter()
             .all(|r| r.integration_periods == 10 && r.locked && !r.cycle_slip)
     );
-    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
-    let expected = thermal_jitter_deg(5.0, sig.cn0_dbhz, 10e-3) / 360.0;
-    println!("10 ms, Bn 5 Hz: carrier phase error std {std:.5} cycles (formula {expected:.5})");
-    assert!(
-        (0.75..1.4).contains(&(std / expected)),
-        "{std} vs {expected}"
-    );
-    let cn0s: Vec<f64> = settled.iter().filter_map(|r| r.cn0_dbhz).collect();
-    let (cn0_mean, _) = mean_std(&cn0s);
-    assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
+    assert_phase_noise("10 ms, Bn 5 Hz", &settled, &sig, 5.0, 10e-3, 0.75..1.4);
+    assert_mean_cn0_near_truth(&settled, &sig);
 }
 
 #[test]
 fn a_quarter_cycle_jump_drops_the_lock_indicator_and_flags_a_slip() {
     let jump_at = 5_000_000; // 1.22 s
-    let sig = TestSignal {
-        phase_jump: Some((jump_at, 0.25)),
-        seed: 13,
-        ..TestSignal::gps_static()
-    };
-    let records = track(
-        &sig,
-        TrackingConfig::default(),
-        sig.handover(0.1, 10.0),
-        2.0,
-    );
+    let (sig, records) = track_phase_jump(jump_at, 0.25, 13);
     let settled = after(&records, &sig, 1.0);
     let slips: Vec<&TrackingRecord> = settled.iter().filter(|r| r.cycle_slip).collect();
     assert!(!slips.is_empty());
@@ -436,11 +464,13 @@ fn second_order_pll_tracks_at_the_thermal_noise_formula() {
     let records = track(&sig, config, sig.handover(0.2, -30.0), 4.0);
     let settled = after(&records, &sig, 1.0);
     assert!(settled.iter().all(|r| r.locked && !r.cycle_slip));
-    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
-    let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
-    assert!(
-        (0.75..1.33).contains(&(std / expected)),
-        "{std} vs {expected}"
+    assert_phase_noise(
+        "2nd order, Bn 10 Hz",
+        &settled,
+        &sig,
+        10.0,
+        1e-3,
+        0.75..1.33,
     );
 }
 
@@ -470,16 +500,9 @@ fn a_33_dbhz_signal_stays_locked_with_a_narrower_pll() {
         "{locked} of {}",
         settled.len()
     );
-    let cn0s: Vec<f64> = settled.iter().filter_map(|r| r.cn0_dbhz).collect();
-    let (cn0_mean, _) = mean_std(&cn0s);
-    assert!((cn0_mean - sig.cn0_dbhz).abs() < 1.0, "{cn0_mean}");
-    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
-    let expected = thermal_jitter_deg(10.0, sig.cn0_dbhz, 1e-3) / 360.0;
-    println!("33 dB-Hz: C/N0 {cn0_mean:.2}, phase std {std:.4} cycles (formula {expected:.4})");
-    assert!(
-        (0.7..1.5).contains(&(std / expected)),
-        "{std} vs {expected}"
-    );
+    let cn0_mean = assert_mean_cn0_near_truth(&settled, &sig);
+    let label = format!("33 dB-Hz (C/N0 estimate {cn0_mean:.2})");
+    assert_phase_noise(&label, &settled, &sig, 10.0, 1e-3, 0.7..1.5);
 }
 
 #[test]
@@ -505,13 +528,7 @@ fn the_pll_realises_its_design_bandwidth_at_twenty_ms_integrations() {
             .iter()
             .all(|r| r.integration_periods == 20 && r.locked)
     );
-    let (_, std) = mean_std(&carrier_phase_errors(&settled, &sig));
-    let expected = thermal_jitter_deg(5.0, sig.cn0_dbhz, 20e-3) / 360.0;
-    println!("20 ms, Bn 5 Hz: carrier phase error std {std:.5} cycles (formula {expected:.5})");
-    assert!(
-        (0.92..1.08).contains(&(std / expected)),
-        "{std} vs {expected}"
-    );
+    assert_phase_noise("20 ms, Bn 5 Hz", &settled, &sig, 5.0, 20e-3, 0.92..1.08);
 }
 
 /// B1I at 4 Msps (1.955 samples per chip), DLL 2 Hz with a 1-chip early-late spacing, as
@@ -520,12 +537,8 @@ fn the_pll_realises_its_design_bandwidth_at_twenty_ms_integrations() {
 #[test]
 fn b1i_dll_noise_meets_the_formula_at_four_msps() {
     let sig = TestSignal {
-        signal: Signal::BdsB1I,
-        prn: 19,
         fs_hz: 4.0e6,
-        seed: 41,
-        code0_chips: 2046.0 * 20.0 * 1000.0 + 2046.0 * 7.0 + 100.25,
-        ..TestSignal::gps_static()
+        ..bds_d1_signal(41)
     };
     let config = TrackingConfig {
         dll_bandwidth_hz: 2.0,
@@ -535,19 +548,12 @@ fn b1i_dll_noise_meets_the_formula_at_four_msps() {
         ..TrackingConfig::default()
     };
     let records = track(&sig, config, sig.handover(0.4, 20.0), 20.0);
-    let code: Vec<f64> = after(&records, &sig, 2.5)
-        .iter()
-        .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
-        .collect();
-    let (code_mean, code_std) = mean_std(&code);
-    let (bn, d, cn0, t) = (2.0, 1.0, 10f64.powf(4.5), 1e-3);
-    let dll = (bn * d / (2.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - d)))).sqrt();
-    println!(
-        "B1I, 4.0 Msps, 2 Hz, 1 chip: code error mean {code_mean:.4} chips, std {code_std:.5} (formula {dll:.5})"
-    );
-    assert!(code_mean.abs() < 0.005, "{code_mean}");
-    assert!(
-        (0.9..1.12).contains(&(code_std / dll)),
-        "{code_std} vs {dll}"
+    assert_code_noise(
+        "B1I, 4.0 Msps, 2 Hz, 1 chip",
+        &after(&records, &sig, 2.5),
+        &sig,
+        (2.0, 1.0),
+        0.005,
+        0.9..1.12,
     );
 }

@@ -3,8 +3,8 @@
 
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::{Epoch, TimeScale};
-use skyforge_orbits::attitude::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::check::Invalid;
+use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{TimeError, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;

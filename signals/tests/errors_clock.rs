@@ -18,17 +18,23 @@ const DT_S: f64 = 0.01;
 const DURATION_S: f64 = 2000.0;
 const TAUS_S: [f64; 3] = [1.0, 10.0, 100.0];
 
-fn simulate(preset: OscillatorPreset, seed: u64) -> Vec<f64> {
-    let n = (DURATION_S / DT_S).round() as usize + 1;
+/// `n` clock phase samples (s) at `dt_s` of a clock with power law `h`, starting with
+/// zero offset and drift, from stream `seed`.
+fn phase_series(h: &PowerLaw, dt_s: f64, seed: u64, n: usize) -> Vec<f64> {
     let mut clock = ClockModel::new(
-        &preset.power_law(),
+        h,
         0.0,
         0.0,
-        DT_S,
+        dt_s,
         stream_rng(seed, Stream::Named("clock"), 0),
     )
     .unwrap_or_else(|e| panic!("{e}"));
     clock.next_block(n).iter().map(|s| s.phase_s).collect()
+}
+
+fn simulate(preset: OscillatorPreset, seed: u64) -> Vec<f64> {
+    let n = (DURATION_S / DT_S).round() as usize + 1;
+    phase_series(&preset.power_law(), DT_S, seed, n)
 }
 
 fn m_of(tau_s: f64) -> usize {
@@ -106,19 +112,7 @@ fn pure_white_fm_matches_closed_form() {
         h_minus1: 0.0,
         h_minus2: 0.0,
     };
-    let mut clock = ClockModel::new(
-        &h,
-        0.0,
-        0.0,
-        DT_S,
-        stream_rng(11, Stream::Named("clock"), 0),
-    )
-    .unwrap_or_else(|e| panic!("{e}"));
-    let phase: Vec<f64> = clock
-        .next_block(200_001)
-        .iter()
-        .map(|s| s.phase_s)
-        .collect();
+    let phase = phase_series(&h, DT_S, 11, 200_001);
     let measured = overlapping_adev(&phase, DT_S, 100);
     let expected = (4e-20_f64 / 2.0).sqrt();
     assert!(
@@ -142,19 +136,7 @@ fn pure_flicker_fm_floor_holds_from_10_dt_to_1e4_s() {
     let checks = [(10.0, 0.05), (100.0, 0.03), (1000.0, 0.05), (1e4, 0.10)];
     let mut sums = [0.0; 4];
     for seed in 0..SEEDS {
-        let mut clock = ClockModel::new(
-            &h,
-            0.0,
-            0.0,
-            1.0,
-            stream_rng(seed, Stream::Named("clock"), 0),
-        )
-        .unwrap_or_else(|e| panic!("{e}"));
-        let phase: Vec<f64> = clock
-            .next_block(200_001)
-            .iter()
-            .map(|s| s.phase_s)
-            .collect();
+        let phase = phase_series(&h, 1.0, seed, 200_001);
         for (sum, (tau, _)) in sums.iter_mut().zip(checks) {
             *sum += overlapping_avar(&phase, 1.0, tau as usize) / predicted_avar(&h, tau);
         }

@@ -15,7 +15,8 @@ use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, System};
 use skyforge_orbits::time::TimeOrigin;
-use skyforge_signals::navmsg::gps_lnav::{Almanac, GPS_PI, IonoParams, LnavEncoder, UtcParams};
+use skyforge_signals::navmsg::gps_lnav::fixtures::{header_iono, header_utc};
+use skyforge_signals::navmsg::gps_lnav::{Almanac, GPS_PI, LnavEncoder};
 use std::path::PathBuf;
 
 fn data_dir() -> PathBuf {
@@ -29,28 +30,6 @@ fn gps_ephemerides() -> Vec<BroadcastEphemeris> {
         .into_iter()
         .filter(|e| e.sat.system == System::Gps)
         .collect()
-}
-
-/// The file header's GPSA/GPSB lines.
-fn iono() -> IonoParams {
-    IonoParams {
-        alpha: [4.6566e-09, 1.4901e-08, -5.9605e-08, -1.1921e-07],
-        beta: [8.1920e+04, 9.8304e+04, -6.5536e+04, -5.2429e+05],
-    }
-}
-
-/// The file header's GPUT and LEAP SECONDS lines (WN_LSF, DN: the 2016-12-31 event).
-fn utc() -> UtcParams {
-    UtcParams {
-        a0: 9.313_225_746_2e-10,
-        a1: 2.664_535_259e-15,
-        tot: 589_824,
-        wnt: 2111,
-        dt_ls: 18,
-        wn_lsf: 1929,
-        dn: 7,
-        dt_lsf: 18,
-    }
 }
 
 /// Distance of `value / lsb` from the nearest integer, in LSB.
@@ -129,7 +108,7 @@ fn real_ephemerides_survive_the_message() {
     let origin = TimeOrigin::new(mid_day);
     let (mut worst_m, mut worst_clock_s, mut n) = (0.0f64, 0.0f64, 0);
     for e in &ephs {
-        let enc = LnavEncoder::new(e, &almanac, &iono(), &utc(), 0)
+        let enc = LnavEncoder::new(e, &almanac, &header_iono(), &header_utc(), 0)
             .unwrap_or_else(|err| panic!("{}: {err}", e.sat));
         let q = enc.broadcast_ephemeris();
         assert_eq!(

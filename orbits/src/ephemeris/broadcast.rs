@@ -77,6 +77,42 @@ pub struct BroadcastEphemeris {
     pub fit_interval_s: f64,
 }
 
+/// The Keplerian part of an ephemeris: elements at toe and their rates (m^1/2, rad,
+/// rad/s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct KeplerElements {
+    pub sqrt_a: f64,
+    pub e: f64,
+    pub i0: f64,
+    pub omega0: f64,
+    pub omega: f64,
+    pub m0: f64,
+    pub delta_n: f64,
+    pub idot: f64,
+    pub omega_dot: f64,
+}
+
+/// The harmonic correction amplitudes of an ephemeris: argument of latitude and
+/// inclination (rad), radius (m).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HarmonicCorrections {
+    pub cuc: f64,
+    pub cus: f64,
+    pub crc: f64,
+    pub crs: f64,
+    pub cic: f64,
+    pub cis: f64,
+}
+
+/// The clock part of an ephemeris: polynomial (s, s/s, s/s^2) and group delay (s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClockParams {
+    pub af0: f64,
+    pub af1: f64,
+    pub af2: f64,
+    pub tgd_s: f64,
+}
+
 /// An ephemeris bound to a scenario time origin: evaluates at `t_s` seconds since the start.
 ///
 /// Built only by [`BroadcastEphemeris::bind`], which also precomputes the constants of the
@@ -126,6 +162,75 @@ struct PlaneState {
 }
 
 impl BroadcastEphemeris {
+    /// The ephemeris of `sat` with `orbit`, `harmonics` and `clock` referred to `toe`
+    /// (also the clock's reference time toc), usable for `fit_interval_s` around it;
+    /// issues of data 0, healthy. Other values (a separate toc, issues of data, health)
+    /// are set with struct-update syntax on the result.
+    pub fn from_elements(
+        sat: SatId,
+        class: OrbitClass,
+        toe: Epoch,
+        orbit: KeplerElements,
+        harmonics: HarmonicCorrections,
+        clock: ClockParams,
+        fit_interval_s: f64,
+    ) -> Self {
+        let KeplerElements {
+            sqrt_a,
+            e,
+            i0,
+            omega0,
+            omega,
+            m0,
+            delta_n,
+            idot,
+            omega_dot,
+        } = orbit;
+        let HarmonicCorrections {
+            cuc,
+            cus,
+            crc,
+            crs,
+            cic,
+            cis,
+        } = harmonics;
+        let ClockParams {
+            af0,
+            af1,
+            af2,
+            tgd_s,
+        } = clock;
+        Self {
+            sat,
+            class,
+            toe,
+            toc: toe,
+            sqrt_a,
+            e,
+            i0,
+            omega0,
+            omega,
+            m0,
+            delta_n,
+            idot,
+            omega_dot,
+            cuc,
+            cus,
+            crc,
+            crs,
+            cic,
+            cis,
+            af0,
+            af1,
+            af2,
+            tgd_s,
+            iode: 0,
+            iodc: 0,
+            health: 0,
+            fit_interval_s,
+        }
+    }
+
     /// Bind to a scenario origin.
     pub fn bind(&self, origin: &TimeOrigin) -> BoundEphemeris {
         let toe_s = (self.toe - origin.start()).to_seconds();
@@ -319,11 +424,7 @@ mod tests {
 
     /// A GPS-like ephemeris with eccentricity and all harmonic terms non-zero.
     fn gps_eph(toe: Epoch) -> BroadcastEphemeris {
-        BroadcastEphemeris {
-            sat: SatId::gps(7),
-            class: OrbitClass::Standard,
-            toe,
-            toc: toe,
+        let orbit = KeplerElements {
             sqrt_a: 5153.65,
             e: 0.0125,
             i0: 0.9898,
@@ -333,20 +434,33 @@ mod tests {
             delta_n: 3.65e-9,
             idot: -2.0e-11,
             omega_dot: -7.465e-9,
+        };
+        let harmonics = HarmonicCorrections {
             cuc: -3.58e-6,
             cus: 1.12e-5,
             crc: 176.9,
             crs: -66.8,
             cic: -2.98e-8,
             cis: -2.42e-7,
+        };
+        let clock = ClockParams {
             af0: 2.0375e-4,
             af1: -3.865e-12,
             af2: 1.0e-19,
             tgd_s: 4.66e-9,
+        };
+        BroadcastEphemeris {
             iode: 59,
             iodc: 59,
-            health: 0,
-            fit_interval_s: 4.0 * 3600.0,
+            ..BroadcastEphemeris::from_elements(
+                SatId::gps(7),
+                OrbitClass::Standard,
+                toe,
+                orbit,
+                harmonics,
+                clock,
+                4.0 * 3600.0,
+            )
         }
     }
 

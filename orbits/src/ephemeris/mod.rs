@@ -13,7 +13,10 @@ pub mod sat_id;
 pub mod sp3;
 pub mod store;
 
-pub use broadcast::{BoundEphemeris, BroadcastEphemeris, OrbitClass};
+pub use broadcast::{
+    BoundEphemeris, BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements,
+    OrbitClass,
+};
 pub use sat_id::{SatId, System};
 pub use store::EphemerisStore;
 

@@ -13,7 +13,9 @@
 //! argument of latitude *at toe*: Omega0 is set so that
 //! Omega(tk = 0) = Omega0 - OMEGA_E * toe_sow equals that longitude.
 
-use super::broadcast::{OrbitClass, seconds_of_week};
+use super::broadcast::{
+    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, seconds_of_week,
+};
 use super::{BroadcastEphemeris, SatId, System, config::BeidouSet};
 use crate::constants::{GM_BDS, GM_GPS, J2, OMEGA_E_BDS, OMEGA_E_GPS, WGS84_A_M};
 use hifitime::{Epoch, TimeScale};
@@ -250,7 +252,7 @@ pub fn beidou(set: BeidouSet, epoch: Epoch) -> Vec<BroadcastEphemeris> {
 }
 
 /// Earth rotation rate, gravitational constant and time scale of a system.
-fn system_constants(system: System) -> (f64, f64, TimeScale) {
+pub(crate) fn system_constants(system: System) -> (f64, f64, TimeScale) {
     match system {
         System::Gps => (OMEGA_E_GPS, GM_GPS, TimeScale::GPST),
         System::Beidou => (OMEGA_E_BDS, GM_BDS, TimeScale::BDT),
@@ -270,35 +272,19 @@ fn wrap_pi(x: f64) -> f64 {
 
 /// The ephemeris template: circular, no corrections, zero clock, healthy.
 fn template(sat: SatId, class: OrbitClass, epoch: Epoch, a_m: f64) -> BroadcastEphemeris {
-    BroadcastEphemeris {
+    let orbit = KeplerElements {
+        sqrt_a: a_m.sqrt(),
+        ..KeplerElements::default()
+    };
+    BroadcastEphemeris::from_elements(
         sat,
         class,
-        toe: epoch,
-        toc: epoch,
-        sqrt_a: a_m.sqrt(),
-        e: 0.0,
-        i0: 0.0,
-        omega0: 0.0,
-        omega: 0.0,
-        m0: 0.0,
-        delta_n: 0.0,
-        idot: 0.0,
-        omega_dot: 0.0,
-        cuc: 0.0,
-        cus: 0.0,
-        crc: 0.0,
-        crs: 0.0,
-        cic: 0.0,
-        cis: 0.0,
-        af0: 0.0,
-        af1: 0.0,
-        af2: 0.0,
-        tgd_s: 0.0,
-        iode: 0,
-        iodc: 0,
-        health: 0,
-        fit_interval_s: NOMINAL_FIT_S,
-    }
+        epoch,
+        orbit,
+        HarmonicCorrections::default(),
+        ClockParams::default(),
+        NOMINAL_FIT_S,
+    )
 }
 
 /// A circular inclined orbit (standard user algorithm) in `slot` at toe.
@@ -336,6 +322,7 @@ mod tests {
     use super::*;
     use crate::Vec3;
     use crate::ephemeris::BoundEphemeris;
+    use crate::fixtures::{angle_diff_deg, node_and_arg_lat};
     use crate::time::TimeOrigin;
 
     fn epoch() -> Epoch {
@@ -353,26 +340,6 @@ mod tests {
             r.y.atan2(r.x).to_degrees(),
             (r.z / r.norm()).asin().to_degrees(),
         )
-    }
-
-    /// Node longitude (deg, Earth-fixed) and argument of latitude (deg) from the state
-    /// (osculating: the J2 node drift in the velocity moves them by up to ~0.005 deg).
-    fn node_and_arg_lat(b: &BoundEphemeris, t: f64) -> (f64, f64) {
-        let (r, v) = b.state_ecef(t);
-        let (omega_e, _, _) = system_constants(b.eph.sat.system);
-        let w = Vec3::new(0.0, 0.0, omega_e);
-        let h = r.cross(&(v + w.cross(&r)));
-        let node = Vec3::z().cross(&h).normalize();
-        let u = (r.dot(&node) / r.norm())
-            .clamp(-1.0, 1.0)
-            .acos()
-            .to_degrees();
-        let u = if r.z < 0.0 { 360.0 - u } else { u };
-        (node.y.atan2(node.x).to_degrees(), u)
-    }
-
-    fn angle_diff_deg(a: f64, b: f64) -> f64 {
-        (a - b + 180.0).rem_euclid(360.0) - 180.0
     }
 
     #[test]

@@ -31,7 +31,7 @@
 
 use super::{
     NavError,
-    broadcast::{BroadcastEphemeris, OrbitClass},
+    broadcast::{BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass},
     sat_id::{SatId, System},
 };
 use hifitime::{Epoch, TimeScale, Unit};
@@ -382,11 +382,7 @@ impl Parser<'_> {
                 (class, f.orbit(6, 3), count(f.orbit(7, 2))?, BDS_FIT_S)
             }
         };
-        Ok(BroadcastEphemeris {
-            sat,
-            class,
-            toe,
-            toc,
+        let orbit = KeplerElements {
             sqrt_a,
             e,
             i0: f.orbit(4, 1),
@@ -396,20 +392,35 @@ impl Parser<'_> {
             delta_n: f.orbit(1, 3),
             idot: f.orbit(5, 1),
             omega_dot: f.orbit(4, 4),
+        };
+        let harmonics = HarmonicCorrections {
             cuc: f.orbit(2, 1),
             cus: f.orbit(2, 3),
             crc: f.orbit(4, 2),
             crs: f.orbit(1, 2),
             cic: f.orbit(3, 2),
             cis: f.orbit(3, 4),
+        };
+        let clock = ClockParams {
             af0: f.v[0],
             af1: f.v[1],
             af2: f.v[2],
             tgd_s,
+        };
+        Ok(BroadcastEphemeris {
+            toc,
             iode: count(f.orbit(1, 1))?,
             iodc,
             health: count(f.orbit(6, 2))?,
-            fit_interval_s,
+            ..BroadcastEphemeris::from_elements(
+                sat,
+                class,
+                toe,
+                orbit,
+                harmonics,
+                clock,
+                fit_interval_s,
+            )
         })
     }
 }

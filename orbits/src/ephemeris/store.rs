@@ -112,7 +112,7 @@ impl EphemerisStore {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ephemeris::{OrbitClass, SatId};
+    use crate::ephemeris::{ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId};
     use hifitime::{Epoch, TimeScale, Unit};
 
     fn origin() -> TimeOrigin {
@@ -130,34 +130,28 @@ mod tests {
 
     fn eph(sat: SatId, toe_h: f64, fit_h: f64, health: u32, iode: u32) -> BroadcastEphemeris {
         let toe = origin().start() + Unit::Hour * toe_h;
-        BroadcastEphemeris {
-            sat,
-            class: OrbitClass::Standard,
-            toe,
-            toc: toe,
+        let orbit = KeplerElements {
             sqrt_a: 5153.7,
             e: 0.01,
             i0: 0.96,
             omega0: 1.0,
             omega: 0.5,
             m0: 0.1,
-            delta_n: 0.0,
-            idot: 0.0,
-            omega_dot: 0.0,
-            cuc: 0.0,
-            cus: 0.0,
-            crc: 0.0,
-            crs: 0.0,
-            cic: 0.0,
-            cis: 0.0,
-            af0: 0.0,
-            af1: 0.0,
-            af2: 0.0,
-            tgd_s: 0.0,
+            ..KeplerElements::default()
+        };
+        BroadcastEphemeris {
             iode,
             iodc: iode,
             health,
-            fit_interval_s: fit_h * 3600.0,
+            ..BroadcastEphemeris::from_elements(
+                sat,
+                OrbitClass::Standard,
+                toe,
+                orbit,
+                HarmonicCorrections::default(),
+                ClockParams::default(),
+                fit_h * 3600.0,
+            )
         }
     }
 

@@ -1,6 +1,6 @@
 //! `[platform]`: exactly one of `leo`, `ground`, `trajectory`, plus `attitude`.
 
-use crate::attitude::AttitudeConfig;
+use crate::platform::attitude::AttitudeConfig;
 use crate::propagate::config::LeoConfig;
 use std::path::PathBuf;
 

@@ -13,6 +13,7 @@
 //! holding only what the window needs (a LEO's dense output for the window; ground sites
 //! and trajectories share their data through `Arc`), so many threads can query it.
 
+pub mod attitude;
 pub mod config;
 pub(crate) mod csv_table;
 pub mod ground;
@@ -20,7 +21,6 @@ pub(crate) mod hermite;
 mod leo;
 pub mod trajectory;
 
-use crate::attitude::AttitudeProfile;
 use crate::check::Invalid;
 use crate::frames::earth_rotation::EarthRotation;
 use crate::frames::euler::YawPitchRoll;
@@ -29,6 +29,7 @@ use crate::frames::ned::c_ecef_ned;
 use crate::propagate::leo::{DenseTrajectory, LeoPropagator};
 use crate::time::TimeOrigin;
 use crate::{Mat3, Vec3};
+use attitude::AttitudeProfile;
 use config::PlatformConfig;
 use ground::GroundSite;
 use std::path::Path;

@@ -334,17 +334,7 @@ impl IntegratorConfig {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn thesis_elements() -> KeplerianElementsConfig {
-        KeplerianElementsConfig {
-            semi_major_axis_km: 6971.593,
-            eccentricity: 0.000846,
-            inclination_deg: 34.911,
-            raan_deg: -78.005,
-            arg_perigee_deg: 47.757,
-            mean_anomaly_deg: 351.636,
-        }
-    }
+    use crate::fixtures::thesis_elements;
 
     fn leo(elements: KeplerianElementsConfig) -> LeoConfig {
         LeoConfig {

@@ -299,8 +299,9 @@ fn join(a: &Vec3, b: &Vec3) -> State6 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixtures::thesis_elements;
     use crate::propagate::config::{
-        ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, StateVectorConfig, TleConfig,
+        ForceModelConfig, IntegratorConfig, StateVectorConfig, TleConfig,
     };
     use hifitime::{Duration, Epoch, TimeScale};
 
@@ -310,14 +311,7 @@ mod tests {
 
     fn thesis() -> LeoConfig {
         LeoConfig {
-            elements: Some(KeplerianElementsConfig {
-                semi_major_axis_km: 6971.593,
-                eccentricity: 0.000846,
-                inclination_deg: 34.911,
-                raan_deg: -78.005,
-                arg_perigee_deg: 47.757,
-                mean_anomaly_deg: 351.636,
-            }),
+            elements: Some(thesis_elements()),
             tle: None,
             state: None,
             forces: ForceModelConfig::default(),

@@ -7,7 +7,9 @@
 //! splits fields across pages: the MSBs end page n, the LSBs start page n + 1.
 
 use super::{DecodedEphemeris, sign_extend, week_of_reference};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 use skyforge_orbits::time::epoch_from_bdt;
 use skyforge_signals::navmsg::bds::Klobuchar;
 use std::f64::consts::PI;
@@ -281,35 +283,46 @@ pub(crate) fn ephemeris(
     o: &Orbit,
 ) -> DecodedEphemeris {
     let epoch = |sow| epoch_from_bdt(week_of_reference(c.wn, tx_sow, sow), sow);
+    let orbit = KeplerElements {
+        sqrt_a: o.sqrt_a,
+        e: o.e,
+        i0: o.i0,
+        omega0: o.omega0,
+        omega: o.omega,
+        m0: o.m0,
+        delta_n: o.delta_n,
+        idot: o.idot,
+        omega_dot: o.omega_dot,
+    };
+    let harmonics = HarmonicCorrections {
+        cuc: o.cuc,
+        cus: o.cus,
+        crc: o.crc,
+        crs: o.crs,
+        cic: o.cic,
+        cis: o.cis,
+    };
+    let clock = ClockParams {
+        af0: c.a0,
+        af1: c.a1,
+        af2: c.a2,
+        tgd_s: c.tgd1_s,
+    };
     DecodedEphemeris {
         eph: BroadcastEphemeris {
-            sat,
-            class,
-            toe: epoch(o.toe_sow),
             toc: epoch(c.toc_sow),
-            sqrt_a: o.sqrt_a,
-            e: o.e,
-            i0: o.i0,
-            omega0: o.omega0,
-            omega: o.omega,
-            m0: o.m0,
-            delta_n: o.delta_n,
-            idot: o.idot,
-            omega_dot: o.omega_dot,
-            cuc: o.cuc,
-            cus: o.cus,
-            crc: o.crc,
-            crs: o.crs,
-            cic: o.cic,
-            cis: o.cis,
-            af0: c.a0,
-            af1: c.a1,
-            af2: c.a2,
-            tgd_s: c.tgd1_s,
             iode: c.aode,
             iodc: c.aodc,
             health: c.sat_h1,
-            fit_interval_s: BDS_FIT_S,
+            ..BroadcastEphemeris::from_elements(
+                sat,
+                class,
+                epoch(o.toe_sow),
+                orbit,
+                harmonics,
+                clock,
+                BDS_FIT_S,
+            )
         },
         ura_index: c.urai,
         tgd2_s: Some(c.tgd2_s),

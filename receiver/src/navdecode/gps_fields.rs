@@ -5,7 +5,9 @@
 //! word number (1-10) and first bit (1-24).
 
 use super::{DecodedEphemeris, WEEK_S, sign_extend, week_of_reference};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 use skyforge_orbits::time::epoch_from_gpst;
 use skyforge_signals::navmsg::gps_lnav::GPS_PI;
 use skyforge_signals::navmsg::gps_lnav::IonoParams;
@@ -255,39 +257,51 @@ pub(crate) fn ephemeris(
     s3: &Subframe3,
 ) -> DecodedEphemeris {
     let epoch = |sow| epoch_from_gpst(week_of_reference(week, tx_sow, sow), sow);
+    let orbit = KeplerElements {
+        sqrt_a: s2.sqrt_a,
+        e: s2.e,
+        i0: s3.i0,
+        omega0: s3.omega0,
+        omega: s3.omega,
+        m0: s2.m0,
+        delta_n: s2.delta_n,
+        idot: s3.idot,
+        omega_dot: s3.omega_dot,
+    };
+    let harmonics = HarmonicCorrections {
+        cuc: s2.cuc,
+        cus: s2.cus,
+        crc: s3.crc,
+        crs: s2.crs,
+        cic: s3.cic,
+        cis: s3.cis,
+    };
+    let clock = ClockParams {
+        af0: s1.af0,
+        af1: s1.af1,
+        af2: s1.af2,
+        tgd_s: s1.tgd_s,
+    };
+    let fit_interval_s = if s2.fit_flag {
+        FIT_FLAG1_S
+    } else {
+        FIT_FLAG0_S
+    };
     DecodedEphemeris {
         eph: BroadcastEphemeris {
-            sat,
-            class: OrbitClass::Standard,
-            toe: epoch(s2.toe_sow),
             toc: epoch(s1.toc_sow),
-            sqrt_a: s2.sqrt_a,
-            e: s2.e,
-            i0: s3.i0,
-            omega0: s3.omega0,
-            omega: s3.omega,
-            m0: s2.m0,
-            delta_n: s2.delta_n,
-            idot: s3.idot,
-            omega_dot: s3.omega_dot,
-            cuc: s2.cuc,
-            cus: s2.cus,
-            crc: s3.crc,
-            crs: s2.crs,
-            cic: s3.cic,
-            cis: s3.cis,
-            af0: s1.af0,
-            af1: s1.af1,
-            af2: s1.af2,
-            tgd_s: s1.tgd_s,
             iode: s2.iode,
             iodc: s1.iodc,
             health: s1.health,
-            fit_interval_s: if s2.fit_flag {
-                FIT_FLAG1_S
-            } else {
-                FIT_FLAG0_S
-            },
+            ..BroadcastEphemeris::from_elements(
+                sat,
+                OrbitClass::Standard,
+                epoch(s2.toe_sow),
+                orbit,
+                harmonics,
+                clock,
+                fit_interval_s,
+            )
         },
         ura_index: s1.ura_index,
         tgd2_s: None,

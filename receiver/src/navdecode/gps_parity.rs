@@ -43,22 +43,15 @@ pub(crate) fn check_subframe(bits: &[u8]) -> Result<[u32; 10], u16> {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+    use skyforge_signals::navmsg::gps_lnav::fixtures::TSUI_PARITY_MATRIX;
 
     /// Encode by brute force: the parity bits that make `check_word` accept, computed
     /// independently from the equations as a matrix over GF(2) (the H matrix printed in
     /// Tsui, "Fundamentals of GPS receivers", eq. 5.3, rows D25..D30 over d1..d24).
     fn encode(source: u32, d29: u8, d30: u8) -> u32 {
-        let h = [
-            "111011000111110011010010",
-            "011101100011111001101001",
-            "101110110001111100110100",
-            "010111011000111110011010",
-            "101011101100011111001101",
-            "001011011110101000100111",
-        ];
         let seeds = [d29, d30, d29, d30, d30, d29];
         let mut parity = 0;
-        for (row, seed) in h.iter().zip(seeds) {
+        for (row, seed) in TSUI_PARITY_MATRIX.iter().zip(seeds) {
             let m = u32::from_str_radix(row, 2).unwrap_or(0);
             parity = (parity << 1) | (((source & m).count_ones() + u32::from(seed)) & 1);
         }

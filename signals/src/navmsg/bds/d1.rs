@@ -57,9 +57,9 @@ fn subframe5(s: &mut InfoBits, c: &Content<'_>, page: u32) {
     }
 }
 
-/// Subframe 1: SatH1, AODC, URAI, WN, toc, TGD1, TGD2, alpha0-3, beta0-3, a2, a0, a1,
-/// AODE (fills the subframe exactly).
-fn subframe1(s: &mut InfoBits, e: &EphFields, iono: &IonoFields, wn: u32) {
+/// SatH1, AODC, URAI, WN, toc, TGD1, TGD2: the start of D1 subframe 1 and of D2
+/// subframe 1 page 1.
+pub(super) fn clock_head(s: &mut InfoBits, e: &EphFields, wn: u32) {
     s.put(w::SAT_H1, e.sat_h1 as u64);
     s.put(w::AODC, e.aodc as u64);
     s.put(w::URAI, e.urai as u64);
@@ -67,6 +67,12 @@ fn subframe1(s: &mut InfoBits, e: &EphFields, iono: &IonoFields, wn: u32) {
     s.put(w::TOC, e.toc as u64);
     s.put_signed(w::TGD, e.tgd1);
     s.put_signed(w::TGD, e.tgd2);
+}
+
+/// Subframe 1: SatH1, AODC, URAI, WN, toc, TGD1, TGD2, alpha0-3, beta0-3, a2, a0, a1,
+/// AODE (fills the subframe exactly).
+fn subframe1(s: &mut InfoBits, e: &EphFields, iono: &IonoFields, wn: u32) {
+    clock_head(s, e, wn);
     for &a in &iono.alpha {
         s.put_signed(w::KLOBUCHAR, a);
     }

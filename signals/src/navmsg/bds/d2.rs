@@ -18,6 +18,7 @@
 //!   35, 36 health; 37-60 almanac of PRNs 1-24; 95-100 almanac of PRNs 25-30; 101 time
 //!   offsets (zero); 102 UTC; the others reserved (zero; no expanded almanac).
 
+use super::d1;
 use super::info::InfoBits;
 use super::pages::{self, Content};
 use super::quant::{EphFields, IonoFields, width as w};
@@ -63,15 +64,7 @@ fn subframe1_page(s: &mut InfoBits, e: &EphFields, iono: &IonoFields, wn: u32, p
     // Upper `len` bits of a `width`-bit field.
     let msb = |v: i64, width: usize, len: usize| (v as u64) >> (width - len);
     match page {
-        1 => {
-            s.put(w::SAT_H1, e.sat_h1 as u64);
-            s.put(w::AODC, e.aodc as u64);
-            s.put(w::URAI, e.urai as u64);
-            s.put(w::WN, u64::from(wn));
-            s.put(w::TOC, e.toc as u64);
-            s.put_signed(w::TGD, e.tgd1);
-            s.put_signed(w::TGD, e.tgd2);
-        }
+        1 => d1::clock_head(s, e, wn),
         2 => {
             for &a in &iono.alpha {
                 s.put_signed(w::KLOBUCHAR, a);

@@ -9,7 +9,9 @@
 
 use super::{BdsExtraFields, BdsNavError, Klobuchar};
 use hifitime::Epoch;
-use skyforge_orbits::ephemeris::BroadcastEphemeris;
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements,
+};
 use skyforge_orbits::time::bdt_week_sow;
 use std::f64::consts::PI;
 
@@ -236,11 +238,7 @@ impl EphFields {
     /// (satellite, class, fit interval) are kept; health becomes SatH1 (0 or 1).
     pub(super) fn to_ephemeris(self, grid: &BroadcastEphemeris) -> BroadcastEphemeris {
         let f = |n: i64, l: f64| n as f64 * l;
-        BroadcastEphemeris {
-            sat: grid.sat,
-            class: grid.class,
-            toe: grid.toe,
-            toc: grid.toc,
+        let orbit = KeplerElements {
             sqrt_a: f(self.sqrt_a, lsb::sqrt_a()),
             e: f(self.e, lsb::e()),
             i0: f(self.i0, lsb::angle()),
@@ -250,20 +248,35 @@ impl EphFields {
             delta_n: f(self.delta_n, lsb::rate()),
             idot: f(self.idot, lsb::rate()),
             omega_dot: f(self.omega_dot, lsb::rate()),
+        };
+        let harmonics = HarmonicCorrections {
             cuc: f(self.cuc, lsb::c_angle()),
             cus: f(self.cus, lsb::c_angle()),
             crc: f(self.crc, lsb::c_radius()),
             crs: f(self.crs, lsb::c_radius()),
             cic: f(self.cic, lsb::c_angle()),
             cis: f(self.cis, lsb::c_angle()),
+        };
+        let clock = ClockParams {
             af0: f(self.a0, lsb::a0()),
             af1: f(self.a1, lsb::a1()),
             af2: f(self.a2, lsb::a2()),
             tgd_s: f(self.tgd1, lsb::TGD_S),
+        };
+        BroadcastEphemeris {
+            toc: grid.toc,
             iode: self.aode as u32,
             iodc: self.aodc as u32,
             health: self.sat_h1 as u32,
-            fit_interval_s: grid.fit_interval_s,
+            ..BroadcastEphemeris::from_elements(
+                grid.sat,
+                grid.class,
+                grid.toe,
+                orbit,
+                harmonics,
+                clock,
+                grid.fit_interval_s,
+            )
         }
     }
 }

@@ -6,7 +6,9 @@ use super::scale::{self, Scale};
 use super::words::DataWords;
 use super::{GPS_PI, LnavError, NS_PER_S, WEEK_S, epoch_from_gps_ns, gps_ns, week_and_sow};
 use hifitime::Epoch;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId, System,
+};
 
 /// Reference inclination of the almanac (semicircles): i = 0.30 + delta_i (table 20-VI).
 const I_REF_SC: f64 = 0.30;
@@ -167,34 +169,32 @@ impl Almanac {
             .as_ref()?;
         let toa = self.toa();
         let rad = |s: &Scale, n: i64| s.value(n) * GPS_PI;
-        Some(BroadcastEphemeris {
-            sat: SatId::gps(prn),
-            class: OrbitClass::Standard,
-            toe: toa,
-            toc: toa,
+        let orbit = KeplerElements {
             sqrt_a: scale::ALM_SQRT_A.value(entry.sqrt_a),
             e: scale::ALM_E.value(entry.e),
             i0: (I_REF_SC + scale::ALM_DELTA_I.value(entry.delta_i)) * GPS_PI,
             omega0: rad(&scale::ALM_OMEGA0, entry.omega0),
             omega: rad(&scale::ALM_OMEGA, entry.omega),
             m0: rad(&scale::ALM_M0, entry.m0),
-            delta_n: 0.0,
-            idot: 0.0,
             omega_dot: rad(&scale::ALM_OMEGA_DOT, entry.omega_dot),
-            cuc: 0.0,
-            cus: 0.0,
-            crc: 0.0,
-            crs: 0.0,
-            cic: 0.0,
-            cis: 0.0,
+            ..KeplerElements::default()
+        };
+        let clock = ClockParams {
             af0: scale::ALM_AF0.value(entry.af0),
             af1: scale::ALM_AF1.value(entry.af1),
-            af2: 0.0,
-            tgd_s: 0.0,
-            iode: 0,
-            iodc: 0,
+            ..ClockParams::default()
+        };
+        Some(BroadcastEphemeris {
             health: entry.health6,
-            fit_interval_s: ALMANAC_FIT_S,
+            ..BroadcastEphemeris::from_elements(
+                SatId::gps(prn),
+                OrbitClass::Standard,
+                toa,
+                orbit,
+                HarmonicCorrections::default(),
+                clock,
+                ALMANAC_FIT_S,
+            )
         })
     }
 

@@ -5,7 +5,9 @@ use super::scale::{self, Scale};
 use super::words::DataWords;
 use super::{GPS_PI, LnavError, NS_PER_S, epoch_from_gps_ns, gps_ns, week_and_sow};
 use skyforge_orbits::constants::{GM_GPS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId, System,
+};
 
 /// Grid of toe and toc (s): their LSB (IS-GPS-200 table 20-III).
 const TIME_GRID_S: i64 = 16;
@@ -173,11 +175,7 @@ impl RawEphemeris {
     pub fn si_ephemeris(&self, input: &BroadcastEphemeris) -> BroadcastEphemeris {
         let v = |s: &Scale, n: i64| s.value(n);
         let rad = |s: &Scale, n: i64| s.value(n) * GPS_PI;
-        BroadcastEphemeris {
-            sat: input.sat,
-            class: OrbitClass::Standard,
-            toe: epoch_from_gps_ns(i128::from(self.toe_gps_s) * NS_PER_S),
-            toc: epoch_from_gps_ns(i128::from(self.toc_gps_s) * NS_PER_S),
+        let orbit = KeplerElements {
             sqrt_a: v(&scale::SQRT_A, self.sqrt_a),
             e: v(&scale::ECC, self.e),
             i0: rad(&scale::I0, self.i0),
@@ -187,20 +185,35 @@ impl RawEphemeris {
             delta_n: rad(&scale::DELTA_N, self.delta_n),
             idot: rad(&scale::IDOT, self.idot),
             omega_dot: rad(&scale::OMEGA_DOT, self.omega_dot),
+        };
+        let harmonics = HarmonicCorrections {
             cuc: v(&scale::CUC, self.cuc),
             cus: v(&scale::CUS, self.cus),
             crc: v(&scale::CRC, self.crc),
             crs: v(&scale::CRS, self.crs),
             cic: v(&scale::CIC, self.cic),
             cis: v(&scale::CIS, self.cis),
+        };
+        let clock = ClockParams {
             af0: v(&scale::AF0, self.af0),
             af1: v(&scale::AF1, self.af1),
             af2: v(&scale::AF2, self.af2),
             tgd_s: v(&scale::TGD, self.tgd),
+        };
+        BroadcastEphemeris {
+            toc: epoch_from_gps_ns(i128::from(self.toc_gps_s) * NS_PER_S),
             iode: self.iode,
             iodc: self.iodc,
             health: self.health,
-            fit_interval_s: input.fit_interval_s,
+            ..BroadcastEphemeris::from_elements(
+                input.sat,
+                OrbitClass::Standard,
+                epoch_from_gps_ns(i128::from(self.toe_gps_s) * NS_PER_S),
+                orbit,
+                harmonics,
+                clock,
+                input.fit_interval_s,
+            )
         }
     }
 

@@ -224,6 +224,7 @@ pub(crate) fn page18(d: &mut DataWords, iono: &RawIono, utc: &RawUtc) {
 
 #[cfg(test)]
 mod tests {
+    use super::super::fixtures::{header_iono, header_utc};
     use super::*;
     use hifitime::TimeScale;
 
@@ -248,10 +249,7 @@ mod tests {
     fn rinex_header_values_are_on_the_icd_grid() {
         // Header of ESBC00DNK_R_20201770000_01D_MN (GPSA/GPSB/GPUT lines), i.e. values
         // decoded from real LNAV page 18: quantising them must return them unchanged.
-        let iono = IonoParams {
-            alpha: [4.6566e-09, 1.4901e-08, -5.9605e-08, -1.1921e-07],
-            beta: [8.1920e+04, 9.8304e+04, -6.5536e+04, -5.2429e+05],
-        };
+        let iono = header_iono();
         let q = iono.quantised().unwrap_or_else(|e| panic!("{e}"));
         for (x, y) in iono
             .alpha
@@ -261,16 +259,7 @@ mod tests {
         {
             assert!((x - y).abs() <= 1e-4 * x.abs(), "{x} -> {y}");
         }
-        let utc = UtcParams {
-            a0: 9.313_225_746_2e-10,
-            a1: 2.664_535_259e-15,
-            tot: 589_824,
-            wnt: 2111,
-            dt_ls: 18,
-            wn_lsf: 1929,
-            dn: 7,
-            dt_lsf: 18,
-        };
+        let utc = header_utc();
         let q = utc.quantised().unwrap_or_else(|e| panic!("{e}"));
         assert!((q.a0 - utc.a0).abs() < 1e-20 && (q.a1 - utc.a1).abs() < 1e-24);
         assert!(UtcParams { dn: 8, ..utc }.quantised().is_err());

@@ -32,6 +32,8 @@
 mod almanac;
 mod encoder;
 mod ephemeris;
+#[cfg(any(test, feature = "test-support"))]
+pub mod fixtures;
 mod iono_utc;
 mod pages;
 pub mod parity;

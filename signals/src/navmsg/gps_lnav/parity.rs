@@ -82,22 +82,14 @@ pub(crate) fn encode_word_solving_t(source: u32, previous_word: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::fixtures::TSUI_PARITY_MATRIX;
     use super::*;
     use proptest::prelude::*;
 
     #[test]
     fn masks_match_the_published_parity_matrix() {
-        // The parity matrix H printed in Tsui, "Fundamentals of GPS receivers" (eq. 5.3),
-        // rows D25..D30 over d1..d24: an independent transcription of table 20-XIV.
-        let h = [
-            "111011000111110011010010",
-            "011101100011111001101001",
-            "101110110001111100110100",
-            "010111011000111110011010",
-            "101011101100011111001101",
-            "001011011110101000100111",
-        ];
-        for (row, &(_, m)) in h.iter().zip(MASKS.iter()) {
+        // An independent transcription of table 20-XIV.
+        for (row, &(_, m)) in TSUI_PARITY_MATRIX.iter().zip(MASKS.iter()) {
             let from_book = u32::from_str_radix(row, 2).unwrap_or(u32::MAX);
             assert_eq!(m, from_book, "{row}");
         }

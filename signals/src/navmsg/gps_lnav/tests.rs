@@ -2,10 +2,11 @@
 //! written here from IS-GPS-200 (table 20-XIV, figure 20-1, tables 20-I, 20-III, 20-V,
 //! 20-VI, 20-X), sharing no code with the encoder.
 
+use super::fixtures::{header_iono, real_prn1, utc_week_2190};
 use super::*;
 use hifitime::TimeScale;
 use proptest::prelude::*;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, nominal};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, nominal};
 use skyforge_orbits::time::TimeOrigin;
 
 // ---------------------------------------------------------------------------------------
@@ -232,62 +233,6 @@ fn decode_ephemeris(sf1: &[u32; 10], sf2: &[u32; 10], sf3: &[u32; 10]) -> Decode
 // ---------------------------------------------------------------------------------------
 // Fixtures.
 
-/// GPS PRN 1 of brdc0010.22n (IGS broadcast file, 2022-01-01 00:00 GPST, week 2190,
-/// toe = 518400 s), as printed there: real LNAV values.
-fn real_prn1() -> BroadcastEphemeris {
-    let toe = Epoch::from_gregorian(2022, 1, 1, 0, 0, 0, 0, TimeScale::GPST);
-    BroadcastEphemeris {
-        sat: SatId::gps(1),
-        class: OrbitClass::Standard,
-        toe,
-        toc: toe,
-        sqrt_a: 0.515367499542e4,
-        e: 0.112181392033e-1,
-        i0: 0.986418769490,
-        omega0: -0.103661124009e1,
-        omega: 0.884087601569,
-        m0: -0.624294238235,
-        delta_n: 0.398838041777e-8,
-        idot: -0.377872882780e-9,
-        omega_dot: -0.813355308085e-8,
-        cuc: -0.736303627491e-5,
-        cus: 0.469572842121e-5,
-        crc: 0.29975e3,
-        crs: -0.141125e3,
-        cic: -0.316649675369e-7,
-        cis: 0.195577740669e-6,
-        af0: 0.469126738608e-3,
-        af1: -0.100044417195e-10,
-        af2: 0.0,
-        tgd_s: 0.512227416039e-8,
-        iode: 39,
-        iodc: 39,
-        health: 0,
-        fit_interval_s: 4.0 * 3600.0,
-    }
-}
-
-/// Header values of ESBC00DNK_R_20201770000_01D_MN (GPSA/GPSB lines).
-fn iono() -> IonoParams {
-    IonoParams {
-        alpha: [4.6566e-09, 1.4901e-08, -5.9605e-08, -1.1921e-07],
-        beta: [8.1920e+04, 9.8304e+04, -6.5536e+04, -5.2429e+05],
-    }
-}
-
-fn utc() -> UtcParams {
-    UtcParams {
-        a0: 9.313_225_746_2e-10,
-        a1: 2.664_535_259e-15,
-        tot: 589_824,
-        wnt: 2190,
-        dt_ls: 18,
-        wn_lsf: 1929,
-        dn: 7,
-        dt_lsf: 18,
-    }
-}
-
 fn ok<T>(r: Result<T, LnavError>) -> T {
     r.unwrap_or_else(|e| panic!("{e}"))
 }
@@ -297,7 +242,13 @@ fn ok<T>(r: Result<T, LnavError>) -> T {
 fn encoder_with_nominal_almanac() -> (LnavEncoder, Almanac) {
     let eph = real_prn1();
     let almanac = ok(Almanac::from_ephemerides(&nominal::gps(eph.toe), eph.toe));
-    let enc = ok(LnavEncoder::new(&eph, &almanac, &iono(), &utc(), 2));
+    let enc = ok(LnavEncoder::new(
+        &eph,
+        &almanac,
+        &header_iono(),
+        &utc_week_2190(),
+        2,
+    ));
     (enc, almanac)
 }
 
@@ -471,7 +422,7 @@ proptest! {
     #[test]
     fn random_ephemerides_decode_within_half_an_lsb(eph in arb_ephemeris()) {
         let almanac = ok(Almanac::from_ephemerides(&[], eph.toe));
-        let enc = ok(LnavEncoder::new(&eph, &almanac, &iono(), &utc(), 0));
+        let enc = ok(LnavEncoder::new(&eph, &almanac, &header_iono(), &utc_week_2190(), 0));
         let first = frame_start(eph.toe);
         let d = decode_ephemeris(&enc.subframe(first), &enc.subframe(first + 1), &enc.subframe(first + 2));
         let wrap = |x: f64| x - 2.0 * (x / 2.0).round();
@@ -680,7 +631,7 @@ fn page_18_decodes_to_the_quantised_iono_and_utc() {
         i8f(5, 9) * p2(16),
         i8f(5, 17) * p2(16),
     ];
-    let want = iono();
+    let want = header_iono();
     for (got, w) in alpha
         .iter()
         .chain(&beta)
@@ -782,7 +733,13 @@ fn residuals_nominal_constellation() {
     let mut worst = 0.0f64;
     let mut worst_clock = 0.0f64;
     for eph in &ephs {
-        let enc = ok(LnavEncoder::new(eph, &almanac, &iono(), &utc(), 0));
+        let enc = ok(LnavEncoder::new(
+            eph,
+            &almanac,
+            &header_iono(),
+            &utc_week_2190(),
+            0,
+        ));
         let q = enc.broadcast_ephemeris();
         let (_, toe_sow) = skyforge_orbits::time::gpst_week_sow(q.toe);
         assert_eq!(toe_sow % 16.0, 0.0);
@@ -829,7 +786,9 @@ fn bad_inputs_are_errors() {
         std::slice::from_ref(&eph),
         eph.toe,
     ));
-    let make = |e: &BroadcastEphemeris, ura| LnavEncoder::new(e, &almanac, &iono(), &utc(), ura);
+    let make = |e: &BroadcastEphemeris, ura| {
+        LnavEncoder::new(e, &almanac, &header_iono(), &utc_week_2190(), ura)
+    };
     assert!(matches!(make(&eph, 16), Err(LnavError::BadValue { .. })));
     let bds = BroadcastEphemeris {
         sat: SatId::beidou(19),
@@ -851,7 +810,7 @@ fn bad_inputs_are_errors() {
     assert!(matches!(make(&iod, 0), Err(LnavError::BadValue { .. })));
     let bad_iono = IonoParams {
         alpha: [1.0, 0.0, 0.0, 0.0],
-        ..iono()
+        ..header_iono()
     };
-    assert!(LnavEncoder::new(&eph, &almanac, &bad_iono, &utc(), 0).is_err());
+    assert!(LnavEncoder::new(&eph, &almanac, &bad_iono, &utc_week_2190(), 0).is_err());
 }

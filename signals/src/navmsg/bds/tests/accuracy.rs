@@ -7,7 +7,10 @@ use crate::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar}
 use proptest::prelude::*;
 use skyforge_orbits::constants::{GM_BDS, OMEGA_E_BDS};
 use skyforge_orbits::ephemeris::config::BeidouSet;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, nominal};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+    nominal,
+};
 use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, epoch_from_bdt};
 use std::f64::consts::PI;
 
@@ -104,11 +107,7 @@ prop_compose! {
         aode in 0u32..32,
         aodc in 0u32..32,
     ) -> (BroadcastEphemeris, f64) {
-        (BroadcastEphemeris {
-            sat: SatId::beidou(prn),
-            class,
-            toe: epoch_from_bdt(WEEK, 8.0 * f64::from(toe_8s)),
-            toc: epoch_from_bdt(WEEK, 8.0 * f64::from(toc_8s)),
+        let orbit = KeplerElements {
             sqrt_a,
             e,
             i0,
@@ -118,20 +117,35 @@ prop_compose! {
             delta_n: rates[0] * 1.1e-8,
             idot: rates[1] * 2.8e-9,
             omega_dot: rates[2] * 2.9e-6,
+        };
+        let corrections = HarmonicCorrections {
             cuc: harmonics[0] * 6e-5,
             cus: harmonics[1] * 6e-5,
             cic: harmonics[2] * 6e-5,
             cis: harmonics[3] * 6e-5,
             crc: harmonics[4] * 2000.0,
             crs: harmonics[5] * 2000.0,
+        };
+        let clock_params = ClockParams {
             af0: clock[0] * 9.7e-4,
             af1: clock[1] * 1.8e-9,
             af2: clock[2] * 1.3e-17,
             tgd_s: tgd[0],
+        };
+        let toe = epoch_from_bdt(WEEK, 8.0 * f64::from(toe_8s));
+        (BroadcastEphemeris {
+            toc: epoch_from_bdt(WEEK, 8.0 * f64::from(toc_8s)),
             iode: aode,
             iodc: aodc,
-            health: 0,
-            fit_interval_s: 21_600.0,
+            ..BroadcastEphemeris::from_elements(
+                SatId::beidou(prn),
+                class,
+                toe,
+                orbit,
+                corrections,
+                clock_params,
+                21_600.0,
+            )
         }, tgd[1])
     }
 }

@@ -7,7 +7,9 @@ mod structure;
 
 use super::test_decoder::{Decoded, logical_bits};
 use super::{BdsExtraFields, BdsNavEncoder, Klobuchar};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
+};
 use skyforge_orbits::time::epoch_from_bdt;
 
 /// Subframe `index` of `enc`, in the ICD's layout, checking every codeword.
@@ -23,11 +25,7 @@ fn from_decoded(
     class: OrbitClass,
     week: u32,
 ) -> (BroadcastEphemeris, Klobuchar, BdsExtraFields) {
-    let eph = BroadcastEphemeris {
-        sat,
-        class,
-        toe: epoch_from_bdt(week, d.toe_s),
-        toc: epoch_from_bdt(week, d.toc_s),
+    let orbit = KeplerElements {
         sqrt_a: d.sqrt_a,
         e: d.e,
         i0: d.i0,
@@ -37,20 +35,28 @@ fn from_decoded(
         delta_n: d.delta_n,
         idot: d.idot,
         omega_dot: d.omega_dot,
+    };
+    let harmonics = HarmonicCorrections {
         cuc: d.cuc,
         cus: d.cus,
         crc: d.crc,
         crs: d.crs,
         cic: d.cic,
         cis: d.cis,
+    };
+    let clock = ClockParams {
         af0: d.a0,
         af1: d.a1,
         af2: d.a2,
         tgd_s: d.tgd1_s,
+    };
+    let toe = epoch_from_bdt(week, d.toe_s);
+    let eph = BroadcastEphemeris {
+        toc: epoch_from_bdt(week, d.toc_s),
         iode: d.aode as u32,
         iodc: d.aodc as u32,
         health: d.sat_h1 as u32,
-        fit_interval_s: 6.0 * 3600.0,
+        ..BroadcastEphemeris::from_elements(sat, class, toe, orbit, harmonics, clock, 6.0 * 3600.0)
     };
     let iono = Klobuchar {
         alpha: d.alpha,
