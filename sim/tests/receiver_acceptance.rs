@@ -15,11 +15,14 @@ mod support;
 
 use skyforge_orbits::Vec3;
 use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
-use skyforge_validate::observables::{ObsFile, compare, read_obs_file};
+use skyforge_validate::observables::{ObsFile, read_obs_file};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
-use support::{require_rnx2rtkp, rtklib_xyz_solutions, short_scenario, skyforge_ok};
+use support::{
+    fixes, observable_errors, require_rnx2rtkp, rms, rtklib_xyz_solutions, short_scenario,
+    skyforge_ok, truth_site,
+};
 
 /// One end-to-end run at a time: each holds gigabytes of samples and both cores.
 static ONE_AT_A_TIME: Mutex<()> = Mutex::new(());
@@ -41,63 +44,6 @@ fn synth_and_receive(
     println!("{log}");
     std::fs::remove_file(sim.join(format!("ant1.{band}.sigmf-data"))).expect("samples removed");
     (sim, dir.join("rx"), log)
-}
-
-/// Position and clock bias per row of the receiver's pvt.csv: (tow_s, r, bias_m).
-fn fixes(rx: &Path) -> Vec<(f64, Vec3, f64)> {
-    let text = std::fs::read_to_string(rx.join("pvt.csv")).expect("pvt.csv");
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().expect("header").split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).expect(name);
-    let (t, x, y, z, b) = (
-        col("tow_s"),
-        col("x_m"),
-        col("y_m"),
-        col("z_m"),
-        col("clock_bias_m"),
-    );
-    lines
-        .map(|l| {
-            let f: Vec<f64> = l
-                .split(',')
-                .map(|v| v.parse().unwrap_or(f64::NAN))
-                .collect();
-            (f[t], Vec3::new(f[x], f[y], f[z]), f[b])
-        })
-        .collect()
-}
-
-/// The site the truth RINEX header gives (the scenario's antenna position).
-fn truth_site(sim: &Path) -> Vec3 {
-    let text = std::fs::read_to_string(sim.join("ant1.obs.rnx")).expect("truth RINEX");
-    let line = text
-        .lines()
-        .find(|l| l.contains("APPROX POSITION XYZ"))
-        .expect("APPROX POSITION XYZ");
-    let v: Vec<f64> = line[..42]
-        .split_whitespace()
-        .map(|x| x.parse().expect("number"))
-        .collect();
-    Vec3::new(v[0], v[1], v[2])
-}
-
-fn rms(v: &[f64]) -> f64 {
-    (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt()
-}
-
-/// Pseudorange and carrier-phase error stds against the truth RINEX (m).
-fn observable_errors(sim: &Path, rx: &Path) -> (f64, f64, usize) {
-    let truth = read_obs_file(&sim.join("ant1.obs.rnx")).expect("truth RINEX reads");
-    let estimate = read_obs_file(&rx.join("ant1.obs.rnx")).expect("receiver RINEX reads");
-    let c = compare(&estimate, &truth).expect("comparison");
-    let mut table = Vec::new();
-    skyforge_validate::observables::table::print_comparison(&c, &mut table).expect("table");
-    println!("{}", String::from_utf8_lossy(&table));
-    (
-        c.pseudorange_m.overall.std.expect("pseudorange std"),
-        c.carrier_phase_m.overall.std.expect("phase std"),
-        c.matched_epochs,
-    )
 }
 
 fn static_ground(scenario: &str, band: &str) {

@@ -5,6 +5,7 @@
 mod acquire;
 mod channel;
 mod config;
+mod epoch_stage;
 mod navdata;
 mod receiver;
 mod timing;
@@ -14,6 +15,7 @@ pub use config::{
     ConfigValueError, EpochStageKind, ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile,
     StagesFile, assistance_toml,
 };
+pub use epoch_stage::LastFix;
 pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};
 
 use crate::observables::Observation;

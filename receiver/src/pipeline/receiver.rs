@@ -2,23 +2,22 @@
 //! time the code epochs, form observations at the epochs of the receiver clock and solve
 //! a fix per antenna.
 
+use super::EpochReport;
 use super::acquire::{AcquisitionStage, Candidate, acquisition_stage};
 use super::channel::Channel;
 use super::config::{ApproximateState, ReceiverConfig};
+use super::epoch_stage::{EpochInput, EpochStage, epoch_stage};
 use super::navdata::NavData;
-use super::{AntennaFix, EpochReport};
 use crate::acquisition::AcquisitionError;
 use crate::acquisition::pcps::DopplerWindow;
 use crate::assist::{Assistance, search_hints};
 use crate::navdecode::NavDecodeError;
-use crate::observables::{ObservablesBuilder, Observation};
-use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
+use crate::observables::ObservablesBuilder;
 use crate::tracking::TrackingError;
 use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover, MAX_COHERENT_MS};
 use hifitime::Epoch;
 use num_complex::Complex32;
 use rayon::prelude::*;
-use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 use skyforge_signals::signal::Signal;
@@ -106,9 +105,6 @@ pub struct ReceiverSummary {
     pub ephemerides: usize,
 }
 
-/// The last fix of an antenna: time (s since the origin), position, velocity.
-type LastFix = (f64, Vec3, Vec3);
-
 /// The running receiver.
 pub struct Receiver {
     setup: ReceiverSetup,
@@ -123,7 +119,7 @@ pub struct Receiver {
     next_search_sample: u64,
     /// Searches run so far (rounds over every band and antenna).
     search_rounds: usize,
-    last_fix: Vec<Option<LastFix>>,
+    epoch_stage: Box<dyn EpochStage>,
     summary: ReceiverSummary,
 }
 
@@ -175,7 +171,7 @@ impl Receiver {
             next_epoch: None,
             next_search_sample: 0,
             search_rounds: 0,
-            last_fix: vec![None; antennas],
+            epoch_stage: epoch_stage(&config, antennas),
             summary: ReceiverSummary {
                 tracked: vec![Vec::new(); antennas],
                 timed: vec![Vec::new(); antennas],
@@ -415,13 +411,13 @@ impl Receiver {
     fn assistance(&self, antenna: usize, t_s: f64) -> Option<Assistance> {
         let approx = self.setup.approximate;
         let mask = self.config.pvt.elevation_mask_rad;
-        if let Some((t_fix, r, v)) = self.last_fix[antenna] {
-            let dt = t_s - t_fix;
+        if let Some(fix) = self.epoch_stage.last_fix(antenna) {
+            let dt = t_s - fix.t_s;
             return Some(Assistance {
                 t_s,
                 time_uncertainty_s: 1e-3,
-                r_ecef_m: r + v * dt,
-                v_ecef_mps: v,
+                r_ecef_m: fix.r_ecef_m + fix.v_ecef_mps * dt,
+                v_ecef_mps: fix.v_ecef_mps,
                 position_uncertainty_m: 100.0 + 10.0 * dt.abs(),
                 velocity_uncertainty_mps: 1.0 + 0.01 * dt.abs(),
                 oscillator_uncertainty: approx.map_or(1e-6, |a| a.oscillator_uncertainty),
@@ -483,60 +479,20 @@ impl Receiver {
         }
         let observations = self.observables.at(n_k, t_k);
         self.summary.epochs += 1;
-        let fixes = (0..self.setup.antenna_names.len())
-            .map(|antenna| self.fix(antenna, &observations, t_k))
-            .collect();
+        let fixes = self.epoch_stage.epoch(&EpochInput {
+            t_s: t_k,
+            observations: &observations,
+            nav: &self.nav,
+        });
+        for f in fixes.iter().filter(|f| f.fix.is_ok()) {
+            self.summary.fixes[f.antenna] += 1;
+        }
         let origin = self.nav.origin().map(|o| o.epoch_at(t_k));
         EpochReport {
             sample_index: n_k,
             t_rx: origin.unwrap_or_default(),
             observations,
             fixes,
-        }
-    }
-
-    fn fix(&mut self, antenna: usize, observations: &[Observation], t_k: f64) -> AntennaFix {
-        let meas: Vec<Measurement> = observations
-            .iter()
-            .filter(|o| o.antenna == antenna && self.nav.has_ephemeris(o.sat, t_k))
-            .map(|o| Measurement {
-                sat: o.sat,
-                pseudorange_m: o.pseudorange_m,
-                doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
-                carrier_hz: Signal::of_system(o.sat.system).carrier_hz(),
-            })
-            .collect();
-        let (Some(origin), store) = (self.nav.origin(), self.nav.store()) else {
-            return AntennaFix {
-                antenna,
-                fix: Err(crate::pvt::PvtError::TooFewSatellites {
-                    have: 0,
-                    need: 4,
-                    clocks: 1,
-                }),
-                velocity: None,
-            };
-        };
-        let cfg = PvtConfig {
-            iono_gps: self.nav.iono_gps,
-            iono_bds: self.nav.iono_bds,
-            ..self.config.pvt.clone()
-        };
-        let a_priori = self.last_fix[antenna].map(|f| f.1);
-        let fix: Result<Fix, _> = solve(&meas, t_k, store, origin, &cfg, a_priori);
-        let velocity = fix
-            .as_ref()
-            .ok()
-            .and_then(|f| solve_velocity(&meas, t_k, store, f).ok());
-        if let Ok(f) = &fix {
-            self.summary.fixes[antenna] += 1;
-            let v = velocity.map_or(Vec3::zeros(), |v| v.v_ecef_mps);
-            self.last_fix[antenna] = Some((t_k, f.r_ecef_m, v));
-        }
-        AntennaFix {
-            antenna,
-            fix,
-            velocity,
         }
     }
 }

@@ -1,0 +1,120 @@
+//! Stages that run at every observation epoch, after the observables, behind one interface
+//! ([`EpochStage`]) chosen by the configuration (`[stages] epoch`): single-point PVT per
+//! antenna ([`PvtStage`]) today; relative positioning, ambiguity resolution and attitude
+//! plug in here next, consuming the same observations.
+
+use super::AntennaFix;
+use super::config::{EpochStageKind, ReceiverConfig};
+use super::navdata::NavData;
+use crate::observables::Observation;
+use crate::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
+use skyforge_orbits::Vec3;
+use skyforge_signals::signal::Signal;
+
+/// An antenna's latest fix, for assisting its searches.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LastFix {
+    /// Receiver time of the fix (s since the origin).
+    pub t_s: f64,
+    pub r_ecef_m: Vec3,
+    /// Zero when no velocity was solved.
+    pub v_ecef_mps: Vec3,
+}
+
+/// What an epoch stage is given at one epoch.
+pub(crate) struct EpochInput<'a> {
+    /// Receiver time of the epoch (s since the origin).
+    pub(crate) t_s: f64,
+    /// Every antenna's observations.
+    pub(crate) observations: &'a [Observation],
+    /// The navigation data decoded or given so far.
+    pub(crate) nav: &'a NavData,
+}
+
+/// A stage run at every epoch.
+pub(crate) trait EpochStage: Send {
+    /// One result per antenna, in antenna order.
+    fn epoch(&mut self, input: &EpochInput<'_>) -> Vec<AntennaFix>;
+    /// The latest fix of `antenna`, if the stage has one.
+    fn last_fix(&self, antenna: usize) -> Option<LastFix>;
+}
+
+/// The configured epoch stage for `antennas` antennas.
+pub(crate) fn epoch_stage(config: &ReceiverConfig, antennas: usize) -> Box<dyn EpochStage> {
+    match config.epoch_stage {
+        EpochStageKind::Pvt => Box::new(PvtStage {
+            config: config.pvt.clone(),
+            last_fix: vec![None; antennas],
+        }),
+    }
+}
+
+/// Single-point position, velocity and time of each antenna (with RAIM), the previous fix
+/// as the a-priori position.
+struct PvtStage {
+    config: PvtConfig,
+    last_fix: Vec<Option<LastFix>>,
+}
+
+impl PvtStage {
+    fn fix(&mut self, antenna: usize, input: &EpochInput<'_>) -> AntennaFix {
+        let (nav, t_k) = (input.nav, input.t_s);
+        let meas: Vec<Measurement> = input
+            .observations
+            .iter()
+            .filter(|o| o.antenna == antenna && nav.has_ephemeris(o.sat, t_k))
+            .map(|o| Measurement {
+                sat: o.sat,
+                pseudorange_m: o.pseudorange_m,
+                doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
+                carrier_hz: Signal::of_system(o.sat.system).carrier_hz(),
+            })
+            .collect();
+        let (Some(origin), store) = (nav.origin(), nav.store()) else {
+            return AntennaFix {
+                antenna,
+                fix: Err(PvtError::TooFewSatellites {
+                    have: 0,
+                    need: 4,
+                    clocks: 1,
+                }),
+                velocity: None,
+            };
+        };
+        let cfg = PvtConfig {
+            iono_gps: nav.iono_gps,
+            iono_bds: nav.iono_bds,
+            ..self.config.clone()
+        };
+        let a_priori = self.last_fix[antenna].map(|f| f.r_ecef_m);
+        let fix: Result<Fix, _> = solve(&meas, t_k, store, origin, &cfg, a_priori);
+        let velocity = fix
+            .as_ref()
+            .ok()
+            .and_then(|f| solve_velocity(&meas, t_k, store, f).ok());
+        if let Ok(f) = &fix {
+            self.last_fix[antenna] = Some(LastFix {
+                t_s: t_k,
+                r_ecef_m: f.r_ecef_m,
+                v_ecef_mps: velocity.map_or(Vec3::zeros(), |v| v.v_ecef_mps),
+            });
+        }
+        AntennaFix {
+            antenna,
+            fix,
+            velocity,
+        }
+    }
+}
+
+impl EpochStage for PvtStage {
+    fn epoch(&mut self, input: &EpochInput<'_>) -> Vec<AntennaFix> {
+        (0..self.last_fix.len())
+            .map(|antenna| self.fix(antenna, input))
+            .collect()
+    }
+
+    fn last_fix(&self, antenna: usize) -> Option<LastFix> {
+        self.last_fix.get(antenna).copied().flatten()
+    }
+}
