@@ -1,21 +1,17 @@
 //! The whole chain as a user runs it, in one call, for any table that needs it: synthesise
 //! a scenario's I/Q into SigMF recordings with the broadcast navigation file and the
 //! rounded start state (`receiver.toml`) beside them, run the bundled receiver over the
-//! recordings with that assistance, and hand back each antenna's observations exactly as
-//! its RINEX observation file would hold them (through the one RINEX writer and reader).
+//! recordings with that assistance into RINEX observation files (the writer `skyforge
+//! receive` uses), and hand back each antenna's observations as read from them.
 
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::input::InputParams;
-use skyforge_receiver::observables::Observation;
-use skyforge_receiver::pipeline::{EpochReport, ReceiverConfig, ReceiverSummary, assistance_toml};
+use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
-    Assistance, EpochSink, ReceiveSession, SessionError, SinkError, read_config,
+    Assistance, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
-use skyforge_signals::observation::rinex_write::{
-    ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
-};
-use skyforge_signals::observation::{ObsFile, ObsReadError, parse_obs_text};
+use skyforge_signals::observation::{ObsFile, ObsReadError, read_obs_file};
 use skyforge_signals::synth::session::{Discard, Sinks, SynthError, SynthSession, SynthWorld};
 use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
@@ -151,71 +147,25 @@ pub fn synth_and_receive(
         approximate,
     };
     let mut receiver = ReceiveSession::open(&files, &InputParams::default(), &assistance, config)?;
-    let mut sink = RinexText::new(receiver.antenna_names().len(), receiver.systems());
-    let summary = receiver.run(&mut sink, |_, _| {})?;
     let antennas = receiver.antenna_names().to_vec();
-    let mut observations = Vec::new();
-    for (w, name) in sink.texts.into_iter().zip(&antennas) {
-        let label = format!("{name}.obs.rnx");
-        let bytes = match w {
-            Some(w) => w.finish().map_err(io(Path::new(&label)))?.into_inner(),
-            None => Vec::new(),
-        };
-        observations.push(parse_obs_text(&String::from_utf8_lossy(&bytes), &label)?);
-    }
+    let rx_dir = work.join("receive");
+    std::fs::create_dir_all(&rx_dir).map_err(io(&rx_dir))?;
+    let mut sink = RinexObsFiles::new(
+        &rx_dir,
+        &antennas,
+        &receiver.systems(),
+        approximate.map(|a| a.r_ecef_m),
+        1.0 / receiver.config().observation_rate_hz,
+    );
+    let summary = receiver.run(&mut sink, |_, _| {})?;
+    sink.finish().map_err(io(&rx_dir))?;
+    let observations = antennas
+        .iter()
+        .map(|name| read_obs_file(&rx_dir.join(format!("{name}.obs.rnx"))))
+        .collect::<Result<_, _>>()?;
     Ok(ChainOutput {
         antennas,
         observations,
         summary,
     })
-}
-
-/// RINEX observation text per antenna, in memory: the epochs with observations.
-struct RinexText {
-    systems: Vec<skyforge_orbits::ephemeris::System>,
-    texts: Vec<Option<ObsWriter<std::io::Cursor<Vec<u8>>>>>,
-}
-
-impl RinexText {
-    fn new(antennas: usize, systems: Vec<skyforge_orbits::ephemeris::System>) -> Self {
-        Self {
-            systems,
-            texts: (0..antennas).map(|_| None).collect(),
-        }
-    }
-}
-
-impl EpochSink for RinexText {
-    fn epoch(&mut self, report: &EpochReport) -> Result<(), SinkError> {
-        let at = calendar_gpst(report.t_rx);
-        for (a, text) in self.texts.iter_mut().enumerate() {
-            let mut records: Vec<_> = report
-                .observations
-                .iter()
-                .filter(|o| o.antenna == a)
-                .map(Observation::record)
-                .collect();
-            if records.is_empty() {
-                continue;
-            }
-            records.sort_by_key(|r| r.sat);
-            let writer = match text {
-                Some(w) => w,
-                empty => empty.insert(ObsWriter::with_header(
-                    std::io::Cursor::new(Vec::new()),
-                    &ObsHeader {
-                        marker: "antenna",
-                        receiver_type: RECEIVER_TYPE,
-                        antenna_type: "SKYFORGE",
-                        approx_ecef_m: None,
-                        first: at,
-                        interval_s: 0.0,
-                        systems: &self.systems,
-                    },
-                )?),
-            };
-            writer.epoch(at, &records)?;
-        }
-        Ok(())
-    }
 }

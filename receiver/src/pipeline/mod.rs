@@ -6,6 +6,8 @@ mod acquire;
 mod channel;
 mod config;
 mod epoch_stage;
+#[cfg(any(test, feature = "test-support"))]
+pub mod fixtures;
 mod navdata;
 mod receiver;
 mod timing;

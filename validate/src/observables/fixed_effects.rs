@@ -186,9 +186,16 @@ pub fn fit(samples: &[Sample], n_groups: usize, n_epochs: usize) -> Option<Fit> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::observables::test_rinex::normal;
     use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
+
+    /// Standard normal by Box-Muller.
+    fn normal(rng: &mut ChaCha8Rng) -> f64 {
+        use rand::Rng;
+        let u1: f64 = rng.random::<f64>().max(1e-300);
+        let u2: f64 = rng.random();
+        (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+    }
 
     /// Unbalanced panel: 6 groups over 200 epochs, each present on its own span.
     fn panel(sigma: f64, seed: u64) -> (Vec<Sample>, [f64; 6], Vec<f64>) {

@@ -12,8 +12,6 @@ mod error_stats;
 mod fixed_effects;
 mod interpolate;
 pub mod table;
-#[cfg(test)]
-mod test_rinex;
 
 pub use compare::{ObsComparison, compare};
 pub use error_stats::{ErrorStats, SatErrors};

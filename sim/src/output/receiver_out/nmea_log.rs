@@ -63,11 +63,11 @@ impl NmeaLog {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{fix, gps};
     use super::*;
     use hifitime::TimeScale;
     use skyforge_orbits::Vec3;
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_receiver::pipeline::fixtures::{fix, gps};
 
     /// Check a sentence's checksum: the XOR of the bytes between `$` and `*` (NMEA 0183).
     fn checksum_ok(line: &str) -> bool {

@@ -96,11 +96,11 @@ impl PvtCsv {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::{bds, fix, gps};
     use super::*;
     use hifitime::TimeScale;
     use skyforge_orbits::Vec3;
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_receiver::pipeline::fixtures::{bds, fix, gps};
 
     #[test]
     fn header_and_rows() {

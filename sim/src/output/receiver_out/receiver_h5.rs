@@ -356,8 +356,8 @@ impl ReceiverH5 {
 
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::report;
     use super::*;
+    use skyforge_receiver::pipeline::fixtures::report;
 
     fn read_f64(file: &hdf5::File, path: &str) -> Vec<f64> {
         file.dataset(path).unwrap().read_raw::<f64>().unwrap()

@@ -1,5 +1,8 @@
 //! Test support: simulated observations with known errors, written as RINEX 3.04 text
-//! by hand (validate cannot use sim's writer) and read back through the reader.
+//! by hand (in any time system, with any loss-of-lock digit, as other receivers write
+//! them) and read back through the project's RINEX reader.
+//! Shared by several test binaries, each using part of it.
+#![allow(dead_code)]
 
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;

@@ -4,18 +4,17 @@
 //! at most [`PENDING_EPOCHS_MAX`] of them (then, or at the end, the header goes without
 //! `APPROX POSITION XYZ`, which RINEX 3.04 table A2 makes optional for moving platforms).
 
-use super::writing;
-use anyhow::Context;
+use super::{EpochSink, SinkError};
+use crate::observables::Observation;
+use crate::pipeline::EpochReport;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
-use skyforge_receiver::observables::Observation;
-use skyforge_receiver::pipeline::EpochReport;
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::observation::rinex_write::{
     Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
 };
 use std::fs::File;
-use std::io::BufWriter;
+use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};
 
 /// Epochs that may wait for a first fix before the header is written without a position.
@@ -34,9 +33,14 @@ enum State {
     Open(Writer),
 }
 
-/// The observation files of every antenna.
+/// `e` with the file it happened on.
+fn writing(path: &Path, e: io::Error) -> io::Error {
+    io::Error::new(e.kind(), format!("cannot write {}: {e}", path.display()))
+}
+
+/// The observation files of every antenna, as an epoch sink.
 #[derive(Debug)]
-pub(super) struct RinexFiles {
+pub struct RinexObsFiles {
     paths: Vec<PathBuf>,
     names: Vec<String>,
     systems: Vec<System>,
@@ -45,8 +49,11 @@ pub(super) struct RinexFiles {
     states: Vec<State>,
 }
 
-impl RinexFiles {
-    pub(super) fn new(
+impl RinexObsFiles {
+    /// The files `dir/<antenna>.obs.rnx` of antennas `names` (the receiver's antenna
+    /// indices index them), declaring `systems`; `approx_ecef_m` is the header position
+    /// (each antenna's first fix when `None`); `interval_s` the RINEX `INTERVAL`.
+    pub fn new(
         dir: &Path,
         names: &[String],
         systems: &[System],
@@ -67,7 +74,7 @@ impl RinexFiles {
     }
 
     /// Open antenna `a`'s file (header at `position`) and write its waiting epochs.
-    fn open(&mut self, a: usize, position: Option<Vec3>) -> anyhow::Result<()> {
+    fn open(&mut self, a: usize, position: Option<Vec3>) -> io::Result<()> {
         let State::Waiting(pending) = &mut self.states[a] else {
             return Ok(());
         };
@@ -76,7 +83,7 @@ impl RinexFiles {
         };
         let pending = std::mem::take(pending);
         let path = &self.paths[a];
-        let file = File::create(path).with_context(|| writing(path))?;
+        let file = File::create(path).map_err(|e| writing(path, e))?;
         let header = ObsHeader {
             marker: &self.names[a],
             receiver_type: RECEIVER_TYPE,
@@ -87,16 +94,16 @@ impl RinexFiles {
             systems: &self.systems,
         };
         let mut w =
-            ObsWriter::with_header(BufWriter::new(file), &header).with_context(|| writing(path))?;
+            ObsWriter::with_header(BufWriter::new(file), &header).map_err(|e| writing(path, e))?;
         for (at, records) in &pending {
-            w.epoch(*at, records).with_context(|| writing(path))?;
+            w.epoch(*at, records).map_err(|e| writing(path, e))?;
         }
         self.states[a] = State::Open(w);
         Ok(())
     }
 
     /// Write (or hold) every antenna's observations of `report`.
-    pub(super) fn write_epoch(&mut self, report: &EpochReport) -> anyhow::Result<()> {
+    pub fn write_epoch(&mut self, report: &EpochReport) -> io::Result<()> {
         let at = calendar_gpst(report.t_rx);
         for a in 0..self.states.len() {
             let mut records: Vec<ObsRecord> = report
@@ -110,7 +117,7 @@ impl RinexFiles {
                 State::Open(w) => {
                     if !records.is_empty() {
                         w.epoch(at, &records)
-                            .with_context(|| writing(&self.paths[a]))?;
+                            .map_err(|e| writing(&self.paths[a], e))?;
                     }
                 }
                 State::Waiting(pending) => {
@@ -136,28 +143,34 @@ impl RinexFiles {
     }
 
     /// Write the epochs still waiting (header without a position) and close every file.
-    pub(super) fn finish(mut self) -> anyhow::Result<()> {
+    pub fn finish(mut self) -> io::Result<()> {
         for a in 0..self.states.len() {
             self.open(a, None)?;
         }
         for (state, path) in self.states.into_iter().zip(&self.paths) {
             if let State::Open(w) = state {
-                w.finish().with_context(|| writing(path))?;
+                w.finish().map_err(|e| writing(path, e))?;
             }
         }
         Ok(())
     }
 }
 
+impl EpochSink for RinexObsFiles {
+    fn epoch(&mut self, report: &EpochReport) -> Result<(), SinkError> {
+        Ok(self.write_epoch(report)?)
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::super::test_support::report;
     use super::*;
+    use crate::pipeline::fixtures::report;
 
     fn run(approx: Option<Vec3>, epochs: usize) -> (String, String) {
         let dir = tempfile::tempdir().unwrap();
         let names = vec!["ant1".to_string(), "ant2".to_string()];
-        let mut files = RinexFiles::new(
+        let mut files = RinexObsFiles::new(
             dir.path(),
             &names,
             &[System::Gps, System::Beidou],

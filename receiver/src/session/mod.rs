@@ -2,7 +2,12 @@
 //! one or two bands) opened as block readers, the receiver configured from a TOML file and
 //! assisted from a navigation file, then run block by block with every epoch handed to an
 //! [`EpochSink`]. The caller picks the writers (RINEX, HDF5, CSV, NMEA, or anything that
-//! keeps the reports in memory) by implementing the trait.
+//! keeps the reports in memory) by implementing the trait; [`RinexObsFiles`] is the
+//! RINEX observation writer every caller shares.
+
+mod rinex_files;
+
+pub use rinex_files::RinexObsFiles;
 
 use crate::input::{BlockReader, InputParams, InputReport, Recording};
 use crate::pipeline::{

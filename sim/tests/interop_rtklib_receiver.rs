@@ -1,5 +1,5 @@
 //! Interoperability tier: RTKLIB (Debian package `rtklib`) reads the receiver's RINEX 3.04
-//! observation files: receiver time tags with a fractional second, loss-of-lock
+//! observation files (`skyforge_receiver::session::RinexObsFiles`): receiver time tags with a fractional second, loss-of-lock
 //! indicators, signal strength indicators.
 //!
 //! - `convbin` re-reads our file and writes it again in its own RINEX writer: the epochs,
@@ -10,18 +10,22 @@
 //!   offset of the same size in the pseudoranges. RTKLIB's solution time (tag minus its
 //!   clock estimate) must land back on the true whole second, and its position on the site.
 
-use super::test_support::report;
-use super::*;
+mod support;
+
 use hifitime::{Duration, Epoch, TimeScale};
 use rinex::prelude::{Constellation, Observable};
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
-use skyforge_orbits::ephemeris::SatId;
+use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 use skyforge_receiver::observables::Observation;
+use skyforge_receiver::pipeline::fixtures::{fix, report};
 use skyforge_receiver::pipeline::{AntennaFix, EpochReport};
 use skyforge_receiver::pvt::PvtError;
+use skyforge_receiver::session::RinexObsFiles;
 use std::collections::BTreeMap;
+use std::path::Path;
 use std::process::Command;
+use support::skyforge_ok;
 
 fn require(program: &str) {
     assert!(
@@ -76,8 +80,7 @@ fn rtklib_convbin_reads_back_epochs_flags_and_values() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     let names = vec!["ant1".to_string()];
-    let mut out =
-        ReceiverOutputs::create(dir, &names, &[System::Gps, System::Beidou], None, 0.1).unwrap();
+    let mut out = RinexObsFiles::new(dir, &names, &[System::Gps, System::Beidou], None, 0.1);
     for k in 0..5 {
         let mut r = report(k);
         r.observations.retain(|o| o.antenna == 0);
@@ -167,26 +170,14 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
     require("rnx2rtkp");
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
-    let bundled = skyforge_scenarios::bundled();
-    let scenario = bundled
-        .iter()
-        .find(|b| b.name == "interop-gps-static")
-        .unwrap();
-    let toml = scenario
-        .text
-        .replacen("duration_s = 90.0", "duration_s = 10.0", 1)
-        + "\n[errors.troposphere]\nmodel = \"off\"\n";
-    let scenario_path = dir.join("short.toml");
-    std::fs::write(&scenario_path, toml).unwrap();
+    let toml = skyforge_ok(&["scenarios", "show", "interop-gps-static"], dir).replacen(
+        "duration_s = 90.0",
+        "duration_s = 10.0",
+        1,
+    ) + "\n[errors.troposphere]\nmodel = \"off\"\n";
+    std::fs::write(dir.join("short.toml"), toml).unwrap();
+    skyforge_ok(&["synth", "short.toml", "--out", "synth"], dir);
     let synth_dir = dir.join("synth");
-    crate::commands::synth::synth(
-        scenario_path.to_str().unwrap(),
-        &synth_dir,
-        None,
-        false,
-        crate::commands::synth::DEFAULT_CHUNK_EPOCHS as usize,
-    )
-    .unwrap();
     let truth = truth_observations(&synth_dir.join("ant1.obs.rnx"));
     assert!(truth.len() >= 10, "{} truth epochs", truth.len());
 
@@ -197,9 +188,7 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
     });
     let recv_dir = dir.join("receive");
     std::fs::create_dir(&recv_dir).unwrap();
-    let mut out =
-        ReceiverOutputs::create(&recv_dir, &["ant1".to_string()], &[System::Gps], None, 1.0)
-            .unwrap();
+    let mut out = RinexObsFiles::new(&recv_dir, &["ant1".to_string()], &[System::Gps], None, 1.0);
     // Receiver clock ahead by 0.1234567 s + k x 1.0001 ms (whole 100 ns, so the tags
     // keep it exactly): tags and pseudoranges both carry it.
     let offset_s = |k: usize| 0.123_456_7 + 0.001_000_1 * k as f64;
@@ -224,7 +213,7 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
             Err(PvtError::Singular)
         } else {
             let sats: Vec<SatId> = sats.keys().copied().collect();
-            Ok(super::test_support::fix(
+            Ok(fix(
                 site + skyforge_orbits::Vec3::new(30.0, -20.0, 20.0),
                 &sats,
             ))
