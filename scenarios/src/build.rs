@@ -15,6 +15,7 @@ use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, Platform
 use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
+use skyforge_signals::synth::session::SynthWorld;
 use std::path::Path;
 
 /// Everything a simulation run needs, built from a [`Scenario`].
@@ -36,6 +37,20 @@ pub struct World {
     pub duration_s: f64,
     /// Truth geometry step (s) = 1 / `truth.geometry_rate_hz`.
     pub step_s: f64,
+}
+
+impl World {
+    /// The world as a synthesis session takes it (the session propagates the platform).
+    pub fn synth_world(&mut self) -> SynthWorld<'_> {
+        SynthWorld {
+            origin: &self.origin,
+            ephemerides: &self.ephemerides,
+            satellites: &self.satellites,
+            platform: &mut self.platform,
+            antennas: &self.antennas,
+            duration_s: self.duration_s,
+        }
+    }
 }
 
 impl Scenario {

@@ -12,7 +12,7 @@ use skyforge_receiver::session::{
 };
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::{ObsFile, ObsReadError, read_obs_file};
-use skyforge_signals::synth::session::{Discard, Sinks, SynthError, SynthSession, SynthWorld};
+use skyforge_signals::synth::session::{Discard, Sinks, SynthError, SynthSession};
 use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
 
@@ -77,23 +77,12 @@ pub fn synth_and_receive(
         .signal
         .as_ref()
         .ok_or_else(|| ChainError::NoSignal(scenario.name.clone()))?;
-    let world = scenario
+    let mut world = scenario
         .build()
         .map_err(|e| ChainError::Scenario(Box::new(e)))?;
-    let session = SynthSession::new(
-        SynthWorld {
-            origin: &world.origin,
-            ephemerides: &world.ephemerides,
-            satellites: &world.satellites,
-            platform: world.platform,
-            antennas: &world.antennas,
-            duration_s: world.duration_s,
-        },
-        signal,
-        &scenario.errors,
-        scenario.seed,
-    )?;
+    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?;
     let bands = session.bands().to_vec();
+    let (origin, antennas) = (session.world().origin, session.world().antennas);
     let nav_path = work.join("nav.rnx");
     let mut nav = Vec::new();
     write_nav(
@@ -104,8 +93,7 @@ pub fn synth_and_receive(
     )
     .and_then(|()| std::fs::write(&nav_path, nav))
     .map_err(io(&nav_path))?;
-    let mut recordings =
-        SigmfRecordings::create(work, &bands, &world.antennas).map_err(io(work))?;
+    let mut recordings = SigmfRecordings::create(work, &bands, antennas).map_err(io(work))?;
     let report = session.run(
         CHUNK_EPOCHS,
         Sinks {
@@ -120,7 +108,7 @@ pub fn synth_and_receive(
             format: signal.format,
             sample_rate_hz: signal.sample_rate_hz,
             if_hz: signal.if_hz,
-            start: world.origin.start(),
+            start: origin.start(),
             scenario: scenario.name.clone(),
             seed: scenario.seed,
         })

@@ -138,7 +138,8 @@ pub struct SynthWorld<'a> {
     /// Ephemerides of the enabled constellations (those valid at the start are broadcast).
     pub ephemerides: &'a EphemerisStore,
     pub satellites: &'a [SatId],
-    pub platform: Platform,
+    /// Propagated as the session streams.
+    pub platform: &'a mut Platform,
     pub antennas: &'a [Antenna],
     pub duration_s: f64,
 }
@@ -288,6 +289,11 @@ impl<'a> SynthSession<'a> {
         })
     }
 
+    /// The world being synthesised.
+    pub fn world(&self) -> &SynthWorld<'a> {
+        &self.world
+    }
+
     /// The bands with transmitters, GPS first.
     pub fn bands(&self) -> &[Band] {
         &self.bands
@@ -323,33 +329,23 @@ impl<'a> SynthSession<'a> {
     /// Stream the whole span into `sinks`, computing geometry `chunk_epochs` epochs at a
     /// time.
     pub fn run(self, chunk_epochs: usize, sinks: Sinks<'_>) -> Result<SynthReport, SynthError> {
-        let Self {
-            world,
-            signal,
-            errors,
-            seed,
-            iono,
-            bands,
-            transmitters,
-            broadcast,
-            clocks,
-            events,
-            filter,
-        } = self;
+        let world = self.world;
+        let signal = self.signal;
         let n_ant = world.antennas.len();
-        let mut synths = bands
+        let mut synths = self
+            .bands
             .iter()
             .map(|b| {
                 let s = Synthesiser::new(
                     signal,
-                    &transmitters[b.first..b.first + b.count],
+                    &self.transmitters[b.first..b.first + b.count],
                     n_ant,
-                    seed,
+                    self.seed,
                 )?
                 .with_truth_every(signal.truth_every_blocks())
-                .with_clocks(clocks.clone())
-                .with_events(events.clone());
-                match &filter {
+                .with_clocks(self.clocks.clone())
+                .with_events(self.events.clone());
+                match &self.filter {
                     Some(f) => s.with_filter(f.clone()),
                     None => Ok(s),
                 }
@@ -357,18 +353,18 @@ impl<'a> SynthSession<'a> {
             .collect::<Result<Vec<_>, QuantiseError>>()?;
         let terms = LinkTerms {
             signal,
-            ionosphere: &iono,
-            troposphere: &errors.troposphere,
-            multipath: &errors.multipath,
+            ionosphere: &self.iono,
+            troposphere: &self.errors.troposphere,
+            multipath: &self.errors.multipath,
             antennas: world.antennas,
         };
-        let store = EphemerisStore::new(broadcast, world.origin);
-        let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
+        let store = EphemerisStore::new(self.broadcast, world.origin);
+        let sats: Vec<SatId> = self.transmitters.iter().map(|t| t.sat).collect();
         let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
         let mut running = Running {
             origin: world.origin,
             antennas: world.antennas,
-            bands: &bands,
+            bands: &self.bands,
             sats: &sats,
             terms,
             synths: &mut synths,
@@ -376,9 +372,8 @@ impl<'a> SynthSession<'a> {
             start_state: None,
             sinks,
         };
-        let mut platform = world.platform;
         truth
-            .stream(&mut platform, world.duration_s, chunk_epochs, |chunk| {
+            .stream(world.platform, world.duration_s, chunk_epochs, |chunk| {
                 running.chunk(&chunk)
             })
             .map_err(|e| match e {

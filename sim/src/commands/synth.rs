@@ -15,9 +15,7 @@ use skyforge_scenarios::Scenario;
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
-use skyforge_signals::synth::session::{
-    GEOMETRY_STEP_S, Sinks, SynthError, SynthSession, SynthWorld,
-};
+use skyforge_signals::synth::session::{GEOMETRY_STEP_S, Sinks, SynthError, SynthSession};
 use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
 use std::io::Write;
@@ -63,20 +61,16 @@ pub fn synthesise(
     chunk_epochs: usize,
 ) -> anyhow::Result<()> {
     let started = Instant::now();
-    let world = scenario.build()?;
-    let synth_world = SynthWorld {
-        origin: &world.origin,
-        ephemerides: &world.ephemerides,
-        satellites: &world.satellites,
-        platform: world.platform,
-        antennas: &world.antennas,
-        duration_s: world.duration_s,
-    };
-    let session = SynthSession::new(synth_world, signal, &scenario.errors, scenario.seed)
+    let mut world = scenario.build()?;
+    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
         .map_err(|e| setup_error(scenario, e))?;
+    let (origin, antennas, duration_s) = {
+        let w = session.world();
+        (w.origin, w.antennas, w.duration_s)
+    };
     let bands = session.bands().to_vec();
     let sats = session.satellites();
-    let n_ant = world.antennas.len();
+    let n_ant = antennas.len();
     let staged = StagedDir::create(out, force)?;
     let nav_path = staged.file("nav.rnx");
     let mut nav = std::io::BufWriter::new(
@@ -91,27 +85,27 @@ pub fn synthesise(
     )
     .and_then(|()| nav.flush())
     .with_context(|| writing(&nav_path))?;
-    let mut recordings = SigmfRecordings::create(&staged.file(""), &bands, &world.antennas)?;
+    let mut recordings = SigmfRecordings::create(&staged.file(""), &bands, antennas)?;
     let meta = RunMeta {
         scenario: scenario.name.clone(),
         source: scenario.source.clone(),
-        start_epoch: world.origin.start().to_string(),
+        start_epoch: origin.start().to_string(),
         seed: scenario.seed,
         step_s: GEOMETRY_STEP_S,
     };
     let truth_path = staged.file("truth.h5");
-    let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, &world.antennas)
+    let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
     if signal.truth_rate_hz > 0 {
-        truth_writer.create_signal(&world.antennas)?;
+        truth_writer.create_signal(antennas)?;
     }
     let mut truth = TruthFile {
         path: truth_path,
         writer: truth_writer,
     };
     let systems: Vec<System> = bands.iter().map(|b| b.signal.system()).collect();
-    let mut obs = ObsTruthFiles::new(&staged.file(""), &world.antennas, &systems);
-    let n_epochs = epoch_count(world.duration_s, GEOMETRY_STEP_S);
+    let mut obs = ObsTruthFiles::new(&staged.file(""), antennas, &systems);
+    let n_epochs = epoch_count(duration_s, GEOMETRY_STEP_S);
     let bar = ProgressBar::new(n_epochs as u64).with_style(
         ProgressStyle::with_template("{spinner} synth [{bar:40}] {pos}/{len} s ({eta} left)")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
@@ -138,14 +132,14 @@ pub fn synthesise(
         format: signal.format,
         sample_rate_hz: signal.sample_rate_hz,
         if_hz: signal.if_hz,
-        start: world.origin.start(),
+        start: origin.start(),
         scenario: scenario.name.clone(),
         seed: scenario.seed,
     })?;
     let leo = scenario.platform.leo.is_some();
     let tropo_on = scenario.errors.troposphere.model != TropoModel::Off;
     for band in &bands {
-        for ant in &world.antennas {
+        for ant in antennas {
             let name = recording_name(&ant.name, band);
             let conf =
                 gnss_sdr::recording_config(signal, &name, band.signal, leo, iono_on, tropo_on);
@@ -169,7 +163,7 @@ pub fn synthesise(
     }
     println!(
         "samples    {} Hz {:?}, {} s, clipped components {}",
-        signal.sample_rate_hz, signal.format, world.duration_s, report.clipped
+        signal.sample_rate_hz, signal.format, duration_s, report.clipped
     );
     println!("wrote      {}", dir.display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
