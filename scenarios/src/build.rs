@@ -16,6 +16,7 @@ use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
 use skyforge_signals::synth::session::SynthWorld;
+use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
 use std::path::Path;
 
 /// Everything a simulation run needs, built from a [`Scenario`].
@@ -40,6 +41,23 @@ pub struct World {
 }
 
 impl World {
+    /// Stream the geometry truth of every antenna and satellite at the world's step over
+    /// the whole span, `chunk_epochs` epochs at a time, into `sink` (memory bounded by one
+    /// chunk); the platform is propagated as it goes.
+    pub fn stream_geometry<E>(
+        &mut self,
+        chunk_epochs: usize,
+        sink: impl FnMut(GeometryChunk) -> Result<(), E>,
+    ) -> Result<(), StreamError<E>> {
+        let truth = GeometryTruth::new(
+            &self.ephemerides,
+            &self.satellites,
+            &self.antennas,
+            self.step_s,
+        );
+        truth.stream(&mut self.platform, self.duration_s, chunk_epochs, sink)
+    }
+
     /// The world as a synthesis session takes it (the session propagates the platform).
     pub fn synth_world(&mut self) -> SynthWorld<'_> {
         SynthWorld {

@@ -4,7 +4,7 @@ use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth, epoch_count};
+use skyforge_signals::truth::geometry::{GeometryChunk, epoch_count};
 use std::path::Path;
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
@@ -28,7 +28,7 @@ pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow
             super::synth::DEFAULT_CHUNK_EPOCHS as usize,
         );
     }
-    let world = scenario.build()?;
+    let mut world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;
     let meta = RunMeta {
         scenario: scenario.name.clone(),
@@ -50,13 +50,6 @@ pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow
     );
     let n_ant = world.antennas.len();
     let mut visible_sum = vec![0usize; n_ant];
-    let mut platform = world.platform;
-    let truth = GeometryTruth::new(
-        &world.ephemerides,
-        &world.satellites,
-        &world.antennas,
-        world.step_s,
-    );
 
     // The HDF5 writer runs on its own thread so computing the next chunk overlaps writing.
     let (tx, rx) = sync_channel::<GeometryChunk>(1);
@@ -67,7 +60,7 @@ pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow
             }
             writer.finish()
         });
-        let streamed = truth.stream(&mut platform, world.duration_s, CHUNK_EPOCHS, |chunk| {
+        let streamed = world.stream_geometry(CHUNK_EPOCHS, |chunk| {
             for (a, sum) in visible_sum.iter_mut().enumerate() {
                 for k in 0..chunk.t_s.len() {
                     *sum += (0..chunk.n_satellites)

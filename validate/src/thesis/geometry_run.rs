@@ -3,7 +3,7 @@
 use super::ValidateError;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
+use skyforge_signals::truth::geometry::GeometryChunk;
 use std::convert::Infallible;
 
 /// Epochs per chunk: one hour at 1 Hz.
@@ -14,17 +14,11 @@ pub fn for_each_chunk(
     scenario: &Scenario,
     mut visit: impl FnMut(&GeometryChunk, &[SatId]),
 ) -> Result<(), ValidateError> {
-    let world = scenario.build()?;
-    let mut platform = world.platform;
-    let truth = GeometryTruth::new(
-        &world.ephemerides,
-        &world.satellites,
-        &world.antennas,
-        world.step_s,
-    );
-    truth
-        .stream(&mut platform, world.duration_s, CHUNK_EPOCHS, |chunk| {
-            visit(&chunk, &world.satellites);
+    let mut world = scenario.build()?;
+    let satellites = world.satellites.clone();
+    world
+        .stream_geometry(CHUNK_EPOCHS, |chunk| {
+            visit(&chunk, &satellites);
             Ok::<(), Infallible>(())
         })
         .map_err(|e| ValidateError::Geometry(e.to_string()))
