@@ -52,8 +52,9 @@ cargo build --quiet --manifest-path "$root/Cargo.toml" -p skyforge-sim
 new_bin="$work/skyforge-new"
 cp "$root/target/debug/skyforge" "$new_bin"
 
-# Every file below $1 with its SHA-256, paths relative to $1.
-digest() { (cd "$1" && find . -type f -print0 | sort -z | xargs -0 sha256sum); }
+# Every file below $1 with its SHA-256, paths relative to $1 (the --force manifest,
+# .skyforge-manifest, is left out: binaries before it did not write one).
+digest() { (cd "$1" && find . -type f ! -name .skyforge-manifest -print0 | sort -z | xargs -0 sha256sum); }
 
 # Compare directories $1/base/$2 and $1/new/$2.
 same() {

@@ -99,24 +99,66 @@ fn a_bad_scenario_exits_2_names_the_place_and_writes_nothing() {
 }
 
 #[test]
-fn an_existing_output_needs_force() {
+fn an_existing_output_needs_force_and_force_replaces_only_what_skyforge_wrote() {
     let tmp = tempfile::tempdir().unwrap();
     let scenario = short_scenario(tmp.path(), "thesis-leo", 10);
-    std::fs::create_dir(tmp.path().join("out")).unwrap();
-    std::fs::write(tmp.path().join("out/keep.txt"), "x").unwrap();
-    let o = skyforge(
-        &["run", scenario.to_str().unwrap(), "--out", "out"],
-        tmp.path(),
-    );
+    let scenario = scenario.to_str().unwrap();
+    let run = |out: &str, force: bool| {
+        let mut args = vec!["run", scenario, "--out", out];
+        if force {
+            args.push("--force");
+        }
+        skyforge(&args, tmp.path())
+    };
+    // A directory of the user's: refused without --force and with it.
+    std::fs::create_dir(tmp.path().join("mine")).unwrap();
+    std::fs::write(tmp.path().join("mine/keep.txt"), "x").unwrap();
+    for force in [false, true] {
+        let o = run("mine", force);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(tmp.path().join("mine/keep.txt").exists());
+    }
+    // SkyForge's own output: replaced with --force.
+    assert!(run("out", false).status.success());
+    let o = run("out", false);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(tmp.path().join("out/keep.txt").exists());
-    let o = skyforge(
-        &["run", scenario.to_str().unwrap(), "--out", "out", "--force"],
-        tmp.path(),
-    );
+    let o = run("out", true);
     assert!(o.status.success(), "{}", text(&o));
-    assert!(!tmp.path().join("out/keep.txt").exists());
     assert!(tmp.path().join("out/truth.h5").exists());
+    // ... unless something else was put into it.
+    std::fs::write(tmp.path().join("out/notes.txt"), "mine").unwrap();
+    let o = run("out", true);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("notes.txt"), "{}", text(&o));
+    assert!(tmp.path().join("out/notes.txt").exists());
+}
+
+/// `--force` on `.`, `..` or `dir/.` (issue #11: these deleted the working directory's or
+/// the parent's contents) is refused with nothing deleted.
+#[test]
+fn force_never_replaces_dot_dot_dot_or_a_parent() {
+    let tmp = tempfile::tempdir().unwrap();
+    let work = tmp.path().join("work");
+    std::fs::create_dir_all(work.join("victim")).unwrap();
+    std::fs::write(tmp.path().join("sibling.txt"), "x").unwrap();
+    std::fs::write(work.join("victim/data.txt"), "x").unwrap();
+    let scenario = short_scenario(&work, "thesis-leo", 10);
+    for out in [
+        ".",
+        "..",
+        "victim/.",
+        "victim/..",
+        tmp.path().to_str().unwrap(),
+    ] {
+        let o = skyforge(
+            &["run", scenario.to_str().unwrap(), "--out", out, "--force"],
+            &work,
+        );
+        assert_eq!(o.status.code(), Some(2), "--out {out}: {}", text(&o));
+        assert!(tmp.path().join("sibling.txt").exists(), "--out {out}");
+        assert!(work.join("victim/data.txt").exists(), "--out {out}");
+        assert!(scenario.exists(), "--out {out}");
+    }
 }
 
 #[test]

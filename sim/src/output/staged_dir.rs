@@ -1,7 +1,10 @@
 //! An output directory that appears only when complete: files are written into a sibling
 //! staging directory, which replaces the target on [`StagedDir::commit`] and is removed
-//! if the run fails (on drop).
+//! if the run fails (on drop). Every committed directory carries a [`manifest`] of its
+//! files; `--force` replaces only such a directory holding nothing else, and the old
+//! directory stays in place until the new one is complete.
 
+use super::manifest;
 use crate::BadInput;
 use anyhow::Context;
 use std::path::{Path, PathBuf};
@@ -35,6 +38,15 @@ impl StagedDir {
         }
         if target.exists() && !target.is_dir() {
             return Err(unwritable("it exists and is not a directory".into()).into());
+        }
+        if target.exists()
+            && let Some(reason) = manifest::refuse_replacing(target)
+        {
+            return Err(BadInput(format!(
+                "--force will not replace {}: {reason}",
+                target.display()
+            ))
+            .into());
         }
         let name = target
             .file_name()
@@ -71,15 +83,32 @@ impl StagedDir {
         self.staging.join(name)
     }
 
-    /// Move the finished directory into place (replacing an existing one).
+    /// Write the manifest and move the finished directory into place. An existing one
+    /// (checked in [`Self::create`]) is first moved aside and removed only once the new
+    /// one is in place; if the move fails it is put back.
     pub fn commit(mut self) -> anyhow::Result<PathBuf> {
-        if self.target.exists() {
-            std::fs::remove_dir_all(&self.target)
+        manifest::write(&self.staging)
+            .with_context(|| format!("cannot write the manifest in {}", self.staging.display()))?;
+        let old = self
+            .target
+            .exists()
+            .then(|| self.staging.with_extension("old"));
+        if let Some(old) = &old {
+            std::fs::rename(&self.target, old)
                 .with_context(|| format!("cannot replace {}", self.target.display()))?;
         }
-        std::fs::rename(&self.staging, &self.target)
-            .with_context(|| format!("cannot move output into {}", self.target.display()))?;
+        if let Err(e) = std::fs::rename(&self.staging, &self.target) {
+            if let Some(old) = &old {
+                let _ = std::fs::rename(old, &self.target);
+            }
+            return Err(e)
+                .with_context(|| format!("cannot move output into {}", self.target.display()));
+        }
         self.committed = true;
+        if let Some(old) = old {
+            std::fs::remove_dir_all(&old)
+                .with_context(|| format!("cannot remove the replaced {}", old.display()))?;
+        }
         Ok(self.target.clone())
     }
 }
