@@ -6,6 +6,9 @@
 //! since the scenario start ([`time::TimeOrigin`]); rotation matrices are named
 //! `c_from_to` and map a vector's components from frame `from` to frame `to`.
 
+// Library code returns errors instead of panicking; tests may unwrap.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
+
 pub mod atmosphere;
 pub mod check;
 pub mod constants;

@@ -4,6 +4,9 @@
 //! codes, navigation-message formats, sample-file formats, NCO helpers), which
 //! `tests/tests/truth_firewall.rs` checks.
 
+// Library code returns errors instead of panicking; tests may unwrap.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
+
 pub mod acquisition;
 pub mod assist;
 pub mod fast_sync;

@@ -239,6 +239,17 @@ fn noise(rng: &mut ChaCha8Rng, n: usize) -> Vec<Complex32> {
         .collect()
 }
 
+/// A cold GPS L1 C/A search at `fs` over Doppler in +/-`half_width_hz`.
+fn gps_config(fs: f64, half_width_hz: f64) -> PcpsConfig {
+    PcpsConfig {
+        window: DopplerWindow {
+            centre_hz: 0.0,
+            half_width_hz,
+        },
+        ..PcpsConfig::cold(Signal::GpsL1Ca, fs)
+    }
+}
+
 /// Smallest `c` with `P(X > c) < tail` for `X ~ Binomial(n, p)`.
 fn binomial_bound(n: usize, p: f64, tail: f64) -> usize {
     let (mut pmf, mut cdf) = ((1.0 - p).powi(n as i32), 0.0);
@@ -256,12 +267,8 @@ fn binomial_bound(n: usize, p: f64, tail: f64) -> usize {
 fn noise_alone_does_not_trigger_detections_beyond_the_false_alarm_rate() {
     let mut rng = ChaCha8Rng::seed_from_u64(5);
     let config = PcpsConfig {
-        window: DopplerWindow {
-            centre_hz: 0.0,
-            half_width_hz: 2e3,
-        },
         pfa: 1e-3,
-        ..PcpsConfig::cold(Signal::GpsL1Ca, 2.046e6)
+        ..gps_config(2.046e6, 2e3)
     };
     let pcps = Pcps::new(config).unwrap();
     let code = pcps.prepare(11).unwrap();
@@ -289,11 +296,7 @@ fn noise_cells_follow_the_chi_square_tail() {
     let nc = 4;
     let config = PcpsConfig {
         noncoherent: nc,
-        window: DopplerWindow {
-            centre_hz: 0.0,
-            half_width_hz: 2e3,
-        },
-        ..PcpsConfig::cold(Signal::GpsL1Ca, 2.046e6)
+        ..gps_config(2.046e6, 2e3)
     };
     let pcps = Pcps::new(config).unwrap();
     let code = pcps.prepare(3).unwrap();
@@ -340,13 +343,7 @@ fn aligned_windows_keep_a_peak_that_a_mid_block_sign_flip_cancels() {
             Complex32::new(sign * c, 0.0)
         })
         .collect();
-    let base = PcpsConfig {
-        window: DopplerWindow {
-            centre_hz: 0.0,
-            half_width_hz: 0.0,
-        },
-        ..PcpsConfig::cold(Signal::GpsL1Ca, fs)
-    };
+    let base = gps_config(fs, 0.0);
     let plain = Pcps::new(base).unwrap();
     let aligned = Pcps::new(PcpsConfig {
         bit_transition: BitTransition::AlignedWindows,

@@ -227,53 +227,43 @@ fn unknown_command_line_values_list_the_allowed_ones() {
 fn antennas_that_cannot_share_a_clock_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let a = open(&write(dir.path(), "a", &meta_json("a"), 80)).unwrap();
-    let mut m = meta_json("b");
-    m["global"]["core:sample_rate"] = json!(4.0e6);
-    let b = open(&write(dir.path(), "b", &m, 80)).unwrap();
-    let data = |n: &str| {
-        dir.path()
-            .join(format!("{n}.sigmf-data"))
-            .display()
-            .to_string()
-    };
-    assert_eq!(
-        open_reader(&[a.clone(), b]),
-        format!(
-            "antenna b ({}) is sampled at 4000000 Hz but antenna a at 4092000 Hz: all antennas must share one sample clock",
-            data("b")
-        )
-    );
-    let mut m = meta_json("c");
-    m["global"]["core:datatype"] = json!("ci16_le");
-    let c = open(&write(dir.path(), "c", &m, 80)).unwrap();
-    assert_eq!(
-        open_reader(&[a.clone(), c]),
-        format!(
-            "antenna c ({}) holds ci16_le samples but antenna a holds ci8: all antennas must use one datatype",
-            data("c")
-        )
-    );
-    let mut m = meta_json("d");
-    m["global"]["skyforge:if_hz"] = json!(1000.0);
-    m["captures"][0]["core:frequency"] = json!(1575.42e6 - 1000.0);
-    let d = open(&write(dir.path(), "d", &m, 80)).unwrap();
-    assert_eq!(
-        open_reader(&[a.clone(), d]),
-        format!(
-            "antenna d ({}) has the signal at IF 1000 Hz but antenna a at 0 Hz: complex recordings processed together must share one IF",
-            data("d")
-        )
-    );
-    let mut m = meta_json("e");
-    m["captures"][0]["core:frequency"] = json!(1561.098e6);
-    let e = open(&write(dir.path(), "e", &m, 80)).unwrap();
-    assert_eq!(
-        open_reader(&[a, e]),
-        format!(
-            "antenna e ({}) records bds-b1i but antenna a records gps-l1ca: process one band per run",
-            data("e")
-        )
-    );
+    // Each antenna differs from `a` in one way: (name, edit of its metadata, the refusal).
+    type Edit = fn(&mut Value);
+    let cases: [(&str, Edit, &str); 4] = [
+        (
+            "b",
+            |m| m["global"]["core:sample_rate"] = json!(4.0e6),
+            "is sampled at 4000000 Hz but antenna a at 4092000 Hz: all antennas must share one sample clock",
+        ),
+        (
+            "c",
+            |m| m["global"]["core:datatype"] = json!("ci16_le"),
+            "holds ci16_le samples but antenna a holds ci8: all antennas must use one datatype",
+        ),
+        (
+            "d",
+            |m| {
+                m["global"]["skyforge:if_hz"] = json!(1000.0);
+                m["captures"][0]["core:frequency"] = json!(1575.42e6 - 1000.0);
+            },
+            "has the signal at IF 1000 Hz but antenna a at 0 Hz: complex recordings processed together must share one IF",
+        ),
+        (
+            "e",
+            |m| m["captures"][0]["core:frequency"] = json!(1561.098e6),
+            "records bds-b1i but antenna a records gps-l1ca: process one band per run",
+        ),
+    ];
+    for (name, edit, refusal) in cases {
+        let mut m = meta_json(name);
+        edit(&mut m);
+        let other = open(&write(dir.path(), name, &m, 80)).unwrap();
+        let data = dir.path().join(format!("{name}.sigmf-data"));
+        assert_eq!(
+            open_reader(&[a.clone(), other]),
+            format!("antenna {name} ({}) {refusal}", data.display())
+        );
+    }
     assert_eq!(open_reader(&[]), "no sample files given");
 }
 

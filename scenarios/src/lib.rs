@@ -11,6 +11,8 @@
 // A scenario error is built once per run, on the way to exit code 2: its size (four
 // strings and a position, as the error format requires) costs nothing worth boxing for.
 #![allow(clippy::result_large_err)]
+// Library code returns errors instead of panicking; tests may unwrap.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 mod build;
 mod bundled;

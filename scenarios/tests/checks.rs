@@ -51,8 +51,10 @@ fn exactly_one_platform_kind() {
     let err = parse_error(&two);
     assert_eq!(err.field, "platform");
     assert_eq!(err.value, "leo + ground");
-    let at = position_of(&two, "[platform.leo.elements]", "platform");
-    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert_at(
+        &err,
+        position_of(&two, "[platform.leo.elements]", "platform"),
+    );
 
     let none = replace(
         &ground("latitude_deg = 1.0\nlongitude_deg = 2.0\nheight_m = 3.0"),
@@ -71,24 +73,17 @@ fn ground_site_checks() {
     parse_in(&ok, Path::new(".")).expect("valid ECEF site");
 
     let text = ground("latitude_deg = 95.0\nlongitude_deg = 114.0\nheight_m = 50.0");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
+    parse_error_at(
+        &text,
         "platform.ground.latitude_deg",
+        "latitude_deg = 95.0",
         "95.0",
-        position_of(&text, "latitude_deg = 95.0", "95.0"),
     );
 
     let text = ground("latitude_deg = 30.0\nlongitude_deg = 114.0");
     let err = parse_error(&text);
     assert_eq!(err.field, "platform.ground.height_m");
-    assert_eq!(
-        (err.line, err.column),
-        (
-            Some(position_of(&text, "[platform.ground]", "[").0),
-            Some(1)
-        )
-    );
+    assert_at(&err, (position_of(&text, "[platform.ground]", "[").0, 1));
 
     let text = ground(
         "latitude_deg = 30.0\nlongitude_deg = 114.0\nheight_m = 5.0\necef_m = [6378137.0, 0.0, 0.0]",
@@ -98,17 +93,10 @@ fn ground_site_checks() {
     let text = ground("ecef_m = [1000.0, 0.0, 0.0]");
     let err = parse_error(&text);
     assert_eq!(err.field, "platform.ground.ecef_m");
-    let at = position_of(&text, "ecef_m = [1000.0", "[1000.0");
-    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert_at(&err, position_of(&text, "ecef_m = [1000.0", "[1000.0"));
 
     let text = ground("ecef_m = [nan, 0.0, 0.0]");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "platform.ground.ecef_m[0]",
-        "nan",
-        position_of(&text, "[nan", "nan"),
-    );
+    parse_error_at(&text, "platform.ground.ecef_m[0]", "[nan", "nan");
 
     let text = ground("");
     assert_eq!(parse_error(&text).field, "platform.ground");
@@ -132,19 +120,14 @@ fn attitude_profile_checks() {
     let text = with("pitch = { amplitude_deg = 2.0 }");
     let err = parse_error(&text);
     assert_eq!(err.field, "platform.attitude.pitch.period_s");
-    assert_eq!(
-        (err.line, err.column),
-        (Some(position_of(&text, "pitch = {", "{").0), Some(9)),
-        "{err}"
-    );
+    assert_at(&err, (position_of(&text, "pitch = {", "{").0, 9));
 
     let text = with("roll = { offset_deg = inf }");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
+    parse_error_at(
+        &text,
         "platform.attitude.roll.offset_deg",
+        "offset_deg = inf",
         "inf",
-        position_of(&text, "offset_deg = inf", "inf"),
     );
 
     let text = with("csv = \"attitude.csv\"\nyaw = { offset_deg = 1.0 }");
@@ -153,38 +136,26 @@ fn attitude_profile_checks() {
 
 #[test]
 fn antenna_checks_are_located_per_antenna() {
-    let text = replace(
-        BASE,
-        "fov_half_angle_deg = 80.0",
-        "fov_half_angle_deg = 0.0",
-    );
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "antennas[1].fov_half_angle_deg",
-        "0.0",
-        position_of(&text, "fov_half_angle_deg = 0.0", "0.0"),
-    );
+    let (to, field) = ("fov_half_angle_deg = 0.0", "antennas[1].fov_half_angle_deg");
+    replaced_error("fov_half_angle_deg = 80.0", to, field, "0.0");
 
     let text = replace(BASE, "name = \"ant2\"", "name = \"ant1\"");
     let err = parse_error(&text);
     let second = text.rfind("name = \"ant1\"").expect("second") + "name = ".len();
-    let line = text[..second].matches('\n').count() + 1;
     assert_eq!(err.field, "antennas[1].name");
     assert_eq!(err.value, "\"ant1\"");
-    assert_eq!((err.line, err.column), (Some(line), Some(8)), "{err}");
+    assert_at(&err, (text[..second].matches('\n').count() + 1, 8));
 
     let text = replace(
         BASE,
         "position_body_m = [1.0, 0.0, 0.0]",
         "position_body_m = [1.0, 0.0, nan]",
     );
-    let err = parse_error(&text);
-    assert_error(
-        &err,
+    parse_error_at(
+        &text,
         "antennas[1].position_body_m[2]",
+        "[1.0, 0.0, nan]",
         "nan",
-        position_of(&text, "[1.0, 0.0, nan]", "nan"),
     );
 
     let text = replace(
@@ -212,13 +183,12 @@ fn at_least_one_constellation() {
 
 #[test]
 fn bad_enum_value() {
-    let text = replace(BASE, "source = \"embedded\"", "source = \"almanac\"");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
+    let to = "source = \"almanac\"";
+    let err = replaced_error(
+        "source = \"embedded\"",
+        to,
         "gnss.gps.source",
         "\"almanac\"",
-        position_of(&text, "source = \"almanac\"", "\"almanac\""),
     );
     assert!(err.allowed.contains("embedded"), "{err}");
 }

@@ -19,14 +19,9 @@ fn base_scenario_is_valid() {
 #[test]
 fn eccentricity_of_one_or_more() {
     for bad in ["1.2", "1.0"] {
-        let text = replace(
-            BASE,
-            "eccentricity = 0.000846",
-            &format!("eccentricity = {bad}"),
-        );
-        let err = parse_error(&text);
-        let at = position_of(&text, &format!("eccentricity = {bad}"), bad);
-        assert_error(&err, "platform.leo.elements.eccentricity", bad, at);
+        let to = format!("eccentricity = {bad}");
+        let field = "platform.leo.elements.eccentricity";
+        replaced_error("eccentricity = 0.000846", &to, field, bad);
     }
 }
 
@@ -46,33 +41,20 @@ fn perigee_below_the_surface() {
     } else {
         ("semi_major_axis_km = 6600.0", "6600.0")
     };
-    let at = position_of(&text, key, value);
-    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert_at(&err, position_of(&text, key, value));
     assert!(err.to_string().starts_with(SOURCE), "{err}");
 }
 
 #[test]
 fn negative_mass() {
-    let text = replace(BASE, "mass_kg = 100.0", "mass_kg = -5.0");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "platform.leo.forces.mass_kg",
-        "-5.0",
-        position_of(&text, "mass_kg = -5.0", "-5.0"),
-    );
+    let field = "platform.leo.forces.mass_kg";
+    replaced_error("mass_kg = 100.0", "mass_kg = -5.0", field, "-5.0");
 }
 
 #[test]
 fn negative_area() {
-    let text = replace(BASE, "area_m2 = 1.0", "area_m2 = -1.5");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "platform.leo.forces.area_m2",
-        "-1.5",
-        position_of(&text, "area_m2 = -1.5", "-1.5"),
-    );
+    let field = "platform.leo.forces.area_m2";
+    replaced_error("area_m2 = 1.0", "area_m2 = -1.5", field, "-1.5");
 }
 
 #[test]
@@ -94,30 +76,25 @@ fn no_antennas() {
 #[test]
 fn empty_or_reversed_time_span() {
     for bad in ["0.0", "-600.0", "nan"] {
-        let text = replace(BASE, "duration_s = 600.0", &format!("duration_s = {bad}"));
-        let err = parse_error(&text);
-        let at = position_of(&text, &format!("duration_s = {bad}"), bad);
-        assert_error(&err, "time.duration_s", bad, at);
+        let to = format!("duration_s = {bad}");
+        replaced_error("duration_s = 600.0", &to, "time.duration_s", bad);
     }
 }
 
 #[test]
 fn non_positive_step() {
     for bad in ["0.0", "-1.0", "inf"] {
-        let text = replace(
-            BASE,
-            "geometry_rate_hz = 1.0",
-            &format!("geometry_rate_hz = {bad}"),
-        );
-        let err = parse_error(&text);
-        let at = position_of(&text, &format!("geometry_rate_hz = {bad}"), bad);
-        assert_error(&err, "truth.geometry_rate_hz", bad, at);
+        let to = format!("geometry_rate_hz = {bad}");
+        replaced_error("geometry_rate_hz = 1.0", &to, "truth.geometry_rate_hz", bad);
     }
     // A step longer than the span.
-    let text = replace(BASE, "geometry_rate_hz = 1.0", "geometry_rate_hz = 0.001");
-    let err = parse_error(&text);
-    let at = position_of(&text, "geometry_rate_hz = 0.001", "0.001");
-    assert_error(&err, "truth.geometry_rate_hz", "0.001", at);
+    let to = "geometry_rate_hz = 0.001";
+    let err = replaced_error(
+        "geometry_rate_hz = 1.0",
+        to,
+        "truth.geometry_rate_hz",
+        "0.001",
+    );
     assert!(err.allowed.contains("1 / time.duration_s"), "{err}");
 }
 
@@ -126,12 +103,12 @@ fn unknown_prn() {
     let text = replace(BASE, "source = \"embedded\"", "prns = [1, 40]");
     let err = parse_error(&text);
     assert!(err.field.starts_with("gnss.gps.prns"), "{err}");
-    let at = if err.field == "gnss.gps.prns[1]" {
-        position_of(&text, "prns = [1, 40]", "40")
+    let part = if err.field == "gnss.gps.prns[1]" {
+        "40"
     } else {
-        position_of(&text, "prns = [1, 40]", "[1, 40]")
+        "[1, 40]"
     };
-    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+    assert_at(&err, position_of(&text, "prns = [1, 40]", part));
     assert!(err.to_string().contains("40"), "{err}");
 
     let text = replace(BASE, "enabled = true", "prns = [64]");
@@ -148,9 +125,9 @@ fn missing_navigation_file() {
         "source = \"embedded\"",
         "source = \"rinex\"\nnav_file = \"nav/missing.rnx\"",
     );
-    let err = build_error(&text, dir.path());
-    let at = position_of(&text, "nav_file = \"nav/missing.rnx\"", "\"nav/");
-    assert_error(&err, "gnss.gps.nav_file", "\"nav/missing.rnx\"", at);
+    let at = ("nav_file = \"nav/missing.rnx\"", "\"nav/");
+    let value = "\"nav/missing.rnx\"";
+    let err = build_error_at(&text, dir.path(), "gnss.gps.nav_file", value, at);
     assert!(err.allowed.contains("missing.rnx"), "{err}");
 }
 
@@ -165,9 +142,9 @@ fn unreadable_navigation_file() {
             "source = \"embedded\"",
             &format!("source = \"rinex\"\nnav_file = \"{name}\""),
         );
-        let err = build_error(&text, dir.path());
-        let at = position_of(&text, &format!("nav_file = \"{name}\""), "\"");
-        assert_error(&err, "gnss.gps.nav_file", &format!("\"{name}\""), at);
+        let (context, value) = (format!("nav_file = \"{name}\""), format!("\"{name}\""));
+        let at = (context.as_str(), "\"");
+        build_error_at(&text, dir.path(), "gnss.gps.nav_file", &value, at);
     }
 }
 
@@ -194,21 +171,16 @@ fn unknown_key_is_rejected_where_it_is() {
     let text = format!("{BASE}\n[receiver]\nbandwidth_hz = 18.0\n");
     let err = parse_error(&text);
     assert_eq!(err.field, "receiver");
-    assert_eq!(
-        (err.line, err.column),
-        (
-            Some(position_of(&text, "[receiver]", "receiver").0),
-            Some(2)
-        )
-    );
+    assert_at(&err, (position_of(&text, "[receiver]", "receiver").0, 2));
 }
 
 #[test]
 fn wrong_type_and_missing_field() {
-    let text = replace(BASE, "eccentricity = 0.000846", "eccentricity = \"small\"");
-    let err = parse_error(&text);
-    let at = position_of(&text, "eccentricity = \"small\"", "\"small\"");
-    assert_error(&err, "platform.leo.elements.eccentricity", "\"small\"", at);
+    let (to, field) = (
+        "eccentricity = \"small\"",
+        "platform.leo.elements.eccentricity",
+    );
+    replaced_error("eccentricity = 0.000846", to, field, "\"small\"");
 
     let text = replace(BASE, "inclination_deg = 34.911\n", "");
     let err = parse_error(&text);
@@ -224,17 +196,14 @@ fn wrong_type_and_missing_field() {
     let err = parse_error(&text);
     assert_error(&err, "name", "(missing)", (1, 1));
 
-    let text = replace(BASE, "seed = 7", "seed = -7");
-    let err = parse_error(&text);
-    assert_error(&err, "seed", "-7", position_of(&text, "seed = -7", "-7"));
+    replaced_error("seed = 7", "seed = -7", "seed", "-7");
 
     let text = replace(BASE, "name = \"ant2\"\n", "");
     let err = parse_error(&text);
     assert_eq!(err.field, "antennas[1].name");
     assert_eq!(err.value, "(missing)");
     let second = text.rfind("[[antennas]]").expect("second antenna");
-    let line = text[..second].matches('\n').count() + 1;
-    assert_eq!((err.line, err.column), (Some(line), Some(1)), "{err}");
+    assert_at(&err, (text[..second].matches('\n').count() + 1, 1));
 }
 
 #[test]
@@ -279,9 +248,12 @@ fn with_signal(fields: &str) -> String {
 fn sample_rate_below_the_signal_bandwidth() {
     // 3 Msps complex holds the C/A main lobe but not B1I's (+-2.046 MHz).
     let text = with_signal("sample_rate_hz = 3.0e6\nformat = \"ci8\"");
-    let err = parse_error(&text);
-    let at = position_of(&text, "sample_rate_hz = 3.0e6", "3.0e6");
-    assert_error(&err, "signal.sample_rate_hz", "3.0e6", at);
+    let err = parse_error_at(
+        &text,
+        "signal.sample_rate_hz",
+        "sample_rate_hz = 3.0e6",
+        "3.0e6",
+    );
     assert!(err.to_string().contains("BeiDou B1I"), "{err}");
     // GPS alone is fine at 3 Msps; below the C/A main lobe it is not.
     let gps_only = replace(
@@ -290,35 +262,23 @@ fn sample_rate_below_the_signal_bandwidth() {
         "[gnss.beidou]\nenabled = false",
     );
     parse_in(&gps_only, Path::new(".")).expect("GPS at 3 Msps");
-    let text = replace(
-        &gps_only,
-        "sample_rate_hz = 3.0e6",
-        "sample_rate_hz = 1.5e6",
-    );
-    let err = parse_error(&text);
-    let at = position_of(&text, "sample_rate_hz = 1.5e6", "1.5e6");
-    assert_error(&err, "signal.sample_rate_hz", "1.5e6", at);
+    let line = "sample_rate_hz = 1.5e6";
+    let text = replace(&gps_only, "sample_rate_hz = 3.0e6", line);
+    parse_error_at(&text, "signal.sample_rate_hz", line, "1.5e6");
     // A complex IF offset counts too: 4.092 Msps at IF 1 MHz cannot hold B1I.
     let text = with_signal("sample_rate_hz = 4.092e6\nif_hz = 1.0e6");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
+    parse_error_at(
+        &text,
         "signal.sample_rate_hz",
+        "sample_rate_hz = 4.092e6",
         "4.092e6",
-        position_of(&text, "sample_rate_hz = 4.092e6", "4.092e6"),
     );
 }
 
 #[test]
 fn intermediate_frequency_outside_nyquist() {
     let text = with_signal("sample_rate_hz = 8.0e6\nif_hz = 5.0e6");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "signal.if_hz",
-        "5.0e6",
-        position_of(&text, "if_hz = 5.0e6", "5.0e6"),
-    );
+    let err = parse_error_at(&text, "signal.if_hz", "if_hz = 5.0e6", "5.0e6");
     assert!(err.to_string().contains("Nyquist"), "{err}");
     // Real samples: the main lobe must fit between 0 and fs/2 (16.368 Msps: 2.0-6.2 MHz
     // for B1I), and a real recording needs an IF.
@@ -328,8 +288,7 @@ fn intermediate_frequency_outside_nyquist() {
         ));
         let err = parse_error(&text);
         assert_eq!(err.field, "signal.if_hz", "{err}");
-        let at = position_of(&text, &format!("if_hz = {bad}"), bad);
-        assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+        assert_at(&err, position_of(&text, &format!("if_hz = {bad}"), bad));
     }
     let ok = with_signal("sample_rate_hz = 16.368e6\nformat = \"ri8\"\nif_hz = 4.092e6");
     parse_in(&ok, Path::new(".")).expect("B1I and C/A at IF 4.092 MHz, 16.368 Msps real");
@@ -339,18 +298,10 @@ fn intermediate_frequency_outside_nyquist() {
 fn quantisation_bits_not_in_the_list() {
     for bad in ["3", "12", "0"] {
         let text = with_signal(&format!("format = \"ci16\"\nbits = {bad}"));
-        let err = parse_error(&text);
-        let at = position_of(&text, &format!("bits = {bad}"), bad);
-        assert_error(&err, "signal.bits", bad, at);
+        let err = parse_error_at(&text, "signal.bits", &format!("bits = {bad}"), bad);
         assert!(err.to_string().contains("1, 2, 4, 8, 16"), "{err}");
     }
     // 16 bits do not fit an 8-bit container.
     let text = with_signal("format = \"ci8\"\nbits = 16");
-    let err = parse_error(&text);
-    assert_error(
-        &err,
-        "signal.bits",
-        "16",
-        position_of(&text, "bits = 16", "16"),
-    );
+    parse_error_at(&text, "signal.bits", "bits = 16", "16");
 }

@@ -57,9 +57,8 @@ fn a_file_valid_at_the_start_builds() {
 fn a_file_without_ephemeris_for_the_requested_time() {
     let dir = nav_dir();
     let text = scenario("2023-03-12T00:00:00 GPST", "");
-    let err = build_error(&text, dir.path());
-    let at = position_of(&text, "nav_file = \"brdc.rnx\"", "\"brdc");
-    assert_error(&err, "gnss.gps.nav_file", "\"brdc.rnx\"", at);
+    let at = ("nav_file = \"brdc.rnx\"", "\"brdc");
+    let err = build_error_at(&text, dir.path(), "gnss.gps.nav_file", "\"brdc.rnx\"", at);
     assert!(
         err.allowed
             .contains("no healthy GPS ephemeris valid at the scenario start"),
@@ -81,9 +80,14 @@ fn a_file_without_ephemeris_of_the_system() {
         "2023-03-12T00:00:00 GPST",
         "2022-01-01T00:30:00 GPST",
     );
-    let err = build_error(&text, dir.path());
-    let at = position_of(&text, "nav_file = \"brdc.rnx\"", "\"brdc");
-    assert_error(&err, "gnss.beidou.nav_file", "\"brdc.rnx\"", at);
+    let at = ("nav_file = \"brdc.rnx\"", "\"brdc");
+    let err = build_error_at(
+        &text,
+        dir.path(),
+        "gnss.beidou.nav_file",
+        "\"brdc.rnx\"",
+        at,
+    );
     assert!(err.allowed.contains("BeiDou"), "{err}");
 }
 
@@ -91,9 +95,8 @@ fn a_file_without_ephemeris_of_the_system() {
 fn a_requested_prn_without_ephemeris() {
     let dir = nav_dir();
     let text = scenario("2022-01-01T00:30:00 GPST", "\nprns = [7, 5]");
-    let err = build_error(&text, dir.path());
-    let at = position_of(&text, "prns = [7, 5]", "5]");
-    assert_error(&err, "gnss.gps.prns[1]", "5", at);
+    let at = ("prns = [7, 5]", "5]");
+    let err = build_error_at(&text, dir.path(), "gnss.gps.prns[1]", "5", at);
     assert!(err.allowed.contains("G05"), "{err}");
 
     let text = scenario("2022-01-01T00:30:00 GPST", "\nprns = [7]");

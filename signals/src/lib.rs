@@ -2,6 +2,9 @@
 //! geometry truth, the observation vocabulary with its RINEX files, and the IF synthesiser
 //! with its streaming session.
 
+// Library code returns errors instead of panicking; tests may unwrap.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
+
 pub mod antenna;
 pub mod codes;
 pub mod errors;

@@ -4,7 +4,7 @@ mod support;
 
 use std::path::Path;
 use std::process::Command;
-use support::{results_json, short_scenario, skyforge, text};
+use support::{dataset, results_json, short_scenario, skyforge, text};
 
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {
@@ -26,7 +26,7 @@ fn run_writes_truth_h5_with_the_documented_schema() {
 
     let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
     assert_eq!(file.attr("seed").unwrap().read_scalar::<u64>().unwrap(), 7);
-    let t: Vec<f64> = file.dataset("time/t_s").unwrap().read_raw().unwrap();
+    let t: Vec<f64> = dataset(&file, "time/t_s");
     assert_eq!(t.len(), 121);
     assert_eq!((t[0], t[120]), (0.0, 120.0));
     let r = file.dataset("platform/r_ecef_m").unwrap();
@@ -49,8 +49,8 @@ fn run_writes_truth_h5_with_the_documented_schema() {
         let units: hdf5::types::VarLenUnicode = range.attr("units").unwrap().read_scalar().unwrap();
         assert_eq!(units.as_str(), "m");
         let range: Vec<f64> = range.read_raw().unwrap();
-        let epochs: Vec<u32> = g.dataset("epoch_index").unwrap().read_raw().unwrap();
-        let sats: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
+        let epochs: Vec<u32> = dataset(&g, "epoch_index");
+        let sats: Vec<u16> = dataset(&g, "sat_index");
         // One value per visible link, in row-major order of the mask.
         let expected: Vec<(u32, u16)> = (0..121u32)
             .flat_map(|k| (0..n_sat as u16).map(move |s| (k, s)))
@@ -234,6 +234,14 @@ fn validate_thesis_writes_every_row_of_both_tables() {
 /// Every dataset of an HDF5 file as (path, raw little-endian bytes), sorted by path.
 fn h5_contents(path: &Path) -> Vec<(String, Vec<u8>)> {
     use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
+    /// The dataset's values as `T`, each turned into bytes.
+    fn bytes<T: hdf5::H5Type, B: AsRef<[u8]>>(ds: &hdf5::Dataset, of: fn(&T) -> B) -> Vec<u8> {
+        let values = ds.read_raw::<T>().unwrap();
+        values
+            .iter()
+            .flat_map(|x| of(x).as_ref().to_vec())
+            .collect()
+    }
     fn walk(g: &hdf5::Group, prefix: &str, out: &mut Vec<(String, Vec<u8>)>) {
         for name in g.member_names().unwrap() {
             let full = format!("{prefix}/{name}");
@@ -243,22 +251,14 @@ fn h5_contents(path: &Path) -> Vec<(String, Vec<u8>)> {
             }
             let ds = g.dataset(&name).unwrap();
             let data: Vec<u8> = match ds.dtype().unwrap().to_descriptor().unwrap() {
-                TypeDescriptor::Float(FloatSize::U8) => (ds.read_raw::<f64>().unwrap().iter())
-                    .flat_map(|x| x.to_le_bytes())
-                    .collect(),
-                TypeDescriptor::Float(FloatSize::U4) => (ds.read_raw::<f32>().unwrap().iter())
-                    .flat_map(|x| x.to_le_bytes())
-                    .collect(),
+                TypeDescriptor::Float(FloatSize::U8) => bytes(&ds, |x: &f64| x.to_le_bytes()),
+                TypeDescriptor::Float(FloatSize::U4) => bytes(&ds, |x: &f32| x.to_le_bytes()),
                 TypeDescriptor::Unsigned(IntSize::U1) => ds.read_raw::<u8>().unwrap(),
-                TypeDescriptor::Unsigned(IntSize::U2) => (ds.read_raw::<u16>().unwrap().iter())
-                    .flat_map(|x| x.to_le_bytes())
-                    .collect(),
-                TypeDescriptor::Unsigned(IntSize::U4) => (ds.read_raw::<u32>().unwrap().iter())
-                    .flat_map(|x| x.to_le_bytes())
-                    .collect(),
-                TypeDescriptor::VarLenUnicode => (ds.read_raw::<VarLenUnicode>().unwrap().iter())
-                    .flat_map(|x| x.as_bytes().to_vec())
-                    .collect(),
+                TypeDescriptor::Unsigned(IntSize::U2) => bytes(&ds, |x: &u16| x.to_le_bytes()),
+                TypeDescriptor::Unsigned(IntSize::U4) => bytes(&ds, |x: &u32| x.to_le_bytes()),
+                TypeDescriptor::VarLenUnicode => {
+                    bytes(&ds, |x: &VarLenUnicode| x.as_bytes().to_vec())
+                }
                 other => panic!("{full}: compare type {other:?} too"),
             };
             out.push((full, data));
@@ -345,16 +345,12 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
     let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
     let g = file.group("antennas/ant1").unwrap();
     let s = g.group("signal").unwrap();
-    let t: Vec<f64> = s.dataset("t_s").unwrap().read_raw().unwrap();
-    let sat: Vec<u16> = s.dataset("sat_index").unwrap().read_raw().unwrap();
-    let pr: Vec<f64> = s.dataset("pseudorange_m").unwrap().read_raw().unwrap();
-    let phase: Vec<f64> = s
-        .dataset("carrier_phase_cycles")
-        .unwrap()
-        .read_raw()
-        .unwrap();
-    let iono: Vec<f64> = s.dataset("iono_m").unwrap().read_raw().unwrap();
-    let tropo: Vec<f64> = s.dataset("tropo_m").unwrap().read_raw().unwrap();
+    let t: Vec<f64> = dataset(&s, "t_s");
+    let sat: Vec<u16> = dataset(&s, "sat_index");
+    let pr: Vec<f64> = dataset(&s, "pseudorange_m");
+    let phase: Vec<f64> = dataset(&s, "carrier_phase_cycles");
+    let iono: Vec<f64> = dataset(&s, "iono_m");
+    let tropo: Vec<f64> = dataset(&s, "tropo_m");
     // A site at 50 m under the default Saastamoinen troposphere: 2.3 m at the zenith, about
     // 25 m at 5 deg.
     assert!(
@@ -369,10 +365,10 @@ fn synthesis_writes_signal_truth_at_one_kilohertz() {
         &iono[..3]
     );
     // Geometry at 1 Hz: the links visible at t = 0 and 1 s.
-    let epochs: Vec<u32> = g.dataset("epoch_index").unwrap().read_raw().unwrap();
-    let gsat: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
-    let range: Vec<f64> = g.dataset("range_m").unwrap().read_raw().unwrap();
-    let clock: Vec<f64> = g.dataset("sat_clock_s").unwrap().read_raw().unwrap();
+    let epochs: Vec<u32> = dataset(&g, "epoch_index");
+    let gsat: Vec<u16> = dataset(&g, "sat_index");
+    let range: Vec<f64> = dataset(&g, "range_m");
+    let clock: Vec<f64> = dataset(&g, "sat_clock_s");
     let links_at = |k: u32| epochs.iter().filter(|&&e| e == k).count();
     // One record per visible link and millisecond of [0, 2) s.
     assert_eq!(t.len(), 1000 * (links_at(0) + links_at(1)));
@@ -405,10 +401,7 @@ fn link_budget_and_per_antenna_clocks_reach_the_signal_truth() {
     assert!(o.status.success(), "{}", text(&o));
     let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
     let read = |ant: &str, name: &str| -> Vec<f64> {
-        file.dataset(&format!("antennas/{ant}/signal/{name}"))
-            .unwrap()
-            .read_raw()
-            .unwrap()
+        dataset(&file, &format!("antennas/{ant}/signal/{name}"))
     };
     // C/N0 from the budget: default GPS EIRP, free-space loss over the link's range,
     // 0 dBi (no gain pattern), kT at 290 K.
@@ -479,9 +472,9 @@ fn ground_plane_surface_multipath_reaches_the_signal_truth() {
     let o = skyforge(&["synth", "short.toml", "--out", "out"], tmp.path());
     assert!(o.status.success(), "{}", text(&o));
     let file = hdf5::File::open(tmp.path().join("out/truth.h5")).unwrap();
-    let f64s = |name: &str| -> Vec<f64> { file.dataset(name).unwrap().read_raw().unwrap() };
-    let u16s = |name: &str| -> Vec<u16> { file.dataset(name).unwrap().read_raw().unwrap() };
-    let u32s = |name: &str| -> Vec<u32> { file.dataset(name).unwrap().read_raw().unwrap() };
+    let f64s = |name: &str| -> Vec<f64> { dataset(&file, name) };
+    let u16s = |name: &str| -> Vec<u16> { dataset(&file, name) };
+    let u32s = |name: &str| -> Vec<u32> { dataset(&file, name) };
     // Elevation of each satellite at t = 0 (geometry epoch 0).
     let (epoch, sat, el) = (
         u32s("antennas/ant1/epoch_index"),

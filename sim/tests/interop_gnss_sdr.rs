@@ -4,6 +4,7 @@
 //! --ignored` (scripts/test.sh --ci installs gnss-sdr and runs it).
 
 mod interop_observables;
+mod support;
 
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
@@ -12,6 +13,7 @@ use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
 use skyforge_signals::signal::Signal;
 use std::path::Path;
 use std::process::Command;
+use support::dataset;
 
 /// The site of the bundled `interop-gps-static` and `interop-bds-static` scenarios.
 const SITE: (f64, f64, f64) = (30.0, 114.0, 50.0);
@@ -92,11 +94,10 @@ fn last_gsv(nmea: &str, talker: &str) -> Vec<(u8, f64)> {
 /// run, from truth.h5.
 fn satellites_above(truth: &Path, system: char, mask_deg: f64) -> Vec<u8> {
     let file = hdf5::File::open(truth).unwrap();
-    let ids: Vec<hdf5::types::VarLenUnicode> =
-        file.dataset("satellites/id").unwrap().read_raw().unwrap();
+    let ids: Vec<hdf5::types::VarLenUnicode> = dataset(&file, "satellites/id");
     let g = file.group("antennas/ant1").unwrap();
-    let sat_index: Vec<u16> = g.dataset("sat_index").unwrap().read_raw().unwrap();
-    let elevation: Vec<f64> = g.dataset("elevation_rad").unwrap().read_raw().unwrap();
+    let sat_index: Vec<u16> = dataset(&g, "sat_index");
+    let elevation: Vec<f64> = dataset(&g, "elevation_rad");
     let mut min_el = vec![f64::INFINITY; ids.len()];
     for (&s, &e) in sat_index.iter().zip(&elevation) {
         min_el[s as usize] = min_el[s as usize].min(e.to_degrees());
@@ -401,12 +402,8 @@ fn gnss_sdr_fixes_on_the_thesis_leo() {
     let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-leo-gps", "gps-l1ca");
     // Truth: the platform's ECEF position at 1 Hz (the antenna sits at the centre of mass).
     let file = hdf5::File::open(out.join("truth.h5")).unwrap();
-    let t: Vec<f64> = file.dataset("time/t_s").unwrap().read_raw().unwrap();
-    let r: Vec<f64> = file
-        .dataset("platform/r_ecef_m")
-        .unwrap()
-        .read_raw()
-        .unwrap();
+    let t: Vec<f64> = dataset(&file, "time/t_s");
+    let r: Vec<f64> = dataset(&file, "platform/r_ecef_m");
     // NMEA times are UTC; the scenario starts at 2023-03-12T00:00:00 GPST.
     let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
     let midnight_utc = hifitime::Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);

@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Mutex;
 use support::{
-    fixes, observable_errors, require_rnx2rtkp, rms, rtklib_xyz_solutions, short_scenario,
+    dataset, fixes, observable_errors, require_rnx2rtkp, rms, rtklib_xyz_solutions, short_scenario,
     skyforge_ok, truth_site,
 };
 
@@ -163,14 +163,8 @@ fn leo_300_s_assisted_every_satellite_in_view_tracked_until_it_sets_and_pvt_with
     );
     // PVT against the platform's truth position at the fix time.
     let h5 = hdf5::File::open(sim.join("truth.h5")).expect("truth.h5");
-    let t_s: Vec<f64> = h5
-        .dataset("time/t_s")
-        .and_then(|d| d.read_raw())
-        .expect("t_s");
-    let r: Vec<f64> = h5
-        .dataset("platform/r_ecef_m")
-        .and_then(|d| d.read_raw())
-        .expect("r_ecef_m");
+    let t_s: Vec<f64> = dataset(&h5, "time/t_s");
+    let r: Vec<f64> = dataset(&h5, "platform/r_ecef_m");
     let errors: Vec<f64> = fixes(&rx)
         .iter()
         .map(|&(tow, p, bias)| {

@@ -7,9 +7,12 @@
 //! at chip `1.023e6 (t - pseudorange / c)` and the carrier phase
 //! `IF t - carrier_phase_cycles(t)` (cycles), so `x = A d c cos(2 pi phase) + noise`.
 
+mod support;
+
 use skyforge_signals::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
 use std::path::Path;
 use std::process::Command;
+use support::dataset;
 
 const FS_HZ: f64 = 16.368e6;
 const IF_HZ: f64 = 4.092e6;
@@ -78,30 +81,17 @@ fn write_scenario(dir: &Path) {
 /// Per PRN, the truth of every 1 ms block (index = block), from truth.h5.
 fn read_truth(path: &Path) -> (Vec<(u8, Blocks)>, f64) {
     let file = hdf5::File::open(path).expect("open truth.h5");
-    let ids: Vec<hdf5::types::VarLenUnicode> = file
-        .dataset("satellites/id")
-        .and_then(|d| d.read_raw())
-        .expect("satellites/id");
+    let ids: Vec<hdf5::types::VarLenUnicode> = dataset(&file, "satellites/id");
     let s = file.group("antennas/ant1/signal").expect("signal truth");
-    let read = |name: &str| -> Vec<f64> {
-        s.dataset(name)
-            .and_then(|d| d.read_raw())
-            .unwrap_or_else(|e| panic!("{name}: {e}"))
-    };
+    let read = |name: &str| -> Vec<f64> { dataset(&s, name) };
     let (t, pr, cp, dopp) = (
         read("t_s"),
         read("pseudorange_m"),
         read("carrier_phase_cycles"),
         read("doppler_hz"),
     );
-    let sat: Vec<u16> = s
-        .dataset("sat_index")
-        .and_then(|d| d.read_raw())
-        .expect("sat_index");
-    let cn0: Vec<f64> = s
-        .dataset("cn0_dbhz")
-        .and_then(|d| d.read_raw())
-        .expect("cn0_dbhz");
+    let sat: Vec<u16> = dataset(&s, "sat_index");
+    let cn0: Vec<f64> = dataset(&s, "cn0_dbhz");
     let per_prn = PRNS
         .iter()
         .map(|&prn| {

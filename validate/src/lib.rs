@@ -1,5 +1,8 @@
 //! Validation: compare what SkyForge computes with truth and with the thesis tables.
 
+// Library code returns errors instead of panicking; tests may unwrap.
+#![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
+
 pub mod observables;
 pub mod pipeline;
 pub mod report;

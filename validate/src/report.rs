@@ -43,6 +43,35 @@ pub struct Row {
 }
 
 impl Row {
+    /// A row of `table` with our number and no note; `check` is (tolerance text, verdict).
+    pub fn measured(
+        table: &str,
+        row: impl Into<String>,
+        quantity: &str,
+        unit: &str,
+        thesis: Option<f64>,
+        ours: f64,
+        check: (String, Verdict),
+    ) -> Self {
+        let (tolerance, verdict) = check;
+        Row {
+            table: table.into(),
+            row: row.into(),
+            quantity: quantity.into(),
+            unit: unit.into(),
+            thesis,
+            ours: Some(ours),
+            tolerance,
+            verdict,
+            note: String::new(),
+        }
+    }
+
+    /// This row with `note`.
+    pub fn with_note(self, note: String) -> Self {
+        Row { note, ..self }
+    }
+
     /// ours / thesis, when both are numbers and thesis is non-zero.
     pub fn ratio(&self) -> Option<f64> {
         match (self.thesis, self.ours) {

@@ -20,47 +20,63 @@
 /// The integrated state: 6 `f64` (position then velocity for orbits).
 pub type State6 = nalgebra::Vector6<f64>;
 
-// Nodes c_i and coupling coefficients a_ij (HNW table II.5.2).
+// Butcher tableau (HNW table II.5.2). Stage 2 (c2 = a21 = 1/5) is written out in
+// `DormandPrince::attempt`; the others are (c_i, [a_i1, a_i2, ...]).
 const C2: f64 = 1.0 / 5.0;
-const C3: f64 = 3.0 / 10.0;
-const C4: f64 = 4.0 / 5.0;
-const C5: f64 = 8.0 / 9.0;
 const A21: f64 = 1.0 / 5.0;
-const A31: f64 = 3.0 / 40.0;
-const A32: f64 = 9.0 / 40.0;
-const A41: f64 = 44.0 / 45.0;
-const A42: f64 = -56.0 / 15.0;
-const A43: f64 = 32.0 / 9.0;
-const A51: f64 = 19372.0 / 6561.0;
-const A52: f64 = -25360.0 / 2187.0;
-const A53: f64 = 64448.0 / 6561.0;
-const A54: f64 = -212.0 / 729.0;
-const A61: f64 = 9017.0 / 3168.0;
-const A62: f64 = -355.0 / 33.0;
-const A63: f64 = 46732.0 / 5247.0;
-const A64: f64 = 49.0 / 176.0;
-const A65: f64 = -5103.0 / 18656.0;
+const STAGES_3_TO_6: [(f64, &[f64]); 4] = [
+    (3.0 / 10.0, &[3.0 / 40.0, 9.0 / 40.0]),
+    (4.0 / 5.0, &[44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0]),
+    (
+        8.0 / 9.0,
+        &[
+            19372.0 / 6561.0,
+            -25360.0 / 2187.0,
+            64448.0 / 6561.0,
+            -212.0 / 729.0,
+        ],
+    ),
+    (
+        1.0,
+        &[
+            9017.0 / 3168.0,
+            -355.0 / 33.0,
+            46732.0 / 5247.0,
+            49.0 / 176.0,
+            -5103.0 / 18656.0,
+        ],
+    ),
+];
 // 5th-order weights b_i (= a_7i, FSAL; b2 = b7 = 0).
-const B1: f64 = 35.0 / 384.0;
-const B3: f64 = 500.0 / 1113.0;
-const B4: f64 = 125.0 / 192.0;
-const B5: f64 = -2187.0 / 6784.0;
-const B6: f64 = 11.0 / 84.0;
+const B: [f64; 6] = [
+    35.0 / 384.0,
+    0.0,
+    500.0 / 1113.0,
+    125.0 / 192.0,
+    -2187.0 / 6784.0,
+    11.0 / 84.0,
+];
 // Error weights e_i = b_i - b*_i with the 4th-order weights
 // b* = (5179/57600, 0, 7571/16695, 393/640, -92097/339200, 187/2100, 1/40).
-const E1: f64 = 71.0 / 57600.0;
-const E3: f64 = -71.0 / 16695.0;
-const E4: f64 = 71.0 / 1920.0;
-const E5: f64 = -17253.0 / 339200.0;
-const E6: f64 = 22.0 / 525.0;
-const E7: f64 = -1.0 / 40.0;
-// Dense-output weights d_i (HNW section II.6, continuous extension of order 4).
-const D1: f64 = -12715105075.0 / 11282082432.0;
-const D3: f64 = 87487479700.0 / 32700410799.0;
-const D4: f64 = -10690763975.0 / 1880347072.0;
-const D5: f64 = 701980252875.0 / 199316789632.0;
-const D6: f64 = -1453857185.0 / 822651844.0;
-const D7: f64 = 69997945.0 / 29380423.0;
+const E: [f64; 7] = [
+    71.0 / 57600.0,
+    0.0,
+    -71.0 / 16695.0,
+    71.0 / 1920.0,
+    -17253.0 / 339200.0,
+    22.0 / 525.0,
+    -1.0 / 40.0,
+];
+// Dense-output weights d_i (HNW section II.6, continuous extension of order 4; d2 = 0).
+const D: [f64; 7] = [
+    -12715105075.0 / 11282082432.0,
+    0.0,
+    87487479700.0 / 32700410799.0,
+    -10690763975.0 / 1880347072.0,
+    701980252875.0 / 199316789632.0,
+    -1453857185.0 / 822651844.0,
+    69997945.0 / 29380423.0,
+];
 
 // PI step-size control (HNW II.4): h_new = h * SAFETY * err^-ALPHA * err_old^BETA.
 const SAFETY: f64 = 0.9;
@@ -218,26 +234,16 @@ impl DormandPrince {
         F: FnMut(f64, &State6) -> State6,
     {
         let (t, y) = (self.t_s, &self.y);
-        let k1 = self.dy;
-        let k2 = f(t + C2 * h, &(y + k1 * (h * A21)));
-        let k3 = f(t + C3 * h, &(y + (k1 * A31 + k2 * A32) * h));
-        let k4 = f(t + C4 * h, &(y + (k1 * A41 + k2 * A42 + k3 * A43) * h));
-        let k5 = f(
-            t + C5 * h,
-            &(y + (k1 * A51 + k2 * A52 + k3 * A53 + k4 * A54) * h),
-        );
-        let k6 = f(
-            t + h,
-            &(y + (k1 * A61 + k2 * A62 + k3 * A63 + k4 * A64 + k5 * A65) * h),
-        );
-        let y1 = y + (k1 * B1 + k3 * B3 + k4 * B4 + k5 * B5 + k6 * B6) * h;
-        let k7 = f(t + h, &y1);
-        let err = (k1 * E1 + k3 * E3 + k4 * E4 + k5 * E5 + k6 * E6 + k7 * E7) * h;
-        Trial {
-            k: [k1, k2, k3, k4, k5, k6, k7],
-            y1,
-            err,
+        // Filled stage by stage: each stage reads only the ones before it.
+        let mut k = [self.dy; 7];
+        k[1] = f(t + C2 * h, &(y + k[0] * (h * A21)));
+        for (i, (c, a)) in STAGES_3_TO_6.iter().enumerate() {
+            k[i + 2] = f(t + c * h, &(y + weighted_sum(&k, a) * h));
         }
+        let y1 = y + weighted_sum(&k, &B) * h;
+        k[6] = f(t + h, &y1);
+        let err = weighted_sum(&k, &E) * h;
+        Trial { k, y1, err }
     }
 
     /// RMS of the error scaled by the mixed tolerance.
@@ -254,12 +260,12 @@ impl DormandPrince {
 
     /// The dense-output polynomial of an accepted trial step.
     fn dense_step(&self, h: f64, trial: &Trial) -> DenseStep {
-        let [k1, _, k3, k4, k5, k6, k7] = &trial.k;
+        let [k1, .., k7] = &trial.k;
         let c0 = self.y;
         let c1 = trial.y1 - self.y;
         let c2 = k1 * h - c1;
         let c3 = c1 - k7 * h - c2;
-        let c4 = (k1 * D1 + k3 * D3 + k4 * D4 + k5 * D5 + k6 * D6 + k7 * D7) * h;
+        let c4 = weighted_sum(&trial.k, &D) * h;
         DenseStep {
             t_start_s: self.t_s,
             h_s: h,
@@ -273,6 +279,17 @@ struct Trial {
     k: [State6; 7],
     y1: State6,
     err: State6,
+}
+
+/// `sum_i w_i k_i` over the stages with a non-zero weight, added in stage order.
+fn weighted_sum(k: &[State6; 7], w: &[f64]) -> State6 {
+    let mut terms = k
+        .iter()
+        .zip(w)
+        .filter(|&(_, &w)| w != 0.0)
+        .map(|(k, &w)| k * w);
+    let first = terms.next().unwrap_or_else(State6::zeros);
+    terms.fold(first, |sum, term| sum + term)
 }
 
 /// Starting step size (HNW II.4, "starting step size"): balance an explicit Euler step's

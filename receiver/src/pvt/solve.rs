@@ -33,7 +33,14 @@ pub fn solve(
     cfg: &PvtConfig,
     a_priori: Option<Vec3>,
 ) -> Result<Fix, PvtError> {
-    let mut fix = least_squares(meas, t_rx_s, store, origin, cfg, a_priori, &[])?;
+    let epoch = Epoch {
+        meas,
+        t_rx_s,
+        store,
+        origin,
+        cfg,
+    };
+    let mut fix = epoch.least_squares(a_priori, &[])?;
     if cfg.raim_pfa > 0.0 && fix.dof >= 2 && fix.chi2 > chi2_threshold(fix.dof, cfg.raim_pfa) {
         // Exclude the satellite with the largest weighted residual and solve again.
         let worst = fix
@@ -43,15 +50,7 @@ pub fn solve(
             .max_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(sat, _)| sat);
         if let Some(worst) = worst {
-            let mut again = least_squares(
-                meas,
-                t_rx_s,
-                store,
-                origin,
-                cfg,
-                Some(fix.r_ecef_m),
-                &[worst],
-            )?;
+            let mut again = epoch.least_squares(Some(fix.r_ecef_m), &[worst])?;
             again.excluded.push(worst);
             fix = again;
         }
@@ -105,58 +104,69 @@ fn iono_m(cfg: &PvtConfig, place: &ReceiverPlace, sat: SatId, az: f64, el: f64) 
     seconds * C_MPS
 }
 
-/// One least-squares solution without the satellites of `skip`.
-fn least_squares(
-    meas: &[Measurement],
+/// The inputs of [`solve`] that every least-squares pass of one epoch shares.
+#[derive(Clone, Copy)]
+struct Epoch<'a> {
+    meas: &'a [Measurement],
     t_rx_s: f64,
-    store: &EphemerisStore,
-    origin: &TimeOrigin,
-    cfg: &PvtConfig,
-    a_priori: Option<Vec3>,
-    skip: &[SatId],
-) -> Result<Fix, PvtError> {
-    let meas: Vec<&Measurement> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
-    let ephs = meas
-        .iter()
-        .map(|m| {
-            store
-                .select(m.sat, t_rx_s)
-                .ok_or(PvtError::NoEphemeris(m.sat))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    // Receiver clock columns: one per system present.
-    let systems: Vec<System> = [System::Gps, System::Beidou]
-        .into_iter()
-        .filter(|s| meas.iter().any(|m| m.sat.system == *s))
-        .collect();
-    let n_x = 3 + systems.len();
-    let mut r = a_priori.unwrap_or_else(Vec3::zeros);
-    let mut clocks = vec![0.0; systems.len()];
-    let mut last_step = f64::INFINITY;
-    for _ in 0..MAX_ITERATIONS {
-        let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
-        if rows.len() < n_x {
-            return Err(PvtError::TooFewSatellites {
-                have: rows.len(),
-                need: n_x,
-                clocks: systems.len(),
-            });
-        }
-        let (h, v, w) = matrices(&rows, n_x);
-        let hw = h.transpose() * DMatrix::from_diagonal(&w);
-        let n = &hw * &h;
-        let dx = n.clone().try_inverse().ok_or(PvtError::Singular)? * (&hw * &v);
-        r += Vec3::new(dx[0], dx[1], dx[2]);
-        for (c, d) in clocks.iter_mut().zip(dx.iter().skip(3)) {
-            *c += d;
-        }
-        last_step = dx.rows(0, 3).norm();
-        if last_step < CONVERGED_M {
+    store: &'a EphemerisStore,
+    origin: &'a TimeOrigin,
+    cfg: &'a PvtConfig,
+}
+
+impl Epoch<'_> {
+    /// One least-squares solution without the satellites of `skip`.
+    fn least_squares(&self, a_priori: Option<Vec3>, skip: &[SatId]) -> Result<Fix, PvtError> {
+        let Epoch {
+            meas,
+            t_rx_s,
+            store,
+            origin,
+            cfg,
+        } = *self;
+        let meas: Vec<&Measurement> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
+        let ephs = meas
+            .iter()
+            .map(|m| {
+                store
+                    .select(m.sat, t_rx_s)
+                    .ok_or(PvtError::NoEphemeris(m.sat))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        // Receiver clock columns: one per system present.
+        let systems: Vec<System> = [System::Gps, System::Beidou]
+            .into_iter()
+            .filter(|s| meas.iter().any(|m| m.sat.system == *s))
+            .collect();
+        let n_x = 3 + systems.len();
+        let mut r = a_priori.unwrap_or_else(Vec3::zeros);
+        let mut clocks = vec![0.0; systems.len()];
+        let mut last_step = f64::INFINITY;
+        for _ in 0..MAX_ITERATIONS {
             let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
-            return finish(&rows, n_x, r, &clocks, &systems, t_rx_s);
+            if rows.len() < n_x {
+                return Err(PvtError::TooFewSatellites {
+                    have: rows.len(),
+                    need: n_x,
+                    clocks: systems.len(),
+                });
+            }
+            let (h, v, w) = matrices(&rows, n_x);
+            let hw = h.transpose() * DMatrix::from_diagonal(&w);
+            let n = &hw * &h;
+            let dx = n.clone().try_inverse().ok_or(PvtError::Singular)? * (&hw * &v);
+            r += Vec3::new(dx[0], dx[1], dx[2]);
+            for (c, d) in clocks.iter_mut().zip(dx.iter().skip(3)) {
+                *c += d;
+            }
+            last_step = dx.rows(0, 3).norm();
+            if last_step < CONVERGED_M {
+                let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
+                return finish(&rows, n_x, r, &clocks, &systems, t_rx_s);
+            }
         }
+        Err(PvtError::NoConvergence { step_m: last_step })
     }
-    Err(PvtError::NoConvergence { step_m: last_step })
 }
 
 /// One usable measurement, linearised at the current estimate.

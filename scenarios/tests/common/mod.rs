@@ -106,6 +106,39 @@ pub fn build_error(text: &str, base_dir: &Path) -> ScenarioError {
     }
 }
 
+/// The error `parse` must return for `text`, checked by [`assert_error`] to name `field`
+/// and `value` and to point at `value` inside the single occurrence of `context`.
+pub fn parse_error_at(text: &str, field: &str, context: &str, value: &str) -> ScenarioError {
+    let err = parse_error(text);
+    assert_error(&err, field, value, position_of(text, context, value));
+    err
+}
+
+/// The error of `BASE` with `from` replaced by `to`, checked by [`parse_error_at`] to
+/// point at `value` inside `to`.
+pub fn replaced_error(from: &str, to: &str, field: &str, value: &str) -> ScenarioError {
+    parse_error_at(&replace(BASE, from, to), field, to, value)
+}
+
+/// The error `build` must return for `text`, checked by [`assert_error`] to name `field`
+/// and `value` and to point at `part` inside the single occurrence of `context`.
+pub fn build_error_at(
+    text: &str,
+    base_dir: &Path,
+    field: &str,
+    value: &str,
+    (context, part): (&str, &str),
+) -> ScenarioError {
+    let err = build_error(text, base_dir);
+    assert_error(&err, field, value, position_of(text, context, part));
+    err
+}
+
+/// Line and column of `err` are `at`.
+pub fn assert_at(err: &ScenarioError, at: (usize, usize)) {
+    assert_eq!((err.line, err.column), (Some(at.0), Some(at.1)), "{err}");
+}
+
 /// Field, value and position of `err`, and that its message names the file.
 pub fn assert_error(err: &ScenarioError, field: &str, value: &str, at: (usize, usize)) {
     assert_eq!(err.field, field, "field of: {err}");

@@ -9,6 +9,14 @@ use skyforge_validate::observables::{compare, read_obs_file};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// Dataset `name` (a path inside `group`, which may be a whole file) read whole.
+pub fn dataset<T: hdf5::H5Type>(group: &hdf5::Group, name: &str) -> Vec<T> {
+    group
+        .dataset(name)
+        .and_then(|d| d.read_raw())
+        .unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
 /// Run `skyforge args` in `cwd`.
 pub fn skyforge(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_skyforge"))

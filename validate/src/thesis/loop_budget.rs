@@ -134,17 +134,12 @@ fn four_digit_tolerance(x: f64) -> f64 {
 
 fn component_row(row: String, thesis: f64, ours: f64) -> Row {
     let tol = four_digit_tolerance(thesis);
-    Row {
-        table: "T-3.2".into(),
-        row,
-        quantity: "phase error component".into(),
-        unit: "deg".into(),
-        thesis: Some(thesis),
-        ours: Some(ours),
-        tolerance: format!("4 significant digits (+/-{tol:.0e})"),
-        verdict: Verdict::from_ok((ours - thesis).abs() <= tol),
-        note: String::new(),
-    }
+    let check = (
+        format!("4 significant digits (+/-{tol:.0e})"),
+        Verdict::from_ok((ours - thesis).abs() <= tol),
+    );
+    let quantity = "phase error component";
+    Row::measured("T-3.2", row, quantity, "deg", Some(thesis), ours, check)
 }
 
 fn describe(d: &SatDynamics) -> String {
@@ -203,19 +198,18 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             most.peak_accel_hzps2,
         ),
     ] {
-        rows.push(Row {
-            table: "T-3.2".into(),
-            row: quantity.into(),
-            quantity: "LEO-to-GPS Doppler dynamics".into(),
-            unit: unit.into(),
-            thesis: Some(thesis),
-            ours: Some(ours),
-            tolerance: "+/-20 %".into(),
-            verdict: Verdict::from_ok((ours / thesis - 1.0).abs() <= 0.2),
-            note: format!(
-                "thesis value implied by its printed totals (figures 3.2-2/3.2-3); {dyn_note}"
+        let check = (
+            "+/-20 %".into(),
+            Verdict::from_ok((ours / thesis - 1.0).abs() <= 0.2),
+        );
+        let what = "LEO-to-GPS Doppler dynamics";
+        rows.push(
+            Row::measured("T-3.2", quantity, what, unit, Some(thesis), ours, check).with_note(
+                format!(
+                    "thesis value implied by its printed totals (figures 3.2-2/3.2-3); {dyn_note}"
+                ),
             ),
-        });
+        );
     }
 
     let worst = DopplerDynamics {

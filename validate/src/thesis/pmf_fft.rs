@@ -171,30 +171,6 @@ impl Sums {
     }
 }
 
-/// A row of this table; `check` is (tolerance text, verdict).
-fn row(
-    row: String,
-    quantity: &str,
-    unit: &str,
-    thesis: Option<f64>,
-    ours: f64,
-    check: (String, Verdict),
-    note: String,
-) -> Row {
-    let (tolerance, verdict) = check;
-    Row {
-        table: TABLE.into(),
-        row,
-        quantity: quantity.into(),
-        unit: unit.into(),
-        thesis,
-        ours: Some(ours),
-        tolerance,
-        verdict,
-        note,
-    }
-}
-
 /// Every row of T-3.3-R.
 pub fn rows() -> Result<Vec<Row>, ValidateError> {
     let started = Instant::now();
@@ -204,18 +180,21 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
     // Theoretical R_f at the printed points (eq. 3.3-55, p = 0).
     for (delta, thesis) in [(0.0, 1.0147), (0.5, 1.4444)] {
         let ours = theory::rf_ratio(M, 64, 0, delta);
-        rows.push(row(
-            format!("theoretical R_f |delta|={delta} M=1024 L=64"),
-            "variance ratio to the MCRB (eq. 3.3-55)",
-            "-",
-            Some(thesis),
-            ours,
-            (
-                "+/-1e-3".into(),
-                Verdict::from_ok((ours - thesis).abs() <= 1e-3),
-            ),
-            format!("{:.4} dB", 10.0 * ours.log10()),
-        ));
+        rows.push(
+            Row::measured(
+                TABLE,
+                format!("theoretical R_f |delta|={delta} M=1024 L=64"),
+                "variance ratio to the MCRB (eq. 3.3-55)",
+                "-",
+                Some(thesis),
+                ours,
+                (
+                    "+/-1e-3".into(),
+                    Verdict::from_ok((ours - thesis).abs() <= 1e-3),
+                ),
+            )
+            .with_note(format!("{:.4} dB", 10.0 * ours.log10())),
+        );
     }
 
     // Monte Carlo R_f(delta) curves, p = 0 (figure 3.3-8).
@@ -240,21 +219,24 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             (0.0, f64::NEG_INFINITY),
             |b, x| if x.1 > b.1 { x } else { b },
         );
-    rows.push(row(
-        "Monte Carlo max R_f over delta L=64 SNR 0 dB".into(),
-        "variance ratio to the MCRB",
-        "-",
-        Some(1.0902),
-        max_rf,
-        (
-            "+/-10 %".into(),
-            Verdict::from_ok((max_rf / 1.0902 - 1.0).abs() <= 0.1),
-        ),
-        format!(
+    rows.push(
+        Row::measured(
+            TABLE,
+            "Monte Carlo max R_f over delta L=64 SNR 0 dB",
+            "variance ratio to the MCRB",
+            "-",
+            Some(1.0902),
+            max_rf,
+            (
+                "+/-10 %".into(),
+                Verdict::from_ok((max_rf / 1.0902 - 1.0).abs() <= 0.1),
+            ),
+        )
+        .with_note(format!(
             "at delta = {at}; eq. 3.3-55 gives {:.4} there; {TRIALS} trials per delta",
             theory::rf_ratio(M, 64, 0, at)
-        ),
-    ));
+        )),
+    );
 
     // E[fd Tc] versus delta against eq. 3.3-45 (figure 3.3-7), L = 64.
     let (worst_delta, worst_dev) = curves[0]
@@ -265,15 +247,20 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             (0.0, f64::NEG_INFINITY),
             |b, x| if x.1 > b.1 { x } else { b },
         );
-    rows.push(row(
-        "E[fd Tc] max deviation from eq. 3.3-45 L=64".into(),
-        "mean estimate minus eq. 3.3-45 (in FFT bins 1/(2M))",
-        "bin",
-        None,
-        worst_dev,
-        ("< 0.05 bin".into(), Verdict::from_ok(worst_dev < 0.05)),
-        format!("largest at delta = {worst_delta}; the thesis prints the curve only"),
-    ));
+    rows.push(
+        Row::measured(
+            TABLE,
+            "E[fd Tc] max deviation from eq. 3.3-45 L=64",
+            "mean estimate minus eq. 3.3-45 (in FFT bins 1/(2M))",
+            "bin",
+            None,
+            worst_dev,
+            ("< 0.05 bin".into(), Verdict::from_ok(worst_dev < 0.05)),
+        )
+        .with_note(format!(
+            "largest at delta = {worst_delta}; the thesis prints the curve only"
+        )),
+    );
 
     // R_f(delta) curves against the theory drawn beside them in figure 3.3-8.
     for (li, &l) in L_CURVES.iter().enumerate() {
@@ -286,15 +273,20 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
                     "; thesis: for L = 256, 512 the estimate degrades markedly as |delta| nears 0.5",
                 );
             }
-            rows.push(row(
+            let check = (
+                "not above eq. 3.3-55 by more than 10 % (thesis: MC may beat the approximate theory)".into(),
+                Verdict::from_ok(mc <= 1.1 * th),
+            );
+            let row = Row::measured(
+                TABLE,
                 format!("R_f(delta={delta:+.1}) L={l} Monte Carlo"),
                 "variance ratio to the MCRB; thesis column = eq. 3.3-55 curve of figure 3.3-8",
                 "-",
                 Some(th),
                 mc,
-                ("not above eq. 3.3-55 by more than 10 % (thesis: MC may beat the approximate theory)".into(), Verdict::from_ok(mc <= 1.1 * th)),
-                note,
-            ));
+                check,
+            );
+            rows.push(row.with_note(note));
         }
     }
 
@@ -322,58 +314,65 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
     } else {
         Verdict::Deviates
     };
-    rows.push(row(
-        "NMSE max over fd Tc / MCRB L=64".into(),
+    let row = Row::measured(
+        TABLE,
+        "NMSE max over fd Tc / MCRB L=64",
         "NMSE (eq. 3.3-74) over the MCRB (eq. 3.3-75)",
         "dB",
         None,
         max_db,
         ("<= 3 dB".into(), verdict),
-        format!(
-            "at fd Tc = {:.6}; eq. 3.3-53 with the PMF amplitude lambda0 (eq. 3.3-21) predicts {:.2} dB there: the PMF's sinc loses (2/pi)^2 = -3.9 dB of line SNR at |fd Tc| = 1/(2L), which the flat MCRB omits (receiver test theory::tests::mcrb_and_nmse_scale_as_the_formulas_say)",
-            max.fd_tc,
-            10.0 * (theory_at_max / mcrb).log10()
-        ),
-    ));
-    rows.push(row(
-        "|fd Tc| of the NMSE maximum L=64".into(),
+    );
+    rows.push(row.with_note(format!(
+        "at fd Tc = {:.6}; eq. 3.3-53 with the PMF amplitude lambda0 (eq. 3.3-21) predicts {:.2} dB there: the PMF's sinc loses (2/pi)^2 = -3.9 dB of line SNR at |fd Tc| = 1/(2L), which the flat MCRB omits (receiver test theory::tests::mcrb_and_nmse_scale_as_the_formulas_say)",
+        max.fd_tc,
+        10.0 * (theory_at_max / mcrb).log10()
+    )));
+    rows.push(Row::measured(
+        TABLE,
+        "|fd Tc| of the NMSE maximum L=64",
         "NMSE curve shape (figure 3.3-9)",
         "-",
         Some(edge),
         max.fd_tc.abs(),
         ("at the range end 1/(2L)".into(), Verdict::from_ok(at_edge)),
-        String::new(),
     ));
-    rows.push(row(
-        "|fd Tc| of the NMSE minimum L=64".into(),
-        "NMSE curve shape (figure 3.3-9)",
-        "-",
-        Some(0.0),
-        min.fd_tc.abs(),
-        (
-            "the grid point at 0".into(),
-            Verdict::from_ok(min.fd_tc.abs() < 1e-12),
-        ),
-        format!("minimum NMSE / MCRB {:.4}", min.mse / mcrb),
-    ));
+    rows.push(
+        Row::measured(
+            TABLE,
+            "|fd Tc| of the NMSE minimum L=64",
+            "NMSE curve shape (figure 3.3-9)",
+            "-",
+            Some(0.0),
+            min.fd_tc.abs(),
+            (
+                "the grid point at 0".into(),
+                Verdict::from_ok(min.fd_tc.abs() < 1e-12),
+            ),
+        )
+        .with_note(format!("minimum NMSE / MCRB {:.4}", min.mse / mcrb)),
+    );
     let same_order = (max.mse.log10().round() - (1e-9f64).log10()).abs() < 0.5;
-    rows.push(row(
-        "NMSE maximum L=64".into(),
-        "NMSE of fd Tc (eq. 3.3-74)",
-        "-",
-        Some(1e-9),
-        max.mse,
-        (
-            "same order of magnitude (thesis: 'order 1e-9')".into(),
-            Verdict::from_ok(same_order),
-        ),
-        format!(
+    rows.push(
+        Row::measured(
+            TABLE,
+            "NMSE maximum L=64",
+            "NMSE of fd Tc (eq. 3.3-74)",
+            "-",
+            Some(1e-9),
+            max.mse,
+            (
+                "same order of magnitude (thesis: 'order 1e-9')".into(),
+                Verdict::from_ok(same_order),
+            ),
+        )
+        .with_note(format!(
             "MCRB {mcrb:.4e}; Monte Carlo of {} + {} points x {TRIALS} trials took {:.1} s",
             L_CURVES.len() * deltas.len(),
             grid.len(),
             started.elapsed().as_secs_f64()
-        ),
-    ));
+        )),
+    );
     Ok(rows)
 }
 

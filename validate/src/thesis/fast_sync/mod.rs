@@ -175,28 +175,6 @@ fn track(
     Ok(Run { errors })
 }
 
-fn row(
-    row: &str,
-    quantity: &str,
-    unit: &str,
-    thesis: Option<f64>,
-    ours: f64,
-    tolerance: String,
-    verdict: Verdict,
-) -> Row {
-    Row {
-        table: TABLE.into(),
-        row: row.into(),
-        quantity: quantity.into(),
-        unit: unit.into(),
-        thesis,
-        ours: Some(ours),
-        tolerance,
-        verdict,
-        note: String::new(),
-    }
-}
-
 /// The table's rows.
 pub fn rows() -> Result<Vec<Row>, ValidateError> {
     let spec = SignalSpec {
@@ -239,26 +217,32 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
         .sqrt()
         * CHIP_RATE_HZ;
     let mut rows = vec![
-        row(
+        Row::measured(
+            TABLE,
             "initial Doppler error, fine (PMF-FFT eq. 3.3-14)",
             "estimate minus truth at the middle of the first ms; thesis: one realisation",
             "Hz",
             Some(-2.936),
             fine - truth,
-            format!(
-                "abs <= 3 sigma = {:.2} Hz (R_f x MCRB)",
-                3.0 * sigma_fine_hz
+            (
+                format!(
+                    "abs <= 3 sigma = {:.2} Hz (R_f x MCRB)",
+                    3.0 * sigma_fine_hz
+                ),
+                Verdict::from_ok((fine - truth).abs() <= 3.0 * sigma_fine_hz),
             ),
-            Verdict::from_ok((fine - truth).abs() <= 3.0 * sigma_fine_hz),
         ),
-        row(
+        Row::measured(
+            TABLE,
             "initial Doppler error, coarse (peak bin)",
             "estimate minus truth; thesis: one realisation",
             "Hz",
             Some(233.1055),
             coarse - truth,
-            format!("abs <= half a bin = {half_bin_hz:.1} Hz"),
-            Verdict::from_ok((coarse - truth).abs() <= half_bin_hz),
+            (
+                format!("abs <= half a bin = {half_bin_hz:.1} Hz"),
+                Verdict::from_ok((coarse - truth).abs() <= half_bin_hz),
+            ),
         ),
     ];
     let proposed = track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED)?;
@@ -279,80 +263,88 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             ("phase", "rad", t[0], t[1], pm, ps),
             ("Doppler", "Hz", t[2], t[3], dm, ds),
         ] {
-            rows.push(row(
-                &format!("{name}: {what} error std"),
+            rows.push(Row::measured(
+                TABLE,
+                format!("{name}: {what} error std"),
                 "converged error standard deviation (second half of 1 s)",
                 unit,
                 Some(th_std),
                 std,
-                "within a factor 1.6".into(),
-                Verdict::from_ok(std / th_std <= 1.6 && th_std / std <= 1.6),
+                (
+                    "within a factor 1.6".into(),
+                    Verdict::from_ok(std / th_std <= 1.6 && th_std / std <= 1.6),
+                ),
             ));
-            rows.push(row(
-                &format!("{name}: {what} error mean"),
+            rows.push(Row::measured(
+                TABLE,
+                format!("{name}: {what} error mean"),
                 "converged error mean",
                 unit,
                 Some(th_mean),
                 mean,
-                "abs below the std (no bias)".into(),
-                Verdict::from_ok(mean.abs() < std),
+                (
+                    "abs below the std (no bias)".into(),
+                    Verdict::from_ok(mean.abs() < std),
+                ),
             ));
         }
         let converged = run.convergence_s();
-        rows.push(row(
-            &format!("{name}: convergence time"),
+        rows.push(Row::measured(
+            TABLE,
+            format!("{name}: convergence time"),
             "20 ms RMS Doppler error below twice its converged std from then on",
             "s",
             None,
             converged.unwrap_or(f64::NAN),
-            "reported".into(),
-            Verdict::from_ok(converged.is_some()),
+            ("reported".into(), Verdict::from_ok(converged.is_some())),
         ));
     }
     let ratio_phase = proposed.phase().1 / traditional.phase().1;
     let ratio_doppler = proposed.doppler().1 / traditional.doppler().1;
-    rows.push(row(
-        "proposed / traditional phase std",
-        "std ratio",
-        "-",
-        Some(0.0254 / 0.0543),
-        ratio_phase,
-        "below 0.7".into(),
-        Verdict::from_ok(ratio_phase < 0.7),
-    ));
-    rows.push(row(
-        "proposed / traditional Doppler std",
-        "std ratio",
-        "-",
-        Some(0.2280 / 1.9401),
-        ratio_doppler,
-        "below 0.3".into(),
-        Verdict::from_ok(ratio_doppler < 0.3),
-    ));
+    for (what, thesis, ratio, below) in [
+        ("phase", 0.0254 / 0.0543, ratio_phase, 0.7),
+        ("Doppler", 0.2280 / 1.9401, ratio_doppler, 0.3),
+    ] {
+        rows.push(Row::measured(
+            TABLE,
+            format!("proposed / traditional {what} std"),
+            "std ratio",
+            "-",
+            Some(thesis),
+            ratio,
+            (format!("below {below}"), Verdict::from_ok(ratio < below)),
+        ));
+    }
     // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
     let fine_wide = track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL)?;
     let (t_fine, t_coarse) = (fine_wide.convergence_s(), traditional.convergence_s());
     let same = fine_wide.doppler().1 / traditional.doppler().1;
-    rows.push(row(
+    rows.push(Row::measured(
+        TABLE,
         "equal Q: Doppler std, fine start / coarse start",
         "std ratio with the traditional Q from both starts",
         "-",
         Some(1.0),
         same,
-        "within 1.25 (same accuracy)".into(),
-        Verdict::from_ok((0.8..=1.25).contains(&same)),
+        (
+            "within 1.25 (same accuracy)".into(),
+            Verdict::from_ok((0.8..=1.25).contains(&same)),
+        ),
     ));
-    rows.push(row(
+    rows.push(Row::measured(
+        TABLE,
         "equal Q: convergence time, fine start",
         "20 ms RMS Doppler error below twice its converged std from then on",
         "s",
         None,
         t_fine.unwrap_or(f64::NAN),
-        format!(
-            "before the coarse start ({:.3} s)",
-            t_coarse.unwrap_or(f64::NAN)
+        (
+            format!(
+                "before the coarse start ({:.3} s)",
+                t_coarse.unwrap_or(f64::NAN)
+            ),
+            Verdict::from_ok(matches!((t_fine, t_coarse), (Some(f), Some(c)) if f < c)),
         ),
-        Verdict::from_ok(matches!((t_fine, t_coarse), (Some(f), Some(c)) if f < c)),
     ));
     Ok(rows)
 }
