@@ -305,3 +305,48 @@ fn quantisation_bits_not_in_the_list() {
     let text = with_signal("format = \"ci8\"\nbits = 16");
     parse_error_at(&text, "signal.bits", "bits = 16", "16");
 }
+
+/// Antenna names name output files and the RINEX `MARKER NAME` (issue #11: a name like
+/// `../prev/ant1` overwrote another run's recording, an absolute name wrote outside the
+/// output directory, a newline broke the RINEX header): each is refused, located at the
+/// name.
+#[test]
+fn antenna_names_that_cannot_name_files_are_refused() {
+    for bad in [
+        "../prev/ant1",
+        "/tmp/ant1",
+        "ant\\\\1",
+        "..",
+        ".",
+        "ant\\n1",
+        " ant1",
+        "antenne\u{e9}",
+    ] {
+        let quoted = format!("\"{bad}\"");
+        let err = replaced_error(
+            "name = \"ant1\"",
+            &format!("name = {quoted}"),
+            "antennas[0].name",
+            &quoted,
+        );
+        assert!(err.to_string().contains("MARKER NAME"), "{err}");
+    }
+    // Sixty characters are a valid RINEX marker, sixty-one are not (the message shortens
+    // the value).
+    let long = replace(
+        BASE,
+        "name = \"ant1\"",
+        &format!("name = \"{}\"", "a".repeat(61)),
+    );
+    let err = parse_error(&long).to_string();
+    assert!(
+        err.contains("antennas[0].name") && err.contains("MARKER NAME"),
+        "{err}"
+    );
+    let ok = replace(
+        BASE,
+        "name = \"ant1\"",
+        &format!("name = \"{}\"", "a".repeat(60)),
+    );
+    assert!(parse_in(&ok, Path::new(".")).is_ok());
+}

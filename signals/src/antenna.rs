@@ -75,6 +75,31 @@ pub struct Antenna {
     pub gain_dbi: Option<AntennaGrid>,
 }
 
+/// Longest antenna name: the RINEX 3.04 `MARKER NAME` field (A60).
+pub const ANTENNA_NAME_MAX: usize = 60;
+
+/// An antenna name names output files (`<name>.obs.rnx`, `<name>.gps-l1ca.sigmf-data`),
+/// HDF5 groups and the RINEX `MARKER NAME`: 1 to [`ANTENNA_NAME_MAX`] printable ASCII
+/// characters, no `/` or `\`, not `.` or `..`, no leading or trailing space. The rule
+/// as written for messages is the error.
+pub fn check_antenna_name(name: &str) -> Result<(), &'static str> {
+    let printable = name.chars().all(|c| c.is_ascii_graphic() || c == ' ');
+    let ok = !name.is_empty()
+        && name.len() <= ANTENNA_NAME_MAX
+        && printable
+        && name.trim() == name
+        && !name.contains(['/', '\\'])
+        && name != "."
+        && name != "..";
+    if ok {
+        Ok(())
+    } else {
+        Err(
+            "must be 1 to 60 printable ASCII characters (it names files and the RINEX MARKER NAME), without '/' or '\\', not '.' or '..', no leading or trailing space",
+        )
+    }
+}
+
 impl AntennaConfig {
     /// Checks: finite numbers, non-zero boresight, FOV in (0, 180], mask in [-90, 90],
     /// grids rectangular and sorted.
@@ -82,12 +107,8 @@ impl AntennaConfig {
     /// Field paths are relative to the `[[antennas]]` entry (`boresight_body`,
     /// `position_body_m[2]`, `pcv_m.values`, ...).
     pub fn check(&self) -> Result<(), Invalid> {
-        if self.name.trim().is_empty() {
-            return Err(Invalid::new(
-                "name",
-                format!("{:?}", self.name),
-                "must be a non-empty name",
-            ));
+        if let Err(rule) = check_antenna_name(&self.name) {
+            return Err(Invalid::new("name", format!("{:?}", self.name), rule));
         }
         check_finite3("position_body_m", &self.position_body_m)?;
         check_finite3("offset_body_m", &self.offset_body_m)?;

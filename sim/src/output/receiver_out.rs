@@ -25,6 +25,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
 use skyforge_receiver::pipeline::EpochReport;
 use skyforge_receiver::session::{EpochSink, RinexObsFiles, SinkError};
+use skyforge_signals::antenna::check_antenna_name;
 use std::path::Path;
 
 /// What was written.
@@ -49,17 +50,10 @@ pub struct ReceiverOutputs {
     summary: Summary,
 }
 
-/// An antenna name must name files and HDF5 groups.
+/// An antenna name must name files and HDF5 groups, once.
 fn check_name(name: &str, seen: &[String]) -> anyhow::Result<()> {
-    if name.is_empty()
-        || name == "."
-        || name == ".."
-        || name.contains(['/', '\\'])
-        || name.chars().any(char::is_control)
-    {
-        bail!(
-            "antenna name {name:?} cannot name output files (no '/', '\\', control characters, '.' or '..')"
-        );
+    if let Err(rule) = check_antenna_name(name) {
+        bail!("antenna name {name:?} {rule}");
     }
     if seen.iter().any(|s| s == name) {
         bail!("antenna name {name:?} appears twice");
