@@ -166,3 +166,44 @@ fn a_full_disk_fails_clearly_and_removes_the_partial_output() {
     drop(disk);
     assert_eq!(listing(tmp.path()), ["short.toml", "small"]);
 }
+
+/// Interrupted runs (issue #11): SIGINT or SIGTERM during `synth` removes the staging
+/// directory and exits 130 or 143 with a message; a staging directory left by a killed
+/// process is removed by the next run writing beside it.
+#[test]
+fn an_interrupted_run_leaves_nothing_and_stale_staging_is_cleared() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    short_scenario(tmp.path(), SCENARIO, 60);
+    for (signal, code) in [("-INT", 130), ("-TERM", 143)] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+            .args(["synth", "short.toml", "--out", "out"])
+            .current_dir(tmp.path())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("start skyforge");
+        let staging = tmp.path().join(format!(".out.partial-{}", child.id()));
+        let deadline = std::time::Instant::now() + std::time::Duration::from_secs(30);
+        while !staging.join("truth.h5").exists() && std::time::Instant::now() < deadline {
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        assert!(staging.exists(), "the run never started writing");
+        let killed = Command::new("kill")
+            .args([signal, &child.id().to_string()])
+            .status()
+            .expect("kill");
+        assert!(killed.success());
+        let out = child.wait_with_output().expect("wait");
+        assert_eq!(out.status.code(), Some(code), "{}", stderr(&out));
+        assert!(stderr(&out).contains("interrupted"), "{}", stderr(&out));
+        assert!(!staging.exists(), "{signal}: staging directory left");
+        assert_eq!(listing(tmp.path()), ["short.toml"], "{signal}");
+    }
+    // A staging directory of a process that is gone (PID 4294967295 never runs).
+    let stale = tmp.path().join(".out.partial-4294967295");
+    std::fs::create_dir(&stale).expect("stale dir");
+    std::fs::write(stale.join("ant1.gps-l1ca.sigmf-data"), vec![0u8; 1024]).expect("write");
+    short_scenario(tmp.path(), SCENARIO, 1);
+    let o = skyforge(&["synth", "short.toml", "--out", "out"], tmp.path());
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stale.exists(), "stale staging directory left");
+}

@@ -1,6 +1,7 @@
 //! Output writers and the all-or-nothing output directory.
 
 mod h5_datasets;
+pub mod interrupt;
 pub mod manifest;
 pub mod receiver_out;
 pub mod staged_dir;

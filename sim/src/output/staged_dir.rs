@@ -4,7 +4,7 @@
 //! files; `--force` replaces only such a directory holding nothing else, and the old
 //! directory stays in place until the new one is complete.
 
-use super::manifest;
+use super::{interrupt, manifest};
 use crate::BadInput;
 use anyhow::Context;
 use std::path::{Path, PathBuf};
@@ -64,6 +64,7 @@ impl StagedDir {
         }
         std::fs::create_dir_all(parent)
             .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())))?;
+        interrupt::remove_stale(parent, &name);
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)
@@ -71,6 +72,7 @@ impl StagedDir {
         }
         std::fs::create_dir(&staging)
             .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())))?;
+        interrupt::register(&staging);
         Ok(Self {
             target: target.to_path_buf(),
             staging,
@@ -105,6 +107,7 @@ impl StagedDir {
                 .with_context(|| format!("cannot move output into {}", self.target.display()));
         }
         self.committed = true;
+        interrupt::unregister(&self.staging);
         if let Some(old) = old {
             std::fs::remove_dir_all(&old)
                 .with_context(|| format!("cannot remove the replaced {}", old.display()))?;
@@ -117,6 +120,7 @@ impl Drop for StagedDir {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
+            interrupt::unregister(&self.staging);
         }
     }
 }
