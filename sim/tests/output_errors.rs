@@ -175,7 +175,7 @@ fn an_interrupted_run_leaves_nothing_and_stale_staging_is_cleared() {
     let tmp = tempfile::tempdir().expect("temp dir");
     short_scenario(tmp.path(), SCENARIO, 60);
     for (signal, code) in [("-INT", 130), ("-TERM", 143)] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        let child = Command::new(env!("CARGO_BIN_EXE_skyforge"))
             .args(["synth", "short.toml", "--out", "out"])
             .current_dir(tmp.path())
             .stderr(std::process::Stdio::piped())
