@@ -1,6 +1,6 @@
 //! Command-line interface definition.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
 /// SkyForge: simulate GPS and BeiDou constellations and a receiving platform (a LEO
@@ -12,6 +12,25 @@ pub struct Cli {
     pub command: Command,
 }
 
+/// What `run` and `synth` are given: a scenario and where its outputs go.
+#[derive(Debug, Args)]
+pub struct ScenarioRun {
+    /// Scenario file or bundled scenario name, e.g. `thesis-leo`, `interop-gps-static`.
+    pub scenario: String,
+    /// Output directory; created, must not exist unless --force is given.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Random seed overriding the scenario's `seed` (recorded in the outputs; every noise
+    /// stream derives from it).
+    #[arg(long, value_name = "N")]
+    pub seed: Option<u64>,
+    /// Replace an existing output directory that skyforge wrote and that holds nothing
+    /// else (its .skyforge-manifest lists every file); the old one stays until the new
+    /// one is complete.
+    #[arg(long)]
+    pub force: bool,
+}
+
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Run a scenario and write its truth (DIR/truth.h5); with a [signal] table, also its
@@ -20,17 +39,8 @@ pub enum Command {
     /// SCENARIO is a TOML file or the name of a bundled scenario (see `skyforge scenarios
     /// list`). Nothing is written when the scenario has an error (exit code 2).
     Run {
-        /// Scenario file or bundled scenario name, e.g. `thesis-leo`.
-        scenario: String,
-        /// Output directory; created, must not exist unless --force is given.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Random seed overriding the scenario's `seed` (recorded in the outputs).
-        #[arg(long, value_name = "N")]
-        seed: Option<u64>,
-        /// Replace an existing output directory.
-        #[arg(long)]
-        force: bool,
+        #[command(flatten)]
+        run: ScenarioRun,
     },
     /// Synthesise the scenario's I/Q samples: one recording per antenna and band
     /// (DIR/<antenna>.gps-l1ca.sigmf-data, DIR/<antenna>.bds-b1i.sigmf-data) with SigMF
@@ -39,17 +49,8 @@ pub enum Command {
     /// The scenario needs a [signal] table. Nothing is written when the scenario has an
     /// error (exit code 2).
     Synth {
-        /// Scenario file or bundled scenario name, e.g. `interop-gps-static`.
-        scenario: String,
-        /// Output directory; created, must not exist unless --force is given.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Random seed overriding the scenario's `seed` (noise streams derive from it).
-        #[arg(long, value_name = "N")]
-        seed: Option<u64>,
-        /// Replace an existing output directory.
-        #[arg(long)]
-        force: bool,
+        #[command(flatten)]
+        run: ScenarioRun,
         /// Geometry epochs (1 s each) computed per streamed chunk: more costs memory,
         /// fewer costs overhead. The output does not depend on it.
         #[arg(long, value_name = "N", default_value_t = crate::commands::synth::DEFAULT_CHUNK_EPOCHS,

@@ -13,7 +13,7 @@ use skyforge_receiver::session::{
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::{ObsFile, ObsReadError, read_obs_file};
 use skyforge_signals::synth::session::{Discard, Sinks, SynthError, SynthSession};
-use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
+use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
 
 /// Geometry epochs per streamed chunk (as `skyforge synth`'s default).
@@ -82,7 +82,8 @@ pub fn synth_and_receive(
         .map_err(|e| ChainError::Scenario(Box::new(e)))?;
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?;
     let bands = session.bands().to_vec();
-    let (origin, antennas) = (session.world().origin, session.world().antennas);
+    let info = session.recording_info(&scenario.name);
+    let antennas = session.world().antennas;
     let nav_path = work.join("nav.rnx");
     let mut nav = Vec::new();
     write_nav(
@@ -103,16 +104,7 @@ pub fn synth_and_receive(
             progress: &mut |_| {},
         },
     )?;
-    recordings
-        .finish(&RunInfo {
-            format: signal.format,
-            sample_rate_hz: signal.sample_rate_hz,
-            if_hz: signal.if_hz,
-            start: origin.start(),
-            scenario: scenario.name.clone(),
-            seed: scenario.seed,
-        })
-        .map_err(io(work))?;
+    recordings.finish(&info).map_err(io(work))?;
     let assist_path = work.join("receiver.toml");
     let assist_text = report
         .start_state

@@ -14,6 +14,7 @@ use super::filter::BandFilter;
 use super::link_terms::{AntennaEpoch, LinkTerms};
 use super::quantise::QuantiseError;
 use super::render::{LinkTruth, Synthesiser};
+use super::sigmf::RunInfo;
 use super::transmitter::Transmitter;
 use crate::antenna::Antenna;
 use crate::errors::clock::ClockModel;
@@ -292,6 +293,18 @@ impl<'a> SynthSession<'a> {
     /// The world being synthesised.
     pub fn world(&self) -> &SynthWorld<'a> {
         &self.world
+    }
+
+    /// What every recording of this synthesis shares, for its metadata.
+    pub fn recording_info(&self, scenario: &str) -> RunInfo {
+        RunInfo {
+            format: self.signal.format,
+            sample_rate_hz: self.signal.sample_rate_hz,
+            if_hz: self.signal.if_hz,
+            start: self.world.origin.start(),
+            scenario: scenario.to_owned(),
+            seed: self.seed,
+        }
     }
 
     /// The bands with transmitters, GPS first.

@@ -6,24 +6,22 @@ mod scenarios;
 pub(crate) mod synth;
 mod validate;
 
-use crate::cli::{Cli, Command, ScenariosAction, ValidateSuite};
+use crate::cli::{Cli, Command, ScenarioRun, ScenariosAction, ValidateSuite};
+
+/// The scenario `args` name, with its seed overridden when `--seed` is given.
+fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
+    let mut scenario = skyforge_scenarios::resolve(&args.scenario)?;
+    if let Some(seed) = args.seed {
+        scenario.seed = seed;
+    }
+    Ok(scenario)
+}
 
 /// Run the parsed command line.
 pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run {
-            scenario,
-            out,
-            seed,
-            force,
-        } => run::run(&scenario, &out, seed, force),
-        Command::Synth {
-            scenario,
-            out,
-            seed,
-            force,
-            chunk_epochs,
-        } => synth::synth(&scenario, &out, seed, force, chunk_epochs as usize),
+        Command::Run { run } => run::run(&run),
+        Command::Synth { run, chunk_epochs } => synth::synth(&run, chunk_epochs as usize),
         Command::Receive {
             files,
             format,

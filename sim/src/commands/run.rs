@@ -1,11 +1,11 @@
 //! `skyforge run`: scenario -> geometry truth -> `truth.h5`.
 
+use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_signals::truth::geometry::{GeometryChunk, epoch_count};
-use std::path::Path;
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
 
@@ -13,12 +13,10 @@ use std::time::Instant;
 const CHUNK_EPOCHS: usize = 600;
 
 /// Run `scenario` and write `out/truth.h5`.
-pub fn run(scenario: &str, out: &Path, seed: Option<u64>, force: bool) -> anyhow::Result<()> {
+pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
     let started = Instant::now();
-    let mut scenario = skyforge_scenarios::resolve(scenario)?;
-    if let Some(seed) = seed {
-        scenario.seed = seed;
-    }
+    let (out, force) = (args.out.as_path(), args.force);
+    let scenario = super::resolve(args)?;
     if let Some(signal) = scenario.signal.clone() {
         return super::synth::synthesise(
             &scenario,

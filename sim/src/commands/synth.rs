@@ -3,6 +3,7 @@
 //! navigation file of the ephemerides as broadcast.
 
 use crate::BadInput;
+use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
 use crate::output::synth_sinks::{ObsTruthFiles, TruthFile};
 use crate::output::truth_h5::{RunMeta, TruthWriter};
@@ -16,7 +17,7 @@ use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
 use skyforge_signals::synth::session::{GEOMETRY_STEP_S, Sinks, SynthError, SynthSession};
-use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
+use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
 use std::io::Write;
 use std::path::Path;
@@ -30,17 +31,8 @@ fn writing(path: &Path) -> String {
 }
 
 /// Run `scenario`'s signal synthesis into `out`.
-pub fn synth(
-    scenario: &str,
-    out: &Path,
-    seed: Option<u64>,
-    force: bool,
-    chunk_epochs: usize,
-) -> anyhow::Result<()> {
-    let mut scenario = skyforge_scenarios::resolve(scenario)?;
-    if let Some(seed) = seed {
-        scenario.seed = seed;
-    }
+pub fn synth(args: &ScenarioRun, chunk_epochs: usize) -> anyhow::Result<()> {
+    let scenario = super::resolve(args)?;
     let Some(signal) = scenario.signal.clone() else {
         return Err(BadInput(format!(
             "{}: the scenario has no [signal] table, so there is nothing to synthesise (see docs/scenario.md)",
@@ -48,7 +40,7 @@ pub fn synth(
         ))
         .into());
     };
-    synthesise(&scenario, &signal, out, force, chunk_epochs)
+    synthesise(&scenario, &signal, &args.out, args.force, chunk_epochs)
 }
 
 /// Synthesise `scenario` with `signal` into `out`, computing geometry `chunk_epochs`
@@ -69,6 +61,7 @@ pub fn synthesise(
         (w.origin, w.antennas, w.duration_s)
     };
     let bands = session.bands().to_vec();
+    let info = session.recording_info(&scenario.name);
     let sats = session.satellites();
     let n_ant = antennas.len();
     let staged = StagedDir::create(out, force)?;
@@ -128,14 +121,7 @@ pub fn synthesise(
         .finish()
         .with_context(|| writing(&truth.path))?;
     bar.finish_and_clear();
-    recordings.finish(&RunInfo {
-        format: signal.format,
-        sample_rate_hz: signal.sample_rate_hz,
-        if_hz: signal.if_hz,
-        start: origin.start(),
-        scenario: scenario.name.clone(),
-        seed: scenario.seed,
-    })?;
+    recordings.finish(&info)?;
     let leo = scenario.platform.leo.is_some();
     let tropo_on = scenario.errors.troposphere.model != TropoModel::Off;
     for band in &bands {
