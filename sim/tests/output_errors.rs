@@ -207,3 +207,44 @@ fn an_interrupted_run_leaves_nothing_and_stale_staging_is_cleared() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stale.exists(), "stale staging directory left");
 }
+
+/// Issue #11: absurd but parseable receiver input (a sample rate of 1e15 Hz, 1 Hz, a 1 MHz
+/// PLL) allocated gigabytes or aborted; now each is one message, exit 2, nothing written.
+#[test]
+fn absurd_receiver_settings_are_refused_before_allocating() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    std::fs::write(tmp.path().join("capture.bin"), vec![0u8; 400_000]).expect("write");
+    std::fs::write(
+        tmp.path().join("wide.toml"),
+        "[tracking]\npll_bandwidth_hz = 1e6\n",
+    )
+    .expect("write");
+    let raw = [
+        "receive",
+        "capture.bin",
+        "--format",
+        "ci16",
+        "--signal",
+        "gps-l1ca",
+    ];
+    for (extra, expected) in [
+        (&["--fs", "1e15"][..], "sample rate"),
+        (&["--fs", "1"][..], "sample rate"),
+        (
+            &["--fs", "4e6", "--config", "wide.toml"][..],
+            "pll_bandwidth_hz",
+        ),
+    ] {
+        let mut args = raw.to_vec();
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--out", "rx"]);
+        let o = skyforge(&args, tmp.path());
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {}", stderr(&o));
+        assert!(stderr(&o).contains(expected), "{extra:?}: {}", stderr(&o));
+        assert_eq!(
+            listing(tmp.path()),
+            ["capture.bin", "wide.toml"],
+            "{extra:?}: something was written"
+        );
+    }
+}

@@ -51,19 +51,51 @@ pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
     parse_nav(&text, &path.display().to_string())
 }
 
-/// Read a whole text file, gunzipping it when it starts with the gzip magic bytes.
+/// Largest navigation file read, compressed or after decompression (bytes): a day of
+/// every constellation's broadcast ephemerides (RINEX 4 BRD4 files) is about 15 MB.
+pub const NAV_FILE_MAX_BYTES: u64 = 256 * 1024 * 1024;
+
+/// At most `limit` bytes of `reader`, or `None` when it holds more.
+fn read_limited(reader: impl Read, limit: u64) -> std::io::Result<Option<Vec<u8>>> {
+    let mut out = Vec::new();
+    reader.take(limit + 1).read_to_end(&mut out)?;
+    Ok((out.len() as u64 <= limit).then_some(out))
+}
+
+/// Read a whole text file, gunzipping it when it starts with the gzip magic bytes; a
+/// directory, or more than [`NAV_FILE_MAX_BYTES`] (a device such as `/dev/zero`), is an
+/// error before memory runs out.
 pub(crate) fn read_text_maybe_gz(path: &Path) -> Result<String, NavError> {
     let io_err = |source| NavError::Io {
         path: path.display().to_string(),
         source,
     };
-    let raw = std::fs::read(path).map_err(io_err)?;
+    let too_big = || {
+        io_err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!(
+                "more than {} MiB: not a navigation file",
+                NAV_FILE_MAX_BYTES / (1024 * 1024)
+            ),
+        ))
+    };
+    if path.is_dir() {
+        return Err(io_err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "is a directory, not a navigation file",
+        )));
+    }
+    let file = std::fs::File::open(path).map_err(io_err)?;
+    let raw = read_limited(file, NAV_FILE_MAX_BYTES)
+        .map_err(io_err)?
+        .ok_or_else(too_big)?;
     let bytes = if raw.starts_with(&[0x1f, 0x8b]) {
-        let mut out = Vec::with_capacity(raw.len() * 4);
-        flate2::read::MultiGzDecoder::new(raw.as_slice())
-            .read_to_end(&mut out)
-            .map_err(io_err)?;
-        out
+        read_limited(
+            flate2::read::MultiGzDecoder::new(raw.as_slice()),
+            NAV_FILE_MAX_BYTES,
+        )
+        .map_err(io_err)?
+        .ok_or_else(too_big)?
     } else {
         raw
     };
@@ -446,6 +478,22 @@ fn split_records<'a>(body: &Body<'a>, starts: impl Fn(&str) -> bool) -> Vec<Reco
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue #11: `--assist /dev/zero` read until memory ran out, and a directory was
+    /// reported as missing.
+    #[test]
+    fn an_endless_device_and_a_directory_are_refused_with_what_they_are() {
+        let err = read_nav_file(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("not a navigation file") && err.contains("MiB"),
+            "{err}"
+        );
+        let dir = std::env::temp_dir();
+        let err = read_nav_file(&dir).unwrap_err().to_string();
+        assert!(err.contains("is a directory"), "{err}");
+    }
     use proptest::prelude::*;
 
     const V2_HEADER: &str =

@@ -24,6 +24,10 @@ use std::path::{Path, PathBuf};
 /// settings; longer searches get longer blocks).
 const BLOCK_S: f64 = 0.02;
 
+/// Highest sample rate the receiver takes (Hz): its acquisition FFTs and buffers grow
+/// with the rate (about 1.5 GB of memory at this rate).
+pub const MAX_SAMPLE_RATE_HZ: f64 = 100e6;
+
 /// An error a sink reports (a file that cannot be written, say).
 pub type SinkError = Box<dyn std::error::Error + Send + Sync>;
 
@@ -108,6 +112,15 @@ fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionE
         .and_then(|g| g.1.first())
         .map(|r| r.sample_rate_hz)
         .ok_or_else(|| SessionError::Input("no sample files given".into()))?;
+    for (signal, _) in &groups {
+        let min = signal.chip_rate_hz();
+        if !(fs >= min && fs <= MAX_SAMPLE_RATE_HZ) {
+            return Err(SessionError::Input(format!(
+                "sample rate {fs} Hz: {} needs {min} to {MAX_SAMPLE_RATE_HZ} Hz",
+                signal.name()
+            )));
+        }
+    }
     let block_len = (BLOCK_S * fs).round() as usize;
     for (signal, recs) in groups {
         let (reader, report) = BlockReader::open(&recs, block_len).map_err(|e| input(&e))?;

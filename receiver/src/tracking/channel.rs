@@ -62,6 +62,15 @@ pub struct FrontEnd {
     pub if_hz: f64,
 }
 
+/// Highest PLL and FLL noise bandwidth (Hz): `Bn T` stays below 0.1 at 1 ms; wider loops
+/// are unstable in a digital receiver.
+pub const MAX_CARRIER_BANDWIDTH_HZ: f64 = 100.0;
+/// Highest DLL noise bandwidth (Hz).
+pub const MAX_DLL_BANDWIDTH_HZ: f64 = 20.0;
+/// A carrier loop whose Doppler runs beyond this (Hz) has diverged: the channel is lost
+/// (the code period, and with it the sample buffer, would grow without bound).
+pub const MAX_TRACKED_DOPPLER_HZ: f64 = 100e3;
+
 /// Tracking loop configuration.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
 #[serde(default, deny_unknown_fields)]
@@ -188,6 +197,41 @@ impl TrackingConfig {
             {
                 return Err(TrackingError::InvalidConfig(format!(
                     "{name} must be positive and finite, got {v}"
+                )));
+            }
+        }
+        for (name, v, max) in [
+            (
+                "pll_bandwidth_hz",
+                Some(self.pll_bandwidth_hz),
+                MAX_CARRIER_BANDWIDTH_HZ,
+            ),
+            (
+                "pll_narrow_bandwidth_hz",
+                self.pll_narrow_bandwidth_hz,
+                MAX_CARRIER_BANDWIDTH_HZ,
+            ),
+            (
+                "fll_bandwidth_hz",
+                Some(self.fll_bandwidth_hz),
+                MAX_CARRIER_BANDWIDTH_HZ,
+            ),
+            (
+                "dll_bandwidth_hz",
+                Some(self.dll_bandwidth_hz),
+                MAX_DLL_BANDWIDTH_HZ,
+            ),
+            (
+                "dll_narrow_bandwidth_hz",
+                self.dll_narrow_bandwidth_hz,
+                MAX_DLL_BANDWIDTH_HZ,
+            ),
+        ] {
+            if let Some(v) = v
+                && v > max
+            {
+                return Err(TrackingError::InvalidConfig(format!(
+                    "{name} must be at most {max} Hz, got {v}"
                 )));
             }
         }
@@ -746,6 +790,7 @@ impl ChannelTracker {
         });
         let phase_error = step.phase_error_cycles;
         self.doppler_hz = step.doppler_hz;
+        let diverged = self.doppler_hz.is_nan() || self.doppler_hz.abs() > MAX_TRACKED_DOPPLER_HZ;
         self.carrier_phase_cycles += step.phase_step_cycles;
 
         // Code loop, carrier aided.
@@ -778,7 +823,7 @@ impl ChannelTracker {
         // Pull-in (the FLL-assist time) does not count towards loss of lock.
         self.ever_locked |= locked;
         let judged = self.ever_locked || self.time_s > self.config.fll_assist_s;
-        self.lost = judged && self.loss_timer.update(locked, t);
+        self.lost = diverged || (judged && self.loss_timer.update(locked, t));
         let cycle_slip = std::mem::take(&mut self.slip_pending);
         self.lock_time_s = if locked && !cycle_slip {
             self.lock_time_s + t
@@ -873,6 +918,15 @@ mod tests {
             },
             TrackingConfig {
                 fll_bandwidth_hz: -1.0,
+                ..TrackingConfig::default()
+            },
+            // Issue #11: a 1 MHz PLL grew a tracking buffer without bound.
+            TrackingConfig {
+                pll_bandwidth_hz: 1e6,
+                ..TrackingConfig::default()
+            },
+            TrackingConfig {
+                dll_narrow_bandwidth_hz: Some(50.0),
                 ..TrackingConfig::default()
             },
         ];
