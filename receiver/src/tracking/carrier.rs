@@ -11,7 +11,7 @@ use super::TrackingError;
 use super::channel::TrackingConfig;
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::loop_filter::CarrierLoopFilter;
-use crate::fast_sync::ukf::{UkfCarrier, UkfConfig};
+use crate::fast_sync::ukf::{THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig};
 use nalgebra::{Matrix4, Vector4};
 use num_complex::{Complex, Complex64};
 use std::f64::consts::TAU;
@@ -240,8 +240,8 @@ pub struct UkfSettings {
 impl Default for UkfSettings {
     fn default() -> Self {
         Self {
-            q: [1e-10, 1e-4, 1e2, 1e8],
-            kappa: 0.5,
+            q: THESIS_PROPOSED_Q,
+            kappa: THESIS_KAPPA,
             // assumed: a uniform error over one 500 Hz acquisition bin (144 Hz), as
             // validate's T-3.3-S gives the coarse estimate.
             initial_doppler_sigma_hz: 144.0,

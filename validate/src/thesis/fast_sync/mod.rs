@@ -16,7 +16,7 @@ use nalgebra::{Matrix4, Vector4};
 use num_complex::Complex64;
 use signal::{SignalSource, SignalSpec};
 use skyforge_receiver::acquisition::pmf_fft::{ChipTiming, PmfFft, despread_to_chips, theory};
-use skyforge_receiver::fast_sync::ukf::{UkfCarrier, UkfConfig};
+use skyforge_receiver::fast_sync::ukf::{THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig};
 use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
 use skyforge_signals::codes::gps_ca::gps_ca;
 use std::f64::consts::{PI, TAU};
@@ -32,9 +32,9 @@ const T_S: f64 = 1e-3;
 const DOPPLER: [f64; 3] = [-3730.0, 2000.0, 500.0];
 const CN0_DBHZ: f64 = 45.0;
 /// Thesis: kappa = 0.5, R = diag(0.0158, 0.0158), Q as (theta, omega, alpha, alpha_t).
-const KAPPA: f64 = 0.5;
+const KAPPA: f64 = THESIS_KAPPA;
 const R: [f64; 2] = [0.0158, 0.0158];
-const Q_PROPOSED: [f64; 4] = [1e-10, 1e-4, 1e2, 1e8];
+const Q_PROPOSED: [f64; 4] = THESIS_PROPOSED_Q;
 const Q_TRADITIONAL: [f64; 4] = [1e-5, 10.0, 1e7, 1e13];
 /// assumed: the thesis does not name the PRN; any C/A code.
 const PRN: u8 = 1;
