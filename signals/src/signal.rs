@@ -104,6 +104,11 @@ impl Signal {
         }
     }
 
+    /// Nominal carrier wavelength (m): c / carrier.
+    pub fn wavelength_m(self) -> f64 {
+        skyforge_orbits::constants::C_MPS / self.carrier_hz()
+    }
+
     /// Chipping rate (chip/s).
     pub fn chip_rate_hz(self) -> f64 {
         match self {

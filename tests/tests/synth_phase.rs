@@ -152,7 +152,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     // antenna 1's Doppler; both antennas are correlated with the same replica, so only
     // their phase difference matters. The data bit is common to both and cancels.
     let code = gps_ca(tx.sat.prn).unwrap();
-    let lambda = C_MPS / tx.signal.carrier_hz();
+    let lambda = tx.signal.wavelength_m();
     let (r1, r2) = (range_curve(&chunk, 0, s), range_curve(&chunk, 1, s));
     let clock = chunk.link(1, 0, s);
     let mut acc = (0.0f64, 0.0f64);

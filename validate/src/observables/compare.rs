@@ -405,7 +405,7 @@ fn tag_error(matched: &[Matched], code: &ObservableErrors) -> Option<TagError> {
         let dop: Vec<f64> = matched
             .iter()
             .filter(|m| m.est.sat == s.sat)
-            .filter_map(|m| Some(m.doppler_hz? * C_MPS / m.est.signal.carrier_hz()))
+            .filter_map(|m| Some(m.doppler_hz? * m.est.signal.wavelength_m()))
             .collect();
         if !dop.is_empty() {
             points.push((
@@ -607,7 +607,7 @@ fn phase_errors(matched: &[Matched], estimate: &ObsFile) -> (ObservableErrors, V
             let (Some(est), Some(tru)) = (m.est.carrier_phase_cycles, m.phase_cycles) else {
                 continue;
             };
-            lambda = C_MPS / m.est.signal.carrier_hz();
+            lambda = m.est.signal.wavelength_m();
             let continues = open
                 .get(&m.est.sat)
                 .copied()

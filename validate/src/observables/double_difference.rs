@@ -29,7 +29,6 @@ use super::ObsError;
 use super::error_stats::{ErrorStats, display};
 use hifitime::Epoch;
 use serde::{Serialize, Serializer};
-use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_signals::observation::{LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use std::collections::BTreeMap;
@@ -231,12 +230,12 @@ fn wavelength(f: &ObsFile, sat: SatId) -> f64 {
         .flat_map(|e| &e.sats)
         .find(|s| s.sat == sat)
         .map(|s| s.signal);
-    signal.map_or(f64::NAN, |s| C_MPS / s.carrier_hz())
+    signal.map_or(f64::NAN, |s| s.wavelength_m())
 }
 
 /// `a - b`, with `b` moved from its tag to `a`'s (`dt = tag_a - tag_b`) by its Doppler.
 fn single_difference(a: &ObsRecord, b: &ObsRecord, dt: f64) -> Sd {
-    let lambda = C_MPS / a.signal.carrier_hz();
+    let lambda = a.signal.wavelength_m();
     let phase_rate = b.doppler_hz.map_or(0.0, |d| -d);
     Sd {
         code_m: a

@@ -1,0 +1,148 @@
+//! The float solution of all baselines (thesis eqs. 2.4-62, 2.4-63) and the baselines given
+//! integer ambiguities (eqs. 2.4-64, 2.4-65).
+//!
+//! The design of vec(Y) is `I_m (x) X` with `X = [A G]` and its covariance `Q_M (x) Q_t`,
+//! so the normal matrix is `Q_M^{-1} (x) X^T W X` and the least-squares solution of every
+//! baseline is `P X^T W y_k` with `P = (X^T W X)^{-1}`; the covariance of
+//! `[vec(N); vec(B)]` (in the per-baseline order) is `Q_M (x) P`.
+
+use super::BaselineError;
+use super::model::DdModel;
+use nalgebra::{DMatrix, DVector, Matrix3xX};
+use skyforge_signals::observation::ObsRecord;
+
+/// Float ambiguities and baselines of one epoch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FloatBaselines {
+    pub model: DdModel,
+    /// `N_hat` (n x m, cycles): column `k` holds baseline `k`'s ambiguities.
+    pub ambiguities: DMatrix<f64>,
+    /// `B_hat` (3 x m, m, ECEF).
+    pub baselines: Matrix3xX<f64>,
+    /// `P = (X^T W X)^{-1}` ((n + 3) x (n + 3)): ambiguities first, then x, y, z.
+    pub cofactor: DMatrix<f64>,
+}
+
+/// Baselines after fixing integer ambiguities (or integer combinations of them).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FixedBaselines {
+    /// `B_check` (3 x m, m, ECEF).
+    pub baselines: Matrix3xX<f64>,
+    /// Covariance of vec(B_check) (3m x 3m, m^2): baseline 1's x, y, z first.
+    pub covariance: DMatrix<f64>,
+}
+
+/// Kronecker product `a (x) b`.
+fn kron(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
+    a.kronecker(b)
+}
+
+/// Vectorised order: baseline 1's entries, then baseline 2's (vec of a column-major matrix).
+fn vec_of(m: &DMatrix<f64>) -> DVector<f64> {
+    DVector::from_column_slice(m.as_slice())
+}
+
+impl FloatBaselines {
+    /// Least-squares float solution (eq. 2.4-62) of the baselines from `antennas[0]` to
+    /// each other antenna, with the cofactor of eq. 2.4-63.
+    pub fn solve(model: DdModel, antennas: &[&[ObsRecord]]) -> Result<Self, BaselineError> {
+        let m = model.baseline_count();
+        if antennas.len() != m + 1 {
+            return Err(BaselineError::Dimension {
+                what: "antennas with observations",
+                expected: m + 1,
+                found: antennas.len(),
+            });
+        }
+        let n = model.ambiguity_count();
+        let xtw = model.design.transpose() * &model.weight;
+        let normal = &xtw * &model.design;
+        let cofactor = normal.cholesky().ok_or(BaselineError::Singular)?.inverse();
+        let mut ambiguities = DMatrix::zeros(n, m);
+        let mut baselines = Matrix3xX::zeros(m);
+        for (k, rover) in antennas[1..].iter().enumerate() {
+            let y = model.layout.double_differences(antennas[0], rover)?;
+            if y.iter().any(|v| !v.is_finite()) {
+                return Err(BaselineError::NotFinite {
+                    what: "a double-differenced observation",
+                });
+            }
+            let x = &cofactor * (&xtw * y);
+            ambiguities.set_column(k, &x.rows(0, n));
+            baselines.set_column(k, &x.rows(n, 3));
+        }
+        Ok(Self {
+            model,
+            ambiguities,
+            baselines,
+            cofactor,
+        })
+    }
+
+    /// vec(N_hat): baseline 1's ambiguities, then baseline 2's (length n m).
+    pub fn ambiguity_vector(&self) -> DVector<f64> {
+        vec_of(&self.ambiguities)
+    }
+
+    /// `Q_NN = Q_M (x) P_NN` (nm x nm), the covariance of [`Self::ambiguity_vector`].
+    pub fn ambiguity_covariance(&self) -> DMatrix<f64> {
+        let n = self.model.ambiguity_count();
+        kron(
+            &self.model.q_m,
+            &self.cofactor.view((0, 0), (n, n)).into_owned(),
+        )
+    }
+
+    /// `Q_BB = Q_M (x) P_BB` (3m x 3m), the covariance of vec(B_hat).
+    pub fn baseline_covariance(&self) -> DMatrix<f64> {
+        let n = self.model.ambiguity_count();
+        kron(
+            &self.model.q_m,
+            &self.cofactor.view((n, n), (3, 3)).into_owned(),
+        )
+    }
+
+    /// Eqs. 2.4-64/2.4-65 with every ambiguity fixed: `integers` is vec(N_check).
+    pub fn fix(&self, integers: &[i64]) -> Result<FixedBaselines, BaselineError> {
+        let nm = self.ambiguities.len();
+        self.fix_combinations(&DMatrix::identity(nm, nm), integers)
+    }
+
+    /// Eqs. 2.4-64/2.4-65 generalised to integer combinations `z = Z^T vec(N)` (rows of
+    /// `z_t`, p x nm) fixed to `values`; with `Z^T = I` this is the full fix, with fewer
+    /// rows a partial one: `b = b_hat - Q_bz Q_zz^{-1} (z_hat - z)`,
+    /// `Q = Q_bb - Q_bz Q_zz^{-1} Q_zb`.
+    pub fn fix_combinations(
+        &self,
+        z_t: &DMatrix<f64>,
+        values: &[i64],
+    ) -> Result<FixedBaselines, BaselineError> {
+        let n = self.model.ambiguity_count();
+        let nm = self.ambiguities.len();
+        if z_t.ncols() != nm || z_t.nrows() != values.len() {
+            return Err(BaselineError::Dimension {
+                what: "integer combinations (rows of Z^T x ambiguities)",
+                expected: nm,
+                found: z_t.ncols(),
+            });
+        }
+        let q_m = &self.model.q_m;
+        let p_bn = self.cofactor.view((n, 0), (3, n)).into_owned();
+        let q_bz = kron(q_m, &p_bn) * z_t.transpose();
+        let q_zz = z_t * self.ambiguity_covariance() * z_t.transpose();
+        let z_hat = z_t * self.ambiguity_vector();
+        let dz = z_hat - DVector::from_iterator(values.len(), values.iter().map(|&v| v as f64));
+        let chol = q_zz.cholesky().ok_or(BaselineError::Singular)?;
+        let gain = chol.solve(&q_bz.transpose()).transpose();
+        let b = vec_of(&DMatrix::from_column_slice(
+            3,
+            self.baselines.ncols(),
+            self.baselines.as_slice(),
+        )) - &gain * dz;
+        let covariance = self.baseline_covariance() - &gain * q_bz.transpose();
+        Ok(FixedBaselines {
+            baselines: Matrix3xX::from_column_slice(b.as_slice()),
+            covariance,
+        })
+    }
+}

@@ -1,0 +1,300 @@
+//! The double-difference baseline model (thesis 2.3, 2.4) on observations built from a
+//! known plane-wave geometry: exact recovery without noise, and the predicted covariances
+//! (eqs. 2.4-63, 2.4-65) against Monte Carlo scatter with the noise of eqs. 2.4-9/2.4-10.
+
+use nalgebra::{DMatrix, DVector, Vector3};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::{Distribution, StandardNormal};
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_receiver::baseline::{
+    BaselineError, DdLayout, DdModel, ElevationNoise, FloatBaselines, NoiseModel, SatView,
+};
+use skyforge_signals::observation::ObsRecord;
+use skyforge_signals::signal::Signal;
+
+/// A platform with three antennas (two 1 m baselines) and satellites spread over the sky.
+struct Scene {
+    views: Vec<SatView>,
+    /// Baselines from antenna 0 (m, ECEF).
+    baselines: [Vector3<f64>; 2],
+    /// Integer phase offsets per antenna and satellite (cycles).
+    offsets: Vec<[i64; 3]>,
+    /// Geometric range from antenna 0 (m).
+    ranges: Vec<f64>,
+}
+
+fn scene(rng: &mut ChaCha8Rng, gps: usize, bds: usize) -> Scene {
+    let mut views = Vec::new();
+    let sats = (1..=gps as u8)
+        .map(SatId::gps)
+        .chain((1..=bds as u8).map(SatId::beidou));
+    for sat in sats {
+        let elevation: f64 = rng.random_range(0.15..1.5);
+        let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
+        // A local frame with z up is enough: the model only sees directions.
+        let los = Vector3::new(
+            elevation.cos() * azimuth.cos(),
+            elevation.cos() * azimuth.sin(),
+            elevation.sin(),
+        );
+        views.push(SatView {
+            sat,
+            los_ecef: los,
+            elevation_rad: elevation,
+        });
+    }
+    let n = views.len();
+    Scene {
+        views,
+        baselines: [
+            Vector3::new(0.98, 0.1, -0.17),
+            Vector3::new(-0.05, 1.01, 0.03),
+        ],
+        offsets: (0..n)
+            .map(|_| std::array::from_fn(|_| rng.random_range(-1_000_000..1_000_000)))
+            .collect(),
+        ranges: (0..n).map(|_| rng.random_range(2.0e7..2.6e7)).collect(),
+    }
+}
+
+fn signal_of(sat: SatId) -> Signal {
+    Signal::of_system(sat.system)
+}
+
+/// Observations of antenna `a`: plane-wave range `rho - l . b_a`, its integer offset, a
+/// receiver clock of the antenna and a satellite clock shared by all, plus noise from
+/// `noise` when given.
+fn observe(
+    scene: &Scene,
+    a: usize,
+    clocks_m: (f64, &[f64]),
+    noise: Option<(&NoiseModel, &mut ChaCha8Rng)>,
+) -> Vec<ObsRecord> {
+    let mut noise = noise;
+    let position = if a == 0 {
+        Vector3::zeros()
+    } else {
+        scene.baselines[a - 1]
+    };
+    scene
+        .views
+        .iter()
+        .enumerate()
+        .map(|(i, v)| {
+            let signal = signal_of(v.sat);
+            let lambda = signal.wavelength_m();
+            let range = scene.ranges[i] - v.los_ecef.dot(&position) + clocks_m.0 - clocks_m.1[i];
+            let (dp, dc) = match noise.as_mut() {
+                Some((model, rng)) => {
+                    let e = v.elevation_rad;
+                    let g1: f64 = StandardNormal.sample(*rng);
+                    let g2: f64 = StandardNormal.sample(*rng);
+                    (g1 * model.phase.sigma_m(e), g2 * model.code.sigma_m(e))
+                }
+                None => (0.0, 0.0),
+            };
+            let phase = (range + dp) / lambda + scene.offsets[i][a] as f64;
+            ObsRecord::complete(v.sat, signal, range + dc, phase, 0.0, 45.0)
+        })
+        .collect()
+}
+
+fn noise_model() -> NoiseModel {
+    // assumed: the thesis's elevation model with a0 = 10, elev0 = 10 deg (eq. 2.4-10 has
+    // no printed values); zenith sigmas 3 mm / 0.3 m.
+    let e = |s| ElevationNoise {
+        sigma0_m: s,
+        a0: 10.0,
+        elev0_deg: 10.0,
+    };
+    NoiseModel::new(e(0.003), e(0.3))
+}
+
+fn solve(scene: &Scene, obs: &[Vec<ObsRecord>], noise: &NoiseModel) -> FloatBaselines {
+    let refs: Vec<&[ObsRecord]> = obs.iter().map(Vec::as_slice).collect();
+    let signals = [Signal::GpsL1Ca, Signal::BdsB1I];
+    let layout = DdLayout::select(&refs, &scene.views, &signals).unwrap();
+    let model = DdModel::new(layout, refs.len(), noise).unwrap();
+    FloatBaselines::solve(model, &refs).unwrap()
+}
+
+/// The true double-difference integers, in the layout's order, baseline by baseline.
+fn true_integers(scene: &Scene, float: &FloatBaselines) -> Vec<i64> {
+    let index = |sat: SatId| scene.views.iter().position(|v| v.sat == sat).unwrap();
+    let mut out = Vec::new();
+    for k in 1..=2 {
+        for (_, sat, reference) in float.model.layout.ambiguity_ids() {
+            let (i, r) = (index(sat), index(reference));
+            let sd = |j: usize| scene.offsets[j][k] - scene.offsets[j][0];
+            out.push(sd(i) - sd(r));
+        }
+    }
+    out
+}
+
+fn clocks(rng: &mut ChaCha8Rng, n: usize) -> Vec<f64> {
+    (0..n).map(|_| rng.random_range(-3e5..3e5)).collect()
+}
+
+#[test]
+fn noise_free_geometry_is_recovered_exactly_with_clocks_cancelled() {
+    let mut rng = ChaCha8Rng::seed_from_u64(1);
+    let scene = scene(&mut rng, 8, 7);
+    let sat_clocks = clocks(&mut rng, scene.views.len());
+    let obs: Vec<_> = (0..3)
+        .map(|a| observe(&scene, a, (1e4 * (a as f64 + 1.0), &sat_clocks), None))
+        .collect();
+    let float = solve(&scene, &obs, &noise_model());
+    // Two systems, one reference each: 15 satellites give 13 double differences.
+    assert_eq!(float.model.ambiguity_count(), 13);
+    let truth = true_integers(&scene, &float);
+    for (est, t) in float.ambiguity_vector().iter().zip(&truth) {
+        assert!((est - *t as f64).abs() < 1e-5, "{est} vs {t}");
+    }
+    let fixed = float.fix(&truth).unwrap();
+    for k in 0..2 {
+        assert!((float.baselines.column(k) - scene.baselines[k]).norm() < 1e-6);
+        // Phases of ~1e8 cycles carry ~1e-8 cycles of rounding: micrometres.
+        assert!((fixed.baselines.column(k) - scene.baselines[k]).norm() < 1e-6);
+    }
+}
+
+/// Sample covariance of rows of `samples` (each a vec of length d).
+fn sample_covariance(samples: &[DVector<f64>]) -> DMatrix<f64> {
+    let n = samples.len() as f64;
+    let mean = samples
+        .iter()
+        .fold(DVector::zeros(samples[0].len()), |a, s| a + s)
+        / n;
+    samples
+        .iter()
+        .fold(DMatrix::zeros(mean.len(), mean.len()), |a, s| {
+            let d = s - &mean;
+            a + &d * d.transpose()
+        })
+        / (n - 1.0)
+}
+
+/// Per-component standard deviations and the inter-baseline correlation of x agree with
+/// the predicted covariance. With N independent epochs the relative standard error of a
+/// sample standard deviation is 1/sqrt(2N) (2.2 % at N = 1000); 10 % is over 4 of them.
+/// A correlation's standard error is (1 - r^2)/sqrt(N) (0.024 at r = 0.5): 0.1 is 4.
+fn assert_matches(samples: &[DVector<f64>], predicted: &DMatrix<f64>, what: &str) {
+    let cov = sample_covariance(samples);
+    for i in 0..predicted.nrows() {
+        let ratio = (cov[(i, i)] / predicted[(i, i)]).sqrt();
+        assert!(
+            (ratio - 1.0).abs() < 0.10,
+            "{what} component {i}: std ratio {ratio}"
+        );
+    }
+    let corr = |c: &DMatrix<f64>| c[(0, 3)] / (c[(0, 0)] * c[(3, 3)]).sqrt();
+    let (sample, model) = (corr(&cov), corr(predicted));
+    assert!(
+        (sample - model).abs() < 0.1,
+        "{what}: correlation {sample} vs {model}"
+    );
+}
+
+#[test]
+fn float_and_fixed_covariances_match_monte_carlo() {
+    let mut rng = ChaCha8Rng::seed_from_u64(2);
+    let scene = scene(&mut rng, 9, 0);
+    let noise = noise_model();
+    let sat_clocks = clocks(&mut rng, scene.views.len());
+    let mut float_samples = Vec::new();
+    let mut fixed_samples = Vec::new();
+    let mut predicted = None;
+    for _ in 0..1000 {
+        let obs: Vec<_> = (0..3)
+            .map(|a| observe(&scene, a, (0.0, &sat_clocks), Some((&noise, &mut rng))))
+            .collect();
+        let float = solve(&scene, &obs, &noise);
+        let fixed = float.fix(&true_integers(&scene, &float)).unwrap();
+        let err = |b: &nalgebra::Matrix3xX<f64>| {
+            DVector::from_iterator(
+                6,
+                (0..2).flat_map(|k| {
+                    (b.column(k) - scene.baselines[k])
+                        .iter()
+                        .copied()
+                        .collect::<Vec<_>>()
+                }),
+            )
+        };
+        float_samples.push(err(&float.baselines));
+        fixed_samples.push(err(&fixed.baselines));
+        predicted.get_or_insert((float.baseline_covariance(), fixed.covariance));
+    }
+    let (float_cov, fixed_cov) = predicted.unwrap();
+    assert_matches(&float_samples, &float_cov, "float");
+    assert_matches(&fixed_samples, &fixed_cov, "fixed");
+    // Fixing turns decimetre code-driven baselines into millimetre ones.
+    assert!(fixed_cov[(0, 0)] < 1e-2 * float_cov[(0, 0)]);
+}
+
+#[test]
+fn partial_fix_lies_between_float_and_full_fix() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let scene = scene(&mut rng, 8, 0);
+    let noise = noise_model();
+    let obs: Vec<_> = (0..3)
+        .map(|a| observe(&scene, a, (0.0, &[0.0; 8]), Some((&noise, &mut rng))))
+        .collect();
+    let float = solve(&scene, &obs, &noise);
+    let truth = true_integers(&scene, &float);
+    let nm = truth.len();
+    let full = float.fix(&truth).unwrap().covariance.trace();
+    let rows = 5;
+    let z_t = DMatrix::identity(nm, nm).rows(0, rows).into_owned();
+    let partial = float
+        .fix_combinations(&z_t, &truth[..rows])
+        .unwrap()
+        .covariance
+        .trace();
+    let none = float.baseline_covariance().trace();
+    assert!(
+        full < partial && partial < none,
+        "{full} < {partial} < {none}"
+    );
+}
+
+#[test]
+fn too_few_antennas_or_satellites_are_errors() {
+    let mut rng = ChaCha8Rng::seed_from_u64(4);
+    let scene = scene(&mut rng, 3, 1);
+    let obs: Vec<_> = (0..2)
+        .map(|a| observe(&scene, a, (0.0, &[0.0; 4]), None))
+        .collect();
+    let refs: Vec<&[ObsRecord]> = obs.iter().map(Vec::as_slice).collect();
+    let signals = [Signal::GpsL1Ca, Signal::BdsB1I];
+    assert_eq!(
+        DdLayout::select(&refs[..1], &scene.views, &signals),
+        Err(BaselineError::TooFewAntennas(1))
+    );
+    // Three GPS satellites give two double differences; the lone BeiDou none.
+    assert_eq!(
+        DdLayout::select(&refs, &scene.views, &signals),
+        Err(BaselineError::TooFewDoubleDifferences { found: 2 })
+    );
+}
+
+#[test]
+fn a_satellite_missing_phase_on_one_antenna_is_left_out() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let scene = scene(&mut rng, 6, 0);
+    let mut obs: Vec<_> = (0..3)
+        .map(|a| observe(&scene, a, (0.0, &[0.0; 6]), None))
+        .collect();
+    obs[2][3].carrier_phase_cycles = None;
+    let float = solve(&scene, &obs, &noise_model());
+    assert_eq!(float.model.ambiguity_count(), 4);
+    assert!(
+        float
+            .model
+            .layout
+            .ambiguity_ids()
+            .all(|(_, s, r)| s != scene.views[3].sat && r != scene.views[3].sat)
+    );
+}
