@@ -8,14 +8,14 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_receiver::baseline::{
-    BaselineError, DdLayout, DdModel, ElevationNoise, FloatBaselines, NoiseModel, SatView,
+    BaselineError, DdLayout, DdModel, ElevationNoise, FloatBaselines, LineOfSight, NoiseModel,
 };
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::signal::Signal;
 
 /// A platform with three antennas (two 1 m baselines) and satellites spread over the sky.
 struct Scene {
-    views: Vec<SatView>,
+    views: Vec<LineOfSight>,
     /// Baselines from antenna 0 (m, ECEF).
     baselines: [Vector3<f64>; 2],
     /// Integer phase offsets per antenna and satellite (cycles).
@@ -38,7 +38,7 @@ fn scene(rng: &mut ChaCha8Rng, gps: usize, bds: usize) -> Scene {
             elevation.cos() * azimuth.sin(),
             elevation.sin(),
         );
-        views.push(SatView {
+        views.push(LineOfSight {
             sat,
             los_ecef: los,
             elevation_rad: elevation,
@@ -297,4 +297,42 @@ fn a_satellite_missing_phase_on_one_antenna_is_left_out() {
             .ambiguity_ids()
             .all(|(_, s, r)| s != scene.views[3].sat && r != scene.views[3].sat)
     );
+}
+
+/// Conditioning on the true integers of all but one ambiguity leaves that one within a few
+/// conditional sigmas of truth, with a chi-square-sized fit statistic; wrong integers
+/// make the statistic explode.
+#[test]
+fn conditioning_on_held_integers_is_the_gaussian_conditional() {
+    let mut rng = ChaCha8Rng::seed_from_u64(6);
+    let scene = scene(&mut rng, 8, 0);
+    let noise = noise_model();
+    let obs: Vec<_> = (0..3)
+        .map(|a| observe(&scene, a, (0.0, &[0.0; 8]), Some((&noise, &mut rng))))
+        .collect();
+    let float = solve(&scene, &obs, &noise);
+    let truth = true_integers(&scene, &float);
+    let nm = truth.len();
+    let held: Vec<(usize, i64)> = (1..nm).map(|i| (i, truth[i])).collect();
+    let c = float.conditioned(&held).unwrap();
+    assert_eq!(c.free, vec![0]);
+    let sigma = c.covariance[(0, 0)].sqrt();
+    assert!((c.ambiguities[0] - truth[0] as f64).abs() < 5.0 * sigma);
+    // The conditional sigma is far below the unconditional one (the held phases fix
+    // the baselines).
+    assert!(sigma < 0.1 * float.ambiguity_covariance()[(0, 0)].sqrt());
+    // Its fit statistic is that of a chi-square with nm - 1 degrees of freedom: below
+    // the 1e-6 quantile bound of about nm - 1 + 10 sqrt(2 (nm - 1)).
+    let dof = (nm - 1) as f64;
+    assert!(
+        c.held_statistic < dof + 10.0 * (2.0 * dof).sqrt(),
+        "{}",
+        c.held_statistic
+    );
+    // Wrong integers by one cycle on every held ambiguity: the statistic explodes.
+    let wrong: Vec<(usize, i64)> = held.iter().map(|&(i, v)| (i, v + 1)).collect();
+    assert!(float.conditioned(&wrong).unwrap().held_statistic > 100.0 * dof);
+    // Nothing held: the float ambiguities themselves.
+    let none = float.conditioned(&[]).unwrap();
+    assert_eq!(none.ambiguities, float.ambiguity_vector());
 }

@@ -2,26 +2,42 @@
 //! and the double-differenced observation vector of one baseline (eqs. 2.3-9, 2.4-35).
 
 use super::BaselineError;
+use crate::pvt::SatView;
 use nalgebra::{DVector, Vector3};
 use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::signal::Signal;
 
-/// Where a satellite is seen from the master antenna.
+/// The direction of a satellite from the master antenna: what a double-difference row
+/// needs of the geometry (eq. 2.3-10).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SatView {
+pub struct LineOfSight {
     pub sat: SatId,
     /// Unit vector from the master antenna to the satellite, ECEF.
     pub los_ecef: Vector3<f64>,
     pub elevation_rad: f64,
 }
 
+impl LineOfSight {
+    /// From the single-point solution's view of `sat` (elevation 90 deg when the view has
+    /// no receiver position yet: every satellite then weighs alike).
+    pub fn from_view(sat: SatId, view: &SatView) -> Self {
+        Self {
+            sat,
+            los_ecef: view.los,
+            elevation_rad: view
+                .az_el_rad
+                .map_or(std::f64::consts::FRAC_PI_2, |(_, e)| e),
+        }
+    }
+}
+
 /// The double differences of one signal: every satellite in `others` minus `reference`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DdBlock {
     pub signal: Signal,
-    pub reference: SatView,
-    pub others: Vec<SatView>,
+    pub reference: LineOfSight,
+    pub others: Vec<LineOfSight>,
 }
 
 /// The double differences of an epoch, signal by signal; phase rows come first, in block
@@ -48,7 +64,7 @@ impl DdLayout {
     /// (eq. 2.3-10). A system with fewer than two such satellites is left out.
     pub fn select(
         antennas: &[&[ObsRecord]],
-        views: &[SatView],
+        views: &[LineOfSight],
         signals: &[Signal],
     ) -> Result<Self, BaselineError> {
         if antennas.len() < 2 {
@@ -64,7 +80,7 @@ impl DdLayout {
             if system_signals.is_empty() {
                 continue;
             }
-            let mut common: Vec<SatView> = views
+            let mut common: Vec<LineOfSight> = views
                 .iter()
                 .filter(|v| v.sat.system == system)
                 .filter(|v| {

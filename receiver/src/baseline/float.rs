@@ -32,6 +32,21 @@ pub struct FixedBaselines {
     pub covariance: DMatrix<f64>,
 }
 
+/// The float ambiguities left free when some are held at integers: their conditional mean
+/// and covariance, and how well the held integers fit the float solution.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Conditioned {
+    /// Indices into vec(N) of the free ambiguities.
+    pub free: Vec<usize>,
+    /// `a_F - Q_FH Q_HH^{-1} (a_H - v)`.
+    pub ambiguities: DVector<f64>,
+    /// `Q_FF - Q_FH Q_HH^{-1} Q_HF`.
+    pub covariance: DMatrix<f64>,
+    /// `(a_H - v)^T Q_HH^{-1} (a_H - v)`: chi-square with as many degrees of freedom as
+    /// held integers when they are right.
+    pub held_statistic: f64,
+}
+
 /// Kronecker product `a (x) b`.
 fn kron(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
     a.kronecker(b)
@@ -100,6 +115,44 @@ impl FloatBaselines {
             &self.model.q_m,
             &self.cofactor.view((n, n), (3, 3)).into_owned(),
         )
+    }
+
+    /// The free ambiguities conditioned on `held` (index into vec(N), integer).
+    pub fn conditioned(&self, held: &[(usize, i64)]) -> Result<Conditioned, BaselineError> {
+        let a = self.ambiguity_vector();
+        let q = self.ambiguity_covariance();
+        let nm = a.len();
+        if let Some(&(i, _)) = held.iter().find(|(i, _)| *i >= nm) {
+            return Err(BaselineError::Dimension {
+                what: "held ambiguity index",
+                expected: nm,
+                found: i,
+            });
+        }
+        let h: Vec<usize> = held.iter().map(|(i, _)| *i).collect();
+        let free: Vec<usize> = (0..nm).filter(|i| !h.contains(i)).collect();
+        let pick = |rows: &[usize], cols: &[usize]| {
+            DMatrix::from_fn(rows.len(), cols.len(), |r, c| q[(rows[r], cols[c])])
+        };
+        let dh = DVector::from_iterator(h.len(), held.iter().map(|&(i, v)| a[i] - v as f64));
+        let a_f = DVector::from_iterator(free.len(), free.iter().map(|&i| a[i]));
+        if h.is_empty() {
+            return Ok(Conditioned {
+                covariance: pick(&free, &free),
+                ambiguities: a_f,
+                free,
+                held_statistic: 0.0,
+            });
+        }
+        let chol = pick(&h, &h).cholesky().ok_or(BaselineError::Singular)?;
+        let q_fh = pick(&free, &h);
+        let gain = chol.solve(&q_fh.transpose()).transpose();
+        Ok(Conditioned {
+            ambiguities: a_f - &gain * &dh,
+            covariance: pick(&free, &free) - &gain * q_fh.transpose(),
+            held_statistic: dh.dot(&chol.solve(&dh)),
+            free,
+        })
     }
 
     /// Eqs. 2.4-64/2.4-65 with every ambiguity fixed: `integers` is vec(N_check).

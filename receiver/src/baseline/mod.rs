@@ -16,11 +16,13 @@
 
 pub mod differences;
 pub mod float;
+pub mod hold;
 pub mod model;
 pub mod noise;
 
-pub use differences::{DdBlock, DdLayout, SatView};
-pub use float::{FixedBaselines, FloatBaselines};
+pub use differences::{DdBlock, DdLayout, LineOfSight};
+pub use float::{Conditioned, FixedBaselines, FloatBaselines};
+pub use hold::AmbiguityHold;
 pub use model::DdModel;
 pub use noise::{ElevationNoise, NoiseModel};
 
