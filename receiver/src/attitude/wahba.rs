@@ -18,7 +18,7 @@ const MIN_SINGULAR_RATIO: f64 = 1e-9;
 /// Needs at least two non-collinear pairs and positive finite weights.
 pub fn wahba_svd(pairs: &[(Vec3, Vec3, f64)]) -> Result<Mat3, AttitudeError> {
     if pairs.iter().any(|(b, v, a)| {
-        !(a.is_finite() && *a > 0.0) || !b.iter().chain(v.iter()).all(|x| x.is_finite())
+        !(a.is_finite() && *a > 0.0 && b.iter().chain(v.iter()).all(|x| x.is_finite()))
     }) {
         return Err(AttitudeError::Measurement(
             "Wahba: vectors must be finite and weights finite and > 0".into(),
@@ -37,7 +37,8 @@ pub fn wahba_svd(pairs: &[(Vec3, Vec3, f64)]) -> Result<Mat3, AttitudeError> {
     let s = svd.singular_values;
     let mut order = [0usize, 1, 2];
     order.sort_by(|&i, &j| s[j].total_cmp(&s[i]));
-    if !(s[order[1]] > MIN_SINGULAR_RATIO * s[order[0]]) {
+    let determined = s[order[1]] > MIN_SINGULAR_RATIO * s[order[0]];
+    if !determined {
         return Err(AttitudeError::Singular(
             "Wahba: the vector pairs are collinear, the rotation about them is undetermined".into(),
         ));
