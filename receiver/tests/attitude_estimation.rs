@@ -752,3 +752,33 @@ fn bad_inputs_are_errors() {
         Err(AttitudeError::Covariance(_))
     ));
 }
+
+/// At gimbal lock (pitch +/-90 deg) yaw and roll are not separable in eq. 2.5-10's angles:
+/// the LS either reports it (singular normal matrix, no convergence) or returns the same
+/// rotation with finite numbers; never a panic or NaN.
+#[test]
+fn gimbal_lock_is_reported_or_solved_never_nan() {
+    let g = BodyGeometry::new(&[Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]).unwrap();
+    for pitch in [90.0 * DEG, -90.0 * DEG, 89.999_999 * DEG] {
+        let truth = YawPitchRoll::new(0.4, pitch, 0.1);
+        let b: Vec<Vec3> = g
+            .baselines()
+            .iter()
+            .map(|b| truth.c_body_ref() * b)
+            .collect();
+        let meas = NedBaselines::new(&b, DMatrix::identity(6, 6) * 1e-6).unwrap();
+        match solve(&g, &meas, None, &LsConfig::default()) {
+            Ok(est) => {
+                assert!(est.covariance.iter().all(|v| v.is_finite()));
+                assert!((est.angles.c_body_ref() - truth.c_body_ref()).amax() < 1e-6);
+            }
+            Err(e) => assert!(
+                matches!(
+                    e,
+                    AttitudeError::Singular(_) | AttitudeError::NotConverged { .. }
+                ),
+                "{e}"
+            ),
+        }
+    }
+}
