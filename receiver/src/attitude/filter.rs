@@ -399,6 +399,19 @@ mod tests {
         assert_eq!(c.method, AttitudeMethod::Ukf);
         assert_eq!(c.kappa, THESIS_KAPPA);
         assert!(toml::from_str::<AttitudeConfig>("methd = \"kf\"").is_err());
+        // The example of docs/attitude.md.
+        let doc: AttitudeConfig = toml::from_str(
+            "method = \"ukf\"\nrate_psd_rad2_s3 = [1e-8, 1e-8, 1e-8]\ninitial_rate_sigma_rad_s = 0.01\nkappa = 0.5\n[least_squares]\ntolerance_rad = 1e-12\nmax_iterations = 50\n",
+        )
+        .unwrap();
+        assert_eq!(
+            doc,
+            AttitudeConfig {
+                method: AttitudeMethod::Ukf,
+                ..AttitudeConfig::default()
+            }
+        );
+        assert!(toml::from_str::<AttitudeConfig>("[least_squares]\ntol = 1.0").is_err());
         assert!(toml::from_str::<AttitudeConfig>("method = \"ekf\"").is_err());
         let bad = AttitudeConfig {
             kappa: -7.0,
