@@ -9,6 +9,7 @@
 
 pub mod acquisition;
 pub mod assist;
+pub mod attitude;
 pub mod baseline;
 pub mod fast_sync;
 pub mod input;

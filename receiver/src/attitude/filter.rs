@@ -1,0 +1,422 @@
+//! The real-time attitude stages behind one trait, their configuration, and the process
+//! model both filters share.
+//!
+//! State `X = [yaw, pitch, roll, yaw', pitch', roll']` (rad, rad/s; eqs. 2.5-16, 4.3-27),
+//! transition `Phi = [[I_3, T I_3], [0, I_3]]` (eqs. 2.5-16, 4.3-28) and process noise
+//! `Q = [[T^3/3, T^2/2], [T^2/2, T]] (x) diag(S_yaw', S_pitch', S_roll')` (eqs. 2.5-16,
+//! 4.3-29, 4.3-30: white noise on the angular accelerations with power spectral densities
+//! S, rad^2/s^3). The measurement is one epoch's `vec(B_NED)` with `R = Q_BB_NED`
+//! (eqs. 2.5-17, 4.3-31, 4.3-32).
+//!
+//! Angles: after every step yaw and roll are wrapped into [-pi, pi) and a pitch beyond
+//! +/-pi/2 is mapped to the same rotation (yaw + pi, pi - pitch, roll + pi; the pitch rate
+//! changes sign). The measurement is a vector of baselines, so its innovation has no
+//! angle to wrap; angle *differences* (errors, NEES) use [`super::wrap_diff`].
+
+use super::kalman::EkfAttitude;
+use super::least_squares::{LsConfig, solve};
+use super::ukf::UkfAttitude;
+use super::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};
+use nalgebra::{DMatrix, Matrix3, Matrix6, Vector3, Vector6};
+use std::f64::consts::{FRAC_PI_2, PI};
+
+/// Which attitude stage runs (`[stages] attitude` in a receiver TOML, later).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AttitudeMethod {
+    /// Epoch-by-epoch iterated LS (eqs. 2.5-9..2.5-13), no rates (default).
+    #[default]
+    LeastSquares,
+    /// The real-time KF of eqs. 2.5-16, 2.5-17, an EKF (linearised with J(xi)).
+    Kf,
+    /// The UKF of eqs. 4.3-16..4.3-32.
+    Ukf,
+}
+
+/// Thesis section 4.3: the sigma-point spread kappa of its UKF simulations.
+pub const THESIS_KAPPA: f64 = 0.5;
+
+/// Settings of the attitude stage.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AttitudeConfig {
+    /// `least-squares`, `kf` or `ukf`.
+    pub method: AttitudeMethod,
+    /// Power spectral densities `S` of the yaw, pitch and roll accelerations
+    /// (rad^2/s^3), eqs. 2.5-16 / 4.3-30. Default 1e-8 each (# assumed: the thesis gives
+    /// no value; 1e-4 rad/s^2 of acceleration noise over 1 s, a slowly turning LEO).
+    pub rate_psd_rad2_s3: [f64; 3],
+    /// 1-sigma of the rates when a filter starts from its first LS attitude (rad/s).
+    /// Default 0.01 rad/s (0.57 deg/s).
+    pub initial_rate_sigma_rad_s: f64,
+    /// UKF sigma-point spread kappa (eqs. 4.3-18..4.3-20), `6 + kappa > 0`. Default 0.5,
+    /// the thesis's value.
+    pub kappa: f64,
+    /// The LS (the `least-squares` stage, and the filters' first epoch).
+    pub least_squares: LsConfig,
+}
+
+impl Default for AttitudeConfig {
+    fn default() -> Self {
+        Self {
+            method: AttitudeMethod::default(),
+            rate_psd_rad2_s3: [1e-8; 3],
+            initial_rate_sigma_rad_s: 0.01,
+            kappa: THESIS_KAPPA,
+            least_squares: LsConfig::default(),
+        }
+    }
+}
+
+impl AttitudeConfig {
+    /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
+    pub fn check(&self) -> Result<(), AttitudeError> {
+        let s_ok = self
+            .rate_psd_rad2_s3
+            .iter()
+            .all(|s| s.is_finite() && *s >= 0.0);
+        let sigma_ok =
+            self.initial_rate_sigma_rad_s.is_finite() && self.initial_rate_sigma_rad_s > 0.0;
+        let kappa_ok = self.kappa.is_finite() && 6.0 + self.kappa > 0.0;
+        if !(s_ok && sigma_ok && kappa_ok) {
+            return Err(AttitudeError::Config(format!(
+                "rate_psd_rad2_s3 must be finite and >= 0, initial_rate_sigma_rad_s finite and > 0, kappa finite with 6 + kappa > 0; got {self:?}"
+            )));
+        }
+        self.least_squares.check()
+    }
+}
+
+/// A filter's state.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FilterState {
+    /// The angles (yaw and roll in [-pi, pi), pitch in [-pi/2, pi/2]).
+    pub angles: YawPitchRoll,
+    /// Yaw, pitch and roll rates (rad/s); `None` for the LS stage, which has none.
+    pub rates_rad_s: Option<Vector3<f64>>,
+    /// Covariance: 6x6 (angles then rates; rad^2, rad^2/s, rad^2/s^2) with rates, else the
+    /// angles' 3x3 (rad^2).
+    pub covariance: DMatrix<f64>,
+}
+
+/// What one update saw: the innovation's (or post-fit residual's) chi-square and its
+/// degrees of freedom, to check that `Q_BB` and the filter agree with the data.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UpdateInfo {
+    /// `v^T S^-1 v` of the innovation (filters) or `r^T Q^-1 r` of the residual (LS).
+    pub chi_square: f64,
+    /// 3m for a filter's innovation, 3m - 3 for the LS residual.
+    pub dof: usize,
+    /// True when this update started the filter (from the LS attitude).
+    pub initialised: bool,
+}
+
+/// An attitude stage: a filter (KF, UKF) or the epoch-by-epoch LS.
+pub trait AttitudeFilter: std::fmt::Debug + Send {
+    /// Which stage this is.
+    fn method(&self) -> AttitudeMethod;
+    /// Propagate the state by `dt_s` (s, finite and >= 0); nothing before the first
+    /// update, and nothing for the LS stage.
+    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError>;
+    /// Use one epoch's baselines. A filter without a state starts from the LS attitude of
+    /// this epoch (which needs two baselines) unless it was given an initial state.
+    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError>;
+    /// The current state; `None` before the first successful update.
+    fn state(&self) -> Option<FilterState>;
+}
+
+/// The stage `config.method` with the body geometry `geometry`, no initial state.
+pub fn build(
+    config: &AttitudeConfig,
+    geometry: BodyGeometry,
+) -> Result<Box<dyn AttitudeFilter>, AttitudeError> {
+    config.check()?;
+    Ok(match config.method {
+        AttitudeMethod::LeastSquares => Box::new(LeastSquaresStage {
+            config: config.least_squares,
+            geometry,
+            last: None,
+        }),
+        AttitudeMethod::Kf => Box::new(EkfAttitude::new(config, geometry, None)?),
+        AttitudeMethod::Ukf => Box::new(UkfAttitude::new(config, geometry, None)?),
+    })
+}
+
+/// A filter's starting point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FilterInit {
+    pub angles: YawPitchRoll,
+    pub rates_rad_s: Vector3<f64>,
+    /// 6x6, positive definite (angles then rates).
+    pub covariance: Matrix6<f64>,
+}
+
+/// Eqs. 2.5-16, 4.3-28: `Phi(T)`.
+pub fn transition(dt_s: f64) -> Matrix6<f64> {
+    let mut phi = Matrix6::identity();
+    for i in 0..3 {
+        phi[(i, i + 3)] = dt_s;
+    }
+    phi
+}
+
+/// Eqs. 2.5-16, 4.3-30: `Q(T) = [[T^3/3, T^2/2], [T^2/2, T]] (x) diag(S)`.
+pub fn process_noise(dt_s: f64, s: &[f64; 3]) -> Matrix6<f64> {
+    let t = dt_s;
+    let block = [[t.powi(3) / 3.0, t * t / 2.0], [t * t / 2.0, t]];
+    let mut q = Matrix6::zeros();
+    for (bi, row) in block.iter().enumerate() {
+        for (bj, v) in row.iter().enumerate() {
+            for (k, sk) in s.iter().enumerate() {
+                q[(3 * bi + k, 3 * bj + k)] = v * sk;
+            }
+        }
+    }
+    q
+}
+
+/// The state and covariance both filters carry, their shared prediction (eqs. 2.5-16,
+/// 4.3-16, 4.3-17) and their start from the LS.
+#[derive(Debug, Clone)]
+pub(crate) struct FilterCore {
+    pub config: AttitudeConfig,
+    pub geometry: BodyGeometry,
+    /// `(X, P)` once started.
+    pub xp: Option<(Vector6<f64>, Matrix6<f64>)>,
+}
+
+impl FilterCore {
+    pub fn new(
+        config: &AttitudeConfig,
+        geometry: BodyGeometry,
+        init: Option<FilterInit>,
+    ) -> Result<Self, AttitudeError> {
+        config.check()?;
+        let xp = match init {
+            None => None,
+            Some(i) => {
+                let x = state_vector(&i.angles, &i.rates_rad_s);
+                let p = i.covariance;
+                if !x.iter().chain(p.iter()).all(|v| v.is_finite())
+                    || (p - p.transpose()).amax() > 1e-9 * p.amax()
+                    || p.cholesky().is_none()
+                {
+                    return Err(AttitudeError::Covariance(
+                        "the initial state must be finite and its covariance symmetric positive definite"
+                            .into(),
+                    ));
+                }
+                Some(canonical(x, p))
+            }
+        };
+        Ok(Self {
+            config: *config,
+            geometry,
+            xp,
+        })
+    }
+
+    /// Eqs. 2.5-16, 4.3-16, 4.3-17.
+    pub fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
+        if !(dt_s.is_finite() && dt_s >= 0.0) {
+            return Err(AttitudeError::Filter(format!(
+                "prediction interval {dt_s} s must be finite and >= 0"
+            )));
+        }
+        if let Some((x, p)) = self.xp {
+            let phi = transition(dt_s);
+            let p = phi * p * phi.transpose() + process_noise(dt_s, &self.config.rate_psd_rad2_s3);
+            self.xp = Some(canonical(phi * x, 0.5 * (p + p.transpose())));
+        }
+        Ok(())
+    }
+
+    /// Start from this epoch's LS attitude: angles and their covariance eq. 2.5-13, rates
+    /// zero with [`AttitudeConfig::initial_rate_sigma_rad_s`].
+    pub fn start_from_ls(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
+        let est = solve(&self.geometry, measured, None, &self.config.least_squares)?;
+        let mut p = Matrix6::zeros();
+        p.fixed_view_mut::<3, 3>(0, 0).copy_from(&est.covariance);
+        let s2 = self.config.initial_rate_sigma_rad_s.powi(2);
+        p.fixed_view_mut::<3, 3>(3, 3)
+            .copy_from(&(Matrix3::identity() * s2));
+        self.xp = Some((state_vector(&est.angles, &Vector3::zeros()), p));
+        Ok(UpdateInfo {
+            chi_square: est.chi_square,
+            dof: 3 * measured.len() - 3,
+            initialised: true,
+        })
+    }
+
+    /// Keep an updated state (canonical angles), or fail if it is not finite.
+    pub fn set(&mut self, x: Vector6<f64>, p: Matrix6<f64>) -> Result<(), AttitudeError> {
+        if !x.iter().chain(p.iter()).all(|v| v.is_finite()) {
+            return Err(AttitudeError::Filter(
+                "the updated state is not finite".into(),
+            ));
+        }
+        self.xp = Some(canonical(x, 0.5 * (p + p.transpose())));
+        Ok(())
+    }
+
+    pub fn state(&self) -> Option<FilterState> {
+        self.xp.map(|(x, p)| FilterState {
+            angles: YawPitchRoll::new(x[0], x[1], x[2]),
+            rates_rad_s: Some(Vector3::new(x[3], x[4], x[5])),
+            covariance: DMatrix::from_column_slice(6, 6, p.as_slice()),
+        })
+    }
+}
+
+/// `[yaw, pitch, roll, rates]`.
+pub(crate) fn state_vector(angles: &YawPitchRoll, rates: &Vector3<f64>) -> Vector6<f64> {
+    Vector6::new(
+        angles.yaw_rad,
+        angles.pitch_rad,
+        angles.roll_rad,
+        rates[0],
+        rates[1],
+        rates[2],
+    )
+}
+
+/// The angles of a state vector.
+pub(crate) fn angles_of(x: &Vector6<f64>) -> YawPitchRoll {
+    YawPitchRoll::new(x[0], x[1], x[2])
+}
+
+/// Canonical angles: pitch in [-pi/2, pi/2] (else the same rotation with yaw + pi,
+/// pi - pitch, roll + pi, and the pitch rate's sign and covariance rows flipped), yaw and
+/// roll in [-pi, pi).
+fn canonical(mut x: Vector6<f64>, mut p: Matrix6<f64>) -> (Vector6<f64>, Matrix6<f64>) {
+    let pitch = wrap_pi(x[1]);
+    x[1] = pitch;
+    if pitch.abs() > FRAC_PI_2 {
+        x[0] += PI;
+        x[1] = PI.copysign(pitch) - pitch;
+        x[2] += PI;
+        x[4] = -x[4];
+        let d = Matrix6::from_diagonal(&Vector6::new(1.0, -1.0, 1.0, 1.0, -1.0, 1.0));
+        p = d * p * d;
+    }
+    x[0] = wrap_pi(x[0]);
+    x[2] = wrap_pi(x[2]);
+    (x, p)
+}
+
+/// The `least-squares` stage: eqs. 2.5-9..2.5-13 every epoch from the Wahba start.
+#[derive(Debug, Clone)]
+pub struct LeastSquaresStage {
+    config: LsConfig,
+    geometry: BodyGeometry,
+    last: Option<super::AttitudeEstimate>,
+}
+
+impl LeastSquaresStage {
+    /// The stage for `geometry`.
+    pub fn new(config: LsConfig, geometry: BodyGeometry) -> Result<Self, AttitudeError> {
+        config.check()?;
+        Ok(Self {
+            config,
+            geometry,
+            last: None,
+        })
+    }
+}
+
+impl AttitudeFilter for LeastSquaresStage {
+    fn method(&self) -> AttitudeMethod {
+        AttitudeMethod::LeastSquares
+    }
+
+    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
+        if dt_s.is_finite() && dt_s >= 0.0 {
+            Ok(())
+        } else {
+            Err(AttitudeError::Filter(format!(
+                "prediction interval {dt_s} s must be finite and >= 0"
+            )))
+        }
+    }
+
+    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
+        let est = solve(&self.geometry, measured, None, &self.config)?;
+        let info = UpdateInfo {
+            chi_square: est.chi_square,
+            dof: 3 * measured.len() - 3,
+            initialised: self.last.is_none(),
+        };
+        self.last = Some(est);
+        Ok(info)
+    }
+
+    fn state(&self) -> Option<FilterState> {
+        self.last.as_ref().map(|e| FilterState {
+            angles: e.angles,
+            rates_rad_s: None,
+            covariance: DMatrix::from_column_slice(3, 3, e.covariance.as_slice()),
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn process_noise_is_the_integral_of_the_continuous_model() {
+        // Q = int_0^T Phi(s) diag(0, 0, 0, S) Phi(s)^T ds (white acceleration noise).
+        let (t, s) = (0.7, [1e-3, 2e-3, 5e-4]);
+        let steps = 20_000;
+        let mut num = Matrix6::zeros();
+        let mut g = Matrix6::zeros();
+        for k in 0..3 {
+            g[(k + 3, k + 3)] = s[k];
+        }
+        for i in 0..steps {
+            let tau = (i as f64 + 0.5) * t / steps as f64;
+            let phi = transition(tau);
+            num += phi * g * phi.transpose() * (t / steps as f64);
+        }
+        assert!((num - process_noise(t, &s)).amax() < 1e-10);
+    }
+
+    #[test]
+    fn pitch_beyond_90_deg_is_the_same_rotation() {
+        let x = Vector6::new(0.2, 2.0, -0.3, 0.01, 0.02, 0.03);
+        let (y, p) = canonical(x, Matrix6::identity());
+        let a = angles_of(&x).c_body_ref();
+        let b = angles_of(&y).c_body_ref();
+        assert!((a - b).amax() < 1e-14);
+        assert!(y[1].abs() <= FRAC_PI_2 && y[4] == -0.02);
+        assert_eq!(p, Matrix6::identity());
+    }
+
+    #[test]
+    fn config_from_toml_rejects_unknown_fields() {
+        let c: AttitudeConfig =
+            toml::from_str("method = \"ukf\"\nrate_psd_rad2_s3 = [1e-6, 1e-6, 2e-6]\n").unwrap();
+        assert_eq!(c.method, AttitudeMethod::Ukf);
+        assert_eq!(c.kappa, THESIS_KAPPA);
+        assert!(toml::from_str::<AttitudeConfig>("methd = \"kf\"").is_err());
+        // The example of docs/attitude.md.
+        let doc: AttitudeConfig = toml::from_str(
+            "method = \"ukf\"\nrate_psd_rad2_s3 = [1e-8, 1e-8, 1e-8]\ninitial_rate_sigma_rad_s = 0.01\nkappa = 0.5\n[least_squares]\ntolerance_rad = 1e-12\nmax_iterations = 50\n",
+        )
+        .unwrap();
+        assert_eq!(
+            doc,
+            AttitudeConfig {
+                method: AttitudeMethod::Ukf,
+                ..AttitudeConfig::default()
+            }
+        );
+        assert!(toml::from_str::<AttitudeConfig>("[least_squares]\ntol = 1.0").is_err());
+        assert!(toml::from_str::<AttitudeConfig>("method = \"ekf\"").is_err());
+        let bad = AttitudeConfig {
+            kappa: -7.0,
+            ..AttitudeConfig::default()
+        };
+        assert!(bad.check().is_err());
+    }
+}
