@@ -9,6 +9,7 @@ use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{TimeError, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
+use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Highest GPS PRN (IS-GPS-200: PRNs 1..32 for the operational constellation).
 pub(crate) const GPS_MAX_PRN: u8 = 32;
@@ -41,6 +42,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         .check()
         .map_err(|e| e.within("errors.ionosphere"))?;
     check_errors(scenario)?;
+    check_observation(scenario)?;
     if let Some(signal) = &scenario.signal {
         signal.check().map_err(|e| e.within("signal"))?;
         let bands = [
@@ -58,6 +60,51 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         }
     }
     Ok(())
+}
+
+/// `[observation]`: the observation level needs the `[signal]` table (its C/N0 settings);
+/// noise parameters are finite and non-negative, elevation scales positive.
+fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
+    let obs = &scenario.observation;
+    if obs.level == Level::Observation && scenario.signal.is_none() {
+        return Err(Invalid::new(
+            "observation.level",
+            "\"observation\"",
+            "the observation level draws its noise at the links' C/N0: add a [signal] table",
+        ));
+    }
+    let non_negative = |field: &str, v: f64| {
+        if v.is_finite() && v >= 0.0 {
+            Ok(())
+        } else {
+            Err(Invalid::new(
+                format!("observation.noise.{field}"),
+                v,
+                "must be a finite number >= 0",
+            ))
+        }
+    };
+    match &obs.noise {
+        ObsNoiseConfig::Calibrated { .. } => Ok(()),
+        ObsNoiseConfig::Constant { phase_m, code_m } => {
+            non_negative("phase_m", *phase_m)?;
+            non_negative("code_m", *code_m)
+        }
+        ObsNoiseConfig::Elevation { phase, code } => {
+            for (name, e) in [("phase", phase), ("code", code)] {
+                non_negative(&format!("{name}.sigma0_m"), e.sigma0_m)?;
+                non_negative(&format!("{name}.a0"), e.a0)?;
+                if !(e.elev0_deg.is_finite() && e.elev0_deg > 0.0) {
+                    return Err(Invalid::new(
+                        format!("observation.noise.{name}.elev0_deg"),
+                        e.elev0_deg,
+                        "must be a positive number of degrees",
+                    ));
+                }
+            }
+            Ok(())
+        }
+    }
 }
 
 /// `[errors]` beyond the ionosphere: each table's own check, plus what needs the rest of

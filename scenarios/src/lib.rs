@@ -19,11 +19,13 @@ mod bundled;
 mod checks;
 mod error;
 mod locate;
+mod observation;
 mod parse;
 mod schema;
 
 pub use build::World;
 pub use bundled::{Bundled, bundled};
 pub use error::ScenarioError;
+pub use observation::BUNDLED_CALIBRATION;
 pub use parse::{load, parse, resolve};
 pub use schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};

@@ -37,6 +37,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         antennas: file.antennas,
         signal: file.signal,
         errors: file.errors,
+        observation: file.observation,
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),

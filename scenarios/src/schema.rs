@@ -8,6 +8,7 @@ use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationConfig, Constel
 use skyforge_orbits::platform::config::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::ErrorsConfig;
+use skyforge_signals::obs_model::ObservationConfig;
 use skyforge_signals::synth::config::SignalConfig;
 use std::path::PathBuf;
 
@@ -35,6 +36,8 @@ pub struct Scenario {
     pub signal: Option<SignalConfig>,
     /// `[errors]`: error sources applied to the signal.
     pub errors: ErrorsConfig,
+    /// `[observation]`: signal-level or observation-level observables.
+    pub observation: ObservationConfig,
     /// Where the scenario came from: the file path as given, or `bundled:NAME`.
     pub source: String,
     /// Directory relative paths in the scenario are resolved from (the scenario file's
@@ -118,6 +121,8 @@ pub(crate) struct ScenarioFile {
     pub signal: Option<SignalConfig>,
     #[serde(default)]
     pub errors: ErrorsConfig,
+    #[serde(default)]
+    pub observation: ObservationConfig,
 }
 
 /// `[time]` as written.

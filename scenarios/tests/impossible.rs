@@ -350,3 +350,28 @@ fn antenna_names_that_cannot_name_files_are_refused() {
     );
     assert!(parse_in(&ok, Path::new(".")).is_ok());
 }
+
+#[test]
+fn observation_level_without_a_signal_table() {
+    let text = format!("{BASE}\n[observation]\nlevel = \"observation\"\n");
+    let err = parse_error(&text);
+    assert_eq!(err.field, "observation.level", "{err}");
+    assert!(err.to_string().contains("[signal]"), "{err}");
+}
+
+#[test]
+fn negative_observation_noise() {
+    let text = format!(
+        "{BASE}\n[observation.noise]\nmodel = \"constant\"\nphase_m = -0.001\ncode_m = 0.3\n"
+    );
+    parse_error_at(&text, "observation.noise.phase_m", "phase_m = -0.001", "-0.001");
+}
+
+#[test]
+fn elevation_scale_of_zero() {
+    let text = format!(
+        "{BASE}\n[observation.noise]\nmodel = \"elevation\"\nphase = {{ sigma0_m = 0.002, a0 = 10.0, elev0_deg = 10.0 }}\ncode = {{ sigma0_m = 0.3, a0 = 10.0, elev0_deg = 0.0 }}\n"
+    );
+    let err = parse_error(&text);
+    assert_eq!(err.field, "observation.noise.code.elev0_deg", "{err}");
+}

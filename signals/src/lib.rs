@@ -10,6 +10,7 @@ pub mod codes;
 pub mod errors;
 pub mod navmsg;
 pub mod nco;
+pub mod obs_model;
 pub mod observation;
 pub mod sample_format;
 pub mod signal;

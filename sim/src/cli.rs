@@ -96,6 +96,17 @@ pub enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Measure the bundled receiver's code and carrier-phase noise against the loop
+    /// formulas on SCENARIO (synthesised and received at the signal level, compared with
+    /// its observation truth after 10 s of settling): writes DIR/calibration.toml, the
+    /// factors the observation level's `[observation.noise] model = "calibrated"` uses.
+    ///
+    /// Multipath and fault events would count as noise: calibrate on a scenario without
+    /// them. The recordings are made in DIR/work and removed afterwards.
+    Calibrate {
+        #[command(flatten)]
+        run: ScenarioRun,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]

@@ -19,7 +19,9 @@ pub struct BadInput(String);
 /// The output directory of a command that writes one.
 fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
     match &args.command {
-        cli::Command::Run { run } | cli::Command::Synth { run, .. } => Some(run.out.clone()),
+        cli::Command::Run { run }
+        | cli::Command::Synth { run, .. }
+        | cli::Command::Calibrate { run } => Some(run.out.clone()),
         cli::Command::Receive { out, .. } => Some(out.clone()),
         cli::Command::Validate {
             suite: cli::ValidateSuite::Thesis { out, .. },

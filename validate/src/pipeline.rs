@@ -11,8 +11,10 @@ use skyforge_receiver::session::{
     Assistance, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
-use skyforge_signals::observation::{ObsFile, ObsReadError, read_obs_file};
-use skyforge_signals::synth::session::{Discard, Sinks, SynthError, SynthSession};
+use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
+use skyforge_signals::synth::session::{
+    Discard, ObservationSink, SinkError, Sinks, SynthError, SynthSession,
+};
 use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
 
@@ -46,8 +48,34 @@ pub struct ChainOutput {
     pub antennas: Vec<String>,
     /// Each antenna's observations (as its RINEX file holds them).
     pub observations: Vec<ObsFile>,
+    /// Each antenna's observation truth at whole seconds, scenario order.
+    pub truth: Vec<ObsFile>,
+    /// The receiver configuration the observations were made with.
+    pub config: ReceiverConfig,
     /// The receiver's counters.
     pub summary: ReceiverSummary,
+}
+
+/// The observation truth of every antenna, kept in memory.
+#[derive(Debug)]
+struct TruthCollector {
+    files: Vec<ObsFile>,
+}
+
+impl ObservationSink for TruthCollector {
+    fn epoch(
+        &mut self,
+        antenna: usize,
+        at: hifitime::Epoch,
+        _position_ecef_m: &skyforge_orbits::Vec3,
+        records: &[ObsRecord],
+    ) -> Result<(), SinkError> {
+        self.files[antenna].epochs.push(ObsEpoch {
+            time: at,
+            sats: records.to_vec(),
+        });
+        Ok(())
+    }
 }
 
 impl ChainOutput {
@@ -95,12 +123,22 @@ pub fn synth_and_receive(
     .and_then(|()| std::fs::write(&nav_path, nav))
     .map_err(io(&nav_path))?;
     let mut recordings = SigmfRecordings::create(work, &bands, antennas).map_err(io(work))?;
+    let mut truth = TruthCollector {
+        files: antennas
+            .iter()
+            .map(|a| ObsFile {
+                source: PathBuf::from(format!("{} observation truth", a.name)),
+                epochs: Vec::new(),
+            })
+            .collect(),
+    };
     let report = session.run(
         CHUNK_EPOCHS,
         Sinks {
             samples: &mut recordings,
             truth: &mut Discard,
-            observations: &mut Discard,
+            observations: &mut truth,
+            measurements: &mut Discard,
             progress: &mut |_| {},
         },
     )?;
@@ -126,6 +164,7 @@ pub fn synth_and_receive(
         nav_file: Some(nav_path),
         approximate,
     };
+    let receiver_config = config.clone();
     let mut receiver = ReceiveSession::open(&files, &InputParams::default(), &assistance, config)?;
     let antennas = receiver.antenna_names().to_vec();
     let rx_dir = work.join("receive");
@@ -143,9 +182,12 @@ pub fn synth_and_receive(
         .iter()
         .map(|name| read_obs_file(&rx_dir.join(format!("{name}.obs.rnx"))))
         .collect::<Result<_, _>>()?;
+    let config = receiver_config.clone();
     Ok(ChainOutput {
         antennas,
         observations,
+        truth: truth.files,
+        config,
         summary,
     })
 }

@@ -29,6 +29,10 @@ pub enum Stream {
     Thermal,
     /// The random data symbols of validate's T-3.3-S signal; index 0.
     FastSyncData,
+    /// Tracking noise of the observation-level model; index: the antenna.
+    ObservationNoise,
+    /// Integer carrier ambiguities of the observation-level model; index 0.
+    CarrierAmbiguity,
     /// A test's own stream, by name (never used by a scenario).
     Named(&'static str),
 }
@@ -41,6 +45,8 @@ impl Stream {
             Stream::ReceiverClock => "receiver-clock",
             Stream::Thermal => "thermal",
             Stream::FastSyncData => "t-3.3-s data",
+            Stream::ObservationNoise => "observation-noise",
+            Stream::CarrierAmbiguity => "carrier-ambiguity",
             Stream::Named(name) => name,
         }
     }

@@ -2,9 +2,11 @@
 //! whoever measured it (the bundled receiver, the synthesiser's truth, another receiver's
 //! RINEX), and the one RINEX 3.04 observation writer and reader.
 
+pub mod noise;
 pub mod record;
 pub mod rinex_read;
 pub mod rinex_write;
 
+pub use noise::{ElevationNoise, dll_thermal_chips, pll_thermal_cycles};
 pub use record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 pub use rinex_read::{ObsReadError, parse_obs_text, read_obs_file};

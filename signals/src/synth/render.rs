@@ -66,6 +66,8 @@ pub struct Synthesiser<'a> {
     previous: Option<(f64, Vec<Option<LinkEnd>>)>,
     /// Record truth every `truth_every` blocks (0: none).
     truth_every: u64,
+    /// Render samples (off for the observation level, which needs the truth alone).
+    samples: bool,
     truth: Vec<LinkTruth>,
     /// Receiver clocks: none (ideal), one shared by every antenna, or one per antenna.
     clocks: Vec<ClockModel>,
@@ -96,6 +98,7 @@ impl<'a> Synthesiser<'a> {
             clipped: 0,
             previous: None,
             truth_every: 0,
+            samples: true,
             truth: Vec::new(),
             clocks: Vec::new(),
             events: None,
@@ -106,6 +109,12 @@ impl<'a> Synthesiser<'a> {
     /// Record [`LinkTruth`] every `every` blocks (1 ms each); 0 turns it off.
     pub fn with_truth_every(mut self, every: u64) -> Self {
         self.truth_every = every;
+        self
+    }
+
+    /// Render no samples, only truth (the observation level).
+    pub fn without_samples(mut self) -> Self {
+        self.samples = false;
         self
     }
 
@@ -230,6 +239,9 @@ impl<'a> Synthesiser<'a> {
                     }
                 }
             }
+        }
+        if !self.samples {
+            return;
         }
         for (a, sink) in out.iter_mut().enumerate().take(self.n_antennas) {
             let noise = &self.noise[a];

@@ -22,6 +22,7 @@ use crate::errors::events::EventSchedule;
 use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
 use crate::errors::seed::{Stream, stream_rng};
 use crate::errors::{ErrorsConfig, clock::OscillatorConfig};
+use crate::obs_model::ObservationModel;
 use crate::observation::ObsRecord;
 use crate::signal::Signal;
 use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
@@ -34,6 +35,8 @@ use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
 
 /// Geometry epochs the renderer interpolates between (s).
 pub const GEOMETRY_STEP_S: f64 = 1.0;
+/// Synthesis blocks in a second.
+const BLOCKS_PER_SECOND: u64 = (1.0 / BLOCK_S) as u64;
 
 /// An error a sink reports (a file that cannot be written, say).
 pub type SinkError = Box<dyn std::error::Error + Send + Sync>;
@@ -62,7 +65,9 @@ pub trait TruthSink {
 /// Receives the observation truth of each antenna at whole seconds.
 pub trait ObservationSink {
     /// Antenna `antenna`'s observations at `at` (GPS time of the receiver clock), sorted by
-    /// satellite; `position_ecef_m` is the antenna's true position at the epoch.
+    /// satellite; `position_ecef_m` is the antenna's true position at the geometry epoch
+    /// that ends the interval `at` opens (within a second of `at`: for a file header's
+    /// approximate position).
     fn epoch(
         &mut self,
         antenna: usize,
@@ -102,6 +107,8 @@ pub struct Sinks<'s> {
     pub samples: &'s mut dyn SampleSink,
     pub truth: &'s mut dyn TruthSink,
     pub observations: &'s mut dyn ObservationSink,
+    /// The observation-level observables (nothing at the signal level).
+    pub measurements: &'s mut dyn ObservationSink,
     /// Told the number of geometry epochs completed after each chunk.
     pub progress: &'s mut dyn FnMut(usize),
 }
@@ -181,6 +188,8 @@ pub struct SynthSession<'a> {
     clocks: Vec<ClockModel>,
     events: EventSchedule,
     filter: Option<BandFilter>,
+    /// Set for the observation level: observables from truth and this model, no samples.
+    observation_model: Option<ObservationModel>,
 }
 
 /// Every satellite's ephemeris at the start (the set its message will carry).
@@ -287,7 +296,15 @@ impl<'a> SynthSession<'a> {
             clocks,
             events,
             filter,
+            observation_model: None,
         })
+    }
+
+    /// Run at the observation level: no samples; at each whole second `model` turns every
+    /// link's truth into observables for [`Sinks::measurements`].
+    pub fn observation_level(mut self, model: ObservationModel) -> Self {
+        self.observation_model = Some(model);
+        self
     }
 
     /// The world being synthesised.
@@ -345,6 +362,12 @@ impl<'a> SynthSession<'a> {
         let world = self.world;
         let signal = self.signal;
         let n_ant = world.antennas.len();
+        let observation_level = self.observation_model.is_some();
+        // The observation level needs the truth at whole seconds at least.
+        let truth_every = match signal.truth_every_blocks() {
+            0 if observation_level => BLOCKS_PER_SECOND,
+            every => every,
+        };
         let mut synths = self
             .bands
             .iter()
@@ -355,9 +378,14 @@ impl<'a> SynthSession<'a> {
                     n_ant,
                     self.seed,
                 )?
-                .with_truth_every(signal.truth_every_blocks())
+                .with_truth_every(truth_every)
                 .with_clocks(self.clocks.clone())
                 .with_events(self.events.clone());
+                let s = if observation_level {
+                    s.without_samples()
+                } else {
+                    s
+                };
                 match &self.filter {
                     Some(f) => s.with_filter(f.clone()),
                     None => Ok(s),
@@ -384,6 +412,8 @@ impl<'a> SynthSession<'a> {
             bufs: vec![Vec::new(); n_ant],
             start_state: None,
             sinks,
+            model: self.observation_model,
+            elevations: vec![0.0; n_ant * sats.len()],
         };
         truth
             .stream(world.platform, world.duration_s, chunk_epochs, |chunk| {
@@ -412,6 +442,10 @@ struct Running<'r, 't, 's> {
     bufs: Vec<Vec<u8>>,
     start_state: Option<(Vec3, Vec3)>,
     sinks: Sinks<'s>,
+    model: Option<ObservationModel>,
+    /// Link elevations (rad) at the previous geometry epoch, antenna-major: the epoch the
+    /// whole-second truth of the current interval belongs to.
+    elevations: Vec<f64>,
 }
 
 impl Running<'_, '_, '_> {
@@ -441,6 +475,8 @@ impl Running<'_, '_, '_> {
             System::Beidou => bdt_week_sow(at).1,
         };
         let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
+        let mut measured: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
+        let n_sats = self.sats.len();
         let mut whole_t = None;
         for (b, (band, synth)) in self.bands.iter().zip(self.synths.iter_mut()).enumerate() {
             let links = (0..n_ant * band.count)
@@ -466,14 +502,26 @@ impl Running<'_, '_, '_> {
             let truth = synth.take_truth();
             for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
                 whole_t = Some(r.t_s);
+                let s = band.first + r.tx;
+                let sat = self.sats[s];
                 whole_second[r.antenna].push(ObsRecord::complete(
-                    self.sats[band.first + r.tx],
+                    sat,
                     band.signal,
                     r.pseudorange_m,
                     r.carrier_phase_cycles,
                     r.doppler_hz,
                     r.cn0_dbhz,
                 ));
+                if let Some(model) = self.model.as_mut() {
+                    let elevation = self.elevations[r.antenna * n_sats + s];
+                    measured[r.antenna].push(model.observe(
+                        r.antenna,
+                        sat,
+                        band.signal,
+                        r,
+                        elevation,
+                    ));
+                }
             }
             for a in 0..n_ant {
                 let records: Vec<_> = truth.iter().filter(|r| r.antenna == a).copied().collect();
@@ -482,10 +530,21 @@ impl Running<'_, '_, '_> {
         }
         if let Some(t) = whole_t {
             let at = self.origin.epoch_at(t);
-            for (a, records) in whole_second.iter_mut().enumerate() {
+            for (a, (records, measured)) in whole_second.iter_mut().zip(&mut measured).enumerate() {
                 records.sort_by_key(|r| r.sat);
                 let r0 = st.r_ecef_m + st.c_body_ecef * self.antennas[a].true_body_m;
                 self.sinks.observations.epoch(a, at, &r0, records)?;
+                if self.model.is_some() {
+                    measured.sort_by_key(|r| r.sat);
+                    self.sinks.measurements.epoch(a, at, &r0, measured)?;
+                }
+            }
+        }
+        if self.model.is_some() {
+            for a in 0..n_ant {
+                for s in 0..n_sats {
+                    self.elevations[a * n_sats + s] = chunk.link(k, a, s).elevation_rad;
+                }
             }
         }
         Ok(())

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod calibrate;
 mod receive;
 mod run;
 mod scenarios;
@@ -22,6 +23,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Run { run } => run::run(&run),
         Command::Synth { run, chunk_epochs } => synth::synth(&run, chunk_epochs as usize),
+        Command::Calibrate { run } => calibrate::calibrate(&run),
         Command::Receive {
             files,
             format,

@@ -5,7 +5,7 @@
 use crate::BadInput;
 use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
-use crate::output::synth_sinks::{ObsTruthFiles, TruthFile};
+use crate::output::synth_sinks::{ObsFiles, TruthFile};
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -14,15 +14,19 @@ use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::errors::troposphere::TropoModel;
+use skyforge_signals::obs_model::{Level, ObservationModel};
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
-use skyforge_signals::synth::session::{GEOMETRY_STEP_S, Sinks, SynthError, SynthSession};
+use skyforge_signals::synth::session::{Discard, GEOMETRY_STEP_S, Sinks, SynthError, SynthSession};
 use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
 use std::io::Write;
 use std::path::Path;
 use std::time::Instant;
 
+/// Subdirectory of the observation level's observables (`<antenna>.obs.rnx`, as
+/// `skyforge receive` writes them).
+pub const OBSERVATIONS_DIR: &str = "observations";
 /// Geometry epochs per streamed chunk unless `synth --chunk-epochs` says otherwise.
 pub const DEFAULT_CHUNK_EPOCHS: u32 = 10;
 /// Error context naming an output file.
@@ -54,8 +58,20 @@ pub fn synthesise(
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let mut world = scenario.build()?;
-    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
-        .map_err(|e| setup_error(scenario, e))?;
+    let observation_level = scenario.observation.level == Level::Observation;
+    let noise = if observation_level {
+        Some(scenario.observation_noise()?)
+    } else {
+        None
+    };
+    let n_antennas = world.antennas.len();
+    let mut session =
+        SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
+            .map_err(|e| setup_error(scenario, e))?;
+    if let Some(noise) = noise {
+        let model = ObservationModel::new(noise, scenario.seed, n_antennas, GEOMETRY_STEP_S);
+        session = session.observation_level(model);
+    }
     let (origin, antennas, duration_s) = {
         let w = session.world();
         (w.origin, w.antennas, w.duration_s)
@@ -78,7 +94,11 @@ pub fn synthesise(
     )
     .and_then(|()| nav.flush())
     .with_context(|| writing(&nav_path))?;
-    let mut recordings = SigmfRecordings::create(&staged.file(""), &bands, antennas)?;
+    let mut recordings = if observation_level {
+        None
+    } else {
+        Some(SigmfRecordings::create(&staged.file(""), &bands, antennas)?)
+    };
     let meta = RunMeta {
         scenario: scenario.name.clone(),
         source: scenario.source.clone(),
@@ -97,34 +117,47 @@ pub fn synthesise(
         writer: truth_writer,
     };
     let systems: Vec<System> = bands.iter().map(|b| b.signal.system()).collect();
-    let mut obs = ObsTruthFiles::new(&staged.file(""), antennas, &systems);
+    let mut obs = ObsFiles::new(&staged.file(""), antennas, &systems);
+    let measured_dir = staged.file(OBSERVATIONS_DIR);
+    if observation_level {
+        std::fs::create_dir(&measured_dir).with_context(|| writing(&measured_dir))?;
+    }
+    let mut measured = ObsFiles::new(&measured_dir, antennas, &systems);
     let n_epochs = epoch_count(duration_s, GEOMETRY_STEP_S);
     let bar = ProgressBar::new(n_epochs as u64).with_style(
         ProgressStyle::with_template("{spinner} synth [{bar:40}] {pos}/{len} s ({eta} left)")
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let iono_on = session.ionosphere_on();
+    let mut no_samples = Discard;
     let report = session
         .run(
             chunk_epochs,
             Sinks {
-                samples: &mut recordings,
+                samples: match recordings.as_mut() {
+                    Some(r) => r,
+                    None => &mut no_samples,
+                },
                 truth: &mut truth,
                 observations: &mut obs,
+                measurements: &mut measured,
                 progress: &mut |n| bar.inc(n as u64),
             },
         )
         .map_err(|e| anyhow::anyhow!("{e:#}"))?;
     obs.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
+    measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     truth
         .writer
         .finish()
         .with_context(|| writing(&truth.path))?;
     bar.finish_and_clear();
-    recordings.finish(&info)?;
+    if let Some(recordings) = recordings {
+        recordings.finish(&info)?;
+    }
     let leo = scenario.platform.leo.is_some();
     let tropo_on = scenario.errors.troposphere.model != TropoModel::Off;
-    for band in &bands {
+    for band in bands.iter().filter(|_| !observation_level) {
         for ant in antennas {
             let name = recording_name(&ant.name, band);
             let conf =
@@ -147,10 +180,17 @@ pub fn synthesise(
             n_ant
         );
     }
-    println!(
-        "samples    {} Hz {:?}, {} s, clipped components {}",
-        signal.sample_rate_hz, signal.format, duration_s, report.clipped
-    );
+    if observation_level {
+        println!(
+            "observables observation level, {} s, in {}/",
+            duration_s, OBSERVATIONS_DIR
+        );
+    } else {
+        println!(
+            "samples    {} Hz {:?}, {} s, clipped components {}",
+            signal.sample_rate_hz, signal.format, duration_s, report.clipped
+        );
+    }
     println!("wrote      {}", dir.display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())

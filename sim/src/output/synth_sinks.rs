@@ -1,6 +1,7 @@
 //! The writers `skyforge synth` plugs into a synthesis session: the geometry and signal
-//! truth into `truth.h5`, and the observation truth into one RINEX 3.04 file per antenna
-//! (`<antenna>.obs.rnx`, opened at its first epoch with the antenna's position there).
+//! truth into `truth.h5`, and the observation truth (and at the observation level the
+//! observables) into one RINEX 3.04 file per antenna (`<antenna>.obs.rnx`, opened at its
+//! first epoch with the antenna's position there).
 
 use super::truth_h5::TruthWriter;
 use skyforge_orbits::Vec3;
@@ -51,16 +52,17 @@ impl TruthSink for TruthFile {
 
 type Writer = ObsWriter<BufWriter<File>>;
 
-/// One RINEX observation truth file per antenna.
+/// One RINEX observation file per antenna: the observation truth, or the observation
+/// level's observables.
 #[derive(Debug)]
-pub struct ObsTruthFiles {
+pub struct ObsFiles {
     paths: Vec<PathBuf>,
     names: Vec<String>,
     systems: Vec<System>,
     writers: Vec<Option<Writer>>,
 }
 
-impl ObsTruthFiles {
+impl ObsFiles {
     /// The files `dir/<antenna>.obs.rnx` of `antennas`, declaring `systems`; none is
     /// created before its first epoch.
     pub fn new(dir: &Path, antennas: &[Antenna], systems: &[System]) -> Self {
@@ -86,7 +88,7 @@ impl ObsTruthFiles {
     }
 }
 
-impl ObservationSink for ObsTruthFiles {
+impl ObservationSink for ObsFiles {
     fn epoch(
         &mut self,
         antenna: usize,

@@ -7,6 +7,7 @@ pub mod side_by_side;
 
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::tracking::error_budget::thermal_jitter_deg;
+use skyforge_signals::observation::dll_thermal_chips;
 use skyforge_signals::signal::Signal;
 use skyforge_validate::observables::compare::{CompareOptions, ObsComparison, compare_with};
 use skyforge_validate::observables::table::cell;
@@ -54,17 +55,12 @@ pub fn loops(conf: &str) -> Loops {
     }
 }
 
-/// Code-tracking thermal noise (m, 1 sigma) of a non-coherent early-minus-late power DLL
-/// with a wide front end (Kaplan & Hegarty, Understanding GPS, 2nd ed., eq. 5.23):
-/// `sigma = sqrt(Bn D / (2 C/N0) (1 + 2 / ((2 - D) T C/N0)))` chips, `D` the early-late
-/// spacing (twice GNSS-SDR's early-prompt spacing). At 4 Msps B1I (2.046 Mchip/s) is in
+/// Code-tracking thermal noise (m, 1 sigma) of GNSS-SDR's DLL: the non-coherent
+/// early-minus-late power formula with `D` twice GNSS-SDR's early-prompt spacing. At 4 Msps B1I (2.046 Mchip/s) is in
 /// the band-limited regime, where the jitter is lower than this.
 pub fn dll_sigma_m(loops: &Loops, cn0_dbhz: f64, chip_rate_hz: f64) -> f64 {
-    let cn0 = 10f64.powf(cn0_dbhz / 10.0);
     let d = 2.0 * loops.early_late_space_chips;
-    let chips =
-        (loops.dll_bw_hz * d / (2.0 * cn0) * (1.0 + 2.0 / ((2.0 - d) * T_COH_S * cn0))).sqrt();
-    chips * C_MPS / chip_rate_hz
+    dll_thermal_chips(loops.dll_bw_hz, d, cn0_dbhz, T_COH_S) * C_MPS / chip_rate_hz
 }
 
 /// Carrier-phase thermal noise (m, 1 sigma) of the PLL (thesis eq. 3.2-3).

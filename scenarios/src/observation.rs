@@ -1,0 +1,51 @@
+//! The observation-level noise a scenario asks for, with its calibration file read.
+
+use crate::Scenario;
+use crate::error::ScenarioError;
+use skyforge_orbits::check::Invalid;
+use skyforge_signals::obs_model::{Calibration, ObsNoise, ObsNoiseConfig};
+
+/// The calibration bundled with SkyForge (`scenarios/calibration/default.toml`), measured by
+/// `skyforge calibrate scenarios/calibration/leo-gps-bds.toml` (see that file).
+pub const BUNDLED_CALIBRATION: &str = include_str!("../calibration/default.toml");
+
+impl Scenario {
+    /// `[observation.noise]` resolved: a calibration file named relative to the scenario
+    /// (the bundled one when none is named) read and checked.
+    pub fn observation_noise(&self) -> Result<ObsNoise, ScenarioError> {
+        match &self.observation.noise {
+            ObsNoiseConfig::Constant { phase_m, code_m } => Ok(ObsNoise::Constant {
+                phase_m: *phase_m,
+                code_m: *code_m,
+            }),
+            ObsNoiseConfig::Elevation { phase, code } => Ok(ObsNoise::Elevation {
+                phase: *phase,
+                code: *code,
+            }),
+            ObsNoiseConfig::Calibrated { file } => {
+                let field = "observation.noise.file";
+                let (text, shown) = match file {
+                    None => (BUNDLED_CALIBRATION.to_string(), "(bundled)".to_string()),
+                    Some(f) => {
+                        let path = self.base_dir.join(f);
+                        let text = std::fs::read_to_string(&path).map_err(|e| {
+                            self.located(Invalid::new(
+                                field,
+                                f.display(),
+                                format!("cannot read {}: {e}", path.display()),
+                            ))
+                        })?;
+                        (text, f.display().to_string())
+                    }
+                };
+                let bad = |message: String| self.located(Invalid::new(field, &shown, message));
+                let calibration: Calibration = toml::from_str(&text)
+                    .map_err(|e| bad(format!("not a calibration file: {e}")))?;
+                calibration
+                    .check()
+                    .map_err(|e| bad(format!("invalid calibration: {e}")))?;
+                Ok(ObsNoise::Calibrated(calibration))
+            }
+        }
+    }
+}

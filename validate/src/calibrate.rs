@@ -1,0 +1,194 @@
+//! `skyforge calibrate`: the observation-level noise factors, measured on a signal-level
+//! run. The scenario is synthesised and received as a user would; each antenna's
+//! observations are compared with the observation truth; per signal, the measured code
+//! and phase noise variances are divided by the loop formulas' (at each satellite's true
+//! C/N0 and the receiver's loop settings after pull-in), summed over satellites weighted
+//! by their epoch counts.
+//!
+//! Multipath and fault events in the calibration scenario would count as noise: calibrate
+//! on a scenario without them.
+
+use crate::observables::compare::{CompareOptions, SampleSpan, compare_with};
+use crate::observables::{ObsError, ObsFile};
+use crate::pipeline::{ChainError, synth_and_receive};
+use hifitime::Duration;
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_receiver::tracking::channel::TrackingConfig;
+use skyforge_scenarios::Scenario;
+use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};
+use skyforge_signals::signal::Signal;
+use std::path::Path;
+
+/// Seconds at the start of the run left out: acquisition, pull-in and loop narrowing.
+pub const SETTLING_S: f64 = 10.0;
+
+/// Why a calibration could not be made.
+#[derive(Debug, thiserror::Error)]
+pub enum CalibrateError {
+    #[error(transparent)]
+    Chain(#[from] ChainError),
+    #[error("comparing antenna {antenna} with its truth: {error}")]
+    Compare { antenna: String, error: ObsError },
+    #[error(
+        "the run is {0} s long: at least {SETTLING_S} s of settling and 10 s of observations are needed"
+    )]
+    TooShort(f64),
+}
+
+/// The loops of `tracking` after pull-in, for `signal`.
+pub fn settled_loops(tracking: &TrackingConfig, signal: Signal) -> LoopNoise {
+    LoopNoise {
+        pll_bandwidth_hz: tracking
+            .pll_narrow_bandwidth_hz
+            .unwrap_or(tracking.pll_bandwidth_hz),
+        dll_bandwidth_hz: tracking
+            .dll_narrow_bandwidth_hz
+            .unwrap_or(tracking.dll_bandwidth_hz),
+        spacing_chips: tracking
+            .narrow_early_late_spacing_chips
+            .unwrap_or(tracking.early_late_spacing_chips),
+        coherent_s: f64::from(tracking.coherent_ms) * signal.code_period_s(),
+    }
+}
+
+/// Sums of one signal: measured and formula variances weighted by epoch counts.
+#[derive(Debug, Default, Clone, Copy)]
+struct Sums {
+    code_measured: f64,
+    code_formula: f64,
+    phase_measured: f64,
+    phase_formula: f64,
+    samples: usize,
+    cn0_min: f64,
+    cn0_max: f64,
+}
+
+/// Mean formula variances (code, phase) of `sat` over the truth epochs, and its C/N0 range.
+fn formula_variances(
+    truth: &ObsFile,
+    sat: SatId,
+    loops: &LoopNoise,
+) -> Option<(f64, f64, f64, f64)> {
+    let signal = Signal::of_system(sat.system);
+    let cn0: Vec<f64> = truth
+        .epochs
+        .iter()
+        .flat_map(|e| e.sats.iter())
+        .filter(|r| r.sat == sat)
+        .filter_map(|r| r.cn0_dbhz)
+        .collect();
+    if cn0.is_empty() {
+        return None;
+    }
+    let n = cn0.len() as f64;
+    let code = cn0
+        .iter()
+        .map(|c| loops.code_sigma_m(signal, *c).powi(2))
+        .sum::<f64>()
+        / n;
+    let phase = cn0
+        .iter()
+        .map(|c| loops.phase_sigma_m(signal, *c).powi(2))
+        .sum::<f64>()
+        / n;
+    let (lo, hi) = cn0
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
+            (a.min(*c), b.max(*c))
+        });
+    Some((code, phase, lo, hi))
+}
+
+/// Calibrate on `scenario`, synthesising into `work` (an existing directory; recordings
+/// can take gigabytes).
+pub fn calibrate(scenario: &Scenario, work: &Path) -> Result<Calibration, CalibrateError> {
+    let duration_s = scenario.time.duration_s;
+    if duration_s < SETTLING_S + 10.0 {
+        return Err(CalibrateError::TooShort(duration_s));
+    }
+    let chain = synth_and_receive(scenario, work, None)?;
+    let start = scenario.time.start;
+    let window = SampleSpan {
+        first: start + Duration::from_seconds(SETTLING_S),
+        last: start + Duration::from_seconds(duration_s),
+    };
+    let options = CompareOptions {
+        window: Some(window),
+        ..CompareOptions::default()
+    };
+    let mut sums: Vec<(Signal, Sums)> = Vec::new();
+    for ((name, estimate), truth) in chain
+        .antennas
+        .iter()
+        .zip(&chain.observations)
+        .zip(&chain.truth)
+    {
+        let cmp =
+            compare_with(estimate, truth, &options).map_err(|error| CalibrateError::Compare {
+                antenna: name.clone(),
+                error,
+            })?;
+        let phase_of = |sat: SatId| {
+            cmp.carrier_phase_m
+                .per_satellite
+                .iter()
+                .find(|s| s.sat == sat)
+                .and_then(|s| Some((s.stats.count, s.stats.std?)))
+        };
+        for code in &cmp.pseudorange_m.per_satellite {
+            let (Some(code_std), Some((phase_n, phase_std))) = (code.stats.std, phase_of(code.sat))
+            else {
+                continue;
+            };
+            let signal = Signal::of_system(code.sat.system);
+            let loops = settled_loops(&chain.config.tracking, signal);
+            let Some((code_var, phase_var, lo, hi)) = formula_variances(truth, code.sat, &loops)
+            else {
+                continue;
+            };
+            let at = match sums.iter().position(|(s, _)| *s == signal) {
+                Some(i) => i,
+                None => {
+                    sums.push((
+                        signal,
+                        Sums {
+                            cn0_min: f64::INFINITY,
+                            cn0_max: f64::NEG_INFINITY,
+                            ..Sums::default()
+                        },
+                    ));
+                    sums.len() - 1
+                }
+            };
+            let s = &mut sums[at].1;
+            let n = code.stats.count as f64;
+            let m = phase_n as f64;
+            s.code_measured += n * code_std * code_std;
+            s.code_formula += n * code_var;
+            s.phase_measured += m * phase_std * phase_std;
+            s.phase_formula += m * phase_var;
+            s.samples += code.stats.count;
+            s.cn0_min = s.cn0_min.min(lo);
+            s.cn0_max = s.cn0_max.max(hi);
+        }
+    }
+    sums.sort_by_key(|(s, _)| *s);
+    let signals = sums
+        .into_iter()
+        .filter(|(_, s)| s.samples > 0)
+        .map(|(signal, s)| SignalCalibration {
+            signal: signal.tag().to_string(),
+            loops: settled_loops(&chain.config.tracking, signal),
+            code_factor: (s.code_measured / s.code_formula).sqrt(),
+            phase_factor: (s.phase_measured / s.phase_formula).sqrt(),
+            cn0_dbhz: [s.cn0_min, s.cn0_max],
+            samples: s.samples,
+        })
+        .collect();
+    Ok(Calibration {
+        scenario: scenario.name.clone(),
+        seed: scenario.seed,
+        duration_s: duration_s - SETTLING_S,
+        signals,
+    })
+}
