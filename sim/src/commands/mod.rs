@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod ambiguity;
 mod receive;
 mod run;
 mod scenarios;
@@ -40,6 +41,11 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             out,
             force,
         }),
+        Command::Ambiguity {
+            file,
+            candidates,
+            json,
+        } => ambiguity::ambiguity(&file, candidates as usize, json),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),
