@@ -8,6 +8,7 @@
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod acquisition;
+pub mod ambiguity;
 pub mod assist;
 pub mod attitude;
 pub mod baseline;

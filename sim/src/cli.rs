@@ -107,6 +107,26 @@ pub enum Command {
         #[command(flatten)]
         run: ScenarioRun,
     },
+    /// Resolve integer ambiguities with LAMBDA: read a float ambiguity vector and its
+    /// covariance (cycles, cycles^2), print the best integer candidates with their squared
+    /// norms, the ratio of the second-best to the best squared norm, the decorrelating Z
+    /// and the bootstrapped success rate.
+    ///
+    /// FILE is JSON, {"a_hat": [...], "q": [[...], ...]}, or CSV: first data line a_hat,
+    /// then one line per row of Q; '#' lines are comments. At most 500 ambiguities and
+    /// 4 MiB. Bad input: one error naming the file, exit code 2.
+    Ambiguity {
+        /// Problem file (.json or .csv).
+        file: PathBuf,
+        /// Number of integer candidates to print (best first).
+        #[arg(long, value_name = "K", default_value_t = 2,
+              value_parser = clap::value_parser!(u32)
+                  .range(1..=skyforge_receiver::ambiguity::MAX_CANDIDATES as i64))]
+        candidates: u32,
+        /// Print the result as JSON.
+        #[arg(long)]
+        json: bool,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]

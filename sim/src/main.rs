@@ -29,7 +29,8 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Validate {
             suite: cli::ValidateSuite::Obs { .. },
         }
-        | cli::Command::Scenarios { .. } => None,
+        | cli::Command::Scenarios { .. }
+        | cli::Command::Ambiguity { .. } => None,
     }
 }
 

@@ -1,5 +1,6 @@
 //! One module per subcommand.
 
+mod ambiguity;
 mod calibrate;
 mod receive;
 mod run;
@@ -42,6 +43,11 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             out,
             force,
         }),
+        Command::Ambiguity {
+            file,
+            candidates,
+            json,
+        } => ambiguity::ambiguity(&file, candidates as usize, json),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

@@ -1,0 +1,250 @@
+//! Integer ambiguity resolution with the LAMBDA method.
+//!
+//! Given float ambiguities `a_hat` (cycles) and their covariance `Q`, integer least
+//! squares (ILS) finds the integer vectors `a` minimising `(a_hat - a)^T Q^{-1} (a_hat - a)`
+//! (Teunissen 1995). The steps, one file each:
+//! - [`ldl`]: `Q = L^T D L`, unit lower-triangular `L` (de Jonge & Tiberius 1996 §3.3);
+//! - [`decorrelate`]: integer Gauss transformations and swaps giving a unimodular `Z`
+//!   with `z = Z^T a` nearly decorrelated (de Jonge & Tiberius 1996 §3.5-3.7, the
+//!   reduction of Chang, Yang & Zhou 2005 §3);
+//! - [`search`]: depth-first search of the shrinking ellipsoid in Schnorr-Euchner order
+//!   (Chang, Yang & Zhou 2005 §4), keeping the `count` best;
+//! - [`bootstrap`]: the bootstrapped success rate (Teunissen 1998);
+//! - [`partial`]: partial ambiguity resolution on the decorrelated ambiguities;
+//! - [`problem_file`]: a float solution and its covariance read from JSON or CSV.
+//!
+//! Ordering convention (as in LAMBDA): with `Q = L^T D L`, `d_i` is the variance of
+//! ambiguity `i` conditioned on ambiguities `i+1..n`, so the search and bootstrapping
+//! start at the last ambiguity.
+
+mod bootstrap;
+mod decorrelate;
+mod int_matrix;
+mod ldl;
+mod partial;
+pub mod problem_file;
+mod search;
+
+pub use bootstrap::{bootstrapped_success_rate, erf, erfc};
+pub use partial::{PartialSolution, partial};
+
+use nalgebra::{DMatrix, DVector};
+
+/// Largest number of ambiguities accepted.
+pub const MAX_DIMENSION: usize = 500;
+/// Largest number of candidates [`lambda`] returns.
+pub const MAX_CANDIDATES: usize = 1000;
+/// Largest float ambiguity magnitude accepted (cycles): integers stay exact in `f64`.
+pub const MAX_ABS_FLOAT: f64 = 1e12;
+/// Relative tolerance of the symmetry check: `|Q_ij - Q_ji| <= tol * max(|Q_ii|, |Q_jj|)`.
+pub const SYMMETRY_TOLERANCE: f64 = 1e-9;
+/// Search nodes after which [`lambda`] gives up (only numerically degenerate `Q` get here).
+pub const MAX_SEARCH_NODES: u64 = 100_000_000;
+
+/// Why an ambiguity problem was rejected. Indices are 0-based.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AmbiguityError {
+    #[error("empty problem: a_hat has no ambiguities (at least 1 is needed)")]
+    Empty,
+    #[error(
+        "dimension mismatch: a_hat has {n} ambiguities but Q is {rows} x {cols} (Q must be {n} x {n})"
+    )]
+    DimensionMismatch { n: usize, rows: usize, cols: usize },
+    #[error("{n} ambiguities exceed the limit of {MAX_DIMENSION}")]
+    TooLarge { n: usize },
+    #[error("{field} is not finite: {value} (only finite numbers are allowed)")]
+    NonFinite { field: String, value: f64 },
+    #[error("a_hat[{index}] = {value} is out of range (|a_hat| at most {MAX_ABS_FLOAT:e} cycles)")]
+    OutOfRange { index: usize, value: f64 },
+    #[error(
+        "Q is not symmetric: Q[{i}][{j}] = {a} but Q[{j}][{i}] = {b} (allowed difference: {SYMMETRY_TOLERANCE:e} relative)"
+    )]
+    NotSymmetric { i: usize, j: usize, a: f64, b: f64 },
+    #[error(
+        "Q is not positive definite: the conditional variance of ambiguity {index} is {value} (must be positive and above 1e-14 of Q[{index}][{index}])"
+    )]
+    NotPositiveDefinite { index: usize, value: f64 },
+    #[error("count is 0: at least 1 candidate must be asked for")]
+    ZeroCount,
+    #[error("count {0} exceeds the limit of {MAX_CANDIDATES} candidates")]
+    TooManyCandidates(usize),
+    #[error("min_success_rate {0} is outside (0, 1]")]
+    InvalidSuccessRate(f64),
+    #[error("the decorrelating transformation overflowed 64-bit integers (Q too ill-conditioned)")]
+    Overflow,
+    #[error(
+        "the search visited {MAX_SEARCH_NODES} nodes without finishing (Q too ill-conditioned)"
+    )]
+    SearchLimit,
+    #[error("Q is numerically degenerate: the decorrelation produced non-finite values")]
+    Degenerate,
+}
+
+/// One integer candidate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Candidate {
+    /// The integer ambiguities (cycles), in the order of `a_hat`.
+    pub integers: Vec<i64>,
+    /// `(a_hat - a)^T Q^{-1} (a_hat - a)`.
+    pub squared_norm: f64,
+}
+
+/// The integer least-squares solution of [`lambda`].
+#[derive(Debug, Clone)]
+pub struct IntegerSolution {
+    /// Best first; exactly as many as asked for.
+    pub candidates: Vec<Candidate>,
+    /// The unimodular decorrelating matrix `Z` (`z = Z^T a`): integer entries, `|det Z| = 1`.
+    pub z: DMatrix<f64>,
+    /// Bootstrapped success rate of the decorrelated problem (Teunissen 1998), a lower
+    /// bound of the ILS success rate.
+    pub success_rate: f64,
+}
+
+impl IntegerSolution {
+    /// The best candidate (there is always one).
+    pub fn best(&self) -> &Candidate {
+        &self.candidates[0]
+    }
+
+    /// Ratio-test statistic: second-best over best squared norm (`None` with one candidate,
+    /// infinite when the best fits exactly).
+    pub fn ratio(&self) -> Option<f64> {
+        let second = self.candidates.get(1)?;
+        Some(second.squared_norm / self.candidates[0].squared_norm)
+    }
+}
+
+/// Integer least-squares estimate of `a_hat` with covariance `q`: the `count` best integer
+/// vectors (LAMBDA: Teunissen 1995; de Jonge & Tiberius 1996; Chang, Yang & Zhou 2005).
+pub fn lambda(
+    a_hat: &DVector<f64>,
+    q: &DMatrix<f64>,
+    count: usize,
+) -> Result<IntegerSolution, AmbiguityError> {
+    if count == 0 {
+        return Err(AmbiguityError::ZeroCount);
+    }
+    if count > MAX_CANDIDATES {
+        return Err(AmbiguityError::TooManyCandidates(count));
+    }
+    let problem = Decorrelated::new(a_hat, q)?;
+    let found = search::search(
+        &problem.reduced.l,
+        &problem.reduced.d,
+        problem.reduced.z_hat.as_slice(),
+        count,
+    )?;
+    let candidates = found
+        .into_iter()
+        .map(|(z, squared_norm)| {
+            Ok(Candidate {
+                integers: problem.to_ambiguities(&z)?,
+                squared_norm,
+            })
+        })
+        .collect::<Result<Vec<_>, AmbiguityError>>()?;
+    Ok(IntegerSolution {
+        candidates,
+        z: problem.reduced.z.to_dmatrix(),
+        success_rate: bootstrap::success_rate_of(&problem.reduced.d),
+    })
+}
+
+/// A checked problem after decorrelation: `a_hat = offset + frac` with integer `offset`,
+/// and the reduction of `(frac, Q)`.
+#[derive(Debug)]
+struct Decorrelated {
+    offset: Vec<i64>,
+    reduced: decorrelate::Reduced,
+}
+
+impl Decorrelated {
+    fn new(a_hat: &DVector<f64>, q: &DMatrix<f64>) -> Result<Self, AmbiguityError> {
+        check_problem(a_hat, q)?;
+        let offset: Vec<i64> = a_hat.iter().map(|&x| x.round() as i64).collect();
+        let frac = DVector::from_iterator(a_hat.len(), a_hat.iter().map(|&x| x - x.round()));
+        let factors = ldl::ldl(q)?;
+        let reduced = decorrelate::reduce(factors, &frac)?;
+        Ok(Self { offset, reduced })
+    }
+
+    /// `a = Z^{-T} z + offset` for an integer `z` (given as whole `f64`s).
+    fn to_ambiguities(&self, z: &[f64]) -> Result<Vec<i64>, AmbiguityError> {
+        let z: Vec<i64> = z.iter().map(|&v| v as i64).collect();
+        let a = self.reduced.z_inv.transpose_mul(&z)?;
+        a.iter()
+            .zip(&self.offset)
+            .map(|(x, o)| x.checked_add(*o).ok_or(AmbiguityError::Overflow))
+            .collect()
+    }
+}
+
+/// Checks `q` alone: square, within the size limit, finite, symmetric.
+fn check_q(q: &DMatrix<f64>) -> Result<(), AmbiguityError> {
+    let n = q.nrows();
+    if n != q.ncols() {
+        return Err(AmbiguityError::DimensionMismatch {
+            n,
+            rows: q.nrows(),
+            cols: q.ncols(),
+        });
+    }
+    if n == 0 {
+        return Err(AmbiguityError::Empty);
+    }
+    if n > MAX_DIMENSION {
+        return Err(AmbiguityError::TooLarge { n });
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = q[(i, j)];
+            if !v.is_finite() {
+                return Err(AmbiguityError::NonFinite {
+                    field: format!("Q[{i}][{j}]"),
+                    value: v,
+                });
+            }
+        }
+    }
+    for j in 0..n {
+        for i in j + 1..n {
+            let (a, b) = (q[(i, j)], q[(j, i)]);
+            let scale = q[(i, i)].abs().max(q[(j, j)].abs());
+            if (a - b).abs() > SYMMETRY_TOLERANCE * scale {
+                return Err(AmbiguityError::NotSymmetric { i, j, a, b });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Checks `a_hat` and `q` together (see [`AmbiguityError`]).
+fn check_problem(a_hat: &DVector<f64>, q: &DMatrix<f64>) -> Result<(), AmbiguityError> {
+    let n = a_hat.len();
+    if n == 0 {
+        return Err(AmbiguityError::Empty);
+    }
+    if q.nrows() != n || q.ncols() != n {
+        return Err(AmbiguityError::DimensionMismatch {
+            n,
+            rows: q.nrows(),
+            cols: q.ncols(),
+        });
+    }
+    if n > MAX_DIMENSION {
+        return Err(AmbiguityError::TooLarge { n });
+    }
+    for (index, &value) in a_hat.iter().enumerate() {
+        if !value.is_finite() {
+            return Err(AmbiguityError::NonFinite {
+                field: format!("a_hat[{index}]"),
+                value,
+            });
+        }
+        if value.abs() > MAX_ABS_FLOAT {
+            return Err(AmbiguityError::OutOfRange { index, value });
+        }
+    }
+    check_q(q)
+}
