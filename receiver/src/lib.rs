@@ -18,5 +18,6 @@ pub mod navdecode;
 pub mod observables;
 pub mod pipeline;
 pub mod pvt;
+pub mod relative;
 pub mod session;
 pub mod tracking;

@@ -364,7 +364,12 @@ fn negative_observation_noise() {
     let text = format!(
         "{BASE}\n[observation.noise]\nmodel = \"constant\"\nphase_m = -0.001\ncode_m = 0.3\n"
     );
-    parse_error_at(&text, "observation.noise.phase_m", "phase_m = -0.001", "-0.001");
+    parse_error_at(
+        &text,
+        "observation.noise.phase_m",
+        "phase_m = -0.001",
+        "-0.001",
+    );
 }
 
 #[test]

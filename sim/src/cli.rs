@@ -127,6 +127,33 @@ pub enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Baselines and attitude from several antennas' RINEX observation files: double
+    /// differences, LAMBDA with ambiguity hold, fixed baselines (ECEF and NED) and
+    /// yaw/pitch/roll. Writes DIR/attitude.csv (columns in docs/attitude.md).
+    ///
+    /// FILES: one observation file per antenna of the geometry file, in its order (master
+    /// first): `skyforge receive` output, the observation level's, or another receiver's.
+    Attitude {
+        /// Observation files (RINEX 3), one per antenna, master first.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+        #[arg(long, value_name = "NAV")]
+        nav: PathBuf,
+        /// Body geometry (TOML: [[antennas]] name, position_body_m; master first), as
+        /// `skyforge synth` writes it (DIR/geometry.toml).
+        #[arg(long, value_name = "TOML")]
+        geometry: PathBuf,
+        /// Chain settings (TOML with a [relative] table; docs/attitude.md).
+        #[arg(long, value_name = "TOML")]
+        config: Option<PathBuf>,
+        /// Output directory; created, must not exist unless --force is given.
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Replace an existing output directory that skyforge wrote.
+        #[arg(long)]
+        force: bool,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]

@@ -155,6 +155,27 @@ impl FloatBaselines {
         })
     }
 
+    /// The full fix as a linear map: `vec(B_check) = vec(B_hat) - G (a_hat - N)` for any
+    /// integer vector `N` (eq. 2.4-64, `G = Q_BN Q_NN^{-1}`, 3m x nm), and the covariance of
+    /// eq. 2.4-65 (3m x 3m), the same for every `N`.
+    pub fn fix_gain(&self) -> Result<(DMatrix<f64>, DMatrix<f64>), BaselineError> {
+        let n = self.model.ambiguity_count();
+        let p_bn = self.cofactor.view((n, 0), (3, n)).into_owned();
+        let q_bn = kron(&self.model.q_m, &p_bn);
+        let chol = self
+            .ambiguity_covariance()
+            .cholesky()
+            .ok_or(BaselineError::Singular)?;
+        let gain = chol.solve(&q_bn.transpose()).transpose();
+        let covariance = self.baseline_covariance() - &gain * q_bn.transpose();
+        Ok((gain, covariance))
+    }
+
+    /// vec(B_hat): baseline 1's x, y, z, then baseline 2's.
+    pub fn baseline_vector(&self) -> DVector<f64> {
+        DVector::from_column_slice(self.baselines.as_slice())
+    }
+
     /// Eqs. 2.4-64/2.4-65 with every ambiguity fixed: `integers` is vec(N_check).
     pub fn fix(&self, integers: &[i64]) -> Result<FixedBaselines, BaselineError> {
         let nm = self.ambiguities.len();
@@ -187,11 +208,7 @@ impl FloatBaselines {
         let dz = z_hat - DVector::from_iterator(values.len(), values.iter().map(|&v| v as f64));
         let chol = q_zz.cholesky().ok_or(BaselineError::Singular)?;
         let gain = chol.solve(&q_bz.transpose()).transpose();
-        let b = vec_of(&DMatrix::from_column_slice(
-            3,
-            self.baselines.ncols(),
-            self.baselines.as_slice(),
-        )) - &gain * dz;
+        let b = self.baseline_vector() - &gain * dz;
         let covariance = self.baseline_covariance() - &gain * q_bz.transpose();
         Ok(FixedBaselines {
             baselines: Matrix3xX::from_column_slice(b.as_slice()),

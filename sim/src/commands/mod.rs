@@ -1,6 +1,7 @@
 //! One module per subcommand.
 
 mod ambiguity;
+mod attitude;
 mod calibrate;
 mod receive;
 mod run;
@@ -25,6 +26,21 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Run { run } => run::run(&run),
         Command::Synth { run, chunk_epochs } => synth::synth(&run, chunk_epochs as usize),
         Command::Calibrate { run } => calibrate::calibrate(&run),
+        Command::Attitude {
+            files,
+            nav,
+            geometry,
+            config,
+            out,
+            force,
+        } => attitude::attitude(&attitude::AttitudeArgs {
+            files,
+            nav,
+            geometry,
+            config,
+            out,
+            force,
+        }),
         Command::Receive {
             files,
             format,

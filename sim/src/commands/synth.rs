@@ -12,6 +12,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
+use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
 use skyforge_scenarios::Scenario;
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
@@ -166,6 +167,7 @@ pub fn synthesise(
             std::fs::write(&conf_path, conf).with_context(|| writing(&conf_path))?;
         }
     }
+    write_geometry(scenario, &staged.file("geometry.toml"))?;
     if let Some((r, v)) = report.start_state {
         let path = staged.file("receiver.toml");
         std::fs::write(&path, assistance_toml(&r, &v)).with_context(|| writing(&path))?;
@@ -194,6 +196,28 @@ pub fn synthesise(
     println!("wrote      {}", dir.display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// The nominal body geometry of the scenario's antennas (what `skyforge attitude
+/// --geometry` reads): positions without the offsets the scenario may add to the truth.
+fn write_geometry(scenario: &Scenario, path: &Path) -> anyhow::Result<()> {
+    let file = BodyGeometryFile {
+        antennas: scenario
+            .antennas
+            .iter()
+            .map(|a| GeometryAntenna {
+                name: a.name.clone(),
+                position_body_m: a.position_body_m,
+            })
+            .collect(),
+    };
+    let text = format!(
+        "# Nominal body geometry of scenario {} (antenna phase-centre reference points, body\n\
+         # frame, m; master first), for `skyforge attitude --geometry`.\n{}",
+        scenario.name,
+        toml::to_string(&file).context("cannot encode the geometry")?
+    );
+    std::fs::write(path, text).with_context(|| writing(path))
 }
 
 /// A session that cannot be set up: a located scenario error for a bad setting.

@@ -1,0 +1,129 @@
+//! Settings of the relative-positioning and attitude chain (`[relative]` of a TOML file).
+
+use crate::attitude::filter::AttitudeConfig;
+use crate::baseline::{ElevationNoise, NoiseModel};
+use serde::Deserialize;
+use skyforge_signals::signal::Signal;
+
+/// `[relative]`.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct RelativeConfig {
+    /// Signals used (`gps-l1ca`, `bds-b1i`).
+    #[serde(deserialize_with = "signals")]
+    pub signals: Vec<Signal>,
+    /// Weighting of the double differences: thesis eqs. 2.4-9/2.4-10 for phase and code.
+    pub phase: ElevationNoise,
+    pub code: ElevationNoise,
+    /// Integers are accepted when the second-best squared norm is at least this many
+    /// times the best (ratio test).
+    pub ratio_threshold: f64,
+    /// ... and the bootstrapped success rate of the decorrelated problem at least this.
+    pub min_success_rate: f64,
+    /// Keep accepted integers between epochs while the phase stays locked.
+    pub hold: bool,
+    /// `geometry`: search the integers under the known body geometry (multivariate
+    /// constrained ILS, two or more baselines); `none`: plain LAMBDA with the ratio test
+    /// and the success-rate floor.
+    pub constraint: Constraint,
+    /// Held integers are dropped when their fit to the epoch's float solution exceeds
+    /// the chi-square quantile of this false-alarm probability.
+    pub hold_test_pfa: f64,
+    /// The attitude stage.
+    pub attitude: AttitudeConfig,
+}
+
+/// What the integer search knows besides the float solution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Constraint {
+    None,
+    Geometry,
+}
+
+fn signals<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<Signal>, D::Error> {
+    let names: Vec<String> = Vec::deserialize(d)?;
+    names
+        .iter()
+        .map(|n| n.parse::<Signal>().map_err(serde::de::Error::custom))
+        .collect()
+}
+
+impl Default for RelativeConfig {
+    fn default() -> Self {
+        // assumed: equal weights (a0 = 0): on a LEO the elevation above the local horizon
+        // does not set the noise (satellites below it are tracked at full C/N0); a ground
+        // user sets the elevation model of eqs. 2.4-9/2.4-10. Sigmas of a 45 dB-Hz
+        // receiver: 2 mm phase, 0.3 m code.
+        let elevation = |sigma0_m| ElevationNoise {
+            sigma0_m,
+            a0: 0.0,
+            elev0_deg: 10.0,
+        };
+        Self {
+            signals: Signal::ALL.to_vec(),
+            phase: elevation(0.002),
+            code: elevation(0.3),
+            ratio_threshold: 3.0,
+            min_success_rate: 0.999,
+            hold: true,
+            constraint: Constraint::Geometry,
+            hold_test_pfa: 1e-4,
+            attitude: AttitudeConfig::default(),
+        }
+    }
+}
+
+impl RelativeConfig {
+    /// The double-difference weighting model.
+    pub fn noise_model(&self) -> NoiseModel {
+        NoiseModel::new(self.phase, self.code)
+    }
+}
+
+/// A TOML file with an optional `[relative]` table (other tables are the receiver's).
+#[derive(Debug, Default, Deserialize)]
+struct RelativeFile {
+    #[serde(default)]
+    relative: Option<RelativeConfig>,
+}
+
+/// Largest configuration file read (bytes).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+impl RelativeConfig {
+    /// The `[relative]` table of the TOML file at `path` (defaults without one); the
+    /// error names the file and what is wrong.
+    pub fn read(path: &std::path::Path) -> Result<Self, String> {
+        let error = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
+        let size = std::fs::metadata(path).map_err(|e| error(&e))?.len();
+        if size > MAX_CONFIG_BYTES {
+            return Err(error(&format!(
+                "{size} bytes; at most {MAX_CONFIG_BYTES} are read"
+            )));
+        }
+        let text = std::fs::read_to_string(path).map_err(|e| error(&e))?;
+        let file: RelativeFile = toml::from_str(&text).map_err(|e| error(&e))?;
+        let config = file.relative.unwrap_or_default();
+        config.attitude.check().map_err(|e| error(&e))?;
+        let positive = [
+            ("relative.ratio_threshold", config.ratio_threshold),
+            ("relative.min_success_rate", config.min_success_rate),
+            ("relative.hold_test_pfa", config.hold_test_pfa),
+        ];
+        for (name, v) in positive {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(error(&format!("{name} = {v}: must be a positive number")));
+            }
+        }
+        if config.min_success_rate > 1.0 || config.hold_test_pfa >= 1.0 {
+            return Err(error(
+                &"relative.min_success_rate must be at most 1 and relative.hold_test_pfa below 1",
+            ));
+        }
+        if config.signals.is_empty() {
+            return Err(error(&"relative.signals: at least one signal"));
+        }
+        Ok(config)
+    }
+}

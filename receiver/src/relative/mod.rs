@@ -1,0 +1,139 @@
+//! The relative-positioning and attitude chain of one epoch: double-difference float
+//! baselines ([`crate::baseline`]), integer ambiguities with hold between epochs
+//! ([`resolve`], LAMBDA of [`crate::ambiguity`]), fixed baselines, and attitude
+//! ([`crate::attitude`]). It runs on observation records, so equally on the receiver's
+//! observables, the observation level's and anyone's RINEX.
+
+pub mod config;
+pub mod files;
+pub mod multivariate;
+pub mod resolve;
+
+pub use config::RelativeConfig;
+pub use resolve::{AmbiguityStatus, Resolution};
+
+use crate::attitude::filter::{AttitudeFilter, FilterState, build};
+use crate::attitude::frames::ned_baselines_from_ecef;
+use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines};
+use crate::baseline::{
+    AmbiguityHold, BaselineError, DdLayout, DdModel, FixedBaselines, FloatBaselines, LineOfSight,
+};
+use skyforge_orbits::Vec3;
+use skyforge_signals::observation::ObsRecord;
+
+/// Why an epoch gave no baselines.
+#[derive(Debug, thiserror::Error)]
+pub enum RelativeError {
+    #[error(transparent)]
+    Baseline(#[from] BaselineError),
+    #[error("ambiguity resolution: {0}")]
+    Ambiguity(#[from] crate::ambiguity::AmbiguityError),
+    #[error("attitude: {0}")]
+    Attitude(#[from] AttitudeError),
+}
+
+/// What one epoch gave.
+#[derive(Debug, Clone)]
+pub struct RelativeEpoch {
+    pub float: FloatBaselines,
+    pub resolution: Resolution,
+    /// The baselines with the fixed integers (`None` while float).
+    pub fixed: Option<FixedBaselines>,
+    /// The same in the master's local NED frame (thesis eqs. 2.4-66/2.4-67).
+    pub fixed_ned: Option<NedBaselines>,
+    /// The attitude stage's state after this epoch (`None` before its first update).
+    pub attitude: Option<FilterState>,
+    /// Why the attitude stage did not update this epoch, if it did not.
+    pub attitude_skipped: Option<String>,
+}
+
+/// The chain, keeping the held ambiguities and the attitude filter between epochs.
+#[derive(Debug)]
+pub struct RelativeSolver {
+    config: RelativeConfig,
+    antennas: usize,
+    hold: AmbiguityHold,
+    attitude: Box<dyn AttitudeFilter>,
+    /// Body baselines (antenna k minus the master).
+    geometry: BodyGeometry,
+    last_t_s: Option<f64>,
+}
+
+impl RelativeSolver {
+    /// A solver for antennas whose body-frame positions are `body_positions_m` (master
+    /// first; baseline `k` is antenna `k` minus the master).
+    pub fn new(config: RelativeConfig, body_positions_m: &[Vec3]) -> Result<Self, RelativeError> {
+        let Some((master, others)) = body_positions_m.split_first() else {
+            return Err(BaselineError::TooFewAntennas(0).into());
+        };
+        if others.is_empty() {
+            return Err(BaselineError::TooFewAntennas(1).into());
+        }
+        let baselines: Vec<Vec3> = others.iter().map(|p| p - master).collect();
+        let geometry = BodyGeometry::new(&baselines)?;
+        let attitude = build(&config.attitude, geometry.clone())?;
+        Ok(Self {
+            antennas: body_positions_m.len(),
+            config,
+            hold: AmbiguityHold::new(),
+            attitude,
+            geometry,
+            last_t_s: None,
+        })
+    }
+
+    /// One epoch at time `t_s` (s, any origin): each antenna's records (master first), the
+    /// satellites' lines of sight from the master, and the master's position (ECEF, m) for
+    /// the local frame of the attitude.
+    pub fn epoch(
+        &mut self,
+        t_s: f64,
+        antennas: &[&[ObsRecord]],
+        views: &[LineOfSight],
+        master_ecef_m: &Vec3,
+    ) -> Result<RelativeEpoch, RelativeError> {
+        if antennas.len() != self.antennas {
+            return Err(BaselineError::Dimension {
+                what: "antennas with observations",
+                expected: self.antennas,
+                found: antennas.len(),
+            }
+            .into());
+        }
+        for records in antennas {
+            for r in records.iter().filter(|r| r.loss_of_lock()) {
+                self.hold.slip(r.sat, r.signal);
+            }
+        }
+        let layout = DdLayout::select(antennas, views, &self.config.signals)?;
+        let model = DdModel::new(layout, antennas.len(), &self.config.noise_model())?;
+        let float = FloatBaselines::solve(model, antennas)?;
+        let constraint = Some((&self.geometry, master_ecef_m));
+        let resolution = resolve::resolve(&float, &mut self.hold, &self.config, constraint)?;
+        let fixed = resolution.fixed_baselines(&float)?;
+        if let Some(last) = self.last_t_s {
+            self.attitude.predict((t_s - last).max(0.0))?;
+        }
+        self.last_t_s = Some(t_s);
+        let ned = match &fixed {
+            Some(f) => {
+                let b: Vec<Vec3> = f.baselines.column_iter().map(|c| c.into_owned()).collect();
+                Some(ned_baselines_from_ecef(&b, &f.covariance, master_ecef_m))
+            }
+            None => None,
+        };
+        let attitude_skipped = match &ned {
+            Some(Ok(ned)) => self.attitude.update(ned).err().map(|e| e.to_string()),
+            Some(Err(e)) => Some(e.to_string()),
+            None => Some("no fixed baselines".to_string()),
+        };
+        Ok(RelativeEpoch {
+            float,
+            resolution,
+            fixed,
+            fixed_ned: ned.and_then(Result::ok),
+            attitude: self.attitude.state(),
+            attitude_skipped,
+        })
+    }
+}
