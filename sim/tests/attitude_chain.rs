@@ -102,16 +102,27 @@ fn std(v: &[f64]) -> f64 {
 /// Run the chain with `config` (observation level, 120 s; or signal level of the given
 /// duration) and return the fraction of epochs fixed from the first fix on, and the
 /// per-axis NED baseline errors (m) and attitude errors (deg) of the fixed epochs.
-fn chain_errors(gps_only: bool, config: &str) -> (f64, Vec<[f64; 3]>, Vec<[f64; 3]>) {
+fn chain_errors(
+    gps_only: bool,
+    signal_level: Option<u32>,
+    config: &str,
+) -> (f64, Vec<[f64; 3]>, Vec<[f64; 3]>) {
     let dir = tempfile::tempdir().unwrap();
-    let path = scenario(dir.path(), 120, gps_only);
+    let duration = signal_level.unwrap_or(120);
+    let path = scenario(dir.path(), duration, gps_only, signal_level.is_none());
     let sim = dir.path().join("sim");
     skyforge_ok(&["run", &path, "--out", sim.to_str().unwrap()], dir.path());
     std::fs::write(dir.path().join("rel.toml"), config).unwrap();
+    let observations = if signal_level.is_some() {
+        receive(&sim, &dir.path().join("rx"))
+    } else {
+        sim.join("observations")
+    };
     let obs: Vec<String> = ["ant1", "ant2", "ant3"]
         .iter()
         .map(|a| {
-            sim.join(format!("observations/{a}.obs.rnx"))
+            observations
+                .join(format!("{a}.obs.rnx"))
                 .to_string_lossy()
                 .into_owned()
         })
@@ -216,7 +227,11 @@ fn check_chain(signal_level: Option<u32>) {
         );
         assert_eq!(fixed, 1.0);
         let epochs = signal_level.unwrap_or(120) as usize;
-        assert!(a.len() + 10 >= epochs, "{} epochs with an attitude", a.len());
+        assert!(
+            a.len() + 10 >= epochs,
+            "{} epochs with an attitude",
+            a.len()
+        );
         assert!(b_std.iter().all(|s| *s < 3e-3), "{b_std:?}");
         assert!(worst < 0.01, "{worst}");
         assert!(a_std.iter().all(|s| *s < 0.1), "{a_std:?}");
