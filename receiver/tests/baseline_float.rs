@@ -234,9 +234,10 @@ fn float_and_fixed_covariances_match_monte_carlo() {
     assert!(fixed_cov[(0, 0)] < 1e-2 * float_cov[(0, 0)]);
 }
 
-#[test]
-fn partial_fix_lies_between_float_and_full_fix() {
-    let mut rng = ChaCha8Rng::seed_from_u64(3);
+/// One noisy epoch of 8 GPS satellites seen by three antennas (seeded): the float solution
+/// and the true integers.
+fn noisy_gps_epoch(seed: u64) -> (FloatBaselines, Vec<i64>) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let scene = scene(&mut rng, 8, 0);
     let noise = noise_model();
     let obs: Vec<_> = (0..3)
@@ -244,6 +245,12 @@ fn partial_fix_lies_between_float_and_full_fix() {
         .collect();
     let float = solve(&scene, &obs, &noise);
     let truth = true_integers(&scene, &float);
+    (float, truth)
+}
+
+#[test]
+fn partial_fix_lies_between_float_and_full_fix() {
+    let (float, truth) = noisy_gps_epoch(3);
     let nm = truth.len();
     let full = float.fix(&truth).unwrap().covariance.trace();
     let rows = 5;
@@ -304,14 +311,7 @@ fn a_satellite_missing_phase_on_one_antenna_is_left_out() {
 /// make the statistic explode.
 #[test]
 fn conditioning_on_held_integers_is_the_gaussian_conditional() {
-    let mut rng = ChaCha8Rng::seed_from_u64(6);
-    let scene = scene(&mut rng, 8, 0);
-    let noise = noise_model();
-    let obs: Vec<_> = (0..3)
-        .map(|a| observe(&scene, a, (0.0, &[0.0; 8]), Some((&noise, &mut rng))))
-        .collect();
-    let float = solve(&scene, &obs, &noise);
-    let truth = true_integers(&scene, &float);
+    let (float, truth) = noisy_gps_epoch(6);
     let nm = truth.len();
     let held: Vec<(usize, i64)> = (1..nm).map(|i| (i, truth[i])).collect();
     let c = float.conditioned(&held).unwrap();

@@ -134,25 +134,8 @@ pub enum Command {
     /// FILES: one observation file per antenna of the geometry file, in its order (master
     /// first): `skyforge receive` output, the observation level's, or another receiver's.
     Attitude {
-        /// Observation files (RINEX 3), one per antenna, master first.
-        #[arg(required = true)]
-        files: Vec<PathBuf>,
-        /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
-        #[arg(long, value_name = "NAV")]
-        nav: PathBuf,
-        /// Body geometry (TOML: [[antennas]] name, position_body_m; master first), as
-        /// `skyforge synth` writes it (DIR/geometry.toml).
-        #[arg(long, value_name = "TOML")]
-        geometry: PathBuf,
-        /// Chain settings (TOML with a [relative] table; docs/attitude.md).
-        #[arg(long, value_name = "TOML")]
-        config: Option<PathBuf>,
-        /// Output directory; created, must not exist unless --force is given.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Replace an existing output directory that skyforge wrote.
-        #[arg(long)]
-        force: bool,
+        #[command(flatten)]
+        args: AttitudeArgs,
     },
     /// List or show the bundled scenarios.
     Scenarios {
@@ -164,6 +147,30 @@ pub enum Command {
         #[command(subcommand)]
         suite: ValidateSuite,
     },
+}
+
+/// What `attitude` is given.
+#[derive(Debug, Args)]
+pub struct AttitudeArgs {
+    /// Observation files (RINEX 3), one per antenna, master first.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+    #[arg(long, value_name = "NAV")]
+    pub nav: PathBuf,
+    /// Body geometry (TOML: [[antennas]] name, position_body_m; master first), as
+    /// `skyforge synth` writes it (DIR/geometry.toml).
+    #[arg(long, value_name = "TOML")]
+    pub geometry: PathBuf,
+    /// Chain settings (TOML with a [relative] table; docs/attitude.md).
+    #[arg(long, value_name = "TOML")]
+    pub config: Option<PathBuf>,
+    /// Output directory; created, must not exist unless --force is given.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory that skyforge wrote.
+    #[arg(long)]
+    pub force: bool,
 }
 
 #[derive(Debug, Subcommand)]

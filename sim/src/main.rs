@@ -22,7 +22,8 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Run { run }
         | cli::Command::Synth { run, .. }
         | cli::Command::Calibrate { run } => Some(run.out.clone()),
-        cli::Command::Receive { out, .. } | cli::Command::Attitude { out, .. } => Some(out.clone()),
+        cli::Command::Receive { out, .. } => Some(out.clone()),
+        cli::Command::Attitude { args } => Some(args.out.clone()),
         cli::Command::Validate {
             suite: cli::ValidateSuite::Thesis { out, .. },
         } => out.clone(),

@@ -3,6 +3,7 @@
 //! `DIR/attitude.csv`.
 
 use crate::BadInput;
+use crate::cli::AttitudeArgs;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
@@ -10,18 +11,6 @@ use skyforge_receiver::relative::files::{BodyGeometryFile, EpochOutcome, run_fil
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_signals::observation::read_obs_file;
 use std::io::Write;
-use std::path::PathBuf;
-
-/// The command's arguments.
-#[derive(Debug)]
-pub struct AttitudeArgs {
-    pub files: Vec<PathBuf>,
-    pub nav: PathBuf,
-    pub geometry: PathBuf,
-    pub config: Option<PathBuf>,
-    pub out: PathBuf,
-    pub force: bool,
-}
 
 /// The CSV header for `m` baselines.
 fn header(m: usize) -> String {

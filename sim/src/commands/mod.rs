@@ -26,21 +26,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Run { run } => run::run(&run),
         Command::Synth { run, chunk_epochs } => synth::synth(&run, chunk_epochs as usize),
         Command::Calibrate { run } => calibrate::calibrate(&run),
-        Command::Attitude {
-            files,
-            nav,
-            geometry,
-            config,
-            out,
-            force,
-        } => attitude::attitude(&attitude::AttitudeArgs {
-            files,
-            nav,
-            geometry,
-            config,
-            out,
-            force,
-        }),
+        Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive {
             files,
             format,
