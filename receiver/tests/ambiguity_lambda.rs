@@ -435,9 +435,9 @@ impl MonteCarlo {
 fn covariance_with_success(rng: &mut ChaCha8Rng, n: usize, target: f64) -> DMatrix<f64> {
     let b = DMatrix::from_fn(n, 3.min(n), |_, _| normal(rng));
     let base = &b * b.transpose() + DMatrix::identity(n, n) * 0.02;
-    let (mut lo, mut hi) = (1e-6, 1e3);
+    let (mut lo, mut hi) = (1e-6f64, 1e3f64);
     for _ in 0..200 {
-        let mid = (lo * hi as f64).sqrt();
+        let mid = (lo * hi).sqrt();
         if bootstrapped_success_rate(&(&base * mid)).unwrap() > target {
             lo = mid;
         } else {

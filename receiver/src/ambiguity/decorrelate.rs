@@ -1,14 +1,14 @@
 //! The decorrelating Z-transformation: integer Gauss transformations and swaps of
 //! adjacent ambiguities on `Q = L^T D L` (de Jonge & Tiberius 1996 §3.5-3.7), in the
-//! order of the MLAMBDA reduction (Chang, Yang & Zhou 2005 §3: only `L_{k+1,k}` is
-//! reduced before each swap test, the rest of `L` once at the end).
+//! order of the MLAMBDA reduction (Chang, Yang & Zhou 2005 §3: after symmetric pivoting,
+//! `L_{k+1,k}` is reduced only when a swap follows, the rest of `L` once at the end).
 //!
 //! After it, `|L_ij| <= 1/2` below the diagonal and `d_k + L_{k+1,k}^2 d_{k+1} >= d_{k+1}`
 //! for every `k` (no swap would lower `d_{k+1}`).
 
-use super::AmbiguityError;
 use super::int_matrix::IntMatrix;
 use super::ldl::Ldl;
+use super::{AmbiguityError, round_fast};
 use nalgebra::{DMatrix, DVector};
 
 /// A swap must lower `d_{k+1}` by more than this fraction (guards against cycling on
@@ -23,19 +23,20 @@ pub(crate) struct Reduced {
     pub l: DMatrix<f64>,
     pub d: Vec<f64>,
     pub z: IntMatrix,
-    pub z_inv: IntMatrix,
+    /// `Z^{-T}`, mapping integer `z` back to `a = Z^{-T} z`.
+    pub z_inv_t: IntMatrix,
     pub z_hat: DVector<f64>,
 }
 
-/// Reduce the factors `f` of `Q` and transform `a_hat` along.
+/// Reduce the factors `f` of `P^T Q P` (`Z` starts as `P`) and transform `a_hat` along.
 pub(crate) fn reduce(f: Ldl, a_hat: &DVector<f64>) -> Result<Reduced, AmbiguityError> {
     let n = f.d.len();
     let mut r = Reduced {
         l: f.l,
         d: f.d,
-        z: IntMatrix::identity(n),
-        z_inv: IntMatrix::identity(n),
-        z_hat: a_hat.clone(),
+        z: IntMatrix::permutation(&f.perm),
+        z_inv_t: IntMatrix::permutation(&f.perm),
+        z_hat: DVector::from_fn(n, |k, _| a_hat[f.perm[k]]),
     };
     if n < 2 {
         return Ok(r);
@@ -43,10 +44,13 @@ pub(crate) fn reduce(f: Ldl, a_hat: &DVector<f64>) -> Result<Reduced, AmbiguityE
     let mut k = n - 2;
     let mut swaps = 0u64;
     loop {
-        r.gauss(k + 1, k)?;
+        // The swap test with L_{k+1,k} reduced; the transformation itself only when a
+        // swap follows (otherwise the final pass applies it).
         let lk = r.l[(k + 1, k)];
-        let delta = r.d[k] + lk * lk * r.d[k + 1];
+        let reduced = lk - round_fast(lk);
+        let delta = r.d[k] + reduced * reduced * r.d[k + 1];
         if delta < r.d[k + 1] * (1.0 - SWAP_MARGIN) {
+            r.gauss(k + 1, k)?;
             r.swap(k, delta);
             swaps += 1;
             if swaps > MAX_SWAPS {
@@ -80,20 +84,25 @@ impl Reduced {
     /// de Jonge & Tiberius 1996 §3.5: integer Gauss transformation of columns `i > j`,
     /// `Z_ij = I - mu e_i e_j^T` with `mu = round(L_ij)`.
     fn gauss(&mut self, i: usize, j: usize) -> Result<(), AmbiguityError> {
-        let mu = self.l[(i, j)].round();
-        if mu == 0.0 {
+        let lij = self.l[(i, j)];
+        if lij.abs() <= 0.5 {
             return Ok(());
         }
-        if !(mu.abs() < 9.0e15) {
+        let mu = round_fast(lij);
+        if mu.is_nan() || mu.abs() >= 9.0e15 {
             return Err(AmbiguityError::Overflow);
         }
         let n = self.d.len();
-        for k in i..n {
-            self.l[(k, j)] -= mu * self.l[(k, i)];
+        // Column j of L minus mu times column i (rows i..n; column i is zero above i).
+        let (left, right) = self.l.as_mut_slice().split_at_mut(i * n);
+        let col_j = &mut left[j * n + i..j * n + n];
+        let col_i = &right[i..n];
+        for (x, y) in col_j.iter_mut().zip(col_i) {
+            *x -= mu * y;
         }
-        let m = mu as i64;
-        self.z.sub_col(j, i, m)?;
-        self.z_inv.add_row(i, j, m)?;
+        self.z.sub_col(j, i, mu)?;
+        // Z^{-1} gains mu times row j in row i: Z^{-T} gains mu times column j in column i.
+        self.z_inv_t.sub_col(i, j, -mu)?;
         self.z_hat[j] -= mu * self.z_hat[i];
         Ok(())
     }
@@ -107,17 +116,17 @@ impl Reduced {
         let lam = self.d[k + 1] * lk / delta;
         self.d[k] = eta * self.d[k + 1];
         self.d[k + 1] = delta;
+        let lv = self.l.as_mut_slice();
         for j in 0..k {
-            let (a0, a1) = (self.l[(k, j)], self.l[(k + 1, j)]);
-            self.l[(k, j)] = a1 - lk * a0;
-            self.l[(k + 1, j)] = eta * a0 + lam * a1;
+            let (a0, a1) = (lv[j * n + k], lv[j * n + k + 1]);
+            lv[j * n + k] = a1 - lk * a0;
+            lv[j * n + k + 1] = eta * a0 + lam * a1;
         }
-        self.l[(k + 1, k)] = lam;
-        for i in k + 2..n {
-            self.l.swap((i, k), (i, k + 1));
-        }
+        lv[k * n + k + 1] = lam;
+        let (left, right) = lv.split_at_mut((k + 1) * n);
+        left[k * n + k + 2..k * n + n].swap_with_slice(&mut right[k + 2..n]);
         self.z.swap_cols(k, k + 1);
-        self.z_inv.swap_rows(k, k + 1);
+        self.z_inv_t.swap_cols(k, k + 1);
         self.z_hat.swap_rows(k, k + 1);
     }
 }
@@ -140,14 +149,17 @@ mod tests {
         });
         let q = g.transpose() * &g * 10.0 + DMatrix::identity(5, 5) * 1e-3;
         let a = DVector::from_fn(5, |i, _| 0.37 * i as f64 - 0.4);
-        let r = reduce(ldl(&q).unwrap(), &a).unwrap();
+        let r = reduce(ldl(&q, true).unwrap(), &a).unwrap();
         let z = r.z.to_dmatrix();
         let zqz = z.transpose() * &q * &z;
         assert!(
             (ltdl(&r) - &zqz).amax() < 1e-8 * zqz.amax(),
             "Z^T Q Z = L^T D L"
         );
-        assert_eq!(&z * r.z_inv.to_dmatrix(), DMatrix::identity(5, 5));
+        assert_eq!(
+            z.transpose() * r.z_inv_t.to_dmatrix(),
+            DMatrix::identity(5, 5)
+        );
         assert!((z.transpose() * &a - &r.z_hat).amax() < 1e-9);
         for k in 0..4 {
             assert!(r.l[(k + 1, k)].abs() <= 0.5 + 1e-12);
@@ -168,7 +180,7 @@ mod tests {
     #[test]
     fn swap_alone_matches_the_permuted_factorisation() {
         let q = DMatrix::from_row_slice(3, 3, &[4.0, 1.0, 0.5, 1.0, 3.0, 2.9, 0.5, 2.9, 3.0]);
-        let mut r = reduce(ldl(&q).unwrap(), &DVector::zeros(3)).unwrap();
+        let mut r = reduce(ldl(&q, false).unwrap(), &DVector::zeros(3)).unwrap();
         // Swap 1 and 2 by hand (row 0 of L is mixed too) and compare with P^T (L^T D L) P.
         let before = ltdl(&r);
         let lk = r.l[(2, 1)];

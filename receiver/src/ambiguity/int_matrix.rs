@@ -1,85 +1,100 @@
-//! Square integer matrices for `Z` and `Z^{-1}`, with overflow-checked updates.
+//! Square integer matrices for `Z` and `Z^{-T}`, stored as `f64` for fast (vectorised)
+//! column updates and kept exact: every column carries an upper bound of its largest
+//! magnitude, and an update that could reach 2^52 is refused (below that, every product
+//! and difference of whole numbers is exact).
 
 use super::AmbiguityError;
 use nalgebra::DMatrix;
 
-/// An `n x n` matrix of `i64`, column-major.
-#[derive(Debug, Clone, PartialEq, Eq)]
+/// Entries stay below this magnitude (2^52), so every update is exact.
+const LIMIT: f64 = 4_503_599_627_370_496.0;
+/// Column bounds above this (2^40) are replaced by the exact maximum.
+const REFRESH: f64 = 1_099_511_627_776.0;
+
+/// An `n x n` integer matrix, column-major.
+#[derive(Debug, Clone, PartialEq)]
 pub(crate) struct IntMatrix {
     n: usize,
-    data: Vec<i64>,
+    data: Vec<f64>,
+    /// Upper bound of `|entry|` per column.
+    bound: Vec<f64>,
 }
 
 impl IntMatrix {
-    pub(crate) fn identity(n: usize) -> Self {
-        let mut data = vec![0; n * n];
-        for i in 0..n {
-            data[i * n + i] = 1;
+    /// The permutation matrix with ones at `(perm[k], k)`.
+    pub(crate) fn permutation(perm: &[usize]) -> Self {
+        let n = perm.len();
+        let mut data = vec![0.0; n * n];
+        for (k, &p) in perm.iter().enumerate() {
+            data[k * n + p] = 1.0;
         }
-        Self { n, data }
+        Self {
+            n,
+            data,
+            bound: vec![1.0; n],
+        }
     }
 
     pub(crate) fn get(&self, row: usize, col: usize) -> i64 {
-        self.data[col * self.n + row]
+        self.data[col * self.n + row] as i64
     }
 
-    /// Column `dst` -= `mu` * column `src`.
+    /// Column `dst` -= `mu` * column `src` (`dst != src`, `mu` a whole number).
     pub(crate) fn sub_col(
         &mut self,
         dst: usize,
         src: usize,
-        mu: i64,
+        mu: f64,
     ) -> Result<(), AmbiguityError> {
         let n = self.n;
-        for r in 0..n {
-            let v = mu
-                .checked_mul(self.data[src * n + r])
-                .and_then(|p| self.data[dst * n + r].checked_sub(p))
-                .ok_or(AmbiguityError::Overflow)?;
-            self.data[dst * n + r] = v;
+        let (d, s) = if dst < src {
+            let (a, b) = self.data.split_at_mut(src * n);
+            (&mut a[dst * n..dst * n + n], &b[..n])
+        } else {
+            let (a, b) = self.data.split_at_mut(dst * n);
+            (&mut b[..n], &a[src * n..src * n + n])
+        };
+        let mut bound = self.bound[dst] + mu.abs() * self.bound[src];
+        if bound < REFRESH {
+            for (x, y) in d.iter_mut().zip(s) {
+                *x -= mu * y;
+            }
+        } else {
+            // The bound is loose or large: update with the exact maximum. All entries are
+            // below 2^52, so a rounded product `mu y` (>= 2^53) leaves |x - mu y| >= 2^52.
+            let mut big = 0.0f64;
+            for (x, y) in d.iter_mut().zip(s) {
+                *x -= mu * y;
+                let ax = x.abs();
+                big = if ax > big { ax } else { big };
+            }
+            if big >= LIMIT {
+                return Err(AmbiguityError::Overflow);
+            }
+            bound = big;
         }
-        Ok(())
-    }
-
-    /// Row `dst` += `mu` * row `src`.
-    pub(crate) fn add_row(
-        &mut self,
-        dst: usize,
-        src: usize,
-        mu: i64,
-    ) -> Result<(), AmbiguityError> {
-        let n = self.n;
-        for c in 0..n {
-            let v = mu
-                .checked_mul(self.data[c * n + src])
-                .and_then(|p| self.data[c * n + dst].checked_add(p))
-                .ok_or(AmbiguityError::Overflow)?;
-            self.data[c * n + dst] = v;
-        }
+        self.bound[dst] = bound;
         Ok(())
     }
 
     pub(crate) fn swap_cols(&mut self, a: usize, b: usize) {
         let n = self.n;
-        for r in 0..n {
-            self.data.swap(a * n + r, b * n + r);
+        let (lo, hi) = (a.min(b), a.max(b));
+        if lo == hi {
+            return;
         }
+        let (left, right) = self.data.split_at_mut(hi * n);
+        left[lo * n..lo * n + n].swap_with_slice(&mut right[..n]);
+        self.bound.swap(lo, hi);
     }
 
-    pub(crate) fn swap_rows(&mut self, a: usize, b: usize) {
-        let n = self.n;
-        for c in 0..n {
-            self.data.swap(c * n + a, c * n + b);
-        }
-    }
-
-    /// `self^T v`, overflow-checked.
-    pub(crate) fn transpose_mul(&self, v: &[i64]) -> Result<Vec<i64>, AmbiguityError> {
+    /// `self v`, overflow-checked.
+    pub(crate) fn mul_vec(&self, v: &[i64]) -> Result<Vec<i64>, AmbiguityError> {
         (0..self.n)
-            .map(|c| {
-                (0..self.n).try_fold(0i64, |acc, r| {
+            .map(|r| {
+                (0..self.n).try_fold(0i64, |acc, c| {
                     self.get(r, c)
-                        .checked_mul(v[r])
+                        .checked_mul(v[c])
                         .and_then(|p| acc.checked_add(p))
                         .ok_or(AmbiguityError::Overflow)
                 })
@@ -88,6 +103,6 @@ impl IntMatrix {
     }
 
     pub(crate) fn to_dmatrix(&self) -> DMatrix<f64> {
-        DMatrix::from_fn(self.n, self.n, |r, c| self.get(r, c) as f64)
+        DMatrix::from_column_slice(self.n, self.n, &self.data)
     }
 }

@@ -3,14 +3,15 @@
 //! Given float ambiguities `a_hat` (cycles) and their covariance `Q`, integer least
 //! squares (ILS) finds the integer vectors `a` minimising `(a_hat - a)^T Q^{-1} (a_hat - a)`
 //! (Teunissen 1995). The steps, one file each:
-//! - [`ldl`]: `Q = L^T D L`, unit lower-triangular `L` (de Jonge & Tiberius 1996 §3.3);
-//! - [`decorrelate`]: integer Gauss transformations and swaps giving a unimodular `Z`
+//! - `ldl`: `Q = L^T D L`, unit lower-triangular `L` (de Jonge & Tiberius 1996 §3.3),
+//!   with symmetric pivoting for [`lambda`] (Chang, Yang & Zhou 2005 §3);
+//! - `decorrelate`: integer Gauss transformations and swaps giving a unimodular `Z`
 //!   with `z = Z^T a` nearly decorrelated (de Jonge & Tiberius 1996 §3.5-3.7, the
 //!   reduction of Chang, Yang & Zhou 2005 §3);
-//! - [`search`]: depth-first search of the shrinking ellipsoid in Schnorr-Euchner order
+//! - `search`: depth-first search of the shrinking ellipsoid in Schnorr-Euchner order
 //!   (Chang, Yang & Zhou 2005 §4), keeping the `count` best;
-//! - [`bootstrap`]: the bootstrapped success rate (Teunissen 1998);
-//! - [`partial`]: partial ambiguity resolution on the decorrelated ambiguities;
+//! - `bootstrap`: the bootstrapped success rate (Teunissen 1998);
+//! - `partial`: partial ambiguity resolution on the decorrelated ambiguities;
 //! - [`problem_file`]: a float solution and its covariance read from JSON or CSV.
 //!
 //! Ordering convention (as in LAMBDA): with `Q = L^T D L`, `d_i` is the variance of
@@ -151,6 +152,18 @@ pub fn lambda(
     })
 }
 
+/// `x` rounded to the nearest whole number (ties to even below 2^51) without a libm call:
+/// adding and subtracting 1.5 * 2^52 leaves no fractional bits.
+#[inline]
+pub(crate) fn round_fast(x: f64) -> f64 {
+    const MAGIC: f64 = 6_755_399_441_055_744.0;
+    if x.abs() < 2_251_799_813_685_248.0 {
+        (x + MAGIC) - MAGIC
+    } else {
+        x.round()
+    }
+}
+
 /// A checked problem after decorrelation: `a_hat = offset + frac` with integer `offset`,
 /// and the reduction of `(frac, Q)`.
 #[derive(Debug)]
@@ -164,7 +177,7 @@ impl Decorrelated {
         check_problem(a_hat, q)?;
         let offset: Vec<i64> = a_hat.iter().map(|&x| x.round() as i64).collect();
         let frac = DVector::from_iterator(a_hat.len(), a_hat.iter().map(|&x| x - x.round()));
-        let factors = ldl::ldl(q)?;
+        let factors = ldl::ldl(q, true)?;
         let reduced = decorrelate::reduce(factors, &frac)?;
         Ok(Self { offset, reduced })
     }
@@ -172,7 +185,7 @@ impl Decorrelated {
     /// `a = Z^{-T} z + offset` for an integer `z` (given as whole `f64`s).
     fn to_ambiguities(&self, z: &[f64]) -> Result<Vec<i64>, AmbiguityError> {
         let z: Vec<i64> = z.iter().map(|&v| v as i64).collect();
-        let a = self.reduced.z_inv.transpose_mul(&z)?;
+        let a = self.reduced.z_inv_t.mul_vec(&z)?;
         a.iter()
             .zip(&self.offset)
             .map(|(x, o)| x.checked_add(*o).ok_or(AmbiguityError::Overflow))

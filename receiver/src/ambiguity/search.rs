@@ -7,7 +7,7 @@
 //! The squared norm of a candidate is `sum_k (zc_k - z_k)^2 / d_k`
 //! (de Jonge & Tiberius 1996 §4.2), which equals `(z_hat - z)^T Q_z^{-1} (z_hat - z)`.
 
-use super::{AmbiguityError, MAX_SEARCH_NODES};
+use super::{AmbiguityError, MAX_SEARCH_NODES, round_fast};
 use nalgebra::DMatrix;
 
 /// Sign of the next step from `round(zc)` towards the second-nearest integer.
@@ -36,7 +36,7 @@ pub(crate) fn search(
 
     let mut k = n - 1;
     zc[k] = z_hat[k];
-    z[k] = zc[k].round();
+    z[k] = round_fast(zc[k]);
     let mut y = zc[k] - z[k];
     step[k] = first_step(y);
     loop {
@@ -49,13 +49,15 @@ pub(crate) fn search(
             if k > 0 {
                 k -= 1;
                 above[k] = dist;
-                let col = &lv[k * n..(k + 1) * n];
-                let mut s = 0.0;
-                for j in k + 1..n {
-                    s += col[j] * (zc[j] - z[j]);
-                }
+                let below = &lv[k * n + k + 1..(k + 1) * n];
+                let s: f64 = below
+                    .iter()
+                    .zip(&zc[k + 1..])
+                    .zip(&z[k + 1..])
+                    .map(|((lj, zcj), zj)| lj * (zcj - zj))
+                    .sum();
                 zc[k] = z_hat[k] - s;
-                z[k] = zc[k].round();
+                z[k] = round_fast(zc[k]);
                 y = zc[k] - z[k];
                 step[k] = first_step(y);
             } else {
