@@ -12,6 +12,7 @@ pub mod ambiguity;
 pub mod assist;
 pub mod attitude;
 pub mod baseline;
+pub mod continued_fraction;
 pub mod fast_sync;
 pub mod input;
 pub mod navdecode;

@@ -5,6 +5,7 @@
 //! the first, as the LAMBDA search does).
 
 use super::{AmbiguityError, check_q, ldl};
+use crate::continued_fraction;
 use nalgebra::DMatrix;
 
 /// Bootstrapped success rate of the problem as given (no decorrelation).
@@ -87,31 +88,10 @@ const ERF_ABS_TOL: f64 = 2e-17;
 /// evaluated with the modified Lentz method, `x >= 3`, to 1e-16 relative or `abs_tol`
 /// absolute, whichever is reached first.
 fn erfc_fraction(x: f64, abs_tol: f64) -> f64 {
-    const TINY: f64 = 1e-300;
     let scale = (-x * x).exp() / std::f64::consts::PI.sqrt();
     // erfc x < scale / x: a relative tolerance abs_tol * x / scale gives abs_tol.
     let tol = (abs_tol * x / scale).max(1e-16);
-    let mut f = x;
-    let mut c = x;
-    let mut dd = 0.0;
-    for n in 1..300 {
-        let a = 0.5 * f64::from(n);
-        dd = x + a * dd;
-        if dd.abs() < TINY {
-            dd = TINY;
-        }
-        c = x + a / c;
-        if c.abs() < TINY {
-            c = TINY;
-        }
-        dd = 1.0 / dd;
-        let delta = c * dd;
-        f *= delta;
-        if (delta - 1.0).abs() < tol {
-            break;
-        }
-    }
-    scale / f
+    scale / continued_fraction::evaluate(x, |n| (0.5 * n as f64, x), tol, 299)
 }
 
 #[cfg(test)]

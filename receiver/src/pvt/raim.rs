@@ -4,6 +4,8 @@
 //! 1992). A fix whose sum exceeds the (1 - pfa) quantile is declared faulty; the solver then
 //! excludes the satellite with the largest standardised residual.
 
+use crate::continued_fraction;
+
 /// Iterations of the series and the continued fraction of the incomplete gamma function.
 const GAMMA_ITERATIONS: usize = 500;
 const GAMMA_EPS: f64 = 1e-15;
@@ -54,30 +56,9 @@ fn gamma_q(a: f64, x: f64) -> f64 {
         1.0 - prefactor * sum
     } else {
         // Q(a, x) = x^a e^-x / Gamma(a) * 1 / (x + 1 - a - 1 (1 - a) / (x + 3 - a - ...)).
-        let tiny = 1e-300;
-        let mut b = x + 1.0 - a;
-        let mut c = 1.0 / tiny;
-        let mut d = 1.0 / b;
-        let mut f = d;
-        for n in 1..GAMMA_ITERATIONS {
-            let an = -(n as f64) * (n as f64 - a);
-            b += 2.0;
-            d = an * d + b;
-            if d.abs() < tiny {
-                d = tiny;
-            }
-            c = b + an / c;
-            if c.abs() < tiny {
-                c = tiny;
-            }
-            d = 1.0 / d;
-            let step = d * c;
-            f *= step;
-            if (step - 1.0).abs() < GAMMA_EPS {
-                break;
-            }
-        }
-        prefactor * f
+        let b1 = x + 1.0 - a;
+        let term = |n: usize| (-(n as f64) * (n as f64 - a), b1 + 2.0 * n as f64);
+        prefactor / continued_fraction::evaluate(b1, term, GAMMA_EPS, GAMMA_ITERATIONS - 1)
     }
 }
 
