@@ -226,9 +226,11 @@ fn check_chain(signal_level: Option<u32>) {
             a.len()
         );
         assert_eq!(fixed, 1.0);
+        // The first attitude within 30 s of the start: acquisition, pull-in and the first
+        // ephemerides. (10 s at first; GPS alone at the signal level first fixed after 13 s.)
         let epochs = signal_level.unwrap_or(120) as usize;
         assert!(
-            a.len() + 10 >= epochs,
+            a.len() + 30 >= epochs,
             "{} epochs with an attitude",
             a.len()
         );
