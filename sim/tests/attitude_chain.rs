@@ -10,6 +10,8 @@ use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::time::parse_epoch;
+use skyforge_validate::observables::read_obs_file;
+use std::collections::HashMap;
 use std::path::Path;
 use support::{dataset, skyforge, skyforge_ok, text};
 
@@ -94,6 +96,56 @@ fn receive(sim: &Path, rx: &Path) -> std::path::PathBuf {
     rx.to_path_buf()
 }
 
+/// Carrier phase (cycles) of every (epoch, satellite) of an observation file, keyed by the
+/// epoch's printed time.
+fn phases(path: &Path) -> HashMap<(String, String), f64> {
+    let file = read_obs_file(path).unwrap();
+    let mut out = HashMap::new();
+    for e in &file.epochs {
+        for r in &e.sats {
+            if let Some(p) = r.carrier_phase_cycles {
+                out.insert((e.time.to_string(), r.sat.to_string()), p);
+            }
+        }
+    }
+    out
+}
+
+/// Every integer in `att/ambiguities.csv` against the true double-difference integer,
+/// `round(DD(observed phase) - DD(truth phase))` of the same epoch (the truth's phase has
+/// no ambiguity). Returns (integers checked, wrong ones, largest distance of an observed
+/// minus truth DD from its integer).
+fn check_integers(att: &Path, observations: &Path, sim: &Path) -> (usize, usize, f64) {
+    let names = ["ant1", "ant2", "ant3"];
+    let obs: Vec<_> = names
+        .iter()
+        .map(|a| phases(&observations.join(format!("{a}.obs.rnx"))))
+        .collect();
+    let truth: Vec<_> = names
+        .iter()
+        .map(|a| phases(&sim.join(format!("{a}.obs.rnx"))))
+        .collect();
+    let text = std::fs::read_to_string(att.join("ambiguities.csv")).unwrap();
+    let (mut checked, mut wrong, mut worst) = (0, 0, 0.0f64);
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let (t, k) = (f[0].to_string(), f[1].parse::<usize>().unwrap());
+        let integer: i64 = f[5].parse().unwrap();
+        let dd = |set: &[HashMap<(String, String), f64>]| -> Option<f64> {
+            let p = |a: usize, sat: &str| set[a].get(&(t.clone(), sat.to_string())).copied();
+            Some((p(k, f[3])? - p(0, f[3])?) - (p(k, f[4])? - p(0, f[4])?))
+        };
+        let (Some(o), Some(tr)) = (dd(&obs), dd(&truth)) else {
+            continue;
+        };
+        let d = o - tr;
+        worst = worst.max((d - d.round()).abs());
+        checked += 1;
+        wrong += usize::from(d.round() as i64 != integer);
+    }
+    (checked, wrong, worst)
+}
+
 fn std(v: &[f64]) -> f64 {
     let m = v.iter().sum::<f64>() / v.len() as f64;
     (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
@@ -143,6 +195,16 @@ fn chain_errors(
         out.to_str().unwrap(),
     ]);
     println!("{}", skyforge_ok(&args, dir.path()));
+    let (checked, wrong, worst) = check_integers(&out, &observations, &sim);
+    println!(
+        "INTEGERS checked {checked}, wrong {wrong}, largest distance from an integer {worst:.3} cycles"
+    );
+    assert!(checked > 0);
+    assert_eq!(wrong, 0, "fixed integers differ from the truth's");
+    assert!(
+        worst < 0.25,
+        "an observed DD is {worst} cycles from an integer"
+    );
     let truth = hdf5::File::open(sim.join("truth.h5")).unwrap();
     let start = parse_epoch("2023-03-12T00:00:00 GPST").unwrap();
     let mut rdr = std::fs::read_to_string(out.join("attitude.csv")).unwrap();
@@ -189,7 +251,7 @@ fn chain_errors(
 }
 
 /// Issue #12's bars on the observation level (the signal-level run is the acceptance
-/// tier's): every epoch fixed; NED baseline error std below 3 mm per axis and no epoch
+/// tier's): every epoch fixed, every fixed integer the truth's; NED baseline error std below 3 mm per axis and no epoch
 /// off by a centimetre (a wrong integer moves a 1 m baseline by centimetres); attitude
 /// error std below 0.1 deg per axis with the KF.
 #[test]

@@ -109,6 +109,28 @@ fn row(o: &EpochOutcome, m: usize) -> String {
     f.join(",")
 }
 
+/// The fixed integers of an epoch, one CSV row each (baselines numbered from 1).
+fn integer_rows(o: &EpochOutcome) -> String {
+    let Ok(e) = &o.result else {
+        return String::new();
+    };
+    let layout = &e.float.model.layout;
+    let ids: Vec<_> = layout.ambiguity_ids().collect();
+    let mut out = String::new();
+    for (i, value) in e.resolution.integers.iter().enumerate() {
+        if let Some(v) = value {
+            let (signal, sat, reference) = ids[i % ids.len()];
+            out += &format!(
+                "{},{},{},{sat},{reference},{v}\n",
+                o.time,
+                i / ids.len() + 1,
+                signal.tag()
+            );
+        }
+    }
+    out
+}
+
 /// Run `skyforge attitude`.
 pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
     let geometry = BodyGeometryFile::read(&args.geometry).map_err(|e| BadInput(e.to_string()))?;
@@ -134,12 +156,16 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
         read_nav_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let path = staged.file("attitude.csv");
-    let mut csv = std::io::BufWriter::new(
-        std::fs::File::create(&path)
-            .with_context(|| format!("cannot create {}", path.display()))?,
-    );
+    let ints_path = staged.file("ambiguities.csv");
+    let create = |p: &std::path::Path| {
+        std::fs::File::create(p)
+            .map(std::io::BufWriter::new)
+            .with_context(|| format!("cannot create {}", p.display()))
+    };
+    let (mut csv, mut ints) = (create(&path)?, create(&ints_path)?);
     let m = geometry.antennas.len() - 1;
     writeln!(csv, "{}", header(m))?;
+    writeln!(ints, "time_gpst,baseline,signal,sat,reference,integer")?;
     let (mut epochs, mut fixed, mut attitudes) = (0usize, 0usize, 0usize);
     let mut write_error = None;
     run_files(&files, ephemerides, &geometry, config, |o| {
@@ -149,16 +175,20 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
             attitudes += usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
         }
         if write_error.is_none() {
-            write_error = writeln!(csv, "{}", row(&o, m)).err();
+            write_error = writeln!(csv, "{}", row(&o, m))
+                .and_then(|()| write!(ints, "{}", integer_rows(&o)))
+                .err();
         }
     })
     .map_err(|e| BadInput(e.to_string()))?;
     if let Some(e) = write_error {
         return Err(e).with_context(|| format!("cannot write {}", path.display()));
     }
-    csv.flush()
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    drop(csv);
+    for (w, p) in [(csv, &path), (ints, &ints_path)] {
+        w.into_inner()
+            .map_err(|e| e.into_error())
+            .with_context(|| format!("cannot write {}", p.display()))?;
+    }
     let dir = staged.commit()?;
     println!("epochs     {epochs}");
     println!(
