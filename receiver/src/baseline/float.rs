@@ -47,11 +47,6 @@ pub struct Conditioned {
     pub held_statistic: f64,
 }
 
-/// Kronecker product `a (x) b`.
-fn kron(a: &DMatrix<f64>, b: &DMatrix<f64>) -> DMatrix<f64> {
-    a.kronecker(b)
-}
-
 /// Vectorised order: baseline 1's entries, then baseline 2's (vec of a column-major matrix).
 fn vec_of(m: &DMatrix<f64>) -> DVector<f64> {
     DVector::from_column_slice(m.as_slice())
@@ -99,22 +94,30 @@ impl FloatBaselines {
         vec_of(&self.ambiguities)
     }
 
+    /// `Q_M (x)` the block of the cofactor at `start` of size `shape`: the covariance of
+    /// the corresponding vec() quantities over all baselines.
+    fn covariance_block(&self, start: (usize, usize), shape: (usize, usize)) -> DMatrix<f64> {
+        self.model
+            .q_m
+            .kronecker(&self.cofactor.view(start, shape).into_owned())
+    }
+
     /// `Q_NN = Q_M (x) P_NN` (nm x nm), the covariance of [`Self::ambiguity_vector`].
     pub fn ambiguity_covariance(&self) -> DMatrix<f64> {
         let n = self.model.ambiguity_count();
-        kron(
-            &self.model.q_m,
-            &self.cofactor.view((0, 0), (n, n)).into_owned(),
-        )
+        self.covariance_block((0, 0), (n, n))
     }
 
     /// `Q_BB = Q_M (x) P_BB` (3m x 3m), the covariance of vec(B_hat).
     pub fn baseline_covariance(&self) -> DMatrix<f64> {
         let n = self.model.ambiguity_count();
-        kron(
-            &self.model.q_m,
-            &self.cofactor.view((n, n), (3, 3)).into_owned(),
-        )
+        self.covariance_block((n, n), (3, 3))
+    }
+
+    /// `Q_BN = Q_M (x) P_BN` (3m x nm), the covariance of vec(B_hat) with vec(N_hat).
+    fn baseline_ambiguity_covariance(&self) -> DMatrix<f64> {
+        let n = self.model.ambiguity_count();
+        self.covariance_block((n, 0), (3, n))
     }
 
     /// The free ambiguities conditioned on `held` (index into vec(N), integer).
@@ -159,9 +162,7 @@ impl FloatBaselines {
     /// integer vector `N` (eq. 2.4-64, `G = Q_BN Q_NN^{-1}`, 3m x nm), and the covariance of
     /// eq. 2.4-65 (3m x 3m), the same for every `N`.
     pub fn fix_gain(&self) -> Result<(DMatrix<f64>, DMatrix<f64>), BaselineError> {
-        let n = self.model.ambiguity_count();
-        let p_bn = self.cofactor.view((n, 0), (3, n)).into_owned();
-        let q_bn = kron(&self.model.q_m, &p_bn);
+        let q_bn = self.baseline_ambiguity_covariance();
         let chol = self
             .ambiguity_covariance()
             .cholesky()
@@ -191,7 +192,6 @@ impl FloatBaselines {
         z_t: &DMatrix<f64>,
         values: &[i64],
     ) -> Result<FixedBaselines, BaselineError> {
-        let n = self.model.ambiguity_count();
         let nm = self.ambiguities.len();
         if z_t.ncols() != nm || z_t.nrows() != values.len() {
             return Err(BaselineError::Dimension {
@@ -200,9 +200,7 @@ impl FloatBaselines {
                 found: z_t.ncols(),
             });
         }
-        let q_m = &self.model.q_m;
-        let p_bn = self.cofactor.view((n, 0), (3, n)).into_owned();
-        let q_bz = kron(q_m, &p_bn) * z_t.transpose();
+        let q_bz = self.baseline_ambiguity_covariance() * z_t.transpose();
         let q_zz = z_t * self.ambiguity_covariance() * z_t.transpose();
         let z_hat = z_t * self.ambiguity_vector();
         let dz = z_hat - DVector::from_iterator(values.len(), values.iter().map(|&v| v as f64));
