@@ -37,6 +37,24 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../thesis/t-5.4-2.toml"),
     },
     Bundled {
+        name: "thesis/t-1.2-2",
+        summary: "Thesis table 1.2-2: three GPS antennas on two 1 m baselines on the LEO, \
+                  observation level with a constant carrier-phase noise, LS attitude, 600 s",
+        text: include_str!("../thesis/t-1.2-2.toml"),
+    },
+    Bundled {
+        name: "thesis/t-1.2-3",
+        summary: "Thesis table 1.2-3: as thesis/t-1.2-2 at 1 mm, the true baselines 5 mm off \
+                  the nominal geometry on every axis",
+        text: include_str!("../thesis/t-1.2-3.toml"),
+    },
+    Bundled {
+        name: "thesis/t-5.4-3",
+        summary: "Thesis tables 5.4-3..5: real-time attitude, three GPS L1 antennas on two 1 m \
+                  baselines on the LEO, calibrated observation level at 45 dB-Hz, KF, 600 s",
+        text: include_str!("../thesis/t-5.4-3.toml"),
+    },
+    Bundled {
         name: "ground-static",
         summary: "Static ground site at 30 N 114 E, 50 m, 1 h, GPS + BeiDou, one antenna \
                   with a 10 deg elevation mask",

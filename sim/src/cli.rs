@@ -189,11 +189,14 @@ pub enum ValidateSuite {
     /// Reproduce the thesis tables (../shared/reference/THESIS_TARGETS.md).
     ///
     /// Prints thesis value, SkyForge value, ratio, tolerance and verdict for every row;
-    /// exits 0 whenever it ran, whatever the verdicts. Tables: V-1.2.1, T-3.2, T-3.3-R,
-    /// T-3.3-S, T-5.4-2. T-5.4-2 synthesises its bundled scenario (60 s, four recordings,
-    /// about 2 GB in the temporary directory) and runs the receiver on it.
+    /// exits 0 whenever it ran, whatever the verdicts. Tables: V-1.2.1, T-1.2-2, T-1.2-3,
+    /// T-3.2, T-3.3-R, T-3.3-S, T-5.4-2, T-5.4-3, T-5.4-4, T-5.4-5. T-5.4-2 synthesises its
+    /// bundled scenario (60 s, four recordings, about 2 GB in the temporary directory) and
+    /// runs the receiver on it; the attitude tables run observation-level scenarios on
+    /// eight seeds (seconds).
     Thesis {
-        /// Run only these table IDs (repeatable), e.g. --only V-1.2.1 --only T-5.4-2.
+        /// Run only these table IDs (repeatable), e.g. --only V-1.2.1 --only T-5.4-2; a group
+        /// such as T-1.2 selects its tables (T-1.2-2, T-1.2-3).
         #[arg(long, value_name = "ID")]
         only: Vec<String>,
         /// Write DIR/results.json.

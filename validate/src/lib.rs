@@ -3,6 +3,7 @@
 // Library code returns errors instead of panicking; tests may unwrap.
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
+pub mod attitude;
 pub mod calibrate;
 pub mod observables;
 pub mod pipeline;

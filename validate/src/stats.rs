@@ -34,6 +34,62 @@ impl Summary {
     }
 }
 
+/// One statistic measured on independent runs (one per seed): the mean over runs and its
+/// standard error. Runs are independent where samples within a run are not (loop and
+/// filter noise correlated over seconds, double differences sharing a reference), so the
+/// spread between runs gives an honest standard error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AcrossRuns {
+    pub mean: f64,
+    /// Standard deviation of the runs' values over `sqrt(runs)` (`None` for one run).
+    pub standard_error: Option<f64>,
+    pub min: f64,
+    pub max: f64,
+    pub runs: usize,
+}
+
+impl AcrossRuns {
+    /// The runs' `values`; `None` when empty or when any is NaN.
+    pub fn of(values: &[f64]) -> Option<Self> {
+        let s = Summary::of(values)?;
+        let n = values.len();
+        let standard_error = (n > 1).then(|| {
+            let var = values.iter().map(|v| (v - s.mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+            (var / n as f64).sqrt()
+        });
+        Some(Self {
+            mean: s.mean,
+            standard_error,
+            min: s.min,
+            max: s.max,
+            runs: n,
+        })
+    }
+
+    /// `mean +- se (min..max over n runs)`, values scaled by `scale` and printed with
+    /// `digits` decimals.
+    pub fn describe(&self, scale: f64, digits: usize) -> String {
+        let se = self
+            .standard_error
+            .map_or(String::new(), |e| format!(" +- {:.digits$}", e * scale));
+        format!(
+            "{:.digits$}{se} ({:.digits$}..{:.digits$} over {} runs)",
+            self.mean * scale,
+            self.min * scale,
+            self.max * scale,
+            self.runs
+        )
+    }
+}
+
+/// Root mean square of `values` (0 when empty).
+pub fn rms(values: &[f64]) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    (values.iter().map(|v| v * v).sum::<f64>() / values.len() as f64).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -46,5 +102,15 @@ mod tests {
         assert_eq!(s.median, 2.5);
         assert!(Summary::of(&[]).is_none());
         assert!(Summary::of(&[1.0, f64::NAN]).is_none());
+    }
+
+    #[test]
+    fn across_runs_standard_error_is_the_spread_over_root_n() {
+        let a = AcrossRuns::of(&[1.0, 3.0, 2.0, 2.0]).unwrap();
+        assert_eq!((a.mean, a.min, a.max, a.runs), (2.0, 1.0, 3.0, 4));
+        let sd = (2.0f64 / 3.0).sqrt();
+        assert!((a.standard_error.unwrap() - sd / 2.0).abs() < 1e-12);
+        assert!(AcrossRuns::of(&[5.0]).unwrap().standard_error.is_none());
+        assert_eq!(rms(&[3.0, -4.0]), (12.5f64).sqrt());
     }
 }

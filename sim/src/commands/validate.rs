@@ -25,8 +25,7 @@ pub fn thesis(
     let data_dir = data
         .or_else(|| std::env::var_os("SKYFORGE_DATA").map(PathBuf::from))
         .unwrap_or_else(|| PathBuf::from(DEFAULT_DATA_DIR));
-    let known = |id: &str| thesis::TABLES.iter().any(|t| t.eq_ignore_ascii_case(id));
-    if let Some(id) = only.iter().find(|id| !known(id)) {
+    if let Some(id) = only.iter().find(|id| !thesis::known(id)) {
         return Err(BadInput(format!(
             "unknown table {id:?}; known tables: {}",
             thesis::TABLES.join(", ")

@@ -2,6 +2,9 @@
 //! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
 //! printed number.
 
+pub mod attitude_noise;
+pub mod attitude_realtime;
+mod attitude_runs;
 pub mod fast_sync;
 mod geometry_run;
 pub mod loop_budget;
@@ -13,7 +16,10 @@ use crate::report::Row;
 use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
-pub const TABLES: &[&str] = &["V-1.2.1", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2"];
+pub const TABLES: &[&str] = &[
+    "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2", "T-5.4-3",
+    "T-5.4-4", "T-5.4-5",
+];
 
 /// Why a validation could not run.
 #[derive(Debug, thiserror::Error)]
@@ -49,23 +55,49 @@ pub struct Options {
     pub data_dir: Option<PathBuf>,
 }
 
+/// Whether `--only id` selects `table`: the same identifier, or a group of it (`T-1.2`
+/// selects `T-1.2-2` and `T-1.2-3`), ignoring case.
+fn selects(id: &str, table: &str) -> bool {
+    let (id, table) = (id.to_ascii_uppercase(), table.to_ascii_uppercase());
+    table == id
+        || table
+            .strip_prefix(&id)
+            .is_some_and(|rest| rest.starts_with('-'))
+}
+
+/// Whether `--only id` selects any table.
+pub fn known(id: &str) -> bool {
+    TABLES.iter().any(|t| selects(id, t))
+}
+
 /// Run the selected tables and return their rows; `starting` is told each table's ID
 /// before it runs (for progress output).
 pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, ValidateError> {
     for id in &opts.only {
-        if !TABLES.iter().any(|t| t.eq_ignore_ascii_case(id)) {
+        if !known(id) {
             return Err(ValidateError::UnknownTable {
                 id: id.clone(),
                 known: TABLES.join(", "),
             });
         }
     }
-    let wanted =
-        |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| id.eq_ignore_ascii_case(t));
+    let wanted = |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| selects(id, t));
     let mut rows = Vec::new();
     if wanted("V-1.2.1") {
         starting("V-1.2.1");
         rows.extend(visibility::rows(opts.data_dir.as_deref())?);
+    }
+    let (noise, offsets) = (
+        wanted(attitude_noise::TABLE_NOISE),
+        wanted(attitude_noise::TABLE_OFFSETS),
+    );
+    if noise || offsets {
+        starting(if noise {
+            attitude_noise::TABLE_NOISE
+        } else {
+            attitude_noise::TABLE_OFFSETS
+        });
+        rows.extend(attitude_noise::rows(noise, offsets)?);
     }
     if wanted("T-3.2") {
         starting("T-3.2");
@@ -83,5 +115,33 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
         starting(zero_baseline::TABLE);
         rows.extend(zero_baseline::rows_from_chain()?);
     }
+    let realtime: Vec<&str> = attitude_realtime::TABLES
+        .into_iter()
+        .filter(|t| wanted(t))
+        .collect();
+    if let Some(first) = realtime.first() {
+        starting(first);
+        let all = attitude_realtime::rows()?;
+        rows.extend(
+            all.into_iter()
+                .filter(|r| realtime.contains(&r.table.as_str())),
+        );
+    }
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::selects;
+
+    #[test]
+    fn only_selects_a_table_or_its_group() {
+        assert!(selects("t-1.2-2", "T-1.2-2"));
+        assert!(selects("T-1.2", "T-1.2-3"));
+        assert!(selects("T-5.4", "T-5.4-2"));
+        assert!(!selects("T-5.4-2", "T-5.4-3"));
+        assert!(!selects("T-1", "T-1.2-2"));
+        assert!(!selects("T-3.3", "T-3.2"));
+        assert!(!selects("T-3.3-", "T-3.3-R"));
+    }
 }

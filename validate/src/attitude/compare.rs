@@ -1,0 +1,275 @@
+//! The attitude chain (`receiver::relative`) over an observation-level run, compared with
+//! the truth of that run: every fixed integer against the true double-difference integer,
+//! the fixed baselines (ECEF and the master's NED) against the true ones, the attitude
+//! against the true yaw/pitch/roll from NED (thesis eqs. 2.5-3..2.5-6).
+
+use super::run::ObservationRun;
+use hifitime::Epoch;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::platform::PlatformState;
+use skyforge_receiver::relative::files::{
+    BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
+};
+use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
+use skyforge_signals::observation::ObsFile;
+use skyforge_signals::signal::Signal;
+use std::collections::HashMap;
+
+/// Estimate minus truth at one fixed epoch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct EpochErrors {
+    /// Seconds since the run's start.
+    pub t_s: f64,
+    /// Per baseline: ECEF X, Y, Z (m).
+    pub baseline_ecef_m: Vec<[f64; 3]>,
+    /// Per baseline: N, E, D (m) in the master's local frame.
+    pub baseline_ned_m: Vec<[f64; 3]>,
+    /// Yaw, pitch, roll (deg) where the attitude stage updated at this epoch.
+    pub attitude_deg: Option<[f64; 3]>,
+}
+
+/// The chain's outcome over a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ChainComparison {
+    /// Epochs of the master's observations.
+    pub epochs: usize,
+    /// Seconds from the start to the first fixed epoch.
+    pub first_fix_s: Option<f64>,
+    /// Epochs from the first fixed one on.
+    pub after_first_fix: usize,
+    /// The errors of every fixed epoch.
+    pub fixed: Vec<EpochErrors>,
+    /// Fixed integers compared with the truth's, and how many differed.
+    pub integers_checked: usize,
+    pub integers_wrong: usize,
+}
+
+impl ChainComparison {
+    /// Fixed epochs over epochs from the first fix on (0 without a fix).
+    pub fn fix_rate(&self) -> f64 {
+        self.fixed.len() as f64 / self.after_first_fix.max(1) as f64
+    }
+
+    /// Component `i` of baseline `k`'s ECEF (`ned` false) or NED errors.
+    pub fn baseline_axis(&self, k: usize, i: usize, ned: bool) -> Vec<f64> {
+        self.fixed
+            .iter()
+            .filter_map(|e| {
+                let v = if ned {
+                    &e.baseline_ned_m
+                } else {
+                    &e.baseline_ecef_m
+                };
+                v.get(k).map(|c| c[i])
+            })
+            .collect()
+    }
+
+    /// Attitude error of axis `i` (0 yaw, 1 pitch, 2 roll), deg.
+    pub fn attitude_axis(&self, i: usize) -> Vec<f64> {
+        self.fixed
+            .iter()
+            .filter_map(|e| e.attitude_deg.map(|a| a[i]))
+            .collect()
+    }
+}
+
+/// Measured minus true carrier phase (cycles) per (second, satellite, signal) of one
+/// antenna: its integer ambiguity plus noise.
+type PhaseOffsets = HashMap<(i64, SatId, Signal), f64>;
+
+fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
+    let second = |t: Epoch| (t - start).to_seconds().round() as i64;
+    let truth: HashMap<(i64, SatId, Signal), f64> = truth
+        .epochs
+        .iter()
+        .flat_map(|e| {
+            e.sats.iter().filter_map(move |r| {
+                Some(((second(e.time), r.sat, r.signal), r.carrier_phase_cycles?))
+            })
+        })
+        .collect();
+    measured
+        .epochs
+        .iter()
+        .flat_map(|e| {
+            let truth = &truth;
+            e.sats.iter().filter_map(move |r| {
+                let key = (second(e.time), r.sat, r.signal);
+                Some((key, r.carrier_phase_cycles? - truth.get(&key)?))
+            })
+        })
+        .collect()
+}
+
+/// The nominal body geometry of `run` as `skyforge synth` writes it.
+pub fn nominal_geometry(run: &ObservationRun) -> BodyGeometryFile {
+    BodyGeometryFile {
+        antennas: run
+            .antennas
+            .iter()
+            .zip(&run.nominal_body_m)
+            .map(|(name, p)| GeometryAntenna {
+                name: name.clone(),
+                position_body_m: [p.x, p.y, p.z],
+            })
+            .collect(),
+    }
+}
+
+/// The truth at one epoch: true ECEF and NED baselines and the true attitude from NED
+/// at the master.
+struct EpochTruth {
+    ecef: Vec<Vec3>,
+    ned: Vec<Vec3>,
+    attitude: YawPitchRoll,
+}
+
+fn epoch_truth(p: &PlatformState, true_body_m: &[Vec3]) -> EpochTruth {
+    let master = p.r_ecef_m + p.c_body_ecef * true_body_m[0];
+    let g = ecef_to_geodetic(&master);
+    let c_ned_ecef = c_ecef_ned(g.lat_rad, g.lon_rad);
+    let c_body_ned = c_ned_ecef * p.c_body_ecef;
+    let ecef: Vec<Vec3> = true_body_m[1..]
+        .iter()
+        .map(|b| p.c_body_ecef * (b - true_body_m[0]))
+        .collect();
+    EpochTruth {
+        ned: ecef.iter().map(|b| c_ned_ecef * b).collect(),
+        ecef,
+        attitude: YawPitchRoll::from_c_ref_body(&c_body_ned.transpose()),
+    }
+}
+
+/// Angle difference wrapped to [-180, 180) deg.
+fn wrap_deg(d: f64) -> f64 {
+    (d + 180.0).rem_euclid(360.0) - 180.0
+}
+
+/// The errors of a fixed epoch `e` against `truth`.
+fn errors(e: &RelativeEpoch, t_s: f64, truth: &EpochTruth) -> Option<EpochErrors> {
+    let fixed = e.fixed.as_ref()?;
+    let ned = e.fixed_ned.as_ref()?;
+    let diff = |a: &Vec3, b: &Vec3| [a.x - b.x, a.y - b.y, a.z - b.z];
+    let baseline_ecef_m = fixed
+        .baselines
+        .column_iter()
+        .zip(&truth.ecef)
+        .map(|(c, t)| diff(&c.into_owned(), t))
+        .collect();
+    let baseline_ned_m = ned
+        .baselines()
+        .iter()
+        .zip(&truth.ned)
+        .map(|(b, t)| diff(b, t))
+        .collect();
+    let attitude_deg = match (&e.attitude, &e.attitude_skipped) {
+        (Some(s), None) => {
+            let (a, t) = (s.angles, truth.attitude);
+            Some([
+                wrap_deg((a.yaw_rad - t.yaw_rad).to_degrees()),
+                (a.pitch_rad - t.pitch_rad).to_degrees(),
+                wrap_deg((a.roll_rad - t.roll_rad).to_degrees()),
+            ])
+        }
+        _ => None,
+    };
+    Some(EpochErrors {
+        t_s,
+        baseline_ecef_m,
+        baseline_ned_m,
+        attitude_deg,
+    })
+}
+
+/// Each fixed integer of `e` against the truth's: (checked, wrong).
+fn check_integers(e: &RelativeEpoch, second: i64, offsets: &[PhaseOffsets]) -> (usize, usize) {
+    let ids: Vec<_> = e.float.model.layout.ambiguity_ids().collect();
+    let (mut checked, mut wrong) = (0, 0);
+    for (i, value) in e.resolution.integers.iter().enumerate() {
+        let Some(v) = value else { continue };
+        let (signal, sat, reference) = ids[i % ids.len()];
+        let rover = i / ids.len() + 1;
+        let d = |a: usize, s: SatId| offsets[a].get(&(second, s, signal)).copied();
+        let dd =
+            (|| Some(d(rover, sat)? - d(0, sat)? - (d(rover, reference)? - d(0, reference)?)))();
+        if let Some(dd) = dd {
+            checked += 1;
+            wrong += usize::from(dd.round() as i64 != *v);
+        }
+    }
+    (checked, wrong)
+}
+
+/// Run the chain with `config` over `run` with `geometry` (master first; the run's
+/// nominal geometry unless a study says otherwise) and compare with the truth.
+pub fn compare(
+    run: &ObservationRun,
+    geometry: &BodyGeometryFile,
+    config: RelativeConfig,
+) -> Result<ChainComparison, FilesError> {
+    let start = run.start;
+    let offsets: Vec<PhaseOffsets> = run
+        .measured
+        .iter()
+        .zip(&run.truth)
+        .map(|(m, t)| phase_offsets(m, t, start))
+        .collect();
+    let mut out = ChainComparison {
+        epochs: 0,
+        first_fix_s: None,
+        after_first_fix: 0,
+        fixed: Vec::new(),
+        integers_checked: 0,
+        integers_wrong: 0,
+    };
+    run_files(
+        &run.measured,
+        run.ephemerides.clone(),
+        geometry,
+        config,
+        |o: EpochOutcome| {
+            out.epochs += 1;
+            let t_s = (o.time - start).to_seconds();
+            let Ok(e) = &o.result else {
+                out.after_first_fix += usize::from(out.first_fix_s.is_some());
+                return;
+            };
+            let is_fixed = e.resolution.status == AmbiguityStatus::Fixed;
+            if is_fixed && out.first_fix_s.is_none() {
+                out.first_fix_s = Some(t_s);
+            }
+            if out.first_fix_s.is_none() {
+                return;
+            }
+            out.after_first_fix += 1;
+            let (checked, wrong) = check_integers(e, t_s.round() as i64, &offsets);
+            out.integers_checked += checked;
+            out.integers_wrong += wrong;
+            let Some(p) = run.platform_at(t_s) else {
+                return;
+            };
+            if is_fixed {
+                let truth = epoch_truth(p, &run.true_body_m);
+                out.fixed.extend(errors(e, t_s, &truth));
+            }
+        },
+    )?;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn wrapped_differences() {
+        assert!((wrap_deg(359.0) + 1.0).abs() < 1e-12);
+        assert!((wrap_deg(-181.0) - 179.0).abs() < 1e-12);
+        assert_eq!(wrap_deg(0.5), 0.5);
+    }
+}

@@ -1,0 +1,9 @@
+//! The attitude chain against the truth: an observation-level run in memory ([`run`]) and
+//! the chain's integers, baselines and attitude compared with that run's truth
+//! ([`compare`]).
+
+pub mod compare;
+pub mod run;
+
+pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
+pub use run::{ObservationRun, RunError, observation_run};
