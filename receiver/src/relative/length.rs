@@ -1,7 +1,7 @@
 //! The baseline-length-constrained integer least-squares problem: the GNSS compass of
 //! Teunissen (2010, "Integer least-squares theory for the GNSS compass", J Geod
-//! 84:433-447), the constrained LAMBDA (C-LAMBDA) of Park & Teunissen (2009) and Giorgi,
-//! Teunissen & Buist (2010), applied baseline by baseline: the integers `z` minimising
+//! 84:433-447), the constrained LAMBDA (C-LAMBDA) of Park & Teunissen and Giorgi et al.,
+//! applied baseline by baseline: the integers `z` minimising
 //!
 //! `C(z) = ||a_hat - z||^2_{Q_a} + sum_k min_{||b_k|| = l_k} ||b_hat_k(z) - b_k||^2_{W_k}`,
 //!
