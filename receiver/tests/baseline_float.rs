@@ -2,140 +2,15 @@
 //! known plane-wave geometry: exact recovery without noise, and the predicted covariances
 //! (eqs. 2.4-63, 2.4-65) against Monte Carlo scatter with the noise of eqs. 2.4-9/2.4-10.
 
-use nalgebra::{DMatrix, DVector, Vector3};
-use rand::{Rng, SeedableRng};
+mod baseline_support;
+
+use baseline_support::{clocks, noise_model, observe, scene, solve, true_integers};
+use nalgebra::{DMatrix, DVector};
+use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
-use rand_distr::{Distribution, StandardNormal};
-use skyforge_orbits::ephemeris::SatId;
-use skyforge_receiver::baseline::{
-    BaselineError, DdLayout, DdModel, ElevationNoise, FloatBaselines, LineOfSight, NoiseModel,
-};
+use skyforge_receiver::baseline::{BaselineError, DdLayout, FloatBaselines};
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::signal::Signal;
-
-/// A platform with three antennas (two 1 m baselines) and satellites spread over the sky.
-struct Scene {
-    views: Vec<LineOfSight>,
-    /// Baselines from antenna 0 (m, ECEF).
-    baselines: [Vector3<f64>; 2],
-    /// Integer phase offsets per antenna and satellite (cycles).
-    offsets: Vec<[i64; 3]>,
-    /// Geometric range from antenna 0 (m).
-    ranges: Vec<f64>,
-}
-
-fn scene(rng: &mut ChaCha8Rng, gps: usize, bds: usize) -> Scene {
-    let mut views = Vec::new();
-    let sats = (1..=gps as u8)
-        .map(SatId::gps)
-        .chain((1..=bds as u8).map(SatId::beidou));
-    for sat in sats {
-        let elevation: f64 = rng.random_range(0.15..1.5);
-        let azimuth: f64 = rng.random_range(0.0..std::f64::consts::TAU);
-        // A local frame with z up is enough: the model only sees directions.
-        let los = Vector3::new(
-            elevation.cos() * azimuth.cos(),
-            elevation.cos() * azimuth.sin(),
-            elevation.sin(),
-        );
-        views.push(LineOfSight {
-            sat,
-            los_ecef: los,
-            elevation_rad: elevation,
-        });
-    }
-    let n = views.len();
-    Scene {
-        views,
-        baselines: [
-            Vector3::new(0.98, 0.1, -0.17),
-            Vector3::new(-0.05, 1.01, 0.03),
-        ],
-        offsets: (0..n)
-            .map(|_| std::array::from_fn(|_| rng.random_range(-1_000_000..1_000_000)))
-            .collect(),
-        ranges: (0..n).map(|_| rng.random_range(2.0e7..2.6e7)).collect(),
-    }
-}
-
-fn signal_of(sat: SatId) -> Signal {
-    Signal::of_system(sat.system)
-}
-
-/// Observations of antenna `a`: plane-wave range `rho - l . b_a`, its integer offset, a
-/// receiver clock of the antenna and a satellite clock shared by all, plus noise from
-/// `noise` when given.
-fn observe(
-    scene: &Scene,
-    a: usize,
-    clocks_m: (f64, &[f64]),
-    noise: Option<(&NoiseModel, &mut ChaCha8Rng)>,
-) -> Vec<ObsRecord> {
-    let mut noise = noise;
-    let position = if a == 0 {
-        Vector3::zeros()
-    } else {
-        scene.baselines[a - 1]
-    };
-    scene
-        .views
-        .iter()
-        .enumerate()
-        .map(|(i, v)| {
-            let signal = signal_of(v.sat);
-            let lambda = signal.wavelength_m();
-            let range = scene.ranges[i] - v.los_ecef.dot(&position) + clocks_m.0 - clocks_m.1[i];
-            let (dp, dc) = match noise.as_mut() {
-                Some((model, rng)) => {
-                    let e = v.elevation_rad;
-                    let g1: f64 = StandardNormal.sample(*rng);
-                    let g2: f64 = StandardNormal.sample(*rng);
-                    (g1 * model.phase.sigma_m(e), g2 * model.code.sigma_m(e))
-                }
-                None => (0.0, 0.0),
-            };
-            let phase = (range + dp) / lambda + scene.offsets[i][a] as f64;
-            ObsRecord::complete(v.sat, signal, range + dc, phase, 0.0, 45.0)
-        })
-        .collect()
-}
-
-fn noise_model() -> NoiseModel {
-    // assumed: the thesis's elevation model with a0 = 10, elev0 = 10 deg (eq. 2.4-10 has
-    // no printed values); zenith sigmas 3 mm / 0.3 m.
-    let e = |s| ElevationNoise {
-        sigma0_m: s,
-        a0: 10.0,
-        elev0_deg: 10.0,
-    };
-    NoiseModel::new(e(0.003), e(0.3))
-}
-
-fn solve(scene: &Scene, obs: &[Vec<ObsRecord>], noise: &NoiseModel) -> FloatBaselines {
-    let refs: Vec<&[ObsRecord]> = obs.iter().map(Vec::as_slice).collect();
-    let signals = [Signal::GpsL1Ca, Signal::BdsB1I];
-    let layout = DdLayout::select(&refs, &scene.views, &signals).unwrap();
-    let model = DdModel::new(layout, refs.len(), noise).unwrap();
-    FloatBaselines::solve(model, &refs).unwrap()
-}
-
-/// The true double-difference integers, in the layout's order, baseline by baseline.
-fn true_integers(scene: &Scene, float: &FloatBaselines) -> Vec<i64> {
-    let index = |sat: SatId| scene.views.iter().position(|v| v.sat == sat).unwrap();
-    let mut out = Vec::new();
-    for k in 1..=2 {
-        for (_, sat, reference) in float.model.layout.ambiguity_ids() {
-            let (i, r) = (index(sat), index(reference));
-            let sd = |j: usize| scene.offsets[j][k] - scene.offsets[j][0];
-            out.push(sd(i) - sd(r));
-        }
-    }
-    out
-}
-
-fn clocks(rng: &mut ChaCha8Rng, n: usize) -> Vec<f64> {
-    (0..n).map(|_| rng.random_range(-3e5..3e5)).collect()
-}
 
 #[test]
 fn noise_free_geometry_is_recovered_exactly_with_clocks_cancelled() {

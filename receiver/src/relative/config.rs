@@ -23,8 +23,9 @@ pub struct RelativeConfig {
     /// Keep accepted integers between epochs while the phase stays locked.
     pub hold: bool,
     /// `geometry`: search the integers under the known body geometry (multivariate
-    /// constrained ILS, two or more baselines); `none`: plain LAMBDA with the ratio test
-    /// and the success-rate floor.
+    /// constrained ILS, two or more baselines); `length`: under the known length of each
+    /// baseline only (C-LAMBDA per baseline, any number of baselines); `none`: plain
+    /// LAMBDA with the ratio test and the success-rate floor.
     pub constraint: Constraint,
     /// Held integers are dropped when their fit to the epoch's float solution exceeds
     /// the chi-square quantile of this false-alarm probability.
@@ -37,8 +38,12 @@ pub struct RelativeConfig {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Constraint {
+    /// Plain LAMBDA.
     None,
+    /// The whole body geometry ([`super::multivariate`]).
     Geometry,
+    /// The baseline lengths ([`super::length`]).
+    Length,
 }
 
 fn signals<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<Signal>, D::Error> {
@@ -125,5 +130,30 @@ impl RelativeConfig {
             return Err(error(&"relative.signals: at least one signal"));
         }
         Ok(config)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn constraint(text: &str) -> Result<Constraint, String> {
+        let file: RelativeFile = toml::from_str(text).map_err(|e| e.to_string())?;
+        Ok(file.relative.unwrap_or_default().constraint)
+    }
+
+    #[test]
+    fn constraint_values_parse_in_lowercase() {
+        for (value, expected) in [
+            ("none", Constraint::None),
+            ("geometry", Constraint::Geometry),
+            ("length", Constraint::Length),
+        ] {
+            let text = format!("[relative]\nconstraint = \"{value}\"\n");
+            assert_eq!(constraint(&text), Ok(expected), "{value}");
+        }
+        assert_eq!(constraint(""), Ok(Constraint::Geometry));
+        let bad = constraint("[relative]\nconstraint = \"Length\"\n").unwrap_err();
+        assert!(bad.contains("length"), "{bad}");
     }
 }

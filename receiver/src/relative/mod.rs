@@ -6,6 +6,7 @@
 
 pub mod config;
 pub mod files;
+pub mod length;
 pub mod multivariate;
 pub mod resolve;
 

@@ -9,7 +9,9 @@
 //! Solved exactly by search and shrink: candidates are taken in increasing
 //! `||a_hat - z||^2` (LAMBDA's enumeration), each scored with its rotation fit, until the
 //! next candidate's ambiguity term alone exceeds the second-best score so far, so that no
-//! unseen candidate can beat the best two.
+//! unseen candidate can beat the best two. The loop, [`search_with_misfit`], takes the
+//! misfit as a parameter and is shared with the baseline-length constraint of
+//! [`super::length`].
 
 use crate::ambiguity::{MAX_CANDIDATES, lambda};
 use crate::attitude::frames::ned_baselines_from_ecef;
@@ -82,6 +84,27 @@ pub fn search(
     geometry: &BodyGeometry,
     master_ecef_m: &Vec3,
 ) -> Result<ConstrainedFix, ConstrainedError> {
+    search_with_misfit(float, cond, held, |b, covariance| {
+        rotation_misfit(b, covariance, geometry, master_ecef_m)
+    })
+}
+
+/// The search and shrink shared by the constraints ([`search`] here, the baseline lengths
+/// of [`super::length::search`]): the best and second-best of
+/// `C(z) = ||a_hat - z||^2_{Q_a} + misfit(b(z), Q_b)` over the free ambiguities `cond` of
+/// `float` (the held ones, `held`, kept at their values). `misfit(b, q_b)` scores the
+/// baselines `b(z)` of one candidate (vec, ECEF, eq. 2.4-64) given their covariance `q_b`
+/// (eq. 2.4-65, the same for every candidate); it must be non-negative, and `None`
+/// (nothing fits) skips the candidate.
+pub fn search_with_misfit<F>(
+    float: &FloatBaselines,
+    cond: &Conditioned,
+    held: &[(usize, i64)],
+    mut misfit: F,
+) -> Result<ConstrainedFix, ConstrainedError>
+where
+    F: FnMut(&DVector<f64>, &DMatrix<f64>) -> Option<f64>,
+{
     let (gain, covariance) = float.fix_gain()?;
     let a_hat = float.ambiguity_vector();
     let b_hat = float.baseline_vector();
@@ -113,10 +136,10 @@ pub fn search(
             }
             let b = &b_hat - &gain * (&a_hat - &full);
             scored += 1;
-            let Some(misfit) = rotation_misfit(&b, &covariance, geometry, master_ecef_m) else {
+            let Some(fit) = misfit(&b, &covariance) else {
                 continue;
             };
-            let cost = c.squared_norm + misfit;
+            let cost = c.squared_norm + fit;
             match &best {
                 Some((b_cost, _)) if cost >= *b_cost => second = second.min(cost),
                 _ => {

@@ -4,7 +4,7 @@
 //! of decorrelated combinations (partial fixing), or none.
 
 use super::config::Constraint;
-use super::{RelativeConfig, RelativeError, multivariate};
+use super::{RelativeConfig, RelativeError, length, multivariate};
 use crate::ambiguity::{lambda, partial};
 use crate::attitude::BodyGeometry;
 use crate::baseline::{AmbiguityHold, FixedBaselines, FloatBaselines};
@@ -28,7 +28,7 @@ pub enum AmbiguityStatus {
 pub struct Resolution {
     pub status: AmbiguityStatus,
     /// Second-best over best score of the search on the free ambiguities: squared norms
-    /// (LAMBDA), or constrained scores under the body geometry.
+    /// (LAMBDA), or constrained scores under the body geometry or the baseline lengths.
     pub ratio: Option<f64>,
     /// Bootstrapped success rate of the free (decorrelated) problem; 1 when none was free.
     pub success_rate: f64,
@@ -63,8 +63,10 @@ fn unit_rows(indices: &[usize], nm: usize) -> DMatrix<f64> {
 
 /// Resolve the ambiguities of `float`, using and updating `hold`. With `constraint` (the
 /// body geometry and the master's position) and `config.constraint =
-/// Constraint::Geometry`, the free ambiguities are searched under the geometry
-/// ([`super::multivariate`]) and accepted by the ratio of its two best scores.
+/// Constraint::Geometry` (two or more baselines), the free ambiguities are searched under
+/// the geometry ([`super::multivariate`]); with `Constraint::Length`, under the
+/// baselines' lengths ([`super::length`]); either is accepted when its search is
+/// exhaustive and the ratio of its two best scores reaches `config.ratio_threshold`.
 pub fn resolve(
     float: &FloatBaselines,
     hold: &mut AmbiguityHold,
@@ -106,11 +108,12 @@ pub fn resolve(
         });
     }
     let search = lambda(&cond.ambiguities, &cond.covariance, 2)?;
-    let geometric = match constraint {
-        Some((geometry, master))
-            if config.constraint == Constraint::Geometry && geometry.len() >= 2 =>
-        {
+    let geometric = match (constraint, config.constraint) {
+        (Some((geometry, master)), Constraint::Geometry) if geometry.len() >= 2 => {
             multivariate::search(float, &cond, &held, geometry, master).ok()
+        }
+        (Some((geometry, _)), Constraint::Length) => {
+            length::search(float, &cond, &held, geometry).ok()
         }
         _ => None,
     };
