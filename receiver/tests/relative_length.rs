@@ -73,7 +73,7 @@ fn length_constraint_finds_the_integers_at_least_as_often_as_lambda() {
             let (float, truth) = epoch(70_000 + 1000 * gps as u64 + i, gps, vec![baseline]);
             let cond = float.conditioned(&[]).unwrap();
             let plain = lambda(&cond.ambiguities, &cond.covariance, 2).unwrap();
-            let constrained = length::search(&float, &cond, &[], &geometry).unwrap();
+            let constrained = length::search(&float, &cond, &[], &geometry, f64::INFINITY).unwrap();
             t.draws += 1;
             let lambda_ok = plain.best().integers == truth;
             let length_ok = constrained.integers == truth;
@@ -100,7 +100,14 @@ fn length_constraint_finds_the_integers_at_least_as_often_as_lambda() {
                 Some((&geometry, &Vector3::new(4.0e6, 3.0e6, 3.5e6))),
             )
             .unwrap();
-            assert_eq!(r.ratio, Some(constrained.ratio()));
+            // resolve() stops the enumeration once the ratio test is decided: the same
+            // verdict and integers as the fully enumerated search, its ratio a lower
+            // bound of the full one's.
+            let decided =
+                length::search(&float, &cond, &[], &geometry, config.ratio_threshold).unwrap();
+            assert_eq!(r.ratio, Some(decided.ratio()));
+            assert!(decided.ratio() <= constrained.ratio());
+            assert_eq!(decided.integers, constrained.integers);
             assert_eq!(r.status == AmbiguityStatus::Fixed, accepted);
             if accepted {
                 let fixed: Vec<i64> = r.integers.iter().map(|v| v.unwrap()).collect();
@@ -139,11 +146,11 @@ fn two_baselines_lambda_length_and_geometry_side_by_side() {
         let (float, truth) = epoch(90_000 + i, 6, baselines.clone());
         let cond = float.conditioned(&[]).unwrap();
         let plain = lambda(&cond.ambiguities, &cond.covariance, 2).unwrap();
-        let by_length = length::search(&float, &cond, &[], &geometry).unwrap();
+        let by_length = length::search(&float, &cond, &[], &geometry, f64::INFINITY).unwrap();
         draws += 1;
         plain_ok += usize::from(plain.best().integers == truth);
         length_ok += usize::from(by_length.integers == truth);
-        match multivariate::search(&float, &cond, &[], &geometry, &master) {
+        match multivariate::search(&float, &cond, &[], &geometry, &master, f64::INFINITY) {
             Ok(g) => geometry_ok += usize::from(g.integers == truth),
             Err(_) => geometry_failed += 1,
         }

@@ -74,6 +74,60 @@ fn normal_equations(
     )
 }
 
+/// The Cholesky factor of `Q_BB` after checking the baselines fit the geometry (m >= 2).
+fn weight_factor(
+    geometry: &BodyGeometry,
+    measured: &NedBaselines,
+) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, AttitudeError> {
+    geometry.check_count(measured)?;
+    if geometry.len() < 2 {
+        return Err(AttitudeError::SingleBaseline);
+    }
+    measured
+        .covariance()
+        .clone()
+        .cholesky()
+        .ok_or_else(|| AttitudeError::Covariance("Q_BB is not positive definite".into()))
+}
+
+/// Steps below this (rad) end [`misfit_upper_bound`]'s iteration: the misfit then changes
+/// by far less than any candidate score difference.
+const MISFIT_STEP_RAD: f64 = 1e-10;
+
+/// The smallest weighted misfit `r^T Q^-1 r` (eq. 2.5-9's cost) over the Gauss-Newton
+/// iterates from the Wahba start, at most `max_iterations` steps: the LS misfit where the
+/// iteration converges, an upper bound of it where it does not (a large-residual problem
+/// such as a wrong integer candidate's baselines, on which Gauss-Newton converges slowly
+/// or oscillates).
+pub fn misfit_upper_bound(
+    geometry: &BodyGeometry,
+    measured: &NedBaselines,
+    max_iterations: usize,
+) -> Result<f64, AttitudeError> {
+    let q_chol = weight_factor(geometry, measured)?;
+    let mut xi = wahba_attitude(geometry, measured)?;
+    let mut best = f64::INFINITY;
+    for iteration in 0..=max_iterations {
+        let (n, u, r) = normal_equations(geometry, measured, &q_chol, &xi);
+        best = best.min(r.dot(&q_chol.solve(&r)));
+        if iteration == max_iterations {
+            break;
+        }
+        let Some(step) = n.cholesky().map(|c| c.solve(&u)) else {
+            break;
+        };
+        if !step.iter().all(|v| v.is_finite()) || step.amax() < MISFIT_STEP_RAD {
+            break;
+        }
+        xi = YawPitchRoll::new(
+            xi.yaw_rad + step[0],
+            xi.pitch_rad + step[1],
+            xi.roll_rad + step[2],
+        );
+    }
+    Ok(best)
+}
+
 /// The LS attitude of one epoch (eqs. 2.5-9..2.5-13). `start`: the first `xi_0`; `None`
 /// starts from the Wahba solution. Needs m >= 2 baselines.
 pub fn solve(
@@ -83,15 +137,7 @@ pub fn solve(
     config: &LsConfig,
 ) -> Result<AttitudeEstimate, AttitudeError> {
     config.check()?;
-    geometry.check_count(measured)?;
-    if geometry.len() < 2 {
-        return Err(AttitudeError::SingleBaseline);
-    }
-    let q_chol = measured
-        .covariance()
-        .clone()
-        .cholesky()
-        .ok_or_else(|| AttitudeError::Covariance("Q_BB is not positive definite".into()))?;
+    let q_chol = weight_factor(geometry, measured)?;
     let mut xi = match start {
         Some(s) => {
             if ![s.yaw_rad, s.pitch_rad, s.roll_rad]
@@ -174,6 +220,39 @@ mod tests {
         let e = super::super::angle_error(&est.angles, &truth);
         assert!(e.amax() < 1e-12, "{e:?}");
         assert!(est.chi_square < 1e-15);
+    }
+
+    /// Baselines of `truth` on `g` with `error` added to the first (m), covariance 1 mm^2.
+    fn measured(g: &BodyGeometry, truth: YawPitchRoll, error: Vec3) -> NedBaselines {
+        let mut b: Vec<Vec3> = g
+            .baselines()
+            .iter()
+            .map(|b| truth.c_body_ref() * b)
+            .collect();
+        b[0] += error;
+        NedBaselines::new(&b, DMatrix::identity(6, 6) * 1e-6).unwrap()
+    }
+
+    #[test]
+    fn misfit_upper_bound_is_the_ls_misfit_where_ls_converges() {
+        let g = BodyGeometry::new(&[Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]).unwrap();
+        let truth = YawPitchRoll::new(0.4, -0.2, 0.1);
+        // Millimetre noise (the right integers) and 19 cm (a wrong integer on one
+        // baseline, a large-residual problem).
+        for error in [Vec3::new(1e-3, -2e-3, 1.5e-3), Vec3::new(0.19, 0.0, -0.19)] {
+            let m = measured(&g, truth, error);
+            let loose = LsConfig {
+                tolerance_rad: 1e-9,
+                max_iterations: 1000,
+            };
+            let ls = solve(&g, &m, None, &loose).unwrap().chi_square;
+            let bound = misfit_upper_bound(&g, &m, 10).unwrap();
+            assert!(
+                bound >= ls * (1.0 - 1e-9),
+                "{bound} below the LS misfit {ls}"
+            );
+            assert!(bound <= ls * (1.0 + 1e-6), "{bound} vs {ls}");
+        }
     }
 
     #[test]

@@ -275,12 +275,14 @@ impl LengthMisfit {
 
 /// The length-constrained best and second-best integers of the free ambiguities `cond`
 /// of `float` (the held ones, `held`, kept at their values), the lengths taken from
-/// `geometry` (one per baseline of `float`).
+/// `geometry` (one per baseline of `float`); `accept_ratio` as in
+/// [`search_with_misfit`].
 pub fn search(
     float: &FloatBaselines,
     cond: &Conditioned,
     held: &[(usize, i64)],
     geometry: &BodyGeometry,
+    accept_ratio: f64,
 ) -> Result<ConstrainedFix, ConstrainedError> {
     let m = float.model.baseline_count();
     if geometry.len() != m {
@@ -293,7 +295,7 @@ pub fn search(
     let lengths: Vec<f64> = geometry.baselines().iter().map(|b| b.norm()).collect();
     // Q_b(z) is the same for every candidate: its spheres are built on the first call.
     let mut spheres: Option<Option<LengthMisfit>> = None;
-    search_with_misfit(float, cond, held, |b, covariance| {
+    search_with_misfit(float, cond, held, accept_ratio, |b, covariance| {
         spheres
             .get_or_insert_with(|| LengthMisfit::new(covariance, &lengths))
             .as_ref()?

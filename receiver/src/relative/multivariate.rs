@@ -6,7 +6,8 @@
 //! `C(z) = ||a_hat - z||^2_{Q_a} + min_R ||b(z) - vec(R B_0)||^2_{Q_b(z)}`,
 //!
 //! with `b(z)` the baselines given `z` (eq. 2.4-64) and `B_0` the known body geometry.
-//! Solved exactly by search and shrink: candidates are taken in increasing
+//! Solved by search and shrink (exactly, up to the rotation fit of a candidate whose
+//! Gauss-Newton iteration does not converge, scored by an upper bound of its misfit): candidates are taken in increasing
 //! `||a_hat - z||^2` (LAMBDA's enumeration), each scored with its rotation fit, until the
 //! next candidate's ambiguity term alone exceeds the second-best score so far, so that no
 //! unseen candidate can beat the best two. The loop, [`search_with_misfit`], takes the
@@ -15,7 +16,7 @@
 
 use crate::ambiguity::{MAX_CANDIDATES, lambda};
 use crate::attitude::frames::ned_baselines_from_ecef;
-use crate::attitude::least_squares::{LsConfig, solve};
+use crate::attitude::least_squares::misfit_upper_bound;
 use crate::attitude::{AttitudeError, BodyGeometry};
 use crate::baseline::{BaselineError, Conditioned, FloatBaselines};
 use nalgebra::{DMatrix, DVector};
@@ -55,9 +56,14 @@ pub enum ConstrainedError {
     Attitude(#[from] AttitudeError),
 }
 
+/// Gauss-Newton steps allowed per candidate: the right candidate's small-residual fit
+/// converges in a few from the Wahba start; a wrong one's may not converge at all.
+const MISFIT_ITERATIONS: usize = 10;
+
 /// Score of the baselines `b` (vec, ECEF) against the geometry: the weighted misfit of
-/// the best rotation (LS attitude in the master's NED frame), or `None` when no rotation
-/// fits (degenerate).
+/// the best rotation (LS attitude in the master's NED frame; an upper bound of it where
+/// the fit does not converge within [`MISFIT_ITERATIONS`], which can only raise a
+/// candidate's score), or `None` when no rotation fits (degenerate).
 fn rotation_misfit(
     b: &DVector<f64>,
     covariance: &DMatrix<f64>,
@@ -70,21 +76,21 @@ fn rotation_misfit(
         .map(|c| Vec3::new(c[0], c[1], c[2]))
         .collect();
     let ned = ned_baselines_from_ecef(&baselines, covariance, master_ecef_m).ok()?;
-    solve(geometry, &ned, None, &LsConfig::default())
-        .ok()
-        .map(|e| e.chi_square)
+    misfit_upper_bound(geometry, &ned, MISFIT_ITERATIONS).ok()
 }
 
 /// The constrained best and second-best integers of the free ambiguities `cond` of
-/// `float` (the held ones, `held`, kept at their values).
+/// `float` (the held ones, `held`, kept at their values); `accept_ratio` as in
+/// [`search_with_misfit`].
 pub fn search(
     float: &FloatBaselines,
     cond: &Conditioned,
     held: &[(usize, i64)],
     geometry: &BodyGeometry,
     master_ecef_m: &Vec3,
+    accept_ratio: f64,
 ) -> Result<ConstrainedFix, ConstrainedError> {
-    search_with_misfit(float, cond, held, |b, covariance| {
+    search_with_misfit(float, cond, held, accept_ratio, |b, covariance| {
         rotation_misfit(b, covariance, geometry, master_ecef_m)
     })
 }
@@ -96,10 +102,16 @@ pub fn search(
 /// baselines `b(z)` of one candidate (vec, ECEF, eq. 2.4-64) given their covariance `q_b`
 /// (eq. 2.4-65, the same for every candidate); it must be non-negative, and `None`
 /// (nothing fits) skips the candidate.
+///
+/// The enumeration grows until the best two are proven, or until the best is proven and
+/// the lower bound of the second-best score already reaches `accept_ratio` times it (the
+/// ratio test's verdict is then decided: more candidates could only tighten the bound);
+/// `f64::INFINITY` always proves both.
 pub fn search_with_misfit<F>(
     float: &FloatBaselines,
     cond: &Conditioned,
     held: &[(usize, i64)],
+    accept_ratio: f64,
     mut misfit: F,
 ) -> Result<ConstrainedFix, ConstrainedError>
 where
@@ -158,8 +170,9 @@ where
         // A lower bound of the true second-best score.
         let second_bound = second.min(unseen);
         let proven = cost <= unseen && second <= unseen;
+        let decided = cost <= unseen && second_bound >= accept_ratio * cost;
         let could_pass_with_more = second_bound < second && count < MAX_CANDIDATES;
-        if !proven && could_pass_with_more {
+        if !proven && !decided && could_pass_with_more {
             count = (count * 4).min(MAX_CANDIDATES);
             continue;
         }

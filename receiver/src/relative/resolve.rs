@@ -110,10 +110,18 @@ pub fn resolve(
     let search = lambda(&cond.ambiguities, &cond.covariance, 2)?;
     let geometric = match (constraint, config.constraint) {
         (Some((geometry, master)), Constraint::Geometry) if geometry.len() >= 2 => {
-            multivariate::search(float, &cond, &held, geometry, master).ok()
+            multivariate::search(
+                float,
+                &cond,
+                &held,
+                geometry,
+                master,
+                config.ratio_threshold,
+            )
+            .ok()
         }
         (Some((geometry, _)), Constraint::Length) => {
-            length::search(float, &cond, &held, geometry).ok()
+            length::search(float, &cond, &held, geometry, config.ratio_threshold).ok()
         }
         _ => None,
     };

@@ -46,6 +46,9 @@ pub struct ChainComparison {
     /// Fixed integers compared with the truth's, and how many differed.
     pub integers_checked: usize,
     pub integers_wrong: usize,
+    /// Epochs whose every ambiguity was fixed, and those of them with a wrong integer.
+    pub fixed_epochs: usize,
+    pub fixed_epochs_wrong: usize,
 }
 
 impl ChainComparison {
@@ -226,6 +229,8 @@ pub fn compare(
         fixed: Vec::new(),
         integers_checked: 0,
         integers_wrong: 0,
+        fixed_epochs: 0,
+        fixed_epochs_wrong: 0,
     };
     run_files(
         &run.measured,
@@ -250,6 +255,10 @@ pub fn compare(
             let (checked, wrong) = check_integers(e, t_s.round() as i64, &offsets);
             out.integers_checked += checked;
             out.integers_wrong += wrong;
+            if is_fixed {
+                out.fixed_epochs += 1;
+                out.fixed_epochs_wrong += usize::from(wrong > 0);
+            }
             let Some(p) = run.platform_at(t_s) else {
                 return;
             };

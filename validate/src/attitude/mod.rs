@@ -4,6 +4,9 @@
 
 pub mod compare;
 pub mod run;
+pub mod seeds;
+pub mod success;
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
 pub use run::{ObservationRun, RunError, observation_run};
+pub use seeds::seed_runs;

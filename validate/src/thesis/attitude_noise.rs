@@ -2,7 +2,7 @@
 //! (the effect of antenna geometry offsets, table 1.2-3): the bundled scenarios
 //! [`SCENARIO_NOISE`] and [`SCENARIO_OFFSETS`] at the observation level with constant
 //! noise, the chain of `skyforge attitude` with the nominal geometry and the LS attitude
-//! stage, on [`SEEDS`](super::attitude_runs::SEEDS) seeds each.
+//! stage, on [`SEEDS`](crate::attitude::seeds::SEEDS) seeds each.
 //!
 //! Rows: the yaw, pitch and roll error std per setting, the mean over runs of each run's
 //! std, within a factor 1.6 of the thesis; the growth of the axis mean with sigma_phi

@@ -2,7 +2,7 @@
 //! antennas on two 1 m baselines at 1 Hz. The bundled scenario [`SCENARIO`] at the
 //! calibrated observation level, the chain of `skyforge attitude` (double differences,
 //! the integer search under the body geometry, hold) with the KF attitude stage of
-//! eqs. 2.5-16/2.5-17, on [`SEEDS`](super::attitude_runs::SEEDS) seeds.
+//! eqs. 2.5-16/2.5-17, on [`SEEDS`](crate::attitude::seeds::SEEDS) seeds.
 //!
 //! Rows: each baseline's error std in ECEF X, Y, Z (table 5.4-3) and in the master's
 //! N, E, D (table 5.4-4), the yaw, pitch and roll error std (table 5.4-5), each the mean

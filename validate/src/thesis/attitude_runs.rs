@@ -1,38 +1,11 @@
-//! The attitude tables' common part: a bundled observation-level scenario run on
-//! independent seeds, the chain over each run compared with its truth, and rows whose
-//! value is the mean over runs of a per-run statistic.
+//! The attitude tables' common part: runs on independent seeds
+//! ([`seed_runs`](crate::attitude::seed_runs)) summarised as rows whose value is the mean
+//! over runs of a per-run statistic.
 
-use crate::attitude::{ChainComparison, compare, nominal_geometry, observation_run};
+use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::stats::{AcrossRuns, rms};
 use crate::thesis::ValidateError;
-use rayon::prelude::*;
-use skyforge_receiver::relative::RelativeConfig;
-use skyforge_scenarios::Scenario;
-
-/// Independent runs per setting: the scenario's seed and the next seven.
-// assumed: eight runs, chosen before the first run: enough for a standard error of the
-// mean over runs, cheap at the observation level.
-pub const SEEDS: u64 = 8;
-
-/// The chain over `scenario` on seeds `seed .. seed + SEEDS`, each compared with its truth.
-pub fn seed_runs(
-    scenario: &Scenario,
-    config: &RelativeConfig,
-) -> Result<Vec<ChainComparison>, ValidateError> {
-    (0..SEEDS)
-        .into_par_iter()
-        .map(|k| {
-            let mut s = scenario.clone();
-            s.seed = scenario.seed + k;
-            let fail = |e: &dyn std::fmt::Display| {
-                ValidateError::Pipeline(format!("{} seed {}: {e}", scenario.name, s.seed))
-            };
-            let run = observation_run(&s).map_err(|e| fail(&e))?;
-            compare(&run, &nominal_geometry(&run), config.clone()).map_err(|e| fail(&e))
-        })
-        .collect()
-}
 
 /// Sample standard deviation (`n - 1`), or NaN with fewer than two values.
 pub fn std(values: &[f64]) -> f64 {
@@ -160,4 +133,12 @@ mod tests {
         assert!(std(&[1.0]).is_nan());
         assert!((std(&[1.0, 3.0]) - 2f64.sqrt()).abs() < 1e-12);
     }
+}
+
+/// [`crate::attitude::seed_runs`] with its error as a table's.
+pub fn seed_runs(
+    scenario: &skyforge_scenarios::Scenario,
+    config: &skyforge_receiver::relative::RelativeConfig,
+) -> Result<Vec<ChainComparison>, ValidateError> {
+    crate::attitude::seed_runs(scenario, config).map_err(ValidateError::Pipeline)
 }
