@@ -343,13 +343,14 @@ fn validate_attitude_command_reports_and_names_bad_files() {
     assert!(v["integers"]["checked"].as_u64().unwrap() > 0);
     assert_eq!(v["antennas"][1]["true_body_m"][0], 1.0);
     assert_eq!(v["baselines"].as_array().unwrap().len(), 2);
-    for i in 0..3 {
-        let ned = v["baselines"][0]["ned_m"][i]["std"].as_f64().unwrap();
+    for (axis, angle) in [("n", "yaw"), ("e", "pitch"), ("d", "roll")] {
+        let ned = v["baselines"][1]["ned_m"][axis]["std"].as_f64().unwrap();
         assert!(ned > 0.0 && ned < 3e-3, "{ned}");
-        let a = v["attitude_deg"][i]["std"].as_f64().unwrap();
+        let a = v["attitude_deg"][angle]["std"].as_f64().unwrap();
         assert!(a > 0.0 && a < 0.1, "{a}");
     }
-    assert_eq!(v["thesis_attitude_std_deg"][0], 0.041);
+    assert_eq!(v["thesis_attitude_std_deg"]["yaw"], 0.041);
+    assert_eq!(v["baselines"][0]["thesis_ned_std_m"]["n"], 8.0105e-4);
     std::fs::remove_file(&json).unwrap();
 
     // A corrupt row of attitude.csv: file and line.
@@ -378,6 +379,11 @@ fn validate_attitude_command_reports_and_names_bad_files() {
         (
             [sim.as_str(), att.as_str(), att.as_str()],
             format!("{}", run.attitude.join("ant1.obs.rnx").display()),
+        ),
+        // The run's directory given as the observations: its files are the truth.
+        (
+            [sim.as_str(), sim.as_str(), att.as_str()],
+            "ant1.obs.rnx: is the observation truth itself".to_string(),
         ),
         (
             [sim.as_str(), obs.as_str(), bad_s.as_str()],

@@ -400,8 +400,15 @@ pub fn compare_outputs(
         .iter()
         .map(|a| {
             let file = format!("{}.obs.rnx", a.name);
-            let measured = read_obs_file(&observations_dir.join(&file))?;
-            let observed_truth = read_obs_file(&truth_dir.join(&file))?;
+            let (m_path, t_path) = (observations_dir.join(&file), truth_dir.join(&file));
+            let measured = read_obs_file(&m_path)?;
+            if std::fs::canonicalize(&m_path).ok() == std::fs::canonicalize(&t_path).ok() {
+                return Err(file_error(
+                    &m_path,
+                    "is the observation truth itself; the observations are those the chain read (skyforge receive's directory, or SIMDIR/observations)",
+                ));
+            }
+            let observed_truth = read_obs_file(&t_path)?;
             Ok(phase_offsets(&measured, &observed_truth, truth.start))
         })
         .collect::<Result<Vec<_>, OutputsError>>()?;
@@ -620,6 +627,60 @@ impl AxisStats {
     }
 }
 
+/// N, E, D.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ned<T> {
+    pub n: T,
+    pub e: T,
+    pub d: T,
+}
+
+/// ECEF X, Y, Z.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Xyz<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+}
+
+/// Yaw, pitch, roll.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ypr<T> {
+    pub yaw: T,
+    pub pitch: T,
+    pub roll: T,
+}
+
+impl<T> From<[T; 3]> for Ned<T> {
+    fn from([n, e, d]: [T; 3]) -> Self {
+        Self { n, e, d }
+    }
+}
+
+impl<T> From<[T; 3]> for Xyz<T> {
+    fn from([x, y, z]: [T; 3]) -> Self {
+        Self { x, y, z }
+    }
+}
+
+impl<T> From<[T; 3]> for Ypr<T> {
+    fn from([yaw, pitch, roll]: [T; 3]) -> Self {
+        Self { yaw, pitch, roll }
+    }
+}
+
+impl<T> Ned<T> {
+    pub fn axes(&self) -> [&T; 3] {
+        [&self.n, &self.e, &self.d]
+    }
+}
+
+impl<T> Ypr<T> {
+    pub fn axes(&self) -> [&T; 3] {
+        [&self.yaw, &self.pitch, &self.roll]
+    }
+}
+
 /// One baseline's errors (m).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct BaselineErrors {
@@ -627,11 +688,11 @@ pub struct BaselineErrors {
     pub baseline: usize,
     pub antenna: String,
     /// N, E, D in the master's local frame.
-    pub ned_m: [AxisStats; 3],
+    pub ned_m: Ned<AxisStats>,
     /// ECEF X, Y, Z.
-    pub ecef_m: [AxisStats; 3],
+    pub ecef_m: Xyz<AxisStats>,
     /// Thesis table 5.4-4's std of this baseline (N, E, D), for the first two baselines.
-    pub thesis_ned_std_m: Option<[f64; 3]>,
+    pub thesis_ned_std_m: Option<Ned<f64>>,
 }
 
 /// Integers checked against the truth.
@@ -662,9 +723,9 @@ pub struct AttitudeValidation {
     pub integers: IntegerSummary,
     pub baselines: Vec<BaselineErrors>,
     /// Yaw, pitch, roll error (deg).
-    pub attitude_deg: [AxisStats; 3],
+    pub attitude_deg: Ypr<AxisStats>,
     /// Thesis table 5.4-5's yaw, pitch, roll std (deg; real-time KF).
-    pub thesis_attitude_std_deg: [f64; 3],
+    pub thesis_attitude_std_deg: Ypr<f64>,
 }
 
 impl OutputsComparison {
@@ -680,9 +741,9 @@ impl OutputsComparison {
             .map(|(k, a)| BaselineErrors {
                 baseline: k + 1,
                 antenna: a.name.clone(),
-                ned_m: axes(&|i| c.baseline_axis(k, i, true)),
-                ecef_m: axes(&|i| c.baseline_axis(k, i, false)),
-                thesis_ned_std_m: THESIS_NED_STD_M.get(k).copied(),
+                ned_m: axes(&|i| c.baseline_axis(k, i, true)).into(),
+                ecef_m: axes(&|i| c.baseline_axis(k, i, false)).into(),
+                thesis_ned_std_m: THESIS_NED_STD_M.get(k).map(|t| Ned::from(*t)),
             })
             .collect();
         AttitudeValidation {
@@ -702,8 +763,8 @@ impl OutputsComparison {
                 largest_distance_cycles: c.largest_integer_distance_cycles,
             },
             baselines,
-            attitude_deg: axes(&|i| c.attitude_axis(i)),
-            thesis_attitude_std_deg: THESIS_ATTITUDE_STD_DEG,
+            attitude_deg: axes(&|i| c.attitude_axis(i)).into(),
+            thesis_attitude_std_deg: THESIS_ATTITUDE_STD_DEG.into(),
         }
     }
 }
@@ -757,10 +818,10 @@ pub fn print_validation(v: &AttitudeValidation, out: &mut impl Write) -> std::io
     )?;
     for b in &v.baselines {
         for (i, axis) in ["N", "E", "D"].iter().enumerate() {
-            let s = &b.ned_m[i];
+            let s = b.ned_m.axes()[i];
             let thesis = b.thesis_ned_std_m.map_or_else(
                 || "-".to_string(),
-                |t| format!("{:.3} (table 5.4-4)", t[i] * 1e3),
+                |t| format!("{:.3} (table 5.4-4)", t.axes()[i] * 1e3),
             );
             writeln!(
                 out,
@@ -774,7 +835,7 @@ pub fn print_validation(v: &AttitudeValidation, out: &mut impl Write) -> std::io
         }
     }
     for (i, axis) in ["yaw", "pitch", "roll"].iter().enumerate() {
-        let s = &v.attitude_deg[i];
+        let s = v.attitude_deg.axes()[i];
         writeln!(
             out,
             "{:<22} {:>6} {:>9} {:>9} {:>9}   {:.4} (table 5.4-5, KF)",
@@ -783,7 +844,7 @@ pub fn print_validation(v: &AttitudeValidation, out: &mut impl Write) -> std::io
             cell(s.mean, 1.0, 4),
             cell(s.std, 1.0, 4),
             cell(s.rms, 1.0, 4),
-            v.thesis_attitude_std_deg[i]
+            v.thesis_attitude_std_deg.axes()[i]
         )?;
     }
     writeln!(
