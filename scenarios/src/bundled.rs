@@ -80,6 +80,12 @@ const BUNDLED: &[Bundled] = &[
         summary: "300 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for the bundled receiver's LEO acceptance",
         text: include_str!("../bundled/receiver-leo-gps.toml"),
     },
+    Bundled {
+        name: "attitude-leo-gps",
+        summary: "60 s GPS L1 C/A on the thesis LEO, three antennas on two 1 m baselines, 4 Msps \
+                  ci8, 45 dB-Hz: the attitude chain at the signal level (scripts/demo.sh)",
+        text: include_str!("../bundled/attitude-leo-gps.toml"),
+    },
 ];
 
 /// Every bundled scenario.

@@ -16,11 +16,15 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis/v-1.2.1",
             "thesis/t-3.2",
             "thesis/t-5.4-2",
+            "thesis/t-1.2-2",
+            "thesis/t-1.2-3",
+            "thesis/t-5.4-3",
             "ground-static",
             "interop-gps-static",
             "interop-bds-static",
             "interop-leo-gps",
-            "receiver-leo-gps"
+            "receiver-leo-gps",
+            "attitude-leo-gps"
         ]
     );
     for b in bundled() {
@@ -67,7 +71,12 @@ fn thesis_leo_matches_the_thesis_setup() {
 #[test]
 fn every_unstated_value_says_it_is_assumed() {
     // Lines of the thesis scenarios that set a value the thesis does not state must say so.
-    for name in ["thesis-leo", "thesis/v-1.2.1", "thesis/t-3.2"] {
+    for name in [
+        "thesis-leo",
+        "thesis/v-1.2.1",
+        "thesis/t-3.2",
+        "attitude-leo-gps",
+    ] {
         let text = bundled().iter().find(|b| b.name == name).expect(name).text;
         for key in [
             "start =",

@@ -241,4 +241,24 @@ pub enum ValidateSuite {
         #[arg(long, value_name = "EPOCH", requires = "from")]
         to: Option<String>,
     },
+    /// Compare `skyforge attitude`'s output with the truth of the run: epochs, first fix,
+    /// fraction fixed from the first fix on, every fixed integer against the truth's
+    /// double-difference integer, NED baseline and yaw/pitch/roll errors (count, mean,
+    /// std, RMS), printed beside the thesis's tables 5.4-4 and 5.4-5 (docs/attitude.md).
+    Attitude {
+        /// The run's directory (`skyforge run`/`synth --out`): truth.h5, geometry.toml and
+        /// <antenna>.obs.rnx (the observation truth).
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// The observations the chain read: `skyforge receive`'s directory, or
+        /// SIMDIR/observations at the observation level (<antenna>.obs.rnx).
+        #[arg(long, value_name = "OBSDIR")]
+        observations: PathBuf,
+        /// `skyforge attitude`'s output directory (attitude.csv, ambiguities.csv).
+        #[arg(long, value_name = "ATTDIR")]
+        attitude: PathBuf,
+        /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+    },
 }

@@ -28,7 +28,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
             suite: cli::ValidateSuite::Thesis { out, .. },
         } => out.clone(),
         cli::Command::Validate {
-            suite: cli::ValidateSuite::Obs { .. },
+            suite: cli::ValidateSuite::Obs { .. } | cli::ValidateSuite::Attitude { .. },
         }
         | cli::Command::Scenarios { .. }
         | cli::Command::Ambiguity { .. } => None,

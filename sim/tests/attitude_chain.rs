@@ -1,19 +1,14 @@
 //! `skyforge attitude` end to end on the observation level: a LEO with three antennas on
 //! two 1 m baselines -> observables -> double differences, LAMBDA, fixed baselines,
-//! attitude -> compared with the truth SkyForge wrote (`truth.h5`).
+//! attitude -> compared with the truth SkyForge wrote (`truth.h5`) by the library of
+//! `skyforge validate attitude`, and that command itself.
 
 mod support;
 
-use nalgebra::{Quaternion, UnitQuaternion};
-use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::euler::YawPitchRoll;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_orbits::frames::ned::c_ecef_ned;
-use skyforge_orbits::time::parse_epoch;
-use skyforge_validate::observables::read_obs_file;
-use std::collections::HashMap;
+use skyforge_validate::attitude::compare_outputs;
+use skyforge_validate::attitude::outputs::AxisStats;
 use std::path::Path;
-use support::{dataset, skyforge, skyforge_ok, text};
+use support::{skyforge, skyforge_ok, text};
 
 /// The thesis LEO with three antennas (master at the body origin, baselines of 1 m along
 /// body X and Y), GPS + BDS-3 at 45 dB-Hz, a slow pitch oscillation, `duration_s` long.
@@ -55,24 +50,6 @@ fov_half_angle_deg = 80.0
     path.to_string_lossy().into_owned()
 }
 
-/// True attitude (NED at the master) and true NED baselines at truth row `i`.
-fn truth_at(file: &hdf5::File, i: usize) -> (YawPitchRoll, [Vec3; 2]) {
-    let r: Vec<f64> = dataset(file, "platform/r_ecef_m");
-    let q: Vec<f64> = dataset(file, "platform/q_body_ecef");
-    let c_body_ecef = UnitQuaternion::from_quaternion(Quaternion::new(
-        q[4 * i],
-        q[4 * i + 1],
-        q[4 * i + 2],
-        q[4 * i + 3],
-    ))
-    .to_rotation_matrix()
-    .into_inner();
-    let g = ecef_to_geodetic(&Vec3::new(r[3 * i], r[3 * i + 1], r[3 * i + 2]));
-    let c_body_ned = c_ecef_ned(g.lat_rad, g.lon_rad) * c_body_ecef;
-    let angles = YawPitchRoll::from_c_ref_body(&c_body_ned.transpose());
-    (angles, [c_body_ned * Vec3::x(), c_body_ned * Vec3::y()])
-}
-
 /// `skyforge receive` over every recording in `sim` into `rx`; returns `rx`.
 fn receive(sim: &Path, rx: &Path) -> std::path::PathBuf {
     let mut meta: Vec<String> = std::fs::read_dir(sim)
@@ -96,77 +73,34 @@ fn receive(sim: &Path, rx: &Path) -> std::path::PathBuf {
     rx.to_path_buf()
 }
 
-/// Carrier phase (cycles) of every (epoch, satellite) of an observation file, keyed by the
-/// epoch's printed time.
-fn phases(path: &Path) -> HashMap<(String, String), f64> {
-    let file = read_obs_file(path).unwrap();
-    let mut out = HashMap::new();
-    for e in &file.epochs {
-        for r in &e.sats {
-            if let Some(p) = r.carrier_phase_cycles {
-                out.insert((e.time.to_string(), r.sat.to_string()), p);
-            }
-        }
-    }
-    out
-}
-
-/// Every integer in `att/ambiguities.csv` against the true double-difference integer,
-/// `round(DD(observed phase) - DD(truth phase))` of the same epoch (the truth's phase has
-/// no ambiguity). Returns (integers checked, wrong ones, largest distance of an observed
-/// minus truth DD from its integer).
-fn check_integers(att: &Path, observations: &Path, sim: &Path) -> (usize, usize, f64) {
-    let names = ["ant1", "ant2", "ant3"];
-    let obs: Vec<_> = names
-        .iter()
-        .map(|a| phases(&observations.join(format!("{a}.obs.rnx"))))
-        .collect();
-    let truth: Vec<_> = names
-        .iter()
-        .map(|a| phases(&sim.join(format!("{a}.obs.rnx"))))
-        .collect();
-    let text = std::fs::read_to_string(att.join("ambiguities.csv")).unwrap();
-    let (mut checked, mut wrong, mut worst) = (0, 0, 0.0f64);
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
-        let (t, k) = (f[0].to_string(), f[1].parse::<usize>().unwrap());
-        let integer: i64 = f[5].parse().unwrap();
-        let dd = |set: &[HashMap<(String, String), f64>]| -> Option<f64> {
-            let p = |a: usize, sat: &str| set[a].get(&(t.clone(), sat.to_string())).copied();
-            Some((p(k, f[3])? - p(0, f[3])?) - (p(k, f[4])? - p(0, f[4])?))
-        };
-        let (Some(o), Some(tr)) = (dd(&obs), dd(&truth)) else {
-            continue;
-        };
-        let d = o - tr;
-        worst = worst.max((d - d.round()).abs());
-        checked += 1;
-        wrong += usize::from(d.round() as i64 != integer);
-    }
-    (checked, wrong, worst)
-}
-
+/// Sample standard deviation (the library's, as `skyforge validate attitude` prints it).
 fn std(v: &[f64]) -> f64 {
-    let m = v.iter().sum::<f64>() / v.len() as f64;
-    (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
+    AxisStats::of(v).std.unwrap_or(f64::NAN)
 }
 
-/// Run the chain with `config` (observation level, 120 s; or signal level of the given
-/// duration) and return the fraction of epochs fixed from the first fix on, and the
-/// per-axis NED baseline errors (m) and attitude errors (deg) of the fixed epochs.
-fn chain_errors(
+/// The directories of one run of the chain: the simulation, the observations the chain
+/// read, the chain's output.
+struct ChainDirs {
+    sim: std::path::PathBuf,
+    observations: std::path::PathBuf,
+    attitude: std::path::PathBuf,
+}
+
+/// In `dir`: `skyforge run` of [`scenario`] (`duration` s; observation level unless
+/// `signal_level`, then `skyforge receive`), then `skyforge attitude` with `config`.
+fn run_chain(
+    dir: &Path,
+    duration: u32,
     gps_only: bool,
-    signal_level: Option<u32>,
+    signal_level: bool,
     config: &str,
-) -> (f64, Vec<[f64; 3]>, Vec<[f64; 3]>) {
-    let dir = tempfile::tempdir().unwrap();
-    let duration = signal_level.unwrap_or(120);
-    let path = scenario(dir.path(), duration, gps_only, signal_level.is_none());
-    let sim = dir.path().join("sim");
-    skyforge_ok(&["run", &path, "--out", sim.to_str().unwrap()], dir.path());
-    std::fs::write(dir.path().join("rel.toml"), config).unwrap();
-    let observations = if signal_level.is_some() {
-        receive(&sim, &dir.path().join("rx"))
+) -> ChainDirs {
+    let path = scenario(dir, duration, gps_only, !signal_level);
+    let sim = dir.join("sim");
+    skyforge_ok(&["run", &path, "--out", sim.to_str().unwrap()], dir);
+    std::fs::write(dir.join("rel.toml"), config).unwrap();
+    let observations = if signal_level {
+        receive(&sim, &dir.join("rx"))
     } else {
         sim.join("observations")
     };
@@ -179,11 +113,11 @@ fn chain_errors(
                 .into_owned()
         })
         .collect();
-    let out = dir.path().join("att");
+    let out = dir.join("att");
     let mut args: Vec<&str> = vec!["attitude"];
     args.extend(obs.iter().map(String::as_str));
     let (nav, geometry) = (sim.join("nav.rnx"), sim.join("geometry.toml"));
-    let rel = dir.path().join("rel.toml");
+    let rel = dir.join("rel.toml");
     args.extend([
         "--nav",
         nav.to_str().unwrap(),
@@ -194,8 +128,41 @@ fn chain_errors(
         "--out",
         out.to_str().unwrap(),
     ]);
-    println!("{}", skyforge_ok(&args, dir.path()));
-    let (checked, wrong, worst) = check_integers(&out, &observations, &sim);
+    println!("{}", skyforge_ok(&args, dir));
+    ChainDirs {
+        sim,
+        observations,
+        attitude: out,
+    }
+}
+
+/// Run the chain with `config` (observation level, 120 s; or signal level of the given
+/// duration) and return the fraction of epochs fixed from the first fix on, and the
+/// per-axis NED baseline errors (m) and attitude errors (deg) of the fixed epochs.
+fn chain_errors(
+    gps_only: bool,
+    signal_level: Option<u32>,
+    config: &str,
+) -> (f64, Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    let dir = tempfile::tempdir().unwrap();
+    let duration = signal_level.unwrap_or(120);
+    let run = run_chain(
+        dir.path(),
+        duration,
+        gps_only,
+        signal_level.is_some(),
+        config,
+    );
+    // The comparison of `skyforge validate attitude`: every integer of ambiguities.csv
+    // against the truth's double-difference integer, every fixed epoch of attitude.csv
+    // against truth.h5.
+    let comparison = compare_outputs(&run.sim, &run.observations, &run.attitude).unwrap();
+    let chain = &comparison.chain;
+    let (checked, wrong, worst) = (
+        chain.integers_checked,
+        chain.integers_wrong,
+        chain.largest_integer_distance_cycles,
+    );
     println!(
         "INTEGERS checked {checked}, wrong {wrong}, largest distance from an integer {worst:.3} cycles"
     );
@@ -205,49 +172,18 @@ fn chain_errors(
         worst < 0.25,
         "an observed DD is {worst} cycles from an integer"
     );
-    let truth = hdf5::File::open(sim.join("truth.h5")).unwrap();
-    let start = parse_epoch("2023-03-12T00:00:00 GPST").unwrap();
-    let mut rdr = std::fs::read_to_string(out.join("attitude.csv")).unwrap();
-    let text_csv = std::mem::take(&mut rdr);
-    let mut lines = text_csv.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let (mut fixed, mut rows) = (0usize, 0usize);
-    let (mut baseline_err, mut attitude_err) = (Vec::new(), Vec::new());
-    for line in lines {
-        let f: Vec<&str> = line.split(',').collect();
-        // Epochs count from the first fix on.
-        let is_fixed = f[col("status")] == "fixed";
-        if fixed == 0 && !is_fixed {
-            continue;
-        }
-        rows += 1;
-        if !is_fixed {
-            continue;
-        }
-        fixed += 1;
-        let t = (parse_epoch(f[0]).unwrap() - start).to_seconds().round() as usize;
-        let (angles, b) = truth_at(&truth, t);
-        let v = |n: &str| f[col(n)].parse::<f64>().unwrap();
-        for (k, bk) in b.iter().enumerate() {
-            let p = format!("b{}_", k + 1);
-            baseline_err.push([
-                v(&format!("{p}n_m")) - bk.x,
-                v(&format!("{p}e_m")) - bk.y,
-                v(&format!("{p}d_m")) - bk.z,
-            ]);
-        }
-        if f[col("yaw_deg")].is_empty() {
-            continue;
-        }
-        let wrap = |d: f64| (d + 180.0).rem_euclid(360.0) - 180.0;
-        attitude_err.push([
-            wrap(v("yaw_deg") - angles.yaw_rad.to_degrees()),
-            v("pitch_deg") - angles.pitch_rad.to_degrees(),
-            wrap(v("roll_deg") - angles.roll_rad.to_degrees()),
-        ]);
-    }
-    (fixed as f64 / rows as f64, baseline_err, attitude_err)
+    // Per-axis NED errors of both baselines together, and the attitude errors.
+    let baseline_err: Vec<[f64; 3]> = chain
+        .fixed
+        .iter()
+        .flat_map(|e| e.baseline_ned_m.iter().copied())
+        .collect();
+    let attitude_err: Vec<[f64; 3]> = chain.fixed.iter().filter_map(|e| e.attitude_deg).collect();
+    (
+        comparison.summary().fixed_fraction,
+        baseline_err,
+        attitude_err,
+    )
 }
 
 /// Issue #12's bars on the observation level (the signal-level run is the acceptance
@@ -345,5 +281,128 @@ fn attitude_input_errors_are_clear() {
         assert_eq!(o.status.code(), Some(2), "{}", text(&o));
         assert!(text(&o).contains(expected), "{}", text(&o));
         assert!(!out.exists());
+    }
+}
+
+/// `skyforge validate attitude` on a short observation-level run: the table with the
+/// thesis's values beside ours, the JSON; bad directories and a bad row: one message
+/// naming the file, exit code 2.
+#[test]
+fn validate_attitude_command_reports_and_names_bad_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = run_chain(
+        dir.path(),
+        30,
+        true,
+        false,
+        "[relative]\nattitude = { method = \"kf\" }\n",
+    );
+    let p = |p: &Path| p.to_string_lossy().into_owned();
+    let (sim, obs, att) = (p(&run.sim), p(&run.observations), p(&run.attitude));
+    let json = dir.path().join("validate.json");
+    let validate = |truth: &str, observations: &str, attitude: &str| {
+        skyforge(
+            &[
+                "validate",
+                "attitude",
+                "--truth",
+                truth,
+                "--observations",
+                observations,
+                "--attitude",
+                attitude,
+                "--json",
+                json.to_str().unwrap(),
+            ],
+            dir.path(),
+        )
+    };
+    let o = validate(&sim, &obs, &att);
+    let out = text(&o);
+    println!("{out}");
+    assert!(o.status.success(), "{out}");
+    for expected in [
+        "integers:",
+        " 0 wrong",
+        "b1 (ant2) N mm",
+        "b2 (ant3) D mm",
+        "0.801 (table 5.4-4)",
+        "1.700 (table 5.4-4)",
+        "yaw deg",
+        "0.0410 (table 5.4-5, KF)",
+        "0.0741 (table 5.4-5, KF)",
+        "0.0806 (table 5.4-5, KF)",
+    ] {
+        assert!(out.contains(expected), "{expected:?} missing:\n{out}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["epochs"], 30);
+    assert_eq!(v["fixed_fraction"], 1.0);
+    assert_eq!(v["integers"]["wrong"], 0);
+    assert!(v["integers"]["checked"].as_u64().unwrap() > 0);
+    assert_eq!(v["antennas"][1]["true_body_m"][0], 1.0);
+    assert_eq!(v["baselines"].as_array().unwrap().len(), 2);
+    for (axis, angle) in [("n", "yaw"), ("e", "pitch"), ("d", "roll")] {
+        let ned = v["baselines"][1]["ned_m"][axis]["std"].as_f64().unwrap();
+        assert!(ned > 0.0 && ned < 3e-3, "{ned}");
+        let a = v["attitude_deg"][angle]["std"].as_f64().unwrap();
+        assert!(a > 0.0 && a < 0.1, "{a}");
+    }
+    assert_eq!(v["thesis_attitude_std_deg"]["yaw"], 0.041);
+    assert_eq!(v["baselines"][0]["thesis_ned_std_m"]["n"], 8.0105e-4);
+    std::fs::remove_file(&json).unwrap();
+
+    // A corrupt row of attitude.csv: file and line.
+    let bad = dir.path().join("bad-att");
+    std::fs::create_dir(&bad).unwrap();
+    for f in ["attitude.csv", "ambiguities.csv"] {
+        std::fs::copy(run.attitude.join(f), bad.join(f)).unwrap();
+    }
+    let csv = std::fs::read_to_string(bad.join("attitude.csv")).unwrap();
+    let mut lines: Vec<String> = csv.lines().map(String::from).collect();
+    lines[4] = lines[4].replacen(",fixed,", ",fixd,", 1);
+    std::fs::write(bad.join("attitude.csv"), lines.join("\n")).unwrap();
+    let bad_s = p(&bad);
+    let cases: Vec<([&str; 3], String)> = vec![
+        // The attitude directory given as the observations: no attitude.csv.
+        (
+            [sim.as_str(), obs.as_str(), obs.as_str()],
+            format!("{}", run.observations.join("attitude.csv").display()),
+        ),
+        // The chain's directory given as the run's: no geometry.toml.
+        (
+            [att.as_str(), obs.as_str(), att.as_str()],
+            format!("{}", run.attitude.join("geometry.toml").display()),
+        ),
+        // The chain's directory given as the observations: no ant1.obs.rnx.
+        (
+            [sim.as_str(), att.as_str(), att.as_str()],
+            format!("{}", run.attitude.join("ant1.obs.rnx").display()),
+        ),
+        // The run's directory given as the observations: its files are the truth.
+        (
+            [sim.as_str(), sim.as_str(), att.as_str()],
+            "ant1.obs.rnx: is the observation truth itself".to_string(),
+        ),
+        (
+            [sim.as_str(), obs.as_str(), bad_s.as_str()],
+            format!(
+                "{}:5: status = \"fixd\"",
+                bad.join("attitude.csv").display()
+            ),
+        ),
+        (
+            [sim.as_str(), obs.as_str(), "no-such-dir"],
+            "no-such-dir: not a directory".to_string(),
+        ),
+    ];
+    for ([t, o_, a], expected) in cases {
+        let o = validate(t, o_, a);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{out}");
+        assert!(out.contains(&expected), "{expected:?} missing:\n{out}");
+        assert_eq!(out.matches("error:").count(), 1, "{out}");
+        assert!(!json.exists());
     }
 }

@@ -82,5 +82,14 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             tag_offset_s,
             from.zip(to).as_ref(),
         ),
+        Command::Validate {
+            suite:
+                ValidateSuite::Attitude {
+                    truth,
+                    observations,
+                    attitude,
+                    json,
+                },
+        } => validate::attitude(&truth, &observations, &attitude, json.as_deref()),
     }
 }

@@ -1,9 +1,11 @@
-//! `skyforge validate thesis` and `skyforge validate obs`.
+//! `skyforge validate thesis`, `skyforge validate obs` and `skyforge validate attitude`.
 
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use hifitime::Epoch;
+use skyforge_validate::attitude::compare_outputs;
+use skyforge_validate::attitude::outputs::print_validation;
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
@@ -83,12 +85,36 @@ pub fn obs(
     let comparison = compare_with(&estimate, &truth, &opts).map_err(|e| bad(&e))?;
     print_comparison(&comparison, &mut std::io::stdout().lock())?;
     if let Some(path) = json {
-        let text = serde_json::to_string_pretty(&comparison)?;
-        let tmp = path.with_extension("json.partial");
-        std::fs::write(&tmp, text + "\n")
-            .and_then(|()| std::fs::rename(&tmp, path))
-            .with_context(|| format!("cannot write {}", path.display()))?;
-        println!("wrote {}", path.display());
+        write_json_text(serde_json::to_string_pretty(&comparison)?, path)?;
+    }
+    Ok(())
+}
+
+/// Write JSON `text` to `path` via a temporary file renamed when complete.
+fn write_json_text(text: String, path: &Path) -> anyhow::Result<()> {
+    let tmp = path.with_extension("json.partial");
+    std::fs::write(&tmp, text + "\n")
+        .and_then(|()| std::fs::rename(&tmp, path))
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    println!("wrote {}", path.display());
+    Ok(())
+}
+
+/// Compare `skyforge attitude`'s output in `attitude` with the truth of the run in
+/// `truth` (and the observations the chain read), print the table and optionally write
+/// the JSON.
+pub fn attitude(
+    truth: &Path,
+    observations: &Path,
+    attitude: &Path,
+    json: Option<&Path>,
+) -> anyhow::Result<()> {
+    let comparison =
+        compare_outputs(truth, observations, attitude).map_err(|e| BadInput(e.to_string()))?;
+    let summary = comparison.summary();
+    print_validation(&summary, &mut std::io::stdout().lock())?;
+    if let Some(path) = json {
+        write_json_text(serde_json::to_string_pretty(&summary)?, path)?;
     }
     Ok(())
 }

@@ -5,12 +5,11 @@
 
 use super::run::ObservationRun;
 use hifitime::Epoch;
-use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
-use skyforge_orbits::platform::PlatformState;
+use skyforge_orbits::{Mat3, Vec3};
 use skyforge_receiver::relative::files::{
     BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
 };
@@ -46,6 +45,9 @@ pub struct ChainComparison {
     /// Fixed integers compared with the truth's, and how many differed.
     pub integers_checked: usize,
     pub integers_wrong: usize,
+    /// Largest distance (cycles) of an observed-minus-true double difference from its
+    /// nearest integer over the checked integers (noise; 0.5 would be ambiguous).
+    pub largest_integer_distance_cycles: f64,
     /// Epochs whose every ambiguity was fixed, and those of them with a wrong integer.
     pub fixed_epochs: usize,
     pub fixed_epochs_wrong: usize,
@@ -83,30 +85,74 @@ impl ChainComparison {
 
 /// Measured minus true carrier phase (cycles) per (second, satellite, signal) of one
 /// antenna: its integer ambiguity plus noise.
-type PhaseOffsets = HashMap<(i64, SatId, Signal), f64>;
+pub(super) type PhaseOffsets = HashMap<(i64, SatId, Signal), f64>;
 
-fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
-    let second = |t: Epoch| (t - start).to_seconds().round() as i64;
+/// Epochs this close (s) to a whole second since the start are that second's; the
+/// observation truth is written at whole seconds.
+const WHOLE_SECOND_S: f64 = 1e-3;
+
+/// Whole seconds from `start` to `t`, when `t` lies on one.
+pub(super) fn whole_second(t: Epoch, start: Epoch) -> Option<i64> {
+    let s = (t - start).to_seconds();
+    ((s - s.round()).abs() <= WHOLE_SECOND_S).then_some(s.round() as i64)
+}
+
+pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
+    let second = |t: Epoch| whole_second(t, start);
     let truth: HashMap<(i64, SatId, Signal), f64> = truth
         .epochs
         .iter()
-        .flat_map(|e| {
-            e.sats.iter().filter_map(move |r| {
-                Some(((second(e.time), r.sat, r.signal), r.carrier_phase_cycles?))
-            })
+        .filter_map(|e| Some((second(e.time)?, e)))
+        .flat_map(|(s, e)| {
+            e.sats
+                .iter()
+                .filter_map(move |r| Some(((s, r.sat, r.signal), r.carrier_phase_cycles?)))
         })
         .collect();
     measured
         .epochs
         .iter()
-        .flat_map(|e| {
+        .filter_map(|e| Some((second(e.time)?, e)))
+        .flat_map(|(s, e)| {
             let truth = &truth;
             e.sats.iter().filter_map(move |r| {
-                let key = (second(e.time), r.sat, r.signal);
+                let key = (s, r.sat, r.signal);
                 Some((key, r.carrier_phase_cycles? - truth.get(&key)?))
             })
         })
         .collect()
+}
+
+/// Observed minus true double difference (cycles) of `sat` against `reference` on
+/// `signal`, baseline `rover` (antenna `rover` minus the master, antenna 0) at `second`:
+/// the true double-difference integer plus noise. `None` when an antenna lacks a phase.
+pub(super) fn dd_offset(
+    offsets: &[PhaseOffsets],
+    second: i64,
+    rover: usize,
+    signal: Signal,
+    sat: SatId,
+    reference: SatId,
+) -> Option<f64> {
+    let d = |a: usize, s: SatId| offsets.get(a)?.get(&(second, s, signal)).copied();
+    Some(d(rover, sat)? - d(0, sat)? - (d(rover, reference)? - d(0, reference)?))
+}
+
+/// Fixed integers checked against the truth's double-difference integers.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct IntegerCheck {
+    pub checked: usize,
+    pub wrong: usize,
+    pub largest_distance_cycles: f64,
+}
+
+impl IntegerCheck {
+    /// Check `integer` against `dd`, the observed minus true double difference.
+    pub fn add(&mut self, dd: f64, integer: i64) {
+        self.checked += 1;
+        self.wrong += usize::from(dd.round() as i64 != integer);
+        self.largest_distance_cycles = self.largest_distance_cycles.max((dd - dd.round()).abs());
+    }
 }
 
 /// The nominal body geometry of `run` as `skyforge synth` writes it.
@@ -126,26 +172,40 @@ pub fn nominal_geometry(run: &ObservationRun) -> BodyGeometryFile {
 
 /// The truth at one epoch: true ECEF and NED baselines and the true attitude from NED
 /// at the master.
-struct EpochTruth {
-    ecef: Vec<Vec3>,
-    ned: Vec<Vec3>,
-    attitude: YawPitchRoll,
+pub(super) struct EpochTruth {
+    pub ecef: Vec<Vec3>,
+    pub ned: Vec<Vec3>,
+    pub attitude: YawPitchRoll,
 }
 
-fn epoch_truth(p: &PlatformState, true_body_m: &[Vec3]) -> EpochTruth {
-    let master = p.r_ecef_m + p.c_body_ecef * true_body_m[0];
+/// The truth of a platform at `r_ecef_m` (centre of mass) turned by `c_body_ecef`, with
+/// antennas at `true_body_m` (master first; at least one).
+pub(super) fn epoch_truth(r_ecef_m: &Vec3, c_body_ecef: &Mat3, true_body_m: &[Vec3]) -> EpochTruth {
+    let origin = true_body_m.first().copied().unwrap_or_else(Vec3::zeros);
+    let master = r_ecef_m + c_body_ecef * origin;
     let g = ecef_to_geodetic(&master);
     let c_ned_ecef = c_ecef_ned(g.lat_rad, g.lon_rad);
-    let c_body_ned = c_ned_ecef * p.c_body_ecef;
-    let ecef: Vec<Vec3> = true_body_m[1..]
+    let c_body_ned = c_ned_ecef * c_body_ecef;
+    let ecef: Vec<Vec3> = true_body_m
         .iter()
-        .map(|b| p.c_body_ecef * (b - true_body_m[0]))
+        .skip(1)
+        .map(|b| c_body_ecef * (b - origin))
         .collect();
     EpochTruth {
         ned: ecef.iter().map(|b| c_ned_ecef * b).collect(),
         ecef,
         attitude: YawPitchRoll::from_c_ref_body(&c_body_ned.transpose()),
     }
+}
+
+/// Estimated minus true yaw, pitch, roll (deg; yaw and roll wrapped).
+pub(super) fn attitude_errors_deg(estimate: &YawPitchRoll, truth: &YawPitchRoll) -> [f64; 3] {
+    let (a, t) = (estimate, truth);
+    [
+        wrap_deg((a.yaw_rad - t.yaw_rad).to_degrees()),
+        (a.pitch_rad - t.pitch_rad).to_degrees(),
+        wrap_deg((a.roll_rad - t.roll_rad).to_degrees()),
+    ]
 }
 
 /// Angle difference wrapped to [-180, 180) deg.
@@ -171,14 +231,7 @@ fn errors(e: &RelativeEpoch, t_s: f64, truth: &EpochTruth) -> Option<EpochErrors
         .map(|(b, t)| diff(b, t))
         .collect();
     let attitude_deg = match (&e.attitude, &e.attitude_skipped) {
-        (Some(s), None) => {
-            let (a, t) = (s.angles, truth.attitude);
-            Some([
-                wrap_deg((a.yaw_rad - t.yaw_rad).to_degrees()),
-                (a.pitch_rad - t.pitch_rad).to_degrees(),
-                wrap_deg((a.roll_rad - t.roll_rad).to_degrees()),
-            ])
-        }
+        (Some(s), None) => Some(attitude_errors_deg(&s.angles, &truth.attitude)),
         _ => None,
     };
     Some(EpochErrors {
@@ -189,23 +242,23 @@ fn errors(e: &RelativeEpoch, t_s: f64, truth: &EpochTruth) -> Option<EpochErrors
     })
 }
 
-/// Each fixed integer of `e` against the truth's: (checked, wrong).
-fn check_integers(e: &RelativeEpoch, second: i64, offsets: &[PhaseOffsets]) -> (usize, usize) {
+/// Each fixed integer of `e` against the truth's.
+fn check_integers(
+    e: &RelativeEpoch,
+    second: Option<i64>,
+    offsets: &[PhaseOffsets],
+    check: &mut IntegerCheck,
+) {
+    let Some(second) = second else { return };
     let ids: Vec<_> = e.float.model.layout.ambiguity_ids().collect();
-    let (mut checked, mut wrong) = (0, 0);
     for (i, value) in e.resolution.integers.iter().enumerate() {
         let Some(v) = value else { continue };
         let (signal, sat, reference) = ids[i % ids.len()];
         let rover = i / ids.len() + 1;
-        let d = |a: usize, s: SatId| offsets[a].get(&(second, s, signal)).copied();
-        let dd =
-            (|| Some(d(rover, sat)? - d(0, sat)? - (d(rover, reference)? - d(0, reference)?)))();
-        if let Some(dd) = dd {
-            checked += 1;
-            wrong += usize::from(dd.round() as i64 != *v);
+        if let Some(dd) = dd_offset(offsets, second, rover, signal, sat, reference) {
+            check.add(dd, *v);
         }
     }
-    (checked, wrong)
 }
 
 /// Run the chain with `config` over `run` with `geometry` (master first; the run's
@@ -229,9 +282,11 @@ pub fn compare(
         fixed: Vec::new(),
         integers_checked: 0,
         integers_wrong: 0,
+        largest_integer_distance_cycles: 0.0,
         fixed_epochs: 0,
         fixed_epochs_wrong: 0,
     };
+    let mut integers = IntegerCheck::default();
     run_files(
         &run.measured,
         run.ephemerides.clone(),
@@ -252,22 +307,24 @@ pub fn compare(
                 return;
             }
             out.after_first_fix += 1;
-            let (checked, wrong) = check_integers(e, t_s.round() as i64, &offsets);
-            out.integers_checked += checked;
-            out.integers_wrong += wrong;
+            let wrong_before = integers.wrong;
+            check_integers(e, whole_second(o.time, start), &offsets, &mut integers);
             if is_fixed {
                 out.fixed_epochs += 1;
-                out.fixed_epochs_wrong += usize::from(wrong > 0);
+                out.fixed_epochs_wrong += usize::from(integers.wrong > wrong_before);
             }
             let Some(p) = run.platform_at(t_s) else {
                 return;
             };
             if is_fixed {
-                let truth = epoch_truth(p, &run.true_body_m);
+                let truth = epoch_truth(&p.r_ecef_m, &p.c_body_ecef, &run.true_body_m);
                 out.fixed.extend(errors(e, t_s, &truth));
             }
         },
     )?;
+    out.integers_checked = integers.checked;
+    out.integers_wrong = integers.wrong;
+    out.largest_integer_distance_cycles = integers.largest_distance_cycles;
     Ok(out)
 }
 

@@ -1,12 +1,15 @@
 //! The attitude chain against the truth: an observation-level run in memory ([`run`]) and
 //! the chain's integers, baselines and attitude compared with that run's truth
-//! ([`compare`]).
+//! ([`compare`]); or the chain's files (`skyforge attitude`'s output) compared with the
+//! truth files of the run they came from ([`outputs`], `skyforge validate attitude`).
 
 pub mod compare;
+pub mod outputs;
 pub mod run;
 pub mod seeds;
 pub mod success;
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
+pub use outputs::{AttitudeValidation, OutputsComparison, OutputsError, compare_outputs};
 pub use run::{ObservationRun, RunError, observation_run};
 pub use seeds::seed_runs;

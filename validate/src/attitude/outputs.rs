@@ -1,0 +1,950 @@
+//! The attitude chain's files against the truth of the run they came from: what
+//! `skyforge validate attitude` compares.
+//!
+//! Inputs are three directories:
+//! - the simulation (`skyforge run`/`synth`): `truth.h5` (the platform's position and
+//!   body-to-ECEF quaternion at every geometry epoch, each antenna's nominal and true body
+//!   position), `geometry.toml` (the antennas' names and order, master first) and
+//!   `<antenna>.obs.rnx` (the observation truth: carrier phase without ambiguity);
+//! - the observations the chain read (`skyforge receive`'s directory, or the
+//!   simulation's `observations/`): `<antenna>.obs.rnx`;
+//! - the chain's output (`skyforge attitude`): `attitude.csv` and `ambiguities.csv`.
+//!
+//! The truth baselines come from the antennas' *true* body positions (`true_body_m` in
+//! `truth.h5`: nominal plus the scenario's offset), the true attitude from the body
+//! frame against the NED frame at the master antenna, as [`super::compare`] does for an
+//! in-memory run. Epochs between truth rows take the platform linearly interpolated
+//! (position) and slerped (attitude).
+
+use super::compare::{
+    ChainComparison, EpochErrors, EpochTruth, IntegerCheck, PhaseOffsets, attitude_errors_deg,
+    dd_offset, epoch_truth, phase_offsets, whole_second,
+};
+use crate::observables::ErrorStats;
+use crate::stats::rms;
+use hdf5::types::VarLenUnicode;
+use hifitime::Epoch;
+use nalgebra::{Quaternion, UnitQuaternion};
+use serde::Serialize;
+use skyforge_orbits::ephemeris::SatId;
+use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_orbits::time::parse_epoch;
+use skyforge_orbits::{Mat3, Vec3};
+use skyforge_receiver::relative::files::{BodyGeometryFile, FilesError};
+use skyforge_signals::observation::{ObsReadError, read_obs_file};
+use skyforge_signals::signal::Signal;
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+
+/// Largest CSV file read (bytes): a day of 1 Hz epochs of `ambiguities.csv` with two
+/// baselines and 40 double differences is about 200 MB.
+const MAX_CSV_BYTES: u64 = 1 << 30;
+/// Most rows of a `truth.h5` series read (48 days at 1 Hz).
+const MAX_TRUTH_ROWS: usize = 1 << 22;
+/// Truth rows this close (s) to an epoch are that epoch's.
+const SAME_TIME_S: f64 = 1e-6;
+
+/// Thesis table 5.4-4: each baseline's NED error std (m), N, E, D.
+pub const THESIS_NED_STD_M: [[f64; 3]; 2] = [
+    [8.0105e-4, 7.8495e-4, 0.0017],
+    [8.0197e-4, 7.9072e-4, 0.0017],
+];
+/// Thesis table 5.4-5: yaw, pitch, roll error std (deg) of the real-time KF.
+pub const THESIS_ATTITUDE_STD_DEG: [f64; 3] = [0.0410, 0.0741, 0.0806];
+
+/// Why the directories could not be compared. Every variant names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputsError {
+    /// A file is missing, unreadable, too large or not what it should be.
+    #[error("{path}: {message}")]
+    File { path: PathBuf, message: String },
+    /// A line of a CSV file is malformed.
+    #[error("{path}:{line}: {message}")]
+    Row {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
+    #[error(transparent)]
+    Observations(#[from] ObsReadError),
+    #[error(transparent)]
+    Geometry(#[from] FilesError),
+}
+
+fn file_error(path: &Path, message: impl Into<String>) -> OutputsError {
+    OutputsError::File {
+        path: path.to_path_buf(),
+        message: message.into(),
+    }
+}
+
+/// One antenna of the run.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AntennaPosition {
+    pub name: String,
+    /// What the receiver is told (`geometry.toml`, `truth.h5`'s `nominal_body_m`), m.
+    pub nominal_body_m: [f64; 3],
+    /// Nominal plus the scenario's offset (`truth.h5`'s `true_body_m`), m: what the truth
+    /// baselines are made of.
+    pub true_body_m: [f64; 3],
+}
+
+/// The platform truth of `truth.h5`.
+#[derive(Debug, Clone)]
+struct PlatformTruth {
+    start: Epoch,
+    t_s: Vec<f64>,
+    r_ecef_m: Vec<Vec3>,
+    q_body_ecef: Vec<UnitQuaternion<f64>>,
+    antennas: Vec<AntennaPosition>,
+    true_body_m: Vec<Vec3>,
+}
+
+impl PlatformTruth {
+    /// Read `path` for the antennas of `geometry` (names and nominal positions checked).
+    fn read(path: &Path, geometry: &BodyGeometryFile) -> Result<Self, OutputsError> {
+        let err = |m: String| file_error(path, m);
+        std::fs::metadata(path).map_err(|e| err(e.to_string()))?;
+        let file = hdf5::File::open(path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
+        let start: VarLenUnicode = file
+            .attr("start_epoch")
+            .and_then(|a| a.read_scalar())
+            .map_err(|e| err(format!("attribute start_epoch: {e}")))?;
+        let start =
+            parse_epoch(start.as_str()).map_err(|e| err(format!("attribute start_epoch: {e}")))?;
+        let series = |name: &str, width: usize| -> Result<Vec<f64>, OutputsError> {
+            let ds = file
+                .dataset(name)
+                .map_err(|e| err(format!("dataset {name}: {e}")))?;
+            let shape = ds.shape();
+            let rows = shape.first().copied().unwrap_or(0);
+            let expected = if width == 1 { 1 } else { 2 };
+            if shape.len() != expected || (width > 1 && shape[1] != width) {
+                return Err(err(format!("dataset {name}: shape {shape:?}")));
+            }
+            if rows > MAX_TRUTH_ROWS {
+                return Err(err(format!(
+                    "dataset {name}: {rows} rows; at most {MAX_TRUTH_ROWS} are read"
+                )));
+            }
+            let v: Vec<f64> = ds
+                .read_raw()
+                .map_err(|e| err(format!("dataset {name}: {e}")))?;
+            if v.iter().any(|x| !x.is_finite()) {
+                return Err(err(format!("dataset {name}: a value is not finite")));
+            }
+            Ok(v)
+        };
+        let t_s = series("time/t_s", 1)?;
+        let r = series("platform/r_ecef_m", 3)?;
+        let q = series("platform/q_body_ecef", 4)?;
+        if r.len() != 3 * t_s.len() || q.len() != 4 * t_s.len() {
+            return Err(err(format!(
+                "time/t_s, platform/r_ecef_m and platform/q_body_ecef have {}, {} and {} rows",
+                t_s.len(),
+                r.len() / 3,
+                q.len() / 4
+            )));
+        }
+        if t_s.is_empty() || t_s.windows(2).any(|w| w[1] <= w[0]) {
+            return Err(err("time/t_s is empty or not increasing".into()));
+        }
+        let mut antennas = Vec::new();
+        for a in &geometry.antennas {
+            let attr = |name: &str| -> Result<[f64; 3], OutputsError> {
+                let v: Vec<f64> = file
+                    .group(&format!("antennas/{}", a.name))
+                    .and_then(|g| g.attr(name))
+                    .and_then(|x| x.read_raw())
+                    .map_err(|e| err(format!("antenna {} attribute {name}: {e}", a.name)))?;
+                match v.as_slice() {
+                    [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
+                    _ => Err(err(format!(
+                        "antenna {} attribute {name}: {v:?} is not a finite 3-vector",
+                        a.name
+                    ))),
+                }
+            };
+            let (nominal, true_m) = (attr("nominal_body_m")?, attr("true_body_m")?);
+            if nominal
+                .iter()
+                .zip(&a.position_body_m)
+                .any(|(x, y)| (x - y).abs() > 1e-9)
+            {
+                return Err(err(format!(
+                    "antenna {} is at {nominal:?} (nominal) here but at {:?} in geometry.toml: not the same run",
+                    a.name, a.position_body_m
+                )));
+            }
+            antennas.push(AntennaPosition {
+                name: a.name.clone(),
+                nominal_body_m: nominal,
+                true_body_m: true_m,
+            });
+        }
+        Ok(Self {
+            start,
+            r_ecef_m: r.chunks_exact(3).map(Vec3::from_column_slice).collect(),
+            q_body_ecef: q
+                .chunks_exact(4)
+                .map(|c| UnitQuaternion::from_quaternion(Quaternion::new(c[0], c[1], c[2], c[3])))
+                .collect(),
+            true_body_m: antennas.iter().map(|a| Vec3::from(a.true_body_m)).collect(),
+            antennas,
+            t_s,
+        })
+    }
+
+    /// The platform (position, body-to-ECEF rotation) at `t` s since the start; `None`
+    /// outside the truth's span.
+    fn at(&self, t: f64) -> Option<(Vec3, Mat3)> {
+        let i = self.t_s.partition_point(|x| *x <= t);
+        let row = |k: usize| {
+            (
+                self.r_ecef_m[k],
+                self.q_body_ecef[k].to_rotation_matrix().into_inner(),
+            )
+        };
+        if i == 0 {
+            return ((self.t_s[0] - t) <= SAME_TIME_S).then(|| row(0));
+        }
+        let a = i - 1;
+        if t - self.t_s[a] <= SAME_TIME_S {
+            return Some(row(a));
+        }
+        if i == self.t_s.len() {
+            return None;
+        }
+        let w = (t - self.t_s[a]) / (self.t_s[i] - self.t_s[a]);
+        let r = self.r_ecef_m[a] + (self.r_ecef_m[i] - self.r_ecef_m[a]) * w;
+        let q = self.q_body_ecef[a].slerp(&self.q_body_ecef[i], w);
+        Some((r, q.to_rotation_matrix().into_inner()))
+    }
+
+    fn truth_at(&self, t: f64) -> Option<EpochTruth> {
+        let (r, c) = self.at(t)?;
+        Some(epoch_truth(&r, &c, &self.true_body_m))
+    }
+
+    fn span(&self) -> (f64, f64) {
+        let last = self.t_s.last().copied().unwrap_or(0.0);
+        (self.t_s[0], last)
+    }
+}
+
+/// A CSV file read line by line, size-capped: `header` checks its header (the column
+/// names), `each` gets every data line with its 1-based line number.
+fn read_csv(
+    path: &Path,
+    header: impl FnOnce(&[&str]) -> Result<(), OutputsError>,
+    mut each: impl FnMut(&[&str], usize, &str) -> Result<(), OutputsError>,
+) -> Result<(), OutputsError> {
+    let err = |m: String| file_error(path, m);
+    let size = std::fs::metadata(path)
+        .map_err(|e| err(e.to_string()))?
+        .len();
+    if size > MAX_CSV_BYTES {
+        return Err(err(format!(
+            "{size} bytes; at most {MAX_CSV_BYTES} are read"
+        )));
+    }
+    let file = std::fs::File::open(path).map_err(|e| err(e.to_string()))?;
+    let mut lines = BufReader::new(file).lines();
+    let first = match lines.next() {
+        Some(h) => h.map_err(|e| err(e.to_string()))?,
+        None => return Err(err("empty file: no header line".into())),
+    };
+    let names: Vec<&str> = first.split(',').map(str::trim).collect();
+    header(&names)?;
+    for (i, line) in lines.enumerate() {
+        let number = i + 2;
+        let line = line.map_err(|e| OutputsError::Row {
+            path: path.to_path_buf(),
+            line: number,
+            message: e.to_string(),
+        })?;
+        if line.trim().is_empty() {
+            continue;
+        }
+        each(&names, number, &line)?;
+    }
+    Ok(())
+}
+
+/// One data line split on commas, its fields looked up by header name.
+struct Fields<'a> {
+    path: &'a Path,
+    line: usize,
+    header: &'a [&'a str],
+    fields: Vec<&'a str>,
+}
+
+impl<'a> Fields<'a> {
+    fn new(
+        path: &'a Path,
+        line: usize,
+        header: &'a [&'a str],
+        text: &'a str,
+    ) -> Result<Self, OutputsError> {
+        let fields: Vec<&str> = text.split(',').map(str::trim).collect();
+        let f = Self {
+            path,
+            line,
+            header,
+            fields,
+        };
+        if f.fields.len() != header.len() {
+            return Err(f.error(format!(
+                "{} fields; the header has {}",
+                f.fields.len(),
+                header.len()
+            )));
+        }
+        Ok(f)
+    }
+
+    fn error(&self, message: String) -> OutputsError {
+        OutputsError::Row {
+            path: self.path.to_path_buf(),
+            line: self.line,
+            message,
+        }
+    }
+
+    fn text(&self, column: &str) -> Result<&'a str, OutputsError> {
+        self.header
+            .iter()
+            .position(|h| *h == column)
+            .and_then(|i| self.fields.get(i).copied())
+            .ok_or_else(|| self.error(format!("no column {column}")))
+    }
+
+    /// A number, `None` when the field is empty.
+    fn number(&self, column: &str) -> Result<Option<f64>, OutputsError> {
+        let t = self.text(column)?;
+        if t.is_empty() {
+            return Ok(None);
+        }
+        match t.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(Some(v)),
+            _ => Err(self.error(format!("{column} = {t:?} is not a finite number"))),
+        }
+    }
+
+    fn parse<T: std::str::FromStr>(&self, column: &str, what: &str) -> Result<T, OutputsError> {
+        let t = self.text(column)?;
+        t.parse()
+            .map_err(|_| self.error(format!("{column} = {t:?} is not {what}")))
+    }
+
+    fn epoch(&self, column: &str) -> Result<Epoch, OutputsError> {
+        let t = self.text(column)?;
+        parse_epoch(t).map_err(|e| self.error(format!("{column}: {e}")))
+    }
+}
+
+/// The header of `path` must name every one of `columns`.
+fn require_columns(path: &Path, header: &[&str], columns: &[String]) -> Result<(), OutputsError> {
+    match columns.iter().find(|c| !header.contains(&c.as_str())) {
+        Some(c) => Err(OutputsError::Row {
+            path: path.to_path_buf(),
+            line: 1,
+            message: format!("the header has no column {c}"),
+        }),
+        None => Ok(()),
+    }
+}
+
+/// The chain's files compared with the truth.
+#[derive(Debug, Clone)]
+pub struct OutputsComparison {
+    pub truth_dir: PathBuf,
+    pub observations_dir: PathBuf,
+    pub attitude_dir: PathBuf,
+    /// The run's start (`truth.h5`'s `start_epoch`); `t_s` counts from it.
+    pub start: Epoch,
+    /// Master first, in `geometry.toml`'s order.
+    pub antennas: Vec<AntennaPosition>,
+    /// Epochs, fixes, per-epoch errors and integer checks.
+    pub chain: ChainComparison,
+    /// Fixed epochs (every `fixed` row from the first fix on, with or without NED
+    /// baselines).
+    pub fixed_epochs: usize,
+}
+
+/// Compare the chain's output in `attitude_dir` (`attitude.csv`, `ambiguities.csv`) with
+/// the truth in `truth_dir` (`truth.h5`, `geometry.toml`, `<antenna>.obs.rnx`), the
+/// integers also with the observations in `observations_dir` the chain read.
+pub fn compare_outputs(
+    truth_dir: &Path,
+    observations_dir: &Path,
+    attitude_dir: &Path,
+) -> Result<OutputsComparison, OutputsError> {
+    for dir in [truth_dir, observations_dir, attitude_dir] {
+        if !dir.is_dir() {
+            return Err(file_error(dir, "not a directory"));
+        }
+    }
+    let geometry = BodyGeometryFile::read(&truth_dir.join("geometry.toml"))?;
+    let truth = PlatformTruth::read(&truth_dir.join("truth.h5"), &geometry)?;
+    let baselines = geometry.antennas.len() - 1;
+    let att_path = attitude_dir.join("attitude.csv");
+    let int_path = attitude_dir.join("ambiguities.csv");
+    // Both of the chain's files before the (slower) observation files.
+    for p in [&att_path, &int_path] {
+        std::fs::metadata(p).map_err(|e| file_error(p, e.to_string()))?;
+    }
+    let (chain, fixed_epochs) = read_attitude(&att_path, &truth, baselines)?;
+    let offsets = geometry
+        .antennas
+        .iter()
+        .map(|a| {
+            let file = format!("{}.obs.rnx", a.name);
+            let (m_path, t_path) = (observations_dir.join(&file), truth_dir.join(&file));
+            let measured = read_obs_file(&m_path)?;
+            if std::fs::canonicalize(&m_path).ok() == std::fs::canonicalize(&t_path).ok() {
+                return Err(file_error(
+                    &m_path,
+                    "is the observation truth itself; the observations are those the chain read (skyforge receive's directory, or SIMDIR/observations)",
+                ));
+            }
+            let observed_truth = read_obs_file(&t_path)?;
+            Ok(phase_offsets(&measured, &observed_truth, truth.start))
+        })
+        .collect::<Result<Vec<_>, OutputsError>>()?;
+    let (integers, wrong_epochs) = check_integers(&int_path, &offsets, truth.start, baselines)?;
+    let mut chain = chain;
+    chain.fixed_epochs = fixed_epochs;
+    chain.fixed_epochs_wrong = wrong_epochs;
+    chain.integers_checked = integers.checked;
+    chain.integers_wrong = integers.wrong;
+    chain.largest_integer_distance_cycles = integers.largest_distance_cycles;
+    Ok(OutputsComparison {
+        truth_dir: truth_dir.to_path_buf(),
+        observations_dir: observations_dir.to_path_buf(),
+        attitude_dir: attitude_dir.to_path_buf(),
+        start: truth.start,
+        antennas: truth.antennas.clone(),
+        chain,
+        fixed_epochs,
+    })
+}
+
+/// `attitude.csv` against the truth: epochs, the first fix, and the errors of every
+/// fixed epoch (counted from the first fix on, as [`super::compare()`] does).
+fn read_attitude(
+    path: &Path,
+    truth: &PlatformTruth,
+    baselines: usize,
+) -> Result<(ChainComparison, usize), OutputsError> {
+    let check_header = |names: &[&str]| {
+        let in_file = (1..)
+            .take_while(|k| names.contains(&format!("b{k}_x_m").as_str()))
+            .count();
+        if in_file != baselines {
+            return Err(file_error(
+                path,
+                format!(
+                    "{in_file} baselines, but geometry.toml has {} antennas ({baselines} baselines): not the chain of this run",
+                    baselines + 1
+                ),
+            ));
+        }
+        let mut required: Vec<String> = [
+            "time_gpst",
+            "status",
+            "yaw_deg",
+            "pitch_deg",
+            "roll_deg",
+            "note",
+        ]
+        .map(String::from)
+        .to_vec();
+        for k in 1..=baselines {
+            for c in ["x", "y", "z", "n", "e", "d"] {
+                required.push(format!("b{k}_{c}_m"));
+            }
+        }
+        require_columns(path, names, &required)
+    };
+    let mut out = ChainComparison {
+        epochs: 0,
+        first_fix_s: None,
+        after_first_fix: 0,
+        fixed: Vec::new(),
+        integers_checked: 0,
+        integers_wrong: 0,
+        largest_integer_distance_cycles: 0.0,
+        fixed_epochs: 0,
+        fixed_epochs_wrong: 0,
+    };
+    let mut fixed_epochs = 0usize;
+    let (first, last) = truth.span();
+    read_csv(path, check_header, |header, line, text| {
+        let f = Fields::new(path, line, header, text)?;
+        let time = f.epoch("time_gpst")?;
+        let status = f.text("status")?;
+        if !["fixed", "partial", "float", "none"].contains(&status) {
+            return Err(f.error(format!(
+                "status = {status:?}; expected fixed, partial, float or none"
+            )));
+        }
+        out.epochs += 1;
+        let t_s = (time - truth.start).to_seconds();
+        let is_fixed = status == "fixed";
+        if is_fixed && out.first_fix_s.is_none() {
+            out.first_fix_s = Some(t_s);
+        }
+        if out.first_fix_s.is_none() {
+            return Ok(());
+        }
+        out.after_first_fix += 1;
+        if !is_fixed {
+            return Ok(());
+        }
+        fixed_epochs += 1;
+        let tr = truth.truth_at(t_s).ok_or_else(|| {
+            f.error(format!(
+                "{time} is {t_s} s after the truth's start, outside truth.h5 ({first} .. {last} s): not the same run"
+            ))
+        })?;
+        let vector = |k: usize, axes: [&str; 3]| -> Result<Option<Vec3>, OutputsError> {
+            let v = axes
+                .iter()
+                .map(|c| f.number(&format!("b{k}_{c}_m")))
+                .collect::<Result<Vec<_>, _>>()?;
+            Ok(match v.as_slice() {
+                [Some(a), Some(b), Some(c)] => Some(Vec3::new(*a, *b, *c)),
+                _ => None,
+            })
+        };
+        let diff = |a: &Vec3, b: &Vec3| [a.x - b.x, a.y - b.y, a.z - b.z];
+        let mut baseline_ecef_m = Vec::new();
+        let mut ned = Vec::new();
+        for k in 1..=baselines {
+            let ecef = vector(k, ["x", "y", "z"])?
+                .ok_or_else(|| f.error(format!("a fixed epoch without baseline b{k}_x/y/z_m")))?;
+            baseline_ecef_m.push(diff(&ecef, &tr.ecef[k - 1]));
+            ned.push(vector(k, ["n", "e", "d"])?.map(|v| diff(&v, &tr.ned[k - 1])));
+        }
+        // NED baselines are blank when the ECEF -> NED rotation failed; such an epoch
+        // is fixed but has no NED errors.
+        let baseline_ned_m = ned
+            .into_iter()
+            .collect::<Option<Vec<_>>>()
+            .unwrap_or_default();
+        let angles = (
+            f.number("yaw_deg")?,
+            f.number("pitch_deg")?,
+            f.number("roll_deg")?,
+        );
+        // A note on a fixed epoch says the attitude stage skipped it (what it shows is
+        // its last state): no attitude error, as for an in-memory run.
+        let note = f.text("note")?;
+        let attitude_deg = match angles {
+            (Some(y), Some(p), Some(r)) if note.is_empty() => {
+                let estimate = YawPitchRoll {
+                    yaw_rad: y.to_radians(),
+                    pitch_rad: p.to_radians(),
+                    roll_rad: r.to_radians(),
+                };
+                Some(attitude_errors_deg(&estimate, &tr.attitude))
+            }
+            _ => None,
+        };
+        out.fixed.push(EpochErrors {
+            t_s,
+            baseline_ecef_m,
+            baseline_ned_m,
+            attitude_deg,
+        });
+        Ok(())
+    })?;
+    Ok((out, fixed_epochs))
+}
+
+/// Every integer of `ambiguities.csv` against the truth's double-difference integer,
+/// `round(DD(observed phase) - DD(truth phase))` of the same epoch. Integers whose
+/// epoch is not a whole second, or whose phases an antenna's file lacks, are not
+/// checked. Also returns how many epochs had a wrong integer.
+fn check_integers(
+    path: &Path,
+    offsets: &[PhaseOffsets],
+    start: Epoch,
+    baselines: usize,
+) -> Result<(IntegerCheck, usize), OutputsError> {
+    let required = [
+        "time_gpst",
+        "baseline",
+        "signal",
+        "sat",
+        "reference",
+        "integer",
+    ]
+    .map(String::from);
+    let mut check = IntegerCheck::default();
+    let mut wrong_seconds = std::collections::BTreeSet::new();
+    read_csv(
+        path,
+        |names| require_columns(path, names, &required),
+        |header, line, text| {
+            let f = Fields::new(path, line, header, text)?;
+            let time = f.epoch("time_gpst")?;
+            let k: usize = f.parse("baseline", "a baseline number")?;
+            if k == 0 || k > baselines {
+                return Err(f.error(format!(
+                    "baseline = {k}; the run has baselines 1..{baselines}"
+                )));
+            }
+            let signal: Signal = f.parse("signal", "a signal tag (gps-l1ca, bds-b1i)")?;
+            let sat: SatId = f.parse("sat", "a satellite (e.g. G05)")?;
+            let reference: SatId = f.parse("reference", "a satellite (e.g. G05)")?;
+            let integer: i64 = f.parse("integer", "an integer")?;
+            let Some(second) = whole_second(time, start) else {
+                return Ok(());
+            };
+            if let Some(dd) = dd_offset(offsets, second, k, signal, sat, reference) {
+                let wrong_before = check.wrong;
+                check.add(dd, integer);
+                if check.wrong > wrong_before {
+                    wrong_seconds.insert(second);
+                }
+            }
+            Ok(())
+        },
+    )?;
+    Ok((check, wrong_seconds.len()))
+}
+
+/// Count, mean, standard deviation (`n - 1`) and RMS of one error axis.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AxisStats {
+    pub count: usize,
+    pub mean: Option<f64>,
+    pub std: Option<f64>,
+    pub rms: Option<f64>,
+}
+
+impl AxisStats {
+    pub fn of(values: &[f64]) -> Self {
+        let s = ErrorStats::of(values);
+        Self {
+            count: s.count,
+            mean: s.mean,
+            std: s.std,
+            rms: (!values.is_empty()).then(|| rms(values)),
+        }
+    }
+}
+
+/// N, E, D.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ned<T> {
+    pub n: T,
+    pub e: T,
+    pub d: T,
+}
+
+/// ECEF X, Y, Z.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Xyz<T> {
+    pub x: T,
+    pub y: T,
+    pub z: T,
+}
+
+/// Yaw, pitch, roll.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Ypr<T> {
+    pub yaw: T,
+    pub pitch: T,
+    pub roll: T,
+}
+
+impl<T> From<[T; 3]> for Ned<T> {
+    fn from([n, e, d]: [T; 3]) -> Self {
+        Self { n, e, d }
+    }
+}
+
+impl<T> From<[T; 3]> for Xyz<T> {
+    fn from([x, y, z]: [T; 3]) -> Self {
+        Self { x, y, z }
+    }
+}
+
+impl<T> From<[T; 3]> for Ypr<T> {
+    fn from([yaw, pitch, roll]: [T; 3]) -> Self {
+        Self { yaw, pitch, roll }
+    }
+}
+
+impl<T> Ned<T> {
+    pub fn axes(&self) -> [&T; 3] {
+        [&self.n, &self.e, &self.d]
+    }
+}
+
+impl<T> Ypr<T> {
+    pub fn axes(&self) -> [&T; 3] {
+        [&self.yaw, &self.pitch, &self.roll]
+    }
+}
+
+/// One baseline's errors (m).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BaselineErrors {
+    /// 1-based: antenna `baseline` (0-based, after the master) minus the master.
+    pub baseline: usize,
+    pub antenna: String,
+    /// N, E, D in the master's local frame.
+    pub ned_m: Ned<AxisStats>,
+    /// ECEF X, Y, Z.
+    pub ecef_m: Xyz<AxisStats>,
+    /// Thesis table 5.4-4's std of this baseline (N, E, D), for the first two baselines.
+    pub thesis_ned_std_m: Option<Ned<f64>>,
+}
+
+/// Integers checked against the truth.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct IntegerSummary {
+    pub checked: usize,
+    pub wrong: usize,
+    pub largest_distance_cycles: f64,
+}
+
+/// What `skyforge validate attitude` prints and writes as JSON.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AttitudeValidation {
+    pub truth: String,
+    pub observations: String,
+    pub attitude: String,
+    pub antennas: Vec<AntennaPosition>,
+    /// Rows of `attitude.csv` (master epochs).
+    pub epochs: usize,
+    /// Seconds from the run's start to the first fixed epoch.
+    pub first_fix_s: Option<f64>,
+    pub epochs_from_first_fix: usize,
+    pub fixed_epochs: usize,
+    /// Fixed epochs over epochs from the first fix on (0 without a fix).
+    pub fixed_fraction: f64,
+    /// Fixed epochs with an attitude update.
+    pub attitude_epochs: usize,
+    pub integers: IntegerSummary,
+    pub baselines: Vec<BaselineErrors>,
+    /// Yaw, pitch, roll error (deg).
+    pub attitude_deg: Ypr<AxisStats>,
+    /// Thesis table 5.4-5's yaw, pitch, roll std (deg; real-time KF).
+    pub thesis_attitude_std_deg: Ypr<f64>,
+}
+
+impl OutputsComparison {
+    /// Statistics of the comparison.
+    pub fn summary(&self) -> AttitudeValidation {
+        let c = &self.chain;
+        let axes = |f: &dyn Fn(usize) -> Vec<f64>| [0, 1, 2].map(|i| AxisStats::of(&f(i)));
+        let baselines = self
+            .antennas
+            .iter()
+            .skip(1)
+            .enumerate()
+            .map(|(k, a)| BaselineErrors {
+                baseline: k + 1,
+                antenna: a.name.clone(),
+                ned_m: axes(&|i| c.baseline_axis(k, i, true)).into(),
+                ecef_m: axes(&|i| c.baseline_axis(k, i, false)).into(),
+                thesis_ned_std_m: THESIS_NED_STD_M.get(k).map(|t| Ned::from(*t)),
+            })
+            .collect();
+        AttitudeValidation {
+            truth: self.truth_dir.display().to_string(),
+            observations: self.observations_dir.display().to_string(),
+            attitude: self.attitude_dir.display().to_string(),
+            antennas: self.antennas.clone(),
+            epochs: c.epochs,
+            first_fix_s: c.first_fix_s,
+            epochs_from_first_fix: c.after_first_fix,
+            fixed_epochs: self.fixed_epochs,
+            fixed_fraction: self.fixed_epochs as f64 / c.after_first_fix.max(1) as f64,
+            attitude_epochs: c.attitude_axis(0).len(),
+            integers: IntegerSummary {
+                checked: c.integers_checked,
+                wrong: c.integers_wrong,
+                largest_distance_cycles: c.largest_integer_distance_cycles,
+            },
+            baselines,
+            attitude_deg: axes(&|i| c.attitude_axis(i)).into(),
+            thesis_attitude_std_deg: THESIS_ATTITUDE_STD_DEG.into(),
+        }
+    }
+}
+
+/// `value * scale` with `digits` decimals, or `-`.
+fn cell(v: Option<f64>, scale: f64, digits: usize) -> String {
+    v.map_or_else(|| "-".into(), |v| format!("{:.digits$}", v * scale))
+}
+
+/// The short table of `skyforge validate attitude`.
+pub fn print_validation(v: &AttitudeValidation, out: &mut impl Write) -> std::io::Result<()> {
+    writeln!(out, "truth:        {}", v.truth)?;
+    writeln!(out, "observations: {}", v.observations)?;
+    writeln!(out, "attitude:     {}", v.attitude)?;
+    let names: Vec<String> = v
+        .antennas
+        .iter()
+        .map(|a| {
+            let [x, y, z] = a.true_body_m;
+            format!("{} [{x:.4}, {y:.4}, {z:.4}]", a.name)
+        })
+        .collect();
+    writeln!(
+        out,
+        "antennas (true body positions, m; master first): {}",
+        names.join(", ")
+    )?;
+    let first = v.first_fix_s.map_or_else(
+        || "none".to_string(),
+        |t| format!("{t:.1} s after the start"),
+    );
+    writeln!(out, "epochs {}, first fix {first}", v.epochs)?;
+    writeln!(
+        out,
+        "fixed {} of {} epochs from the first fix on ({:.1} %), attitude at {}",
+        v.fixed_epochs,
+        v.epochs_from_first_fix,
+        100.0 * v.fixed_fraction,
+        v.attitude_epochs
+    )?;
+    writeln!(
+        out,
+        "integers: {} checked against the truth, {} wrong (largest distance of an observed DD from the truth's integer {:.3} cycles)",
+        v.integers.checked, v.integers.wrong, v.integers.largest_distance_cycles
+    )?;
+    writeln!(out)?;
+    writeln!(
+        out,
+        "{:<22} {:>6} {:>9} {:>9} {:>9}   thesis std",
+        "error", "count", "mean", "std", "rms"
+    )?;
+    for b in &v.baselines {
+        for (i, axis) in ["N", "E", "D"].iter().enumerate() {
+            let s = b.ned_m.axes()[i];
+            let thesis = b.thesis_ned_std_m.map_or_else(
+                || "-".to_string(),
+                |t| format!("{:.3} (table 5.4-4)", t.axes()[i] * 1e3),
+            );
+            writeln!(
+                out,
+                "{:<22} {:>6} {:>9} {:>9} {:>9}   {thesis}",
+                format!("b{} ({}) {axis} mm", b.baseline, b.antenna),
+                s.count,
+                cell(s.mean, 1e3, 3),
+                cell(s.std, 1e3, 3),
+                cell(s.rms, 1e3, 3),
+            )?;
+        }
+    }
+    for (i, axis) in ["yaw", "pitch", "roll"].iter().enumerate() {
+        let s = v.attitude_deg.axes()[i];
+        writeln!(
+            out,
+            "{:<22} {:>6} {:>9} {:>9} {:>9}   {:.4} (table 5.4-5, KF)",
+            format!("{axis} deg"),
+            s.count,
+            cell(s.mean, 1.0, 4),
+            cell(s.std, 1.0, 4),
+            cell(s.rms, 1.0, 4),
+            v.thesis_attitude_std_deg.axes()[i]
+        )?;
+    }
+    writeln!(
+        out,
+        "thesis std: the thesis's real-time experiment (GPS L1, 1 Hz, KF; tables 5.4-4 and 5.4-5), for scale, not a bar"
+    )?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axis_stats_of_a_small_sample() {
+        let s = AxisStats::of(&[1.0, -1.0, 3.0]);
+        assert_eq!((s.count, s.mean), (3, Some(1.0)));
+        assert_eq!(s.std, Some(2.0));
+        assert!((s.rms.unwrap() - (11.0f64 / 3.0).sqrt()).abs() < 1e-15);
+        let e = AxisStats::of(&[]);
+        assert_eq!((e.count, e.mean, e.std, e.rms), (0, None, None, None));
+    }
+
+    fn csv(dir: &Path, name: &str, text: &str) -> PathBuf {
+        let p = dir.join(name);
+        std::fs::write(&p, text).unwrap();
+        p
+    }
+
+    #[test]
+    fn csv_rows_name_file_and_line() {
+        let dir = tempfile::tempdir().unwrap();
+        let p = csv(
+            dir.path(),
+            "a.csv",
+            "time_gpst,n\n2023-03-12T00:00:00 GPST,1\nx\n",
+        );
+        let mut seen = Vec::new();
+        let e = read_csv(
+            &p,
+            |_| Ok(()),
+            |h, line, text| {
+                let f = Fields::new(&p, line, h, text)?;
+                seen.push(f.number("n")?);
+                Ok(())
+            },
+        )
+        .unwrap_err()
+        .to_string();
+        assert_eq!(seen, [Some(1.0)]);
+        assert!(e.contains("a.csv:3: 1 fields; the header has 2"), "{e}");
+        let p = csv(
+            dir.path(),
+            "b.csv",
+            "time_gpst,n\n2023-03-12T00:00:00 GPST,nan\n",
+        );
+        let e = read_csv(
+            &p,
+            |_| Ok(()),
+            |h, line, text| Fields::new(&p, line, h, text)?.number("n").map(|_| ()),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("b.csv:2: n = \"nan\" is not a finite number"),
+            "{e}"
+        );
+        let e = read_csv(&dir.path().join("none.csv"), |_| Ok(()), |_, _, _| Ok(()))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("none.csv"), "{e}");
+    }
+
+    #[test]
+    fn platform_between_rows_is_interpolated() {
+        let q0 = UnitQuaternion::identity();
+        let q1 = UnitQuaternion::from_euler_angles(0.0, 0.0, 0.2);
+        let p = PlatformTruth {
+            start: Epoch::from_gpst_seconds(0.0),
+            t_s: vec![0.0, 1.0],
+            r_ecef_m: vec![Vec3::new(7e6, 0.0, 0.0), Vec3::new(7e6, 10.0, 0.0)],
+            q_body_ecef: vec![q0, q1],
+            antennas: Vec::new(),
+            true_body_m: vec![Vec3::zeros()],
+        };
+        let (r, c) = p.at(0.5).unwrap();
+        assert!((r.y - 5.0).abs() < 1e-9);
+        let half = UnitQuaternion::from_euler_angles(0.0, 0.0, 0.1);
+        assert!((c - half.to_rotation_matrix().into_inner()).norm() < 1e-12);
+        assert_eq!(p.at(1.0).unwrap().0.y, 10.0);
+        assert!(p.at(-0.1).is_none() && p.at(1.1).is_none());
+    }
+}
