@@ -112,6 +112,14 @@ pub fn growth_row(table: &str, row: String, thesis: f64, ours: f64) -> Row {
     )
 }
 
+/// [`crate::attitude::seed_runs`] with its error as a table's.
+pub fn seed_runs(
+    scenario: &skyforge_scenarios::Scenario,
+    config: &skyforge_receiver::relative::RelativeConfig,
+) -> Result<Vec<ChainComparison>, ValidateError> {
+    crate::attitude::seed_runs(scenario, config).map_err(ValidateError::Pipeline)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -133,12 +141,4 @@ mod tests {
         assert!(std(&[1.0]).is_nan());
         assert!((std(&[1.0, 3.0]) - 2f64.sqrt()).abs() < 1e-12);
     }
-}
-
-/// [`crate::attitude::seed_runs`] with its error as a table's.
-pub fn seed_runs(
-    scenario: &skyforge_scenarios::Scenario,
-    config: &skyforge_receiver::relative::RelativeConfig,
-) -> Result<Vec<ChainComparison>, ValidateError> {
-    crate::attitude::seed_runs(scenario, config).map_err(ValidateError::Pipeline)
 }
