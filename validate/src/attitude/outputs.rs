@@ -22,6 +22,7 @@ use super::compare::{
 };
 use crate::observables::ErrorStats;
 use crate::stats::rms;
+use crate::thesis::attitude_realtime::{ATTITUDE_ROW, BASELINE_ROWS};
 use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
 use nalgebra::{Quaternion, UnitQuaternion};
@@ -44,13 +45,10 @@ const MAX_TRUTH_ROWS: usize = 1 << 22;
 /// Truth rows this close (s) to an epoch are that epoch's.
 const SAME_TIME_S: f64 = 1e-6;
 
-/// Thesis table 5.4-4: each baseline's NED error std (m), N, E, D.
-pub const THESIS_NED_STD_M: [[f64; 3]; 2] = [
-    [8.0105e-4, 7.8495e-4, 0.0017],
-    [8.0197e-4, 7.9072e-4, 0.0017],
-];
-/// Thesis table 5.4-5: yaw, pitch, roll error std (deg) of the real-time KF.
-pub const THESIS_ATTITUDE_STD_DEG: [f64; 3] = [0.0410, 0.0741, 0.0806];
+/// Thesis table 5.4-4's N, E, D error std (m) of baseline `k` (0-based), where printed.
+fn thesis_ned_std_m(k: usize) -> Option<[f64; 3]> {
+    BASELINE_ROWS.get(k).map(|r| [r[3], r[4], r[5]])
+}
 
 /// Why the directories could not be compared. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
@@ -753,7 +751,7 @@ impl OutputsComparison {
                 antenna: a.name.clone(),
                 ned_m: axes(&|i| c.baseline_axis(k, i, true)).into(),
                 ecef_m: axes(&|i| c.baseline_axis(k, i, false)).into(),
-                thesis_ned_std_m: THESIS_NED_STD_M.get(k).map(|t| Ned::from(*t)),
+                thesis_ned_std_m: thesis_ned_std_m(k).map(Ned::from),
             })
             .collect();
         AttitudeValidation {
@@ -774,7 +772,7 @@ impl OutputsComparison {
             },
             baselines,
             attitude_deg: axes(&|i| c.attitude_axis(i)).into(),
-            thesis_attitude_std_deg: THESIS_ATTITUDE_STD_DEG.into(),
+            thesis_attitude_std_deg: ATTITUDE_ROW.into(),
         }
     }
 }

@@ -26,12 +26,12 @@ pub const TABLES: [&str; 3] = ["T-5.4-3", "T-5.4-4", "T-5.4-5"];
 pub const SCENARIO: &str = "thesis/t-5.4-3";
 
 /// Tables 5.4-3 and 5.4-4: per baseline, the ECEF X, Y, Z and NED N, E, D error std (m).
-const BASELINE_ROWS: [[f64; 6]; 2] = [
+pub const BASELINE_ROWS: [[f64; 6]; 2] = [
     [0.0013, 0.0013, 8.4087e-4, 8.0105e-4, 7.8495e-4, 0.0017],
     [0.0013, 0.0013, 8.3888e-4, 8.0197e-4, 7.9072e-4, 0.0017],
 ];
 /// Table 5.4-5: yaw, pitch, roll error std (deg).
-const ATTITUDE_ROW: [f64; 3] = [0.0410, 0.0741, 0.0806];
+pub const ATTITUDE_ROW: [f64; 3] = [0.0410, 0.0741, 0.0806];
 /// `THESIS_TARGETS.md`: each std within this factor.
 const FACTOR: f64 = 1.6;
 const COMPONENTS: [&str; 6] = ["ECEF X", "ECEF Y", "ECEF Z", "NED N", "NED E", "NED D"];
