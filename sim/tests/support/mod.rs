@@ -150,3 +150,30 @@ pub fn observable_errors(sim: &Path, rx: &Path) -> (f64, f64, usize) {
         c.matched_epochs,
     )
 }
+
+/// One epoch of an `rnx2rtkp` solution file written with `out-solformat=enu` and
+/// `out-timeform=hms`: the GPST time as written (`yyyy/mm/dd hh:mm:ss.sss`), the
+/// east/north/up baseline from the base (m) and the quality flag `Q` (1 fixed, 2 float,
+/// 4 DGPS, 5 single).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RtklibEnu {
+    pub time: String,
+    pub enu_m: [f64; 3],
+    pub q: u8,
+}
+
+/// The epochs of an `rnx2rtkp` ENU solution file (header lines start with `%`).
+pub fn rtklib_enu_solutions(pos: &str) -> Vec<RtklibEnu> {
+    pos.lines()
+        .filter(|l| !l.starts_with('%'))
+        .filter_map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            let number = |i: usize| f.get(i).and_then(|x| x.parse::<f64>().ok());
+            Some(RtklibEnu {
+                time: format!("{} {}", f.first()?, f.get(1)?),
+                enu_m: [number(2)?, number(3)?, number(4)?],
+                q: f.get(5)?.parse().ok()?,
+            })
+        })
+        .collect()
+}
