@@ -9,7 +9,9 @@ use skyforge_signals::signal::Signal;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RelativeConfig {
-    /// Signals used (`gps-l1ca`, `bds-b1i`).
+    /// Signals used (`gps-l1ca`, `bds-b1i`, `gps-l2`); default the two SkyForge
+    /// synthesises. Every signal listed of a system must be observed on a satellite for
+    /// it to enter the double differences.
     #[serde(deserialize_with = "signals")]
     pub signals: Vec<Signal>,
     /// Weighting of the double differences: thesis eqs. 2.4-9/2.4-10 for phase and code.
@@ -66,7 +68,7 @@ impl Default for RelativeConfig {
             elev0_deg: 10.0,
         };
         Self {
-            signals: Signal::ALL.to_vec(),
+            signals: Signal::SYNTHESISED.to_vec(),
             phase: elevation(0.002),
             code: elevation(0.3),
             ratio_threshold: 3.0,
