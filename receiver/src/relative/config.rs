@@ -32,6 +32,10 @@ pub struct RelativeConfig {
     /// Held integers are dropped when their fit to the epoch's float solution exceeds
     /// the chi-square quantile of this false-alarm probability.
     pub hold_test_pfa: f64,
+    /// Satellites below this elevation (deg) above the master's horizon are left out of
+    /// the double differences. Default none (# assumed: on a LEO the local horizon does
+    /// not bound tracking); a ground user sets one (e.g. 15).
+    pub elevation_mask_deg: Option<f64>,
     /// The attitude stage.
     pub attitude: AttitudeConfig,
 }
@@ -76,6 +80,7 @@ impl Default for RelativeConfig {
             hold: true,
             constraint: Constraint::Geometry,
             hold_test_pfa: 1e-4,
+            elevation_mask_deg: None,
             attitude: AttitudeConfig::default(),
         }
     }
@@ -127,6 +132,13 @@ impl RelativeConfig {
             return Err(error(
                 &"relative.min_success_rate must be at most 1 and relative.hold_test_pfa below 1",
             ));
+        }
+        if let Some(m) = config.elevation_mask_deg
+            && !(m.is_finite() && (-90.0..=90.0).contains(&m))
+        {
+            return Err(error(&format!(
+                "relative.elevation_mask_deg = {m}: must be between -90 and 90"
+            )));
         }
         if config.signals.is_empty() {
             return Err(error(&"relative.signals: at least one signal"));
