@@ -200,8 +200,8 @@ fn skyforge(
 /// wide (ratio 1.1-1.9, success rate 0.1-0.25), and the chain keeps no float ambiguities
 /// between epochs (RTKLIB's Kalman filter does), so it never makes a first fix to hold.
 /// L1 + L2: SkyForge fixes 120 of 120 (RTKLIB 115 of 115) but the baselines differ by
-/// up to 7.0 cm (rms 1.0 cm; 24 of 115 common epochs over 1 cm): a drift from 0 to
-/// 1.7 cm over the last 12 minutes and 7 cm at the last epoch.
+/// up to 7.0 cm (rms 1.0 cm; 24 of 115 common epochs over 1 cm): under 1 cm to 00:44:30,
+/// a drift to 2.0 cm by 00:56:30 (mostly up) and 7.0 cm at the last common epoch.
 #[test]
 #[ignore = "real-data tier: cargo test -- --ignored"]
 fn geonet_baseline_against_rtklib_kinematic() {
