@@ -18,5 +18,7 @@ pub const WGS84_F: f64 = 1.0 / 298.257_223_563;
 pub const J2: f64 = 1.082_626_683_55e-3;
 /// GPS L1 carrier frequency (Hz).
 pub const F_GPS_L1_HZ: f64 = 1_575.42e6;
+/// GPS L2 carrier frequency (Hz): 120 x 10.23 MHz (IS-GPS-200 §3.3.1.1).
+pub const F_GPS_L2_HZ: f64 = 1_227.60e6;
 /// BeiDou B1I carrier frequency (Hz).
 pub const F_BDS_B1I_HZ: f64 = 1_561.098e6;

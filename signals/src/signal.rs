@@ -4,7 +4,7 @@
 
 use crate::codes::bds_b1i;
 use crate::codes::gps_ca;
-use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ};
+use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ};
 use std::str::FromStr;
 
 /// A GNSS signal.
@@ -14,6 +14,11 @@ pub enum Signal {
     GpsL1Ca,
     /// BeiDou B1I: 2046 chips at 2.046 Mchip/s on 1561.098 MHz (BDS-SIS-ICD-B1I-3.0 §4).
     BdsB1I,
+    /// GPS L2 on 1227.60 MHz, as real geodetic receivers record it (phase `L2`, P(Y) code
+    /// `P2` tracked semi-codelessly or L2C code `C2`): observed only. SkyForge neither
+    /// synthesises nor tracks it ([`Signal::SYNTHESISED`]); it is read from other
+    /// receivers' RINEX files and used by the relative-positioning chain.
+    GpsL2,
 }
 
 /// How navigation data (and any secondary code) modulate the ranging code.
@@ -49,24 +54,39 @@ pub struct UnknownPrn {
     pub max: u8,
 }
 
-/// A signal name that is not `gps-l1ca` or `bds-b1i`.
+/// A signal name that is not `gps-l1ca`, `bds-b1i` or `gps-l2`.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i")]
+#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2")]
 pub struct UnknownSignal(pub String);
+
+/// P-code chipping rate (chip/s), 10.23 MHz (IS-GPS-200 §3.3.1.1).
+const P_CODE_CHIP_RATE_HZ: f64 = 10.23e6;
+/// P-code chips in its one-week period (IS-GPS-200 §3.3.2.2).
+const P_CODE_WEEK_CHIPS: usize = 10_230_000 * 604_800;
 
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
 /// signal's nominal carrier for the two to be taken as the same.
 pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
 
 impl Signal {
-    /// Every signal.
-    pub const ALL: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
+    /// Every signal: those SkyForge synthesises and tracks, and those it only reads from
+    /// other receivers' observation files.
+    pub const ALL: [Signal; 3] = [Signal::GpsL1Ca, Signal::BdsB1I, Signal::GpsL2];
+
+    /// The signals SkyForge synthesises, records (SigMF) and tracks: one per constellation.
+    pub const SYNTHESISED: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
+
+    /// Whether SkyForge synthesises and tracks the signal ([`Signal::SYNTHESISED`]).
+    pub fn is_synthesised(self) -> bool {
+        Self::SYNTHESISED.contains(&self)
+    }
 
     /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
     pub fn name(self) -> &'static str {
         match self {
             Signal::GpsL1Ca => "GPS L1 C/A",
             Signal::BdsB1I => "BDS B1I",
+            Signal::GpsL2 => "GPS L2",
         }
     }
 
@@ -81,7 +101,7 @@ impl Signal {
     /// The constellation that transmits the signal.
     pub fn system(self) -> skyforge_orbits::ephemeris::System {
         match self {
-            Self::GpsL1Ca => skyforge_orbits::ephemeris::System::Gps,
+            Self::GpsL1Ca | Self::GpsL2 => skyforge_orbits::ephemeris::System::Gps,
             Self::BdsB1I => skyforge_orbits::ephemeris::System::Beidou,
         }
     }
@@ -92,15 +112,17 @@ impl Signal {
         match self {
             Signal::GpsL1Ca => "gps-l1ca",
             Signal::BdsB1I => "bds-b1i",
+            Signal::GpsL2 => "gps-l2",
         }
     }
 
-    /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz);
-    /// BDS-SIS-ICD-B1I-3.0 §4.2.1 (1561.098 MHz).
+    /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz,
+    /// L2 = 120 x 10.23 MHz); BDS-SIS-ICD-B1I-3.0 §4.2.1 (1561.098 MHz).
     pub fn carrier_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => F_GPS_L1_HZ,
             Signal::BdsB1I => F_BDS_B1I_HZ,
+            Signal::GpsL2 => F_GPS_L2_HZ,
         }
     }
 
@@ -109,32 +131,37 @@ impl Signal {
         skyforge_orbits::constants::C_MPS / self.carrier_hz()
     }
 
-    /// Chipping rate (chip/s).
+    /// Chipping rate (chip/s); for GPS L2 that of the P(Y) code a geodetic receiver's `P2`
+    /// measures, 10.23 Mchip/s (IS-GPS-200 §3.3.1.1).
     pub fn chip_rate_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => gps_ca::GPS_CA_CHIP_RATE_HZ,
+            Signal::GpsL2 => P_CODE_CHIP_RATE_HZ,
             Signal::BdsB1I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
         }
     }
 
-    /// Chips per code period.
+    /// Chips per code period; for GPS L2 the P code's week (IS-GPS-200 §3.3.2.2).
     pub fn code_length(self) -> usize {
         match self {
             Signal::GpsL1Ca => gps_ca::GPS_CA_CODE_LENGTH,
+            Signal::GpsL2 => P_CODE_WEEK_CHIPS,
             Signal::BdsB1I => bds_b1i::BDS_B1I_CODE_LENGTH,
         }
     }
 
-    /// Code period (s): 1 ms for both signals.
+    /// Code period (s): 1 ms for the synthesised signals (a week for the P code of L2).
     pub fn code_period_s(self) -> f64 {
         self.code_length() as f64 / self.chip_rate_hz()
     }
 
-    /// One code period of `prn` as signal levels (+1/-1), chip 0 first.
+    /// One code period of `prn` as signal levels (+1/-1), chip 0 first; an error for a
+    /// signal SkyForge does not synthesise (no PRN has a code SkyForge generates).
     pub fn code(self, prn: u8) -> Result<Vec<i8>, UnknownPrn> {
         let (code, max) = match self {
             Signal::GpsL1Ca => (gps_ca::gps_ca(prn).map(Vec::from), gps_ca::GPS_CA_PRN_MAX),
             Signal::BdsB1I => (bds_b1i::bds_b1i(prn), bds_b1i::BDS_B1I_PRN_MAX),
+            Signal::GpsL2 => (None, 0),
         };
         code.ok_or(UnknownPrn {
             signal: self,
@@ -147,23 +174,25 @@ impl Signal {
     /// D2, the others D1 (BDS-SIS-ICD-B1I-3.0 §5.1).
     pub fn data_modulation(self, prn: u8) -> DataModulation {
         match self {
-            Signal::GpsL1Ca => DataModulation::GpsLnav,
+            Signal::GpsL1Ca | Signal::GpsL2 => DataModulation::GpsLnav,
             Signal::BdsB1I if prn <= 5 || prn >= 59 => DataModulation::BdsD2,
             Signal::BdsB1I => DataModulation::BdsD1,
         }
     }
 
-    /// The signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz`.
+    /// The synthesised signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of
+    /// `carrier_hz` (a recording's signal).
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
-        Self::ALL
+        Self::SYNTHESISED
             .into_iter()
             .find(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ)
     }
 
-    /// The only signal whose carrier lies inside the band recorded about `centre_hz`
-    /// (complex: `|carrier - centre| < fs / 2`), or `None` when none or several do.
+    /// The only synthesised signal whose carrier lies inside the band recorded about
+    /// `centre_hz` (complex: `|carrier - centre| < fs / 2`), or `None` when none or several
+    /// do.
     pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
-        let mut inside = Self::ALL
+        let mut inside = Self::SYNTHESISED
             .into_iter()
             .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0);
         match (inside.next(), inside.next()) {
@@ -172,10 +201,10 @@ impl Signal {
         }
     }
 
-    /// The signal named by a `.<tag>` component of a file name
+    /// The synthesised signal named by a `.<tag>` component of a recording's file name
     /// (`ant1.gps-l1ca.sigmf-meta`).
     pub fn from_file_name(name: &str) -> Option<Self> {
-        Self::ALL
+        Self::SYNTHESISED
             .into_iter()
             .find(|s| name.split('.').any(|part| part == s.tag()))
     }
@@ -206,9 +235,10 @@ mod tests {
     fn codes_carriers_and_periods_follow_the_icds() {
         assert_eq!(Signal::GpsL1Ca.code(1).unwrap().len(), 1023);
         assert_eq!(Signal::BdsB1I.code(1).unwrap().len(), 2046);
-        for s in Signal::ALL {
+        for s in Signal::SYNTHESISED {
             assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
         }
+        assert!(Signal::GpsL2.code(1).is_err());
         assert_eq!(Signal::GpsL1Ca.code(0).unwrap_err().prn, 0);
         assert!(Signal::BdsB1I.code(64).is_err());
         // GPS: 154 f0 with f0 = 10.23 MHz; BeiDou B1I: 1526 x 1.023 MHz.
@@ -246,5 +276,22 @@ mod tests {
         assert_eq!(Signal::from_file_name("ant2.sigmf-meta"), None);
         assert_eq!("GPS-L1CA".parse::<Signal>(), Ok(Signal::GpsL1Ca));
         assert!("l5".parse::<Signal>().is_err());
+        assert_eq!("gps-l2".parse::<Signal>(), Ok(Signal::GpsL2));
+    }
+
+    /// L2 is read from files, never synthesised: no recording is identified as L2.
+    #[test]
+    fn gps_l2_is_observed_only() {
+        assert!(!Signal::GpsL2.is_synthesised());
+        assert!(Signal::SYNTHESISED.iter().all(|s| s.is_synthesised()));
+        assert_eq!(Signal::GpsL2.carrier_hz(), 120.0 * 10.23e6);
+        assert!((Signal::GpsL2.wavelength_m() - 0.244_210).abs() < 1e-6);
+        assert_eq!(
+            Signal::GpsL2.system(),
+            skyforge_orbits::ephemeris::System::Gps
+        );
+        assert_eq!(Signal::from_carrier_hz(1227.60e6), None);
+        assert_eq!(Signal::in_band(1227.60e6, 4e6), None);
+        assert_eq!(Signal::from_file_name("ant1.gps-l2.sigmf-meta"), None);
     }
 }

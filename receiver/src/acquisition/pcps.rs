@@ -224,6 +224,9 @@ fn bad(name: &'static str, value: f64, allowed: &'static str) -> AcquisitionErro
 impl Pcps {
     /// Check `config` and plan its FFTs and Doppler bins.
     pub fn new(config: PcpsConfig) -> Result<Self, AcquisitionError> {
+        if !config.signal.is_synthesised() {
+            return Err(AcquisitionError::NotTracked(config.signal));
+        }
         let fs = config.sample_rate_hz;
         if !(fs.is_finite() && fs >= config.signal.chip_rate_hz()) {
             return Err(bad(

@@ -79,7 +79,8 @@ impl PcpsStage {
         // between code periods; GPS bits change only every 20 ms.
         config.bit_transition = match signal {
             Signal::BdsB1I => BitTransition::AlignedWindows,
-            Signal::GpsL1Ca => BitTransition::Ignore,
+            // L2 is refused by `Pcps::new` (observed only).
+            Signal::GpsL1Ca | Signal::GpsL2 => BitTransition::Ignore,
         };
         Ok(Self {
             pcps: Pcps::new(config)?,

@@ -9,7 +9,9 @@ use skyforge_signals::signal::Signal;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct RelativeConfig {
-    /// Signals used (`gps-l1ca`, `bds-b1i`).
+    /// Signals used (`gps-l1ca`, `bds-b1i`, `gps-l2`); default the two SkyForge
+    /// synthesises. Every signal listed of a system must be observed on a satellite for
+    /// it to enter the double differences.
     #[serde(deserialize_with = "signals")]
     pub signals: Vec<Signal>,
     /// Weighting of the double differences: thesis eqs. 2.4-9/2.4-10 for phase and code.
@@ -30,6 +32,10 @@ pub struct RelativeConfig {
     /// Held integers are dropped when their fit to the epoch's float solution exceeds
     /// the chi-square quantile of this false-alarm probability.
     pub hold_test_pfa: f64,
+    /// Satellites below this elevation (deg) above the master's horizon are left out of
+    /// the double differences. Default none (# assumed: on a LEO the local horizon does
+    /// not bound tracking); a ground user sets one (e.g. 15).
+    pub elevation_mask_deg: Option<f64>,
     /// The attitude stage.
     pub attitude: AttitudeConfig,
 }
@@ -66,7 +72,7 @@ impl Default for RelativeConfig {
             elev0_deg: 10.0,
         };
         Self {
-            signals: Signal::ALL.to_vec(),
+            signals: Signal::SYNTHESISED.to_vec(),
             phase: elevation(0.002),
             code: elevation(0.3),
             ratio_threshold: 3.0,
@@ -74,6 +80,7 @@ impl Default for RelativeConfig {
             hold: true,
             constraint: Constraint::Geometry,
             hold_test_pfa: 1e-4,
+            elevation_mask_deg: None,
             attitude: AttitudeConfig::default(),
         }
     }
@@ -125,6 +132,13 @@ impl RelativeConfig {
             return Err(error(
                 &"relative.min_success_rate must be at most 1 and relative.hold_test_pfa below 1",
             ));
+        }
+        if let Some(m) = config.elevation_mask_deg
+            && !(m.is_finite() && (-90.0..=90.0).contains(&m))
+        {
+            return Err(error(&format!(
+                "relative.elevation_mask_deg = {m}: must be between -90 and 90"
+            )));
         }
         if config.signals.is_empty() {
             return Err(error(&"relative.signals: at least one signal"));

@@ -4,19 +4,26 @@
 
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
-use crate::pvt::{Measurement, PvtConfig, predicted_view, solve};
+use crate::pvt::{Fix, Measurement, PvtConfig, predicted_view, solve};
 use hifitime::Epoch;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::observation::{ObsFile, ObsRecord};
+use skyforge_signals::signal::Signal;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Largest geometry file read (bytes).
 const MAX_GEOMETRY_BYTES: u64 = 1 << 20;
-/// Epochs of different files closer than this (s) are the same epoch.
-const SAME_EPOCH_S: f64 = 1e-6;
+/// Epochs of different files closer than this (s) are the same epoch: receivers whose
+/// clock is not steered tag their epochs on their own clock and let it drift some
+/// milliseconds from GPS time before a jump (the GEONET Trimble 5700 files tag from
+/// 59.996 to 00.005 s about the whole second). RTKLIB's tolerance (`DTTOL`, 2.4.3); the
+/// difference of the sampling instants is corrected ([`ToMasterModel`]).
+const SAME_EPOCH_S: f64 = 0.025;
 
 /// One antenna of the body geometry.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -106,20 +113,129 @@ pub struct EpochOutcome {
     pub result: Result<RelativeEpoch, String>,
 }
 
-/// The records of `file` at `time`, if it has that epoch (`cursor` advances through the
-/// file's time-ordered epochs).
-fn records_at<'f>(file: &'f ObsFile, cursor: &mut usize, time: Epoch) -> Option<&'f [ObsRecord]> {
+/// The time tag and records of `file` at `time`, if it has that epoch (`cursor` advances
+/// through the file's time-ordered epochs).
+fn records_at<'f>(
+    file: &'f ObsFile,
+    cursor: &mut usize,
+    time: Epoch,
+) -> Option<(Epoch, &'f [ObsRecord])> {
     while *cursor < file.epochs.len()
         && (file.epochs[*cursor].time - time).to_seconds() < -SAME_EPOCH_S
     {
         *cursor += 1;
     }
     let e = file.epochs.get(*cursor)?;
-    ((e.time - time).to_seconds().abs() <= SAME_EPOCH_S).then_some(e.sats.as_slice())
+    ((e.time - time).to_seconds().abs() <= SAME_EPOCH_S).then_some((e.time, e.sats.as_slice()))
+}
+
+/// Each satellite's record of the first of `signals` (in their order) that has a
+/// pseudorange; satellites without one are left out.
+fn first_per_satellite<'r>(
+    records: &'r [ObsRecord],
+    signals: &'r [Signal],
+) -> impl Iterator<Item = &'r ObsRecord> {
+    let mut seen = std::collections::BTreeSet::new();
+    signals
+        .iter()
+        .flat_map(move |s| records.iter().filter(move |r| r.signal == *s))
+        .filter(|r| r.pseudorange_m.is_some())
+        .filter(move |r| seen.insert(r.sat))
+}
+
+/// The single-point solution of one antenna's `records` (one pseudorange per satellite).
+fn single_point(
+    records: &[ObsRecord],
+    signals: &[Signal],
+    t_s: f64,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    prior: Option<Vec3>,
+) -> Result<Fix, String> {
+    let meas: Vec<Measurement> = first_per_satellite(records, signals)
+        .filter(|r| store.select(r.sat, t_s).is_some())
+        .filter_map(|r| {
+            Some(Measurement {
+                sat: r.sat,
+                pseudorange_m: r.pseudorange_m?,
+                doppler_hz: None,
+                carrier_hz: r.signal.carrier_hz(),
+            })
+        })
+        .collect();
+    solve(&meas, t_s, store, origin, &PvtConfig::default(), prior).map_err(|e| e.to_string())
+}
+
+/// What moves one antenna's observation of a satellite onto the chain's linear model
+/// of the master's epoch (m, added to its code and phase).
+#[derive(Debug, Clone, Copy)]
+struct ToMasterModel {
+    /// Range rate (m/s) times (master's sampling instant - this antenna's): a receiver
+    /// that samples on its own clock samples when that clock reads the tag, so two
+    /// receivers' "same" epoch lies their clock difference apart (up to 0.5 ms between
+    /// the GEONET stations: 0.2 m of double difference at 800 m/s of range-rate
+    /// difference, which does not cancel).
+    time_m: f64,
+    /// `-(rho_k - rho_master + l . b0)`: the range difference beyond the linear `-l . b`
+    /// of the double-difference model (eq. 2.3-10), at the antenna's single-point
+    /// position (`b0` from the master's). About `|b|^2 / 2 rho` (0.25 m at 3.3 km,
+    /// varying by satellite by 0.1 m; 1e-8 m at 1 m); an error `db` in `b0` leaves about
+    /// `|b| |db| / rho` (1 mm for 5 m at 3.3 km).
+    curvature_m: f64,
+}
+
+/// The corrections of antenna `k` with single-point solution `fix_k` against the master's
+/// `master_fix`, per satellite of `records`.
+fn to_master_model(
+    records: &[ObsRecord],
+    signals: &[Signal],
+    store: &EphemerisStore,
+    master_fix: &Fix,
+    fix_k: &Fix,
+) -> BTreeMap<SatId, ToMasterModel> {
+    let dt = master_fix.t_s - fix_k.t_s;
+    let b0 = fix_k.r_ecef_m - master_fix.r_ecef_m;
+    first_per_satellite(records, signals)
+        .filter_map(|rec| {
+            let eph = store.select(rec.sat, master_fix.t_s)?;
+            let at_master = predicted_view(eph, master_fix.t_s, &master_fix.r_ecef_m);
+            let at_k = predicted_view(eph, master_fix.t_s, &fix_k.r_ecef_m);
+            Some((
+                rec.sat,
+                ToMasterModel {
+                    time_m: at_master.los.dot(&at_master.v_ecef_mps) * dt,
+                    curvature_m: -(at_k.range_m - at_master.range_m + at_master.los.dot(&b0)),
+                },
+            ))
+        })
+        .collect()
+}
+
+/// `records` with code and phase moved by `corrections` (satellites without one are left
+/// out).
+fn corrected(
+    records: &[ObsRecord],
+    corrections: &BTreeMap<SatId, ToMasterModel>,
+) -> Vec<ObsRecord> {
+    records
+        .iter()
+        .filter_map(|r| {
+            let c = corrections.get(&r.sat)?;
+            let shift_m = c.time_m + c.curvature_m;
+            let mut r = *r;
+            r.pseudorange_m = r.pseudorange_m.map(|p| p + shift_m);
+            r.carrier_phase_cycles = r
+                .carrier_phase_cycles
+                .map(|cy| cy + shift_m / r.signal.wavelength_m());
+            Some(r)
+        })
+        .collect()
 }
 
 /// Run the chain over `files` (one per antenna of `geometry`, same order), handing each
-/// master epoch's outcome to `each`.
+/// master epoch's outcome to `each`. Every antenna's observations are moved onto the
+/// linear model of the master's epoch ([`ToMasterModel`]: its sampling instant, and the
+/// range difference beyond `-l . b`) when both have a single-point solution.
 pub fn run_files(
     files: &[ObsFile],
     ephemerides: Vec<BroadcastEphemeris>,
@@ -139,36 +255,38 @@ pub fn run_files(
     };
     let origin = TimeOrigin::new(first.time);
     let store = EphemerisStore::new(ephemerides, &origin);
-    let pvt = PvtConfig::default();
+    let signals = config.signals.clone();
     let mut solver = RelativeSolver::new(config, &geometry.positions())?;
     let mut cursors = vec![0usize; files.len()];
-    let mut prior: Option<Vec3> = None;
+    let mut priors: Vec<Option<Vec3>> = vec![None; files.len()];
     for epoch in &master.epochs {
         let t_s = origin.seconds_since_start(epoch.time);
-        let mut antennas: Vec<&[ObsRecord]> = vec![epoch.sats.as_slice()];
+        let fix = single_point(&epoch.sats, &signals, t_s, &store, &origin, priors[0]);
+        let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
+        priors[0] = master_ecef_m.or(priors[0]);
+        let mut others: Vec<Vec<ObsRecord>> = Vec::with_capacity(files.len() - 1);
         let mut missing = None;
         for (k, file) in files.iter().enumerate().skip(1) {
-            match records_at(file, &mut cursors[k], epoch.time) {
-                Some(r) => antennas.push(r),
-                None => missing = missing.or(Some(k)),
-            }
+            let Some((time, records)) = records_at(file, &mut cursors[k], epoch.time) else {
+                missing = missing.or(Some(k));
+                continue;
+            };
+            let t_k = origin.seconds_since_start(time);
+            let aligned = match &fix {
+                Ok(master_fix) => {
+                    match single_point(records, &signals, t_k, &store, &origin, priors[k]) {
+                        Ok(fix_k) => {
+                            priors[k] = Some(fix_k.r_ecef_m);
+                            let c = to_master_model(records, &signals, &store, master_fix, &fix_k);
+                            corrected(records, &c)
+                        }
+                        Err(_) => records.to_vec(),
+                    }
+                }
+                Err(_) => records.to_vec(),
+            };
+            others.push(aligned);
         }
-        let meas: Vec<Measurement> = epoch
-            .sats
-            .iter()
-            .filter(|r| store.select(r.sat, t_s).is_some())
-            .filter_map(|r| {
-                Some(Measurement {
-                    sat: r.sat,
-                    pseudorange_m: r.pseudorange_m?,
-                    doppler_hz: None,
-                    carrier_hz: r.signal.carrier_hz(),
-                })
-            })
-            .collect();
-        let fix = solve(&meas, t_s, &store, &origin, &pvt, prior);
-        let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
-        prior = master_ecef_m.or(prior);
         let result = match (missing, master_ecef_m) {
             (Some(k), _) => Err(format!(
                 "antenna {} has no epoch at {}",
@@ -176,12 +294,10 @@ pub fn run_files(
             )),
             (None, None) => Err(format!(
                 "no single-point position of the master: {}",
-                fix.err().map_or_else(String::new, |e| e.to_string())
+                fix.err().unwrap_or_default()
             )),
             (None, Some(r)) => {
-                let views: Vec<LineOfSight> = epoch
-                    .sats
-                    .iter()
+                let views: Vec<LineOfSight> = first_per_satellite(&epoch.sats, &signals)
                     .filter_map(|rec| {
                         let eph = store.select(rec.sat, t_s)?;
                         Some(LineOfSight::from_view(
@@ -190,6 +306,8 @@ pub fn run_files(
                         ))
                     })
                     .collect();
+                let mut antennas: Vec<&[ObsRecord]> = vec![epoch.sats.as_slice()];
+                antennas.extend(others.iter().map(Vec::as_slice));
                 solver
                     .epoch(t_s, &antennas, &views, &r)
                     .map_err(|e| e.to_string())

@@ -106,6 +106,19 @@ impl RelativeSolver {
                 self.hold.slip(r.sat, r.signal);
             }
         }
+        let masked: Vec<LineOfSight>;
+        let views = match self.config.elevation_mask_deg {
+            Some(mask) => {
+                let mask_rad = mask.to_radians();
+                masked = views
+                    .iter()
+                    .filter(|v| v.elevation_rad >= mask_rad)
+                    .copied()
+                    .collect();
+                masked.as_slice()
+            }
+            None => views,
+        };
         let layout = DdLayout::select(antennas, views, &self.config.signals)?;
         let model = DdModel::new(layout, antennas.len(), &self.config.noise_model())?;
         let float = FloatBaselines::solve(model, antennas)?;

@@ -4,6 +4,7 @@
 
 pub mod noise;
 pub mod record;
+pub mod rinex2_read;
 pub mod rinex_read;
 pub mod rinex_write;
 

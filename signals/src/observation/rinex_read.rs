@@ -1,4 +1,5 @@
-//! RINEX 3 observation files into per-epoch GPS L1 C/A and BeiDou B1I observations
+//! RINEX observation files (version 3 here; version 2 in [`super::rinex2_read`]) into
+//! per-epoch GPS L1 C/A, GPS L2 (`2W`) and BeiDou B1I observations
 //! ([`ObsRecord`]), through the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
 //!
 //! Checked on the two kinds of file this module exists for: SkyForge's truth (RINEX 3.04,
@@ -8,6 +9,7 @@
 //! to 100 ns, the resolution of the RINEX F11.7 field.
 
 use super::record::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+use super::rinex2_read::{MAX_OBS_BYTES, is_rinex2_obs, parse_rinex2_obs};
 use crate::signal::Signal;
 use flate2::read::GzDecoder;
 use hifitime::TimeScale;
@@ -16,7 +18,7 @@ use rinex::prelude::{Constellation, Observable, Rinex};
 use skyforge_orbits::ephemeris::{SatId, System};
 use std::collections::BTreeMap;
 use std::fs::File;
-use std::io::BufReader;
+use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
 
 /// Which quantity an observation code holds.
@@ -37,6 +39,13 @@ pub enum ObsReadError {
     /// The file could not be read or parsed as RINEX.
     #[error("{path}: {message}")]
     Read { path: PathBuf, message: String },
+    /// The file is not well formed at `line` (1-based; 0 when the whole file is at fault).
+    #[error("{path}:{line}: {message}")]
+    Syntax {
+        path: PathBuf,
+        line: usize,
+        message: String,
+    },
     /// The file is RINEX but not an observation file.
     #[error("{0}: not a RINEX observation file")]
     NotObservation(PathBuf),
@@ -57,6 +66,9 @@ fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal,
     let band_attr = &code[1..];
     let signal = match (system, band_attr) {
         (System::Gps, "1C") => Signal::GpsL1Ca,
+        // L2 P(Y), semi-codeless (what RINEX 2's `L2`/`P2` of a geodetic receiver are);
+        // the L2C codes (`2S`/`2L`/`2X`) are another tracking and are not read.
+        (System::Gps, "2W") => Signal::GpsL2,
         (System::Beidou, "2I") => Signal::BdsB1I,
         (System::Beidou, "1I") if (major, minor) < (3, 3) => Signal::BdsB1I,
         _ => return None,
@@ -64,7 +76,9 @@ fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal,
     Some((signal, kind))
 }
 
-/// Read a RINEX 3 observation file (plain, `.gz`, or Hatanaka `.crx[.gz]`).
+/// Read a RINEX observation file: version 2 (plain or `.gz`; [`super::rinex2_read`]) or
+/// 3 (plain, `.gz`, or Hatanaka `.crx[.gz]`). At most [`MAX_OBS_BYTES`] (decompressed)
+/// are read.
 pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsReadError> {
     let error = |message: String| ObsReadError::Read {
         path: path.to_path_buf(),
@@ -75,17 +89,35 @@ pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsReadError> {
     let gz = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("gz"));
-    let parsed = if gz {
-        Rinex::parse(&mut BufReader::new(GzDecoder::new(file)))
+    let reader: Box<dyn Read> = if gz {
+        Box::new(GzDecoder::new(file))
     } else {
-        Rinex::parse(&mut BufReader::new(file))
+        Box::new(file)
     };
-    let rinex = parsed.map_err(|e| error(e.to_string()))?;
+    let mut bytes = Vec::new();
+    reader
+        .take(MAX_OBS_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| error(e.to_string()))?;
+    if bytes.len() as u64 > MAX_OBS_BYTES {
+        return Err(error(format!(
+            "more than {MAX_OBS_BYTES} bytes; larger files are not read"
+        )));
+    }
+    let start = String::from_utf8_lossy(&bytes[..bytes.len().min(160)]);
+    if is_rinex2_obs(&start) {
+        return parse_rinex2_obs(&String::from_utf8_lossy(&bytes), path);
+    }
+    let rinex =
+        Rinex::parse(&mut BufReader::new(bytes.as_slice())).map_err(|e| error(e.to_string()))?;
     from_rinex(&rinex, path)
 }
 
-/// Parse RINEX 3 observation `text`; `label` names it in errors.
+/// Parse RINEX 2 or 3 observation `text`; `label` names it in errors.
 pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsReadError> {
+    if is_rinex2_obs(text) {
+        return parse_rinex2_obs(text, Path::new(label));
+    }
     let rinex =
         Rinex::parse(&mut BufReader::new(text.as_bytes())).map_err(|e| ObsReadError::Read {
             path: PathBuf::from(label),

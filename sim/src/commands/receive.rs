@@ -37,7 +37,14 @@ pub fn input_params(
     let signal = signal
         .map(str::parse::<Signal>)
         .transpose()
-        .map_err(|e| BadInput(format!("--signal: {e} (allowed: gps-l1ca, bds-b1i)")))?;
+        .map_err(|e| BadInput(format!("--signal: {e}")))?;
+    if let Some(s) = signal.filter(|s| !s.is_synthesised()) {
+        return Err(BadInput(format!(
+            "--signal {}: read from observation files only, not tracked (allowed: gps-l1ca, bds-b1i)",
+            s.tag()
+        ))
+        .into());
+    }
     Ok(InputParams {
         format,
         sample_rate_hz: fs,

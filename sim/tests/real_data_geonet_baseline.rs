@@ -1,0 +1,275 @@
+//! Real-data tier (issue #12, "Real data"): the GEONET short baseline 3040 -> 0759
+//! (RINEX 2.10, Trimble 5700, 30 s, 2005-04-02 00:00-01:00 GPST, about 3.3 km) through
+//! the relative-positioning chain epoch by epoch with no static constraint, beside RTKLIB's
+//! `rnx2rtkp` in kinematic mode on the same files, L1 only and L1 + L2.
+//!
+//! Run with `cargo test -p skyforge-sim --test real_data_geonet_baseline -- --ignored
+//! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`
+//! next to the workspace); `rnx2rtkp` must be installed (Debian `rtklib`).
+//!
+//! Both programs: base/master 3040, rover 0759 (the order of RTKLIB's own test runs on
+//! these files), the navigation file of 0759, GPS only, elevation mask 15 deg, ratio 3,
+//! the ionosphere and troposphere not modelled (over 3.3 km and 6 m of height they
+//! mostly cancel in the double differences). RTKLIB: kinematic (`-p 2`), fix-and-hold
+//! (`-h`; the nearest to SkyForge's hold of accepted integers while the phase stays
+//! locked), the base at its RINEX header position. The baseline compared is RTKLIB's
+//! rover solution minus that base position against SkyForge's fixed ECEF baseline.
+
+mod support;
+
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_receiver::baseline::ElevationNoise;
+use skyforge_receiver::relative::config::Constraint;
+use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna, run_files};
+use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
+use skyforge_signals::observation::read_obs_file;
+use skyforge_signals::signal::Signal;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const IGNORE: &str = "real-data tier: cargo test -- --ignored";
+
+/// 3040's RINEX header position (APPROX POSITION XYZ), RTKLIB's base position.
+const BASE_ECEF_M: [f64; 3] = [-3978242.4348, 3382841.1715, 3649902.7667];
+/// 0759's header position.
+const ROVER_ECEF_M: [f64; 3] = [-3976219.5082, 3382372.5671, 3652512.9849];
+/// GPS time of week (s) of 2005-04-02 00:00:00 GPST (a Saturday, GPS week 1316).
+const TOW_OF_DAY_START_S: f64 = 6.0 * 86400.0;
+
+fn baseline_dir() -> PathBuf {
+    skyforge_orbits::real_data::require_dir().join("baseline")
+}
+
+/// RTKLIB's kinematic solutions (`-f frequencies`): time of week (s, rounded) -> (rover
+/// ECEF, Q: 1 fixed, 2 float).
+fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, (Vec3, u8)> {
+    support::require_rnx2rtkp();
+    let pos = out.join(format!("rtklib_f{frequencies}.pos"));
+    let b = BASE_ECEF_M.map(|v| format!("{v}"));
+    let o = Command::new("rnx2rtkp")
+        .args([
+            "-p",
+            "2",
+            "-f",
+            &frequencies.to_string(),
+            "-m",
+            "15",
+            "-v",
+            "3",
+        ])
+        .args(["-h", "-sys", "G", "-e", "-r", &b[0], &b[1], &b[2], "-o"])
+        .arg(&pos)
+        .arg(dir.join("07590920.05o"))
+        .arg(dir.join("30400920.05o"))
+        .arg(dir.join("07590920.05n"))
+        .output()
+        .expect("rnx2rtkp runs");
+    assert!(o.status.success(), "{}", support::text(&o));
+    let text = std::fs::read_to_string(&pos).expect("rnx2rtkp's solution file");
+    text.lines()
+        .filter(|l| !l.starts_with('%'))
+        .filter_map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .take(6)
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (f.len() == 6).then(|| {
+                (
+                    f[1].round() as i64,
+                    (Vec3::new(f[2], f[3], f[4]), f[5] as u8),
+                )
+            })
+        })
+        .collect()
+}
+
+/// The chain's settings for a geodetic receiver on the ground, chosen before any run.
+fn config(signals: &[Signal]) -> RelativeConfig {
+    RelativeConfig {
+        signals: signals.to_vec(),
+        // assumed: a geodetic receiver: 3 mm phase and 0.3 m code at the zenith, growing
+        // towards the horizon as sigma0 [1 + 10 exp(-elev / 10 deg)] (eqs. 2.4-9/2.4-10;
+        // x3.2 at 15 deg, x1.5 at 30 deg): a ground user's multipath and troposphere.
+        phase: ElevationNoise {
+            sigma0_m: 0.003,
+            a0: 10.0,
+            elev0_deg: 10.0,
+        },
+        code: ElevationNoise {
+            sigma0_m: 0.3,
+            a0: 10.0,
+            elev0_deg: 10.0,
+        },
+        // Two ground stations: no body geometry, no baseline length known.
+        constraint: Constraint::None,
+        hold: true,
+        // assumed: RTKLIB's elevation mask, so both see the same satellites.
+        elevation_mask_deg: Some(15.0),
+        ..RelativeConfig::default()
+    }
+}
+
+/// SkyForge's epochs: time of week (s, rounded) -> (status, fixed baseline when every
+/// ambiguity is fixed).
+fn skyforge(
+    dir: &Path,
+    signals: &[Signal],
+    rtk: &BTreeMap<i64, (Vec3, u8)>,
+) -> BTreeMap<i64, (String, Option<Vec3>)> {
+    let master = read_obs_file(&dir.join("30400920.05o")).unwrap_or_else(|e| panic!("{e}"));
+    let rover = read_obs_file(&dir.join("07590920.05o")).unwrap_or_else(|e| panic!("{e}"));
+    let nav = read_nav_file(&dir.join("07590920.05n")).unwrap_or_else(|e| panic!("{e}"));
+    // The attitude stage needs a body frame: the master's ECEF axes, the rover at the
+    // header difference. Nothing is constrained by it (`constraint = "none"`).
+    let geometry = BodyGeometryFile {
+        antennas: vec![
+            GeometryAntenna {
+                name: "3040".into(),
+                position_body_m: [0.0; 3],
+            },
+            GeometryAntenna {
+                name: "0759".into(),
+                position_body_m: [0, 1, 2].map(|i| ROVER_ECEF_M[i] - BASE_ECEF_M[i]),
+            },
+        ],
+    };
+    let day_start =
+        hifitime::Epoch::from_gregorian(2005, 4, 2, 0, 0, 0, 0, hifitime::TimeScale::GPST);
+    let mut out = BTreeMap::new();
+    run_files(&[master, rover], nav, &geometry, config(signals), |o| {
+        let tow = (TOW_OF_DAY_START_S + (o.time - day_start).to_seconds()).round() as i64;
+        let entry = match o.result {
+            Ok(e) => {
+                if let Some((rover, _)) = rtk.get(&tow).filter(|_| tow % 600 == 0) {
+                    let float = Vec3::from(e.float.baselines.column(0));
+                    let amb = e.float.ambiguity_vector();
+                    let sd: Vec<f64> = e
+                        .float
+                        .ambiguity_covariance()
+                        .diagonal()
+                        .iter()
+                        .map(|v| v.sqrt())
+                        .collect();
+                    // The float ambiguities given RTKLIB's fixed baseline: near integers
+                    // when the double-difference model holds at the mm level.
+                    let n = amb.len();
+                    let c = &e.float.cofactor;
+                    let c_nb = c.view((0, n), (n, 3));
+                    let c_bb = c.view((n, n), (3, 3)).into_owned();
+                    let db = (rover - Vec3::from(BASE_ECEF_M)) - float;
+                    let given_b = c_bb
+                        .try_inverse()
+                        .map(|inv| amb.clone() + c_nb * (inv * db))
+                        .unwrap_or(amb.clone());
+                    let frac: Vec<f64> = given_b.iter().map(|v| v - v.round()).collect();
+                    println!("  tow {tow}: ambiguities given RTKLIB's baseline, off integers by {frac:.3?}");
+                    println!(
+                        "  tow {tow}: {} ambiguities, ratio {:?}, success {:.3}, held {}, float - RTKLIB {:.3} m, ambiguity sd {:.2?}, float N {:.2?}",
+                        amb.len(),
+                        e.resolution.ratio,
+                        e.resolution.success_rate,
+                        e.resolution.held,
+                        (float - (rover - Vec3::from(BASE_ECEF_M))).norm(),
+                        sd,
+                        amb.as_slice()
+                    );
+                }
+                let fixed = (e.resolution.status == AmbiguityStatus::Fixed)
+                    .then(|| e.fixed.map(|f| Vec3::from(f.baselines.column(0))))
+                    .flatten();
+                (format!("{:?}", e.resolution.status), fixed)
+            }
+            Err(e) => (e, None),
+        };
+        out.insert(tow, entry);
+    })
+    .unwrap_or_else(|e| panic!("{e}"));
+    out
+}
+
+/// ACCEPTANCE (issue #12, "Real data"): fixed on at least as many epochs as rnx2rtkp
+/// (kinematic, fix-and-hold), L1 only and L1 + L2, and the baseline within 1 cm of
+/// RTKLIB's fixed one on every epoch both fix.
+///
+/// MEASURED MISS (2026-11-26, left as the issue states it; the decision is the issue
+/// owner's): L1 only, SkyForge fixes 0 of 120 epochs, RTKLIB 114 of 115: one epoch of L1
+/// with 5-6 double differences and 0.3 m code leaves the float ambiguities 2-5 cycles
+/// wide (ratio 1.1-1.9, success rate 0.1-0.25), and the chain keeps no float ambiguities
+/// between epochs (RTKLIB's Kalman filter does), so it never makes a first fix to hold.
+/// L1 + L2: SkyForge fixes 120 of 120 (RTKLIB 115 of 115) but the baselines differ by
+/// up to 7.0 cm (rms 1.0 cm; 24 of 115 common epochs over 1 cm): under 1 cm to 00:44:30,
+/// a drift to 2.0 cm by 00:56:30 (mostly up) and 7.0 cm at the last common epoch.
+#[test]
+#[ignore = "real-data tier: cargo test -- --ignored"]
+fn geonet_baseline_against_rtklib_kinematic() {
+    let _ = IGNORE;
+    let dir = baseline_dir();
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let base = Vec3::from(BASE_ECEF_M);
+    let mut failures = Vec::new();
+    for (name, frequencies, signals) in [
+        ("L1", 1u8, vec![Signal::GpsL1Ca]),
+        ("L1+L2", 2, vec![Signal::GpsL1Ca, Signal::GpsL2]),
+    ] {
+        let rtk = rtklib(&dir, frequencies, tmp.path());
+        let sky = skyforge(&dir, &signals, &rtk);
+        let rtk_fixed = rtk.values().filter(|(_, q)| *q == 1).count();
+        let sky_fixed = sky.values().filter(|(_, b)| b.is_some()).count();
+        let mut statuses: BTreeMap<&str, usize> = BTreeMap::new();
+        for (s, _) in sky.values() {
+            let key = s.split(':').next().unwrap_or(s);
+            *statuses.entry(key).or_default() += 1;
+        }
+        let mut diffs: Vec<(i64, Vec3)> = Vec::new();
+        for (tow, (status, b)) in &sky {
+            let (Some(b), Some((rover, 1))) = (b, rtk.get(tow)) else {
+                let _ = status;
+                continue;
+            };
+            diffs.push((*tow, b - (rover - base)));
+        }
+        for (tow, d) in diffs.iter().filter(|(_, d)| d.norm() > 0.01) {
+            println!(
+                "  {name} tow {tow}: SkyForge - RTKLIB {:+.4} {:+.4} {:+.4} m, status {}",
+                d.x, d.y, d.z, sky[tow].0
+            );
+        }
+        let norms: Vec<f64> = diffs.iter().map(|(_, d)| d.norm()).collect();
+        let max = norms.iter().copied().fold(0.0, f64::max);
+        let per_axis_rms: Vec<f64> = (0..3)
+            .map(|i| support::rms(&diffs.iter().map(|(_, d)| d[i]).collect::<Vec<_>>()))
+            .collect();
+        let first_fix = sky.iter().find(|(_, (_, b))| b.is_some()).map(|(t, _)| *t);
+        println!(
+            "{name}: epochs SkyForge {} / RTKLIB {}; fixed SkyForge {sky_fixed} (first at tow {first_fix:?}), RTKLIB {rtk_fixed} (Q=1), RTKLIB float {}",
+            sky.len(),
+            rtk.len(),
+            rtk.values().filter(|(_, q)| *q == 2).count()
+        );
+        println!("{name}: SkyForge outcomes {statuses:?}");
+        println!(
+            "{name}: {} epochs both fixed; |SkyForge - RTKLIB| max {:.4} m, rms {:.4} m; rms x/y/z {:.4} {:.4} {:.4} m; over 1 cm: {}",
+            diffs.len(),
+            max,
+            support::rms(&norms),
+            per_axis_rms[0],
+            per_axis_rms[1],
+            per_axis_rms[2],
+            norms.iter().filter(|n| **n > 0.01).count()
+        );
+        if sky_fixed < rtk_fixed {
+            failures.push(format!(
+                "{name}: SkyForge fixed {sky_fixed} epochs, RTKLIB {rtk_fixed}"
+            ));
+        }
+        if max > 0.01 {
+            failures.push(format!(
+                "{name}: baseline {max:.4} m from RTKLIB's fixed one (bar 0.01 m)"
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
+}
