@@ -20,6 +20,7 @@
 //! every phase of its epoch as lock lost.
 
 use super::record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+use super::rinex_read::Kind;
 use super::rinex_read::ObsReadError;
 use crate::signal::Signal;
 use hifitime::{Epoch, TimeScale};
@@ -33,15 +34,6 @@ pub const MAX_OBS_BYTES: u64 = 1 << 30;
 
 /// Most observation types a file may list (RINEX 2.11 has fewer than 30 codes).
 const MAX_TYPES: usize = 64;
-
-/// Which quantity an observation code holds.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
-    Code,
-    Phase,
-    Doppler,
-    Strength,
-}
 
 /// Where each listed observation type goes (`None`: not used).
 fn classify_types(types: &[String], wavelength_factor: [u8; 2]) -> Vec<Option<(Signal, Kind)>> {

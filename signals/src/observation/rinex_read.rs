@@ -21,9 +21,9 @@ use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
 
-/// Which quantity an observation code holds.
+/// Which quantity an observation code holds (RINEX 3 and 2 alike).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Kind {
+pub(super) enum Kind {
     Code,
     Phase,
     Doppler,
