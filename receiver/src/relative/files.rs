@@ -170,11 +170,16 @@ fn single_point(
 /// of the master's epoch (m, added to its code and phase).
 #[derive(Debug, Clone, Copy)]
 struct ToMasterModel {
-    /// Range rate (m/s) times (master's sampling instant - this antenna's): a receiver
+    /// Range rate (m/s, this antenna's: the master's differs by about
+    /// `|v_sat| |b| / rho`, 0.5 m/s at 3.3 km) times (master's sampling instant - this
+    /// antenna's): a receiver
     /// that samples on its own clock samples when that clock reads the tag, so two
     /// receivers' "same" epoch lies their clock difference apart (up to 0.5 ms between
     /// the GEONET stations: 0.2 m of double difference at 800 m/s of range-rate
-    /// difference, which does not cancel).
+    /// difference, which does not cancel). The range rate is the satellite's motion along
+    /// the line of sight: right for receivers at rest in ECEF; a moving receiver on its
+    /// own clock would also need its own velocity here (antennas on one clock, as on the
+    /// simulated platforms, have no sampling difference to correct).
     time_m: f64,
     /// `-(rho_k - rho_master + l . b0)`: the range difference beyond the linear `-l . b`
     /// of the double-difference model (eq. 2.3-10), at the antenna's single-point
@@ -203,7 +208,7 @@ fn to_master_model(
             Some((
                 rec.sat,
                 ToMasterModel {
-                    time_m: at_master.los.dot(&at_master.v_ecef_mps) * dt,
+                    time_m: at_k.los.dot(&at_k.v_ecef_mps) * dt,
                     curvature_m: -(at_k.range_m - at_master.range_m + at_master.los.dot(&b0)),
                 },
             ))
@@ -320,4 +325,118 @@ pub fn run_files(
         });
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pvt::Dop;
+    use skyforge_orbits::ephemeris::nominal;
+    use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+
+    fn fix(t_s: f64, r_ecef_m: Vec3) -> Fix {
+        Fix {
+            t_s,
+            r_ecef_m,
+            clock_bias_m: 0.0,
+            inter_system_bias_m: None,
+            dop: Dop {
+                gdop: 1.0,
+                pdop: 1.0,
+                hdop: 1.0,
+                vdop: 1.0,
+                tdop: 1.0,
+            },
+            used: Vec::new(),
+            excluded: Vec::new(),
+            chi2: 0.0,
+            dof: 0,
+        }
+    }
+
+    /// A rover 3.3 km from the master that samples 0.5 ms before it: its ranges, moved onto
+    /// the master's linear model, equal the master's range minus `l . b` at the master's
+    /// instant, to a micrometre (what is left: the range's second derivative over 0.5 ms).
+    #[test]
+    fn rover_ranges_land_on_the_masters_linear_model() {
+        let start =
+            hifitime::Epoch::from_gregorian(2005, 4, 2, 0, 0, 0, 0, hifitime::TimeScale::GPST);
+        let origin = TimeOrigin::new(start);
+        let store = EphemerisStore::new(nominal::gps(start), &origin);
+        let geo = |lat: f64, lon: f64| {
+            geodetic_to_ecef(&Geodetic {
+                lat_rad: lat.to_radians(),
+                lon_rad: lon.to_radians(),
+                h_m: 50.0,
+            })
+        };
+        let (master_r, rover_r) = (geo(35.0, 139.0), geo(35.02, 139.025));
+        let b0 = rover_r - master_r;
+        assert!((3000.0..3500.0).contains(&b0.norm()), "{}", b0.norm());
+        let t_m = 600.0;
+        let dt = 5e-4;
+        let (master_fix, rover_fix) = (fix(t_m, master_r), fix(t_m - dt, rover_r));
+        let mut records = Vec::new();
+        let mut expected = Vec::new();
+        for prn in 1..=32u8 {
+            let sat = SatId::gps(prn);
+            let Some(eph) = store.select(sat, t_m) else {
+                continue;
+            };
+            let at_master = predicted_view(eph, t_m, &master_r);
+            let at_rover = predicted_view(eph, t_m - dt, &rover_r);
+            if at_master.az_el_rad.is_none_or(|(_, el)| el < 0.2) {
+                continue;
+            }
+            let range = at_rover.range_m;
+            let lambda = Signal::GpsL1Ca.wavelength_m();
+            records.push(ObsRecord::complete(
+                sat,
+                Signal::GpsL1Ca,
+                range,
+                range / lambda,
+                0.0,
+                45.0,
+            ));
+            expected.push(at_master.range_m - at_master.los.dot(&b0));
+        }
+        assert!(records.len() >= 5, "{} satellites up", records.len());
+        let corrections = to_master_model(
+            &records,
+            &[Signal::GpsL1Ca],
+            &store,
+            &master_fix,
+            &rover_fix,
+        );
+        let moved = corrected(&records, &corrections);
+        assert_eq!(moved.len(), records.len());
+        for (r, want) in moved.iter().zip(&expected) {
+            let code = r.pseudorange_m.unwrap();
+            let phase_m = r.carrier_phase_cycles.unwrap() * Signal::GpsL1Ca.wavelength_m();
+            assert!(
+                (code - want).abs() < 1e-6,
+                "{}: {} m off",
+                r.sat,
+                code - want
+            );
+            assert!(
+                (phase_m - want).abs() < 1e-6,
+                "{}: {} m off",
+                r.sat,
+                phase_m - want
+            );
+        }
+        // The same instant and place: nothing moves.
+        let none = to_master_model(
+            &records,
+            &[Signal::GpsL1Ca],
+            &store,
+            &master_fix,
+            &master_fix,
+        );
+        assert!(
+            none.values()
+                .all(|c| c.time_m == 0.0 && c.curvature_m.abs() < 1e-9)
+        );
+    }
 }
