@@ -1,5 +1,7 @@
 //! Small descriptive statistics.
 
+use crate::observables::ErrorStats;
+
 /// Minimum, maximum, mean and median of a sample.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Summary {
@@ -53,10 +55,7 @@ impl AcrossRuns {
     pub fn of(values: &[f64]) -> Option<Self> {
         let s = Summary::of(values)?;
         let n = values.len();
-        let standard_error = (n > 1).then(|| {
-            let var = values.iter().map(|v| (v - s.mean).powi(2)).sum::<f64>() / (n - 1) as f64;
-            (var / n as f64).sqrt()
-        });
+        let standard_error = ErrorStats::of(values).std.map(|sd| sd / (n as f64).sqrt());
         Some(Self {
             mean: s.mean,
             standard_error,

@@ -10,6 +10,7 @@ use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
+use skyforge_receiver::attitude::angle_error;
 use skyforge_receiver::relative::files::{
     BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
 };
@@ -198,19 +199,11 @@ pub(super) fn epoch_truth(r_ecef_m: &Vec3, c_body_ecef: &Mat3, true_body_m: &[Ve
     }
 }
 
-/// Estimated minus true yaw, pitch, roll (deg; yaw and roll wrapped).
+/// Estimated minus true yaw, pitch, roll (deg, wrapped; the receiver's own
+/// [`angle_error`]).
 pub(super) fn attitude_errors_deg(estimate: &YawPitchRoll, truth: &YawPitchRoll) -> [f64; 3] {
-    let (a, t) = (estimate, truth);
-    [
-        wrap_deg((a.yaw_rad - t.yaw_rad).to_degrees()),
-        (a.pitch_rad - t.pitch_rad).to_degrees(),
-        wrap_deg((a.roll_rad - t.roll_rad).to_degrees()),
-    ]
-}
-
-/// Angle difference wrapped to [-180, 180) deg.
-fn wrap_deg(d: f64) -> f64 {
-    (d + 180.0).rem_euclid(360.0) - 180.0
+    let e = angle_error(estimate, truth);
+    [e.x, e.y, e.z].map(f64::to_degrees)
 }
 
 /// The errors of a fixed epoch `e` against `truth`.
@@ -332,10 +325,16 @@ pub fn compare(
 mod tests {
     use super::*;
 
+    /// The yaw difference of `d` degrees, as the attitude errors wrap it.
+    fn wrap_deg(d: f64) -> f64 {
+        let truth = YawPitchRoll::new(0.0, 0.0, 0.0);
+        attitude_errors_deg(&YawPitchRoll::new(d.to_radians(), 0.0, 0.0), &truth)[0]
+    }
+
     #[test]
     fn wrapped_differences() {
         assert!((wrap_deg(359.0) + 1.0).abs() < 1e-12);
         assert!((wrap_deg(-181.0) - 179.0).abs() < 1e-12);
-        assert_eq!(wrap_deg(0.5), 0.5);
+        assert!((wrap_deg(0.5) - 0.5).abs() < 1e-12);
     }
 }

@@ -3,22 +3,18 @@
 //! over runs of a per-run statistic.
 
 use crate::attitude::ChainComparison;
+use crate::observables::ErrorStats;
 use crate::report::{Row, Verdict};
 use crate::stats::{AcrossRuns, rms};
 use crate::thesis::ValidateError;
 
 /// Sample standard deviation (`n - 1`), or NaN with fewer than two values.
 pub fn std(values: &[f64]) -> f64 {
-    let n = values.len();
-    if n < 2 {
-        return f64::NAN;
-    }
-    let m = values.iter().sum::<f64>() / n as f64;
-    (values.iter().map(|v| (v - m).powi(2)).sum::<f64>() / (n - 1) as f64).sqrt()
+    ErrorStats::of(values).std.unwrap_or(f64::NAN)
 }
 
 fn mean(values: &[f64]) -> f64 {
-    values.iter().sum::<f64>() / values.len() as f64
+    ErrorStats::of(values).mean.unwrap_or(f64::NAN)
 }
 
 /// One error series per run, summarised three ways over the runs.
