@@ -32,6 +32,7 @@ use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::time::parse_epoch;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_receiver::relative::files::{BodyGeometryFile, FilesError};
+use skyforge_signals::antenna::check_antenna_name;
 use skyforge_signals::observation::{ObsReadError, read_obs_file};
 use skyforge_signals::signal::Signal;
 use std::io::{BufRead, BufReader, Write};
@@ -383,7 +384,14 @@ pub fn compare_outputs(
             return Err(file_error(dir, "not a directory"));
         }
     }
-    let geometry = BodyGeometryFile::read(&truth_dir.join("geometry.toml"))?;
+    let geometry_path = truth_dir.join("geometry.toml");
+    let geometry = BodyGeometryFile::read(&geometry_path)?;
+    // Names become file names (`<name>.obs.rnx` in both directories): the antenna rule.
+    for a in &geometry.antennas {
+        check_antenna_name(&a.name).map_err(|rule| {
+            file_error(&geometry_path, format!("antenna name {:?}: {rule}", a.name))
+        })?;
+    }
     let truth = PlatformTruth::read(&truth_dir.join("truth.h5"), &geometry)?;
     let baselines = geometry.antennas.len() - 1;
     let att_path = attitude_dir.join("attitude.csv");
@@ -865,6 +873,19 @@ pub fn print_validation(v: &AttitudeValidation, out: &mut impl Write) -> std::io
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_geometry_antenna_name_that_is_a_path_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let text = "[[antennas]]\nname = \"ant1\"\nposition_body_m = [0.0, 0.0, 0.0]\n\n[[antennas]]\nname = \"../../etc/ant2\"\nposition_body_m = [1.0, 0.0, 0.0]\n";
+        std::fs::write(dir.path().join("geometry.toml"), text).unwrap();
+        let d = dir.path();
+        let e = compare_outputs(d, d, d).unwrap_err().to_string();
+        assert!(
+            e.contains("../../etc/ant2") && e.contains("geometry.toml"),
+            "{e}"
+        );
+    }
 
     #[test]
     fn axis_stats_of_a_small_sample() {
