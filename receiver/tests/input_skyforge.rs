@@ -13,7 +13,7 @@ use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::quantise::Quantiser;
-use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
 use skyforge_signals::synth::sigmf::RecordingMeta;
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
@@ -77,8 +77,8 @@ fn synthesise(cfg: &SignalConfig, ranges_m: &[f64], cn0_dbhz: f64, ms: u32) -> (
     let mut synth = Synthesiser::new(cfg, &txs, n, 11).unwrap();
     let links: Vec<Option<LinkEnd>> = ranges_m.iter().map(|&r| link(r, cn0_dbhz)).collect();
     let mut out = vec![Vec::new(); n];
-    synth.push_epoch(0.0, links.clone(), &mut out);
-    synth.push_epoch(f64::from(ms) * 1e-3, links, &mut out);
+    let Ok(()) = synth.push_epoch(0.0, links.clone(), &mut append_to(&mut out));
+    let Ok(()) = synth.push_epoch(f64::from(ms) * 1e-3, links, &mut append_to(&mut out));
     (out, txs[0].sat.prn)
 }
 

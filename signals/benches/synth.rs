@@ -8,7 +8,7 @@ use skyforge_orbits::ephemeris::nominal;
 use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
-use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
 use std::io::Write;
 
 const CHANNELS: usize = 12;
@@ -53,8 +53,8 @@ fn synth(c: &mut Criterion) {
         let mut synth = Synthesiser::new(&cfg, &txs, 1, 1).expect("synthesiser");
         let mut out = vec![Vec::new()];
         let t0 = second as f64;
-        synth.push_epoch(t0, links.clone(), &mut out);
-        synth.push_epoch(t0 + 1.0, links.clone(), &mut out);
+        let Ok(()) = synth.push_epoch(t0, links.clone(), &mut append_to(&mut out));
+        let Ok(()) = synth.push_epoch(t0 + 1.0, links.clone(), &mut append_to(&mut out));
         second += 1;
         out.swap_remove(0)
     };

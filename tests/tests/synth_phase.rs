@@ -15,7 +15,7 @@ use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
 use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
-use skyforge_signals::synth::render::Synthesiser;
+use skyforge_signals::synth::render::{Synthesiser, append_to};
 use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
 use skyforge_signals::truth::interp::QuinticHermite;
 
@@ -120,7 +120,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
                 )
             })
             .collect();
-        synth.push_epoch(chunk.t_s[k], links, &mut out);
+        let Ok(()) = synth.push_epoch(chunk.t_s[k], links, &mut append_to(&mut out));
     }
     // Phase-centre delay of each antenna at the two epochs (linear in between).
     let centre = |a: usize, k: usize| {

@@ -14,7 +14,7 @@ use skyforge_signals::errors::events::{EventConfig, EventKind, EventSchedule};
 use skyforge_signals::errors::seed::{Stream, stream_rng};
 use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
-use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser};
+use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser, append_to};
 use skyforge_signals::synth::transmitter::Transmitter;
 use skyforge_signals::truth::geometry::GeometryTruth;
 use std::f64::consts::TAU;
@@ -120,7 +120,7 @@ fn samples_follow_the_truth_of_every_term() {
             antenna_m: 0.03,
             ..e
         });
-        synth.push_epoch(chunk.t_s[k], vec![end], &mut out);
+        let Ok(()) = synth.push_epoch(chunk.t_s[k], vec![end], &mut append_to(&mut out));
     }
     let records = synth.take_truth();
     let samples: Vec<(f32, f32)> = out[0]

@@ -33,6 +33,22 @@ pub use super::link::{LinkEnd, LinkTruth};
 /// Early-late spacing of the DLL the multipath code truth is given for (chips).
 const TRUTH_DLL_SPACING_CHIPS: f64 = 1.0;
 
+/// Bytes of rendered samples held at once per antenna before they go to the sink: blocks
+/// are rendered in parallel in slices of at most this size (at least one block), so the
+/// memory of a run does not grow with the sample rate times the 1 s geometry step.
+pub const SLICE_BYTES: usize = 32 << 20;
+
+/// A sample sink for [`Synthesiser::push_epoch`] that appends antenna `a`'s bytes to
+/// `out[a]` (tests and benchmarks that keep the samples in memory).
+pub fn append_to(
+    out: &mut [Vec<u8>],
+) -> impl FnMut(usize, &[u8]) -> Result<(), std::convert::Infallible> + '_ {
+    |a, bytes| {
+        out[a].extend_from_slice(bytes);
+        Ok(())
+    }
+}
+
 /// Per-thread buffers.
 #[derive(Debug, Default)]
 struct Scratch {
@@ -73,6 +89,8 @@ pub struct Synthesiser<'a> {
     clocks: Vec<ClockModel>,
     events: Option<EventSchedule>,
     filter: Option<BandFilter>,
+    /// Rendered bytes held at once per antenna ([`SLICE_BYTES`] by default).
+    slice_bytes: usize,
 }
 
 /// Noise standard deviation per component (float units before filtering and quantisation).
@@ -103,6 +121,7 @@ impl<'a> Synthesiser<'a> {
             clocks: Vec::new(),
             events: None,
             filter: None,
+            slice_bytes: SLICE_BYTES,
         })
     }
 
@@ -115,6 +134,13 @@ impl<'a> Synthesiser<'a> {
     /// Render no samples, only truth (the observation level).
     pub fn without_samples(mut self) -> Self {
         self.samples = false;
+        self
+    }
+
+    /// Hold at most `bytes` of rendered samples per antenna at once (at least one block;
+    /// the default is [`SLICE_BYTES`]). The samples do not depend on it.
+    pub fn with_slice_bytes(mut self, bytes: usize) -> Self {
+        self.slice_bytes = bytes;
         self
     }
 
@@ -157,12 +183,26 @@ impl<'a> Synthesiser<'a> {
 
     /// Hand over the links at the epoch `t_s` (true time; `links[a * n_tx + tx]`, `None`
     /// when not visible). The blocks whose receiver time lies between the previous epoch
-    /// and this one are rendered and appended, per antenna, to `out[a]`.
-    pub fn push_epoch(&mut self, t_s: f64, links: Vec<Option<LinkEnd>>, out: &mut [Vec<u8>]) {
-        if let Some((t_prev, prev)) = self.previous.take() {
-            self.render_interval(t_prev, &prev, t_s, &links, out);
-        }
+    /// and this one are rendered and handed, per antenna and in order, to `out(a, bytes)`,
+    /// at most [`SLICE_BYTES`] (or one block) at a time.
+    pub fn push_epoch<E>(
+        &mut self,
+        t_s: f64,
+        links: Vec<Option<LinkEnd>>,
+        out: &mut impl FnMut(usize, &[u8]) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let rendered = match self.previous.take() {
+            Some((t_prev, prev)) => self.render_interval(t_prev, &prev, t_s, &links, out),
+            None => Ok(()),
+        };
         self.previous = Some((t_s, links));
+        rendered
+    }
+
+    /// Blocks rendered in parallel before their bytes go to the sink.
+    fn blocks_per_slice(&self) -> u64 {
+        let block_bytes = self.n * self.cfg.format.bytes_per_sample();
+        (self.slice_bytes / block_bytes.max(1)).max(1) as u64
     }
 
     /// Signal amplitude (noise units) of a path at `cn0_dbhz`.
@@ -199,14 +239,14 @@ impl<'a> Synthesiser<'a> {
         self.clocks.iter_mut().map(run).collect()
     }
 
-    fn render_interval(
+    fn render_interval<E>(
         &mut self,
         t0: f64,
         start: &[Option<LinkEnd>],
         t1: f64,
         end: &[Option<LinkEnd>],
-        out: &mut [Vec<u8>],
-    ) {
+        out: &mut impl FnMut(usize, &[u8]) -> Result<(), E>,
+    ) -> Result<(), E> {
         let n_tx = self.transmitters.len();
         let segments: Vec<Vec<Segment>> = (0..self.n_antennas)
             .map(|a| {
@@ -241,30 +281,46 @@ impl<'a> Synthesiser<'a> {
             }
         }
         if !self.samples {
-            return;
+            return Ok(());
         }
-        for (a, sink) in out.iter_mut().enumerate().take(self.n_antennas) {
-            let noise = &self.noise[a];
+        let per_slice = self.blocks_per_slice();
+        for (a, segs) in segments.iter().enumerate() {
             let clock = clock_of(a);
-            let this = &*self;
-            let rendered: Vec<(Vec<u8>, u64)> = (b0..b1)
-                .into_par_iter()
-                .map_init(
-                    || (Scratch::default(), noise.clone(), this.quantiser.clone()),
-                    |(scratch, noise, quantiser), b| {
-                        let before = quantiser.clipped();
-                        let cs = clock.get((b - b0) as usize).copied();
-                        let bytes =
-                            this.render_block(&segments[a], a, b, cs, scratch, noise, quantiser);
-                        (bytes, quantiser.clipped() - before)
-                    },
-                )
-                .collect();
-            for (bytes, clipped) in rendered {
-                sink.extend_from_slice(&bytes);
-                self.clipped += clipped;
+            let mut from = b0;
+            while from < b1 {
+                let to = (from + per_slice).min(b1);
+                for (bytes, clipped) in self.render_blocks(segs, a, (b0, from..to), clock) {
+                    self.clipped += clipped;
+                    out(a, &bytes)?;
+                }
+                from = to;
             }
         }
+        Ok(())
+    }
+
+    /// Blocks `range` of antenna `a` rendered in parallel, in order, each with the
+    /// components it clipped; `clock` holds the clock samples from block `first`.
+    fn render_blocks(
+        &self,
+        segments: &[Segment],
+        a: usize,
+        (first, range): (u64, std::ops::Range<u64>),
+        clock: &[ClockSample],
+    ) -> Vec<(Vec<u8>, u64)> {
+        let noise = &self.noise[a];
+        range
+            .into_par_iter()
+            .map_init(
+                || (Scratch::default(), noise.clone(), self.quantiser.clone()),
+                |(scratch, noise, quantiser), b| {
+                    let before = quantiser.clipped();
+                    let cs = clock.get((b - first) as usize).copied();
+                    let bytes = self.render_block(segments, a, b, cs, scratch, noise, quantiser);
+                    (bytes, quantiser.clipped() - before)
+                },
+            )
+            .collect()
     }
 
     /// Receiver clock offset (s) and its rate at receiver time `t_rx` in block `b`.

@@ -409,7 +409,6 @@ impl<'a> SynthSession<'a> {
             sats: &sats,
             terms,
             synths: &mut synths,
-            bufs: vec![Vec::new(); n_ant],
             start_state: None,
             sinks,
             model: self.observation_model,
@@ -438,8 +437,6 @@ struct Running<'r, 't, 's> {
     sats: &'r [SatId],
     terms: LinkTerms<'r>,
     synths: &'r mut [Synthesiser<'t>],
-    /// Per antenna: the bytes of the block being handed over.
-    bufs: Vec<Vec<u8>>,
     start_state: Option<(Vec3, Vec3)>,
     sinks: Sinks<'s>,
     model: Option<ObservationModel>,
@@ -494,11 +491,10 @@ impl Running<'_, '_, '_> {
                     )
                 })
                 .collect();
-            synth.push_epoch(chunk.t_s[k], links, &mut self.bufs);
-            for (a, buf) in self.bufs.iter_mut().enumerate() {
-                self.sinks.samples.samples(b, a, buf)?;
-                buf.clear();
-            }
+            let samples = &mut *self.sinks.samples;
+            synth.push_epoch(chunk.t_s[k], links, &mut |a, bytes| {
+                samples.samples(b, a, bytes)
+            })?;
             let truth = synth.take_truth();
             for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
                 whole_t = Some(r.t_s);
