@@ -58,6 +58,11 @@ pub enum Command {
         #[arg(long, value_name = "N", default_value_t = crate::commands::synth::DEFAULT_CHUNK_EPOCHS,
               value_parser = clap::value_parser!(u32).range(1..=3600))]
         chunk_epochs: u32,
+        /// Check the scenario and print what the run would write (each recording's size,
+        /// bounds of truth.h5 and the RINEX files) and the most memory it needs; write
+        /// nothing.
+        #[arg(long)]
+        dry_run: bool,
     },
     /// Run the bundled receiver over sample recordings (SkyForge's SigMF files or raw
     /// files described by --format/--fs/--if/--signal): acquisition, tracking, navigation

@@ -2,6 +2,7 @@
 //! mixing, thermal noise, front-end quantisation, the per-antenna renderer, the sample-file
 //! formats with their SigMF metadata, and the streaming session that drives them.
 
+pub mod budget;
 pub mod config;
 pub mod constellation;
 pub mod filter;

@@ -356,18 +356,38 @@ impl<'a> SynthSession<'a> {
         self.iono.model != IonoModel::Off
     }
 
+    /// Whether samples are rendered (not at the observation level).
+    pub fn renders_samples(&self) -> bool {
+        self.observation_model.is_none()
+    }
+
+    /// The signal settings.
+    pub fn signal_config(&self) -> &SignalConfig {
+        self.signal
+    }
+
+    /// Samples the front-end filter needs beyond each end of a block (0 without one).
+    pub fn filter_margin(&self) -> usize {
+        self.filter.as_ref().map_or(0, BandFilter::half)
+    }
+
+    /// Blocks between signal-truth records (0: none); the observation level needs the
+    /// truth at whole seconds at least.
+    pub fn truth_every_blocks(&self) -> u64 {
+        match self.signal.truth_every_blocks() {
+            0 if self.observation_model.is_some() => BLOCKS_PER_SECOND,
+            every => every,
+        }
+    }
+
     /// Stream the whole span into `sinks`, computing geometry `chunk_epochs` epochs at a
     /// time.
     pub fn run(self, chunk_epochs: usize, sinks: Sinks<'_>) -> Result<SynthReport, SynthError> {
+        let truth_every = self.truth_every_blocks();
         let world = self.world;
         let signal = self.signal;
         let n_ant = world.antennas.len();
         let observation_level = self.observation_model.is_some();
-        // The observation level needs the truth at whole seconds at least.
-        let truth_every = match signal.truth_every_blocks() {
-            0 if observation_level => BLOCKS_PER_SECOND,
-            every => every,
-        };
         let mut synths = self
             .bands
             .iter()

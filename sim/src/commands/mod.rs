@@ -3,6 +3,7 @@
 mod ambiguity;
 mod attitude;
 mod calibrate;
+mod dry_run;
 mod receive;
 mod run;
 mod scenarios;
@@ -24,7 +25,11 @@ fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
 pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Run { run } => run::run(&run),
-        Command::Synth { run, chunk_epochs } => synth::synth(&run, chunk_epochs as usize),
+        Command::Synth {
+            run,
+            chunk_epochs,
+            dry_run,
+        } => synth::synth(&run, chunk_epochs as usize, dry_run),
         Command::Calibrate { run } => calibrate::calibrate(&run),
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive {

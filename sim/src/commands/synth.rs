@@ -13,7 +13,7 @@ use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
-use skyforge_scenarios::Scenario;
+use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
 use skyforge_signals::synth::config::SignalConfig;
@@ -36,7 +36,7 @@ fn writing(path: &Path) -> String {
 }
 
 /// Run `scenario`'s signal synthesis into `out`.
-pub fn synth(args: &ScenarioRun, chunk_epochs: usize) -> anyhow::Result<()> {
+pub fn synth(args: &ScenarioRun, chunk_epochs: usize, dry_run: bool) -> anyhow::Result<()> {
     let scenario = super::resolve(args)?;
     let Some(signal) = scenario.signal.clone() else {
         return Err(BadInput(format!(
@@ -45,7 +45,37 @@ pub fn synth(args: &ScenarioRun, chunk_epochs: usize) -> anyhow::Result<()> {
         ))
         .into());
     };
+    if dry_run {
+        let mut world = scenario.build()?;
+        let session = session(&scenario, &mut world, &signal)?;
+        super::dry_run::print(&scenario, &session, chunk_epochs);
+        return Ok(());
+    }
     synthesise(&scenario, &signal, &args.out, args.force, chunk_epochs)
+}
+
+/// The synthesis session of `scenario` (observation level when it asks for it).
+fn session<'a>(
+    scenario: &'a Scenario,
+    world: &'a mut World,
+    signal: &'a SignalConfig,
+) -> anyhow::Result<SynthSession<'a>> {
+    let noise = match scenario.observation.level {
+        Level::Observation => Some(scenario.observation_noise()?),
+        Level::Signal => None,
+    };
+    let n_antennas = world.antennas.len();
+    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
+        .map_err(|e| setup_error(scenario, e))?;
+    Ok(match noise {
+        Some(noise) => session.observation_level(ObservationModel::new(
+            noise,
+            scenario.seed,
+            n_antennas,
+            GEOMETRY_STEP_S,
+        )),
+        None => session,
+    })
 }
 
 /// Synthesise `scenario` with `signal` into `out`, computing geometry `chunk_epochs`
@@ -60,19 +90,7 @@ pub fn synthesise(
     let started = Instant::now();
     let mut world = scenario.build()?;
     let observation_level = scenario.observation.level == Level::Observation;
-    let noise = if observation_level {
-        Some(scenario.observation_noise()?)
-    } else {
-        None
-    };
-    let n_antennas = world.antennas.len();
-    let mut session =
-        SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
-            .map_err(|e| setup_error(scenario, e))?;
-    if let Some(noise) = noise {
-        let model = ObservationModel::new(noise, scenario.seed, n_antennas, GEOMETRY_STEP_S);
-        session = session.observation_level(model);
-    }
+    let session = session(scenario, &mut world, signal)?;
     let (origin, antennas, duration_s) = {
         let w = session.world();
         (w.origin, w.antennas, w.duration_s)

@@ -1,0 +1,72 @@
+//! `skyforge synth --dry-run`: what a synthesis would write and the memory it needs,
+//! without writing anything.
+
+use crate::output::truth_h5;
+use skyforge_scenarios::Scenario;
+use skyforge_signals::synth::budget::Budget;
+use skyforge_signals::synth::session::SynthSession;
+use skyforge_signals::synth::sigmf::recording_name;
+
+/// RINEX observation bytes per satellite and epoch, at most (one record line).
+const RINEX_BYTES_PER_RECORD: u64 = 80;
+/// RINEX observation bytes per epoch line and the header, at most.
+const RINEX_BYTES_PER_EPOCH: u64 = 40;
+const RINEX_HEADER_BYTES: u64 = 4096;
+
+/// The figures of a dry run, printed.
+pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usize) {
+    let threads = rayon::current_num_threads();
+    let b = session.budget(chunk_epochs, threads);
+    let n_ant = session.world().antennas.len() as u64;
+    let n_sats = session.satellites().len() as u64;
+    println!("scenario   {} ({})", scenario.name, scenario.source);
+    println!("dry run    nothing is written");
+    for band in session.bands().iter().filter(|_| b.recordings > 0) {
+        for ant in session.world().antennas {
+            println!(
+                "recording  {}.sigmf-data  {} (exact)",
+                recording_name(&ant.name, band),
+                human(b.recording_bytes)
+            );
+        }
+    }
+    let truth = truth_h5::size_bound(b.epochs, n_ant, n_sats, b.truth_records_max);
+    println!(
+        "truth.h5   at most {} ({} signal-truth records at most)",
+        human(truth),
+        b.truth_records_max
+    );
+    let rinex = rinex_bound(&b, n_ant, n_sats, session.renders_samples());
+    println!("RINEX obs  at most {}", human(rinex));
+    let disk = b.recordings as u64 * b.recording_bytes + truth + rinex;
+    println!("disk       at most {}", human(disk));
+    println!(
+        "memory     at most {} ({threads} rendering threads; RAYON_NUM_THREADS sets them)",
+        human(b.memory_bytes)
+    );
+}
+
+/// RINEX observation files of every antenna (truth, plus the observables at the
+/// observation level), every satellite counted at every whole second.
+fn rinex_bound(b: &Budget, n_ant: u64, n_sats: u64, samples: bool) -> u64 {
+    let files = if samples { 1 } else { 2 } * n_ant;
+    files
+        * (RINEX_HEADER_BYTES
+            + b.epochs * (RINEX_BYTES_PER_EPOCH + n_sats * RINEX_BYTES_PER_RECORD))
+}
+
+/// Bytes in decimal units, three significant figures.
+fn human(bytes: u64) -> String {
+    let units = ["B", "kB", "MB", "GB", "TB"];
+    let mut value = bytes as f64;
+    let mut unit = 0;
+    while value >= 1000.0 && unit + 1 < units.len() {
+        value /= 1000.0;
+        unit += 1;
+    }
+    if unit == 0 {
+        format!("{bytes} B")
+    } else {
+        format!("{value:.3} {} ({bytes} bytes)", units[unit])
+    }
+}
