@@ -16,7 +16,10 @@ fn scenario(dir: &Path, duration_s: u32, fs_hz: f64, format: &str, bits: u32) ->
     let path = support::short_scenario(dir, "interop-gps-static", duration_s);
     let toml = std::fs::read_to_string(&path).unwrap();
     let toml = toml
-        .replace("sample_rate_hz = 4.0e6", &format!("sample_rate_hz = {fs_hz:e}"))
+        .replace(
+            "sample_rate_hz = 4.0e6",
+            &format!("sample_rate_hz = {fs_hz:e}"),
+        )
         .replace("format = \"ci8\"", &format!("format = \"{format}\""))
         .replace("bits = 8", &format!("bits = {bits}"));
     std::fs::write(&path, toml).unwrap();
@@ -61,14 +64,27 @@ fn dry_run_writes_nothing_and_gives_the_sizes_of_the_run() {
     let dry = skyforge_ok(&["synth", &s, "--out", "out", "--dry-run"], dir.path());
     assert!(!dir.path().join("out").exists(), "a dry run wrote out/");
     skyforge_ok(&["synth", &s, "--out", "out"], dir.path());
-    let size = |name: &str| std::fs::metadata(dir.path().join("out").join(name)).unwrap().len();
+    let size = |name: &str| {
+        std::fs::metadata(dir.path().join("out").join(name))
+            .unwrap()
+            .len()
+    };
     let recording = size("ant1.gps-l1ca.sigmf-data");
-    assert_eq!(recording, figure(&dry, "recording  ant1.gps-l1ca.sigmf-data"));
+    assert_eq!(
+        recording,
+        figure(&dry, "recording  ant1.gps-l1ca.sigmf-data")
+    );
     assert_eq!(recording, 3 * 4_000_000 * 2, "3 s of 4 Msps ci8");
     let truth = size("truth.h5");
-    assert!(truth <= figure(&dry, "truth.h5"), "truth.h5 {truth} B:\n{dry}");
+    assert!(
+        truth <= figure(&dry, "truth.h5"),
+        "truth.h5 {truth} B:\n{dry}"
+    );
     let rinex = size("ant1.obs.rnx");
-    assert!(rinex <= figure(&dry, "RINEX obs"), "RINEX {rinex} B:\n{dry}");
+    assert!(
+        rinex <= figure(&dry, "RINEX obs"),
+        "RINEX {rinex} B:\n{dry}"
+    );
 }
 
 #[test]
@@ -83,8 +99,14 @@ fn memory_stays_within_the_dry_run_bound_at_a_high_sample_rate() {
     assert!(o.status.success(), "{}", text(&o));
     let peak = children_peak_rss();
     println!("peak RSS {peak} B, dry-run bound {bound} B, one second of samples {one_second} B");
-    assert!(peak <= bound, "peak {peak} B above the printed bound {bound} B");
-    assert!(peak < one_second, "peak {peak} B: the renderer holds a whole second");
+    assert!(
+        peak <= bound,
+        "peak {peak} B above the printed bound {bound} B"
+    );
+    assert!(
+        peak < one_second,
+        "peak {peak} B: the renderer holds a whole second"
+    );
 }
 
 #[test]

@@ -4,9 +4,8 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use support::{short_scenario, skyforge};
+use support::{Tmpfs, is_root, listing, short_scenario, skyforge};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -14,28 +13,6 @@ fn stderr(o: &Output) -> String {
 
 /// The scenario the tests shorten: 4 Msps ci8, 16 MB per second.
 const SCENARIO: &str = "interop-gps-static";
-
-/// Names in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("read dir")
-        .map(|e| {
-            e.expect("dir entry")
-                .file_name()
-                .to_string_lossy()
-                .into_owned()
-        })
-        .collect();
-    names.sort();
-    names
-}
-
-fn is_root() -> bool {
-    Command::new("id")
-        .arg("-u")
-        .output()
-        .is_ok_and(|o| String::from_utf8_lossy(&o.stdout).trim() == "0")
-}
 
 #[test]
 fn an_output_path_below_a_regular_file_is_refused_and_nothing_is_written() {
@@ -98,38 +75,6 @@ fn a_read_only_parent_is_refused_and_nothing_is_written() {
         "{msg}"
     );
     assert!(listing(&ro).is_empty());
-}
-
-/// A small tmpfs mounted for the life of the value.
-struct Tmpfs(PathBuf);
-
-impl Tmpfs {
-    fn mount(dir: &Path, size: &str) -> Self {
-        std::fs::create_dir(dir).expect("create mount point");
-        let o = Command::new("mount")
-            .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
-            .arg(dir)
-            .output()
-            .expect("run mount");
-        assert!(
-            o.status.success(),
-            "\n*** running as root but cannot mount a tmpfs for the full-disk test: {} ***\n",
-            stderr(&o)
-        );
-        Self(dir.to_path_buf())
-    }
-}
-
-impl Drop for Tmpfs {
-    fn drop(&mut self) {
-        let unmounted = Command::new("umount")
-            .arg(&self.0)
-            .status()
-            .is_ok_and(|s| s.success());
-        if !unmounted {
-            let _ = Command::new("umount").arg("-l").arg(&self.0).status();
-        }
-    }
 }
 
 #[test]

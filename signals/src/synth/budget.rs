@@ -70,7 +70,9 @@ impl SynthSession<'_> {
         } else {
             0
         };
-        let per_step = blocks_per_step.checked_div(self.truth_every_blocks()).unwrap_or(0);
+        let per_step = blocks_per_step
+            .checked_div(self.truth_every_blocks())
+            .unwrap_or(0);
         let widest_band = self.bands().iter().map(|b| b.count).max().unwrap_or(0) as u64;
         let record = size_of::<LinkTruth>() as u64 + 8 * TRUTH_COLUMNS;
         let truth = per_step * n_ant * widest_band * 2 * record;

@@ -28,6 +28,14 @@ pub fn unregister(dir: &Path) {
         .retain(|d| d != dir);
 }
 
+/// Run `f` with the interrupt watcher held off: a SIGINT/SIGTERM arriving meanwhile
+/// removes the registered directories only after `f` (a commit's renames) is done. `f`
+/// registers and unregisters through the list it is given.
+pub fn exclusive<T>(f: impl FnOnce(&mut Vec<PathBuf>) -> T) -> T {
+    let mut held = STAGING.lock().unwrap_or_else(|e| e.into_inner());
+    f(&mut held)
+}
+
 fn start_watcher() {
     use signal_hook::consts::{SIGINT, SIGTERM};
     let Ok(mut signals) = signal_hook::iterator::Signals::new([SIGINT, SIGTERM]) else {
@@ -61,7 +69,9 @@ fn staging_pid(entry: &str, name: &str) -> Option<u32> {
 }
 
 /// Remove the staging directories for output `name` in `parent` left by processes that
-/// no longer run (`/proc/PID` gone). Only names of SkyForge's own pattern are touched.
+/// no longer run (`/proc/PID` gone). Only names of SkyForge's own pattern are touched. A
+/// replaced output moved aside (`.old`) by a process killed before its new output took
+/// its place is put back when the output is missing.
 pub fn remove_stale(parent: &Path, name: &str) {
     let Ok(entries) = std::fs::read_dir(parent) else {
         return;
@@ -73,7 +83,12 @@ pub fn remove_stale(parent: &Path, name: &str) {
             continue;
         };
         let alive = pid == me || Path::new("/proc").join(pid.to_string()).exists();
-        if !alive && entry.file_type().is_ok_and(|t| t.is_dir()) {
+        if alive || !entry.file_type().is_ok_and(|t| t.is_dir()) {
+            continue;
+        }
+        let target = parent.join(name);
+        let aside = file_name.to_string_lossy().ends_with(".old");
+        if !(aside && !target.exists() && std::fs::rename(entry.path(), &target).is_ok()) {
             let _ = std::fs::remove_dir_all(entry.path());
         }
     }
@@ -98,5 +113,24 @@ mod tests {
         assert!(tmp.path().join(".out.partial-1").exists());
         assert!(!tmp.path().join(".out.partial-4294967295").exists());
         assert!(tmp.path().join("keep").exists());
+    }
+
+    #[test]
+    fn an_output_moved_aside_by_a_dead_process_is_put_back() {
+        let tmp = tempfile::tempdir().unwrap();
+        let aside = tmp.path().join(".out.partial-4294967295.old");
+        std::fs::create_dir(&aside).unwrap();
+        std::fs::write(aside.join("a"), "previous").unwrap();
+        remove_stale(tmp.path(), "out");
+        assert_eq!(
+            std::fs::read_to_string(tmp.path().join("out/a")).unwrap(),
+            "previous"
+        );
+        assert!(!aside.exists());
+        // With the output in place, an aside copy is only removed.
+        std::fs::create_dir(&aside).unwrap();
+        remove_stale(tmp.path(), "out");
+        assert!(!aside.exists());
+        assert!(tmp.path().join("out/a").exists());
     }
 }

@@ -7,6 +7,7 @@
 use super::{interrupt, manifest};
 use crate::BadInput;
 use anyhow::Context;
+use nix::fcntl::{AT_FDCWD, RenameFlags, renameat2};
 use std::path::{Path, PathBuf};
 
 /// A staging directory for `target`.
@@ -14,6 +15,8 @@ use std::path::{Path, PathBuf};
 pub struct StagedDir {
     target: PathBuf,
     staging: PathBuf,
+    /// Whether an existing output may be replaced.
+    force: bool,
     committed: bool,
 }
 
@@ -76,6 +79,7 @@ impl StagedDir {
         Ok(Self {
             target: target.to_path_buf(),
             staging,
+            force,
             committed: false,
         })
     }
@@ -86,33 +90,69 @@ impl StagedDir {
     }
 
     /// Write the manifest and move the finished directory into place. An existing one
-    /// (checked in [`Self::create`]) is first moved aside and removed only once the new
-    /// one is in place; if the move fails it is put back.
+    /// (checked in [`Self::create`], and again here) is exchanged with it atomically, so
+    /// that the target always holds a complete output, then removed; where the file
+    /// system cannot exchange, it is moved aside first and put back if the move fails (a
+    /// process killed in between leaves it aside, and the next run puts it back:
+    /// [`interrupt::remove_stale`]). An output that appeared meanwhile without `--force`
+    /// is never replaced.
     pub fn commit(mut self) -> anyhow::Result<PathBuf> {
         manifest::write(&self.staging)
             .with_context(|| format!("cannot write the manifest in {}", self.staging.display()))?;
-        let old = self
-            .target
-            .exists()
-            .then(|| self.staging.with_extension("old"));
-        if let Some(old) = &old {
-            std::fs::rename(&self.target, old)
-                .with_context(|| format!("cannot replace {}", self.target.display()))?;
-        }
-        if let Err(e) = std::fs::rename(&self.staging, &self.target) {
-            if let Some(old) = &old {
-                let _ = std::fs::rename(old, &self.target);
-            }
-            return Err(e)
-                .with_context(|| format!("cannot move output into {}", self.target.display()));
-        }
+        let replaced = interrupt::exclusive(|registered| self.move_into_place(registered))?;
         self.committed = true;
-        interrupt::unregister(&self.staging);
-        if let Some(old) = old {
+        if let Some(old) = replaced {
             std::fs::remove_dir_all(&old)
                 .with_context(|| format!("cannot remove the replaced {}", old.display()))?;
+            interrupt::unregister(&old);
         }
+        interrupt::unregister(&self.staging);
         Ok(self.target.clone())
+    }
+
+    /// The renames of [`Self::commit`]; returns where the replaced output went (a path
+    /// in `registered`, the directories removed on interrupt).
+    fn move_into_place(&self, registered: &mut Vec<PathBuf>) -> anyhow::Result<Option<PathBuf>> {
+        let cannot = || format!("cannot move the output into {}", self.target.display());
+        if !self.force || !self.target.exists() {
+            return match std::fs::rename(&self.staging, &self.target) {
+                Ok(()) => Ok(None),
+                Err(e) if self.target.is_dir() => Err(BadInput(format!(
+                    "output directory {} appeared while this run was writing (another run?) \
+                     and was left as it is ({e}); pass --force to replace it",
+                    self.target.display()
+                ))
+                .into()),
+                Err(e) => Err(anyhow::Error::new(e).context(cannot())),
+            };
+        }
+        if let Some(reason) = manifest::refuse_replacing(&self.target) {
+            return Err(BadInput(format!(
+                "--force will not replace {}: {reason}",
+                self.target.display()
+            ))
+            .into());
+        }
+        let exchanged = renameat2(
+            AT_FDCWD,
+            &self.staging,
+            AT_FDCWD,
+            &self.target,
+            RenameFlags::RENAME_EXCHANGE,
+        );
+        if exchanged.is_ok() {
+            return Ok(Some(self.staging.clone()));
+        }
+        let old = self.staging.with_extension("old");
+        registered.push(old.clone());
+        std::fs::rename(&self.target, &old)
+            .with_context(|| format!("cannot replace {}", self.target.display()))?;
+        if let Err(e) = std::fs::rename(&self.staging, &self.target) {
+            let _ = std::fs::rename(&old, &self.target);
+            registered.retain(|d| *d != old);
+            return Err(e).with_context(cannot);
+        }
+        Ok(Some(old))
     }
 }
 
