@@ -82,6 +82,26 @@ fn ended_as_expected(status: ExitStatus, signal: &str) -> bool {
     status.success() || (code.is_some() && status.code() == code) || status.signal() == Some(number)
 }
 
+/// `short.toml` synthesised with seeds 1 and 2 into `ref1/` and `ref2/`: their snapshots.
+fn seed_outputs(cwd: &Path) -> Vec<BTreeMap<String, u64>> {
+    ["1", "2"]
+        .iter()
+        .map(|seed| {
+            let dir = format!("ref{seed}");
+            skyforge_ok(&["synth", "short.toml", "--out", &dir, "--seed", seed], cwd);
+            snapshot(&cwd.join(dir))
+        })
+        .collect()
+}
+
+/// Hidden entries of `dir` (staging directories and replaced outputs are hidden).
+fn hidden(dir: &Path) -> Vec<String> {
+    listing(dir)
+        .into_iter()
+        .filter(|n| n.starts_with('.'))
+        .collect()
+}
+
 /// Time one complete run of `args` (the span the kill points are drawn from).
 fn timed(args: &[&str], cwd: &Path) -> Duration {
     let t = Instant::now();
@@ -123,21 +143,13 @@ fn kill_at_random_points(
                 .collect();
             assert_eq!(visible.iter().collect::<Vec<_>>(), expected, "{signal}");
             if signal != "-KILL" {
-                assert!(
-                    listing(cwd).iter().all(|n| !n.contains(".partial-")),
-                    "{signal}: staging left: {:?}",
-                    listing(cwd)
-                );
+                assert_eq!(hidden(cwd), Vec::<String>::new(), "{signal}: staging left");
             }
         }
     }
     skyforge_ok(restore, cwd);
     assert_eq!(snapshot(&cwd.join(out)), *before);
-    assert!(
-        listing(cwd).iter().all(|n| !n.contains(".partial-")),
-        "staging left after the next run: {:?}",
-        listing(cwd)
-    );
+    assert_eq!(hidden(cwd), Vec::<String>::new(), "left after the next run");
 }
 
 #[test]
@@ -161,14 +173,7 @@ fn killed_runs_never_damage_the_previous_output() {
         .map(String::from)
         .to_vec()
     };
-    let refs: Vec<BTreeMap<String, u64>> = ["1", "2"]
-        .iter()
-        .map(|seed| {
-            let dir = format!("ref{seed}");
-            skyforge_ok(&["synth", "short.toml", "--out", &dir, "--seed", seed], cwd);
-            snapshot(&cwd.join(dir))
-        })
-        .collect();
+    let refs = seed_outputs(cwd);
     let (s2, s1) = (synth("2"), synth("1"));
     kill_at_random_points(
         cwd,
@@ -218,14 +223,7 @@ fn two_runs_racing_for_one_output_leave_one_complete_output() {
     let tmp = tempfile::tempdir().expect("temp dir");
     let cwd = tmp.path();
     short_scenario(cwd, "interop-gps-static", 6);
-    let refs: Vec<BTreeMap<String, u64>> = ["1", "2"]
-        .iter()
-        .map(|seed| {
-            let dir = format!("ref{seed}");
-            skyforge_ok(&["synth", "short.toml", "--out", &dir, "--seed", seed], cwd);
-            snapshot(&cwd.join(dir))
-        })
-        .collect();
+    let refs = seed_outputs(cwd);
     for force in [false, true] {
         let mut args = vec!["synth", "short.toml", "--out", "race"];
         if force {
@@ -258,10 +256,10 @@ fn two_runs_racing_for_one_output_leave_one_complete_output() {
             now == refs[0] || now == refs[1],
             "force {force}: race/ is incomplete or mixed"
         );
-        assert!(
-            listing(cwd).iter().all(|n| !n.starts_with('.')),
-            "left behind: {:?}",
-            listing(cwd)
+        assert_eq!(
+            hidden(cwd),
+            Vec::<String>::new(),
+            "force {force}: left behind"
         );
     }
 }
@@ -278,17 +276,16 @@ fn a_disk_that_fills_up_under_receive_leaves_nothing() {
     short_scenario(cwd, "interop-gps-static", 12);
     skyforge_ok(&["synth", "short.toml", "--out", "rec"], cwd);
     let disk = Tmpfs::mount(&cwd.join("small"), "4k");
-    let o = skyforge(
-        &[
+    let receive = |out: &str| {
+        let args = [
             "receive",
             "rec/ant1.gps-l1ca.sigmf-meta",
             "--assist",
             "rec/nav.rnx",
-            "--out",
-            "small/rx",
-        ],
-        cwd,
-    );
+        ];
+        skyforge(&[&args[..], &["--out", out]].concat(), cwd)
+    };
+    let o = receive("small/rx");
     let msg = text(&o);
     println!("{msg}");
     assert!(!o.status.success());
@@ -299,16 +296,6 @@ fn a_disk_that_fills_up_under_receive_leaves_nothing() {
         listing(&disk.0)
     );
     drop(disk);
-    let o = skyforge(
-        &[
-            "receive",
-            "rec/ant1.gps-l1ca.sigmf-meta",
-            "--assist",
-            "rec/nav.rnx",
-            "--out",
-            "rx",
-        ],
-        cwd,
-    );
+    let o = receive("rx");
     assert!(o.status.success(), "the next run: {}", text(&o));
 }

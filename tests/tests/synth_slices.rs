@@ -7,10 +7,8 @@
 
 mod common;
 
-use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
-use skyforge_signals::errors::seed::{Stream, stream_rng};
 use skyforge_signals::sample_format::SampleFormat;
-use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
+use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
 use skyforge_signals::truth::geometry::GeometryTruth;
@@ -36,19 +34,7 @@ fn render(slice_bytes: usize) -> (Vec<Vec<u8>>, u64) {
         bandwidth_hz: 1.8e6,
         taps: 31,
     };
-    let h = PowerLaw {
-        h0: 2e-19,
-        h_minus1: 7e-21,
-        h_minus2: 2e-20,
-    };
-    let clock = ClockModel::new(
-        &h,
-        1e-4,
-        2e-7,
-        BLOCK_S,
-        stream_rng(3, Stream::ReceiverClock, 0),
-    )
-    .unwrap();
+    let clock = common::tcxo_clock();
     let mut synth = Synthesiser::new(&cfg, &txs, 2, 5)
         .unwrap()
         .with_clocks(vec![clock])

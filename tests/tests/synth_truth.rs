@@ -9,9 +9,7 @@
 mod common;
 
 use skyforge_orbits::constants::C_MPS;
-use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
 use skyforge_signals::errors::events::{EventConfig, EventKind, EventSchedule};
-use skyforge_signals::errors::seed::{Stream, stream_rng};
 use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
 use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser, append_to};
@@ -84,20 +82,7 @@ fn samples_follow_the_truth_of_every_term() {
         truth_rate_hz: 1000,
         ..SignalConfig::default()
     };
-    // A TCXO-like clock 100 us ahead, drifting at 2e-7.
-    let h = PowerLaw {
-        h0: 2e-19,
-        h_minus1: 7e-21,
-        h_minus2: 2e-20,
-    };
-    let clock = ClockModel::new(
-        &h,
-        1e-4,
-        2e-7,
-        BLOCK_S,
-        stream_rng(3, Stream::ReceiverClock, 0),
-    )
-    .unwrap();
+    let clock = common::tcxo_clock();
     let events = [
         event(EventKind::PowerStep, 0.10, 0.30, -6.0),
         event(EventKind::CodeStep, 0.20, 0.50, 15.0),

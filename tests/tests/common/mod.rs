@@ -1,7 +1,12 @@
 //! Set-up shared by the signal-level tests.
+//! Shared by several test binaries, each using part of it.
+#![allow(dead_code)]
 
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_scenarios::World;
+use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
+use skyforge_signals::errors::seed::{Stream, stream_rng};
+use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::transmitter::Transmitter;
 
@@ -22,4 +27,22 @@ pub fn gps_transmitters(world: &World) -> (Vec<Transmitter>, EphemerisStore, Vec
     );
     let sats = txs.iter().map(|t| t.sat).collect();
     (txs, store, sats)
+}
+
+/// A TCXO-like receiver clock 100 us ahead, drifting at 2e-7, stepping at the synthesis
+/// block.
+pub fn tcxo_clock() -> ClockModel {
+    let h = PowerLaw {
+        h0: 2e-19,
+        h_minus1: 7e-21,
+        h_minus2: 2e-20,
+    };
+    ClockModel::new(
+        &h,
+        1e-4,
+        2e-7,
+        BLOCK_S,
+        stream_rng(3, Stream::ReceiverClock, 0),
+    )
+    .unwrap()
 }
