@@ -183,19 +183,23 @@ fn check_name(name: &str) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// `[time]`: a start between the GPS epoch (and, with BeiDou, the BDT epoch) and 2100; a
+/// `[time]`: a start from the GPS epoch (and, with BeiDou, the BDT epoch) to before
+/// 2100-01-01T00:00:00 read in the start's own time scale (the date as written); a
 /// duration in (0, 366 days].
 fn check_time(time: &TimeSpan, beidou: bool) -> Result<(), Invalid> {
     let start = time.start;
     let shown = format!("{:?}", start.to_string());
     let gps_epoch = Epoch::from_gpst_seconds(0.0);
     let bdt_epoch = Epoch::from_bdt_seconds(0.0);
-    let end_of_range = Epoch::from_gregorian_at_midnight(2100, 1, 1, TimeScale::UTC);
+    // In the scale the start was written in: `2100-01-01T00:00:01 GPST` is 2099-12-31 in
+    // UTC, but its date is past the limit.
+    let end_of_range = Epoch::from_gregorian_at_midnight(2100, 1, 1, start.time_scale);
     if start < gps_epoch || start >= end_of_range {
         return Err(Invalid::new(
             "time.start",
             shown,
-            "must be between the GPS epoch (1980-01-06T00:00:00 GPST) and 2100-01-01",
+            "must be from the GPS epoch (1980-01-06T00:00:00 GPST) to before \
+             2100-01-01T00:00:00 (in the start's time scale)",
         ));
     }
     if beidou && start < bdt_epoch {
