@@ -1,6 +1,7 @@
 //! An output directory that appears only when complete: files are written into a sibling
 //! staging directory, which replaces the target on [`StagedDir::commit`] and is removed
-//! if the run fails (on drop). Every committed directory carries a [`manifest`] of its
+//! if the run fails (on drop), with the parent directories the run created for it (when
+//! empty). Every committed directory carries a [`manifest`] of its
 //! files; `--force` replaces only such a directory holding nothing else, and the old
 //! directory stays in place until the new one is complete.
 
@@ -14,7 +15,29 @@ use std::path::{Path, PathBuf};
 pub struct StagedDir {
     target: PathBuf,
     staging: PathBuf,
+    /// Parent directories this run created for `target`, deepest first: removed (when
+    /// empty) with the staging directory if the run fails.
+    created_parents: Vec<PathBuf>,
     committed: bool,
+}
+
+/// The ancestors of `dir` (itself included) that do not exist, deepest first.
+fn missing_ancestors(dir: &Path) -> Vec<PathBuf> {
+    dir.ancestors()
+        .filter(|a| !a.as_os_str().is_empty())
+        .take_while(|a| std::fs::symlink_metadata(a).is_err())
+        .map(Path::to_path_buf)
+        .collect()
+}
+
+/// Remove the directories in `created` (deepest first) that are empty; stop at the first
+/// that is not (something else now lives there).
+pub(super) fn remove_created(created: &[PathBuf]) {
+    for dir in created {
+        if std::fs::remove_dir(dir).is_err() {
+            break;
+        }
+    }
 }
 
 impl StagedDir {
@@ -62,8 +85,14 @@ impl StagedDir {
                 unwritable(format!("{} is a file, not a directory", file.display())).into(),
             );
         }
+        let created_parents = missing_ancestors(parent);
+        let undo = |e: anyhow::Error| {
+            remove_created(&created_parents);
+            e
+        };
         std::fs::create_dir_all(parent)
-            .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())))?;
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())).into())
+            .map_err(undo)?;
         interrupt::remove_stale(parent, &name);
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
@@ -71,11 +100,13 @@ impl StagedDir {
                 .with_context(|| format!("cannot clear {}", staging.display()))?;
         }
         std::fs::create_dir(&staging)
-            .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())))?;
-        interrupt::register(&staging);
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())).into())
+            .map_err(undo)?;
+        interrupt::register(&staging, &created_parents);
         Ok(Self {
             target: target.to_path_buf(),
             staging,
+            created_parents,
             committed: false,
         })
     }
@@ -120,6 +151,7 @@ impl Drop for StagedDir {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
+            remove_created(&self.created_parents);
             interrupt::unregister(&self.staging);
         }
     }
