@@ -15,6 +15,19 @@ const NS_PER_S: i128 = 1_000_000_000;
 /// Seconds in one week.
 const S_PER_WEEK: i128 = 604_800;
 
+/// The times SkyForge handles, as users are told: scenario starts and recording start
+/// times (SigMF `core:datetime`) must lie in it ([`in_supported_range`]).
+pub const SUPPORTED_RANGE: &str = "from the GPS epoch (1980-01-06T00:00:00 GPST) to before 2100-01-01T00:00:00 (in the time's own scale)";
+
+/// Whether `epoch` lies in [`SUPPORTED_RANGE`]: not before GPS week 0 (weeks count from it
+/// continuously, so earlier times have no GPS week), and before 2100-01-01T00:00:00 read
+/// in the epoch's own time scale (the date as written: `2100-01-01T00:00:01 GPST` is out
+/// although it is 2099-12-31 in UTC).
+pub fn in_supported_range(epoch: Epoch) -> bool {
+    let end = Epoch::from_gregorian_at_midnight(2100, 1, 1, epoch.time_scale);
+    epoch >= Epoch::from_gpst_seconds(0.0) && epoch < end
+}
+
 /// Error parsing or converting a time.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TimeError {
@@ -134,6 +147,19 @@ pub fn epoch_from_bdt(week: u32, sow: f64) -> Epoch {
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn the_supported_range_is_read_in_the_epochs_own_scale() {
+        let at = |text: &str| in_supported_range(parse_epoch(text).unwrap());
+        assert!(at("1980-01-06T00:00:00 GPST"));
+        assert!(!at("1980-01-05T23:59:59 GPST"));
+        assert!(at("2099-12-31T23:59:59 GPST"));
+        assert!(!at("2100-01-01T00:00:00 UTC"));
+        // 2099-12-31T23:59:4x UTC, but written as 2100 in GPST: out.
+        assert!(!at("2100-01-01T00:00:01 GPST"));
+        assert!(!at("1900-01-01T00:00:00 UTC"));
+        assert!(!at("9999-12-31T00:00:00 UTC"));
+    }
 
     fn parse(text: &str) -> Epoch {
         match parse_epoch(text) {

@@ -186,9 +186,10 @@ impl Scenario {
         Ok(store)
     }
 
-    /// Read a navigation file; a missing or unreadable file becomes a message.
+    /// Read a navigation file; a missing or unreadable file becomes a message (a
+    /// directory or a device such as `/dev/zero` is named as what it is by the reader).
     fn read_nav(&self, path: &Path) -> Result<Vec<BroadcastEphemeris>, String> {
-        if !path.is_file() {
+        if !path.exists() {
             return Err(format!(
                 "must name a readable RINEX navigation file; {} does not exist \
                  (relative paths start at {})",

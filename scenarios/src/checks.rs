@@ -2,11 +2,11 @@
 //! table path, plus the cross-field and whole-scenario rules the domain crates cannot see.
 
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
-use hifitime::{Epoch, TimeScale};
+use hifitime::Epoch;
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
-use skyforge_orbits::time::{TimeError, parse_epoch};
+use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
@@ -183,19 +183,17 @@ fn check_name(name: &str) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// `[time]`: a start between the GPS epoch (and, with BeiDou, the BDT epoch) and 2100; a
-/// duration in (0, 366 days].
+/// `[time]`: a start in the supported range (and, with BeiDou, not before the BDT epoch);
+/// a duration in (0, 366 days].
 fn check_time(time: &TimeSpan, beidou: bool) -> Result<(), Invalid> {
     let start = time.start;
     let shown = format!("{:?}", start.to_string());
-    let gps_epoch = Epoch::from_gpst_seconds(0.0);
     let bdt_epoch = Epoch::from_bdt_seconds(0.0);
-    let end_of_range = Epoch::from_gregorian_at_midnight(2100, 1, 1, TimeScale::UTC);
-    if start < gps_epoch || start >= end_of_range {
+    if !in_supported_range(start) {
         return Err(Invalid::new(
             "time.start",
             shown,
-            "must be between the GPS epoch (1980-01-06T00:00:00 GPST) and 2100-01-01",
+            format!("must be {SUPPORTED_RANGE}"),
         ));
     }
     if beidou && start < bdt_epoch {

@@ -117,6 +117,62 @@ fn unknown_prn() {
     assert!(err.to_string().contains("64"), "{err}");
 }
 
+/// Issue #11: `prns = []` synthesised a recording with no satellites.
+#[test]
+fn an_empty_prn_list() {
+    let text = replace(BASE, "source = \"embedded\"", "prns = []");
+    let err = parse_error_at(&text, "gnss.gps.prns", "prns = []", "[]");
+    assert!(err.allowed.contains("at least one PRN"), "{err}");
+    let text = replace(BASE, "enabled = true", "prns = []");
+    parse_error_at(&text, "gnss.beidou.prns", "prns = []", "[]");
+    // A disabled constellation's list does not matter.
+    let text = replace(BASE, "enabled = true", "enabled = false\nprns = []");
+    assert!(parse_in(&text, Path::new(".")).is_ok());
+}
+
+/// Issue #11: `semi_major_axis_km = 1e30` was accepted and wrote no observation file.
+#[test]
+fn an_orbit_beyond_100_000_km() {
+    for bad in ["1e30", "100001.0"] {
+        let to = format!("semi_major_axis_km = {bad}");
+        let err = replaced_error(
+            "semi_major_axis_km = 6971.593",
+            &to,
+            "platform.leo.elements.semi_major_axis_km",
+            bad,
+        );
+        assert!(err.allowed.contains("<= 100000 km"), "{err}");
+    }
+}
+
+/// Issue #11: `2100-01-01T00:00:01 GPST` (2099-12-31 in UTC) passed the documented limit,
+/// a start before 2100-01-01T00:00:00 in its own time scale.
+#[test]
+fn a_start_from_2100_on() {
+    for bad in [
+        "2100-01-01T00:00:01 GPST",
+        "2100-01-01T00:00:00 GPST",
+        "2100-01-01T00:00:00 UTC",
+        "2100-01-01T00:00:10 TAI",
+        "1980-01-05T23:59:59 GPST",
+    ] {
+        let to = format!("start = \"{bad}\"");
+        let err = parse_error(&replace(BASE, "start = \"2023-03-12T00:00:00 GPST\"", &to));
+        assert_eq!(err.field, "time.start", "{bad}: {err}");
+        assert!(err.allowed.contains("before 2100-01-01T00:00:00"), "{err}");
+        assert_at(
+            &err,
+            position_of(
+                &replace(BASE, "start = \"2023-03-12T00:00:00 GPST\"", &to),
+                &to,
+                "\"",
+            ),
+        );
+    }
+    let last = replace(BASE, "2023-03-12T00:00:00 GPST", "2099-12-31T23:59:59 GPST");
+    assert!(parse_in(&last, Path::new(".")).is_ok());
+}
+
 #[test]
 fn missing_navigation_file() {
     let dir = tempfile::tempdir().expect("tempdir");

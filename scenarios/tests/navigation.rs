@@ -116,3 +116,33 @@ fn relative_paths_start_at_the_scenario_directory() {
     let elsewhere = build_error(&s.text, Path::new("/"));
     assert_eq!(elsewhere.field, "gnss.gps.nav_file");
 }
+
+/// Issue #11: a navigation file cut inside a record built with its missing fields read as
+/// 0, and `/dev/zero` or a directory was reported as missing. Each is now one located
+/// error at `nav_file` saying what is wrong.
+#[test]
+fn a_cut_file_a_directory_and_a_device_are_refused_with_what_they_are() {
+    let dir = nav_dir();
+    let cut = NAV.trim_end().rsplit_once('\n').expect("lines").0;
+    std::fs::write(dir.path().join("cut.rnx"), cut).expect("write");
+    std::fs::create_dir(dir.path().join("navdir")).expect("mkdir");
+    for (name, expected) in [
+        ("cut.rnx", "cut.rnx:9: record cut short: it has 7 lines"),
+        ("navdir", "is a directory, not a navigation file"),
+        ("/dev/zero", "more than 256 MiB: not a navigation file"),
+    ] {
+        let text =
+            scenario("2022-01-01T00:30:00 GPST", "").replace("\"brdc.rnx\"", &format!("{name:?}"));
+        let quoted = format!("{name:?}");
+        let context = format!("nav_file = {quoted}");
+        let err = build_error_at(
+            &text,
+            dir.path(),
+            "gnss.gps.nav_file",
+            &quoted,
+            (&context, &quoted),
+        );
+        assert!(err.allowed.contains(expected), "{name}: {err}");
+        assert!(!err.allowed.contains("does not exist"), "{name}: {err}");
+    }
+}

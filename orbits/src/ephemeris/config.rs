@@ -50,8 +50,19 @@ fn yes() -> bool {
 }
 
 impl ConstellationConfig {
-    /// Cross-field checks that need no file access (PRN range, nav_file iff rinex).
+    /// Cross-field checks that need no file access (PRN range, at least one PRN when the
+    /// constellation is enabled, nav_file iff rinex).
     pub fn check(&self, max_prn: u8) -> Result<(), Invalid> {
+        if self.enabled && self.prns.as_ref().is_some_and(Vec::is_empty) {
+            return Err(Invalid::new(
+                "prns",
+                "[]",
+                format!(
+                    "must list at least one PRN in 1..={max_prn} (leave prns out for every \
+                     satellite, or set enabled = false)"
+                ),
+            ));
+        }
         if let Some(prns) = &self.prns {
             let mut seen = std::collections::BTreeSet::new();
             for &prn in prns {

@@ -6,7 +6,11 @@
 //! - data records: an epoch line (satellite, epoch of clock `toc` in the system's time
 //!   scale, af0/af1/af2) followed by seven "broadcast orbit" lines of four 19-character
 //!   floating-point fields (Fortran `D` exponents allowed). Version 2 lines start with 3
-//!   blanks, versions 3/4 with 4. Blank or missing trailing fields read as zero.
+//!   blanks, versions 3/4 with 4. Every field the orbit and clock models use (and the
+//!   transmission time, which every complete record has) must be present: a record cut
+//!   short (missing lines, a shortened line) is an error naming the file, line and field.
+//!   Fields the models do not use (spares, codes on L2, L2 P flag, accuracy, TGD2, the GPS
+//!   fit interval) may be blank or missing at the end of a line and read as zero.
 //! - version 4 prefixes each record with a `> EPH G05 LNAV` / `> EPH C19 D1` line; other
 //!   record types (STO, EOP, ION) and other message types (CNAV, CNV1..3) are skipped.
 //! - GPS: toe is GPS week (continuous) + seconds of week; health is the 6-bit SV health;
@@ -149,15 +153,50 @@ struct Parser<'a> {
     source: &'a str,
 }
 
-/// The 31 numbers of a GPS/BeiDou record: clock line (3) + seven orbit lines (4 each).
+/// The 31 numbers of a GPS/BeiDou record: clock line (3) + seven orbit lines (4 each),
+/// `None` where the field is blank or beyond the end of its line (or its line is missing).
 struct Fields {
-    v: [f64; 31],
+    v: [Option<f64>; 31],
+    /// 1-based file line of the epoch line and of orbit lines 1-7; a missing orbit line
+    /// gets the record's last line.
+    line_no: [usize; 8],
 }
 
 impl Fields {
-    /// Orbit line `line` (1-7), field `k` (1-4).
+    /// Orbit line `line` (1-7), field `k` (1-4); a blank or missing field reads 0 (only
+    /// for fields the model does not need, see [`Self::need`]).
     fn orbit(&self, line: usize, k: usize) -> f64 {
-        self.v[3 + (line - 1) * 4 + (k - 1)]
+        self.v[3 + (line - 1) * 4 + (k - 1)].unwrap_or(0.0)
+    }
+
+    /// Orbit line `line` (1-7), field `k` (1-4), which must be present: a record cut short
+    /// (the file ends inside it, a line is shortened) is an error naming the field, never
+    /// zeros.
+    fn need(&self, p: &Parser, line: usize, k: usize, name: &str) -> Result<f64, NavError> {
+        self.v[3 + (line - 1) * 4 + (k - 1)].ok_or_else(|| {
+            p.err(
+                self.line_no[line],
+                format!(
+                    "record cut short: broadcast orbit line {line} has no field {k} ({name}); \
+                     every field the orbit and clock models use must be present"
+                ),
+            )
+        })
+    }
+
+    /// Clock field `k` (0-2: af0, af1, af2) of the epoch line, which must be present.
+    fn clock(&self, p: &Parser, k: usize) -> Result<f64, NavError> {
+        const NAMES: [&str; 3] = ["af0", "af1", "af2"];
+        self.v[k].ok_or_else(|| {
+            p.err(
+                self.line_no[0],
+                format!(
+                    "record cut short: the epoch line has no {} (clock field {})",
+                    NAMES[k],
+                    k + 1
+                ),
+            )
+        })
     }
 }
 
@@ -214,19 +253,24 @@ impl Parser<'_> {
         for rec in split_records(body, |l| l.starts_with('>')) {
             let (n0, l0) = rec[0];
             let t: Vec<&str> = l0.split_whitespace().collect();
+            // Every record type (EPH, STO, EOP, ION) has data lines: a `>` line alone is a
+            // file cut after it (or inside it).
+            if rec.len() < 2 {
+                return Err(self.err(n0, "record cut short: a record line without data lines"));
+            }
             let wanted = match t.as_slice() {
                 [">", "EPH", sat, msg, ..] => {
                     (sat.starts_with('G') && *msg == "LNAV")
                         || (sat.starts_with('C') && (*msg == "D1" || *msg == "D2"))
+                }
+                [">", "EPH", ..] => {
+                    return Err(self.err(n0, "EPH record line without satellite and message type"));
                 }
                 [">", ..] => false,
                 _ => return Err(self.err(n0, "bad record type line")),
             };
             if !wanted {
                 continue;
-            }
-            if rec.len() < 2 {
-                return Err(self.err(n0, "EPH record without data lines"));
             }
             match self.v3_record(&rec[1..])? {
                 Some(eph) if eph.sat.to_string() == t[2] => out.push(eph),
@@ -298,21 +342,30 @@ impl Parser<'_> {
     }
 
     /// The 31 numbers: 3 on the epoch line from column `first_col`, then 4 per orbit line
-    /// from column `indent`. Orbit lines 1-6 are required; line 7 may be absent.
+    /// from column `indent`. All eight lines are required (the last one may be shortened:
+    /// which fields must be present is decided in [`Self::ephemeris`]).
     fn fields(
         &self,
         rec: &[(usize, &str)],
         first_col: usize,
         indent: usize,
     ) -> Result<Fields, NavError> {
-        if rec.len() < 7 {
+        let last = rec.last().map_or(rec[0].0, |r| r.0);
+        if rec.len() < 8 {
             return Err(self.err(
-                rec[0].0,
-                format!("record has {} lines, expected 8", rec.len()),
+                last,
+                format!(
+                    "record cut short: it has {} lines (from line {}), a GPS/BeiDou record has 8 \
+                     (the epoch line and seven broadcast orbit lines)",
+                    rec.len(),
+                    rec[0].0
+                ),
             ));
         }
-        let mut v = [0.0; 31];
+        let mut v = [None; 31];
+        let mut line_no = [last; 8];
         let (n0, l0) = rec[0];
+        line_no[0] = n0;
         for (k, x) in v.iter_mut().take(3).enumerate() {
             *x = self.field(n0, l0, first_col + 19 * k)?;
         }
@@ -320,24 +373,39 @@ impl Parser<'_> {
             if l.get(..indent).is_none_or(|s| !s.trim().is_empty()) && !l.trim().is_empty() {
                 return Err(self.err(n, "orbit line must start with blanks"));
             }
+            line_no[j + 1] = n;
             for k in 0..4 {
                 v[3 + 4 * j + k] = self.field(n, l, indent + 19 * k)?;
             }
         }
-        Ok(Fields { v })
+        Ok(Fields { v, line_no })
     }
 
-    /// One 19-character field starting at `col`; blank or beyond the line end reads 0.
-    fn field(&self, line_no: usize, line: &str, col: usize) -> Result<f64, NavError> {
+    /// One 19-character field starting at `col`; `None` when blank or beyond the line end.
+    fn field(&self, line_no: usize, line: &str, col: usize) -> Result<Option<f64>, NavError> {
         if col >= line.len() {
-            return Ok(0.0);
+            return Ok(None);
         }
         let s = line
             .get(col..(col + 19).min(line.len()))
             .ok_or_else(|| self.err(line_no, "non-ASCII text in a numeric field"))?
             .trim();
         if s.is_empty() {
-            return Ok(0.0);
+            return Ok(None);
+        }
+        // Fields are right-justified in 19 columns: a number the line end cuts into was
+        // shortened (a truncated file), and its digits would read as another value.
+        if line.len() < col + 19 {
+            return Err(self.err(
+                line_no,
+                format!(
+                    "record cut short: the line ends at column {} inside the number {s:?} \
+                     (a field spans columns {}-{})",
+                    line.len(),
+                    col + 1,
+                    col + 19
+                ),
+            ));
         }
         let x: f64 = s
             .replace(['D', 'd'], "E")
@@ -346,7 +414,7 @@ impl Parser<'_> {
         if !x.is_finite() {
             return Err(self.err(line_no, format!("non-finite number {s:?}")));
         }
-        Ok(x)
+        Ok(Some(x))
     }
 
     /// Build the ephemeris from the record fields (RINEX 3.05 GPS and BDS navigation
@@ -359,12 +427,13 @@ impl Parser<'_> {
         f: &Fields,
     ) -> Result<BroadcastEphemeris, NavError> {
         let scale = sat.system.time_scale();
-        let week_name = match sat.system {
-            System::Gps => "GPS week",
-            System::Beidou => "BDT week",
+        let (week_name, iode_name) = match sat.system {
+            System::Gps => ("GPS week", "IODE"),
+            System::Beidou => ("BDT week", "AODE"),
         };
-        let toe_sow = f.orbit(3, 1);
-        let week = f.orbit(5, 3);
+        let need = |line, k, name| f.need(self, line, k, name);
+        let toe_sow = need(3, 1, "toe")?;
+        let week = need(5, 3, week_name)?;
         if !(0.0..=WEEK_S).contains(&toe_sow) {
             return Err(self.err(line, format!("toe {toe_sow} s outside the week")));
         }
@@ -378,8 +447,8 @@ impl Parser<'_> {
         } else if off_s < -WEEK_S / 2.0 {
             toe += Unit::Week * 1;
         }
-        let sqrt_a = f.orbit(2, 4);
-        let e = f.orbit(2, 2);
+        let sqrt_a = need(2, 4, "sqrt(A)")?;
+        let e = need(2, 2, "e")?;
         if !(1000.0..10_000.0).contains(&sqrt_a) || !(0.0..1.0).contains(&e) {
             return Err(self.err(line, format!("implausible orbit sqrt(A)={sqrt_a} e={e}")));
         }
@@ -390,6 +459,9 @@ impl Parser<'_> {
                 Err(self.err(line, format!("bad issue-of-data/health value {x}")))
             }
         };
+        // The transmission time is not used, but every complete record has it: without it
+        // the record (the file) was cut after its sixth orbit line.
+        need(7, 1, "transmission time")?;
         let (class, tgd_s, iodc, fit_interval_s) = match sat.system {
             System::Gps => {
                 let fit_h = f.orbit(7, 2);
@@ -400,8 +472,8 @@ impl Parser<'_> {
                 };
                 (
                     OrbitClass::Standard,
-                    f.orbit(6, 3),
-                    count(f.orbit(6, 4))?,
+                    need(6, 3, "TGD")?,
+                    count(need(6, 4, "IODC")?)?,
                     fit_s,
                 )
             }
@@ -411,39 +483,44 @@ impl Parser<'_> {
                 } else {
                     OrbitClass::Standard
                 };
-                (class, f.orbit(6, 3), count(f.orbit(7, 2))?, BDS_FIT_S)
+                (
+                    class,
+                    need(6, 3, "TGD1")?,
+                    count(need(7, 2, "AODC")?)?,
+                    BDS_FIT_S,
+                )
             }
         };
         let orbit = KeplerElements {
             sqrt_a,
             e,
-            i0: f.orbit(4, 1),
-            omega0: f.orbit(3, 3),
-            omega: f.orbit(4, 3),
-            m0: f.orbit(1, 4),
-            delta_n: f.orbit(1, 3),
-            idot: f.orbit(5, 1),
-            omega_dot: f.orbit(4, 4),
+            i0: need(4, 1, "i0")?,
+            omega0: need(3, 3, "OMEGA0")?,
+            omega: need(4, 3, "omega")?,
+            m0: need(1, 4, "M0")?,
+            delta_n: need(1, 3, "Delta n")?,
+            idot: need(5, 1, "IDOT")?,
+            omega_dot: need(4, 4, "OMEGA DOT")?,
         };
         let harmonics = HarmonicCorrections {
-            cuc: f.orbit(2, 1),
-            cus: f.orbit(2, 3),
-            crc: f.orbit(4, 2),
-            crs: f.orbit(1, 2),
-            cic: f.orbit(3, 2),
-            cis: f.orbit(3, 4),
+            cuc: need(2, 1, "Cuc")?,
+            cus: need(2, 3, "Cus")?,
+            crc: need(4, 2, "Crc")?,
+            crs: need(1, 2, "Crs")?,
+            cic: need(3, 2, "Cic")?,
+            cis: need(3, 4, "Cis")?,
         };
         let clock = ClockParams {
-            af0: f.v[0],
-            af1: f.v[1],
-            af2: f.v[2],
+            af0: f.clock(self, 0)?,
+            af1: f.clock(self, 1)?,
+            af2: f.clock(self, 2)?,
             tgd_s,
         };
         Ok(BroadcastEphemeris {
             toc,
-            iode: count(f.orbit(1, 1))?,
+            iode: count(need(1, 1, iode_name)?)?,
             iodc,
-            health: count(f.orbit(6, 2))?,
+            health: count(need(6, 2, "health")?)?,
             ..BroadcastEphemeris::from_elements(
                 sat,
                 class,
@@ -686,14 +763,71 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
             }
             other => panic!("{other:?}"),
         }
-        // A record cut after three lines.
+        // A record cut after three lines: the error names the line it ends on.
         let cut: String = V2_BODY.lines().take(3).map(|l| format!("{l}\n")).collect();
         assert!(matches!(
             parse(&format!("{V2_HEADER}{cut}")),
-            Err(NavError::Format { line: 3, .. })
+            Err(NavError::Format { line: 5, .. })
         ));
         assert!(parse("").is_err());
         assert!(parse(V2_HEADER.lines().next().unwrap()).is_err());
+    }
+
+    /// `text` cut at every byte of its last record (from just after the record's first
+    /// non-blank byte to the end) parses either to exactly the ephemerides of the whole text or to a
+    /// format error on a line of that record, never to other values.
+    fn assert_cuts_are_refused(text: &str, record_start: usize) {
+        let whole = parse(text).unwrap();
+        let first_line = text[..record_start].lines().count() + 1;
+        let last_line = text.lines().count();
+        let mut refused = 0;
+        // From the record's first non-blank byte on (a blank line is no record yet).
+        let first = record_start + text[record_start..].find(|c: char| c != ' ').unwrap();
+        for cut in first + 1..text.len() {
+            match parse(&text[..cut]) {
+                Ok(ephs) => assert_eq!(ephs, whole, "cut at byte {cut} read other values"),
+                Err(NavError::Format { line, message, .. }) => {
+                    assert!(
+                        (first_line..=last_line).contains(&line),
+                        "cut at byte {cut}: line {line} outside {first_line}..={last_line}: {message}"
+                    );
+                    refused += 1;
+                }
+                Err(e) => panic!("cut at byte {cut}: {e}"),
+            }
+        }
+        assert!(refused > 0);
+    }
+
+    /// Issue #11: a file cut inside a record read the missing fields as 0 (a record
+    /// without its last line, or a line shortened inside a number, was accepted).
+    #[test]
+    fn a_record_cut_anywhere_is_an_error_never_zeros() {
+        let v2 = format!("{V2_HEADER}{V2_BODY}");
+        let second = v2.find("\n 2 22").unwrap() + 1;
+        assert_cuts_are_refused(&v2, second);
+        let v3 = format!("{V3_HEADER}{V3_BODY}");
+        assert_cuts_are_refused(&v3, v3.find("C05 2020").unwrap());
+        let v4 = format!("{V4_HEADER}{V4_BODY}");
+        let v4 = &v4[..v4.find("> EPH C19").unwrap()];
+        assert_cuts_are_refused(v4, v4.find("> EPH C01").unwrap());
+        // The messages name the field or the cut.
+        let without_last_line = v2.trim_end().rsplit_once('\n').unwrap().0;
+        let err = parse(without_last_line).unwrap_err().to_string();
+        assert!(
+            err.starts_with("test.rnx:17: record cut short: it has 7 lines (from line 11)"),
+            "{err}"
+        );
+        let err = parse(&v2[..v2.len() - 30]).unwrap_err().to_string();
+        assert!(err.contains("inside the number"), "{err}");
+        let v3_cut = v3.trim_end().trim_end_matches("0.000000000000e+00");
+        let err = parse(v3_cut).unwrap_err().to_string();
+        assert!(
+            err.starts_with(
+                "test.rnx:15: record cut short: broadcast orbit line 7 has no field 2 (AODC)"
+            ),
+            "{err}"
+        );
     }
 
     #[test]

@@ -187,6 +187,30 @@ impl LeoConfig {
 /// propagator stops with [`super::PropagateError::Decayed`] below it.
 pub const MIN_ALTITUDE_M: f64 = 80e3;
 
+/// Farthest the orbit may reach from the Earth's centre (m): apogee radius `a (1 + e)`.
+/// The propagator models the Earth's gravity (J2, zonals) and drag but not the Moon and
+/// Sun, whose pull equals J2's near the geostationary radius and is about 60 times J2's at
+/// this radius; farther orbits would be fiction (and 1e30 km was read as an orbit).
+pub const MAX_APOGEE_RADIUS_M: f64 = 100_000e3;
+
+/// The apogee check shared by elements and state vectors.
+fn check_apogee(field: &str, value: String, apogee_radius_m: f64) -> Result<(), Invalid> {
+    if apogee_radius_m <= MAX_APOGEE_RADIUS_M {
+        return Ok(());
+    }
+    Err(Invalid::new(
+        field,
+        value,
+        format!(
+            "apogee radius a (1 + e) = {:.1} km: must be <= {} km (the propagator has no \
+             Moon or Sun, which outweigh the Earth's oblateness beyond the geostationary \
+             radius)",
+            apogee_radius_m * 1e-3,
+            MAX_APOGEE_RADIUS_M * 1e-3
+        ),
+    ))
+}
+
 fn finite(field: &str, value: f64) -> Result<f64, Invalid> {
     if value.is_finite() {
         Ok(value)
@@ -237,7 +261,11 @@ impl KeplerianElementsConfig {
                 ),
             ));
         }
-        Ok(())
+        check_apogee(
+            "semi_major_axis_km",
+            self.semi_major_axis_km.to_string(),
+            a_m * (1.0 + e),
+        )
     }
 }
 
@@ -307,7 +335,17 @@ impl StateVectorConfig {
                 ),
             ));
         }
-        Ok(())
+        // Bound orbit (below the escape speed): vis-viva a, eccentricity vector e.
+        let mu = GM_GPS;
+        let a_m = 1.0 / (2.0 / r.norm() - v_inertial.norm_squared() / mu);
+        let e_vec = (r * (v_inertial.norm_squared() - mu / r.norm())
+            - v_inertial * r.dot(&v_inertial))
+            / mu;
+        check_apogee(
+            "position_m",
+            format!("{:?}", self.position_m),
+            a_m * (1.0 + e_vec.norm()),
+        )
     }
 }
 
@@ -436,6 +474,33 @@ mod tests {
         ok.semi_major_axis_km = 6378.137 + 81.0;
         ok.eccentricity = 0.0;
         assert_eq!(leo(ok).check(), Ok(()));
+    }
+
+    /// Issue #11: `semi_major_axis_km = 1e30` was accepted (and the run wrote no
+    /// observation file). Apogee radius at most 100 000 km, for elements and state vectors.
+    #[test]
+    fn apogee_beyond_100_000_km_is_rejected() {
+        for (a_km, e) in [(1e30, 0.0), (100_001.0, 0.0), (60_000.0, 0.7)] {
+            let mut el = thesis_elements();
+            el.semi_major_axis_km = a_km;
+            el.eccentricity = e;
+            let err = leo(el).check().unwrap_err();
+            assert_eq!(err.field, "elements.semi_major_axis_km");
+            assert!(err.allowed.contains("<= 100000 km"), "{}", err.allowed);
+        }
+        let mut geo = thesis_elements();
+        geo.semi_major_axis_km = 42_164.0;
+        geo.eccentricity = 0.0;
+        assert_eq!(leo(geo).check(), Ok(()));
+        // A state at 90 000 km moving at 2.5 km/s: bound (escape 2.98 km/s), apogee beyond.
+        let mut state = leo(thesis_elements());
+        state.elements = None;
+        state.state = Some(StateVectorConfig {
+            frame: StateFrame::Eci,
+            position_m: [90_000e3, 0.0, 0.0],
+            velocity_mps: [0.0, 2.5e3, 0.0],
+        });
+        assert_eq!(field_of(&state), "state.position_m");
     }
 
     #[test]

@@ -105,6 +105,21 @@ pub enum InputError {
         reference: String,
         reference_signal: String,
     },
+    /// The file length is not a whole number of samples: a truncated or corrupted file.
+    #[error(
+        "{} (antenna {antenna}): {sample_bytes} bytes of samples{} are not a whole number of {format} samples ({bytes_per_sample} bytes each): {leftover_bytes} byte(s) after the last whole sample (a truncated or corrupted file)",
+        .path.display(),
+        if .file_bytes == .sample_bytes { String::new() } else { format!(" (a {file_bytes}-byte file less its header and trailing bytes)") }
+    )]
+    PartialSample {
+        antenna: String,
+        path: PathBuf,
+        format: SampleFormat,
+        file_bytes: u64,
+        sample_bytes: u64,
+        leftover_bytes: u64,
+        bytes_per_sample: usize,
+    },
     /// The files have no sample in common.
     #[error("no samples to process: {reason}")]
     NoCommonSamples { reason: String },
@@ -140,18 +155,6 @@ impl InputError {
 /// [`super::InputReport::findings`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Finding {
-    /// The file length is not a whole number of samples.
-    #[error(
-        "{} (antenna {antenna}) is truncated: {leftover_bytes} byte(s) after the last whole {format} sample ({bytes_per_sample} bytes each) are ignored",
-        .path.display()
-    )]
-    PartialSample {
-        antenna: String,
-        path: PathBuf,
-        format: SampleFormat,
-        leftover_bytes: u64,
-        bytes_per_sample: usize,
-    },
     /// One antenna's file ends before another's.
     #[error(
         "antenna {antenna} ({}) is {missing_samples} samples ({missing_s} s) shorter than antenna {longest}'s file: only the {common_samples} samples all files share are processed",

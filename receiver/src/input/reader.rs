@@ -309,10 +309,12 @@ impl BlockReader {
             let bps = r.format.bytes_per_sample() as u64;
             let payload = len.saturating_sub(r.header_bytes.saturating_add(r.trailing_bytes));
             if payload % bps != 0 {
-                findings.push(Finding::PartialSample {
+                return Err(InputError::PartialSample {
                     antenna: r.antenna.clone(),
                     path: r.data_path.clone(),
                     format: r.format,
+                    file_bytes: len,
+                    sample_bytes: payload,
                     leftover_bytes: payload % bps,
                     bytes_per_sample: bps as usize,
                 });

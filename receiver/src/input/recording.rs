@@ -7,6 +7,7 @@ use super::error::{Finding, InputError};
 use super::format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
+use skyforge_orbits::time::{SUPPORTED_RANGE, in_supported_range};
 use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 
@@ -112,16 +113,26 @@ impl Fields<'_> {
             .map(|v| v.as_str().ok_or_else(|| self.bad(key, v, "a string")))
             .transpose()
     }
+    /// A UTC time in the supported range (a recording dated 1900 or 9999 gave RINEX
+    /// epochs in 1899: GPS weeks do not reach there).
     fn epoch(&self, key: &str) -> Result<Option<Epoch>, InputError> {
         self.str(key)?
             .map(|s| {
-                parse_utc(s).ok_or_else(|| {
+                let epoch = parse_utc(s).ok_or_else(|| {
                     self.bad(
                         key,
                         &Value::from(s),
                         "an ISO-8601 UTC time such as 2023-03-12T00:00:00.000Z",
                     )
-                })
+                })?;
+                if !in_supported_range(epoch) {
+                    return Err(self.bad(
+                        key,
+                        &Value::from(s),
+                        &format!("a time {SUPPORTED_RANGE}"),
+                    ));
+                }
+                Ok(epoch)
             })
             .transpose()
     }

@@ -280,8 +280,9 @@ impl ReceiveSession {
 
     /// Run over every common sample, handing each epoch to `sink`; `progress` is told the
     /// samples processed and the counters after each block. Fails with
-    /// [`SessionError::Input`] when the recordings are too short for one search or hold no
-    /// detectable signal.
+    /// [`SessionError::Input`] when the recordings are too short for one search, hold no
+    /// detectable signal, or give no observation epoch (no satellite tracked and timed on
+    /// any antenna): "no signal", nothing for the caller to write.
     pub fn run(
         &mut self,
         sink: &mut dyn EpochSink,
@@ -293,6 +294,7 @@ impl ReceiveSession {
             .iter()
             .map(BlockReader::buffers)
             .collect();
+        let mut observed_epochs = 0;
         loop {
             let mut block = None;
             for (reader, bufs) in self.bands.readers.iter_mut().zip(buffers.iter_mut()) {
@@ -317,6 +319,10 @@ impl ReceiveSession {
             let reports = self
                 .receiver
                 .process(&buffers, block.first_sample, block.len)?;
+            observed_epochs += reports
+                .iter()
+                .filter(|r| !r.observations.is_empty())
+                .count();
             for r in &reports {
                 sink.epoch(r).map_err(SessionError::Sink)?;
             }
@@ -334,6 +340,33 @@ impl ReceiveSession {
                 self.describe_input()
             )));
         }
+        if observed_epochs == 0 {
+            return Err(SessionError::Input(no_epoch_message(
+                &summary,
+                &self.describe_input(),
+            )));
+        }
         Ok(summary)
     }
+}
+
+/// Why a run that detected something formed no observation epoch ("no signal": not one
+/// epoch with an observation of any satellite on any antenna).
+fn no_epoch_message(s: &ReceiverSummary, input: &str) -> String {
+    let tracked: usize = s.tracked.iter().map(Vec::len).sum();
+    let timed: usize = s.timed.iter().map(Vec::len).sum();
+    let why = if tracked == 0 {
+        "no detection reached carrier lock (false alarms, or a signal too weak)"
+    } else if timed == 0 {
+        "no tracked satellite was timed: a pseudorange needs a decoded navigation \
+         subframe (GPS L1 C/A and BeiDou D1 send one every 6 s; the recording must hold \
+         several seconds of signal)"
+    } else {
+        "the recording ends before the first observation epoch"
+    };
+    format!(
+        "no observation epoch: {} detection(s), {tracked} satellite(s) tracked, {timed} timed; \
+         {why}.\nWhat was read:\n{input}",
+        s.detections
+    )
 }

@@ -7,17 +7,19 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, Once};
 
-/// Staging directories this process is writing.
-static STAGING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Staging directories this process is writing, each with the parent directories the
+/// run created for it (deepest first).
+static STAGING: Mutex<Registered> = Mutex::new(Vec::new());
 static WATCHER: Once = Once::new();
 
-/// The staging directory `dir` is being written: remove it if the run is interrupted.
-pub fn register(dir: &Path) {
+/// The staging directory `dir` is being written: remove it if the run is interrupted,
+/// and then the parents in `created_parents` that are empty.
+pub fn register(dir: &Path, created_parents: &[PathBuf]) {
     WATCHER.call_once(start_watcher);
     STAGING
         .lock()
         .unwrap_or_else(|e| e.into_inner())
-        .push(dir.to_path_buf());
+        .push((dir.to_path_buf(), created_parents.to_vec()));
 }
 
 /// `dir` was committed or removed.
@@ -25,13 +27,16 @@ pub fn unregister(dir: &Path) {
     STAGING
         .lock()
         .unwrap_or_else(|e| e.into_inner())
-        .retain(|d| d != dir);
+        .retain(|(d, _)| d != dir);
 }
+
+/// Registered directories, each with the parents its run created.
+pub type Registered = Vec<(PathBuf, Vec<PathBuf>)>;
 
 /// Run `f` with the interrupt watcher held off: a SIGINT/SIGTERM arriving meanwhile
 /// removes the registered directories only after `f` (a commit's renames) is done. `f`
 /// registers and unregisters through the list it is given.
-pub fn exclusive<T>(f: impl FnOnce(&mut Vec<PathBuf>) -> T) -> T {
+pub fn exclusive<T>(f: impl FnOnce(&mut Registered) -> T) -> T {
     let mut held = STAGING.lock().unwrap_or_else(|e| e.into_inner());
     f(&mut held)
 }
@@ -47,8 +52,9 @@ fn start_watcher() {
     std::thread::spawn(move || {
         if let Some(signal) = signals.forever().next() {
             let dirs = STAGING.lock().unwrap_or_else(|e| e.into_inner()).clone();
-            for d in &dirs {
+            for (d, parents) in &dirs {
                 let _ = std::fs::remove_dir_all(d);
+                super::staged_dir::remove_created(parents);
             }
             let name = if signal == SIGINT {
                 "SIGINT"

@@ -1,6 +1,7 @@
 //! An output directory that appears only when complete: files are written into a sibling
 //! staging directory, which replaces the target on [`StagedDir::commit`] and is removed
-//! if the run fails (on drop). Every committed directory carries a [`manifest`] of its
+//! if the run fails (on drop), with the parent directories the run created for it (when
+//! empty). Every committed directory carries a [`manifest`] of its
 //! files; `--force` replaces only such a directory holding nothing else, and the old
 //! directory stays in place until the new one is complete.
 
@@ -17,7 +18,29 @@ pub struct StagedDir {
     staging: PathBuf,
     /// Whether an existing output may be replaced.
     force: bool,
+    /// Parent directories this run created for `target`, deepest first: removed (when
+    /// empty) with the staging directory if the run fails.
+    created_parents: Vec<PathBuf>,
     committed: bool,
+}
+
+/// The ancestors of `dir` (itself included) that do not exist, deepest first.
+fn missing_ancestors(dir: &Path) -> Vec<PathBuf> {
+    dir.ancestors()
+        .filter(|a| !a.as_os_str().is_empty())
+        .take_while(|a| std::fs::symlink_metadata(a).is_err())
+        .map(Path::to_path_buf)
+        .collect()
+}
+
+/// Remove the directories in `created` (deepest first) that are empty; stop at the first
+/// that is not (something else now lives there).
+pub(super) fn remove_created(created: &[PathBuf]) {
+    for dir in created {
+        if std::fs::remove_dir(dir).is_err() {
+            break;
+        }
+    }
 }
 
 impl StagedDir {
@@ -65,8 +88,14 @@ impl StagedDir {
                 unwritable(format!("{} is a file, not a directory", file.display())).into(),
             );
         }
+        let created_parents = missing_ancestors(parent);
+        let undo = |e: anyhow::Error| {
+            remove_created(&created_parents);
+            e
+        };
         std::fs::create_dir_all(parent)
-            .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())))?;
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", parent.display())).into())
+            .map_err(undo)?;
         interrupt::remove_stale(parent, &name);
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
@@ -74,12 +103,14 @@ impl StagedDir {
                 .with_context(|| format!("cannot clear {}", staging.display()))?;
         }
         std::fs::create_dir(&staging)
-            .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())))?;
-        interrupt::register(&staging);
+            .map_err(|e| unwritable(format!("cannot create {}: {e}", staging.display())).into())
+            .map_err(undo)?;
+        interrupt::register(&staging, &created_parents);
         Ok(Self {
             target: target.to_path_buf(),
             staging,
             force,
+            created_parents,
             committed: false,
         })
     }
@@ -112,7 +143,10 @@ impl StagedDir {
 
     /// The renames of [`Self::commit`]; returns where the replaced output went (a path
     /// in `registered`, the directories removed on interrupt).
-    fn move_into_place(&self, registered: &mut Vec<PathBuf>) -> anyhow::Result<Option<PathBuf>> {
+    fn move_into_place(
+        &self,
+        registered: &mut interrupt::Registered,
+    ) -> anyhow::Result<Option<PathBuf>> {
         let cannot = || format!("cannot move the output into {}", self.target.display());
         if !self.force || !self.target.exists() {
             return match std::fs::rename(&self.staging, &self.target) {
@@ -144,12 +178,12 @@ impl StagedDir {
             return Ok(Some(self.staging.clone()));
         }
         let old = self.staging.with_extension("old");
-        registered.push(old.clone());
+        registered.push((old.clone(), Vec::new()));
         std::fs::rename(&self.target, &old)
             .with_context(|| format!("cannot replace {}", self.target.display()))?;
         if let Err(e) = std::fs::rename(&self.staging, &self.target) {
             let _ = std::fs::rename(&old, &self.target);
-            registered.retain(|d| *d != old);
+            registered.retain(|(d, _)| *d != old);
             return Err(e).with_context(cannot);
         }
         Ok(Some(old))
@@ -160,6 +194,7 @@ impl Drop for StagedDir {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.staging);
+            remove_created(&self.created_parents);
             interrupt::unregister(&self.staging);
         }
     }

@@ -1,0 +1,253 @@
+//! Issue #11 part 5, truncated or garbage input read as data: each reproduction of the
+//! issue gives one clear message naming the file, exit code 2, and nothing written (no
+//! output directory, no staging directory, no parent directory the run created).
+
+mod support;
+
+use std::path::Path;
+use support::{short_scenario, skyforge, text};
+
+/// A hand-made RINEX 3.05 GPS record (own values): G07, toc = toe = 2022-01-01T00:00:00
+/// GPST, healthy (the record of `scenarios/tests/navigation.rs`).
+const NAV: &str = "     3.05           N: GNSS NAV DATA    G: GPS              RINEX VERSION / TYPE
+                                                            END OF HEADER
+G07 2022 01 01 00 00 00 1.000000000000E-05-1.000000000000E-12 0.000000000000E+00
+     1.000000000000E+01 2.000000000000E+01 4.500000000000E-09 1.000000000000E+00
+     1.000000000000E-06 1.000000000000E-02 5.000000000000E-06 5.153700000000E+03
+     5.184000000000E+05 1.000000000000E-08-1.000000000000E+00-1.000000000000E-08
+     9.600000000000E-01 2.000000000000E+02 5.000000000000E-01-8.000000000000E-09
+     1.000000000000E-10 1.000000000000E+00 2.190000000000E+03 0.000000000000E+00
+     2.000000000000E+00 0.000000000000E+00-1.000000000000E-08 1.000000000000E+01
+     5.112000000000E+05 4.000000000000E+00
+";
+
+/// Names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .expect("read dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+/// `skyforge args` in `dir` must exit 2 with one `error:` message holding every needle
+/// and leave `dir` as it was.
+fn refused(dir: &Path, args: &[&str], needles: &[&str]) -> String {
+    let before = listing(dir);
+    let o = skyforge(args, dir);
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{args:?}:\n{out}");
+    assert_eq!(
+        out.matches("error:").count(),
+        1,
+        "{args:?}: one message:\n{out}"
+    );
+    for n in needles {
+        assert!(out.contains(n), "{args:?}: missing {n:?} in:\n{out}");
+    }
+    assert_eq!(listing(dir), before, "{args:?} wrote something:\n{out}");
+    out
+}
+
+/// A 2 s `interop-gps-static` recording in `dir/sim` (4 Msps ci8, 16 MB): long enough to
+/// track, too short to decode a subframe.
+fn two_second_recording(dir: &Path) {
+    let scenario = short_scenario(dir, "interop-gps-static", 2);
+    let o = skyforge(&["synth", scenario.to_str().unwrap(), "--out", "sim"], dir);
+    assert!(o.status.success(), "{}", text(&o));
+    std::fs::remove_file(scenario).unwrap();
+}
+
+/// A copy of the recording's metadata with `core:datetime` replaced (`None`: removed) as
+/// `dir/sim/<name>.sigmf-meta`, its data a copy of the first `bytes` bytes.
+fn edited_copy(dir: &Path, name: &str, datetime: Option<&str>, bytes: usize) -> String {
+    let sim = dir.join("sim");
+    let meta = std::fs::read_to_string(sim.join("ant1.gps-l1ca.sigmf-meta")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&meta).unwrap();
+    let capture = json["captures"][0].as_object_mut().unwrap();
+    match datetime {
+        Some(t) => capture.insert("core:datetime".into(), t.into()),
+        None => capture.remove("core:datetime"),
+    };
+    json["global"]["skyforge:antenna"] = name.into();
+    std::fs::write(sim.join(format!("{name}.sigmf-meta")), json.to_string()).unwrap();
+    let data = std::fs::read(sim.join("ant1.gps-l1ca.sigmf-data")).unwrap();
+    std::fs::write(sim.join(format!("{name}.sigmf-data")), &data[..bytes]).unwrap();
+    format!("sim/{name}.sigmf-meta")
+}
+
+/// Before: exit 0 and an output directory with 0 epochs for a recording too short for a
+/// subframe (whole, 100 ms, half of it), one without `core:datetime`, random bytes; an odd
+/// trailing byte dropped silently; a 1900 or 9999 `core:datetime` gave epochs in 1899.
+#[test]
+fn recordings_without_an_epoch_or_with_partial_samples_write_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    two_second_recording(dir);
+    let whole = 16_000_000;
+    let no_epoch = [
+        "no observation epoch",
+        "0 timed",
+        "subframe",
+        "What was read",
+    ];
+    refused(
+        dir,
+        &["receive", "sim/ant1.gps-l1ca.sigmf-meta", "--out", "rx"],
+        &no_epoch,
+    );
+    for (name, datetime, bytes) in [
+        ("ms100", Some("2023-03-11T23:59:42Z"), 800_000),
+        ("half", Some("2023-03-11T23:59:42Z"), whole / 2),
+        ("undated", None, whole),
+    ] {
+        let meta = edited_copy(dir, name, datetime, bytes);
+        let out = refused(dir, &["receive", &meta, "--out", "rx"], &[]);
+        assert!(
+            out.contains("no observation epoch") || out.contains("no signal found"),
+            "{name}: {out}"
+        );
+    }
+    // An odd trailing byte: the file, its size and the sample size.
+    let meta = edited_copy(dir, "odd", Some("2023-03-11T23:59:42Z"), whole / 2 + 1);
+    refused(
+        dir,
+        &["receive", &meta, "--out", "rx"],
+        &[
+            "odd.sigmf-data",
+            "8000001 bytes",
+            "ci8 samples (2 bytes each)",
+            "1 byte(s) after the last whole sample",
+        ],
+    );
+    // Start times out of the supported range.
+    for t in [
+        "1900-01-01T00:00:00Z",
+        "9999-12-31T00:00:00Z",
+        "1980-01-05T23:59:59Z",
+    ] {
+        let meta = edited_copy(dir, "dated", Some(t), 800_000);
+        refused(
+            dir,
+            &["receive", &meta, "--out", "rx"],
+            &[
+                "dated.sigmf-meta",
+                "core:datetime",
+                t,
+                "1980-01-06",
+                "2100-01-01",
+            ],
+        );
+    }
+    // Random bytes, raw: whatever the acquisition makes of them, no epoch.
+    let mut x: u64 = 0x9E37_79B9_7F4A_7C15;
+    let noise: Vec<u8> = (0..whole)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 56) as u8
+        })
+        .collect();
+    std::fs::write(dir.join("random.bin"), &noise).unwrap();
+    let raw = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
+    let mut args = vec!["receive", "random.bin", "--out", "rx"];
+    args.extend_from_slice(&raw);
+    let out = refused(dir, &args, &["random.bin"]);
+    assert!(
+        out.contains("no observation epoch") || out.contains("no signal found"),
+        "{out}"
+    );
+    // A ci16 file of an odd length.
+    std::fs::write(dir.join("odd16.bin"), &noise[..4001]).unwrap();
+    let args = [
+        "receive",
+        "odd16.bin",
+        "--format",
+        "ci16",
+        "--fs",
+        "4e6",
+        "--signal",
+        "gps-l1ca",
+        "--out",
+        "rx",
+    ];
+    refused(
+        dir,
+        &args,
+        &["odd16.bin", "4001 bytes", "ci16_le samples (4 bytes each)"],
+    );
+}
+
+/// Before: `--out a/b/c` left `a/` and `a/b/` behind when the run failed after staging.
+/// Only the parents the run created go, and only when empty.
+#[test]
+fn a_failed_run_removes_the_parent_directories_it_created() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    two_second_recording(dir);
+    std::fs::create_dir(dir.join("keep")).unwrap();
+    for out in ["a/b/c", "keep/x/y"] {
+        refused(
+            dir,
+            &["receive", "sim/ant1.gps-l1ca.sigmf-meta", "--out", out],
+            &["no observation epoch"],
+        );
+    }
+    assert!(dir.join("keep").is_dir());
+    assert!(listing(&dir.join("keep")).is_empty());
+}
+
+/// Before: a navigation file cut inside a record was read with its missing fields as 0
+/// (`run` and `receive --assist` accepted it, `synth` failed with exit 1 and the message
+/// twice, without file or line); `/dev/zero` or a directory was "does not exist".
+#[test]
+fn a_cut_navigation_file_a_directory_and_a_device_are_refused_everywhere() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let cut = NAV.trim_end().rsplit_once('\n').unwrap().0;
+    std::fs::write(dir.join("cut.rnx"), cut).unwrap();
+    std::fs::create_dir(dir.join("navdir")).unwrap();
+    // The recording for `receive --assist`: noise, as the navigation file is read first.
+    std::fs::write(dir.join("noise.bin"), vec![0u8; 400_000]).unwrap();
+    let o = skyforge(&["scenarios", "show", "interop-gps-static"], dir);
+    let scenario = String::from_utf8(o.stdout).unwrap();
+    let scenario = scenario
+        .replace(
+            "source = \"embedded\"",
+            "source = \"rinex\"\nnav_file = \"NAV\"",
+        )
+        .replace("2023-03-12T00:00:00 GPST", "2022-01-01T00:30:00 GPST")
+        .replace("duration_s = 90.0", "duration_s = 1.0");
+    for (nav, says) in [
+        ("cut.rnx", "cut.rnx:9: record cut short: it has 7 lines"),
+        ("navdir", "is a directory, not a navigation file"),
+        ("/dev/zero", "more than 256 MiB: not a navigation file"),
+    ] {
+        std::fs::write(dir.join("s.toml"), scenario.replace("NAV", nav)).unwrap();
+        for command in ["run", "synth"] {
+            refused(
+                dir,
+                &[command, "s.toml", "--out", "out"],
+                &["s.toml:", "gnss.gps.nav_file", says],
+            );
+        }
+        let args = [
+            "receive",
+            "noise.bin",
+            "--format",
+            "ci8",
+            "--fs",
+            "4e6",
+            "--signal",
+            "gps-l1ca",
+            "--assist",
+            nav,
+            "--out",
+            "rx",
+        ];
+        let out = refused(dir, &args, &[says]);
+        assert!(!out.contains("does not exist"), "{out}");
+    }
+}
