@@ -157,7 +157,7 @@ fn kill_at_random_points(
 fn killed_runs_never_damage_the_previous_output() {
     let tmp = tempfile::tempdir().expect("temp dir");
     let cwd = tmp.path();
-    short_scenario(cwd, "interop-gps-static", 12);
+    short_scenario(cwd, "interop-gps-static", 20);
     let mut rng = ChaCha8Rng::seed_from_u64(KILL_SEED);
     // synth: seed 1 is in place; seed 2 replaces it.
     let synth = |seed: &str| -> Vec<String> {
@@ -273,7 +273,7 @@ fn a_disk_that_fills_up_under_receive_leaves_nothing() {
     }
     let tmp = tempfile::tempdir().expect("temp dir");
     let cwd = tmp.path();
-    short_scenario(cwd, "interop-gps-static", 12);
+    short_scenario(cwd, "interop-gps-static", 20);
     skyforge_ok(&["synth", "short.toml", "--out", "rec"], cwd);
     let disk = Tmpfs::mount(&cwd.join("small"), "4k");
     let receive = |out: &str| {
