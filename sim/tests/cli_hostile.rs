@@ -1,11 +1,14 @@
-//! Issue #11 part 5, truncated or garbage input read as data: each reproduction of the
-//! issue gives one clear message naming the file, exit code 2, and nothing written (no
-//! output directory, no staging directory, no parent directory the run created).
+//! Issue #11's reproductions, each run under a 4 GB address-space limit (`ulimit -v`):
+//! --force on directories SkyForge did not write, antenna names that would become paths,
+//! absurd sizes (part 1-3), and truncated or garbage input read as data (part 5). Each
+//! gives one clear message (naming the file where there is one), exit code 2, and nothing
+//! written (no output directory, no staging directory, no parent directory the run
+//! created).
 
 mod support;
 
 use std::path::Path;
-use support::{short_scenario, skyforge, text};
+use support::{MEMORY_LIMIT_BYTES, listing, short_scenario, skyforge, skyforge_limited, text};
 
 /// A hand-made RINEX 3.05 GPS record (own values): G07, toc = toe = 2022-01-01T00:00:00
 /// GPST, healthy (the record of `scenarios/tests/navigation.rs`).
@@ -21,21 +24,11 @@ G07 2022 01 01 00 00 00 1.000000000000E-05-1.000000000000E-12 0.000000000000E+00
      5.112000000000E+05 4.000000000000E+00
 ";
 
-/// Names in `dir`, sorted.
-fn listing(dir: &Path) -> Vec<String> {
-    let mut names: Vec<String> = std::fs::read_dir(dir)
-        .expect("read dir")
-        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
-        .collect();
-    names.sort();
-    names
-}
-
-/// `skyforge args` in `dir` must exit 2 with one `error:` message holding every needle
-/// and leave `dir` as it was.
+/// `skyforge args` in `dir`, under the 4 GB address-space limit, must exit 2 with one
+/// `error:` message holding every needle and leave `dir` as it was.
 fn refused(dir: &Path, args: &[&str], needles: &[&str]) -> String {
     let before = listing(dir);
-    let o = skyforge(args, dir);
+    let o = skyforge_limited(args, dir, MEMORY_LIMIT_BYTES);
     let out = text(&o);
     assert_eq!(o.status.code(), Some(2), "{args:?}:\n{out}");
     assert_eq!(
@@ -250,4 +243,76 @@ fn a_cut_navigation_file_a_directory_and_a_device_are_refused_everywhere() {
         let out = refused(dir, &args, &[says]);
         assert!(!out.contains("does not exist"), "{out}");
     }
+}
+
+/// Parts 1-3: `--force` on `.`, `..` and `victim/.`; antenna names that would become
+/// paths; a sample rate of 1e15 Hz (option and SigMF), a 1 MHz PLL, `--assist /dev/zero`.
+#[test]
+fn force_names_and_sizes_are_refused_under_the_memory_limit() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("work");
+    std::fs::create_dir(&dir).unwrap();
+    two_second_recording(&dir);
+    let scenario = short_scenario(&dir, "interop-gps-static", 1);
+    std::fs::create_dir(dir.join("victim")).unwrap();
+    std::fs::write(dir.join("victim/keep.txt"), "not skyforge's").unwrap();
+    let s = scenario.to_str().unwrap();
+    let above = listing(tmp.path());
+    for out in [".", "..", "victim/."] {
+        refused(&dir, &["run", s, "--out", out, "--force"], &["--force"]);
+    }
+    assert_eq!(listing(tmp.path()), above);
+    assert_eq!(listing(&dir.join("victim")), ["keep.txt"]);
+    let toml = std::fs::read_to_string(&scenario).unwrap();
+    for name in ["../prev/ant1", "/tmp/skyforge-absolute", "two\\nlines"] {
+        let named = toml.replacen("name = \"ant1\"", &format!("name = \"{name}\""), 1);
+        std::fs::write(dir.join("named.toml"), named).unwrap();
+        refused(
+            &dir,
+            &["synth", "named.toml", "--out", "out"],
+            &["antennas[0].name"],
+        );
+        std::fs::remove_file(dir.join("named.toml")).unwrap();
+    }
+    assert!(!Path::new("/tmp/skyforge-absolute").exists());
+    let raw = [
+        "receive",
+        "sim/ant1.gps-l1ca.sigmf-data",
+        "--format",
+        "ci8",
+        "--signal",
+        "gps-l1ca",
+    ];
+    refused(
+        &dir,
+        &[&raw[..], &["--fs", "1e15", "--out", "rx"]].concat(),
+        &["sample rate"],
+    );
+    std::fs::write(
+        dir.join("wide.toml"),
+        "[tracking]\npll_bandwidth_hz = 1e6\n",
+    )
+    .unwrap();
+    let wide = [
+        &raw[..],
+        &["--fs", "4e6", "--config", "wide.toml", "--out", "rx"],
+    ]
+    .concat();
+    refused(&dir, &wide, &["pll_bandwidth_hz"]);
+    std::fs::remove_file(dir.join("wide.toml")).unwrap();
+    let assisted = [
+        &raw[..],
+        &["--fs", "4e6", "--assist", "/dev/zero", "--out", "rx"],
+    ]
+    .concat();
+    refused(&dir, &assisted, &["/dev/zero", "256 MiB"]);
+    let meta = std::fs::read_to_string(dir.join("sim/ant1.gps-l1ca.sigmf-meta")).unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&meta).unwrap();
+    json["global"]["core:sample_rate"] = 1e20.into();
+    std::fs::write(dir.join("sim/ant1.gps-l1ca.sigmf-meta"), json.to_string()).unwrap();
+    refused(
+        &dir,
+        &["receive", "sim/ant1.gps-l1ca.sigmf-meta", "--out", "rx"],
+        &["sample rate"],
+    );
 }

@@ -8,8 +8,7 @@ mod support;
 
 use nix::sys::resource::{UsageWho, getrusage};
 use std::path::Path;
-use std::process::{Command, Output};
-use support::{skyforge_ok, text};
+use support::{MEMORY_LIMIT_BYTES, skyforge_limited, skyforge_ok, text};
 
 /// The bundled GPS ground scenario, `duration_s` long, at `fs_hz` with `format` samples.
 fn scenario(dir: &Path, duration_s: u32, fs_hz: f64, format: &str, bits: u32) -> String {
@@ -37,25 +36,11 @@ fn figure(dry_run: &str, label: &str) -> u64 {
     bytes.parse().unwrap_or_else(|_| panic!("{line}"))
 }
 
-/// Run `skyforge args` in `cwd` under `ulimit -v` of `limit` bytes.
-fn skyforge_limited(args: &[&str], cwd: &Path, limit: u64) -> Output {
-    Command::new("sh")
-        .arg("-c")
-        .arg(format!("ulimit -v {}; exec \"$0\" \"$@\"", limit / 1024))
-        .arg(env!("CARGO_BIN_EXE_skyforge"))
-        .args(args)
-        .current_dir(cwd)
-        .output()
-        .expect("run skyforge under sh")
-}
-
 /// The largest peak resident set of this test binary's children so far (bytes).
 fn children_peak_rss() -> u64 {
     let usage = getrusage(UsageWho::RUSAGE_CHILDREN).expect("getrusage");
     usage.max_rss() as u64 * 1024
 }
-
-const GB4: u64 = 4 << 30;
 
 #[test]
 fn dry_run_writes_nothing_and_gives_the_sizes_of_the_run() {
@@ -95,7 +80,11 @@ fn memory_stays_within_the_dry_run_bound_at_a_high_sample_rate() {
     let bound = figure(&dry, "memory");
     let one_second = figure(&dry, "recording  ant1.gps-l1ca.sigmf-data");
     assert_eq!(one_second, 50_000_000 * 4);
-    let o = skyforge_limited(&["synth", &s, "--out", "out"], dir.path(), GB4);
+    let o = skyforge_limited(
+        &["synth", &s, "--out", "out"],
+        dir.path(),
+        MEMORY_LIMIT_BYTES,
+    );
     assert!(o.status.success(), "{}", text(&o));
     let peak = children_peak_rss();
     println!("peak RSS {peak} B, dry-run bound {bound} B, one second of samples {one_second} B");
@@ -114,7 +103,11 @@ fn memory_stays_within_the_dry_run_bound_at_a_high_sample_rate() {
 fn the_largest_sample_rate_runs_under_a_4_gb_address_space_limit() {
     let dir = tempfile::tempdir().unwrap();
     let s = scenario(dir.path(), 1, 1.0e9, "ci8", 8);
-    let o = skyforge_limited(&["synth", &s, "--out", "out"], dir.path(), GB4);
+    let o = skyforge_limited(
+        &["synth", &s, "--out", "out"],
+        dir.path(),
+        MEMORY_LIMIT_BYTES,
+    );
     assert!(o.status.success(), "{}", text(&o));
     let data = dir.path().join("out/ant1.gps-l1ca.sigmf-data");
     assert_eq!(std::fs::metadata(data).unwrap().len(), 2_000_000_000);

@@ -26,6 +26,21 @@ pub fn skyforge(args: &[&str], cwd: &Path) -> Output {
         .expect("run skyforge")
 }
 
+/// The address-space limit (`ulimit -v`) issue #11's reproductions must hold under.
+pub const MEMORY_LIMIT_BYTES: u64 = 4 << 30;
+
+/// Run `skyforge args` in `cwd` under `ulimit -v` of `limit` bytes.
+pub fn skyforge_limited(args: &[&str], cwd: &Path, limit: u64) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {}; exec \"$0\" \"$@\"", limit / 1024))
+        .arg(env!("CARGO_BIN_EXE_skyforge"))
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("run skyforge under sh")
+}
+
 /// Run `skyforge args` in `cwd`, which must succeed; returns its standard output.
 pub fn skyforge_ok(args: &[&str], cwd: &Path) -> String {
     let o = skyforge(args, cwd);
