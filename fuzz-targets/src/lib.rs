@@ -14,9 +14,12 @@ use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 use std::sync::{Once, OnceLock};
 
+/// A fuzz target: one input, any bytes.
+pub type Target = fn(&[u8]);
+
 /// Every target by name (the name of its `fuzz/fuzz_targets/<name>.rs`, `fuzz/corpus/<name>/`
 /// and `fuzz/regressions/<name>/`).
-pub const TARGETS: &[(&str, fn(&[u8]))] = &[
+pub const TARGETS: &[(&str, Target)] = &[
     ("scenario", scenario),
     ("rinex_nav", rinex_nav),
     ("rinex_obs", rinex_obs),
@@ -25,7 +28,7 @@ pub const TARGETS: &[(&str, fn(&[u8]))] = &[
 ];
 
 /// The target named `name`.
-pub fn target(name: &str) -> Option<fn(&[u8])> {
+pub fn target(name: &str) -> Option<Target> {
     TARGETS.iter().find(|(n, _)| *n == name).map(|&(_, f)| f)
 }
 
