@@ -118,12 +118,17 @@ enum Decoder {
     },
 }
 
+/// What a source's samples are read from: a file, or bytes in memory
+/// ([`BlockReader::open_in_memory`]).
+trait SampleBytes: Read + Seek + Send + std::fmt::Debug {}
+impl<T: Read + Seek + Send + std::fmt::Debug> SampleBytes for T {}
+
 /// One antenna's open file.
 #[derive(Debug)]
 struct Source {
     path: PathBuf,
     bytes_per_sample: usize,
-    file: BufReader<File>,
+    file: BufReader<Box<dyn SampleBytes>>,
     bytes: Vec<u8>,
     decoder: Decoder,
 }
@@ -289,6 +294,42 @@ impl BlockReader {
         recordings: &[Recording],
         block_len: usize,
     ) -> Result<(Self, InputReport), InputError> {
+        Self::open_with(
+            recordings,
+            block_len,
+            |_, r| std::fs::metadata(&r.data_path).map(|m| m.len()),
+            |_, r| File::open(&r.data_path).map(|f| Box::new(f) as Box<dyn SampleBytes>),
+        )
+    }
+
+    /// As [`Self::open`], with recording `i`'s sample file given as the bytes `data[i]`
+    /// instead of read from its `data_path` (a recording without bytes is a missing file):
+    /// for tests and fuzzing without temporary files.
+    pub fn open_in_memory(
+        recordings: &[Recording],
+        data: Vec<Vec<u8>>,
+        block_len: usize,
+    ) -> Result<(Self, InputReport), InputError> {
+        let missing = || std::io::Error::from(std::io::ErrorKind::NotFound);
+        Self::open_with(
+            recordings,
+            block_len,
+            |i, _| data.get(i).map(|d| d.len() as u64).ok_or_else(missing),
+            |i, _| {
+                let bytes = data.get(i).ok_or_else(missing)?.clone();
+                Ok(Box::new(std::io::Cursor::new(bytes)) as Box<dyn SampleBytes>)
+            },
+        )
+    }
+
+    /// [`Self::open`] with recording `i`'s sample file length and contents given by
+    /// `file_len(i, r)` and `open_file(i, r)`.
+    fn open_with(
+        recordings: &[Recording],
+        block_len: usize,
+        file_len: impl Fn(usize, &Recording) -> std::io::Result<u64>,
+        open_file: impl Fn(usize, &Recording) -> std::io::Result<Box<dyn SampleBytes>>,
+    ) -> Result<(Self, InputReport), InputError> {
         check_compatible(recordings)?;
         if block_len == 0 {
             return Err(InputError::InvalidParameter {
@@ -302,10 +343,8 @@ impl BlockReader {
             recordings.iter().flat_map(|r| r.findings.clone()).collect();
         // Whole samples in each file.
         let mut in_file = Vec::with_capacity(recordings.len());
-        for r in recordings {
-            let len = std::fs::metadata(&r.data_path)
-                .map_err(|e| InputError::io(&r.data_path, e))?
-                .len();
+        for (i, r) in recordings.iter().enumerate() {
+            let len = file_len(i, r).map_err(|e| InputError::io(&r.data_path, e))?;
             let bps = r.format.bytes_per_sample() as u64;
             let payload = len.saturating_sub(r.header_bytes.saturating_add(r.trailing_bytes));
             if payload % bps != 0 {
@@ -378,13 +417,13 @@ impl BlockReader {
         // Open every file at its first common sample.
         let mut sources = Vec::with_capacity(recordings.len());
         let mut report_antennas = Vec::with_capacity(recordings.len());
-        for ((r, &start), &n) in recordings.iter().zip(&starts).zip(&in_file) {
+        for (i, ((r, &start), &n)) in recordings.iter().zip(&starts).zip(&in_file).enumerate() {
             let skip = latest - start;
             let bps = r.format.bytes_per_sample();
             let offset = (r.first_sample.saturating_add(skip))
                 .saturating_mul(bps as u64)
                 .saturating_add(r.header_bytes);
-            let mut file = File::open(&r.data_path).map_err(|e| InputError::io(&r.data_path, e))?;
+            let mut file = open_file(i, r).map_err(|e| InputError::io(&r.data_path, e))?;
             file.seek(SeekFrom::Start(offset))
                 .map_err(|e| InputError::io(&r.data_path, e))?;
             let decoder = match r.format {
@@ -565,5 +604,44 @@ mod tests {
             [0, 0]
         );
         assert!(findings.is_empty());
+    }
+
+    /// Everything a reader delivers: its report and every block's samples.
+    fn read_all(opened: (BlockReader, InputReport)) -> (InputReport, Vec<Vec<Complex32>>) {
+        let (mut reader, report) = opened;
+        let mut bufs = reader.buffers();
+        let mut samples = vec![Vec::new(); reader.antennas()];
+        while reader.read_block(&mut bufs).unwrap().is_some() {
+            for (all, b) in samples.iter_mut().zip(&bufs) {
+                all.extend_from_slice(b);
+            }
+        }
+        (report, samples)
+    }
+
+    #[test]
+    fn bytes_in_memory_read_as_the_same_bytes_in_a_file() {
+        let dir = tempfile::tempdir().unwrap();
+        // 10 whole ci8 samples and a partial one; the second antenna starts 3 samples later.
+        let data: Vec<u8> = (0u8..21).map(|b| b.wrapping_mul(37)).collect();
+        let t0 = Epoch::from_gregorian_utc_at_midnight(2024, 1, 1);
+        let mut recs = [
+            rec("a", Some(t0)),
+            rec("b", Some(t0 + Duration::from_seconds(1.5e-6))),
+        ];
+        for r in &mut recs {
+            r.data_path = dir.path().join(&r.antenna);
+            std::fs::write(&r.data_path, &data).unwrap();
+        }
+        let from_files = read_all(BlockReader::open(&recs, 4).unwrap());
+        let in_memory =
+            read_all(BlockReader::open_in_memory(&recs, vec![data.clone(); 2], 4).unwrap());
+        assert_eq!(from_files, in_memory);
+        assert_eq!(from_files.1[0].len(), 7);
+        // A recording without bytes is a missing file.
+        match BlockReader::open_in_memory(&recs, vec![data], 4) {
+            Err(InputError::Missing { path }) => assert_eq!(path, recs[1].data_path),
+            other => panic!("{other:?}"),
+        }
     }
 }

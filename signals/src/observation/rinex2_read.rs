@@ -380,7 +380,10 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
 /// A satellite of the epoch line (`G05`, ` 5`: blank system is GPS); `None` for systems
 /// SkyForge does not read from RINEX 2 (GLONASS, Galileo, SBAS).
 fn parse_sat(name: &str) -> Result<Option<SatId>, String> {
-    let (system, prn) = name.split_at(1);
+    // `name` is three columns of the line, which need not be ASCII.
+    let Some((system, prn)) = name.split_at_checked(1) else {
+        return Err(format!("satellite {name:?}: unknown system"));
+    };
     let prn: u8 = prn
         .trim()
         .parse()
@@ -464,6 +467,14 @@ mod tests {
         assert_eq!(g3l2.phase_lli, 0);
         assert_eq!(e.sats[2].sat.to_string(), "G07");
         assert_eq!(e.sats[2].phase_lli, LLI_LOSS_OF_LOCK);
+    }
+
+    #[test]
+    fn a_non_ascii_satellite_is_an_error() {
+        // Found by fuzzing: the system letter was split off at byte 1.
+        let text = header(&["L1", "C1"]) + " 05  4  2  0  0  0.0000000  0  1\u{e9}3\n";
+        let e = parse_rinex2_obs(&text, Path::new("t.05o")).unwrap_err();
+        assert!(e.to_string().contains("unknown system"), "{e}");
     }
 
     #[test]

@@ -108,8 +108,7 @@ pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsReadError> {
     if is_rinex2_obs(&start) {
         return parse_rinex2_obs(&String::from_utf8_lossy(&bytes), path);
     }
-    let rinex =
-        Rinex::parse(&mut BufReader::new(bytes.as_slice())).map_err(|e| error(e.to_string()))?;
+    let rinex = parse_rinex(&bytes).map_err(error)?;
     from_rinex(&rinex, path)
 }
 
@@ -118,12 +117,31 @@ pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsReadError> 
     if is_rinex2_obs(text) {
         return parse_rinex2_obs(text, Path::new(label));
     }
-    let rinex =
-        Rinex::parse(&mut BufReader::new(text.as_bytes())).map_err(|e| ObsReadError::Read {
-            path: PathBuf::from(label),
-            message: e.to_string(),
-        })?;
+    let rinex = parse_rinex(text.as_bytes()).map_err(|message| ObsReadError::Read {
+        path: PathBuf::from(label),
+        message,
+    })?;
     from_rinex(&rinex, Path::new(label))
+}
+
+/// The `rinex` crate's reading of `bytes`. The crate panics on some malformed files (an
+/// `INTERVAL` of `inf`, short or non-ASCII fields: found by fuzzing, docs/fuzzing.md);
+/// such a panic is caught here and becomes an error like any other. (Its message still
+/// goes to the panic hook, i.e. stderr.)
+fn parse_rinex(bytes: &[u8]) -> Result<Rinex, String> {
+    let parsed = std::panic::catch_unwind(|| Rinex::parse(&mut BufReader::new(bytes)));
+    match parsed {
+        Ok(Ok(rinex)) => Ok(rinex),
+        Ok(Err(e)) => Err(e.to_string()),
+        Err(panic) => {
+            let why = panic
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| panic.downcast_ref::<String>().cloned())
+                .unwrap_or_default();
+            Err(format!("malformed RINEX (the reader failed: {why})"))
+        }
+    }
 }
 
 fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
@@ -225,6 +243,17 @@ mod tests {
     /// RINEX 3 F14.3 value with LLI and signal-strength digits (`' '` for blank).
     fn value(v: f64, lli: char, ssi: char) -> String {
         format!("{v:14.3}{lli}{ssi}")
+    }
+
+    #[test]
+    fn a_file_the_rinex_crate_panics_on_is_an_error() {
+        // An INTERVAL of inf: the crate makes a Duration of it, which panics.
+        let text = header("3.04", '2', "GPS").replace(
+            "  2023    03",
+            &format!("{:<60}INTERVAL\n  2023    03", "       inf"),
+        );
+        let e = parse_obs_text(&text, "t.rnx").unwrap_err().to_string();
+        assert!(e.starts_with("t.rnx: malformed RINEX"), "{e}");
     }
 
     #[test]
