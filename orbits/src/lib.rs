@@ -10,6 +10,7 @@
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod atmosphere;
+pub mod bounded_read;
 pub mod check;
 pub mod constants;
 pub mod ephemeris;

@@ -2,6 +2,8 @@
 
 use crate::Scenario;
 use crate::error::ScenarioError;
+use crate::parse::SCENARIO_MAX_BYTES;
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::Invalid;
 use skyforge_signals::obs_model::{Calibration, ObsNoise, ObsNoiseConfig};
 
@@ -28,13 +30,14 @@ impl Scenario {
                     None => (BUNDLED_CALIBRATION.to_string(), "(bundled)".to_string()),
                     Some(f) => {
                         let path = self.base_dir.join(f);
-                        let text = std::fs::read_to_string(&path).map_err(|e| {
-                            self.located(Invalid::new(
-                                field,
-                                f.display(),
-                                format!("cannot read {}: {e}", path.display()),
-                            ))
-                        })?;
+                        let text = read_text(&path, SCENARIO_MAX_BYTES, "calibration file")
+                            .map_err(|e| {
+                                self.located(Invalid::new(
+                                    field,
+                                    f.display(),
+                                    format!("cannot read {}: {e}", path.display()),
+                                ))
+                            })?;
                         (text, f.display().to_string())
                     }
                 };

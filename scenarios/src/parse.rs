@@ -7,8 +7,12 @@ use crate::error::{ScenarioError, shorten};
 use crate::locate::{Document, line_column};
 use crate::schema::{GnssConfig, Scenario, ScenarioFile, TimeSpan, default_constellation};
 use serde::Deserialize;
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::Invalid;
 use std::path::{Path, PathBuf};
+
+/// Largest scenario file read.
+pub const SCENARIO_MAX_BYTES: u64 = 1 << 20;
 
 /// Parse and check a scenario given as text. `source` names it in errors (a file path or
 /// `bundled:NAME`); relative paths inside it are resolved from `base_dir`. Runs every
@@ -50,7 +54,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
 /// resolved from its directory).
 pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
     let source = path.display().to_string();
-    let text = std::fs::read_to_string(path)
+    let text = read_text(path, SCENARIO_MAX_BYTES, "scenario file")
         .map_err(|e| ScenarioError::unlocated(&source, "", "", format!("cannot read: {e}")))?;
     let base_dir = match path.parent() {
         Some(dir) if !dir.as_os_str().is_empty() => dir.to_path_buf(),
@@ -64,7 +68,7 @@ pub fn load(path: &Path) -> Result<Scenario, ScenarioError> {
 /// error listing the bundled names.
 pub fn resolve(arg: &str) -> Result<Scenario, ScenarioError> {
     let path = Path::new(arg);
-    if path.is_file() {
+    if path.exists() {
         return load(path);
     }
     if let Some(found) = bundled().iter().find(|b| b.name == arg) {

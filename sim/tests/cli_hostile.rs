@@ -316,3 +316,81 @@ fn force_names_and_sizes_are_refused_under_the_memory_limit() {
         &["sample rate"],
     );
 }
+
+/// Every kind of input file is read with a size limit: `/dev/zero` given as a scenario, a
+/// SigMF metadata file, a receiver or attitude configuration, a geometry file or RINEX
+/// observations is refused once its limit is passed (before: read until memory ran out),
+/// and a directory is named as one.
+#[test]
+fn devices_and_directories_are_refused_as_every_kind_of_input() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let zero = |name: &str| std::os::unix::fs::symlink("/dev/zero", dir.join(name)).unwrap();
+    for name in [
+        "s.toml",
+        "z.sigmf-meta",
+        "z.obs.rnx",
+        "geometry.toml",
+        "config.toml",
+    ] {
+        zero(name);
+    }
+    std::fs::create_dir(dir.join("d.toml")).unwrap();
+    refused(
+        dir,
+        &["run", "s.toml", "--out", "out"],
+        &["s.toml", "more than 1 MiB: not a scenario file"],
+    );
+    refused(
+        dir,
+        &["run", "d.toml", "--out", "out"],
+        &["is a directory, not a scenario file"],
+    );
+    refused(
+        dir,
+        &["receive", "z.sigmf-meta", "--out", "rx"],
+        &[
+            "z.sigmf-meta",
+            "more than 16 MiB: not a SigMF metadata file",
+        ],
+    );
+    std::fs::write(dir.join("noise.bin"), vec![0u8; 400_000]).unwrap();
+    let raw = [
+        "receive",
+        "noise.bin",
+        "--format",
+        "ci8",
+        "--fs",
+        "4e6",
+        "--signal",
+        "gps-l1ca",
+    ];
+    refused(
+        dir,
+        &[&raw[..], &["--config", "config.toml", "--out", "rx"]].concat(),
+        &["config.toml", "not a receiver configuration"],
+    );
+    let attitude = [
+        "attitude",
+        "z.obs.rnx",
+        "z.obs.rnx",
+        "--nav",
+        "d.toml",
+        "--out",
+        "att",
+    ];
+    refused(
+        dir,
+        &[&attitude[..], &["--geometry", "geometry.toml"]].concat(),
+        &["geometry.toml"],
+    );
+    let obs = [
+        "validate",
+        "obs",
+        "--truth",
+        "z.obs.rnx",
+        "--estimate",
+        "z.obs.rnx",
+    ];
+    refused(dir, &obs, &["z.obs.rnx"]);
+}

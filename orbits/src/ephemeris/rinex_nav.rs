@@ -38,8 +38,8 @@ use super::{
     broadcast::{BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass},
     sat_id::{SatId, System},
 };
+use crate::bounded_read::{read_bytes, read_limited, too_large};
 use hifitime::{Epoch, TimeScale, Unit};
-use std::io::Read;
 use std::path::Path;
 
 /// Default GPS fit interval (s), IS-GPS-200 20.3.4.4 (fit interval flag 0).
@@ -59,47 +59,23 @@ pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
 /// every constellation's broadcast ephemerides (RINEX 4 BRD4 files) is about 15 MB.
 pub const NAV_FILE_MAX_BYTES: u64 = 256 * 1024 * 1024;
 
-/// At most `limit` bytes of `reader`, or `None` when it holds more.
-fn read_limited(reader: impl Read, limit: u64) -> std::io::Result<Option<Vec<u8>>> {
-    let mut out = Vec::new();
-    reader.take(limit + 1).read_to_end(&mut out)?;
-    Ok((out.len() as u64 <= limit).then_some(out))
-}
-
 /// Read a whole text file, gunzipping it when it starts with the gzip magic bytes; a
 /// directory, or more than [`NAV_FILE_MAX_BYTES`] (a device such as `/dev/zero`), is an
 /// error before memory runs out.
 pub(crate) fn read_text_maybe_gz(path: &Path) -> Result<String, NavError> {
+    const KIND: &str = "navigation file";
     let io_err = |source| NavError::Io {
         path: path.display().to_string(),
         source,
     };
-    let too_big = || {
-        io_err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!(
-                "more than {} MiB: not a navigation file",
-                NAV_FILE_MAX_BYTES / (1024 * 1024)
-            ),
-        ))
-    };
-    if path.is_dir() {
-        return Err(io_err(std::io::Error::new(
-            std::io::ErrorKind::InvalidInput,
-            "is a directory, not a navigation file",
-        )));
-    }
-    let file = std::fs::File::open(path).map_err(io_err)?;
-    let raw = read_limited(file, NAV_FILE_MAX_BYTES)
-        .map_err(io_err)?
-        .ok_or_else(too_big)?;
+    let raw = read_bytes(path, NAV_FILE_MAX_BYTES, KIND).map_err(io_err)?;
     let bytes = if raw.starts_with(&[0x1f, 0x8b]) {
         read_limited(
             flate2::read::MultiGzDecoder::new(raw.as_slice()),
             NAV_FILE_MAX_BYTES,
         )
         .map_err(io_err)?
-        .ok_or_else(too_big)?
+        .ok_or_else(|| io_err(too_large(NAV_FILE_MAX_BYTES, KIND)))?
     } else {
         raw
     };

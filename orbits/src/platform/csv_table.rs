@@ -5,7 +5,12 @@
 //! file and the 1-based line.
 
 use super::PlatformError;
+use crate::bounded_read::read_text;
 use std::path::Path;
+
+/// Largest CSV table read (a year at 1 Hz of a trajectory is about 2.5 GB; tables that
+/// large should be resampled).
+const CSV_MAX_BYTES: u64 = 512 << 20;
 
 /// One data row with its 1-based line number.
 #[derive(Debug, Clone, PartialEq)]
@@ -23,7 +28,7 @@ pub(crate) fn read_numeric_csv(
     allowed_counts: &[usize],
 ) -> Result<Vec<NumericRow>, PlatformError> {
     let shown = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| PlatformError::Csv {
+    let text = read_text(path, CSV_MAX_BYTES, "CSV table").map_err(|e| PlatformError::Csv {
         path: shown.clone(),
         line: 0,
         message: format!("cannot read the file: {e}"),

@@ -7,9 +7,13 @@ use super::error::{Finding, InputError};
 use super::format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::time::{SUPPORTED_RANGE, in_supported_range};
 use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
+
+/// Largest SigMF metadata file read (annotations included).
+const META_MAX_BYTES: u64 = 16 << 20;
 
 /// Command-line description of sample files (`--format`, `--fs`, `--if`, `--signal`):
 /// required (format and rate) for raw files; for SigMF recordings, what is given fills in
@@ -215,13 +219,16 @@ impl Recording {
     /// A SigMF recording named by its `.sigmf-meta` or `.sigmf-data` file.
     pub fn from_sigmf(path: &Path, params: &InputParams) -> Result<Self, InputError> {
         let meta_path = path.with_extension("sigmf-meta");
-        let text = std::fs::read_to_string(&meta_path).map_err(|e| match e.kind() {
-            std::io::ErrorKind::InvalidData => InputError::NotSigmf {
-                path: meta_path.clone(),
-                detail: "not UTF-8 text".into(),
-            },
-            _ => InputError::io(&meta_path, e),
-        })?;
+        let text =
+            read_text(&meta_path, META_MAX_BYTES, "SigMF metadata file").map_err(|e| {
+                match e.kind() {
+                    std::io::ErrorKind::InvalidData => InputError::NotSigmf {
+                        path: meta_path.clone(),
+                        detail: "not UTF-8 text".into(),
+                    },
+                    _ => InputError::io(&meta_path, e),
+                }
+            })?;
         let json: Value = serde_json::from_str(&text).map_err(|e| InputError::NotSigmf {
             path: meta_path.clone(),
             detail: format!("invalid JSON: {e}"),

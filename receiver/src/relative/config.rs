@@ -3,6 +3,7 @@
 use crate::attitude::filter::AttitudeConfig;
 use crate::baseline::{ElevationNoise, NoiseModel};
 use serde::Deserialize;
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_signals::signal::Signal;
 
 /// `[relative]`.
@@ -108,13 +109,8 @@ impl RelativeConfig {
     /// error names the file and what is wrong.
     pub fn read(path: &std::path::Path) -> Result<Self, String> {
         let error = |e: &dyn std::fmt::Display| format!("{}: {e}", path.display());
-        let size = std::fs::metadata(path).map_err(|e| error(&e))?.len();
-        if size > MAX_CONFIG_BYTES {
-            return Err(error(&format!(
-                "{size} bytes; at most {MAX_CONFIG_BYTES} are read"
-            )));
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| error(&e))?;
+        let text =
+            read_text(path, MAX_CONFIG_BYTES, "configuration file").map_err(|e| error(&e))?;
         let file: RelativeFile = toml::from_str(&text).map_err(|e| error(&e))?;
         let config = file.relative.unwrap_or_default();
         config.attitude.check().map_err(|e| error(&e))?;

@@ -8,6 +8,7 @@ use crate::pvt::{Fix, Measurement, PvtConfig, predicted_view, solve};
 use hifitime::Epoch;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
@@ -64,15 +65,8 @@ impl BodyGeometryFile {
             path: path.display().to_string(),
             message,
         };
-        let size = std::fs::metadata(path)
-            .map_err(|e| error(e.to_string()))?
-            .len();
-        if size > MAX_GEOMETRY_BYTES {
-            return Err(error(format!(
-                "{size} bytes; at most {MAX_GEOMETRY_BYTES} are read"
-            )));
-        }
-        let text = std::fs::read_to_string(path).map_err(|e| error(e.to_string()))?;
+        let text = read_text(path, MAX_GEOMETRY_BYTES, "geometry file")
+            .map_err(|e| error(e.to_string()))?;
         let file: Self = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
         if file.antennas.len() < 2 {
             return Err(error(format!(

@@ -14,11 +14,15 @@ use crate::pipeline::{
     ApproximateState, BandInput, EpochReport, Receiver, ReceiverConfig, ReceiverFile,
     ReceiverSetup, ReceiverSummary,
 };
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
+
+/// Largest receiver configuration file read.
+const CONFIG_MAX_BYTES: u64 = 1 << 20;
 
 /// Samples per block: 20 ms at the sample rate (covers every search of the default
 /// settings; longer searches get longer blocks).
@@ -58,7 +62,7 @@ pub fn read_config(
         return Ok((ReceiverConfig::default(), None));
     };
     let input = |e: &dyn std::fmt::Display| SessionError::Input(format!("{}: {e}", path.display()));
-    let text = std::fs::read_to_string(path)
+    let text = read_text(path, CONFIG_MAX_BYTES, "receiver configuration")
         .map_err(|e| SessionError::Input(format!("{}: cannot read: {e}", path.display())))?;
     let file: ReceiverFile = toml::from_str(&text).map_err(|e| input(&e))?;
     file.resolve().map_err(|e| input(&e))

@@ -27,6 +27,7 @@ use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
 use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
+use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::time::parse_epoch;
@@ -35,7 +36,7 @@ use skyforge_receiver::relative::files::{BodyGeometryFile, FilesError};
 use skyforge_signals::antenna::check_antenna_name;
 use skyforge_signals::observation::{ObsReadError, read_obs_file};
 use skyforge_signals::signal::Signal;
-use std::io::{BufRead, BufReader, Write};
+use std::io::Write;
 use std::path::{Path, PathBuf};
 
 /// Largest CSV file read (bytes): a day of 1 Hz epochs of `ambiguities.csv` with two
@@ -231,7 +232,7 @@ impl PlatformTruth {
     }
 }
 
-/// A CSV file read line by line, size-capped: `header` checks its header (the column
+/// A CSV file read whole, size-capped: `header` checks its header (the column
 /// names), `each` gets every data line with its 1-based line number.
 fn read_csv(
     path: &Path,
@@ -239,33 +240,19 @@ fn read_csv(
     mut each: impl FnMut(&[&str], usize, &str) -> Result<(), OutputsError>,
 ) -> Result<(), OutputsError> {
     let err = |m: String| file_error(path, m);
-    let size = std::fs::metadata(path)
-        .map_err(|e| err(e.to_string()))?
-        .len();
-    if size > MAX_CSV_BYTES {
-        return Err(err(format!(
-            "{size} bytes; at most {MAX_CSV_BYTES} are read"
-        )));
-    }
-    let file = std::fs::File::open(path).map_err(|e| err(e.to_string()))?;
-    let mut lines = BufReader::new(file).lines();
-    let first = match lines.next() {
-        Some(h) => h.map_err(|e| err(e.to_string()))?,
-        None => return Err(err("empty file: no header line".into())),
+    let text = read_text(path, MAX_CSV_BYTES, "CSV file").map_err(|e| err(e.to_string()))?;
+    let mut lines = text.lines();
+    let Some(first) = lines.next() else {
+        return Err(err("empty file: no header line".into()));
     };
     let names: Vec<&str> = first.split(',').map(str::trim).collect();
     header(&names)?;
     for (i, line) in lines.enumerate() {
         let number = i + 2;
-        let line = line.map_err(|e| OutputsError::Row {
-            path: path.to_path_buf(),
-            line: number,
-            message: e.to_string(),
-        })?;
         if line.trim().is_empty() {
             continue;
         }
-        each(&names, number, &line)?;
+        each(&names, number, line)?;
     }
     Ok(())
 }
