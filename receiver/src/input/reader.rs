@@ -622,8 +622,8 @@ mod tests {
     #[test]
     fn bytes_in_memory_read_as_the_same_bytes_in_a_file() {
         let dir = tempfile::tempdir().unwrap();
-        // 10 whole ci8 samples and a partial one; the second antenna starts 3 samples later.
-        let data: Vec<u8> = (0u8..21).map(|b| b.wrapping_mul(37)).collect();
+        // 10 whole ci8 samples; the second antenna starts 3 samples later.
+        let data: Vec<u8> = (0u8..20).map(|b| b.wrapping_mul(37)).collect();
         let t0 = Epoch::from_gregorian_utc_at_midnight(2024, 1, 1);
         let mut recs = [
             rec("a", Some(t0)),
@@ -638,6 +638,14 @@ mod tests {
             read_all(BlockReader::open_in_memory(&recs, vec![data.clone(); 2], 4).unwrap());
         assert_eq!(from_files, in_memory);
         assert_eq!(from_files.1[0].len(), 7);
+        // A partial sample is the same error either way.
+        let odd = [data.as_slice(), &[1]].concat();
+        for r in &recs {
+            std::fs::write(&r.data_path, &odd).unwrap();
+        }
+        let partial = |e: InputError| matches!(e, InputError::PartialSample { .. });
+        assert!(BlockReader::open(&recs, 4).is_err_and(partial));
+        assert!(BlockReader::open_in_memory(&recs, vec![odd.clone(); 2], 4).is_err_and(partial));
         // A recording without bytes is a missing file.
         match BlockReader::open_in_memory(&recs, vec![data], 4) {
             Err(InputError::Missing { path }) => assert_eq!(path, recs[1].data_path),

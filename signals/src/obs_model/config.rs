@@ -30,7 +30,7 @@ pub struct ObservationConfig {
 
 /// `[observation.noise]` as written in the scenario.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(tag = "model", rename_all = "lowercase", deny_unknown_fields)]
+#[serde(try_from = "NoiseTable")]
 pub enum ObsNoiseConfig {
     /// Loop formulas at each link's C/N0 times factors measured by `skyforge calibrate`;
     /// `file` relative to the scenario, the bundled calibration when absent.
@@ -42,6 +42,66 @@ pub enum ObsNoiseConfig {
     },
     /// Constant standard deviations (m), white.
     Constant { phase_m: f64, code_m: f64 },
+}
+
+/// `[observation.noise]` field by field: read as a plain table (not an internally tagged
+/// enum, which serde buffers, losing the position of a bad value), then checked against
+/// its `model`.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct NoiseTable {
+    model: NoiseModel,
+    file: Option<PathBuf>,
+    phase: Option<ElevationNoise>,
+    code: Option<ElevationNoise>,
+    phase_m: Option<f64>,
+    code_m: Option<f64>,
+}
+
+/// The `model` names.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "lowercase")]
+enum NoiseModel {
+    Calibrated,
+    Elevation,
+    Constant,
+}
+
+impl TryFrom<NoiseTable> for ObsNoiseConfig {
+    type Error = String;
+
+    fn try_from(t: NoiseTable) -> Result<Self, String> {
+        let given = [
+            ("file", t.file.is_some()),
+            ("phase", t.phase.is_some()),
+            ("code", t.code.is_some()),
+            ("phase_m", t.phase_m.is_some()),
+            ("code_m", t.code_m.is_some()),
+        ];
+        let (name, fields): (&str, &[&str]) = match t.model {
+            NoiseModel::Calibrated => ("calibrated", &["file"]),
+            NoiseModel::Elevation => ("elevation", &["phase", "code"]),
+            NoiseModel::Constant => ("constant", &["phase_m", "code_m"]),
+        };
+        if let Some((extra, _)) = given.iter().find(|(f, set)| *set && !fields.contains(f)) {
+            return Err(format!(
+                "{extra} does not belong to model = \"{name}\" (its fields: {})",
+                fields.join(", ")
+            ));
+        }
+        let missing = |f: &str| format!("model = \"{name}\" needs {f}");
+        Ok(match t.model {
+            NoiseModel::Calibrated => Self::Calibrated { file: t.file },
+            NoiseModel::Elevation => Self::Elevation {
+                phase: t.phase.ok_or_else(|| missing("phase"))?,
+                code: t.code.ok_or_else(|| missing("code"))?,
+            },
+            NoiseModel::Constant => Self::Constant {
+                phase_m: t.phase_m.ok_or_else(|| missing("phase_m"))?,
+                code_m: t.code_m.ok_or_else(|| missing("code_m"))?,
+            },
+        })
+    }
 }
 
 impl Default for ObsNoiseConfig {
@@ -62,4 +122,42 @@ pub enum ObsNoise {
         phase_m: f64,
         code_m: f64,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn noise(text: &str) -> Result<ObsNoiseConfig, String> {
+        #[derive(Deserialize)]
+        struct Doc {
+            noise: ObsNoiseConfig,
+        }
+        toml::from_str::<Doc>(text)
+            .map(|d| d.noise)
+            .map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn each_model_takes_its_own_fields_and_a_bad_value_keeps_its_position() {
+        let ok = noise("[noise]\nmodel = \"constant\"\nphase_m = 0.001\ncode_m = 0.3\n");
+        assert_eq!(
+            ok,
+            Ok(ObsNoiseConfig::Constant {
+                phase_m: 0.001,
+                code_m: 0.3
+            })
+        );
+        let e = noise("[noise]\nmodel = \"constant\"\nphase_m = 0.001\n").unwrap_err();
+        assert!(e.contains("model = \"constant\" needs code_m"), "{e}");
+        let e = noise("[noise]\nmodel = \"calibrated\"\nphase_m = 0.001\n").unwrap_err();
+        assert!(
+            e.contains("phase_m does not belong to model = \"calibrated\""),
+            "{e}"
+        );
+        // A value of the wrong type is reported at its own line, not at the table.
+        let e =
+            noise("[noise]\nmodel = \"constant\"\nphase_m = \"x\"\ncode_m = 0.3\n").unwrap_err();
+        assert!(e.contains("line 3"), "{e}");
+    }
 }
