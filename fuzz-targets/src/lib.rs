@@ -32,16 +32,16 @@ pub fn target(name: &str) -> Option<Target> {
     TARGETS.iter().find(|(n, _)| *n == name).map(|&(_, f)| f)
 }
 
-/// An empty directory the scenario target resolves relative paths from: nothing a
-/// fuzzed scenario names is read from anywhere else.
+/// An empty directory the scenario target resolves relative paths from (the same one for
+/// every run, so runs leave nothing behind): nothing a fuzzed scenario names is read from
+/// anywhere else, and `parse` reads no file at all.
 fn empty_dir() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
     DIR.get_or_init(|| {
-        tempfile::Builder::new()
-            .prefix("skyforge-fuzz-empty")
-            .tempdir()
-            .map(tempfile::TempDir::keep)
-            .unwrap_or_else(|_| std::env::temp_dir().join("skyforge-fuzz-empty-missing"))
+        let dir = std::env::temp_dir().join("skyforge-fuzz-empty");
+        // Not created (read-only temp): relative paths resolve nowhere, which is as good.
+        let _ = std::fs::create_dir_all(&dir);
+        dir
     })
 }
 
