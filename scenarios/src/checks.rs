@@ -20,6 +20,9 @@ pub(crate) const BEIDOU_MAX_PRN: u8 = 63;
 pub(crate) const MAX_DURATION_S: f64 = 366.0 * 86_400.0;
 /// Highest truth geometry rate (Hz); the signal stage interpolates between samples.
 pub(crate) const MAX_GEOMETRY_RATE_HZ: f64 = 1000.0;
+/// Most antennas on one platform: arrays of a few to 16 elements are what attitude and
+/// beam-forming receivers carry; each antenna adds a recording per band and its truth.
+pub(crate) const MAX_ANTENNAS: usize = 64;
 /// Ground-site height limits (m above the WGS-84 ellipsoid): below the lowest dry land
 /// (about -430 m) with margin, up to the Karman line.
 const GROUND_HEIGHT_RANGE_M: (f64, f64) = (-1_000.0, 100_000.0);
@@ -431,13 +434,22 @@ fn check_axis(axis: &AxisProfileConfig) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// `[[antennas]]`: at least one, each checked, unique names.
+/// `[[antennas]]`: at least one and at most [`MAX_ANTENNAS`], each checked, unique names.
 fn check_antennas(antennas: &[AntennaConfig]) -> Result<(), Invalid> {
     if antennas.is_empty() {
         return Err(Invalid::new(
             "antennas",
             "none",
             "at least one [[antennas]] table is required",
+        ));
+    }
+    if antennas.len() > MAX_ANTENNAS {
+        return Err(Invalid::new(
+            format!("antennas[{MAX_ANTENNAS}]"),
+            format!("{} antennas", antennas.len()),
+            format!(
+                "at most {MAX_ANTENNAS} antennas (each adds a recording per band and its signal truth: see docs/limits.md)"
+            ),
         ));
     }
     for (i, antenna) in antennas.iter().enumerate() {

@@ -436,3 +436,29 @@ fn elevation_scale_of_zero() {
     let err = parse_error(&text);
     assert_eq!(err.field, "observation.noise.code.elev0_deg", "{err}");
 }
+
+/// Issue #11: the antenna count is bounded (64); the 65th antenna table is named.
+#[test]
+fn more_than_64_antennas() {
+    let extra: String = (3..=64)
+        .map(|i| {
+            format!("\n[[antennas]]\nname = \"ant{i}\"\nposition_body_m = [0.0, 0.0, {i}.0]\n")
+        })
+        .collect();
+    let sixty_four = format!("{BASE}{extra}");
+    assert_eq!(
+        parse_in(&sixty_four, Path::new("."))
+            .unwrap()
+            .antennas
+            .len(),
+        64
+    );
+    let text = format!(
+        "{sixty_four}\n[[antennas]]\nname = \"ant65\"\nposition_body_m = [0.0, 1.0, 0.0]\n"
+    );
+    let err = parse_error(&text);
+    assert_eq!(err.field, "antennas[64]", "{err}");
+    assert!(err.allowed.contains("at most 64 antennas"), "{err}");
+    let line = text.lines().position(|l| l == "name = \"ant65\"").unwrap();
+    assert!(err.line.is_some_and(|l| l.abs_diff(line + 1) <= 1), "{err}");
+}
