@@ -6,19 +6,8 @@ mod common;
 
 use common::*;
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_orbits::fixtures::RINEX3_GPS_NAV;
 use std::path::Path;
-
-const NAV: &str = "     3.05           N: GNSS NAV DATA    G: GPS              RINEX VERSION / TYPE
-                                                            END OF HEADER
-G07 2022 01 01 00 00 00 1.000000000000E-05-1.000000000000E-12 0.000000000000E+00
-     1.000000000000E+01 2.000000000000E+01 4.500000000000E-09 1.000000000000E+00
-     1.000000000000E-06 1.000000000000E-02 5.000000000000E-06 5.153700000000E+03
-     5.184000000000E+05 1.000000000000E-08-1.000000000000E+00-1.000000000000E-08
-     9.600000000000E-01 2.000000000000E+02 5.000000000000E-01-8.000000000000E-09
-     1.000000000000E-10 1.000000000000E+00 2.190000000000E+03 0.000000000000E+00
-     2.000000000000E+00 0.000000000000E+00-1.000000000000E-08 1.000000000000E+01
-     5.112000000000E+05 4.000000000000E+00
-";
 
 /// [`BASE`] reading GPS from `brdc.rnx`, BeiDou disabled, starting at `start`.
 fn scenario(start: &str, gps_extra: &str) -> String {
@@ -33,7 +22,7 @@ fn scenario(start: &str, gps_extra: &str) -> String {
 
 fn nav_dir() -> tempfile::TempDir {
     let dir = tempfile::tempdir().expect("tempdir");
-    std::fs::write(dir.path().join("brdc.rnx"), NAV).expect("write nav file");
+    std::fs::write(dir.path().join("brdc.rnx"), RINEX3_GPS_NAV).expect("write nav file");
     dir
 }
 
@@ -123,7 +112,11 @@ fn relative_paths_start_at_the_scenario_directory() {
 #[test]
 fn a_cut_file_a_directory_and_a_device_are_refused_with_what_they_are() {
     let dir = nav_dir();
-    let cut = NAV.trim_end().rsplit_once('\n').expect("lines").0;
+    let cut = RINEX3_GPS_NAV
+        .trim_end()
+        .rsplit_once('\n')
+        .expect("lines")
+        .0;
     std::fs::write(dir.path().join("cut.rnx"), cut).expect("write");
     std::fs::create_dir(dir.path().join("navdir")).expect("mkdir");
     for (name, expected) in [

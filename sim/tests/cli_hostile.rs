@@ -7,22 +7,21 @@
 
 mod support;
 
+use skyforge_orbits::fixtures::RINEX3_GPS_NAV;
 use std::path::Path;
 use support::{MEMORY_LIMIT_BYTES, listing, short_scenario, skyforge, skyforge_limited, text};
 
-/// A hand-made RINEX 3.05 GPS record (own values): G07, toc = toe = 2022-01-01T00:00:00
-/// GPST, healthy (the record of `scenarios/tests/navigation.rs`).
-const NAV: &str = "     3.05           N: GNSS NAV DATA    G: GPS              RINEX VERSION / TYPE
-                                                            END OF HEADER
-G07 2022 01 01 00 00 00 1.000000000000E-05-1.000000000000E-12 0.000000000000E+00
-     1.000000000000E+01 2.000000000000E+01 4.500000000000E-09 1.000000000000E+00
-     1.000000000000E-06 1.000000000000E-02 5.000000000000E-06 5.153700000000E+03
-     5.184000000000E+05 1.000000000000E-08-1.000000000000E+00-1.000000000000E-08
-     9.600000000000E-01 2.000000000000E+02 5.000000000000E-01-8.000000000000E-09
-     1.000000000000E-10 1.000000000000E+00 2.190000000000E+03 0.000000000000E+00
-     2.000000000000E+00 0.000000000000E+00-1.000000000000E-08 1.000000000000E+01
-     5.112000000000E+05 4.000000000000E+00
-";
+/// `receive` of the raw recording `noise.bin` (4 Msps ci8 GPS L1 C/A).
+const RECEIVE_NOISE: [&str; 8] = [
+    "receive",
+    "noise.bin",
+    "--format",
+    "ci8",
+    "--fs",
+    "4e6",
+    "--signal",
+    "gps-l1ca",
+];
 
 /// `skyforge args` in `dir`, under the 4 GB address-space limit, must exit 2 with one
 /// `error:` message holding every needle and leave `dir` as it was.
@@ -199,7 +198,7 @@ fn a_failed_run_removes_the_parent_directories_it_created() {
 fn a_cut_navigation_file_a_directory_and_a_device_are_refused_everywhere() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
-    let cut = NAV.trim_end().rsplit_once('\n').unwrap().0;
+    let cut = RINEX3_GPS_NAV.trim_end().rsplit_once('\n').unwrap().0;
     std::fs::write(dir.join("cut.rnx"), cut).unwrap();
     std::fs::create_dir(dir.join("navdir")).unwrap();
     // The recording for `receive --assist`: noise, as the navigation file is read first.
@@ -226,20 +225,7 @@ fn a_cut_navigation_file_a_directory_and_a_device_are_refused_everywhere() {
                 &["s.toml:", "gnss.gps.nav_file", says],
             );
         }
-        let args = [
-            "receive",
-            "noise.bin",
-            "--format",
-            "ci8",
-            "--fs",
-            "4e6",
-            "--signal",
-            "gps-l1ca",
-            "--assist",
-            nav,
-            "--out",
-            "rx",
-        ];
+        let args = [&RECEIVE_NOISE[..], &["--assist", nav, "--out", "rx"]].concat();
         let out = refused(dir, &args, &[says]);
         assert!(!out.contains("does not exist"), "{out}");
     }
@@ -355,16 +341,7 @@ fn devices_and_directories_are_refused_as_every_kind_of_input() {
         ],
     );
     std::fs::write(dir.join("noise.bin"), vec![0u8; 400_000]).unwrap();
-    let raw = [
-        "receive",
-        "noise.bin",
-        "--format",
-        "ci8",
-        "--fs",
-        "4e6",
-        "--signal",
-        "gps-l1ca",
-    ];
+    let raw = RECEIVE_NOISE;
     refused(
         dir,
         &[&raw[..], &["--config", "config.toml", "--out", "rx"]].concat(),
