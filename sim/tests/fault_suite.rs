@@ -266,7 +266,7 @@ fn two_runs_racing_for_one_output_leave_one_complete_output() {
 
 #[test]
 #[ignore = "fault suite (interoperability tier): mounts a tmpfs"]
-fn a_disk_that_fills_up_under_receive_leaves_nothing() {
+fn a_disk_that_fills_up_under_receive_keeps_the_previous_output() {
     if !is_root() {
         println!("SKIPPED: mounting a small tmpfs needs root (CI runs as root)");
         return;
@@ -275,27 +275,43 @@ fn a_disk_that_fills_up_under_receive_leaves_nothing() {
     let cwd = tmp.path();
     short_scenario(cwd, "interop-gps-static", 20);
     skyforge_ok(&["synth", "short.toml", "--out", "rec"], cwd);
-    let disk = Tmpfs::mount(&cwd.join("small"), "4k");
-    let receive = |out: &str| {
+    let disk = Tmpfs::mount(&cwd.join("small"), "16m");
+    let receive = |force: bool| {
         let args = [
             "receive",
             "rec/ant1.gps-l1ca.sigmf-meta",
             "--assist",
             "rec/nav.rnx",
         ];
-        skyforge(&[&args[..], &["--out", out]].concat(), cwd)
+        let out: &[&str] = if force {
+            &["--out", "small/rx", "--force"]
+        } else {
+            &["--out", "small/rx"]
+        };
+        skyforge(&[&args[..], out].concat(), cwd)
     };
-    let o = receive("small/rx");
+    let o = receive(false);
+    assert!(o.status.success(), "{}", text(&o));
+    let previous = snapshot(&disk.0.join("rx"));
+    // Fill what is left of the disk.
+    let mut filler = std::fs::File::create(disk.0.join("filler")).unwrap();
+    while std::io::Write::write_all(&mut filler, &[0u8; 4096]).is_ok() {}
+    drop(filler);
+    let o = receive(true);
     let msg = text(&o);
     println!("{msg}");
     assert!(!o.status.success());
     assert!(msg.contains("No space left on device"), "{msg}");
-    assert!(
-        listing(&disk.0).is_empty(),
-        "left behind: {:?}",
-        listing(&disk.0)
+    assert_eq!(listing(&disk.0), ["filler", "rx"]);
+    assert_eq!(
+        snapshot(&disk.0.join("rx")),
+        previous,
+        "the previous output changed"
     );
-    drop(disk);
-    let o = receive("rx");
+    // With the room back (a replacement needs room for both outputs) the next run succeeds.
+    std::fs::remove_file(disk.0.join("filler")).unwrap();
+    let o = receive(true);
     assert!(o.status.success(), "the next run: {}", text(&o));
+    assert_eq!(snapshot(&disk.0.join("rx")), previous);
+    assert_eq!(listing(&disk.0), ["rx"]);
 }
