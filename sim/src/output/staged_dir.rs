@@ -43,6 +43,27 @@ pub(super) fn remove_created(created: &[PathBuf]) {
     }
 }
 
+/// `--force` replaces only what skyforge wrote: bad input otherwise.
+fn refuse_foreign(target: &Path) -> anyhow::Result<()> {
+    match manifest::refuse_replacing(target) {
+        Some(reason) => Err(BadInput(format!(
+            "--force will not replace {}: {reason}",
+            target.display()
+        ))
+        .into()),
+        None => Ok(()),
+    }
+}
+
+/// Where a replaced output waits while the new one moves in (file systems that cannot
+/// exchange): `.NAME.partial-PID.old`, the name [`interrupt::remove_stale`] recognises.
+/// (`Path::with_extension` would give `.NAME.old`: the PID is the "extension".)
+fn aside_name(staging: &Path) -> PathBuf {
+    let mut name = staging.as_os_str().to_owned();
+    name.push(".old");
+    PathBuf::from(name)
+}
+
 impl StagedDir {
     /// Check `target` (must not exist unless `force`, must be creatable) and create the
     /// staging directory. An output path that cannot be written (below a regular file, in
@@ -65,14 +86,8 @@ impl StagedDir {
         if target.exists() && !target.is_dir() {
             return Err(unwritable("it exists and is not a directory".into()).into());
         }
-        if target.exists()
-            && let Some(reason) = manifest::refuse_replacing(target)
-        {
-            return Err(BadInput(format!(
-                "--force will not replace {}: {reason}",
-                target.display()
-            ))
-            .into());
+        if target.exists() {
+            refuse_foreign(target)?;
         }
         let name = target
             .file_name()
@@ -160,13 +175,7 @@ impl StagedDir {
                 Err(e) => Err(anyhow::Error::new(e).context(cannot())),
             };
         }
-        if let Some(reason) = manifest::refuse_replacing(&self.target) {
-            return Err(BadInput(format!(
-                "--force will not replace {}: {reason}",
-                self.target.display()
-            ))
-            .into());
-        }
+        refuse_foreign(&self.target)?;
         let exchanged = renameat2(
             AT_FDCWD,
             &self.staging,
@@ -177,10 +186,10 @@ impl StagedDir {
         if exchanged.is_ok() {
             return Ok(Some(self.staging.clone()));
         }
-        let old = self.staging.with_extension("old");
-        registered.push((old.clone(), Vec::new()));
+        let old = aside_name(&self.staging);
         std::fs::rename(&self.target, &old)
             .with_context(|| format!("cannot replace {}", self.target.display()))?;
+        registered.push((old.clone(), Vec::new()));
         if let Err(e) = std::fs::rename(&self.staging, &self.target) {
             let _ = std::fs::rename(&old, &self.target);
             registered.retain(|(d, _)| *d != old);
@@ -197,5 +206,16 @@ impl Drop for StagedDir {
             remove_created(&self.created_parents);
             interrupt::unregister(&self.staging);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_aside_name_keeps_the_staging_pid() {
+        let aside = aside_name(Path::new("dir/.out.partial-123"));
+        assert_eq!(aside, Path::new("dir/.out.partial-123.old"));
     }
 }
