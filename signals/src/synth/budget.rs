@@ -15,7 +15,7 @@
 //! - one chunk of geometry epochs.
 
 use super::config::BLOCK_S;
-use super::render::{LinkTruth, SLICE_BYTES};
+use super::render::{LinkTruth, SLICE_BYTES, blocks_per_slice};
 use super::session::{GEOMETRY_STEP_S, SynthSession};
 use crate::truth::geometry::{LinkGeometry, epoch_count};
 use std::mem::size_of;
@@ -51,7 +51,7 @@ impl SynthSession<'_> {
         let epochs = epoch_count(self.world().duration_s, GEOMETRY_STEP_S) as u64;
         let blocks_per_step = (GEOMETRY_STEP_S / BLOCK_S).round() as u64;
         let n = signal.samples_per_block() as u64;
-        let block_bytes = n * signal.format.bytes_per_sample() as u64;
+        let block_bytes = signal.block_bytes() as u64;
         let samples = self.renders_samples();
         let recording_bytes = if samples {
             epochs.saturating_sub(1) * blocks_per_step * block_bytes
@@ -59,8 +59,8 @@ impl SynthSession<'_> {
             0
         };
         let sliced = if samples {
-            let slice = (SLICE_BYTES as u64).max(block_bytes);
-            slice.min(blocks_per_step * block_bytes) + block_bytes
+            let per_slice = blocks_per_slice(signal.block_bytes(), SLICE_BYTES);
+            per_slice.min(blocks_per_step) * block_bytes + block_bytes
         } else {
             0
         };

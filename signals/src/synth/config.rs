@@ -217,4 +217,9 @@ impl SignalConfig {
     pub fn samples_per_block(&self) -> usize {
         (self.sample_rate_hz * BLOCK_S).round() as usize
     }
+
+    /// Bytes of one 1 ms block in the container format.
+    pub fn block_bytes(&self) -> usize {
+        self.samples_per_block() * self.format.bytes_per_sample()
+    }
 }

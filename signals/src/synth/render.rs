@@ -38,6 +38,11 @@ const TRUTH_DLL_SPACING_CHIPS: f64 = 1.0;
 /// memory of a run does not grow with the sample rate times the 1 s geometry step.
 pub const SLICE_BYTES: usize = 32 << 20;
 
+/// Blocks of `block_bytes` in a slice of at most `slice_bytes` (at least one).
+pub fn blocks_per_slice(block_bytes: usize, slice_bytes: usize) -> u64 {
+    (slice_bytes / block_bytes.max(1)).max(1) as u64
+}
+
 /// A sample sink for [`Synthesiser::push_epoch`] that appends antenna `a`'s bytes to
 /// `out[a]` (tests and benchmarks that keep the samples in memory).
 pub fn append_to(
@@ -201,8 +206,7 @@ impl<'a> Synthesiser<'a> {
 
     /// Blocks rendered in parallel before their bytes go to the sink.
     fn blocks_per_slice(&self) -> u64 {
-        let block_bytes = self.n * self.cfg.format.bytes_per_sample();
-        (self.slice_bytes / block_bytes.max(1)).max(1) as u64
+        blocks_per_slice(self.cfg.block_bytes(), self.slice_bytes)
     }
 
     /// Signal amplitude (noise units) of a path at `cn0_dbhz`.
@@ -462,7 +466,7 @@ impl<'a> Synthesiser<'a> {
         }
         // Noise is keyed by the absolute sample index, offset by the filter margin.
         noise.add(b * n as u64, &mut s.i, &mut s.q);
-        let mut bytes = Vec::with_capacity(n * self.cfg.format.bytes_per_sample());
+        let mut bytes = Vec::with_capacity(self.cfg.block_bytes());
         match &self.filter {
             Some(f) => {
                 s.fi.clear();

@@ -5,8 +5,9 @@
 //! the writers (SigMF/raw files, HDF5, RINEX) by implementing the traits; nothing here
 //! knows about files except through them.
 //!
-//! Memory is bounded by one chunk of geometry epochs plus one geometry step of samples
-//! per antenna, whatever the duration.
+//! Memory is bounded by one chunk of geometry epochs plus one slice of samples
+//! ([`super::render::SLICE_BYTES`]), whatever the duration and the sample rate
+//! ([`super::budget`] gives the bound).
 
 use super::config::{BLOCK_S, SignalConfig};
 use super::constellation::{self, TransmitterError};

@@ -89,8 +89,8 @@ pub fn synthesise(
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let mut world = scenario.build()?;
-    let observation_level = scenario.observation.level == Level::Observation;
     let session = session(scenario, &mut world, signal)?;
+    let observation_level = !session.renders_samples();
     let (origin, antennas, duration_s) = {
         let w = session.world();
         (w.origin, w.antennas, w.duration_s)
