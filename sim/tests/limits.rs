@@ -112,3 +112,27 @@ fn the_largest_sample_rate_runs_under_a_4_gb_address_space_limit() {
     let data = dir.path().join("out/ant1.gps-l1ca.sigmf-data");
     assert_eq!(std::fs::metadata(data).unwrap().len(), 2_000_000_000);
 }
+
+/// The largest scenario the checks allow (366 days, 64 antennas, GPS + BeiDou, 1 GHz
+/// cf32, signal truth at 1 kHz) gets its figures without an arithmetic overflow (a panic
+/// in this debug build): 128 recordings of 2.5e17 bytes pass 64-bit byte counts.
+#[test]
+fn the_largest_allowed_scenario_gets_its_figures() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = skyforge_ok(&["scenarios", "show", "thesis-leo"], dir.path());
+    let antennas: String = (0..61)
+        .map(|i| format!("\n[[antennas]]\nname = \"x{i}\"\nposition_body_m = [0.0, 0.0, {i}.0]\n"))
+        .collect();
+    let toml = base.replace("duration_s = 86400.0", "duration_s = 31622400.0")
+        + &antennas
+        + "\n[signal]\nsample_rate_hz = 1.0e9\nformat = \"cf32\"\ntruth_rate_hz = 1000\n";
+    std::fs::write(dir.path().join("max.toml"), toml).unwrap();
+    let dry = skyforge_ok(
+        &["synth", "max.toml", "--out", "out", "--dry-run"],
+        dir.path(),
+    );
+    let one = 31_622_400u64 * 1_000_000_000 * 8;
+    assert_eq!(figure(&dry, "recording  x60.bds-b1i.sigmf-data"), one);
+    assert!(dry.contains("disk       more than"), "{dry}");
+    assert!(!dir.path().join("out").exists());
+}

@@ -38,8 +38,18 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
     );
     let rinex = rinex_bound(&b, n_ant, n_sats, session.renders_samples());
     println!("RINEX obs  at most {}", human(rinex));
-    let disk = b.recordings as u64 * b.recording_bytes + truth + rinex;
-    println!("disk       at most {}", human(disk));
+    let disk = (b.recordings as u64)
+        .saturating_mul(b.recording_bytes)
+        .saturating_add(truth)
+        .saturating_add(rinex);
+    if disk == u64::MAX {
+        println!(
+            "disk       more than {} (beyond 64-bit byte counts)",
+            human(disk)
+        );
+    } else {
+        println!("disk       at most {}", human(disk));
+    }
     println!(
         "memory     at most {} ({threads} rendering threads; RAYON_NUM_THREADS sets them)",
         human(b.memory_bytes)

@@ -248,15 +248,17 @@ fn series<T: H5Type>(
 /// Upper bound of the bytes of a `truth.h5` of `epochs` geometry epochs, `n_ant` antennas,
 /// `n_sats` satellites (every link counted as visible) and `signal_records` signal-truth
 /// records: the raw values (integer masks and indices counted uncompressed), one partly
-/// filled chunk per dataset and 1 MiB of metadata.
+/// filled chunk per dataset and 1 MiB of metadata. Saturates at `u64::MAX`.
 pub fn size_bound(epochs: u64, n_ant: u64, n_sats: u64, signal_records: u64) -> u64 {
     let platform = epochs * 8 * (1 + 3 + 3 + 4 + 3);
     let link = 4 + 2 + 8 * LINK_FIELDS.len() as u64;
     let geometry = epochs * n_ant * n_sats * (1 + link);
-    let signal = signal_records * (8 + 2 + 8 * SIGNAL_FIELDS.len() as u64);
+    let signal = signal_records.saturating_mul(8 + 2 + 8 * SIGNAL_FIELDS.len() as u64);
     let datasets = 5 + n_ant * (3 + LINK_FIELDS.len() as u64 + 2 + SIGNAL_FIELDS.len() as u64);
     let partial_chunks = datasets * (LINK_CHUNK.max(TIME_CHUNK * n_sats as usize) as u64 * 8);
-    platform + geometry + signal + partial_chunks + (1 << 20)
+    [platform, geometry, partial_chunks, 1 << 20]
+        .into_iter()
+        .fold(signal, u64::saturating_add)
 }
 
 impl TruthWriter {
