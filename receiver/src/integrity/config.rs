@@ -31,6 +31,11 @@ pub struct MonitorConfig {
     /// # assumed: 10 deg, the receiver's PVT mask; the paper states none.
     #[serde(default = "default_mask_deg")]
     pub elevation_mask_deg: f64,
+    /// Map the standard troposphere's delay too (besides the geometric range): stations at
+    /// different heights see different delays (100 m of height: about 3 cm at the zenith,
+    /// changing with elevation).
+    #[serde(default = "default_troposphere")]
+    pub troposphere: bool,
     /// Station antenna positions in file order (default: each file's APPROX POSITION).
     #[serde(default)]
     pub stations: Vec<StationPosition>,
@@ -45,6 +50,9 @@ fn default_smoothing_s() -> f64 {
 }
 fn default_divergence_s() -> f64 {
     200.0
+}
+fn default_troposphere() -> bool {
+    true
 }
 fn default_mask_deg() -> f64 {
     10.0

@@ -8,6 +8,11 @@ use super::divergence::Divergence;
 use super::hatch::Hatch;
 use super::statistic::{PerStatistic, Statistic};
 use crate::pvt::predicted_view;
+use crate::pvt::solve::STANDARD_RH0;
+use skyforge_orbits::Mat3;
+use skyforge_orbits::atmosphere::standard_slant_delay_m;
+use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use hifitime::Epoch;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
@@ -24,6 +29,48 @@ const MAX_GAP_FACTOR: f64 = 1.5;
 pub struct Station {
     pub name: String,
     pub r_ecef_m: Vec3,
+}
+
+/// A point the observations are mapped from or to: its position, latitude and height,
+/// and the rotation into its local frame.
+#[derive(Debug, Clone)]
+struct Place {
+    r_ecef_m: Vec3,
+    lat_rad: f64,
+    h_m: f64,
+    c_ned_ecef: Mat3,
+}
+
+impl Place {
+    fn new(r_ecef_m: Vec3) -> Self {
+        let g = ecef_to_geodetic(&r_ecef_m);
+        Self {
+            r_ecef_m,
+            lat_rad: g.lat_rad,
+            h_m: g.h_m,
+            c_ned_ecef: c_ecef_ned(g.lat_rad, g.lon_rad),
+        }
+    }
+
+    /// Geometric range (m) and elevation (rad) of a satellite at `r_sat_m`.
+    fn range_elevation(&self, r_sat_m: &Vec3) -> (f64, f64) {
+        let d = r_sat_m - self.r_ecef_m;
+        let range = d.norm();
+        (range, az_el(&(self.c_ned_ecef * (d / range))).1)
+    }
+
+    /// The standard troposphere's slant delay at elevation `el_rad` (m).
+    fn troposphere_m(&self, el_rad: f64) -> f64 {
+        standard_slant_delay_m(self.lat_rad, self.h_m, el_rad, STANDARD_RH0)
+    }
+
+    /// Range plus (when `troposphere`) the modelled tropospheric delay to a satellite at
+    /// `r_sat_m`, and the elevation.
+    fn path_m(&self, r_sat_m: &Vec3, troposphere: bool) -> (f64, f64) {
+        let (range, el) = self.range_elevation(r_sat_m);
+        let tropo = if troposphere { self.troposphere_m(el) } else { 0.0 };
+        (range + tropo, el)
+    }
 }
 
 /// One station's values for one satellite at one epoch.
@@ -47,8 +94,8 @@ pub struct SatelliteEpoch {
     /// Thresholds of the B values at this elevation.
     pub threshold: PerStatistic<f64>,
     /// Whether each statistic is tested yet: the smoothed code once the Hatch filter has
-    /// run one time constant, the divergence once its estimator has (the LAAS monitors'
-    /// start-up); code and carrier from the first epoch.
+    /// run one time constant, the divergence (started then) one of its own time constants
+    /// later (the LAAS monitors' start-up); code and carrier from the first epoch.
     pub armed: PerStatistic<bool>,
     /// Seconds since this track (common to the stations below) began.
     pub track_age_s: f64,
@@ -83,7 +130,9 @@ struct Channel {
     /// starts there (from the first epoch it would carry that epoch's raw code noise).
     settled_smoothed_m: Option<f64>,
     hatch: Hatch,
-    divergence: Divergence,
+    /// Started when the Hatch filter settles: during its warm-up the smoothed code's
+    /// noise shrinks from the raw code's, which would read as divergence.
+    divergence: Option<Divergence>,
 }
 
 /// A track of one satellite held by the same stations since `start_s`.
@@ -105,7 +154,8 @@ pub struct Monitor {
     config: MonitorConfig,
     multiplier: f64,
     stations: Vec<Station>,
-    common_m: Vec3,
+    places: Vec<Place>,
+    common: Place,
     origin: TimeOrigin,
     store: EphemerisStore,
     tracks: BTreeMap<(SatId, Signal), Track>,
@@ -129,7 +179,8 @@ impl Monitor {
         Ok(Self {
             multiplier: config.thresholds.multiplier(),
             config,
-            common_m: common_m.unwrap_or(mean),
+            places: stations.iter().map(|s| Place::new(s.r_ecef_m)).collect(),
+            common: Place::new(common_m.unwrap_or(mean)),
             store: EphemerisStore::new(ephemerides, &origin),
             origin,
             stations,
@@ -144,7 +195,7 @@ impl Monitor {
 
     /// The common point (ECEF, m).
     pub fn common_point(&self) -> Vec3 {
-        self.common_m
+        self.common.r_ecef_m
     }
 
     /// Process one epoch: `records[m]` is station m's observations at `time` (`None`
@@ -176,18 +227,20 @@ impl Monitor {
             self.tracks.remove(&key);
             return None;
         };
-        let common = predicted_view(eph, t_s, &self.common_m);
-        let elevation_deg = common.az_el_rad.map_or(-90.0, |(_, el)| el.to_degrees());
+        let r_sat = predicted_view(eph, t_s, &self.common.r_ecef_m).r_ecef_m;
+        let troposphere = self.config.troposphere;
+        let (common_m, el_rad) = self.common.path_m(&r_sat, troposphere);
+        let elevation_deg = el_rad.to_degrees();
         if elevation_deg < self.config.elevation_mask_deg {
             self.tracks.remove(&key);
             return None;
         }
         let mut lost = false;
         let mapped: Vec<Mapped> = self
-            .stations
+            .places
             .iter()
             .zip(records)
-            .map(|(station, recs)| {
+            .map(|(place, recs)| {
                 let rec = (*recs)?
                     .iter()
                     .find(|r| (r.sat, r.signal) == key && r.pseudorange_m.is_some())?;
@@ -195,7 +248,7 @@ impl Monitor {
                 lost |= rec.loss_of_lock();
                 // The satellite where the common point's signal left it: stations a few
                 // hundred metres away see it within a microsecond of that (mm).
-                let to_common_m = (common.r_ecef_m - station.r_ecef_m).norm() - common.range_m;
+                let to_common_m = place.path_m(&r_sat, troposphere).0 - common_m;
                 Some((code - to_common_m, phase * key.1.wavelength_m() - to_common_m))
             })
             .collect();
@@ -203,8 +256,12 @@ impl Monitor {
             self.tracks.remove(&key);
             return None;
         }
+        let threshold = self
+            .config
+            .thresholds
+            .at(self.multiplier, key.1, elevation_deg)?;
         let track = self.track(key, t_s, &mapped, lost);
-        Some(self.outcome(key, elevation_deg, track, &mapped))
+        Some(self.outcome(key, elevation_deg, threshold, track, &mapped))
     }
 
     /// The track of `key` after this epoch's `mapped` observations: continued when the
@@ -227,9 +284,12 @@ impl Monitor {
                 for (c, m) in tr.channels.iter_mut().zip(mapped) {
                     if let (Some(c), Some((code, phase))) = (c, m) {
                         let smoothed = c.hatch.update(*code, *phase);
-                        c.divergence.update(smoothed - phase, dt);
+                        if let Some(d) = c.divergence.as_mut() {
+                            d.update(smoothed - phase, dt);
+                        }
                         if settled && c.settled_smoothed_m.is_none() {
                             c.settled_smoothed_m = Some(smoothed);
+                            c.divergence = Some(Divergence::start(tau, smoothed - phase));
                         }
                     }
                 }
@@ -246,7 +306,7 @@ impl Monitor {
                             first: [code, phase],
                             settled_smoothed_m: None,
                             hatch: Hatch::start(window, code, phase),
-                            divergence: Divergence::start(tau, code - phase),
+                            divergence: None,
                         })
                     })
                     .collect(),
@@ -265,6 +325,7 @@ impl Monitor {
         &self,
         key: (SatId, Signal),
         elevation_deg: f64,
+        threshold: PerStatistic<f64>,
         track: Track,
         mapped: &[Mapped],
     ) -> SatelliteEpoch {
@@ -281,7 +342,7 @@ impl Monitor {
                     code - c.first[0],
                     c.hatch.smoothed_m() - settled,
                     (phase - c.first[1]) / lambda,
-                    c.divergence.rate_mps(),
+                    c.divergence.map_or(0.0, |d| d.rate_mps()),
                 ])
             })
             .collect();
@@ -290,11 +351,12 @@ impl Monitor {
             .iter()
             .map(|s| b_values(&present.iter().map(|x| x[s.index()]).collect::<Vec<_>>()))
             .collect();
-        let threshold = self.config.thresholds.at(self.multiplier, elevation_deg);
         let armed = Statistic::ALL.map(|s| match s {
             Statistic::Code | Statistic::Carrier => true,
             Statistic::SmoothedCode => age_s >= self.config.smoothing_s,
-            Statistic::Divergence => age_s >= self.config.divergence_s,
+            Statistic::Divergence => {
+                age_s >= self.config.smoothing_s + self.config.divergence_s
+            }
         });
         let mut next = 0;
         let stations = statistic

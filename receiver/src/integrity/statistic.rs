@@ -27,7 +27,7 @@ impl Statistic {
     ];
 
     /// Position in [`Self::ALL`].
-    pub fn index(self) -> usize {
+    pub const fn index(self) -> usize {
         self as usize
     }
 

@@ -4,6 +4,8 @@
 use super::statistic::{PerStatistic, Statistic};
 use crate::pvt::raim::chi2_threshold;
 use serde::{Deserialize, Serialize};
+use skyforge_signals::signal::Signal;
+use std::collections::BTreeMap;
 
 /// Fault-free standard deviations of the B values by elevation, as `skyforge monitor
 /// calibrate` measures them.
@@ -34,6 +36,16 @@ impl SigmaTable {
         }
     }
 
+    /// The key of `stat`'s column in the file.
+    fn key(stat: Statistic) -> &'static str {
+        match stat {
+            Statistic::Code => "code_m",
+            Statistic::SmoothedCode => "smoothed_code_m",
+            Statistic::Carrier => "carrier_cycles",
+            Statistic::Divergence => "divergence_mps",
+        }
+    }
+
     /// The bin of elevation `elevation_deg` (the first below the lowest edge is 0).
     pub fn bin(&self, elevation_deg: f64) -> usize {
         self.elevation_deg
@@ -55,7 +67,7 @@ impl SigmaTable {
     pub fn check(&self) -> Result<(), String> {
         let n = self.elevation_deg.len();
         if n == 0 {
-            return Err("sigma.elevation_deg is empty".into());
+            return Err("elevation_deg is empty".into());
         }
         if self
             .elevation_deg
@@ -64,7 +76,7 @@ impl SigmaTable {
             || !self.elevation_deg.iter().all(|e| (0.0..90.0).contains(e))
         {
             return Err(format!(
-                "sigma.elevation_deg = {:?}: must increase, each in [0, 90)",
+                "elevation_deg = {:?}: must increase, each in [0, 90)",
                 self.elevation_deg
             ));
         }
@@ -72,15 +84,15 @@ impl SigmaTable {
             let col = self.column(stat);
             if col.len() != n {
                 return Err(format!(
-                    "sigma.{}: {} values for {n} elevation bins",
-                    stat.name().replace('-', "_"),
+                    "{}: {} values for {n} elevation bins",
+                    Self::key(stat),
                     col.len()
                 ));
             }
             if let Some(v) = col.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
                 return Err(format!(
-                    "sigma.{}: {v} is not a positive number",
-                    stat.name().replace('-', "_")
+                    "{}: {v} is not a positive number",
+                    Self::key(stat)
                 ));
             }
         }
@@ -97,8 +109,9 @@ pub struct ThresholdConfig {
     pub false_alarm: f64,
     /// Threshold of the smoothed-code B value (m): paper 002 section 4.2.3.
     pub smoothed_code_m: f64,
-    /// The fault-free sigma table.
-    pub sigma: SigmaTable,
+    /// The fault-free sigma table of each signal, by its tag (`gps-l1ca`, `bds-b1i`);
+    /// satellites of a signal without one are not monitored.
+    pub sigma: BTreeMap<String, SigmaTable>,
 }
 
 impl ThresholdConfig {
@@ -107,12 +120,14 @@ impl ThresholdConfig {
         chi2_threshold(1, self.false_alarm).sqrt()
     }
 
-    /// Thresholds of the four B values at `elevation_deg`, given the multiplier `k`.
-    pub fn at(&self, k: f64, elevation_deg: f64) -> PerStatistic<f64> {
-        Statistic::ALL.map(|stat| match stat {
+    /// Thresholds of the four B values of `signal` at `elevation_deg`, given the
+    /// multiplier `k`; `None` without a sigma table for the signal.
+    pub fn at(&self, k: f64, signal: Signal, elevation_deg: f64) -> Option<PerStatistic<f64>> {
+        let table = self.sigma.get(signal.tag())?;
+        Some(Statistic::ALL.map(|stat| match stat {
             Statistic::SmoothedCode => self.smoothed_code_m,
-            _ => k * self.sigma.sigma(stat, elevation_deg),
-        })
+            _ => k * table.sigma(stat, elevation_deg),
+        }))
     }
 
     /// Whether the settings are usable.
@@ -129,60 +144,93 @@ impl ThresholdConfig {
                 self.smoothed_code_m
             ));
         }
-        self.sigma.check()
+        if self.sigma.is_empty() {
+            return Err("sigma: no table (one per signal: [thresholds.sigma.gps-l1ca], ...)".into());
+        }
+        for (tag, table) in &self.sigma {
+            tag.parse::<Signal>()
+                .map_err(|_| format!("sigma.{tag}: not a signal (gps-l1ca, bds-b1i, gps-l2)"))?;
+            table.check().map_err(|e| format!("sigma.{tag}: {e}"))?;
+        }
+        Ok(())
     }
 }
 
-/// Accumulates fault-free B values by statistic and elevation bin into a [`SigmaTable`].
+/// Per elevation bin and statistic: count and sum of squares.
+type Sums = Vec<PerStatistic<(u64, f64)>>;
+
+/// Accumulates fault-free B values by signal, statistic and elevation bin into sigma
+/// tables.
 #[derive(Debug, Clone)]
 pub struct SigmaCalibrator {
     edges_deg: Vec<f64>,
-    /// Per bin and statistic: count and sum of squares.
-    sums: Vec<PerStatistic<(u64, f64)>>,
+    sums: BTreeMap<Signal, Sums>,
 }
 
 impl SigmaCalibrator {
     /// A calibrator over the bins starting at `edges_deg` (increasing).
     pub fn new(edges_deg: Vec<f64>) -> Self {
-        let sums = vec![[(0, 0.0); 4]; edges_deg.len()];
-        Self { edges_deg, sums }
+        Self {
+            edges_deg,
+            sums: BTreeMap::new(),
+        }
     }
 
-    /// Take one B value of `stat` at `elevation_deg`.
-    pub fn add(&mut self, stat: Statistic, elevation_deg: f64, b: f64) {
+    /// Take one B value of `stat` of `signal` at `elevation_deg`.
+    pub fn add(&mut self, signal: Signal, stat: Statistic, elevation_deg: f64, b: f64) {
         let Some(bin) = self.edges_deg.iter().rposition(|&e| elevation_deg >= e) else {
             return;
         };
-        let (n, s) = &mut self.sums[bin][stat.index()];
+        let bins = self.edges_deg.len();
+        let sums = self
+            .sums
+            .entry(signal)
+            .or_insert_with(|| vec![[(0, 0.0); 4]; bins]);
+        let (n, s) = &mut sums[bin][stat.index()];
         *n += 1;
         *s += b * b;
     }
 
     /// Take everything `other` (with the same bins) has taken.
     pub fn merge(&mut self, other: &SigmaCalibrator) {
-        for (mine, theirs) in self.sums.iter_mut().zip(&other.sums) {
-            for (m, t) in mine.iter_mut().zip(theirs) {
+        let bins = self.edges_deg.len();
+        for (signal, theirs) in &other.sums {
+            let mine = self
+                .sums
+                .entry(*signal)
+                .or_insert_with(|| vec![[(0, 0.0); 4]; bins]);
+            for (m, t) in mine.iter_mut().flatten().zip(theirs.iter().flatten()) {
                 m.0 += t.0;
                 m.1 += t.1;
             }
         }
     }
 
-    /// Values taken per bin (the fewest over the statistics).
-    pub fn counts(&self) -> Vec<u64> {
+    /// Values taken per bin of `signal` (the fewest over the statistics).
+    pub fn counts(&self, signal: Signal) -> Vec<u64> {
+        self.sums.get(&signal).map_or_else(
+            || vec![0; self.edges_deg.len()],
+            |sums| {
+                sums.iter()
+                    .map(|bin| bin.iter().map(|c| c.0).min().unwrap_or(0))
+                    .collect()
+            },
+        )
+    }
+
+    /// The RMS table of each signal seen, by tag. An empty bin takes the value of the
+    /// nearest bin below it with data (above it for the lowest), so every elevation has
+    /// a threshold.
+    pub fn tables(&self) -> BTreeMap<String, SigmaTable> {
         self.sums
             .iter()
-            .map(|bin| bin.iter().map(|c| c.0).min().unwrap_or(0))
+            .filter_map(|(signal, sums)| Some((signal.tag().to_string(), self.table(sums)?)))
             .collect()
     }
 
-    /// The RMS table; an empty bin takes the value of the nearest bin below it with data
-    /// (above it for the lowest), so every elevation has a threshold. `None` without any
-    /// value.
-    pub fn table(&self) -> Option<SigmaTable> {
+    fn table(&self, sums: &Sums) -> Option<SigmaTable> {
         let column = |stat: Statistic| -> Option<Vec<f64>> {
-            let rms: Vec<Option<f64>> = self
-                .sums
+            let rms: Vec<Option<f64>> = sums
                 .iter()
                 .map(|bin| {
                     let (n, s) = bin[stat.index()];
@@ -241,11 +289,13 @@ mod tests {
         let cfg = ThresholdConfig {
             false_alarm: 0.05,
             smoothed_code_m: 0.5,
-            sigma: table(),
+            sigma: BTreeMap::from([("gps-l1ca".to_string(), table())]),
         };
+        assert!(cfg.check().is_ok());
         let k = cfg.multiplier();
         assert!((k - 1.959_964).abs() < 1e-4, "{k}");
-        let t = cfg.at(k, 70.0);
+        assert!(cfg.at(k, Signal::BdsB1I, 70.0).is_none());
+        let t = cfg.at(k, Signal::GpsL1Ca, 70.0).unwrap();
         assert!((t[Statistic::Code.index()] - 0.3 * k).abs() < 1e-12);
         assert_eq!(t[Statistic::SmoothedCode.index()], 0.5);
     }
@@ -254,29 +304,43 @@ mod tests {
     fn bad_tables_are_refused_by_name() {
         let mut t = table();
         t.carrier_cycles.pop();
-        assert!(t.check().unwrap_err().contains("sigma.carrier_cycles"));
+        assert!(t.check().unwrap_err().contains("carrier_cycles"));
+        let cfg = ThresholdConfig {
+            false_alarm: 1e-7,
+            smoothed_code_m: 0.5,
+            sigma: BTreeMap::from([("gps-l5".to_string(), table())]),
+        };
+        assert!(cfg.check().unwrap_err().contains("sigma.gps-l5: not a signal"));
         let mut t = table();
         t.elevation_deg = vec![30.0, 10.0, 60.0];
         assert!(t.check().unwrap_err().contains("must increase"));
         let mut t = table();
         t.divergence_mps[1] = 0.0;
-        assert!(t.check().unwrap_err().contains("sigma.divergence_mps"));
+        assert!(t.check().unwrap_err().contains("divergence_mps"));
     }
 
     #[test]
     fn the_calibrator_gives_the_rms_per_bin_and_fills_empty_bins() {
         let mut c = SigmaCalibrator::new(vec![10.0, 30.0, 60.0]);
+        let gps = Signal::GpsL1Ca;
         for stat in Statistic::ALL {
-            c.add(stat, 20.0, 3.0);
-            c.add(stat, 20.0, -4.0);
-            c.add(stat, 70.0, 1.0);
-            c.add(stat, 5.0, 100.0); // below the lowest edge: not counted
+            c.add(gps, stat, 20.0, 3.0);
+            c.add(gps, stat, 70.0, 1.0);
+            c.add(gps, stat, 5.0, 100.0); // below the lowest edge: not counted
         }
-        let t = c.table().unwrap();
+        let mut other = SigmaCalibrator::new(vec![10.0, 30.0, 60.0]);
+        for stat in Statistic::ALL {
+            other.add(gps, stat, 20.0, -4.0);
+            other.add(Signal::BdsB1I, stat, 40.0, 2.0);
+        }
+        c.merge(&other);
+        let tables = c.tables();
+        let t = &tables["gps-l1ca"];
         assert!((t.code_m[0] - 12.5f64.sqrt()).abs() < 1e-12);
         assert_eq!(t.code_m[1], t.code_m[0]);
         assert_eq!(t.carrier_cycles[2], 1.0);
-        assert_eq!(c.counts(), vec![2, 0, 1]);
-        assert!(SigmaCalibrator::new(vec![10.0]).table().is_none());
+        assert_eq!(c.counts(gps), vec![2, 0, 1]);
+        assert_eq!(tables["bds-b1i"].code_m, vec![2.0; 3]);
+        assert!(SigmaCalibrator::new(vec![10.0]).tables().is_empty());
     }
 }

@@ -12,7 +12,7 @@
 mod geometry;
 pub mod nmea;
 pub mod raim;
-mod solve;
+pub(crate) mod solve;
 mod velocity;
 
 pub use geometry::SatView;

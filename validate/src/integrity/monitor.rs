@@ -6,6 +6,8 @@ use rayon::prelude::*;
 use skyforge_receiver::integrity::{
     MonitorConfig, MonitorEpoch, SigmaCalibrator, SigmaTable, Statistic, ThresholdConfig,
 };
+use skyforge_signals::signal::Signal;
+use std::collections::BTreeMap;
 
 /// Lower edges of the threshold table's elevation bins (deg). # assumed: finer where the
 /// noise changes fastest, chosen before any run.
@@ -22,11 +24,12 @@ pub const SMOOTHED_THRESHOLD_M: f64 = 0.5;
 pub const CALIBRATION_SEEDS: std::ops::RangeInclusive<u64> = 1..=8;
 
 /// A monitor configuration with `sigma` (the defaults of docs/integrity.md otherwise).
-pub fn config(sigma: SigmaTable) -> MonitorConfig {
+pub fn config(sigma: Sigmas) -> MonitorConfig {
     MonitorConfig {
         smoothing_s: 100.0,
         divergence_s: 200.0,
         elevation_mask_deg: 10.0,
+        troposphere: true,
         stations: Vec::new(),
         common_point_ecef_m: None,
         thresholds: ThresholdConfig {
@@ -37,16 +40,23 @@ pub fn config(sigma: SigmaTable) -> MonitorConfig {
     }
 }
 
-/// A placeholder sigma table for runs whose alarms are not used (calibration).
-fn unit_sigma() -> SigmaTable {
+/// Sigma tables by signal tag.
+pub type Sigmas = BTreeMap<String, SigmaTable>;
+
+/// Placeholder sigma tables for runs whose alarms are not used (calibration).
+fn unit_sigma() -> Sigmas {
     let ones = vec![1.0; ELEVATION_BINS_DEG.len()];
-    SigmaTable {
+    let table = SigmaTable {
         elevation_deg: ELEVATION_BINS_DEG.to_vec(),
         code_m: ones.clone(),
         smoothed_code_m: ones.clone(),
         carrier_cycles: ones.clone(),
         divergence_mps: ones,
-    }
+    };
+    Signal::SYNTHESISED
+        .iter()
+        .map(|s| (s.tag().to_string(), table.clone()))
+        .collect()
 }
 
 /// Feed the armed B values of `epochs` to `cal`.
@@ -56,7 +66,7 @@ pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
             for v in s.stations.iter().flatten() {
                 for stat in Statistic::ALL {
                     if s.armed[stat.index()] {
-                        cal.add(stat, s.elevation_deg, v.b[stat.index()]);
+                        cal.add(s.signal, stat, s.elevation_deg, v.b[stat.index()]);
                     }
                 }
             }
@@ -68,7 +78,7 @@ pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
 pub fn calibrate(
     seeds: impl IntoParallelIterator<Item = u64>,
     duration_s: Option<f64>,
-) -> Result<SigmaTable, String> {
+) -> Result<Sigmas, String> {
     let cal = seeds
         .into_par_iter()
         .map(|seed| {
@@ -83,11 +93,14 @@ pub fn calibrate(
     for c in &cal {
         all.merge(c);
     }
-    all.table()
-        .ok_or_else(|| "the calibration runs gave no B value".to_string())
+    let tables = all.tables();
+    if tables.is_empty() {
+        return Err("the calibration runs gave no B value".to_string());
+    }
+    Ok(tables)
 }
 
 /// The lab run of `case` on `seed` with thresholds from `sigma`.
-pub fn case_run(case: Case, seed: u64, sigma: &SigmaTable) -> Result<MonitoredRun, String> {
+pub fn case_run(case: Case, seed: u64, sigma: &Sigmas) -> Result<MonitoredRun, String> {
     monitored(&scenario(&case.events(), seed, None)?, &config(sigma.clone()))
 }
