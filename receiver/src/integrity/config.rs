@@ -96,9 +96,15 @@ impl MonitorConfig {
                 s.name
             ));
         }
-        if self.common_point_ecef_m.as_ref().is_some_and(|p| !finite(p)) {
+        if self
+            .common_point_ecef_m
+            .as_ref()
+            .is_some_and(|p| !finite(p))
+        {
             return Err("common_point_ecef_m: not a number".into());
         }
-        self.thresholds.check().map_err(|e| format!("thresholds: {e}"))
+        self.thresholds
+            .check()
+            .map_err(|e| format!("thresholds: {e}"))
     }
 }

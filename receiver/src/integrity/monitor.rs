@@ -9,13 +9,13 @@ use super::hatch::Hatch;
 use super::statistic::{PerStatistic, Statistic};
 use crate::pvt::predicted_view;
 use crate::pvt::solve::STANDARD_RH0;
+use hifitime::Epoch;
 use skyforge_orbits::Mat3;
+use skyforge_orbits::Vec3;
 use skyforge_orbits::atmosphere::standard_slant_delay_m;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
-use hifitime::Epoch;
-use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::signal::Signal;
@@ -68,7 +68,11 @@ impl Place {
     /// `r_sat_m`, and the elevation.
     fn path_m(&self, r_sat_m: &Vec3, troposphere: bool) -> (f64, f64) {
         let (range, el) = self.range_elevation(r_sat_m);
-        let tropo = if troposphere { self.troposphere_m(el) } else { 0.0 };
+        let tropo = if troposphere {
+            self.troposphere_m(el)
+        } else {
+            0.0
+        };
         (range + tropo, el)
     }
 }
@@ -249,7 +253,10 @@ impl Monitor {
                 // The satellite where the common point's signal left it: stations a few
                 // hundred metres away see it within a microsecond of that (mm).
                 let to_common_m = place.path_m(&r_sat, troposphere).0 - common_m;
-                Some((code - to_common_m, phase * key.1.wavelength_m() - to_common_m))
+                Some((
+                    code - to_common_m,
+                    phase * key.1.wavelength_m() - to_common_m,
+                ))
             })
             .collect();
         if mapped.iter().flatten().count() < 2 {
@@ -354,9 +361,7 @@ impl Monitor {
         let armed = Statistic::ALL.map(|s| match s {
             Statistic::Code | Statistic::Carrier => true,
             Statistic::SmoothedCode => age_s >= self.config.smoothing_s,
-            Statistic::Divergence => {
-                age_s >= self.config.smoothing_s + self.config.divergence_s
-            }
+            Statistic::Divergence => age_s >= self.config.smoothing_s + self.config.divergence_s,
         });
         let mut next = 0;
         let stations = statistic

@@ -90,10 +90,7 @@ impl SigmaTable {
                 ));
             }
             if let Some(v) = col.iter().find(|v| !(v.is_finite() && **v > 0.0)) {
-                return Err(format!(
-                    "{}: {v} is not a positive number",
-                    Self::key(stat)
-                ));
+                return Err(format!("{}: {v} is not a positive number", Self::key(stat)));
             }
         }
         Ok(())
@@ -145,7 +142,9 @@ impl ThresholdConfig {
             ));
         }
         if self.sigma.is_empty() {
-            return Err("sigma: no table (one per signal: [thresholds.sigma.gps-l1ca], ...)".into());
+            return Err(
+                "sigma: no table (one per signal: [thresholds.sigma.gps-l1ca], ...)".into(),
+            );
         }
         for (tag, table) in &self.sigma {
             tag.parse::<Signal>()
@@ -310,7 +309,11 @@ mod tests {
             smoothed_code_m: 0.5,
             sigma: BTreeMap::from([("gps-l5".to_string(), table())]),
         };
-        assert!(cfg.check().unwrap_err().contains("sigma.gps-l5: not a signal"));
+        assert!(
+            cfg.check()
+                .unwrap_err()
+                .contains("sigma.gps-l5: not a signal")
+        );
         let mut t = table();
         t.elevation_deg = vec![30.0, 10.0, 60.0];
         assert!(t.check().unwrap_err().contains("must increase"));

@@ -79,7 +79,9 @@ impl ObservationSink for Collect {
         records: &[ObsRecord],
     ) -> Result<(), SinkError> {
         // The header position a RINEX file of this antenna would carry: the first epoch's.
-        self.0[antenna].approx_ecef_m.get_or_insert(*position_ecef_m);
+        self.0[antenna]
+            .approx_ecef_m
+            .get_or_insert(*position_ecef_m);
         self.0[antenna].epochs.push(ObsEpoch {
             time: at,
             sats: records.to_vec(),

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 use skyforge_receiver::integrity::{
     MonitorConfig, MonitorEpoch, SigmaCalibrator, SigmaTable, Statistic, ThresholdConfig,
 };
+use skyforge_scenarios::Scenario;
 use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
@@ -74,15 +75,23 @@ pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
     }
 }
 
-/// The fault-free sigma table of the lab set-up over `seeds` (runs in parallel).
+/// The fault-free sigma tables of `scenario` (observation level, without fault events)
+/// over `seeds` (runs in parallel).
 pub fn calibrate(
+    scenario: &Scenario,
     seeds: impl IntoParallelIterator<Item = u64>,
-    duration_s: Option<f64>,
 ) -> Result<Sigmas, String> {
+    if !scenario.errors.events.is_empty() {
+        return Err(format!(
+            "{}: has fault events ([[errors.events]]); calibrate on the fault-free set-up",
+            scenario.name
+        ));
+    }
     let cal = seeds
         .into_par_iter()
         .map(|seed| {
-            let s = scenario(&Case::FaultFree.events(), seed, duration_s)?;
+            let mut s = scenario.clone();
+            s.seed = seed;
             let run = monitored(&s, &config(unit_sigma()))?;
             let mut cal = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
             accumulate(&mut cal, &run.epochs);
@@ -100,7 +109,15 @@ pub fn calibrate(
     Ok(tables)
 }
 
+/// The lab set-up's fault-free sigma tables on [`CALIBRATION_SEEDS`].
+pub fn calibrate_lab() -> Result<Sigmas, String> {
+    calibrate(&scenario(&[], 0, None)?, CALIBRATION_SEEDS)
+}
+
 /// The lab run of `case` on `seed` with thresholds from `sigma`.
 pub fn case_run(case: Case, seed: u64, sigma: &Sigmas) -> Result<MonitoredRun, String> {
-    monitored(&scenario(&case.events(), seed, None)?, &config(sigma.clone()))
+    monitored(
+        &scenario(&case.events(), seed, None)?,
+        &config(sigma.clone()),
+    )
 }

@@ -2,11 +2,11 @@
 //! each measured on independent seeds.
 
 use super::lab::{Case, FAULT_SATELLITE, FAULT_STATION, MonitoredRun};
+use super::monitor::Sigmas;
 use super::monitor::case_run;
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
 use rayon::prelude::*;
-use super::monitor::Sigmas;
 use skyforge_receiver::integrity::{SatelliteEpoch, Statistic};
 
 /// The table group's identifier.
@@ -25,7 +25,10 @@ fn faulted(run: &MonitoredRun) -> Vec<(f64, &SatelliteEpoch)> {
     run.epochs
         .iter()
         .filter_map(|e| {
-            let s = e.sats.iter().find(|s| s.sat.to_string() == FAULT_SATELLITE)?;
+            let s = e
+                .sats
+                .iter()
+                .find(|s| s.sat.to_string() == FAULT_SATELLITE)?;
             Some((e.t_s, s))
         })
         .collect()
@@ -67,7 +70,12 @@ fn mean_abs(s: &SatelliteEpoch, ms: &[usize], k: usize) -> f64 {
 }
 
 /// The mean of `f` over `series` epochs with `t` in `[from, to)`.
-fn mean_over(series: &[(f64, &SatelliteEpoch)], from: f64, to: f64, f: impl Fn(&SatelliteEpoch) -> f64) -> f64 {
+fn mean_over(
+    series: &[(f64, &SatelliteEpoch)],
+    from: f64,
+    to: f64,
+    f: impl Fn(&SatelliteEpoch) -> f64,
+) -> f64 {
     let v: Vec<f64> = series
         .iter()
         .filter(|(t, _)| (from..to).contains(t))
@@ -77,7 +85,12 @@ fn mean_over(series: &[(f64, &SatelliteEpoch)], from: f64, to: f64, f: impl Fn(&
 }
 
 /// The first time in `[from, to)` where `f` holds, minus `from` (NaN when never).
-fn first_after(series: &[(f64, &SatelliteEpoch)], from: f64, to: f64, f: impl Fn(&SatelliteEpoch) -> bool) -> f64 {
+fn first_after(
+    series: &[(f64, &SatelliteEpoch)],
+    from: f64,
+    to: f64,
+    f: impl Fn(&SatelliteEpoch) -> bool,
+) -> f64 {
     series
         .iter()
         .find(|(t, s)| (from..to).contains(t) && f(s))
@@ -140,7 +153,9 @@ fn slip_measures() -> Vec<Measure> {
             ok: |v| (v - 33.0).abs() <= 1.0,
             of: |r| {
                 let (_, o) = stations(r);
-                mean_over(&faulted(r), AFTER_SLIP_S, END_S, |s| mean_abs(s, &o, CARRIER))
+                mean_over(&faulted(r), AFTER_SLIP_S, END_S, |s| {
+                    mean_abs(s, &o, CARRIER)
+                })
             },
             note: "paper: about 33 cycles (sign not stated; ours is negative)",
         },
@@ -168,7 +183,9 @@ fn slip_measures() -> Vec<Measure> {
             of: |r| {
                 let (c, o) = stations(r);
                 argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, SMOOTHED))
-                    .map_or(f64::NAN, |(_, s)| mean_abs(s, &o, SMOOTHED) / b(s, c, SMOOTHED).abs())
+                    .map_or(f64::NAN, |(_, s)| {
+                        mean_abs(s, &o, SMOOTHED) / b(s, c, SMOOTHED).abs()
+                    })
             },
             note: "paper: about a third",
         },
@@ -201,7 +218,8 @@ fn slip_measures() -> Vec<Measure> {
             ok: |v| (v - 600.0).abs() <= 100.0,
             of: |r| {
                 let (c, _) = stations(r);
-                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, DIVERGENCE).abs()).map_or(f64::NAN, |(t, _)| t)
+                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, DIVERGENCE).abs())
+                    .map_or(f64::NAN, |(t, _)| t)
             },
             note: "paper: grows from 500 s, largest around 600 s, then decays",
         },
@@ -214,10 +232,10 @@ fn slip_measures() -> Vec<Measure> {
             ok: |v| (v - 1.0 / 3.0).abs() <= 0.05,
             of: |r| {
                 let (c, o) = stations(r);
-                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, DIVERGENCE).abs()).map_or(
-                    f64::NAN,
-                    |(_, s)| mean_abs(s, &o, DIVERGENCE) / b(s, c, DIVERGENCE).abs(),
-                )
+                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, DIVERGENCE).abs())
+                    .map_or(f64::NAN, |(_, s)| {
+                        mean_abs(s, &o, DIVERGENCE) / b(s, c, DIVERGENCE).abs()
+                    })
             },
             note: "paper: about a third",
         },
@@ -426,13 +444,11 @@ fn row(case: Case, m: &Measure, values: &[f64]) -> Row {
     ))
 }
 
-/// Every row of the group: thresholds from the calibration seeds, then each case on
-/// `seeds` seeds.
-pub fn rows(seeds: u64) -> Result<Vec<Row>, String> {
-    let sigma = super::monitor::calibrate(super::monitor::CALIBRATION_SEEDS, None)?;
+/// Every row of the group with thresholds from `sigma`: each case on `seeds` seeds.
+pub fn rows(sigma: &Sigmas, seeds: u64) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
     for case in Case::ALL {
-        rows.extend(case_rows(case, &sigma, seeds)?);
+        rows.extend(case_rows(case, sigma, seeds)?);
     }
     Ok(rows)
 }
