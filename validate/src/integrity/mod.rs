@@ -5,6 +5,7 @@ pub mod detection;
 pub mod lab;
 pub mod monitor;
 pub mod patterns;
+pub mod score;
 
 use crate::report::Row;
 
