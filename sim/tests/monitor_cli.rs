@@ -21,7 +21,11 @@ const SLIP: &str = "\n[[errors.events]]\nkind = \"phase-jump\"\nantenna = \"C\"\
 fn files(sim: &Path) -> Vec<String> {
     ["A", "B", "C", "D"]
         .iter()
-        .map(|s| sim.join(format!("observations/{s}.obs.rnx")).display().to_string())
+        .map(|s| {
+            sim.join(format!("observations/{s}.obs.rnx"))
+                .display()
+                .to_string()
+        })
         .collect()
 }
 
@@ -63,7 +67,16 @@ fn a_slip_at_one_station_is_detected_isolated_and_scored() {
     assert_eq!(summary["monitored"].as_u64().unwrap() as usize, rows);
     // validate monitor: detected at once, isolated at C, no false alarm.
     let out = skyforge_ok(
-        &["validate", "monitor", "--truth", "sim", "--monitor", "mon", "--json", "score.json"],
+        &[
+            "validate",
+            "monitor",
+            "--truth",
+            "sim",
+            "--monitor",
+            "mon",
+            "--json",
+            "score.json",
+        ],
         d,
     );
     assert!(out.contains("phase-jump"), "{out}");
@@ -86,13 +99,27 @@ fn calibrate_writes_a_configuration_that_run_reads() {
         .unwrap()
         .replace("duration_s = 1800.0", "duration_s = 400.0");
     std::fs::write(d.join("short.toml"), short).unwrap();
-    skyforge_ok(&["monitor", "calibrate", "short.toml", "--seeds", "2", "--out", "cal"], d);
+    skyforge_ok(
+        &[
+            "monitor",
+            "calibrate",
+            "short.toml",
+            "--seeds",
+            "2",
+            "--out",
+            "cal",
+        ],
+        d,
+    );
     let config = std::fs::read_to_string(d.join("cal/monitor.toml")).unwrap();
     assert!(config.contains("[thresholds.sigma.bds-b1i]"), "{config}");
     assert!(config.contains("[thresholds.sigma.gps-l1ca]"));
     // Fault events are refused: they would count as noise.
-    std::fs::write(d.join("lab-slip.toml"), std::fs::read_to_string(&scenario).unwrap() + SLIP)
-        .unwrap();
+    std::fs::write(
+        d.join("lab-slip.toml"),
+        std::fs::read_to_string(&scenario).unwrap() + SLIP,
+    )
+    .unwrap();
     let o = skyforge(&["monitor", "calibrate", "lab-slip.toml", "--out", "x"], d);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("fault events"), "{}", text(&o));
@@ -102,7 +129,14 @@ fn calibrate_writes_a_configuration_that_run_reads() {
     let mut args = vec!["monitor", "run"];
     let f = files(&d.join("sim"));
     args.extend(f.iter().map(String::as_str));
-    args.extend(["--nav", "sim/nav.rnx", "--config", "cal/monitor.toml", "--out", "mon"]);
+    args.extend([
+        "--nav",
+        "sim/nav.rnx",
+        "--config",
+        "cal/monitor.toml",
+        "--out",
+        "mon",
+    ]);
     skyforge_ok(&args, d);
 }
 
@@ -128,8 +162,14 @@ fn bad_input_gets_one_error_and_nothing_written() {
     // not match the files.
     for (config, says) in [
         ("smoothing_s = 100.0\nbogus = 1\n", "bogus"),
-        ("[thresholds]\nfalse_alarm = 2.0\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n", "false_alarm = 2"),
-        ("[[stations]]\nname = \"A\"\nposition_ecef_m = [1.0, 2.0, 3.0]\n[thresholds]\nfalse_alarm = 1e-7\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n", "4 observation files but 1 [[stations]]"),
+        (
+            "[thresholds]\nfalse_alarm = 2.0\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
+            "false_alarm = 2",
+        ),
+        (
+            "[[stations]]\nname = \"A\"\nposition_ecef_m = [1.0, 2.0, 3.0]\n[thresholds]\nfalse_alarm = 1e-7\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
+            "4 observation files but 1 [[stations]]",
+        ),
     ] {
         std::fs::write(d.join("bad.toml"), config).unwrap();
         let o = run(&["--config", "bad.toml"]);
@@ -150,10 +190,17 @@ fn bad_input_gets_one_error_and_nothing_written() {
     args.extend(["--nav", "sim/nav.rnx", "--out", "mon"]);
     let o = skyforge(&args, d);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("nopos.obs.rnx: no APPROX POSITION XYZ"), "{}", text(&o));
+    assert!(
+        text(&o).contains("nopos.obs.rnx: no APPROX POSITION XYZ"),
+        "{}",
+        text(&o)
+    );
     assert!(!d.join("mon").exists());
     // validate monitor on a directory without truth.h5.
-    let o = skyforge(&["validate", "monitor", "--truth", "mon", "--monitor", "sim"], d);
+    let o = skyforge(
+        &["validate", "monitor", "--truth", "mon", "--monitor", "sim"],
+        d,
+    );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("truth.h5"), "{}", text(&o));
 }

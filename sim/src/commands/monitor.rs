@@ -73,7 +73,10 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         rows.write(&h5_path, start, &station_list)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
     }
-    let mean = station_list.iter().map(|s| s.r_ecef_m).sum::<skyforge_orbits::Vec3>()
+    let mean = station_list
+        .iter()
+        .map(|s| s.r_ecef_m)
+        .sum::<skyforge_orbits::Vec3>()
         / station_list.len() as f64;
     common.get_or_insert(mean);
     let summary = log.summary(&station_list, common.unwrap_or(mean).into());
@@ -82,7 +85,10 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         .with_context(|| format!("cannot write {}", json_path.display()))?;
     let dir = staged.commit()?;
     println!("stations   {}", summary.stations.join(", "));
-    println!("epochs     {} ({} station-satellite values)", summary.epochs, summary.monitored);
+    println!(
+        "epochs     {} ({} station-satellite values)",
+        summary.epochs, summary.monitored
+    );
     println!("alarms     {}", summary.alarms.len());
     for a in &summary.alarms {
         println!(
@@ -99,7 +105,9 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
     let scenario = super::resolve(args)?;
     let first = scenario.seed;
     let last = first.checked_add(seeds - 1).ok_or_else(|| {
-        BadInput(format!("seed {first} + {seeds} runs passes the largest seed"))
+        BadInput(format!(
+            "seed {first} + {seeds} runs passes the largest seed"
+        ))
     })?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let sigma = measure(&scenario, first..=last).map_err(BadInput)?;
@@ -116,7 +124,10 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
     std::fs::write(&path, header + &text)
         .with_context(|| format!("cannot write {}", path.display()))?;
     let dir = staged.commit()?;
-    println!("scenario   {} ({}), seeds {first}..={last}", scenario.name, scenario.source);
+    println!(
+        "scenario   {} ({}), seeds {first}..={last}",
+        scenario.name, scenario.source
+    );
     println!("wrote      {}", dir.join("monitor.toml").display());
     Ok(())
 }

@@ -195,16 +195,39 @@ impl H5Rows {
             append_rows(&ds, 0, data, 0)
         };
         one("t_s", "s", "time since start_epoch", &self.t_s)?;
-        one("elevation_deg", "deg", "elevation at the common point", &self.elevation_deg)?;
-        let ds = create_rows::<u8>(&root, "station", 0, chunk, "", "index into the stations attribute")?;
+        one(
+            "elevation_deg",
+            "deg",
+            "elevation at the common point",
+            &self.elevation_deg,
+        )?;
+        let ds = create_rows::<u8>(
+            &root,
+            "station",
+            0,
+            chunk,
+            "",
+            "index into the stations attribute",
+        )?;
         append_rows(&ds, 0, &self.station, 0)?;
-        let ds = create_rows::<u16>(&root, "sat", 0, chunk, "", "1000 x system (1 GPS, 2 BeiDou) + PRN")?;
+        let ds = create_rows::<u16>(
+            &root,
+            "sat",
+            0,
+            chunk,
+            "",
+            "1000 x system (1 GPS, 2 BeiDou) + PRN",
+        )?;
         append_rows(&ds, 0, &self.sat, 0)?;
         let four = |name: &str, what: &str, data: &[f64]| -> hdf5::Result<()> {
             let ds = create_rows::<f64>(&root, name, 4, chunk, "per statistic", what)?;
             append_rows(&ds, 0, data, 4)
         };
-        four("value", "the statistics (order of the statistics attribute)", &self.value)?;
+        four(
+            "value",
+            "the statistics (order of the statistics attribute)",
+            &self.value,
+        )?;
         four("b", "their B values", &self.b)?;
         four("threshold", "the B values' thresholds", &self.threshold)?;
         for (name, what, data) in [

@@ -110,7 +110,11 @@ pub struct RunMeta {
 
 impl RunMeta {
     /// The metadata of a run of `scenario` from `start` with geometry step `step_s`.
-    pub fn new(scenario: &skyforge_scenarios::Scenario, start: hifitime::Epoch, step_s: f64) -> Self {
+    pub fn new(
+        scenario: &skyforge_scenarios::Scenario,
+        start: hifitime::Epoch,
+        step_s: f64,
+    ) -> Self {
         Self {
             scenario: scenario.name.clone(),
             source: scenario.source.clone(),

@@ -62,7 +62,10 @@ pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
     for (i, line) in lines {
         let f: Vec<&str> = line.split(',').collect();
         if f.len() != header.len() {
-            return Err(err(i + 1, format!("{} fields, the header has {}", f.len(), header.len())));
+            return Err(err(
+                i + 1,
+                format!("{} fields, the header has {}", f.len(), header.len()),
+            ));
         }
         for (k, &(alarm, b, threshold)) in stat_cols.iter().enumerate() {
             if f[alarm] != "1" {
