@@ -24,7 +24,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "interop-bds-static",
             "interop-leo-gps",
             "receiver-leo-gps",
-            "attitude-leo-gps"
+            "attitude-leo-gps",
+            "integrity-lab"
         ]
     );
     for b in bundled() {
