@@ -121,7 +121,10 @@ mod tests {
                 let mut z = DVector::zeros(h.nrows());
                 z[i] = b;
                 let zw = &root_w * &z;
-                let x = qr.r().solve_upper_triangular(&(qr.q().transpose() * &zw)).unwrap();
+                let x = qr
+                    .r()
+                    .solve_upper_triangular(&(qr.q().transpose() * &zw))
+                    .unwrap();
                 let res = &zw - &hw * &x;
                 (x, res.norm_squared())
             };

@@ -120,7 +120,10 @@ pub fn ncx2_pdf(dof: usize, lambda: f64, x: f64) -> f64 {
     let ln_term = |j: usize| {
         let jf = j as f64;
         let lam = if j == 0 { 0.0 } else { jf * lambda.ln() };
-        (half_n + jf - 1.0) * x.ln() + lam - 2.0 * jf * ln2 - ln_gamma(half_n + jf) - ln_gamma(jf + 1.0)
+        (half_n + jf - 1.0) * x.ln() + lam
+            - 2.0 * jf * ln2
+            - ln_gamma(half_n + jf)
+            - ln_gamma(jf + 1.0)
     };
     if lambda <= 0.0 {
         return (-(x / 2.0) - half_n * ln2 + ln_term(0)).exp();
@@ -345,7 +348,10 @@ mod tests {
                 let s = f64::sqrt(lambda);
                 let want = phi(x.sqrt() - s) - phi(-x.sqrt() - s);
                 let got = ncx2_cdf(1, lambda, x);
-                assert!((got - want).abs() < 1e-10, "lambda {lambda} x {x}: {got} vs {want}");
+                assert!(
+                    (got - want).abs() < 1e-10,
+                    "lambda {lambda} x {x}: {got} vs {want}"
+                );
             }
         }
     }

@@ -67,8 +67,7 @@ pub fn solve(
             again.excluded.push(worst);
             // The exclusion is kept as before; it counts as a repair only when the
             // remaining satellites pass the same test.
-            consistent =
-                again.dof >= 1 && again.chi2 <= chi2_threshold(again.dof, cfg.raim_pfa);
+            consistent = again.dof >= 1 && again.chi2 <= chi2_threshold(again.dof, cfg.raim_pfa);
             fix = again;
         }
     }
