@@ -168,8 +168,10 @@ pub struct Protection {
     pub slopes: Vec<protection::Slope>,
     /// The test fired on the fix with every satellite (a detection).
     pub alarm: bool,
-    /// Statistic of the fix with every satellite (equals [`Fix::chi2`] without exclusion).
+    /// Statistic and position of the fix with every satellite (equal to [`Fix::chi2`] and
+    /// [`Fix::r_ecef_m`] without exclusion).
     pub chi2_all: f64,
+    pub r_all_ecef_m: Vec3,
     pub status: IntegrityStatus,
 }
 

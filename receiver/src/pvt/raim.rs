@@ -219,30 +219,43 @@ pub fn lambda_det(dof: usize, pfa: f64, pmd: f64) -> Option<f64> {
     Some(0.5 * (lo + hi))
 }
 
-/// Threshold and detection noncentrality of one (dof, pfa, pmd), remembered.
-type DetectionKey = (usize, u64, u64);
-static DETECTION_CACHE: std::sync::Mutex<Vec<(DetectionKey, (f64, f64))>> =
-    std::sync::Mutex::new(Vec::new());
+/// Remembered values: (dof, pfa bits, pmd bits or 0 for the threshold) -> value.
+type CacheKey = (usize, u64, u64);
+static CACHE: std::sync::Mutex<Vec<(CacheKey, f64)>> = std::sync::Mutex::new(Vec::new());
 /// Entries the cache keeps (configurations seldom change; degrees of freedom up to ~40).
-const DETECTION_CACHE_MAX: usize = 512;
+const CACHE_MAX: usize = 1024;
 
-/// ([`chi2_threshold`], [`lambda_det`]) of (`dof`, `pfa`, `pmd`), computed once per
-/// process and remembered (both are searches over the distribution functions, costlier
-/// than a fix).
-pub fn detection_parameters(dof: usize, pfa: f64, pmd: f64) -> Option<(f64, f64)> {
-    let key = (dof, pfa.to_bits(), pmd.to_bits());
-    if let Ok(cache) = DETECTION_CACHE.lock() {
-        if let Some((_, v)) = cache.iter().find(|(k, _)| *k == key) {
-            return Some(*v);
-        }
+/// `compute()` once per process for `key`, remembered (a poisoned lock only skips the
+/// cache).
+fn cached(key: CacheKey, compute: impl FnOnce() -> Option<f64>) -> Option<f64> {
+    if let Ok(cache) = CACHE.lock()
+        && let Some((_, v)) = cache.iter().find(|(k, _)| *k == key)
+    {
+        return Some(*v);
     }
-    let value = (chi2_threshold(dof, pfa), lambda_det(dof, pfa, pmd)?);
-    if let Ok(mut cache) = DETECTION_CACHE.lock() {
-        if cache.len() < DETECTION_CACHE_MAX {
-            cache.push((key, value));
-        }
+    let value = compute()?;
+    if let Ok(mut cache) = CACHE.lock()
+        && cache.len() < CACHE_MAX
+    {
+        cache.push((key, value));
     }
     Some(value)
+}
+
+/// [`chi2_threshold`] remembered per (dof, pfa): the test's threshold T of Yuan 2000 eq.
+/// 5-8 (a bisection of 200 steps, costlier than a fix).
+pub fn test_threshold(dof: usize, pfa: f64) -> f64 {
+    cached((dof, pfa.to_bits(), 0), || Some(chi2_threshold(dof, pfa)))
+        .unwrap_or_else(|| chi2_threshold(dof, pfa))
+}
+
+/// ([`chi2_threshold`], [`lambda_det`]) of (`dof`, `pfa`, `pmd`), computed once per
+/// process and remembered.
+pub fn detection_parameters(dof: usize, pfa: f64, pmd: f64) -> Option<(f64, f64)> {
+    let lambda = cached((dof, pfa.to_bits(), pmd.to_bits()), || {
+        lambda_det(dof, pfa, pmd)
+    })?;
+    Some((test_threshold(dof, pfa), lambda))
 }
 
 #[cfg(test)]
@@ -369,6 +382,7 @@ mod tests {
                     assert!(l > lambda_det(dof - 1, pfa, pmd).unwrap());
                 }
                 assert_eq!(detection_parameters(dof, pfa, pmd), Some((t, l)));
+                assert_eq!(test_threshold(dof, pfa), t);
             }
         }
         assert_eq!(lambda_det(0, 1e-3, 1e-3), None);

@@ -2,7 +2,7 @@
 
 use super::geometry::{SatView, sat_view};
 use super::protection::{protection_levels, slopes};
-use super::raim::{chi2_threshold, detection_parameters};
+use super::raim::{detection_parameters, test_threshold};
 use super::{
     Dop, Fix, IONOSPHERE_USER_CEILING_M, IntegrityStatus, Measurement, Protection, PvtConfig,
     PvtError,
@@ -52,7 +52,8 @@ pub fn solve(
         return Ok(fix);
     }
     let chi2_all = fix.chi2;
-    let alarm = chi2_all > chi2_threshold(fix.dof, cfg.raim_pfa);
+    let alarm = chi2_all > test_threshold(fix.dof, cfg.raim_pfa);
+    let r_all_ecef_m = fix.r_ecef_m;
     let mut consistent = !alarm;
     if alarm {
         // Exclude the satellite with the largest weighted residual and solve again.
@@ -67,13 +68,14 @@ pub fn solve(
             again.excluded.push(worst);
             // The exclusion is kept as before; it counts as a repair only when the
             // remaining satellites pass the same test.
-            consistent = again.dof >= 1 && again.chi2 <= chi2_threshold(again.dof, cfg.raim_pfa);
+            consistent = again.dof >= 1 && again.chi2 <= test_threshold(again.dof, cfg.raim_pfa);
             fix = again;
         }
     }
     if let Some(p) = fix.protection.as_mut() {
         p.alarm = alarm;
         p.chi2_all = chi2_all;
+        p.r_all_ecef_m = r_all_ecef_m;
         p.status = match (alarm, consistent) {
             (true, true) => IntegrityStatus::Excluded,
             (true, false) => IntegrityStatus::Alarm,
@@ -95,6 +97,7 @@ fn protection_of(
     c_ned_ecef: &skyforge_orbits::Mat3,
     cfg: &PvtConfig,
     chi2: f64,
+    r: Vec3,
 ) -> Option<Protection> {
     if !(cfg.raim_pfa > 0.0 && cfg.raim_pmd > 0.0) || dof == 0 {
         return None;
@@ -102,7 +105,7 @@ fn protection_of(
     let (threshold, lambda_det) = detection_parameters(dof, cfg.raim_pfa, cfg.raim_pmd)?;
     let mut h_local = h.clone();
     for i in 0..h.nrows() {
-        let row = skyforge_orbits::Vec3::new(h[(i, 0)], h[(i, 1)], h[(i, 2)]);
+        let row = Vec3::new(h[(i, 0)], h[(i, 1)], h[(i, 2)]);
         let local = c_ned_ecef * row;
         for k in 0..3 {
             h_local[(i, k)] = local[k];
@@ -119,6 +122,7 @@ fn protection_of(
         slopes,
         alarm: false,
         chi2_all: chi2,
+        r_all_ecef_m: r,
         status: if within {
             IntegrityStatus::Available
         } else {
@@ -347,6 +351,6 @@ fn finish(
         excluded: Vec::new(),
         chi2,
         dof,
-        protection: protection_of(&h, &w, dof, &c, cfg, chi2),
+        protection: protection_of(&h, &w, dof, &c, cfg, chi2, r),
     })
 }

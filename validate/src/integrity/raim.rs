@@ -300,10 +300,6 @@ fn horizontal_error(r: &Vec3, truth: &Vec3) -> f64 {
 /// the ramp on the faulted satellite from the first epoch on.
 pub fn run(setting: &Setting, geometry: &Geometry, draw: &Draw) -> Vec<EpochResult> {
     let cfg = pvt_config(setting);
-    let all_in = PvtConfig {
-        raim_pfa: 0.0,
-        ..cfg.clone()
-    };
     let mut rng = ChaCha20Rng::seed_from_u64(draw.noise_seed);
     let mut a_priori = None;
     let end = (draw.start + setting.window_s).min(geometry.epochs.len());
@@ -339,22 +335,10 @@ pub fn run(setting: &Setting, geometry: &Geometry, draw: &Draw) -> Vec<EpochResu
         a_priori = Some(fix.r_ecef_m);
         let hpe_out_m = horizontal_error(&fix.r_ecef_m, &e.r_true_ecef_m);
         let excluded = fix.excluded.first().copied();
-        // With an exclusion the fix with every satellite is solved again for its error.
-        let hpe_all_m = if excluded.is_some() {
-            solve(
-                &meas,
-                e.t_s,
-                &geometry.store,
-                &geometry.origin,
-                &all_in,
-                a_priori,
-            )
-            .map_or(f64::NAN, |f| {
-                horizontal_error(&f.r_ecef_m, &e.r_true_ecef_m)
-            })
-        } else {
-            hpe_out_m
-        };
+        // The fix with every satellite: what fails without the exclusion.
+        let hpe_all_m = fix.protection.as_ref().map_or(hpe_out_m, |p| {
+            horizontal_error(&p.r_all_ecef_m, &e.r_true_ecef_m)
+        });
         let (hpl_m, alarm) = fix
             .protection
             .as_ref()
