@@ -15,6 +15,7 @@ pub mod baseline;
 pub mod continued_fraction;
 pub mod fast_sync;
 pub mod input;
+pub mod integrity;
 pub mod navdecode;
 pub mod observables;
 pub mod pipeline;

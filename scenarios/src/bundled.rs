@@ -86,6 +86,12 @@ const BUNDLED: &[Bundled] = &[
                   ci8, 45 dB-Hz: the attitude chain at the signal level (scripts/demo.sh)",
         text: include_str!("../bundled/attitude-leo-gps.toml"),
     },
+    Bundled {
+        name: "integrity-lab",
+        summary: "Paper 002 lab: two station positions (30 N 104 E, 500 and 600 m), four \
+                  receivers on one rubidium clock, 1800 s, BDS-2 + GPS, observation level",
+        text: include_str!("../bundled/integrity-lab.toml"),
+    },
 ];
 
 /// Every bundled scenario.

@@ -128,6 +128,7 @@ pub fn synth_and_receive(
             .iter()
             .map(|a| ObsFile {
                 source: PathBuf::from(format!("{} observation truth", a.name)),
+                approx_ecef_m: None,
                 epochs: Vec::new(),
             })
             .collect(),

@@ -14,7 +14,7 @@ mod geometry;
 pub mod nmea;
 pub mod protection;
 pub mod raim;
-mod solve;
+pub(crate) mod solve;
 mod velocity;
 
 pub use geometry::SatView;

@@ -22,7 +22,7 @@ const MAX_ITERATIONS: usize = 15;
 /// Position step below which the iteration has converged (m).
 const CONVERGED_M: f64 = 1e-4;
 /// Relative humidity at sea level of the receiver's standard troposphere.
-const STANDARD_RH0: f64 = 0.5;
+pub(crate) const STANDARD_RH0: f64 = 0.5;
 
 /// Solve the position, receiver clock(s) and, with both systems, the inter-system bias
 /// from `meas` received at `t_rx_s` (receiver time tag, s since `origin`, GPST), with the

@@ -24,7 +24,7 @@ const MAX_GEOMETRY_BYTES: u64 = 1 << 20;
 /// milliseconds from GPS time before a jump (the GEONET Trimble 5700 files tag from
 /// 59.996 to 00.005 s about the whole second). RTKLIB's tolerance (`DTTOL`, 2.4.3); the
 /// difference of the sampling instants is corrected ([`ToMasterModel`]).
-const SAME_EPOCH_S: f64 = 0.025;
+pub(crate) const SAME_EPOCH_S: f64 = 0.025;
 
 /// One antenna of the body geometry.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -109,7 +109,7 @@ pub struct EpochOutcome {
 
 /// The time tag and records of `file` at `time`, if it has that epoch (`cursor` advances
 /// through the file's time-ordered epochs).
-fn records_at<'f>(
+pub(crate) fn records_at<'f>(
     file: &'f ObsFile,
     cursor: &mut usize,
     time: Epoch,

@@ -3,6 +3,7 @@
 
 use crate::signal::Signal;
 use hifitime::Epoch;
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::SatId;
 use std::path::PathBuf;
 
@@ -83,5 +84,7 @@ pub struct ObsEpoch {
 pub struct ObsFile {
     /// Where the observations came from (file path, or a label for text).
     pub source: PathBuf,
+    /// The header's `APPROX POSITION XYZ` (ECEF, m), when it has one.
+    pub approx_ecef_m: Option<Vec3>,
     pub epochs: Vec<ObsEpoch>,
 }

@@ -24,6 +24,7 @@ use super::rinex_read::Kind;
 use super::rinex_read::ObsReadError;
 use crate::signal::Signal;
 use hifitime::{Epoch, TimeScale};
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::{SatId, System};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -98,6 +99,7 @@ pub fn is_rinex2_obs(text: &str) -> bool {
 struct Header {
     types: Vec<String>,
     wavelength_factor: [u8; 2],
+    approx_ecef_m: Option<Vec3>,
 }
 
 /// Parse the header from `lines`, leaving them after `END OF HEADER`.
@@ -108,6 +110,7 @@ fn parse_header<'a>(
     let mut types: Vec<String> = Vec::new();
     let mut expected_types: Option<usize> = None;
     let mut wavelength_factor = [1u8; 2];
+    let mut approx_ecef_m = None;
     let mut first = true;
     for (n, line) in lines.by_ref() {
         let lab = label(line);
@@ -164,6 +167,14 @@ fn parse_header<'a>(
                     }
                 }
             }
+            "APPROX POSITION XYZ" => {
+                // Three F14.4; a header that cannot be read leaves the position unknown.
+                let v: Vec<f64> = (0..3)
+                    .filter_map(|k| field(line, 14 * k, 14 * k + 14).trim().parse().ok())
+                    .collect();
+                approx_ecef_m = (v.len() == 3 && v.iter().all(|x| x.is_finite()))
+                    .then(|| Vec3::new(v[0], v[1], v[2]));
+            }
             "TIME OF FIRST OBS" => {
                 let system = field(line, 48, 51).trim();
                 if !matches!(system, "" | "GPS") {
@@ -191,6 +202,7 @@ fn parse_header<'a>(
                 return Ok(Header {
                     types,
                     wavelength_factor,
+                    approx_ecef_m,
                 });
             }
             _ => {}
@@ -373,6 +385,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
     epochs.sort_by_key(|e| e.time);
     Ok(ObsFile {
         source: PathBuf::from(source),
+        approx_ecef_m: header.approx_ecef_m,
         epochs,
     })
 }

@@ -202,8 +202,14 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
         });
     }
     epochs.sort_by_key(|e| e.time);
+    let approx_ecef_m = rinex
+        .header
+        .rx_position
+        .map(|(x, y, z)| skyforge_orbits::Vec3::new(x, y, z))
+        .filter(|r| r.iter().all(|v| v.is_finite()));
     Ok(ObsFile {
         source: source.to_path_buf(),
+        approx_ecef_m,
         epochs,
     })
 }

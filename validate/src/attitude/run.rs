@@ -75,9 +75,13 @@ impl ObservationSink for Collect {
         &mut self,
         antenna: usize,
         at: hifitime::Epoch,
-        _position_ecef_m: &Vec3,
+        position_ecef_m: &Vec3,
         records: &[ObsRecord],
     ) -> Result<(), SinkError> {
+        // The header position a RINEX file of this antenna would carry: the first epoch's.
+        self.0[antenna]
+            .approx_ecef_m
+            .get_or_insert(*position_ecef_m);
         self.0[antenna].epochs.push(ObsEpoch {
             time: at,
             sats: records.to_vec(),
@@ -122,6 +126,13 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
     let antennas: Vec<String> = world.antennas.iter().map(|a| a.name.clone()).collect();
     let start = world.origin.start();
     let model = ObservationModel::new(noise, scenario.seed, antennas.len(), GEOMETRY_STEP_S);
+    // The signal truth between whole seconds is not kept here: without it (rate 0) the
+    // session computes the truth once a second instead of `truth_rate_hz` times (1000 by
+    // default); the whole-second records, all the observation level uses, are the same.
+    let signal = &skyforge_signals::synth::config::SignalConfig {
+        truth_rate_hz: 0,
+        ..signal.clone()
+    };
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?
         .observation_level(model);
     let ephemerides = session.broadcast_ephemerides().to_vec();
@@ -131,6 +142,7 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
                 .iter()
                 .map(|a| ObsFile {
                     source: PathBuf::from(format!("{a} {what}")),
+                    approx_ecef_m: None,
                     epochs: Vec::new(),
                 })
                 .collect(),

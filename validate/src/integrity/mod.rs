@@ -1,3 +1,31 @@
-//! Integrity monitoring validations: RAIM against Yuan 2000 tables 5-1 and 5-2.
+//! Integrity monitoring against its references: the B-value monitor on paper 002's lab
+//! set-up (its fault cases as patterns, fault-free false alarms, detection curves), and
+//! RAIM against Yuan 2000 tables 5-1 and 5-2 ([`raim`]).
 
+pub mod detection;
+pub mod lab;
+pub mod monitor;
+pub mod patterns;
 pub mod raim;
+
+use crate::report::Row;
+
+/// Both table groups: thresholds calibrated on the lab's fault-free seeds, the paper's
+/// cases on [`patterns::SEEDS`] seeds, the detection curves on `curve_seeds` seeds per
+/// size.
+pub fn rows(
+    pattern_seeds: u64,
+    curve_seeds: u64,
+    patterns: bool,
+    curves: bool,
+) -> Result<Vec<Row>, String> {
+    let sigma = monitor::calibrate_lab()?;
+    let mut rows = Vec::new();
+    if patterns {
+        rows.extend(patterns::rows(&sigma, pattern_seeds)?);
+    }
+    if curves {
+        rows.extend(detection::rows(&sigma, curve_seeds)?);
+    }
+    Ok(rows)
+}

@@ -19,7 +19,7 @@ use std::path::PathBuf;
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2", "T-5.4-3",
-    "T-5.4-4", "T-5.4-5", "B-5.2-1", "B-5.2-2",
+    "T-5.4-4", "T-5.4-5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
 ];
 
 /// Why a validation could not run.
@@ -126,6 +126,22 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
         rows.extend(
             all.into_iter()
                 .filter(|r| realtime.contains(&r.table.as_str())),
+        );
+    }
+    let (patterns, curves) = (
+        wanted(crate::integrity::patterns::TABLE),
+        wanted(crate::integrity::detection::TABLE),
+    );
+    if patterns || curves {
+        starting(if patterns { "P2-4.2" } else { "P2-PD" });
+        rows.extend(
+            crate::integrity::rows(
+                crate::integrity::patterns::SEEDS,
+                crate::integrity::detection::SEEDS,
+                patterns,
+                curves,
+            )
+            .map_err(ValidateError::Pipeline)?,
         );
     }
     let (mops, leo) = (wanted(raim::TABLE_MOPS), wanted(raim::TABLE_LEO));

@@ -1,0 +1,110 @@
+//! The monitor's settings (TOML, docs/integrity.md).
+
+use super::thresholds::ThresholdConfig;
+use serde::{Deserialize, Serialize};
+use skyforge_orbits::bounded_read::read_text;
+use std::path::Path;
+
+/// Largest monitor configuration read (bytes).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// A station's antenna position, given instead of the RINEX header's approximate one.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StationPosition {
+    pub name: String,
+    pub position_ecef_m: [f64; 3],
+}
+
+/// What the monitor applies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MonitorConfig {
+    /// Time constant of the Hatch filter (s): paper 002 section 4.1, 100 s.
+    #[serde(default = "default_smoothing_s")]
+    pub smoothing_s: f64,
+    /// Time constant of the divergence estimator (s). # assumed: the paper gives none;
+    /// 200 s is the LAAS code-carrier divergence monitor's (Simili & Pervan 2006).
+    #[serde(default = "default_divergence_s")]
+    pub divergence_s: f64,
+    /// Satellites below this elevation at the common point are not monitored (deg).
+    /// # assumed: 10 deg, the receiver's PVT mask; the paper states none.
+    #[serde(default = "default_mask_deg")]
+    pub elevation_mask_deg: f64,
+    /// Map the standard troposphere's delay too (besides the geometric range): stations at
+    /// different heights see different delays (100 m of height: about 3 cm at the zenith,
+    /// changing with elevation).
+    #[serde(default = "default_troposphere")]
+    pub troposphere: bool,
+    /// Station antenna positions in file order (default: each file's APPROX POSITION).
+    #[serde(default)]
+    pub stations: Vec<StationPosition>,
+    /// The common point the stations are mapped to (default: their mean position).
+    #[serde(default)]
+    pub common_point_ecef_m: Option<[f64; 3]>,
+    pub thresholds: ThresholdConfig,
+}
+
+fn default_smoothing_s() -> f64 {
+    100.0
+}
+fn default_divergence_s() -> f64 {
+    200.0
+}
+fn default_troposphere() -> bool {
+    true
+}
+fn default_mask_deg() -> f64 {
+    10.0
+}
+
+impl MonitorConfig {
+    /// Parse and check a configuration's text.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let config: Self = toml::from_str(text).map_err(|e| e.to_string())?;
+        config.check()?;
+        Ok(config)
+    }
+
+    /// Read and check the configuration at `path`; errors name the file.
+    pub fn read(path: &Path) -> Result<Self, String> {
+        let text = read_text(path, MAX_CONFIG_BYTES, "monitor configuration")
+            .map_err(|e| e.to_string())?;
+        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Whether the values are usable.
+    pub fn check(&self) -> Result<(), String> {
+        for (name, v) in [
+            ("smoothing_s", self.smoothing_s),
+            ("divergence_s", self.divergence_s),
+        ] {
+            if !(v.is_finite() && (1e-3..=1e6).contains(&v)) {
+                return Err(format!("{name} = {v}: must be in [0.001, 1e6] s"));
+            }
+        }
+        if !(0.0..90.0).contains(&self.elevation_mask_deg) {
+            return Err(format!(
+                "elevation_mask_deg = {}: must be in [0, 90)",
+                self.elevation_mask_deg
+            ));
+        }
+        let finite = |p: &[f64; 3]| p.iter().all(|v| v.is_finite());
+        if let Some(s) = self.stations.iter().find(|s| !finite(&s.position_ecef_m)) {
+            return Err(format!(
+                "stations: {:?} has a position that is not a number",
+                s.name
+            ));
+        }
+        if self
+            .common_point_ecef_m
+            .as_ref()
+            .is_some_and(|p| !finite(p))
+        {
+            return Err("common_point_ecef_m: not a number".into());
+        }
+        self.thresholds
+            .check()
+            .map_err(|e| format!("thresholds: {e}"))
+    }
+}
