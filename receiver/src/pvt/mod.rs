@@ -156,12 +156,12 @@ pub enum IntegrityStatus {
 /// Protection levels of a fix (of the satellites finally used) and the test's verdict.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Protection {
-    /// Horizontal and vertical protection levels (m): Yuan 2000 eq. 5-12 by the slope
-    /// method ([`protection`]).
+    /// Horizontal and vertical protection levels (m): Yuan 2000 eqs. 5-10, 5-12 by the
+    /// slope method ([`protection`]).
     pub hpl_m: f64,
     pub vpl_m: f64,
-    /// Threshold of the test (chi-square (1 - pfa) quantile, eq. 5-8) and the
-    /// noncentrality detected with probability 1 - P_md at it (eq. 5-7).
+    /// Threshold of the test (chi-square (1 - pfa) quantile, eq. 5-9 inverted) and the
+    /// noncentrality detected with probability 1 - P_md at it (eq. 5-11).
     pub threshold: f64,
     pub lambda_det: f64,
     /// Horizontal and vertical slope (m) of every used satellite, in [`Fix::used`] order.

@@ -1,19 +1,21 @@
 //! Protection levels of the snapshot residual test (Brown & Chin 1997 slope method; Yuan
-//! 2000 section 5.2, eqs. 5-9..5-12 written for weighted least squares).
+//! 2000 section 5.2.3, eqs. 5-10..5-12 written for weighted least squares).
 //!
 //! With the weighted least-squares estimate x = A z, A = (H^T W H)^-1 H^T W, the residuals
 //! are S z with S = I - H A and the test statistic is z^T S^T W S z = z^T W S z. A bias b on
 //! satellite i moves the estimate by b A_{.i} and gives the statistic the noncentrality
-//! lambda = b^2 (W S)_ii = b^2 S_ii / sigma_i^2 (Yuan 2000 eq. 5-9 with sigma_i in place of
+//! lambda = b^2 (W S)_ii = b^2 S_ii / sigma_i^2 (Yuan 2000 eq. 5-10 with sigma_i in place of
 //! the book's common sigma). The horizontal error per square root of noncentrality is the
 //! slope
 //!
 //!   slope_i = sqrt(A_Ni^2 + A_Ei^2) sigma_i / sqrt(S_ii)
 //!
-//! (Yuan 2000 eq. 5-10's delta-H(i) sigma / sqrt(n) for the unnormalised statistic), and
+//! (eq. 5-10's lambda = R_h^2 / (delta-H(i)^2 sigma^2): the slope is delta-H(i) sigma_i;
+//! eq. 5-12 writes delta-H(i) with a factor (m - 4) that belongs to the normalised
+//! statistic r = sqrt(D / (m - 4)) of eq. 5-6, not to D, which the receiver tests), and
 //! the protection level is the error of the worst satellite at the noncentrality a test
-//! detects with probability 1 - P_md: HPL = max_i slope_i sqrt(lambda_det) (eq. 5-12's
-//! R_h = delta-H_max sigma sqrt(lambda)); VPL likewise with |A_Di|.
+//! detects with probability 1 - P_md: HPL = max_i slope_i sqrt(lambda_det) (eq. 5-10
+//! solved for R_h with the largest delta-H(i) of eq. 5-12); VPL likewise with |A_Di|.
 
 use nalgebra::{DMatrix, DVector};
 
@@ -65,7 +67,7 @@ pub fn slopes(h_local: &DMatrix<f64>, weights: &DVector<f64>) -> Option<Vec<Slop
     )
 }
 
-/// Yuan 2000 eq. 5-12 (Brown & Chin 1997): the protection levels (HPL, VPL) (m) of
+/// Yuan 2000 eqs. 5-10 and 5-12 (Brown & Chin 1997): the protection levels (HPL, VPL) (m) of
 /// `slopes` at the detection noncentrality `lambda_det`: the largest slope times
 /// sqrt(lambda_det).
 pub fn protection_levels(slopes: &[Slope], lambda_det: f64) -> (f64, f64) {

@@ -153,7 +153,7 @@ pub fn ncx2_pdf(dof: usize, lambda: f64, x: f64) -> f64 {
 /// noncentrality `lambda`) does not exceed `x`: the Poisson mixture of central
 /// chi-square distributions, sum_j e^{-lambda/2} (lambda/2)^j / j! P(n/2 + j, x/2), the
 /// integral of eq. 5-5 term by term. With `lambda` = 0 it is the central distribution.
-/// Yuan 2000 eq. 5-7 reads P_MD = P(T / sigma^2, lambda, n) with this function.
+/// Yuan 2000 eq. 5-11 reads P_MD = P(T / sigma^2, lambda, n) with this function.
 pub fn ncx2_cdf(dof: usize, lambda: f64, x: f64) -> f64 {
     if x <= 0.0 {
         return 0.0;
@@ -185,8 +185,9 @@ pub fn ncx2_cdf(dof: usize, lambda: f64, x: f64) -> f64 {
 }
 
 /// The noncentrality a fault must give the test statistic so that a test at false-alarm
-/// probability `pfa` (threshold T = [`chi2_threshold`], Yuan 2000 eq. 5-8) misses it with
-/// probability `pmd`: the lambda with P(T, lambda, dof) = pmd (eq. 5-7 solved for lambda,
+/// probability `pfa` (threshold T = [`chi2_threshold`], the inverse of Yuan 2000 eq. 5-9)
+/// misses it with probability `pmd`: the lambda with P(T, lambda, dof) = pmd (eq. 5-11
+/// solved for lambda,
 /// by bisection; the distribution function falls as lambda grows). `None` for
 /// probabilities outside (0, 1) or no degrees of freedom.
 pub fn lambda_det(dof: usize, pfa: f64, pmd: f64) -> Option<f64> {
@@ -243,7 +244,8 @@ fn cached(key: CacheKey, compute: impl FnOnce() -> Option<f64>) -> Option<f64> {
 }
 
 /// [`chi2_threshold`] remembered per (dof, pfa): the test's threshold T of Yuan 2000 eq.
-/// 5-8 (a bisection of 200 steps, costlier than a fix).
+/// 5-9 inverted, T = P^-1(1 - P_FA | n), step (1) of the book's algorithm (a bisection of 200
+/// steps, costlier than a fix).
 pub fn test_threshold(dof: usize, pfa: f64) -> f64 {
     cached((dof, pfa.to_bits(), 0), || Some(chi2_threshold(dof, pfa)))
         .unwrap_or_else(|| chi2_threshold(dof, pfa))

@@ -87,7 +87,7 @@ pub fn solve(
 
 /// The protection of a fix with design matrix `h` (ECEF position columns first), weights
 /// `w` and `dof` degrees of freedom, before the test's verdict: HPL and VPL (Yuan 2000 eq.
-/// 5-12 by the slopes of [`super::protection`], in the local NED frame of `c_ned_ecef`)
+/// 5-10, 5-12 by the slopes of [`super::protection`], in the local NED frame of `c_ned_ecef`)
 /// and whether they are within the alarm limits. `None` when the configuration turns the
 /// test off, there are no degrees of freedom, or the geometry is singular.
 fn protection_of(

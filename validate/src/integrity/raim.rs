@@ -519,6 +519,7 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
             .flat_map(|r| r.iter().map(|e| e.hpl_m))
             .filter(|h| h.is_finite())
             .collect();
+        let no_raim = free_epochs - hpls.len();
         let hpl_mean = hpls.iter().sum::<f64>() / hpls.len().max(1) as f64;
         let hpl_max = hpls.iter().copied().fold(f64::NAN, f64::max);
         // Every alarm epoch of the faulted runs: was the excluded satellite the faulted one?
@@ -534,7 +535,7 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
             limit.name, setting.platform, limit.hal_m, limit.tta_s
         );
         let common = format!(
-            "{n_f} faulted runs (ramps {:?} m/s on one satellite, sigma {SIGMA_M} m, P_fa {:.2e}/epoch, P_md {P_MD}); {n_fail} reached HPE > HAL (all-in fix); detection in {} runs, mean {det_mean:.0} +/- {det_se:.0} s after onset; right satellite excluded at the first alarm in {:.3} +/- {:.3} of them and in {right_epochs} of {alarm_epochs} alarm epochs; RAIM available (HPL <= HAL) in {:.4} +/- {:.4} of fault-free epochs, HPL mean {hpl_mean:.0} m, largest {hpl_max:.0} m",
+            "{n_f} faulted runs (ramps {:?} m/s on one satellite, sigma {SIGMA_M} m, P_fa {:.2e}/epoch, P_md {P_MD}); {n_fail} reached HPE > HAL (all-in fix); detection in {} runs, mean {det_mean:.0} +/- {det_se:.0} s after onset; right satellite excluded at the first alarm in {:.3} +/- {:.3} of them and in {right_epochs} of {alarm_epochs} alarm epochs; RAIM available (HPL <= HAL) in {:.4} +/- {:.4} of fault-free epochs ({no_raim} epochs without RAIM: fewer than two degrees of freedom), HPL mean {hpl_mean:.0} m, largest {hpl_max:.0} m over the others",
             RAMP_RATES_MPS,
             setting.pfa,
             detected.len(),
