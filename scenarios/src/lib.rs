@@ -26,6 +26,6 @@ mod schema;
 pub use build::World;
 pub use bundled::{Bundled, bundled};
 pub use error::ScenarioError;
-pub use observation::BUNDLED_CALIBRATION;
+pub use observation::{BUNDLED_CALIBRATION, BUNDLED_MONITOR_CONFIG};
 pub use parse::{load, parse, resolve};
 pub use schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};

@@ -11,6 +11,11 @@ use skyforge_signals::obs_model::{Calibration, ObsNoise, ObsNoiseConfig};
 /// `skyforge calibrate scenarios/calibration/leo-gps-bds.toml` (see that file).
 pub const BUNDLED_CALIBRATION: &str = include_str!("../calibration/default.toml");
 
+/// The integrity monitor's configuration bundled with SkyForge
+/// (`scenarios/calibration/monitor-lab.toml`), written by `skyforge monitor calibrate
+/// integrity-lab --seed 1 --seeds 8` (see that file).
+pub const BUNDLED_MONITOR_CONFIG: &str = include_str!("../calibration/monitor-lab.toml");
+
 impl Scenario {
     /// `[observation.noise]` resolved: a calibration file named relative to the scenario
     /// (the bundled one when none is named) read and checked.

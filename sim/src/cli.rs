@@ -142,6 +142,13 @@ pub enum Command {
         #[command(flatten)]
         args: AttitudeArgs,
     },
+    /// Integrity monitoring with several reference receivers (paper 002's B values):
+    /// `run` monitors RINEX observation files, `calibrate` derives the thresholds from
+    /// fault-free runs of a scenario (docs/integrity.md).
+    Monitor {
+        #[command(subcommand)]
+        action: MonitorAction,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]
@@ -179,6 +186,55 @@ pub struct AttitudeArgs {
 }
 
 #[derive(Debug, Subcommand)]
+pub enum MonitorAction {
+    /// Monitor several receivers' RINEX observation files (one per station, all of the
+    /// same span): each station's pseudorange and carrier phase are mapped to a common
+    /// point; the changes of code, smoothed code and carrier and the code-carrier
+    /// divergence are compared across stations by their B values and tested against
+    /// thresholds. Writes DIR/monitor.csv, DIR/monitor.h5 and DIR/summary.json; prints the
+    /// alarms.
+    ///
+    /// Station positions come from each file's APPROX POSITION XYZ unless the
+    /// configuration lists them ([[stations]]).
+    Run {
+        #[command(flatten)]
+        args: MonitorArgs,
+    },
+    /// Measure the fault-free spread of the B values on SCENARIO (observation level, no
+    /// fault events; its seed and the next ones) and write DIR/monitor.toml: a monitor
+    /// configuration with thresholds for `monitor run --config`.
+    Calibrate {
+        #[command(flatten)]
+        run: ScenarioRun,
+        /// Independent runs (seeds) to measure on.
+        #[arg(long, value_name = "N", default_value_t = 8,
+              value_parser = clap::value_parser!(u64).range(1..=1000))]
+        seeds: u64,
+    },
+}
+
+/// What `monitor run` is given.
+#[derive(Debug, Args)]
+pub struct MonitorArgs {
+    /// Observation files (RINEX 2 or 3), one per station; at least two.
+    #[arg(required = true, num_args = 2..)]
+    pub files: Vec<PathBuf>,
+    /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+    #[arg(long, value_name = "NAV")]
+    pub nav: PathBuf,
+    /// Monitor configuration (TOML, docs/integrity.md); default: the bundled one,
+    /// calibrated on the integrity-lab scenario.
+    #[arg(long, value_name = "TOML")]
+    pub config: Option<PathBuf>,
+    /// Output directory; created, must not exist unless --force is given.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory that skyforge wrote.
+    #[arg(long)]
+    pub force: bool,
+}
+
+#[derive(Debug, Subcommand)]
 pub enum ScenariosAction {
     /// List bundled scenario names with a one-line summary.
     List,
@@ -195,7 +251,9 @@ pub enum ValidateSuite {
     ///
     /// Prints thesis value, SkyForge value, ratio, tolerance and verdict for every row;
     /// exits 0 whenever it ran, whatever the verdicts. Tables: V-1.2.1, T-1.2-2, T-1.2-3,
-    /// T-3.2, T-3.3-R, T-3.3-S, T-5.4-2, T-5.4-3, T-5.4-4, T-5.4-5. T-5.4-2 synthesises its
+    /// T-3.2, T-3.3-R, T-3.3-S, T-5.4-2, T-5.4-3, T-5.4-4, T-5.4-5, and paper 002's P2-4.2
+    /// (its fault cases, 20 seeds) and P2-PD (detection curves, 1000 runs, minutes).
+    /// T-5.4-2 synthesises its
     /// bundled scenario (60 s, four recordings, about 2 GB in the temporary directory) and
     /// runs the receiver on it; the attitude tables run observation-level scenarios on
     /// eight seeds (seconds).
@@ -262,6 +320,21 @@ pub enum ValidateSuite {
         /// `skyforge attitude`'s output directory (attitude.csv, ambiguities.csv).
         #[arg(long, value_name = "ATTDIR")]
         attitude: PathBuf,
+        /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+    },
+    /// Compare `skyforge monitor run`'s alarms with the fault events of the run's
+    /// scenario: per event, whether and when it was detected, by which statistic and
+    /// whether the faulted station stood out; alarms no event explains are false alarms.
+    Monitor {
+        /// The run's directory (`skyforge run`/`synth --out`): its truth.h5 holds the
+        /// scenario.
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// `skyforge monitor run`'s output directory (monitor.csv).
+        #[arg(long, value_name = "MONDIR")]
+        monitor: PathBuf,
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,

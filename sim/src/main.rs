@@ -24,11 +24,20 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         | cli::Command::Calibrate { run } => Some(run.out.clone()),
         cli::Command::Receive { out, .. } => Some(out.clone()),
         cli::Command::Attitude { args } => Some(args.out.clone()),
+        cli::Command::Monitor {
+            action: cli::MonitorAction::Run { args },
+        } => Some(args.out.clone()),
+        cli::Command::Monitor {
+            action: cli::MonitorAction::Calibrate { run, .. },
+        } => Some(run.out.clone()),
         cli::Command::Validate {
             suite: cli::ValidateSuite::Thesis { out, .. },
         } => out.clone(),
         cli::Command::Validate {
-            suite: cli::ValidateSuite::Obs { .. } | cli::ValidateSuite::Attitude { .. },
+            suite:
+                cli::ValidateSuite::Obs { .. }
+                | cli::ValidateSuite::Attitude { .. }
+                | cli::ValidateSuite::Monitor { .. },
         }
         | cli::Command::Scenarios { .. }
         | cli::Command::Ambiguity { .. } => None,

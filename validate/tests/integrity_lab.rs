@@ -110,3 +110,30 @@ fn detection_rises_with_the_fault_size() {
         assert!(p[4] >= p[1], "{p:?}");
     }
 }
+
+#[test]
+fn the_bundled_configuration_is_the_labs_calibration() {
+    // `skyforge monitor calibrate integrity-lab --seed 1 --seeds 8` wrote it; the same
+    // runs here give the same tables.
+    let bundled = skyforge_receiver::integrity::MonitorConfig::parse(
+        skyforge_scenarios::BUNDLED_MONITOR_CONFIG,
+    )
+    .unwrap();
+    let fresh = sigma();
+    assert_eq!(bundled.thresholds.sigma.len(), fresh.len());
+    for (tag, table) in fresh {
+        let b = &bundled.thresholds.sigma[tag];
+        for stat in Statistic::ALL {
+            for (x, y) in b.column(stat).iter().zip(table.column(stat)) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * y.abs(),
+                    "{tag} {stat:?}: {x} vs {y}"
+                );
+            }
+        }
+    }
+    let lab = skyforge_validate::integrity::monitor::config(fresh.clone());
+    assert_eq!(bundled.smoothing_s, lab.smoothing_s);
+    assert_eq!(bundled.divergence_s, lab.divergence_s);
+    assert_eq!(bundled.thresholds.false_alarm, lab.thresholds.false_alarm);
+}

@@ -4,13 +4,14 @@ mod ambiguity;
 mod attitude;
 mod calibrate;
 mod dry_run;
+mod monitor;
 mod receive;
 mod run;
 mod scenarios;
 pub(crate) mod synth;
 mod validate;
 
-use crate::cli::{Cli, Command, ScenarioRun, ScenariosAction, ValidateSuite};
+use crate::cli::{Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, ValidateSuite};
 
 /// The scenario `args` name, with its seed overridden when `--seed` is given.
 fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
@@ -55,6 +56,12 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             candidates,
             json,
         } => ambiguity::ambiguity(&file, candidates as usize, json),
+        Command::Monitor {
+            action: MonitorAction::Run { args },
+        } => monitor::run(&args),
+        Command::Monitor {
+            action: MonitorAction::Calibrate { run, seeds },
+        } => monitor::calibrate(&run, seeds),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),
@@ -96,5 +103,13 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     json,
                 },
         } => validate::attitude(&truth, &observations, &attitude, json.as_deref()),
+        Command::Validate {
+            suite:
+                ValidateSuite::Monitor {
+                    truth,
+                    monitor,
+                    json,
+                },
+        } => validate::monitor(&truth, &monitor, json.as_deref()),
     }
 }

@@ -28,13 +28,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
     }
     let mut world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;
-    let meta = RunMeta {
-        scenario: scenario.name.clone(),
-        source: scenario.source.clone(),
-        start_epoch: world.origin.start().to_string(),
-        seed: scenario.seed,
-        step_s: world.step_s,
-    };
+    let meta = RunMeta::new(&scenario, world.origin.start(), world.step_s);
     let path = staged.file("truth.h5");
     let mut writer = TruthWriter::create(&path, &meta, &world.satellites, &world.antennas)
         .with_context(|| format!("cannot create {}", path.display()))?;

@@ -118,13 +118,7 @@ pub fn synthesise(
     } else {
         Some(SigmfRecordings::create(&staged.file(""), &bands, antennas)?)
     };
-    let meta = RunMeta {
-        scenario: scenario.name.clone(),
-        source: scenario.source.clone(),
-        start_epoch: origin.start().to_string(),
-        seed: scenario.seed,
-        step_s: GEOMETRY_STEP_S,
-    };
+    let meta = RunMeta::new(scenario, origin.start(), GEOMETRY_STEP_S);
     let truth_path = staged.file("truth.h5");
     let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;

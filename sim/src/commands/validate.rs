@@ -1,4 +1,4 @@
-//! `skyforge validate thesis`, `skyforge validate obs` and `skyforge validate attitude`.
+//! `skyforge validate thesis`, `obs`, `attitude` and `monitor`.
 
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
@@ -6,6 +6,7 @@ use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::outputs::print_validation;
+use skyforge_validate::integrity::score::{print_score, read_alarms, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
@@ -115,6 +116,20 @@ pub fn attitude(
     print_validation(&summary, &mut std::io::stdout().lock())?;
     if let Some(path) = json {
         write_json_text(serde_json::to_string_pretty(&summary)?, path)?;
+    }
+    Ok(())
+}
+
+/// Compare `skyforge monitor run`'s alarms in `monitor` with the fault events of the run
+/// in `truth`, print the table and optionally write the JSON.
+pub fn monitor(truth: &Path, monitor: &Path, json: Option<&Path>) -> anyhow::Result<()> {
+    let scenario = run_scenario(truth).map_err(BadInput)?;
+    let alarms =
+        read_alarms(&monitor.join("monitor.csv"), scenario.time.start).map_err(BadInput)?;
+    let score = score(&scenario.errors.events, &alarms);
+    print_score(&score, &mut std::io::stdout().lock())?;
+    if let Some(path) = json {
+        write_json_text(serde_json::to_string_pretty(&score)?, path)?;
     }
     Ok(())
 }

@@ -4,6 +4,7 @@ pub mod attitude_out;
 mod h5_datasets;
 pub mod interrupt;
 pub mod manifest;
+pub mod monitor_out;
 pub mod receiver_out;
 pub mod staged_dir;
 pub mod synth_sinks;

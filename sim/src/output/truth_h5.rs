@@ -101,9 +101,29 @@ const LINK_FIELDS: &[LinkField] = &[
 pub struct RunMeta {
     pub scenario: String,
     pub source: String,
+    /// The scenario file's text, so that the truth says what was run (fault events).
+    pub text: String,
     pub start_epoch: String,
     pub seed: u64,
     pub step_s: f64,
+}
+
+impl RunMeta {
+    /// The metadata of a run of `scenario` from `start` with geometry step `step_s`.
+    pub fn new(
+        scenario: &skyforge_scenarios::Scenario,
+        start: hifitime::Epoch,
+        step_s: f64,
+    ) -> Self {
+        Self {
+            scenario: scenario.name.clone(),
+            source: scenario.source.clone(),
+            text: scenario.text.clone(),
+            start_epoch: start.to_string(),
+            seed: scenario.seed,
+            step_s,
+        }
+    }
 }
 
 /// Streams geometry chunks into `truth.h5`.
@@ -278,6 +298,7 @@ impl TruthWriter {
         )?;
         text_attr(&file, "scenario", &meta.scenario)?;
         text_attr(&file, "scenario_source", &meta.source)?;
+        text_attr(&file, "scenario_toml", &meta.text)?;
         text_attr(&file, "start_epoch", &meta.start_epoch)?;
         file.new_attr::<u64>()
             .create("seed")?

@@ -7,6 +7,7 @@ pub mod lab;
 pub mod monitor;
 pub mod patterns;
 pub mod raim;
+pub mod score;
 
 use crate::report::Row;
 

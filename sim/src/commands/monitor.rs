@@ -1,0 +1,133 @@
+//! `skyforge monitor run` (several receivers' RINEX files -> B values, thresholds and
+//! alarms) and `skyforge monitor calibrate` (a scenario's fault-free runs -> thresholds).
+
+use crate::BadInput;
+use crate::cli::{MonitorArgs, ScenarioRun};
+use crate::output::monitor_out::{AlarmLog, H5Rows, csv_header, csv_rows};
+use crate::output::staged_dir::StagedDir;
+use anyhow::Context;
+use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_receiver::integrity::MonitorConfig;
+use skyforge_receiver::integrity::files::{run_files, stations};
+use skyforge_signals::observation::read_obs_file;
+use skyforge_validate::integrity::monitor::{ELEVATION_BINS_DEG, calibrate as measure, config};
+use std::io::Write;
+
+/// The configuration `args` names, or the bundled one.
+fn read_config(args: &MonitorArgs) -> anyhow::Result<MonitorConfig> {
+    match &args.config {
+        Some(path) => MonitorConfig::read(path).map_err(|e| BadInput(e).into()),
+        None => MonitorConfig::parse(skyforge_scenarios::BUNDLED_MONITOR_CONFIG)
+            .map_err(|e| anyhow::anyhow!("bundled monitor configuration: {e}")),
+    }
+}
+
+/// A station's name from its file: the file name up to its first dot.
+fn station_name(path: &std::path::Path) -> String {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    name.split('.').next().unwrap_or(&name).to_string()
+}
+
+/// Run `skyforge monitor run`.
+pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
+    let config = read_config(args)?;
+    let files = args
+        .files
+        .iter()
+        .map(|p| read_obs_file(p).map_err(|e| BadInput(e.to_string())))
+        .collect::<Result<Vec<_>, _>>()?;
+    let names: Vec<String> = args.files.iter().map(|p| station_name(p)).collect();
+    let station_list = stations(&files, &names, &config).map_err(|e| BadInput(e.to_string()))?;
+    let ephemerides =
+        read_nav_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    let staged = StagedDir::create(&args.out, args.force)?;
+    let csv_path = staged.file("monitor.csv");
+    let mut csv = std::fs::File::create(&csv_path)
+        .map(std::io::BufWriter::new)
+        .with_context(|| format!("cannot create {}", csv_path.display()))?;
+    writeln!(csv, "{}", csv_header())?;
+    let (mut log, mut rows) = (AlarmLog::default(), H5Rows::default());
+    let mut write_error = None;
+    let mut common = None;
+    let mut start = None;
+    run_files(&files, &names, ephemerides, config, |e| {
+        start.get_or_insert(e.time);
+        if write_error.is_none() {
+            write_error = write!(csv, "{}", csv_rows(e, &station_list)).err();
+        }
+        log.add(e, &station_list);
+        rows.add(e);
+    })
+    .map_err(|e| BadInput(e.to_string()))?;
+    if let Some(e) = write_error {
+        return Err(e).with_context(|| format!("cannot write {}", csv_path.display()));
+    }
+    csv.into_inner()
+        .map_err(|e| e.into_error())
+        .with_context(|| format!("cannot write {}", csv_path.display()))?;
+    let h5_path = staged.file("monitor.h5");
+    if let Some(start) = start {
+        rows.write(&h5_path, start, &station_list)
+            .with_context(|| format!("cannot write {}", h5_path.display()))?;
+    }
+    let mean = station_list
+        .iter()
+        .map(|s| s.r_ecef_m)
+        .sum::<skyforge_orbits::Vec3>()
+        / station_list.len() as f64;
+    common.get_or_insert(mean);
+    let summary = log.summary(&station_list, common.unwrap_or(mean).into());
+    let json_path = staged.file("summary.json");
+    std::fs::write(&json_path, serde_json::to_string_pretty(&summary)?)
+        .with_context(|| format!("cannot write {}", json_path.display()))?;
+    let dir = staged.commit()?;
+    println!("stations   {}", summary.stations.join(", "));
+    println!(
+        "epochs     {} ({} station-satellite values)",
+        summary.epochs, summary.monitored
+    );
+    println!("alarms     {}", summary.alarms.len());
+    for a in &summary.alarms {
+        println!(
+            "  {:<6} {:<4} {:<14} from {} ({:.0} s), {} epochs, peak |B| {:.1} x threshold",
+            a.station, a.sat, a.statistic, a.first_gpst, a.first_t_s, a.epochs, a.peak_ratio
+        );
+    }
+    println!("wrote      {}", dir.join("monitor.csv").display());
+    Ok(())
+}
+
+/// Run `skyforge monitor calibrate`.
+pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
+    let scenario = super::resolve(args)?;
+    let first = scenario.seed;
+    let last = first.checked_add(seeds - 1).ok_or_else(|| {
+        BadInput(format!(
+            "seed {first} + {seeds} runs passes the largest seed"
+        ))
+    })?;
+    let staged = StagedDir::create(&args.out, args.force)?;
+    let sigma = measure(&scenario, first..=last).map_err(BadInput)?;
+    let text = toml::to_string(&config(sigma)).context("cannot encode the configuration")?;
+    let header = format!(
+        "# Monitor configuration, written by `skyforge monitor calibrate {} --seed {first} --seeds {seeds}`\n\
+         # (seeds {first}..={last}, observation level, no fault events). thresholds.sigma: RMS\n\
+         # of the fault-free B values per signal and elevation bin (lower edges {:?} deg);\n\
+         # code, carrier and divergence alarm beyond their sigma x the normal quantile of\n\
+         # false_alarm, the smoothed code beyond smoothed_code_m (paper 002).\n",
+        args.scenario, ELEVATION_BINS_DEG
+    );
+    let path = staged.file("monitor.toml");
+    std::fs::write(&path, header + &text)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    let dir = staged.commit()?;
+    println!(
+        "scenario   {} ({}), seeds {first}..={last}",
+        scenario.name, scenario.source
+    );
+    println!("wrote      {}", dir.join("monitor.toml").display());
+    Ok(())
+}

@@ -1,0 +1,206 @@
+//! `skyforge monitor run`, `monitor calibrate` and `validate monitor` on the bundled
+//! integrity-lab scenario at the observation level: a cycle slip at one station is
+//! detected, isolated and scored; bad input gets one located error and writes nothing.
+
+mod support;
+
+use std::path::Path;
+use support::{dataset, skyforge, skyforge_ok, text};
+
+/// The lab scenario with `events` appended, 1800 s, written to `dir/lab.toml`.
+fn lab(dir: &Path, events: &str) -> String {
+    let base = skyforge_ok(&["scenarios", "show", "integrity-lab"], dir);
+    let path = dir.join("lab.toml");
+    std::fs::write(&path, base + events).unwrap();
+    path.display().to_string()
+}
+
+const SLIP: &str = "\n[[errors.events]]\nkind = \"phase-jump\"\nantenna = \"C\"\n\
+                    satellite = \"C03\"\nstart_s = 500.0\nend_s = 1800.0\nvalue = 100.0\n";
+
+fn files(sim: &Path) -> Vec<String> {
+    ["A", "B", "C", "D"]
+        .iter()
+        .map(|s| {
+            sim.join(format!("observations/{s}.obs.rnx"))
+                .display()
+                .to_string()
+        })
+        .collect()
+}
+
+#[test]
+fn a_slip_at_one_station_is_detected_isolated_and_scored() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = lab(d, SLIP);
+    skyforge_ok(&["run", &scenario, "--out", "sim"], d);
+    let sim = d.join("sim");
+    let mut args = vec!["monitor", "run"];
+    let f = files(&sim);
+    args.extend(f.iter().map(String::as_str));
+    args.extend(["--nav", "sim/nav.rnx", "--out", "mon"]);
+    let printed = skyforge_ok(&args, d);
+    assert!(printed.contains("stations   A, B, C, D"), "{printed}");
+    // Every alarm is on the slipped satellite, from the first epoch after the slip.
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("mon/summary.json")).unwrap())
+            .unwrap();
+    let alarms = summary["alarms"].as_array().unwrap();
+    assert!(!alarms.is_empty());
+    for a in alarms {
+        assert_eq!(a["sat"], "C03", "{a}");
+        assert!(a["first_t_s"].as_f64().unwrap() >= 500.0, "{a}");
+    }
+    let carrier_c = alarms
+        .iter()
+        .find(|a| a["station"] == "C" && a["statistic"] == "carrier")
+        .expect("carrier alarm at C");
+    assert!(carrier_c["first_t_s"].as_f64().unwrap() <= 501.0);
+    // monitor.csv and monitor.h5 hold the same rows.
+    let csv = std::fs::read_to_string(d.join("mon/monitor.csv")).unwrap();
+    let rows = csv.lines().count() - 1;
+    assert!(csv.starts_with("time_gpst,t_s,sat,signal,station,elevation_deg,track_age_s,code,"));
+    let h5 = hdf5::File::open(d.join("mon/monitor.h5")).unwrap();
+    assert_eq!(dataset::<f64>(&h5, "t_s").len(), rows);
+    assert_eq!(dataset::<f64>(&h5, "b").len(), 4 * rows);
+    assert_eq!(summary["monitored"].as_u64().unwrap() as usize, rows);
+    // validate monitor: detected at once, isolated at C, no false alarm.
+    let out = skyforge_ok(
+        &[
+            "validate",
+            "monitor",
+            "--truth",
+            "sim",
+            "--monitor",
+            "mon",
+            "--json",
+            "score.json",
+        ],
+        d,
+    );
+    assert!(out.contains("phase-jump"), "{out}");
+    let score: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(d.join("score.json")).unwrap()).unwrap();
+    let e = &score["events"][0];
+    assert_eq!(e["detected"], true, "{score}");
+    assert!(e["delay_s"].as_f64().unwrap() <= 1.0, "{score}");
+    assert_eq!(e["first_station"], "C");
+    assert_eq!(e["isolated"], true);
+    assert_eq!(score["false_alarms"], 0, "{score}");
+}
+
+#[test]
+fn calibrate_writes_a_configuration_that_run_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = lab(d, "");
+    let short = std::fs::read_to_string(&scenario)
+        .unwrap()
+        .replace("duration_s = 1800.0", "duration_s = 400.0");
+    std::fs::write(d.join("short.toml"), short).unwrap();
+    skyforge_ok(
+        &[
+            "monitor",
+            "calibrate",
+            "short.toml",
+            "--seeds",
+            "2",
+            "--out",
+            "cal",
+        ],
+        d,
+    );
+    let config = std::fs::read_to_string(d.join("cal/monitor.toml")).unwrap();
+    assert!(config.contains("[thresholds.sigma.bds-b1i]"), "{config}");
+    assert!(config.contains("[thresholds.sigma.gps-l1ca]"));
+    // Fault events are refused: they would count as noise.
+    std::fs::write(
+        d.join("lab-slip.toml"),
+        std::fs::read_to_string(&scenario).unwrap() + SLIP,
+    )
+    .unwrap();
+    let o = skyforge(&["monitor", "calibrate", "lab-slip.toml", "--out", "x"], d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("fault events"), "{}", text(&o));
+    assert!(!d.join("x").exists());
+    // The calibrated configuration runs.
+    skyforge_ok(&["run", "short.toml", "--out", "sim"], d);
+    let mut args = vec!["monitor", "run"];
+    let f = files(&d.join("sim"));
+    args.extend(f.iter().map(String::as_str));
+    args.extend([
+        "--nav",
+        "sim/nav.rnx",
+        "--config",
+        "cal/monitor.toml",
+        "--out",
+        "mon",
+    ]);
+    skyforge_ok(&args, d);
+}
+
+#[test]
+fn bad_input_gets_one_error_and_nothing_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = lab(d, "");
+    let text_of = std::fs::read_to_string(&scenario)
+        .unwrap()
+        .replace("duration_s = 1800.0", "duration_s = 30.0");
+    std::fs::write(&scenario, text_of).unwrap();
+    skyforge_ok(&["run", &scenario, "--out", "sim"], d);
+    let f = files(&d.join("sim"));
+    let run = |extra: &[&str]| {
+        let mut args = vec!["monitor", "run"];
+        args.extend(f.iter().map(String::as_str));
+        args.extend(["--nav", "sim/nav.rnx", "--out", "mon"]);
+        args.extend(extra);
+        skyforge(&args, d)
+    };
+    // A configuration with an unknown key, a bad threshold, a station count that does
+    // not match the files.
+    for (config, says) in [
+        ("smoothing_s = 100.0\nbogus = 1\n", "bogus"),
+        (
+            "[thresholds]\nfalse_alarm = 2.0\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
+            "false_alarm = 2",
+        ),
+        (
+            "[[stations]]\nname = \"A\"\nposition_ecef_m = [1.0, 2.0, 3.0]\n[thresholds]\nfalse_alarm = 1e-7\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
+            "4 observation files but 1 [[stations]]",
+        ),
+    ] {
+        std::fs::write(d.join("bad.toml"), config).unwrap();
+        let o = run(&["--config", "bad.toml"]);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains(says), "{config}: {}", text(&o));
+        assert!(!d.join("mon").exists());
+    }
+    // A file without APPROX POSITION XYZ and no positions in the configuration.
+    let no_pos: String = std::fs::read_to_string(&f[0])
+        .unwrap()
+        .lines()
+        .filter(|l| !l.contains("APPROX POSITION XYZ"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(d.join("nopos.obs.rnx"), no_pos).unwrap();
+    let mut args = vec!["monitor", "run", "nopos.obs.rnx"];
+    args.extend(f[1..].iter().map(String::as_str));
+    args.extend(["--nav", "sim/nav.rnx", "--out", "mon"]);
+    let o = skyforge(&args, d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("nopos.obs.rnx: no APPROX POSITION XYZ"),
+        "{}",
+        text(&o)
+    );
+    assert!(!d.join("mon").exists());
+    // validate monitor on a directory without truth.h5.
+    let o = skyforge(
+        &["validate", "monitor", "--truth", "mon", "--monitor", "sim"],
+        d,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("truth.h5"), "{}", text(&o));
+}

@@ -1,0 +1,267 @@
+//! `skyforge monitor run`'s alarms against the fault events of the run's scenario
+//! (`skyforge validate monitor`): detection and its delay per event, the statistic and
+//! station that flagged it first, and alarms no event explains (false alarms).
+
+use hifitime::Epoch;
+use serde::Serialize;
+use skyforge_orbits::bounded_read::read_text;
+use skyforge_orbits::time::{TimeOrigin, parse_epoch};
+use skyforge_signals::errors::events::EventConfig;
+use std::path::Path;
+
+/// Largest monitor.csv read (bytes).
+const MAX_CSV_BYTES: u64 = 1 << 30;
+/// How long after an event's end its satellite's alarms are still its own (s).
+/// # assumed: the smoothed code keeps 1 % of a step 460 s later, the divergence is tested
+/// 300 s after it starts; 600 s covers both. Chosen before any run.
+pub const HOLD_S: f64 = 600.0;
+
+/// One alarmed statistic of one station and satellite at one epoch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Alarm {
+    /// Seconds since the scenario start.
+    pub t_s: f64,
+    pub station: String,
+    pub sat: String,
+    pub statistic: String,
+    /// |B| over its threshold.
+    pub ratio: f64,
+}
+
+/// Statistic names in `monitor.csv`'s column order.
+const STATISTICS: [&str; 4] = ["code", "smoothed_code", "carrier", "divergence"];
+
+/// The alarms of `monitor.csv` at `path`, timed from `start`.
+pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
+    let err = |line: usize, m: String| format!("{}:{line}: {m}", path.display());
+    let text = read_text(path, MAX_CSV_BYTES, "CSV file").map_err(|e| err(0, e.to_string()))?;
+    let mut lines = text.lines().enumerate();
+    let header: Vec<&str> = lines
+        .next()
+        .map(|(_, h)| h.split(',').collect())
+        .unwrap_or_default();
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| *h == name)
+            .ok_or_else(|| err(1, format!("no column {name:?} (not a monitor.csv)")))
+    };
+    let (c_time, c_station, c_sat) = (col("time_gpst")?, col("station")?, col("sat")?);
+    let stat_cols: Vec<(usize, usize, usize)> = STATISTICS
+        .iter()
+        .map(|s| {
+            Ok((
+                col(&format!("{s}_alarm"))?,
+                col(&format!("{s}_b"))?,
+                col(&format!("{s}_threshold"))?,
+            ))
+        })
+        .collect::<Result<_, String>>()?;
+    let origin = TimeOrigin::new(start);
+    let mut out = Vec::new();
+    for (i, line) in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        if f.len() != header.len() {
+            return Err(err(
+                i + 1,
+                format!("{} fields, the header has {}", f.len(), header.len()),
+            ));
+        }
+        for (k, &(alarm, b, threshold)) in stat_cols.iter().enumerate() {
+            if f[alarm] != "1" {
+                continue;
+            }
+            let time = parse_epoch(f[c_time]).map_err(|e| err(i + 1, format!("time_gpst: {e}")))?;
+            let num = |c: usize| {
+                f[c].parse::<f64>()
+                    .map_err(|_| err(i + 1, format!("{}: {:?} is not a number", header[c], f[c])))
+            };
+            out.push(Alarm {
+                t_s: origin.seconds_since_start(time),
+                station: f[c_station].to_string(),
+                sat: f[c_sat].to_string(),
+                statistic: STATISTICS[k].to_string(),
+                ratio: num(b)?.abs() / num(threshold)?,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// The scenario a run was made from: the `scenario_toml` attribute of `run_dir/truth.h5`.
+pub fn run_scenario(run_dir: &Path) -> Result<skyforge_scenarios::Scenario, String> {
+    let path = run_dir.join("truth.h5");
+    let err = |m: String| format!("{}: {m}", path.display());
+    std::fs::metadata(&path).map_err(|e| err(e.to_string()))?;
+    let file = hdf5::File::open(&path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
+    let text: hdf5::types::VarLenUnicode = file
+        .attr("scenario_toml")
+        .and_then(|a| a.read_scalar())
+        .map_err(|e| err(format!("attribute scenario_toml: {e}")))?;
+    skyforge_scenarios::parse(text.as_str(), &path.display().to_string(), run_dir)
+        .map_err(|e| err(format!("attribute scenario_toml: {e}")))
+}
+
+/// How one fault event was seen.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct EventOutcome {
+    pub kind: String,
+    pub antenna: Option<String>,
+    pub satellite: Option<String>,
+    pub start_s: f64,
+    pub end_s: f64,
+    pub detected: bool,
+    /// First alarm on the event's satellite(s) from its start, minus the start (s).
+    pub delay_s: Option<f64>,
+    pub first_statistic: Option<String>,
+    /// The station with the largest |B| / threshold at the first alarm.
+    pub first_station: Option<String>,
+    /// Whether that station is the event's antenna (an event at every antenna: `None`).
+    pub isolated: Option<bool>,
+}
+
+/// The comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct MonitorScore {
+    pub events: Vec<EventOutcome>,
+    pub alarms: usize,
+    /// Alarms on satellites no event touches, or outside every event's span plus
+    /// [`HOLD_S`].
+    pub false_alarms: usize,
+    /// The first few of them: (t_s, station, satellite, statistic).
+    pub false_alarm_examples: Vec<(f64, String, String, String)>,
+}
+
+/// Whether `event` explains an alarm on `sat` at `t_s`.
+fn explains(event: &EventConfig, sat: &str, t_s: f64) -> bool {
+    event.satellite.as_deref().is_none_or(|s| s == sat)
+        && t_s >= event.start_s
+        && t_s < event.end_s + HOLD_S
+}
+
+/// Score `alarms` against `events`.
+pub fn score(events: &[EventConfig], alarms: &[Alarm]) -> MonitorScore {
+    let outcomes = events
+        .iter()
+        .map(|e| {
+            let first_t = alarms
+                .iter()
+                .filter(|a| explains(e, &a.sat, a.t_s))
+                .map(|a| a.t_s)
+                .min_by(f64::total_cmp);
+            let at_first: Vec<&Alarm> = alarms
+                .iter()
+                .filter(|a| Some(a.t_s) == first_t && explains(e, &a.sat, a.t_s))
+                .collect();
+            let strongest = at_first.iter().max_by(|a, b| a.ratio.total_cmp(&b.ratio));
+            EventOutcome {
+                kind: e.kind.name().to_string(),
+                antenna: e.antenna.clone(),
+                satellite: e.satellite.clone(),
+                start_s: e.start_s,
+                end_s: e.end_s,
+                detected: first_t.is_some(),
+                delay_s: first_t.map(|t| t - e.start_s),
+                first_statistic: strongest.map(|a| a.statistic.clone()),
+                first_station: strongest.map(|a| a.station.clone()),
+                isolated: e
+                    .antenna
+                    .as_ref()
+                    .and_then(|ant| strongest.map(|a| &a.station == ant)),
+            }
+        })
+        .collect();
+    let false_alarms: Vec<&Alarm> = alarms
+        .iter()
+        .filter(|a| !events.iter().any(|e| explains(e, &a.sat, a.t_s)))
+        .collect();
+    MonitorScore {
+        events: outcomes,
+        alarms: alarms.len(),
+        false_alarms: false_alarms.len(),
+        false_alarm_examples: false_alarms
+            .iter()
+            .take(10)
+            .map(|a| (a.t_s, a.station.clone(), a.sat.clone(), a.statistic.clone()))
+            .collect(),
+    }
+}
+
+/// Print `score` as a table.
+pub fn print_score(score: &MonitorScore, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "{:<11} {:<7} {:<5} {:>8} {:>8}  {:<9} {:>8}  {:<14} {:<7} isolated",
+        "event", "antenna", "sat", "start_s", "end_s", "detected", "delay_s", "first by", "station"
+    )?;
+    let opt = |v: &Option<String>| v.clone().unwrap_or_else(|| "all".into());
+    for e in &score.events {
+        writeln!(
+            out,
+            "{:<11} {:<7} {:<5} {:>8.1} {:>8.1}  {:<9} {:>8}  {:<14} {:<7} {}",
+            e.kind,
+            opt(&e.antenna),
+            opt(&e.satellite),
+            e.start_s,
+            e.end_s,
+            if e.detected { "yes" } else { "MISSED" },
+            e.delay_s.map_or("-".into(), |d| format!("{d:.1}")),
+            e.first_statistic.clone().unwrap_or_else(|| "-".into()),
+            e.first_station.clone().unwrap_or_else(|| "-".into()),
+            e.isolated.map_or("-", |i| if i { "yes" } else { "no" }),
+        )?;
+    }
+    writeln!(
+        out,
+        "alarms {} ({} false: on no event's satellite and span + {HOLD_S} s)",
+        score.alarms, score.false_alarms
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use skyforge_signals::errors::events::EventKind;
+
+    fn alarm(t_s: f64, station: &str, sat: &str, ratio: f64) -> Alarm {
+        Alarm {
+            t_s,
+            station: station.into(),
+            sat: sat.into(),
+            statistic: "carrier".into(),
+            ratio,
+        }
+    }
+
+    #[test]
+    fn events_are_detected_isolated_and_other_alarms_are_false() {
+        let slip = EventConfig {
+            kind: EventKind::PhaseJump,
+            antenna: Some("C".into()),
+            satellite: Some("C03".into()),
+            start_s: 500.0,
+            end_s: 1800.0,
+            value: 100.0,
+        };
+        let missed = EventConfig {
+            satellite: Some("G07".into()),
+            start_s: 100.0,
+            end_s: 110.0,
+            ..slip.clone()
+        };
+        let alarms = vec![
+            alarm(501.0, "A", "C03", 7.0),
+            alarm(501.0, "C", "C03", 20.0),
+            alarm(1000.0, "C", "C03", 20.0),
+            alarm(300.0, "C", "C03", 2.0), // before the slip: false
+            alarm(900.0, "B", "G01", 2.0), // no event on G01: false
+        ];
+        let s = score(&[slip, missed], &alarms);
+        assert!(s.events[0].detected);
+        assert_eq!(s.events[0].delay_s, Some(1.0));
+        assert_eq!(s.events[0].first_station.as_deref(), Some("C"));
+        assert_eq!(s.events[0].isolated, Some(true));
+        assert!(!s.events[1].detected);
+        assert_eq!((s.alarms, s.false_alarms), (5, 2));
+    }
+}
