@@ -53,6 +53,7 @@ pub fn fix(r_ecef_m: Vec3, sats: &[SatId]) -> Fix {
         excluded: vec![],
         chi2: 1.0,
         dof: sats.len().saturating_sub(4),
+        protection: None,
     }
 }
 

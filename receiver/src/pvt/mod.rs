@@ -7,10 +7,12 @@
 //! signal's flight (Sagnac), the broadcast Klobuchar ionosphere and the standard
 //! troposphere for a receiver inside the atmosphere, elevation weighting, and a receiver
 //! clock per system (the BeiDou one as GPS clock + inter-system bias when both fly).
-//! After the fix a residual test ([`raim`]) excludes one faulty satellite.
+//! After the fix a residual test ([`raim`]) excludes one faulty satellite, and the fix
+//! carries its protection levels and integrity verdict ([`protection`], [`Protection`]).
 
 mod geometry;
 pub mod nmea;
+pub mod protection;
 pub mod raim;
 pub(crate) mod solve;
 mod velocity;
@@ -63,13 +65,23 @@ pub struct PvtConfig {
     /// Elevation weighting sigma^2 = a^2 + b^2 / sin^2(el) (m): a, b.
     pub sigma_a_m: f64,
     pub sigma_b_m: f64,
-    /// Probability of false alarm of the residual test (0 disables it).
+    /// Probability of false alarm of the residual test (0 disables it and the protection
+    /// levels).
     pub raim_pfa: f64,
+    /// Probability of missed detection the protection levels are computed for (0 disables
+    /// them): Yuan 2000 table 5-1's minimum detection probability 0.999 gives 1e-3.
+    pub raim_pmd: f64,
+    /// Horizontal alarm limit (m): RAIM is available for a fix whose HPL does not exceed
+    /// it. Default: Yuan 2000 table 5-1's non-precision approach, 555.96 m (0.3 NM).
+    pub raim_hal_m: f64,
+    /// Vertical alarm limit (m), if the phase of flight has one (table 5-1 has none).
+    pub raim_val_m: Option<f64>,
 }
 
 impl Default for PvtConfig {
     /// 10 deg mask, no ionosphere coefficients, troposphere on, a = b = 0.3 m (the common
-    /// elevation-dependent code-noise model, also RTKLIB's default), residual test at 1e-3.
+    /// elevation-dependent code-noise model, also RTKLIB's default), residual test at 1e-3,
+    /// protection levels at P_md = 1e-3 against the 555.96 m non-precision-approach limit.
     fn default() -> Self {
         Self {
             elevation_mask_rad: 10f64.to_radians(),
@@ -79,6 +91,9 @@ impl Default for PvtConfig {
             sigma_a_m: 0.3,
             sigma_b_m: 0.3,
             raim_pfa: 1e-3,
+            raim_pmd: 1e-3,
+            raim_hal_m: 555.96,
+            raim_val_m: None,
         }
     }
 }
@@ -117,6 +132,47 @@ pub struct Fix {
     /// Sum of squared weighted residuals and its degrees of freedom.
     pub chi2: f64,
     pub dof: usize,
+    /// Protection levels and the integrity verdict of the residual test; `None` when the
+    /// test is off (`raim_pfa` or `raim_pmd` 0) or has fewer than two degrees of freedom
+    /// (RAIM unavailable).
+    pub protection: Option<Protection>,
+}
+
+/// What the residual test says of one fix.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum IntegrityStatus {
+    /// The test passed and HPL (and VPL, with a vertical limit) is within the alarm limit.
+    Available,
+    /// The test passed but the protection level exceeds the alarm limit: RAIM cannot
+    /// protect this geometry.
+    Unavailable,
+    /// The test fired on all satellites and the fix without the excluded one passes it
+    /// (fault detection and exclusion).
+    Excluded,
+    /// The test fired and no exclusion made the fix consistent: do not use.
+    Alarm,
+}
+
+/// Protection levels of a fix (of the satellites finally used) and the test's verdict.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Protection {
+    /// Horizontal and vertical protection levels (m): Yuan 2000 eqs. 5-10, 5-12 by the
+    /// slope method ([`protection`]).
+    pub hpl_m: f64,
+    pub vpl_m: f64,
+    /// Threshold of the test (chi-square (1 - pfa) quantile, eq. 5-9 inverted) and the
+    /// noncentrality detected with probability 1 - P_md at it (eq. 5-11).
+    pub threshold: f64,
+    pub lambda_det: f64,
+    /// Horizontal and vertical slope (m) of every used satellite, in [`Fix::used`] order.
+    pub slopes: Vec<protection::Slope>,
+    /// The test fired on the fix with every satellite (a detection).
+    pub alarm: bool,
+    /// Statistic and position of the fix with every satellite (equal to [`Fix::chi2`] and
+    /// [`Fix::r_ecef_m`] without exclusion).
+    pub chi2_all: f64,
+    pub r_all_ecef_m: Vec3,
+    pub status: IntegrityStatus,
 }
 
 /// A velocity fix.

@@ -1,8 +1,12 @@
 //! The iterated weighted least-squares position and clock solution.
 
 use super::geometry::{SatView, sat_view};
-use super::raim::chi2_threshold;
-use super::{Dop, Fix, IONOSPHERE_USER_CEILING_M, Measurement, PvtConfig, PvtError};
+use super::protection::{protection_levels, slopes};
+use super::raim::{detection_parameters, test_threshold};
+use super::{
+    Dop, Fix, IONOSPHERE_USER_CEILING_M, IntegrityStatus, Measurement, Protection, PvtConfig,
+    PvtError,
+};
 use nalgebra::{DMatrix, DVector};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::atmosphere::standard_slant_delay_m;
@@ -24,7 +28,8 @@ pub(crate) const STANDARD_RH0: f64 = 0.5;
 /// from `meas` received at `t_rx_s` (receiver time tag, s since `origin`, GPST), with the
 /// ephemerides of `store` (bound to `origin`). `a_priori` starts the iteration (the
 /// geocentre otherwise). Applies the residual test of [`super::raim`] and excludes one
-/// satellite when it fails.
+/// satellite when it fails; the fix's [`Protection`] gives the protection levels of the
+/// satellites finally used and the test's verdict.
 pub fn solve(
     meas: &[Measurement],
     t_rx_s: f64,
@@ -41,7 +46,16 @@ pub fn solve(
         cfg,
     };
     let mut fix = epoch.least_squares(a_priori, &[])?;
-    if cfg.raim_pfa > 0.0 && fix.dof >= 2 && fix.chi2 > chi2_threshold(fix.dof, cfg.raim_pfa) {
+    if !(cfg.raim_pfa > 0.0 && fix.dof >= 2) {
+        // No test, no protection (RAIM unavailable).
+        fix.protection = None;
+        return Ok(fix);
+    }
+    let chi2_all = fix.chi2;
+    let alarm = chi2_all > test_threshold(fix.dof, cfg.raim_pfa);
+    let r_all_ecef_m = fix.r_ecef_m;
+    let mut consistent = !alarm;
+    if alarm {
         // Exclude the satellite with the largest weighted residual and solve again.
         let worst = fix
             .used
@@ -52,10 +66,69 @@ pub fn solve(
         if let Some(worst) = worst {
             let mut again = epoch.least_squares(Some(fix.r_ecef_m), &[worst])?;
             again.excluded.push(worst);
+            // The exclusion is kept as before; it counts as a repair only when the
+            // remaining satellites pass the same test.
+            consistent = again.dof >= 1 && again.chi2 <= test_threshold(again.dof, cfg.raim_pfa);
             fix = again;
         }
     }
+    if let Some(p) = fix.protection.as_mut() {
+        p.alarm = alarm;
+        p.chi2_all = chi2_all;
+        p.r_all_ecef_m = r_all_ecef_m;
+        p.status = match (alarm, consistent) {
+            (true, true) => IntegrityStatus::Excluded,
+            (true, false) => IntegrityStatus::Alarm,
+            (false, _) => p.status,
+        };
+    }
     Ok(fix)
+}
+
+/// The protection of a fix with design matrix `h` (ECEF position columns first), weights
+/// `w` and `dof` degrees of freedom, before the test's verdict: HPL and VPL (Yuan 2000 eq.
+/// 5-10, 5-12 by the slopes of [`super::protection`], in the local NED frame of `c_ned_ecef`)
+/// and whether they are within the alarm limits. `None` when the configuration turns the
+/// test off, there are no degrees of freedom, or the geometry is singular.
+fn protection_of(
+    h: &DMatrix<f64>,
+    w: &DVector<f64>,
+    dof: usize,
+    c_ned_ecef: &skyforge_orbits::Mat3,
+    cfg: &PvtConfig,
+    chi2: f64,
+    r: Vec3,
+) -> Option<Protection> {
+    if !(cfg.raim_pfa > 0.0 && cfg.raim_pmd > 0.0) || dof == 0 {
+        return None;
+    }
+    let (threshold, lambda_det) = detection_parameters(dof, cfg.raim_pfa, cfg.raim_pmd)?;
+    let mut h_local = h.clone();
+    for i in 0..h.nrows() {
+        let row = Vec3::new(h[(i, 0)], h[(i, 1)], h[(i, 2)]);
+        let local = c_ned_ecef * row;
+        for k in 0..3 {
+            h_local[(i, k)] = local[k];
+        }
+    }
+    let slopes = slopes(&h_local, w)?;
+    let (hpl_m, vpl_m) = protection_levels(&slopes, lambda_det);
+    let within = hpl_m <= cfg.raim_hal_m && cfg.raim_val_m.is_none_or(|val| vpl_m <= val);
+    Some(Protection {
+        hpl_m,
+        vpl_m,
+        threshold,
+        lambda_det,
+        slopes,
+        alarm: false,
+        chi2_all: chi2,
+        r_all_ecef_m: r,
+        status: if within {
+            IntegrityStatus::Available
+        } else {
+            IntegrityStatus::Unavailable
+        },
+    })
 }
 
 /// Standard deviation of a pseudorange at elevation `el` (m); 1 before angles exist.
@@ -162,7 +235,7 @@ impl Epoch<'_> {
             last_step = dx.rows(0, 3).norm();
             if last_step < CONVERGED_M {
                 let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
-                return finish(&rows, n_x, r, &clocks, &systems, t_rx_s);
+                return finish(&rows, n_x, r, &clocks, &systems, t_rx_s, cfg);
             }
         }
         Err(PvtError::NoConvergence { step_m: last_step })
@@ -243,6 +316,7 @@ fn finish(
     clocks: &[f64],
     systems: &[System],
     t_rx_s: f64,
+    cfg: &PvtConfig,
 ) -> Result<Fix, PvtError> {
     let (h, v, w) = matrices(rows, n_x);
     let q = (h.transpose() * &h)
@@ -262,6 +336,7 @@ fn finish(
         tdop,
     };
     let chi2 = v.iter().zip(w.iter()).map(|(r, w)| r * r * w).sum();
+    let dof = rows.len() - n_x;
     let gps_first = systems.first() == Some(&System::Gps);
     Ok(Fix {
         t_s: t_rx_s - clocks[0] / C_MPS,
@@ -275,6 +350,7 @@ fn finish(
             .collect(),
         excluded: Vec::new(),
         chi2,
-        dof: rows.len() - n_x,
+        dof,
+        protection: protection_of(&h, &w, dof, &c, cfg, chi2, r),
     })
 }

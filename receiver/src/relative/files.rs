@@ -345,6 +345,7 @@ mod tests {
             excluded: Vec::new(),
             chi2: 0.0,
             dof: 0,
+            protection: None,
         }
     }
 

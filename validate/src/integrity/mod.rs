@@ -1,10 +1,12 @@
 //! Integrity monitoring against its references: the B-value monitor on paper 002's lab
-//! set-up (its fault cases as patterns, fault-free false alarms, detection curves).
+//! set-up (its fault cases as patterns, fault-free false alarms, detection curves), and
+//! RAIM against Yuan 2000 tables 5-1 and 5-2 ([`raim`]).
 
 pub mod detection;
 pub mod lab;
 pub mod monitor;
 pub mod patterns;
+pub mod raim;
 pub mod score;
 
 use crate::report::Row;

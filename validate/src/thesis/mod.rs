@@ -12,13 +12,14 @@ pub mod pmf_fft;
 pub mod visibility;
 pub mod zero_baseline;
 
+use crate::integrity::raim;
 use crate::report::Row;
 use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2", "T-5.4-3",
-    "T-5.4-4", "T-5.4-5", "P2-4.2", "P2-PD",
+    "T-5.4-4", "T-5.4-5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
 ];
 
 /// Why a validation could not run.
@@ -142,6 +143,15 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
             )
             .map_err(ValidateError::Pipeline)?,
         );
+    }
+    let (mops, leo) = (wanted(raim::TABLE_MOPS), wanted(raim::TABLE_LEO));
+    if mops || leo {
+        starting(if mops {
+            raim::TABLE_MOPS
+        } else {
+            raim::TABLE_LEO
+        });
+        rows.extend(raim::rows(mops, leo, raim::RUNS)?);
     }
     Ok(rows)
 }

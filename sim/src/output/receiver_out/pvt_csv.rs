@@ -4,19 +4,22 @@
 //! WGS-84; velocity and clock-drift fields are empty without a velocity fix, `isb_m`
 //! (c x (BeiDou clock - GPS clock)) without both systems; `sats` counts the satellites
 //! used and `excluded` lists those the residual test removed, separated by spaces.
+//! `hpl_m`/`vpl_m` are the protection levels of the residual test (docs/raim.md) and
+//! `integrity` its verdict (`available`, `unavailable`, `excluded`, `alarm`); all three are
+//! empty when RAIM is off or has too few satellites.
 
 use super::writing;
 use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::time::gpst_week_sow;
-use skyforge_receiver::pvt::{Fix, VelocityFix};
+use skyforge_receiver::pvt::{Fix, IntegrityStatus, VelocityFix};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
 /// The header line.
-pub(super) const HEADER: &str = "antenna,gps_week,tow_s,x_m,y_m,z_m,lat_deg,lon_deg,height_m,clock_bias_m,isb_m,vx_mps,vy_mps,vz_mps,clock_drift_mps,gdop,pdop,hdop,vdop,sats,excluded";
+pub(super) const HEADER: &str = "antenna,gps_week,tow_s,x_m,y_m,z_m,lat_deg,lon_deg,height_m,clock_bias_m,isb_m,vx_mps,vy_mps,vz_mps,clock_drift_mps,gdop,pdop,hdop,vdop,sats,excluded,hpl_m,vpl_m,integrity";
 
 /// `pvt.csv` being written.
 #[derive(Debug)]
@@ -63,9 +66,16 @@ impl PvtCsv {
         let g = ecef_to_geodetic(r);
         let v = |i: usize| optional(velocity.map(|v| v.v_ecef_mps[i]), 4);
         let excluded: Vec<String> = fix.excluded.iter().map(|s| s.to_string()).collect();
+        let p = fix.protection.as_ref();
+        let integrity = p.map_or("", |p| match p.status {
+            IntegrityStatus::Available => "available",
+            IntegrityStatus::Unavailable => "unavailable",
+            IntegrityStatus::Excluded => "excluded",
+            IntegrityStatus::Alarm => "alarm",
+        });
         writeln!(
             self.out,
-            "{},{week},{tow_s:.9},{:.4},{:.4},{:.4},{:.9},{:.9},{:.4},{:.4},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{},{}",
+            "{},{week},{tow_s:.9},{:.4},{:.4},{:.4},{:.9},{:.9},{:.4},{:.4},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{},{},{},{},{integrity}",
             text_field(antenna),
             r.x,
             r.y,
@@ -84,7 +94,9 @@ impl PvtCsv {
             fix.dop.hdop,
             fix.dop.vdop,
             fix.used.len(),
-            excluded.join(" ")
+            excluded.join(" "),
+            optional(p.map(|p| p.hpl_m), 3),
+            optional(p.map(|p| p.vpl_m), 3),
         )
         .with_context(|| writing(&self.path))
     }
@@ -101,6 +113,7 @@ mod tests {
     use skyforge_orbits::Vec3;
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
     use skyforge_receiver::pipeline::fixtures::{bds, fix, gps};
+    use skyforge_receiver::pvt::Protection;
 
     #[test]
     fn header_and_rows() {
@@ -124,6 +137,17 @@ mod tests {
         };
         f.inter_system_bias_m = None;
         f.excluded.clear();
+        f.protection = Some(Protection {
+            hpl_m: 41.25,
+            vpl_m: 60.5,
+            threshold: 13.8,
+            lambda_det: 40.0,
+            slopes: Vec::new(),
+            alarm: false,
+            chi2_all: 1.0,
+            r_all_ecef_m: f.r_ecef_m,
+            status: IntegrityStatus::Unavailable,
+        });
         csv.row("ant2", t, &f, Some(&vel)).unwrap();
         csv.finish().unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
@@ -149,10 +173,12 @@ mod tests {
         assert_eq!(&row1[15..19], ["2.500", "2.100", "1.200", "1.700"]);
         assert_eq!(row1[19], "3");
         assert_eq!(row1[20], "G30 C06");
+        assert_eq!(&row1[21..24], ["", "", ""]);
         let row2: Vec<&str> = lines[2].split(',').collect();
         assert_eq!(row2.len(), n);
         assert_eq!(row2[10], "");
         assert_eq!(&row2[11..15], ["7000.0000", "-1.0000", "0.5000", "0.1250"]);
         assert_eq!(row2[20], "");
+        assert_eq!(&row2[21..24], ["41.250", "60.500", "unavailable"]);
     }
 }

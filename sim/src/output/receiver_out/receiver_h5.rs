@@ -9,7 +9,8 @@
 //!   previous epoch);
 //! - `/pvt/<antenna>`, one row per fix: `t_rx_gpst_s`, `r_ecef_m` (N x 3), `clock_bias_m`,
 //!   `v_ecef_mps` (N x 3, NaN without a velocity fix), `clock_drift_mps` (NaN likewise),
-//!   `pdop`, `sats_used` (u16).
+//!   `pdop`, `sats_used` (u16), `hpl_m`, `vpl_m` (the residual test's protection levels,
+//!   NaN without RAIM; docs/raim.md).
 //!
 //! Rows wait in memory per dataset and are appended to the resizable, chunked datasets
 //! [`FLUSH_ROWS`] at a time, so memory stays bounded by satellites x `FLUSH_ROWS` rows
@@ -170,8 +171,8 @@ impl ObsSeries {
 /// The fix datasets of one antenna.
 #[derive(Debug)]
 struct PvtSeries {
-    /// `t_rx_gpst_s`, `clock_bias_m`, `clock_drift_mps`, `pdop`.
-    scalars: [Column<f64>; 4],
+    /// `t_rx_gpst_s`, `clock_bias_m`, `clock_drift_mps`, `pdop`, `hpl_m`, `vpl_m`.
+    scalars: [Column<f64>; 6],
     r_ecef_m: Column<f64>,
     v_ecef_mps: Column<f64>,
     sats_used: Column<u16>,
@@ -202,6 +203,20 @@ impl PvtSeries {
                 "c x receiver clock drift, NaN without a velocity fix",
             )?,
             Column::create(g, "pdop", 0, "1", "position dilution of precision")?,
+            Column::create(
+                g,
+                "hpl_m",
+                0,
+                "m",
+                "horizontal protection level of the residual test, NaN without RAIM",
+            )?,
+            Column::create(
+                g,
+                "vpl_m",
+                0,
+                "m",
+                "vertical protection level of the residual test, NaN without RAIM",
+            )?,
         ];
         week_attr(&scalars[0].ds, week)?;
         Ok(Self {
@@ -224,6 +239,8 @@ impl PvtSeries {
             fix.clock_bias_m,
             velocity.map_or(f64::NAN, |v| v.clock_drift_mps),
             fix.dop.pdop,
+            fix.protection.as_ref().map_or(f64::NAN, |p| p.hpl_m),
+            fix.protection.as_ref().map_or(f64::NAN, |p| p.vpl_m),
         ];
         for (c, v) in self.scalars.iter_mut().zip(row) {
             c.pending.push(v);
@@ -447,6 +464,11 @@ mod tests {
         let drift = read_f64(&file, "pvt/ant1/clock_drift_mps");
         assert!(drift[0].is_nan() && drift[1] == 0.25);
         assert_eq!(read_f64(&file, "pvt/ant1/pdop")[0], 2.1);
+        // The fixtures' fixes carry no protection: NaN protection levels.
+        for name in ["hpl_m", "vpl_m"] {
+            let pl = read_f64(&file, &format!("pvt/ant1/{name}"));
+            assert!(pl.len() == n - 1 && pl.iter().all(|x| x.is_nan()));
+        }
         assert_eq!(read_f64(&file, "pvt/ant1/clock_bias_m").len(), n - 1);
         let used = file
             .dataset("pvt/ant1/sats_used")
