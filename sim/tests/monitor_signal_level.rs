@@ -48,7 +48,16 @@ fn a_code_step_and_a_carrier_jump_at_one_station_are_detected_at_the_signal_leve
     let printed = skyforge_ok(&args, d);
     eprintln!("{printed}");
     let o = support::skyforge(
-        &["validate", "monitor", "--truth", "sim", "--monitor", "mon", "--json", "score.json"],
+        &[
+            "validate",
+            "monitor",
+            "--truth",
+            "sim",
+            "--monitor",
+            "mon",
+            "--json",
+            "score.json",
+        ],
         d,
     );
     eprintln!("{}", text(&o));

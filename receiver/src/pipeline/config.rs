@@ -165,6 +165,12 @@ pub struct PvtFile {
     pub elevation_mask_deg: f64,
     pub troposphere: bool,
     pub raim_pfa: f64,
+    /// Missed-detection probability of the protection levels (docs/raim.md).
+    pub raim_pmd: f64,
+    /// Horizontal alarm limit (m).
+    pub raim_hal_m: f64,
+    /// Vertical alarm limit (m), none by default.
+    pub raim_val_m: Option<f64>,
 }
 
 impl Default for PvtFile {
@@ -174,6 +180,9 @@ impl Default for PvtFile {
             elevation_mask_deg: d.elevation_mask_rad.to_degrees(),
             troposphere: d.troposphere,
             raim_pfa: d.raim_pfa,
+            raim_pmd: d.raim_pmd,
+            raim_hal_m: d.raim_hal_m,
+            raim_val_m: d.raim_val_m,
         }
     }
 }
@@ -272,12 +281,18 @@ impl ReceiverFile {
                 "0 to below 90",
             ));
         }
-        if !(0.0..1.0).contains(&p.raim_pfa) {
-            return Err(bad(
-                "pvt.raim_pfa",
-                p.raim_pfa.to_string(),
-                "0 (off) to below 1",
-            ));
+        for (key, v) in [("pvt.raim_pfa", p.raim_pfa), ("pvt.raim_pmd", p.raim_pmd)] {
+            if !(0.0..1.0).contains(&v) {
+                return Err(bad(key, v.to_string(), "0 (off) to below 1"));
+            }
+        }
+        for (key, v) in [
+            ("pvt.raim_hal_m", Some(p.raim_hal_m)),
+            ("pvt.raim_val_m", p.raim_val_m),
+        ] {
+            if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
+                return Err(bad(key, v.to_string(), "a positive number of metres"));
+            }
         }
         let approximate = match self.assist {
             None => None,
@@ -337,6 +352,9 @@ impl ReceiverFile {
                 elevation_mask_rad: p.elevation_mask_deg.to_radians(),
                 troposphere: p.troposphere,
                 raim_pfa: p.raim_pfa,
+                raim_pmd: p.raim_pmd,
+                raim_hal_m: p.raim_hal_m,
+                raim_val_m: p.raim_val_m,
                 ..PvtConfig::default()
             },
         };
