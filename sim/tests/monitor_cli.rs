@@ -64,6 +64,8 @@ fn a_slip_at_one_station_is_detected_isolated_and_scored() {
     let h5 = hdf5::File::open(d.join("mon/monitor.h5")).unwrap();
     assert_eq!(dataset::<f64>(&h5, "t_s").len(), rows);
     assert_eq!(dataset::<f64>(&h5, "b").len(), 4 * rows);
+    // The observation level flags no loss of lock on continuous tracks.
+    assert!(dataset::<u8>(&h5, "loss_of_lock").iter().all(|&f| f == 0));
     assert_eq!(summary["monitored"].as_u64().unwrap() as usize, rows);
     // validate monitor: detected at once, isolated at C, no false alarm.
     let out = skyforge_ok(

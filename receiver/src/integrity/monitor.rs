@@ -86,6 +86,9 @@ pub struct StationValues {
     pub b: PerStatistic<f64>,
     /// Whether each B value exceeds its (armed) threshold.
     pub alarm: PerStatistic<bool>,
+    /// The station's receiver flagged a loss of lock at this epoch (RINEX LLI): the
+    /// receiver itself reports a possible cycle slip, and the track restarts.
+    pub loss_of_lock: bool,
 }
 
 /// One satellite (and signal) at one epoch.
@@ -239,17 +242,18 @@ impl Monitor {
             self.tracks.remove(&key);
             return None;
         }
-        let mut lost = false;
+        let mut lost = vec![false; self.places.len()];
         let mapped: Vec<Mapped> = self
             .places
             .iter()
             .zip(records)
-            .map(|(place, recs)| {
+            .zip(lost.iter_mut())
+            .map(|((place, recs), lost)| {
                 let rec = (*recs)?
                     .iter()
                     .find(|r| (r.sat, r.signal) == key && r.pseudorange_m.is_some())?;
                 let (code, phase) = (rec.pseudorange_m?, rec.carrier_phase_cycles?);
-                lost |= rec.loss_of_lock();
+                *lost = rec.loss_of_lock();
                 // The satellite where the common point's signal left it: stations a few
                 // hundred metres away see it within a microsecond of that (mm).
                 let to_common_m = place.path_m(&r_sat, troposphere).0 - common_m;
@@ -267,8 +271,14 @@ impl Monitor {
             .config
             .thresholds
             .at(self.multiplier, key.1, elevation_deg)?;
-        let track = self.track(key, t_s, &mapped, lost);
-        Some(self.outcome(key, elevation_deg, threshold, track, &mapped))
+        let track = self.track(key, t_s, &mapped, lost.contains(&true));
+        let mut outcome = self.outcome(key, elevation_deg, threshold, track, &mapped);
+        for (v, lost) in outcome.stations.iter_mut().zip(lost) {
+            if let Some(v) = v {
+                v.loss_of_lock = lost;
+            }
+        }
+        Some(outcome)
     }
 
     /// The track of `key` after this epoch's `mapped` observations: continued when the
@@ -377,6 +387,7 @@ impl Monitor {
                     statistic: x,
                     b: bi,
                     alarm,
+                    loss_of_lock: false,
                 })
             })
             .collect();

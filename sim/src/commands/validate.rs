@@ -6,7 +6,7 @@ use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::outputs::print_validation;
-use skyforge_validate::integrity::score::{print_score, read_alarms, run_scenario, score};
+use skyforge_validate::integrity::score::{print_score, read_monitor_csv, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
@@ -124,9 +124,9 @@ pub fn attitude(
 /// in `truth`, print the table and optionally write the JSON.
 pub fn monitor(truth: &Path, monitor: &Path, json: Option<&Path>) -> anyhow::Result<()> {
     let scenario = run_scenario(truth).map_err(BadInput)?;
-    let alarms =
-        read_alarms(&monitor.join("monitor.csv"), scenario.time.start).map_err(BadInput)?;
-    let score = score(&scenario.errors.events, &alarms);
+    let record =
+        read_monitor_csv(&monitor.join("monitor.csv"), scenario.time.start).map_err(BadInput)?;
+    let score = score(&scenario.errors.events, &record);
     print_score(&score, &mut std::io::stdout().lock())?;
     if let Some(path) = json {
         write_json_text(serde_json::to_string_pretty(&score)?, path)?;

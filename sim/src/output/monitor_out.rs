@@ -21,6 +21,7 @@ pub fn csv_header() -> String {
         let k = stat_key(stat);
         let _ = write!(h, ",{k},{k}_b,{k}_threshold,{k}_armed,{k}_alarm");
     }
+    h.push_str(",loss_of_lock");
     h
 }
 
@@ -53,7 +54,7 @@ pub fn csv_rows(e: &MonitorEpoch, stations: &[Station]) -> String {
                     u8::from(v.alarm[k])
                 );
             }
-            out.push('\n');
+            let _ = writeln!(out, ",{}", u8::from(v.loss_of_lock));
         }
     }
     out
@@ -147,6 +148,7 @@ pub struct H5Rows {
     threshold: Vec<f64>,
     armed: Vec<u8>,
     alarm: Vec<u8>,
+    loss_of_lock: Vec<u8>,
 }
 
 /// A satellite as one number: 1000 x system (1 GPS, 2 BeiDou) + PRN.
@@ -173,6 +175,7 @@ impl H5Rows {
                 self.threshold.extend_from_slice(&s.threshold);
                 self.armed.extend(s.armed.map(u8::from));
                 self.alarm.extend(v.alarm.map(u8::from));
+                self.loss_of_lock.push(u8::from(v.loss_of_lock));
             }
         }
     }
@@ -201,15 +204,22 @@ impl H5Rows {
             "elevation at the common point",
             &self.elevation_deg,
         )?;
-        let ds = create_rows::<u8>(
-            &root,
-            "station",
-            0,
-            chunk,
-            "",
-            "index into the stations attribute",
-        )?;
-        append_rows(&ds, 0, &self.station, 0)?;
+        let ints: [(&str, &str, &[u8]); 2] = [
+            (
+                "station",
+                "index into the stations attribute",
+                &self.station,
+            ),
+            (
+                "loss_of_lock",
+                "1 when the receiver flagged a loss of lock (the track restarts)",
+                &self.loss_of_lock,
+            ),
+        ];
+        for (name, what, data) in ints {
+            let ds = create_rows::<u8>(&root, name, 0, chunk, "", what)?;
+            append_rows(&ds, 0, data, 0)?;
+        }
         let ds = create_rows::<u16>(
             &root,
             "sat",

@@ -28,11 +28,27 @@ pub struct Alarm {
     pub ratio: f64,
 }
 
+/// A loss of lock a station's receiver flagged (RINEX LLI) on a satellite.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Flag {
+    /// Seconds since the scenario start.
+    pub t_s: f64,
+    pub station: String,
+    pub sat: String,
+}
+
+/// What `monitor.csv` holds for the scoring.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct MonitorRecord {
+    pub alarms: Vec<Alarm>,
+    pub flags: Vec<Flag>,
+}
+
 /// Statistic names in `monitor.csv`'s column order.
 const STATISTICS: [&str; 4] = ["code", "smoothed_code", "carrier", "divergence"];
 
-/// The alarms of `monitor.csv` at `path`, timed from `start`.
-pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
+/// The alarms and loss-of-lock flags of `monitor.csv` at `path`, timed from `start`.
+pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, String> {
     let err = |line: usize, m: String| format!("{}:{line}: {m}", path.display());
     let text = read_text(path, MAX_CSV_BYTES, "CSV file").map_err(|e| err(0, e.to_string()))?;
     let mut lines = text.lines().enumerate();
@@ -47,6 +63,7 @@ pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
             .ok_or_else(|| err(1, format!("no column {name:?} (not a monitor.csv)")))
     };
     let (c_time, c_station, c_sat) = (col("time_gpst")?, col("station")?, col("sat")?);
+    let c_lli = col("loss_of_lock")?;
     let stat_cols: Vec<(usize, usize, usize)> = STATISTICS
         .iter()
         .map(|s| {
@@ -58,7 +75,7 @@ pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
         })
         .collect::<Result<_, String>>()?;
     let origin = TimeOrigin::new(start);
-    let mut out = Vec::new();
+    let mut out = MonitorRecord::default();
     for (i, line) in lines {
         let f: Vec<&str> = line.split(',').collect();
         if f.len() != header.len() {
@@ -67,22 +84,33 @@ pub fn read_alarms(path: &Path, start: Epoch) -> Result<Vec<Alarm>, String> {
                 format!("{} fields, the header has {}", f.len(), header.len()),
             ));
         }
-        for (k, &(alarm, b, threshold)) in stat_cols.iter().enumerate() {
-            if f[alarm] != "1" {
-                continue;
-            }
-            let time = parse_epoch(f[c_time]).map_err(|e| err(i + 1, format!("time_gpst: {e}")))?;
-            let num = |c: usize| {
-                f[c].parse::<f64>()
-                    .map_err(|_| err(i + 1, format!("{}: {:?} is not a number", header[c], f[c])))
-            };
-            out.push(Alarm {
-                t_s: origin.seconds_since_start(time),
+        let flagged = f[c_lli] == "1";
+        if !flagged && stat_cols.iter().all(|&(alarm, _, _)| f[alarm] != "1") {
+            continue;
+        }
+        let time = parse_epoch(f[c_time]).map_err(|e| err(i + 1, format!("time_gpst: {e}")))?;
+        let t_s = origin.seconds_since_start(time);
+        if flagged {
+            out.flags.push(Flag {
+                t_s,
                 station: f[c_station].to_string(),
                 sat: f[c_sat].to_string(),
-                statistic: STATISTICS[k].to_string(),
-                ratio: num(b)?.abs() / num(threshold)?,
             });
+        }
+        let num = |c: usize| {
+            f[c].parse::<f64>()
+                .map_err(|_| err(i + 1, format!("{}: {:?} is not a number", header[c], f[c])))
+        };
+        for (k, &(alarm, b, threshold)) in stat_cols.iter().enumerate() {
+            if f[alarm] == "1" {
+                out.alarms.push(Alarm {
+                    t_s,
+                    station: f[c_station].to_string(),
+                    sat: f[c_sat].to_string(),
+                    statistic: STATISTICS[k].to_string(),
+                    ratio: num(b)?.abs() / num(threshold)?,
+                });
+            }
         }
     }
     Ok(out)
@@ -118,6 +146,10 @@ pub struct EventOutcome {
     pub first_station: Option<String>,
     /// Whether that station is the event's antenna (an event at every antenna: `None`).
     pub isolated: Option<bool>,
+    /// First loss of lock the receivers flagged on the event's satellite(s) from its
+    /// start, minus the start (s), and the station: the receiver's own detection.
+    pub lock_lost_s: Option<f64>,
+    pub lock_lost_station: Option<String>,
 }
 
 /// The comparison.
@@ -139,11 +171,17 @@ fn explains(event: &EventConfig, sat: &str, t_s: f64) -> bool {
         && t_s < event.end_s + HOLD_S
 }
 
-/// Score `alarms` against `events`.
-pub fn score(events: &[EventConfig], alarms: &[Alarm]) -> MonitorScore {
+/// Score the monitor's `record` against `events`.
+pub fn score(events: &[EventConfig], record: &MonitorRecord) -> MonitorScore {
+    let alarms = &record.alarms;
     let outcomes = events
         .iter()
         .map(|e| {
+            let flag = record
+                .flags
+                .iter()
+                .filter(|f| explains(e, &f.sat, f.t_s))
+                .min_by(|a, b| a.t_s.total_cmp(&b.t_s));
             let first_t = alarms
                 .iter()
                 .filter(|a| explains(e, &a.sat, a.t_s))
@@ -168,6 +206,8 @@ pub fn score(events: &[EventConfig], alarms: &[Alarm]) -> MonitorScore {
                     .antenna
                     .as_ref()
                     .and_then(|ant| strongest.map(|a| &a.station == ant)),
+                lock_lost_s: flag.map(|f| f.t_s - e.start_s),
+                lock_lost_station: flag.map(|f| f.station.clone()),
             }
         })
         .collect();
@@ -191,14 +231,23 @@ pub fn score(events: &[EventConfig], alarms: &[Alarm]) -> MonitorScore {
 pub fn print_score(score: &MonitorScore, out: &mut impl std::io::Write) -> std::io::Result<()> {
     writeln!(
         out,
-        "{:<11} {:<7} {:<5} {:>8} {:>8}  {:<9} {:>8}  {:<14} {:<7} isolated",
-        "event", "antenna", "sat", "start_s", "end_s", "detected", "delay_s", "first by", "station"
+        "{:<11} {:<7} {:<5} {:>8} {:>8}  {:<9} {:>8}  {:<14} {:<7} {:<8}  lock lost (s, station)",
+        "event",
+        "antenna",
+        "sat",
+        "start_s",
+        "end_s",
+        "detected",
+        "delay_s",
+        "first by",
+        "station",
+        "isolated"
     )?;
     let opt = |v: &Option<String>| v.clone().unwrap_or_else(|| "all".into());
     for e in &score.events {
         writeln!(
             out,
-            "{:<11} {:<7} {:<5} {:>8.1} {:>8.1}  {:<9} {:>8}  {:<14} {:<7} {}",
+            "{:<11} {:<7} {:<5} {:>8.1} {:>8.1}  {:<9} {:>8}  {:<14} {:<7} {:<8}  {}",
             e.kind,
             opt(&e.antenna),
             opt(&e.satellite),
@@ -209,6 +258,10 @@ pub fn print_score(score: &MonitorScore, out: &mut impl std::io::Write) -> std::
             e.first_statistic.clone().unwrap_or_else(|| "-".into()),
             e.first_station.clone().unwrap_or_else(|| "-".into()),
             e.isolated.map_or("-", |i| if i { "yes" } else { "no" }),
+            match (&e.lock_lost_s, &e.lock_lost_station) {
+                (Some(t), Some(s)) => format!("{t:.1} {s}"),
+                _ => "-".into(),
+            },
         )?;
     }
     writeln!(
@@ -256,12 +309,23 @@ mod tests {
             alarm(300.0, "C", "C03", 2.0), // before the slip: false
             alarm(900.0, "B", "G01", 2.0), // no event on G01: false
         ];
-        let s = score(&[slip, missed], &alarms);
+        let record = MonitorRecord {
+            alarms,
+            flags: vec![Flag {
+                t_s: 105.0,
+                station: "C".into(),
+                sat: "G07".into(),
+            }],
+        };
+        let s = score(&[slip, missed], &record);
         assert!(s.events[0].detected);
         assert_eq!(s.events[0].delay_s, Some(1.0));
         assert_eq!(s.events[0].first_station.as_deref(), Some("C"));
         assert_eq!(s.events[0].isolated, Some(true));
         assert!(!s.events[1].detected);
+        assert_eq!(s.events[1].lock_lost_s, Some(5.0));
+        assert_eq!(s.events[1].lock_lost_station.as_deref(), Some("C"));
+        assert_eq!(s.events[0].lock_lost_s, None);
         assert_eq!((s.alarms, s.false_alarms), (5, 2));
     }
 }
