@@ -2,17 +2,20 @@
 //! light-time solved in the rotating Earth frame by fixed-point iteration, satellite clock
 //! with group delay, broadcast ionosphere, standard troposphere and a receiver clock.
 
+mod pvt_support;
+
+use pvt_support::{World, world};
+
 use skyforge_orbits::Vec3;
 use skyforge_orbits::atmosphere::standard_slant_delay_m;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, OMEGA_E_BDS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::config::BeidouSet;
 use skyforge_orbits::ephemeris::klobuchar::{
     KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
 };
-use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System, nominal};
+use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
-use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
+use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
 use skyforge_receiver::pvt::{Measurement, PvtConfig, PvtError, solve, solve_velocity};
 
 const GPS_IONO: KlobucharCoeffs = KlobucharCoeffs {
@@ -23,22 +26,6 @@ const BDS_IONO: KlobucharCoeffs = KlobucharCoeffs {
     alpha: [4.2e-8, 4.4e-7, -2.9e-6, 3.6e-6],
     beta: [8.4e4, 1.0e6, -7.8e6, 8.3e6],
 };
-
-struct World {
-    origin: TimeOrigin,
-    store: EphemerisStore,
-}
-
-fn world() -> World {
-    let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
-    let origin = TimeOrigin::new(start);
-    let mut ephs = nominal::gps(start);
-    ephs.extend(nominal::beidou(BeidouSet::Bds3, start));
-    World {
-        store: EphemerisStore::new(ephs, &origin),
-        origin,
-    }
-}
 
 /// The pseudorange (m) and Doppler (Hz) of `sat` for a receiver at `r` moving at `v`,
 /// received at true time `t_s` with clock offset `clock_m` and drift `drift_mps`, and the
@@ -153,7 +140,7 @@ fn site() -> Vec3 {
 
 #[test]
 fn gps_ground_fix_recovers_position_clock_and_velocity() {
-    let w = world();
+    let w = world(true);
     let (t_true, clock_m) = (3600.0, 3e-4 * C_MPS);
     let r = site();
     let meas = measurements(
@@ -185,7 +172,7 @@ fn gps_ground_fix_recovers_position_clock_and_velocity() {
 
 #[test]
 fn gps_and_beidou_share_a_fix_with_an_inter_system_bias() {
-    let w = world();
+    let w = world(true);
     let (t_true, gps_clock, bds_clock) = (7200.0, 150.0, 162.5);
     let r = site();
     let meas = measurements(
@@ -219,7 +206,7 @@ fn gps_and_beidou_share_a_fix_with_an_inter_system_bias() {
 
 #[test]
 fn leo_fix_without_atmosphere() {
-    let w = world();
+    let w = world(true);
     let r = geodetic_to_ecef(&Geodetic {
         lat_rad: 0.3,
         lon_rad: -1.2,
@@ -249,7 +236,7 @@ fn leo_fix_without_atmosphere() {
 
 #[test]
 fn residual_test_excludes_a_faulty_satellite() {
-    let w = world();
+    let w = world(true);
     let r = site();
     let mut meas = measurements(
         &w,
@@ -294,7 +281,7 @@ fn residual_test_excludes_a_faulty_satellite() {
 
 #[test]
 fn too_few_satellites_is_an_error() {
-    let w = world();
+    let w = world(true);
     let meas = measurements(
         &w,
         &[System::Gps],
@@ -321,7 +308,7 @@ fn too_few_satellites_is_an_error() {
 #[test]
 fn gga_and_rmc_carry_the_fix() {
     use skyforge_receiver::pvt::nmea::{gga, gsa, rmc};
-    let w = world();
+    let w = world(true);
     let r = site();
     let v = Vec3::new(3.0, 4.0, 0.0);
     let meas = measurements(&w, &[System::Gps], 100.0, &r, &v, (0.0, 0.0), true);

@@ -3,31 +3,20 @@
 //! the distribution of the fault-free statistic, and the detection probability at the
 //! detection noncentrality.
 
+mod pvt_support;
+
+use pvt_support::{World, world};
+
 use rand::SeedableRng;
 use rand_chacha::ChaCha20Rng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System, nominal};
+use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
-use skyforge_orbits::time::TimeOrigin;
 use skyforge_receiver::pvt::raim::{chi2_survival, detection_parameters};
-use skyforge_receiver::pvt::{Fix, IntegrityStatus, Measurement, PvtConfig, solve};
-
-struct World {
-    origin: TimeOrigin,
-    store: EphemerisStore,
-}
-
-fn world() -> World {
-    let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
-    let origin = TimeOrigin::new(start);
-    World {
-        store: EphemerisStore::new(nominal::gps(start), &origin),
-        origin,
-    }
-}
+use skyforge_receiver::pvt::{Fix, IntegrityStatus, Measurement, PvtConfig, PvtError, solve};
 
 fn site() -> Vec3 {
     geodetic_to_ecef(&Geodetic {
@@ -35,6 +24,11 @@ fn site() -> Vec3 {
         lon_rad: 114f64.to_radians(),
         h_m: 50.0,
     })
+}
+
+/// The fix of `meas` at `t` with `cfg`, no a-priori position.
+fn fix_at(w: &World, t: f64, meas: &[Measurement], cfg: &PvtConfig) -> Result<Fix, PvtError> {
+    solve(meas, t, &w.store, &w.origin, cfg, None)
 }
 
 /// No atmosphere in the measurements and none in the solver: the test is about the
@@ -113,19 +107,11 @@ fn protection_levels_equal_the_error_of_a_bias_at_lambda_det_injected_through_th
     // Oracle: for each satellite in turn, a bias whose statistic (the solver's own chi2 of
     // the biased noise-free fix, test off) equals lambda_det; the solver's position error
     // must be that satellite's slope times sqrt(lambda_det), and HPL the largest of them.
-    let (w, r, t) = (world(), site(), 5400.0);
+    let (w, r, t) = (world(false), site(), 5400.0);
     let cfg = config();
     let clean = pseudoranges(&w, t, &r);
     assert!(clean.len() >= 6, "{} satellites", clean.len());
-    let fix = solve(
-        &measurements(&clean, None, &[]),
-        t,
-        &w.store,
-        &w.origin,
-        &cfg,
-        None,
-    )
-    .unwrap();
+    let fix = fix_at(&w, t, &measurements(&clean, None, &[]), &cfg).unwrap();
     let p = fix.protection.clone().unwrap();
     assert_eq!(p.status, IntegrityStatus::Available);
     assert!(!p.alarm && p.hpl_m > 0.0 && p.hpl_m < cfg.raim_hal_m);
@@ -137,17 +123,8 @@ fn protection_levels_equal_the_error_of_a_bias_at_lambda_det_injected_through_th
     };
     let (mut worst_h, mut worst_v) = (0.0f64, 0.0f64);
     for (i, slope) in p.slopes.iter().enumerate() {
-        let solve_with = |b: f64| {
-            solve(
-                &measurements(&clean, Some((i, b)), &[]),
-                t,
-                &w.store,
-                &w.origin,
-                &off,
-                None,
-            )
-            .unwrap()
-        };
+        let solve_with =
+            |b: f64| fix_at(&w, t, &measurements(&clean, Some((i, b)), &[]), &off).unwrap();
         let unit = solve_with(1.0);
         let b = (lambda / unit.chi2).sqrt();
         let biased = solve_with(b);
@@ -174,7 +151,7 @@ fn protection_levels_equal_the_error_of_a_bias_at_lambda_det_injected_through_th
 fn fault_free_statistic_follows_the_chi_square_distribution() {
     // Kolmogorov-Smirnov: the survival probability of each fix's statistic at its own
     // degrees of freedom is uniform on (0, 1) when the noise has the weights' sigmas.
-    let (w, r) = (world(), site());
+    let (w, r) = (world(false), site());
     let off = PvtConfig {
         raim_pfa: 0.0,
         ..config()
@@ -192,15 +169,7 @@ fn fault_free_statistic_follows_the_chi_square_distribution() {
                         * <StandardNormal as Distribution<f64>>::sample(&StandardNormal, &mut rng)
                 })
                 .collect();
-            let fix = solve(
-                &measurements(&clean, None, &noise),
-                t,
-                &w.store,
-                &w.origin,
-                &off,
-                None,
-            )
-            .unwrap();
+            let fix = fix_at(&w, t, &measurements(&clean, None, &noise), &off).unwrap();
             chi2_survival(fix.dof, fix.chi2)
         })
         .collect();
@@ -226,7 +195,7 @@ fn fault_free_statistic_follows_the_chi_square_distribution() {
 fn detection_probability_at_lambda_det_is_one_minus_pmd() {
     // The worst satellite biased so that its statistic has noncentrality lambda_det, noise
     // of the weights' sigmas on all: the test fires with probability 1 - P_md.
-    let (w, r, t) = (world(), site(), 5400.0);
+    let (w, r, t) = (world(false), site(), 5400.0);
     let clean = pseudoranges(&w, t, &r);
     let mut rng = ChaCha20Rng::seed_from_u64(515);
     for (pmd, draws) in [(0.1, 1500), (1e-3, 1500)] {
@@ -234,15 +203,7 @@ fn detection_probability_at_lambda_det_is_one_minus_pmd() {
             raim_pmd: pmd,
             ..config()
         };
-        let fix0 = solve(
-            &measurements(&clean, None, &[]),
-            t,
-            &w.store,
-            &w.origin,
-            &cfg,
-            None,
-        )
-        .unwrap();
+        let fix0 = fix_at(&w, t, &measurements(&clean, None, &[]), &cfg).unwrap();
         let p = fix0.protection.unwrap();
         let worst = (0..p.slopes.len())
             .max_by(|&a, &b| {
@@ -255,15 +216,7 @@ fn detection_probability_at_lambda_det_is_one_minus_pmd() {
             raim_pfa: 0.0,
             ..cfg.clone()
         };
-        let unit = solve(
-            &measurements(&clean, Some((worst, 1.0)), &[]),
-            t,
-            &w.store,
-            &w.origin,
-            &off,
-            None,
-        )
-        .unwrap();
+        let unit = fix_at(&w, t, &measurements(&clean, Some((worst, 1.0)), &[]), &off).unwrap();
         let b = (p.lambda_det / unit.chi2).sqrt();
         let missed = (0..draws)
             .filter(|_| {
@@ -277,15 +230,8 @@ fn detection_probability_at_lambda_det_is_one_minus_pmd() {
                             )
                     })
                     .collect();
-                let fix = solve(
-                    &measurements(&clean, Some((worst, b)), &noise),
-                    t,
-                    &w.store,
-                    &w.origin,
-                    &cfg,
-                    None,
-                )
-                .unwrap();
+                let fix =
+                    fix_at(&w, t, &measurements(&clean, Some((worst, b)), &noise), &cfg).unwrap();
                 !fix.protection.is_some_and(|p| p.alarm)
             })
             .count();
@@ -300,19 +246,11 @@ fn detection_probability_at_lambda_det_is_one_minus_pmd() {
 
 #[test]
 fn a_large_bias_is_detected_and_its_satellite_excluded() {
-    let (w, r, t) = (world(), site(), 5400.0);
+    let (w, r, t) = (world(false), site(), 5400.0);
     let cfg = config();
     let clean = pseudoranges(&w, t, &r);
     for i in 0..clean.len() {
-        let fix = solve(
-            &measurements(&clean, Some((i, 300.0)), &[]),
-            t,
-            &w.store,
-            &w.origin,
-            &cfg,
-            None,
-        )
-        .unwrap();
+        let fix = fix_at(&w, t, &measurements(&clean, Some((i, 300.0)), &[]), &cfg).unwrap();
         let p = fix.protection.clone().unwrap();
         assert!(p.alarm, "sat {i}");
         assert_eq!(fix.excluded, vec![clean[i].0]);
@@ -324,15 +262,7 @@ fn a_large_bias_is_detected_and_its_satellite_excluded() {
         raim_pfa: 0.0,
         ..cfg
     };
-    let fix = solve(
-        &measurements(&clean, None, &[]),
-        t,
-        &w.store,
-        &w.origin,
-        &off,
-        None,
-    )
-    .unwrap();
+    let fix = fix_at(&w, t, &measurements(&clean, None, &[]), &off).unwrap();
     assert_eq!(fix.protection, None);
 }
 

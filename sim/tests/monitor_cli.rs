@@ -43,9 +43,7 @@ fn a_slip_at_one_station_is_detected_isolated_and_scored() {
     let printed = skyforge_ok(&args, d);
     assert!(printed.contains("stations   A, B, C, D"), "{printed}");
     // Every alarm is on the slipped satellite, from the first epoch after the slip.
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("mon/summary.json")).unwrap())
-            .unwrap();
+    let summary = support::json_file(&d.join("mon/summary.json"));
     let alarms = summary["alarms"].as_array().unwrap();
     assert!(!alarms.is_empty());
     for a in alarms {
@@ -68,22 +66,8 @@ fn a_slip_at_one_station_is_detected_isolated_and_scored() {
     assert!(dataset::<u8>(&h5, "loss_of_lock").iter().all(|&f| f == 0));
     assert_eq!(summary["monitored"].as_u64().unwrap() as usize, rows);
     // validate monitor: detected at once, isolated at C, no false alarm.
-    let out = skyforge_ok(
-        &[
-            "validate",
-            "monitor",
-            "--truth",
-            "sim",
-            "--monitor",
-            "mon",
-            "--json",
-            "score.json",
-        ],
-        d,
-    );
+    let (out, score) = support::validate_monitor(d);
     assert!(out.contains("phase-jump"), "{out}");
-    let score: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("score.json")).unwrap()).unwrap();
     let e = &score["events"][0];
     assert_eq!(e["detected"], true, "{score}");
     assert!(e["delay_s"].as_f64().unwrap() <= 1.0, "{score}");

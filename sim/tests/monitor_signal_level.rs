@@ -9,7 +9,7 @@
 
 mod support;
 
-use support::{skyforge_ok, text};
+use support::skyforge_ok;
 
 #[test]
 #[ignore = "acceptance tier (minutes, 4 GB of I/Q): cargo test -p skyforge-sim --test monitor_signal_level -- --ignored"]
@@ -77,23 +77,8 @@ fn a_code_step_and_a_carrier_jump_at_one_station_are_detected_at_the_signal_leve
     ]);
     let printed = skyforge_ok(&args, d);
     eprintln!("{printed}");
-    let o = support::skyforge(
-        &[
-            "validate",
-            "monitor",
-            "--truth",
-            "sim",
-            "--monitor",
-            "mon",
-            "--json",
-            "score.json",
-        ],
-        d,
-    );
-    eprintln!("{}", text(&o));
-    assert!(o.status.success());
-    let score: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(d.join("score.json")).unwrap()).unwrap();
+    let (scored, score) = support::validate_monitor(d);
+    eprintln!("{scored}");
     // Each fault: a monitor alarm isolating C, or C's receiver flagging a loss of lock,
     // within 5 s.
     for e in score["events"].as_array().unwrap() {

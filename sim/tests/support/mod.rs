@@ -76,6 +76,31 @@ pub fn short_scenario(dir: &Path, name: &str, duration_s: u32) -> PathBuf {
     path
 }
 
+/// The JSON file at `path`, parsed.
+pub fn json_file(path: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    serde_json::from_str(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// `skyforge validate monitor --truth sim --monitor mon --json score.json` in `dir`, which
+/// must succeed: what it printed and the score.
+pub fn validate_monitor(dir: &Path) -> (String, serde_json::Value) {
+    let printed = skyforge_ok(
+        &[
+            "validate",
+            "monitor",
+            "--truth",
+            "sim",
+            "--monitor",
+            "mon",
+            "--json",
+            "score.json",
+        ],
+        dir,
+    );
+    (printed, json_file(&dir.join("score.json")))
+}
+
 /// The rows `skyforge validate thesis --out <out>` wrote to `out/results.json`.
 pub fn results_json(out: &Path) -> Vec<serde_json::Value> {
     let json = std::fs::read_to_string(out.join("results.json")).expect("results.json");
