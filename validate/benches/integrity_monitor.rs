@@ -5,7 +5,7 @@
 //! alignment, mapping to the common point, Hatch filters, divergence, B values, alarms.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use skyforge_receiver::integrity::files::run_files;
+use skyforge_receiver::integrity::files::{run_files, stations};
 use skyforge_validate::attitude::observation_run;
 use skyforge_validate::integrity::lab::scenario;
 use std::hint::black_box;
@@ -16,6 +16,7 @@ fn monitor(c: &mut Criterion) {
         skyforge_scenarios::BUNDLED_MONITOR_CONFIG,
     )
     .expect("bundled configuration");
+    let stations = stations(&run.measured, &run.antennas, &cfg).expect("station positions");
     let mut group = c.benchmark_group("monitor");
     group.sample_size(10);
     group.bench_function("lab-1800s", |b| {
@@ -23,7 +24,7 @@ fn monitor(c: &mut Criterion) {
             let mut values = 0usize;
             run_files(
                 &run.measured,
-                &run.antennas,
+                stations.clone(),
                 run.ephemerides.clone(),
                 cfg.clone(),
                 |e| values += e.sats.len(),

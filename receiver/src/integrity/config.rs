@@ -59,6 +59,20 @@ fn default_mask_deg() -> f64 {
 }
 
 impl MonitorConfig {
+    /// The documented defaults with `thresholds`: no configured positions, the stations'
+    /// mean as the common point.
+    pub fn new(thresholds: ThresholdConfig) -> Self {
+        Self {
+            smoothing_s: default_smoothing_s(),
+            divergence_s: default_divergence_s(),
+            elevation_mask_deg: default_mask_deg(),
+            troposphere: default_troposphere(),
+            stations: Vec::new(),
+            common_point_ecef_m: None,
+            thresholds,
+        }
+    }
+
     /// Parse and check a configuration's text.
     pub fn parse(text: &str) -> Result<Self, String> {
         let config: Self = toml::from_str(text).map_err(|e| e.to_string())?;

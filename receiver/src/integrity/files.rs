@@ -61,16 +61,15 @@ pub fn stations(
         .collect()
 }
 
-/// Monitor `files` (one per station) over the epochs of the first, handing each epoch's
-/// outcome to `each`; returns the stations used.
+/// Monitor `files` (one per station of `stations`, from [`stations`]) over the epochs of
+/// the first, handing each epoch's outcome to `each`; returns the common point used.
 pub fn run_files(
     files: &[ObsFile],
-    names: &[String],
+    stations: Vec<Station>,
     ephemerides: Vec<BroadcastEphemeris>,
     config: MonitorConfig,
     mut each: impl FnMut(&MonitorEpoch),
-) -> Result<Vec<Station>, FilesError> {
-    let stations = stations(files, names, &config)?;
+) -> Result<Vec3, FilesError> {
     let first = files
         .first()
         .ok_or(MonitorError::TooFewStations(0))
@@ -86,7 +85,7 @@ pub fn run_files(
     let common = config.common_point_ecef_m.map(Vec3::from);
     let mut monitor = Monitor::new(
         config,
-        stations.clone(),
+        stations,
         common,
         ephemerides,
         TimeOrigin::new(start),
@@ -100,5 +99,5 @@ pub fn run_files(
             .collect();
         each(&monitor.epoch(epoch.time, &records));
     }
-    Ok(stations)
+    Ok(monitor.common_point())
 }

@@ -149,7 +149,6 @@ struct Track {
     start_s: f64,
     last_s: f64,
     last_dt_s: Option<f64>,
-    epochs: f64,
 }
 
 /// One station's mapped observation: virtual code (m), virtual phase (m).
@@ -160,7 +159,6 @@ type Mapped = Option<(f64, f64)>;
 pub struct Monitor {
     config: MonitorConfig,
     multiplier: f64,
-    stations: Vec<Station>,
     places: Vec<Place>,
     common: Place,
     origin: TimeOrigin,
@@ -190,14 +188,8 @@ impl Monitor {
             common: Place::new(common_m.unwrap_or(mean)),
             store: EphemerisStore::new(ephemerides, &origin),
             origin,
-            stations,
             tracks: BTreeMap::new(),
         })
-    }
-
-    /// The stations, in monitor order.
-    pub fn stations(&self) -> &[Station] {
-        &self.stations
     }
 
     /// The common point (ECEF, m).
@@ -271,7 +263,8 @@ impl Monitor {
             .config
             .thresholds
             .at(self.multiplier, key.1, elevation_deg)?;
-        let track = self.track(key, t_s, &mapped, lost.contains(&true));
+        self.track(key, t_s, &mapped, lost.contains(&true));
+        let track = self.tracks.get(&key)?;
         let mut outcome = self.outcome(key, elevation_deg, threshold, track, &mapped);
         for (v, lost) in outcome.stations.iter_mut().zip(lost) {
             if let Some(v) = v {
@@ -283,7 +276,7 @@ impl Monitor {
 
     /// The track of `key` after this epoch's `mapped` observations: continued when the
     /// same stations hold it without loss of lock or gap, restarted otherwise.
-    fn track(&mut self, key: (SatId, Signal), t_s: f64, mapped: &[Mapped], lost: bool) -> Track {
+    fn track(&mut self, key: (SatId, Signal), t_s: f64, mapped: &[Mapped], lost: bool) {
         let (window, tau) = (self.config.smoothing_s, self.config.divergence_s);
         let continues = self.tracks.get(&key).is_some_and(|tr| {
             let dt = t_s - tr.last_s;
@@ -312,7 +305,6 @@ impl Monitor {
                 }
                 tr.last_dt_s = Some(dt);
                 tr.last_s = t_s;
-                tr.epochs += 1.0;
                 tr
             }
             _ => Track {
@@ -330,11 +322,9 @@ impl Monitor {
                 start_s: t_s,
                 last_s: t_s,
                 last_dt_s: None,
-                epochs: 1.0,
             },
         };
-        self.tracks.insert(key, track.clone());
-        track
+        self.tracks.insert(key, track);
     }
 
     /// The statistics, B values and alarms of a track at this epoch.
@@ -343,7 +333,7 @@ impl Monitor {
         key: (SatId, Signal),
         elevation_deg: f64,
         threshold: PerStatistic<f64>,
-        track: Track,
+        track: &Track,
         mapped: &[Mapped],
     ) -> SatelliteEpoch {
         let lambda = key.1.wavelength_m();

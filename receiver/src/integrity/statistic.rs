@@ -41,6 +41,16 @@ impl Statistic {
         }
     }
 
+    /// Column key in `monitor.csv` (`smoothed_code` for `smoothed-code`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Statistic::Code => "code",
+            Statistic::SmoothedCode => "smoothed_code",
+            Statistic::Carrier => "carrier",
+            Statistic::Divergence => "divergence",
+        }
+    }
+
     /// Unit of the statistic and its B value.
     pub fn unit(self) -> &'static str {
         match self {

@@ -51,9 +51,8 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     writeln!(csv, "{}", csv_header())?;
     let (mut log, mut rows) = (AlarmLog::default(), H5Rows::default());
     let mut write_error = None;
-    let mut common = None;
     let mut start = None;
-    run_files(&files, &names, ephemerides, config, |e| {
+    let common = run_files(&files, station_list.clone(), ephemerides, config, |e| {
         start.get_or_insert(e.time);
         if write_error.is_none() {
             write_error = write!(csv, "{}", csv_rows(e, &station_list)).err();
@@ -73,13 +72,7 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         rows.write(&h5_path, start, &station_list)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
     }
-    let mean = station_list
-        .iter()
-        .map(|s| s.r_ecef_m)
-        .sum::<skyforge_orbits::Vec3>()
-        / station_list.len() as f64;
-    common.get_or_insert(mean);
-    let summary = log.summary(&station_list, common.unwrap_or(mean).into());
+    let summary = log.summary(&station_list, common.into());
     let json_path = staged.file("summary.json");
     std::fs::write(&json_path, serde_json::to_string_pretty(&summary)?)
         .with_context(|| format!("cannot write {}", json_path.display()))?;

@@ -9,16 +9,11 @@ use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;
 
-/// Column names of a statistic in `monitor.csv`.
-fn stat_key(stat: Statistic) -> String {
-    stat.name().replace('-', "_")
-}
-
 /// The header of `monitor.csv`.
 pub fn csv_header() -> String {
     let mut h = String::from("time_gpst,t_s,sat,signal,station,elevation_deg,track_age_s");
     for stat in Statistic::ALL {
-        let k = stat_key(stat);
+        let k = stat.key();
         let _ = write!(h, ",{k},{k}_b,{k}_threshold,{k}_armed,{k}_alarm");
     }
     h.push_str(",loss_of_lock");
@@ -140,7 +135,7 @@ impl AlarmLog {
 #[derive(Debug, Default)]
 pub struct H5Rows {
     t_s: Vec<f64>,
-    station: Vec<u8>,
+    station: Vec<u16>,
     sat: Vec<u16>,
     elevation_deg: Vec<f64>,
     value: Vec<f64>,
@@ -167,7 +162,7 @@ impl H5Rows {
             for (m, v) in s.stations.iter().enumerate() {
                 let Some(v) = v else { continue };
                 self.t_s.push(e.t_s);
-                self.station.push(u8::try_from(m).unwrap_or(u8::MAX));
+                self.station.push(u16::try_from(m).unwrap_or(u16::MAX));
                 self.sat.push(sat_code(s.sat));
                 self.elevation_deg.push(s.elevation_deg);
                 self.value.extend_from_slice(&v.statistic);
@@ -204,31 +199,27 @@ impl H5Rows {
             "elevation at the common point",
             &self.elevation_deg,
         )?;
-        let ints: [(&str, &str, &[u8]); 2] = [
+        let ds = create_rows::<u8>(
+            &root,
+            "loss_of_lock",
+            0,
+            chunk,
+            "",
+            "1 when the receiver flagged a loss of lock (the track restarts)",
+        )?;
+        append_rows(&ds, 0, &self.loss_of_lock, 0)?;
+        let ints: [(&str, &str, &[u16]); 2] = [
             (
                 "station",
                 "index into the stations attribute",
                 &self.station,
             ),
-            (
-                "loss_of_lock",
-                "1 when the receiver flagged a loss of lock (the track restarts)",
-                &self.loss_of_lock,
-            ),
+            ("sat", "1000 x system (1 GPS, 2 BeiDou) + PRN", &self.sat),
         ];
         for (name, what, data) in ints {
-            let ds = create_rows::<u8>(&root, name, 0, chunk, "", what)?;
+            let ds = create_rows::<u16>(&root, name, 0, chunk, "", what)?;
             append_rows(&ds, 0, data, 0)?;
         }
-        let ds = create_rows::<u16>(
-            &root,
-            "sat",
-            0,
-            chunk,
-            "",
-            "1000 x system (1 GPS, 2 BeiDou) + PRN",
-        )?;
-        append_rows(&ds, 0, &self.sat, 0)?;
         let four = |name: &str, what: &str, data: &[f64]| -> hdf5::Result<()> {
             let ds = create_rows::<f64>(&root, name, 4, chunk, "per statistic", what)?;
             append_rows(&ds, 0, data, 4)

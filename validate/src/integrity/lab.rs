@@ -2,7 +2,7 @@
 //! cases, run at the observation level and monitored.
 
 use crate::attitude::{ObservationRun, observation_run};
-use skyforge_receiver::integrity::files::run_files;
+use skyforge_receiver::integrity::files::{run_files, stations};
 use skyforge_receiver::integrity::{MonitorConfig, MonitorEpoch};
 use skyforge_scenarios::Scenario;
 use std::path::Path;
@@ -137,9 +137,10 @@ pub fn monitored(scenario: &Scenario, config: &MonitorConfig) -> Result<Monitore
     let fail = |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, scenario.seed);
     let run = observation_run(scenario).map_err(|e| fail(&e))?;
     let mut epochs = Vec::with_capacity(run.platform.len());
+    let stations = stations(&run.measured, &run.antennas, config).map_err(|e| fail(&e))?;
     run_files(
         &run.measured,
-        &run.antennas,
+        stations,
         run.ephemerides.clone(),
         config.clone(),
         |e| epochs.push(e.clone()),

@@ -26,19 +26,11 @@ pub const CALIBRATION_SEEDS: std::ops::RangeInclusive<u64> = 1..=8;
 
 /// A monitor configuration with `sigma` (the defaults of docs/integrity.md otherwise).
 pub fn config(sigma: Sigmas) -> MonitorConfig {
-    MonitorConfig {
-        smoothing_s: 100.0,
-        divergence_s: 200.0,
-        elevation_mask_deg: 10.0,
-        troposphere: true,
-        stations: Vec::new(),
-        common_point_ecef_m: None,
-        thresholds: ThresholdConfig {
-            false_alarm: FALSE_ALARM,
-            smoothed_code_m: SMOOTHED_THRESHOLD_M,
-            sigma,
-        },
-    }
+    MonitorConfig::new(ThresholdConfig {
+        false_alarm: FALSE_ALARM,
+        smoothed_code_m: SMOOTHED_THRESHOLD_M,
+        sigma,
+    })
 }
 
 /// Sigma tables by signal tag.

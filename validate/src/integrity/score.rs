@@ -6,6 +6,7 @@ use hifitime::Epoch;
 use serde::Serialize;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::time::{TimeOrigin, parse_epoch};
+use skyforge_receiver::integrity::Statistic;
 use skyforge_signals::errors::events::EventConfig;
 use std::path::Path;
 
@@ -44,9 +45,6 @@ pub struct MonitorRecord {
     pub flags: Vec<Flag>,
 }
 
-/// Statistic names in `monitor.csv`'s column order.
-const STATISTICS: [&str; 4] = ["code", "smoothed_code", "carrier", "divergence"];
-
 /// The alarms and loss-of-lock flags of `monitor.csv` at `path`, timed from `start`.
 pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, String> {
     let err = |line: usize, m: String| format!("{}:{line}: {m}", path.display());
@@ -64,9 +62,10 @@ pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, Stri
     };
     let (c_time, c_station, c_sat) = (col("time_gpst")?, col("station")?, col("sat")?);
     let c_lli = col("loss_of_lock")?;
-    let stat_cols: Vec<(usize, usize, usize)> = STATISTICS
+    let stat_cols: Vec<(usize, usize, usize)> = Statistic::ALL
         .iter()
         .map(|s| {
+            let s = s.key();
             Ok((
                 col(&format!("{s}_alarm"))?,
                 col(&format!("{s}_b"))?,
@@ -107,7 +106,7 @@ pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, Stri
                     t_s,
                     station: f[c_station].to_string(),
                     sat: f[c_sat].to_string(),
-                    statistic: STATISTICS[k].to_string(),
+                    statistic: Statistic::ALL[k].key().to_string(),
                     ratio: num(b)?.abs() / num(threshold)?,
                 });
             }
