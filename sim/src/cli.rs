@@ -63,6 +63,16 @@ pub enum Command {
         /// nothing.
         #[arg(long)]
         dry_run: bool,
+        /// Run the bundled receiver on the samples as they are rendered, on a second
+        /// thread, instead of writing recordings: the receiver's outputs (as `skyforge
+        /// receive` writes them) go to DIR/receive/, assisted by DIR/nav.rnx. For runs
+        /// whose I/Q would not fit on disk.
+        #[arg(long, conflicts_with = "dry_run")]
+        receive: bool,
+        /// With --receive: the receiver configuration (as `skyforge receive --config`);
+        /// default: its defaults with the rounded start state (DIR/receiver.toml).
+        #[arg(long, value_name = "FILE", requires = "receive")]
+        receiver_config: Option<PathBuf>,
     },
     /// Run the bundled receiver over sample recordings (SkyForge's SigMF files or raw
     /// files described by --format/--fs/--if/--signal): acquisition, tracking, navigation

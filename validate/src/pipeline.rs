@@ -3,23 +3,31 @@
 //! rounded start state (`receiver.toml`) beside them, run the bundled receiver over the
 //! recordings with that assistance into RINEX observation files (the writer `skyforge
 //! receive` uses), and hand back each antenna's observations as read from them.
+//!
+//! [`StreamedChain`] runs the same two sessions side by side with no recording in
+//! between: the receiver reads the samples as the synthesiser renders them (`skyforge
+//! synth --receive`), for runs whose I/Q would not fit on disk.
 
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
-use skyforge_receiver::input::InputParams;
+use skyforge_receiver::input::{InputError, InputParams, Recording, SampleFeed, sample_stream};
 use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
-    Assistance, ReceiveSession, RinexObsFiles, SessionError, read_config,
+    Assistance, EpochSink, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
 use skyforge_signals::synth::session::{
-    Discard, ObservationSink, SinkError, Sinks, SynthError, SynthSession,
+    Discard, ObservationSink, SinkError, Sinks, SynthError, SynthReport, SynthSession, TruthSink,
 };
-use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
+use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
 
 /// Geometry epochs per streamed chunk (as `skyforge synth`'s default).
 const CHUNK_EPOCHS: usize = 10;
+/// Frames (one band's and antenna's slice of samples each) on their way from the
+/// synthesiser to the receiver: two rounds of four antennas' 1 s slices at 4 Msps ci8 are
+/// 64 MB.
+const FRAMES_IN_FLIGHT: usize = 8;
 
 /// Why the chain could not run.
 #[derive(Debug, thiserror::Error)]
@@ -39,6 +47,10 @@ pub enum ChainError {
     },
     #[error("reading back the observations: {0}")]
     Observations(#[from] ObsReadError),
+    #[error("describing the streamed recordings: {0}")]
+    Stream(#[from] InputError),
+    #[error("the synthesis thread panicked")]
+    SynthPanicked,
 }
 
 /// What the chain produced.
@@ -191,4 +203,110 @@ pub fn synth_and_receive(
         config,
         summary,
     })
+}
+
+/// What a streamed synthesis hands to the caller: the truth of the transmitted signals
+/// and the observation truth (the samples go to the receiver). The sinks run on the
+/// synthesis thread.
+pub struct StreamSinks<'s> {
+    pub truth: &'s mut (dyn TruthSink + Send),
+    pub observations: &'s mut (dyn ObservationSink + Send),
+    /// Told the number of geometry epochs completed after each chunk.
+    pub progress: &'s mut (dyn FnMut(usize) + Send),
+}
+
+impl std::fmt::Debug for StreamSinks<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StreamSinks").finish_non_exhaustive()
+    }
+}
+
+/// A synthesis session wired to a receiver that reads its samples as they are rendered:
+/// the receiver sees the recordings `skyforge synth` would write (the same SigMF
+/// description, the same bytes), without the files.
+#[derive(Debug)]
+pub struct StreamedChain<'a> {
+    session: SynthSession<'a>,
+    feed: SampleFeed,
+    receiver: ReceiveSession,
+}
+
+impl<'a> StreamedChain<'a> {
+    /// The receiver of `session`'s recordings (described by `info` as their SigMF
+    /// metadata would be), assisted by `assistance` and set up with `config`.
+    pub fn open(
+        session: SynthSession<'a>,
+        info: &RunInfo,
+        assistance: &Assistance,
+        config: ReceiverConfig,
+    ) -> Result<Self, ChainError> {
+        let bands = session.bands().to_vec();
+        let antennas = session.world().antennas;
+        let (feed, streams) = sample_stream(bands.len(), antennas.len(), FRAMES_IN_FLIGHT);
+        // Band-major, as the feed numbers its sources.
+        let recordings = bands
+            .iter()
+            .flat_map(|b| antennas.iter().map(move |a| (b, a)))
+            .map(|(b, a)| {
+                let meta = info.meta(b, &a.name, a.nominal_body_m.into());
+                let label = format!("{} (streamed)", recording_name(&a.name, b));
+                Recording::from_sigmf_json(
+                    std::path::Path::new(&label),
+                    &meta.to_json(),
+                    &InputParams::default(),
+                )
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let bytes_per_sample = info.format.bytes_per_sample() as u64;
+        let samples = session.budget(CHUNK_EPOCHS, 1).recording_bytes / bytes_per_sample;
+        let receiver =
+            ReceiveSession::open_streams(recordings, streams, samples, assistance, config)?;
+        Ok(Self {
+            session,
+            feed,
+            receiver,
+        })
+    }
+
+    /// The receiver, set up and waiting for samples.
+    pub fn receiver(&self) -> &ReceiveSession {
+        &self.receiver
+    }
+
+    /// Synthesise on a thread of its own, computing geometry `chunk_epochs` epochs at a
+    /// time into `sinks`, while the receiver hands each epoch to `epochs` and reports its
+    /// progress to `progress` (as [`ReceiveSession::run`]). A synthesis error comes first:
+    /// it also ends the receiver's input early.
+    pub fn run(
+        self,
+        chunk_epochs: usize,
+        sinks: StreamSinks<'_>,
+        epochs: &mut dyn EpochSink,
+        progress: impl FnMut(u64, &ReceiverSummary),
+    ) -> Result<(SynthReport, ReceiverSummary), ChainError> {
+        let Self {
+            session,
+            mut feed,
+            mut receiver,
+        } = self;
+        std::thread::scope(|scope| {
+            let synth = scope.spawn(move || {
+                session.run(
+                    chunk_epochs,
+                    Sinks {
+                        samples: &mut feed,
+                        truth: sinks.truth,
+                        observations: sinks.observations,
+                        measurements: &mut Discard,
+                        progress: sinks.progress,
+                    },
+                )
+            });
+            let received = receiver.run(epochs, progress);
+            // The readers go with the receiver: a synthesiser still sending fails at once.
+            drop(receiver);
+            let report = synth.join().map_err(|_| ChainError::SynthPanicked)??;
+            Ok((report, received?))
+        })
+    }
 }

@@ -14,8 +14,10 @@ pub mod format;
 pub mod if_mixer;
 pub mod reader;
 pub mod recording;
+pub mod stream;
 
 pub use error::{Finding, InputError};
 pub use format::SampleFormat;
 pub use reader::{AntennaInput, Block, BlockReader, InputReport};
 pub use recording::{InputParams, Recording};
+pub use stream::{SampleFeed, StreamReader, sample_stream};

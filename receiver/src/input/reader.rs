@@ -7,6 +7,7 @@ use super::error::{Finding, InputError};
 use super::format::{SampleFormat, decode_cf32, decode_ci8, decode_ci16, decode_ri8};
 use super::if_mixer::IfMixer;
 use super::recording::{InputParams, Recording};
+use super::stream::StreamReader;
 use hifitime::{Duration, Epoch};
 use num_complex::Complex32;
 use skyforge_signals::signal::Signal;
@@ -322,13 +323,44 @@ impl BlockReader {
         )
     }
 
+    /// As [`Self::open`], with recording `i`'s bytes read from `streams[i]` as a synthesis
+    /// session beside the receiver renders them ([`super::stream`]); every stream holds
+    /// `samples` samples, which a stream cannot tell by itself.
+    pub fn open_streams(
+        recordings: &[Recording],
+        streams: Vec<StreamReader>,
+        samples: u64,
+        block_len: usize,
+    ) -> Result<(Self, InputReport), InputError> {
+        let missing = || std::io::Error::from(std::io::ErrorKind::NotFound);
+        let mut streams: Vec<Option<StreamReader>> = streams.into_iter().map(Some).collect();
+        let count = streams.len();
+        Self::open_with(
+            recordings,
+            block_len,
+            |i, r| {
+                let bytes = samples.saturating_mul(r.format.bytes_per_sample() as u64);
+                (i < count)
+                    .then(|| bytes.saturating_add(r.header_bytes.saturating_add(r.trailing_bytes)))
+                    .ok_or_else(missing)
+            },
+            |i, _| {
+                let stream = streams
+                    .get_mut(i)
+                    .and_then(Option::take)
+                    .ok_or_else(missing)?;
+                Ok(Box::new(stream) as Box<dyn SampleBytes>)
+            },
+        )
+    }
+
     /// [`Self::open`] with recording `i`'s sample file length and contents given by
     /// `file_len(i, r)` and `open_file(i, r)`.
     fn open_with(
         recordings: &[Recording],
         block_len: usize,
         file_len: impl Fn(usize, &Recording) -> std::io::Result<u64>,
-        open_file: impl Fn(usize, &Recording) -> std::io::Result<Box<dyn SampleBytes>>,
+        mut open_file: impl FnMut(usize, &Recording) -> std::io::Result<Box<dyn SampleBytes>>,
     ) -> Result<(Self, InputReport), InputError> {
         check_compatible(recordings)?;
         if block_len == 0 {

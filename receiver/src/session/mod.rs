@@ -9,7 +9,7 @@ mod rinex_files;
 
 pub use rinex_files::RinexObsFiles;
 
-use crate::input::{BlockReader, InputParams, InputReport, Recording};
+use crate::input::{BlockReader, InputParams, InputReport, Recording, StreamReader};
 use crate::pipeline::{
     ApproximateState, BandInput, EpochReport, Receiver, ReceiverConfig, ReceiverFile,
     ReceiverSetup, ReceiverSummary,
@@ -86,14 +86,49 @@ struct Bands {
     antenna_names: Vec<String>,
 }
 
-fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionError> {
-    let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
-    let recordings = files
-        .iter()
-        .map(|f| Recording::open(f, params).map_err(|e| input(&e)))
-        .collect::<Result<Vec<_>, _>>()?;
-    let mut groups: Vec<(Signal, Vec<Recording>)> = Vec::new();
-    for r in recordings {
+/// Where the recordings' samples come from.
+enum Samples {
+    /// Each recording's data file.
+    Files,
+    /// Recording `i`'s bytes from `readers[i]`, `samples` samples each.
+    Streams {
+        readers: Vec<Option<StreamReader>>,
+        samples: u64,
+    },
+}
+
+impl Samples {
+    /// The block reader of `recs`, recordings `indices` of the session's list.
+    fn open(
+        &mut self,
+        recs: &[Recording],
+        indices: &[usize],
+        block_len: usize,
+    ) -> Result<(BlockReader, InputReport), SessionError> {
+        let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
+        match self {
+            Self::Files => BlockReader::open(recs, block_len).map_err(|e| input(&e)),
+            Self::Streams { readers, samples } => {
+                let streams = indices
+                    .iter()
+                    .map(|&i| readers.get_mut(i).and_then(Option::take))
+                    .collect::<Option<Vec<_>>>()
+                    .ok_or_else(|| {
+                        SessionError::Input("a recording without its sample stream".into())
+                    })?;
+                BlockReader::open_streams(recs, streams, *samples, block_len).map_err(|e| input(&e))
+            }
+        }
+    }
+}
+
+fn open_bands(
+    recordings: Vec<Recording>,
+    params: &InputParams,
+    mut samples: Samples,
+) -> Result<Bands, SessionError> {
+    let mut groups: Vec<(Signal, Vec<usize>, Vec<Recording>)> = Vec::new();
+    for (i, r) in recordings.into_iter().enumerate() {
         let Some(signal) = r.signal.or(params.signal) else {
             return Err(SessionError::Input(format!(
                 "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca or bds-b1i",
@@ -101,8 +136,11 @@ fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionE
             )));
         };
         match groups.iter_mut().find(|g| g.0 == signal) {
-            Some(g) => g.1.push(r),
-            None => groups.push((signal, vec![r])),
+            Some(g) => {
+                g.1.push(i);
+                g.2.push(r);
+            }
+            None => groups.push((signal, vec![i], vec![r])),
         }
     }
     let mut bands = Bands {
@@ -113,10 +151,10 @@ fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionE
     };
     let fs = groups
         .first()
-        .and_then(|g| g.1.first())
+        .and_then(|g| g.2.first())
         .map(|r| r.sample_rate_hz)
         .ok_or_else(|| SessionError::Input("no sample files given".into()))?;
-    for (signal, _) in &groups {
+    for (signal, _, _) in &groups {
         let min = signal.chip_rate_hz();
         if !(fs >= min && fs <= MAX_SAMPLE_RATE_HZ) {
             return Err(SessionError::Input(format!(
@@ -126,8 +164,8 @@ fn open_bands(files: &[PathBuf], params: &InputParams) -> Result<Bands, SessionE
         }
     }
     let block_len = (BLOCK_S * fs).round() as usize;
-    for (signal, recs) in groups {
-        let (reader, report) = BlockReader::open(&recs, block_len).map_err(|e| input(&e))?;
+    for (signal, indices, recs) in groups {
+        let (reader, report) = samples.open(&recs, &indices, block_len)?;
         if (reader.sample_rate_hz() - fs).abs() > 1e-6 * fs {
             return Err(SessionError::Input(format!(
                 "the {} recordings are sampled at {} Hz, the {} ones at {fs} Hz: one receive run needs one sample clock",
@@ -213,7 +251,38 @@ impl ReceiveSession {
         assistance: &Assistance,
         config: ReceiverConfig,
     ) -> Result<Self, SessionError> {
-        let bands = open_bands(files, params)?;
+        let recordings = files
+            .iter()
+            .map(|f| Recording::open(f, params).map_err(|e| SessionError::Input(e.to_string())))
+            .collect::<Result<Vec<_>, _>>()?;
+        let bands = open_bands(recordings, params, Samples::Files)?;
+        Self::with_bands(bands, assistance, config)
+    }
+
+    /// As [`Self::open`], with recording `i`'s samples read from `streams[i]` as a
+    /// synthesis session beside the receiver renders them (`samples` per recording; see
+    /// [`crate::input::stream`]); `recordings` describe them as their SigMF metadata would.
+    pub fn open_streams(
+        recordings: Vec<Recording>,
+        streams: Vec<StreamReader>,
+        samples: u64,
+        assistance: &Assistance,
+        config: ReceiverConfig,
+    ) -> Result<Self, SessionError> {
+        let samples = Samples::Streams {
+            readers: streams.into_iter().map(Some).collect(),
+            samples,
+        };
+        let bands = open_bands(recordings, &InputParams::default(), samples)?;
+        Self::with_bands(bands, assistance, config)
+    }
+
+    /// The receiver of `bands`, assisted by `assistance` and set up with `config`.
+    fn with_bands(
+        bands: Bands,
+        assistance: &Assistance,
+        config: ReceiverConfig,
+    ) -> Result<Self, SessionError> {
         let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
         let (ephemerides, iono_gps, iono_bds) = match &assistance.nav_file {
             None => (Vec::new(), None, None),

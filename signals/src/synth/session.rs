@@ -381,6 +381,14 @@ impl<'a> SynthSession<'a> {
         }
     }
 
+    /// The platform's position and velocity (ECEF) at the start: the approximate state a
+    /// receiver of these samples can be given before they are rendered (what the run's
+    /// report gives afterwards).
+    pub fn start_state(&mut self) -> Result<(Vec3, Vec3), SynthError> {
+        let st = self.world.platform.window(0.0, 0.0)?.state(0.0);
+        Ok((st.r_ecef_m, st.v_ecef_mps))
+    }
+
     /// Stream the whole span into `sinks`, computing geometry `chunk_epochs` epochs at a
     /// time.
     pub fn run(self, chunk_epochs: usize, sinks: Sinks<'_>) -> Result<SynthReport, SynthError> {

@@ -81,6 +81,29 @@ pub struct RunInfo {
     pub seed: u64,
 }
 
+impl RunInfo {
+    /// The metadata of antenna `antenna`'s recording of `band` (nominal body position
+    /// `position_body_m`).
+    pub fn meta(&self, band: &Band, antenna: &str, position_body_m: [f64; 3]) -> RecordingMeta {
+        RecordingMeta {
+            format: self.format,
+            sample_rate_hz: self.sample_rate_hz,
+            centre_frequency_hz: band.signal.carrier_hz() - self.if_hz,
+            if_hz: self.if_hz,
+            datetime_utc: sigmf_datetime(self.start),
+            antenna_name: antenna.to_owned(),
+            antenna_position_body_m: position_body_m,
+            scenario: self.scenario.clone(),
+            seed: self.seed,
+            description: format!(
+                "SkyForge synthesis of {} for antenna {antenna}: {}",
+                self.scenario,
+                band.signal.name()
+            ),
+        }
+    }
+}
+
 /// The sample files of a synthesis: one per band and antenna, in a directory.
 #[derive(Debug)]
 pub struct SigmfRecordings {
@@ -126,22 +149,7 @@ impl SigmfRecordings {
         for band in &self.bands {
             for (antenna, position) in &self.antennas {
                 let name = recording_name(antenna, band);
-                let meta = RecordingMeta {
-                    format: run.format,
-                    sample_rate_hz: run.sample_rate_hz,
-                    centre_frequency_hz: band.signal.carrier_hz() - run.if_hz,
-                    if_hz: run.if_hz,
-                    datetime_utc: sigmf_datetime(run.start),
-                    antenna_name: antenna.clone(),
-                    antenna_position_body_m: *position,
-                    scenario: run.scenario.clone(),
-                    seed: run.seed,
-                    description: format!(
-                        "SkyForge synthesis of {} for antenna {antenna}: {}",
-                        run.scenario,
-                        band.signal.name()
-                    ),
-                };
+                let meta = run.meta(band, antenna, *position);
                 let path = self.dir.join(format!("{name}.sigmf-meta"));
                 let text =
                     serde_json::to_string_pretty(&meta.to_json()).map_err(std::io::Error::other)?;

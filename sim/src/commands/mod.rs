@@ -30,7 +30,14 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             run,
             chunk_epochs,
             dry_run,
-        } => synth::synth(&run, chunk_epochs as usize, dry_run),
+            receive,
+            receiver_config,
+        } => {
+            let alongside = receive.then_some(synth::ReceiveAlongside {
+                config: receiver_config,
+            });
+            synth::synth(&run, chunk_epochs as usize, dry_run, alongside.as_ref())
+        }
         Command::Calibrate { run } => calibrate::calibrate(&run),
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive {

@@ -54,7 +54,7 @@ pub fn input_params(
 }
 
 /// A session error as the command reports it: the input's fault is bad input (exit 2).
-fn session_error(e: SessionError) -> anyhow::Error {
+pub(crate) fn session_error(e: SessionError) -> anyhow::Error {
     match e {
         SessionError::Input(message) => BadInput(message).into(),
         e => anyhow::anyhow!("{e}"),
@@ -100,7 +100,11 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-fn print_summary(s: &ReceiverSummary, antenna_names: &[String], written: &OutputSummary) {
+pub(crate) fn print_summary(
+    s: &ReceiverSummary,
+    antenna_names: &[String],
+    written: &OutputSummary,
+) {
     for (a, name) in antenna_names.iter().enumerate() {
         let list = |v: &Vec<skyforge_orbits::ephemeris::SatId>| {
             v.iter()

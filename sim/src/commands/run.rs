@@ -24,6 +24,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
             out,
             force,
             super::synth::DEFAULT_CHUNK_EPOCHS as usize,
+            None,
         );
     }
     let mut world = scenario.build()?;

@@ -4,27 +4,35 @@
 
 use crate::BadInput;
 use crate::cli::ScenarioRun;
+use crate::output::receiver_out::ReceiverOutputs;
 use crate::output::staged_dir::StagedDir;
 use crate::output::synth_sinks::{ObsFiles, TruthFile};
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
+use skyforge_receiver::session::{Assistance, read_config};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
-use skyforge_signals::synth::session::{Discard, GEOMETRY_STEP_S, Sinks, SynthError, SynthSession};
-use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
+use skyforge_signals::synth::session::{
+    Discard, GEOMETRY_STEP_S, Sinks, SynthError, SynthReport, SynthSession,
+};
+use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
+use skyforge_validate::pipeline::{ChainError, StreamSinks, StreamedChain};
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+/// Subdirectory of the receiver's outputs of `synth --receive`.
+pub const RECEIVE_DIR: &str = "receive";
 /// Subdirectory of the observation level's observables (`<antenna>.obs.rnx`, as
 /// `skyforge receive` writes them).
 pub const OBSERVATIONS_DIR: &str = "observations";
@@ -35,8 +43,21 @@ fn writing(path: &Path) -> String {
     format!("cannot write {}", path.display())
 }
 
+/// `synth --receive`: the bundled receiver reads the samples as they are rendered.
+#[derive(Debug, Clone, Default)]
+pub struct ReceiveAlongside {
+    /// The receiver configuration file; `None`: its defaults with the rounded start state
+    /// (the `receiver.toml` written beside the outputs).
+    pub config: Option<PathBuf>,
+}
+
 /// Run `scenario`'s signal synthesis into `out`.
-pub fn synth(args: &ScenarioRun, chunk_epochs: usize, dry_run: bool) -> anyhow::Result<()> {
+pub fn synth(
+    args: &ScenarioRun,
+    chunk_epochs: usize,
+    dry_run: bool,
+    receive: Option<&ReceiveAlongside>,
+) -> anyhow::Result<()> {
     let scenario = super::resolve(args)?;
     let Some(signal) = scenario.signal.clone() else {
         return Err(BadInput(format!(
@@ -51,7 +72,14 @@ pub fn synth(args: &ScenarioRun, chunk_epochs: usize, dry_run: bool) -> anyhow::
         super::dry_run::print(&scenario, &session, chunk_epochs);
         return Ok(());
     }
-    synthesise(&scenario, &signal, &args.out, args.force, chunk_epochs)
+    synthesise(
+        &scenario,
+        &signal,
+        &args.out,
+        args.force,
+        chunk_epochs,
+        receive,
+    )
 }
 
 /// The synthesis session of `scenario` (observation level when it asks for it).
@@ -79,18 +107,27 @@ fn session<'a>(
 }
 
 /// Synthesise `scenario` with `signal` into `out`, computing geometry `chunk_epochs`
-/// epochs at a time.
+/// epochs at a time; with `receive`, the samples go to the bundled receiver (outputs in
+/// `out/receive/`) instead of recordings.
 pub fn synthesise(
     scenario: &Scenario,
     signal: &SignalConfig,
     out: &Path,
     force: bool,
     chunk_epochs: usize,
+    receive: Option<&ReceiveAlongside>,
 ) -> anyhow::Result<()> {
     let started = Instant::now();
     let mut world = scenario.build()?;
-    let session = session(scenario, &mut world, signal)?;
+    let mut session = session(scenario, &mut world, signal)?;
     let observation_level = !session.renders_samples();
+    if observation_level && receive.is_some() {
+        return Err(BadInput(format!(
+            "{}: --receive needs samples, and the scenario is at the observation level (its observables are written in {OBSERVATIONS_DIR}/)",
+            scenario.source
+        ))
+        .into());
+    }
     let (origin, antennas, duration_s) = {
         let w = session.world();
         (w.origin, w.antennas, w.duration_s)
@@ -113,7 +150,17 @@ pub fn synthesise(
     )
     .and_then(|()| nav.flush())
     .with_context(|| writing(&nav_path))?;
-    let mut recordings = if observation_level {
+    let streamed = match receive {
+        Some(r) => {
+            let start = session
+                .start_state()
+                .map_err(|e| setup_error(scenario, e))?;
+            let assist = write_assistance(&staged, Some(start))?;
+            Some((r, assist))
+        }
+        None => None,
+    };
+    let mut recordings = if observation_level || streamed.is_some() {
         None
     } else {
         Some(SigmfRecordings::create(&staged.file(""), &bands, antennas)?)
@@ -143,21 +190,32 @@ pub fn synthesise(
     );
     let iono_on = session.ionosphere_on();
     let mut no_samples = Discard;
-    let report = session
-        .run(
-            chunk_epochs,
-            Sinks {
-                samples: match recordings.as_mut() {
-                    Some(r) => r,
-                    None => &mut no_samples,
-                },
+    let report = match streamed {
+        Some((alongside, assist)) => {
+            let sinks = StreamSinks {
                 truth: &mut truth,
                 observations: &mut obs,
-                measurements: &mut measured,
                 progress: &mut |n| bar.inc(n as u64),
-            },
-        )
-        .map_err(|e| anyhow::anyhow!("{e:#}"))?;
+            };
+            let config = alongside.config.as_deref().unwrap_or(&assist);
+            receive_alongside(session, &info, &staged, config, chunk_epochs, sinks)?
+        }
+        None => session
+            .run(
+                chunk_epochs,
+                Sinks {
+                    samples: match recordings.as_mut() {
+                        Some(r) => r,
+                        None => &mut no_samples,
+                    },
+                    truth: &mut truth,
+                    observations: &mut obs,
+                    measurements: &mut measured,
+                    progress: &mut |n| bar.inc(n as u64),
+                },
+            )
+            .map_err(|e| anyhow::anyhow!("{e:#}"))?,
+    };
     obs.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     truth
@@ -165,12 +223,13 @@ pub fn synthesise(
         .finish()
         .with_context(|| writing(&truth.path))?;
     bar.finish_and_clear();
+    let wrote_recordings = recordings.is_some();
     if let Some(recordings) = recordings {
         recordings.finish(&info)?;
     }
     let leo = scenario.platform.leo.is_some();
     let tropo_on = scenario.errors.troposphere.model != TropoModel::Off;
-    for band in bands.iter().filter(|_| !observation_level) {
+    for band in bands.iter().filter(|_| wrote_recordings) {
         for ant in antennas {
             let name = recording_name(&ant.name, band);
             let conf =
@@ -180,10 +239,7 @@ pub fn synthesise(
         }
     }
     write_geometry(scenario, &staged.file("geometry.toml"))?;
-    if let Some((r, v)) = report.start_state {
-        let path = staged.file("receiver.toml");
-        std::fs::write(&path, assistance_toml(&r, &v)).with_context(|| writing(&path))?;
-    }
+    write_assistance(&staged, report.start_state)?;
     let dir = staged.commit()?;
     println!("scenario   {} ({})", scenario.name, scenario.source);
     for band in &bands {
@@ -201,8 +257,16 @@ pub fn synthesise(
         );
     } else {
         println!(
-            "samples    {} Hz {:?}, {} s, clipped components {}",
-            signal.sample_rate_hz, signal.format, duration_s, report.clipped
+            "samples    {} Hz {:?}, {} s, clipped components {}{}",
+            signal.sample_rate_hz,
+            signal.format,
+            duration_s,
+            report.clipped,
+            if wrote_recordings {
+                ""
+            } else {
+                ", received as rendered (no recordings)"
+            }
         );
     }
     println!("wrote      {}", dir.display());
@@ -236,6 +300,61 @@ fn write_geometry(scenario: &Scenario, path: &Path) -> anyhow::Result<()> {
 fn setup_error(scenario: &Scenario, e: SynthError) -> anyhow::Error {
     match e {
         SynthError::Invalid(invalid) => scenario.located(invalid).into(),
+        e => anyhow::anyhow!("{e}"),
+    }
+}
+
+/// Write `receiver.toml` (the receiver's defaults and the rounded start state) when the
+/// start state is known; its path.
+fn write_assistance(staged: &StagedDir, start: Option<(Vec3, Vec3)>) -> anyhow::Result<PathBuf> {
+    let path = staged.file("receiver.toml");
+    if let Some((r, v)) = start {
+        std::fs::write(&path, assistance_toml(&r, &v)).with_context(|| writing(&path))?;
+    }
+    Ok(path)
+}
+
+/// Run `session` with the bundled receiver reading its samples as they are rendered
+/// (configured by the file `config`, assisted by `nav.rnx`), the receiver's outputs in
+/// `receive/` of `staged`; the synthesis report.
+fn receive_alongside(
+    session: SynthSession<'_>,
+    info: &RunInfo,
+    staged: &StagedDir,
+    config: &Path,
+    chunk_epochs: usize,
+    sinks: StreamSinks<'_>,
+) -> anyhow::Result<SynthReport> {
+    let (config, approximate) = read_config(Some(config)).map_err(super::receive::session_error)?;
+    let assistance = Assistance {
+        nav_file: Some(staged.file("nav.rnx")),
+        approximate,
+    };
+    let chain = StreamedChain::open(session, info, &assistance, config).map_err(chain_error)?;
+    let rx_dir = staged.file(RECEIVE_DIR);
+    std::fs::create_dir(&rx_dir).with_context(|| writing(&rx_dir))?;
+    let receiver = chain.receiver();
+    let names = receiver.antenna_names().to_vec();
+    let mut outputs = ReceiverOutputs::create(
+        &rx_dir,
+        &names,
+        &receiver.systems(),
+        approximate.map(|a| a.r_ecef_m),
+        1.0 / receiver.config().observation_rate_hz,
+    )?;
+    let (report, summary) = chain
+        .run(chunk_epochs, sinks, &mut outputs, |_, _| {})
+        .map_err(chain_error)?;
+    let written = outputs.finish()?;
+    super::receive::print_summary(&summary, &names, &written);
+    Ok(report)
+}
+
+/// A streamed chain's error as the command reports it: the receiver's input errors (no
+/// signal, say) are the scenario's fault.
+fn chain_error(e: ChainError) -> anyhow::Error {
+    match e {
+        ChainError::Receive(e) => super::receive::session_error(e),
         e => anyhow::anyhow!("{e}"),
     }
 }
