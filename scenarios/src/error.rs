@@ -32,7 +32,7 @@ pub struct ScenarioError {
 
 impl ScenarioError {
     /// An error at no particular place in the text of `file`.
-    pub(crate) fn unlocated(
+    pub fn unlocated(
         file: &str,
         field: impl Into<String>,
         value: impl Into<String>,
@@ -49,7 +49,7 @@ impl ScenarioError {
     }
 
     /// The same error placed at 1-based `(line, column)`.
-    pub(crate) fn at(mut self, position: Option<(usize, usize)>) -> Self {
+    pub fn at(mut self, position: Option<(usize, usize)>) -> Self {
         if let Some((line, column)) = position {
             self.line = Some(line);
             self.column = Some(column);

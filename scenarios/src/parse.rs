@@ -132,9 +132,20 @@ fn missing_field(message: &str) -> Option<&str> {
     message.strip_prefix("missing field `")?.split('`').next()
 }
 
+/// Parse the TOML document `text` (named `source` in errors) into `T`, every syntax and
+/// schema error located as a scenario's are: for SkyForge's other TOML files (studies).
+pub fn parse_document<T: serde::de::DeserializeOwned>(
+    text: &str,
+    source: &str,
+) -> Result<T, ScenarioError> {
+    let doc = Document::parse(text).map_err(|e| syntax_error(text, source, &e))?;
+    T::deserialize(toml::de::Deserializer::from(doc.into_root()))
+        .map_err(|e| schema_error(text, source, &e))
+}
+
 /// A failed check, placed at its field in the text (or the nearest enclosing header). A
 /// number the check reports is shown as written when the text holds that number there.
-pub(crate) fn locate_invalid(text: &str, source: &str, invalid: Invalid) -> ScenarioError {
+pub fn locate_invalid(text: &str, source: &str, invalid: Invalid) -> ScenarioError {
     let Ok(doc) = Document::parse(text) else {
         return ScenarioError::unlocated(source, invalid.field, invalid.value, invalid.allowed);
     };

@@ -159,6 +159,13 @@ pub enum Command {
         #[command(subcommand)]
         action: MonitorAction,
     },
+    /// Monte Carlo studies: a base scenario over a grid of parameter values and seeds, each
+    /// run measured against its own truth; run whole or as shards (`--shard i/n`, e.g.
+    /// Slurm array tasks), resumable, merged into one HDF5 file (docs/study.md).
+    Study {
+        #[command(subcommand)]
+        action: StudyAction,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]
@@ -349,5 +356,31 @@ pub enum ValidateSuite {
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
+    },
+}
+
+#[derive(Debug, Subcommand)]
+pub enum StudyAction {
+    /// Make every run of STUDY, or those of one shard, into DIR: a journal of finished
+    /// runs (a rerun after a crash makes only the missing ones), the shard's HDF5 file,
+    /// and for a whole study the merged DIR/study.h5 with per-point summaries.
+    Run {
+        /// The study file (TOML).
+        study: PathBuf,
+        /// Output directory (created when missing; shared by shards).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Make only shard i of n (1-based): runs r with r % n == i - 1.
+        #[arg(long, value_name = "i/n")]
+        shard: Option<String>,
+    },
+    /// Merge the shard files of DIR... (every shard-*-of-*.h5, or files) into one file,
+    /// byte-identical to a whole run's study.h5.
+    Merge {
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// The merged file (default: the first DIR's study.h5).
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
     },
 }

@@ -41,6 +41,8 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         }
         | cli::Command::Scenarios { .. }
         | cli::Command::Ambiguity { .. } => None,
+        // A study keeps what it finished (its journal) to resume from.
+        cli::Command::Study { .. } => None,
     }
 }
 

@@ -10,4 +10,5 @@ pub mod observables;
 pub mod pipeline;
 pub mod report;
 pub mod stats;
+pub mod study;
 pub mod thesis;

@@ -8,10 +8,13 @@ mod monitor;
 mod receive;
 mod run;
 mod scenarios;
+mod study;
 pub(crate) mod synth;
 mod validate;
 
-use crate::cli::{Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, ValidateSuite};
+use crate::cli::{
+    Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, StudyAction, ValidateSuite,
+};
 
 /// The scenario `args` name, with its seed overridden when `--seed` is given.
 fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
@@ -39,6 +42,10 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             synth::synth(&run, chunk_epochs as usize, dry_run, alongside.as_ref())
         }
         Command::Calibrate { run } => calibrate::calibrate(&run),
+        Command::Study { action } => match action {
+            StudyAction::Run { study, out, shard } => study::run(&study, &out, shard.as_deref()),
+            StudyAction::Merge { dirs, out } => study::merge(&dirs, out.as_deref()),
+        },
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive {
             files,

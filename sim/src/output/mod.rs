@@ -7,5 +7,6 @@ pub mod manifest;
 pub mod monitor_out;
 pub mod receiver_out;
 pub mod staged_dir;
+pub mod study_files;
 pub mod synth_sinks;
 pub mod truth_h5;

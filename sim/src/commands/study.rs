@@ -1,0 +1,194 @@
+//! `skyforge study`: run a study or one shard of it (resumable: runs already in the
+//! shard's journal are not made again), and merge shards into one file.
+
+use crate::BadInput;
+use crate::output::study_files::{
+    Journal, MERGED_FILE, read_shard, shard_path, shard_study_text, write_merged, write_shard,
+};
+use anyhow::Context;
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use skyforge_orbits::bounded_read::read_text;
+use skyforge_validate::study::{RunResult, Shard, Study};
+use std::collections::HashSet;
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+/// Largest study file read.
+const STUDY_MAX_BYTES: u64 = 1 << 20;
+
+/// Read and check the study file at `path` (its scenario resolved from its directory).
+pub fn load(path: &Path) -> anyhow::Result<Study> {
+    let text = read_text(path, STUDY_MAX_BYTES, "study file")
+        .map_err(|e| BadInput(format!("{}: cannot read: {e}", path.display())))?;
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    Study::parse(&text, &path.display().to_string(), &dir)
+        .map_err(|e| BadInput(e.to_string()).into())
+}
+
+/// `skyforge study run STUDY --out DIR [--shard i/n]`.
+pub fn run(path: &Path, out: &Path, shard: Option<&str>) -> anyhow::Result<()> {
+    let study = load(path)?;
+    let shard = shard
+        .map(str::parse::<Shard>)
+        .transpose()
+        .map_err(|e| BadInput(format!("--shard {e}")))?
+        .unwrap_or(Shard::WHOLE);
+    if out.exists() && !out.is_dir() {
+        return Err(BadInput(format!("--out {}: not a directory", out.display())).into());
+    }
+    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let (journal, done) = Journal::open(out, &study, shard)?;
+    let mine: Vec<u64> = shard.runs(study.runs()).collect();
+    let done_runs: HashSet<u64> = done.iter().map(|r| r.run).collect();
+    let pending: Vec<u64> = mine
+        .iter()
+        .copied()
+        .filter(|r| !done_runs.contains(r))
+        .collect();
+    println!(
+        "study      {} ({}): {} points x {} seeds = {} runs",
+        study.name,
+        study.source,
+        study.points(),
+        study.seeds,
+        study.runs()
+    );
+    println!(
+        "shard      {}/{}: {} runs, {} already done, {} to make",
+        shard.index,
+        shard.count,
+        mine.len(),
+        mine.len() - pending.len(),
+        pending.len()
+    );
+    let bar = ProgressBar::new(pending.len() as u64).with_style(
+        ProgressStyle::with_template("{spinner} study [{bar:40}] {pos}/{len} runs ({eta} left)")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let journal = Mutex::new(journal);
+    let made = pending
+        .par_iter()
+        .map(|&r| {
+            let result = study.run(r).map_err(|e| anyhow::anyhow!("{e}"))?;
+            journal
+                .lock()
+                .map_err(|_| anyhow::anyhow!("journal lock poisoned"))?
+                .append(&result)?;
+            bar.inc(1);
+            Ok(result)
+        })
+        .collect::<anyhow::Result<Vec<RunResult>>>()?;
+    bar.finish_and_clear();
+    let mut runs: Vec<RunResult> = done.into_iter().chain(made).collect();
+    runs.sort_by_key(|r| r.run);
+    runs.dedup_by_key(|r| r.run);
+    let shard_file = shard_path(out, shard);
+    write_shard(&shard_file, &study, shard, &runs)?;
+    println!("wrote      {}", shard_file.display());
+    if shard == Shard::WHOLE {
+        let merged = out.join(MERGED_FILE);
+        let runs = study.merge(vec![runs]).map_err(|e| anyhow::anyhow!(e))?;
+        write_merged(&merged, &study, &runs)?;
+        print_summary(&study, &runs);
+        println!("wrote      {}", merged.display());
+    }
+    Ok(())
+}
+
+/// The shard files in `dirs` (every `shard-*-of-*.h5` of a directory, or a file itself).
+fn shard_files(dirs: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    for d in dirs {
+        if d.is_file() {
+            files.push(d.clone());
+            continue;
+        }
+        let entries =
+            std::fs::read_dir(d).map_err(|e| BadInput(format!("{}: {e}", d.display())))?;
+        let mut found: Vec<PathBuf> = entries
+            .filter_map(Result::ok)
+            .map(|e| e.path())
+            .filter(|p| {
+                p.file_name()
+                    .and_then(|n| n.to_str())
+                    .is_some_and(|n| n.starts_with("shard-") && n.ends_with(".h5"))
+            })
+            .collect();
+        found.sort();
+        if found.is_empty() {
+            return Err(
+                BadInput(format!("{}: no shard files (shard-*-of-*.h5)", d.display())).into(),
+            );
+        }
+        files.extend(found);
+    }
+    Ok(files)
+}
+
+/// `skyforge study merge DIR... [--out FILE]`.
+pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> anyhow::Result<()> {
+    let files = shard_files(dirs)?;
+    let first = files
+        .first()
+        .ok_or_else(|| BadInput("no shard files given".into()))?;
+    let text = shard_study_text(first)?;
+    let study = Study::parse_plan(&text, &first.display().to_string())
+        .map_err(|e| BadInput(e.to_string()))?;
+    let names: Vec<&str> = study.metrics.iter().map(|m| m.name()).collect();
+    let mut parts = Vec::new();
+    for f in &files {
+        let shard = read_shard(f, &names)?;
+        if shard.study_toml != text {
+            return Err(BadInput(format!(
+                "{}: the shard of another study than {}",
+                f.display(),
+                first.display()
+            ))
+            .into());
+        }
+        parts.push(shard.runs);
+    }
+    let runs = study
+        .merge(parts)
+        .map_err(|e| BadInput(format!("merging {} shard files: {e}", files.len())))?;
+    let path = out.map_or_else(|| dirs[0].join(MERGED_FILE), Path::to_path_buf);
+    write_merged(&path, &study, &runs)?;
+    print_summary(&study, &runs);
+    println!(
+        "merged     {} shard files, {} runs",
+        files.len(),
+        runs.len()
+    );
+    println!("wrote      {}", path.display());
+    Ok(())
+}
+
+/// Per metric, a row per point: runs, mean with its 95 % interval, median, 95th percentile.
+fn print_summary(study: &Study, runs: &[RunResult]) {
+    let summaries = study.summarise(runs);
+    for (m, metric) in study.metrics.iter().enumerate() {
+        println!("{} [{}]", metric.name(), metric.unit());
+        for (p, s) in summaries.iter().enumerate() {
+            let s = &s[m];
+            println!(
+                "  {:<40} n {:>4}{}  mean {:.4} [{:.4}, {:.4}]  p50 {:.4}  p95 {:.4}",
+                study.describe_point(p as u64),
+                s.n,
+                if s.missing > 0 {
+                    format!(" ({} without)", s.missing)
+                } else {
+                    String::new()
+                },
+                s.mean,
+                s.mean_ci.0,
+                s.mean_ci.1,
+                s.p50,
+                s.p95
+            );
+        }
+    }
+}

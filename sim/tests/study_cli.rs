@@ -1,0 +1,193 @@
+//! `skyforge study`: a study run whole, as shards, and interrupted then resumed gives the
+//! same merged file, byte for byte; bad study files and arguments get one located error.
+
+mod support;
+
+use std::path::Path;
+use support::{skyforge, skyforge_ok, text};
+
+/// A small study of the T-5.4-3 set-up: 60 s runs, two signal levels, `seeds` seeds.
+fn small_study(dir: &Path, seeds: u32) -> String {
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/thesis/t-5.4-3.toml");
+    std::fs::copy(scenario, dir.join("t-5.4-3.toml")).unwrap();
+    let study = format!(
+        "name = \"small\"\nscenario = \"t-5.4-3.toml\"\nseed = 11\nseeds = {seeds}\n\
+         metrics = [\"fix_rate\", \"yaw_rms_deg\", \"baseline_rms_m\", \"pseudorange_rms_m\"]\n\
+         \n[[parameters]]\nkey = \"time.duration_s\"\nvalues = [60.0]\n\
+         \n[[parameters]]\nkey = \"signal.cn0_dbhz\"\nvalues = [40.0, 45.0]\n"
+    );
+    std::fs::write(dir.join("small.toml"), &study).unwrap();
+    study
+}
+
+#[test]
+fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 3);
+    let whole = skyforge_ok(&["study", "run", "small.toml", "--out", "whole"], d);
+    assert!(whole.contains("2 points x 3 seeds = 6 runs"), "{whole}");
+    assert!(whole.contains("signal.cn0_dbhz = 45.0"), "{whole}");
+    for i in 1..=3 {
+        let shard = format!("{i}/3");
+        let printed = skyforge_ok(
+            &[
+                "study",
+                "run",
+                "small.toml",
+                "--out",
+                "sharded",
+                "--shard",
+                &shard,
+            ],
+            d,
+        );
+        assert!(
+            printed.contains(&format!("shard      {i}/3: 2 runs")),
+            "{printed}"
+        );
+    }
+    skyforge_ok(&["study", "merge", "sharded"], d);
+    let a = std::fs::read(d.join("whole/study.h5")).unwrap();
+    let b = std::fs::read(d.join("sharded/study.h5")).unwrap();
+    assert!(a == b, "merged shards differ from the whole run");
+
+    // The merged file holds every run and per-point summaries of what the runs measured.
+    let f = hdf5::File::open(d.join("whole/study.h5")).unwrap();
+    let runs: Vec<u64> = support::dataset(&f, "runs/run");
+    assert_eq!(runs, [0, 1, 2, 3, 4, 5]);
+    let fix: Vec<f64> = support::dataset(&f, "runs/fix_rate");
+    assert!(fix.iter().all(|v| (0.0..=1.0).contains(v)), "{fix:?}");
+    let mean: Vec<f64> = support::dataset(&f, "summary/pseudorange_rms_m/mean");
+    assert_eq!(mean.len(), 2);
+    // At 40 dB-Hz the code is noisier than at 45 (the calibrated model).
+    assert!(mean[0] > mean[1] && mean[1] > 0.0, "{mean:?}");
+
+    // A missing shard is named.
+    std::fs::remove_file(d.join("sharded/shard-2-of-3.h5")).unwrap();
+    let o = skyforge(&["study", "merge", "sharded", "--out", "m.h5"], d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("2 of 6 runs are missing (the first: run 1"),
+        "{}",
+        text(&o)
+    );
+    assert!(!d.join("m.h5").exists());
+}
+
+#[test]
+fn an_interrupted_study_resumes_with_only_the_missing_runs() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 12);
+    skyforge_ok(&["study", "run", "small.toml", "--out", "straight"], d);
+
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_skyforge"))
+        .args(["study", "run", "small.toml", "--out", "killed"])
+        .current_dir(d)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let journal = d.join("killed/shard-1-of-1.runs.jsonl");
+    let started = std::time::Instant::now();
+    // Head line plus at least three runs, then kill.
+    while std::fs::read_to_string(&journal).map_or(0, |t| t.lines().count()) < 4 {
+        assert!(
+            started.elapsed().as_secs() < 300,
+            "no run finished in 5 min"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let done = std::fs::read_to_string(&journal).unwrap().lines().count() - 1;
+    assert!(done < 24, "killed before the end ({done} runs done)");
+    assert!(!d.join("killed/study.h5").exists());
+
+    let printed = skyforge_ok(&["study", "run", "small.toml", "--out", "killed"], d);
+    assert!(
+        printed.contains(&format!("{done} already done, {} to make", 24 - done)),
+        "{printed}"
+    );
+    let a = std::fs::read(d.join("straight/study.h5")).unwrap();
+    let b = std::fs::read(d.join("killed/study.h5")).unwrap();
+    assert!(a == b, "the resumed study differs from the straight one");
+}
+
+#[test]
+fn bad_study_files_get_one_located_error_and_nothing_is_run() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let good = small_study(d, 2);
+    let cases = [
+        (
+            good.replace("seeds = 2", "seeds = 2\ncolour = 1"),
+            "small.toml:5:1: colour",
+            "unknown field",
+        ),
+        (
+            good.replace("\"fix_rate\"", "\"fixrate\""),
+            "small.toml:5:12: metrics[0] = fixrate",
+            "one of pseudorange_rms_m",
+        ),
+        (
+            good.replace("seeds = 2", "seeds = 0"),
+            "small.toml:4:9: seeds = 0",
+            "at least 1",
+        ),
+        (
+            good.replace("[40.0, 45.0]", "[40.0, -500.0]"),
+            "small.toml:13:10: parameters[1].values",
+            "the scenario rejects this point",
+        ),
+        (
+            good.replace("signal.cn0_dbhz", "signal.cn0_dbz"),
+            "parameters[1].values",
+            "unknown field",
+        ),
+        (
+            good.replace("t-5.4-3.toml\"", "nowhere.toml\""),
+            "small.toml:2:12: scenario = nowhere.toml",
+            "bundled scenario",
+        ),
+        (
+            good.replace("t-5.4-3.toml\"", "interop-gps-static\""),
+            "small.toml",
+            "observation level",
+        ),
+    ];
+    for (text_of, place, what) in cases {
+        std::fs::write(d.join("small.toml"), &text_of).unwrap();
+        let o = skyforge(&["study", "run", "small.toml", "--out", "out"], d);
+        let said = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{said}");
+        assert!(
+            said.contains(place) && said.contains(what),
+            "want {place} .. {what}:\n{said}"
+        );
+        assert!(!d.join("out").exists(), "{said}");
+    }
+    std::fs::write(d.join("small.toml"), &good).unwrap();
+    let o = skyforge(
+        &[
+            "study",
+            "run",
+            "small.toml",
+            "--out",
+            "out",
+            "--shard",
+            "4/3",
+        ],
+        d,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("1 <= i <= n"), "{}", text(&o));
+
+    // A directory holding another study's journal is not overwritten.
+    skyforge_ok(&["study", "run", "small.toml", "--out", "out"], d);
+    std::fs::write(d.join("small.toml"), good.replace("seed = 11", "seed = 12")).unwrap();
+    let o = skyforge(&["study", "run", "small.toml", "--out", "out"], d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("another study"), "{}", text(&o));
+}

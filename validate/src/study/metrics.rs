@@ -1,0 +1,175 @@
+//! The per-run statistics a study can keep: each one number per run, computed from the
+//! run's observables and the attitude chain's comparison with the run's own truth
+//! ([`crate::attitude`]). A run without the quantity (no fixed epoch, say) gives NaN,
+//! which the summaries leave out and count.
+
+use crate::attitude::{ChainComparison, ObservationRun, compare, nominal_geometry};
+use crate::stats::rms;
+use skyforge_receiver::relative::RelativeConfig;
+use skyforge_scenarios::Scenario;
+use skyforge_signals::obs_model::Level;
+use std::collections::HashMap;
+
+/// One per-run statistic.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Metric {
+    /// Measured minus true pseudorange, RMS over every antenna, satellite and epoch (m).
+    PseudorangeRms,
+    /// Epochs with every ambiguity fixed over the epochs from the first fix on.
+    FixRate,
+    /// Fixed epochs with a wrong integer over the fixed epochs.
+    WrongFixRate,
+    /// Seconds from the start to the first fixed epoch.
+    FirstFix,
+    /// Baseline error norm (ECEF), RMS over fixed epochs and baselines (m).
+    BaselineRms,
+    /// Attitude error RMS over fixed epochs (deg), per axis.
+    YawRms,
+    PitchRms,
+    RollRms,
+}
+
+/// Every metric, in the order of [`Metric::names`].
+const ALL: [Metric; 8] = [
+    Metric::PseudorangeRms,
+    Metric::FixRate,
+    Metric::WrongFixRate,
+    Metric::FirstFix,
+    Metric::BaselineRms,
+    Metric::YawRms,
+    Metric::PitchRms,
+    Metric::RollRms,
+];
+
+impl Metric {
+    /// The name in study files and outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Metric::PseudorangeRms => "pseudorange_rms_m",
+            Metric::FixRate => "fix_rate",
+            Metric::WrongFixRate => "wrong_fix_rate",
+            Metric::FirstFix => "first_fix_s",
+            Metric::BaselineRms => "baseline_rms_m",
+            Metric::YawRms => "yaw_rms_deg",
+            Metric::PitchRms => "pitch_rms_deg",
+            Metric::RollRms => "roll_rms_deg",
+        }
+    }
+
+    /// Unit of the values.
+    pub fn unit(self) -> &'static str {
+        match self {
+            Metric::PseudorangeRms | Metric::BaselineRms => "m",
+            Metric::FixRate | Metric::WrongFixRate => "1",
+            Metric::FirstFix => "s",
+            Metric::YawRms | Metric::PitchRms | Metric::RollRms => "deg",
+        }
+    }
+
+    /// Every name, for messages.
+    pub fn names() -> Vec<&'static str> {
+        ALL.iter().map(|m| m.name()).collect()
+    }
+
+    /// The metric named `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        ALL.into_iter().find(|m| m.name() == name)
+    }
+
+    /// Whether it needs the attitude chain (two antennas or more).
+    fn needs_chain(self) -> bool {
+        !matches!(self, Metric::PseudorangeRms)
+    }
+
+    /// Whether `scenario` can give this metric; what it needs otherwise.
+    pub fn check(self, scenario: &Scenario) -> Result<(), String> {
+        if scenario.observation.level != Level::Observation {
+            return Err(
+                "the runs of a study are at the observation level: the base scenario needs [observation] level = \"observation\"".into(),
+            );
+        }
+        if self.needs_chain() && scenario.antennas.len() < 2 {
+            return Err(format!(
+                "{} comes from the attitude chain, which needs two antennas or more (the scenario has {})",
+                self.name(),
+                scenario.antennas.len()
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// The values of `metrics` for one run (NaN where the run has none).
+pub fn measure(run: &ObservationRun, metrics: &[Metric]) -> Result<Vec<f64>, String> {
+    let chain = if metrics.iter().any(|m| m.needs_chain()) {
+        Some(
+            compare(run, &nominal_geometry(run), RelativeConfig::default())
+                .map_err(|e| format!("attitude chain: {e}"))?,
+        )
+    } else {
+        None
+    };
+    Ok(metrics
+        .iter()
+        .map(|&m| match (m, &chain) {
+            (Metric::PseudorangeRms, _) => pseudorange_rms(run),
+            (m, Some(c)) => chain_metric(m, c),
+            (_, None) => f64::NAN,
+        })
+        .collect())
+}
+
+/// A chain metric of `c`.
+fn chain_metric(m: Metric, c: &ChainComparison) -> f64 {
+    let fixed = !c.fixed.is_empty();
+    let or_nan = |v: f64| if fixed { v } else { f64::NAN };
+    match m {
+        Metric::FixRate => c.fix_rate(),
+        Metric::WrongFixRate if c.fixed_epochs == 0 => f64::NAN,
+        Metric::WrongFixRate => c.fixed_epochs_wrong as f64 / c.fixed_epochs as f64,
+        Metric::FirstFix => c.first_fix_s.unwrap_or(f64::NAN),
+        Metric::BaselineRms => {
+            let norms: Vec<f64> = c
+                .fixed
+                .iter()
+                .flat_map(|e| e.baseline_ecef_m.iter())
+                .map(|b| (b[0] * b[0] + b[1] * b[1] + b[2] * b[2]).sqrt())
+                .collect();
+            or_nan(rms(&norms))
+        }
+        Metric::YawRms => or_nan(rms(&c.attitude_axis(0))),
+        Metric::PitchRms => or_nan(rms(&c.attitude_axis(1))),
+        Metric::RollRms => or_nan(rms(&c.attitude_axis(2))),
+        Metric::PseudorangeRms => f64::NAN,
+    }
+}
+
+/// RMS of measured minus true pseudorange over every antenna, satellite and epoch.
+fn pseudorange_rms(run: &ObservationRun) -> f64 {
+    let mut errors = Vec::new();
+    for (measured, truth) in run.measured.iter().zip(&run.truth) {
+        let true_at: HashMap<_, f64> = truth
+            .epochs
+            .iter()
+            .flat_map(|e| {
+                e.sats
+                    .iter()
+                    .filter_map(move |r| Some(((e.time, r.sat, r.signal), r.pseudorange_m?)))
+            })
+            .collect();
+        for e in &measured.epochs {
+            for r in &e.sats {
+                if let (Some(m), Some(t)) =
+                    (r.pseudorange_m, true_at.get(&(e.time, r.sat, r.signal)))
+                {
+                    errors.push(m - t);
+                }
+            }
+        }
+    }
+    if errors.is_empty() {
+        f64::NAN
+    } else {
+        rms(&errors)
+    }
+}

@@ -1,0 +1,14 @@
+//! Studies: Monte Carlo runs of one base scenario over a grid of parameter values and
+//! seeds, each run measured against its own truth, split into shards that merge into the
+//! same result whatever the layout (docs/study.md). `skyforge study` drives them and
+//! writes their files.
+
+pub mod file;
+pub mod metrics;
+pub mod plan;
+pub mod summary;
+
+pub use file::{Parameter, Study, StudyError};
+pub use metrics::Metric;
+pub use plan::{RunResult, Shard, run_seed};
+pub use summary::MetricSummary;
