@@ -40,6 +40,7 @@ use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::time::TimeOrigin;
+use skyforge_receiver::pvt::raim::chi2_survival;
 use skyforge_receiver::pvt::{Measurement, PvtConfig, solve};
 use skyforge_scenarios::Scenario;
 use std::path::Path;
@@ -147,8 +148,10 @@ pub fn mops_setting() -> Setting {
         ramps_mps: &RAMP_RATES_MPS,
         // assumed: 30 min per run (as the static ground site that stood in for the aircraft
         // before): a 0.5 m/s ramp reaches 900 m, beyond the 556 m limit's failure for every
-        // geometry whose HPL is below it; the en-route limit's failure (3706 m) is reached
-        // within a run by the faster ramps only.
+        // geometry whose HPL is below it. (Expected before the first run: the faster ramps
+        // would reach the en-route limit's 3706 m failure; in the event none did within
+        // 1800 s, and the en-route detection and time-to-alarm rows show nothing.
+        // docs/raim.md.)
         window_s: 1800,
         // assumed: the table's 0.002 false alarms per hour spread over independent 1 Hz
         // epochs (the noise is white): P_fa = 0.002 / 3600 per epoch.
@@ -335,6 +338,10 @@ pub struct EpochResult {
     pub alarm: bool,
     /// The satellite excluded, if any.
     pub excluded: Option<SatId>,
+    /// Probability that a fault-free statistic exceeds this epoch's all-in statistic
+    /// (chi-square survival at the all-in fix's degrees of freedom); NaN without RAIM.
+    /// Uniform on (0, 1) when the noise has the weights' sigmas and there is no fault.
+    pub survival: f64,
 }
 
 /// A standard normal draw (Box-Muller).
@@ -410,6 +417,11 @@ pub fn run(setting: &Setting, geometry: &Geometry, draw: &Draw) -> Vec<EpochResu
             .protection
             .as_ref()
             .map_or((f64::INFINITY, false), |p| (p.hpl_m, p.alarm));
+        let dof_all = fix.dof + fix.excluded.len();
+        let survival = fix
+            .protection
+            .as_ref()
+            .map_or(f64::NAN, |p| chi2_survival(dof_all, p.chi2_all));
         out.push(EpochResult {
             t_s: t_run,
             hpe_all_m,
@@ -417,6 +429,7 @@ pub fn run(setting: &Setting, geometry: &Geometry, draw: &Draw) -> Vec<EpochResu
             hpl_m,
             alarm,
             excluded,
+            survival,
         });
     }
     out
@@ -435,6 +448,9 @@ pub struct FaultOutcome {
     pub missed: bool,
     /// The missed failure happened while HPL <= HAL (RAIM claimed availability).
     pub missed_while_available: bool,
+    /// The missed failure happened in an epoch without RAIM (fewer than two degrees of
+    /// freedom: no test and no protection level, the receiver knew it had no integrity).
+    pub missed_without_raim: bool,
     /// At the first alarm the faulted satellite was the one excluded.
     pub right_exclusion: Option<bool>,
     /// Length of the run (h).
@@ -453,6 +469,7 @@ pub fn fault_outcome(epochs: &[EpochResult], fault: SatId, limit: &Limit) -> Fau
     };
     let mut missed = false;
     let mut missed_while_available = false;
+    let mut missed_without_raim = false;
     for e in epochs.iter().filter(|e| e.hpe_all_m > limit.hal_m) {
         // A failure whose alarm window runs past the run's end cannot be judged.
         if e.t_s + limit.tta_s > end_s {
@@ -461,6 +478,7 @@ pub fn fault_outcome(epochs: &[EpochResult], fault: SatId, limit: &Limit) -> Fau
         if !alarm_in(e.t_s, e.t_s + limit.tta_s) {
             missed = true;
             missed_while_available |= e.hpl_m <= limit.hal_m;
+            missed_without_raim |= !e.hpl_m.is_finite();
         }
     }
     let failure_s = failure.map(|i| epochs[i].t_s);
@@ -475,6 +493,7 @@ pub fn fault_outcome(epochs: &[EpochResult], fault: SatId, limit: &Limit) -> Fau
         }),
         missed,
         missed_while_available,
+        missed_without_raim,
         right_exclusion: first_alarm.map(|i| epochs[i].excluded == Some(fault)),
         hours: epochs.len() as f64 / EPOCHS_PER_HOUR,
     }
@@ -548,6 +567,25 @@ fn rate_per_hour(counts: &[f64], hours: &[f64]) -> (f64, f64, Option<f64>) {
     (rate, se, (total == 0.0).then(|| 3.0 / total_h))
 }
 
+/// Upper tail of the fault-free statistic the false-alarm rows count (a check that the
+/// statistic is chi-square where alarms are too rare to show it).
+const STATISTIC_TAIL: f64 = 1e-3;
+
+/// Whether fault-free hours without an alarm could show a false-alarm rate of
+/// `per_hour` (the one-sided 95 % Poisson bound 3 / hours below it), as the note says it.
+fn shown_by_sample(per_hour: f64, hours: f64) -> String {
+    let needed = 3.0 / per_hour;
+    if hours >= needed {
+        format!(
+            "{hours:.1} h could show a rate of {per_hour}/h, which needs about {needed:.0} h without an alarm"
+        )
+    } else {
+        format!(
+            "the sample cannot show a rate of {per_hour}/h, which needs about {needed:.0} h without an alarm"
+        )
+    }
+}
+
 /// The rows of `setting` from its runs.
 pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
     let (faulted, free) = runs;
@@ -562,6 +600,14 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
         .map(|r| r.iter().filter(|e| e.alarm).count() as f64)
         .collect();
     let free_epochs: usize = free.iter().map(Vec::len).sum();
+    // The calibration of the statistic: its survival probability in the fault-free epochs
+    // with RAIM, and how many fall in its upper STATISTIC_TAIL.
+    let survivals: Vec<f64> = free
+        .iter()
+        .flat_map(|r| r.iter().map(|e| e.survival))
+        .filter(|u| u.is_finite())
+        .collect();
+    let tail = survivals.iter().filter(|u| **u < STATISTIC_TAIL).count();
     for limit in &setting.limits {
         let outcomes: Vec<FaultOutcome> = faulted
             .iter()
@@ -572,6 +618,19 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
         let n_fail = failed.len();
         let missed = failed.iter().filter(|o| o.missed).count();
         let missed_avail = failed.iter().filter(|o| o.missed_while_available).count();
+        let missed_no_raim = failed.iter().filter(|o| o.missed_without_raim).count();
+        let missed_where =
+            format!("{missed_avail} while HPL <= HAL, {missed_no_raim} in epochs without RAIM");
+        // Without a failure there is nothing to detect or time: the rows say so (their NaN
+        // fails the check).
+        let no_failure = if n_fail == 0 {
+            format!(
+                "no run reached a positioning failure (all-in HPE > HAL) within its {} s, so nothing was detected or timed and the row shows nothing; ",
+                setting.window_s
+            )
+        } else {
+            String::new()
+        };
         let detected: Vec<f64> = outcomes.iter().filter_map(|o| o.detection_s).collect();
         let right: Vec<f64> = outcomes
             .iter()
@@ -651,7 +710,7 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
                         (format!(">= {p_min}"), Verdict::from_ok(p >= p_min)),
                     )
                     .with_note(format!(
-                        "{p:.4} +/- {se:.4} over {n_fail} runs with a failure; {missed} missed ({missed_avail} while HPL <= HAL){lower}; {common}"
+                        "{no_failure}{p:.4} +/- {se:.4} over {n_fail} runs with a failure; {missed} missed ({missed_where}){lower}; {common}"
                     )),
                 );
             }
@@ -676,7 +735,7 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
                         (format!("<= {max}"), Verdict::from_ok(rate <= max)),
                     )
                     .with_note(format!(
-                        "{rate:.4} +/- {se:.4} /h: {missed} of {n_f} faulted runs ({:.1} h, a fault present throughout, so an upper bound of the rate a fault prior would give) missed a failure ({missed_avail} while HPL <= HAL), {n_fail} runs reached a failure{bound}; {common}",
+                        "{rate:.4} +/- {se:.4} /h: {missed} of {n_f} faulted runs ({:.1} h, a fault present throughout, so an upper bound of the rate a fault prior would give) missed a failure ({missed_where}), {n_fail} runs reached a failure{bound}; {common}",
                         hours.iter().sum::<f64>()
                     )),
                 );
@@ -693,7 +752,7 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
                 (format!("<= {}", limit.tta_s), Verdict::from_ok(tta_max <= limit.tta_s)),
             )
             .with_note(format!(
-                "from the first epoch the all-in fix's HPE exceeds HAL (RTCA MOPS: time to alert counts from the positioning failure) to the first alarm at or after it; mean {tta_mean:.2} +/- {tta_se:.2} s over {} runs with a failure and an alarm (0: the alarm was already standing); from the fault's onset the first alarm came {det_mean:.0} +/- {det_se:.0} s later",
+                "{no_failure}from the first epoch the all-in fix's HPE exceeds HAL (RTCA MOPS: time to alert counts from the positioning failure) to the first alarm at or after it; mean {tta_mean:.2} +/- {tta_se:.2} s over {} runs with a failure and an alarm (0: the alarm was already standing); from the fault's onset the first alarm came {det_mean:.0} +/- {det_se:.0} s later",
                 tta.len()
             )),
         );
@@ -715,12 +774,15 @@ pub fn rows_of(setting: &Setting, runs: &Runs) -> Vec<Row> {
                 ),
             )
             .with_note(format!(
-                "{rate:.4} +/- {se:.4} /h: {} alarm epochs in {} fault-free runs, {free_epochs} epochs ({:.1} h){bound}; the sample cannot show a rate of {}/h, which needs about {:.0} h without an alarm",
+                "{rate:.4} +/- {se:.4} /h: {} alarm epochs in {} fault-free runs, {free_epochs} epochs ({:.1} h){bound}; {}; P_fa x {} epochs with RAIM expects {:.1} alarm epochs, and the statistic exceeded its {STATISTIC_TAIL} quantile in {tail} of them (expected {:.0} +/- {:.0})",
                 free_alarms.iter().sum::<f64>(),
                 free.len(),
                 free_hours.iter().sum::<f64>(),
-                limit.false_alarms_per_h,
-                3.0 / limit.false_alarms_per_h
+                shown_by_sample(limit.false_alarms_per_h, free_hours.iter().sum()),
+                survivals.len(),
+                setting.pfa * survivals.len() as f64,
+                STATISTIC_TAIL * survivals.len() as f64,
+                (STATISTIC_TAIL * survivals.len() as f64).sqrt(),
             )),
         );
     }
@@ -820,6 +882,7 @@ mod tests {
                         hpl_m: 50.0,
                         alarm: t >= alarm_from,
                         excluded: (t >= alarm_from).then_some(sat),
+                        survival: 0.5,
                     }
                 })
                 .collect()
@@ -837,6 +900,15 @@ mod tests {
         assert_eq!(early.detection_s, Some(3.0));
         let never = fault_outcome(&series(1e9), sat, &limit);
         assert!(never.missed && never.time_to_alarm_s.is_none());
+        assert!(!never.missed_without_raim);
+        // The same late alarm, with no RAIM (no protection level) in the failure's epochs.
+        let mut gap = series(35.0);
+        for e in gap.iter_mut().filter(|e| e.t_s >= 21.0 && e.t_s < 35.0) {
+            e.hpl_m = f64::INFINITY;
+        }
+        let gap = fault_outcome(&gap, sat, &limit);
+        assert!(gap.missed && gap.missed_without_raim && !gap.missed_while_available);
+        assert!(!on_time.missed_without_raim);
     }
     /// The aircraft scenario cut to `duration_s`, with `extra` appended.
     fn short_aircraft(duration_s: f64, extra: &str) -> Scenario {
@@ -935,6 +1007,25 @@ mod tests {
             rho.abs() < 4.0 / f64::sqrt(pairs),
             "lag-1 correlation {rho}"
         );
+    }
+
+    #[test]
+    fn fault_free_statistic_is_chi_square_on_the_aircraft() {
+        // Six fault-free runs (10800 epochs, every one with RAIM): the all-in statistic's
+        // survival probability is uniform, so each upper tail holds its share within 4
+        // standard deviations. Weights with another sigma than the drawn noise, or a model
+        // the receiver and the observation truth disagree on (the troposphere at 10 km,
+        // the moving platform's light time), would move it.
+        let (_, free) = monte_carlo(&mops_setting(), 6).unwrap();
+        let u: Vec<f64> = free.iter().flatten().map(|e| e.survival).collect();
+        assert!(u.len() > 10_000, "{}", u.len());
+        assert!(u.iter().all(|u| (0.0..=1.0).contains(u)));
+        let n = u.len() as f64;
+        for p in [0.5, 0.1, 0.01] {
+            let count = u.iter().filter(|x| **x < p).count() as f64;
+            let sd = (n * p * (1.0 - p)).sqrt();
+            assert!((count - n * p).abs() < 4.0 * sd, "P < {p}: {count} of {n}");
+        }
     }
 
     #[test]
