@@ -267,6 +267,52 @@ fn a_large_bias_is_detected_and_its_satellite_excluded() {
 }
 
 #[test]
+fn exclusion_by_the_normalised_residual_finds_faults_the_weighted_residual_misses() {
+    // A day of real geometry, every satellite in turn biased by 300 m (noise-free). The
+    // largest weighted residual |v_i| / sigma_i (of the same fix with the test off) points
+    // at another satellite in some of these cases; the solver, which excludes by the
+    // largest normalised residual, must still exclude the biased one in every case.
+    let (w, r) = (world(false), site());
+    let cfg = config();
+    let off = PvtConfig {
+        raim_pfa: 0.0,
+        ..cfg.clone()
+    };
+    let (mut cases, mut weighted_wrong) = (0, 0);
+    for k in 0..96 {
+        let t = 450.0 + 900.0 * k as f64;
+        let clean = pseudoranges(&w, t, &r);
+        for (i, &(sat, _, _)) in clean.iter().enumerate() {
+            let meas = measurements(&clean, Some((i, 300.0)), &[]);
+            let plain = fix_at(&w, t, &meas, &off).unwrap();
+            let weighted_pick = plain
+                .used
+                .iter()
+                .max_by(|a, b| {
+                    (a.1 / sigma(&cfg, a.2))
+                        .abs()
+                        .total_cmp(&(b.1 / sigma(&cfg, b.2)).abs())
+                })
+                .map(|u| u.0);
+            let fix = fix_at(&w, t, &meas, &cfg).unwrap();
+            if !fix.protection.as_ref().is_some_and(|p| p.alarm) {
+                continue;
+            }
+            cases += 1;
+            weighted_wrong += usize::from(weighted_pick != Some(sat));
+            assert_eq!(fix.excluded, vec![sat], "t {t}: {sat} biased");
+            assert!(errors(&fix, &r).0 < 1e-3, "t {t}: {sat} biased");
+        }
+    }
+    assert!(cases > 500, "{cases} detected cases");
+    assert!(
+        weighted_wrong > 0,
+        "no case where the weighted residual picks another satellite in {cases}"
+    );
+    println!("{weighted_wrong} of {cases} cases: the weighted residual picks another satellite");
+}
+
+#[test]
 fn the_receiver_file_sets_the_protection_settings_and_refuses_bad_ones() {
     use skyforge_receiver::pipeline::ReceiverFile;
     let parse = |text: &str| toml::from_str::<ReceiverFile>(text).unwrap().resolve();

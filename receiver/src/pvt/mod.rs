@@ -7,9 +7,11 @@
 //! signal's flight (Sagnac), the broadcast Klobuchar ionosphere and the standard
 //! troposphere for a receiver inside the atmosphere, elevation weighting, and a receiver
 //! clock per system (the BeiDou one as GPS clock + inter-system bias when both fly).
-//! After the fix a residual test ([`raim`]) excludes one faulty satellite, and the fix
-//! carries its protection levels and integrity verdict ([`protection`], [`Protection`]).
+//! After the fix a residual test ([`raim`]) detects a fault and excludes the satellite with
+//! the largest normalised residual ([`exclusion`]), and the fix carries its protection
+//! levels and integrity verdict ([`protection`], [`Protection`]).
 
+pub mod exclusion;
 mod geometry;
 pub mod nmea;
 pub mod protection;
@@ -146,8 +148,8 @@ pub enum IntegrityStatus {
     /// The test passed but the protection level exceeds the alarm limit: RAIM cannot
     /// protect this geometry.
     Unavailable,
-    /// The test fired on all satellites and the fix without the excluded one passes it
-    /// (fault detection and exclusion).
+    /// The test fired on all satellites and the fix without the excluded one (the largest
+    /// normalised residual, [`exclusion`]) passes it (fault detection and exclusion).
     Excluded,
     /// The test fired and no exclusion made the fix consistent: do not use.
     Alarm,

@@ -17,11 +17,8 @@
 //! detects with probability 1 - P_md: HPL = max_i slope_i sqrt(lambda_det) (eq. 5-10
 //! solved for R_h with the largest delta-H(i) of eq. 5-12); VPL likewise with |A_Di|.
 
+use super::exclusion::UNOBSERVABLE_S_II;
 use nalgebra::{DMatrix, DVector};
-
-/// Diagonal of S below which a satellite's fault cannot be seen by the test (its slope is
-/// infinite): the satellite carries the solution alone.
-const UNOBSERVABLE_S_II: f64 = 1e-12;
 
 /// Slopes of one satellite: local position error per square root of noncentrality (m).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -3,7 +3,7 @@
 //! chi-square distribution with n - m degrees of freedom (Parkinson & Axelrad 1988, Brown
 //! 1992; Yuan 2000 eqs. 5-1..5-4). A fix whose sum exceeds the (1 - pfa) quantile is
 //! declared faulty; the solver then excludes the satellite with the largest standardised
-//! residual.
+//! (normalised) residual, [`super::exclusion`].
 //!
 //! With a bias on one satellite the sum follows the noncentral chi-square distribution
 //! (Yuan 2000 eq. 5-5); [`lambda_det`] is the noncentrality a fault must reach to be

@@ -1,5 +1,6 @@
 //! The iterated weighted least-squares position and clock solution.
 
+use super::exclusion::{most_suspect, normalised_residuals};
 use super::geometry::{SatView, sat_view};
 use super::protection::{protection_levels, slopes};
 use super::raim::{detection_parameters, test_threshold};
@@ -27,9 +28,10 @@ pub(crate) const STANDARD_RH0: f64 = 0.5;
 /// Solve the position, receiver clock(s) and, with both systems, the inter-system bias
 /// from `meas` received at `t_rx_s` (receiver time tag, s since `origin`, GPST), with the
 /// ephemerides of `store` (bound to `origin`). `a_priori` starts the iteration (the
-/// geocentre otherwise). Applies the residual test of [`super::raim`] and excludes one
-/// satellite when it fails; the fix's [`Protection`] gives the protection levels of the
-/// satellites finally used and the test's verdict.
+/// geocentre otherwise). Applies the residual test of [`super::raim`] and, when it fails,
+/// excludes the satellite with the largest normalised residual ([`super::exclusion`]); the
+/// fix's [`Protection`] gives the protection levels of the satellites finally used and the
+/// test's verdict.
 pub fn solve(
     meas: &[Measurement],
     t_rx_s: f64,
@@ -45,7 +47,10 @@ pub fn solve(
         origin,
         cfg,
     };
-    let mut fix = epoch.least_squares(a_priori, &[])?;
+    let Solution {
+        mut fix,
+        normalised,
+    } = epoch.least_squares(a_priori, &[])?;
     if !(cfg.raim_pfa > 0.0 && fix.dof >= 2) {
         // No test, no protection (RAIM unavailable).
         fix.protection = None;
@@ -56,18 +61,13 @@ pub fn solve(
     let r_all_ecef_m = fix.r_ecef_m;
     let mut consistent = !alarm;
     if alarm {
-        // Exclude the satellite with the largest weighted residual and solve again.
-        let worst = fix
-            .used
-            .iter()
-            .map(|&(sat, res, el)| (sat, (res / sigma_m(cfg, Some(el))).abs()))
-            .max_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(sat, _)| sat);
+        // Exclude the satellite with the largest normalised residual and solve again.
+        let worst = most_suspect(&normalised).and_then(|i| fix.used.get(i).map(|u| u.0));
         if let Some(worst) = worst {
-            let mut again = epoch.least_squares(Some(fix.r_ecef_m), &[worst])?;
+            let mut again = epoch.least_squares(Some(fix.r_ecef_m), &[worst])?.fix;
             again.excluded.push(worst);
-            // The exclusion is kept as before; it counts as a repair only when the
-            // remaining satellites pass the same test.
+            // The exclusion counts as a repair only when the remaining satellites pass the
+            // same test.
             consistent = again.dof >= 1 && again.chi2 <= test_threshold(again.dof, cfg.raim_pfa);
             fix = again;
         }
@@ -189,7 +189,7 @@ struct Epoch<'a> {
 
 impl Epoch<'_> {
     /// One least-squares solution without the satellites of `skip`.
-    fn least_squares(&self, a_priori: Option<Vec3>, skip: &[SatId]) -> Result<Fix, PvtError> {
+    fn least_squares(&self, a_priori: Option<Vec3>, skip: &[SatId]) -> Result<Solution, PvtError> {
         let Epoch {
             meas,
             t_rx_s,
@@ -240,6 +240,14 @@ impl Epoch<'_> {
         }
         Err(PvtError::NoConvergence { step_m: last_step })
     }
+}
+
+/// A fix and the normalised residual |v_i| / (sigma_i sqrt(S_ii)) of each satellite it
+/// used, in [`Fix::used`] order (empty when the weighted normal matrix is singular): what
+/// the exclusion ranks.
+struct Solution {
+    fix: Fix,
+    normalised: Vec<f64>,
 }
 
 /// One usable measurement, linearised at the current estimate.
@@ -308,7 +316,8 @@ fn matrices(rows: &[Row], n_x: usize) -> (DMatrix<f64>, DVector<f64>, DVector<f6
     (h, v, w)
 }
 
-/// The fix at the converged estimate: residuals, chi-square and DOP.
+/// The fix at the converged estimate: residuals, chi-square, DOP, protection and the
+/// normalised residuals.
 fn finish(
     rows: &[Row],
     n_x: usize,
@@ -317,7 +326,7 @@ fn finish(
     systems: &[System],
     t_rx_s: f64,
     cfg: &PvtConfig,
-) -> Result<Fix, PvtError> {
+) -> Result<Solution, PvtError> {
     let (h, v, w) = matrices(rows, n_x);
     let q = (h.transpose() * &h)
         .try_inverse()
@@ -338,7 +347,8 @@ fn finish(
     let chi2 = v.iter().zip(w.iter()).map(|(r, w)| r * r * w).sum();
     let dof = rows.len() - n_x;
     let gps_first = systems.first() == Some(&System::Gps);
-    Ok(Fix {
+    let normalised = normalised_residuals(&h, &w, &v).unwrap_or_default();
+    let fix = Fix {
         t_s: t_rx_s - clocks[0] / C_MPS,
         r_ecef_m: r,
         clock_bias_m: clocks[0],
@@ -352,5 +362,6 @@ fn finish(
         chi2,
         dof,
         protection: protection_of(&h, &w, dof, &c, cfg, chi2, r),
-    })
+    };
+    Ok(Solution { fix, normalised })
 }
