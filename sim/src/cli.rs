@@ -374,6 +374,27 @@ pub enum StudyAction {
         #[arg(long, value_name = "i/n")]
         shard: Option<String>,
     },
+    /// Write Slurm scripts for STUDY into DIR/slurm/: a job array of N tasks (task i runs
+    /// `study run --shard i/N`), a merge job, and submit.sh, which submits the array and
+    /// the merge after it (`--dependency=afterok`). DIR must be on storage every node
+    /// sees.
+    Slurm {
+        /// The study file (TOML).
+        study: PathBuf,
+        /// The study's output directory (created when missing).
+        #[arg(long, value_name = "DIR")]
+        out: PathBuf,
+        /// Array tasks (shards).
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+        shards: u64,
+        /// The skyforge binary as the nodes see it (default: this one).
+        #[arg(long, value_name = "PATH")]
+        skyforge: Option<PathBuf>,
+        /// An extra #SBATCH option for both jobs, e.g. --sbatch=--partition=short
+        /// (repeatable).
+        #[arg(long = "sbatch", value_name = "OPTION", allow_hyphen_values = true)]
+        sbatch: Vec<String>,
+    },
     /// Merge the shard files of DIR... (every shard-*-of-*.h5, or files) into one file,
     /// byte-identical to a whole run's study.h5.
     Merge {

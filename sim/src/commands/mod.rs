@@ -45,6 +45,13 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Study { action } => match action {
             StudyAction::Run { study, out, shard } => study::run(&study, &out, shard.as_deref()),
             StudyAction::Merge { dirs, out } => study::merge(&dirs, out.as_deref()),
+            StudyAction::Slurm {
+                study,
+                out,
+                shards,
+                skyforge,
+                sbatch,
+            } => study::slurm(&study, &out, shards, skyforge.as_deref(), &sbatch),
         },
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive {

@@ -2,6 +2,7 @@
 //! shard's journal are not made again), and merge shards into one file.
 
 use crate::BadInput;
+use crate::output::slurm_scripts::SlurmJob;
 use crate::output::study_files::{
     Journal, MERGED_FILE, read_shard, shard_path, shard_study_text, write_merged, write_shard,
 };
@@ -191,4 +192,59 @@ fn print_summary(study: &Study, runs: &[RunResult]) {
             );
         }
     }
+}
+
+/// `skyforge study slurm STUDY --out DIR --shards N`: the scripts in DIR/slurm/.
+pub fn slurm(
+    path: &Path,
+    out: &Path,
+    shards: u64,
+    skyforge: Option<&Path>,
+    options: &[String],
+) -> anyhow::Result<()> {
+    let study = load(path)?;
+    if let Some(bad) = options
+        .iter()
+        .find(|o| !o.starts_with('-') || o.contains('\n'))
+    {
+        return Err(BadInput(format!(
+            "--sbatch {bad:?}: an sbatch option on one line, starting with - (e.g. --partition=short)"
+        ))
+        .into());
+    }
+    let absolute = |p: &Path| std::path::absolute(p).with_context(|| format!("{}", p.display()));
+    let exe = match skyforge {
+        Some(p) => p.to_path_buf(),
+        None => std::env::current_exe().context("the path of this skyforge binary")?,
+    };
+    let (study_path, out) = (absolute(path)?, absolute(out)?);
+    let dir = out.join("slurm");
+    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    let job = SlurmJob {
+        skyforge: &exe,
+        study: &study_path,
+        out: &out,
+        shards,
+        name: &study.name,
+        options,
+    };
+    for (name, text) in [
+        ("array.sbatch", job.array()),
+        ("merge.sbatch", job.merge()),
+        ("submit.sh", job.submit()),
+    ] {
+        let p = dir.join(name);
+        std::fs::write(&p, text).with_context(|| format!("cannot write {}", p.display()))?;
+    }
+    println!(
+        "study      {}: {} runs in {shards} array tasks",
+        study.name,
+        study.runs()
+    );
+    println!(
+        "wrote      {}/{{array.sbatch, merge.sbatch, submit.sh}}",
+        dir.display()
+    );
+    println!("submit     bash {}", dir.join("submit.sh").display());
+    Ok(())
 }

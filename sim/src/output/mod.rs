@@ -6,6 +6,7 @@ pub mod interrupt;
 pub mod manifest;
 pub mod monitor_out;
 pub mod receiver_out;
+pub mod slurm_scripts;
 pub mod staged_dir;
 pub mod study_files;
 pub mod synth_sinks;

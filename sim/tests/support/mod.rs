@@ -272,3 +272,17 @@ impl Drop for Tmpfs {
         }
     }
 }
+
+/// A small study of the T-5.4-3 set-up: 60 s runs, two signal levels, `seeds` seeds.
+pub fn small_study(dir: &Path, seeds: u32) -> String {
+    let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/thesis/t-5.4-3.toml");
+    std::fs::copy(scenario, dir.join("t-5.4-3.toml")).unwrap();
+    let study = format!(
+        "name = \"small\"\nscenario = \"t-5.4-3.toml\"\nseed = 11\nseeds = {seeds}\n\
+         metrics = [\"fix_rate\", \"yaw_rms_deg\", \"baseline_rms_m\", \"pseudorange_rms_m\"]\n\
+         \n[[parameters]]\nkey = \"time.duration_s\"\nvalues = [60.0]\n\
+         \n[[parameters]]\nkey = \"signal.cn0_dbhz\"\nvalues = [40.0, 45.0]\n"
+    );
+    std::fs::write(dir.join("small.toml"), &study).unwrap();
+    study
+}

@@ -1,0 +1,114 @@
+//! The Slurm scripts of `skyforge study slurm`: a job array with one task per shard
+//! (`--shard ${SLURM_ARRAY_TASK_ID}/n`, requeueable: a requeued task resumes from its
+//! journal), a merge job, and `submit.sh`, which submits the array and the merge with
+//! `--dependency=afterok` on it.
+
+use std::path::Path;
+
+/// What the scripts run and where.
+#[derive(Debug, Clone)]
+pub struct SlurmJob<'a> {
+    /// The `skyforge` binary as the cluster's nodes see it.
+    pub skyforge: &'a Path,
+    pub study: &'a Path,
+    /// The study's output directory (shared by every node).
+    pub out: &'a Path,
+    pub shards: u64,
+    /// The study's name (in job names, reduced to letters, digits, `-` and `_`).
+    pub name: &'a str,
+    /// Extra `#SBATCH` options, e.g. `--partition=short`.
+    pub options: &'a [String],
+}
+
+/// `path` quoted for a POSIX shell.
+fn quoted(path: &Path) -> String {
+    format!("'{}'", path.display().to_string().replace('\'', r"'\''"))
+}
+
+impl SlurmJob<'_> {
+    fn job_name(&self) -> String {
+        let name: String = self
+            .name
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        format!("skyforge-{name}")
+    }
+
+    fn header(&self, name: &str, log: &str) -> String {
+        let mut s = format!(
+            "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}/{log}\n",
+            self.out.join("slurm").display()
+        );
+        for o in self.options {
+            s.push_str(&format!("#SBATCH {o}\n"));
+        }
+        s
+    }
+
+    /// The job array: task i makes shard i of n.
+    pub fn array(&self) -> String {
+        format!(
+            "{}#SBATCH --array=1-{n}\n#SBATCH --requeue\n# Task i makes shard i of {n}; a requeued or resubmitted task resumes from its\n# journal ({out}/shard-i-of-{n}.runs.jsonl).\nset -euo pipefail\nexec {exe} study run {study} --out {out_q} --shard \"${{SLURM_ARRAY_TASK_ID}}/{n}\"\n",
+            self.header(&self.job_name(), "shard-%a.log"),
+            n = self.shards,
+            out = self.out.display(),
+            exe = quoted(self.skyforge),
+            study = quoted(self.study),
+            out_q = quoted(self.out),
+        )
+    }
+
+    /// The merge job.
+    pub fn merge(&self) -> String {
+        format!(
+            "{}set -euo pipefail\nexec {exe} study merge {out}\n",
+            self.header(&format!("{}-merge", self.job_name()), "merge.log"),
+            exe = quoted(self.skyforge),
+            out = quoted(self.out),
+        )
+    }
+
+    /// `submit.sh`: the array, then the merge once every task succeeded; prints both job
+    /// ids.
+    pub fn submit(&self) -> String {
+        let dir = quoted(&self.out.join("slurm"));
+        format!(
+            "#!/bin/bash\n# Submit the study's job array and its merge job (after every task succeeded).\nset -euo pipefail\narray=$(sbatch --parsable {dir}/array.sbatch)\nmerge=$(sbatch --parsable --dependency=afterok:\"${{array%%;*}}\" {dir}/merge.sbatch)\necho \"array job ${{array%%;*}}, merge job ${{merge%%;*}}\"\n"
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn scripts_quote_paths_and_name_the_shards() {
+        let options = ["--partition=short".to_string()];
+        let job = SlurmJob {
+            skyforge: Path::new("/opt/sky forge/skyforge"),
+            study: Path::new("/data/it's.toml"),
+            out: Path::new("/data/out"),
+            shards: 4,
+            name: "cn0 sweep!",
+            options: &options,
+        };
+        let a = job.array();
+        assert!(a.contains("#SBATCH --array=1-4\n"), "{a}");
+        assert!(
+            a.contains("#SBATCH --job-name=skyforge-cn0_sweep_\n"),
+            "{a}"
+        );
+        assert!(a.contains("#SBATCH --partition=short\n"), "{a}");
+        assert!(a.contains("exec '/opt/sky forge/skyforge' study run '/data/it'\\''s.toml' --out '/data/out' --shard \"${SLURM_ARRAY_TASK_ID}/4\""), "{a}");
+        assert!(job.merge().contains("study merge '/data/out'"));
+        assert!(job.submit().contains("--dependency=afterok:"));
+    }
+}
