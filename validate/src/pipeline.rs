@@ -17,7 +17,8 @@ use skyforge_receiver::session::{
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
 use skyforge_signals::synth::session::{
-    Discard, ObservationSink, SinkError, Sinks, SynthError, SynthReport, SynthSession, TruthSink,
+    Discard, ObservationSink, SampleSink, SinkError, Sinks, SynthError, SynthReport, SynthSession,
+    TruthSink,
 };
 use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
@@ -205,6 +206,16 @@ pub fn synth_and_receive(
     })
 }
 
+/// The receiver's sample feed as the synthesis session's sample sink.
+#[derive(Debug)]
+struct Feed(SampleFeed);
+
+impl SampleSink for Feed {
+    fn samples(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), SinkError> {
+        Ok(self.0.send(band, antenna, bytes)?)
+    }
+}
+
 /// What a streamed synthesis hands to the caller: the truth of the transmitted signals
 /// and the observation truth (the samples go to the receiver). The sinks run on the
 /// synthesis thread.
@@ -227,7 +238,7 @@ impl std::fmt::Debug for StreamSinks<'_> {
 #[derive(Debug)]
 pub struct StreamedChain<'a> {
     session: SynthSession<'a>,
-    feed: SampleFeed,
+    feed: Feed,
     receiver: ReceiveSession,
 }
 
@@ -263,7 +274,7 @@ impl<'a> StreamedChain<'a> {
             ReceiveSession::open_streams(recordings, streams, samples, assistance, config)?;
         Ok(Self {
             session,
-            feed,
+            feed: Feed(feed),
             receiver,
         })
     }

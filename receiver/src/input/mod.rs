@@ -20,4 +20,4 @@ pub use error::{Finding, InputError};
 pub use format::SampleFormat;
 pub use reader::{AntennaInput, Block, BlockReader, InputReport};
 pub use recording::{InputParams, Recording};
-pub use stream::{SampleFeed, StreamReader, sample_stream};
+pub use stream::{FeedError, SampleFeed, StreamReader, sample_stream};

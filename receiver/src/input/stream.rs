@@ -2,9 +2,10 @@
 //! running beside it on another thread: synthesis and reception without a recording on
 //! disk (an 1800 s run of four 4 Msps antennas would be 58 GB of I/Q).
 //!
-//! [`sample_stream`] gives the two ends. The [`SampleFeed`] is the session's sample sink:
-//! it sends each band's and antenna's bytes, as they are rendered, as frames on one bounded
-//! channel. Each [`StreamReader`] reads one band's and antenna's bytes for the
+//! [`sample_stream`] gives the two ends. The [`SampleFeed`] takes each band's and antenna's
+//! bytes as they are rendered (the caller adapts it to the synthesis session's sample
+//! sink: the receiver knows nothing of the synthesiser) and sends them as frames on one
+//! bounded channel. Each [`StreamReader`] reads one band's and antenna's bytes for the
 //! [`BlockReader`](super::BlockReader): all of them share one demultiplexer that takes the
 //! next frame off the channel, whichever source it belongs to, and queues it until that
 //! source's reader asks. One channel rather than one per source cannot deadlock: the
@@ -16,7 +17,6 @@
 //! their streams; when the readers are dropped (the receiver stopped) the feed's next send
 //! fails, so neither side waits for the other forever.
 
-use skyforge_signals::synth::session::{SampleSink, SinkError};
 use std::collections::VecDeque;
 use std::io::{Read, Seek, SeekFrom};
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
@@ -25,7 +25,7 @@ use std::sync::{Arc, Mutex};
 /// One rendered piece of one source's bytes.
 type Frame = (usize, Vec<u8>);
 
-/// The synthesis end of a stream: a sample sink that sends what it is given.
+/// The synthesis end of a stream.
 #[derive(Debug)]
 pub struct SampleFeed {
     tx: SyncSender<Frame>,
@@ -79,19 +79,33 @@ pub fn sample_stream(
     )
 }
 
-impl SampleSink for SampleFeed {
-    fn samples(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), SinkError> {
+/// Why a feed could not send.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum FeedError {
+    #[error("sample stream: band {band} antenna {antenna} is not one of its {sources} sources")]
+    NoSuchSource {
+        band: usize,
+        antenna: usize,
+        sources: usize,
+    },
+    #[error("the receiver stopped reading the sample stream")]
+    ReceiverStopped,
+}
+
+impl SampleFeed {
+    /// Send the next `bytes` of band `band`'s recording of antenna `antenna`.
+    pub fn send(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), FeedError> {
         let source = band * self.antennas + antenna;
         if antenna >= self.antennas || source >= self.sources {
-            return Err(format!(
-                "sample stream: band {band} antenna {antenna} is not one of its {} sources",
-                self.sources
-            )
-            .into());
+            return Err(FeedError::NoSuchSource {
+                band,
+                antenna,
+                sources: self.sources,
+            });
         }
         self.tx
             .send((source, bytes.to_vec()))
-            .map_err(|_| "the receiver stopped reading the sample stream".into())
+            .map_err(|_| FeedError::ReceiverStopped)
     }
 }
 
@@ -170,8 +184,7 @@ mod tests {
                 for band in 0..2 {
                     for antenna in 0..2 {
                         let tag = (band * 2 + antenna) as u8;
-                        feed.samples(band, antenna, &[tag, slice, tag, slice])
-                            .unwrap();
+                        feed.send(band, antenna, &[tag, slice, tag, slice]).unwrap();
                     }
                 }
             }
@@ -199,12 +212,12 @@ mod tests {
     fn a_stopped_receiver_fails_the_feed_and_a_finished_feed_ends_the_streams() {
         let (mut feed, readers) = sample_stream(1, 2, 1);
         drop(readers);
-        let e = feed.samples(0, 0, &[1, 2]).unwrap_err();
+        let e = feed.send(0, 0, &[1, 2]).unwrap_err();
         assert!(e.to_string().contains("stopped reading"), "{e}");
 
         let (mut feed, mut readers) = sample_stream(1, 2, 4);
-        feed.samples(0, 1, &[7, 8, 9]).unwrap();
-        assert!(feed.samples(1, 0, &[1]).is_err(), "band 1 does not exist");
+        feed.send(0, 1, &[7, 8, 9]).unwrap();
+        assert!(feed.send(1, 0, &[1]).is_err(), "band 1 does not exist");
         drop(feed);
         let mut rest = Vec::new();
         readers[1].read_to_end(&mut rest).unwrap();
@@ -215,7 +228,7 @@ mod tests {
     #[test]
     fn a_stream_seeks_only_to_where_it_is() {
         let (mut feed, mut readers) = sample_stream(1, 1, 4);
-        feed.samples(0, 0, &[1, 2, 3, 4]).unwrap();
+        feed.send(0, 0, &[1, 2, 3, 4]).unwrap();
         let r = &mut readers[0];
         assert_eq!(r.seek(SeekFrom::Start(0)).unwrap(), 0);
         assert_eq!(take(r, 2), [1, 2]);

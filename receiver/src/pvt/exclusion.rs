@@ -85,32 +85,7 @@ pub fn most_suspect(normalised: &[f64]) -> Option<usize> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// Unit vectors to six satellites (az, el in degrees) in NED, one clock, and the
-    /// solver's elevation-dependent sigmas: satellite 0 near the zenith has the least
-    /// redundancy (S_00 = 0.23), satellite 3 at 15 deg the most (0.44).
-    fn geometry() -> (DMatrix<f64>, DVector<f64>) {
-        let sats = [
-            (0.0, 80.0),
-            (40.0, 25.0),
-            (110.0, 40.0),
-            (190.0, 15.0),
-            (250.0, 55.0),
-            (320.0, 30.0),
-        ];
-        let mut h = DMatrix::zeros(sats.len(), 4);
-        let mut w = DVector::zeros(sats.len());
-        for (i, (az, el)) in sats.iter().enumerate() {
-            let (az, el) = (f64::to_radians(*az), f64::to_radians(*el));
-            let los = [el.cos() * az.cos(), el.cos() * az.sin(), -el.sin()];
-            for k in 0..3 {
-                h[(i, k)] = -los[k];
-            }
-            h[(i, 3)] = 1.0;
-            w[i] = 0.3f64.hypot(0.3 / el.sin()).powi(-2);
-        }
-        (h, w)
-    }
+    use crate::pvt::test_geometry::six_satellites;
 
     /// Post-fit residuals of `z` by QR of the whitened system (not the normal equations
     /// the functions under test use).
@@ -144,7 +119,7 @@ mod tests {
 
     #[test]
     fn the_normalised_residual_picks_a_low_redundancy_fault_the_weighted_one_misses() {
-        let (h, w) = geometry();
+        let (h, w) = six_satellites();
         // A bias on satellite 0 (near the zenith, little redundancy): the estimate absorbs
         // most of it, and the largest weighted residual is satellite 3's.
         let (v, weighted_pick) = biased(&h, &w, 0);
@@ -169,7 +144,7 @@ mod tests {
         use rand::SeedableRng;
         use rand_chacha::ChaCha20Rng;
         use rand_distr::{Distribution, StandardNormal};
-        let (h, w) = geometry();
+        let (h, w) = six_satellites();
         let s = residual_redundancy(&h, &w).unwrap();
         let mut rng = ChaCha20Rng::seed_from_u64(1992);
         let draws = 20_000;
@@ -201,7 +176,7 @@ mod tests {
     #[test]
     fn no_redundancy_gives_no_suspect() {
         // As many measurements as unknowns: every S_ii is 0, every residual uninformative.
-        let (h, w) = geometry();
+        let (h, w) = six_satellites();
         let (h4, w4) = (h.rows(0, 4).into_owned(), w.rows(0, 4).into_owned());
         let v = DVector::from_element(4, 1.0);
         let normalised = normalised_residuals(&h4, &w4, &v).unwrap();

@@ -17,6 +17,8 @@ pub mod nmea;
 pub mod protection;
 pub mod raim;
 pub(crate) mod solve;
+#[cfg(test)]
+mod test_geometry;
 mod velocity;
 
 pub use geometry::SatView;

@@ -76,32 +76,7 @@ pub fn protection_levels(slopes: &[Slope], lambda_det: f64) -> (f64, f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// A hand geometry: unit vectors to six satellites (az, el in degrees) in NED, one clock,
-    /// and elevation-dependent sigmas.
-    fn geometry() -> (DMatrix<f64>, DVector<f64>) {
-        let sats = [
-            (0.0, 80.0),
-            (40.0, 25.0),
-            (110.0, 40.0),
-            (190.0, 15.0),
-            (250.0, 55.0),
-            (320.0, 30.0),
-        ];
-        let mut h = DMatrix::zeros(sats.len(), 4);
-        let mut w = DVector::zeros(sats.len());
-        for (i, (az, el)) in sats.iter().enumerate() {
-            let (az, el) = (f64::to_radians(*az), f64::to_radians(*el));
-            let los = [el.cos() * az.cos(), el.cos() * az.sin(), -el.sin()];
-            for k in 0..3 {
-                h[(i, k)] = -los[k];
-            }
-            h[(i, 3)] = 1.0;
-            let sigma = 0.3f64.hypot(0.3 / el.sin());
-            w[i] = sigma.powi(-2);
-        }
-        (h, w)
-    }
+    use crate::pvt::test_geometry::six_satellites;
 
     #[test]
     fn slopes_match_a_brute_force_bias_injection() {
@@ -109,7 +84,7 @@ mod tests {
         // QR of the whitened system (not the normal equations of `slopes`), the statistic
         // from the residuals, b scaled so the statistic equals lambda; the horizontal and
         // vertical error must then be slope * sqrt(lambda).
-        let (h, w) = geometry();
+        let (h, w) = six_satellites();
         let lambda = 37.3;
         let sl = slopes(&h, &w).unwrap();
         let root_w = DMatrix::from_diagonal(&w.map(f64::sqrt));
@@ -148,7 +123,7 @@ mod tests {
     #[test]
     fn a_satellite_the_test_cannot_see_has_an_infinite_slope() {
         // As many measurements as unknowns: S = 0, no fault shows in the residuals.
-        let (h, w) = geometry();
+        let (h, w) = six_satellites();
         let h4 = h.rows(0, 4).into_owned();
         let w4 = w.rows(0, 4).into_owned();
         let sl = slopes(&h4, &w4).unwrap();

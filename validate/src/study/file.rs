@@ -62,6 +62,8 @@ pub struct Study {
     pub source: String,
     /// The study file's text (kept in every output: what the results belong to).
     pub text: String,
+    /// The base scenario as the study names it (a file or a bundled name).
+    pub scenario: String,
     /// The base scenario (`None` when read for merging only).
     base: Option<BaseScenario>,
     pub seed: u64,
@@ -79,16 +81,11 @@ impl Study {
     /// so that a bad value fails before any run.
     pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Self, StudyError> {
         let mut study = Self::parse_plan(text, source)?;
-        let file: StudyToml = parse_document(text, source)?;
         let bad = |field: &str, value: &dyn std::fmt::Display, allowed: &str| {
-            Box::new(locate_invalid(
-                text,
-                source,
-                Invalid::new(field, value, allowed),
-            ))
+            located(text, source, field, value, allowed)
         };
-        let (text_of_base, base_source, dir) = base_scenario(&file.scenario, base_dir)
-            .map_err(|allowed| bad("scenario", &file.scenario, &allowed))?;
+        let (text_of_base, base_source, dir) = base_scenario(&study.scenario, base_dir)
+            .map_err(|allowed| bad("scenario", &study.scenario, &allowed))?;
         study.base = Some(BaseScenario {
             text: text_of_base,
             source: base_source,
@@ -122,11 +119,7 @@ impl Study {
     pub fn parse_plan(text: &str, source: &str) -> Result<Self, StudyError> {
         let file: StudyToml = parse_document(text, source)?;
         let bad = |field: &str, value: &dyn std::fmt::Display, allowed: &str| {
-            Box::new(locate_invalid(
-                text,
-                source,
-                Invalid::new(field, value, allowed),
-            ))
+            located(text, source, field, value, allowed)
         };
         let metrics = file
             .metrics
@@ -172,6 +165,7 @@ impl Study {
             description: file.description,
             source: source.to_string(),
             text: text.to_string(),
+            scenario: file.scenario,
             base: None,
             seed: file.seed,
             seeds: file.seeds,
@@ -252,6 +246,21 @@ impl Study {
         scenario.seed = seed;
         Ok(scenario)
     }
+}
+
+/// A failed check of the study `text` (from `source`) placed at its field.
+fn located(
+    text: &str,
+    source: &str,
+    field: &str,
+    value: &dyn std::fmt::Display,
+    allowed: &str,
+) -> StudyError {
+    Box::new(locate_invalid(
+        text,
+        source,
+        Invalid::new(field, value, allowed),
+    ))
 }
 
 /// The base scenario named `arg`: a file (relative to `base_dir`) or a bundled name; its
