@@ -150,6 +150,7 @@ pub fn synthesise(
     )
     .and_then(|()| nav.flush())
     .with_context(|| writing(&nav_path))?;
+    let streamed_run = receive.is_some();
     let streamed = match receive {
         Some(r) => {
             let start = session
@@ -239,7 +240,10 @@ pub fn synthesise(
         }
     }
     write_geometry(scenario, &staged.file("geometry.toml"))?;
-    write_assistance(&staged, report.start_state)?;
+    if !streamed_run {
+        // (A streamed run wrote it before the receiver started.)
+        write_assistance(&staged, report.start_state)?;
+    }
     let dir = staged.commit()?;
     println!("scenario   {} ({})", scenario.name, scenario.source);
     for band in &bands {

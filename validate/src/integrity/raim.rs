@@ -219,10 +219,7 @@ pub fn leo_setting() -> Setting {
 /// limits and false-alarm probability (the platform cannot manoeuvre; module doc).
 pub fn leo_manoeuvre_setting() -> Setting {
     Setting {
-        table: TABLE_LEO,
         platform: "LEO, coasting",
-        scenario_file: "raim-leo.toml",
-        scenario_text: include_str!("../../../scenarios/integrity/raim-leo.toml"),
         ramps_mps: &FAST_RAMP_RATES_MPS,
         // assumed: 20 min per run, a long orbit-adjust burn (the book states the rates per
         // hour of manoeuvring, not a burn's length); 200 runs per kind then hold 67 h, more
@@ -231,8 +228,6 @@ pub fn leo_manoeuvre_setting() -> Setting {
         // assumed: the table's 0.1 false alarms per hour over independent 1 Hz epochs. The
         // expected false-alarm rate is then the limit itself.
         pfa: 0.1 / EPOCHS_PER_HOUR,
-        // assumed: as the free-flight setting.
-        elevation_mask_rad: -90f64.to_radians(),
         seed: 0x5241_494d_0053, // assumed: any fixed seed
         limits: vec![Limit {
             name: "orbit manoeuvre",
@@ -242,6 +237,8 @@ pub fn leo_manoeuvre_setting() -> Setting {
             detection: Requirement::MaxMissedPerHour(0.1),
         }],
         caveat: "no platform model has thrust: the LEO coasts, and a snapshot test sees a manoeuvre only through the geometry it leaves, so this is the LEO's geometry at the manoeuvre's limits (the book's GPS + star-sensor RAIM, eqs. 5-14/5-15, is not modelled)",
+        // The rest (table, scenario, elevation mask) as the free-flight setting.
+        ..leo_setting()
     }
 }
 

@@ -136,17 +136,23 @@ impl Study {
     /// Per point and metric, the summary of the point's runs (`runs` as [`Self::merge`]
     /// returns them).
     pub fn summarise(&self, runs: &[RunResult]) -> Vec<Vec<MetricSummary>> {
-        (0..self.points())
-            .map(|p| {
-                let of_point: Vec<&RunResult> =
-                    runs.iter().filter(|r| self.point_of(r.run) == p).collect();
-                (0..self.metrics.len())
-                    .map(|m| {
-                        let values: Vec<f64> = of_point.iter().map(|r| r.values[m]).collect();
-                        MetricSummary::of(&values)
-                    })
-                    .collect()
-            })
+        // Each point's values per metric, gathered in one pass over the runs.
+        let mut values: Vec<Vec<Vec<f64>>> = (0..self.points())
+            .map(|_| vec![Vec::new(); self.metrics.len()])
+            .collect();
+        for r in runs {
+            if let Some(point) = usize::try_from(self.point_of(r.run))
+                .ok()
+                .and_then(|p| values.get_mut(p))
+            {
+                for (column, v) in point.iter_mut().zip(&r.values) {
+                    column.push(*v);
+                }
+            }
+        }
+        values
+            .iter()
+            .map(|point| point.iter().map(|v| MetricSummary::of(v)).collect())
             .collect()
     }
 }
