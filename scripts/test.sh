@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite: formatting, lints, the default tests, the interoperability tier (the
-# real GNSS-SDR, RTKLIB and Slurm from Debian's gnss-sdr, rtklib, slurm-wlm and munge packages, installed here when
-# missing) and the real-data tier.
+# real GNSS-SDR, RTKLIB, Slurm and Chromium from Debian's gnss-sdr, rtklib, slurm-wlm,
+# munge and chromium packages, installed here when missing) and the real-data tier.
 #   scripts/test.sh              real-data tier runs when the data folder exists
 #   scripts/test.sh --real-data  the real-data tier is required (CI)
 # The data folder is $SKYFORGE_DATA, default ../shared/data (relative to the repo root).
@@ -13,7 +13,7 @@ require_data=0
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
-scripts/deps.sh gnss-sdr rtklib slurm-wlm munge
+scripts/deps.sh gnss-sdr rtklib slurm-wlm munge chromium
 echo "test: cargo fmt --check"
 cargo fmt --all -- --check
 echo "test: cargo clippy"
@@ -30,7 +30,7 @@ elif [ $require_data -eq 1 ]; then
   exit 1
 else
   echo "test: interoperability tier (GNSS-SDR, RTKLIB)"
-  cargo test -p skyforge-sim --test interop_gnss_sdr --test interop_rtklib --test interop_rtklib_receiver --test interop_slurm -- --ignored 2>&1 | tee -a "$log"
+  cargo test -p skyforge-sim --test interop_gnss_sdr --test interop_rtklib --test interop_rtklib_receiver --test interop_slurm --test report -- --ignored 2>&1 | tee -a "$log"
   echo "test: ************************************************************"
   echo "test: real-data tier SKIPPED: no data folder at $data (set SKYFORGE_DATA)"
   echo "test: ************************************************************"

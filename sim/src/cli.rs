@@ -166,6 +166,21 @@ pub enum Command {
         #[command(subcommand)]
         action: StudyAction,
     },
+    /// Write one self-contained HTML page of the outputs in DIR (inline SVG figures, no
+    /// network): the truth of a `synth` or `run` (truth.h5: satellites in view, Doppler and
+    /// its rates), a `validate thesis --out` (results.json: the table with verdicts) and a
+    /// study (study.h5: each metric against the varied parameter with confidence bands).
+    Report {
+        /// Directory holding any of truth.h5, results.json and study.h5
+        dir: PathBuf,
+        /// The page to write (default DIR/report.html); must not exist unless --force is
+        /// given, and --force replaces only a page skyforge wrote
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Replace an existing report page (only one skyforge wrote)
+        #[arg(long)]
+        force: bool,
+    },
     /// List or show the bundled scenarios.
     Scenarios {
         #[command(subcommand)]

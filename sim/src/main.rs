@@ -40,6 +40,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
                 | cli::ValidateSuite::Monitor { .. },
         }
         | cli::Command::Scenarios { .. }
+        | cli::Command::Report { .. }
         | cli::Command::Ambiguity { .. } => None,
         // A study keeps what it finished (its journal) to resume from.
         cli::Command::Study { .. } => None,

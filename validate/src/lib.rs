@@ -5,6 +5,7 @@
 
 pub mod attitude;
 pub mod calibrate;
+pub mod html_report;
 pub mod integrity;
 pub mod observables;
 pub mod pipeline;

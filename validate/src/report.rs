@@ -1,11 +1,11 @@
 //! Result rows of a validation run, their verdicts, the printed table and `results.json`.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::Path;
 
 /// Outcome of one compared row.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Verdict {
     /// Inside the tolerance.
@@ -28,7 +28,7 @@ impl Verdict {
 }
 
 /// One row of a thesis table: the keys of `results.json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Row {
     pub table: String,
     pub row: String,

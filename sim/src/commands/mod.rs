@@ -6,6 +6,7 @@ mod calibrate;
 mod dry_run;
 mod monitor;
 mod receive;
+mod report;
 mod run;
 mod scenarios;
 mod study;
@@ -83,6 +84,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Monitor {
             action: MonitorAction::Calibrate { run, seeds },
         } => monitor::calibrate(&run, seeds),
+        Command::Report { dir, out, force } => report::report(&dir, out.as_deref(), force),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

@@ -47,6 +47,27 @@ pub fn write(dir: &Path) -> std::io::Result<()> {
     std::fs::write(dir.join(MANIFEST), text)
 }
 
+/// List `file` (a path relative to `dir`) in `dir`'s manifest when `dir` has one that
+/// does not list it yet: a file SkyForge adds to a directory it wrote earlier. A
+/// directory without a manifest stays without one.
+pub fn add(dir: &Path, file: &Path) -> std::io::Result<()> {
+    let path = dir.join(MANIFEST);
+    let Ok(text) = std::fs::read_to_string(&path) else {
+        return Ok(());
+    };
+    let line = file.to_string_lossy();
+    if text.lines().any(|l| l == line) {
+        return Ok(());
+    }
+    let mut text = text;
+    if !text.ends_with('\n') {
+        text.push('\n');
+    }
+    text.push_str(&line);
+    text.push('\n');
+    std::fs::write(path, text)
+}
+
 /// Why `target` may not be replaced, or `None` when it may: it is a directory that
 /// SkyForge wrote (its manifest is there) and every file in it is one the manifest lists.
 pub fn refuse_replacing(target: &Path) -> Option<String> {

@@ -14,8 +14,7 @@ use std::path::{Path, PathBuf};
 
 /// The `format` attribute of a study file.
 const FORMAT: &str = "skyforge-study 1";
-/// The merged file `study run` writes for a whole study and `study merge` by default.
-pub const MERGED_FILE: &str = "study.h5";
+pub use skyforge_validate::study::MERGED_FILE;
 
 /// The journal's first line: the study it belongs to.
 #[derive(Debug, Serialize, Deserialize)]

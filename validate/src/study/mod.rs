@@ -12,3 +12,6 @@ pub use file::{Parameter, Study, StudyError};
 pub use metrics::Metric;
 pub use plan::{RunResult, Shard, run_seed};
 pub use summary::MetricSummary;
+
+/// The merged file `study run` writes for a whole study and `study merge` by default.
+pub const MERGED_FILE: &str = "study.h5";

@@ -1,0 +1,49 @@
+//! `skyforge report DIR`: the HTML page of a directory's outputs
+//! (`skyforge_validate::html_report`), written whole or not at all.
+
+use crate::BadInput;
+use crate::output::manifest;
+use anyhow::Context;
+use std::path::Path;
+
+/// How every page `report` writes begins: the mark of a page `--force` may replace.
+const PAGE_START: &str =
+    "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>SkyForge report:";
+
+/// Build the report of `dir` and write it to `out` (default `dir/report.html`).
+pub fn report(dir: &Path, out: Option<&Path>, force: bool) -> anyhow::Result<()> {
+    if !dir.is_dir() {
+        return Err(BadInput(format!("{}: not a directory", dir.display())).into());
+    }
+    let default = dir.join("report.html");
+    let target = out.unwrap_or(&default);
+    if target.exists() {
+        let ours = std::fs::read_to_string(target).is_ok_and(|t| t.starts_with(PAGE_START));
+        if !force || !ours {
+            let why = if ours {
+                "give --force to replace it"
+            } else {
+                "it is not a report skyforge wrote; remove it yourself if it should go"
+            };
+            return Err(BadInput(format!("{} exists: {why}", target.display())).into());
+        }
+    }
+    let page = skyforge_validate::html_report::build(dir).map_err(|e| BadInput(e.to_string()))?;
+    let html = page.to_html();
+    debug_assert!(html.starts_with(PAGE_START));
+    let partial = target.with_extension("html.partial");
+    std::fs::write(&partial, &html)
+        .and_then(|()| std::fs::rename(&partial, target))
+        .with_context(|| format!("cannot write {}", target.display()))?;
+    if let Some(name) = target.file_name().filter(|_| target.parent() == Some(dir)) {
+        manifest::add(dir, Path::new(name))
+            .with_context(|| format!("cannot update the manifest of {}", dir.display()))?;
+    }
+    println!(
+        "wrote {} ({} sections, {} figures)",
+        target.display(),
+        page.sections.len(),
+        page.figures()
+    );
+    Ok(())
+}

@@ -1,0 +1,82 @@
+//! The validation table of a `validate thesis` run (`results.json`): every row with the
+//! thesis value, SkyForge's, the tolerance and the verdict, and the counts of verdicts.
+
+use super::ReportError;
+use super::page::{Cell, Section, Table};
+use crate::report::{Row, Verdict};
+use std::path::Path;
+
+/// Largest `results.json` read (bytes): a whole thesis run writes a few hundred kB.
+const MAX_BYTES: u64 = 64 << 20;
+
+/// The validation section of the report for `path` (a `results.json`).
+pub fn section(path: &Path) -> Result<Section, ReportError> {
+    let err = |m: String| ReportError::new(path, m);
+    let size = std::fs::metadata(path)
+        .map_err(|e| err(e.to_string()))?
+        .len();
+    if size > MAX_BYTES {
+        return Err(err(format!("{size} bytes; at most {MAX_BYTES} are read")));
+    }
+    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    let rows: Vec<Row> = serde_json::from_str(&text).map_err(|e| {
+        err(format!(
+            "line {}, column {}: {e} (expected the rows `skyforge validate thesis --out` writes)",
+            e.line(),
+            e.column()
+        ))
+    })?;
+    let count = |v: Verdict| rows.iter().filter(|r| r.verdict == v).count();
+    let number = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_else(|| "-".into());
+    let table = Table {
+        header: [
+            "table",
+            "row",
+            "quantity",
+            "unit",
+            "thesis",
+            "SkyForge",
+            "tolerance",
+            "verdict",
+            "note",
+        ]
+        .map(String::from)
+        .to_vec(),
+        rows: rows
+            .iter()
+            .map(|r| {
+                let verdict = match r.verdict {
+                    Verdict::Reproduced => "reproduced",
+                    Verdict::Deviates => "deviates",
+                    Verdict::Explained => "explained",
+                };
+                vec![
+                    Cell::from(r.table.as_str()),
+                    Cell::from(r.row.as_str()),
+                    Cell::from(r.quantity.as_str()),
+                    Cell::from(r.unit.as_str()),
+                    Cell::from(number(r.thesis)),
+                    Cell::from(number(r.ours)),
+                    Cell::from(r.tolerance.as_str()),
+                    Cell {
+                        text: verdict.into(),
+                        class: Some(verdict),
+                    },
+                    Cell::from(r.note.as_str()),
+                ]
+            })
+            .collect(),
+    };
+    Ok(Section {
+        heading: "Validation against the thesis".into(),
+        paragraphs: vec![format!(
+            "{} rows: {} reproduced, {} explained, {} deviate.",
+            rows.len(),
+            count(Verdict::Reproduced),
+            count(Verdict::Explained),
+            count(Verdict::Deviates)
+        )],
+        tables: vec![table],
+        ..Section::default()
+    })
+}
