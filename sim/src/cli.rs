@@ -180,6 +180,14 @@ pub enum Command {
         /// Replace an existing report page (only one skyforge wrote)
         #[arg(long)]
         force: bool,
+        /// `skyforge attitude`'s output for the run in DIR: adds the baseline and attitude
+        /// errors against DIR's truth
+        #[arg(long, value_name = "DIR")]
+        attitude: Option<PathBuf>,
+        /// The observations that attitude run read (default: DIR/observations, those of
+        /// an observation-level run)
+        #[arg(long, value_name = "DIR", requires = "attitude")]
+        observations: Option<PathBuf>,
     },
     /// List or show the bundled scenarios.
     Scenarios {

@@ -18,35 +18,60 @@ const RESULTS: &str = r#"[
 ]
 "#;
 
-/// A directory with a study (`study.h5`), a run's truth (`truth.h5`) and `results.json`:
-/// every source the report draws from.
-fn outputs(d: &Path) -> &'static str {
+/// A run's directory (`skyforge run`: truth.h5, geometry, observations) with a study's
+/// `study.h5` and a `results.json` added, and `skyforge attitude`'s output for the run:
+/// every source the report draws from. Returns the two directory names.
+fn outputs(d: &Path) -> (&'static str, &'static str) {
     small_study(d, 2);
-    skyforge_ok(&["study", "run", "small.toml", "--out", "all"], d);
+    skyforge_ok(&["study", "run", "small.toml", "--out", "study"], d);
     let scenario = std::fs::read_to_string(d.join("t-5.4-3.toml")).unwrap();
     // assumed: 60 s of the T-5.4-3 set-up, enough for curves, quick in the suite.
     let short = scenario.replacen("duration_s = 600.0", "duration_s = 60.0", 1);
     assert_ne!(short, scenario);
     std::fs::write(d.join("short.toml"), short).unwrap();
     skyforge_ok(&["run", "short.toml", "--out", "run"], d);
-    std::fs::copy(d.join("run/truth.h5"), d.join("all/truth.h5")).unwrap();
-    std::fs::write(d.join("all/results.json"), RESULTS).unwrap();
-    "all"
+    std::fs::copy(d.join("study/study.h5"), d.join("run/study.h5")).unwrap();
+    std::fs::write(d.join("run/results.json"), RESULTS).unwrap();
+    let mut args = vec!["attitude".to_string()];
+    for a in ["ant1", "ant2", "ant3"] {
+        args.push(format!("run/observations/{a}.obs.rnx"));
+    }
+    args.extend(
+        [
+            "--nav",
+            "run/nav.rnx",
+            "--geometry",
+            "run/geometry.toml",
+            "--out",
+            "att",
+        ]
+        .map(String::from),
+    );
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    skyforge_ok(&args, d);
+    ("run", "att")
 }
+
+/// Figures of the page of [`outputs`]: GPS in view and the three Doppler figures, four
+/// study metrics, two baselines and the attitude.
+const FIGURES: usize = 4 + 4 + 3;
 
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let dir = outputs(d);
-    let printed = skyforge_ok(&["report", dir], d);
-    // Truth: satellites in view per antenna (3) + three Doppler figures; study: 4 metrics.
-    assert!(printed.contains("3 sections, 10 figures"), "{printed}");
-    let html = std::fs::read_to_string(d.join("all/report.html")).unwrap();
-    assert_eq!(html.matches("<figure><svg").count(), 10);
+    let (dir, att) = outputs(d);
+    let printed = skyforge_ok(&["report", dir, "--attitude", att], d);
+    assert!(
+        printed.contains(&format!("4 sections, {FIGURES} figures")),
+        "{printed}"
+    );
+    let html = std::fs::read_to_string(d.join("run/report.html")).unwrap();
+    assert_eq!(html.matches("<figure><svg").count(), FIGURES);
     for needle in [
         "Truth: scenario",
-        "thesis figures 1.2-1 to 1.2-3",
+        "GPS satellites in view",
+        "figure 1.2-1, 3 to 16, mean 9",
         "thesis figure 3.2-3",
         "Study small",
         "fix_rate against signal.cn0_dbhz",
@@ -54,6 +79,9 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
         "<td class=\"deviates\">deviates</td>",
         "&lt;script&gt;x&lt;/script&gt;",
         "a &amp; b",
+        "Baseline 2 (ant3 - ant1) error",
+        "Thesis table 5.4-5 (real-time KF): std 0.041 / 0.074 / 0.081 deg",
+        "fixed integers wrong",
     ] {
         assert!(html.contains(needle), "{needle}");
     }
@@ -63,7 +91,8 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     }
     // In a directory skyforge wrote, the page joins the manifest, so `run --force` can
     // still replace the directory.
-    skyforge_ok(&["report", "run"], d);
+    std::fs::remove_file(d.join("run/results.json")).unwrap();
+    std::fs::remove_file(d.join("run/study.h5")).unwrap();
     let manifest = std::fs::read_to_string(d.join("run/.skyforge-manifest")).unwrap();
     assert!(manifest.lines().any(|l| l == "report.html"), "{manifest}");
     skyforge_ok(&["run", "short.toml", "--out", "run", "--force"], d);
@@ -136,14 +165,16 @@ fn chromium(page: &Path, args: &[&str]) -> (String, String) {
 fn chromium_renders_every_figure_without_a_console_error() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let dir = outputs(d);
-    skyforge_ok(&["report", dir], d);
-    let page = d.join("all/report.html");
+    let (dir, att) = outputs(d);
+    skyforge_ok(&["report", dir, "--attitude", att], d);
+    let page = d.join("run/report.html");
 
     // The page's own script counts the figures the browser laid out with a drawing.
     let (dom, _) = chromium(&page, &["--dump-dom"]);
     assert!(
-        dom.contains("data-figures=\"10\" data-figures-rendered=\"10\""),
+        dom.contains(&format!(
+            "data-figures=\"{FIGURES}\" data-figures-rendered=\"{FIGURES}\""
+        )),
         "{}",
         dom.lines()
             .find(|l| l.contains("<body"))
@@ -166,7 +197,7 @@ fn chromium_renders_every_figure_without_a_console_error() {
     assert!(
         console
             .iter()
-            .any(|l| l.contains("skyforge-report: 10 of 10 figures rendered")),
+            .any(|l| l.contains(&format!("skyforge-report: {FIGURES} of {FIGURES} figures"))),
         "{log}"
     );
     let bad: Vec<&&str> = console

@@ -84,7 +84,21 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Monitor {
             action: MonitorAction::Calibrate { run, seeds },
         } => monitor::calibrate(&run, seeds),
-        Command::Report { dir, out, force } => report::report(&dir, out.as_deref(), force),
+        Command::Report {
+            dir,
+            out,
+            force,
+            attitude,
+            observations,
+        } => report::report(
+            skyforge_validate::html_report::Inputs {
+                dir: &dir,
+                attitude: attitude.as_deref(),
+                observations: observations.as_deref(),
+            },
+            out.as_deref(),
+            force,
+        ),
         Command::Scenarios {
             action: ScenariosAction::List,
         } => scenarios::list(),

@@ -4,14 +4,16 @@
 use crate::BadInput;
 use crate::output::manifest;
 use anyhow::Context;
+use skyforge_validate::html_report::{Inputs, build};
 use std::path::Path;
 
 /// How every page `report` writes begins: the mark of a page `--force` may replace.
 const PAGE_START: &str =
     "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>SkyForge report:";
 
-/// Build the report of `dir` and write it to `out` (default `dir/report.html`).
-pub fn report(dir: &Path, out: Option<&Path>, force: bool) -> anyhow::Result<()> {
+/// Build the report of `inputs` and write it to `out` (default `DIR/report.html`).
+pub fn report(inputs: Inputs<'_>, out: Option<&Path>, force: bool) -> anyhow::Result<()> {
+    let dir = inputs.dir;
     if !dir.is_dir() {
         return Err(BadInput(format!("{}: not a directory", dir.display())).into());
     }
@@ -28,7 +30,7 @@ pub fn report(dir: &Path, out: Option<&Path>, force: bool) -> anyhow::Result<()>
             return Err(BadInput(format!("{} exists: {why}", target.display())).into());
         }
     }
-    let page = skyforge_validate::html_report::build(dir).map_err(|e| BadInput(e.to_string()))?;
+    let page = build(inputs).map_err(|e| BadInput(e.to_string()))?;
     let html = page.to_html();
     debug_assert!(html.starts_with(PAGE_START));
     let partial = target.with_extension("html.partial");

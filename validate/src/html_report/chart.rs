@@ -1,5 +1,5 @@
 //! Line charts rendered to SVG text by plotters: series of (x, y) points, each with an
-//! optional confidence band, and an optional reference line (the thesis value).
+//! optional confidence band, and horizontal reference lines (thesis values).
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
@@ -40,14 +40,15 @@ impl Series {
     }
 }
 
-/// A chart: axes, curves and an optional labelled horizontal reference line.
+/// A chart: axes, curves and horizontal reference lines (label, value; an empty label
+/// stays out of the legend).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Chart {
     pub title: String,
     pub x_label: String,
     pub y_label: String,
     pub series: Vec<Series>,
-    pub reference: Option<(String, f64)>,
+    pub references: Vec<(String, f64)>,
     /// The y axis reaches down (or up) to zero (counts, rates).
     pub y_from_zero: bool,
 }
@@ -68,7 +69,7 @@ impl Chart {
             x_label: x_label.into(),
             y_label: y_label.into(),
             series: Vec::new(),
-            reference: None,
+            references: Vec::new(),
             y_from_zero: false,
         }
     }
@@ -115,7 +116,7 @@ impl Chart {
             if !s.companion {
                 k += 1;
             }
-            let colour = Palette99::pick(k.saturating_sub(1)).to_rgba();
+            let colour = colour(k.saturating_sub(1));
             let width = if s.companion { 1 } else { 2 };
             let band = thin(&s.band);
             if !band.is_empty() {
@@ -138,15 +139,17 @@ impl Chart {
                     .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour));
             }
         }
-        if let Some((label, value)) = &self.reference {
+        for (label, value) in &self.references {
             let line = vec![(x.start, *value), (x.end, *value)];
-            chart
-                .draw_series(LineSeries::new(line, BLACK.stroke_width(1)))?
-                .label(label.as_str())
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK));
+            let drawn = chart.draw_series(LineSeries::new(line, BLACK.stroke_width(1)))?;
+            if !label.is_empty() {
+                drawn
+                    .label(label.as_str())
+                    .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK));
+            }
         }
         let named = self.series.iter().filter(|s| !s.name.is_empty()).count();
-        if named > 1 || self.reference.is_some() {
+        if named > 1 || !self.references.is_empty() {
             chart
                 .configure_series_labels()
                 .background_style(WHITE.mix(0.85))
@@ -164,7 +167,7 @@ impl Chart {
                 .copied()
                 .chain(s.band.iter().flat_map(|&(x, lo, hi)| [(x, lo), (x, hi)]))
         });
-        let reference = self.reference.iter().map(|r| (f64::NAN, r.1));
+        let reference = self.references.iter().map(|r| (f64::NAN, r.1));
         let (mut x, mut y) = (Bounds::default(), Bounds::default());
         for (px, py) in points.chain(reference) {
             x.add(px);
@@ -216,6 +219,24 @@ impl Bounds {
     }
 }
 
+/// Curve colour `k`: the ten of Tableau 10 in turn (distinct, readable on white).
+fn colour(k: usize) -> RGBAColor {
+    const TABLEAU: [(u8, u8, u8); 10] = [
+        (31, 119, 180),
+        (255, 127, 14),
+        (44, 160, 44),
+        (214, 39, 40),
+        (148, 103, 189),
+        (140, 86, 75),
+        (227, 119, 194),
+        (127, 127, 127),
+        (188, 189, 34),
+        (23, 190, 207),
+    ];
+    let (r, g, b) = TABLEAU[k % TABLEAU.len()];
+    RGBColor(r, g, b).to_rgba()
+}
+
 /// At most `MAX_POINTS` of `v`, evenly spaced, the last one kept.
 fn thin<T: Copy>(v: &[T]) -> Vec<T> {
     if v.len() <= MAX_POINTS {
@@ -244,7 +265,7 @@ mod tests {
         });
         c.series
             .push(Series::companion("p95", vec![(35.0, 0.05), (45.0, 1.0)]));
-        c.reference = Some(("thesis".into(), 0.9));
+        c.references = vec![("thesis".into(), 0.9), (String::new(), 0.1)];
         let svg = c.to_svg().unwrap();
         assert!(svg.starts_with("<svg"));
         for needle in [

@@ -1,7 +1,9 @@
 //! `skyforge report`: one self-contained HTML page (inline SVG figures, no network) from
 //! the outputs in a directory: the truth of a run (`truth.h5`), a thesis validation
-//! (`results.json`) and a study (`study.h5`), each as a section of the page when present.
+//! (`results.json`) and a study (`study.h5`), each as a section of the page when present,
+//! and the attitude chain's errors when its output directory is named.
 
+pub mod attitude;
 pub mod chart;
 pub mod page;
 pub mod results;
@@ -33,10 +35,21 @@ impl ReportError {
     }
 }
 
-/// The report page of `dir`: a section for each of `truth.h5`, `results.json` and the
-/// merged `study.h5` found there. An error when there is none, or when one present
-/// cannot be read.
-pub fn build(dir: &Path) -> Result<Page, ReportError> {
+/// What a report is made of: the outputs directory, and optionally `skyforge attitude`'s
+/// output for that run with the observations it read (default: the run's own,
+/// DIR/observations of an observation-level run).
+#[derive(Debug, Clone, Copy)]
+pub struct Inputs<'a> {
+    pub dir: &'a Path,
+    pub attitude: Option<&'a Path>,
+    pub observations: Option<&'a Path>,
+}
+
+/// The report page of `inputs`: a section for each of `truth.h5`, `results.json` and the
+/// merged `study.h5` found in the directory, and the attitude chain's when named. An
+/// error when there is none, or when one present cannot be read.
+pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
+    let dir = inputs.dir;
     type Maker = fn(&Path) -> Result<page::Section, ReportError>;
     let makers: [(&str, Maker); 3] = [
         ("truth.h5", truth::section),
@@ -52,6 +65,15 @@ pub fn build(dir: &Path) -> Result<Page, ReportError> {
         if path.is_file() {
             page.sections.push(make(&path)?);
         }
+    }
+    if let Some(att) = inputs.attitude {
+        // An observation-level run keeps its observations in DIR/observations.
+        let own = dir.join("observations");
+        let observations = inputs
+            .observations
+            .unwrap_or(if own.is_dir() { &own } else { dir });
+        page.sections
+            .push(attitude::section(dir, observations, att)?);
     }
     if page.sections.is_empty() {
         return Err(ReportError::new(

@@ -87,8 +87,8 @@ impl Page {
              <title>{title}</title><style>{STYLE}</style><script>{SCRIPT}</script></head>\
              <body>\n<h1>{title}</h1>\n"
         );
-        for s in &self.sections {
-            let _ = writeln!(h, "<section><h2>{}</h2>", escape(&s.heading));
+        for (k, s) in self.sections.iter().enumerate() {
+            let _ = writeln!(h, "<section id=\"s{k}\"><h2>{}</h2>", escape(&s.heading));
             for p in &s.paragraphs {
                 let _ = writeln!(h, "<p>{}</p>", escape(p));
             }

@@ -1,5 +1,5 @@
-//! Figures from a run's `truth.h5` (docs/truth-h5.md): visible satellites against time
-//! (thesis figures 1.2-1 to 1.2-3) and the Doppler shift with its first two derivatives
+//! Figures from a run's `truth.h5` (docs/truth-h5.md): satellites in view against time
+//! per constellation (thesis figures 1.2-1 to 1.2-3, beside the thesis's numbers) and the Doppler shift with its first two derivatives
 //! (thesis figures 3.2-1 to 3.2-3).
 
 use super::chart::{Chart, Series};
@@ -39,21 +39,27 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
         )],
         ..Section::default()
     };
+    let mut visible = Vec::with_capacity(antennas.len());
     for name in &antennas {
-        let visible: Vec<u8> = read_dataset(&file, path, &format!("antennas/{name}/visible"))?;
-        if visible.len() != t_s.len() * ids.len() {
+        let v: Vec<u8> = read_dataset(&file, path, &format!("antennas/{name}/visible"))?;
+        if v.len() != t_s.len() * ids.len() {
             return Err(err(format!(
                 "antennas/{name}/visible has {} values, not epochs x satellites = {}",
-                visible.len(),
+                v.len(),
                 t_s.len() * ids.len()
             )));
         }
-        let chart = visible_chart(name, &t_s, &ids, &visible);
+        visible.push((name.as_str(), v));
+    }
+    for (system, thesis) in systems(&ids) {
+        let (chart, counts) = visible_chart(&system, &t_s, &visible);
         section.figures.push(figure(
             &chart,
             format!(
-                "Satellites in view of antenna {name} against time, per constellation \
-                 (thesis figures 1.2-1 to 1.2-3)."
+                "{system} satellites in view of each antenna against time; antenna {}: {}. \
+                 Thesis section 1.2.1 (its LEO over 24 h, field of view +-80 deg): {thesis}.",
+                antennas.first().map_or("", String::as_str),
+                counts
             ),
         )?);
     }
@@ -101,49 +107,87 @@ fn figure(chart: &Chart, caption: String) -> Result<Figure, ReportError> {
     Ok(Figure { caption, svg })
 }
 
-/// Satellites in view against time: one curve per constellation (RINEX letter of the
-/// ID) and, with more than one, their total.
-fn visible_chart(antenna: &str, t_s: &[f64], ids: &[String], visible: &[u8]) -> Chart {
-    let mut systems: BTreeMap<char, Vec<usize>> = BTreeMap::new();
-    for (k, id) in ids.iter().enumerate() {
-        systems
-            .entry(id.chars().next().unwrap_or('?'))
-            .or_default()
-            .push(k);
-    }
-    let count = |cols: &[usize]| -> Vec<(f64, f64)> {
-        t_s.iter()
+/// The constellations to count, each as (name, its satellites' columns), with the
+/// thesis's figure and numbers: GPS, BeiDou, and both together when both are there.
+fn systems(ids: &[String]) -> Vec<(System, &'static str)> {
+    let of = |letter: char| -> Vec<usize> {
+        ids.iter()
             .enumerate()
-            .map(|(i, &t)| {
-                let row = &visible[i * ids.len()..(i + 1) * ids.len()];
-                (t, cols.iter().filter(|&&k| row[k] != 0).count() as f64)
-            })
+            .filter(|(_, id)| id.starts_with(letter))
+            .map(|(k, _)| k)
             .collect()
     };
+    let (gps, bds) = (of('G'), of('C'));
+    let mut out = Vec::new();
+    let both = !gps.is_empty() && !bds.is_empty();
+    if !gps.is_empty() {
+        out.push((System::new("GPS", gps), "figure 1.2-1, 3 to 16, mean 9"));
+    }
+    if !bds.is_empty() {
+        out.push((System::new("BeiDou", bds), "figure 1.2-2, 5 to 16, mean 9"));
+    }
+    if both {
+        let all = (0..ids.len()).collect();
+        out.push((
+            System::new("GPS + BeiDou", all),
+            "figure 1.2-3, 8 to 30, mean 18",
+        ));
+    }
+    out
+}
+
+/// A constellation: its name and its columns of `satellites/id`.
+struct System {
+    name: &'static str,
+    columns: Vec<usize>,
+}
+
+impl System {
+    fn new(name: &'static str, columns: Vec<usize>) -> Self {
+        System { name, columns }
+    }
+}
+
+impl std::fmt::Display for System {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+/// Satellites of `system` in view against time, one curve per antenna, and the first
+/// antenna's minimum, maximum and mean.
+fn visible_chart(system: &System, t_s: &[f64], visible: &[(&str, Vec<u8>)]) -> (Chart, String) {
+    let sats = visible
+        .first()
+        .map_or(0, |(_, v)| v.len() / t_s.len().max(1));
     let mut chart = Chart::new(
-        &format!("Satellites in view, antenna {antenna}"),
+        &format!("{system} satellites in view"),
         "time (s)",
         "satellites",
     );
     chart.y_from_zero = true;
-    for (letter, cols) in &systems {
-        chart
-            .series
-            .push(Series::line(system_name(*letter), count(cols)));
+    let mut stats = String::new();
+    for (name, v) in visible {
+        let counts: Vec<(f64, f64)> = t_s
+            .iter()
+            .enumerate()
+            .map(|(i, &t)| {
+                let row = &v[i * sats..(i + 1) * sats];
+                let n = system.columns.iter().filter(|&&k| row[k] != 0).count();
+                (t, n as f64)
+            })
+            .collect();
+        if stats.is_empty() {
+            let n: Vec<f64> = counts.iter().map(|c| c.1).collect();
+            let mean = n.iter().sum::<f64>() / n.len().max(1) as f64;
+            let (lo, hi) = n.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+            stats = format!("{lo:.0} to {hi:.0}, mean {mean:.1}");
+        }
+        chart.series.push(Series::line(*name, counts));
     }
-    if systems.len() > 1 {
-        let all: Vec<usize> = (0..ids.len()).collect();
-        chart.series.push(Series::line("all", count(&all)));
-    }
-    chart
-}
-
-fn system_name(letter: char) -> String {
-    match letter {
-        'G' => "GPS".into(),
-        'C' => "BeiDou".into(),
-        other => other.to_string(),
-    }
+    (chart, stats)
 }
 
 /// The visible links of one antenna: epoch row and satellite column of each.
