@@ -1,11 +1,11 @@
 //! One satellite as seen at the receive epoch: transmit time, clock, Sagnac-rotated
 //! position, range, line of sight and angles.
 
-use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{BoundEphemeris, System};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
+use skyforge_orbits::{Mat3, Vec3};
 
 /// A receiver position this far from the geocentre is a position (m); before the first
 /// iteration the estimate is the geocentre and angles are meaningless.
@@ -52,33 +52,69 @@ fn earth_turned(v: &Vec3, angle_rad: f64) -> Vec3 {
 /// is then rotated by the Earth's rotation during the flight time (IS-GPS-200
 /// 20.3.3.4.3.3.2), iterated twice for the flight time itself.
 pub fn sat_view(eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64, r_rx_m: &Vec3) -> SatView {
-    let t_sv = t_rx_s - pseudorange_m / C_MPS;
-    // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
-    let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
-    let t_tx = t_sv - clock_s;
-    let (r0, v0) = eph.state_ecef(t_tx);
-    let w = omega_e(eph.eph.sat.system);
-    let mut flight_s = (r0 - r_rx_m).norm() / C_MPS;
-    let mut r = r0;
-    for _ in 0..2 {
-        r = earth_turned(&r0, w * flight_s);
-        flight_s = (r - r_rx_m).norm() / C_MPS;
-    }
-    let v = earth_turned(&v0, w * flight_s);
-    let d = r - r_rx_m;
-    let range_m = d.norm();
-    let los = d / range_m;
-    let az_el_rad = (r_rx_m.norm() > MIN_POSITION_NORM_M).then(|| {
+    Transmitted::of(eph, t_rx_s, pseudorange_m).seen_from(r_rx_m, local_frame(r_rx_m).as_ref())
+}
+
+/// The ECEF-to-NED rotation at `r_rx_m`, when it is a position (not the geocentre an
+/// iteration starts from): what azimuth and elevation need, once per receiver position.
+pub fn local_frame(r_rx_m: &Vec3) -> Option<Mat3> {
+    (r_rx_m.norm() > MIN_POSITION_NORM_M).then(|| {
         let g = ecef_to_geodetic(r_rx_m);
-        az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los))
-    });
-    SatView {
-        r_ecef_m: r,
-        v_ecef_mps: v,
-        clock_s,
-        clock_drift: eph.clock_drift(t_tx),
-        range_m,
-        los,
-        az_el_rad,
+        c_ecef_ned(g.lat_rad, g.lon_rad)
+    })
+}
+
+/// The satellite of one measurement at its transmit time, in the ECEF frame of that
+/// instant: all of [`sat_view`] that does not depend on where the receiver is, so that a
+/// least-squares iteration moving the receiver computes it once.
+#[derive(Debug, Clone, Copy)]
+pub struct Transmitted {
+    r_ecef_m: Vec3,
+    v_ecef_mps: Vec3,
+    clock_s: f64,
+    clock_drift: f64,
+    omega_e: f64,
+}
+
+impl Transmitted {
+    /// The satellite of `eph` whose signal, received at `t_rx_s`, measured `pseudorange_m`.
+    pub fn of(eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64) -> Self {
+        let t_sv = t_rx_s - pseudorange_m / C_MPS;
+        // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
+        let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
+        let t_tx = t_sv - clock_s;
+        let (r_ecef_m, v_ecef_mps) = eph.state_ecef(t_tx);
+        Transmitted {
+            r_ecef_m,
+            v_ecef_mps,
+            clock_s,
+            clock_drift: eph.clock_drift(t_tx),
+            omega_e: omega_e(eph.eph.sat.system),
+        }
+    }
+
+    /// The view from `r_rx_m`, with azimuth and elevation when `frame` (the receiver's
+    /// [`local_frame`]) is given.
+    pub fn seen_from(&self, r_rx_m: &Vec3, frame: Option<&Mat3>) -> SatView {
+        let (r0, w) = (self.r_ecef_m, self.omega_e);
+        let mut flight_s = (r0 - r_rx_m).norm() / C_MPS;
+        let mut r = r0;
+        for _ in 0..2 {
+            r = earth_turned(&r0, w * flight_s);
+            flight_s = (r - r_rx_m).norm() / C_MPS;
+        }
+        let v = earth_turned(&self.v_ecef_mps, w * flight_s);
+        let d = r - r_rx_m;
+        let range_m = d.norm();
+        let los = d / range_m;
+        SatView {
+            r_ecef_m: r,
+            v_ecef_mps: v,
+            clock_s: self.clock_s,
+            clock_drift: self.clock_drift,
+            range_m,
+            los,
+            az_el_rad: frame.map(|c| az_el(&(c * los))),
+        }
     }
 }

@@ -38,7 +38,7 @@ pub fn predicted_view(
     r_rx_m: &Vec3,
 ) -> SatView {
     // Two passes: the first gives the range, the second the view at that flight time.
-    let first = geometry::sat_view(eph, t_s, 2.0e7, r_rx_m);
+    let first = geometry::Transmitted::of(eph, t_s, 2.0e7).seen_from(r_rx_m, None);
     geometry::sat_view(eph, t_s, first.range_m, r_rx_m)
 }
 

@@ -1,7 +1,7 @@
 //! The iterated weighted least-squares position and clock solution.
 
 use super::exclusion::{most_suspect, normalised_residuals};
-use super::geometry::{SatView, sat_view};
+use super::geometry::{SatView, Transmitted, local_frame};
 use super::protection::{protection_levels, slopes};
 use super::raim::{detection_parameters, test_threshold};
 use super::{
@@ -212,11 +212,17 @@ impl Epoch<'_> {
             .filter(|s| meas.iter().any(|m| m.sat.system == *s))
             .collect();
         let n_x = 3 + systems.len();
+        // The satellites at transmit time do not move with the receiver estimate.
+        let sats: Vec<Transmitted> = meas
+            .iter()
+            .zip(&ephs)
+            .map(|(m, eph)| Transmitted::of(eph, t_rx_s, m.pseudorange_m))
+            .collect();
         let mut r = a_priori.unwrap_or_else(Vec3::zeros);
         let mut clocks = vec![0.0; systems.len()];
         let mut last_step = f64::INFINITY;
         for _ in 0..MAX_ITERATIONS {
-            let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
+            let rows = linearise(&meas, &sats, t_rx_s, origin, cfg, &r, &clocks, &systems);
             if rows.len() < n_x {
                 return Err(PvtError::TooFewSatellites {
                     have: rows.len(),
@@ -234,7 +240,7 @@ impl Epoch<'_> {
             }
             last_step = dx.rows(0, 3).norm();
             if last_step < CONVERGED_M {
-                let rows = linearise(&meas, &ephs, t_rx_s, origin, cfg, &r, &clocks, &systems);
+                let rows = linearise(&meas, &sats, t_rx_s, origin, cfg, &r, &clocks, &systems);
                 return finish(&rows, n_x, r, &clocks, &systems, t_rx_s, cfg);
             }
         }
@@ -265,7 +271,7 @@ struct Row {
 #[allow(clippy::too_many_arguments)]
 fn linearise(
     meas: &[&Measurement],
-    ephs: &[&skyforge_orbits::ephemeris::BoundEphemeris],
+    sats: &[Transmitted],
     t_rx_s: f64,
     origin: &TimeOrigin,
     cfg: &PvtConfig,
@@ -275,8 +281,9 @@ fn linearise(
 ) -> Vec<Row> {
     let mut rows = Vec::with_capacity(meas.len());
     let place = ReceiverPlace::new(r, origin, t_rx_s);
-    for (m, eph) in meas.iter().zip(ephs) {
-        let view = sat_view(eph, t_rx_s, m.pseudorange_m, r);
+    let frame = local_frame(r);
+    for (m, sat) in meas.iter().zip(sats) {
+        let view = sat.seen_from(r, frame.as_ref());
         let el = view.az_el_rad.map(|(_, el)| el);
         if el.is_some_and(|el| el < cfg.elevation_mask_rad) {
             continue;
