@@ -611,6 +611,14 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
     let mut args = vec!["noise.bin"];
     args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gal-e1"]);
     receive_refuses(dir, &args, &["--signal", "gal-e1", "gps-l1ca, bds-b1i"]);
+    // A signal SkyForge knows from observation files but does not track.
+    let mut args = vec!["noise.bin"];
+    args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gps-l2"]);
+    receive_refuses(
+        dir,
+        &args,
+        &["--signal gps-l2", "not tracked", "gps-l1ca, bds-b1i"],
+    );
     std::fs::write(dir.join("rx.toml"), "[observables]\nrate_hz = 500.0\n").unwrap();
     let mut args = vec!["noise.bin", "--config", "rx.toml"];
     args.extend_from_slice(&raw);

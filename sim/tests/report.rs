@@ -147,6 +147,8 @@ fn chromium(page: &Path, args: &[&str]) -> (String, String) {
             "--headless",
             "--no-sandbox",
             "--disable-gpu",
+            // Containers often have a small /dev/shm.
+            "--disable-dev-shm-usage",
             "--no-first-run",
         ])
         .args(args)
