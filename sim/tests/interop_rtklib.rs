@@ -6,8 +6,7 @@
 mod support;
 
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
-use std::process::Command;
-use support::{require_rnx2rtkp, rtklib_xyz_solutions, skyforge_ok};
+use support::{require_rnx2rtkp, rnx2rtkp, rtklib_xyz_solutions, skyforge_ok};
 
 #[test]
 #[ignore = "interop tier: needs rtklib (scripts/test.sh installs it)"]
@@ -27,15 +26,9 @@ fn rtklib_single_point_solution_from_our_rinex_recovers_the_site() {
         "pos1-posmode=single\npos1-elmask=5\npos1-ionoopt=brdc\npos1-tropopt=off\npos1-sateph=brdc\npos1-navsys=1\nout-solformat=xyz\n",
     )
     .unwrap();
-    let o = Command::new("rnx2rtkp")
-        .args(["-k", "spp.conf", "-o", "spp.pos", "ant1.obs.rnx", "nav.rnx"])
-        .current_dir(&out)
-        .output()
-        .unwrap();
-    assert!(
-        o.status.success(),
-        "rnx2rtkp failed: {}",
-        String::from_utf8_lossy(&o.stderr)
+    rnx2rtkp(
+        &["-k", "spp.conf", "-o", "spp.pos", "ant1.obs.rnx", "nav.rnx"],
+        &out,
     );
     let pos = std::fs::read_to_string(out.join("spp.pos")).unwrap();
     let site = geodetic_to_ecef(&Geodetic {

@@ -23,8 +23,7 @@ use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_validate::attitude::outputs::compare_outputs;
 use std::path::Path;
-use std::process::Command;
-use support::{require_rnx2rtkp, rtklib_enu_solutions, skyforge_ok, truth_site};
+use support::{require_rnx2rtkp, rnx2rtkp, rtklib_enu_solutions, skyforge_ok, truth_site};
 
 /// Three antennas on two 1 m baselines along body X and Y, master at the origin (as
 /// `attitude_chain.rs` and the thesis's real-time experiment).
@@ -251,20 +250,18 @@ fn rtklib_baseline(sim: &Path, k: usize, options: &str, out: &Path) {
     std::fs::create_dir_all(out).unwrap();
     let (conf, pos) = (out.join("rnx2rtkp.conf"), out.join("baseline.pos"));
     std::fs::write(&conf, options).unwrap();
-    let o = Command::new("rnx2rtkp")
-        .arg("-k")
-        .arg(&conf)
-        .arg("-o")
-        .arg(&pos)
-        .arg(&rover)
-        .arg(&base)
-        .arg(sim.join("nav.rnx"))
-        .output()
-        .unwrap();
-    assert!(
-        o.status.success(),
-        "rnx2rtkp failed: {}",
-        String::from_utf8_lossy(&o.stderr)
+    let nav = sim.join("nav.rnx");
+    rnx2rtkp(
+        &[
+            "-k".as_ref(),
+            conf.as_os_str(),
+            "-o".as_ref(),
+            pos.as_os_str(),
+            rover.as_os_str(),
+            base.as_os_str(),
+            nav.as_os_str(),
+        ],
+        out,
     );
     let solutions = rtklib_enu_solutions(&std::fs::read_to_string(&pos).unwrap());
     assert!(!solutions.is_empty(), "rnx2rtkp wrote no solution");

@@ -27,7 +27,6 @@ use skyforge_signals::observation::read_obs_file;
 use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 const IGNORE: &str = "real-data tier: cargo test -- --ignored";
 
@@ -48,25 +47,18 @@ fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, (Vec3, u8)> 
     support::require_rnx2rtkp();
     let pos = out.join(format!("rtklib_f{frequencies}.pos"));
     let b = BASE_ECEF_M.map(|v| format!("{v}"));
-    let o = Command::new("rnx2rtkp")
-        .args([
-            "-p",
-            "2",
-            "-f",
-            &frequencies.to_string(),
-            "-m",
-            "15",
-            "-v",
-            "3",
-        ])
-        .args(["-h", "-sys", "G", "-e", "-r", &b[0], &b[1], &b[2], "-o"])
-        .arg(&pos)
-        .arg(dir.join("07590920.05o"))
-        .arg(dir.join("30400920.05o"))
-        .arg(dir.join("07590920.05n"))
-        .output()
-        .expect("rnx2rtkp runs");
-    assert!(o.status.success(), "{}", support::text(&o));
+    let f = frequencies.to_string();
+    let mut args: Vec<std::ffi::OsString> = [
+        "-p", "2", "-f", &f, "-m", "15", "-v", "3", "-h", "-sys", "G", "-e", "-r", &b[0], &b[1],
+        &b[2], "-o",
+    ]
+    .map(Into::into)
+    .to_vec();
+    args.push(pos.clone().into_os_string());
+    for file in ["07590920.05o", "30400920.05o", "07590920.05n"] {
+        args.push(dir.join(file).into_os_string());
+    }
+    support::rnx2rtkp(&args, out);
     let text = std::fs::read_to_string(&pos).expect("rnx2rtkp's solution file");
     text.lines()
         .filter(|l| !l.starts_with('%'))

@@ -17,11 +17,10 @@ use skyforge_orbits::Vec3;
 use skyforge_signals::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
 use skyforge_validate::observables::{ObsFile, read_obs_file};
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::Mutex;
 use support::{
-    dataset, fixes, observable_errors, require_rnx2rtkp, rms, rtklib_xyz_solutions, short_scenario,
-    skyforge_ok, truth_site,
+    dataset, fixes, observable_errors, require_rnx2rtkp, rms, rnx2rtkp, rtklib_xyz_solutions,
+    short_scenario, skyforge_ok, truth_site,
 };
 
 /// One end-to-end run at a time: each holds gigabytes of samples and both cores.
@@ -210,13 +209,17 @@ fn rtklib_solves_from_the_receivers_rinex() {
     )
     .expect("conf");
     let nav = sim.join("nav.rnx");
-    let o = Command::new("rnx2rtkp")
-        .args(["-k", "spp.conf", "-o", "spp.pos", "ant1.obs.rnx"])
-        .arg(&nav)
-        .current_dir(&rx)
-        .output()
-        .expect("rnx2rtkp runs");
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    rnx2rtkp(
+        &[
+            "-k".as_ref(),
+            "spp.conf".as_ref(),
+            "-o".as_ref(),
+            "spp.pos".as_ref(),
+            "ant1.obs.rnx".as_ref(),
+            nav.as_os_str(),
+        ],
+        &rx,
+    );
     let site = truth_site(&sim);
     let pos = std::fs::read_to_string(rx.join("spp.pos")).expect("spp.pos");
     let errors: Vec<f64> = rtklib_xyz_solutions(&pos)

@@ -115,6 +115,16 @@ pub fn require_rnx2rtkp() {
     );
 }
 
+/// Run RTKLIB's `rnx2rtkp` with `args` in `cwd`; it must succeed.
+pub fn rnx2rtkp<S: AsRef<std::ffi::OsStr>>(args: &[S], cwd: &Path) {
+    let o = Command::new("rnx2rtkp")
+        .args(args)
+        .current_dir(cwd)
+        .output()
+        .expect("rnx2rtkp runs");
+    assert!(o.status.success(), "rnx2rtkp failed: {}", text(&o));
+}
+
 /// The ECEF positions (m) of an `rnx2rtkp` solution file written with
 /// `out-solformat=xyz` and the default time format: header lines start with `%`, then one
 /// line per epoch of GPS week, seconds of week, x, y, z, ...
