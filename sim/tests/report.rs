@@ -52,9 +52,9 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
     ("run", "att")
 }
 
-/// Figures of the page of [`outputs`]: GPS in view and the three Doppler figures, four
-/// study metrics, two baselines and the attitude.
-const FIGURES: usize = 4 + 4 + 3;
+/// Figures of the page of [`outputs`]: GPS in view and the three Doppler figures, the
+/// validation's ratios, four study metrics, two baselines and the attitude.
+const FIGURES: usize = 4 + 1 + 4 + 3;
 
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
@@ -76,6 +76,7 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
         "Study small",
         "fix_rate against signal.cn0_dbhz",
         "3 rows: 1 reproduced, 1 explained, 1 deviate.",
+        "SkyForge against the thesis, row by row",
         "<td class=\"deviates\">deviates</td>",
         "&lt;script&gt;x&lt;/script&gt;",
         "a &amp; b",

@@ -18,6 +18,8 @@ pub struct Series {
     pub band: Vec<(f64, f64, f64)>,
     /// Drawn thin in the colour of the curve before it (e.g. a percentile beside a mean).
     pub companion: bool,
+    /// Drawn as dots, not joined.
+    pub dots: bool,
 }
 
 impl Series {
@@ -28,6 +30,15 @@ impl Series {
             points,
             band: Vec::new(),
             companion: false,
+            dots: false,
+        }
+    }
+
+    /// Dots, not joined (values of separate rows).
+    pub fn dots(name: impl Into<String>, points: Vec<(f64, f64)>) -> Self {
+        Series {
+            dots: true,
+            ..Series::line(name, points)
         }
     }
 
@@ -132,7 +143,15 @@ impl Chart {
                 .into_iter()
                 .filter(|p| p.0.is_finite() && p.1.is_finite())
                 .collect();
-            let drawn = chart.draw_series(LineSeries::new(points, colour.stroke_width(width)))?;
+            let drawn = if s.dots {
+                chart.draw_series(
+                    points
+                        .into_iter()
+                        .map(|p| Circle::new(p, 4, colour.filled())),
+                )?
+            } else {
+                chart.draw_series(LineSeries::new(points, colour.stroke_width(width)))?
+            };
             if !s.name.is_empty() {
                 drawn
                     .label(s.name.as_str())
@@ -262,7 +281,9 @@ mod tests {
             points: vec![(35.0, 0.03), (40.0, 0.58), (45.0, 1.0)],
             band: vec![(35.0, 0.02, 0.04), (40.0, 0.5, 0.6), (45.0, 0.99, 1.0)],
             companion: false,
+            dots: false,
         });
+        c.series.push(Series::dots("rows", vec![(36.0, 0.5)]));
         c.series
             .push(Series::companion("p95", vec![(35.0, 0.05), (45.0, 1.0)]));
         c.references = vec![("thesis".into(), 0.9), (String::new(), 0.1)];
@@ -274,6 +295,7 @@ mod tests {
             "thesis",
             "<polyline",
             "<polygon",
+            "<circle",
         ] {
             assert!(svg.contains(needle), "{needle}");
         }

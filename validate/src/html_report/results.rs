@@ -1,8 +1,10 @@
 //! The validation table of a `validate thesis` run (`results.json`): every row with the
-//! thesis value, SkyForge's, the tolerance and the verdict, and the counts of verdicts.
+//! thesis value, SkyForge's, the tolerance and the verdict, the counts of verdicts, and
+//! one figure of SkyForge's value over the thesis's for every row that has both.
 
 use super::ReportError;
-use super::page::{Cell, Section, Table};
+use super::chart::{Chart, Series};
+use super::page::{Cell, Figure, Section, Table};
 use crate::report::{Row, Verdict};
 use std::path::Path;
 
@@ -67,8 +69,20 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
             })
             .collect(),
     };
+    let mut figures = Vec::new();
+    if let Some(chart) = ratio_chart(&rows) {
+        let svg = chart.to_svg().map_err(|e| err(e.to_string()))?;
+        figures.push(Figure {
+            caption: "SkyForge's value over the thesis's (log scale) for every row that has \
+                      both numbers, by row number in the table below and coloured by verdict; \
+                      each row's own tolerance is in the table."
+                .into(),
+            svg,
+        });
+    }
     Ok(Section {
         heading: "Validation against the thesis".into(),
+        figures,
         paragraphs: vec![format!(
             "{} rows: {} reproduced, {} explained, {} deviate.",
             rows.len(),
@@ -77,6 +91,40 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
             count(Verdict::Deviates)
         )],
         tables: vec![table],
-        ..Section::default()
     })
+}
+
+/// log10(SkyForge / thesis) against the row number (1-based), one dot series per verdict;
+/// `None` when no row has two numbers of the same sign.
+fn ratio_chart(rows: &[Row]) -> Option<Chart> {
+    let mut chart = Chart::new(
+        "SkyForge against the thesis, row by row",
+        "row",
+        "log10(SkyForge / thesis)",
+    );
+    for (verdict, name) in [
+        (Verdict::Reproduced, "reproduced"),
+        (Verdict::Explained, "explained"),
+        (Verdict::Deviates, "deviates"),
+    ] {
+        let points: Vec<(f64, f64)> = rows
+            .iter()
+            .enumerate()
+            .filter(|(_, r)| r.verdict == verdict)
+            .filter_map(|(i, r)| {
+                let q = r.ratio()?;
+                (q > 0.0).then(|| ((i + 1) as f64, q.log10()))
+            })
+            .collect();
+        chart.series.push(Series::dots(name, points));
+    }
+    if chart.series.iter().all(|s| s.points.is_empty()) {
+        return None;
+    }
+    chart.references = vec![
+        ("equal".into(), 0.0),
+        ("factor 2".into(), 2f64.log10()),
+        (String::new(), -(2f64.log10())),
+    ];
+    Some(chart)
 }

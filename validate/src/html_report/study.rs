@@ -69,6 +69,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                 points: pick(&mean),
                 band: members.iter().map(|&p| (x[p], low[p], high[p])).collect(),
                 companion: false,
+                dots: false,
             });
             chart
                 .series
