@@ -53,8 +53,8 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
 }
 
 /// Figures of the page of [`outputs`]: GPS in view and the three Doppler figures, the
-/// validation's ratios, four study metrics, two baselines and the attitude.
-const FIGURES: usize = 4 + 1 + 4 + 3;
+/// validation's ratios, five study metrics, two baselines and the attitude.
+const FIGURES: usize = 4 + 1 + 5 + 3;
 
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {

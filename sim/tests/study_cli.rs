@@ -47,6 +47,14 @@ fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
     assert_eq!(mean.len(), 2);
     // At 40 dB-Hz the code is noisier than at 45 (the calibrated model).
     assert!(mean[0] > mean[1] && mean[1] > 0.0, "{mean:?}");
+    // So is the carrier phase, at millimetres (the PLL's thermal noise) where the code is
+    // at decimetres.
+    let phase: Vec<f64> = support::dataset(&f, "summary/phase_rms_m/mean");
+    assert!(phase[0] > phase[1] && phase[1] > 0.0, "{phase:?}");
+    assert!(
+        phase[0] < 0.01 && phase[0] < mean[0] / 50.0,
+        "{phase:?} vs {mean:?}"
+    );
 
     // A missing shard is named.
     std::fs::remove_file(d.join("sharded/shard-2-of-3.h5")).unwrap();

@@ -289,7 +289,8 @@ pub fn small_study(dir: &Path, seeds: u32) -> String {
     std::fs::copy(scenario, dir.join("t-5.4-3.toml")).unwrap();
     let study = format!(
         "name = \"small\"\nscenario = \"t-5.4-3.toml\"\nseed = 11\nseeds = {seeds}\n\
-         metrics = [\"fix_rate\", \"yaw_rms_deg\", \"baseline_rms_m\", \"pseudorange_rms_m\"]\n\
+         metrics = [\"fix_rate\", \"yaw_rms_deg\", \"baseline_rms_m\", \"pseudorange_rms_m\", \
+         \"phase_rms_m\"]\n\
          \n[[parameters]]\nkey = \"time.duration_s\"\nvalues = [60.0]\n\
          \n[[parameters]]\nkey = \"signal.cn0_dbhz\"\nvalues = [40.0, 45.0]\n"
     );

@@ -8,13 +8,16 @@ use crate::stats::rms;
 use skyforge_receiver::relative::RelativeConfig;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::Level;
-use std::collections::HashMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// One per-run statistic.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Metric {
     /// Measured minus true pseudorange, RMS over every antenna, satellite and epoch (m).
     PseudorangeRms,
+    /// Measured minus true carrier phase (m) with each arc's mean removed (its integer
+    /// ambiguity and any constant), RMS over every antenna, satellite and epoch.
+    PhaseRms,
     /// Epochs with every ambiguity fixed over the epochs from the first fix on.
     FixRate,
     /// Fixed epochs with a wrong integer over the fixed epochs.
@@ -30,8 +33,9 @@ pub enum Metric {
 }
 
 /// Every metric, in the order of [`Metric::names`].
-const ALL: [Metric; 8] = [
+const ALL: [Metric; 9] = [
     Metric::PseudorangeRms,
+    Metric::PhaseRms,
     Metric::FixRate,
     Metric::WrongFixRate,
     Metric::FirstFix,
@@ -46,6 +50,7 @@ impl Metric {
     pub fn name(self) -> &'static str {
         match self {
             Metric::PseudorangeRms => "pseudorange_rms_m",
+            Metric::PhaseRms => "phase_rms_m",
             Metric::FixRate => "fix_rate",
             Metric::WrongFixRate => "wrong_fix_rate",
             Metric::FirstFix => "first_fix_s",
@@ -59,7 +64,7 @@ impl Metric {
     /// Unit of the values.
     pub fn unit(self) -> &'static str {
         match self {
-            Metric::PseudorangeRms | Metric::BaselineRms => "m",
+            Metric::PseudorangeRms | Metric::PhaseRms | Metric::BaselineRms => "m",
             Metric::FixRate | Metric::WrongFixRate => "1",
             Metric::FirstFix => "s",
             Metric::YawRms | Metric::PitchRms | Metric::RollRms => "deg",
@@ -78,7 +83,7 @@ impl Metric {
 
     /// Whether it needs the attitude chain (two antennas or more).
     fn needs_chain(self) -> bool {
-        !matches!(self, Metric::PseudorangeRms)
+        !matches!(self, Metric::PseudorangeRms | Metric::PhaseRms)
     }
 
     /// Whether `scenario` can give this metric; what it needs otherwise.
@@ -113,6 +118,7 @@ pub fn measure(run: &ObservationRun, metrics: &[Metric]) -> Result<Vec<f64>, Str
         .iter()
         .map(|&m| match (m, &chain) {
             (Metric::PseudorangeRms, _) => pseudorange_rms(run),
+            (Metric::PhaseRms, _) => phase_rms(run),
             (m, Some(c)) => chain_metric(m, c),
             (_, None) => f64::NAN,
         })
@@ -140,7 +146,7 @@ fn chain_metric(m: Metric, c: &ChainComparison) -> f64 {
         Metric::YawRms => or_nan(rms(&c.attitude_axis(0))),
         Metric::PitchRms => or_nan(rms(&c.attitude_axis(1))),
         Metric::RollRms => or_nan(rms(&c.attitude_axis(2))),
-        Metric::PseudorangeRms => f64::NAN,
+        Metric::PseudorangeRms | Metric::PhaseRms => f64::NAN,
     }
 }
 
@@ -165,6 +171,48 @@ fn pseudorange_rms(run: &ObservationRun) -> f64 {
                     errors.push(m - t);
                 }
             }
+        }
+    }
+    if errors.is_empty() {
+        f64::NAN
+    } else {
+        rms(&errors)
+    }
+}
+
+/// RMS of measured minus true carrier phase (m) over every antenna, satellite and epoch,
+/// each arc (antenna, satellite, signal) less its own mean: the integer ambiguity and the
+/// constant part go, the noise and anything that changes along the arc (a slip) stay.
+fn phase_rms(run: &ObservationRun) -> f64 {
+    let mut errors = Vec::new();
+    for (measured, truth) in run.measured.iter().zip(&run.truth) {
+        let true_at: HashMap<_, f64> = truth
+            .epochs
+            .iter()
+            .flat_map(|e| {
+                e.sats
+                    .iter()
+                    .filter_map(move |r| Some(((e.time, r.sat, r.signal), r.carrier_phase_cycles?)))
+            })
+            .collect();
+        // Ordered: the sum of squares must not depend on a hash seed (runs are compared
+        // bit for bit across shard layouts).
+        let mut arcs: BTreeMap<_, Vec<f64>> = BTreeMap::new();
+        for e in &measured.epochs {
+            for r in &e.sats {
+                if let (Some(m), Some(t)) = (
+                    r.carrier_phase_cycles,
+                    true_at.get(&(e.time, r.sat, r.signal)),
+                ) {
+                    arcs.entry((r.sat, r.signal))
+                        .or_default()
+                        .push((m - t) * r.signal.wavelength_m());
+                }
+            }
+        }
+        for arc in arcs.values() {
+            let mean = arc.iter().sum::<f64>() / arc.len() as f64;
+            errors.extend(arc.iter().map(|e| e - mean));
         }
     }
     if errors.is_empty() {
