@@ -20,6 +20,8 @@ pub struct Series {
     pub companion: bool,
     /// Drawn as dots, not joined.
     pub dots: bool,
+    /// A colour of its own (RGB) instead of the next one in turn.
+    pub colour: Option<(u8, u8, u8)>,
 }
 
 impl Series {
@@ -31,6 +33,7 @@ impl Series {
             band: Vec::new(),
             companion: false,
             dots: false,
+            colour: None,
         }
     }
 
@@ -127,7 +130,10 @@ impl Chart {
             if !s.companion {
                 k += 1;
             }
-            let colour = colour(k.saturating_sub(1));
+            let colour = match s.colour {
+                Some((r, g, b)) => RGBColor(r, g, b).to_rgba(),
+                None => colour(k.saturating_sub(1)),
+            };
             let width = if s.companion { 1 } else { 2 };
             let band = thin(&s.band);
             if !band.is_empty() {
@@ -282,6 +288,7 @@ mod tests {
             band: vec![(35.0, 0.02, 0.04), (40.0, 0.5, 0.6), (45.0, 0.99, 1.0)],
             companion: false,
             dots: false,
+            colour: None,
         });
         c.series.push(Series::dots("rows", vec![(36.0, 0.5)]));
         c.series

@@ -13,7 +13,8 @@ pub struct Figure {
     pub svg: String,
 }
 
-/// A table cell: text and an optional CSS class (e.g. the verdict's).
+/// A table cell: text and an optional CSS class: a verdict's, or `n` for short text kept
+/// on one line (numbers, units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Cell {
     pub text: String,
@@ -58,8 +59,10 @@ pub struct Page {
 const STYLE: &str = "body{font-family:sans-serif;max-width:980px;margin:2em auto;color:#222}\
 h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bottom:.2em}\
 figure{margin:1.2em 0}figcaption{font-size:.9em;color:#555}\
-table{border-collapse:collapse;font-size:.85em;margin:1em 0}\
-td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top}\
+table{border-collapse:collapse;font-size:.85em;margin:1em 0;width:100%}\
+td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;\
+overflow-wrap:anywhere}.n,.reproduced,.deviates,.explained{white-space:nowrap}\
+td:last-child{width:30%}\
 th{background:#f3f3f3}.reproduced{background:#e3f4e3}.deviates{background:#fbe3e3}\
 .explained{background:#fff4d6}";
 

@@ -52,13 +52,17 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                     Verdict::Deviates => "deviates",
                     Verdict::Explained => "explained",
                 };
+                let short = |text: String| Cell {
+                    text,
+                    class: Some("n"),
+                };
                 vec![
-                    Cell::from(r.table.as_str()),
+                    short(r.table.clone()),
                     Cell::from(r.row.as_str()),
                     Cell::from(r.quantity.as_str()),
-                    Cell::from(r.unit.as_str()),
-                    Cell::from(number(r.thesis)),
-                    Cell::from(number(r.ours)),
+                    short(r.unit.clone()),
+                    short(number(r.thesis)),
+                    short(number(r.ours)),
                     Cell::from(r.tolerance.as_str()),
                     Cell {
                         text: verdict.into(),
@@ -73,10 +77,13 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     if let Some(chart) = ratio_chart(&rows) {
         let svg = chart.to_svg().map_err(|e| err(e.to_string()))?;
         figures.push(Figure {
-            caption: "SkyForge's value over the thesis's (log scale) for every row that has \
-                      both numbers, by row number in the table below and coloured by verdict; \
-                      each row's own tolerance is in the table."
-                .into(),
+            caption: format!(
+                "SkyForge's value over the thesis's (log scale) for every row that has both \
+                 numbers, by row number in the table below and coloured by verdict; each \
+                 row's own tolerance is in the table. Ratios beyond a factor of {:.0} are \
+                 drawn at the edge.",
+                10f64.powf(MAX_LOG_RATIO)
+            ),
             svg,
         });
     }
@@ -94,6 +101,9 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     })
 }
 
+/// Largest |log10(SkyForge / thesis)| drawn where it is; beyond, at the edge.
+const MAX_LOG_RATIO: f64 = 3.0;
+
 /// log10(SkyForge / thesis) against the row number (1-based), one dot series per verdict;
 /// `None` when no row has two numbers of the same sign.
 fn ratio_chart(rows: &[Row]) -> Option<Chart> {
@@ -102,10 +112,11 @@ fn ratio_chart(rows: &[Row]) -> Option<Chart> {
         "row",
         "log10(SkyForge / thesis)",
     );
-    for (verdict, name) in [
-        (Verdict::Reproduced, "reproduced"),
-        (Verdict::Explained, "explained"),
-        (Verdict::Deviates, "deviates"),
+    // The page's verdict colours, darker.
+    for (verdict, name, colour) in [
+        (Verdict::Reproduced, "reproduced", (44, 160, 44)),
+        (Verdict::Explained, "explained", (230, 160, 0)),
+        (Verdict::Deviates, "deviates", (214, 39, 40)),
     ] {
         let points: Vec<(f64, f64)> = rows
             .iter()
@@ -113,10 +124,16 @@ fn ratio_chart(rows: &[Row]) -> Option<Chart> {
             .filter(|(_, r)| r.verdict == verdict)
             .filter_map(|(i, r)| {
                 let q = r.ratio()?;
-                (q > 0.0).then(|| ((i + 1) as f64, q.log10()))
+                (q > 0.0).then(|| {
+                    let y = q.log10().clamp(-MAX_LOG_RATIO, MAX_LOG_RATIO);
+                    ((i + 1) as f64, y)
+                })
             })
             .collect();
-        chart.series.push(Series::dots(name, points));
+        chart.series.push(Series {
+            colour: Some(colour),
+            ..Series::dots(name, points)
+        });
     }
     if chart.series.iter().all(|s| s.points.is_empty()) {
         return None;

@@ -70,6 +70,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                 band: members.iter().map(|&p| (x[p], low[p], high[p])).collect(),
                 companion: false,
                 dots: false,
+                colour: None,
             });
             chart
                 .series
