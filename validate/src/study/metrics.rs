@@ -5,9 +5,12 @@
 
 use crate::attitude::{ChainComparison, ObservationRun, compare, nominal_geometry};
 use crate::stats::rms;
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_receiver::relative::RelativeConfig;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::Level;
+use skyforge_signals::observation::ObsRecord;
+use skyforge_signals::signal::Signal;
 use std::collections::{BTreeMap, HashMap};
 
 /// One per-run statistic.
@@ -150,74 +153,71 @@ fn chain_metric(m: Metric, c: &ChainComparison) -> f64 {
     }
 }
 
-/// RMS of measured minus true pseudorange over every antenna, satellite and epoch.
-fn pseudorange_rms(run: &ObservationRun) -> f64 {
-    let mut errors = Vec::new();
-    for (measured, truth) in run.measured.iter().zip(&run.truth) {
+/// One measured-minus-true difference: its antenna (index), satellite and signal, and the
+/// difference in the observable's unit.
+type Difference = (usize, SatId, Signal, f64);
+
+/// Measured minus true `pick` (an observable of a record) wherever both exist, antenna by
+/// antenna in epoch order.
+fn differences(run: &ObservationRun, pick: fn(&ObsRecord) -> Option<f64>) -> Vec<Difference> {
+    let mut out = Vec::new();
+    for (a, (measured, truth)) in run.measured.iter().zip(&run.truth).enumerate() {
         let true_at: HashMap<_, f64> = truth
             .epochs
             .iter()
             .flat_map(|e| {
                 e.sats
                     .iter()
-                    .filter_map(move |r| Some(((e.time, r.sat, r.signal), r.pseudorange_m?)))
+                    .filter_map(move |r| Some(((e.time, r.sat, r.signal), pick(r)?)))
             })
             .collect();
         for e in &measured.epochs {
             for r in &e.sats {
-                if let (Some(m), Some(t)) =
-                    (r.pseudorange_m, true_at.get(&(e.time, r.sat, r.signal)))
-                {
-                    errors.push(m - t);
+                if let (Some(m), Some(t)) = (pick(r), true_at.get(&(e.time, r.sat, r.signal))) {
+                    out.push((a, r.sat, r.signal, m - t));
                 }
             }
         }
     }
+    out
+}
+
+/// RMS of `errors`, NaN when there are none.
+fn rms_or_nan(errors: &[f64]) -> f64 {
     if errors.is_empty() {
         f64::NAN
     } else {
-        rms(&errors)
+        rms(errors)
     }
+}
+
+/// RMS of measured minus true pseudorange over every antenna, satellite and epoch.
+fn pseudorange_rms(run: &ObservationRun) -> f64 {
+    let errors: Vec<f64> = differences(run, |r| r.pseudorange_m)
+        .into_iter()
+        .map(|d| d.3)
+        .collect();
+    rms_or_nan(&errors)
 }
 
 /// RMS of measured minus true carrier phase (m) over every antenna, satellite and epoch,
 /// each arc (antenna, satellite, signal) less its own mean: the integer ambiguity and the
 /// constant part go, the noise and anything that changes along the arc (a slip) stay.
 fn phase_rms(run: &ObservationRun) -> f64 {
-    let mut errors = Vec::new();
-    for (measured, truth) in run.measured.iter().zip(&run.truth) {
-        let true_at: HashMap<_, f64> = truth
-            .epochs
-            .iter()
-            .flat_map(|e| {
-                e.sats
-                    .iter()
-                    .filter_map(move |r| Some(((e.time, r.sat, r.signal), r.carrier_phase_cycles?)))
-            })
-            .collect();
-        // Ordered: the sum of squares must not depend on a hash seed (runs are compared
-        // bit for bit across shard layouts).
-        let mut arcs: BTreeMap<_, Vec<f64>> = BTreeMap::new();
-        for e in &measured.epochs {
-            for r in &e.sats {
-                if let (Some(m), Some(t)) = (
-                    r.carrier_phase_cycles,
-                    true_at.get(&(e.time, r.sat, r.signal)),
-                ) {
-                    arcs.entry((r.sat, r.signal))
-                        .or_default()
-                        .push((m - t) * r.signal.wavelength_m());
-                }
-            }
-        }
-        for arc in arcs.values() {
+    // Ordered: the sum of squares must not depend on a hash seed (runs are compared bit
+    // for bit across shard layouts).
+    let mut arcs: BTreeMap<(usize, SatId, Signal), Vec<f64>> = BTreeMap::new();
+    for (a, sat, signal, cycles) in differences(run, |r| r.carrier_phase_cycles) {
+        arcs.entry((a, sat, signal))
+            .or_default()
+            .push(cycles * signal.wavelength_m());
+    }
+    let errors: Vec<f64> = arcs
+        .values()
+        .flat_map(|arc| {
             let mean = arc.iter().sum::<f64>() / arc.len() as f64;
-            errors.extend(arc.iter().map(|e| e - mean));
-        }
-    }
-    if errors.is_empty() {
-        f64::NAN
-    } else {
-        rms(&errors)
-    }
+            arc.iter().map(move |e| e - mean)
+        })
+        .collect();
+    rms_or_nan(&errors)
 }
