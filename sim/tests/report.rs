@@ -139,6 +139,12 @@ fn bad_directories_and_pages_it_did_not_write_are_refused() {
     let o = skyforge(&["report", "bad"], d);
     assert!(text(&o).contains("give --force"), "{}", text(&o));
     skyforge_ok(&["report", "bad", "--force"], d);
+    // Written through a file of its own, renamed: nothing is left beside the page.
+    let names: Vec<String> = std::fs::read_dir(d.join("bad"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(!names.iter().any(|n| n.contains("partial")), "{names:?}");
 }
 
 /// `chromium --headless` with `args` on `page`: (stdout, stderr).
