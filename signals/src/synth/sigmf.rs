@@ -11,6 +11,10 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+/// Bytes gathered per write to a recording: a 1 ms block is about 10 kB, more than a
+/// default buffer holds, so without this every block would be a system call of its own.
+const WRITE_BUFFER_BYTES: usize = 1 << 20;
+
 /// What a recording's metadata says.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecordingMeta {
@@ -125,7 +129,7 @@ impl SigmfRecordings {
                     .map(|a| {
                         let path = dir.join(format!("{}.sigmf-data", recording_name(&a.name, b)));
                         let file = File::create(&path).map_err(|e| named(&path, e))?;
-                        Ok((path, BufWriter::new(file)))
+                        Ok((path, BufWriter::with_capacity(WRITE_BUFFER_BYTES, file)))
                     })
                     .collect::<std::io::Result<Vec<_>>>()
             })
