@@ -2,10 +2,10 @@
 //! (`skyforge_validate::html_report`), written whole or not at all.
 
 use crate::BadInput;
-use crate::output::manifest;
+use crate::output::{manifest, whole_file};
 use anyhow::Context;
 use skyforge_validate::html_report::{Inputs, build};
-use std::io::{Read, Write};
+use std::io::Read;
 use std::path::Path;
 
 /// How every page `report` writes begins: the mark of a page `--force` may replace.
@@ -34,7 +34,8 @@ pub fn report(inputs: Inputs<'_>, out: Option<&Path>, force: bool) -> anyhow::Re
     let page = build(inputs).map_err(|e| BadInput(e.to_string()))?;
     let html = page.to_html();
     debug_assert!(html.starts_with(PAGE_START));
-    write_whole(target, &html).with_context(|| format!("cannot write {}", target.display()))?;
+    whole_file::write(target, html.as_bytes())
+        .with_context(|| format!("cannot write {}", target.display()))?;
     if let Some(name) = target.file_name().filter(|_| target.parent() == Some(dir)) {
         manifest::add(dir, Path::new(name))
             .with_context(|| format!("cannot update the manifest of {}", dir.display()))?;
@@ -55,30 +56,4 @@ fn starts_like_a_report(path: &Path) -> bool {
     std::fs::File::open(path)
         .and_then(|f| f.take(PAGE_START.len() as u64).read_to_end(&mut head))
         .is_ok_and(|_| head == PAGE_START.as_bytes())
-}
-
-/// Write `text` to `target` through a new file beside it (`.NAME.partial-PID`, never an
-/// existing one), renamed over `target` when complete.
-fn write_whole(target: &Path, text: &str) -> std::io::Result<()> {
-    let name = target.file_name().map(|n| n.to_string_lossy().into_owned());
-    let partial = target.with_file_name(format!(
-        ".{}.partial-{}",
-        name.unwrap_or_default(),
-        std::process::id()
-    ));
-    let written = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(&partial)
-        .and_then(|mut f| f.write_all(text.as_bytes()).and_then(|()| f.sync_all()));
-    match written.and_then(|()| std::fs::rename(&partial, target)) {
-        Ok(()) => Ok(()),
-        Err(e) => {
-            // Only a file this call created is removed.
-            if partial.exists() && e.kind() != std::io::ErrorKind::AlreadyExists {
-                let _ = std::fs::remove_file(&partial);
-            }
-            Err(e)
-        }
-    }
 }

@@ -2,6 +2,7 @@
 
 use crate::BadInput;
 use crate::output::staged_dir::StagedDir;
+use crate::output::whole_file;
 use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_validate::attitude::compare_outputs;
@@ -91,11 +92,9 @@ pub fn obs(
     Ok(())
 }
 
-/// Write JSON `text` to `path` via a temporary file renamed when complete.
+/// Write JSON `text` to `path`, whole or not at all ([`whole_file`]).
 fn write_json_text(text: String, path: &Path) -> anyhow::Result<()> {
-    let tmp = path.with_extension("json.partial");
-    std::fs::write(&tmp, text + "\n")
-        .and_then(|()| std::fs::rename(&tmp, path))
+    whole_file::write(path, (text + "\n").as_bytes())
         .with_context(|| format!("cannot write {}", path.display()))?;
     println!("wrote {}", path.display());
     Ok(())

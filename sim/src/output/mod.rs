@@ -11,3 +11,4 @@ pub mod staged_dir;
 pub mod study_files;
 pub mod synth_sinks;
 pub mod truth_h5;
+pub mod whole_file;

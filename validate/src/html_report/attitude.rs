@@ -3,9 +3,9 @@
 //! pitch and roll errors against time at the fixed epochs (thesis figures 5.4-1 to 5.4-6),
 //! beside the standard deviations of thesis tables 5.4-4 and 5.4-5.
 
-use super::ReportError;
 use super::chart::{Chart, Series};
 use super::page::{Figure, Section};
+use super::{ReportError, figure};
 use crate::attitude::{AttitudeValidation, OutputsComparison, compare_outputs};
 use std::path::Path;
 
@@ -86,13 +86,6 @@ fn attitude_figure(
         stds([th.yaw, th.pitch, th.roll].map(Some), 1.0, "deg")
     );
     figure(&chart, caption, attitude)
-}
-
-fn figure(chart: &Chart, caption: String, path: &Path) -> Result<Figure, ReportError> {
-    let svg = chart
-        .to_svg()
-        .map_err(|e| ReportError::new(path, e.to_string()))?;
-    Ok(Figure { caption, svg })
 }
 
 /// Three standard deviations scaled to `unit`, `-` where there is none.

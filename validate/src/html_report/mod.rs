@@ -10,8 +10,9 @@ pub mod results;
 pub mod study;
 pub mod truth;
 
+use chart::Chart;
 use hdf5::H5Type;
-use page::Page;
+use page::{Figure, Page};
 use std::path::{Path, PathBuf};
 
 /// Largest dataset read (elements): beyond this a file is not one SkyForge wrote for a
@@ -86,6 +87,14 @@ pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
         ));
     }
     Ok(page)
+}
+
+/// `chart` drawn, with `caption`; an error names `path`, the file the chart comes from.
+fn figure(chart: &Chart, caption: String, path: &Path) -> Result<Figure, ReportError> {
+    let svg = chart
+        .to_svg()
+        .map_err(|e| ReportError::new(path, e.to_string()))?;
+    Ok(Figure { caption, svg })
 }
 
 /// The whole dataset `name` of `file` (at most `MAX_ELEMENTS` values).

@@ -2,9 +2,9 @@
 //! thesis value, SkyForge's, the tolerance and the verdict, the counts of verdicts, and
 //! one figure of SkyForge's value over the thesis's for every row that has both.
 
-use super::ReportError;
 use super::chart::{Chart, Series};
-use super::page::{Cell, Figure, Section, Table};
+use super::page::{Cell, Section, Table};
+use super::{ReportError, figure};
 use crate::report::{Row, Verdict};
 use std::path::Path;
 
@@ -75,17 +75,14 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     };
     let mut figures = Vec::new();
     if let Some(chart) = ratio_chart(&rows) {
-        let svg = chart.to_svg().map_err(|e| err(e.to_string()))?;
-        figures.push(Figure {
-            caption: format!(
-                "SkyForge's value over the thesis's (log scale) for every row that has both \
-                 numbers, by row number in the table below and coloured by verdict; each \
-                 row's own tolerance is in the table. Ratios beyond a factor of {:.0} are \
-                 drawn at the edge.",
-                10f64.powf(MAX_LOG_RATIO)
-            ),
-            svg,
-        });
+        let caption = format!(
+            "SkyForge's value over the thesis's (log scale) for every row that has both \
+             numbers, by row number in the table below and coloured by verdict; each row's \
+             own tolerance is in the table. Ratios beyond a factor of {:.0} are drawn at the \
+             edge.",
+            10f64.powf(MAX_LOG_RATIO)
+        );
+        figures.push(figure(&chart, caption, path)?);
     }
     Ok(Section {
         heading: "Validation against the thesis".into(),

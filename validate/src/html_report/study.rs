@@ -3,8 +3,8 @@
 //! the other parameters, and the 95th percentile beside it (thin, same colour).
 
 use super::chart::{Chart, Series};
-use super::page::{Figure, Section};
-use super::{ReportError, read_dataset};
+use super::page::Section;
+use super::{ReportError, figure, read_dataset};
 use crate::study::Study;
 use hdf5::types::VarLenUnicode;
 use std::collections::BTreeMap;
@@ -76,14 +76,11 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                 .series
                 .push(Series::companion(join(label, "p95"), pick(&p95)));
         }
-        let svg = chart.to_svg().map_err(|e| err(e.to_string()))?;
-        section.figures.push(Figure {
-            caption: format!(
-                "{name}: mean over runs with its 95 % confidence interval (band) and the 95th \
-                 percentile, at each grid point."
-            ),
-            svg,
-        });
+        let caption = format!(
+            "{name}: mean over runs with its 95 % confidence interval (band) and the 95th \
+             percentile, at each grid point."
+        );
+        section.figures.push(figure(&chart, caption, path)?);
     }
     Ok(section)
 }

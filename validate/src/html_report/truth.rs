@@ -3,8 +3,8 @@
 //! (thesis figures 3.2-1 to 3.2-3).
 
 use super::chart::{Chart, Series};
-use super::page::{Figure, Section};
-use super::{ReportError, read_dataset};
+use super::page::Section;
+use super::{ReportError, figure, read_dataset};
 use hdf5::types::VarLenUnicode;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -61,6 +61,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                 antennas.first().map_or("", String::as_str),
                 counts
             ),
+            path,
         )?);
     }
     if let Some(name) = antennas.first() {
@@ -94,22 +95,16 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
             section.figures.push(figure(
                 &chart,
                 format!("{title} of every satellite in view of antenna {name} (thesis figure {figure_no})."),
+                path,
             )?);
         }
     }
     Ok(section)
 }
 
-fn figure(chart: &Chart, caption: String) -> Result<Figure, ReportError> {
-    let svg = chart
-        .to_svg()
-        .map_err(|e| ReportError::new(Path::new("report"), e.to_string()))?;
-    Ok(Figure { caption, svg })
-}
-
 /// The constellations to count, each as (name, its satellites' columns), with the
 /// thesis's figure and numbers: GPS, BeiDou, and both together when both are there.
-fn systems(ids: &[String]) -> Vec<(System, &'static str)> {
+fn systems(ids: &[String]) -> Vec<(Constellation, &'static str)> {
     let of = |letter: char| -> Vec<usize> {
         ids.iter()
             .enumerate()
@@ -121,15 +116,21 @@ fn systems(ids: &[String]) -> Vec<(System, &'static str)> {
     let mut out = Vec::new();
     let both = !gps.is_empty() && !bds.is_empty();
     if !gps.is_empty() {
-        out.push((System::new("GPS", gps), "figure 1.2-1, 3 to 16, mean 9"));
+        out.push((
+            Constellation::new("GPS", gps),
+            "figure 1.2-1, 3 to 16, mean 9",
+        ));
     }
     if !bds.is_empty() {
-        out.push((System::new("BeiDou", bds), "figure 1.2-2, 5 to 16, mean 9"));
+        out.push((
+            Constellation::new("BeiDou", bds),
+            "figure 1.2-2, 5 to 16, mean 9",
+        ));
     }
     if both {
         let all = (0..ids.len()).collect();
         out.push((
-            System::new("GPS + BeiDou", all),
+            Constellation::new("GPS + BeiDou", all),
             "figure 1.2-3, 8 to 30, mean 18",
         ));
     }
@@ -137,18 +138,18 @@ fn systems(ids: &[String]) -> Vec<(System, &'static str)> {
 }
 
 /// A constellation: its name and its columns of `satellites/id`.
-struct System {
+struct Constellation {
     name: &'static str,
     columns: Vec<usize>,
 }
 
-impl System {
+impl Constellation {
     fn new(name: &'static str, columns: Vec<usize>) -> Self {
-        System { name, columns }
+        Constellation { name, columns }
     }
 }
 
-impl std::fmt::Display for System {
+impl std::fmt::Display for Constellation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name)
     }
@@ -156,7 +157,11 @@ impl std::fmt::Display for System {
 
 /// Satellites of `system` in view against time, one curve per antenna, and the first
 /// antenna's minimum, maximum and mean.
-fn visible_chart(system: &System, t_s: &[f64], visible: &[(&str, Vec<u8>)]) -> (Chart, String) {
+fn visible_chart(
+    system: &Constellation,
+    t_s: &[f64],
+    visible: &[(&str, Vec<u8>)],
+) -> (Chart, String) {
     let sats = visible
         .first()
         .map_or(0, |(_, v)| v.len() / t_s.len().max(1));
