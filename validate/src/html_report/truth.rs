@@ -39,6 +39,20 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
         )],
         ..Section::default()
     };
+    // Every antenna's visibility is held at once: bound the whole, not each dataset.
+    let cells = antennas
+        .len()
+        .checked_mul(t_s.len())
+        .and_then(|n| n.checked_mul(ids.len()));
+    if cells.is_none_or(|n| n > super::MAX_ELEMENTS) {
+        return Err(err(format!(
+            "{} antennas x {} epochs x {} satellites of visibility; at most {} are read",
+            antennas.len(),
+            t_s.len(),
+            ids.len(),
+            super::MAX_ELEMENTS
+        )));
+    }
     let mut visible = Vec::with_capacity(antennas.len());
     for name in &antennas {
         let v: Vec<u8> = read_dataset(&file, path, &format!("antennas/{name}/visible"))?;
