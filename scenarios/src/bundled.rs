@@ -55,6 +55,13 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../thesis/t-5.4-3.toml"),
     },
     Bundled {
+        name: "thesis/t-4.3",
+        summary: "Thesis tables 4.3-2..6: geometry offsets on orbit, three GPS L1 antennas \
+                  offset from the nominal B0 by the thesis's dB0, calibrated observation \
+                  level at 45 dB-Hz, 30247 + 25000 s",
+        text: include_str!("../thesis/t-4.3.toml"),
+    },
+    Bundled {
         name: "ground-static",
         summary: "Static ground site at 30 N 114 E, 50 m, 1 h, GPS + BeiDou, one antenna \
                   with a 10 deg elevation mask",
