@@ -213,13 +213,21 @@ fn angles(x: &State, slot: usize) -> YawPitchRoll {
 
 /// The offset of baseline `k` (column `k` of `dB_0`, m).
 fn offset(x: &State, k: usize) -> Vec3 {
-    Vec3::new(x[OFFSETS + 3 * k], x[OFFSETS + 3 * k + 1], x[OFFSETS + 3 * k + 2])
+    Vec3::new(
+        x[OFFSETS + 3 * k],
+        x[OFFSETS + 3 * k + 1],
+        x[OFFSETS + 3 * k + 2],
+    )
 }
 
 /// Thesis eq. 4.3-15: the four epochs' baselines, newest first, for the nominal body
 /// baselines `b0` and the state's offsets.
 fn measurement(x: &State, b0: &[Vec3]) -> DVector<f64> {
-    let body: Vec<Vec3> = b0.iter().enumerate().map(|(k, b)| b + offset(x, k)).collect();
+    let body: Vec<Vec3> = b0
+        .iter()
+        .enumerate()
+        .map(|(k, b)| b + offset(x, k))
+        .collect();
     DVector::from_iterator(
         3 * BASELINES * WINDOW,
         (0..WINDOW).flat_map(|slot| {
@@ -365,7 +373,8 @@ impl OffsetEstimator {
         for (slot, (_, b)) in self.window.iter().enumerate() {
             let e = solve(&self.nominal, b, fits.last().copied(), &ls)?;
             for axis in 0..3 {
-                x[3 * slot + axis] = [e.angles.yaw_rad, e.angles.pitch_rad, e.angles.roll_rad][axis];
+                x[3 * slot + axis] =
+                    [e.angles.yaw_rad, e.angles.pitch_rad, e.angles.roll_rad][axis];
             }
             p.fixed_view_mut::<3, 3>(3 * slot, 3 * slot)
                 .copy_from(&e.covariance);

@@ -173,7 +173,7 @@ pub fn nominal_geometry(run: &ObservationRun) -> BodyGeometryFile {
 
 /// The truth at one epoch: true ECEF and NED baselines and the true attitude from NED
 /// at the master.
-pub(super) struct EpochTruth {
+pub(crate) struct EpochTruth {
     pub ecef: Vec<Vec3>,
     pub ned: Vec<Vec3>,
     pub attitude: YawPitchRoll,
@@ -181,7 +181,7 @@ pub(super) struct EpochTruth {
 
 /// The truth of a platform at `r_ecef_m` (centre of mass) turned by `c_body_ecef`, with
 /// antennas at `true_body_m` (master first; at least one).
-pub(super) fn epoch_truth(r_ecef_m: &Vec3, c_body_ecef: &Mat3, true_body_m: &[Vec3]) -> EpochTruth {
+pub(crate) fn epoch_truth(r_ecef_m: &Vec3, c_body_ecef: &Mat3, true_body_m: &[Vec3]) -> EpochTruth {
     let origin = true_body_m.first().copied().unwrap_or_else(Vec3::zeros);
     let master = r_ecef_m + c_body_ecef * origin;
     let g = ecef_to_geodetic(&master);
@@ -201,7 +201,7 @@ pub(super) fn epoch_truth(r_ecef_m: &Vec3, c_body_ecef: &Mat3, true_body_m: &[Ve
 
 /// Estimated minus true yaw, pitch, roll (deg, wrapped; the receiver's own
 /// [`angle_error`]).
-pub(super) fn attitude_errors_deg(estimate: &YawPitchRoll, truth: &YawPitchRoll) -> [f64; 3] {
+pub(crate) fn attitude_errors_deg(estimate: &YawPitchRoll, truth: &YawPitchRoll) -> [f64; 3] {
     let e = angle_error(estimate, truth);
     [e.x, e.y, e.z].map(f64::to_degrees)
 }

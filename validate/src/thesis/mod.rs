@@ -6,6 +6,7 @@ pub mod attitude_noise;
 pub mod attitude_realtime;
 mod attitude_runs;
 pub mod fast_sync;
+pub mod geometry_offsets;
 mod geometry_run;
 pub mod loop_budget;
 pub mod pmf_fft;
@@ -18,7 +19,7 @@ use std::path::PathBuf;
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
-    "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-5.4-2", "T-5.4-3",
+    "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
     "T-5.4-4", "T-5.4-5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
 ];
 
@@ -111,6 +112,10 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
     if wanted("T-3.3-S") {
         starting("T-3.3-S");
         rows.extend(fast_sync::rows()?);
+    }
+    if wanted(geometry_offsets::TABLE) {
+        starting(geometry_offsets::TABLE);
+        rows.extend(geometry_offsets::rows()?);
     }
     if wanted(zero_baseline::TABLE) {
         starting(zero_baseline::TABLE);

@@ -162,7 +162,9 @@ fn the_offsets_are_consistent_with_the_reported_covariance() {
         let p = s.offsets_covariance_m2;
         shape.push(shape_nees(&est, &p, &truth).unwrap());
         let aligned = align(&truth, &b0).unwrap().baselines;
-        let e = nalgebra::Vector6::from_iterator((0..6).map(|i| est[i / 3][i % 3] - aligned[i / 3][i % 3]));
+        let e = nalgebra::Vector6::from_iterator(
+            (0..6).map(|i| est[i / 3][i % 3] - aligned[i / 3][i % 3]),
+        );
         offsets.push(e.dot(&p.cholesky().unwrap().solve(&e)));
     }
     // The mean of 20 chi-square(3) draws: 3 with a standard deviation of sqrt(6 / 20) =
@@ -200,24 +202,34 @@ fn epochs_off_the_grid_and_wrong_geometries_are_errors() {
     let mut rng = ChaCha8Rng::seed_from_u64(1);
     let mut f = OffsetEstimator::new(OffsetConfig::default(), nominal).unwrap();
     assert_eq!(
-        f.push(0.0, measure(0.0, &thesis_true(), 1e-3, &mut rng)).unwrap(),
+        f.push(0.0, measure(0.0, &thesis_true(), 1e-3, &mut rng))
+            .unwrap(),
         Step::Filling
     );
-    assert!(f.push(1.5, measure(1.5, &thesis_true(), 1e-3, &mut rng)).is_err());
-    assert!(f.push(0.0, measure(0.0, &thesis_true(), 1e-3, &mut rng)).is_err());
+    assert!(
+        f.push(1.5, measure(1.5, &thesis_true(), 1e-3, &mut rng))
+            .is_err()
+    );
+    assert!(
+        f.push(0.0, measure(0.0, &thesis_true(), 1e-3, &mut rng))
+            .is_err()
+    );
     // A gap of whole periods refills the window: three more epochs, then the start.
     for t in [5.0, 6.0, 7.0] {
         assert_eq!(
-            f.push(t, measure(t, &thesis_true(), 1e-3, &mut rng)).unwrap(),
+            f.push(t, measure(t, &thesis_true(), 1e-3, &mut rng))
+                .unwrap(),
             Step::Filling
         );
     }
     assert_eq!(
-        f.push(8.0, measure(8.0, &thesis_true(), 1e-3, &mut rng)).unwrap(),
+        f.push(8.0, measure(8.0, &thesis_true(), 1e-3, &mut rng))
+            .unwrap(),
         Step::Started
     );
     assert!(matches!(
-        f.push(9.0, measure(9.0, &thesis_true(), 1e-3, &mut rng)).unwrap(),
+        f.push(9.0, measure(9.0, &thesis_true(), 1e-3, &mut rng))
+            .unwrap(),
         Step::Updated { dof: 27, .. }
     ));
     let three = BodyGeometry::new(&[Vec3::x(), Vec3::y(), Vec3::z()]).unwrap();
