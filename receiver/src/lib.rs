@@ -14,6 +14,7 @@ pub mod attitude;
 pub mod baseline;
 pub mod continued_fraction;
 pub mod fast_sync;
+pub mod geometry_offset;
 pub mod input;
 pub mod integrity;
 pub mod navdecode;
