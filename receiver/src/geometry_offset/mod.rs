@@ -5,5 +5,8 @@
 //!
 //! * [`iterative`]: section 4.2.1, Ardalan's iterative attitude from three antennas whose
 //!   (misaligned) body lever coordinates are known (eqs. 4.2-1..4.2-12).
+//! * [`joint_ls`]: section 4.2.2, the joint least squares of the attitude and a few
+//!   deformation parameters of `B_0` (Cohen/Cannon, Tsujii; eqs. 4.2-13..4.2-22).
 
 pub mod iterative;
+pub mod joint_ls;
