@@ -217,6 +217,11 @@ pub struct AttitudeArgs {
     /// Chain settings (TOML with a [relative] table; docs/attitude.md).
     #[arg(long, value_name = "TOML")]
     pub config: Option<PathBuf>,
+    /// Also estimate the antenna geometry offsets (thesis 4.3, three antennas): writes
+    /// DIR/geometry_offsets.csv, DIR/geometry_offsets.h5 and the corrected geometry
+    /// DIR/geometry_corrected.toml (docs/geometry.md).
+    #[arg(long)]
+    pub estimate_geometry: bool,
     /// Output directory; created, must not exist unless --force is given.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,

@@ -2,6 +2,7 @@
 
 use crate::attitude::filter::AttitudeConfig;
 use crate::baseline::{ElevationNoise, NoiseModel};
+use crate::geometry_offset::stacked_ukf::OffsetConfig;
 use serde::Deserialize;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_signals::signal::Signal;
@@ -39,6 +40,8 @@ pub struct RelativeConfig {
     pub elevation_mask_deg: Option<f64>,
     /// The attitude stage.
     pub attitude: AttitudeConfig,
+    /// The geometry-offset estimator (`skyforge attitude --estimate-geometry`).
+    pub geometry_offsets: OffsetConfig,
 }
 
 /// What the integer search knows besides the float solution.
@@ -83,6 +86,7 @@ impl Default for RelativeConfig {
             hold_test_pfa: 1e-4,
             elevation_mask_deg: None,
             attitude: AttitudeConfig::default(),
+            geometry_offsets: OffsetConfig::default(),
         }
     }
 }
@@ -114,6 +118,7 @@ impl RelativeConfig {
         let file: RelativeFile = toml::from_str(&text).map_err(|e| error(&e))?;
         let config = file.relative.unwrap_or_default();
         config.attitude.check().map_err(|e| error(&e))?;
+        config.geometry_offsets.check().map_err(|e| error(&e))?;
         let positive = [
             ("relative.ratio_threshold", config.ratio_threshold),
             ("relative.min_success_rate", config.min_success_rate),

@@ -1,6 +1,7 @@
 //! Output writers and the all-or-nothing output directory.
 
 pub mod attitude_out;
+pub mod geometry_out;
 mod h5_datasets;
 pub mod interrupt;
 pub mod manifest;

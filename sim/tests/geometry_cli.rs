@@ -1,0 +1,134 @@
+//! `skyforge attitude --estimate-geometry` end to end: the bundled thesis/t-4.3 (antennas
+//! offset from the nominal B0 by the thesis's dB0) shortened to 600 s at the observation
+//! level -> `skyforge run` -> the geometry-offset UKF of thesis 4.3 -> its CSV, HDF5 and
+//! corrected geometry, which `skyforge attitude --geometry` then reads.
+
+mod support;
+
+use skyforge_orbits::Vec3;
+use skyforge_receiver::geometry_offset::shape::align;
+use skyforge_receiver::relative::files::BodyGeometryFile;
+use support::{dataset, short_scenario, skyforge, skyforge_ok, text};
+
+/// Baselines (antenna minus the master) of a geometry file's positions.
+fn baselines(positions: &[Vec3]) -> [Vec3; 2] {
+    [positions[1] - positions[0], positions[2] - positions[0]]
+}
+
+#[test]
+fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = short_scenario(d, "thesis/t-4.3", 600);
+    skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
+    let obs = ["run/ant1.obs.rnx", "run/ant2.obs.rnx", "run/ant3.obs.rnx"];
+    let mut args = vec!["attitude"];
+    args.extend(obs);
+    args.extend([
+        "--nav",
+        "run/nav.rnx",
+        "--geometry",
+        "run/geometry.toml",
+        "--estimate-geometry",
+        "--out",
+        "att",
+    ]);
+    let printed = skyforge_ok(&args, d);
+    assert!(printed.contains("plain LAMBDA"), "{printed}");
+
+    // The truth: the scenario's true positions (nominal + offset_body_m), turned to the
+    // nominal orientation (what the default estimator holds; docs/geometry.md).
+    let nominal = BodyGeometryFile::read(&d.join("run/geometry.toml")).unwrap();
+    let b0 = baselines(&nominal.positions());
+    let truth = [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)];
+    let expected = align(&truth, &b0).unwrap().baselines;
+    let corrected = BodyGeometryFile::read(&d.join("att/geometry_corrected.toml")).unwrap();
+    let est = baselines(&corrected.positions());
+    for k in 0..2 {
+        let e = (est[k] - expected[k]).amax();
+        assert!(
+            e < 5e-4,
+            "baseline {}: {:?} against {:?}",
+            k + 1,
+            est[k],
+            expected[k]
+        );
+        // ... where the nominal geometry was off by millimetres to centimetres.
+        assert!((b0[k] - expected[k]).amax() > 0.005);
+    }
+
+    // CSV and HDF5 hold one row per update; the last equals the corrected geometry.
+    let csv = std::fs::read_to_string(d.join("att/geometry_offsets.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert!(
+        rows[0].starts_with("time_gpst,dx1_m,dy1_m,dz1_m"),
+        "{}",
+        rows[0]
+    );
+    let h5 = hdf5::File::open(d.join("att/geometry_offsets.h5")).unwrap();
+    let offsets: Vec<f64> = dataset(&h5, "offsets");
+    let cov: Vec<f64> = dataset(&h5, "offsets_covariance");
+    assert_eq!(offsets.len(), 6 * (rows.len() - 1));
+    assert_eq!(cov.len(), 36 * (rows.len() - 1));
+    assert!(rows.len() > 500, "{} rows", rows.len());
+    let last = &offsets[offsets.len() - 6..];
+    for i in 0..6 {
+        assert!((b0[i / 3][i % 3] + last[i] - est[i / 3][i % 3]).abs() < 1e-12);
+    }
+    // Its standard deviations are reported and well below a millimetre after 600 s.
+    let sigma = (0..6).map(|i| cov[cov.len() - 36 + 7 * i].sqrt());
+    assert!(
+        sigma.clone().all(|s| s > 0.0 && s < 1e-3),
+        "{:?}",
+        sigma.collect::<Vec<_>>()
+    );
+
+    // The corrected geometry is a geometry file `attitude` reads.
+    let mut again = vec!["attitude"];
+    again.extend(obs);
+    again.extend([
+        "--nav",
+        "run/nav.rnx",
+        "--geometry",
+        "att/geometry_corrected.toml",
+        "--out",
+        "att2",
+    ]);
+    skyforge_ok(&again, d);
+}
+
+#[test]
+fn four_antennas_are_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let geometry = "[[antennas]]\nname = \"a\"\nposition_body_m = [0.0, 0.0, 0.0]\n\
+                    [[antennas]]\nname = \"b\"\nposition_body_m = [1.0, 0.0, 0.0]\n\
+                    [[antennas]]\nname = \"c\"\nposition_body_m = [0.0, 1.0, 0.0]\n\
+                    [[antennas]]\nname = \"d\"\nposition_body_m = [1.0, 1.0, 0.0]\n";
+    std::fs::write(d.join("geometry.toml"), geometry).unwrap();
+    for f in ["a.rnx", "b.rnx", "c.rnx", "d.rnx", "nav.rnx"] {
+        std::fs::write(d.join(f), "").unwrap();
+    }
+    let o = skyforge(
+        &[
+            "attitude",
+            "a.rnx",
+            "b.rnx",
+            "c.rnx",
+            "d.rnx",
+            "--nav",
+            "nav.rnx",
+            "--geometry",
+            "geometry.toml",
+            "--estimate-geometry",
+            "--out",
+            "out",
+        ],
+        d,
+    );
+    let t = text(&o);
+    assert!(!o.status.success(), "{t}");
+    assert!(!d.join("out").exists(), "{t}");
+    assert!(t.contains("--estimate-geometry with geometry.toml"), "{t}");
+    assert!(t.contains("written for 2 baselines"), "{t}");
+}
