@@ -21,7 +21,11 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     let d = dir.path();
     let scenario = short_scenario(d, "thesis/t-4.3", 600);
     skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
-    let obs = ["run/ant1.obs.rnx", "run/ant2.obs.rnx", "run/ant3.obs.rnx"];
+    let obs = [
+        "run/observations/ant1.obs.rnx",
+        "run/observations/ant2.obs.rnx",
+        "run/observations/ant3.obs.rnx",
+    ];
     let mut args = vec!["attitude"];
     args.extend(obs);
     args.extend([

@@ -116,8 +116,9 @@ pub fn write_nav(
             System::Gps => {
                 orbit_line(out, [e.idot, 1.0, f64::from(week), 0.0])?;
                 orbit_line(out, [2.0, f64::from(e.health), e.tgd_s, f64::from(e.iodc)])?;
-                // Fit interval: the standard 4 h (an unlimited nominal fit has no code).
-                orbit_line(out, [toc_sow, 4.0, 0.0, 0.0])?;
+                // Fit interval in hours: the set's own (the embedded nominal sets hold for
+                // the whole run, so a reader must not drop them after the standard 4 h).
+                orbit_line(out, [toc_sow, fit_hours(e.fit_interval_s), 0.0, 0.0])?;
             }
             System::Beidou => {
                 orbit_line(out, [e.idot, 0.0, f64::from(week), 0.0])?;
@@ -127,6 +128,16 @@ pub fn write_nav(
         }
     }
     Ok(())
+}
+
+/// The RINEX GPS fit-interval field (hours) for a fit of `fit_s`: at least the standard
+/// 4 h, which is what a reader assumes for a smaller value.
+fn fit_hours(fit_s: f64) -> f64 {
+    if fit_s.is_finite() {
+        (fit_s / 3600.0).max(4.0)
+    } else {
+        4.0
+    }
 }
 
 #[cfg(test)]
@@ -150,6 +161,22 @@ mod tests {
         assert_eq!(d19(26559700.0), " 2.655970000000E+07");
         assert_eq!(d19(0.0), " 0.000000000000E+00");
         assert_eq!(d19(1.0), " 1.000000000000E+00");
+    }
+
+    #[test]
+    fn a_gps_fit_longer_than_4_h_survives_a_round_trip() {
+        // The embedded nominal sets hold for the whole run: a 15 h run read back from
+        // nav.rnx must not lose them after 2 h.
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let mut ephs = nominal::gps(start);
+        ephs[1].fit_interval_s = 6.0 * 3600.0;
+        let mut buf = Vec::new();
+        write_nav(&ephs, "skyforge", &[], &mut buf).unwrap();
+        let back = parse_nav(&String::from_utf8(buf).unwrap(), "fit.rnx").unwrap();
+        assert!(back[0].fit_interval_s >= 0.999_999 * nominal::NOMINAL_FIT_S);
+        assert!((back[1].fit_interval_s - 6.0 * 3600.0).abs() < 1e-6);
+        assert_eq!(fit_hours(3600.0), 4.0);
+        assert_eq!(fit_hours(f64::INFINITY), 4.0);
     }
 
     #[test]
