@@ -58,9 +58,14 @@ fn stats(
 /// The rows of tables 5.4-3..5.
 pub fn rows() -> Result<Vec<Row>, ValidateError> {
     let scenario = skyforge_scenarios::resolve(SCENARIO)?;
-    let runs = seed_runs(&scenario, &config(AttitudeMethod::Kf))?;
-    // The same runs with epoch-by-epoch LS attitude: how much the KF smooths.
-    let ls_runs = seed_runs(&scenario, &config(AttitudeMethod::LeastSquares))?;
+    // The same runs with epoch-by-epoch LS attitude too: how much the KF smooths.
+    let [runs, ls_runs] = seed_runs(
+        &scenario,
+        [
+            config(AttitudeMethod::Kf),
+            config(AttitudeMethod::LeastSquares),
+        ],
+    )?;
     let chain = chain_note(&runs);
     let mut out = Vec::new();
     for (k, thesis) in BASELINE_ROWS.iter().enumerate() {
