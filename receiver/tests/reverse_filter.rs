@@ -6,10 +6,11 @@
 
 mod baseline_support;
 
-use baseline_support::{clocks, noise_model, observe, scene, solve, true_integers};
-use nalgebra::{DMatrix, Rotation3, Vector3};
+use baseline_support::{Scene, clocks, noise_model, observe, scene, solve, true_integers};
+use nalgebra::{Rotation3, Vector3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use skyforge_receiver::baseline::{FixedBaselines, FloatBaselines};
 use skyforge_receiver::relative::reverse::{BaselineMeasurement, ReverseConfig, ReverseFilter};
 
 #[test]
@@ -17,20 +18,7 @@ fn the_measurement_solved_alone_is_the_fixed_solution() {
     let mut rng = ChaCha8Rng::seed_from_u64(3);
     let scene = scene(&mut rng, 8, 0);
     let sat_clocks = clocks(&mut rng, scene.views.len());
-    let noise = noise_model();
-    let obs: Vec<_> = (0..3)
-        .map(|a| {
-            observe(
-                &scene,
-                a,
-                (1e3 * a as f64, &sat_clocks),
-                Some((&noise, &mut rng)),
-            )
-        })
-        .collect();
-    let float = solve(&scene, &obs, &noise);
-    let integers = true_integers(&scene, &float);
-    let fixed = float.fix(&integers).unwrap();
+    let (float, integers, fixed) = epoch(&scene, &sat_clocks, &mut rng);
     let m = BaselineMeasurement::new(&float, &integers).unwrap();
     // Generalised least squares of Z = H vec(B) + r, Cov(r) = R.
     let w = m.r.clone().try_inverse().unwrap();
@@ -43,6 +31,30 @@ fn the_measurement_solved_alone_is_the_fixed_solution() {
     assert!((&b - &expected).amax() < 1e-5, "{b} {expected}");
     assert!((cov - &fixed.covariance).amax() < 1e-12 * fixed.covariance.amax().max(1.0));
     assert!(BaselineMeasurement::new(&float, &integers[1..]).is_err());
+}
+
+/// One epoch of `scene` with noise: the float solution, the true integers and the fixed
+/// baselines (eqs. 2.4-64/2.4-65).
+fn epoch(
+    scene: &Scene,
+    sat_clocks: &[f64],
+    rng: &mut ChaCha8Rng,
+) -> (FloatBaselines, Vec<i64>, FixedBaselines) {
+    let noise = noise_model();
+    let obs: Vec<_> = (0..3)
+        .map(|a| {
+            observe(
+                scene,
+                a,
+                (1e3 * a as f64, sat_clocks),
+                Some((&noise, &mut *rng)),
+            )
+        })
+        .collect();
+    let float = solve(scene, &obs, &noise);
+    let integers = true_integers(scene, &float);
+    let fixed = float.fix(&integers).unwrap();
+    (float, integers, fixed)
 }
 
 /// Per component, the standard deviation (`n - 1`) of `errors` (rows of 6).
@@ -59,7 +71,6 @@ fn filtered_baselines_scatter_less_than_epoch_by_epoch_ones() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
     let base = scene(&mut rng, 8, 0);
     let sat_clocks = clocks(&mut rng, base.views.len());
-    let noise = noise_model();
     // The platform turns about the local vertical at 0.01 rad/s: baseline accelerations
     // of 1e-4 m/s^2, so S = (1e-4)^2 m^2/s^3 (the rate change over one second).
     let omega = 0.01;
@@ -71,7 +82,7 @@ fn filtered_baselines_scatter_less_than_epoch_by_epoch_ones() {
     let (mut ls_errors, mut filtered_errors) = (Vec::new(), Vec::new());
     for t in 0..300 {
         let turn = Rotation3::from_axis_angle(&Vector3::z_axis(), omega * t as f64);
-        let mut scene = baseline_support::Scene {
+        let mut scene = Scene {
             views: base.views.clone(),
             baselines: base.baselines.iter().map(|b| turn * b).collect(),
             offsets: base.offsets.clone(),
@@ -79,19 +90,7 @@ fn filtered_baselines_scatter_less_than_epoch_by_epoch_ones() {
         };
         // The ranges drift too (the clocks and ranges cancel in the double differences).
         scene.ranges.iter_mut().for_each(|r| *r += 100.0 * t as f64);
-        let obs: Vec<_> = (0..3)
-            .map(|a| {
-                observe(
-                    &scene,
-                    a,
-                    (50.0 * a as f64, &sat_clocks),
-                    Some((&noise, &mut rng)),
-                )
-            })
-            .collect();
-        let float = solve(&scene, &obs, &noise);
-        let integers = true_integers(&scene, &float);
-        let ls = float.fix(&integers).unwrap();
+        let (float, integers, ls) = epoch(&scene, &sat_clocks, &mut rng);
         if t > 0 {
             filter.predict(1.0).unwrap();
         }
@@ -102,19 +101,11 @@ fn filtered_baselines_scatter_less_than_epoch_by_epoch_ones() {
             .iter()
             .flat_map(|b| b.iter().copied())
             .collect();
-        let error = |b: &DMatrix<f64>| -> [f64; 6] { std::array::from_fn(|i| b[i] - truth[i]) };
+        let error = |b: &[f64]| -> [f64; 6] { std::array::from_fn(|i| b[i] - truth[i]) };
         // After the filter has settled (its rates converge in a few tens of seconds).
         if t >= 50 {
-            ls_errors.push(error(&DMatrix::from_column_slice(
-                6,
-                1,
-                ls.baselines.as_slice(),
-            )));
-            filtered_errors.push(error(&DMatrix::from_column_slice(
-                6,
-                1,
-                out.baselines.as_slice(),
-            )));
+            ls_errors.push(error(ls.baselines.as_slice()));
+            filtered_errors.push(error(out.baselines.as_slice()));
         }
     }
     let (ls, filtered) = (std(&ls_errors), std(&filtered_errors));

@@ -71,20 +71,27 @@ impl Default for AttitudeConfig {
 impl AttitudeConfig {
     /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        let s_ok = self
-            .rate_psd_rad2_s3
-            .iter()
-            .all(|s| s.is_finite() && *s >= 0.0);
-        let sigma_ok =
-            self.initial_rate_sigma_rad_s.is_finite() && self.initial_rate_sigma_rad_s > 0.0;
-        let kappa_ok = self.kappa.is_finite() && 6.0 + self.kappa > 0.0;
-        if !(s_ok && sigma_ok && kappa_ok) {
+        if !settings_ok::<6>(
+            &self.rate_psd_rad2_s3,
+            self.initial_rate_sigma_rad_s,
+            self.kappa,
+        ) {
             return Err(AttitudeError::Config(format!(
                 "rate_psd_rad2_s3 must be finite and >= 0, initial_rate_sigma_rad_s finite and > 0, kappa finite with 6 + kappa > 0; got {self:?}"
             )));
         }
         self.least_squares.check()
     }
+}
+
+/// The settings a constant-rate filter of `N` states shares: spectral densities `S`
+/// finite and >= 0, the starting rate sigma finite and > 0, `N + kappa > 0`.
+pub(crate) fn settings_ok<const N: usize>(psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
+    psd.iter().all(|s| s.is_finite() && *s >= 0.0)
+        && rate_sigma.is_finite()
+        && rate_sigma > 0.0
+        && kappa.is_finite()
+        && N as f64 + kappa > 0.0
 }
 
 /// A filter's state.

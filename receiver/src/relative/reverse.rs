@@ -22,7 +22,7 @@
 //! It reads observations and the receiver's own integers, never truth.
 
 use super::resolve::{AmbiguityStatus, Resolution};
-use crate::attitude::filter::{THESIS_KAPPA, process_noise, transition};
+use crate::attitude::filter::{THESIS_KAPPA, process_noise, settings_ok, transition};
 use crate::attitude::unscented::{UnscentedError, transform, update};
 use crate::baseline::{BaselineError, FixedBaselines, FloatBaselines};
 use nalgebra::{DMatrix, DVector, Matrix3xX, SMatrix, SVector};
@@ -75,13 +75,11 @@ impl Default for ReverseConfig {
 impl ReverseConfig {
     /// `S` finite and >= 0, the rate sigma finite and > 0, `12 + kappa > 0`.
     pub fn check(&self) -> Result<(), ReverseError> {
-        let s_ok = self
-            .rate_psd_m2_s3
-            .iter()
-            .all(|s| s.is_finite() && *s >= 0.0);
-        let sigma_ok = self.initial_rate_sigma_m_s.is_finite() && self.initial_rate_sigma_m_s > 0.0;
-        let kappa_ok = self.kappa.is_finite() && STATES as f64 + self.kappa > 0.0;
-        if s_ok && sigma_ok && kappa_ok {
+        if settings_ok::<STATES>(
+            &self.rate_psd_m2_s3,
+            self.initial_rate_sigma_m_s,
+            self.kappa,
+        ) {
             Ok(())
         } else {
             Err(ReverseError::Config(format!(

@@ -12,7 +12,7 @@
 //! 4e-4 deg) and RMS, the chain's fix counts and integer checks, and for the attitude the
 //! std of epoch-by-epoch LS on the same runs (what the KF's smoothing gains).
 
-use super::attitude_runs::{SeriesStats, chain_note, factor_row, seed_runs};
+use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -50,9 +50,7 @@ fn stats(
     runs: &[ChainComparison],
     series: impl Fn(&ChainComparison) -> Vec<f64>,
 ) -> Result<SeriesStats, ValidateError> {
-    SeriesStats::of(runs, series).ok_or_else(|| {
-        ValidateError::Pipeline(format!("{SCENARIO}: a run has fewer than two fixed epochs"))
-    })
+    attitude_runs::stats(SCENARIO, runs, series)
 }
 
 /// The rows of tables 5.4-3..5.

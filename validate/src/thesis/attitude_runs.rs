@@ -55,6 +55,17 @@ impl SeriesStats {
     }
 }
 
+/// [`SeriesStats::of`] of `scenario`'s runs, its failure as a table's error.
+pub fn stats(
+    scenario: &str,
+    runs: &[ChainComparison],
+    series: impl Fn(&ChainComparison) -> Vec<f64>,
+) -> Result<SeriesStats, ValidateError> {
+    SeriesStats::of(runs, series).ok_or_else(|| {
+        ValidateError::Pipeline(format!("{scenario}: a run has fewer than two fixed epochs"))
+    })
+}
+
 /// How the chain did over the runs: fix rate, first fix, integers against the truth.
 pub fn chain_note(runs: &[ChainComparison]) -> String {
     let fixed: usize = runs.iter().map(|r| r.fixed.len()).sum();

@@ -19,7 +19,7 @@
 //! `method = "least-squares"`).
 
 use super::attitude_noise::config as constant_noise_config;
-use super::attitude_runs::{SeriesStats, chain_note, factor_row, seed_runs};
+use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -84,9 +84,7 @@ fn stats(
     runs: &[ChainComparison],
     series: impl Fn(&ChainComparison) -> Vec<f64>,
 ) -> Result<SeriesStats, ValidateError> {
-    SeriesStats::of(runs, series).ok_or_else(|| {
-        ValidateError::Pipeline(format!("{SCENARIO}: a run has fewer than two fixed epochs"))
-    })
+    attitude_runs::stats(SCENARIO, runs, series)
 }
 
 /// A proposed-method row: `ours` must be below `bound` times the LS's `ls`; the thesis's
