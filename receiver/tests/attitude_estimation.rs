@@ -471,9 +471,9 @@ fn kf_and_ukf_are_consistent_on_their_own_process_model() {
             initial_rate_sigma_rad_s: rate0,
             ..AttitudeConfig::default()
         };
-        let q6 = skyforge_receiver::attitude::filter::process_noise(1.0, &[s_psd; 3]);
+        let q6 = skyforge_receiver::attitude::filter::process_noise::<6>(1.0, &[s_psd; 3]);
         let l6 = q6.cholesky().unwrap().l();
-        let phi = skyforge_receiver::attitude::filter::transition(1.0);
+        let phi = skyforge_receiver::attitude::filter::transition::<6>(1.0);
         let stats = run_filter(&config, 61, RUNS, epochs, 100, |r| {
             let mut x = nalgebra::Vector6::new(
                 179.0 * DEG,

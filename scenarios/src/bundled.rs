@@ -62,6 +62,12 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../thesis/t-4.3.toml"),
     },
     Bundled {
+        name: "thesis/t-5.5",
+        summary: "Thesis section 5.5 reverse baseline filtering: three GPS L1 antennas on two 1 m \
+                  baselines on the LEO, constant 10 mm phase noise, 6-10 deg attitude swings, 600 s",
+        text: include_str!("../thesis/t-5.5.toml"),
+    },
+    Bundled {
         name: "ground-static",
         summary: "Static ground site at 30 N 114 E, 50 m, 1 h, GPS + BeiDou, one antenna \
                   with a 10 deg elevation mask",

@@ -19,6 +19,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "thesis/t-1.2-2",
             "thesis/t-1.2-3",
             "thesis/t-5.4-3",
+            "thesis/t-4.3",
+            "thesis/t-5.5",
             "ground-static",
             "interop-gps-static",
             "interop-bds-static",

@@ -17,7 +17,7 @@ use super::kalman::EkfAttitude;
 use super::least_squares::{LsConfig, solve};
 use super::ukf::UkfAttitude;
 use super::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};
-use nalgebra::{DMatrix, Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{DMatrix, Matrix3, Matrix6, SMatrix, Vector3, Vector6};
 use std::f64::consts::{FRAC_PI_2, PI};
 
 /// Which attitude stage runs (`[stages] attitude` in a receiver TOML, later).
@@ -71,20 +71,27 @@ impl Default for AttitudeConfig {
 impl AttitudeConfig {
     /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        let s_ok = self
-            .rate_psd_rad2_s3
-            .iter()
-            .all(|s| s.is_finite() && *s >= 0.0);
-        let sigma_ok =
-            self.initial_rate_sigma_rad_s.is_finite() && self.initial_rate_sigma_rad_s > 0.0;
-        let kappa_ok = self.kappa.is_finite() && 6.0 + self.kappa > 0.0;
-        if !(s_ok && sigma_ok && kappa_ok) {
+        if !settings_ok::<6>(
+            &self.rate_psd_rad2_s3,
+            self.initial_rate_sigma_rad_s,
+            self.kappa,
+        ) {
             return Err(AttitudeError::Config(format!(
                 "rate_psd_rad2_s3 must be finite and >= 0, initial_rate_sigma_rad_s finite and > 0, kappa finite with 6 + kappa > 0; got {self:?}"
             )));
         }
         self.least_squares.check()
     }
+}
+
+/// The settings a constant-rate filter of `N` states shares: spectral densities `S`
+/// finite and >= 0, the starting rate sigma finite and > 0, `N + kappa > 0`.
+pub(crate) fn settings_ok<const N: usize>(psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
+    psd.iter().all(|s| s.is_finite() && *s >= 0.0)
+        && rate_sigma.is_finite()
+        && rate_sigma > 0.0
+        && kappa.is_finite()
+        && N as f64 + kappa > 0.0
 }
 
 /// A filter's state.
@@ -151,24 +158,29 @@ pub struct FilterInit {
     pub covariance: Matrix6<f64>,
 }
 
-/// Eqs. 2.5-16, 4.3-28: `Phi(T)`.
-pub fn transition(dt_s: f64) -> Matrix6<f64> {
-    let mut phi = Matrix6::identity();
-    for i in 0..3 {
-        phi[(i, i + 3)] = dt_s;
+/// Eqs. 2.5-16, 4.3-28, 5.5-5: `Phi(T) = [[I, T I], [0, I]]` of a constant-rate model
+/// whose state is `N / 2` quantities followed by their rates (`N` even).
+pub fn transition<const N: usize>(dt_s: f64) -> SMatrix<f64, N, N> {
+    let mut phi = SMatrix::<f64, N, N>::identity();
+    for i in 0..N / 2 {
+        phi[(i, i + N / 2)] = dt_s;
     }
     phi
 }
 
-/// Eqs. 2.5-16, 4.3-30: `Q(T) = [[T^3/3, T^2/2], [T^2/2, T]] (x) diag(S)`.
-pub fn process_noise(dt_s: f64, s: &[f64; 3]) -> Matrix6<f64> {
+/// Eqs. 2.5-16, 4.3-30, 5.5-7: `Q(T) = [[T^3/3, T^2/2], [T^2/2, T]] (x) diag(S)` for the
+/// state of [`transition`]: white noise on the accelerations of the `N / 2` quantities,
+/// with power spectral densities `s` (`N / 2` values).
+pub fn process_noise<const N: usize>(dt_s: f64, s: &[f64]) -> SMatrix<f64, N, N> {
+    debug_assert_eq!(2 * s.len(), N, "one spectral density per quantity");
     let t = dt_s;
+    let half = N / 2;
     let block = [[t.powi(3) / 3.0, t * t / 2.0], [t * t / 2.0, t]];
-    let mut q = Matrix6::zeros();
+    let mut q = SMatrix::<f64, N, N>::zeros();
     for (bi, row) in block.iter().enumerate() {
         for (bj, v) in row.iter().enumerate() {
-            for (k, sk) in s.iter().enumerate() {
-                q[(3 * bi + k, 3 * bj + k)] = v * sk;
+            for (k, sk) in s.iter().take(half).enumerate() {
+                q[(half * bi + k, half * bj + k)] = v * sk;
             }
         }
     }
@@ -224,8 +236,9 @@ impl FilterCore {
             )));
         }
         if let Some((x, p)) = self.xp {
-            let phi = transition(dt_s);
-            let p = phi * p * phi.transpose() + process_noise(dt_s, &self.config.rate_psd_rad2_s3);
+            let phi = transition::<6>(dt_s);
+            let p =
+                phi * p * phi.transpose() + process_noise::<6>(dt_s, &self.config.rate_psd_rad2_s3);
             self.xp = Some(canonical(phi * x, 0.5 * (p + p.transpose())));
         }
         Ok(())
@@ -375,10 +388,10 @@ mod tests {
         }
         for i in 0..steps {
             let tau = (i as f64 + 0.5) * t / steps as f64;
-            let phi = transition(tau);
+            let phi = transition::<6>(tau);
             num += phi * g * phi.transpose() * (t / steps as f64);
         }
-        assert!((num - process_noise(t, &s)).amax() < 1e-10);
+        assert!((num - process_noise::<6>(t, &s)).amax() < 1e-10);
     }
 
     #[test]

@@ -15,6 +15,9 @@ use skyforge_signals::observation::ObsRecord;
 #[derive(Debug, Clone, PartialEq)]
 pub struct FloatBaselines {
     pub model: DdModel,
+    /// `Y` (2n x m, m): column `k` holds baseline `k`'s double-differenced phase (first n
+    /// rows) and code (eq. 2.4-3), the observations the solution was computed from.
+    pub observations: DMatrix<f64>,
     /// `N_hat` (n x m, cycles): column `k` holds baseline `k`'s ambiguities.
     pub ambiguities: DMatrix<f64>,
     /// `B_hat` (3 x m, m, ECEF).
@@ -70,6 +73,7 @@ impl FloatBaselines {
         let cofactor = normal.cholesky().ok_or(BaselineError::Singular)?.inverse();
         let mut ambiguities = DMatrix::zeros(n, m);
         let mut baselines = Matrix3xX::zeros(m);
+        let mut observations = DMatrix::zeros(2 * n, m);
         for (k, rover) in antennas[1..].iter().enumerate() {
             let y = model.layout.double_differences(antennas[0], rover)?;
             if y.iter().any(|v| !v.is_finite()) {
@@ -77,12 +81,14 @@ impl FloatBaselines {
                     what: "a double-differenced observation",
                 });
             }
-            let x = &cofactor * (&xtw * y);
+            let x = &cofactor * (&xtw * &y);
             ambiguities.set_column(k, &x.rows(0, n));
             baselines.set_column(k, &x.rows(n, 3));
+            observations.set_column(k, &y);
         }
         Ok(Self {
             model,
+            observations,
             ambiguities,
             baselines,
             cofactor,

@@ -1,5 +1,6 @@
 //! Settings of the relative-positioning and attitude chain (`[relative]` of a TOML file).
 
+use super::reverse::ReverseConfig;
 use crate::attitude::filter::AttitudeConfig;
 use crate::baseline::{ElevationNoise, NoiseModel};
 use crate::geometry_offset::stacked_ukf::OffsetConfig;
@@ -42,6 +43,9 @@ pub struct RelativeConfig {
     pub attitude: AttitudeConfig,
     /// The geometry-offset estimator (`skyforge attitude --estimate-geometry`).
     pub geometry_offsets: OffsetConfig,
+    /// The reverse filtering of the baselines between the fix and the attitude (thesis
+    /// 5.5, [`super::reverse`]; two baselines): present turns it on. Default none.
+    pub reverse_filter: Option<ReverseConfig>,
 }
 
 /// What the integer search knows besides the float solution.
@@ -87,6 +91,7 @@ impl Default for RelativeConfig {
             elevation_mask_deg: None,
             attitude: AttitudeConfig::default(),
             geometry_offsets: OffsetConfig::default(),
+            reverse_filter: None,
         }
     }
 }
@@ -119,6 +124,9 @@ impl RelativeConfig {
         let config = file.relative.unwrap_or_default();
         config.attitude.check().map_err(|e| error(&e))?;
         config.geometry_offsets.check().map_err(|e| error(&e))?;
+        if let Some(r) = &config.reverse_filter {
+            r.check().map_err(|e| error(&e))?;
+        }
         let positive = [
             ("relative.ratio_threshold", config.ratio_threshold),
             ("relative.min_success_rate", config.min_success_rate),
@@ -170,5 +178,23 @@ mod tests {
         assert_eq!(constraint(""), Ok(Constraint::Geometry));
         let bad = constraint("[relative]\nconstraint = \"Length\"\n").unwrap_err();
         assert!(bad.contains("length"), "{bad}");
+    }
+
+    #[test]
+    fn the_reverse_filter_is_off_unless_its_table_is_given() {
+        let read = |text: &str| -> Result<RelativeConfig, String> {
+            let file: RelativeFile = toml::from_str(text).map_err(|e| e.to_string())?;
+            Ok(file.relative.unwrap_or_default())
+        };
+        assert_eq!(read("").unwrap().reverse_filter, None);
+        let on = read("[relative]\nreverse_filter = {}\n").unwrap();
+        assert_eq!(on.reverse_filter, Some(ReverseConfig::default()));
+        // The example of docs/attitude.md.
+        let doc = read(
+            "[relative]\nreverse_filter = { rate_psd_m2_s3 = [1e-6, 1e-6, 1e-6, 1e-6, 1e-6, 1e-6], initial_rate_sigma_m_s = 0.1, kappa = 0.5 }\n",
+        )
+        .unwrap();
+        assert_eq!(doc.reverse_filter, Some(ReverseConfig::default()));
+        assert!(read("[relative]\nreverse_filter = { kappa = 0.5, q = 1 }\n").is_err());
     }
 }

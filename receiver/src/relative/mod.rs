@@ -9,9 +9,11 @@ pub mod files;
 pub mod length;
 pub mod multivariate;
 pub mod resolve;
+pub mod reverse;
 
 pub use config::RelativeConfig;
 pub use resolve::{AmbiguityStatus, Resolution};
+pub use reverse::{ReverseConfig, ReverseFilter};
 
 use crate::attitude::filter::{AttitudeFilter, FilterState, build};
 use crate::attitude::frames::ned_baselines_from_ecef;
@@ -31,6 +33,8 @@ pub enum RelativeError {
     Ambiguity(#[from] crate::ambiguity::AmbiguityError),
     #[error("attitude: {0}")]
     Attitude(#[from] AttitudeError),
+    #[error(transparent)]
+    Reverse(#[from] reverse::ReverseError),
 }
 
 /// What one epoch gave.
@@ -38,7 +42,8 @@ pub enum RelativeError {
 pub struct RelativeEpoch {
     pub float: FloatBaselines,
     pub resolution: Resolution,
-    /// The baselines with the fixed integers (`None` while float).
+    /// The baselines with the fixed integers (`None` while float); with the reverse
+    /// filter on, its filtered baselines where every ambiguity is fixed.
     pub fixed: Option<FixedBaselines>,
     /// The same in the master's local NED frame (thesis eqs. 2.4-66/2.4-67).
     pub fixed_ned: Option<NedBaselines>,
@@ -55,6 +60,8 @@ pub struct RelativeSolver {
     antennas: usize,
     hold: AmbiguityHold,
     attitude: Box<dyn AttitudeFilter>,
+    /// The reverse baseline filter, when configured.
+    reverse: Option<ReverseFilter>,
     /// Body baselines (antenna k minus the master).
     geometry: BodyGeometry,
     last_t_s: Option<f64>,
@@ -73,7 +80,20 @@ impl RelativeSolver {
         let baselines: Vec<Vec3> = others.iter().map(|p| p - master).collect();
         let geometry = BodyGeometry::new(&baselines)?;
         let attitude = build(&config.attitude, geometry.clone())?;
+        let reverse = match config.reverse_filter {
+            Some(c) if baselines.len() == reverse::BASELINES => Some(ReverseFilter::new(c)?),
+            Some(_) => {
+                return Err(BaselineError::Dimension {
+                    what: "baselines of the reverse filter (thesis 5.5: 12 states)",
+                    expected: reverse::BASELINES,
+                    found: baselines.len(),
+                }
+                .into());
+            }
+            None => None,
+        };
         Ok(Self {
+            reverse,
             antennas: body_positions_m.len(),
             config,
             hold: AmbiguityHold::new(),
@@ -124,11 +144,20 @@ impl RelativeSolver {
         let float = FloatBaselines::solve(model, antennas)?;
         let constraint = Some((&self.geometry, master_ecef_m));
         let resolution = resolve::resolve(&float, &mut self.hold, &self.config, constraint)?;
-        let fixed = resolution.fixed_baselines(&float)?;
+        let mut fixed = resolution.fixed_baselines(&float)?;
         if let Some(last) = self.last_t_s {
-            self.attitude.predict((t_s - last).max(0.0))?;
+            let dt_s = (t_s - last).max(0.0);
+            self.attitude.predict(dt_s)?;
+            if let Some(r) = &mut self.reverse {
+                r.predict(dt_s)?;
+            }
         }
         self.last_t_s = Some(t_s);
+        if let Some(r) = &mut self.reverse {
+            fixed = fixed
+                .map(|ls| r.epoch(&float, &resolution, ls))
+                .transpose()?;
+        }
         let ned = match &fixed {
             Some(f) => {
                 let b: Vec<Vec3> = f.baselines.column_iter().map(|c| c.into_owned()).collect();

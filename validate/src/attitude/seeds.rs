@@ -14,12 +14,14 @@ use skyforge_scenarios::Scenario;
 // mean over runs, cheap at the observation level.
 pub const SEEDS: u64 = 8;
 
-/// The chain over `scenario` on seeds `seed .. seed + SEEDS`, each compared with its truth.
+/// The chain with each of `configs` over `scenario` on seeds `seed .. seed + SEEDS`, each
+/// compared with its truth: one vector of runs (seed order) per configuration. Every
+/// configuration reads the same observations of a seed, made once.
 pub fn seed_runs(
     scenario: &Scenario,
-    config: &RelativeConfig,
-) -> Result<Vec<ChainComparison>, String> {
-    (0..SEEDS)
+    configs: &[RelativeConfig],
+) -> Result<Vec<Vec<ChainComparison>>, String> {
+    let per_seed: Vec<Vec<ChainComparison>> = (0..SEEDS)
         .into_par_iter()
         .map(|k| {
             let mut s = scenario.clone();
@@ -27,7 +29,18 @@ pub fn seed_runs(
             let fail =
                 |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, s.seed);
             let run = observation_run(&s).map_err(|e| fail(&e))?;
-            compare(&run, &nominal_geometry(&run), config.clone()).map_err(|e| fail(&e))
+            let geometry = nominal_geometry(&run);
+            configs
+                .iter()
+                .map(|c| compare(&run, &geometry, c.clone()).map_err(|e| fail(&e)))
+                .collect()
         })
-        .collect()
+        .collect::<Result<_, String>>()?;
+    let mut out: Vec<Vec<ChainComparison>> = configs.iter().map(|_| Vec::new()).collect();
+    for runs in per_seed {
+        for (all, run) in out.iter_mut().zip(runs) {
+            all.push(run);
+        }
+    }
+    Ok(out)
 }

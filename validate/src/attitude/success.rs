@@ -62,8 +62,13 @@ pub fn single_epoch(
     signals: &[Signal],
     constraint: Constraint,
 ) -> Result<SuccessRate, String> {
-    let best = seed_runs(scenario, &config(signals, constraint, true))?;
-    let tested = seed_runs(scenario, &config(signals, constraint, false))?;
+    let configs = [
+        config(signals, constraint, true),
+        config(signals, constraint, false),
+    ];
+    let [best, tested]: [Vec<ChainComparison>; 2] = seed_runs(scenario, &configs)?
+        .try_into()
+        .map_err(|_| format!("{}: one set of runs per configuration", scenario.name))?;
     let none = || format!("{}: no runs", scenario.name);
     Ok(SuccessRate {
         constraint,

@@ -40,7 +40,7 @@ const AXES: [&str; 3] = ["yaw", "pitch", "roll"];
 
 /// The chain as table 1.2-2 states it: attitude by LS; the double differences weighted
 /// with the prescribed constant noise (the solver is told the sigmas the table sets).
-fn config(phase_m: f64, code_m: f64) -> RelativeConfig {
+pub(super) fn config(phase_m: f64, code_m: f64) -> RelativeConfig {
     let constant = |sigma0_m| ElevationNoise {
         sigma0_m,
         a0: 0.0,
@@ -64,7 +64,8 @@ fn runs(name: &str, phase_m: f64) -> Result<Vec<ChainComparison>, ValidateError>
         )));
     };
     scenario.observation.noise = ObsNoiseConfig::Constant { phase_m, code_m };
-    seed_runs(&scenario, &config(phase_m, code_m))
+    let [runs] = seed_runs(&scenario, [config(phase_m, code_m)])?;
+    Ok(runs)
 }
 
 /// Yaw, pitch, roll statistics over `runs` (deg).

@@ -12,7 +12,7 @@
 //! 4e-4 deg) and RMS, the chain's fix counts and integer checks, and for the attitude the
 //! std of epoch-by-epoch LS on the same runs (what the KF's smoothing gains).
 
-use super::attitude_runs::{SeriesStats, chain_note, factor_row, seed_runs};
+use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -50,17 +50,20 @@ fn stats(
     runs: &[ChainComparison],
     series: impl Fn(&ChainComparison) -> Vec<f64>,
 ) -> Result<SeriesStats, ValidateError> {
-    SeriesStats::of(runs, series).ok_or_else(|| {
-        ValidateError::Pipeline(format!("{SCENARIO}: a run has fewer than two fixed epochs"))
-    })
+    attitude_runs::stats(SCENARIO, runs, series)
 }
 
 /// The rows of tables 5.4-3..5.
 pub fn rows() -> Result<Vec<Row>, ValidateError> {
     let scenario = skyforge_scenarios::resolve(SCENARIO)?;
-    let runs = seed_runs(&scenario, &config(AttitudeMethod::Kf))?;
-    // The same runs with epoch-by-epoch LS attitude: how much the KF smooths.
-    let ls_runs = seed_runs(&scenario, &config(AttitudeMethod::LeastSquares))?;
+    // The same runs with epoch-by-epoch LS attitude too: how much the KF smooths.
+    let [runs, ls_runs] = seed_runs(
+        &scenario,
+        [
+            config(AttitudeMethod::Kf),
+            config(AttitudeMethod::LeastSquares),
+        ],
+    )?;
     let chain = chain_note(&runs);
     let mut out = Vec::new();
     for (k, thesis) in BASELINE_ROWS.iter().enumerate() {

@@ -55,6 +55,17 @@ impl SeriesStats {
     }
 }
 
+/// [`SeriesStats::of`] of `scenario`'s runs, its failure as a table's error.
+pub fn stats(
+    scenario: &str,
+    runs: &[ChainComparison],
+    series: impl Fn(&ChainComparison) -> Vec<f64>,
+) -> Result<SeriesStats, ValidateError> {
+    SeriesStats::of(runs, series).ok_or_else(|| {
+        ValidateError::Pipeline(format!("{scenario}: a run has fewer than two fixed epochs"))
+    })
+}
+
 /// How the chain did over the runs: fix rate, first fix, integers against the truth.
 pub fn chain_note(runs: &[ChainComparison]) -> String {
     let fixed: usize = runs.iter().map(|r| r.fixed.len()).sum();
@@ -108,12 +119,20 @@ pub fn growth_row(table: &str, row: String, thesis: f64, ours: f64) -> Row {
     )
 }
 
-/// [`crate::attitude::seed_runs`] with its error as a table's.
-pub fn seed_runs(
+/// [`crate::attitude::seed_runs`] with `N` configurations, its error as a table's.
+pub fn seed_runs<const N: usize>(
     scenario: &skyforge_scenarios::Scenario,
-    config: &skyforge_receiver::relative::RelativeConfig,
-) -> Result<Vec<ChainComparison>, ValidateError> {
-    crate::attitude::seed_runs(scenario, config).map_err(ValidateError::Pipeline)
+    configs: [skyforge_receiver::relative::RelativeConfig; N],
+) -> Result<[Vec<ChainComparison>; N], ValidateError> {
+    crate::attitude::seed_runs(scenario, &configs)
+        .map_err(ValidateError::Pipeline)?
+        .try_into()
+        .map_err(|_| {
+            ValidateError::Pipeline(format!(
+                "{}: one set of runs per configuration",
+                scenario.name
+            ))
+        })
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@ pub mod geometry_offsets;
 mod geometry_run;
 pub mod loop_budget;
 pub mod pmf_fft;
+pub mod reverse_filter;
 pub mod visibility;
 pub mod zero_baseline;
 
@@ -20,7 +21,7 @@ use std::path::PathBuf;
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
-    "T-5.4-4", "T-5.4-5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
+    "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
 ];
 
 /// Why a validation could not run.
@@ -133,6 +134,10 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
                 .filter(|r| realtime.contains(&r.table.as_str())),
         );
     }
+    if wanted(reverse_filter::TABLE) {
+        starting(reverse_filter::TABLE);
+        rows.extend(reverse_filter::rows()?);
+    }
     let (patterns, curves) = (
         wanted(crate::integrity::patterns::TABLE),
         wanted(crate::integrity::detection::TABLE),
@@ -174,5 +179,7 @@ mod tests {
         assert!(!selects("T-1", "T-1.2-2"));
         assert!(!selects("T-3.3", "T-3.2"));
         assert!(!selects("T-3.3-", "T-3.3-R"));
+        assert!(selects("T-5.5", "T-5.5"));
+        assert!(!selects("T-5.5", "T-5.4-5"));
     }
 }
