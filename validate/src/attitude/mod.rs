@@ -4,6 +4,7 @@
 //! truth files of the run they came from ([`outputs`], `skyforge validate attitude`).
 
 pub mod compare;
+pub mod epochs;
 pub mod outputs;
 pub mod run;
 pub mod seeds;

@@ -23,9 +23,10 @@
 //! Runs on [`SEEDS`](crate::attitude::seeds::SEEDS) seeds; a row's value is the mean over
 //! runs of a run's statistic, the standard error over runs in its note.
 
-use crate::attitude::compare::{attitude_errors_deg, epoch_truth};
+use crate::attitude::compare::attitude_errors_deg;
+use crate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
 use crate::attitude::seeds::SEEDS;
-use crate::attitude::{ObservationRun, nominal_geometry, observation_run};
+use crate::attitude::{ObservationRun, observation_run};
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
 use crate::thesis::ValidateError;
@@ -35,15 +36,14 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_receiver::attitude::filter::{AttitudeConfig, AttitudeFilter, THESIS_KAPPA};
 use skyforge_receiver::attitude::ukf::UkfAttitude;
-use skyforge_receiver::attitude::{BodyGeometry, NedBaselines, wrap_diff};
+use skyforge_receiver::attitude::{BodyGeometry, wrap_diff};
 use skyforge_receiver::geometry_offset::shape::{align, invariants};
 use skyforge_receiver::geometry_offset::stacked_ukf::{
     OffsetConfig, OffsetEstimator, Orientation, Step, THESIS_OFFSET_RATE_PSD, THESIS_RATE_PSD,
     WindowWeighting,
 };
+use skyforge_receiver::relative::RelativeConfig;
 use skyforge_receiver::relative::config::Constraint;
-use skyforge_receiver::relative::files::run_files;
-use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
 
 /// The table.
 pub const TABLE: &str = "T-4.3";
@@ -76,12 +76,6 @@ const BEFORE_STD: [f64; 3] = [1.8840, 1.6176, 0.6723];
 /// Table 4.3-6: rate error std after and before (deg/s).
 const RATE_AFTER_STD: [f64; 3] = [0.0076, 0.0077, 0.0078];
 const RATE_BEFORE_STD: [f64; 3] = [0.0091, 0.0090, 0.0092];
-
-/// One epoch of the chain: fixed NED baselines, when fixed.
-struct ChainEpoch {
-    t_s: f64,
-    baselines: Option<NedBaselines>,
-}
 
 /// Per-axis error series (deg or deg/s).
 #[derive(Default)]
@@ -144,36 +138,6 @@ fn thesis_offset_config() -> OffsetConfig {
     }
 }
 
-/// The chain over every epoch of `run`.
-fn chain(run: &ObservationRun) -> Result<Vec<ChainEpoch>, ValidateError> {
-    let mut out = Vec::new();
-    run_files(
-        &run.measured,
-        run.ephemerides.clone(),
-        &nominal_geometry(run),
-        chain_config(),
-        |o| {
-            let t_s = (o.time - run.start).to_seconds();
-            let baselines = o
-                .result
-                .ok()
-                .filter(|e| e.resolution.status == AmbiguityStatus::Fixed)
-                .and_then(|e| e.fixed_ned);
-            out.push(ChainEpoch { t_s, baselines });
-        },
-    )
-    .map_err(|e| ValidateError::Pipeline(format!("{SCENARIO}: {e}")))?;
-    Ok(out)
-}
-
-/// The true attitude at every whole second of `run`.
-fn true_attitudes(run: &ObservationRun) -> Vec<YawPitchRoll> {
-    run.platform
-        .iter()
-        .map(|p| epoch_truth(&p.r_ecef_m, &p.c_body_ecef, &run.true_body_m).attitude)
-        .collect()
-}
-
 /// The true rates at second `k` (rad/s): central difference of the 1 s truth.
 fn true_rate(truth: &[YawPitchRoll], k: usize) -> Option<Vec3> {
     let (a, b) = (truth.get(k.checked_sub(1)?)?, truth.get(k + 1)?);
@@ -206,7 +170,7 @@ fn body_baselines(run: &ObservationRun) -> ([Vec3; 2], [Vec3; 2]) {
 
 /// The estimation run with `config`; records the thesis's series when `record`.
 fn estimate(
-    epochs: &[ChainEpoch],
+    epochs: &[FixedEpoch],
     b0: &[Vec3; 2],
     config: OffsetConfig,
     mut record: impl FnMut(&OffsetEstimator),
@@ -227,7 +191,7 @@ fn estimate(
 
 /// The comparison run: the 6-state UKF on `geometry`, errors per fixed epoch.
 fn compare(
-    epochs: &[ChainEpoch],
+    epochs: &[FixedEpoch],
     geometry: BodyGeometry,
     truth: &[YawPitchRoll],
 ) -> Result<(AxisSeries, AxisSeries, usize), ValidateError> {
@@ -274,7 +238,7 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
         ValidateError::Pipeline(format!("{SCENARIO} seed {}: {e}", scenario.seed))
     };
     let run = observation_run(scenario).map_err(|e| fail(&e))?;
-    let epochs = chain(&run)?;
+    let epochs = fixed_baselines(&run, chain_config()).map_err(|e| fail(&e))?;
     let truth = true_attitudes(&run);
     let (b0, b_true) = body_baselines(&run);
     let (mut xi, mut xi_turned, mut rates) = (
