@@ -14,19 +14,76 @@ fn thesis_true() -> [Vec3; 2] {
     [Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]
 }
 
-/// A smooth attitude profile (rad) at `t` s: a slow yaw turn with sinusoids on every axis.
+/// A smooth attitude: a yaw turn at a constant rate plus a sinusoid on every axis.
+#[derive(Debug, Clone, Copy)]
+struct Profile {
+    start_rad: [f64; 3],
+    yaw_rate_rad_s: f64,
+    amplitude_rad: [f64; 3],
+    period_s: [f64; 3],
+    phase_rad: [f64; 3],
+}
+
+impl Profile {
+    /// The profile of most tests: a slow turn with sinusoids of 1-3 deg.
+    fn slow() -> Self {
+        Self {
+            start_rad: [0.4, 0.0, 0.01],
+            yaw_rate_rad_s: 1e-3,
+            amplitude_rad: [0.05, 0.035, 0.017],
+            period_s: [600.0, 600.0, 300.0],
+            phase_rad: [0.0, std::f64::consts::FRAC_PI_2, 0.0],
+        }
+    }
+
+    /// A random one: any heading, turns up to 0.1 deg/s, sinusoids up to 4 deg with
+    /// periods of 200-1200 s.
+    fn random(rng: &mut ChaCha8Rng) -> Self {
+        use rand::Rng;
+        let mut three = |lo: f64, hi: f64| [0; 3].map(|_| rng.random_range(lo..hi));
+        let start = three(-0.05, 0.05);
+        let amplitude = three(0.0, 0.07);
+        let period = three(200.0, 1200.0);
+        let phase = three(0.0, std::f64::consts::TAU);
+        Self {
+            start_rad: [rng.random_range(-3.1..3.1), start[1], start[2]],
+            yaw_rate_rad_s: rng.random_range(-1.7e-3..1.7e-3),
+            amplitude_rad: amplitude,
+            period_s: period,
+            phase_rad: phase,
+        }
+    }
+
+    /// The attitude at `t` s.
+    fn at(&self, t: f64) -> YawPitchRoll {
+        let axis = |i: usize| {
+            self.start_rad[i]
+                + self.amplitude_rad[i]
+                    * (std::f64::consts::TAU * t / self.period_s[i] + self.phase_rad[i]).sin()
+        };
+        YawPitchRoll::new(axis(0) + self.yaw_rate_rad_s * t, axis(1), axis(2))
+    }
+}
+
+/// The slow profile at `t` s.
 fn profile(t: f64) -> YawPitchRoll {
-    let w = std::f64::consts::TAU / 600.0;
-    YawPitchRoll::new(
-        0.4 + 1e-3 * t + 0.05 * (w * t).sin(),
-        0.035 * (w * t).cos(),
-        0.01 + 0.017 * (2.0 * w * t).sin(),
-    )
+    Profile::slow().at(t)
 }
 
 /// Baselines of `body` turned by `profile(t)` with white noise `sigma_m` per component.
 fn measure(t: f64, body: &[Vec3; 2], sigma_m: f64, rng: &mut ChaCha8Rng) -> NedBaselines {
-    let r = profile(t).c_body_ref();
+    measure_on(&Profile::slow(), t, body, sigma_m, rng)
+}
+
+/// Baselines of `body` turned by `p` at `t` with white noise `sigma_m` per component.
+fn measure_on(
+    p: &Profile,
+    t: f64,
+    body: &[Vec3; 2],
+    sigma_m: f64,
+    rng: &mut ChaCha8Rng,
+) -> NedBaselines {
+    let r = p.at(t).c_body_ref();
     let n = Normal::new(0.0, sigma_m).unwrap();
     let b: Vec<Vec3> = body
         .iter()
@@ -35,15 +92,20 @@ fn measure(t: f64, body: &[Vec3; 2], sigma_m: f64, rng: &mut ChaCha8Rng) -> NedB
     NedBaselines::new(&b, DMatrix::identity(6, 6) * sigma_m * sigma_m).unwrap()
 }
 
-/// The estimator over `epochs` 1 Hz epochs of `truth` with 1 mm noise.
-fn run(truth: &[Vec3; 2], epochs: usize, rng: &mut ChaCha8Rng) -> OffsetEstimator {
+/// The estimator over `epochs` 1 Hz epochs of `truth` on `p` with 1 mm noise.
+fn run_on(p: &Profile, truth: &[Vec3; 2], epochs: usize, rng: &mut ChaCha8Rng) -> OffsetEstimator {
     let nominal = BodyGeometry::new(&thesis_b0()).unwrap();
     let mut f = OffsetEstimator::new(OffsetConfig::default(), nominal).unwrap();
     for k in 0..epochs {
         let t = k as f64;
-        f.push(t, measure(t, truth, 1e-3, rng)).unwrap();
+        f.push(t, measure_on(p, t, truth, 1e-3, rng)).unwrap();
     }
     f
+}
+
+/// The same on the slow profile.
+fn run(truth: &[Vec3; 2], epochs: usize, rng: &mut ChaCha8Rng) -> OffsetEstimator {
+    run_on(&Profile::slow(), truth, epochs, rng)
 }
 
 fn estimated(s: &OffsetState) -> [Vec3; 2] {
@@ -146,8 +208,8 @@ fn recovers_the_shape_of_the_thesis_geometry() {
 
 #[test]
 fn the_offsets_are_consistent_with_the_reported_covariance() {
-    // Random offsets of a few centimetres (not the thesis's), random seeds, the default
-    // settings (orientation held at the nominal one). The error of the three invariants
+    // Random offsets of a few centimetres (not the thesis's), random attitude profiles,
+    // random seeds, the default settings (orientation held at the nominal one). The error of the three invariants
     // is chi-square with 3 degrees of freedom; so is that of the six offsets against the
     // truth turned to the nominal orientation (the other three directions are held).
     let draws = 20;
@@ -157,7 +219,8 @@ fn the_offsets_are_consistent_with_the_reported_covariance() {
         let mut rng = ChaCha8Rng::seed_from_u64(100 + seed);
         let b0 = thesis_b0();
         let truth = [0, 1].map(|k| b0[k] + Vec3::from_fn(|_, _| normal.sample(&mut rng)));
-        let s = run(&truth, 2000, &mut rng).state().unwrap();
+        let profile = Profile::random(&mut rng);
+        let s = run_on(&profile, &truth, 2000, &mut rng).state().unwrap();
         let est = estimated(&s);
         let p = s.offsets_covariance_m2;
         shape.push(shape_nees(&est, &p, &truth).unwrap());
@@ -169,8 +232,9 @@ fn the_offsets_are_consistent_with_the_reported_covariance() {
     }
     // The mean of 20 chi-square(3) draws: 3 with a standard deviation of sqrt(6 / 20) =
     // 0.55; accept [1.5, 4.7] (about three sigmas; the filter is only first-order right).
-    for nees in [shape, offsets] {
+    for (what, nees) in [("shape", shape), ("offsets", offsets)] {
         let mean = nees.iter().sum::<f64>() / draws as f64;
+        println!("mean NEES of the {what} over {draws} draws: {mean:.2}");
         assert!((1.5..4.7).contains(&mean), "mean NEES {mean}: {nees:?}");
     }
 }
