@@ -2,7 +2,7 @@
 //! row of `attitude.csv` and of `attitude.h5` (schema in docs/attitude.md), and the fixed
 //! integers as rows of `ambiguities.csv`.
 
-use crate::output::h5_datasets::{append_rows, create_rows, text_attr};
+use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_receiver::relative::AmbiguityStatus;
 use skyforge_receiver::relative::files::EpochOutcome;
@@ -209,15 +209,9 @@ pub fn integer_rows(o: &EpochOutcome) -> String {
 
 /// `attitude.h5`: every epoch's values as columns (NaN where the epoch gave none).
 pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<()> {
-    let file = hdf5::File::create(path)?;
-    let root: &hdf5::Group = &file;
     let start = epochs.first().map(|v| v.time);
-    text_attr(root, "schema", "skyforge attitude.h5 version 1")?;
-    text_attr(
-        root,
-        "start_gpst",
-        &start.map_or(String::new(), |t| t.to_string()),
-    )?;
+    let file = create_epoch_file(path, "skyforge attitude.h5 version 1", start)?;
+    let root: &hdf5::Group = &file;
     let n = epochs.len();
     let chunk = n.clamp(1, 4096);
     let column = |name: &str, width: usize, unit: &str, what: &str, data: Vec<f64>| {

@@ -1,9 +1,9 @@
 //! The outputs of `skyforge attitude --estimate-geometry`: the geometry-offset estimate
 //! after every update of the thesis 4.3 UKF as a row of `geometry_offsets.csv` and of
 //! `geometry_offsets.h5` (schema in docs/geometry.md), and the corrected body geometry
-//! `geometry_corrected.toml` that `skyforge attitude --geometry` and `receive` read.
+//! `geometry_corrected.toml` that `skyforge attitude --geometry` reads.
 
-use crate::output::h5_datasets::{append_rows, create_rows, text_attr};
+use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_receiver::attitude::BodyGeometry;
 use skyforge_receiver::geometry_offset::stacked_ukf::OffsetState;
@@ -71,15 +71,9 @@ pub fn csv_row(r: &OffsetRow) -> String {
 
 /// `geometry_offsets.h5`.
 pub fn write_h5(path: &Path, rows: &[OffsetRow]) -> hdf5::Result<()> {
-    let file = hdf5::File::create(path)?;
-    let root: &hdf5::Group = &file;
     let start = rows.first().map(|r| r.time);
-    text_attr(root, "schema", "skyforge geometry_offsets.h5 version 1")?;
-    text_attr(
-        root,
-        "start_gpst",
-        &start.map_or(String::new(), |t| t.to_string()),
-    )?;
+    let file = create_epoch_file(path, "skyforge geometry_offsets.h5 version 1", start)?;
+    let root: &hdf5::Group = &file;
     let chunk = rows.len().clamp(1, 4096);
     let column = |name: &str, width: usize, unit: &str, what: &str, data: Vec<f64>| {
         let ds = create_rows::<f64>(root, name, width, chunk, unit, what)?;

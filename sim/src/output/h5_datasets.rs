@@ -15,6 +15,23 @@ pub(crate) fn create_group(parent: &Group, name: &str) -> hdf5::Result<Group> {
         .create(name)
 }
 
+/// Create the per-epoch table file at `path` with its `schema` attribute and the
+/// `start_gpst` its `t_s` column counts from (empty without epochs).
+pub(crate) fn create_epoch_file(
+    path: &std::path::Path,
+    schema: &str,
+    start: Option<hifitime::Epoch>,
+) -> hdf5::Result<hdf5::File> {
+    let file = hdf5::File::create(path)?;
+    text_attr(&file, "schema", schema)?;
+    text_attr(
+        &file,
+        "start_gpst",
+        &start.map_or(String::new(), |t| t.to_string()),
+    )?;
+    Ok(file)
+}
+
 /// Write the UTF-8 string attribute `name` on `loc`.
 pub(crate) fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v: VarLenUnicode = value

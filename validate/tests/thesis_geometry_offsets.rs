@@ -1,0 +1,39 @@
+//! `validate thesis --only T-4.3` (thesis section 4.3.4, on-orbit estimation of the
+//! antenna geometry offsets): the bundled `thesis/t-4.3` (30247 + 25000 epochs) on eight
+//! seeds. Checked: the selection runs this table alone, every row is there with a finite
+//! value and a verdict, the thesis rows carry the thesis's number and SkyForge's own rows
+//! none, and an `explained` row says what explains it. Ignored tier: about 4 minutes in a
+//! release build, longer here. The table is printed (`cargo test -p skyforge-validate
+//! --test thesis_geometry_offsets -- --ignored --nocapture`).
+
+use skyforge_validate::report::{Verdict, print_table};
+use skyforge_validate::thesis::{Options, run};
+
+#[test]
+#[ignore = "eight runs of 55247 observation-level epochs (minutes)"]
+fn t_4_3_writes_every_row_with_finite_values() {
+    let opts = Options {
+        only: vec!["T-4.3".into()],
+        data_dir: None,
+    };
+    let mut started = Vec::new();
+    let rows = run(&opts, |t| started.push(t.to_string())).unwrap();
+    print_table(&rows, &mut std::io::stdout()).unwrap();
+    assert_eq!(started, ["T-4.3"]);
+    // 3 + 3 (tables 4.3-2, 4.3-3), 6 offsets + 2 lengths + 6 held offsets (4.3-4),
+    // 3 + 3 + 3 ratios (4.3-5), 3 + 3 (4.3-6).
+    assert_eq!(rows.len(), 35, "{rows:#?}");
+    for r in &rows {
+        assert_eq!(r.table, "T-4.3");
+        assert!(r.ours.unwrap().is_finite(), "{r:?}");
+        let own = r.row.contains("(SkyForge)");
+        assert_eq!(r.thesis.is_none(), own, "{r:?}");
+        if r.verdict == Verdict::Explained {
+            assert!(
+                r.note.contains("turned to the estimate's orientation"),
+                "{r:?}"
+            );
+        }
+        assert!(r.note.contains("8 runs") || own, "{r:?}");
+    }
+}
