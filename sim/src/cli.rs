@@ -104,6 +104,15 @@ pub enum Command {
         /// [assist]).
         #[arg(long, value_name = "TOML")]
         config: Option<PathBuf>,
+        /// Body geometry (TOML as `skyforge synth` writes it, or `skyforge attitude
+        /// --estimate-geometry`'s geometry_corrected.toml): also run the attitude chain on
+        /// the observations, as `skyforge attitude` does, into DIR/attitude.csv,
+        /// DIR/attitude.h5 and DIR/ambiguities.csv. Needs --assist.
+        #[arg(long, value_name = "TOML")]
+        geometry: Option<PathBuf>,
+        /// The attitude chain's settings (TOML with a [relative] table; docs/attitude.md).
+        #[arg(long, value_name = "TOML", requires = "geometry")]
+        attitude_config: Option<PathBuf>,
         /// Output directory; created, must not exist unless --force is given.
         #[arg(long, value_name = "DIR")]
         out: PathBuf,

@@ -51,7 +51,7 @@ fov_half_angle_deg = 80.0
 }
 
 /// `skyforge receive` over every recording in `sim` into `rx`; returns `rx`.
-fn receive(sim: &Path, rx: &Path) -> std::path::PathBuf {
+fn receive(sim: &Path, rx: &Path, extra: &[&str]) -> std::path::PathBuf {
     let mut meta: Vec<String> = std::fs::read_dir(sim)
         .unwrap()
         .map(|e| e.unwrap().path().to_string_lossy().into_owned())
@@ -69,6 +69,7 @@ fn receive(sim: &Path, rx: &Path) -> std::path::PathBuf {
         "--out",
         rx.to_str().unwrap(),
     ]);
+    args.extend(extra);
     println!("{}", skyforge_ok(&args, sim));
     rx.to_path_buf()
 }
@@ -99,8 +100,17 @@ fn run_chain(
     let sim = dir.join("sim");
     skyforge_ok(&["run", &path, "--out", sim.to_str().unwrap()], dir);
     std::fs::write(dir.join("rel.toml"), config).unwrap();
+    let (nav, geometry) = (sim.join("nav.rnx"), sim.join("geometry.toml"));
+    let rel = dir.join("rel.toml");
+    // At the signal level the receiver also runs the chain itself (`--geometry`).
+    let chain_args = [
+        "--geometry",
+        geometry.to_str().unwrap(),
+        "--attitude-config",
+        rel.to_str().unwrap(),
+    ];
     let observations = if signal_level {
-        receive(&sim, &dir.join("rx"))
+        receive(&sim, &dir.join("rx"), &chain_args)
     } else {
         sim.join("observations")
     };
@@ -116,8 +126,6 @@ fn run_chain(
     let out = dir.join("att");
     let mut args: Vec<&str> = vec!["attitude"];
     args.extend(obs.iter().map(String::as_str));
-    let (nav, geometry) = (sim.join("nav.rnx"), sim.join("geometry.toml"));
-    let rel = dir.join("rel.toml");
     args.extend([
         "--nav",
         nav.to_str().unwrap(),
@@ -129,6 +137,15 @@ fn run_chain(
         out.to_str().unwrap(),
     ]);
     println!("{}", skyforge_ok(&args, dir));
+    if signal_level {
+        for f in ["attitude.csv", "ambiguities.csv"] {
+            let read = |d: &Path| std::fs::read(d.join(f)).unwrap();
+            assert!(
+                read(&observations) == read(&out),
+                "receive --geometry: {f} differs"
+            );
+        }
+    }
     ChainDirs {
         sim,
         observations,
@@ -235,6 +252,50 @@ fn check_chain(signal_level: Option<u32>) {
         assert!(b_std.iter().all(|s| *s < 3e-3), "{b_std:?}");
         assert!(worst < 0.01, "{worst}");
         assert!(a_std.iter().all(|s| *s < 0.1), "{a_std:?}");
+    }
+}
+
+/// `skyforge receive --geometry` runs the chain on its own observations and writes what
+/// `skyforge attitude` writes from them (checked in [`run_chain`]); a geometry naming an
+/// antenna without a recording, or without `--assist`, is refused before anything is
+/// written.
+#[test]
+fn receive_with_a_geometry_writes_what_attitude_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let dirs = run_chain(
+        d,
+        20,
+        true,
+        true,
+        "[relative]\nattitude = { method = \"kf\" }\n",
+    );
+    let rows = std::fs::read_to_string(dirs.observations.join("attitude.csv")).unwrap();
+    // The first fix comes after about 13 s of acquisition, pull-in and ephemerides.
+    assert!(rows.lines().filter(|l| l.contains(",fixed,")).count() >= 3, "{rows}");
+    let bad = d.join("bad.toml");
+    let geometry = std::fs::read_to_string(dirs.sim.join("geometry.toml")).unwrap();
+    std::fs::write(&bad, geometry.replace("\"ant3\"", "\"ant9\"")).unwrap();
+    let meta = ["ant1", "ant2", "ant3"].map(|a| {
+        dirs.sim
+            .join(format!("{a}.gps-l1ca.sigmf-meta"))
+            .to_string_lossy()
+            .into_owned()
+    });
+    let nav = dirs.sim.join("nav.rnx").to_string_lossy().into_owned();
+    let bad = bad.to_string_lossy().into_owned();
+    for (extra, expected) in [
+        (vec!["--assist", &nav], "antenna \"ant9\" has no recording"),
+        (vec![], "--geometry needs --assist"),
+    ] {
+        let mut args = vec!["receive"];
+        args.extend(meta.iter().map(String::as_str));
+        args.extend(extra);
+        args.extend(["--geometry", &bad, "--out", "rx2"]);
+        let o = skyforge(&args, d);
+        assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+        assert!(text(&o).contains(expected), "{}", text(&o));
+        assert!(!d.join("rx2").exists());
     }
 }
 

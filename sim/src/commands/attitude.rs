@@ -3,7 +3,8 @@
 //! `DIR/attitude.csv`, `DIR/attitude.h5` and `DIR/ambiguities.csv`; with
 //! `--estimate-geometry` also the geometry offsets of thesis 4.3
 //! (`receiver::geometry_offset::stacked_ukf`) to `DIR/geometry_offsets.{csv,h5}` and the
-//! corrected geometry `DIR/geometry_corrected.toml`.
+//! corrected geometry `DIR/geometry_corrected.toml`. [`Chain`] is the same for `skyforge
+//! receive --geometry`, which runs it on the receiver's own observations.
 
 use crate::BadInput;
 use crate::cli::AttitudeArgs;
@@ -11,130 +12,246 @@ use crate::output::attitude_out::{EpochValues, csv_header, csv_row, integer_rows
 use crate::output::geometry_out::{self, OffsetRow};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_receiver::attitude::BodyGeometry;
 use skyforge_receiver::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
 use skyforge_receiver::relative::config::Constraint;
 use skyforge_receiver::relative::files::{BodyGeometryFile, run_files};
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
-use skyforge_signals::observation::read_obs_file;
+use skyforge_signals::observation::{ObsFile, read_obs_file};
 use std::io::Write;
+use std::path::{Path, PathBuf};
 
 /// Run `skyforge attitude`.
 pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
-    let geometry = BodyGeometryFile::read(&args.geometry).map_err(|e| BadInput(e.to_string()))?;
-    if args.files.len() != geometry.antennas.len() {
+    let chain = Chain::new(
+        &args.geometry,
+        args.config.as_deref(),
+        args.estimate_geometry,
+    )?;
+    if args.files.len() != chain.geometry.antennas.len() {
         return Err(BadInput(format!(
             "{} observation files for the {} antennas of {} (one per antenna, in its order)",
             args.files.len(),
-            geometry.antennas.len(),
+            chain.geometry.antennas.len(),
             args.geometry.display()
         ))
         .into());
     }
-    let mut config = match &args.config {
-        Some(path) => RelativeConfig::read(path).map_err(BadInput)?,
-        None => RelativeConfig::default(),
-    };
-    if args.estimate_geometry {
-        // The integer search must not lean on the geometry being estimated.
-        config.constraint = Constraint::None;
-        println!(
-            "integers   plain LAMBDA (--estimate-geometry: the nominal geometry is not a constraint)"
-        );
-    }
-    let mut offsets = match args.estimate_geometry {
-        false => None,
-        true => Some(offset_estimator(&geometry, &config, &args.geometry)?),
-    };
     let files = args
         .files
         .iter()
         .map(|p| read_obs_file(p).map_err(|e| BadInput(e.to_string())))
         .collect::<Result<Vec<_>, _>>()?;
-    let ephemerides =
-        read_nav_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
-    // The estimator's clock: seconds since the master's first epoch.
-    let start = files
-        .first()
-        .and_then(|f| f.epochs.first())
-        .map_or(hifitime::Epoch::from_gpst_seconds(0.0), |e| e.time);
-    let mut offset_rows = Vec::new();
-    let mut offset_error = None;
+    let ephemerides = read_nav(&args.nav)?;
     let staged = StagedDir::create(&args.out, args.force)?;
-    let path = staged.file("attitude.csv");
-    let ints_path = staged.file("ambiguities.csv");
-    let create = |p: &std::path::Path| {
-        std::fs::File::create(p)
-            .map(std::io::BufWriter::new)
-            .with_context(|| format!("cannot create {}", p.display()))
-    };
-    let (mut csv, mut ints) = (create(&path)?, create(&ints_path)?);
-    let m = geometry.antennas.len() - 1;
-    writeln!(csv, "{}", csv_header(m))?;
-    writeln!(ints, "time_gpst,baseline,signal,sat,reference,integer")?;
-    let (mut epochs, mut fixed, mut attitudes) = (0usize, 0usize, 0usize);
-    let mut write_error = None;
-    let mut values = Vec::new();
-    run_files(&files, ephemerides, &geometry, config, |o| {
-        epochs += 1;
-        if let Ok(e) = &o.result {
-            fixed += usize::from(e.resolution.status == AmbiguityStatus::Fixed);
-            attitudes += usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
-            let whole = e.resolution.status == AmbiguityStatus::Fixed;
-            if let (Some(f), Some(ned), None, true) =
-                (offsets.as_mut(), &e.fixed_ned, &offset_error, whole)
-            {
-                let t_s = (o.time - start).to_seconds();
-                match f.push(t_s, ned.clone()) {
-                    Ok(Step::Updated { chi_square, dof }) => {
-                        offset_rows.extend(f.state().map(|state| OffsetRow {
-                            time: o.time,
-                            state,
-                            chi_square,
-                            dof,
-                        }))
-                    }
-                    Ok(_) => {}
-                    Err(err) => offset_error = Some(format!("{}: {err}", o.time)),
-                }
-            }
-        }
-        let v = EpochValues::of(&o, m);
-        if write_error.is_none() {
-            write_error = writeln!(csv, "{}", csv_row(&v, m))
-                .and_then(|()| write!(ints, "{}", integer_rows(&o)))
+    let summary = chain.run(&files, ephemerides, &staged)?;
+    let dir = staged.commit()?;
+    summary.print(&dir);
+    Ok(())
+}
+
+/// The navigation file at `path`, or a located error.
+pub(crate) fn read_nav(path: &Path) -> anyhow::Result<Vec<BroadcastEphemeris>> {
+    read_nav_file(path).map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+}
+
+/// The chain's set-up: the geometry, the settings and, with `--estimate-geometry`, the
+/// offset estimator; checked before any observation is read.
+pub(crate) struct Chain {
+    geometry: BodyGeometryFile,
+    config: RelativeConfig,
+    offsets: Option<OffsetEstimator>,
+}
+
+/// What the chain did, for the summary lines.
+pub(crate) struct ChainSummary {
+    epochs: usize,
+    fixed: usize,
+    attitudes: usize,
+    /// `--estimate-geometry` was given.
+    estimating: bool,
+    offset_rows: Vec<OffsetRow>,
+}
+
+/// The epoch rows the chain writes as it goes.
+struct EpochWriters {
+    csv: std::io::BufWriter<std::fs::File>,
+    ints: std::io::BufWriter<std::fs::File>,
+    paths: [PathBuf; 2],
+    error: Option<std::io::Error>,
+}
+
+impl EpochWriters {
+    fn create(staged: &StagedDir, m: usize) -> anyhow::Result<Self> {
+        let paths = [staged.file("attitude.csv"), staged.file("ambiguities.csv")];
+        let create = |p: &Path| {
+            std::fs::File::create(p)
+                .map(std::io::BufWriter::new)
+                .with_context(|| format!("cannot create {}", p.display()))
+        };
+        let (mut csv, mut ints) = (create(&paths[0])?, create(&paths[1])?);
+        writeln!(csv, "{}", csv_header(m))?;
+        writeln!(ints, "time_gpst,baseline,signal,sat,reference,integer")?;
+        Ok(Self {
+            csv,
+            ints,
+            paths,
+            error: None,
+        })
+    }
+
+    /// One epoch's rows; the first write error is kept for [`Self::finish`].
+    fn write(
+        &mut self,
+        v: &EpochValues,
+        o: &skyforge_receiver::relative::files::EpochOutcome,
+        m: usize,
+    ) {
+        if self.error.is_none() {
+            self.error = writeln!(self.csv, "{}", csv_row(v, m))
+                .and_then(|()| write!(self.ints, "{}", integer_rows(o)))
                 .err();
         }
-        values.push(v);
-    })
-    .map_err(|e| BadInput(e.to_string()))?;
-    if let Some(e) = write_error {
-        return Err(e).with_context(|| format!("cannot write {}", path.display()));
     }
-    for (w, p) in [(csv, &path), (ints, &ints_path)] {
-        w.into_inner()
-            .map_err(|e| e.into_error())
-            .with_context(|| format!("cannot write {}", p.display()))?;
-    }
-    let h5_path = staged.file("attitude.h5");
-    write_h5(&h5_path, &values, m)
-        .with_context(|| format!("cannot write {}", h5_path.display()))?;
-    if let Some(f) = &offsets {
-        if let Some(e) = offset_error {
-            return Err(BadInput(format!("geometry offsets: {e}")).into());
+
+    fn finish(self) -> anyhow::Result<()> {
+        let [csv_path, ints_path] = self.paths;
+        if let Some(e) = self.error {
+            return Err(e).with_context(|| format!("cannot write {}", csv_path.display()));
         }
-        write_offsets(&staged, &geometry, f, &offset_rows)?;
+        for (w, p) in [(self.csv, &csv_path), (self.ints, &ints_path)] {
+            w.into_inner()
+                .map_err(|e| e.into_error())
+                .with_context(|| format!("cannot write {}", p.display()))?;
+        }
+        Ok(())
     }
-    let dir = staged.commit()?;
-    println!("epochs     {epochs}");
-    println!(
-        "fixed      {fixed} ({:.1} %)",
-        100.0 * fixed as f64 / epochs.max(1) as f64
-    );
-    println!("attitude   {attitudes} epochs");
-    println!("wrote      {}", dir.join("attitude.csv").display());
-    if let Some(last) = offset_rows.last() {
+}
+
+impl Chain {
+    /// Read the geometry and the settings (`config_path`: a TOML file with a `[relative]`
+    /// table). With `estimate_geometry` the integer search is plain LAMBDA: it must not
+    /// lean on the geometry being estimated.
+    pub fn new(
+        geometry_path: &Path,
+        config_path: Option<&Path>,
+        estimate_geometry: bool,
+    ) -> anyhow::Result<Self> {
+        let geometry =
+            BodyGeometryFile::read(geometry_path).map_err(|e| BadInput(e.to_string()))?;
+        let mut config = match config_path {
+            Some(path) => RelativeConfig::read(path).map_err(BadInput)?,
+            None => RelativeConfig::default(),
+        };
+        let offsets = match estimate_geometry {
+            false => None,
+            true => {
+                config.constraint = Constraint::None;
+                Some(offset_estimator(&geometry, &config, geometry_path)?)
+            }
+        };
+        Ok(Self {
+            geometry,
+            config,
+            offsets,
+        })
+    }
+
+    /// The geometry's antenna names, master first.
+    pub fn antennas(&self) -> impl Iterator<Item = &str> {
+        self.geometry.antennas.iter().map(|a| a.name.as_str())
+    }
+
+    /// Run over `files` (one per antenna, geometry order) and write the outputs into
+    /// `staged`.
+    pub fn run(
+        mut self,
+        files: &[ObsFile],
+        ephemerides: Vec<BroadcastEphemeris>,
+        staged: &StagedDir,
+    ) -> anyhow::Result<ChainSummary> {
+        // The estimator's clock: seconds since the master's first epoch.
+        let start = files
+            .first()
+            .and_then(|f| f.epochs.first())
+            .map_or(hifitime::Epoch::from_gpst_seconds(0.0), |e| e.time);
+        let m = self.geometry.antennas.len() - 1;
+        let mut writers = EpochWriters::create(staged, m)?;
+        let mut summary = ChainSummary {
+            epochs: 0,
+            fixed: 0,
+            attitudes: 0,
+            estimating: self.offsets.is_some(),
+            offset_rows: Vec::new(),
+        };
+        let (mut values, mut offset_error) = (Vec::new(), None);
+        let offsets = &mut self.offsets;
+        run_files(files, ephemerides, &self.geometry, self.config, |o| {
+            summary.epochs += 1;
+            if let Ok(e) = &o.result {
+                let whole = e.resolution.status == AmbiguityStatus::Fixed;
+                summary.fixed += usize::from(whole);
+                summary.attitudes +=
+                    usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
+                if let (Some(f), Some(ned), None, true) =
+                    (offsets.as_mut(), &e.fixed_ned, &offset_error, whole)
+                {
+                    match f.push((o.time - start).to_seconds(), ned.clone()) {
+                        Ok(Step::Updated { chi_square, dof }) => {
+                            summary.offset_rows.extend(f.state().map(|state| OffsetRow {
+                                time: o.time,
+                                state,
+                                chi_square,
+                                dof,
+                            }))
+                        }
+                        Ok(_) => {}
+                        Err(err) => offset_error = Some(format!("{}: {err}", o.time)),
+                    }
+                }
+            }
+            let v = EpochValues::of(&o, m);
+            writers.write(&v, &o, m);
+            values.push(v);
+        })
+        .map_err(|e| BadInput(e.to_string()))?;
+        writers.finish()?;
+        let h5_path = staged.file("attitude.h5");
+        write_h5(&h5_path, &values, m)
+            .with_context(|| format!("cannot write {}", h5_path.display()))?;
+        if let Some(f) = &self.offsets {
+            if let Some(e) = offset_error {
+                return Err(BadInput(format!("geometry offsets: {e}")).into());
+            }
+            write_offsets(staged, &self.geometry, f, &summary.offset_rows)?;
+        }
+        Ok(summary)
+    }
+}
+
+impl ChainSummary {
+    /// The summary lines, with the files' final paths under `dir`.
+    pub fn print(&self, dir: &Path) {
+        println!("epochs     {}", self.epochs);
+        println!(
+            "fixed      {} ({:.1} %)",
+            self.fixed,
+            100.0 * self.fixed as f64 / self.epochs.max(1) as f64
+        );
+        println!("attitude   {} epochs", self.attitudes);
+        println!("wrote      {}", dir.join("attitude.csv").display());
+        if !self.estimating {
+            return;
+        }
+        println!(
+            "integers   plain LAMBDA (--estimate-geometry: the nominal geometry is not a constraint)"
+        );
+        let Some(last) = self.offset_rows.last() else {
+            println!("geometry   no update: never four consecutive fixed epochs");
+            return;
+        };
         let (s, p) = (&last.state, &last.state.offsets_covariance_m2);
         for (k, d) in s.offsets_m.iter().enumerate() {
             let sd = |i: usize| 1e3 * p[(3 * k + i, 3 * k + i)].sqrt();
@@ -147,7 +264,7 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
                 sd(0),
                 sd(1),
                 sd(2),
-                offset_rows.len()
+                self.offset_rows.len()
             );
         }
         println!(
@@ -155,14 +272,13 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
             dir.join("geometry_corrected.toml").display()
         );
     }
-    Ok(())
 }
 
 /// The estimator for the file's geometry (two baselines), or a located error.
 fn offset_estimator(
     geometry: &BodyGeometryFile,
     config: &RelativeConfig,
-    path: &std::path::Path,
+    path: &Path,
 ) -> anyhow::Result<OffsetEstimator> {
     let positions = geometry.positions();
     let baselines: Vec<_> = positions.iter().skip(1).map(|p| p - positions[0]).collect();

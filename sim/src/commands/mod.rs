@@ -63,6 +63,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             signal,
             assist,
             config,
+            geometry,
+            attitude_config,
             out,
             force,
         } => receive::receive(&receive::ReceiveArgs {
@@ -70,6 +72,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             files,
             assist,
             config,
+            geometry,
+            attitude_config,
             out,
             force,
         }),

@@ -1,6 +1,7 @@
 //! `skyforge receive`: run the bundled receiver over sample recordings.
 
 use crate::BadInput;
+use crate::commands::attitude::{Chain, read_nav};
 use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
@@ -9,6 +10,7 @@ use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::format::parse_format;
 use skyforge_receiver::pipeline::ReceiverSummary;
 use skyforge_receiver::session::{Assistance, ReceiveSession, SessionError, read_config};
+use skyforge_signals::observation::read_obs_file;
 use skyforge_signals::signal::Signal;
 use std::path::PathBuf;
 
@@ -19,6 +21,10 @@ pub struct ReceiveArgs {
     pub params: InputParams,
     pub assist: Option<PathBuf>,
     pub config: Option<PathBuf>,
+    /// Body geometry: run the attitude chain on the receiver's observations.
+    pub geometry: Option<PathBuf>,
+    /// The chain's settings (a TOML file with a `[relative]` table).
+    pub attitude_config: Option<PathBuf>,
     pub out: PathBuf,
     pub force: bool,
 }
@@ -70,6 +76,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     };
     let mut session = ReceiveSession::open(&args.files, &args.params, &assistance, config)
         .map_err(session_error)?;
+    let chain = attitude_chain(args, session.antenna_names())?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let mut outputs = ReceiverOutputs::create(
         &staged.file(""),
@@ -95,9 +102,50 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let written = outputs.finish()?;
     print_summary(&summary, session.antenna_names(), &written);
+    let chain_summary = match (chain, &args.assist) {
+        (Some(chain), Some(nav)) => {
+            let files = chain
+                .antennas()
+                .map(|a| {
+                    let path = staged.file(&format!("{a}.obs.rnx"));
+                    read_obs_file(&path).map_err(|e| BadInput(e.to_string()))
+                })
+                .collect::<Result<Vec<_>, _>>()?;
+            Some(chain.run(&files, read_nav(nav)?, &staged)?)
+        }
+        _ => None,
+    };
     let dir = staged.commit()?;
     println!("receive: wrote {}", dir.display());
+    if let Some(s) = chain_summary {
+        s.print(&dir);
+    }
     Ok(())
+}
+
+/// With `--geometry`, the attitude chain to run on the observations once written; its
+/// antennas must be the recordings' (in any order), and the ephemerides come from
+/// `--assist`.
+fn attitude_chain(args: &ReceiveArgs, antennas: &[String]) -> anyhow::Result<Option<Chain>> {
+    let Some(geometry) = &args.geometry else {
+        return Ok(None);
+    };
+    if args.assist.is_none() {
+        return Err(BadInput(
+            "--geometry needs --assist NAV: the attitude chain reads the ephemerides from a navigation file".into(),
+        )
+        .into());
+    }
+    let chain = Chain::new(geometry, args.attitude_config.as_deref(), false)?;
+    if let Some(missing) = chain.antennas().find(|a| !antennas.iter().any(|n| n == a)) {
+        return Err(BadInput(format!(
+            "{}: antenna {missing:?} has no recording (recorded: {})",
+            geometry.display(),
+            antennas.join(", ")
+        ))
+        .into());
+    }
+    Ok(Some(chain))
 }
 
 pub(crate) fn print_summary(

@@ -1,7 +1,8 @@
 //! The outputs of `skyforge attitude --estimate-geometry`: the geometry-offset estimate
 //! after every update of the thesis 4.3 UKF as a row of `geometry_offsets.csv` and of
 //! `geometry_offsets.h5` (schema in docs/geometry.md), and the corrected body geometry
-//! `geometry_corrected.toml` that `skyforge attitude --geometry` reads.
+//! `geometry_corrected.toml` that `skyforge attitude --geometry` and `skyforge receive
+//! --geometry` read.
 
 use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
