@@ -272,7 +272,10 @@ fn receive_with_a_geometry_writes_what_attitude_writes() {
     );
     let rows = std::fs::read_to_string(dirs.observations.join("attitude.csv")).unwrap();
     // The first fix comes after about 13 s of acquisition, pull-in and ephemerides.
-    assert!(rows.lines().filter(|l| l.contains(",fixed,")).count() >= 3, "{rows}");
+    assert!(
+        rows.lines().filter(|l| l.contains(",fixed,")).count() >= 3,
+        "{rows}"
+    );
     let bad = d.join("bad.toml");
     let geometry = std::fs::read_to_string(dirs.sim.join("geometry.toml")).unwrap();
     std::fs::write(&bad, geometry.replace("\"ant3\"", "\"ant9\"")).unwrap();

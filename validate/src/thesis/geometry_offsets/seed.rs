@@ -1,0 +1,282 @@
+//! One seed of T-4.3: the observation-level run, the chain's fixed baselines, the
+//! estimation run (the printed 22-state UKF, and the default estimator for SkyForge's own
+//! rows) and the comparison run (the 6-state UKF on `B0` and on the corrected `B0'`).
+
+use super::{COMPARISON_EPOCHS, ESTIMATION_EPOCHS, SCENARIO};
+use crate::attitude::compare::attitude_errors_deg;
+use crate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
+use crate::attitude::seeds::SEEDS;
+use crate::attitude::{ObservationRun, observation_run};
+use crate::thesis::ValidateError;
+use crate::thesis::attitude_runs::std;
+use rayon::prelude::*;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_receiver::attitude::filter::{AttitudeConfig, AttitudeFilter, THESIS_KAPPA};
+use skyforge_receiver::attitude::ukf::UkfAttitude;
+use skyforge_receiver::attitude::{BodyGeometry, wrap_diff};
+use skyforge_receiver::geometry_offset::shape::{align, invariants};
+use skyforge_receiver::geometry_offset::stacked_ukf::{
+    OffsetConfig, OffsetEstimator, OffsetState, Orientation, Step, THESIS_OFFSET_RATE_PSD,
+    THESIS_RATE_PSD, WindowWeighting,
+};
+use skyforge_receiver::relative::RelativeConfig;
+use skyforge_receiver::relative::config::Constraint;
+
+/// Thesis 4.3.4: the cut-off above the local horizon (deg).
+const CUT_OFF_DEG: f64 = 5.0;
+
+/// Per-axis error series (deg or deg/s).
+#[derive(Default)]
+pub(super) struct AxisSeries([Vec<f64>; 3]);
+
+impl AxisSeries {
+    fn push(&mut self, e: [f64; 3]) {
+        for (s, v) in self.0.iter_mut().zip(e) {
+            s.push(v);
+        }
+    }
+
+    /// The std of each axis.
+    pub fn std(&self) -> [f64; 3] {
+        [0, 1, 2].map(|i| std(&self.0[i]))
+    }
+}
+
+/// The printed filter's errors at every update of the estimation run.
+#[derive(Default)]
+pub(super) struct Estimation {
+    pub xi: AxisSeries,
+    /// The `xi_t` error against the true attitude of the antennas turned to the
+    /// estimate's orientation (what the baselines determine).
+    pub xi_turned: AxisSeries,
+    pub rates: AxisSeries,
+    /// Errors of the six offsets (m).
+    pub offsets: [Vec<f64>; 6],
+    /// The same against the true geometry turned to the estimate's orientation (m).
+    pub offsets_turned: [Vec<f64>; 6],
+}
+
+impl Estimation {
+    /// One update's state `s` against the truth (`b0` nominal, `b_true` true baselines).
+    fn record(
+        &mut self,
+        s: &OffsetState,
+        b0: &[Vec3; 2],
+        b_true: &[Vec3; 2],
+        truth: &[YawPitchRoll],
+    ) {
+        let Some(k) = whole(s.oldest_t_s) else { return };
+        let est = [b0[0] + s.offsets_m[0], b0[1] + s.offsets_m[1]];
+        let Ok(turn) = align(b_true, &est) else {
+            return;
+        };
+        if let Some(t) = truth.get(k) {
+            let turned = YawPitchRoll::from_c_ref_body(&(turn.rotation * t.c_ref_body()));
+            self.xi.push(attitude_errors_deg(&s.window[0], t));
+            self.xi_turned
+                .push(attitude_errors_deg(&s.window[0], &turned));
+        }
+        if let Some(tr) = true_rate(truth, k) {
+            self.rates.push(rate_errors_deg(&s.rates_rad_s, &tr));
+        }
+        let (turned, est, truth) = (six(&turn.baselines), six(&est), six(b_true));
+        for i in 0..6 {
+            self.offsets[i].push(est[i] - truth[i]);
+            self.offsets_turned[i].push(est[i] - turned[i]);
+        }
+    }
+}
+
+/// What one seed gave.
+pub(super) struct SeedResult {
+    pub estimation: Estimation,
+    /// The final shape (lengths, dot product) error of the printed filter (m, m, m^2).
+    pub shape_final: [f64; 3],
+    /// The default estimator's final offsets against the truth turned to the nominal
+    /// orientation (m).
+    pub pinned_final: [f64; 6],
+    pub after: AxisSeries,
+    pub before: AxisSeries,
+    pub rate_after: AxisSeries,
+    pub rate_before: AxisSeries,
+    /// Fixed epochs in the estimation and the comparison run.
+    pub fixed: [usize; 2],
+}
+
+/// The chain's settings: plain LAMBDA (the thesis's method, and one that does not lean on
+/// the wrong nominal geometry), the cut-off of 4.3.4, LS attitude (unused here).
+fn chain_config() -> RelativeConfig {
+    RelativeConfig {
+        constraint: Constraint::None,
+        elevation_mask_deg: Some(CUT_OFF_DEG),
+        ..RelativeConfig::default()
+    }
+}
+
+/// Thesis 4.3.4's filter as printed.
+fn thesis_offset_config() -> OffsetConfig {
+    OffsetConfig {
+        rate_psd_rad2_s3: [THESIS_RATE_PSD; 3],
+        offset_rate_psd_m2_s3: THESIS_OFFSET_RATE_PSD,
+        kappa: THESIS_KAPPA,
+        window_weighting: WindowWeighting::Thesis,
+        orientation: Orientation::Free,
+        ..OffsetConfig::default()
+    }
+}
+
+/// The true rates at second `k` (rad/s): central difference of the 1 s truth.
+fn true_rate(truth: &[YawPitchRoll], k: usize) -> Option<Vec3> {
+    let (a, b) = (truth.get(k.checked_sub(1)?)?, truth.get(k + 1)?);
+    Some(
+        Vec3::new(
+            wrap_diff(b.yaw_rad, a.yaw_rad),
+            wrap_diff(b.pitch_rad, a.pitch_rad),
+            wrap_diff(b.roll_rad, a.roll_rad),
+        ) / 2.0,
+    )
+}
+
+fn rate_errors_deg(est: &Vec3, truth: &Vec3) -> [f64; 3] {
+    [0, 1, 2].map(|i| (est[i] - truth[i]).to_degrees())
+}
+
+fn whole(t_s: f64) -> Option<usize> {
+    (t_s >= 0.0).then(|| t_s.round() as usize)
+}
+
+fn six(b: &[Vec3; 2]) -> [f64; 6] {
+    [0, 1, 2, 3, 4, 5].map(|i| b[i / 3][i % 3])
+}
+
+/// The body baselines of `run`: nominal and true (antenna minus the master).
+fn body_baselines(run: &ObservationRun) -> ([Vec3; 2], [Vec3; 2]) {
+    let rel = |p: &[Vec3]| [p[1] - p[0], p[2] - p[0]];
+    (rel(&run.nominal_body_m), rel(&run.true_body_m))
+}
+
+/// The estimation run with `config`; records the thesis's series when `record`.
+fn estimate(
+    epochs: &[FixedEpoch],
+    b0: &[Vec3; 2],
+    config: OffsetConfig,
+    mut record: impl FnMut(&OffsetEstimator),
+) -> Result<(OffsetEstimator, usize), ValidateError> {
+    let fail = |e: &dyn std::fmt::Display| ValidateError::Pipeline(format!("{SCENARIO}: {e}"));
+    let nominal = BodyGeometry::new(b0).map_err(|e| fail(&e))?;
+    let mut f = OffsetEstimator::new(config, nominal).map_err(|e| fail(&e))?;
+    let mut fixed = 0;
+    for e in epochs.iter().take(ESTIMATION_EPOCHS) {
+        let Some(b) = &e.baselines else { continue };
+        fixed += 1;
+        if let Step::Updated { .. } = f.push(e.t_s, b.clone()).map_err(|e| fail(&e))? {
+            record(&f);
+        }
+    }
+    Ok((f, fixed))
+}
+
+/// The comparison run: the 6-state UKF on `geometry`, errors per fixed epoch.
+fn compare(
+    epochs: &[FixedEpoch],
+    geometry: BodyGeometry,
+    truth: &[YawPitchRoll],
+) -> Result<(AxisSeries, AxisSeries, usize), ValidateError> {
+    let fail = |e: &dyn std::fmt::Display| ValidateError::Pipeline(format!("{SCENARIO}: {e}"));
+    let config = AttitudeConfig {
+        rate_psd_rad2_s3: [THESIS_RATE_PSD; 3],
+        kappa: THESIS_KAPPA,
+        ..AttitudeConfig::default()
+    };
+    let mut ukf = UkfAttitude::new(&config, geometry, None).map_err(|e| fail(&e))?;
+    let (mut att, mut rates, mut fixed, mut last) =
+        (AxisSeries::default(), AxisSeries::default(), 0, None);
+    for e in epochs
+        .iter()
+        .skip(ESTIMATION_EPOCHS)
+        .take(COMPARISON_EPOCHS)
+    {
+        let Some(b) = &e.baselines else { continue };
+        fixed += 1;
+        if let Some(t0) = last {
+            ukf.predict(e.t_s - t0).map_err(|e| fail(&e))?;
+        }
+        last = Some(e.t_s);
+        let info = ukf.update(b).map_err(|e| fail(&e))?;
+        let (Some(state), Some(k)) = (ukf.state(), whole(e.t_s)) else {
+            continue;
+        };
+        if info.initialised {
+            continue;
+        }
+        if let Some(t) = truth.get(k) {
+            att.push(attitude_errors_deg(&state.angles, t));
+        }
+        if let (Some(r), Some(tr)) = (state.rates_rad_s, true_rate(truth, k)) {
+            rates.push(rate_errors_deg(&r, &tr));
+        }
+    }
+    Ok((att, rates, fixed))
+}
+
+/// The default estimator's final offsets against the true geometry turned to the
+/// nominal orientation (m).
+fn pinned_error(
+    epochs: &[FixedEpoch],
+    b0: &[Vec3; 2],
+    b_true: &[Vec3; 2],
+) -> Result<[f64; 6], ValidateError> {
+    let fail = |e: &dyn std::fmt::Display| ValidateError::Pipeline(format!("{SCENARIO}: {e}"));
+    let (pinned, _) = estimate(epochs, b0, OffsetConfig::default(), |_| {})?;
+    let g = pinned.corrected_geometry().map_err(|e| fail(&e))?;
+    let est = six(&[g.baselines()[0], g.baselines()[1]]);
+    let truth = six(&align(b_true, b0).map_err(|e| fail(&e))?.baselines);
+    Ok([0, 1, 2, 3, 4, 5].map(|i| est[i] - truth[i]))
+}
+
+/// One seed of the scenario.
+fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, ValidateError> {
+    let fail = |e: &dyn std::fmt::Display| {
+        ValidateError::Pipeline(format!("{SCENARIO} seed {}: {e}", scenario.seed))
+    };
+    let run = observation_run(scenario).map_err(|e| fail(&e))?;
+    let epochs = fixed_baselines(&run, chain_config()).map_err(|e| fail(&e))?;
+    let truth = true_attitudes(&run);
+    let (b0, b_true) = body_baselines(&run);
+    let mut estimation = Estimation::default();
+    let (thesis, fixed_estimation) = estimate(&epochs, &b0, thesis_offset_config(), |f| {
+        if let Some(s) = f.state() {
+            estimation.record(&s, &b0, &b_true, &truth);
+        }
+    })?;
+    let corrected = thesis.corrected_geometry().map_err(|e| fail(&e))?;
+    let shape =
+        invariants(&[corrected.baselines()[0], corrected.baselines()[1]]) - invariants(&b_true);
+    let nominal = BodyGeometry::new(&b0).map_err(|e| fail(&e))?;
+    let (after, rate_after, fixed_comparison) = compare(&epochs, corrected, &truth)?;
+    let (before, rate_before, _) = compare(&epochs, nominal, &truth)?;
+    Ok(SeedResult {
+        estimation,
+        shape_final: [shape.x, shape.y, shape.z],
+        pinned_final: pinned_error(&epochs, &b0, &b_true)?,
+        after,
+        before,
+        rate_after,
+        rate_before,
+        fixed: [fixed_estimation, fixed_comparison],
+    })
+}
+
+/// The scenario on [`SEEDS`] seeds (its own and the next ones), in parallel.
+pub(super) fn runs() -> Result<Vec<SeedResult>, ValidateError> {
+    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
+    (0..SEEDS)
+        .into_par_iter()
+        .map(|k| {
+            let mut s = scenario.clone();
+            s.seed = scenario.seed + k;
+            run_seed(&s)
+        })
+        .collect()
+}
