@@ -304,3 +304,18 @@ fn epochs_off_the_grid_and_wrong_geometries_are_errors() {
     };
     assert!(bad.check().is_err());
 }
+
+#[test]
+fn config_from_toml_as_docs_geometry_md_writes_it() {
+    let doc: OffsetConfig = toml::from_str(
+        "rate_psd_rad2_s3 = [1e-9, 1e-9, 1e-9]\noffset_rate_psd_m2_s3 = 1e-15\nperiod_s = 1.0\nkappa = 0.5\ninitial_offset_sigma_m = 0.05\ninitial_rate_sigma_rad_s = 0.01\ninitial_offset_rate_sigma_m_s = 1e-6\nwindow_weighting = \"once\"\norientation = \"nominal\"\n",
+    )
+    .unwrap();
+    assert_eq!(doc, OffsetConfig::default());
+    let thesis: OffsetConfig =
+        toml::from_str("window_weighting = \"thesis\"\norientation = \"free\"\n").unwrap();
+    assert_eq!(thesis.window_weighting, WindowWeighting::Thesis);
+    assert_eq!(thesis.orientation, Orientation::Free);
+    assert!(toml::from_str::<OffsetConfig>("orientation = \"body\"").is_err());
+    assert!(toml::from_str::<OffsetConfig>("kapa = 0.5").is_err());
+}
