@@ -1,7 +1,8 @@
 //! `skyforge attitude --estimate-geometry` end to end: the bundled thesis/t-4.3 (antennas
 //! offset from the nominal B0 by the thesis's dB0) shortened to 600 s at the observation
 //! level -> `skyforge run` -> the geometry-offset UKF of thesis 4.3 -> its CSV, HDF5 and
-//! corrected geometry, which `skyforge attitude --geometry` then reads.
+//! corrected geometry, which `skyforge attitude --geometry` then reads, and the report's
+//! figures of it.
 
 mod support;
 
@@ -86,6 +87,15 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
         "{:?}",
         sigma.collect::<Vec<_>>()
     );
+
+    // The report draws the offsets' errors against the truth (thesis figs. 4.3-4/4.3-5).
+    let printed = skyforge_ok(&["report", "run", "--attitude", "att", "--out", "r.html"], d);
+    assert!(printed.contains("9 figures"), "{printed}");
+    let page = std::fs::read_to_string(d.join("r.html")).unwrap();
+    for b in [1, 2] {
+        assert!(page.contains(&format!("Baseline {b} geometry-offset error")), "{b}");
+        assert!(page.contains(&format!("Baseline {b} offset estimate minus the true offset")));
+    }
 
     // The corrected geometry is a geometry file `attitude` reads.
     let mut again = vec!["attitude"];

@@ -1,7 +1,8 @@
 //! Figures of the attitude chain against the truth (`skyforge attitude`'s output compared
 //! as `skyforge validate attitude` does): each baseline's N, E, D error and the yaw,
 //! pitch and roll errors against time at the fixed epochs (thesis figures 5.4-1 to 5.4-6),
-//! beside the standard deviations of thesis tables 5.4-4 and 5.4-5.
+//! beside the standard deviations of thesis tables 5.4-4 and 5.4-5; and, when the chain
+//! estimated the geometry offsets, their errors ([`super::geometry`]).
 
 use super::chart::{Chart, Series};
 use super::page::{Figure, Section};
@@ -52,6 +53,9 @@ pub fn section(truth: &Path, observations: &Path, attitude: &Path) -> Result<Sec
         section.figures.push(figure(&chart, caption, attitude)?);
     }
     section.figures.push(attitude_figure(&c, &v, attitude)?);
+    section
+        .figures
+        .extend(super::geometry::figures(&c, attitude)?);
     Ok(section)
 }
 

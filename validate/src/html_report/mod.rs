@@ -5,6 +5,7 @@
 
 pub mod attitude;
 pub mod chart;
+pub mod geometry;
 pub mod page;
 pub mod results;
 pub mod study;
