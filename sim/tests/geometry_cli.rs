@@ -89,12 +89,20 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     );
 
     // The report draws the offsets' errors against the truth (thesis figs. 4.3-4/4.3-5).
-    let printed = skyforge_ok(&["report", "run", "--attitude", "att", "--out", "r.html"], d);
+    let printed = skyforge_ok(
+        &["report", "run", "--attitude", "att", "--out", "r.html"],
+        d,
+    );
     assert!(printed.contains("9 figures"), "{printed}");
     let page = std::fs::read_to_string(d.join("r.html")).unwrap();
     for b in [1, 2] {
-        assert!(page.contains(&format!("Baseline {b} geometry-offset error")), "{b}");
-        assert!(page.contains(&format!("Baseline {b} offset estimate minus the true offset")));
+        assert!(
+            page.contains(&format!("Baseline {b} geometry-offset error")),
+            "{b}"
+        );
+        assert!(page.contains(&format!(
+            "Baseline {b} offset estimate minus the true offset"
+        )));
     }
 
     // The corrected geometry is a geometry file `attitude` reads.
