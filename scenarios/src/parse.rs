@@ -9,6 +9,7 @@ use crate::schema::{GnssConfig, Scenario, ScenarioFile, TimeSpan, default_conste
 use serde::Deserialize;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::Invalid;
+use skyforge_signals::obs_model::Level;
 use std::path::{Path, PathBuf};
 
 /// Largest scenario file read.
@@ -27,7 +28,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
     };
     let start =
         checks::parse_start(&file.time.start).map_err(|e| locate_invalid(text, source, e))?;
-    let scenario = Scenario {
+    let mut scenario = Scenario {
         name: file.name,
         description: file.description,
         seed: file.seed,
@@ -46,9 +47,32 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),
     };
+    observation_level_truth_rate(&mut scenario, text);
     checks::check(&scenario).map_err(|e| locate_invalid(text, source, e))?;
     Ok(scenario)
 }
+
+/// At the observation level no sample is made, and the signal truth serves only its
+/// whole-second records (the observation truth RINEX): unless the file sets
+/// `[signal] truth_rate_hz`, it is written at 1 Hz there, not at the signal level's 1 kHz
+/// (which over hours fills disks: about 3 GB per antenna-hour with 10 satellites).
+fn observation_level_truth_rate(scenario: &mut Scenario, text: &str) {
+    let explicit = text
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|t| t.get("signal")?.get("truth_rate_hz").cloned())
+        .is_some();
+    if let (Some(signal), false, Level::Observation) = (
+        scenario.signal.as_mut(),
+        explicit,
+        scenario.observation.level,
+    ) {
+        signal.truth_rate_hz = OBSERVATION_LEVEL_TRUTH_RATE_HZ;
+    }
+}
+
+/// The signal truth's default rate at the observation level (Hz).
+pub const OBSERVATION_LEVEL_TRUTH_RATE_HZ: u32 = 1;
 
 /// Read, parse and check the scenario file at `path` (relative paths inside it are
 /// resolved from its directory).

@@ -120,3 +120,21 @@ fn resolve_prefers_files_and_lists_bundled_names() {
         "{err}"
     );
 }
+
+#[test]
+fn the_signal_truth_defaults_to_whole_seconds_at_the_observation_level() {
+    // thesis/t-5.4-3 is observation-level and does not set the rate; thesis/t-4.3 sets it
+    // explicitly; thesis/t-5.4-2 is signal-level.
+    let rate = |name: &str| resolve(name).unwrap().signal.unwrap().truth_rate_hz;
+    assert_eq!(rate("thesis/t-5.4-3"), 1);
+    assert_eq!(rate("thesis/t-4.3"), 1);
+    assert_eq!(rate("thesis/t-5.4-2"), 1000);
+    let text = bundled()
+        .iter()
+        .find(|b| b.name == "thesis/t-5.4-3")
+        .unwrap()
+        .text
+        .replace("cn0_dbhz = 45.0", "cn0_dbhz = 45.0\ntruth_rate_hz = 100");
+    let s = skyforge_scenarios::parse(&text, "explicit", std::path::Path::new(".")).unwrap();
+    assert_eq!(s.signal.unwrap().truth_rate_hz, 100);
+}
