@@ -379,7 +379,7 @@ fn jacobian_matches_central_differences() {
             .unwrap()
             .predict(&YawPitchRoll::new(x[0], x[1], x[2]))
     };
-    let h = joint_ls::jacobian(&model.deformed(&g, &p).unwrap(), &model, &xi);
+    let h = joint_ls::jacobian(&model.deformed(&g, &p).unwrap(), &model, &xi).unwrap();
     let x0 = [xi.yaw_rad, xi.pitch_rad, xi.roll_rad, p[0], p[1]];
     for k in 0..5 {
         let (mut plus, mut minus) = (x0, x0);

@@ -21,10 +21,10 @@ fn the_measurement_solved_alone_is_the_fixed_solution() {
     let (float, integers, fixed) = epoch(&scene, &sat_clocks, &mut rng);
     let m = BaselineMeasurement::new(&float, &integers).unwrap();
     // Generalised least squares of Z = H vec(B) + r, Cov(r) = R.
-    let w = m.r.clone().try_inverse().unwrap();
-    let normal = m.h.transpose() * &w * &m.h;
+    let w = m.r().clone().try_inverse().unwrap();
+    let normal = m.h().transpose() * &w * m.h();
     let cov = normal.clone().try_inverse().unwrap();
-    let b = &cov * m.h.transpose() * &w * &m.z;
+    let b = &cov * m.h().transpose() * &w * m.z();
     let expected = nalgebra::DVector::from_column_slice(fixed.baselines.as_slice());
     // The fixed solution conditions the float one, whose ambiguities are ~1e6 cycles: they
     // agree to a few 1e-7 m (rounding), a thousandth of the millimetres of noise.

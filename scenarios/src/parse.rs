@@ -20,6 +20,7 @@ pub const SCENARIO_MAX_BYTES: u64 = 1 << 20;
 /// check that needs no file access; [`Scenario::build`] does the rest.
 pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, ScenarioError> {
     let doc = Document::parse(text).map_err(|e| syntax_error(text, source, &e))?;
+    let explicit_truth_rate = doc.number_at("signal.truth_rate_hz").is_some();
     let file = ScenarioFile::deserialize(toml::de::Deserializer::from(doc.into_root()))
         .map_err(|e| schema_error(text, source, &e))?;
     let gnss = GnssConfig {
@@ -47,7 +48,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),
     };
-    observation_level_truth_rate(&mut scenario, text);
+    observation_level_truth_rate(&mut scenario, explicit_truth_rate);
     checks::check(&scenario).map_err(|e| locate_invalid(text, source, e))?;
     Ok(scenario)
 }
@@ -56,12 +57,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
 /// whole-second records (the observation truth RINEX): unless the file sets
 /// `[signal] truth_rate_hz`, it is written at 1 Hz there, not at the signal level's 1 kHz
 /// (which over hours fills disks: about 3 GB per antenna-hour with 10 satellites).
-fn observation_level_truth_rate(scenario: &mut Scenario, text: &str) {
-    let explicit = text
-        .parse::<toml::Table>()
-        .ok()
-        .and_then(|t| t.get("signal")?.get("truth_rate_hz").cloned())
-        .is_some();
+fn observation_level_truth_rate(scenario: &mut Scenario, explicit: bool) {
     if let (Some(signal), false, Level::Observation) = (
         scenario.signal.as_mut(),
         explicit,

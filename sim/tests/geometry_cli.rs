@@ -22,23 +22,25 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     let d = dir.path();
     let scenario = short_scenario(d, "thesis/t-4.3", 600);
     skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
-    let obs = [
-        "run/observations/ant1.obs.rnx",
-        "run/observations/ant2.obs.rnx",
-        "run/observations/ant3.obs.rnx",
-    ];
-    let mut args = vec!["attitude"];
-    args.extend(obs);
-    args.extend([
-        "--nav",
-        "run/nav.rnx",
-        "--geometry",
+    // `skyforge attitude` on the run's observations with `geometry` and `extra`.
+    let attitude = |geometry: &str, extra: &[&str]| {
+        let mut args = vec![
+            "attitude",
+            "run/observations/ant1.obs.rnx",
+            "run/observations/ant2.obs.rnx",
+            "run/observations/ant3.obs.rnx",
+            "--nav",
+            "run/nav.rnx",
+            "--geometry",
+            geometry,
+        ];
+        args.extend(extra);
+        skyforge_ok(&args, d)
+    };
+    let printed = attitude(
         "run/geometry.toml",
-        "--estimate-geometry",
-        "--out",
-        "att",
-    ]);
-    let printed = skyforge_ok(&args, d);
+        &["--estimate-geometry", "--out", "att"],
+    );
     assert!(printed.contains("plain LAMBDA"), "{printed}");
 
     // The truth: the scenario's true positions (nominal + offset_body_m), turned to the
@@ -106,17 +108,7 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     }
 
     // The corrected geometry is a geometry file `attitude` reads.
-    let mut again = vec!["attitude"];
-    again.extend(obs);
-    again.extend([
-        "--nav",
-        "run/nav.rnx",
-        "--geometry",
-        "att/geometry_corrected.toml",
-        "--out",
-        "att2",
-    ]);
-    skyforge_ok(&again, d);
+    attitude("att/geometry_corrected.toml", &["--out", "att2"]);
 }
 
 #[test]

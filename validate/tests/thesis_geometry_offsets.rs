@@ -6,20 +6,15 @@
 //! release build, longer here. The table is printed (`cargo test -p skyforge-validate
 //! --test thesis_geometry_offsets -- --ignored --nocapture`).
 
-use skyforge_validate::report::{Verdict, print_table};
-use skyforge_validate::thesis::{Options, run};
+mod thesis_support;
+
+use skyforge_validate::report::Verdict;
+use thesis_support::table_alone;
 
 #[test]
 #[ignore = "eight runs of 55247 observation-level epochs (minutes)"]
 fn t_4_3_writes_every_row_with_finite_values() {
-    let opts = Options {
-        only: vec!["T-4.3".into()],
-        data_dir: None,
-    };
-    let mut started = Vec::new();
-    let rows = run(&opts, |t| started.push(t.to_string())).unwrap();
-    print_table(&rows, &mut std::io::stdout()).unwrap();
-    assert_eq!(started, ["T-4.3"]);
+    let rows = table_alone("T-4.3");
     // 3 + 3 (tables 4.3-2, 4.3-3), 6 offsets + 2 lengths + 6 held offsets (4.3-4),
     // 3 + 3 + 3 ratios (4.3-5), 3 + 3 (4.3-6).
     assert_eq!(rows.len(), 35, "{rows:#?}");

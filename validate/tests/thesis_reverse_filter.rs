@@ -5,22 +5,16 @@
 //! a verdict, and every fixed integer was the truth's (the notes' counts). The table is
 //! printed (`cargo test -p skyforge-validate --test thesis_reverse_filter -- --nocapture`).
 
-use skyforge_validate::report::print_table;
-use skyforge_validate::thesis::{Options, run};
+mod thesis_support;
+
+use thesis_support::table_alone;
 
 #[test]
 fn t_5_5_writes_every_row_with_finite_values() {
-    let opts = Options {
-        only: vec!["T-5.5".into()],
-        data_dir: None,
-    };
-    let mut started = Vec::new();
-    let rows = run(&opts, |t| started.push(t.to_string())).unwrap();
-    print_table(&rows, &mut std::io::stdout()).unwrap();
+    let rows = table_alone("T-5.5");
     for r in &rows {
         println!("{}: {}", r.row, r.note);
     }
-    assert_eq!(started, ["T-5.5"]);
     // Two baselines x three ECEF components x (LS, proposed), three axes x (LS, proposed).
     assert_eq!(rows.len(), 18, "{rows:#?}");
     for r in &rows {

@@ -71,7 +71,8 @@ impl Default for AttitudeConfig {
 impl AttitudeConfig {
     /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        if !settings_ok::<6>(
+        if !settings_ok(
+            6,
             &self.rate_psd_rad2_s3,
             self.initial_rate_sigma_rad_s,
             self.kappa,
@@ -84,14 +85,14 @@ impl AttitudeConfig {
     }
 }
 
-/// The settings a constant-rate filter of `N` states shares: spectral densities `S`
-/// finite and >= 0, the starting rate sigma finite and > 0, `N + kappa > 0`.
-pub(crate) fn settings_ok<const N: usize>(psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
+/// The settings a constant-rate filter of `states` states shares: spectral densities `S`
+/// finite and >= 0, the starting rate sigma finite and > 0, `states + kappa > 0`.
+pub(crate) fn settings_ok(states: usize, psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
     psd.iter().all(|s| s.is_finite() && *s >= 0.0)
         && rate_sigma.is_finite()
         && rate_sigma > 0.0
         && kappa.is_finite()
-        && N as f64 + kappa > 0.0
+        && states as f64 + kappa > 0.0
 }
 
 /// A filter's state.

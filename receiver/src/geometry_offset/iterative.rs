@@ -223,10 +223,8 @@ fn yaw_from_longitudinal(
             "baseline 12 {r12_l:?} is vertical in the l-frame: yaw is undetermined (eq. 4.2-11)"
         )));
     }
-    let sol = normal
-        .try_inverse()
-        .map(|n_inv| n_inv * a.transpose() * rhs)
-        .ok_or_else(|| AttitudeError::Singular("eq. 4.2-11 normal matrix".into()))?;
+    // A^T A = (x^2 + y^2) I: the LS solution is A^T rhs over half the trace.
+    let sol = a.transpose() * rhs / (0.5 * normal.trace());
     Ok(sol[0].atan2(sol[1]))
 }
 

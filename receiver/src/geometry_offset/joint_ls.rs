@@ -104,12 +104,25 @@ impl DeformationModel {
         self.patterns.is_empty()
     }
 
+    /// Error unless the patterns have as many columns as `nominal` has baselines.
+    fn check_columns(&self, nominal: &BodyGeometry) -> Result<(), AttitudeError> {
+        let (columns, m) = (self.patterns.first().map_or(0, Vec::len), nominal.len());
+        if columns == m {
+            Ok(())
+        } else {
+            Err(AttitudeError::Geometry(format!(
+                "the deformation patterns have {columns} columns, B_0 has {m}"
+            )))
+        }
+    }
+
     /// `B_0' = B_0 + sum_j p_j P_j`, checked as a [`BodyGeometry`]. `p` has k values.
     pub fn deformed(
         &self,
         nominal: &BodyGeometry,
         p: &[f64],
     ) -> Result<BodyGeometry, AttitudeError> {
+        self.check_columns(nominal)?;
         let columns: Vec<Vec3> = nominal
             .baselines()
             .iter()
@@ -149,12 +162,14 @@ pub struct JointEstimate {
 
 /// Thesis eqs. 4.2-14, 4.2-19: `H = d vec(F(X)) / dX` (3m x (3 + k)) at `xi` and the
 /// deformed geometry `deformed` (= `B_0 + dB_0(p)`): the attitude columns
-/// `(B_0'^T (x) I_3) J(xi)`, then `vec(R(xi) P_j)`.
+/// `(B_0'^T (x) I_3) J(xi)`, then `vec(R(xi) P_j)`. An error unless `model`'s patterns
+/// have as many columns as `deformed`.
 pub fn jacobian(
     deformed: &BodyGeometry,
     model: &DeformationModel,
     xi: &YawPitchRoll,
-) -> DMatrix<f64> {
+) -> Result<DMatrix<f64>, AttitudeError> {
+    model.check_columns(deformed)?;
     let m = deformed.len();
     let r = xi.c_body_ref();
     let mut h = DMatrix::<f64>::zeros(3 * m, 3 + model.len());
@@ -166,7 +181,7 @@ pub fn jacobian(
                 .copy_from(&(r * column));
         }
     }
-    h
+    Ok(h)
 }
 
 /// Error unless the normal matrix `n` is observable: positive diagonal and, scaled to unit
@@ -205,7 +220,7 @@ fn normal_equations(
     p: &DVector<f64>,
 ) -> Result<(DMatrix<f64>, DVector<f64>, f64), AttitudeError> {
     let deformed = model.deformed(nominal, p.as_slice())?;
-    let h = jacobian(&deformed, model, xi);
+    let h = jacobian(&deformed, model, xi)?;
     let r = measured.vec() - deformed.predict(xi);
     let w_h = q_chol.solve(&h);
     Ok((
@@ -223,18 +238,8 @@ fn check_sizes(
     measured: &NedBaselines,
 ) -> Result<Cholesky<f64, Dyn>, AttitudeError> {
     let m = nominal.len();
-    if model.patterns()[0].len() != m {
-        return Err(AttitudeError::Geometry(format!(
-            "the deformation patterns have {} columns, B_0 has {m}",
-            model.patterns()[0].len()
-        )));
-    }
-    if measured.len() != m {
-        return Err(AttitudeError::BaselineCount {
-            geometry: m,
-            measured: measured.len(),
-        });
-    }
+    model.check_columns(nominal)?;
+    nominal.check_count(measured)?;
     if 3 + model.len() > 3 * m {
         return Err(AttitudeError::Singular(format!(
             "{} unknowns (3 angles, {} deformation parameters) from {} observations",

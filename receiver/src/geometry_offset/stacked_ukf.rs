@@ -22,10 +22,11 @@
 //! nominal `B_0` (eqs. 2.5-9..2.5-13), their mean rate, offsets and offset rate zero, with
 //! the prior sigmas of [`OffsetConfig`].
 
+use crate::attitude::filter::settings_ok;
 use crate::attitude::least_squares::{LsConfig, solve};
 use crate::attitude::unscented::{transform, update};
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};
-use nalgebra::{DMatrix, DVector, Matrix3, SMatrix, SVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use skyforge_orbits::Vec3;
 use std::collections::VecDeque;
 
@@ -134,21 +135,22 @@ impl Default for OffsetConfig {
 impl OffsetConfig {
     /// Every value finite; PSDs >= 0; period and sigmas > 0; `22 + kappa > 0`.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        let psd_ok = self
-            .rate_psd_rad2_s3
-            .iter()
-            .chain([&self.offset_rate_psd_m2_s3])
-            .all(|s| s.is_finite() && *s >= 0.0);
+        let shared = settings_ok(
+            STATES,
+            &self.rate_psd_rad2_s3,
+            self.initial_rate_sigma_rad_s,
+            self.kappa,
+        );
+        let offset_psd_ok =
+            self.offset_rate_psd_m2_s3.is_finite() && self.offset_rate_psd_m2_s3 >= 0.0;
         let positive = [
             self.period_s,
             self.initial_offset_sigma_m,
-            self.initial_rate_sigma_rad_s,
             self.initial_offset_rate_sigma_m_s,
         ]
         .iter()
         .all(|v| v.is_finite() && *v > 0.0);
-        let kappa_ok = self.kappa.is_finite() && STATES as f64 + self.kappa > 0.0;
-        if psd_ok && positive && kappa_ok {
+        if shared && offset_psd_ok && positive {
             Ok(())
         } else {
             Err(AttitudeError::Config(format!(
@@ -177,30 +179,26 @@ pub fn transition(t: f64) -> Covariance {
 /// `[[e6 e6^T T^3/3, e6 T^2/2], [e6^T T^2/2, T]] b` (the thesis writes `(x) a` for the
 /// vector `a` of the three PSDs; a 15 x 15 block needs its diagonal).
 pub fn process_noise(t: f64, rate_psd: &[f64; 3], offset_rate_psd: f64) -> Covariance {
-    let (t3, t2) = (t.powi(3) / 3.0, t * t / 2.0);
-    // Attitude block: slots 0..4 are the stacked epochs, slot 4 the rate.
-    let slot_value = |i: usize, j: usize| match (i < WINDOW, j < WINDOW) {
-        (true, true) => t3,
-        (false, false) => t,
-        _ => t2,
+    // The integrated white noise of a rate: `T^3/3` between two integrated quantities,
+    // `T^2/2` between one and the rate, `T` for the rate itself.
+    let value = |i_is_rate: bool, j_is_rate: bool| match (i_is_rate, j_is_rate) {
+        (false, false) => t.powi(3) / 3.0,
+        (true, true) => t,
+        _ => t * t / 2.0,
     };
     let mut q = Covariance::zeros();
+    // Attitude block: slots 0..4 are the stacked epochs, slot 4 their rate.
     for i in 0..=WINDOW {
         for j in 0..=WINDOW {
             for (axis, s) in rate_psd.iter().enumerate() {
-                q[(3 * i + axis, 3 * j + axis)] = slot_value(i, j) * s;
+                q[(3 * i + axis, 3 * j + axis)] = value(i == WINDOW, j == WINDOW) * s;
             }
         }
     }
-    // Offset block: six offsets then their common rate.
-    let offset_value = |i: usize, j: usize| match (i < 6, j < 6) {
-        (true, true) => t3,
-        (false, false) => t,
-        _ => t2,
-    };
+    // Offset block: six offsets, then their common rate.
     for i in 0..7 {
         for j in 0..7 {
-            q[(OFFSETS + i, OFFSETS + j)] = offset_value(i, j) * offset_rate_psd;
+            q[(OFFSETS + i, OFFSETS + j)] = value(i == 6, j == 6) * offset_rate_psd;
         }
     }
     q
@@ -220,35 +218,35 @@ fn offset(x: &State, k: usize) -> Vec3 {
     )
 }
 
-/// Thesis eq. 4.3-15: the four epochs' baselines, newest first, for the nominal body
-/// baselines `b0` and the state's offsets.
-fn measurement(x: &State, b0: &[Vec3]) -> DVector<f64> {
-    let body: Vec<Vec3> = b0
-        .iter()
-        .enumerate()
-        .map(|(k, b)| b + offset(x, k))
-        .collect();
-    DVector::from_iterator(
-        3 * BASELINES * WINDOW,
-        (0..WINDOW).flat_map(|slot| {
-            let r = angles(x, slot).c_body_ref();
-            body.iter()
-                .flat_map(move |b| {
-                    let v = r * b;
-                    [v.x, v.y, v.z]
-                })
-                .collect::<Vec<_>>()
-        }),
-    )
-}
-
-/// `sum_k b'_k x b_k = sum_k dB_k x b_k` for the nominal baselines `b0`: zero when the
-/// offset geometry is the rotation of itself closest to the nominal one.
-fn orientation(x: &State, b0: &[Vec3]) -> Vec3 {
+/// `b'_k = b_k + dB_k`: the nominal body baselines `b0` with the state's offsets.
+fn corrected(x: &State, b0: &[Vec3]) -> Vec<Vec3> {
     b0.iter()
         .enumerate()
-        .map(|(k, b)| offset(x, k).cross(b))
-        .fold(Vec3::zeros(), |a, c| a + c)
+        .map(|(k, b)| b + offset(x, k))
+        .collect()
+}
+
+/// Thesis eq. 4.3-15: the four epochs' baselines, newest first, for the nominal body
+/// baselines `b0` and the state's offsets; with `pinned`, then the orientation
+/// pseudo-measurement `sum_k b'_k x b_k = sum_k dB_k x b_k`, zero when the offset
+/// geometry is the rotation of itself closest to the nominal one.
+fn measurement(x: &State, b0: &[Vec3], pinned: bool) -> DVector<f64> {
+    let body = corrected(x, b0);
+    let mut h = Vec::with_capacity(3 * BASELINES * WINDOW + 3);
+    for slot in 0..WINDOW {
+        let r = angles(x, slot).c_body_ref();
+        for b in &body {
+            h.extend((r * b).iter());
+        }
+    }
+    if pinned {
+        let sum = b0
+            .iter()
+            .enumerate()
+            .fold(Vec3::zeros(), |a, (k, b)| a + offset(x, k).cross(b));
+        h.extend(sum.iter());
+    }
+    DVector::from_vec(h)
 }
 
 /// The estimate after an update.
@@ -266,9 +264,6 @@ pub struct OffsetState {
     pub offset_rate_m_s: f64,
     /// Covariance of the offsets, `dx1, dy1, dz1, dx2, dy2, dz2` (m^2).
     pub offsets_covariance_m2: SMatrix<f64, 6, 6>,
-    /// Covariance of `xi_t` (rad^2) and of the rates (rad^2/s^2).
-    pub oldest_covariance_rad2: Matrix3<f64>,
-    pub rates_covariance: Matrix3<f64>,
 }
 
 /// What an epoch did.
@@ -369,16 +364,18 @@ impl OffsetEstimator {
         let ls = LsConfig::default();
         let mut x = State::zeros();
         let mut p = Covariance::zeros();
-        let mut fits = Vec::with_capacity(WINDOW);
+        let mut previous = None;
         for (slot, (_, b)) in self.window.iter().enumerate() {
-            let e = solve(&self.nominal, b, fits.last().copied(), &ls)?;
-            for axis in 0..3 {
-                x[3 * slot + axis] =
-                    [e.angles.yaw_rad, e.angles.pitch_rad, e.angles.roll_rad][axis];
-            }
+            let e = solve(&self.nominal, b, previous, &ls)?;
+            let a = e.angles;
+            x.fixed_rows_mut::<3>(3 * slot).copy_from(&Vec3::new(
+                a.yaw_rad,
+                a.pitch_rad,
+                a.roll_rad,
+            ));
             p.fixed_view_mut::<3, 3>(3 * slot, 3 * slot)
                 .copy_from(&e.covariance);
-            fits.push(e.angles);
+            previous = Some(a);
         }
         let span = (WINDOW - 1) as f64 * self.config.period_s;
         for axis in 0..3 {
@@ -437,15 +434,8 @@ impl OffsetEstimator {
         let filter = |e: crate::attitude::unscented::UnscentedError| {
             AttitudeError::Filter(format!("geometry offsets: {e}"))
         };
-        let t = transform(&x, &p, self.config.kappa, |xj| {
-            let mut h = measurement(xj, b0);
-            if pinned {
-                h = h.push(0.0).push(0.0).push(0.0);
-                h.rows_mut(n * WINDOW, 3).copy_from(&orientation(xj, b0));
-            }
-            h
-        })
-        .map_err(filter)?;
+        let t = transform(&x, &p, self.config.kappa, |xj| measurement(xj, b0, pinned))
+            .map_err(filter)?;
         let (mut x_new, p_new, v, s) = update(&x, &p, &t, &z, &r).map_err(filter)?;
         if !x_new.iter().chain(p_new.iter()).all(|v| v.is_finite()) {
             return Err(AttitudeError::Filter(
@@ -472,7 +462,6 @@ impl OffsetEstimator {
         let (x, p) = self.xp.as_ref()?;
         let newest_t_s = self.window.front().map(|(t, _)| *t)?;
         let oldest_t_s = newest_t_s - self.config.period_s * (WINDOW - 1) as f64;
-        let oldest = 3 * (WINDOW - 1);
         Some(OffsetState {
             oldest_t_s,
             window: [3, 2, 1, 0].map(|slot| angles(x, slot)),
@@ -480,8 +469,6 @@ impl OffsetEstimator {
             offsets_m: [offset(x, 0), offset(x, 1)],
             offset_rate_m_s: x[OFFSET_RATE],
             offsets_covariance_m2: p.fixed_view::<6, 6>(OFFSETS, OFFSETS).into_owned(),
-            oldest_covariance_rad2: p.fixed_view::<3, 3>(oldest, oldest).into_owned(),
-            rates_covariance: p.fixed_view::<3, 3>(RATES, RATES).into_owned(),
         })
     }
 
@@ -491,13 +478,7 @@ impl OffsetEstimator {
         let Some((x, _)) = &self.xp else {
             return Ok(self.nominal.clone());
         };
-        let corrected: Vec<Vec3> = self
-            .nominal
-            .baselines()
-            .iter()
-            .enumerate()
-            .map(|(k, b)| b + offset(x, k))
-            .collect();
+        let corrected = corrected(x, self.nominal.baselines());
         BodyGeometry::new(&corrected)
     }
 }

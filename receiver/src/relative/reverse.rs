@@ -75,7 +75,8 @@ impl Default for ReverseConfig {
 impl ReverseConfig {
     /// `S` finite and >= 0, the rate sigma finite and > 0, `12 + kappa > 0`.
     pub fn check(&self) -> Result<(), ReverseError> {
-        if settings_ok::<STATES>(
+        if settings_ok(
+            STATES,
             &self.rate_psd_m2_s3,
             self.initial_rate_sigma_m_s,
             self.kappa,
@@ -89,18 +90,31 @@ impl ReverseConfig {
     }
 }
 
-/// One epoch's measurement of eqs. 5.5-2, 5.5-8, 5.5-9.
+/// One epoch's measurement of eqs. 5.5-2, 5.5-8, 5.5-9; made only by
+/// [`BaselineMeasurement::new`], so its sizes agree with each other.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BaselineMeasurement {
-    /// `Z = vec(Y) - (I_m (x) A) vec(N)` (2nm, m).
-    pub z: DVector<f64>,
-    /// `H = I_m (x) G` (2nm x 3m).
-    pub h: DMatrix<f64>,
-    /// `R = Q_YY = Q_M (x) Q_t` (2nm x 2nm, m^2).
-    pub r: DMatrix<f64>,
+    z: DVector<f64>,
+    h: DMatrix<f64>,
+    r: DMatrix<f64>,
 }
 
 impl BaselineMeasurement {
+    /// `Z = vec(Y) - (I_m (x) A) vec(N)` (2nm, m).
+    pub fn z(&self) -> &DVector<f64> {
+        &self.z
+    }
+
+    /// `H = I_m (x) G` (2nm x 3m).
+    pub fn h(&self) -> &DMatrix<f64> {
+        &self.h
+    }
+
+    /// `R = Q_YY = Q_M (x) Q_t` (2nm x 2nm, m^2).
+    pub fn r(&self) -> &DMatrix<f64> {
+        &self.r
+    }
+
     /// The measurement of `float`'s epoch with every ambiguity fixed to `integers`
     /// (vec(N), baseline 1's first).
     pub fn new(float: &FloatBaselines, integers: &[i64]) -> Result<Self, ReverseError> {
@@ -112,6 +126,14 @@ impl BaselineMeasurement {
                 what: "fixed integers vec(N)",
                 expected: n * m,
                 found: integers.len(),
+            }
+            .into());
+        }
+        if float.observations.shape() != (2 * n, m) {
+            return Err(BaselineError::Dimension {
+                what: "double differences vec(Y) (2n rows, m columns)",
+                expected: 2 * n * m,
+                found: float.observations.len(),
             }
             .into());
         }

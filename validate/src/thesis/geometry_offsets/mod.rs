@@ -242,40 +242,63 @@ fn offset_row(row: String, thesis: Option<f64>, ours: f64, verdict: Verdict) -> 
     )
 }
 
+/// A table of per-axis std rows: its name, unit, the thesis's stds and the runs' stds.
+type StdTable = (
+    &'static str,
+    &'static str,
+    [f64; 3],
+    fn(&SeedResult) -> [f64; 3],
+);
+
+const RATES: StdTable = ("4.3-3 rate error", "deg/s", RATE_STD, |r| {
+    r.estimation.rates.std()
+});
+const ATTITUDE: [StdTable; 2] = [
+    (
+        "4.3-5 attitude error after correction",
+        "deg",
+        AFTER_STD,
+        |r| r.after.std(),
+    ),
+    (
+        "4.3-5 attitude error before correction",
+        "deg",
+        BEFORE_STD,
+        |r| r.before.std(),
+    ),
+];
+const COMPARISON_RATES: [StdTable; 2] = [
+    (
+        "4.3-6 rate error after correction",
+        "deg/s",
+        RATE_AFTER_STD,
+        |r| r.rate_after.std(),
+    ),
+    (
+        "4.3-6 rate error before correction",
+        "deg/s",
+        RATE_BEFORE_STD,
+        |r| r.rate_before.std(),
+    ),
+];
+
 /// The rows of tables 4.3-2..4.3-6.
 pub fn rows() -> Result<Vec<Row>, ValidateError> {
     let runs = seed::runs()?;
     let t = Table::new(&runs);
+    let std_rows = |tables: &[StdTable]| -> Result<Vec<Row>, ValidateError> {
+        let mut out = Vec::new();
+        for (what, unit, thesis, series) in tables {
+            out.extend(t.std_rows(what, unit, thesis, series)?);
+        }
+        Ok(out)
+    };
     let mut out = t.xi_rows()?;
-    out.extend(t.std_rows("4.3-3 rate error", "deg/s", &RATE_STD, |r| {
-        r.estimation.rates.std()
-    })?);
+    out.extend(std_rows(&[RATES])?);
     out.extend(t.offset_rows()?);
     out.extend(t.own_rows()?);
-    out.extend(t.std_rows(
-        "4.3-5 attitude error after correction",
-        "deg",
-        &AFTER_STD,
-        |r| r.after.std(),
-    )?);
-    out.extend(t.std_rows(
-        "4.3-5 attitude error before correction",
-        "deg",
-        &BEFORE_STD,
-        |r| r.before.std(),
-    )?);
+    out.extend(std_rows(&ATTITUDE)?);
     out.extend(t.ratio_rows()?);
-    out.extend(t.std_rows(
-        "4.3-6 rate error after correction",
-        "deg/s",
-        &RATE_AFTER_STD,
-        |r| r.rate_after.std(),
-    )?);
-    out.extend(t.std_rows(
-        "4.3-6 rate error before correction",
-        "deg/s",
-        &RATE_BEFORE_STD,
-        |r| r.rate_before.std(),
-    )?);
+    out.extend(std_rows(&COMPARISON_RATES)?);
     Ok(out)
 }
