@@ -146,3 +146,34 @@ fn four_antennas_are_refused_before_anything_is_written() {
     assert!(t.contains("--estimate-geometry with geometry.toml"), "{t}");
     assert!(t.contains("written for 2 baselines"), "{t}");
 }
+
+#[test]
+fn too_short_a_run_estimates_nothing_and_the_report_still_draws() {
+    // Three epochs: never the four consecutive fixed epochs the UKF starts from.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = short_scenario(d, "thesis/t-4.3", 3);
+    skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
+    let printed = skyforge_ok(
+        &[
+            "attitude",
+            "run/observations/ant1.obs.rnx",
+            "run/observations/ant2.obs.rnx",
+            "run/observations/ant3.obs.rnx",
+            "--nav",
+            "run/nav.rnx",
+            "--geometry",
+            "run/geometry.toml",
+            "--estimate-geometry",
+            "--out",
+            "att",
+        ],
+        d,
+    );
+    assert!(printed.contains("no update"), "{printed}");
+    let report = skyforge_ok(
+        &["report", "run", "--attitude", "att", "--out", "r.html"],
+        d,
+    );
+    assert!(report.contains("7 figures"), "{report}");
+}
