@@ -27,5 +27,5 @@ pub use build::World;
 pub use bundled::{Bundled, bundled};
 pub use error::ScenarioError;
 pub use observation::{BUNDLED_CALIBRATION, BUNDLED_MONITOR_CONFIG};
-pub use parse::{SCENARIO_MAX_BYTES, load, locate_invalid, parse, parse_document, resolve};
+pub use parse::{SCENARIO_MAX_BYTES, load, locate_invalid, named, parse, parse_document, resolve};
 pub use schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};

@@ -91,20 +91,44 @@ pub fn resolve(arg: &str) -> Result<Scenario, ScenarioError> {
     if path.exists() {
         return load(path);
     }
-    if let Some(found) = bundled().iter().find(|b| b.name == arg) {
-        let base_dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
-        return parse(found.text, &format!("bundled:{}", found.name), &base_dir);
-    }
-    let names: Vec<&str> = bundled().iter().map(|b| b.name).collect();
-    Err(ScenarioError::unlocated(
-        arg,
-        "",
-        "",
-        format!(
-            "no such scenario file, and no bundled scenario of that name (bundled: {})",
-            names.join(", ")
-        ),
-    ))
+    named(arg).map_err(|_| {
+        ScenarioError::unlocated(
+            arg,
+            "",
+            "",
+            format!(
+                "no such scenario file, and no bundled scenario of that name (bundled: {})",
+                bundled_names()
+            ),
+        )
+    })
+}
+
+/// The bundled scenario `name`, never a file (a file of the same name in the working
+/// directory does not replace it; relative paths inside it are resolved from the current
+/// directory).
+pub fn named(name: &str) -> Result<Scenario, ScenarioError> {
+    let Some(found) = bundled().iter().find(|b| b.name == name) else {
+        return Err(ScenarioError::unlocated(
+            name,
+            "",
+            "",
+            format!(
+                "no bundled scenario of that name (bundled: {})",
+                bundled_names()
+            ),
+        ));
+    };
+    let base_dir = std::env::current_dir().unwrap_or_else(|_| PathBuf::from("."));
+    parse(found.text, &format!("bundled:{}", found.name), &base_dir)
+}
+
+fn bundled_names() -> String {
+    bundled()
+        .iter()
+        .map(|b| b.name)
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// A TOML syntax error, at its position, with the field it interrupts when known; the

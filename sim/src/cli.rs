@@ -327,6 +327,17 @@ pub enum ValidateSuite {
         /// default: ../shared/data].
         #[arg(long, value_name = "DIR")]
         data: Option<PathBuf>,
+        /// Run every table whose rows are per-run statistics N times, each on one run of
+        /// its own seed plus B + k (V-1.2.1: its start epoch moved by k x 25 h), and give
+        /// each row its distribution over the draws and a verdict on the fraction of draws
+        /// in tolerance (docs/validation.md). Monte Carlo tables (P2-4.2, P2-PD, B-5.2) run
+        /// once on their own seeds shifted by B; T-3.2 has no random draw.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u64).range(1..=10_000))]
+        seeds: Option<u64>,
+        /// The first seed offset B of --seeds (default 0: the first draw is the registered
+        /// seed); another B gives independent draws.
+        #[arg(long, value_name = "B", requires = "seeds")]
+        seed_base: Option<u64>,
     },
     /// Compare a receiver's RINEX observations with SkyForge's RINEX truth of the same
     /// recording: pseudorange, carrier-phase, Doppler and C/N0 errors per satellite, per

@@ -4,7 +4,7 @@ mod support;
 
 use std::path::Path;
 use std::process::Command;
-use support::{dataset, results_json, short_scenario, skyforge, text};
+use support::{dataset, results_file, results_json, short_scenario, skyforge, text};
 
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {
@@ -182,6 +182,9 @@ fn scenarios_list_and_show() {
 #[test]
 fn validate_thesis_writes_every_row_of_both_tables() {
     let tmp = tempfile::tempdir().unwrap();
+    // A file of a bundled table scenario's name in the working directory is not read.
+    std::fs::create_dir(tmp.path().join("thesis")).unwrap();
+    std::fs::write(tmp.path().join("thesis/t-3.2"), "not a scenario").unwrap();
     let o = skyforge(
         &[
             "validate",
@@ -227,8 +230,92 @@ fn validate_thesis_writes_every_row_of_both_tables() {
     {
         assert_eq!(r["verdict"], "reproduced", "{r}");
     }
+    // The provenance: the commit, no plan, the bundled scenarios' text.
+    let file = results_file(&tmp.path().join("v"));
+    let p = &file["provenance"];
+    let commit = p["commit"].as_str().unwrap();
+    assert!(
+        commit == "unknown"
+            || (commit.len() == 40 && commit.chars().all(|c| c.is_ascii_hexdigit())),
+        "{commit}"
+    );
+    assert!(p["plan"].is_null());
+    assert_eq!(p["tables"], serde_json::json!(["V-1.2.1", "T-3.2"]));
+    let names: Vec<&str> = p["scenarios"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(names, ["thesis/v-1.2.1", "thesis/t-3.2"]);
+    for s in p["scenarios"].as_array().unwrap() {
+        assert_eq!(s["origin"], "bundled");
+        assert!(s["text"].as_str().unwrap().contains("[time]"), "{s}");
+    }
     let o = skyforge(&["validate", "thesis", "--only", "T-9.9"], tmp.path());
     assert_eq!(o.status.code(), Some(2));
+    // --seed-base needs --seeds; --seeds 0 is refused.
+    for args in [&["--seed-base", "3"][..], &["--seeds", "0"]] {
+        let mut all = vec!["validate", "thesis", "--only", "T-3.2"];
+        all.extend_from_slice(args);
+        let o = skyforge(&all, tmp.path());
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+    }
+}
+
+#[test]
+fn validate_thesis_over_seeds_gives_each_row_its_draws() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = skyforge(
+        &[
+            "validate",
+            "thesis",
+            "--only",
+            "T-3.3-S",
+            "--only",
+            "T-3.2",
+            "--seeds",
+            "3",
+            "--seed-base",
+            "5",
+            "--out",
+            "v",
+        ],
+        tmp.path(),
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    let file = results_file(&tmp.path().join("v"));
+    assert_eq!(
+        file["provenance"]["plan"],
+        serde_json::json!({"draws": 3, "base": 5})
+    );
+    let rows = file["rows"].as_array().unwrap();
+    let mut per_run = 0;
+    for r in rows {
+        if r["table"] == "T-3.2" {
+            assert!(r.get("over_seeds").is_none(), "{r}");
+            assert!(
+                r["note"].as_str().unwrap().starts_with("no random draw"),
+                "{r}"
+            );
+            continue;
+        }
+        let over = &r["over_seeds"];
+        assert_eq!(over["draws"], 3, "{r}");
+        assert_eq!(over["base"], 5, "{r}");
+        let f = over["in_tolerance"].as_f64().unwrap();
+        let verdict = r["verdict"].as_str().unwrap();
+        assert_eq!(verdict == "reproduced", f >= 0.5, "{r}");
+        if let Some(ours) = r["ours"].as_f64() {
+            assert_eq!(ours, over["mean"].as_f64().unwrap(), "{r}");
+            let (lo, hi) = (over["min"].as_f64().unwrap(), over["max"].as_f64().unwrap());
+            assert!(lo <= ours && ours <= hi, "{r}");
+        }
+        per_run += 1;
+    }
+    assert!(per_run > 10, "{per_run} rows of T-3.3-S");
+    // The printed table shows each row's fraction of draws in tolerance.
+    assert!(text(&o).contains(" of 3"), "{}", text(&o));
 }
 
 /// Every dataset of an HDF5 file as (path, raw little-endian bytes), sorted by path.

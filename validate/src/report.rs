@@ -1,5 +1,6 @@
 //! Result rows of a validation run, their verdicts, the printed table and `results.json`.
 
+use crate::thesis::{Provenance, Results};
 use serde::{Deserialize, Serialize};
 use std::io::Write;
 use std::path::Path;
@@ -40,6 +41,10 @@ pub struct Row {
     pub tolerance: String,
     pub verdict: Verdict,
     pub note: String,
+    /// The row's distribution over the draws of `validate thesis --seeds N` (absent for
+    /// one evaluation on the registered seeds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub over_seeds: Option<crate::thesis::draw::OverSeeds>,
 }
 
 impl Row {
@@ -64,6 +69,7 @@ impl Row {
             tolerance,
             verdict,
             note: String::new(),
+            over_seeds: None,
         }
     }
 
@@ -89,7 +95,9 @@ fn cell(v: Option<f64>) -> String {
     }
 }
 
-/// Print the rows as an aligned table.
+/// Print the rows as an aligned table; rows over seeds add the fraction of draws in
+/// tolerance and the number of draws, with `?` where that fraction is within two binomial
+/// standard errors of the bar (another set of seeds may turn the verdict).
 pub fn print_table(rows: &[Row], out: &mut impl Write) -> std::io::Result<()> {
     writeln!(
         out,
@@ -101,9 +109,13 @@ pub fn print_table(rows: &[Row], out: &mut impl Write) -> std::io::Result<()> {
         let verdict = serde_json::to_value(r.verdict)
             .ok()
             .and_then(|v| v.as_str().map(str::to_string));
+        let over = r.over_seeds.as_ref().map_or(String::new(), |o| {
+            let unsure = if o.settled { "" } else { " ?" };
+            format!(" {:.2} of {}{unsure}", o.in_tolerance, o.draws)
+        });
         writeln!(
             out,
-            "{:<8} {:<44} {:>12} {:>12} {:>8} {:<26} {}",
+            "{:<8} {:<44} {:>12} {:>12} {:>8} {:<26} {}{over}",
             r.table,
             format!("{} [{}]", r.row, r.unit),
             cell(r.thesis),
@@ -116,12 +128,23 @@ pub fn print_table(rows: &[Row], out: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Write `rows` to `path` as a JSON array (via a temporary file, renamed when complete).
-pub fn write_json(rows: &[Row], path: &Path) -> std::io::Result<()> {
+/// Write `results` to `path` as JSON (via a temporary file, renamed when complete).
+pub fn write_json(results: &Results, path: &Path) -> std::io::Result<()> {
     let tmp = path.with_extension("json.partial");
-    let text = serde_json::to_string_pretty(rows).map_err(std::io::Error::other)?;
+    let text = serde_json::to_string_pretty(results).map_err(std::io::Error::other)?;
     std::fs::write(&tmp, text + "\n")?;
     std::fs::rename(&tmp, path)
+}
+
+/// Parse a `results.json`: its rows, and its provenance when it records one (an object
+/// of provenance and rows, as written now; an array of rows, as written before SkyForge
+/// recorded provenance). Errors carry their line and column.
+pub fn parse_results(text: &str) -> serde_json::Result<(Option<Provenance>, Vec<Row>)> {
+    if text.trim_start().starts_with('[') {
+        return Ok((None, serde_json::from_str(text)?));
+    }
+    let r: Results = serde_json::from_str(text)?;
+    Ok((Some(r.provenance), r.rows))
 }
 
 #[cfg(test)]
@@ -140,6 +163,7 @@ mod tests {
             tolerance: "t".into(),
             verdict: Verdict::Explained,
             note: String::new(),
+            over_seeds: None,
         };
         let v = serde_json::to_value(vec![row]).unwrap();
         let obj = v[0].as_object().unwrap();

@@ -9,12 +9,13 @@ use skyforge_validate::integrity::lab::{Case, FAULT_SATELLITE, MonitoredRun};
 use skyforge_validate::integrity::monitor::{Sigmas, calibrate_lab, case_run};
 use skyforge_validate::integrity::patterns;
 use skyforge_validate::report::Verdict;
+use skyforge_validate::thesis::draw::Draw;
 use std::sync::OnceLock;
 
 /// The lab's thresholds, calibrated once for the tests of this file.
 fn sigma() -> &'static Sigmas {
     static SIGMA: OnceLock<Sigmas> = OnceLock::new();
-    SIGMA.get_or_init(|| calibrate_lab().unwrap())
+    SIGMA.get_or_init(|| calibrate_lab(0).unwrap())
 }
 
 /// The faulted satellite at whole second `t` of `run`.
@@ -70,7 +71,14 @@ fn a_ramp_at_one_station_shows_in_its_b_values_and_a_common_one_cancels() {
 
 #[test]
 fn the_papers_cases_show_their_patterns_on_two_seeds() {
-    let rows = patterns::rows(sigma(), 2).unwrap();
+    let rows = patterns::rows(
+        sigma(),
+        Draw {
+            offset: 0,
+            runs: Some(2),
+        },
+    )
+    .unwrap();
     assert_eq!(rows.len(), 15);
     let find = |label: &str| rows.iter().find(|r| r.row == label).unwrap();
     for label in [
@@ -101,7 +109,14 @@ fn the_papers_cases_show_their_patterns_on_two_seeds() {
 
 #[test]
 fn detection_rises_with_the_fault_size() {
-    let rows = detection::rows(sigma(), 10).unwrap();
+    let rows = detection::rows(
+        sigma(),
+        Draw {
+            offset: 0,
+            runs: Some(10),
+        },
+    )
+    .unwrap();
     assert_eq!(rows.len(), 4 * detection::SIZES.len());
     for stat in rows.chunks(detection::SIZES.len()) {
         let p: Vec<f64> = stat.iter().map(|r| r.ours.unwrap()).collect();

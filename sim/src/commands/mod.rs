@@ -16,6 +16,7 @@ mod validate;
 use crate::cli::{
     Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, StudyAction, ValidateSuite,
 };
+use skyforge_validate::thesis::draw::SeedPlan;
 
 /// The scenario `args` name, with its seed overridden when `--seed` is given.
 fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
@@ -116,8 +117,19 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     out,
                     force,
                     data,
+                    seeds,
+                    seed_base,
                 },
-        } => validate::thesis(only, out.as_deref(), force, data),
+        } => validate::thesis(
+            only,
+            out.as_deref(),
+            force,
+            data,
+            seeds.map(|draws| SeedPlan {
+                draws,
+                base: seed_base.unwrap_or(0),
+            }),
+        ),
         Command::Validate {
             suite:
                 ValidateSuite::Obs {

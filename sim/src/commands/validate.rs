@@ -12,6 +12,7 @@ use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compar
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{print_table, write_json};
+use skyforge_validate::thesis::draw::SeedPlan;
 use skyforge_validate::thesis::{self, Options};
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
@@ -25,6 +26,7 @@ pub fn thesis(
     out: Option<&Path>,
     force: bool,
     data: Option<PathBuf>,
+    plan: Option<SeedPlan>,
 ) -> anyhow::Result<()> {
     let data_dir = data
         .or_else(|| std::env::var_os("SKYFORGE_DATA").map(PathBuf::from))
@@ -40,11 +42,12 @@ pub fn thesis(
     let opts = Options {
         only,
         data_dir: Some(data_dir),
+        plan,
     };
-    let rows = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
-    print_table(&rows, &mut std::io::stdout().lock())?;
+    let results = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
+    print_table(&results.rows, &mut std::io::stdout().lock())?;
     if let Some(staged) = staged {
-        write_json(&rows, &staged.file("results.json"))?;
+        write_json(&results, &staged.file("results.json"))?;
         let dir = staged.commit()?;
         println!("wrote {}", dir.join("results.json").display());
     }

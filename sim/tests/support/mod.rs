@@ -101,10 +101,18 @@ pub fn validate_monitor(dir: &Path) -> (String, serde_json::Value) {
     (printed, json_file(&dir.join("score.json")))
 }
 
+/// The `results.json` `skyforge validate thesis --out <out>` wrote.
+pub fn results_file(out: &Path) -> serde_json::Value {
+    let json = std::fs::read_to_string(out.join("results.json")).expect("results.json");
+    serde_json::from_str(&json).expect("results.json: JSON")
+}
+
 /// The rows `skyforge validate thesis --out <out>` wrote to `out/results.json`.
 pub fn results_json(out: &Path) -> Vec<serde_json::Value> {
-    let json = std::fs::read_to_string(out.join("results.json")).expect("results.json");
-    serde_json::from_str(&json).expect("results.json: an array of rows")
+    results_file(out)["rows"]
+        .as_array()
+        .expect("results.json: rows")
+        .clone()
 }
 
 /// Fail loudly when RTKLIB's `rnx2rtkp` is not installed.

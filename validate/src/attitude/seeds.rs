@@ -5,6 +5,7 @@
 //! spread over runs gives the standard error.
 
 use super::{ChainComparison, compare, nominal_geometry, observation_run};
+use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_receiver::relative::RelativeConfig;
 use skyforge_scenarios::Scenario;
@@ -14,18 +15,21 @@ use skyforge_scenarios::Scenario;
 // mean over runs, cheap at the observation level.
 pub const SEEDS: u64 = 8;
 
-/// The chain with each of `configs` over `scenario` on seeds `seed .. seed + SEEDS`, each
-/// compared with its truth: one vector of runs (seed order) per configuration. Every
-/// configuration reads the same observations of a seed, made once.
+/// The chain with each of `configs` over `scenario` on the seeds of `draw` (registered:
+/// `seed .. seed + SEEDS`), each compared with its truth: one vector of runs (seed order)
+/// per configuration. Every configuration reads the same observations of a seed, made
+/// once.
 pub fn seed_runs(
     scenario: &Scenario,
     configs: &[RelativeConfig],
+    draw: Draw,
 ) -> Result<Vec<Vec<ChainComparison>>, String> {
-    let per_seed: Vec<Vec<ChainComparison>> = (0..SEEDS)
+    let per_seed: Vec<Vec<ChainComparison>> = draw
+        .seeds(scenario.seed, SEEDS)
         .into_par_iter()
-        .map(|k| {
+        .map(|seed| {
             let mut s = scenario.clone();
-            s.seed = scenario.seed + k;
+            s.seed = seed;
             let fail =
                 |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, s.seed);
             let run = observation_run(&s).map_err(|e| fail(&e))?;

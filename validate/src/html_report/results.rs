@@ -5,7 +5,7 @@
 use super::chart::{Chart, Series};
 use super::page::{Cell, Section, Table};
 use super::{ReportError, figure};
-use crate::report::{Row, Verdict};
+use crate::report::{Row, Verdict, parse_results};
 use std::path::Path;
 
 /// Largest `results.json` read (bytes): a whole thesis run writes a few hundred kB.
@@ -21,7 +21,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
         return Err(err(format!("{size} bytes; at most {MAX_BYTES} are read")));
     }
     let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
-    let rows: Vec<Row> = serde_json::from_str(&text).map_err(|e| {
+    let (provenance, rows) = parse_results(&text).map_err(|e| {
         err(format!(
             "line {}, column {}: {e} (expected the rows `skyforge validate thesis --out` writes)",
             e.line(),
@@ -30,7 +30,8 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     })?;
     let count = |v: Verdict| rows.iter().filter(|r| r.verdict == v).count();
     let number = |x: Option<f64>| x.map(|v| format!("{v:.4}")).unwrap_or_else(|| "-".into());
-    let table = Table {
+    let over_seeds = rows.iter().any(|r| r.over_seeds.is_some());
+    let mut table = Table {
         header: [
             "table",
             "row",
@@ -73,6 +74,25 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
             })
             .collect(),
     };
+    if over_seeds {
+        table.header.insert(7, "in tolerance".into());
+        for (cells, r) in table.rows.iter_mut().zip(&rows) {
+            let text = r.over_seeds.as_ref().map_or_else(
+                || "once".to_string(),
+                |o| {
+                    let unsure = if o.settled { "" } else { " (near the bar)" };
+                    format!("{:.2} of {}{unsure}", o.in_tolerance, o.draws)
+                },
+            );
+            cells.insert(
+                7,
+                Cell {
+                    text,
+                    class: Some("n"),
+                },
+            );
+        }
+    }
     let mut figures = Vec::new();
     if let Some(chart) = ratio_chart(&rows) {
         let caption = format!(
@@ -87,15 +107,53 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     Ok(Section {
         heading: "Validation against the thesis".into(),
         figures,
-        paragraphs: vec![format!(
-            "{} rows: {} reproduced, {} explained, {} deviate.",
-            rows.len(),
-            count(Verdict::Reproduced),
-            count(Verdict::Explained),
-            count(Verdict::Deviates)
-        )],
+        paragraphs: vec![
+            format!(
+                "{} rows: {} reproduced, {} explained, {} deviate.",
+                rows.len(),
+                count(Verdict::Reproduced),
+                count(Verdict::Explained),
+                count(Verdict::Deviates)
+            ),
+            provenance_text(provenance.as_ref()),
+        ],
         tables: vec![table],
     })
+}
+
+/// What the run was: commit, seeds, scenarios.
+fn provenance_text(p: Option<&crate::thesis::Provenance>) -> String {
+    let Some(p) = p else {
+        return "This results.json records no provenance (written before SkyForge recorded it)."
+            .into();
+    };
+    let seeds = p.plan.map_or_else(
+        || "each table once on its registered seeds".to_string(),
+        |plan| {
+            format!(
+                "each table whose rows are per-run statistics over {} seeds (offsets {} to {}), verdict on the fraction of draws in tolerance (bar {})",
+                plan.draws,
+                plan.base,
+                plan.base + plan.draws.saturating_sub(1),
+                crate::thesis::draw::BAR
+            )
+        },
+    );
+    let scenarios: Vec<String> = p
+        .scenarios
+        .iter()
+        .map(|s| format!("{} ({})", s.name, s.origin))
+        .collect();
+    format!(
+        "SkyForge {} at commit {}; {seeds}; scenarios: {}.",
+        p.version,
+        p.commit,
+        if scenarios.is_empty() {
+            "none".to_string()
+        } else {
+            scenarios.join(", ")
+        }
+    )
 }
 
 /// Largest |log10(SkyForge / thesis)| drawn where it is; beyond, at the edge.

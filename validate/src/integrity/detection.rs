@@ -11,6 +11,7 @@
 use super::lab::{Fault, MonitoredRun, monitored, scenario};
 use super::monitor::{Sigmas, config};
 use crate::report::{Row, Verdict};
+use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_receiver::integrity::{PerStatistic, Statistic};
 
@@ -94,7 +95,7 @@ fn curve_point(
     sigma: &Sigmas,
     threshold: &PerStatistic<f64>,
     size_index: usize,
-    seeds: u64,
+    draw: Draw,
 ) -> Result<PerStatistic<(f64, f64)>, String> {
     let size = SIZES[size_index];
     let faults: Vec<Fault> = if size == 0.0 {
@@ -105,8 +106,8 @@ fn curve_point(
             .map(|&s| fault(s, size, threshold[s.index()]))
             .collect()
     };
-    let first = FIRST_SEED + 1000 * size_index as u64;
-    let hits: Vec<PerStatistic<bool>> = (first..first + seeds)
+    let hits: Vec<PerStatistic<bool>> = draw
+        .seeds(FIRST_SEED + 1000 * size_index as u64, SEEDS)
         .into_par_iter()
         .map(|seed| {
             let s = scenario(&faults, seed, Some(END_S))?;
@@ -120,11 +121,13 @@ fn curve_point(
     }))
 }
 
-/// The rows: for every statistic, detection probability at each size.
-pub fn rows(sigma: &Sigmas, seeds: u64) -> Result<Vec<Row>, String> {
-    let threshold = thresholds(sigma, FIRST_SEED)?;
+/// The rows: for every statistic, detection probability at each size, on the seeds of
+/// `draw` (registered: [`SEEDS`] per size).
+pub fn rows(sigma: &Sigmas, draw: Draw) -> Result<Vec<Row>, String> {
+    let threshold = thresholds(sigma, draw.seed(FIRST_SEED))?;
+    let seeds = draw.seeds(0, SEEDS).count();
     let points: Vec<PerStatistic<(f64, f64)>> = (0..SIZES.len())
-        .map(|i| curve_point(sigma, &threshold, i, seeds))
+        .map(|i| curve_point(sigma, &threshold, i, draw))
         .collect::<Result<_, String>>()?;
     let mut rows = Vec::new();
     for stat in Statistic::ALL {

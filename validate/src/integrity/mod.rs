@@ -12,23 +12,19 @@ pub mod raim;
 pub mod score;
 
 use crate::report::Row;
+use crate::thesis::draw::Draw;
 
-/// Both table groups: thresholds calibrated on the lab's fault-free seeds, the paper's
-/// cases on [`patterns::SEEDS`] seeds, the detection curves on `curve_seeds` seeds per
-/// size.
-pub fn rows(
-    pattern_seeds: u64,
-    curve_seeds: u64,
-    patterns: bool,
-    curves: bool,
-) -> Result<Vec<Row>, String> {
-    let sigma = monitor::calibrate_lab()?;
+/// Both table groups on the seeds of `draw` (registered or shifted): thresholds
+/// calibrated on the lab's fault-free seeds, the paper's cases on [`patterns::SEEDS`]
+/// seeds, the detection curves on [`detection::SEEDS`] seeds per size.
+pub fn rows(draw: Draw, patterns: bool, curves: bool) -> Result<Vec<Row>, String> {
+    let sigma = monitor::calibrate_lab(draw.offset)?;
     let mut rows = Vec::new();
     if patterns {
-        rows.extend(patterns::rows(&sigma, pattern_seeds)?);
+        rows.extend(patterns::rows(&sigma, draw)?);
     }
     if curves {
-        rows.extend(detection::rows(&sigma, curve_seeds)?);
+        rows.extend(detection::rows(&sigma, draw)?);
     }
     Ok(rows)
 }

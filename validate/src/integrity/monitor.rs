@@ -101,9 +101,14 @@ pub fn calibrate(
     Ok(tables)
 }
 
-/// The lab set-up's fault-free sigma tables on [`CALIBRATION_SEEDS`].
-pub fn calibrate_lab() -> Result<Sigmas, String> {
-    calibrate(&scenario(&[], 0, None)?, CALIBRATION_SEEDS)
+/// The lab set-up's fault-free sigma tables on [`CALIBRATION_SEEDS`] shifted by
+/// `offset` (`validate thesis --seed-base`).
+pub fn calibrate_lab(offset: u64) -> Result<Sigmas, String> {
+    let (first, last) = CALIBRATION_SEEDS.into_inner();
+    calibrate(
+        &scenario(&[], 0, None)?,
+        first.wrapping_add(offset)..=last.wrapping_add(offset),
+    )
 }
 
 /// The lab run of `case` on `seed` with thresholds from `sigma`.

@@ -6,6 +6,7 @@ use super::monitor::Sigmas;
 use super::monitor::case_run;
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
+use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_receiver::integrity::{SatelliteEpoch, Statistic};
 
@@ -396,10 +397,12 @@ fn measures(case: Case) -> Vec<Measure> {
     }
 }
 
-/// The rows of `case` from its runs on `seeds` seeds.
-pub fn case_rows(case: Case, sigma: &Sigmas, seeds: u64) -> Result<Vec<Row>, String> {
+/// The rows of `case` from its runs on the seeds of `draw` (registered: [`SEEDS`] from
+/// [`FIRST_SEED`]).
+pub fn case_rows(case: Case, sigma: &Sigmas, draw: Draw) -> Result<Vec<Row>, String> {
     let ms = measures(case);
-    let per_seed: Vec<Vec<f64>> = (FIRST_SEED..FIRST_SEED + seeds)
+    let per_seed: Vec<Vec<f64>> = draw
+        .seeds(FIRST_SEED, SEEDS)
         .into_par_iter()
         .map(|seed| {
             let run = case_run(case, seed, sigma)?;
@@ -444,11 +447,11 @@ fn row(case: Case, m: &Measure, values: &[f64]) -> Row {
     ))
 }
 
-/// Every row of the group with thresholds from `sigma`: each case on `seeds` seeds.
-pub fn rows(sigma: &Sigmas, seeds: u64) -> Result<Vec<Row>, String> {
+/// Every row of the group with thresholds from `sigma`: each case on the seeds of `draw`.
+pub fn rows(sigma: &Sigmas, draw: Draw) -> Result<Vec<Row>, String> {
     let mut rows = Vec::new();
     for case in Case::ALL {
-        rows.extend(case_rows(case, sigma, seeds)?);
+        rows.extend(case_rows(case, sigma, draw)?);
     }
     Ok(rows)
 }

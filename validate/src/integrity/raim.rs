@@ -820,12 +820,19 @@ pub fn settings(mops: bool, leo: bool) -> Vec<Setting> {
     out
 }
 
-/// The rows of the selected tables with `runs` runs per setting and kind; a scenario's
-/// geometry runs once for consecutive settings that share it.
-pub fn rows(mops: bool, leo: bool, runs: usize) -> Result<Vec<Row>, ValidateError> {
+/// The rows of the selected tables with `runs` runs per setting and kind, each setting's
+/// seed shifted by `seed_offset` (`validate thesis --seed-base`); a scenario's geometry
+/// runs once for consecutive settings that share it.
+pub fn rows(
+    mops: bool,
+    leo: bool,
+    runs: usize,
+    seed_offset: u64,
+) -> Result<Vec<Row>, ValidateError> {
     let mut rows = Vec::new();
     let mut last: Option<(&'static str, Geometry)> = None;
-    for setting in settings(mops, leo) {
+    for mut setting in settings(mops, leo) {
+        setting.seed = setting.seed.wrapping_add(seed_offset);
         let geometry = match last.take() {
             Some((file, g)) if file == setting.scenario_file => g,
             _ => geometry(&scenario(&setting)?)?,
@@ -1049,7 +1056,7 @@ mod tests {
     #[test]
     fn reduced_monte_carlo_gives_every_row_with_a_finite_value() {
         // The group as `validate thesis --only B-5.2` runs it, with a few runs per kind.
-        let rows = rows(true, true, 6).unwrap();
+        let rows = rows(true, true, 6, 0).unwrap();
         // Table 5-1: three phases on the aircraft; table 5-2: free flight and orbit
         // manoeuvre on the LEO; three rows each.
         assert_eq!(rows.len(), 5 * 3);

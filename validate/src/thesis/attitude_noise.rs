@@ -11,6 +11,7 @@
 //! chain's fix counts.
 
 use super::attitude_runs::{SeriesStats, chain_note, factor_row, growth_row, seed_runs};
+use super::draw::Draw;
 use crate::attitude::ChainComparison;
 use crate::report::Row;
 use crate::thesis::ValidateError;
@@ -55,16 +56,16 @@ pub(super) fn config(phase_m: f64, code_m: f64) -> RelativeConfig {
     c
 }
 
-/// Runs of `name` with the phase noise set to `phase_m`.
-fn runs(name: &str, phase_m: f64) -> Result<Vec<ChainComparison>, ValidateError> {
-    let mut scenario = skyforge_scenarios::resolve(name)?;
+/// Runs of `name` (those of `draw`) with the phase noise set to `phase_m`.
+fn runs(name: &str, phase_m: f64, draw: Draw) -> Result<Vec<ChainComparison>, ValidateError> {
+    let mut scenario = skyforge_scenarios::named(name)?;
     let ObsNoiseConfig::Constant { code_m, .. } = scenario.observation.noise else {
         return Err(ValidateError::Pipeline(format!(
             "{name}: the scenario's [observation.noise] is not the constant model"
         )));
     };
     scenario.observation.noise = ObsNoiseConfig::Constant { phase_m, code_m };
-    let [runs] = seed_runs(&scenario, [config(phase_m, code_m)])?;
+    let [runs] = seed_runs(&scenario, [config(phase_m, code_m)], draw)?;
     Ok(runs)
 }
 
@@ -107,10 +108,10 @@ fn std_rows(
     Ok((rows, stats.map(|s| s.std.mean)))
 }
 
-/// The rows of the wanted tables (the 1 mm runs serve both).
-pub fn rows(noise: bool, offsets: bool) -> Result<Vec<Row>, ValidateError> {
+/// The rows of the wanted tables on the runs of `draw` (the 1 mm runs serve both).
+pub fn rows(noise: bool, offsets: bool, draw: Draw) -> Result<Vec<Row>, ValidateError> {
     let mut out = Vec::new();
-    let one_mm = runs(SCENARIO_NOISE, NOISE_ROWS[0].0)?;
+    let one_mm = runs(SCENARIO_NOISE, NOISE_ROWS[0].0, draw)?;
     if noise {
         let mut means = Vec::new();
         for (k, (sigma, thesis)) in NOISE_ROWS.iter().enumerate() {
@@ -118,7 +119,12 @@ pub fn rows(noise: bool, offsets: bool) -> Result<Vec<Row>, ValidateError> {
             let (rows, ours) = if k == 0 {
                 std_rows(TABLE_NOISE, &label, thesis, &one_mm)?
             } else {
-                std_rows(TABLE_NOISE, &label, thesis, &runs(SCENARIO_NOISE, *sigma)?)?
+                std_rows(
+                    TABLE_NOISE,
+                    &label,
+                    thesis,
+                    &runs(SCENARIO_NOISE, *sigma, draw)?,
+                )?
             };
             out.extend(rows);
             means.push((axis_mean(thesis), axis_mean(&ours)));
@@ -139,7 +145,7 @@ pub fn rows(noise: bool, offsets: bool) -> Result<Vec<Row>, ValidateError> {
     if offsets {
         let (rows, zero) = std_rows(TABLE_OFFSETS, "offset 0", &NOISE_ROWS[0].1, &one_mm)?;
         out.extend(rows);
-        let offset_runs = runs(SCENARIO_OFFSETS, NOISE_ROWS[0].0)?;
+        let offset_runs = runs(SCENARIO_OFFSETS, NOISE_ROWS[0].0, draw)?;
         let (rows, five) = std_rows(TABLE_OFFSETS, "offset 5 mm", &OFFSET_ROW, &offset_runs)?;
         out.extend(rows);
         out.push(growth_row(

@@ -13,6 +13,7 @@
 //! std of epoch-by-epoch LS on the same runs (what the KF's smoothing gains).
 
 use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
+use super::draw::Draw;
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -53,9 +54,9 @@ fn stats(
     attitude_runs::stats(SCENARIO, runs, series)
 }
 
-/// The rows of tables 5.4-3..5.
-pub fn rows() -> Result<Vec<Row>, ValidateError> {
-    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
+/// The rows of tables 5.4-3..5 on the runs of `draw`.
+pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    let scenario = skyforge_scenarios::named(SCENARIO)?;
     // The same runs with epoch-by-epoch LS attitude too: how much the KF smooths.
     let [runs, ls_runs] = seed_runs(
         &scenario,
@@ -63,6 +64,7 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             config(AttitudeMethod::Kf),
             config(AttitudeMethod::LeastSquares),
         ],
+        draw,
     )?;
     let chain = chain_note(&runs);
     let mut out = Vec::new();

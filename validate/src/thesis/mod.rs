@@ -5,6 +5,7 @@
 pub mod attitude_noise;
 pub mod attitude_realtime;
 mod attitude_runs;
+pub mod draw;
 pub mod fast_sync;
 pub mod geometry_offsets;
 mod geometry_run;
@@ -16,7 +17,10 @@ pub mod zero_baseline;
 
 use crate::integrity::raim;
 use crate::report::Row;
-use std::path::PathBuf;
+use draw::{Draw, Kind, SeedPlan};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+use std::path::{Path, PathBuf};
 
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
@@ -56,6 +60,9 @@ pub struct Options {
     pub only: Vec<String>,
     /// The real-data folder (`SKYFORGE_DATA`); tables add real-data rows when it exists.
     pub data_dir: Option<PathBuf>,
+    /// `--seeds N --seed-base B`: each table as a study over seeds ([`draw`]); `None`:
+    /// each table once on its registered seeds.
+    pub plan: Option<SeedPlan>,
 }
 
 /// Whether `--only id` selects `table`: the same identifier, or a group of it (`T-1.2`
@@ -73,9 +80,212 @@ pub fn known(id: &str) -> bool {
     TABLES.iter().any(|t| selects(id, t))
 }
 
-/// Run the selected tables and return their rows; `starting` is told each table's ID
-/// before it runs (for progress output).
-pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, ValidateError> {
+/// Where a table's scenario comes from.
+#[derive(Debug, Clone, Copy)]
+enum Source {
+    /// A bundled scenario, by name (never a file of that name).
+    Bundled(&'static str),
+    /// A file of [`raim::SCENARIO_DIR`].
+    RaimFile(&'static str),
+}
+
+/// The tables of one evaluation (a group whose tables share runs), how it takes part in a
+/// plan over seeds, its scenarios, and the evaluation itself (`wanted`: the group's
+/// selected tables).
+struct Unit {
+    tables: &'static [&'static str],
+    kind: Kind,
+    scenarios: &'static [Source],
+    evaluate: fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>,
+}
+
+fn has(wanted: &[&str], table: &str) -> bool {
+    wanted.contains(&table)
+}
+
+/// Every table, in run order.
+const UNITS: &[Unit] = &[
+    Unit {
+        tables: &["V-1.2.1"],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(visibility::SCENARIO)],
+        evaluate: |_, data, draw| visibility::rows(data, draw),
+    },
+    Unit {
+        tables: &[attitude_noise::TABLE_NOISE, attitude_noise::TABLE_OFFSETS],
+        kind: Kind::PerRun,
+        scenarios: &[
+            Source::Bundled(attitude_noise::SCENARIO_NOISE),
+            Source::Bundled(attitude_noise::SCENARIO_OFFSETS),
+        ],
+        evaluate: |wanted, _, draw| {
+            attitude_noise::rows(
+                has(wanted, attitude_noise::TABLE_NOISE),
+                has(wanted, attitude_noise::TABLE_OFFSETS),
+                draw,
+            )
+        },
+    },
+    Unit {
+        tables: &["T-3.2"],
+        kind: Kind::Deterministic,
+        scenarios: &[Source::Bundled(loop_budget::SCENARIO)],
+        evaluate: |_, _, _| loop_budget::rows(),
+    },
+    Unit {
+        tables: &["T-3.3-R"],
+        kind: Kind::PerRun,
+        scenarios: &[],
+        evaluate: |_, _, draw| pmf_fft::rows(draw),
+    },
+    Unit {
+        tables: &["T-3.3-S"],
+        kind: Kind::PerRun,
+        scenarios: &[],
+        evaluate: |_, _, draw| fast_sync::rows(draw),
+    },
+    Unit {
+        tables: &[geometry_offsets::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(geometry_offsets::SCENARIO)],
+        evaluate: |_, _, draw| geometry_offsets::rows(draw),
+    },
+    Unit {
+        tables: &[zero_baseline::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(zero_baseline::SCENARIO)],
+        evaluate: |_, _, draw| zero_baseline::rows_from_chain(draw),
+    },
+    Unit {
+        tables: &attitude_realtime::TABLES,
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(attitude_realtime::SCENARIO)],
+        evaluate: |_, _, draw| attitude_realtime::rows(draw),
+    },
+    Unit {
+        tables: &[reverse_filter::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(reverse_filter::SCENARIO)],
+        evaluate: |_, _, draw| reverse_filter::rows(draw),
+    },
+    Unit {
+        tables: &[
+            crate::integrity::patterns::TABLE,
+            crate::integrity::detection::TABLE,
+        ],
+        kind: Kind::MonteCarlo,
+        scenarios: &[Source::Bundled(crate::integrity::lab::SCENARIO)],
+        evaluate: |wanted, _, draw| {
+            crate::integrity::rows(
+                draw,
+                has(wanted, crate::integrity::patterns::TABLE),
+                has(wanted, crate::integrity::detection::TABLE),
+            )
+            .map_err(ValidateError::Pipeline)
+        },
+    },
+    Unit {
+        tables: &[raim::TABLE_MOPS, raim::TABLE_LEO],
+        kind: Kind::MonteCarlo,
+        scenarios: &[
+            Source::RaimFile("raim-aircraft.toml"),
+            Source::RaimFile("raim-leo.toml"),
+        ],
+        evaluate: |wanted, _, draw| {
+            raim::rows(
+                has(wanted, raim::TABLE_MOPS),
+                has(wanted, raim::TABLE_LEO),
+                raim::RUNS,
+                draw.offset,
+            )
+        },
+    },
+];
+
+/// A scenario a run used, as `results.json` records it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ScenarioSource {
+    /// The bundled name, or the file's path.
+    pub name: String,
+    /// `bundled` or `file`.
+    pub origin: String,
+    /// The scenario's text as the run read it.
+    pub text: String,
+}
+
+/// What a `validate thesis` run was: `results.json` beside its rows.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Provenance {
+    /// SkyForge's version and the commit it was built from (`unknown` outside a git
+    /// checkout).
+    pub version: String,
+    pub commit: String,
+    /// The tables run.
+    pub tables: Vec<String>,
+    /// The plan over seeds (`None`: registered seeds).
+    pub plan: Option<SeedPlan>,
+    pub scenarios: Vec<ScenarioSource>,
+}
+
+/// A run's rows and what it was.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    pub provenance: Provenance,
+    pub rows: Vec<Row>,
+}
+
+fn source_of(source: Source) -> ScenarioSource {
+    match source {
+        Source::Bundled(name) => ScenarioSource {
+            name: name.to_string(),
+            origin: "bundled".into(),
+            text: skyforge_scenarios::bundled()
+                .iter()
+                .find(|b| b.name == name)
+                .map_or_else(String::new, |b| b.text.to_string()),
+        },
+        Source::RaimFile(file) => {
+            let path = Path::new(raim::SCENARIO_DIR).join(file);
+            ScenarioSource {
+                text: std::fs::read_to_string(&path).unwrap_or_default(),
+                name: path.display().to_string(),
+                origin: "file".into(),
+            }
+        }
+    }
+}
+
+/// One unit's rows under `plan` (`None`: registered seeds).
+fn unit_rows(
+    unit: &Unit,
+    wanted: &[&str],
+    data: Option<&Path>,
+    plan: Option<SeedPlan>,
+) -> Result<Vec<Row>, ValidateError> {
+    let eval = |draw| (unit.evaluate)(wanted, data, draw);
+    Ok(match (plan, unit.kind) {
+        (None, _) => eval(Draw::REGISTERED)?,
+        (Some(plan), Kind::PerRun) => {
+            let draws: Vec<Draw> = plan.each().collect();
+            let rows: Vec<Vec<Row>> = draws.into_par_iter().map(eval).collect::<Result<_, _>>()?;
+            draw::combine(plan, &rows)
+        }
+        (Some(plan), kind) => {
+            let draw = match kind {
+                Kind::MonteCarlo => Draw::shifted(plan.base),
+                _ => Draw::REGISTERED,
+            };
+            eval(draw)?
+                .into_iter()
+                .map(|r| draw::once(kind, plan, r))
+                .collect()
+        }
+    })
+}
+
+/// Run the selected tables and return their rows with the run's provenance; `starting`
+/// is told each table's ID before it runs (for progress output).
+pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Results, ValidateError> {
     for id in &opts.only {
         if !known(id) {
             return Err(ValidateError::UnknownTable {
@@ -84,86 +294,47 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Vec<Row>, V
             });
         }
     }
-    let wanted = |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| selects(id, t));
+    let selected = |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| selects(id, t));
     let mut rows = Vec::new();
-    if wanted("V-1.2.1") {
-        starting("V-1.2.1");
-        rows.extend(visibility::rows(opts.data_dir.as_deref())?);
-    }
-    let (noise, offsets) = (
-        wanted(attitude_noise::TABLE_NOISE),
-        wanted(attitude_noise::TABLE_OFFSETS),
-    );
-    if noise || offsets {
-        starting(if noise {
-            attitude_noise::TABLE_NOISE
-        } else {
-            attitude_noise::TABLE_OFFSETS
-        });
-        rows.extend(attitude_noise::rows(noise, offsets)?);
-    }
-    if wanted("T-3.2") {
-        starting("T-3.2");
-        rows.extend(loop_budget::rows()?);
-    }
-    if wanted("T-3.3-R") {
-        starting("T-3.3-R");
-        rows.extend(pmf_fft::rows()?);
-    }
-    if wanted("T-3.3-S") {
-        starting("T-3.3-S");
-        rows.extend(fast_sync::rows()?);
-    }
-    if wanted(geometry_offsets::TABLE) {
-        starting(geometry_offsets::TABLE);
-        rows.extend(geometry_offsets::rows()?);
-    }
-    if wanted(zero_baseline::TABLE) {
-        starting(zero_baseline::TABLE);
-        rows.extend(zero_baseline::rows_from_chain()?);
-    }
-    let realtime: Vec<&str> = attitude_realtime::TABLES
-        .into_iter()
-        .filter(|t| wanted(t))
-        .collect();
-    if let Some(first) = realtime.first() {
-        starting(first);
-        let all = attitude_realtime::rows()?;
+    let mut provenance = Provenance {
+        version: env!("CARGO_PKG_VERSION").to_string(),
+        commit: option_env!("SKYFORGE_COMMIT")
+            .unwrap_or("unknown")
+            .to_string(),
+        tables: Vec::new(),
+        plan: opts.plan,
+        scenarios: Vec::new(),
+    };
+    for unit in UNITS {
+        let wanted: Vec<&str> = unit
+            .tables
+            .iter()
+            .copied()
+            .filter(|t| selected(t))
+            .collect();
+        let Some(first) = wanted.first() else {
+            continue;
+        };
+        match opts.plan {
+            Some(plan) if unit.kind == Kind::PerRun => {
+                starting(&format!("{first} over {} seeds", plan.draws))
+            }
+            _ => starting(first),
+        }
+        let unit_rows = unit_rows(unit, &wanted, opts.data_dir.as_deref(), opts.plan)?;
         rows.extend(
-            all.into_iter()
-                .filter(|r| realtime.contains(&r.table.as_str())),
+            unit_rows
+                .into_iter()
+                .filter(|r| wanted.contains(&r.table.as_str())),
         );
+        provenance
+            .tables
+            .extend(wanted.iter().map(|t| t.to_string()));
+        provenance
+            .scenarios
+            .extend(unit.scenarios.iter().map(|&s| source_of(s)));
     }
-    if wanted(reverse_filter::TABLE) {
-        starting(reverse_filter::TABLE);
-        rows.extend(reverse_filter::rows()?);
-    }
-    let (patterns, curves) = (
-        wanted(crate::integrity::patterns::TABLE),
-        wanted(crate::integrity::detection::TABLE),
-    );
-    if patterns || curves {
-        starting(if patterns { "P2-4.2" } else { "P2-PD" });
-        rows.extend(
-            crate::integrity::rows(
-                crate::integrity::patterns::SEEDS,
-                crate::integrity::detection::SEEDS,
-                patterns,
-                curves,
-            )
-            .map_err(ValidateError::Pipeline)?,
-        );
-    }
-    let (mops, leo) = (wanted(raim::TABLE_MOPS), wanted(raim::TABLE_LEO));
-    if mops || leo {
-        starting(if mops {
-            raim::TABLE_MOPS
-        } else {
-            raim::TABLE_LEO
-        });
-        rows.extend(raim::rows(mops, leo, raim::RUNS)?);
-    }
-    Ok(rows)
+    Ok(Results { provenance, rows })
 }
 
 #[cfg(test)]

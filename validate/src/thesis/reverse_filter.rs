@@ -20,6 +20,7 @@
 
 use super::attitude_noise::config as constant_noise_config;
 use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
+use super::draw::Draw;
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -106,16 +107,16 @@ fn proposed_row(row: String, unit: &str, thesis: f64, ours: f64, ls: f64, bound:
     )
 }
 
-/// The rows of tables 5.5-1..5.5-4.
-pub fn rows() -> Result<Vec<Row>, ValidateError> {
-    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
+/// The rows of tables 5.5-1..5.5-4 on the runs of `draw`.
+pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    let scenario = skyforge_scenarios::named(SCENARIO)?;
     let ObsNoiseConfig::Constant { phase_m, code_m } = scenario.observation.noise else {
         return Err(ValidateError::Pipeline(format!(
             "{SCENARIO}: the scenario's [observation.noise] is not the constant model"
         )));
     };
     let [ls_epochwise, filtered_epochwise, ls_runs, runs] =
-        seed_runs(&scenario, configs(phase_m, code_m))?;
+        seed_runs(&scenario, configs(phase_m, code_m), draw)?;
     let (ls_chain, chain) = (chain_note(&ls_runs), chain_note(&runs));
     let mut out = Vec::new();
     for k in 0..2 {

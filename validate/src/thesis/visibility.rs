@@ -2,6 +2,7 @@
 //! field of view (thesis section 1.2.1, figures 1.2-1..1.2-3).
 
 use super::ValidateError;
+use super::draw::Draw;
 use super::geometry_run::for_each_chunk;
 use crate::report::{Row, Verdict};
 use crate::stats::Summary;
@@ -71,6 +72,7 @@ fn rows_for(label: &str, counts: &VisibleCounts, systems: &[usize], note: &str) 
                 tolerance: tolerance.into(),
                 verdict: Verdict::from_ok(ok),
                 note: note.into(),
+                over_seeds: None,
             })
         };
         push(
@@ -98,10 +100,19 @@ fn rows_for(label: &str, counts: &VisibleCounts, systems: &[usize], note: &str) 
     rows
 }
 
-/// Every row of V-1.2.1: embedded constellations (BDS-3 and BDS-2), and the real broadcast
-/// file of the day when `data_dir` holds it.
-pub fn rows(data_dir: Option<&Path>) -> Result<Vec<Row>, ValidateError> {
-    let base = skyforge_scenarios::resolve(SCENARIO)?;
+/// Between the start epochs of two draws over seeds (`validate thesis --seeds`): the
+/// visibility has no noise, its draws are start epochs.
+// assumed: a day and an hour, fixed before any run: each draw sees the constellations'
+// sidereal-day repeat and the LEO's ground track at a new phase.
+pub const DRAW_STEP_S: f64 = 25.0 * 3600.0;
+
+/// Every row of V-1.2.1: embedded constellations (BDS-3 and BDS-2) from the scenario's
+/// start plus `draw.offset` x [`DRAW_STEP_S`], and the real broadcast file of the day
+/// (always from the scenario's start: the file covers that day) when `data_dir` holds it.
+pub fn rows(data_dir: Option<&Path>, draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    let registered = skyforge_scenarios::named(SCENARIO)?;
+    let mut base = registered.clone();
+    base.time.start += hifitime::Duration::from_seconds(DRAW_STEP_S * draw.offset as f64);
     let epochs_note =
         |c: &VisibleCounts| format!("{} epochs at 1 Hz over 24 h, first antenna", c.all.len());
 
@@ -145,7 +156,7 @@ pub fn rows(data_dir: Option<&Path>) -> Result<Vec<Row>, ValidateError> {
         .filter(|p| p.is_file())
     {
         Some(nav) => {
-            let mut real = base.clone();
+            let mut real = registered.clone();
             for c in [&mut real.gnss.gps, &mut real.gnss.beidou] {
                 c.source = ConstellationSource::Rinex;
                 c.nav_file = Some(nav.clone());

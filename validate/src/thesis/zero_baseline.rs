@@ -85,8 +85,9 @@ const RECEIVER_NOTE: &str = "; receiver: its default configuration (the a-priori
 
 /// Synthesise, receive and difference: the rows of T-5.4-2. The recordings (about 2 GB)
 /// go to a temporary directory, removed when done.
-pub fn rows_from_chain() -> Result<Vec<Row>, ValidateError> {
-    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
+pub fn rows_from_chain(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+    let mut scenario = skyforge_scenarios::named(SCENARIO)?;
+    scenario.seed = draw.seed(scenario.seed);
     let work = tempfile::Builder::new()
         .prefix("skyforge-t-5.4-2-")
         .tempdir()
@@ -185,6 +186,7 @@ pub fn rows(zb: &ZeroBaseline) -> Vec<Row> {
                 tolerance: tolerance.into(),
                 verdict,
                 note: format!("{pairs}{why}"),
+                over_seeds: None,
             });
         }
     }

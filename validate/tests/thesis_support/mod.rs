@@ -8,9 +8,10 @@ pub fn table_alone(id: &str) -> Vec<Row> {
     let opts = Options {
         only: vec![id.into()],
         data_dir: None,
+        plan: None,
     };
     let mut started = Vec::new();
-    let rows = run(&opts, |t| started.push(t.to_string())).unwrap();
+    let rows = run(&opts, |t| started.push(t.to_string())).unwrap().rows;
     print_table(&rows, &mut std::io::stdout()).unwrap();
     assert_eq!(started, [id]);
     rows

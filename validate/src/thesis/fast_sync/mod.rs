@@ -113,10 +113,11 @@ fn track(
     f_start_hz: f64,
     sigma_f_hz: f64,
     q: [f64; 4],
+    seed: u64,
 ) -> Result<Run, ValidateError> {
     let fs = spec.sample_rate_hz;
     let n = (fs * T_S).round() as usize;
-    let mut source = SignalSource::new(*spec, code, SEED);
+    let mut source = SignalSource::new(*spec, code, seed);
     let mut block = Vec::with_capacity(n);
     let mut correlator = Correlator::new(
         code,
@@ -175,8 +176,9 @@ fn track(
     Ok(Run { errors })
 }
 
-/// The table's rows.
-pub fn rows() -> Result<Vec<Row>, ValidateError> {
+/// The table's rows on the signal of `draw`'s seed.
+pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+    let seed = draw.seed(SEED);
     let spec = SignalSpec {
         sample_rate_hz: 12.0 * CHIP_RATE_HZ,
         if_hz: IF_HZ,
@@ -190,7 +192,7 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
     // PMF-FFT on the first M chips (the C/A code plus one zero chip, thesis 3.3.1).
     let fs = spec.sample_rate_hz;
     let mut first = Vec::new();
-    SignalSource::new(spec, &code, SEED).block((fs * 1.1e-3) as usize, &mut first);
+    SignalSource::new(spec, &code, seed).block((fs * 1.1e-3) as usize, &mut first);
     let chips = despread_to_chips(
         &first,
         ChipTiming {
@@ -245,8 +247,8 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
             ),
         ),
     ];
-    let proposed = track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED)?;
-    let traditional = track(&spec, &code, coarse, SIGMA0_COARSE_HZ, Q_TRADITIONAL)?;
+    let proposed = track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED, seed)?;
+    let traditional = track(&spec, &code, coarse, SIGMA0_COARSE_HZ, Q_TRADITIONAL, seed)?;
     // Thesis tables 3.3-1 / 3.3-2: converged mean and std.
     let thesis = [
         ("proposed", &proposed, [0.0005, 0.0254, 0.0039, 0.2280]),
@@ -316,7 +318,7 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
         ));
     }
     // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
-    let fine_wide = track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL)?;
+    let fine_wide = track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL, seed)?;
     let (t_fine, t_coarse) = (fine_wide.convergence_s(), traditional.convergence_s());
     let same = fine_wide.doppler().1 / traditional.doppler().1;
     rows.push(Row::measured(
@@ -374,6 +376,7 @@ mod tests {
             spec.doppler_hz(0.5e-3) + 40.0,
             50.0,
             Q_TRADITIONAL,
+            SEED,
         )
         .unwrap();
         let (pm, ps) = run.phase();

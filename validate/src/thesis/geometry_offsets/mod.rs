@@ -282,9 +282,9 @@ const COMPARISON_RATES: [StdTable; 2] = [
     ),
 ];
 
-/// The rows of tables 4.3-2..4.3-6.
-pub fn rows() -> Result<Vec<Row>, ValidateError> {
-    let runs = seed::runs()?;
+/// The rows of tables 4.3-2..4.3-6 on the runs of `draw`.
+pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+    let runs = seed::runs(draw)?;
     let t = Table::new(&runs);
     let std_rows = |tables: &[StdTable]| -> Result<Vec<Row>, ValidateError> {
         let mut out = Vec::new();

@@ -9,6 +9,7 @@ use crate::attitude::seeds::SEEDS;
 use crate::attitude::{ObservationRun, observation_run};
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::std;
+use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::euler::YawPitchRoll;
@@ -268,14 +269,15 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
     })
 }
 
-/// The scenario on [`SEEDS`] seeds (its own and the next ones), in parallel.
-pub(super) fn runs() -> Result<Vec<SeedResult>, ValidateError> {
-    let scenario = skyforge_scenarios::resolve(SCENARIO)?;
-    (0..SEEDS)
+/// The scenario on the seeds of `draw` (registered: [`SEEDS`] seeds, its own and the
+/// next ones), in parallel.
+pub(super) fn runs(draw: Draw) -> Result<Vec<SeedResult>, ValidateError> {
+    let scenario = skyforge_scenarios::named(SCENARIO)?;
+    draw.seeds(scenario.seed, SEEDS)
         .into_par_iter()
-        .map(|k| {
+        .map(|seed| {
             let mut s = scenario.clone();
-            s.seed = scenario.seed + k;
+            s.seed = seed;
             run_seed(&s)
         })
         .collect()
