@@ -405,6 +405,15 @@ pub enum ValidateSuite {
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
     },
+    /// Put two `validate thesis --seeds` runs (other --seed-base) side by side: each row's
+    /// verdict and fraction of draws in tolerance in both, and the rows far from the bar
+    /// in both whose verdicts differ (there should be none).
+    Agree {
+        /// The first run's results.json (or its directory).
+        first: PathBuf,
+        /// The second run's results.json (or its directory).
+        second: PathBuf,
+    },
 }
 
 #[derive(Debug, Subcommand)]

@@ -37,7 +37,8 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
             suite:
                 cli::ValidateSuite::Obs { .. }
                 | cli::ValidateSuite::Attitude { .. }
-                | cli::ValidateSuite::Monitor { .. },
+                | cli::ValidateSuite::Monitor { .. }
+                | cli::ValidateSuite::Agree { .. },
         }
         | cli::Command::Scenarios { .. }
         | cli::Command::Report { .. }

@@ -316,6 +316,18 @@ fn validate_thesis_over_seeds_gives_each_row_its_draws() {
     assert!(per_run > 10, "{per_run} rows of T-3.3-S");
     // The printed table shows each row's fraction of draws in tolerance.
     assert!(text(&o).contains(" of 3"), "{}", text(&o));
+    // Two runs side by side (here the same twice: every row agrees with itself).
+    let o = skyforge(&["validate", "agree", "v", "v/results.json"], tmp.path());
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(
+        text(&o).contains(&format!("{per_run} rows over seeds in both;"))
+            && text(&o).contains("0 of them with other verdicts"),
+        "{}",
+        text(&o)
+    );
+    let o = skyforge(&["validate", "agree", "v", "nowhere"], tmp.path());
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(text(&o).contains("nowhere"), "{}", text(&o));
 }
 
 /// Every dataset of an HDF5 file as (path, raw little-endian bytes), sorted by path.

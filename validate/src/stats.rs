@@ -81,6 +81,25 @@ impl AcrossRuns {
     }
 }
 
+/// The standard error of the mean of a correlated series by batch means: `values` as
+/// (sample index, value), averaged over consecutive batches of `batch` indices
+/// (`index / batch`), and `std(batch means) / sqrt(batches)`; `None` with fewer than two
+/// batches. Batches several correlation times long are nearly independent, so this
+/// respects correlation that `std / sqrt(n)` ignores.
+pub fn batch_means_standard_error(
+    values: impl IntoIterator<Item = (usize, f64)>,
+    batch: usize,
+) -> Option<f64> {
+    let mut batches: std::collections::BTreeMap<usize, (f64, usize)> = Default::default();
+    for (k, v) in values {
+        let b = batches.entry(k / batch.max(1)).or_default();
+        *b = (b.0 + v, b.1 + 1);
+    }
+    let means: Vec<f64> = batches.values().map(|&(s, n)| s / n as f64).collect();
+    let std = crate::observables::ErrorStats::of(&means).std?;
+    Some(std / (means.len() as f64).sqrt())
+}
+
 /// Root mean square of `values` (0 when empty).
 pub fn rms(values: &[f64]) -> f64 {
     if values.is_empty() {

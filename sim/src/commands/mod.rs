@@ -164,5 +164,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     json,
                 },
         } => validate::monitor(&truth, &monitor, json.as_deref()),
+        Command::Validate {
+            suite: ValidateSuite::Agree { first, second },
+        } => validate::agree(&first, &second),
     }
 }

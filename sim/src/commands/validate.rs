@@ -11,7 +11,8 @@ use skyforge_validate::integrity::score::{print_score, read_monitor_csv, run_sce
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
-use skyforge_validate::report::{print_table, write_json};
+use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
+use skyforge_validate::thesis::draw::Agreement;
 use skyforge_validate::thesis::draw::SeedPlan;
 use skyforge_validate::thesis::{self, Options};
 use std::path::{Path, PathBuf};
@@ -51,6 +52,73 @@ pub fn thesis(
         let dir = staged.commit()?;
         println!("wrote {}", dir.join("results.json").display());
     }
+    Ok(())
+}
+
+/// The rows of a `results.json` (or of `DIR/results.json`).
+fn results_rows(path: &Path) -> anyhow::Result<Vec<skyforge_validate::report::Row>> {
+    let file = if path.is_dir() {
+        path.join("results.json")
+    } else {
+        path.to_path_buf()
+    };
+    let text = std::fs::read_to_string(&file)
+        .map_err(|e| BadInput(format!("{}: cannot read: {e}", file.display())))?;
+    let (_, rows) = parse_results(&text).map_err(|e| {
+        BadInput(format!(
+            "{}: line {}, column {}: {e}",
+            file.display(),
+            e.line(),
+            e.column()
+        ))
+    })?;
+    Ok(rows)
+}
+
+/// Print two `validate thesis --seeds` runs side by side ([`Agreement`]).
+pub fn agree(first: &Path, second: &Path) -> anyhow::Result<()> {
+    let agreement = Agreement::of(&results_rows(first)?, &results_rows(second)?);
+    if agreement.rows.is_empty() {
+        return Err(BadInput(
+            "no row over seeds in both runs (run validate thesis with --seeds)".into(),
+        )
+        .into());
+    }
+    let mut out = std::io::stdout().lock();
+    let word = |v: Verdict| match v {
+        Verdict::Reproduced => "reproduced",
+        Verdict::Explained => "explained",
+        Verdict::Deviates => "deviates",
+    };
+    use std::io::Write;
+    writeln!(
+        out,
+        "{:<8} {:<52} {:>22} {:>22}  far from the bar",
+        "table", "row", "first", "second"
+    )?;
+    for r in &agreement.rows {
+        let cell = |k: usize| format!("{} {:.2}", word(r.verdicts[k]), r.in_tolerance[k]);
+        writeln!(
+            out,
+            "{:<8} {:<52} {:>22} {:>22}  {}",
+            r.table,
+            r.row,
+            cell(0),
+            cell(1),
+            if r.settled { "yes" } else { "no" }
+        )?;
+    }
+    let settled = agreement.rows.iter().filter(|r| r.settled).count();
+    let off = agreement.settled_disagreements();
+    writeln!(
+        out,
+        "{} rows over seeds in both; {settled} far from the bar in both; {} of them with other verdicts{}",
+        agreement.rows.len(),
+        off.len(),
+        off.iter()
+            .map(|r| format!("\n  {} {}", r.table, r.row))
+            .collect::<String>()
+    )?;
     Ok(())
 }
 

@@ -23,10 +23,14 @@
 //!   integers leave (a fractional or half-cycle bias shows here) and `std` the pooled
 //!   within-arc std (each arc's own mean removed, so a receiver whose ambiguities are not
 //!   integers still gets its noise measured).
-//! - Per system: the pairs pooled ([`ErrorStats::pooled`]).
+//! - Per system: the pairs pooled ([`ErrorStats::pooled`]), and the standard error of
+//!   each pooled mean from batch means ([`mean_standard_error`]): the pairs share the reference
+//!   satellite and the loop noise is correlated over seconds, so the double differences are
+//!   not independent samples and `std / sqrt(count)` would be far too small.
 
 use super::ObsError;
 use super::error_stats::{ErrorStats, display};
+use crate::stats::batch_means_standard_error;
 use hifitime::Epoch;
 use serde::{Serialize, Serializer};
 use skyforge_orbits::ephemeris::{SatId, System};
@@ -74,6 +78,10 @@ pub struct PairDd {
     pub pseudorange_m: ErrorStats,
     pub carrier_phase_m: ErrorStats,
     pub arcs: Vec<DdArc>,
+    /// Per common epoch (index): the code DD (m), and the phase DD less its arc's integer
+    /// (m), for the system's batch means.
+    #[serde(skip)]
+    by_epoch: [Vec<(usize, f64)>; 2],
 }
 
 /// The double differences of one system.
@@ -86,7 +94,35 @@ pub struct SystemDd {
     /// The pairs pooled.
     pub pseudorange_m: ErrorStats,
     pub carrier_phase_m: ErrorStats,
+    /// The standard errors of the two pooled means (m) by batch means.
+    pub pseudorange_mean_se_m: Option<f64>,
+    pub carrier_phase_mean_se_m: Option<f64>,
     pub pairs: Vec<PairDd>,
+}
+
+/// Epochs per batch of [`mean_standard_error`].
+// assumed: 10 epochs (10 s at 1 Hz), fixed before any run over seeds: ten times the
+// correlation time of the default code loop (about 1 / (4 x 0.25 Hz) = 1 s), so batch
+// means are nearly independent, while a 60 s run still gives five batches.
+pub const BATCH_EPOCHS: usize = 10;
+
+/// The standard error of a mean of double differences that are correlated across pairs
+/// (one reference) and over time (loop noise): average the pairs at each epoch, average
+/// those over consecutive batches of [`BATCH_EPOCHS`] epochs, and take the spread of the
+/// batch means, `std(batch means) / sqrt(batches)`; `None` with fewer than two batches.
+/// `values`: (common-epoch index, value) of every pair.
+pub fn mean_standard_error(values: &[(usize, f64)]) -> Option<f64> {
+    let mut per_epoch: BTreeMap<usize, (f64, usize)> = BTreeMap::new();
+    for &(k, v) in values {
+        let e = per_epoch.entry(k).or_default();
+        *e = (e.0 + v, e.1 + 1);
+    }
+    batch_means_standard_error(
+        per_epoch
+            .into_iter()
+            .map(|(k, (sum, n))| (k, sum / n as f64)),
+        BATCH_EPOCHS,
+    )
 }
 
 /// The result of [`zero_baseline`].
@@ -205,11 +241,16 @@ pub fn zero_baseline_with(
         }
         let code: Vec<ErrorStats> = pairs.iter().map(|p| p.pseudorange_m).collect();
         let phase: Vec<ErrorStats> = pairs.iter().map(|p| p.carrier_phase_m).collect();
+        let all = |i: usize| -> Vec<(usize, f64)> {
+            pairs.iter().flat_map(|p| p.by_epoch[i].clone()).collect()
+        };
         systems.push(SystemDd {
             system,
             reference,
             pseudorange_m: ErrorStats::pooled(&code),
             carrier_phase_m: ErrorStats::pooled(&phase),
+            pseudorange_mean_se_m: mean_standard_error(&all(0)),
+            carrier_phase_mean_se_m: mean_standard_error(&all(1)),
             pairs,
         });
     }
@@ -260,8 +301,9 @@ fn pair(
     lambda: f64,
 ) -> PairDd {
     let mut code = Vec::new();
-    // Phase arcs: (first common epoch, values in cycles).
-    let mut arcs: Vec<(usize, Vec<f64>)> = Vec::new();
+    let mut code_by_epoch = Vec::new();
+    // Phase arcs: (first common epoch, (epoch, value in cycles)).
+    let mut arcs: Vec<(usize, Vec<(usize, f64)>)> = Vec::new();
     let mut last_phase: Option<usize> = None;
     for (k, epoch) in sds.iter().enumerate() {
         let (Some(s), Some(r)) = (epoch.get(&sat), epoch.get(&reference)) else {
@@ -269,6 +311,7 @@ fn pair(
         };
         if let (Some(cs), Some(cr)) = (s.code_m, r.code_m) {
             code.push(cs - cr);
+            code_by_epoch.push((k, cs - cr));
         }
         if let (Some(ps), Some(pr)) = (s.phase_cycles, r.phase_cycles) {
             let continues = last_phase == Some(k.wrapping_sub(1)) && !s.slip && !r.slip;
@@ -276,17 +319,19 @@ fn pair(
                 arcs.push((k, Vec::new()));
             }
             if let Some(arc) = arcs.last_mut() {
-                arc.1.push(ps - pr);
+                arc.1.push((k, ps - pr));
             }
             last_phase = Some(k);
         }
     }
     let mut arc_out = Vec::new();
     let mut arc_stats = Vec::new();
+    let mut phase_by_epoch = Vec::new();
     for (first, cycles) in &arcs {
-        let mean = cycles.iter().sum::<f64>() / cycles.len() as f64;
+        let mean = cycles.iter().map(|c| c.1).sum::<f64>() / cycles.len() as f64;
         let n = mean.round();
-        let metres: Vec<f64> = cycles.iter().map(|c| (c - n) * lambda).collect();
+        let metres: Vec<f64> = cycles.iter().map(|c| (c.1 - n) * lambda).collect();
+        phase_by_epoch.extend(cycles.iter().zip(&metres).map(|(c, &m)| (c.0, m)));
         arc_stats.push(ErrorStats::of(&metres));
         arc_out.push(DdArc {
             start: a.epochs[common[*first].0].time,
@@ -301,5 +346,58 @@ fn pair(
         pseudorange_m: ErrorStats::of(&code),
         carrier_phase_m: ErrorStats::pooled(&arc_stats),
         arcs: arc_out,
+        by_epoch: [code_by_epoch, phase_by_epoch],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+
+    fn noise(seed: u64, n: usize) -> Vec<f64> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        (0..n).map(|_| StandardNormal.sample(&mut rng)).collect()
+    }
+
+    #[test]
+    fn independent_epochs_give_about_the_naive_standard_error() {
+        let v = noise(1, 4000);
+        let se = mean_standard_error(&v.iter().copied().enumerate().collect::<Vec<_>>()).unwrap();
+        let naive = 1.0 / 4000f64.sqrt();
+        assert!((se / naive - 1.0).abs() < 0.3, "{se} vs {naive}");
+    }
+
+    #[test]
+    fn pairs_sharing_the_reference_do_not_count_as_independent() {
+        // Eight pairs whose double differences are all the reference's noise: the pooled
+        // mean is no better than one pair's, whatever the number of pairs.
+        let reference = noise(2, 400);
+        let one: Vec<(usize, f64)> = reference.iter().copied().enumerate().collect();
+        let eight: Vec<(usize, f64)> = (0..8).flat_map(|_| one.clone()).collect();
+        assert_eq!(mean_standard_error(&one), mean_standard_error(&eight));
+    }
+
+    #[test]
+    fn noise_correlated_over_epochs_widens_the_standard_error() {
+        // AR(1) with a 5-epoch correlation time: the mean's standard error is about
+        // sqrt((1 + a) / (1 - a)) = 3.2 times the naive one.
+        let a: f64 = (-1.0f64 / 5.0).exp();
+        let w = noise(3, 20_000);
+        let mut x = 0.0;
+        let series: Vec<(usize, f64)> = w
+            .iter()
+            .enumerate()
+            .map(|(k, e)| {
+                x = a * x + (1.0 - a * a).sqrt() * e;
+                (k, x)
+            })
+            .collect();
+        let se = mean_standard_error(&series).unwrap();
+        let naive = 1.0 / 20_000f64.sqrt();
+        assert!(se / naive > 2.0, "{}", se / naive);
+        // Too few epochs for two batches: no standard error.
+        assert_eq!(mean_standard_error(&series[..BATCH_EPOCHS]), None);
     }
 }

@@ -226,6 +226,58 @@ pub fn once(kind: Kind, plan: SeedPlan, mut row: Row) -> Row {
     row
 }
 
+/// Two plans' verdicts side by side: every row both give over seeds.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Agreement {
+    /// (table, row, quantity), verdicts and fractions in tolerance of the first and second
+    /// plan, and whether both fractions are far from the bar.
+    pub rows: Vec<AgreementRow>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct AgreementRow {
+    pub table: String,
+    pub row: String,
+    pub quantity: String,
+    pub verdicts: [Verdict; 2],
+    pub in_tolerance: [f64; 2],
+    pub settled: bool,
+}
+
+impl Agreement {
+    /// The rows of `a` and `b` (two `results.json` over seeds) matched by table, row and
+    /// quantity; rows without a distribution over seeds in either are left out.
+    pub fn of(a: &[Row], b: &[Row]) -> Self {
+        let rows = a
+            .iter()
+            .filter_map(|x| {
+                let y = b
+                    .iter()
+                    .find(|y| (&y.table, &y.row, &y.quantity) == (&x.table, &x.row, &x.quantity))?;
+                let (ox, oy) = (x.over_seeds.as_ref()?, y.over_seeds.as_ref()?);
+                Some(AgreementRow {
+                    table: x.table.clone(),
+                    row: x.row.clone(),
+                    quantity: x.quantity.clone(),
+                    verdicts: [x.verdict, y.verdict],
+                    in_tolerance: [ox.in_tolerance, oy.in_tolerance],
+                    settled: ox.settled && oy.settled,
+                })
+            })
+            .collect();
+        Self { rows }
+    }
+
+    /// The rows far from the bar in both plans whose verdicts differ: none is what
+    /// `validate thesis --seeds` promises.
+    pub fn settled_disagreements(&self) -> Vec<&AgreementRow> {
+        self.rows
+            .iter()
+            .filter(|r| r.settled && r.verdicts[0] != r.verdicts[1])
+            .collect()
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -310,6 +362,56 @@ mod tests {
         assert_eq!((a.draws, a.in_tolerance), (4, 0.5));
         assert!(out[0].note.starts_with("2 draws without this row"));
         assert_eq!(out[1].over_seeds.clone().unwrap().in_tolerance, 0.75);
+    }
+
+    #[test]
+    fn agreement_pairs_rows_and_flags_settled_disagreements() {
+        use Verdict::*;
+        let plan = SeedPlan { draws: 20, base: 0 };
+        let over = |name: &str, verdicts: &[Verdict]| {
+            let draws: Vec<Vec<Row>> = verdicts.iter().map(|&v| vec![row(name, 1.0, v)]).collect();
+            combine(
+                SeedPlan {
+                    draws: verdicts.len() as u64,
+                    ..plan
+                },
+                &draws,
+            )
+        };
+        let many = |v: Verdict, n: usize, rest: Verdict| {
+            let mut all = vec![v; n];
+            all.resize(20, rest);
+            all
+        };
+        // a: settled reproduced in both; b: settled but opposite; c: near the bar in one.
+        let first: Vec<Row> = [
+            over("a", &many(Reproduced, 20, Deviates)),
+            over("b", &many(Reproduced, 18, Deviates)),
+            over("c", &many(Reproduced, 12, Deviates)),
+        ]
+        .concat();
+        let second: Vec<Row> = [
+            over("a", &many(Reproduced, 19, Deviates)),
+            over("b", &many(Reproduced, 2, Deviates)),
+            over("c", &many(Reproduced, 8, Deviates)),
+            vec![row("d", 1.0, Reproduced)],
+        ]
+        .concat();
+        let agreement = Agreement::of(&first, &second);
+        assert_eq!(agreement.rows.len(), 3);
+        let settled: Vec<&str> = agreement
+            .rows
+            .iter()
+            .filter(|r| r.settled)
+            .map(|r| r.row.as_str())
+            .collect();
+        assert_eq!(settled, ["a", "b"]);
+        let off: Vec<&str> = agreement
+            .settled_disagreements()
+            .iter()
+            .map(|r| r.row.as_str())
+            .collect();
+        assert_eq!(off, ["b"]);
     }
 
     #[test]

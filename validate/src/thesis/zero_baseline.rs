@@ -19,7 +19,7 @@
 //! thesis's GPS code mean is a hardware inter-channel bias, which a simulated zero
 //! baseline does not have.
 
-use crate::observables::double_difference::{SystemDd, ZeroBaseline, zero_baseline};
+use crate::observables::double_difference::{BATCH_EPOCHS, SystemDd, ZeroBaseline, zero_baseline};
 use crate::observables::{ErrorStats, ObsError, read_obs_file};
 use crate::pipeline::synth_and_receive;
 use crate::report::{Row, Verdict};
@@ -115,12 +115,12 @@ pub fn rows_from_obs(ant1: &Path, ant2: &Path) -> Result<Vec<Row>, ObsError> {
     Ok(rows(&zero_baseline(&a, &b)?))
 }
 
-/// The DD statistics of `t`'s observable in `dd`.
-fn stats_of(dd: &SystemDd, t: &Target) -> ErrorStats {
+/// The DD statistics of `t`'s observable in `dd`, and its mean's standard error.
+fn stats_of(dd: &SystemDd, t: &Target) -> (ErrorStats, Option<f64>) {
     if t.observable == "pseudorange" {
-        dd.pseudorange_m
+        (dd.pseudorange_m, dd.pseudorange_mean_se_m)
     } else {
-        dd.carrier_phase_m
+        (dd.carrier_phase_m, dd.carrier_phase_mean_se_m)
     }
 }
 
@@ -130,19 +130,20 @@ pub fn rows(zb: &ZeroBaseline) -> Vec<Row> {
     let mut out = Vec::new();
     for t in &TARGETS {
         let dd = zb.system(t.system);
-        let stats = dd.map(|d| stats_of(d, t));
+        let (stats, se) = dd.map(|d| stats_of(d, t)).unzip();
+        let se = se.flatten();
         let pairs = dd.map_or(String::new(), |d| {
             format!(
-                "{} pairs against {}, {} double differences, {} common epochs; C/N0 {CN0_DBHZ} dB-Hz (assumed: not in the thesis)",
+                "{} pairs against {}, {} double differences, {} common epochs, mean's standard error {} m by batch means of {BATCH_EPOCHS} epochs; C/N0 {CN0_DBHZ} dB-Hz (assumed: not in the thesis)",
                 d.pairs.len(),
                 d.reference,
                 stats.map_or(0, |s| s.count),
-                zb.common_epochs
+                zb.common_epochs,
+                se.map_or("-".to_string(), |se| format!("{se:.3e}"))
             )
         });
-        // Mean verdict.
+        // Mean verdict, its standard error by batch means (the DDs are correlated).
         let mean = stats.and_then(|s| s.mean);
-        let se = stats.and_then(|s| Some(s.std? / (s.count as f64).sqrt()));
         let mean_verdict = match (mean, se) {
             (Some(m), _) if (m - t.mean_m).abs() <= t.std_m => (Verdict::Reproduced, ""),
             (Some(m), Some(se)) if m.abs() <= 3.0 * se => (
@@ -196,7 +197,6 @@ pub fn rows(zb: &ZeroBaseline) -> Vec<Row> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::observables::double_difference::PairDd;
     use skyforge_orbits::ephemeris::SatId;
 
     fn system(system: System, code: (f64, f64), phase: (f64, f64)) -> SystemDd {
@@ -211,13 +211,10 @@ mod tests {
             reference: sat(1),
             pseudorange_m: stats(code),
             carrier_phase_m: stats(phase),
-            pairs: vec![PairDd {
-                sat: sat(2),
-                reference: sat(1),
-                pseudorange_m: stats(code),
-                carrier_phase_m: stats(phase),
-                arcs: Vec::new(),
-            }],
+            // Batch means of a 400-epoch run: 40 batches.
+            pseudorange_mean_se_m: Some(code.1 / 40f64.sqrt()),
+            carrier_phase_mean_se_m: Some(phase.1 / 40f64.sqrt()),
+            pairs: Vec::new(),
         }
     }
 
