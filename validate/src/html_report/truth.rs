@@ -1,7 +1,7 @@
 //! Figures from a run's `truth.h5` (docs/truth-h5.md): satellites in view against time
 //! per constellation (thesis figures 1.2-1 to 1.2-3, beside the thesis's numbers), the
 //! Doppler shift with its first two derivatives (thesis figures 3.2-1 to 3.2-3) and the
-//! carrier-loop errors they cause (thesis figures 3.2-4 to 3.2-23, [`loop_errors`]).
+//! carrier-loop errors they cause (thesis figures 3.2-4 to 3.2-23, `loop_errors`).
 
 use super::chart::{Chart, Series};
 use super::page::Section;
