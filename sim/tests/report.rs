@@ -52,9 +52,10 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
     ("run", "att")
 }
 
-/// Figures of the page of [`outputs`]: GPS in view and the three Doppler figures, the
-/// validation's ratios, five study metrics, two baselines and the attitude.
-const FIGURES: usize = 4 + 1 + 5 + 3;
+/// Figures of the page of [`outputs`]: GPS in view, the three Doppler figures and the 20
+/// loop-error figures, the validation's ratios, five study metrics, two baselines and the
+/// attitude.
+const FIGURES: usize = 4 + 20 + 1 + 5 + 3;
 
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
@@ -85,6 +86,9 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
         "fixed integers wrong",
     ] {
         assert!(html.contains(needle), "{needle}");
+    }
+    for n in 4..=23 {
+        assert!(html.contains(&format!("Thesis figure 3.2-{n}:")), "3.2-{n}");
     }
     // Self-contained: nothing fetched from anywhere.
     for outside in [" src=", " href=", "url(", "@import"] {

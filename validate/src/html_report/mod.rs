@@ -6,6 +6,7 @@
 pub mod attitude;
 pub mod chart;
 pub mod geometry;
+mod loop_errors;
 pub mod page;
 pub mod results;
 pub mod study;

@@ -1,10 +1,11 @@
 //! Figures from a run's `truth.h5` (docs/truth-h5.md): satellites in view against time
-//! per constellation (thesis figures 1.2-1 to 1.2-3, beside the thesis's numbers) and the Doppler shift with its first two derivatives
-//! (thesis figures 3.2-1 to 3.2-3).
+//! per constellation (thesis figures 1.2-1 to 1.2-3, beside the thesis's numbers), the
+//! Doppler shift with its first two derivatives (thesis figures 3.2-1 to 3.2-3) and the
+//! carrier-loop errors they cause (thesis figures 3.2-4 to 3.2-23, `loop_errors`).
 
 use super::chart::{Chart, Series};
 use super::page::Section;
-use super::{ReportError, figure, read_dataset};
+use super::{ReportError, figure, loop_errors, read_dataset};
 use hdf5::types::VarLenUnicode;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -80,16 +81,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     }
     if let Some(name) = antennas.first() {
         let links = Links::read(&file, path, name, t_s.len(), ids.len())?;
-        for (dataset, title, unit, figure_no) in [
-            ("doppler_hz", "Doppler shift", "Hz", "3.2-1"),
-            ("doppler_rate_hzps", "Doppler rate", "Hz/s", "3.2-2"),
-            (
-                "doppler_accel_hzps2",
-                "Doppler acceleration",
-                "Hz/s^2",
-                "3.2-3",
-            ),
-        ] {
+        let read = |dataset: &str| -> Result<Vec<f64>, ReportError> {
             let values: Vec<f64> =
                 read_dataset(&file, path, &format!("antennas/{name}/{dataset}"))?;
             if values.len() != links.epoch.len() {
@@ -99,12 +91,24 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                     links.epoch.len()
                 )));
             }
+            Ok(values)
+        };
+        let doppler = [
+            read("doppler_hz")?,
+            read("doppler_rate_hzps")?,
+            read("doppler_accel_hzps2")?,
+        ];
+        for (values, (title, unit, figure_no)) in doppler.iter().zip([
+            ("Doppler shift", "Hz", "3.2-1"),
+            ("Doppler rate", "Hz/s", "3.2-2"),
+            ("Doppler acceleration", "Hz/s^2", "3.2-3"),
+        ]) {
             let chart = links.chart(
                 &format!("{title}, antenna {name}"),
                 &format!("{title} ({unit})"),
                 &t_s,
                 &ids,
-                &values,
+                values,
             );
             section.figures.push(figure(
                 &chart,
@@ -112,6 +116,11 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                 path,
             )?);
         }
+        let [_, rate, accel] = &doppler;
+        let pass = loop_errors::Pass::most_dynamic(&links, &t_s, &ids, rate, accel);
+        let (paragraph, figures) = loop_errors::figures(path, name, pass.as_ref())?;
+        section.paragraphs.push(paragraph);
+        section.figures.extend(figures);
     }
     Ok(section)
 }
@@ -210,9 +219,9 @@ fn visible_chart(
 }
 
 /// The visible links of one antenna: epoch row and satellite column of each.
-struct Links {
-    epoch: Vec<u32>,
-    sat: Vec<u16>,
+pub(super) struct Links {
+    pub(super) epoch: Vec<u32>,
+    pub(super) sat: Vec<u16>,
 }
 
 impl Links {

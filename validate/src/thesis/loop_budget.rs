@@ -84,6 +84,51 @@ const THESIS_TOTAL: [(LoopOrder, f64, [Option<f64>; 5]); 4] = [
 const THESIS_IMPLIED_RATE_HZPS: f64 = 58.5;
 const THESIS_IMPLIED_ACCEL_HZPS2: f64 = 0.067;
 
+/// One of thesis figures 3.2-4 to 3.2-23: the loop it draws and the maximum total error
+/// the thesis prints for it (`None` where it prints only "fail").
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopFigure {
+    /// N of "figure 3.2-N".
+    pub number: usize,
+    pub setting: LoopSetting,
+    pub thesis_max_total_deg: Option<f64>,
+}
+
+/// The thesis's loop of `order`, `sigma_a` and `bn_hz` (Hz): GPS L1 at 39 dB-Hz, 1 ms
+/// integration, 2 deg vibration jitter.
+fn thesis_setting(order: LoopOrder, sigma_a: f64, bn_hz: f64) -> LoopSetting {
+    LoopSetting {
+        order,
+        bn_hz,
+        cn0_dbhz: CN0_DBHZ,
+        t_coh_s: T_COH_S,
+        sigma_allan: sigma_a,
+        carrier_hz: F_GPS_L1_HZ,
+        sigma_vibration_deg: THESIS_VIBRATION_DEG,
+    }
+}
+
+/// The 20 figures 3.2-4 to 3.2-23 in the thesis's order, which is that of the table of
+/// maximum totals: 2nd then 3rd order at sigma_A = 1e-10, then both at 1e-9, each over
+/// Bn = 10, 18, 50, 100, 200 Hz.
+pub fn figure_settings() -> Vec<LoopFigure> {
+    THESIS_TOTAL
+        .iter()
+        .flat_map(|&(order, sigma_a, totals)| {
+            BN_HZ
+                .iter()
+                .zip(totals)
+                .map(move |(&bn, thesis)| (thesis_setting(order, sigma_a, bn), thesis))
+        })
+        .enumerate()
+        .map(|(k, (setting, thesis_max_total_deg))| LoopFigure {
+            number: 4 + k,
+            setting,
+            thesis_max_total_deg,
+        })
+        .collect()
+}
+
 /// Peak Doppler dynamics of one satellite over its visible epochs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SatDynamics {
@@ -218,15 +263,7 @@ pub fn rows() -> Result<Vec<Row>, ValidateError> {
     };
     for (order, sigma_a, totals) in THESIS_TOTAL {
         for (i, &bn) in BN_HZ.iter().enumerate() {
-            let setting = LoopSetting {
-                order,
-                bn_hz: bn,
-                cn0_dbhz: CN0_DBHZ,
-                t_coh_s: T_COH_S,
-                sigma_allan: sigma_a,
-                carrier_hz: F_GPS_L1_HZ,
-                sigma_vibration_deg: THESIS_VIBRATION_DEG,
-            };
+            let setting = thesis_setting(order, sigma_a, bn);
             let budget = setting.budget(worst);
             let thesis = totals[i];
             let thesis_fails = thesis.is_none_or(|t| t > LOCK_THRESHOLD_DEG);
