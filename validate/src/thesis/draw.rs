@@ -128,12 +128,13 @@ pub fn settled(f: f64, n: u64) -> bool {
     n > 0 && (f - BAR).abs() > 2.0 * (BAR * (1.0 - BAR) / n as f64).sqrt()
 }
 
-/// One row from its evaluations in the draws of `plan` (the first evaluation's text and
-/// note, the mean over draws as its value).
-fn combine_row(plan: SeedPlan, evaluations: &[&Row]) -> Row {
-    let n = evaluations.len() as u64;
-    let share =
-        |v: Verdict| evaluations.iter().filter(|r| r.verdict == v).count() as f64 / n.max(1) as f64;
+/// One row from its evaluations in the `total` draws of `plan` (the first evaluation's
+/// text and note, the mean over draws as its value); a draw without the row counts as a
+/// deviating draw of it.
+fn combine_row(plan: SeedPlan, evaluations: &[&Row], total: usize) -> Row {
+    let share = |v: Verdict| {
+        evaluations.iter().filter(|r| r.verdict == v).count() as f64 / total.max(1) as f64
+    };
     let (in_tolerance, explained) = (share(Verdict::Reproduced), share(Verdict::Explained));
     let values: Vec<f64> = evaluations
         .iter()
@@ -142,6 +143,7 @@ fn combine_row(plan: SeedPlan, evaluations: &[&Row]) -> Row {
         .collect();
     let first = evaluations[0];
     let spread = crate::observables::ErrorStats::of(&values);
+    let n = total as u64;
     let over = OverSeeds {
         draws: n,
         base: plan.base,
@@ -154,10 +156,13 @@ fn combine_row(plan: SeedPlan, evaluations: &[&Row]) -> Row {
         explained,
         settled: settled(in_tolerance, n),
     };
+    let missing = match total - evaluations.len() {
+        0 => String::new(),
+        m => format!("{m} draws without this row; "),
+    };
     let note = format!(
-        "over {n} seeds: {} of {} draws with a value, mean {:.6} +- {:.6} (std {:.6}, {:.6}..{:.6}), in tolerance in {:.2}; first draw: {}",
+        "{missing}over {n} seeds: {} draws with a value, mean {:.6} +- {:.6} (std {:.6}, {:.6}..{:.6}), in tolerance in {:.2}; first draw: {}",
         values.len(),
-        n,
         over.mean,
         over.standard_error,
         over.std,
@@ -176,8 +181,8 @@ fn combine_row(plan: SeedPlan, evaluations: &[&Row]) -> Row {
 }
 
 /// The rows of a table evaluated once per draw of `plan` (`draws[k]`: the rows of draw
-/// k), each row combined over the draws that gave it, in the order rows first appear.
-/// A row missing from a draw counts as a deviating draw of that row.
+/// k), each row combined over the draws ([`combine_row`]), in the order rows first
+/// appear.
 pub fn combine(plan: SeedPlan, draws: &[Vec<Row>]) -> Vec<Row> {
     let key = |r: &Row| (r.table.clone(), r.row.clone(), r.quantity.clone());
     let mut order: Vec<(String, String, String)> = Vec::new();
@@ -193,20 +198,7 @@ pub fn combine(plan: SeedPlan, draws: &[Vec<Row>]) -> Vec<Row> {
                 .iter()
                 .filter_map(|rows| rows.iter().find(|r| &key(r) == k))
                 .collect();
-            let mut row = combine_row(plan, &found);
-            if let Some(over) = row.over_seeds.as_mut() {
-                let missing = draws.len() as u64 - over.draws;
-                if missing > 0 {
-                    let total = draws.len() as f64;
-                    over.in_tolerance *= over.draws as f64 / total;
-                    over.explained *= over.draws as f64 / total;
-                    over.draws = draws.len() as u64;
-                    over.settled = settled(over.in_tolerance, over.draws);
-                    row.verdict = verdict_over(over.in_tolerance, over.explained);
-                    row.note = format!("{missing} draws without this row; {}", row.note);
-                }
-            }
-            row
+            combine_row(plan, &found, draws.len())
         })
         .collect()
 }
