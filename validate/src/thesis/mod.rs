@@ -5,6 +5,7 @@
 pub mod attitude_noise;
 pub mod attitude_realtime;
 mod attitude_runs;
+pub mod curves;
 pub mod draw;
 pub mod fast_sync;
 pub mod geometry_offsets;
