@@ -241,6 +241,8 @@ fn validate_thesis_writes_every_row_of_both_tables() {
     );
     assert!(p["plan"].is_null());
     assert_eq!(p["tables"], serde_json::json!(["V-1.2.1", "T-3.2"]));
+    // Neither table computes a thesis figure: no curves.json.
+    assert!(!tmp.path().join("v/curves.json").exists());
     let names: Vec<&str> = p["scenarios"]
         .as_array()
         .unwrap()
@@ -314,6 +316,18 @@ fn validate_thesis_over_seeds_gives_each_row_its_draws() {
         per_run += 1;
     }
     assert!(per_run > 10, "{per_run} rows of T-3.3-S");
+    // T-3.3-S's figures 3.3-10/3.3-11 (on the registered seed, a unit test checks).
+    let curves: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("v/curves.json")).unwrap())
+            .unwrap();
+    let figures: Vec<&str> = curves["curves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|c| c["figure"].as_str().unwrap())
+        .collect();
+    assert_eq!(figures, ["3.3-10", "3.3-10", "3.3-11", "3.3-11"]);
+    assert!(text(&o).contains("curves.json"), "{}", text(&o));
     // The printed table shows each row's fraction of draws in tolerance.
     assert!(text(&o).contains(" of 3"), "{}", text(&o));
     // Two runs side by side (here the same twice: every row agrees with itself).

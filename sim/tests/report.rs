@@ -19,9 +19,16 @@ const RESULTS: &str = r#"[
 "#;
 
 /// A run's directory (`skyforge run`: truth.h5, geometry, observations) with a study's
-/// `study.h5` and a `results.json` added, and `skyforge attitude`'s output for the run:
-/// every source the report draws from. Returns the two directory names.
+/// `study.h5`, a `results.json` and the `curves.json` of `validate thesis --only T-3.3-R
+/// --only T-3.3-S` added, and `skyforge attitude`'s output for the run: every source the
+/// report draws from. Returns the two directory names.
 fn outputs(d: &Path) -> (&'static str, &'static str) {
+    skyforge_ok(
+        &[
+            "validate", "thesis", "--only", "T-3.3-R", "--only", "T-3.3-S", "--out", "val",
+        ],
+        d,
+    );
     small_study(d, 2);
     skyforge_ok(&["study", "run", "small.toml", "--out", "study"], d);
     let scenario = std::fs::read_to_string(d.join("t-5.4-3.toml")).unwrap();
@@ -32,6 +39,7 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
     skyforge_ok(&["run", "short.toml", "--out", "run"], d);
     std::fs::copy(d.join("study/study.h5"), d.join("run/study.h5")).unwrap();
     std::fs::write(d.join("run/results.json"), RESULTS).unwrap();
+    std::fs::copy(d.join("val/curves.json"), d.join("run/curves.json")).unwrap();
     let mut args = vec!["attitude".to_string()];
     for a in ["ant1", "ant2", "ant3"] {
         args.push(format!("run/observations/{a}.obs.rnx"));
@@ -53,9 +61,10 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
 }
 
 /// Figures of the page of [`outputs`]: GPS in view, the three Doppler figures and the 20
-/// loop-error figures, the validation's ratios, five study metrics, two baselines and the
-/// attitude.
-const FIGURES: usize = 4 + 20 + 1 + 5 + 3;
+/// loop-error figures, the validation's ratios, the thesis figures 3.3-7, 3.3-8 (a)..(d),
+/// 3.3-9 and the phase and Doppler halves of 3.3-10 and 3.3-11, five study metrics, two
+/// baselines and the attitude.
+const FIGURES: usize = 4 + 20 + 1 + 10 + 5 + 3;
 
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
@@ -64,7 +73,7 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     let (dir, att) = outputs(d);
     let printed = skyforge_ok(&["report", dir, "--attitude", att], d);
     assert!(
-        printed.contains(&format!("4 sections, {FIGURES} figures")),
+        printed.contains(&format!("5 sections, {FIGURES} figures")),
         "{printed}"
     );
     let html = std::fs::read_to_string(d.join("run/report.html")).unwrap();
@@ -90,6 +99,30 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     for n in 4..=23 {
         assert!(html.contains(&format!("Thesis figure 3.2-{n}:")), "3.2-{n}");
     }
+    // Thesis figures 3.3-7..3.3-11 with the thesis's printed numbers beside SkyForge's.
+    for caption in [
+        "Thesis figure 3.3-7: E[fd_hat Tc] against delta",
+        "Thesis figure 3.3-8 (a): R_f against delta, L = 64",
+        "Thesis figure 3.3-8 (d): R_f against delta, L = 512",
+        "Thesis figure 3.3-9: NMSE of fd_hat Tc against fd Tc",
+        "Thesis figure 3.3-10 (a), (c): phase error against time, same Q and R",
+        "Thesis figure 3.3-10 (b), (d): Doppler error against time, same Q and R",
+        "Thesis figure 3.3-11 (a), (c): phase error against time, different Q",
+        "Thesis figure 3.3-11 (b), (d): Doppler error against time, different Q",
+    ] {
+        assert!(html.contains(caption), "{caption}");
+    }
+    for printed in [
+        "thesis 1.0902.",
+        "thesis 1.4444.",
+        "thesis 1e-9.",
+        "thesis 233.1055 Hz.",
+        "thesis -2.936 Hz.",
+        "thesis 0.0254 rad.",
+        "thesis 1.9401 Hz.",
+    ] {
+        assert!(html.contains(printed), "{printed}");
+    }
     // Self-contained: nothing fetched from anywhere.
     for outside in [" src=", " href=", "url(", "@import"] {
         assert!(!html.contains(outside), "{outside}");
@@ -97,6 +130,7 @@ fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     // In a directory skyforge wrote, the page joins the manifest, so `run --force` can
     // still replace the directory.
     std::fs::remove_file(d.join("run/results.json")).unwrap();
+    std::fs::remove_file(d.join("run/curves.json")).unwrap();
     std::fs::remove_file(d.join("run/study.h5")).unwrap();
     let manifest = std::fs::read_to_string(d.join("run/.skyforge-manifest")).unwrap();
     assert!(manifest.lines().any(|l| l == "report.html"), "{manifest}");
@@ -125,6 +159,19 @@ fn bad_directories_and_pages_it_did_not_write_are_refused() {
     let t = text(&o);
     assert!(t.contains("results.json") && t.contains("line 2"), "{t}");
     assert!(!d.join("bad/report.html").exists());
+
+    // So is a broken curves.json.
+    std::fs::create_dir(d.join("bad-curves")).unwrap();
+    std::fs::write(
+        d.join("bad-curves/curves.json"),
+        "{\"curves\": [\n  {}\n]}\n",
+    )
+    .unwrap();
+    let o = skyforge(&["report", "bad-curves"], d);
+    assert_eq!(o.status.code(), Some(2));
+    let t = text(&o);
+    assert!(t.contains("curves.json") && t.contains("line 2"), "{t}");
+    assert!(!d.join("bad-curves/report.html").exists());
 
     // A user's page of the same name stays, --force or not; ours is replaced with --force.
     std::fs::write(d.join("bad/results.json"), RESULTS).unwrap();

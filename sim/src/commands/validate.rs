@@ -12,6 +12,7 @@ use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compar
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
+use skyforge_validate::thesis::curves::{CURVES_FILE, CurvesFile};
 use skyforge_validate::thesis::draw::Agreement;
 use skyforge_validate::thesis::draw::SeedPlan;
 use skyforge_validate::thesis::{self, Options};
@@ -21,7 +22,8 @@ use std::str::FromStr;
 /// Default real-data folder, relative to the working directory.
 const DEFAULT_DATA_DIR: &str = "../shared/data";
 
-/// Run the thesis tables, print them and optionally write `results.json`.
+/// Run the thesis tables, print them and optionally write `results.json` and, when the
+/// tables compute thesis figures, their data in `curves.json` (on the registered seeds).
 pub fn thesis(
     only: Vec<String>,
     out: Option<&Path>,
@@ -45,12 +47,24 @@ pub fn thesis(
         data_dir: Some(data_dir),
         plan,
     };
-    let results = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
-    print_table(&results.rows, &mut std::io::stdout().lock())?;
+    let outcome = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
+    print_table(&outcome.results.rows, &mut std::io::stdout().lock())?;
     if let Some(staged) = staged {
-        write_json(&results, &staged.file("results.json"))?;
+        write_json(&outcome.results, &staged.file("results.json"))?;
+        let mut written = vec!["results.json"];
+        if !outcome.curves.is_empty() {
+            let curves = CurvesFile {
+                curves: outcome.curves,
+            };
+            let path = staged.file(CURVES_FILE);
+            std::fs::write(&path, curves.to_json()?)
+                .with_context(|| format!("cannot write {}", path.display()))?;
+            written.push(CURVES_FILE);
+        }
         let dir = staged.commit()?;
-        println!("wrote {}", dir.join("results.json").display());
+        for name in written {
+            println!("wrote {}", dir.join(name).display());
+        }
     }
     Ok(())
 }

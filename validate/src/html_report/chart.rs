@@ -2,6 +2,8 @@
 //! optional confidence band, and horizontal reference lines (thesis values).
 
 use plotters::coord::Shift;
+use plotters::coord::ranged1d::ValueFormatter;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use std::ops::Range;
 
@@ -123,6 +125,8 @@ impl Chart {
             .configure_mesh()
             .x_desc(&self.x_label)
             .y_desc(&self.y_label)
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
             .light_line_style(WHITE.mix(0.0))
             .draw()?;
         let mut k: usize = 0;
@@ -244,6 +248,23 @@ impl Bounds {
     }
 }
 
+/// An axis label: plotters' own (at most five decimals), or three significant digits in
+/// scientific notation below 1e-3, which five decimals would round away (an NMSE of 1e-10
+/// reads 0.0).
+fn tick(v: &f64) -> String {
+    if *v == 0.0 || v.abs() >= 1e-3 {
+        return RangedCoordf64::format(v);
+    }
+    let text = format!("{v:.2e}");
+    match text.split_once('e') {
+        Some((mantissa, exponent)) if mantissa.contains('.') => {
+            let mantissa = mantissa.trim_end_matches('0').trim_end_matches('.');
+            format!("{mantissa}e{exponent}")
+        }
+        _ => text,
+    }
+}
+
 /// Curve colour `k`: the ten of Tableau 10 in turn (distinct, readable on white).
 fn colour(k: usize) -> RGBAColor {
     const TABLEAU: [(u8, u8, u8); 10] = [
@@ -306,6 +327,15 @@ mod tests {
         ] {
             assert!(svg.contains(needle), "{needle}");
         }
+    }
+
+    #[test]
+    fn small_ticks_keep_their_digits() {
+        assert_eq!(tick(&1.5e-10), "1.5e-10");
+        assert_eq!(tick(&-2.5e-4), "-2.5e-4");
+        assert_eq!(tick(&5e-5), "5e-5");
+        assert_eq!(tick(&0.0), RangedCoordf64::format(&0.0));
+        assert_eq!(tick(&12.5), RangedCoordf64::format(&12.5));
     }
 
     #[test]

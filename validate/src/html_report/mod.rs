@@ -1,10 +1,12 @@
 //! `skyforge report`: one self-contained HTML page (inline SVG figures, no network) from
 //! the outputs in a directory: the truth of a run (`truth.h5`), a thesis validation
-//! (`results.json`) and a study (`study.h5`), each as a section of the page when present,
-//! and the attitude chain's errors when its output directory is named.
+//! (`results.json`, and `curves.json`: the thesis figures its tables compute) and a study
+//! (`study.h5`), each as a section of the page when present, and the attitude chain's
+//! errors when its output directory is named.
 
 pub mod attitude;
 pub mod chart;
+pub mod curves;
 pub mod geometry;
 mod loop_errors;
 pub mod page;
@@ -48,15 +50,16 @@ pub struct Inputs<'a> {
     pub observations: Option<&'a Path>,
 }
 
-/// The report page of `inputs`: a section for each of `truth.h5`, `results.json` and the
-/// merged `study.h5` found in the directory, and the attitude chain's when named. An
-/// error when there is none, or when one present cannot be read.
+/// The report page of `inputs`: a section for each of `truth.h5`, `results.json`,
+/// `curves.json` and the merged `study.h5` found in the directory, and the attitude
+/// chain's when named. An error when there is none, or when one present cannot be read.
 pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
     let dir = inputs.dir;
     type Maker = fn(&Path) -> Result<page::Section, ReportError>;
-    let makers: [(&str, Maker); 3] = [
+    let makers: [(&str, Maker); 4] = [
         ("truth.h5", truth::section),
         ("results.json", results::section),
+        (crate::thesis::curves::CURVES_FILE, curves::section),
         (crate::study::MERGED_FILE, study::section),
     ];
     let mut page = Page {
@@ -83,7 +86,8 @@ pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
             dir,
             format!(
                 "nothing to report: none of truth.h5 (skyforge synth or run), results.json \
-                 (validate thesis --out) or {} (study run or merge) is here",
+                 or {} (validate thesis --out) or {} (study run or merge) is here",
+                crate::thesis::curves::CURVES_FILE,
                 crate::study::MERGED_FILE
             ),
         ));

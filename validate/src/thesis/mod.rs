@@ -1,10 +1,12 @@
 //! The thesis acceptance tables (`../shared/reference/THESIS_TARGETS.md`): each module runs
 //! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
-//! printed number.
+//! printed number; T-3.3-R and T-3.3-S also give the data of the thesis figures they
+//! compute ([`curves`]).
 
 pub mod attitude_noise;
 pub mod attitude_realtime;
 mod attitude_runs;
+pub mod curves;
 pub mod draw;
 pub mod fast_sync;
 pub mod geometry_offsets;
@@ -17,6 +19,7 @@ pub mod zero_baseline;
 
 use crate::integrity::raim;
 use crate::report::Row;
+use curves::Curve;
 use draw::{Draw, Kind, SeedPlan};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
@@ -90,13 +93,27 @@ enum Source {
 }
 
 /// The tables of one evaluation (a group whose tables share runs), how it takes part in a
-/// plan over seeds, its scenarios, and the evaluation itself (`wanted`: the group's
-/// selected tables).
+/// plan over seeds, its scenarios, the evaluation itself (`wanted`: the group's selected
+/// tables) and the thesis figures it computes.
 struct Unit {
     tables: &'static [&'static str],
     kind: Kind,
     scenarios: &'static [Source],
-    evaluate: fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>,
+    evaluate: Evaluate,
+    figures: Option<Figures>,
+}
+
+/// A unit's evaluation on one draw: its selected tables, the real-data folder, the draw.
+type Evaluate = fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>;
+/// Rows and figures' data of one evaluation.
+type RowsAndCurves = Result<(Vec<Row>, Vec<Curve>), ValidateError>;
+
+/// The thesis figures of a one-table unit, always on its registered seeds: with the rows
+/// of that evaluation (one computation, for a run on the registered seeds), or alone (for
+/// a run over seeds, whose draws give the rows).
+struct Figures {
+    with_rows: fn() -> RowsAndCurves,
+    alone: fn() -> Result<Vec<Curve>, ValidateError>,
 }
 
 fn has(wanted: &[&str], table: &str) -> bool {
@@ -110,6 +127,7 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(visibility::SCENARIO)],
         evaluate: |_, data, draw| visibility::rows(data, draw),
+        figures: None,
     },
     Unit {
         tables: &[attitude_noise::TABLE_NOISE, attitude_noise::TABLE_OFFSETS],
@@ -125,48 +143,62 @@ const UNITS: &[Unit] = &[
                 draw,
             )
         },
+        figures: None,
     },
     Unit {
         tables: &["T-3.2"],
         kind: Kind::Deterministic,
         scenarios: &[Source::Bundled(loop_budget::SCENARIO)],
         evaluate: |_, _, _| loop_budget::rows(),
+        figures: None,
     },
     Unit {
         tables: &["T-3.3-R"],
         kind: Kind::PerRun,
         scenarios: &[],
         evaluate: |_, _, draw| pmf_fft::rows(draw),
+        figures: Some(Figures {
+            with_rows: pmf_fft::rows_and_curves,
+            alone: pmf_fft::curves,
+        }),
     },
     Unit {
         tables: &["T-3.3-S"],
         kind: Kind::PerRun,
         scenarios: &[],
         evaluate: |_, _, draw| fast_sync::rows(draw),
+        figures: Some(Figures {
+            with_rows: fast_sync::rows_and_curves,
+            alone: fast_sync::curves,
+        }),
     },
     Unit {
         tables: &[geometry_offsets::TABLE],
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(geometry_offsets::SCENARIO)],
         evaluate: |_, _, draw| geometry_offsets::rows(draw),
+        figures: None,
     },
     Unit {
         tables: &[zero_baseline::TABLE],
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(zero_baseline::SCENARIO)],
         evaluate: |_, _, draw| zero_baseline::rows_from_chain(draw),
+        figures: None,
     },
     Unit {
         tables: &attitude_realtime::TABLES,
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(attitude_realtime::SCENARIO)],
         evaluate: |_, _, draw| attitude_realtime::rows(draw),
+        figures: None,
     },
     Unit {
         tables: &[reverse_filter::TABLE],
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(reverse_filter::SCENARIO)],
         evaluate: |_, _, draw| reverse_filter::rows(draw),
+        figures: None,
     },
     Unit {
         tables: &[
@@ -183,6 +215,7 @@ const UNITS: &[Unit] = &[
             )
             .map_err(ValidateError::Pipeline)
         },
+        figures: None,
     },
     Unit {
         tables: &[raim::TABLE_MOPS, raim::TABLE_LEO],
@@ -199,6 +232,7 @@ const UNITS: &[Unit] = &[
                 draw.offset,
             )
         },
+        figures: None,
     },
 ];
 
@@ -234,6 +268,14 @@ pub struct Results {
     pub rows: Vec<Row>,
 }
 
+/// What a run gives: its rows (`results.json`) and the data of the thesis figures its
+/// tables compute (`curves.json`), the latter always on the registered seeds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Outcome {
+    pub results: Results,
+    pub curves: Vec<Curve>,
+}
+
 fn source_of(source: Source) -> ScenarioSource {
     match source {
         Source::Bundled(name) => ScenarioSource {
@@ -255,15 +297,19 @@ fn source_of(source: Source) -> ScenarioSource {
     }
 }
 
-/// One unit's rows under `plan` (`None`: registered seeds).
-fn unit_rows(
+/// One unit's rows under `plan` (`None`: registered seeds) and its figures' data (on its
+/// registered seeds either way).
+fn evaluate_unit(
     unit: &Unit,
     wanted: &[&str],
     data: Option<&Path>,
     plan: Option<SeedPlan>,
-) -> Result<Vec<Row>, ValidateError> {
+) -> RowsAndCurves {
+    if let (None, Some(figures)) = (plan, &unit.figures) {
+        return (figures.with_rows)();
+    }
     let eval = |draw| (unit.evaluate)(wanted, data, draw);
-    Ok(match (plan, unit.kind) {
+    let rows = match (plan, unit.kind) {
         (None, _) => eval(Draw::REGISTERED)?,
         (Some(plan), Kind::PerRun) => {
             let draws: Vec<Draw> = plan.each().collect();
@@ -280,12 +326,18 @@ fn unit_rows(
                 .map(|r| draw::once(kind, plan, r))
                 .collect()
         }
-    })
+    };
+    let curves = match &unit.figures {
+        Some(figures) => (figures.alone)()?,
+        None => Vec::new(),
+    };
+    Ok((rows, curves))
 }
 
-/// Run the selected tables and return their rows with the run's provenance; `starting`
-/// is told each table's ID before it runs (for progress output).
-pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Results, ValidateError> {
+/// Run the selected tables and return their rows with the run's provenance, and their
+/// figures' data; `starting` is told each table's ID before it runs (for progress
+/// output).
+pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Outcome, ValidateError> {
     for id in &opts.only {
         if !known(id) {
             return Err(ValidateError::UnknownTable {
@@ -295,7 +347,7 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Results, Va
         }
     }
     let selected = |t: &str| opts.only.is_empty() || opts.only.iter().any(|id| selects(id, t));
-    let mut rows = Vec::new();
+    let (mut rows, mut curves) = (Vec::new(), Vec::new());
     let mut provenance = Provenance {
         version: env!("CARGO_PKG_VERSION").to_string(),
         commit: option_env!("SKYFORGE_COMMIT")
@@ -321,7 +373,9 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Results, Va
             }
             _ => starting(first),
         }
-        let unit_rows = unit_rows(unit, &wanted, opts.data_dir.as_deref(), opts.plan)?;
+        let (unit_rows, unit_curves) =
+            evaluate_unit(unit, &wanted, opts.data_dir.as_deref(), opts.plan)?;
+        curves.extend(unit_curves);
         rows.extend(
             unit_rows
                 .into_iter()
@@ -334,12 +388,34 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Results, Va
             .scenarios
             .extend(unit.scenarios.iter().map(|&s| source_of(s)));
     }
-    Ok(Results { provenance, rows })
+    Ok(Outcome {
+        results: Results { provenance, rows },
+        curves,
+    })
 }
 
 #[cfg(test)]
 mod tests {
-    use super::selects;
+    use super::*;
+
+    #[test]
+    fn figures_are_on_the_registered_seed_also_over_seeds() {
+        let unit = UNITS
+            .iter()
+            .find(|u| u.tables == [fast_sync::TABLE])
+            .unwrap();
+        let (rows, curves) = evaluate_unit(unit, unit.tables, None, None).unwrap();
+        assert_eq!(rows, fast_sync::rows(Draw::REGISTERED).unwrap());
+        assert_eq!(curves, fast_sync::curves().unwrap());
+        let plan = SeedPlan { draws: 1, base: 7 };
+        let (rows_7, curves_7) = evaluate_unit(unit, unit.tables, None, Some(plan)).unwrap();
+        assert_eq!(curves_7, curves);
+        assert!(rows_7.iter().all(|r| r.over_seeds.is_some()));
+        assert_ne!(
+            rows_7.iter().map(|r| r.ours).collect::<Vec<_>>(),
+            rows.iter().map(|r| r.ours).collect::<Vec<_>>()
+        );
+    }
 
     #[test]
     fn only_selects_a_table_or_its_group() {

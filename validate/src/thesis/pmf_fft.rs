@@ -2,8 +2,11 @@
 //! (figures 3.3-5..3.3-9): the theoretical variance ratio `R_f` (eq. 3.3-55), a Monte
 //! Carlo run of the receiver's own PMF-FFT on the chip-rate model of eq. 3.3-15, the
 //! expectation of `fd Tc` against eq. 3.3-45 and the NMSE against the MCRB (eq. 3.3-75).
+//! The same Monte Carlo gives the data of figures 3.3-7, 3.3-8 and 3.3-9 ([`curves`]).
 
 use super::ValidateError;
+use super::curves::{Curve, CurveSeries, Mark, Reference, Value};
+use super::draw::Draw;
 use crate::report::{Row, Verdict};
 use rayon::prelude::*;
 use skyforge_receiver::acquisition::Complex32;
@@ -172,210 +175,439 @@ impl Sums {
     }
 }
 
-/// Every row of T-3.3-R.
-pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+/// The thesis's values: R_f of eq. 3.3-55 at |delta| = 0 and 0.5 (M = 1024, L = 64).
+const THESIS_RF_THEORY: [(f64, f64); 2] = [(0.0, 1.0147), (0.5, 1.4444)];
+/// The thesis's largest Monte Carlo R_f over delta, L = 64 (figure 3.3-8 (a)).
+const THESIS_RF_MAX: f64 = 1.0902;
+/// The thesis's order of magnitude of the largest NMSE (figure 3.3-9).
+const THESIS_NMSE_ORDER: f64 = 1e-9;
+/// Steps of the theory curves drawn beside the Monte Carlo of figures 3.3-7/3.3-8: delta
+/// every 1/100 bin.
+const DELTA_STEPS: usize = 100;
+/// Steps per FFT bin of the theory curve of figure 3.3-9: it repeats its scallop in every
+/// bin (R_f and the bias depend on the offset delta within the bin), so it is drawn at
+/// 20 points a bin to be seen at all.
+const NMSE_STEPS_PER_BIN: usize = 20;
+
+/// The Monte Carlo of figures 3.3-7..3.3-9 on one seed, which both the rows and the
+/// figures' data are made of.
+struct Points {
+    /// delta of figures 3.3-7/3.3-8 ([`delta_grid`]).
+    deltas: Vec<f64>,
+    /// For each L of [`L_CURVES`], the point at each delta (p = 0, `fd Tc = delta / 2M`).
+    by_l: Vec<Vec<McPoint>>,
+    /// L = 64 at each `fd Tc` of [`nmse_grid`] (figure 3.3-9).
+    nmse: Vec<McPoint>,
+    /// Eq. 3.3-75.
+    mcrb: f64,
+    trials: usize,
+    seconds: f64,
+}
+
+/// [`monte_carlo`] at every point of figures 3.3-7..3.3-9, `trials` each, on `draw`'s seed.
+fn points(draw: Draw, trials: usize) -> Result<Points, ValidateError> {
     let seed = draw.seed(SEED);
     let started = Instant::now();
-    let mut rows = Vec::new();
     let two_m = 2.0 * M as f64;
-
-    // Theoretical R_f at the printed points (eq. 3.3-55, p = 0).
-    for (delta, thesis) in [(0.0, 1.0147), (0.5, 1.4444)] {
-        let ours = theory::rf_ratio(M, 64, 0, delta);
-        rows.push(
-            Row::measured(
-                TABLE,
-                format!("theoretical R_f |delta|={delta} M=1024 L=64"),
-                "variance ratio to the MCRB (eq. 3.3-55)",
-                "-",
-                Some(thesis),
-                ours,
-                (
-                    "+/-1e-3".into(),
-                    Verdict::from_ok((ours - thesis).abs() <= 1e-3),
-                ),
-            )
-            .with_note(format!("{:.4} dB", 10.0 * ours.log10())),
-        );
-    }
-
-    // Monte Carlo R_f(delta) curves, p = 0 (figure 3.3-8).
     let deltas = delta_grid();
-    let mut curves = Vec::new();
+    let mut by_l = Vec::new();
     for (li, &l) in L_CURVES.iter().enumerate() {
         let mut points = Vec::new();
         for (di, &delta) in deltas.iter().enumerate() {
             let stream = (100 * li + di) as u32;
-            points.push(monte_carlo(l, delta / two_m, TRIALS, stream, seed)?);
+            points.push(monte_carlo(l, delta / two_m, trials, stream, seed)?);
         }
-        curves.push(points);
+        by_l.push(points);
     }
-    let mcrb = theory::mcrb_fd_tc(M, SNR);
-
-    // Max R_f over delta, L = 64.
-    let (at, max_rf) = curves[0]
-        .iter()
-        .zip(&deltas)
-        .map(|(p, &d)| (d, p.variance / mcrb))
-        .fold(
-            (0.0, f64::NEG_INFINITY),
-            |b, x| if x.1 > b.1 { x } else { b },
-        );
-    rows.push(
-        Row::measured(
-            TABLE,
-            "Monte Carlo max R_f over delta L=64 SNR 0 dB",
-            "variance ratio to the MCRB",
-            "-",
-            Some(1.0902),
-            max_rf,
-            (
-                "+/-10 %".into(),
-                Verdict::from_ok((max_rf / 1.0902 - 1.0).abs() <= 0.1),
-            ),
-        )
-        .with_note(format!(
-            "at delta = {at}; eq. 3.3-55 gives {:.4} there; {TRIALS} trials per delta",
-            theory::rf_ratio(M, 64, 0, at)
-        )),
-    );
-
-    // E[fd Tc] versus delta against eq. 3.3-45 (figure 3.3-7), L = 64.
-    let (worst_delta, worst_dev) = curves[0]
-        .iter()
-        .zip(&deltas)
-        .map(|(p, &d)| (d, (p.mean_fd_tc * two_m - theory::expected_delta(d)).abs()))
-        .fold(
-            (0.0, f64::NEG_INFINITY),
-            |b, x| if x.1 > b.1 { x } else { b },
-        );
-    rows.push(
-        Row::measured(
-            TABLE,
-            "E[fd Tc] max deviation from eq. 3.3-45 L=64",
-            "mean estimate minus eq. 3.3-45 (in FFT bins 1/(2M))",
-            "bin",
-            None,
-            worst_dev,
-            ("< 0.05 bin".into(), Verdict::from_ok(worst_dev < 0.05)),
-        )
-        .with_note(format!(
-            "largest at delta = {worst_delta}; the thesis prints the curve only"
-        )),
-    );
-
-    // R_f(delta) curves against the theory drawn beside them in figure 3.3-8.
-    for (li, &l) in L_CURVES.iter().enumerate() {
-        for (p, &delta) in curves[li].iter().zip(&deltas) {
-            let mc = p.variance / mcrb;
-            let th = theory::rf_ratio(M, l, 0, delta);
-            let mut note = format!("bias {:.2e} bin", p.mean_fd_tc * two_m - delta);
-            if l >= 256 {
-                note.push_str(
-                    "; thesis: for L = 256, 512 the estimate degrades markedly as |delta| nears 0.5",
-                );
-            }
-            let check = (
-                "not above eq. 3.3-55 by more than 10 % (thesis: MC may beat the approximate theory)".into(),
-                Verdict::from_ok(mc <= 1.1 * th),
-            );
-            let row = Row::measured(
-                TABLE,
-                format!("R_f(delta={delta:+.1}) L={l} Monte Carlo"),
-                "variance ratio to the MCRB; thesis column = eq. 3.3-55 curve of figure 3.3-8",
-                "-",
-                Some(th),
-                mc,
-                check,
-            );
-            rows.push(row.with_note(note));
-        }
-    }
-
-    // NMSE versus fd Tc (figure 3.3-9), L = 64.
-    let l = 64;
-    let grid = nmse_grid(l);
-    let nmse: Vec<McPoint> = grid
+    let nmse = nmse_grid(L_CURVES[0])
         .iter()
         .enumerate()
-        .map(|(i, &f)| monte_carlo(l, f, TRIALS, (1000 + i) as u32, seed))
+        .map(|(i, &f)| monte_carlo(L_CURVES[0], f, trials, (1000 + i) as u32, seed))
         .collect::<Result<_, _>>()?;
-    let by = |better: fn(f64, f64) -> bool| {
-        nmse.iter()
-            .fold(nmse[0], |b, p| if better(p.mse, b.mse) { *p } else { b })
-    };
-    let (max, min) = (by(|a, b| a > b), by(|a, b| a < b));
-    let edge = 1.0 / (2.0 * l as f64);
-    let max_db = 10.0 * (max.mse / mcrb).log10();
-    let theory_at_max = theory::nmse_fd_tc(M, l, max.fd_tc, SNR);
-    let at_edge = (max.fd_tc.abs() - edge).abs() < 1e-12;
-    let verdict = if max_db <= 3.0 && at_edge {
-        Verdict::Reproduced
-    } else if (max.mse / theory_at_max - 1.0).abs() <= 0.1 {
-        Verdict::Explained
-    } else {
-        Verdict::Deviates
-    };
-    let row = Row::measured(
-        TABLE,
-        "NMSE max over fd Tc / MCRB L=64",
-        "NMSE (eq. 3.3-74) over the MCRB (eq. 3.3-75)",
-        "dB",
-        None,
-        max_db,
-        ("<= 3 dB".into(), verdict),
-    );
-    rows.push(row.with_note(format!(
-        "at fd Tc = {:.6}; eq. 3.3-53 with the PMF amplitude lambda0 (eq. 3.3-21) predicts {:.2} dB there: the PMF's sinc loses (2/pi)^2 = -3.9 dB of line SNR at |fd Tc| = 1/(2L), which the flat MCRB omits (receiver test theory::tests::mcrb_and_nmse_scale_as_the_formulas_say)",
-        max.fd_tc,
-        10.0 * (theory_at_max / mcrb).log10()
-    )));
-    rows.push(Row::measured(
-        TABLE,
-        "|fd Tc| of the NMSE maximum L=64",
-        "NMSE curve shape (figure 3.3-9)",
-        "-",
-        Some(edge),
-        max.fd_tc.abs(),
-        ("at the range end 1/(2L)".into(), Verdict::from_ok(at_edge)),
-    ));
-    rows.push(
-        Row::measured(
+    Ok(Points {
+        deltas,
+        by_l,
+        nmse,
+        mcrb: theory::mcrb_fd_tc(M, SNR),
+        trials,
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
+
+/// The (x, y) with the largest y.
+fn largest(points: impl Iterator<Item = (f64, f64)>) -> (f64, f64) {
+    points.fold(
+        (0.0, f64::NEG_INFINITY),
+        |b, x| if x.1 > b.1 { x } else { b },
+    )
+}
+
+/// `f` at `steps` + 1 evenly spaced points from `-half` to `half`.
+fn theory_curve(half: f64, steps: usize, f: impl Fn(f64) -> f64) -> Vec<(f64, f64)> {
+    (0..=steps)
+        .map(|i| {
+            let x = half * (2.0 * i as f64 / steps as f64 - 1.0);
+            (x, f(x))
+        })
+        .collect()
+}
+
+impl Points {
+    /// (delta, R_f) of the Monte Carlo for the `li`-th L.
+    fn rf(&self, li: usize) -> impl Iterator<Item = (f64, f64)> + '_ {
+        self.deltas
+            .iter()
+            .zip(&self.by_l[li])
+            .map(|(&d, p)| (d, p.variance / self.mcrb))
+    }
+
+    /// (delta, largest R_f over delta), L = 64.
+    fn max_rf(&self) -> (f64, f64) {
+        largest(self.rf(0))
+    }
+
+    /// (delta, largest |E[fd_hat Tc] - eq. 3.3-45| in bins), L = 64.
+    fn worst_expectation(&self) -> (f64, f64) {
+        let two_m = 2.0 * M as f64;
+        largest(
+            self.deltas
+                .iter()
+                .zip(&self.by_l[0])
+                .map(|(&d, p)| (d, (p.mean_fd_tc * two_m - theory::expected_delta(d)).abs())),
+        )
+    }
+
+    /// The points of largest and smallest NMSE (figure 3.3-9).
+    fn nmse_extremes(&self) -> (McPoint, McPoint) {
+        let by = |better: fn(f64, f64) -> bool| {
+            self.nmse.iter().fold(
+                self.nmse[0],
+                |b, p| if better(p.mse, b.mse) { *p } else { b },
+            )
+        };
+        (by(|a, b| a > b), by(|a, b| a < b))
+    }
+
+    /// Every row of T-3.3-R.
+    fn rows(&self) -> Vec<Row> {
+        let mut rows = Vec::new();
+        let two_m = 2.0 * M as f64;
+        let (deltas, mcrb, trials) = (&self.deltas, self.mcrb, self.trials);
+
+        // Theoretical R_f at the printed points (eq. 3.3-55, p = 0).
+        for (delta, thesis) in THESIS_RF_THEORY {
+            let ours = theory::rf_ratio(M, 64, 0, delta);
+            rows.push(
+                Row::measured(
+                    TABLE,
+                    format!("theoretical R_f |delta|={delta} M=1024 L=64"),
+                    "variance ratio to the MCRB (eq. 3.3-55)",
+                    "-",
+                    Some(thesis),
+                    ours,
+                    (
+                        "+/-1e-3".into(),
+                        Verdict::from_ok((ours - thesis).abs() <= 1e-3),
+                    ),
+                )
+                .with_note(format!("{:.4} dB", 10.0 * ours.log10())),
+            );
+        }
+
+        // Max R_f over delta, L = 64 (figure 3.3-8).
+        let (at, max_rf) = self.max_rf();
+        rows.push(
+            Row::measured(
+                TABLE,
+                "Monte Carlo max R_f over delta L=64 SNR 0 dB",
+                "variance ratio to the MCRB",
+                "-",
+                Some(THESIS_RF_MAX),
+                max_rf,
+                (
+                    "+/-10 %".into(),
+                    Verdict::from_ok((max_rf / THESIS_RF_MAX - 1.0).abs() <= 0.1),
+                ),
+            )
+            .with_note(format!(
+                "at delta = {at}; eq. 3.3-55 gives {:.4} there; {trials} trials per delta",
+                theory::rf_ratio(M, 64, 0, at)
+            )),
+        );
+
+        // E[fd Tc] versus delta against eq. 3.3-45 (figure 3.3-7), L = 64.
+        let (worst_delta, worst_dev) = self.worst_expectation();
+        rows.push(
+            Row::measured(
+                TABLE,
+                "E[fd Tc] max deviation from eq. 3.3-45 L=64",
+                "mean estimate minus eq. 3.3-45 (in FFT bins 1/(2M))",
+                "bin",
+                None,
+                worst_dev,
+                ("< 0.05 bin".into(), Verdict::from_ok(worst_dev < 0.05)),
+            )
+            .with_note(format!(
+                "largest at delta = {worst_delta}; the thesis prints the curve only"
+            )),
+        );
+
+        // R_f(delta) curves against the theory drawn beside them in figure 3.3-8.
+        for (li, &l) in L_CURVES.iter().enumerate() {
+            for (p, &delta) in self.by_l[li].iter().zip(deltas) {
+                let mc = p.variance / mcrb;
+                let th = theory::rf_ratio(M, l, 0, delta);
+                let mut note = format!("bias {:.2e} bin", p.mean_fd_tc * two_m - delta);
+                if l >= 256 {
+                    note.push_str(
+                        "; thesis: for L = 256, 512 the estimate degrades markedly as |delta| nears 0.5",
+                    );
+                }
+                let check = (
+                    "not above eq. 3.3-55 by more than 10 % (thesis: MC may beat the approximate theory)".into(),
+                    Verdict::from_ok(mc <= 1.1 * th),
+                );
+                let row = Row::measured(
+                    TABLE,
+                    format!("R_f(delta={delta:+.1}) L={l} Monte Carlo"),
+                    "variance ratio to the MCRB; thesis column = eq. 3.3-55 curve of figure 3.3-8",
+                    "-",
+                    Some(th),
+                    mc,
+                    check,
+                );
+                rows.push(row.with_note(note));
+            }
+        }
+
+        // NMSE versus fd Tc (figure 3.3-9), L = 64.
+        let l = L_CURVES[0];
+        let (max, min) = self.nmse_extremes();
+        let edge = 1.0 / (2.0 * l as f64);
+        let max_db = 10.0 * (max.mse / mcrb).log10();
+        let theory_at_max = theory::nmse_fd_tc(M, l, max.fd_tc, SNR);
+        let at_edge = (max.fd_tc.abs() - edge).abs() < 1e-12;
+        let verdict = if max_db <= 3.0 && at_edge {
+            Verdict::Reproduced
+        } else if (max.mse / theory_at_max - 1.0).abs() <= 0.1 {
+            Verdict::Explained
+        } else {
+            Verdict::Deviates
+        };
+        let row = Row::measured(
             TABLE,
-            "|fd Tc| of the NMSE minimum L=64",
+            "NMSE max over fd Tc / MCRB L=64",
+            "NMSE (eq. 3.3-74) over the MCRB (eq. 3.3-75)",
+            "dB",
+            None,
+            max_db,
+            ("<= 3 dB".into(), verdict),
+        );
+        rows.push(row.with_note(format!(
+            "at fd Tc = {:.6}; eq. 3.3-53 with the PMF amplitude lambda0 (eq. 3.3-21) predicts {:.2} dB there: the PMF's sinc loses (2/pi)^2 = -3.9 dB of line SNR at |fd Tc| = 1/(2L), which the flat MCRB omits (receiver test theory::tests::mcrb_and_nmse_scale_as_the_formulas_say)",
+            max.fd_tc,
+            10.0 * (theory_at_max / mcrb).log10()
+        )));
+        rows.push(Row::measured(
+            TABLE,
+            "|fd Tc| of the NMSE maximum L=64",
             "NMSE curve shape (figure 3.3-9)",
             "-",
-            Some(0.0),
-            min.fd_tc.abs(),
-            (
-                "the grid point at 0".into(),
-                Verdict::from_ok(min.fd_tc.abs() < 1e-12),
-            ),
-        )
-        .with_note(format!("minimum NMSE / MCRB {:.4}", min.mse / mcrb)),
-    );
-    let same_order = (max.mse.log10().round() - (1e-9f64).log10()).abs() < 0.5;
-    rows.push(
-        Row::measured(
-            TABLE,
-            "NMSE maximum L=64",
-            "NMSE of fd Tc (eq. 3.3-74)",
-            "-",
-            Some(1e-9),
-            max.mse,
-            (
-                "same order of magnitude (thesis: 'order 1e-9')".into(),
-                Verdict::from_ok(same_order),
-            ),
-        )
-        .with_note(format!(
-            "MCRB {mcrb:.4e}; Monte Carlo of {} + {} points x {TRIALS} trials took {:.1} s",
-            L_CURVES.len() * deltas.len(),
-            grid.len(),
-            started.elapsed().as_secs_f64()
-        )),
-    );
-    Ok(rows)
+            Some(edge),
+            max.fd_tc.abs(),
+            ("at the range end 1/(2L)".into(), Verdict::from_ok(at_edge)),
+        ));
+        rows.push(
+            Row::measured(
+                TABLE,
+                "|fd Tc| of the NMSE minimum L=64",
+                "NMSE curve shape (figure 3.3-9)",
+                "-",
+                Some(0.0),
+                min.fd_tc.abs(),
+                (
+                    "the grid point at 0".into(),
+                    Verdict::from_ok(min.fd_tc.abs() < 1e-12),
+                ),
+            )
+            .with_note(format!("minimum NMSE / MCRB {:.4}", min.mse / mcrb)),
+        );
+        let same_order = (max.mse.log10().round() - THESIS_NMSE_ORDER.log10()).abs() < 0.5;
+        rows.push(
+            Row::measured(
+                TABLE,
+                "NMSE maximum L=64",
+                "NMSE of fd Tc (eq. 3.3-74)",
+                "-",
+                Some(THESIS_NMSE_ORDER),
+                max.mse,
+                (
+                    "same order of magnitude (thesis: 'order 1e-9')".into(),
+                    Verdict::from_ok(same_order),
+                ),
+            )
+            .with_note(format!(
+                "MCRB {mcrb:.4e}; Monte Carlo of {} + {} points x {trials} trials took {:.1} s",
+                L_CURVES.len() * deltas.len(),
+                self.nmse.len(),
+                self.seconds
+            )),
+        );
+        rows
+    }
+
+    /// The data of figures 3.3-7 (E[fd_hat Tc] against delta), 3.3-8 (a)..(d) (R_f
+    /// against delta for each L) and 3.3-9 (NMSE against fd Tc).
+    fn curves(&self) -> Vec<Curve> {
+        let two_m = 2.0 * M as f64;
+        let setting = format!("M = {M}, SNR {:.0} dB", 10.0 * SNR.log10());
+        let mut curves = Vec::new();
+
+        let (_, worst_dev) = self.worst_expectation();
+        curves.push(Curve {
+            figure: "3.3-7".into(),
+            panels: String::new(),
+            title: format!("E[fd_hat Tc] against delta, L = {}, {setting}", L_CURVES[0]),
+            x_label: "delta (FFT bins of 1/(2 M Tc))".into(),
+            y_label: "E[fd_hat Tc]".into(),
+            series: vec![
+                CurveSeries::new(
+                    "ideal, delta / 2M",
+                    Mark::Line,
+                    theory_curve(0.5, DELTA_STEPS, |d| d / two_m),
+                ),
+                CurveSeries::new(
+                    "Monte Carlo",
+                    Mark::Dots,
+                    self.deltas
+                        .iter()
+                        .zip(&self.by_l[0])
+                        .map(|(&d, p)| (d, p.mean_fd_tc))
+                        .collect(),
+                ),
+                CurveSeries::new(
+                    "eq. 3.3-45",
+                    Mark::Companion,
+                    theory_curve(0.5, DELTA_STEPS, |d| theory::expected_delta(d) / two_m),
+                ),
+            ],
+            references: Vec::new(),
+            values: vec![Value::new(
+                "largest |E[fd_hat Tc] - eq. 3.3-45| over delta",
+                "bin",
+                worst_dev,
+                None,
+            )],
+        });
+
+        for (li, &l) in L_CURVES.iter().enumerate() {
+            let (_, max_rf) = largest(self.rf(li));
+            let mut values = vec![Value::new(
+                "largest Monte Carlo R_f over delta",
+                "-",
+                max_rf,
+                (li == 0).then_some(THESIS_RF_MAX),
+            )];
+            let mut references = Vec::new();
+            if li == 0 {
+                values.extend(THESIS_RF_THEORY.map(|(delta, thesis)| {
+                    Value::new(
+                        format!("eq. 3.3-55 at |delta| = {delta}"),
+                        "-",
+                        theory::rf_ratio(M, l, 0, delta),
+                        Some(thesis),
+                    )
+                }));
+                references.push(Reference {
+                    label: "thesis: largest Monte Carlo R_f".into(),
+                    value: THESIS_RF_MAX,
+                });
+            }
+            curves.push(Curve {
+                figure: "3.3-8".into(),
+                panels: format!("({})", ['a', 'b', 'c', 'd'][li]),
+                title: format!("R_f against delta, L = {l}, {setting}"),
+                x_label: "delta (FFT bins of 1/(2 M Tc))".into(),
+                y_label: "R_f = D(fd_hat Tc) / MCRB".into(),
+                series: vec![
+                    CurveSeries::new("Monte Carlo", Mark::Dots, self.rf(li).collect()),
+                    CurveSeries::new(
+                        "eq. 3.3-55",
+                        Mark::Companion,
+                        theory_curve(0.5, DELTA_STEPS, |d| theory::rf_ratio(M, l, 0, d)),
+                    ),
+                ],
+                references,
+                values,
+            });
+        }
+
+        let l = L_CURVES[0];
+        let (max, _) = self.nmse_extremes();
+        let edge = 1.0 / (2.0 * l as f64);
+        curves.push(Curve {
+            figure: "3.3-9".into(),
+            panels: String::new(),
+            title: format!("NMSE of fd_hat Tc against fd Tc, L = {l}, {setting}"),
+            x_label: "fd Tc".into(),
+            y_label: "NMSE (eq. 3.3-74)".into(),
+            series: vec![
+                CurveSeries::new(
+                    "Monte Carlo",
+                    Mark::Dots,
+                    self.nmse.iter().map(|p| (p.fd_tc, p.mse)).collect(),
+                ),
+                CurveSeries::new(
+                    "eq. 3.3-53 variance + eq. 3.3-45 bias^2",
+                    Mark::Companion,
+                    theory_curve(edge, NMSE_STEPS_PER_BIN * 2 * M / l, |f| {
+                        theory::nmse_fd_tc(M, l, f, SNR)
+                    }),
+                ),
+            ],
+            references: vec![Reference {
+                label: "MCRB (eq. 3.3-75)".into(),
+                value: self.mcrb,
+            }],
+            values: vec![
+                Value::new(
+                    "largest NMSE (thesis: its order)",
+                    "-",
+                    max.mse,
+                    Some(THESIS_NMSE_ORDER),
+                ),
+                Value::new(
+                    "|fd Tc| of the largest NMSE (thesis: 1/(2L))",
+                    "-",
+                    max.fd_tc.abs(),
+                    Some(edge),
+                ),
+                Value::new(
+                    "largest NMSE over the MCRB",
+                    "dB",
+                    10.0 * (max.mse / self.mcrb).log10(),
+                    None,
+                ),
+            ],
+        });
+        curves
+    }
+}
+
+/// Every row of T-3.3-R.
+pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+    Ok(points(draw, TRIALS)?.rows())
+}
+
+/// The data of thesis figures 3.3-7..3.3-9 on the registered seed.
+pub fn curves() -> Result<Vec<Curve>, ValidateError> {
+    Ok(points(Draw::REGISTERED, TRIALS)?.curves())
+}
+
+/// The rows and the figures' data on the registered seed, from one Monte Carlo.
+pub fn rows_and_curves() -> Result<(Vec<Row>, Vec<Curve>), ValidateError> {
+    let p = points(Draw::REGISTERED, TRIALS)?;
+    Ok((p.rows(), p.curves()))
 }
 
 #[cfg(test)]
@@ -429,6 +661,98 @@ mod tests {
         assert!((filters.mean_fd_tc - chips.mean_fd_tc).abs() * 2.0 * (M as f64) < 0.005);
         let th = theory::rf_ratio(M, 64, 0, 0.3);
         assert!(rf_c < 1.1 * th && rf_c > 0.8, "chips {rf_c} theory {th}");
+    }
+
+    #[test]
+    fn figures_hold_the_points_of_the_rows_and_the_theory_at_the_same_x() {
+        // 200 trials a point: the figures' structure, not their statistics.
+        let p = points(Draw::REGISTERED, 200).unwrap();
+        let (rows, curves) = (p.rows(), p.curves());
+        let ids: Vec<String> = curves
+            .iter()
+            .map(|c| format!("{} {}", c.figure, c.panels))
+            .collect();
+        assert_eq!(
+            ids,
+            [
+                "3.3-7 ",
+                "3.3-8 (a)",
+                "3.3-8 (b)",
+                "3.3-8 (c)",
+                "3.3-8 (d)",
+                "3.3-9 "
+            ]
+        );
+        let two_m = 2.0 * M as f64;
+
+        // Figure 3.3-7: the Monte Carlo means, eq. 3.3-45 and the ideal line.
+        let [ideal, mc, eq45] = &curves[0].series[..] else {
+            panic!("three series")
+        };
+        assert_eq!(mc.points.len(), p.deltas.len());
+        for ((x, y), q) in mc.points.iter().zip(&p.by_l[0]) {
+            assert_eq!((*x, *y), (q.fd_tc * two_m, q.mean_fd_tc));
+        }
+        assert_eq!(eq45.points.len(), DELTA_STEPS + 1);
+        for &(d, y) in &eq45.points {
+            assert_eq!(y, theory::expected_delta(d) / two_m);
+        }
+        assert!(ideal.points.iter().all(|&(d, y)| y == d / two_m));
+
+        // Figure 3.3-8: per L, R_f of the Monte Carlo and eq. 3.3-55 at the same delta.
+        for (li, &l) in L_CURVES.iter().enumerate() {
+            let c = &curves[1 + li];
+            assert!(c.title.contains(&format!("L = {l},")), "{}", c.title);
+            let [mc, eq55] = &c.series[..] else {
+                panic!("two series")
+            };
+            for ((&d, q), &(x, y)) in p.deltas.iter().zip(&p.by_l[li]).zip(&mc.points) {
+                assert_eq!((x, y), (d, q.variance / p.mcrb));
+            }
+            let row = |d: f64| {
+                rows.iter()
+                    .find(|r| r.row == format!("R_f(delta={d:+.1}) L={l} Monte Carlo"))
+                    .unwrap()
+            };
+            assert!(mc.points.iter().all(|&(d, y)| row(d).ours == Some(y)));
+            assert_eq!(eq55.mark, Mark::Companion);
+            for &(d, y) in &eq55.points {
+                assert_eq!(y, theory::rf_ratio(M, l, 0, d));
+            }
+            assert_eq!(eq55.points.first().map(|p| p.0), Some(-0.5));
+            assert_eq!(eq55.points.last().map(|p| p.0), Some(0.5));
+        }
+        // The printed values beside SkyForge's, the largest R_f that of the row.
+        let a = &curves[1].values;
+        assert_eq!(a[0].thesis, Some(THESIS_RF_MAX));
+        let max_row = rows
+            .iter()
+            .find(|r| r.row.starts_with("Monte Carlo max R_f"))
+            .unwrap();
+        assert_eq!(a[0].ours, max_row.ours);
+        assert_eq!(
+            a[1..].iter().map(|v| v.thesis).collect::<Vec<_>>(),
+            THESIS_RF_THEORY.map(|t| Some(t.1))
+        );
+        assert!(curves[2..5].iter().all(|c| c.values[0].thesis.is_none()));
+
+        // Figure 3.3-9: the NMSE points, the MCRB line, the largest NMSE of the row.
+        let c = &curves[5];
+        assert_eq!(c.references[0].value, theory::mcrb_fd_tc(M, SNR));
+        let nmse: Vec<(f64, f64)> = p.nmse.iter().map(|q| (q.fd_tc, q.mse)).collect();
+        assert_eq!(c.series[0].points, nmse);
+        let edge = 1.0 / (2.0 * L_CURVES[0] as f64);
+        let steps = NMSE_STEPS_PER_BIN * 2 * M / L_CURVES[0];
+        assert_eq!(c.series[1].points.len(), steps + 1);
+        assert!(
+            c.series[1]
+                .points
+                .iter()
+                .all(|&(f, y)| f.abs() <= edge && y == theory::nmse_fd_tc(M, L_CURVES[0], f, SNR))
+        );
+        let max_row = rows.iter().find(|r| r.row == "NMSE maximum L=64").unwrap();
+        assert_eq!(c.values[0].ours, max_row.ours);
+        assert_eq!(c.values[0].thesis, Some(THESIS_NMSE_ORDER));
     }
 
     #[test]

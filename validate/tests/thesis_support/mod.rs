@@ -11,7 +11,10 @@ pub fn table_alone(id: &str) -> Vec<Row> {
         plan: None,
     };
     let mut started = Vec::new();
-    let rows = run(&opts, |t| started.push(t.to_string())).unwrap().rows;
+    let rows = run(&opts, |t| started.push(t.to_string()))
+        .unwrap()
+        .results
+        .rows;
     print_table(&rows, &mut std::io::stdout()).unwrap();
     assert_eq!(started, [id]);
     rows

@@ -3,7 +3,8 @@
 //! from the first millisecond; the UKF carrier tracker (thesis 3.3.4) then runs on 1 ms
 //! prompts, once from the fine estimate with the narrow Q ("proposed") and once from the
 //! coarse estimate with the wide Q ("traditional"), and once more with equal (wide) Q
-//! from both starts to compare convergence.
+//! from both starts to compare convergence. The same runs give the data of thesis figures
+//! 3.3-10 and 3.3-11, the phase and Doppler errors against time ([`curves`]).
 //!
 //! As in the thesis (eq. 3.3-56: "assume the C/A code is precisely synchronised") the
 //! tracker is given the code timing; carrier phase and Doppler are what it estimates.
@@ -13,6 +14,8 @@ mod signal;
 use crate::report::{Row, Verdict};
 use crate::stats::batch_means_standard_error;
 use crate::thesis::ValidateError;
+use crate::thesis::curves::{Curve, CurveSeries, Mark, Value};
+use crate::thesis::draw::Draw;
 use nalgebra::{Matrix4, Vector4};
 use num_complex::Complex64;
 use signal::{SignalSource, SignalSpec};
@@ -22,7 +25,8 @@ use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
 use skyforge_signals::codes::gps_ca::gps_ca;
 use std::f64::consts::{PI, TAU};
 
-const TABLE: &str = "T-3.3-S";
+/// Table identifier.
+pub const TABLE: &str = "T-3.3-S";
 /// Thesis 3.3.5: Rc = 1.023 MHz, fs = 12 Rc, IF 1 MHz, T = T_coh = 1 ms, M = 1024, L = 64.
 const CHIP_RATE_HZ: f64 = 1.023e6;
 const IF_HZ: f64 = 1.0e6;
@@ -71,12 +75,24 @@ const BIAS_BATCH_MS: usize = 50;
 // assumed: 3, a two-sided test at about 0.3 % per row, fixed with the batch length.
 const BIAS_STANDARD_ERRORS: f64 = 3.0;
 
-/// One UKF run: per 1 ms interval, the phase error (rad, wrapped) and Doppler error (Hz).
+/// One UKF run: per 1 ms interval, its middle (s), the phase error (rad, wrapped) and
+/// the Doppler error (Hz).
 struct Run {
+    t_s: Vec<f64>,
     errors: Vec<(f64, f64)>,
 }
 
 impl Run {
+    /// (time, error) of every interval: the phase error for `column` 0, the Doppler
+    /// error for 1.
+    fn along(&self, column: usize) -> Vec<(f64, f64)> {
+        let pick = |e: &(f64, f64)| if column == 0 { e.0 } else { e.1 };
+        self.t_s
+            .iter()
+            .zip(&self.errors)
+            .map(|(&t, e)| (t, pick(e)))
+            .collect()
+    }
     fn window(&self) -> &[(f64, f64)] {
         &self.errors[(STATS_FROM_S / T_S) as usize..]
     }
@@ -181,6 +197,7 @@ fn track(
     let mut ukf = UkfCarrier::new(cfg, [theta0, omega0, 0.0, 0.0], cov);
     let intervals = (DURATION_S / T_S) as usize;
     let mut errors = Vec::with_capacity(intervals);
+    let mut t_s = Vec::with_capacity(intervals);
     for k in 1..intervals {
         let [theta, omega, _] = ukf.predict();
         source.block(n, &mut block);
@@ -191,12 +208,38 @@ fn track(
         // Phase modulo pi: the data sign is not known to the tracker.
         let phase_err = wrap(2.0 * (theta - spec.doppler_phase_rad(t_mid))) / 2.0;
         errors.push((phase_err, omega / TAU - spec.doppler_hz(t_mid)));
+        t_s.push(t_mid);
     }
-    Ok(Run { errors })
+    Ok(Run { t_s, errors })
 }
 
-/// The table's rows on the signal of `draw`'s seed.
-pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+/// The thesis's initial Doppler errors of the fine and the coarse estimate (one
+/// realisation; section 3.3.5).
+const THESIS_FINE_ERROR_HZ: f64 = -2.936;
+const THESIS_COARSE_ERROR_HZ: f64 = 233.1055;
+/// Thesis tables 3.3-1 / 3.3-2: converged phase error mean and std (rad), Doppler error
+/// mean and std (Hz), of the proposed and the traditional synchroniser.
+const THESIS_PROPOSED: [f64; 4] = [0.0005, 0.0254, 0.0039, 0.2280];
+const THESIS_TRADITIONAL: [f64; 4] = [0.0016, 0.0543, 0.0237, 1.9401];
+
+/// The experiment on one seed, which both the rows and the figures' data are made of:
+/// the initial estimates and the three UKF runs.
+struct Experiment {
+    /// Fine and coarse initial Doppler estimate minus truth (Hz).
+    fine_error_hz: f64,
+    coarse_error_hz: f64,
+    /// The fine estimate's expected standard deviation (Hz), R_f x MCRB.
+    sigma_fine_hz: f64,
+    /// Fine start, narrow Q.
+    proposed: Run,
+    /// Coarse start, wide Q.
+    traditional: Run,
+    /// Fine start, wide Q (figure 3.3-10's "proposed").
+    fine_wide: Run,
+}
+
+/// The experiment on the signal of `draw`'s seed.
+fn experiment(draw: Draw) -> Result<Experiment, ValidateError> {
     let seed = draw.seed(SEED);
     let spec = SignalSpec {
         sample_rate_hz: 12.0 * CHIP_RATE_HZ,
@@ -231,152 +274,367 @@ pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
         est.fine_doppler_hz(CHIP_RATE_HZ),
         est.coarse_doppler_hz(CHIP_RATE_HZ),
     );
-    let half_bin_hz = CHIP_RATE_HZ / (4.0 * M_CHIPS as f64);
     // The fine estimate's expected spread: R_f x MCRB (eqs. 3.3-54, 3.3-55) at the chip SNR.
     let es_n0 = 10f64.powf(CN0_DBHZ / 10.0) / CHIP_RATE_HZ;
     let sigma_fine_hz = theory::variance_fd_tc(M_CHIPS, L_CHIPS, est.peak_bin, est.delta, es_n0)
         .sqrt()
         * CHIP_RATE_HZ;
-    let mut rows = vec![
-        Row::measured(
-            TABLE,
-            "initial Doppler error, fine (PMF-FFT eq. 3.3-14)",
-            "estimate minus truth at the middle of the first ms; thesis: one realisation",
-            "Hz",
-            Some(-2.936),
-            fine - truth,
-            (
-                format!(
-                    "abs <= 3 sigma = {:.2} Hz (R_f x MCRB)",
-                    3.0 * sigma_fine_hz
+    Ok(Experiment {
+        fine_error_hz: fine - truth,
+        coarse_error_hz: coarse - truth,
+        sigma_fine_hz,
+        proposed: track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED, seed)?,
+        traditional: track(&spec, &code, coarse, SIGMA0_COARSE_HZ, Q_TRADITIONAL, seed)?,
+        // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
+        fine_wide: track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL, seed)?,
+    })
+}
+
+impl Experiment {
+    /// The table's rows.
+    fn rows(&self) -> Vec<Row> {
+        let (fine_error, coarse_error) = (self.fine_error_hz, self.coarse_error_hz);
+        let sigma_fine_hz = self.sigma_fine_hz;
+        let half_bin_hz = CHIP_RATE_HZ / (4.0 * M_CHIPS as f64);
+        let (proposed, traditional) = (&self.proposed, &self.traditional);
+        let mut rows = vec![
+            Row::measured(
+                TABLE,
+                "initial Doppler error, fine (PMF-FFT eq. 3.3-14)",
+                "estimate minus truth at the middle of the first ms; thesis: one realisation",
+                "Hz",
+                Some(THESIS_FINE_ERROR_HZ),
+                fine_error,
+                (
+                    format!(
+                        "abs <= 3 sigma = {:.2} Hz (R_f x MCRB)",
+                        3.0 * sigma_fine_hz
+                    ),
+                    Verdict::from_ok(fine_error.abs() <= 3.0 * sigma_fine_hz),
                 ),
-                Verdict::from_ok((fine - truth).abs() <= 3.0 * sigma_fine_hz),
             ),
-        ),
-        Row::measured(
-            TABLE,
-            "initial Doppler error, coarse (peak bin)",
-            "estimate minus truth; thesis: one realisation",
-            "Hz",
-            Some(233.1055),
-            coarse - truth,
+            Row::measured(
+                TABLE,
+                "initial Doppler error, coarse (peak bin)",
+                "estimate minus truth; thesis: one realisation",
+                "Hz",
+                Some(THESIS_COARSE_ERROR_HZ),
+                coarse_error,
+                (
+                    format!("abs <= half a bin = {half_bin_hz:.1} Hz"),
+                    Verdict::from_ok(coarse_error.abs() <= half_bin_hz),
+                ),
+            ),
+        ];
+        // Thesis tables 3.3-1 / 3.3-2: converged mean and std.
+        let thesis = [
+            ("proposed", proposed, THESIS_PROPOSED),
+            ("traditional", traditional, THESIS_TRADITIONAL),
+        ];
+        for (name, run, t) in thesis {
+            let (pm, ps) = run.phase();
+            let (dm, ds) = run.doppler();
+            let (pse, dse) = run.mean_errors();
+            for (what, unit, th_mean, th_std, mean, std, se) in [
+                ("phase", "rad", t[0], t[1], pm, ps, pse),
+                ("Doppler", "Hz", t[2], t[3], dm, ds, dse),
+            ] {
+                rows.push(Row::measured(
+                    TABLE,
+                    format!("{name}: {what} error std"),
+                    "converged error standard deviation (second half of 1 s)",
+                    unit,
+                    Some(th_std),
+                    std,
+                    (
+                        "within a factor 1.6".into(),
+                        Verdict::from_ok(std / th_std <= 1.6 && th_std / std <= 1.6),
+                    ),
+                ));
+                rows.push(Row::measured(
+                    TABLE,
+                    format!("{name}: {what} error mean"),
+                    "converged error mean",
+                    unit,
+                    Some(th_mean),
+                    mean,
+                    (
+                        format!(
+                            "abs <= {BIAS_STANDARD_ERRORS} standard errors = {:.4} (no bias)",
+                            BIAS_STANDARD_ERRORS * se
+                        ),
+                        Verdict::from_ok(mean.abs() <= BIAS_STANDARD_ERRORS * se),
+                    ),
+                ));
+            }
+            let converged = run.convergence_s();
+            rows.push(Row::measured(
+                TABLE,
+                format!("{name}: convergence time"),
+                "20 ms RMS Doppler error below twice its converged std from then on",
+                "s",
+                None,
+                converged.unwrap_or(f64::NAN),
+                ("reported".into(), Verdict::from_ok(converged.is_some())),
+            ));
+        }
+        let ratio_phase = proposed.phase().1 / traditional.phase().1;
+        let ratio_doppler = proposed.doppler().1 / traditional.doppler().1;
+        for (what, thesis, ratio, below) in [
             (
-                format!("abs <= half a bin = {half_bin_hz:.1} Hz"),
-                Verdict::from_ok((coarse - truth).abs() <= half_bin_hz),
+                "phase",
+                THESIS_PROPOSED[1] / THESIS_TRADITIONAL[1],
+                ratio_phase,
+                0.7,
             ),
-        ),
-    ];
-    let proposed = track(&spec, &code, fine, sigma_fine_hz, Q_PROPOSED, seed)?;
-    let traditional = track(&spec, &code, coarse, SIGMA0_COARSE_HZ, Q_TRADITIONAL, seed)?;
-    // Thesis tables 3.3-1 / 3.3-2: converged mean and std.
-    let thesis = [
-        ("proposed", &proposed, [0.0005, 0.0254, 0.0039, 0.2280]),
-        (
-            "traditional",
-            &traditional,
-            [0.0016, 0.0543, 0.0237, 1.9401],
-        ),
-    ];
-    for (name, run, t) in thesis {
-        let (pm, ps) = run.phase();
-        let (dm, ds) = run.doppler();
-        let (pse, dse) = run.mean_errors();
-        for (what, unit, th_mean, th_std, mean, std, se) in [
-            ("phase", "rad", t[0], t[1], pm, ps, pse),
-            ("Doppler", "Hz", t[2], t[3], dm, ds, dse),
+            (
+                "Doppler",
+                THESIS_PROPOSED[3] / THESIS_TRADITIONAL[3],
+                ratio_doppler,
+                0.3,
+            ),
         ] {
             rows.push(Row::measured(
                 TABLE,
-                format!("{name}: {what} error std"),
-                "converged error standard deviation (second half of 1 s)",
-                unit,
-                Some(th_std),
-                std,
-                (
-                    "within a factor 1.6".into(),
-                    Verdict::from_ok(std / th_std <= 1.6 && th_std / std <= 1.6),
-                ),
-            ));
-            rows.push(Row::measured(
-                TABLE,
-                format!("{name}: {what} error mean"),
-                "converged error mean",
-                unit,
-                Some(th_mean),
-                mean,
-                (
-                    format!(
-                        "abs <= {BIAS_STANDARD_ERRORS} standard errors = {:.4} (no bias)",
-                        BIAS_STANDARD_ERRORS * se
-                    ),
-                    Verdict::from_ok(mean.abs() <= BIAS_STANDARD_ERRORS * se),
-                ),
+                format!("proposed / traditional {what} std"),
+                "std ratio",
+                "-",
+                Some(thesis),
+                ratio,
+                (format!("below {below}"), Verdict::from_ok(ratio < below)),
             ));
         }
-        let converged = run.convergence_s();
+        // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
+        let fine_wide = &self.fine_wide;
+        let (t_fine, t_coarse) = (fine_wide.convergence_s(), traditional.convergence_s());
+        let same = fine_wide.doppler().1 / traditional.doppler().1;
         rows.push(Row::measured(
             TABLE,
-            format!("{name}: convergence time"),
+            "equal Q: Doppler std, fine start / coarse start",
+            "std ratio with the traditional Q from both starts",
+            "-",
+            Some(1.0),
+            same,
+            (
+                "within 1.25 (same accuracy)".into(),
+                Verdict::from_ok((0.8..=1.25).contains(&same)),
+            ),
+        ));
+        rows.push(Row::measured(
+            TABLE,
+            "equal Q: convergence time, fine start",
             "20 ms RMS Doppler error below twice its converged std from then on",
             "s",
             None,
-            converged.unwrap_or(f64::NAN),
-            ("reported".into(), Verdict::from_ok(converged.is_some())),
-        ));
-    }
-    let ratio_phase = proposed.phase().1 / traditional.phase().1;
-    let ratio_doppler = proposed.doppler().1 / traditional.doppler().1;
-    for (what, thesis, ratio, below) in [
-        ("phase", 0.0254 / 0.0543, ratio_phase, 0.7),
-        ("Doppler", 0.2280 / 1.9401, ratio_doppler, 0.3),
-    ] {
-        rows.push(Row::measured(
-            TABLE,
-            format!("proposed / traditional {what} std"),
-            "std ratio",
-            "-",
-            Some(thesis),
-            ratio,
-            (format!("below {below}"), Verdict::from_ok(ratio < below)),
-        ));
-    }
-    // Equal (wide) Q from both starts: same accuracy, the fine start converges sooner.
-    let fine_wide = track(&spec, &code, fine, sigma_fine_hz, Q_TRADITIONAL, seed)?;
-    let (t_fine, t_coarse) = (fine_wide.convergence_s(), traditional.convergence_s());
-    let same = fine_wide.doppler().1 / traditional.doppler().1;
-    rows.push(Row::measured(
-        TABLE,
-        "equal Q: Doppler std, fine start / coarse start",
-        "std ratio with the traditional Q from both starts",
-        "-",
-        Some(1.0),
-        same,
-        (
-            "within 1.25 (same accuracy)".into(),
-            Verdict::from_ok((0.8..=1.25).contains(&same)),
-        ),
-    ));
-    rows.push(Row::measured(
-        TABLE,
-        "equal Q: convergence time, fine start",
-        "20 ms RMS Doppler error below twice its converged std from then on",
-        "s",
-        None,
-        t_fine.unwrap_or(f64::NAN),
-        (
-            format!(
-                "before the coarse start ({:.3} s)",
-                t_coarse.unwrap_or(f64::NAN)
+            t_fine.unwrap_or(f64::NAN),
+            (
+                format!(
+                    "before the coarse start ({:.3} s)",
+                    t_coarse.unwrap_or(f64::NAN)
+                ),
+                Verdict::from_ok(matches!((t_fine, t_coarse), (Some(f), Some(c)) if f < c)),
             ),
-            Verdict::from_ok(matches!((t_fine, t_coarse), (Some(f), Some(c)) if f < c)),
-        ),
-    ));
-    Ok(rows)
+        ));
+        rows
+    }
+
+    /// The data of thesis figures 3.3-10 (same Q and R: the fine start against the coarse
+    /// one, both with the wide Q) and 3.3-11 (different Q: the proposed synchroniser
+    /// against the traditional one): for each, the phase errors (panels (a), (c)) and the
+    /// Doppler errors (panels (b), (d)) against time.
+    fn curves(&self) -> Vec<Curve> {
+        let traditional = &self.traditional;
+        let initial = [
+            Value::new(
+                "initial Doppler error, fine estimate",
+                "Hz",
+                self.fine_error_hz,
+                Some(THESIS_FINE_ERROR_HZ),
+            ),
+            Value::new(
+                "initial Doppler error, coarse estimate",
+                "Hz",
+                self.coarse_error_hz,
+                Some(THESIS_COARSE_ERROR_HZ),
+            ),
+        ];
+        let mut curves = Vec::new();
+        for (figure, proposed, q, thesis) in [
+            ("3.3-10", &self.fine_wide, "same Q and R", None),
+            (
+                "3.3-11",
+                &self.proposed,
+                "different Q",
+                Some((THESIS_PROPOSED, THESIS_TRADITIONAL)),
+            ),
+        ] {
+            let runs = [("proposed", proposed), ("traditional", traditional)];
+            type Stats = fn(&Run) -> (f64, f64);
+            for (panels, what, unit, table, stats, column) in [
+                ("(a), (c)", "phase", "rad", "3.3-1", Run::phase as Stats, 0),
+                (
+                    "(b), (d)",
+                    "Doppler",
+                    "Hz",
+                    "3.3-2",
+                    Run::doppler as Stats,
+                    1,
+                ),
+            ] {
+                let mut values = Vec::new();
+                for (k, (name, run)) in runs.iter().enumerate() {
+                    let (mean, std) = stats(run);
+                    // Tables 3.3-1/3.3-2: (mean, std) of the phase, then of the Doppler.
+                    let printed = thesis.map(|t| [t.0, t.1][k]);
+                    for (stat, ours, i) in
+                        [("mean", mean, 2 * column), ("std", std, 2 * column + 1)]
+                    {
+                        let source =
+                            printed.map_or(String::new(), |_| format!(" (thesis table {table})"));
+                        values.push(Value::new(
+                            format!("{name}: converged {what} error {stat}{source}"),
+                            unit,
+                            ours,
+                            printed.map(|t| t[i]),
+                        ));
+                    }
+                }
+                if column == 1 {
+                    values.extend(initial.iter().cloned());
+                    for (name, run) in runs {
+                        values.push(Value::new(
+                            format!("{name}: convergence time"),
+                            "s",
+                            run.convergence_s().unwrap_or(f64::NAN),
+                            None,
+                        ));
+                    }
+                }
+                curves.push(Curve {
+                    figure: figure.into(),
+                    panels: panels.into(),
+                    title: format!("{what} error against time, {q}"),
+                    x_label: "time (s)".into(),
+                    y_label: format!("{what} error ({unit})"),
+                    series: runs
+                        .iter()
+                        .map(|(name, run)| {
+                            CurveSeries::new(
+                                format!("{name} synchroniser"),
+                                Mark::Line,
+                                run.along(column),
+                            )
+                        })
+                        .collect(),
+                    references: Vec::new(),
+                    values,
+                });
+            }
+        }
+        curves
+    }
+}
+
+/// The table's rows on the signal of `draw`'s seed.
+pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+    Ok(experiment(draw)?.rows())
+}
+
+/// The data of thesis figures 3.3-10 and 3.3-11 on the registered seed.
+pub fn curves() -> Result<Vec<Curve>, ValidateError> {
+    Ok(experiment(Draw::REGISTERED)?.curves())
+}
+
+/// The rows and the figures' data on the registered seed, from one experiment.
+pub fn rows_and_curves() -> Result<(Vec<Row>, Vec<Curve>), ValidateError> {
+    let e = experiment(Draw::REGISTERED)?;
+    Ok((e.rows(), e.curves()))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn figures_draw_every_millisecond_of_the_runs_of_the_rows() {
+        let e = experiment(Draw::REGISTERED).unwrap();
+        let (rows, curves) = (e.rows(), e.curves());
+        let ids: Vec<String> = curves
+            .iter()
+            .map(|c| format!("{} {}", c.figure, c.panels))
+            .collect();
+        assert_eq!(
+            ids,
+            [
+                "3.3-10 (a), (c)",
+                "3.3-10 (b), (d)",
+                "3.3-11 (a), (c)",
+                "3.3-11 (b), (d)"
+            ]
+        );
+        // Figure 3.3-10: the fine and the coarse start with the same Q; 3.3-11: the
+        // proposed synchroniser (narrow Q) and the traditional one.
+        for (k, c) in curves.iter().enumerate() {
+            let column = k % 2;
+            let proposed = if k < 2 { &e.fine_wide } else { &e.proposed };
+            for (s, run) in c.series.iter().zip([proposed, &e.traditional]) {
+                assert_eq!(s.points.len(), run.errors.len());
+                assert_eq!(s.points.len(), (DURATION_S / T_S) as usize - 1);
+                assert_eq!(s.points, run.along(column));
+                assert!(s.points.windows(2).all(|w| w[1].0 > w[0].0));
+            }
+            let (at, expected) = (c.series[0].points[0].0, 1.5 * T_S);
+            assert!((at - expected).abs() < 1e-12, "{at}");
+        }
+        // Tables 3.3-1/3.3-2 beside the rows' values, for figure 3.3-11 only.
+        let value = |c: &Curve, what: &str| {
+            c.values
+                .iter()
+                .find(|v| v.what.starts_with(what))
+                .cloned()
+                .unwrap()
+        };
+        let row = |name: &str| rows.iter().find(|r| r.row == name).unwrap();
+        for (c, what, thesis) in [
+            (
+                &curves[2],
+                "proposed: converged phase error std",
+                THESIS_PROPOSED[1],
+            ),
+            (
+                &curves[2],
+                "traditional: converged phase error mean",
+                THESIS_TRADITIONAL[0],
+            ),
+            (
+                &curves[3],
+                "proposed: converged Doppler error std",
+                THESIS_PROPOSED[3],
+            ),
+            (
+                &curves[3],
+                "traditional: converged Doppler error std",
+                THESIS_TRADITIONAL[3],
+            ),
+        ] {
+            let v = value(c, what);
+            assert_eq!(v.thesis, Some(thesis), "{what}");
+            let name = what.replace("converged ", "");
+            assert_eq!(v.ours, row(&name).ours, "{what}");
+        }
+        assert!(curves[..2].iter().all(|c| {
+            c.values
+                .iter()
+                .filter(|v| v.what.contains("converged"))
+                .all(|v| v.thesis.is_none())
+        }));
+        let fine = value(&curves[1], "initial Doppler error, fine");
+        assert_eq!(fine.thesis, Some(THESIS_FINE_ERROR_HZ));
+        assert_eq!(
+            fine.ours,
+            row("initial Doppler error, fine (PMF-FFT eq. 3.3-14)").ours
+        );
+    }
 
     /// With (almost) no noise the experiment's plumbing -- signal, NCO conventions, prompt
     /// normalisation, UKF -- must track the thesis dynamics to a few milliradians.
