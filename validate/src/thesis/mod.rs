@@ -89,6 +89,9 @@ enum Source {
     RaimFile(&'static str),
 }
 
+/// An evaluation: the rows of the `wanted` tables of its group.
+type Evaluate = fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>;
+
 /// The tables of one evaluation (a group whose tables share runs), how it takes part in a
 /// plan over seeds, its scenarios, and the evaluation itself (`wanted`: the group's
 /// selected tables).
@@ -96,7 +99,7 @@ struct Unit {
     tables: &'static [&'static str],
     kind: Kind,
     scenarios: &'static [Source],
-    evaluate: fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>,
+    evaluate: Evaluate,
 }
 
 fn has(wanted: &[&str], table: &str) -> bool {
