@@ -1,9 +1,10 @@
 //! `skyforge study`: a study run whole, as shards, and interrupted then resumed gives the
-//! same merged file, byte for byte; bad study files and arguments get one located error.
+//! same merged file, byte for byte, at the observation and at the signal level; bad study
+//! files and arguments get one located error.
 
 mod support;
 
-use support::{skyforge, skyforge_ok, small_study, text};
+use support::{short_scenario, skyforge, skyforge_ok, small_study, text};
 
 #[test]
 fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
@@ -66,6 +67,64 @@ fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
         text(&o)
     );
     assert!(!d.join("m.h5").exists());
+}
+
+#[test]
+fn a_signal_level_study_run_whole_and_as_two_shards_merges_to_the_same_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    // assumed: interop-gps-static is at the signal level, one antenna, GPS L1 C/A at
+    // 4 Msps. 18 s: the receiver times its satellites on the first whole navigation
+    // subframe (6 to 12 s) and observes from 13 s on.
+    short_scenario(d, "interop-gps-static", 18);
+    std::fs::write(
+        d.join("signal.toml"),
+        "name = \"signal\"\nscenario = \"short.toml\"\nseed = 3\nseeds = 2\n\
+         metrics = [\"pseudorange_rms_m\", \"phase_rms_m\", \"position_rms_m\"]\n\
+         \n[[parameters]]\nkey = \"signal.cn0_dbhz\"\nvalues = [42.0, 48.0]\n",
+    )
+    .unwrap();
+    let whole = skyforge_ok(&["study", "run", "signal.toml", "--out", "whole"], d);
+    assert!(whole.contains("2 points x 2 seeds = 4 runs"), "{whole}");
+    for i in 1..=2 {
+        let shard = format!("{i}/2");
+        let args = [
+            "study",
+            "run",
+            "signal.toml",
+            "--out",
+            "sharded",
+            "--shard",
+            &shard,
+        ];
+        skyforge_ok(&args, d);
+    }
+    skyforge_ok(&["study", "merge", "sharded"], d);
+    let a = std::fs::read(d.join("whole/study.h5")).unwrap();
+    let b = std::fs::read(d.join("sharded/study.h5")).unwrap();
+    assert!(a == b, "merged shards differ from the whole run");
+
+    // Every run is measured, from what the receiver made of its own samples: code at
+    // decimetres, phase at millimetres, fixes at metres, each falling with the noise
+    // (6 dB: half the thermal noise), and each seed drawing its own noise.
+    let f = hdf5::File::open(d.join("whole/study.h5")).unwrap();
+    let per_run = |m: &str| -> Vec<f64> { support::dataset(&f, &format!("runs/{m}")) };
+    let mean = |m: &str| -> Vec<f64> { support::dataset(&f, &format!("summary/{m}/mean")) };
+    let (code, phase, position) = (
+        per_run("pseudorange_rms_m"),
+        per_run("phase_rms_m"),
+        per_run("position_rms_m"),
+    );
+    for (c, (p, x)) in code.iter().zip(phase.iter().zip(&position)) {
+        assert!((0.05..3.0).contains(c), "code {code:?}");
+        assert!(*p > 0.0 && *p < 0.005 && *p < c / 50.0, "phase {phase:?}");
+        assert!((0.05..10.0).contains(x), "position {position:?}");
+    }
+    assert!(code[0] != code[1] && position[2] != position[3]);
+    for m in ["pseudorange_rms_m", "phase_rms_m", "position_rms_m"] {
+        let at = mean(m);
+        assert!(at[0] > 1.4 * at[1], "{m}: {at:?} at 42 and 48 dB-Hz");
+    }
 }
 
 #[test]
@@ -146,8 +205,18 @@ fn bad_study_files_get_one_located_error_and_nothing_is_run() {
         ),
         (
             good.replace("t-5.4-3.toml\"", "interop-gps-static\""),
-            "small.toml",
-            "observation level",
+            "small.toml:5:11: metrics = fix_rate",
+            "needs two antennas or more (the scenario has 1)",
+        ),
+        (
+            // Without the C/N0 parameter, which would create the table.
+            good.replace("t-5.4-3.toml\"", "ground-static\"")
+                .split("\n[[parameters]]\nkey = \"signal.")
+                .next()
+                .unwrap()
+                .to_string(),
+            "small.toml:5:11: metrics = fix_rate",
+            "needs a [signal] table",
         ),
     ];
     for (text_of, place, what) in cases {

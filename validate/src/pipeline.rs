@@ -12,7 +12,7 @@ use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::input::{InputError, InputParams, Recording, SampleFeed, sample_stream};
 use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
-    Assistance, EpochSink, ReceiveSession, RinexObsFiles, SessionError, read_config,
+    Assistance, EpochSink, NavSource, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
@@ -175,7 +175,7 @@ pub fn synth_and_receive(
         })
         .collect();
     let assistance = Assistance {
-        nav_file: Some(nav_path),
+        nav: Some(NavSource::File(nav_path)),
         approximate,
     };
     let receiver_config = config.clone();

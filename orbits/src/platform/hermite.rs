@@ -14,7 +14,7 @@ use crate::Vec3;
 
 /// A cubic Hermite interpolant of 3-vectors over strictly increasing times.
 #[derive(Debug, Clone, PartialEq)]
-pub(crate) struct Hermite3 {
+pub struct Hermite3 {
     t_s: Vec<f64>,
     y: Vec<Vec3>,
     dy: Vec<Vec3>,

@@ -17,7 +17,7 @@ pub mod attitude;
 pub mod config;
 pub(crate) mod csv_table;
 pub mod ground;
-pub(crate) mod hermite;
+pub mod hermite;
 mod leo;
 pub mod trajectory;
 

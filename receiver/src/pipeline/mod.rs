@@ -23,6 +23,7 @@ pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSu
 use crate::observables::Observation;
 use crate::pvt::{Fix, PvtError, VelocityFix};
 use hifitime::Epoch;
+use skyforge_signals::observation::ObsRecord;
 
 /// The fix of one antenna at one epoch.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,4 +48,19 @@ pub struct EpochReport {
     pub observations: Vec<Observation>,
     /// One entry per antenna.
     pub fixes: Vec<AntennaFix>,
+}
+
+impl EpochReport {
+    /// Antenna `antenna`'s observations as records, ordered by satellite (a RINEX epoch's
+    /// content).
+    pub fn records(&self, antenna: usize) -> Vec<ObsRecord> {
+        let mut records: Vec<ObsRecord> = self
+            .observations
+            .iter()
+            .filter(|o| o.antenna == antenna)
+            .map(Observation::record)
+            .collect();
+        records.sort_by_key(|r| r.sat);
+        records
+    }
 }

@@ -137,13 +137,15 @@ fn first_per_satellite<'r>(
         .filter(move |r| seen.insert(r.sat))
 }
 
-/// The single-point solution of one antenna's `records` (one pseudorange per satellite).
+/// The single-point solution of one antenna's `records` (one pseudorange per satellite,
+/// of the first of `signals` that has one) at `t_s` (s since `origin`) with `config`.
 fn single_point(
     records: &[ObsRecord],
     signals: &[Signal],
     t_s: f64,
     store: &EphemerisStore,
     origin: &TimeOrigin,
+    config: &PvtConfig,
     prior: Option<Vec3>,
 ) -> Result<Fix, String> {
     let meas: Vec<Measurement> = first_per_satellite(records, signals)
@@ -157,7 +159,29 @@ fn single_point(
             })
         })
         .collect();
-    solve(&meas, t_s, store, origin, &PvtConfig::default(), prior).map_err(|e| e.to_string())
+    solve(&meas, t_s, store, origin, config, prior).map_err(|e| e.to_string())
+}
+
+/// The single-point solution of every epoch of `file` (times in seconds since `origin`)
+/// with `config`, each epoch starting from the last position found: how the chain
+/// positions its master antenna.
+pub fn single_point_fixes(
+    file: &ObsFile,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    signals: &[Signal],
+    config: &PvtConfig,
+) -> Vec<Result<Fix, String>> {
+    let mut prior = None;
+    file.epochs
+        .iter()
+        .map(|e| {
+            let t_s = origin.seconds_since_start(e.time);
+            let fix = single_point(&e.sats, signals, t_s, store, origin, config, prior);
+            prior = fix.as_ref().ok().map(|f| f.r_ecef_m).or(prior);
+            fix
+        })
+        .collect()
 }
 
 /// What moves one antenna's observation of a satellite onto the chain's linear model
@@ -256,13 +280,14 @@ pub fn run_files(
     let store = EphemerisStore::new(ephemerides, &origin);
     let signals = config.signals.clone();
     let mut solver = RelativeSolver::new(config, &geometry.positions())?;
+    let pvt = PvtConfig::default();
     let mut cursors = vec![0usize; files.len()];
+    // The other antennas' last positions (the master's fixes come first, in one pass).
     let mut priors: Vec<Option<Vec3>> = vec![None; files.len()];
-    for epoch in &master.epochs {
+    let master_fixes = single_point_fixes(master, &store, &origin, &signals, &pvt);
+    for (epoch, fix) in master.epochs.iter().zip(master_fixes) {
         let t_s = origin.seconds_since_start(epoch.time);
-        let fix = single_point(&epoch.sats, &signals, t_s, &store, &origin, priors[0]);
         let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
-        priors[0] = master_ecef_m.or(priors[0]);
         let mut others: Vec<Vec<ObsRecord>> = Vec::with_capacity(files.len() - 1);
         let mut missing = None;
         for (k, file) in files.iter().enumerate().skip(1) {
@@ -273,7 +298,7 @@ pub fn run_files(
             let t_k = origin.seconds_since_start(time);
             let aligned = match &fix {
                 Ok(master_fix) => {
-                    match single_point(records, &signals, t_k, &store, &origin, priors[k]) {
+                    match single_point(records, &signals, t_k, &store, &origin, &pvt, priors[k]) {
                         Ok(fix_k) => {
                             priors[k] = Some(fix_k.r_ecef_m);
                             let c = to_master_model(records, &signals, &store, master_fix, &fix_k);

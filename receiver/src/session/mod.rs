@@ -16,8 +16,8 @@ use crate::pipeline::{
 };
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
+use skyforge_orbits::ephemeris::rinex_nav::{parse_nav, read_nav_file};
+use skyforge_orbits::ephemeris::rinex_nav_iono::{BroadcastIono, parse_iono, read_iono_file};
 use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 
@@ -46,6 +46,10 @@ pub enum SessionError {
     /// The input (files, settings, configuration) is unusable: the user's to fix.
     #[error("{0}")]
     Input(String),
+    /// The run ended without an observation: nothing detected, or nothing tracked and
+    /// timed (the samples hold no usable signal; what was found, and why).
+    #[error("{0}")]
+    NoSignal(String),
     /// The receiver failed on valid input.
     #[error(transparent)]
     Pipeline(#[from] crate::pipeline::PipelineError),
@@ -61,18 +65,35 @@ pub fn read_config(
     let Some(path) = path else {
         return Ok((ReceiverConfig::default(), None));
     };
-    let input = |e: &dyn std::fmt::Display| SessionError::Input(format!("{}: {e}", path.display()));
     let text = read_text(path, CONFIG_MAX_BYTES, "receiver configuration")
         .map_err(|e| SessionError::Input(format!("{}: cannot read: {e}", path.display())))?;
-    let file: ReceiverFile = toml::from_str(&text).map_err(|e| input(&e))?;
+    parse_config(&text, &path.display().to_string())
+}
+
+/// Parse and check the text of a receiver configuration file; `source` names it in errors.
+pub fn parse_config(
+    text: &str,
+    source: &str,
+) -> Result<(ReceiverConfig, Option<ApproximateState>), SessionError> {
+    let input = |e: &dyn std::fmt::Display| SessionError::Input(format!("{source}: {e}"));
+    let file: ReceiverFile = toml::from_str(text).map_err(|e| input(&e))?;
     file.resolve().map_err(|e| input(&e))
+}
+
+/// A RINEX navigation file (ephemerides and ionosphere) for the receiver.
+#[derive(Debug, Clone, PartialEq)]
+pub enum NavSource {
+    /// A file on disk (gzip or plain).
+    File(PathBuf),
+    /// A file's text, kept in memory; `source` names it in errors.
+    Text { source: String, text: String },
 }
 
 /// What a receiver can be told besides the samples.
 #[derive(Debug, Clone, Default)]
 pub struct Assistance {
-    /// A RINEX navigation file: ephemerides and ionosphere.
-    pub nav_file: Option<PathBuf>,
+    /// Navigation data: a RINEX navigation file.
+    pub nav: Option<NavSource>,
     /// The approximate state at the first sample.
     pub approximate: Option<ApproximateState>,
 }
@@ -284,13 +305,16 @@ impl ReceiveSession {
         config: ReceiverConfig,
     ) -> Result<Self, SessionError> {
         let input = |e: &dyn std::fmt::Display| SessionError::Input(e.to_string());
-        let (ephemerides, iono_gps, iono_bds) = match &assistance.nav_file {
-            None => (Vec::new(), None, None),
-            Some(path) => {
-                let eph = read_nav_file(path).map_err(|e| input(&e))?;
-                let iono = read_iono_file(path).map_err(|e| input(&e))?;
-                (eph, iono.gps, iono.bds)
-            }
+        let (ephemerides, iono) = match &assistance.nav {
+            None => (Vec::new(), BroadcastIono::default()),
+            Some(NavSource::File(path)) => (
+                read_nav_file(path).map_err(|e| input(&e))?,
+                read_iono_file(path).map_err(|e| input(&e))?,
+            ),
+            Some(NavSource::Text { source, text }) => (
+                parse_nav(text, source).map_err(|e| input(&e))?,
+                parse_iono(text, source).map_err(|e| input(&e))?,
+            ),
         };
         let setup = ReceiverSetup {
             sample_rate_hz: bands.readers[0].sample_rate_hz(),
@@ -298,8 +322,8 @@ impl ReceiveSession {
             antenna_names: bands.antenna_names.clone(),
             start_time: bands.reports.iter().find_map(|r| r.start_utc),
             ephemerides,
-            iono_gps,
-            iono_bds,
+            iono_gps: iono.gps,
+            iono_bds: iono.bds,
             approximate: assistance.approximate,
         };
         let receiver = Receiver::new(setup, config.clone())
@@ -353,9 +377,10 @@ impl ReceiveSession {
 
     /// Run over every common sample, handing each epoch to `sink`; `progress` is told the
     /// samples processed and the counters after each block. Fails with
-    /// [`SessionError::Input`] when the recordings are too short for one search, hold no
-    /// detectable signal, or give no observation epoch (no satellite tracked and timed on
-    /// any antenna): "no signal", nothing for the caller to write.
+    /// [`SessionError::Input`] when the recordings are too short for one search, and with
+    /// [`SessionError::NoSignal`] when they hold no detectable signal or give no
+    /// observation epoch (no satellite tracked and timed on any antenna): nothing for the
+    /// caller to write.
     pub fn run(
         &mut self,
         sink: &mut dyn EpochSink,
@@ -406,7 +431,7 @@ impl ReceiveSession {
         }
         let summary = self.receiver.summary();
         if summary.detections == 0 {
-            return Err(SessionError::Input(format!(
+            return Err(SessionError::NoSignal(format!(
                 "no signal found: {} searches over {} antenna(s), none above the detection threshold.\nWhat was read:\n{}",
                 summary.searches,
                 self.bands.antenna_names.len(),
@@ -414,7 +439,7 @@ impl ReceiveSession {
             )));
         }
         if observed_epochs == 0 {
-            return Err(SessionError::Input(no_epoch_message(
+            return Err(SessionError::NoSignal(no_epoch_message(
                 &summary,
                 &self.describe_input(),
             )));

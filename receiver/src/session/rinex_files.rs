@@ -5,7 +5,6 @@
 //! `APPROX POSITION XYZ`, which RINEX 3.04 table A2 makes optional for moving platforms).
 
 use super::{EpochSink, SinkError};
-use crate::observables::Observation;
 use crate::pipeline::EpochReport;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
@@ -106,13 +105,7 @@ impl RinexObsFiles {
     pub fn write_epoch(&mut self, report: &EpochReport) -> io::Result<()> {
         let at = calendar_gpst(report.t_rx);
         for a in 0..self.states.len() {
-            let mut records: Vec<ObsRecord> = report
-                .observations
-                .iter()
-                .filter(|o| o.antenna == a)
-                .map(Observation::record)
-                .collect();
-            records.sort_by_key(|r| r.sat);
+            let records = report.records(a);
             match &mut self.states[a] {
                 State::Open(w) => {
                     if !records.is_empty() {

@@ -9,7 +9,9 @@ use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::format::parse_format;
 use skyforge_receiver::pipeline::ReceiverSummary;
-use skyforge_receiver::session::{Assistance, ReceiveSession, SessionError, read_config};
+use skyforge_receiver::session::{
+    Assistance, NavSource, ReceiveSession, SessionError, read_config,
+};
 use skyforge_signals::observation::read_obs_file;
 use skyforge_signals::signal::Signal;
 use std::path::PathBuf;
@@ -62,7 +64,7 @@ pub fn input_params(
 /// A session error as the command reports it: the input's fault is bad input (exit 2).
 pub(crate) fn session_error(e: SessionError) -> anyhow::Error {
     match e {
-        SessionError::Input(message) => BadInput(message).into(),
+        SessionError::Input(message) | SessionError::NoSignal(message) => BadInput(message).into(),
         e => anyhow::anyhow!("{e}"),
     }
 }
@@ -71,7 +73,7 @@ pub(crate) fn session_error(e: SessionError) -> anyhow::Error {
 pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     let (config, approximate) = read_config(args.config.as_deref()).map_err(session_error)?;
     let assistance = Assistance {
-        nav_file: args.assist.clone(),
+        nav: args.assist.clone().map(NavSource::File),
         approximate,
     };
     let mut session = ReceiveSession::open(&args.files, &args.params, &assistance, config)

@@ -71,18 +71,29 @@ pub fn run(path: &Path, out: &Path, shard: Option<&str>) -> anyhow::Result<()> {
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     let journal = Mutex::new(journal);
-    let made = pending
-        .par_iter()
-        .map(|&r| {
-            let result = study.run(r).map_err(|e| anyhow::anyhow!("{e}"))?;
-            journal
-                .lock()
-                .map_err(|_| anyhow::anyhow!("journal lock poisoned"))?
-                .append(&result)?;
-            bar.inc(1);
-            Ok(result)
-        })
-        .collect::<anyhow::Result<Vec<RunResult>>>()?;
+    let make = |&r: &u64| -> anyhow::Result<RunResult> {
+        let result = study.run(r).map_err(|e| anyhow::anyhow!("{e}"))?;
+        journal
+            .lock()
+            .map_err(|_| anyhow::anyhow!("journal lock poisoned"))?
+            .append(&result)?;
+        bar.inc(1);
+        Ok(result)
+    };
+    // A signal-level run keeps every core busy itself (synthesis and reception side by
+    // side, each parallel inside): such runs go one at a time. Observation-level runs go
+    // side by side on every core.
+    let made = if study.signal_level() {
+        pending
+            .iter()
+            .map(make)
+            .collect::<anyhow::Result<Vec<_>>>()?
+    } else {
+        pending
+            .par_iter()
+            .map(make)
+            .collect::<anyhow::Result<Vec<_>>>()?
+    };
     bar.finish_and_clear();
     let mut runs: Vec<RunResult> = done.into_iter().chain(made).collect();
     runs.sort_by_key(|r| r.run);

@@ -15,7 +15,7 @@ use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
-use skyforge_receiver::session::{Assistance, read_config};
+use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
@@ -331,7 +331,7 @@ fn receive_alongside(
 ) -> anyhow::Result<SynthReport> {
     let (config, approximate) = read_config(Some(config)).map_err(super::receive::session_error)?;
     let assistance = Assistance {
-        nav_file: Some(staged.file("nav.rnx")),
+        nav: Some(NavSource::File(staged.file("nav.rnx"))),
         approximate,
     };
     let chain = StreamedChain::open(session, info, &assistance, config).map_err(chain_error)?;

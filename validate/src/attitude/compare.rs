@@ -15,7 +15,7 @@ use skyforge_receiver::relative::files::{
     BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
 };
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
-use skyforge_signals::observation::ObsFile;
+use skyforge_signals::observation::{ObsFile, ObsRecord};
 use skyforge_signals::signal::Signal;
 use std::collections::HashMap;
 
@@ -98,7 +98,15 @@ pub(super) fn whole_second(t: Epoch, start: Epoch) -> Option<i64> {
     ((s - s.round()).abs() <= WHOLE_SECOND_S).then_some(s.round() as i64)
 }
 
-pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
+/// Measured minus true `pick` (an observable of a record, in its unit) per (second,
+/// satellite, signal) wherever both exist at a whole second since `start`, in the order of
+/// `measured`'s epochs and records.
+pub(crate) fn offsets(
+    measured: &ObsFile,
+    truth: &ObsFile,
+    start: Epoch,
+    pick: fn(&ObsRecord) -> Option<f64>,
+) -> Vec<((i64, SatId, Signal), f64)> {
     let second = |t: Epoch| whole_second(t, start);
     let truth: HashMap<(i64, SatId, Signal), f64> = truth
         .epochs
@@ -107,7 +115,7 @@ pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -
         .flat_map(|(s, e)| {
             e.sats
                 .iter()
-                .filter_map(move |r| Some(((s, r.sat, r.signal), r.carrier_phase_cycles?)))
+                .filter_map(move |r| Some(((s, r.sat, r.signal), pick(r)?)))
         })
         .collect();
     measured
@@ -118,9 +126,15 @@ pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -
             let truth = &truth;
             e.sats.iter().filter_map(move |r| {
                 let key = (s, r.sat, r.signal);
-                Some((key, r.carrier_phase_cycles? - truth.get(&key)?))
+                Some((key, pick(r)? - truth.get(&key)?))
             })
         })
+        .collect()
+}
+
+pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
+    offsets(measured, truth, start, |r| r.carrier_phase_cycles)
+        .into_iter()
         .collect()
 }
 

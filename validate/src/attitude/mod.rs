@@ -1,7 +1,8 @@
-//! The attitude chain against the truth: an observation-level run in memory ([`run`]) and
-//! the chain's integers, baselines and attitude compared with that run's truth
-//! ([`compare`]); or the chain's files (`skyforge attitude`'s output) compared with the
-//! truth files of the run they came from ([`outputs`], `skyforge validate attitude`).
+//! The attitude chain against the truth: a run in memory ([`run`], at the observation or
+//! the signal level) and the chain's integers, baselines and attitude compared with that
+//! run's truth ([`compare`]); or the chain's files (`skyforge attitude`'s output) compared
+//! with the truth files of the run they came from ([`outputs`], `skyforge validate
+//! attitude`).
 
 pub mod compare;
 pub mod epochs;
@@ -12,5 +13,5 @@ pub mod success;
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
 pub use outputs::{AttitudeValidation, OutputsComparison, OutputsError, compare_outputs};
-pub use run::{ObservationRun, RunError, observation_run};
+pub use run::{ObservationRun, PositionFix, RunError, observation_run, run_at_level, signal_run};
 pub use seeds::seed_runs;

@@ -6,6 +6,7 @@ use super::metrics::Metric;
 use serde::Deserialize;
 use skyforge_orbits::check::Invalid;
 use skyforge_scenarios::{Scenario, ScenarioError, bundled, locate_invalid, parse_document};
+use skyforge_signals::obs_model::Level;
 use std::path::{Path, PathBuf};
 
 /// Largest number of runs a study may ask for.
@@ -70,6 +71,9 @@ pub struct Study {
     pub seeds: u64,
     pub metrics: Vec<Metric>,
     pub parameters: Vec<Parameter>,
+    /// Whether a grid point's scenario is at the signal level (known once the base
+    /// scenario is read).
+    signal_level: bool,
 }
 
 /// Why a study file cannot be used: located in the study file, or in its base scenario.
@@ -110,6 +114,7 @@ impl Study {
                 m.check(&scenario)
                     .map_err(|allowed| bad("metrics", &m.name(), &allowed))?;
             }
+            study.signal_level |= scenario.observation.level == Level::Signal;
         }
         Ok(study)
     }
@@ -178,7 +183,15 @@ impl Study {
                     values: p.values,
                 })
                 .collect(),
+            signal_level: false,
         })
+    }
+
+    /// Whether some runs are at the signal level: each synthesises and receives samples on
+    /// two threads of its own and more (the synthesiser's), so such runs are best made one
+    /// at a time.
+    pub fn signal_level(&self) -> bool {
+        self.signal_level
     }
 
     /// Grid points: the product of every parameter's number of values (1 without any).

@@ -6,7 +6,7 @@
 use super::file::Study;
 use super::metrics::measure;
 use super::summary::MetricSummary;
-use crate::attitude::observation_run;
+use crate::attitude::run_at_level;
 
 /// Largest shard count.
 pub const MAX_SHARDS: u64 = 100_000;
@@ -77,14 +77,14 @@ impl Study {
         run / self.seeds
     }
 
-    /// Make run `run`: its point's scenario with its seed, at the observation level,
+    /// Make run `run`: its point's scenario with its seed, at the scenario's level,
     /// measured.
     pub fn run(&self, run: u64) -> Result<RunResult, String> {
         let seed = run_seed(self.seed, run);
         let scenario = self
             .point_scenario(self.point_of(run), seed)
             .map_err(|e| e.to_string())?;
-        let made = observation_run(&scenario).map_err(|e| format!("run {run}: {e}"))?;
+        let made = run_at_level(&scenario).map_err(|e| format!("run {run}: {e}"))?;
         let values = measure(&made, &self.metrics).map_err(|e| format!("run {run}: {e}"))?;
         Ok(RunResult { run, values })
     }

@@ -92,6 +92,9 @@ enum Source {
     RaimFile(&'static str),
 }
 
+/// An evaluation: the rows of the `wanted` tables of its group.
+type Evaluate = fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>;
+
 /// The tables of one evaluation (a group whose tables share runs), how it takes part in a
 /// plan over seeds, its scenarios, the evaluation itself (`wanted`: the group's selected
 /// tables) and the thesis figures it computes.
@@ -103,8 +106,6 @@ struct Unit {
     figures: Option<Figures>,
 }
 
-/// A unit's evaluation on one draw: its selected tables, the real-data folder, the draw.
-type Evaluate = fn(&[&str], Option<&Path>, Draw) -> Result<Vec<Row>, ValidateError>;
 /// Rows and figures' data of one evaluation.
 type RowsAndCurves = Result<(Vec<Row>, Vec<Curve>), ValidateError>;
 
