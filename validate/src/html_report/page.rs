@@ -61,8 +61,8 @@ h1{font-size:1.6em}h2{font-size:1.25em;border-bottom:1px solid #ccc;padding-bott
 figure{margin:1.2em 0}figcaption{font-size:.9em;color:#555}\
 table{border-collapse:collapse;font-size:.85em;margin:1em 0;width:100%}\
 td,th{border:1px solid #ccc;padding:.25em .5em;text-align:left;vertical-align:top;\
-overflow-wrap:anywhere}.n,.reproduced,.deviates,.explained{white-space:nowrap}\
-td:last-child{width:30%}\
+overflow-wrap:break-word}.n,.reproduced,.deviates,.explained{white-space:nowrap}\
+td:last-child{width:30%;overflow-wrap:anywhere}\
 th{background:#f3f3f3}.reproduced{background:#e3f4e3}.deviates{background:#fbe3e3}\
 .explained{background:#fff4d6}";
 

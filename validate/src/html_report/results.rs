@@ -84,13 +84,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
                     format!("{:.2} of {}{unsure}", o.in_tolerance, o.draws)
                 },
             );
-            cells.insert(
-                7,
-                Cell {
-                    text,
-                    class: Some("n"),
-                },
-            );
+            cells.insert(7, Cell::from(text.as_str()));
         }
     }
     let mut figures = Vec::new();
