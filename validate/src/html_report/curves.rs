@@ -5,7 +5,7 @@
 
 use super::chart::{Chart, Series};
 use super::page::Section;
-use super::{ReportError, figure};
+use super::{ReportError, figure, read_text};
 use crate::thesis::curves::{Curve, CurvesFile, Mark, Value};
 use std::path::Path;
 
@@ -15,13 +15,7 @@ const MAX_BYTES: u64 = 16 << 20;
 /// The section of the thesis figures in `path` (a `curves.json`).
 pub fn section(path: &Path) -> Result<Section, ReportError> {
     let err = |m: String| ReportError::new(path, m);
-    let size = std::fs::metadata(path)
-        .map_err(|e| err(e.to_string()))?
-        .len();
-    if size > MAX_BYTES {
-        return Err(err(format!("{size} bytes; at most {MAX_BYTES} are read")));
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    let text = read_text(path, MAX_BYTES)?;
     let file = CurvesFile::parse(&text).map_err(|e| {
         err(format!(
             "line {}, column {}: {e} (expected the curves `skyforge validate thesis --out` writes)",

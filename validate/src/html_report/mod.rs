@@ -96,6 +96,18 @@ pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
 }
 
 /// `chart` drawn, with `caption`; an error names `path`, the file the chart comes from.
+/// The text of `path`, refused (before reading) when larger than `max_bytes`.
+fn read_text(path: &Path, max_bytes: u64) -> Result<String, ReportError> {
+    let err = |m: String| ReportError::new(path, m);
+    let size = std::fs::metadata(path)
+        .map_err(|e| err(e.to_string()))?
+        .len();
+    if size > max_bytes {
+        return Err(err(format!("{size} bytes; at most {max_bytes} are read")));
+    }
+    std::fs::read_to_string(path).map_err(|e| err(e.to_string()))
+}
+
 fn figure(chart: &Chart, caption: String, path: &Path) -> Result<Figure, ReportError> {
     let svg = chart
         .to_svg()

@@ -4,7 +4,7 @@
 
 use super::chart::{Chart, Series};
 use super::page::{Cell, Section, Table};
-use super::{ReportError, figure};
+use super::{ReportError, figure, read_text};
 use crate::report::{Row, Verdict, parse_results};
 use std::path::Path;
 
@@ -14,13 +14,7 @@ const MAX_BYTES: u64 = 64 << 20;
 /// The validation section of the report for `path` (a `results.json`).
 pub fn section(path: &Path) -> Result<Section, ReportError> {
     let err = |m: String| ReportError::new(path, m);
-    let size = std::fs::metadata(path)
-        .map_err(|e| err(e.to_string()))?
-        .len();
-    if size > MAX_BYTES {
-        return Err(err(format!("{size} bytes; at most {MAX_BYTES} are read")));
-    }
-    let text = std::fs::read_to_string(path).map_err(|e| err(e.to_string()))?;
+    let text = read_text(path, MAX_BYTES)?;
     let (provenance, rows) = parse_results(&text).map_err(|e| {
         err(format!(
             "line {}, column {}: {e} (expected the rows `skyforge validate thesis --out` writes)",
