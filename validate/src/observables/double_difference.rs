@@ -111,9 +111,9 @@ pub const BATCH_EPOCHS: usize = 10;
 /// those over consecutive batches of [`BATCH_EPOCHS`] epochs, and take the spread of the
 /// batch means, `std(batch means) / sqrt(batches)`; `None` with fewer than two batches.
 /// `values`: (common-epoch index, value) of every pair.
-pub fn mean_standard_error(values: &[(usize, f64)]) -> Option<f64> {
+pub fn mean_standard_error(values: impl IntoIterator<Item = (usize, f64)>) -> Option<f64> {
     let mut per_epoch: BTreeMap<usize, (f64, usize)> = BTreeMap::new();
-    for &(k, v) in values {
+    for (k, v) in values {
         let e = per_epoch.entry(k).or_default();
         *e = (e.0 + v, e.1 + 1);
     }
@@ -241,16 +241,18 @@ pub fn zero_baseline_with(
         }
         let code: Vec<ErrorStats> = pairs.iter().map(|p| p.pseudorange_m).collect();
         let phase: Vec<ErrorStats> = pairs.iter().map(|p| p.carrier_phase_m).collect();
-        let all = |i: usize| -> Vec<(usize, f64)> {
-            pairs.iter().flat_map(|p| p.by_epoch[i].clone()).collect()
+        let all = |i: usize| {
+            pairs
+                .iter()
+                .flat_map(move |p| p.by_epoch[i].iter().copied())
         };
         systems.push(SystemDd {
             system,
             reference,
             pseudorange_m: ErrorStats::pooled(&code),
             carrier_phase_m: ErrorStats::pooled(&phase),
-            pseudorange_mean_se_m: mean_standard_error(&all(0)),
-            carrier_phase_mean_se_m: mean_standard_error(&all(1)),
+            pseudorange_mean_se_m: mean_standard_error(all(0)),
+            carrier_phase_mean_se_m: mean_standard_error(all(1)),
             pairs,
         });
     }
@@ -364,7 +366,7 @@ mod tests {
     #[test]
     fn independent_epochs_give_about_the_naive_standard_error() {
         let v = noise(1, 4000);
-        let se = mean_standard_error(&v.iter().copied().enumerate().collect::<Vec<_>>()).unwrap();
+        let se = mean_standard_error(v.iter().copied().enumerate()).unwrap();
         let naive = 1.0 / 4000f64.sqrt();
         assert!((se / naive - 1.0).abs() < 0.3, "{se} vs {naive}");
     }
@@ -376,7 +378,7 @@ mod tests {
         let reference = noise(2, 400);
         let one: Vec<(usize, f64)> = reference.iter().copied().enumerate().collect();
         let eight: Vec<(usize, f64)> = (0..8).flat_map(|_| one.clone()).collect();
-        assert_eq!(mean_standard_error(&one), mean_standard_error(&eight));
+        assert_eq!(mean_standard_error(one.clone()), mean_standard_error(eight));
     }
 
     #[test]
@@ -394,10 +396,13 @@ mod tests {
                 (k, x)
             })
             .collect();
-        let se = mean_standard_error(&series).unwrap();
+        let se = mean_standard_error(series.clone()).unwrap();
         let naive = 1.0 / 20_000f64.sqrt();
         assert!(se / naive > 2.0, "{}", se / naive);
         // Too few epochs for two batches: no standard error.
-        assert_eq!(mean_standard_error(&series[..BATCH_EPOCHS]), None);
+        assert_eq!(
+            mean_standard_error(series[..BATCH_EPOCHS].iter().copied()),
+            None
+        );
     }
 }
