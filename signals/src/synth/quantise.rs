@@ -106,7 +106,7 @@ struct Write<'a> {
     quantiser: &'a mut Quantiser,
     i: &'a [f32],
     q: &'a [f32],
-    out: &'a mut Vec<u8>,
+    out: &'a mut [u8],
 }
 
 impl pulp::WithSimd for Write<'_> {
@@ -206,10 +206,11 @@ impl Quantiser {
         self.clipped += u64::from(clipped);
     }
 
-    /// Append the block to `out` in the container's byte layout (interleaved I/Q for
-    /// complex formats; only `i` for real IF). Runs with the widest vector instructions
-    /// the CPU has; integer results, so identical on every path.
-    pub fn write(&mut self, i: &[f32], q: &[f32], out: &mut Vec<u8>) {
+    /// Write the block to the front of `out` in the container's byte layout (interleaved
+    /// I/Q for complex formats; only `i` for real IF): [`Self::bytes`] of them, which
+    /// `out` must hold. Runs with the widest vector instructions the CPU has; integer
+    /// results, so identical on every path.
+    pub fn write(&mut self, i: &[f32], q: &[f32], out: &mut [u8]) {
         pulp::Arch::new().dispatch(Write {
             quantiser: self,
             i,
@@ -218,55 +219,68 @@ impl Quantiser {
         });
     }
 
-    /// [`Self::write`], compiled once per instruction set.
-    #[inline(always)]
-    fn write_block(&mut self, i: &[f32], q: &[f32], out: &mut Vec<u8>) {
-        let n = if self.format.is_complex() {
+    /// Bytes [`Self::write`] writes for `i` and `q`.
+    pub fn bytes(&self, i: &[f32], q: &[f32]) -> usize {
+        self.samples(i, q) * self.format.bytes_per_sample()
+    }
+
+    /// Samples of a block: complex formats take `i` and `q` pairs, real IF `i` alone.
+    fn samples(&self, i: &[f32], q: &[f32]) -> usize {
+        if self.format.is_complex() {
             i.len().min(q.len())
         } else {
             i.len()
-        };
-        out.reserve(n * self.format.bytes_per_sample());
+        }
+    }
+
+    /// [`Self::write`], compiled once per instruction set.
+    #[inline(always)]
+    fn write_block(&mut self, i: &[f32], q: &[f32], out: &mut [u8]) {
+        let n = self.samples(i, q);
+        let per = self.format.bytes_per_sample();
+        let out = &mut out[..n * per];
         let (mut li, mut lq) = ([0i32; CHUNK], [0i32; CHUNK]);
         match self.format {
             SampleFormat::Ci8 => {
-                let mut bytes = [0u8; 2 * CHUNK];
-                for (ci, cq) in i[..n].chunks(CHUNK).zip(q[..n].chunks(CHUNK)) {
+                for ((ci, cq), bytes) in i[..n]
+                    .chunks(CHUNK)
+                    .zip(q[..n].chunks(CHUNK))
+                    .zip(out.chunks_mut(2 * CHUNK))
+                {
                     self.chunk_levels(ci, &mut li);
                     self.chunk_levels(cq, &mut lq);
                     for ((b, &a), &c) in bytes.chunks_exact_mut(2).zip(&li).zip(&lq) {
                         b[0] = a as i8 as u8;
                         b[1] = c as i8 as u8;
                     }
-                    out.extend_from_slice(&bytes[..2 * ci.len()]);
                 }
             }
             SampleFormat::Ri8 => {
-                let mut bytes = [0u8; CHUNK];
-                for ci in i.chunks(CHUNK) {
+                for (ci, bytes) in i[..n].chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
                     self.chunk_levels(ci, &mut li);
                     for (b, &a) in bytes.iter_mut().zip(&li) {
                         *b = a as i8 as u8;
                     }
-                    out.extend_from_slice(&bytes[..ci.len()]);
                 }
             }
             SampleFormat::Ci16 => {
-                let mut bytes = [0u8; 4 * CHUNK];
-                for (ci, cq) in i[..n].chunks(CHUNK).zip(q[..n].chunks(CHUNK)) {
+                for ((ci, cq), bytes) in i[..n]
+                    .chunks(CHUNK)
+                    .zip(q[..n].chunks(CHUNK))
+                    .zip(out.chunks_mut(4 * CHUNK))
+                {
                     self.chunk_levels(ci, &mut li);
                     self.chunk_levels(cq, &mut lq);
                     for ((b, &a), &c) in bytes.chunks_exact_mut(4).zip(&li).zip(&lq) {
                         b[..2].copy_from_slice(&(a as i16).to_le_bytes());
                         b[2..].copy_from_slice(&(c as i16).to_le_bytes());
                     }
-                    out.extend_from_slice(&bytes[..4 * ci.len()]);
                 }
             }
             SampleFormat::Cf32 => {
-                for (&a, &b) in i[..n].iter().zip(&q[..n]) {
-                    out.extend_from_slice(&a.to_le_bytes());
-                    out.extend_from_slice(&b.to_le_bytes());
+                for ((&a, &b), bytes) in i[..n].iter().zip(&q[..n]).zip(out.chunks_exact_mut(8)) {
+                    bytes[..4].copy_from_slice(&a.to_le_bytes());
+                    bytes[4..].copy_from_slice(&b.to_le_bytes());
                 }
             }
         }
@@ -278,6 +292,13 @@ mod tests {
     use super::*;
 
     impl Quantiser {
+        /// [`Quantiser::write`] into a new buffer.
+        fn written(&mut self, i: &[f32], q: &[f32]) -> Vec<u8> {
+            let mut out = vec![0; self.bytes(i, q)];
+            self.write(i, q, &mut out);
+            out
+        }
+
         /// The output level of one input component, through the block path.
         fn level(&mut self, x: f32) -> f32 {
             let mut l = [0; CHUNK];
@@ -338,7 +359,7 @@ mod tests {
             let mut q = Quantiser::new(format, Some(bits), noise_level(bits)).unwrap();
             let mut out = Vec::new();
             for block in xs.chunks(1000) {
-                q.write(block, block, &mut out);
+                out.extend(q.written(block, block));
             }
             assert_eq!(q.clipped(), 2 * want_clipped);
             let per = format.bytes_per_sample();
@@ -392,22 +413,19 @@ mod tests {
     #[test]
     fn byte_layouts() {
         let (i, q) = ([1.0f32, -2.0], [0.5f32, 3.0]);
-        let mut out = Vec::new();
-        Quantiser::new(SampleFormat::Ci16, Some(16), 4096.0)
+        let out = Quantiser::new(SampleFormat::Ci16, Some(16), 4096.0)
             .unwrap()
-            .write(&i, &q, &mut out);
+            .written(&i, &q);
         // I, Q interleaved; 0.5 rounds away from zero to 1.
         assert_eq!(out, [1, 0, 1, 0, 254, 255, 3, 0]);
-        let mut out = Vec::new();
-        Quantiser::new(SampleFormat::Cf32, None, 1.0)
+        let out = Quantiser::new(SampleFormat::Cf32, None, 1.0)
             .unwrap()
-            .write(&i, &q, &mut out);
+            .written(&i, &q);
         assert_eq!(out.len(), 16);
         assert_eq!(f32::from_le_bytes(out[12..16].try_into().unwrap()), 3.0);
-        let mut out = Vec::new();
-        Quantiser::new(SampleFormat::Ri8, Some(8), 25.4)
+        let out = Quantiser::new(SampleFormat::Ri8, Some(8), 25.4)
             .unwrap()
-            .write(&i, &q, &mut out);
+            .written(&i, &q);
         assert_eq!(out, [1, (-2i8) as u8]);
     }
 

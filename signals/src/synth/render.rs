@@ -36,7 +36,7 @@ const TRUTH_DLL_SPACING_CHIPS: f64 = 1.0;
 /// Bytes of rendered samples held at once per antenna before they go to the sink: blocks
 /// are rendered in parallel in slices of at most this size (at least one block), so the
 /// memory of a run does not grow with the sample rate times the 1 s geometry step.
-pub const SLICE_BYTES: usize = 32 << 20;
+pub const SLICE_BYTES: usize = 1 << 20;
 
 /// Blocks of `block_bytes` in a slice of at most `slice_bytes` (at least one).
 pub fn blocks_per_slice(block_bytes: usize, slice_bytes: usize) -> u64 {
@@ -62,6 +62,8 @@ struct Scratch {
     fi: Vec<f32>,
     fq: Vec<f32>,
     chips: Vec<i8>,
+    /// Per transmitter, the last data bit looked up (`Transmitter::chip_signs_after`).
+    bits: Vec<Option<(u64, u8)>>,
     mix: MixScratch,
 }
 
@@ -96,6 +98,8 @@ pub struct Synthesiser<'a> {
     filter: Option<BandFilter>,
     /// Rendered bytes held at once per antenna ([`SLICE_BYTES`] by default).
     slice_bytes: usize,
+    /// The bytes of one slice's blocks.
+    slice: Vec<u8>,
 }
 
 /// Noise standard deviation per component (float units before filtering and quantisation).
@@ -127,6 +131,7 @@ impl<'a> Synthesiser<'a> {
             events: None,
             filter: None,
             slice_bytes: SLICE_BYTES,
+            slice: Vec::new(),
         })
     }
 
@@ -288,43 +293,58 @@ impl<'a> Synthesiser<'a> {
             return Ok(());
         }
         let per_slice = self.blocks_per_slice();
-        for (a, segs) in segments.iter().enumerate() {
+        // The slice's buffer lives as long as the synthesiser: allocating it anew for
+        // every slice cost a page fault and a cleared page per 4 KiB written.
+        let mut slice = std::mem::take(&mut self.slice);
+        let mut sent = Ok(());
+        'antennas: for (a, segs) in segments.iter().enumerate() {
             let clock = clock_of(a);
             let mut from = b0;
             while from < b1 {
                 let to = (from + per_slice).min(b1);
-                for (bytes, clipped) in self.render_blocks(segs, a, (b0, from..to), clock) {
-                    self.clipped += clipped;
-                    out(a, &bytes)?;
+                let bytes = self.render_blocks(segs, a, (b0, from..to), clock, &mut slice);
+                sent = out(a, bytes);
+                if sent.is_err() {
+                    break 'antennas;
                 }
                 from = to;
             }
         }
-        Ok(())
+        self.slice = slice;
+        sent
     }
 
-    /// Blocks `range` of antenna `a` rendered in parallel, in order, each with the
-    /// components it clipped; `clock` holds the clock samples from block `first`.
-    fn render_blocks(
-        &self,
+    /// Blocks `range` of antenna `a` rendered in parallel into `slice` (returned: their
+    /// bytes, in order); `clock` holds the clock samples from block `first`.
+    fn render_blocks<'s>(
+        &mut self,
         segments: &[Segment],
         a: usize,
         (first, range): (u64, std::ops::Range<u64>),
         clock: &[ClockSample],
-    ) -> Vec<(Vec<u8>, u64)> {
+        slice: &'s mut Vec<u8>,
+    ) -> &'s [u8] {
+        let count = (range.end - range.start) as usize;
+        let block_bytes = self.cfg.block_bytes();
+        slice.resize(count * block_bytes, 0);
         let noise = &self.noise[a];
-        range
-            .into_par_iter()
+        let this = &*self;
+        let clipped: u64 = slice
+            .par_chunks_mut(block_bytes)
+            .enumerate()
             .map_init(
-                || (Scratch::default(), noise.clone(), self.quantiser.clone()),
-                |(scratch, noise, quantiser), b| {
+                || (Scratch::default(), noise.clone(), this.quantiser.clone()),
+                |(scratch, noise, quantiser), (k, bytes)| {
+                    let b = range.start + k as u64;
                     let before = quantiser.clipped();
                     let cs = clock.get((b - first) as usize).copied();
-                    let bytes = self.render_block(segments, a, b, cs, scratch, noise, quantiser);
-                    (bytes, quantiser.clipped() - before)
+                    this.render_block(segments, a, b, cs, (scratch, noise, quantiser), bytes);
+                    quantiser.clipped() - before
                 },
             )
-            .collect()
+            .sum();
+        self.clipped += clipped;
+        slice
     }
 
     /// Receiver clock offset (s) and its rate at receiver time `t_rx` in block `b`.
@@ -395,17 +415,16 @@ impl<'a> Synthesiser<'a> {
         })
     }
 
-    #[allow(clippy::too_many_arguments)]
+    /// Block `b` of antenna `a`, written to `bytes` (one block's worth).
     fn render_block(
         &self,
         segments: &[Segment],
         a: usize,
         b: u64,
         clock: Option<ClockSample>,
-        s: &mut Scratch,
-        noise: &mut ThermalNoise,
-        quantiser: &mut Quantiser,
-    ) -> Vec<u8> {
+        (s, noise, quantiser): (&mut Scratch, &mut ThermalNoise, &mut Quantiser),
+        bytes: &mut [u8],
+    ) {
         let n = self.n;
         let fs = self.cfg.sample_rate_hz;
         // The filter needs `half` samples beyond each end of the block.
@@ -452,7 +471,7 @@ impl<'a> Synthesiser<'a> {
                         + phase.1 / TAU,
                 ),
             };
-            mix_path(tx, &path(amplitude, (0.0, 0.0), (0.0, 0.0)), m, s);
+            mix_path((seg.tx, tx), &path(amplitude, (0.0, 0.0), (0.0, 0.0)), m, s);
             for (r0, r1) in seg.reflections_at(t0).zip(seg.reflections_at(t1)) {
                 if r0.relative_amplitude > 0.0 {
                     let p = path(
@@ -460,13 +479,12 @@ impl<'a> Synthesiser<'a> {
                         (r0.delay_m, r1.delay_m),
                         (r0.phase_rad, r1.phase_rad),
                     );
-                    mix_path(tx, &p, m, s);
+                    mix_path((seg.tx, tx), &p, m, s);
                 }
             }
         }
         // Noise is keyed by the absolute sample index, offset by the filter margin.
         noise.add(b * n as u64, &mut s.i, &mut s.q);
-        let mut bytes = Vec::with_capacity(self.cfg.block_bytes());
         match &self.filter {
             Some(f) => {
                 s.fi.clear();
@@ -474,21 +492,23 @@ impl<'a> Synthesiser<'a> {
                 s.fq.clear();
                 s.fq.resize(n, 0.0);
                 f.apply(&s.i, &s.q, &mut s.fi, &mut s.fq);
-                quantiser.write(&s.fi, &s.fq, &mut bytes);
+                quantiser.write(&s.fi, &s.fq, bytes);
             }
-            None => quantiser.write(&s.i, &s.q, &mut bytes),
+            None => quantiser.write(&s.i, &s.q, bytes),
         }
-        bytes
     }
 }
 
 /// Mix one path over a span of `m` samples into the scratch block.
-fn mix_path(tx: &Transmitter, p: &PathBlock, m: usize, s: &mut Scratch) {
+fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut Scratch) {
     let (k0, code_phase) = tx.chip_at(p.t_sv.0);
     let code_per_sample = tx.chip_rate_hz * (p.t_sv.1 - p.t_sv.0) / m as f64;
     let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, m);
     s.chips.clear();
-    tx.chip_signs(k0, needed, &mut s.chips);
+    if s.bits.len() <= index {
+        s.bits.resize(index + 1, None);
+    }
+    tx.chip_signs_after(k0, needed, &mut s.chips, &mut s.bits[index]);
     let ch = ChannelBlock {
         amplitude: p.amplitude,
         carrier_phase_cycles: p.phase.0,

@@ -136,18 +136,30 @@ impl Transmitter {
     /// secondary code applied) to `out`; data and secondary code are looked up once per
     /// code period, not per chip.
     pub fn chip_signs(&self, k0: u64, count: usize, out: &mut Vec<i8>) {
+        self.chip_signs_after(k0, count, out, &mut None);
+    }
+
+    /// [`Self::chip_signs`] with the last data bit looked up (`(bit index, bit)`) kept in
+    /// `cached` between calls: a caller going through consecutive blocks encodes each
+    /// navigation subframe once per bit, not once per block.
+    pub fn chip_signs_after(
+        &self,
+        k0: u64,
+        count: usize,
+        out: &mut Vec<i8>,
+        cached: &mut Option<(u64, u8)>,
+    ) {
         let len = self.code.len() as u64;
         let per_bit = self.data.periods_per_bit();
         let (mut k, end) = (k0, k0 + count as u64);
-        let mut cached: Option<(u64, u8)> = None;
         while k < end {
             let period = k / len;
             let b = period / per_bit;
-            let bit = match cached {
+            let bit = match *cached {
                 Some((cb, v)) if cb == b => v,
                 _ => {
                     let v = self.data.bit(b);
-                    cached = Some((b, v));
+                    *cached = Some((b, v));
                     v
                 }
             };

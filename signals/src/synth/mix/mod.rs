@@ -5,26 +5,19 @@
 //! Within a block the code and carrier phases are linear in the sample index; the caller
 //! re-anchors them every block from the f64 truth, so nothing accumulates across blocks.
 //!
-//! Code: sample `i` carries chip `floor(p0 + i dp)`. Instead of evaluating that per sample,
-//! the kernel walks the chips: chip `k + 1` starts at sample `ceil((k + 1 - p0) / dp)`,
-//! with the boundary held in 32.32 fixed point (2^-32 sample resolution; over a
-//! 1100-chip block the accumulated boundary error is below 3e-7 samples, about 2e-5 m
-//! of code at 4 Msps). Each chip run is written with one fixed-width store when runs are
-//! short (the next chip overwrites the excess), or a fill when they are long.
+//! Code: sample `i` carries chip `floor(p0 + i dp)`, in 32.32 fixed point ([`spread`]).
 //!
 //! Carrier: `LANES` interleaved phasor recurrences, z[i + LANES] = z[i] w^LANES, started
 //! from exact values; over a 4096-sample block the f32 recurrence drifts by about 1e-4
 //! rad (1e-5 m at L1), measured in this module's tests.
 
-/// Independent phasor recurrences run side by side (one AVX-512 register of f32, two on
-/// AVX2).
+mod spread;
+
 use crate::nco::LanePhasors;
 
-const LANES: usize = 16;
-
-/// Longest chip run (samples) written with one fixed-width store; also the padding of the
-/// code buffer past the block.
-const RUN: usize = 8;
+/// Independent phasor recurrences run side by side (one AVX-512 register of f32, two on
+/// AVX2).
+const LANES: usize = 32;
 
 /// One channel over one block.
 #[derive(Debug, Clone, Copy)]
@@ -54,66 +47,10 @@ impl ChannelBlock<'_> {
 /// Reusable per-thread buffers of the kernel.
 #[derive(Debug, Default)]
 pub struct MixScratch {
+    /// The code amplitude under each sample.
     code: Vec<f32>,
-}
-
-/// Fill `code[..n]` with `amplitude * sign` of the chip under each sample (`code` holds
-/// `n + RUN` values: runs may overshoot the block end). A block the chips do not cover
-/// keeps the last chip, as does a non-positive code rate.
-#[inline(always)]
-fn spread_code(code: &mut [f32], n: usize, ch: &ChannelBlock<'_>) {
-    let scale = (1u64 << 32) as f64;
-    let dp = ch.code_chips_per_sample;
-    // Boundary of chip k + 1 (samples, 32.32): first + k step.
-    let samples_per_chip = 1.0 / dp;
-    let (first, step) = if dp > 0.0 && samples_per_chip * scale < 2f64.powi(62) {
-        (
-            ((1.0 - ch.code_phase_chips) * samples_per_chip * scale) as u64,
-            (samples_per_chip * scale) as u64,
-        )
-    } else {
-        (u64::MAX, 0)
-    };
-    let end_of = |k: usize| -> usize {
-        let b = first.saturating_add(step.saturating_mul(k as u64));
-        (b.saturating_add((1u64 << 32) - 1) >> 32).min(n as u64) as usize
-    };
-    // Runs of at most ceil(samples_per_chip) + 1 samples (fixed-point rounding).
-    let short = step > 0 && samples_per_chip <= (RUN - 2) as f64;
-    let mut start = 0;
-    let mut last = 0.0;
-    let mut fast = 0;
-    if short {
-        // Chips that end before n - RUN, without any clamping: chip k + 1 starts at
-        // ceil(b / 2^32), b = first + k step <= (n - RUN - 1) 2^32.
-        let limit = (n.saturating_sub(RUN + 1) as u64) << 32;
-        fast = if first <= limit {
-            ((limit - first) / step + 1).min(ch.chip_signs.len() as u64) as usize
-        } else {
-            0
-        };
-        let mut b = first;
-        for &sign in &ch.chip_signs[..fast] {
-            last = ch.amplitude * f32::from(sign);
-            code[start..start + RUN].copy_from_slice(&[last; RUN]);
-            start = ((b + ((1u64 << 32) - 1)) >> 32) as usize;
-            b += step;
-        }
-    }
-    for (k, &sign) in ch.chip_signs.iter().enumerate().skip(fast) {
-        last = ch.amplitude * f32::from(sign);
-        let end = end_of(k);
-        if short {
-            code[start..start + RUN].copy_from_slice(&[last; RUN]);
-        } else {
-            code[start..end.max(start)].fill(last);
-        }
-        start = end.max(start);
-        if start >= n {
-            return;
-        }
-    }
-    code[start..n].fill(last);
+    /// Each chip's amplitude, then [`spread::PAD`] copies of the last.
+    amps: Vec<f32>,
 }
 
 /// Add one channel to the block `(out_i, out_q)`.
@@ -128,12 +65,30 @@ pub fn mix_into(
     ch: &ChannelBlock<'_>,
     scratch: &mut MixScratch,
 ) {
+    let n = out_i.len().min(out_q.len());
+    spread_code(n, ch, scratch);
     pulp::Arch::new().dispatch(Kernel {
-        out_i,
-        out_q,
+        out_i: &mut out_i[..n],
+        out_q: &mut out_q[..n],
         ch,
-        code: &mut scratch.code,
+        code: &scratch.code,
     });
+}
+
+/// `scratch.code[..n]`: the amplitude of the chip under each of `n` samples.
+fn spread_code(n: usize, ch: &ChannelBlock<'_>, scratch: &mut MixScratch) {
+    let amps = &mut scratch.amps;
+    amps.clear();
+    amps.extend(ch.chip_signs.iter().map(|&s| ch.amplitude * f32::from(s)));
+    let last = amps.last().copied().unwrap_or(0.0);
+    amps.extend([last; spread::PAD]);
+    scratch.code.resize(n, 0.0);
+    spread::spread(
+        &mut scratch.code[..n],
+        amps,
+        ch.code_phase_chips,
+        ch.code_chips_per_sample,
+    );
 }
 
 /// [`mix_into`]'s arguments, for the CPU-feature dispatch.
@@ -141,7 +96,7 @@ struct Kernel<'a, 'b> {
     out_i: &'a mut [f32],
     out_q: &'a mut [f32],
     ch: &'a ChannelBlock<'b>,
-    code: &'a mut Vec<f32>,
+    code: &'a [f32],
 }
 
 impl pulp::WithSimd for Kernel<'_, '_> {
@@ -152,12 +107,11 @@ impl pulp::WithSimd for Kernel<'_, '_> {
     }
 }
 
-/// The kernel itself, compiled once per instruction set.
+/// The kernel itself, compiled once per instruction set: `out += code * carrier`, with
+/// `code` as long as the outputs.
 #[inline(always)]
-fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &mut Vec<f32>) {
-    let n = out_i.len().min(out_q.len());
-    code.resize(n + RUN, 0.0);
-    spread_code(code, n, ch);
+fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &[f32]) {
+    let n = out_i.len().min(out_q.len()).min(code.len());
 
     // Lane l starts at phase p0 + l dp; every step advances all lanes by LANES dp.
     let LanePhasors {
@@ -167,25 +121,46 @@ fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &mut V
         step_im: wi,
     } = LanePhasors::<LANES>::new(ch.carrier_phase_cycles, ch.carrier_cycles_per_sample);
 
-    let code = &code[..n];
-    let full = n / LANES * LANES;
-    for ((oi, oq), c) in out_i[..full]
-        .chunks_exact_mut(LANES)
-        .zip(out_q[..full].chunks_exact_mut(LANES))
-        .zip(code[..full].chunks_exact(LANES))
-    {
+    let (out_i, tail_i) = out_i[..n].as_chunks_mut::<LANES>();
+    let (out_q, tail_q) = out_q[..n].as_chunks_mut::<LANES>();
+    let (code, tail_c) = code[..n].as_chunks::<LANES>();
+    for ((oi, oq), c) in out_i.iter_mut().zip(out_q.iter_mut()).zip(code) {
+        // Whole-array loads and stores: the compiler need not prove the three blocks
+        // apart to use vector instructions.
+        let (mut si, mut sq, c) = (*oi, *oq, *c);
         for l in 0..LANES {
-            oi[l] += c[l] * zr[l];
-            oq[l] += c[l] * zi[l];
-            let r = zr[l] * wr - zi[l] * wi;
-            zi[l] = zr[l] * wi + zi[l] * wr;
-            zr[l] = r;
+            si[l] += c[l] * zr[l];
+            sq[l] += c[l] * zi[l];
         }
+        (*oi, *oq) = (si, sq);
+        (zr, zi) = step(&zr, &zi, wr, wi);
     }
-    for l in 0..n - full {
-        out_i[full + l] += code[full + l] * zr[l];
-        out_q[full + l] += code[full + l] * zi[l];
+    // The tail through fixed-size arrays, so that no lane is indexed with a run-time
+    // bound (that would keep the phasor lanes in memory through the loop above).
+    let mut c = [0f32; LANES];
+    c[..tail_c.len()].copy_from_slice(tail_c);
+    let (mut ti, mut tq) = ([0f32; LANES], [0f32; LANES]);
+    for l in 0..LANES {
+        ti[l] = c[l] * zr[l];
+        tq[l] = c[l] * zi[l];
     }
+    for (o, t) in tail_i.iter_mut().zip(&ti) {
+        *o += t;
+    }
+    for (o, t) in tail_q.iter_mut().zip(&tq) {
+        *o += t;
+    }
+}
+
+/// One step of the lane recurrence: every lane turned by `w`.
+#[inline(always)]
+fn step(zr: &[f32; LANES], zi: &[f32; LANES], wr: f32, wi: f32) -> ([f32; LANES], [f32; LANES]) {
+    let (mut nr, mut ni) = ([0f32; LANES], [0f32; LANES]);
+    for l in 0..LANES {
+        nr[l] = zr[l] * wr - zi[l] * wi;
+        ni[l] = zr[l] * wi + zi[l] * wr;
+    }
+    (nr, ni)
 }
 
 #[cfg(test)]
@@ -258,41 +233,6 @@ mod tests {
     }
 
     #[test]
-    fn chip_runs_match_the_floor_of_the_code_phase() {
-        // Short runs (fixed-width stores), long runs (fills), and more chips than samples.
-        let chips = signs(5000);
-        for (code0, dp, n) in [
-            (0.0, 0.25, 4092),
-            (0.5, 0.2500013, 4000),
-            (0.999, 1.0 / 6.0, 3001),
-            (0.3, 0.02, 20_000),
-            (0.7, 1.3, 1000),
-            (0.1, 0.0, 50),
-        ] {
-            let ch = ChannelBlock {
-                amplitude: 1.0,
-                carrier_phase_cycles: 0.0,
-                carrier_cycles_per_sample: 0.0,
-                code_phase_chips: code0,
-                code_chips_per_sample: dp,
-                chip_signs: &chips[..ChannelBlock::chips_needed(code0, dp, n)],
-            };
-            let mut code = vec![0f32; n + RUN];
-            spread_code(&mut code, n, &ch);
-            let mut edge_misses = 0;
-            for (i, &c) in code[..n].iter().enumerate() {
-                let x = code0 + i as f64 * dp;
-                if c != f32::from(chips[x.floor() as usize]) {
-                    // Only allowed within 1e-6 chip of an edge.
-                    assert!((x - x.round()).abs() < 1e-6, "dp {dp}, sample {i}");
-                    edge_misses += 1;
-                }
-            }
-            assert!(edge_misses <= 2, "dp {dp}: {edge_misses}");
-        }
-    }
-
-    #[test]
     fn every_instruction_set_gives_the_same_bits() {
         // The dispatched kernel (AVX-512 / AVX2 where the CPU has them) against the same
         // code compiled for baseline x86-64.
@@ -309,7 +249,9 @@ mod tests {
         let (mut ai, mut aq) = (vec![0.5f32; n], vec![-0.25f32; n]);
         let (mut bi, mut bq) = (ai.clone(), aq.clone());
         mix_into(&mut ai, &mut aq, &ch, &mut MixScratch::default());
-        mix(&mut bi, &mut bq, &ch, &mut Vec::new());
+        let mut scratch = MixScratch::default();
+        spread_code(n, &ch, &mut scratch);
+        mix(&mut bi, &mut bq, &ch, &scratch.code);
         let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&ai), bits(&bi));
         assert_eq!(bits(&aq), bits(&bq));
