@@ -94,6 +94,10 @@ pub struct Synthesiser<'a> {
     truth: Vec<LinkTruth>,
     /// Receiver clocks: none (ideal), one shared by every antenna, or one per antenna.
     clocks: Vec<ClockModel>,
+    /// Blocks per clock step.
+    clock_every: u64,
+    /// Each clock's latest sample.
+    clock_last: Vec<Option<ClockSample>>,
     events: Option<EventSchedule>,
     filter: Option<BandFilter>,
     /// Rendered bytes held at once per antenna ([`SLICE_BYTES`] by default).
@@ -128,6 +132,8 @@ impl<'a> Synthesiser<'a> {
             samples: true,
             truth: Vec::new(),
             clocks: Vec::new(),
+            clock_every: 1,
+            clock_last: Vec::new(),
             events: None,
             filter: None,
             slice_bytes: SLICE_BYTES,
@@ -155,9 +161,14 @@ impl<'a> Synthesiser<'a> {
     }
 
     /// Receiver clock: one model shared by all antennas, or one per antenna (`clocks.len()
-    /// == n_antennas`). Models must step at [`BLOCK_S`]; clones of one model give the same
-    /// clock to several synthesisers (bands) of one receiver.
+    /// == n_antennas`). Models step at a whole number of blocks ([`BLOCK_S`]: one block
+    /// when samples are rendered; the observation level steps them more coarsely); clones
+    /// of one model give the same clock to several synthesisers (bands) of one receiver.
     pub fn with_clocks(mut self, clocks: Vec<ClockModel>) -> Self {
+        self.clock_every = clocks
+            .first()
+            .map_or(1, |c| ((c.dt_s() / BLOCK_S).round() as u64).max(1));
+        self.clock_last = vec![None; clocks.len()];
         self.clocks = clocks;
         self
     }
@@ -226,26 +237,26 @@ impl<'a> Synthesiser<'a> {
             * f64::from(NOISE_SIGMA)
     }
 
-    /// The clock samples of each receiver clock for blocks `b0..b1` (one empty list for an
-    /// ideal clock).
+    /// The clock sample of each receiver clock for each block of `b0..b1` (one empty list
+    /// for an ideal clock): the sample of the clock step the block lies in. A clock steps
+    /// at every block, or, when its step spans several blocks, at the first block of each.
     fn clock_samples(&mut self, b0: u64, b1: u64) -> Vec<Vec<ClockSample>> {
-        let n = (b1 - b0) as usize;
-        let run = |c: &mut ClockModel| {
-            let mut v = vec![
-                ClockSample {
-                    t_s: 0.0,
-                    phase_s: 0.0,
-                    freq: 0.0
-                };
-                n
-            ];
-            c.fill(&mut v);
-            v
-        };
         if self.clocks.is_empty() {
             return vec![Vec::new()];
         }
-        self.clocks.iter_mut().map(run).collect()
+        let every = self.clock_every;
+        self.clocks
+            .iter_mut()
+            .zip(&mut self.clock_last)
+            .map(|(clock, last)| {
+                (b0..b1)
+                    .map(|b| match last {
+                        Some(s) if b % every != 0 => *s,
+                        _ => *last.insert(clock.step()),
+                    })
+                    .collect()
+            })
+            .collect()
     }
 
     fn render_interval<E>(
@@ -347,10 +358,11 @@ impl<'a> Synthesiser<'a> {
         slice
     }
 
-    /// Receiver clock offset (s) and its rate at receiver time `t_rx` in block `b`.
-    fn rx_clock(clock: Option<ClockSample>, b: u64, t_rx: f64) -> (f64, f64) {
+    /// Receiver clock offset (s) and its rate at receiver time `t_rx`, from the sample of
+    /// the clock step `t_rx` lies in.
+    fn rx_clock(clock: Option<ClockSample>, t_rx: f64) -> (f64, f64) {
         clock.map_or((0.0, 0.0), |c| {
-            (c.phase_s + c.freq * (t_rx - b as f64 * BLOCK_S), c.freq)
+            (c.phase_s + c.freq * (t_rx - c.t_s), c.freq)
         })
     }
 
@@ -369,7 +381,7 @@ impl<'a> Synthesiser<'a> {
         clock: Option<ClockSample>,
     ) -> Option<LinkTruth> {
         let t_rx = b as f64 * BLOCK_S;
-        let (dt_rx, freq) = Self::rx_clock(clock, b, t_rx);
+        let (dt_rx, freq) = Self::rx_clock(clock, t_rx);
         let t = t_rx - dt_rx;
         let ev = self.effect(t, a, seg.tx);
         if ev.amplitude_factor <= 0.0 {
@@ -436,8 +448,8 @@ impl<'a> Synthesiser<'a> {
         s.q.resize(m, 0.0);
         let t_block = b as f64 * BLOCK_S;
         let (t_rx0, t_rx1) = (t_block - half as f64 / fs, t_block + (n + half) as f64 / fs);
-        let (dt0, _) = Self::rx_clock(clock, b, t_rx0);
-        let (dt1, _) = Self::rx_clock(clock, b, t_rx1);
+        let (dt0, _) = Self::rx_clock(clock, t_rx0);
+        let (dt1, _) = Self::rx_clock(clock, t_rx1);
         let (t0, t1) = (t_rx0 - dt0, t_rx1 - dt1);
         // IF phase at the span's first sample, kept exact over long runs.
         let if_per_block = self.cfg.if_hz * BLOCK_S;

@@ -39,6 +39,12 @@ pub const GEOMETRY_STEP_S: f64 = 1.0;
 /// Synthesis blocks in a second.
 const BLOCKS_PER_SECOND: u64 = (1.0 / BLOCK_S) as u64;
 
+/// Longest receiver-clock step at the observation level, in blocks (0.1 s): its flicker
+/// components then start at a 0.1 s time constant, and the clock's Allan deviation stays
+/// within 2.5 % of the model's from 1 s and within 1 % from 10 s (`errors::clock::model`),
+/// while a run steps it 100 times less often than the signal level's 1 ms.
+pub const OBSERVATION_CLOCK_STEP_BLOCKS: u64 = 100;
+
 /// An error a sink reports (a file that cannot be written, say).
 pub type SinkError = Box<dyn std::error::Error + Send + Sync>;
 
@@ -202,12 +208,24 @@ fn ephemerides_at_start(world: &SynthWorld<'_>) -> Vec<BroadcastEphemeris> {
         .collect()
 }
 
+/// Blocks per receiver-clock step at the observation level, whose truth samples the clock
+/// only every `truth_every` blocks: the largest divisor of that up to
+/// [`OBSERVATION_CLOCK_STEP_BLOCKS`], so that every truth record falls on a step.
+fn observation_clock_step(truth_every: u64) -> u64 {
+    let (mut a, mut b) = (truth_every, OBSERVATION_CLOCK_STEP_BLOCKS);
+    while b != 0 {
+        (a, b) = (b, a % b);
+    }
+    a.max(1)
+}
+
 /// One oscillator for the receiver, or one per antenna; every band gets a clone, so the
 /// bands of one receiver share its clock.
 fn receiver_clocks(
     osc: Option<&OscillatorConfig>,
     n_antennas: usize,
     seed: u64,
+    step_blocks: u64,
 ) -> Result<Vec<ClockModel>, SynthError> {
     let Some(osc) = osc else {
         return Ok(Vec::new());
@@ -222,7 +240,7 @@ fn receiver_clocks(
                 &h,
                 osc.bias_s,
                 osc.drift,
-                BLOCK_S,
+                step_blocks as f64 * BLOCK_S,
                 stream_rng(seed, Stream::ReceiverClock, i as u32),
             )
             .map_err(SynthError::Clock)
@@ -267,7 +285,12 @@ impl<'a> SynthSession<'a> {
             .iter()
             .map(Transmitter::broadcast_ephemeris)
             .collect();
-        let clocks = receiver_clocks(errors.receiver_clock.as_ref(), world.antennas.len(), seed)?;
+        let clocks = receiver_clocks(
+            errors.receiver_clock.as_ref(),
+            world.antennas.len(),
+            seed,
+            1,
+        )?;
         let antenna_names: Vec<&str> = world.antennas.iter().map(|a| a.name.as_str()).collect();
         let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
         let events = EventSchedule::new(&errors.events, &antenna_names, &sats)
@@ -372,6 +395,15 @@ impl<'a> SynthSession<'a> {
         self.filter.as_ref().map_or(0, BandFilter::half)
     }
 
+    /// Blocks per step of the receiver clock: one when samples are rendered; at the
+    /// observation level, [`observation_clock_step`] of the truth interval.
+    fn clock_step_blocks(&self) -> u64 {
+        match self.observation_model {
+            Some(_) => observation_clock_step(self.truth_every_blocks()),
+            None => 1,
+        }
+    }
+
     /// Blocks between signal-truth records (0: none); the observation level needs the
     /// truth at whole seconds at least.
     pub fn truth_every_blocks(&self) -> u64 {
@@ -393,6 +425,15 @@ impl<'a> SynthSession<'a> {
     /// time.
     pub fn run(self, chunk_epochs: usize, sinks: Sinks<'_>) -> Result<SynthReport, SynthError> {
         let truth_every = self.truth_every_blocks();
+        let clocks = match self.clock_step_blocks() {
+            1 => self.clocks.clone(),
+            step => receiver_clocks(
+                self.errors.receiver_clock.as_ref(),
+                self.world.antennas.len(),
+                self.seed,
+                step,
+            )?,
+        };
         let world = self.world;
         let signal = self.signal;
         let n_ant = world.antennas.len();
@@ -408,7 +449,7 @@ impl<'a> SynthSession<'a> {
                     self.seed,
                 )?
                 .with_truth_every(truth_every)
-                .with_clocks(self.clocks.clone())
+                .with_clocks(clocks.clone())
                 .with_events(self.events.clone());
                 let s = if observation_level {
                     s.without_samples()
@@ -573,5 +614,31 @@ impl Running<'_, '_, '_> {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_observation_level_clock_steps_on_every_truth_record() {
+        // Truth at 1, 2, 4, 8, 25, 40 and 1000 Hz (blocks between records: divisors of 1000).
+        for (every, step) in [
+            (1000, 100),
+            (500, 100),
+            (250, 50),
+            (125, 25),
+            (40, 20),
+            (25, 25),
+            (1, 1),
+        ] {
+            assert_eq!(
+                observation_clock_step(every),
+                step,
+                "truth every {every} blocks"
+            );
+            assert_eq!(every % step, 0);
+        }
     }
 }

@@ -32,6 +32,11 @@ pub fn gps_transmitters(world: &World) -> (Vec<Transmitter>, EphemerisStore, Vec
 /// A TCXO-like receiver clock 100 us ahead, drifting at 2e-7, stepping at the synthesis
 /// block.
 pub fn tcxo_clock() -> ClockModel {
+    tcxo_clock_stepping(BLOCK_S)
+}
+
+/// [`tcxo_clock`]'s oscillator stepped every `dt_s`.
+pub fn tcxo_clock_stepping(dt_s: f64) -> ClockModel {
     let h = PowerLaw {
         h0: 2e-19,
         h_minus1: 7e-21,
@@ -41,7 +46,7 @@ pub fn tcxo_clock() -> ClockModel {
         &h,
         1e-4,
         2e-7,
-        BLOCK_S,
+        dt_s,
         stream_rng(3, Stream::ReceiverClock, 0),
     )
     .unwrap()
