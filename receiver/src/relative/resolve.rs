@@ -8,7 +8,7 @@ use super::{RelativeConfig, RelativeError, length, multivariate};
 use crate::ambiguity::{lambda, partial};
 use crate::attitude::BodyGeometry;
 use crate::baseline::{AmbiguityHold, FixedBaselines, FloatBaselines};
-use crate::pvt::raim::chi2_threshold;
+use crate::pvt::raim::test_threshold;
 use nalgebra::DMatrix;
 use skyforge_orbits::Vec3;
 
@@ -86,7 +86,7 @@ pub fn resolve(
         Vec::new()
     };
     let mut cond = float.conditioned(&held)?;
-    if !held.is_empty() && cond.held_statistic > chi2_threshold(held.len(), config.hold_test_pfa) {
+    if !held.is_empty() && cond.held_statistic > test_threshold(held.len(), config.hold_test_pfa) {
         hold.clear();
         held.clear();
         cond = float.conditioned(&held)?;
