@@ -1,7 +1,7 @@
 //! The thesis acceptance tables (`../shared/reference/THESIS_TARGETS.md`): each module runs
 //! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
-//! printed number; T-3.3-R and T-3.3-S also give the data of the thesis figures they
-//! compute ([`curves`]).
+//! printed number; T-3.3-R, T-3.3-S, T-4.3 and T-5.5 also give the data of the thesis
+//! figures they compute ([`curves`]).
 
 pub mod attitude_noise;
 pub mod attitude_realtime;
@@ -178,7 +178,10 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(geometry_offsets::SCENARIO)],
         evaluate: |_, _, draw| geometry_offsets::rows(draw),
-        figures: None,
+        figures: Some(Figures {
+            with_rows: geometry_offsets::rows_and_curves,
+            alone: geometry_offsets::curves,
+        }),
     },
     Unit {
         tables: &[zero_baseline::TABLE],
@@ -199,7 +202,10 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(reverse_filter::SCENARIO)],
         evaluate: |_, _, draw| reverse_filter::rows(draw),
-        figures: None,
+        figures: Some(Figures {
+            with_rows: reverse_filter::rows_and_curves,
+            alone: reverse_filter::curves,
+        }),
     },
     Unit {
         tables: &[
