@@ -425,6 +425,24 @@ mod tests {
     }
 
     #[test]
+    fn t_5_5_gives_its_figures_with_its_rows_and_over_seeds() {
+        // Thesis figures 5.5-2..5.5-5: from the rows' own runs on the registered seeds,
+        // the same figures under a plan (T-4.3 is wired alike; its runs take minutes).
+        let unit = UNITS
+            .iter()
+            .find(|u| u.tables == [reverse_filter::TABLE])
+            .unwrap();
+        let (rows, curves) = evaluate_unit(unit, unit.tables, None, None).unwrap();
+        assert_eq!(rows, reverse_filter::rows(Draw::REGISTERED).unwrap());
+        assert_eq!(curves.len(), 8);
+        assert!(curves.iter().all(|c| c.figure.starts_with("5.5-")));
+        let plan = SeedPlan { draws: 1, base: 7 };
+        let (rows_7, curves_7) = evaluate_unit(unit, unit.tables, None, Some(plan)).unwrap();
+        assert_eq!(curves_7, curves);
+        assert!(rows_7.iter().all(|r| r.over_seeds.is_some()));
+    }
+
+    #[test]
     fn only_selects_a_table_or_its_group() {
         assert!(selects("t-1.2-2", "T-1.2-2"));
         assert!(selects("T-1.2", "T-1.2-3"));
