@@ -20,15 +20,33 @@ const RESULTS: &str = r#"[
 
 /// A run's directory (`skyforge run`: truth.h5, geometry, observations) with a study's
 /// `study.h5`, a `results.json` and the `curves.json` of `validate thesis --only T-3.3-R
-/// --only T-3.3-S` added, and `skyforge attitude`'s output for the run: every source the
-/// report draws from. Returns the two directory names.
-fn outputs(d: &Path) -> (&'static str, &'static str) {
+/// --only T-3.3-S` added (with `attitude_tables`, also the figures of `--only T-4.3
+/// --only T-5.5`: minutes of runs), and `skyforge attitude`'s output for the run: every
+/// source the report draws from. Returns the two directory names.
+fn outputs(d: &Path, attitude_tables: bool) -> (&'static str, &'static str) {
     skyforge_ok(
         &[
             "validate", "thesis", "--only", "T-3.3-R", "--only", "T-3.3-S", "--out", "val",
         ],
         d,
     );
+    if attitude_tables {
+        skyforge_ok(
+            &[
+                "validate", "thesis", "--only", "T-4.3", "--only", "T-5.5", "--out", "val45",
+            ],
+            d,
+        );
+        let read = |dir: &str| -> serde_json::Value {
+            serde_json::from_str(&std::fs::read_to_string(d.join(dir).join("curves.json")).unwrap())
+                .unwrap()
+        };
+        let (mut all, more) = (read("val"), read("val45"));
+        let extra = more["curves"].as_array().unwrap().clone();
+        assert_eq!(extra.len(), ATTITUDE_FIGURES);
+        all["curves"].as_array_mut().unwrap().extend(extra);
+        std::fs::write(d.join("val/curves.json"), all.to_string()).unwrap();
+    }
     small_study(d, 2);
     skyforge_ok(&["study", "run", "small.toml", "--out", "study"], d);
     let scenario = std::fs::read_to_string(d.join("t-5.4-3.toml")).unwrap();
@@ -66,11 +84,15 @@ fn outputs(d: &Path) -> (&'static str, &'static str) {
 /// baselines and the attitude.
 const FIGURES: usize = 4 + 20 + 1 + 10 + 5 + 3;
 
+/// Thesis figures of T-4.3 (4.3-2, 4.3-3, 4.3-6..4.3-10) and T-5.5 (5.5-2 and 5.5-3 per
+/// baseline, 5.5-4 and 5.5-5 angles and rates).
+const ATTITUDE_FIGURES: usize = 7 + 8;
+
 #[test]
 fn the_page_holds_every_source_inline_and_escapes_what_it_quotes() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let (dir, att) = outputs(d);
+    let (dir, att) = outputs(d, false);
     let printed = skyforge_ok(&["report", dir, "--attitude", att], d);
     assert!(
         printed.contains(&format!("5 sections, {FIGURES} figures")),
@@ -225,15 +247,34 @@ fn chromium(page: &Path, args: &[&str]) -> (String, String) {
 fn chromium_renders_every_figure_without_a_console_error() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let (dir, att) = outputs(d);
+    let (dir, att) = outputs(d, true);
     skyforge_ok(&["report", dir, "--attitude", att], d);
     let page = d.join("run/report.html");
+    let html = std::fs::read_to_string(&page).unwrap();
+    for caption in [
+        "Thesis figure 4.3-2: xi_t error, 22-state UKF, seed 1, every",
+        "Thesis figure 4.3-3: rate error, 22-state UKF, seed 1",
+        "Thesis figure 4.3-6: estimated Delta&#39;, 22-state UKF, seed 1",
+        "Thesis figure 4.3-7: attitude error, 6-state UKF, B0 uncorrected, seed 1",
+        "Thesis figure 4.3-10: rate error, 6-state UKF, B0&#39; corrected, seed 1",
+        "Thesis figure 5.5-2 baseline 1: ECEF error, LS, seed 1, all 600 fixed epochs",
+        "Thesis figure 5.5-3 baseline 2: ECEF error, proposed (reverse UKF), seed 1",
+        "Thesis figure 5.5-4 angles: attitude error, KF on LS baselines, seed 1",
+        "Thesis figure 5.5-5 rates: rate error, KF on reverse-UKF baselines, seed 1",
+    ] {
+        assert!(html.contains(caption), "{caption}");
+    }
+    // Thesis tables 4.3-2 and 5.5-4 beside SkyForge's.
+    for printed in ["thesis 0.0614 deg.", "thesis 0.3286 deg."] {
+        assert!(html.contains(printed), "{printed}");
+    }
+    let figures = FIGURES + ATTITUDE_FIGURES;
 
     // The page's own script counts the figures the browser laid out with a drawing.
     let (dom, _) = chromium(&page, &["--dump-dom"]);
     assert!(
         dom.contains(&format!(
-            "data-figures=\"{FIGURES}\" data-figures-rendered=\"{FIGURES}\""
+            "data-figures=\"{figures}\" data-figures-rendered=\"{figures}\""
         )),
         "{}",
         dom.lines()
@@ -257,7 +298,7 @@ fn chromium_renders_every_figure_without_a_console_error() {
     assert!(
         console
             .iter()
-            .any(|l| l.contains(&format!("skyforge-report: {FIGURES} of {FIGURES} figures"))),
+            .any(|l| l.contains(&format!("skyforge-report: {figures} of {figures} figures"))),
         "{log}"
     );
     let bad: Vec<&&str> = console

@@ -2,19 +2,21 @@
 //! antenna geometry offsets): the bundled `thesis/t-4.3` (30247 + 25000 epochs) on eight
 //! seeds. Checked: the selection runs this table alone, every row is there with a finite
 //! value and a verdict, the thesis rows carry the thesis's number and SkyForge's own rows
-//! none, and an `explained` row says what explains it. Ignored tier: about 4 minutes in a
+//! none, and an `explained` row says what explains it; figures 4.3-2, 4.3-3 and
+//! 4.3-6..4.3-10 draw the first run, thinned, and quote the 18 attitude and rate rows.
+//! Ignored tier: about 4 minutes in a
 //! release build, longer here. The table is printed (`cargo test -p skyforge-validate
 //! --test thesis_geometry_offsets -- --ignored --nocapture`).
 
 mod thesis_support;
 
 use skyforge_validate::report::Verdict;
-use thesis_support::table_alone;
+use thesis_support::{check_figures, table_and_figures};
 
 #[test]
 #[ignore = "eight runs of 55247 observation-level epochs (minutes)"]
 fn t_4_3_writes_every_row_with_finite_values() {
-    let rows = table_alone("T-4.3");
+    let (rows, curves) = table_and_figures("T-4.3");
     // 3 + 3 (tables 4.3-2, 4.3-3), 6 offsets + 2 lengths + 6 held offsets (4.3-4),
     // 3 + 3 + 3 ratios (4.3-5), 3 + 3 (4.3-6).
     assert_eq!(rows.len(), 35, "{rows:#?}");
@@ -31,4 +33,12 @@ fn t_4_3_writes_every_row_with_finite_values() {
         }
         assert!(r.note.contains("8 runs") || own, "{r:?}");
     }
+
+    let expected = [
+        "4.3-2", "4.3-3", "4.3-6", "4.3-7", "4.3-8", "4.3-9", "4.3-10",
+    ];
+    let series = |c: &skyforge_validate::thesis::curves::Curve| {
+        if c.figure == "4.3-6" { 1 } else { 3 }
+    };
+    assert_eq!(check_figures(&rows, &curves, &expected, series, 1000), 18);
 }

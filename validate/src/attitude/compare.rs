@@ -10,13 +10,14 @@ use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_receiver::attitude::angle_error;
+use skyforge_receiver::attitude::{angle_error, wrap_diff};
 use skyforge_receiver::relative::files::{
     BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
 };
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
 use skyforge_signals::observation::{ObsFile, ObsRecord};
 use skyforge_signals::signal::Signal;
+use skyforge_signals::synth::session::GEOMETRY_STEP_S;
 use std::collections::HashMap;
 
 /// Estimate minus truth at one fixed epoch.
@@ -30,6 +31,10 @@ pub struct EpochErrors {
     pub baseline_ned_m: Vec<[f64; 3]>,
     /// Yaw, pitch, roll (deg) where the attitude stage updated at this epoch.
     pub attitude_deg: Option<[f64; 3]>,
+    /// Yaw, pitch, roll rates (deg/s) where the attitude stage updated and estimates
+    /// rates (the filters), against the true rates (central difference of the true
+    /// attitude one geometry step either side).
+    pub rate_deg_s: Option<[f64; 3]>,
 }
 
 /// The chain's outcome over a run.
@@ -80,6 +85,23 @@ impl ChainComparison {
         self.fixed
             .iter()
             .filter_map(|e| e.attitude_deg.map(|a| a[i]))
+            .collect()
+    }
+
+    /// Attitude-rate error of axis `i` (0 yaw, 1 pitch, 2 roll), deg/s.
+    pub fn rate_axis(&self, i: usize) -> Vec<f64> {
+        self.fixed
+            .iter()
+            .filter_map(|e| e.rate_deg_s.map(|a| a[i]))
+            .collect()
+    }
+
+    /// `pick` of each fixed epoch that has it, against the epoch's time (s since the
+    /// start).
+    pub fn along(&self, pick: impl Fn(&EpochErrors) -> Option<f64>) -> Vec<(f64, f64)> {
+        self.fixed
+            .iter()
+            .filter_map(|e| Some((e.t_s, pick(e)?)))
             .collect()
     }
 }
@@ -225,8 +247,32 @@ pub(crate) fn attitude_errors_deg(estimate: &YawPitchRoll, truth: &YawPitchRoll)
     [e.x, e.y, e.z].map(f64::to_degrees)
 }
 
-/// The errors of a fixed epoch `e` against `truth`.
-fn errors(e: &RelativeEpoch, t_s: f64, truth: &EpochTruth) -> Option<EpochErrors> {
+/// The true yaw, pitch and roll rates (rad/s) of `run` at `t_s`: central difference of
+/// the true attitude (from NED at the master) one geometry step either side.
+fn true_rates(run: &ObservationRun, t_s: f64) -> Option<Vec3> {
+    let h = GEOMETRY_STEP_S;
+    let at = |t: f64| {
+        let p = run.platform_at(t)?;
+        Some(epoch_truth(&p.r_ecef_m, &p.c_body_ecef, &run.true_body_m).attitude)
+    };
+    let (a, b) = (at(t_s - h)?, at(t_s + h)?);
+    Some(
+        Vec3::new(
+            wrap_diff(b.yaw_rad, a.yaw_rad),
+            wrap_diff(b.pitch_rad, a.pitch_rad),
+            wrap_diff(b.roll_rad, a.roll_rad),
+        ) / (2.0 * h),
+    )
+}
+
+/// The errors of a fixed epoch `e` against `truth`, the rates against `true_rates`
+/// (asked only of a state with rates).
+fn errors(
+    e: &RelativeEpoch,
+    t_s: f64,
+    truth: &EpochTruth,
+    true_rates: impl FnOnce() -> Option<Vec3>,
+) -> Option<EpochErrors> {
     let fixed = e.fixed.as_ref()?;
     let ned = e.fixed_ned.as_ref()?;
     let diff = |a: &Vec3, b: &Vec3| [a.x - b.x, a.y - b.y, a.z - b.z];
@@ -242,15 +288,21 @@ fn errors(e: &RelativeEpoch, t_s: f64, truth: &EpochTruth) -> Option<EpochErrors
         .zip(&truth.ned)
         .map(|(b, t)| diff(b, t))
         .collect();
-    let attitude_deg = match (&e.attitude, &e.attitude_skipped) {
-        (Some(s), None) => Some(attitude_errors_deg(&s.angles, &truth.attitude)),
+    let updated = match (&e.attitude, &e.attitude_skipped) {
+        (Some(s), None) => Some(s),
         _ => None,
     };
+    let attitude_deg = updated.map(|s| attitude_errors_deg(&s.angles, &truth.attitude));
+    let rate_deg_s = updated
+        .and_then(|s| s.rates_rad_s)
+        .and_then(|r| Some(r - true_rates()?))
+        .map(|d| [d.x, d.y, d.z].map(f64::to_degrees));
     Some(EpochErrors {
         t_s,
         baseline_ecef_m,
         baseline_ned_m,
         attitude_deg,
+        rate_deg_s,
     })
 }
 
@@ -330,7 +382,8 @@ pub fn compare(
             };
             if is_fixed {
                 let truth = epoch_truth(&p.r_ecef_m, &p.c_body_ecef, &run.true_body_m);
-                out.fixed.extend(errors(e, t_s, &truth));
+                out.fixed
+                    .extend(errors(e, t_s, &truth, || true_rates(run, t_s)));
             }
         },
     )?;

@@ -550,6 +550,7 @@ fn read_attitude(
             baseline_ecef_m,
             baseline_ned_m,
             attitude_deg,
+            rate_deg_s: None,
         });
         Ok(())
     })?;

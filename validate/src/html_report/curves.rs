@@ -1,4 +1,5 @@
-//! Thesis figures 3.3-7 to 3.3-11 from `curves.json` (`skyforge validate thesis --out`):
+//! Thesis figures 3.3-7 to 3.3-11, 4.3-2, 4.3-3, 4.3-6 to 4.3-10 and 5.5-2 to 5.5-5 from
+//! `curves.json` (`skyforge validate thesis --out`):
 //! the data of the figures the validation tables compute on their registered seeds
 //! ([`crate::thesis::curves`]), one figure per curve, each caption giving SkyForge's
 //! numbers beside the thesis's where it prints any.

@@ -13,7 +13,8 @@ pub fn std(values: &[f64]) -> f64 {
     ErrorStats::of(values).std.unwrap_or(f64::NAN)
 }
 
-fn mean(values: &[f64]) -> f64 {
+/// Mean, or NaN without values.
+pub fn mean(values: &[f64]) -> f64 {
     ErrorStats::of(values).mean.unwrap_or(f64::NAN)
 }
 

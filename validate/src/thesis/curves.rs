@@ -88,6 +88,59 @@ impl Value {
     }
 }
 
+/// Most points a series of a long run keeps in `curves.json`: as many as a chart of the
+/// report draws, so the page thins it no further.
+pub const MAX_POINTS: usize = 1500;
+
+/// Time series of a long run thinned for the page: every `step`-th point of each (the
+/// first kept), the statistics of its figure being those of the whole series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decimated {
+    pub series: Vec<CurveSeries>,
+    /// One point kept in `step`.
+    pub step: usize,
+    /// Points of the longest series before thinning.
+    pub longest: usize,
+}
+
+impl Decimated {
+    /// Each of `series` (name, points) as a line, with the smallest common step that
+    /// leaves each at most [`MAX_POINTS`] points.
+    pub fn lines(series: Vec<(String, Vec<(f64, f64)>)>) -> Self {
+        let longest = series.iter().map(|(_, p)| p.len()).max().unwrap_or(0);
+        let step = longest.div_ceil(MAX_POINTS).max(1);
+        Decimated {
+            series: series
+                .into_iter()
+                .map(|(name, points)| {
+                    let kept = points.into_iter().step_by(step).collect();
+                    CurveSeries::new(name, Mark::Line, kept)
+                })
+                .collect(),
+            step,
+            longest,
+        }
+    }
+
+    /// What a title says of the thinning: `every 21st of 30247 updates`, or `all 600
+    /// epochs` (`what`: what a point is).
+    pub fn note(&self, what: &str) -> String {
+        let k = self.step;
+        let suffix = match (k % 10, k % 100) {
+            (_, 11..=13) => "th",
+            (1, _) => "st",
+            (2, _) => "nd",
+            (3, _) => "rd",
+            _ => "th",
+        };
+        if k == 1 {
+            format!("all {} {what}", self.longest)
+        } else {
+            format!("every {k}{suffix} of {} {what}", self.longest)
+        }
+    }
+}
+
 /// The contents of `curves.json`: the figures of the tables run, each computed on the
 /// table's registered seeds (also in a `--seeds` run).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -120,6 +173,31 @@ fn points_with_gaps<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<(f64, f64)>, 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn long_series_keep_every_step_th_point() {
+        let long: Vec<(f64, f64)> = (0..30_247).map(|k| (k as f64, -(k as f64))).collect();
+        let d = Decimated::lines(vec![
+            ("a".into(), long.clone()),
+            ("b".into(), long[..100].to_vec()),
+        ]);
+        assert_eq!((d.step, d.longest), (21, 30_247));
+        assert_eq!(d.series[0].points.len(), 1441);
+        assert!(d.series.iter().all(|s| s.points.len() <= MAX_POINTS));
+        assert_eq!(d.series[0].points[1], (21.0, -21.0));
+        assert_eq!(d.series[1].points.len(), 5);
+        assert_eq!(d.note("updates"), "every 21st of 30247 updates");
+        let note = |step| Decimated { step, ..d.clone() }.note("epochs");
+        assert_eq!(
+            [2, 3, 4, 11, 12, 13, 22, 111].map(note),
+            ["2nd", "3rd", "4th", "11th", "12th", "13th", "22nd", "111th"]
+                .map(|k| format!("every {k} of 30247 epochs"))
+        );
+        let short = Decimated::lines(vec![("a".into(), long[..600].to_vec())]);
+        assert_eq!((short.step, short.series[0].points.len()), (1, 600));
+        assert_eq!(short.note("epochs"), "all 600 epochs");
+        assert_eq!(Decimated::lines(Vec::new()).step, 1);
+    }
 
     #[test]
     fn curves_json_round_trips_with_gaps_as_null() {

@@ -1,7 +1,7 @@
 //! The thesis acceptance tables (`../shared/reference/THESIS_TARGETS.md`): each module runs
 //! the bundled scenarios of its table and returns one [`Row`](crate::report::Row) per
-//! printed number; T-3.3-R and T-3.3-S also give the data of the thesis figures they
-//! compute ([`curves`]).
+//! printed number; T-3.3-R, T-3.3-S, T-4.3 and T-5.5 also give the data of the thesis
+//! figures they compute ([`curves`]).
 
 pub mod attitude_noise;
 pub mod attitude_realtime;
@@ -178,7 +178,10 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(geometry_offsets::SCENARIO)],
         evaluate: |_, _, draw| geometry_offsets::rows(draw),
-        figures: None,
+        figures: Some(Figures {
+            with_rows: geometry_offsets::rows_and_curves,
+            alone: geometry_offsets::curves,
+        }),
     },
     Unit {
         tables: &[zero_baseline::TABLE],
@@ -199,7 +202,10 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(reverse_filter::SCENARIO)],
         evaluate: |_, _, draw| reverse_filter::rows(draw),
-        figures: None,
+        figures: Some(Figures {
+            with_rows: reverse_filter::rows_and_curves,
+            alone: reverse_filter::curves,
+        }),
     },
     Unit {
         tables: &[
@@ -416,6 +422,24 @@ mod tests {
             rows_7.iter().map(|r| r.ours).collect::<Vec<_>>(),
             rows.iter().map(|r| r.ours).collect::<Vec<_>>()
         );
+    }
+
+    #[test]
+    fn t_5_5_gives_its_figures_with_its_rows_and_over_seeds() {
+        // Thesis figures 5.5-2..5.5-5: from the rows' own runs on the registered seeds,
+        // the same figures under a plan (T-4.3 is wired alike; its runs take minutes).
+        let unit = UNITS
+            .iter()
+            .find(|u| u.tables == [reverse_filter::TABLE])
+            .unwrap();
+        let (rows, curves) = evaluate_unit(unit, unit.tables, None, None).unwrap();
+        assert_eq!(rows, reverse_filter::rows(Draw::REGISTERED).unwrap());
+        assert_eq!(curves.len(), 8);
+        assert!(curves.iter().all(|c| c.figure.starts_with("5.5-")));
+        let plan = SeedPlan { draws: 1, base: 7 };
+        let (rows_7, curves_7) = evaluate_unit(unit, unit.tables, None, Some(plan)).unwrap();
+        assert_eq!(curves_7, curves);
+        assert!(rows_7.iter().all(|r| r.over_seeds.is_some()));
     }
 
     #[test]

@@ -22,14 +22,21 @@
 //!
 //! Runs on [`SEEDS`](crate::attitude::seeds::SEEDS) seeds; a row's value is the mean over
 //! runs of a run's statistic, the standard error over runs in its note.
+//!
+//! Figures ([`rows_and_curves`], from the same runs as the rows): 4.3-2 and 4.3-3 (the
+//! printed filter's `xi_t` and rate errors), 4.3-6 (its offset rate `Delta'`), 4.3-7 and
+//! 4.3-8 (the 6-state UKF's attitude and rate errors under `B0`), 4.3-9 and 4.3-10 (under
+//! `B0'`), each drawn from the first run and quoting the rows' stds.
 
 mod seed;
 
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
 use crate::thesis::ValidateError;
-use crate::thesis::attitude_runs::{factor_row, std};
-use seed::SeedResult;
+use crate::thesis::attitude_runs::{factor_row, mean, std};
+use crate::thesis::curves::{Curve, Decimated, Value};
+use crate::thesis::draw::Draw;
+use seed::{AxisSeries, SeedResult};
 
 /// The table.
 pub const TABLE: &str = "T-4.3";
@@ -46,10 +53,15 @@ const RATIO_BARS: [f64; 3] = [4.0, 4.0, 2.0];
 const AXES: [&str; 3] = ["yaw", "pitch", "roll"];
 const OFFSETS: [&str; 6] = ["dx1", "dy1", "dz1", "dx2", "dy2", "dz2"];
 
-/// Table 4.3-2: std of the `xi_t` error (deg).
+/// Table 4.3-2: std and mean of the `xi_t` error (deg).
 const XI_STD: [f64; 3] = [0.0614, 0.0855, 0.0902];
-/// Table 4.3-3: std of the rate error (deg/s).
+const XI_MEAN: [f64; 3] = [0.0107, 0.0227, 0.0056];
+/// Table 4.3-3: std and mean of the rate error (deg/s).
 const RATE_STD: [f64; 3] = [0.0053, 0.0064, 0.0066];
+const RATE_MEAN: [f64; 3] = [-5.3640e-6, -4.8794e-6, 2.3810e-5];
+/// Thesis 4.3.4, beside figure 4.3-6: mean and std of the estimated offset rate (m/s).
+const OFFSET_RATE_MEAN: f64 = -1.0084e-8;
+const OFFSET_RATE_STD: f64 = 7.7536e-7;
 /// Table 4.3-4: mean of the offset errors (m).
 const OFFSET_MEAN: [f64; 6] = [
     1.0463e-5, -2.0571e-6, 5.5375e-6, -2.0109e-6, 5.4989e-6, 3.8580e-6,
@@ -57,9 +69,15 @@ const OFFSET_MEAN: [f64; 6] = [
 /// Table 4.3-5: attitude error std after and before the correction (deg).
 const AFTER_STD: [f64; 3] = [0.0817, 0.1426, 0.1517];
 const BEFORE_STD: [f64; 3] = [1.8840, 1.6176, 0.6723];
+/// Table 4.3-5: attitude error mean after and before the correction (deg).
+const AFTER_MEAN: [f64; 3] = [-0.0007, -0.0023, 0.0026];
+const BEFORE_MEAN: [f64; 3] = [0.1357, -0.0064, -0.0694];
 /// Table 4.3-6: rate error std after and before (deg/s).
 const RATE_AFTER_STD: [f64; 3] = [0.0076, 0.0077, 0.0078];
 const RATE_BEFORE_STD: [f64; 3] = [0.0091, 0.0090, 0.0092];
+/// Table 4.3-6: rate error mean after and before (deg/s).
+const RATE_AFTER_MEAN: [f64; 3] = [7.5416e-6, 6.5390e-6, 6.8627e-5];
+const RATE_BEFORE_MEAN: [f64; 3] = [7.7267e-5, 7.5923e-5, 5.6257e-5];
 
 /// Builds the rows from the runs.
 struct Table<'a> {
@@ -98,12 +116,12 @@ impl<'a> Table<'a> {
         what: &str,
         unit: &str,
         thesis: &[f64; 3],
-        series: impl Fn(&SeedResult) -> [f64; 3],
+        series: impl Fn(&SeedResult) -> &AxisSeries,
     ) -> Result<Vec<Row>, ValidateError> {
         AXES.iter()
             .enumerate()
             .map(|(i, axis)| {
-                let a = self.across(|r| series(r)[i])?;
+                let a = self.across(|r| series(r).std()[i])?;
                 Ok(factor_row(
                     TABLE,
                     format!("{what} {axis}"),
@@ -123,9 +141,8 @@ impl<'a> Table<'a> {
 
     /// Table 4.3-2: explained where the std against the turned truth is in the factor.
     fn xi_rows(&self) -> Result<Vec<Row>, ValidateError> {
-        let rows = self.std_rows("4.3-2 xi_t error", "deg", &XI_STD, |r| {
-            r.estimation.xi.std()
-        })?;
+        let (what, unit, thesis, series) = XI;
+        let rows = self.std_rows(what, unit, &thesis, series)?;
         rows.into_iter()
             .enumerate()
             .map(|(i, mut row)| {
@@ -242,29 +259,31 @@ fn offset_row(row: String, thesis: Option<f64>, ours: f64, verdict: Verdict) -> 
     )
 }
 
-/// A table of per-axis std rows: its name, unit, the thesis's stds and the runs' stds.
+/// A table of per-axis std rows: its name, unit, the thesis's stds and the runs' error
+/// series.
 type StdTable = (
     &'static str,
     &'static str,
     [f64; 3],
-    fn(&SeedResult) -> [f64; 3],
+    fn(&SeedResult) -> &AxisSeries,
 );
 
+const XI: StdTable = ("4.3-2 xi_t error", "deg", XI_STD, |r| &r.estimation.xi);
 const RATES: StdTable = ("4.3-3 rate error", "deg/s", RATE_STD, |r| {
-    r.estimation.rates.std()
+    &r.estimation.rates
 });
 const ATTITUDE: [StdTable; 2] = [
     (
         "4.3-5 attitude error after correction",
         "deg",
         AFTER_STD,
-        |r| r.after.std(),
+        |r| &r.after,
     ),
     (
         "4.3-5 attitude error before correction",
         "deg",
         BEFORE_STD,
-        |r| r.before.std(),
+        |r| &r.before,
     ),
 ];
 const COMPARISON_RATES: [StdTable; 2] = [
@@ -272,33 +291,424 @@ const COMPARISON_RATES: [StdTable; 2] = [
         "4.3-6 rate error after correction",
         "deg/s",
         RATE_AFTER_STD,
-        |r| r.rate_after.std(),
+        |r| &r.rate_after,
     ),
     (
         "4.3-6 rate error before correction",
         "deg/s",
         RATE_BEFORE_STD,
-        |r| r.rate_before.std(),
+        |r| &r.rate_before,
     ),
 ];
 
-/// The rows of tables 4.3-2..4.3-6 on the runs of `draw`.
-pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
-    let runs = seed::runs(draw)?;
-    let t = Table::new(&runs);
-    let std_rows = |tables: &[StdTable]| -> Result<Vec<Row>, ValidateError> {
-        let mut out = Vec::new();
-        for (what, unit, thesis, series) in tables {
-            out.extend(t.std_rows(what, unit, thesis, series)?);
+/// A figure of per-axis errors against time: its number, what the run shows, what a
+/// point is, the rows whose stds the caption quotes and the thesis's means beside them.
+struct AxisFigure {
+    figure: &'static str,
+    title: &'static str,
+    points: &'static str,
+    rows: StdTable,
+    thesis_mean: [f64; 3],
+}
+
+const AXIS_FIGURES: [AxisFigure; 6] = [
+    AxisFigure {
+        figure: "4.3-2",
+        title: "xi_t error, 22-state UKF",
+        points: "updates",
+        rows: XI,
+        thesis_mean: XI_MEAN,
+    },
+    AxisFigure {
+        figure: "4.3-3",
+        title: "rate error, 22-state UKF",
+        points: "updates",
+        rows: RATES,
+        thesis_mean: RATE_MEAN,
+    },
+    AxisFigure {
+        figure: "4.3-7",
+        title: "attitude error, 6-state UKF, B0 uncorrected",
+        points: "epochs",
+        rows: ATTITUDE[1],
+        thesis_mean: BEFORE_MEAN,
+    },
+    AxisFigure {
+        figure: "4.3-8",
+        title: "rate error, 6-state UKF, B0 uncorrected",
+        points: "epochs",
+        rows: COMPARISON_RATES[1],
+        thesis_mean: RATE_BEFORE_MEAN,
+    },
+    AxisFigure {
+        figure: "4.3-9",
+        title: "attitude error, 6-state UKF, B0' corrected",
+        points: "epochs",
+        rows: ATTITUDE[0],
+        thesis_mean: AFTER_MEAN,
+    },
+    AxisFigure {
+        figure: "4.3-10",
+        title: "rate error, 6-state UKF, B0' corrected",
+        points: "epochs",
+        rows: COMPARISON_RATES[0],
+        thesis_mean: RATE_AFTER_MEAN,
+    },
+];
+
+impl Table<'_> {
+    /// Every row of tables 4.3-2..4.3-6.
+    fn rows(&self) -> Result<Vec<Row>, ValidateError> {
+        let std_rows = |tables: &[StdTable]| -> Result<Vec<Row>, ValidateError> {
+            let mut out = Vec::new();
+            for (what, unit, thesis, series) in tables {
+                out.extend(self.std_rows(what, unit, thesis, series)?);
+            }
+            Ok(out)
+        };
+        let mut out = self.xi_rows()?;
+        out.extend(std_rows(&[RATES])?);
+        out.extend(self.offset_rows()?);
+        out.extend(self.own_rows()?);
+        out.extend(std_rows(&ATTITUDE)?);
+        out.extend(self.ratio_rows()?);
+        out.extend(std_rows(&COMPARISON_RATES)?);
+        Ok(out)
+    }
+
+    /// The run a figure draws: the first, on the registered seed.
+    fn plotted(&self) -> Result<&SeedResult, ValidateError> {
+        self.runs
+            .first()
+            .ok_or_else(|| ValidateError::Pipeline(format!("{SCENARIO}: no run to draw")))
+    }
+
+    /// Figures 4.3-2, 4.3-3, 4.3-6..4.3-10 of the first run; each caption quotes the std
+    /// of the row in `rows` (the mean over runs of a run's std, over the whole series)
+    /// and the mean over runs of a run's mean, beside the thesis's.
+    fn curves(&self, rows: &[Row]) -> Result<Vec<Curve>, ValidateError> {
+        let mut out = AXIS_FIGURES[..2]
+            .iter()
+            .map(|f| self.axis_figure(rows, f))
+            .collect::<Result<Vec<_>, _>>()?;
+        out.push(self.offset_rate_figure()?);
+        for f in &AXIS_FIGURES[2..] {
+            out.push(self.axis_figure(rows, f)?);
         }
         Ok(out)
-    };
-    let mut out = t.xi_rows()?;
-    out.extend(std_rows(&[RATES])?);
-    out.extend(t.offset_rows()?);
-    out.extend(t.own_rows()?);
-    out.extend(std_rows(&ATTITUDE)?);
-    out.extend(t.ratio_rows()?);
-    out.extend(std_rows(&COMPARISON_RATES)?);
-    Ok(out)
+    }
+
+    /// A figure of yaw, pitch and roll errors against time.
+    fn axis_figure(&self, rows: &[Row], f: &AxisFigure) -> Result<Curve, ValidateError> {
+        let (what, unit, thesis_std, series) = f.rows;
+        let run = self.plotted()?;
+        let lines = Decimated::lines(
+            AXES.iter()
+                .enumerate()
+                .map(|(i, axis)| (axis.to_string(), series(run).points(i)))
+                .collect(),
+        );
+        let table = what.split(' ').next().unwrap_or(what);
+        let n = self.runs.len();
+        let mut values = Vec::new();
+        for (i, axis) in AXES.iter().enumerate() {
+            let row = format!("{what} {axis}");
+            let mean = self.across(|r| series(r).mean()[i])?;
+            values.push(Value::new(
+                format!("{axis} error mean, mean over {n} runs (thesis table {table})"),
+                unit,
+                mean.mean,
+                Some(f.thesis_mean[i]),
+            ));
+            values.push(Value::new(
+                format!("{axis} error std, mean over {n} runs (row \"{row}\")"),
+                unit,
+                quoted(rows, &row)?,
+                Some(thesis_std[i]),
+            ));
+        }
+        Ok(Curve {
+            figure: f.figure.into(),
+            panels: String::new(),
+            title: format!("{}, seed {}, {}", f.title, run.seed, lines.note(f.points)),
+            x_label: "time since the start (s)".into(),
+            y_label: format!("estimate - truth ({unit})"),
+            series: lines.series,
+            references: Vec::new(),
+            values,
+        })
+    }
+
+    /// Figure 4.3-6: the estimated offset rate against time, its mean and std beside the
+    /// ones the thesis's text prints.
+    fn offset_rate_figure(&self) -> Result<Curve, ValidateError> {
+        let run = self.plotted()?;
+        let lines = Decimated::lines(vec![("Delta'".into(), run.estimation.offset_rate.clone())]);
+        let values_of =
+            |r: &SeedResult| -> Vec<f64> { r.estimation.offset_rate.iter().map(|p| p.1).collect() };
+        let n = self.runs.len();
+        let mean = self.across(|r| mean(&values_of(r)))?;
+        let sd = self.across(|r| std(&values_of(r)))?;
+        Ok(Curve {
+            figure: "4.3-6".into(),
+            panels: String::new(),
+            title: format!(
+                "estimated Delta', 22-state UKF, seed {}, {}",
+                run.seed,
+                lines.note("updates")
+            ),
+            x_label: "time since the start (s)".into(),
+            y_label: "Delta' (m/s)".into(),
+            series: lines.series,
+            references: Vec::new(),
+            values: vec![
+                Value::new(
+                    format!("Delta' mean, mean over {n} runs (thesis 4.3.4 text)"),
+                    "m/s",
+                    mean.mean,
+                    Some(OFFSET_RATE_MEAN),
+                ),
+                Value::new(
+                    format!("Delta' std, mean over {n} runs (thesis 4.3.4 text)"),
+                    "m/s",
+                    sd.mean,
+                    Some(OFFSET_RATE_STD),
+                ),
+            ],
+        })
+    }
+}
+
+/// The value of the row `name` of `rows`.
+fn quoted(rows: &[Row], name: &str) -> Result<f64, ValidateError> {
+    rows.iter()
+        .find(|r| r.table == TABLE && r.row == name)
+        .and_then(|r| r.ours)
+        .ok_or_else(|| ValidateError::Pipeline(format!("{TABLE}: no row {name:?} for a figure")))
+}
+
+/// The rows of tables 4.3-2..4.3-6 on the runs of `draw`.
+pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    Table::new(&seed::runs(draw)?).rows()
+}
+
+/// The data of thesis figures 4.3-2, 4.3-3 and 4.3-6..4.3-10 on the registered seeds
+/// (all of them: the captions quote the registered rows).
+pub fn curves() -> Result<Vec<Curve>, ValidateError> {
+    Ok(rows_and_curves()?.1)
+}
+
+/// The rows and the figures' data on the registered seeds, from one set of runs.
+pub fn rows_and_curves() -> Result<(Vec<Row>, Vec<Curve>), ValidateError> {
+    let runs = seed::runs(Draw::REGISTERED)?;
+    let t = Table::new(&runs);
+    let rows = t.rows()?;
+    let curves = t.curves(&rows)?;
+    Ok((rows, curves))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::thesis::curves::MAX_POINTS;
+    use seed::Estimation;
+
+    /// `n` values 1 s apart from `t0_s`: `bias` plus `scale` times +-1 (yaw), -+1 (pitch),
+    /// +-2 (roll): means exactly `bias` for an even `n`.
+    fn axes(n: usize, t0_s: f64, bias: [f64; 3], scale: f64) -> AxisSeries {
+        let mut s = AxisSeries::default();
+        for k in 0..n {
+            let e = if k % 2 == 0 { scale } else { -scale };
+            s.push(
+                t0_s + k as f64,
+                [bias[0] + e, bias[1] - e, bias[2] + 2.0 * e],
+            );
+        }
+        s
+    }
+
+    /// A run of 4000 estimation updates and 3000 comparison epochs, its errors scaled by
+    /// `scale`.
+    fn run(seed: u64, scale: f64) -> SeedResult {
+        let (n, m) = (4000, 3000);
+        let offsets: [Vec<f64>; 6] =
+            std::array::from_fn(|i| (0..n).map(|k| 1e-5 * (i + k % 3) as f64).collect());
+        SeedResult {
+            seed,
+            estimation: Estimation {
+                xi: axes(n, 3.0, [0.01, 0.02, 0.005], 0.06 * scale),
+                xi_turned: axes(n, 3.0, [0.0; 3], 0.05 * scale),
+                rates: axes(n, 3.0, [1e-5, -2e-5, 3e-5], 0.005 * scale),
+                offsets_turned: offsets.clone(),
+                offsets,
+                offset_rate: (0..n)
+                    .map(|k| {
+                        (
+                            3.0 + k as f64,
+                            scale * if k % 2 == 0 { 1e-6 } else { -8e-7 },
+                        )
+                    })
+                    .collect(),
+            },
+            shape_final: [1e-4; 3],
+            pinned_final: [2e-4; 6],
+            after: axes(m, 5000.0, [-0.001, 0.002, 0.003], 0.08 * scale),
+            before: axes(m, 5000.0, [0.1, -0.01, -0.07], 1.5 * scale),
+            rate_after: axes(m, 5000.0, [1e-5; 3], 0.007 * scale),
+            rate_before: axes(m, 5000.0, [7e-5; 3], 0.009 * scale),
+            fixed: [n, m],
+        }
+    }
+
+    #[test]
+    fn figures_draw_the_first_run_and_quote_the_rows() {
+        let runs = [run(7, 1.0), run(8, 1.5)];
+        let t = Table::new(&runs);
+        let rows = t.rows().unwrap();
+        let curves = t.curves(&rows).unwrap();
+        let ids: Vec<&str> = curves.iter().map(|c| c.figure.as_str()).collect();
+        assert_eq!(
+            ids,
+            [
+                "4.3-2", "4.3-3", "4.3-6", "4.3-7", "4.3-8", "4.3-9", "4.3-10"
+            ]
+        );
+        for c in &curves {
+            assert_eq!(c.series.len(), if c.figure == "4.3-6" { 1 } else { 3 });
+            for s in &c.series {
+                assert!(!s.points.is_empty() && s.points.len() <= MAX_POINTS);
+                assert!(s.points.iter().all(|p| p.0.is_finite() && p.1.is_finite()));
+            }
+            assert!(c.title.contains("seed 7"), "{}", c.title);
+            assert!(
+                c.values
+                    .iter()
+                    .all(|v| v.ours.is_some() && v.thesis.is_some())
+            );
+        }
+        let row = |name: &str| {
+            rows.iter()
+                .find(|r| r.row == name)
+                .and_then(|r| r.ours)
+                .unwrap()
+        };
+        let first = &runs[0];
+        type Pick = fn(&SeedResult) -> &AxisSeries;
+        /// Figure, the rows it quotes, its series, the thesis's stds and means, the title's
+        /// end.
+        type Expected = (
+            &'static str,
+            &'static str,
+            Pick,
+            [f64; 3],
+            [f64; 3],
+            &'static str,
+        );
+        let figures: [Expected; 6] = [
+            (
+                "4.3-2",
+                "4.3-2 xi_t error",
+                |r| &r.estimation.xi,
+                XI_STD,
+                XI_MEAN,
+                "every 3rd of 4000 updates",
+            ),
+            (
+                "4.3-3",
+                "4.3-3 rate error",
+                |r| &r.estimation.rates,
+                RATE_STD,
+                RATE_MEAN,
+                "every 3rd of 4000 updates",
+            ),
+            (
+                "4.3-7",
+                "4.3-5 attitude error before correction",
+                |r| &r.before,
+                BEFORE_STD,
+                BEFORE_MEAN,
+                "every 2nd of 3000 epochs",
+            ),
+            (
+                "4.3-8",
+                "4.3-6 rate error before correction",
+                |r| &r.rate_before,
+                RATE_BEFORE_STD,
+                RATE_BEFORE_MEAN,
+                "every 2nd of 3000 epochs",
+            ),
+            (
+                "4.3-9",
+                "4.3-5 attitude error after correction",
+                |r| &r.after,
+                AFTER_STD,
+                AFTER_MEAN,
+                "every 2nd of 3000 epochs",
+            ),
+            (
+                "4.3-10",
+                "4.3-6 rate error after correction",
+                |r| &r.rate_after,
+                RATE_AFTER_STD,
+                RATE_AFTER_MEAN,
+                "every 2nd of 3000 epochs",
+            ),
+        ];
+        for (figure, prefix, pick, thesis_std, thesis_mean, points) in figures {
+            let c = curves.iter().find(|c| c.figure == figure).unwrap();
+            let series = pick(first);
+            let n = series.points(0).len();
+            let step = n.div_ceil(MAX_POINTS);
+            assert!(
+                c.title.ends_with(&format!("seed 7, {points}")),
+                "{}",
+                c.title
+            );
+            assert_eq!(c.values.len(), 6);
+            for (i, axis) in AXES.iter().enumerate() {
+                // The first run's whole series, every step-th point.
+                let kept: Vec<(f64, f64)> = series.points(i).into_iter().step_by(step).collect();
+                assert!(
+                    c.series[i].points == kept,
+                    "{figure} {axis}: not the first run's"
+                );
+                let (mean, sd) = (&c.values[2 * i], &c.values[2 * i + 1]);
+                // The std is the table's row; the mean the mean over runs of each run's.
+                assert_eq!(sd.ours, Some(row(&format!("{prefix} {axis}"))));
+                assert_eq!(
+                    (sd.thesis, mean.thesis),
+                    (Some(thesis_std[i]), Some(thesis_mean[i]))
+                );
+                let runs_mean = (pick(&runs[0]).mean()[i] + pick(&runs[1]).mean()[i]) / 2.0;
+                assert_eq!(mean.ours, Some(runs_mean));
+                assert!(sd.what.contains("std") && mean.what.contains("mean"));
+            }
+        }
+        // The stds of the rows: the mean over the two runs of scale 1 and 1.5.
+        let before = row("4.3-5 attitude error before correction yaw");
+        assert!((before / (1.25 * 1.5) - 1.0).abs() < 1e-3, "{before}");
+
+        let c = &curves[2];
+        assert_eq!(c.series[0].points.len(), 4000usize.div_ceil(3));
+        assert_eq!(c.series[0].points[1], (6.0, -8e-7));
+        let [mean, sd] = &c.values[..] else {
+            panic!("two values")
+        };
+        assert_eq!(
+            (mean.thesis, sd.thesis),
+            (Some(OFFSET_RATE_MEAN), Some(OFFSET_RATE_STD))
+        );
+        assert!((mean.ours.unwrap() - 1.25 * 1e-7).abs() < 1e-18, "{mean:?}");
+        assert!(sd.ours.unwrap() > 8e-7 * 1.25 && sd.ours.unwrap() < 1e-6 * 1.25);
+    }
+
+    #[test]
+    fn a_figure_without_its_row_is_an_error() {
+        let runs = [run(7, 1.0), run(8, 1.5)];
+        let t = Table::new(&runs);
+        let mut rows = t.rows().unwrap();
+        rows.retain(|r| r.row != "4.3-6 rate error after correction roll");
+        let e = t.curves(&rows).unwrap_err().to_string();
+        assert!(e.contains("4.3-6 rate error after correction roll"), "{e}");
+    }
 }

@@ -8,7 +8,7 @@ use crate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
 use crate::attitude::seeds::SEEDS;
 use crate::attitude::{ObservationRun, observation_run};
 use crate::thesis::ValidateError;
-use crate::thesis::attitude_runs::std;
+use crate::thesis::attitude_runs::{mean, std};
 use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_orbits::Vec3;
@@ -27,20 +27,39 @@ use skyforge_receiver::relative::config::Constraint;
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
 const CUT_OFF_DEG: f64 = 5.0;
 
-/// Per-axis error series (deg or deg/s).
+/// Per-axis error series (deg or deg/s) with the time of each value.
 #[derive(Default)]
-pub(super) struct AxisSeries([Vec<f64>; 3]);
+pub(super) struct AxisSeries {
+    /// Seconds since the run's start.
+    t_s: Vec<f64>,
+    values: [Vec<f64>; 3],
+}
 
 impl AxisSeries {
-    fn push(&mut self, e: [f64; 3]) {
-        for (s, v) in self.0.iter_mut().zip(e) {
+    pub(super) fn push(&mut self, t_s: f64, e: [f64; 3]) {
+        self.t_s.push(t_s);
+        for (s, v) in self.values.iter_mut().zip(e) {
             s.push(v);
         }
     }
 
     /// The std of each axis.
     pub fn std(&self) -> [f64; 3] {
-        [0, 1, 2].map(|i| std(&self.0[i]))
+        [0, 1, 2].map(|i| std(&self.values[i]))
+    }
+
+    /// The mean of each axis.
+    pub fn mean(&self) -> [f64; 3] {
+        [0, 1, 2].map(|i| mean(&self.values[i]))
+    }
+
+    /// Axis `i` (0 yaw, 1 pitch, 2 roll) against time.
+    pub fn points(&self, i: usize) -> Vec<(f64, f64)> {
+        self.t_s
+            .iter()
+            .copied()
+            .zip(self.values[i].iter().copied())
+            .collect()
     }
 }
 
@@ -56,6 +75,8 @@ pub(super) struct Estimation {
     pub offsets: [Vec<f64>; 6],
     /// The same against the true geometry turned to the estimate's orientation (m).
     pub offsets_turned: [Vec<f64>; 6],
+    /// The estimated common offset rate `Delta'` (m/s) against time (figure 4.3-6).
+    pub offset_rate: Vec<(f64, f64)>,
 }
 
 impl Estimation {
@@ -68,18 +89,21 @@ impl Estimation {
         truth: &[YawPitchRoll],
     ) {
         let Some(k) = whole(s.oldest_t_s) else { return };
+        self.offset_rate.push((s.oldest_t_s, s.offset_rate_m_s));
         let est = [b0[0] + s.offsets_m[0], b0[1] + s.offsets_m[1]];
         let Ok(turn) = align(b_true, &est) else {
             return;
         };
         if let Some(t) = truth.get(k) {
             let turned = YawPitchRoll::from_c_ref_body(&(turn.rotation * t.c_ref_body()));
-            self.xi.push(attitude_errors_deg(&s.window[0], t));
+            let t_s = s.oldest_t_s;
+            self.xi.push(t_s, attitude_errors_deg(&s.window[0], t));
             self.xi_turned
-                .push(attitude_errors_deg(&s.window[0], &turned));
+                .push(t_s, attitude_errors_deg(&s.window[0], &turned));
         }
         if let Some(tr) = true_rate(truth, k) {
-            self.rates.push(rate_errors_deg(&s.rates_rad_s, &tr));
+            self.rates
+                .push(s.oldest_t_s, rate_errors_deg(&s.rates_rad_s, &tr));
         }
         let (turned, est, truth) = (six(&turn.baselines), six(&est), six(b_true));
         for i in 0..6 {
@@ -91,6 +115,7 @@ impl Estimation {
 
 /// What one seed gave.
 pub(super) struct SeedResult {
+    pub seed: u64,
     pub estimation: Estimation,
     /// The final shape (lengths, dot product) error of the printed filter (m, m, m^2).
     pub shape_final: [f64; 3],
@@ -212,10 +237,10 @@ fn compare(
             continue;
         }
         if let Some(t) = truth.get(k) {
-            att.push(attitude_errors_deg(&state.angles, t));
+            att.push(e.t_s, attitude_errors_deg(&state.angles, t));
         }
         if let (Some(r), Some(tr)) = (state.rates_rad_s, true_rate(truth, k)) {
-            rates.push(rate_errors_deg(&r, &tr));
+            rates.push(e.t_s, rate_errors_deg(&r, &tr));
         }
     }
     Ok((att, rates, fixed))
@@ -258,6 +283,7 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
     let (after, rate_after, fixed_comparison) = compare(&epochs, corrected, &truth)?;
     let (before, rate_before, _) = compare(&epochs, nominal, &truth)?;
     Ok(SeedResult {
+        seed: scenario.seed,
         estimation,
         shape_final: [shape.x, shape.y, shape.z],
         pinned_final: pinned_error(&epochs, &b0, &b_true)?,
