@@ -206,11 +206,18 @@ impl Quantiser {
         self.clipped += u64::from(clipped);
     }
 
-    /// Write the block to the front of `out` in the container's byte layout (interleaved
-    /// I/Q for complex formats; only `i` for real IF): [`Self::bytes`] of them, which
-    /// `out` must hold. Runs with the widest vector instructions the CPU has; integer
-    /// results, so identical on every path.
-    pub fn write(&mut self, i: &[f32], q: &[f32], out: &mut [u8]) {
+    /// Append the block to `out` in the container's byte layout (interleaved I/Q for
+    /// complex formats; only `i` for real IF).
+    pub fn write(&mut self, i: &[f32], q: &[f32], out: &mut Vec<u8>) {
+        let start = out.len();
+        out.resize(start + self.bytes(i, q), 0);
+        self.write_into(i, q, &mut out[start..]);
+    }
+
+    /// [`Self::write`] to the front of `out`, which must hold [`Self::bytes`] of them.
+    /// Runs with the widest vector instructions the CPU has; integer results, so
+    /// identical on every path.
+    pub fn write_into(&mut self, i: &[f32], q: &[f32], out: &mut [u8]) {
         pulp::Arch::new().dispatch(Write {
             quantiser: self,
             i,
@@ -219,7 +226,7 @@ impl Quantiser {
         });
     }
 
-    /// Bytes [`Self::write`] writes for `i` and `q`.
+    /// Bytes [`Self::write`] appends for `i` and `q`.
     pub fn bytes(&self, i: &[f32], q: &[f32]) -> usize {
         self.samples(i, q) * self.format.bytes_per_sample()
     }
@@ -292,13 +299,6 @@ mod tests {
     use super::*;
 
     impl Quantiser {
-        /// [`Quantiser::write`] into a new buffer.
-        fn written(&mut self, i: &[f32], q: &[f32]) -> Vec<u8> {
-            let mut out = vec![0; self.bytes(i, q)];
-            self.write(i, q, &mut out);
-            out
-        }
-
         /// The output level of one input component, through the block path.
         fn level(&mut self, x: f32) -> f32 {
             let mut l = [0; CHUNK];
@@ -359,7 +359,7 @@ mod tests {
             let mut q = Quantiser::new(format, Some(bits), noise_level(bits)).unwrap();
             let mut out = Vec::new();
             for block in xs.chunks(1000) {
-                out.extend(q.written(block, block));
+                q.write(block, block, &mut out);
             }
             assert_eq!(q.clipped(), 2 * want_clipped);
             let per = format.bytes_per_sample();
@@ -413,19 +413,22 @@ mod tests {
     #[test]
     fn byte_layouts() {
         let (i, q) = ([1.0f32, -2.0], [0.5f32, 3.0]);
-        let out = Quantiser::new(SampleFormat::Ci16, Some(16), 4096.0)
+        let mut out = Vec::new();
+        Quantiser::new(SampleFormat::Ci16, Some(16), 4096.0)
             .unwrap()
-            .written(&i, &q);
+            .write(&i, &q, &mut out);
         // I, Q interleaved; 0.5 rounds away from zero to 1.
         assert_eq!(out, [1, 0, 1, 0, 254, 255, 3, 0]);
-        let out = Quantiser::new(SampleFormat::Cf32, None, 1.0)
+        let mut out = Vec::new();
+        Quantiser::new(SampleFormat::Cf32, None, 1.0)
             .unwrap()
-            .written(&i, &q);
+            .write(&i, &q, &mut out);
         assert_eq!(out.len(), 16);
         assert_eq!(f32::from_le_bytes(out[12..16].try_into().unwrap()), 3.0);
-        let out = Quantiser::new(SampleFormat::Ri8, Some(8), 25.4)
+        let mut out = Vec::new();
+        Quantiser::new(SampleFormat::Ri8, Some(8), 25.4)
             .unwrap()
-            .written(&i, &q);
+            .write(&i, &q, &mut out);
         assert_eq!(out, [1, (-2i8) as u8]);
     }
 

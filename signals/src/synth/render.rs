@@ -504,9 +504,9 @@ impl<'a> Synthesiser<'a> {
                 s.fq.clear();
                 s.fq.resize(n, 0.0);
                 f.apply(&s.i, &s.q, &mut s.fi, &mut s.fq);
-                quantiser.write(&s.fi, &s.fq, bytes);
+                quantiser.write_into(&s.fi, &s.fq, bytes);
             }
-            None => quantiser.write(&s.i, &s.q, bytes),
+            None => quantiser.write_into(&s.i, &s.q, bytes),
         }
     }
 }
