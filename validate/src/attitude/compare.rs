@@ -65,35 +65,31 @@ impl ChainComparison {
         self.fixed.len() as f64 / self.after_first_fix.max(1) as f64
     }
 
+    /// `pick` of each fixed epoch that has it.
+    fn values(&self, pick: impl Fn(&EpochErrors) -> Option<f64>) -> Vec<f64> {
+        self.fixed.iter().filter_map(pick).collect()
+    }
+
     /// Component `i` of baseline `k`'s ECEF (`ned` false) or NED errors.
     pub fn baseline_axis(&self, k: usize, i: usize, ned: bool) -> Vec<f64> {
-        self.fixed
-            .iter()
-            .filter_map(|e| {
-                let v = if ned {
-                    &e.baseline_ned_m
-                } else {
-                    &e.baseline_ecef_m
-                };
-                v.get(k).map(|c| c[i])
-            })
-            .collect()
+        self.values(|e| {
+            let v = if ned {
+                &e.baseline_ned_m
+            } else {
+                &e.baseline_ecef_m
+            };
+            v.get(k).map(|c| c[i])
+        })
     }
 
     /// Attitude error of axis `i` (0 yaw, 1 pitch, 2 roll), deg.
     pub fn attitude_axis(&self, i: usize) -> Vec<f64> {
-        self.fixed
-            .iter()
-            .filter_map(|e| e.attitude_deg.map(|a| a[i]))
-            .collect()
+        self.values(|e| e.attitude_deg.map(|a| a[i]))
     }
 
     /// Attitude-rate error of axis `i` (0 yaw, 1 pitch, 2 roll), deg/s.
     pub fn rate_axis(&self, i: usize) -> Vec<f64> {
-        self.fixed
-            .iter()
-            .filter_map(|e| e.rate_deg_s.map(|a| a[i]))
-            .collect()
+        self.values(|e| e.rate_deg_s.map(|a| a[i]))
     }
 
     /// `pick` of each fixed epoch that has it, against the epoch's time (s since the
@@ -106,13 +102,12 @@ impl ChainComparison {
     }
 }
 
-/// Measured minus true carrier phase (cycles) per (second, satellite, signal) of one
-/// antenna: its integer ambiguity plus noise.
 /// Values per (second, satellite, signal); looked up four times per fixed integer per
 /// epoch, hence the fast hasher.
 type BySecond = HashMap<(i64, SatId, Signal), f64, foldhash::fast::FixedState>;
 
-/// Measured minus true carrier phase (cycles) per (second, satellite, signal).
+/// Measured minus true carrier phase (cycles) per (second, satellite, signal) of one
+/// antenna: its integer ambiguity plus noise.
 pub(super) type PhaseOffsets = BySecond;
 
 /// Epochs this close (s) to a whole second since the start are that second's; the

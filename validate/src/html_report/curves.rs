@@ -41,18 +41,9 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     })
 }
 
-/// "3.3-8 (a)": the figure's number and panels.
-fn number(c: &Curve) -> String {
-    if c.panels.is_empty() {
-        c.figure.clone()
-    } else {
-        format!("{} {}", c.figure, c.panels)
-    }
-}
-
 fn chart(c: &Curve) -> Chart {
     let mut chart = Chart::new(
-        &format!("Figure {}: {}", number(c), c.title),
+        &format!("Figure {}: {}", c.number(), c.title),
         &c.x_label,
         &c.y_label,
     );
@@ -78,7 +69,7 @@ fn chart(c: &Curve) -> Chart {
 
 /// "Thesis figure N: title." and each value, SkyForge's beside the thesis's.
 fn caption(c: &Curve) -> String {
-    let mut text = format!("Thesis figure {}: {}.", number(c), c.title);
+    let mut text = format!("Thesis figure {}: {}.", c.number(), c.title);
     for v in &c.values {
         text.push(' ');
         text.push_str(&value_text(v));

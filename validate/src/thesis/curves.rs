@@ -66,6 +66,17 @@ pub struct Value {
     pub thesis: Option<f64>,
 }
 
+impl Curve {
+    /// "3.3-8 (a)": the figure's number and panels.
+    pub fn number(&self) -> String {
+        if self.panels.is_empty() {
+            self.figure.clone()
+        } else {
+            format!("{} {}", self.figure, self.panels)
+        }
+    }
+}
+
 impl CurveSeries {
     pub fn new(name: impl Into<String>, mark: Mark, points: Vec<(f64, f64)>) -> Self {
         CurveSeries {

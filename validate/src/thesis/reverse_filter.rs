@@ -479,10 +479,7 @@ mod tests {
         };
         let rows = runs.rows().unwrap();
         let curves = runs.curves(&rows, 5).unwrap();
-        let ids: Vec<String> = curves
-            .iter()
-            .map(|c| format!("{} {}", c.figure, c.panels))
-            .collect();
+        let ids: Vec<String> = curves.iter().map(Curve::number).collect();
         assert_eq!(
             ids,
             [

@@ -31,10 +31,7 @@ pub fn check_figures(
     series: impl Fn(&Curve) -> usize,
     min_points: usize,
 ) -> usize {
-    let ids: Vec<String> = curves
-        .iter()
-        .map(|c| format!("{} {}", c.figure, c.panels).trim().to_string())
-        .collect();
+    let ids: Vec<String> = curves.iter().map(Curve::number).collect();
     assert_eq!(ids, expected);
     let mut quoted = 0;
     for c in curves {

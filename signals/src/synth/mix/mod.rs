@@ -15,8 +15,8 @@ mod spread;
 
 use crate::nco::LanePhasors;
 
-/// Independent phasor recurrences run side by side (one AVX-512 register of f32, two on
-/// AVX2).
+/// Phasor recurrences run side by side: two AVX-512 registers of f32 (four AVX2 ones),
+/// so that two independent multiply-add chains hide each other's latency.
 const LANES: usize = 32;
 
 /// One channel over one block.

@@ -559,10 +559,7 @@ mod tests {
     fn figures_draw_every_millisecond_of_the_runs_of_the_rows() {
         let e = experiment(Draw::REGISTERED).unwrap();
         let (rows, curves) = (e.rows(), e.curves());
-        let ids: Vec<String> = curves
-            .iter()
-            .map(|c| format!("{} {}", c.figure, c.panels))
-            .collect();
+        let ids: Vec<String> = curves.iter().map(Curve::number).collect();
         assert_eq!(
             ids,
             [
