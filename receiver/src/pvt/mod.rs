@@ -21,7 +21,7 @@ pub(crate) mod solve;
 mod test_geometry;
 mod velocity;
 
-pub use geometry::SatView;
+pub use geometry::{SatView, Transmitted};
 pub use solve::solve;
 pub use velocity::solve_velocity;
 
@@ -37,9 +37,56 @@ pub fn predicted_view(
     t_s: f64,
     r_rx_m: &Vec3,
 ) -> SatView {
-    // Two passes: the first gives the range, the second the view at that flight time.
-    let first = geometry::Transmitted::of(eph, t_s, 2.0e7).seen_from(r_rx_m, None);
-    geometry::sat_view(eph, t_s, first.range_m, r_rx_m)
+    ViewPoint::new(*r_rx_m).predict(eph, t_s).view
+}
+
+/// A receiver place from which several satellites are predicted: its local frame (for
+/// azimuth and elevation) is computed once, not per satellite.
+#[derive(Debug, Clone, Copy)]
+pub struct ViewPoint {
+    r_rx_m: Vec3,
+    frame: Option<skyforge_orbits::Mat3>,
+}
+
+/// A predicted satellite: its state at transmit time and the view from the receiver.
+#[derive(Debug, Clone, Copy)]
+pub struct Predicted {
+    pub transmitted: Transmitted,
+    pub view: SatView,
+}
+
+impl ViewPoint {
+    /// The place `r_rx_m` (ECEF, m), with its local frame when it is a position.
+    pub fn new(r_rx_m: Vec3) -> Self {
+        Self {
+            r_rx_m,
+            frame: geometry::local_frame(&r_rx_m),
+        }
+    }
+
+    /// The place `r_rx_m` without angles (views carry no azimuth and elevation).
+    pub fn without_angles(r_rx_m: Vec3) -> Self {
+        Self {
+            r_rx_m,
+            frame: None,
+        }
+    }
+
+    /// The satellite of `eph` at time `t_s`, before any measurement. Two passes: the first
+    /// gives the range, the second the view at that flight time.
+    pub fn predict(&self, eph: &skyforge_orbits::ephemeris::BoundEphemeris, t_s: f64) -> Predicted {
+        let first = Transmitted::of(eph, t_s, 2.0e7).seen_from(&self.r_rx_m, None);
+        let transmitted = Transmitted::of(eph, t_s, first.range_m);
+        Predicted {
+            transmitted,
+            view: self.see(&transmitted),
+        }
+    }
+
+    /// The view of a satellite already at its transmit time.
+    pub fn see(&self, transmitted: &Transmitted) -> SatView {
+        transmitted.seen_from(&self.r_rx_m, self.frame.as_ref())
+    }
 }
 
 /// One pseudorange (and optionally Doppler) of one satellite at the receive epoch.

@@ -4,11 +4,12 @@
 
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
-use crate::pvt::{Fix, Measurement, PvtConfig, predicted_view, solve};
+use crate::pvt::{Fix, Measurement, Predicted, PvtConfig, ViewPoint, solve};
 use hifitime::Epoch;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::bounded_read::read_text;
+use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
@@ -207,22 +208,56 @@ struct ToMasterModel {
     curvature_m: f64,
 }
 
+/// The master's predicted satellites at its sampling instant, computed once per epoch for
+/// every other antenna ([`to_master_model`]).
+struct MasterPredictions<'a> {
+    store: &'a EphemerisStore,
+    fix: &'a Fix,
+    place: ViewPoint,
+    by_sat: BTreeMap<SatId, Option<Predicted>>,
+}
+
+impl<'a> MasterPredictions<'a> {
+    fn new(store: &'a EphemerisStore, fix: &'a Fix) -> Self {
+        Self {
+            store,
+            fix,
+            place: ViewPoint::without_angles(fix.r_ecef_m),
+            by_sat: BTreeMap::new(),
+        }
+    }
+
+    /// The master's view of `sat` (none without an ephemeris).
+    fn of(&mut self, sat: SatId) -> Option<Predicted> {
+        let (store, t_s, place) = (self.store, self.fix.t_s, &self.place);
+        *self
+            .by_sat
+            .entry(sat)
+            .or_insert_with(|| store.select(sat, t_s).map(|eph| place.predict(eph, t_s)))
+    }
+}
+
 /// The corrections of antenna `k` with single-point solution `fix_k` against the master's
-/// `master_fix`, per satellite of `records`.
+/// predicted satellites, per satellite of `records`. Antenna `k`'s view of a satellite is
+/// the master's moved along the satellite's velocity by the flight-time difference
+/// `l . b0 / c` ([`Transmitted::later`]; what is left of the difference, the curvature
+/// `|b0|^2 / 2 rho c`, moves the satellite by 1e-6 m at 3.3 km).
 fn to_master_model(
     records: &[ObsRecord],
     signals: &[Signal],
-    store: &EphemerisStore,
-    master_fix: &Fix,
+    master: &mut MasterPredictions,
     fix_k: &Fix,
 ) -> BTreeMap<SatId, ToMasterModel> {
-    let dt = master_fix.t_s - fix_k.t_s;
-    let b0 = fix_k.r_ecef_m - master_fix.r_ecef_m;
+    let dt = master.fix.t_s - fix_k.t_s;
+    let b0 = fix_k.r_ecef_m - master.fix.r_ecef_m;
+    let place_k = ViewPoint::without_angles(fix_k.r_ecef_m);
     first_per_satellite(records, signals)
         .filter_map(|rec| {
-            let eph = store.select(rec.sat, master_fix.t_s)?;
-            let at_master = predicted_view(eph, master_fix.t_s, &master_fix.r_ecef_m);
-            let at_k = predicted_view(eph, master_fix.t_s, &fix_k.r_ecef_m);
+            let Predicted {
+                transmitted,
+                view: at_master,
+            } = master.of(rec.sat)?;
+            let at_k = place_k.see(&transmitted.later(at_master.los.dot(&b0) / C_MPS));
             Some((
                 rec.sat,
                 ToMasterModel {
@@ -282,32 +317,36 @@ pub fn run_files(
     let mut solver = RelativeSolver::new(config, &geometry.positions())?;
     let pvt = PvtConfig::default();
     let mut cursors = vec![0usize; files.len()];
-    // The other antennas' last positions (the master's fixes come first, in one pass).
-    let mut priors: Vec<Option<Vec3>> = vec![None; files.len()];
+    // The other antennas' last offsets from the master (the master's fixes come first, in
+    // one pass).
+    let mut offsets: Vec<Option<Vec3>> = vec![None; files.len()];
     let master_fixes = single_point_fixes(master, &store, &origin, &signals, &pvt);
     for (epoch, fix) in master.epochs.iter().zip(master_fixes) {
         let t_s = origin.seconds_since_start(epoch.time);
         let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
         let mut others: Vec<Vec<ObsRecord>> = Vec::with_capacity(files.len() - 1);
         let mut missing = None;
+        let mut master_predictions = fix.as_ref().ok().map(|f| MasterPredictions::new(&store, f));
         for (k, file) in files.iter().enumerate().skip(1) {
             let Some((time, records)) = records_at(file, &mut cursors[k], epoch.time) else {
                 missing = missing.or(Some(k));
                 continue;
             };
             let t_k = origin.seconds_since_start(time);
-            let aligned = match &fix {
-                Ok(master_fix) => {
-                    match single_point(records, &signals, t_k, &store, &origin, &pvt, priors[k]) {
+            let aligned = match master_predictions.as_mut() {
+                Some(master) => {
+                    // Start from where the antenna last was relative to the master.
+                    let prior = offsets[k].map(|b| master.fix.r_ecef_m + b);
+                    match single_point(records, &signals, t_k, &store, &origin, &pvt, prior) {
                         Ok(fix_k) => {
-                            priors[k] = Some(fix_k.r_ecef_m);
-                            let c = to_master_model(records, &signals, &store, master_fix, &fix_k);
+                            offsets[k] = Some(fix_k.r_ecef_m - master.fix.r_ecef_m);
+                            let c = to_master_model(records, &signals, master, &fix_k);
                             corrected(records, &c)
                         }
                         Err(_) => records.to_vec(),
                     }
                 }
-                Err(_) => records.to_vec(),
+                None => records.to_vec(),
             };
             others.push(aligned);
         }
@@ -321,12 +360,13 @@ pub fn run_files(
                 fix.err().unwrap_or_default()
             )),
             (None, Some(r)) => {
+                let place = ViewPoint::new(r);
                 let views: Vec<LineOfSight> = first_per_satellite(&epoch.sats, &signals)
                     .filter_map(|rec| {
                         let eph = store.select(rec.sat, t_s)?;
                         Some(LineOfSight::from_view(
                             rec.sat,
-                            &predicted_view(eph, t_s, &r),
+                            &place.predict(eph, t_s).view,
                         ))
                     })
                     .collect();
@@ -349,7 +389,7 @@ pub fn run_files(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pvt::Dop;
+    use crate::pvt::{Dop, predicted_view};
     use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 
@@ -424,8 +464,7 @@ mod tests {
         let corrections = to_master_model(
             &records,
             &[Signal::GpsL1Ca],
-            &store,
-            &master_fix,
+            &mut MasterPredictions::new(&store, &master_fix),
             &rover_fix,
         );
         let moved = corrected(&records, &corrections);
@@ -450,8 +489,7 @@ mod tests {
         let none = to_master_model(
             &records,
             &[Signal::GpsL1Ca],
-            &store,
-            &master_fix,
+            &mut MasterPredictions::new(&store, &master_fix),
             &master_fix,
         );
         assert!(
