@@ -152,13 +152,17 @@ struct Precomputed {
 /// velocity needs.
 struct PlaneState {
     r_m: Vec3,
-    e_anom_rad: f64,
+    sin_e: f64,
+    cos_e: f64,
     sin_2phi: f64,
     cos_2phi: f64,
     r_orb_m: f64,
-    u_rad: f64,
-    i_rad: f64,
-    node_rad: f64,
+    sin_u: f64,
+    cos_u: f64,
+    sin_i: f64,
+    cos_i: f64,
+    sin_o: f64,
+    cos_o: f64,
 }
 
 impl BroadcastEphemeris {
@@ -314,13 +318,17 @@ impl BoundEphemeris {
                 xp * sin_o + yp * cos_i * cos_o,
                 yp * sin_i,
             ),
-            e_anom_rad: ea,
+            sin_e,
+            cos_e,
             sin_2phi,
             cos_2phi,
             r_orb_m,
-            u_rad,
-            i_rad,
-            node_rad,
+            sin_u,
+            cos_u,
+            sin_i,
+            cos_i,
+            sin_o,
+            cos_o,
         }
     }
 
@@ -350,27 +358,33 @@ impl BoundEphemeris {
     /// derivative of the user algorithm (IS-GPS-200 table 20-IV differentiated; for the
     /// BeiDou GEO the rotating-frame term OMEGA_E x r is added).
     pub fn state_ecef(&self, t_s: f64) -> (Vec3, Vec3) {
+        let (r, v, _) = self.state_and_clock_drift(t_s);
+        (r, v)
+    }
+
+    /// [`Self::state_ecef`] and [`Self::clock_drift`] at `t_s` from one solution of
+    /// Kepler's equation.
+    pub fn state_and_clock_drift(&self, t_s: f64) -> (Vec3, Vec3, f64) {
         let tk = t_s - self.toe_s;
         let p = &self.eph;
         let k = &self.k;
         let st = self.plane_state(tk);
-        let cos_e = st.e_anom_rad.cos();
-        let one_m_ecos = 1.0 - p.e * cos_e;
+        let one_m_ecos = 1.0 - p.e * st.cos_e;
         let e_dot = k.n_rad_s / one_m_ecos;
+        let clock_drift = self.clock_drift_from(t_s, st.cos_e, e_dot);
         let nu_dot = k.sqrt_1_e2 * e_dot / one_m_ecos;
         let (s2, c2) = (st.sin_2phi, st.cos_2phi);
         let u_dot = nu_dot * (1.0 + 2.0 * (p.cus * c2 - p.cuc * s2));
-        let r_dot =
-            k.a_m * p.e * st.e_anom_rad.sin() * e_dot + 2.0 * nu_dot * (p.crs * c2 - p.crc * s2);
+        let r_dot = k.a_m * p.e * st.sin_e * e_dot + 2.0 * nu_dot * (p.crs * c2 - p.crc * s2);
         let i_dot = p.idot + 2.0 * nu_dot * (p.cis * c2 - p.cic * s2);
         let node_dot = k.node_rate_rad_s;
 
-        let (sin_u, cos_u) = st.u_rad.sin_cos();
+        let (sin_u, cos_u) = (st.sin_u, st.cos_u);
         let yp = st.r_orb_m * sin_u;
         let xp_dot = r_dot * cos_u - st.r_orb_m * u_dot * sin_u;
         let yp_dot = r_dot * sin_u + st.r_orb_m * u_dot * cos_u;
-        let (sin_i, cos_i) = st.i_rad.sin_cos();
-        let (sin_o, cos_o) = st.node_rad.sin_cos();
+        let (sin_i, cos_i) = (st.sin_i, st.cos_i);
+        let (sin_o, cos_o) = (st.sin_o, st.cos_o);
         let r = st.r_m;
         let v = Vec3::new(
             xp_dot * cos_o - yp_dot * cos_i * sin_o + yp * sin_i * sin_o * i_dot - r.y * node_dot,
@@ -381,9 +395,9 @@ impl BoundEphemeris {
             let r_ecef = self.geo_to_ecef(tk, r);
             let w = k.omega_e_rad_s;
             let v_ecef = self.geo_to_ecef(tk, v) + Vec3::new(w * r_ecef.y, -w * r_ecef.x, 0.0);
-            (r_ecef, v_ecef)
+            (r_ecef, v_ecef, clock_drift)
         } else {
-            (r, v)
+            (r, v, clock_drift)
         }
     }
 
@@ -407,10 +421,15 @@ impl BoundEphemeris {
     /// Satellite clock drift (s/s) at `t_s`, including the relativistic term's derivative
     /// F e sqrt(A) cos(Ek) dEk/dt with dEk/dt = n / (1 - e cos Ek).
     pub fn clock_drift(&self, t_s: f64) -> f64 {
+        let cos_e = self.eccentric_anomaly_at(t_s).cos();
+        let e_dot = self.k.n_rad_s / (1.0 - self.eph.e * cos_e);
+        self.clock_drift_from(t_s, cos_e, e_dot)
+    }
+
+    /// [`Self::clock_drift`] at `t_s` with cos(Ek) and dEk/dt known.
+    fn clock_drift_from(&self, t_s: f64, cos_e: f64, e_dot: f64) -> f64 {
         let dt = t_s - self.toc_s;
         let p = &self.eph;
-        let cos_e = self.eccentric_anomaly_at(t_s).cos();
-        let e_dot = self.k.n_rad_s / (1.0 - p.e * cos_e);
         p.af1 + 2.0 * p.af2 * dt + self.k.rel_amp_s * cos_e * e_dot
     }
 }
@@ -546,8 +565,7 @@ mod tests {
         let b = eph.bind(&origin());
         let t = 9000.0;
         let st = b.plane_state(t - b.toe_s);
-        let ea = st.e_anom_rad;
-        let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * ea.cos())
+        let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * st.cos_e)
             + eph.crs * st.sin_2phi
             + eph.crc * st.cos_2phi;
         assert!((b.position_ecef(t).norm() - expect).abs() < 1e-6);
@@ -566,6 +584,7 @@ mod tests {
             let t = 7200.0 - 7200.0 + 500.0 * f64::from(i);
             let (r, v) = b.state_ecef(t);
             assert_eq!(r, b.position_ecef(t));
+            assert_eq!(b.state_and_clock_drift(t), (r, v, b.clock_drift(t)));
             let err = (v - numeric_velocity(&b, t)).norm();
             assert!(err < 1e-5, "t={t} velocity error {err} m/s");
         }
@@ -584,6 +603,7 @@ mod tests {
             let t = 500.0 * f64::from(i);
             let (r, v) = b.state_ecef(t);
             assert_eq!(r, b.position_ecef(t));
+            assert_eq!(b.state_and_clock_drift(t), (r, v, b.clock_drift(t)));
             let err = (v - numeric_velocity(&b, t)).norm();
             assert!(err < 1e-5, "t={t} velocity error {err} m/s");
         }

@@ -3,7 +3,7 @@
 
 use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{BoundEphemeris, System};
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use skyforge_orbits::{Mat3, Vec3};
 
@@ -58,8 +58,14 @@ pub fn sat_view(eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64, r_rx_m: &
 /// The ECEF-to-NED rotation at `r_rx_m`, when it is a position (not the geocentre an
 /// iteration starts from): what azimuth and elevation need, once per receiver position.
 pub fn local_frame(r_rx_m: &Vec3) -> Option<Mat3> {
+    local_frame_at(r_rx_m, || ecef_to_geodetic(r_rx_m))
+}
+
+/// [`local_frame`] with the geodetic position of `r_rx_m` given by `geodetic` (called
+/// only when `r_rx_m` is a position).
+pub fn local_frame_at(r_rx_m: &Vec3, geodetic: impl FnOnce() -> Geodetic) -> Option<Mat3> {
     (r_rx_m.norm() > MIN_POSITION_NORM_M).then(|| {
-        let g = ecef_to_geodetic(r_rx_m);
+        let g = geodetic();
         c_ecef_ned(g.lat_rad, g.lon_rad)
     })
 }
@@ -83,12 +89,12 @@ impl Transmitted {
         // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
         let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
         let t_tx = t_sv - clock_s;
-        let (r_ecef_m, v_ecef_mps) = eph.state_ecef(t_tx);
+        let (r_ecef_m, v_ecef_mps, clock_drift) = eph.state_and_clock_drift(t_tx);
         Transmitted {
             r_ecef_m,
             v_ecef_mps,
             clock_s,
-            clock_drift: eph.clock_drift(t_tx),
+            clock_drift,
             omega_e: omega_e(eph.eph.sat.system),
         }
     }

@@ -1,7 +1,7 @@
 //! The iterated weighted least-squares position and clock solution.
 
 use super::exclusion::{most_suspect, normalised_residuals};
-use super::geometry::{SatView, Transmitted, local_frame};
+use super::geometry::{SatView, Transmitted, local_frame_at};
 use super::protection::{protection_levels, slopes};
 use super::raim::{detection_parameters, test_threshold};
 use super::{
@@ -281,7 +281,7 @@ fn linearise(
 ) -> Vec<Row> {
     let mut rows = Vec::with_capacity(meas.len());
     let place = ReceiverPlace::new(r, origin, t_rx_s);
-    let frame = local_frame(r);
+    let frame = local_frame_at(r, || place.g);
     for (m, sat) in meas.iter().zip(sats) {
         let view = sat.seen_from(r, frame.as_ref());
         let el = view.az_el_rad.map(|(_, el)| el);
