@@ -2,10 +2,11 @@
 //! position, range, line of sight and angles.
 
 use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{BoundEphemeris, System};
+use skyforge_orbits::ephemeris::{BoundEphemeris, SatId, System};
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use skyforge_orbits::{Mat3, Vec3};
+use std::collections::BTreeMap;
 
 /// A receiver position this far from the geocentre is a position (m); before the first
 /// iteration the estimate is the geocentre and angles are meaningless.
@@ -132,6 +133,85 @@ impl Transmitted {
             range_m,
             los,
             az_el_rad: frame.map(|c| az_el(&(c * los))),
+        }
+    }
+}
+
+/// Where a least-squares solution takes each satellite at its transmit time from.
+pub trait Satellites {
+    /// The satellite of `eph` whose signal, received at `t_rx_s`, measured `pseudorange_m`
+    /// ([`Transmitted::of`] or as good).
+    fn transmitted(&mut self, eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64)
+    -> Transmitted;
+}
+
+/// Every satellite from its broadcast ephemeris.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FromEphemeris;
+
+impl Satellites for FromEphemeris {
+    fn transmitted(
+        &mut self,
+        eph: &BoundEphemeris,
+        t_rx_s: f64,
+        pseudorange_m: f64,
+    ) -> Transmitted {
+        Transmitted::of(eph, t_rx_s, pseudorange_m)
+    }
+}
+
+/// Every satellite from its broadcast ephemeris, kept with its transmit time (satellite
+/// time) for the antennas of the same platform ([`NearAntenna`]).
+#[derive(Debug, Clone, Default)]
+pub struct Recorded {
+    by_sat: BTreeMap<SatId, (f64, Transmitted)>,
+}
+
+impl Recorded {
+    /// Nothing recorded yet.
+    pub fn new() -> Self {
+        Self::default()
+    }
+}
+
+impl Satellites for Recorded {
+    fn transmitted(
+        &mut self,
+        eph: &BoundEphemeris,
+        t_rx_s: f64,
+        pseudorange_m: f64,
+    ) -> Transmitted {
+        let tx = Transmitted::of(eph, t_rx_s, pseudorange_m);
+        self.by_sat
+            .insert(eph.eph.sat, (t_rx_s - pseudorange_m / C_MPS, tx));
+        tx
+    }
+}
+
+/// Longest move along the velocity [`NearAntenna`] makes (s): 0.3 m/s^2 x (1 ms)^2 = 3e-7 m.
+const MAX_NEAR_SHIFT_S: f64 = 1e-3;
+
+/// The satellites another antenna of the platform recorded at nearly the same transmit
+/// times, each moved along its velocity to this antenna's transmit time
+/// ([`Transmitted::later`]): an antenna a baseline away differs by the baseline's flight
+/// time (3 ns per metre) and its receiver's sampling offset. A satellite it did not
+/// record, or recorded more than [`MAX_NEAR_SHIFT_S`] away, comes from its ephemeris.
+#[derive(Debug, Clone, Copy)]
+pub struct NearAntenna<'a>(pub &'a Recorded);
+
+impl Satellites for NearAntenna<'_> {
+    fn transmitted(
+        &mut self,
+        eph: &BoundEphemeris,
+        t_rx_s: f64,
+        pseudorange_m: f64,
+    ) -> Transmitted {
+        let t_sv = t_rx_s - pseudorange_m / C_MPS;
+        match self.0.by_sat.get(&eph.eph.sat) {
+            Some((t_near, tx)) if (t_sv - t_near).abs() <= MAX_NEAR_SHIFT_S => {
+                tx.later(t_sv - t_near)
+            }
+            _ => Transmitted::of(eph, t_rx_s, pseudorange_m),
         }
     }
 }

@@ -21,8 +21,8 @@ pub(crate) mod solve;
 mod test_geometry;
 mod velocity;
 
-pub use geometry::{SatView, Transmitted};
-pub use solve::solve;
+pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
+pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 
 use skyforge_orbits::Vec3;

@@ -1,7 +1,7 @@
 //! The iterated weighted least-squares position and clock solution.
 
 use super::exclusion::{most_suspect, normalised_residuals};
-use super::geometry::{SatView, Transmitted, local_frame_at};
+use super::geometry::{FromEphemeris, SatView, Satellites, Transmitted, local_frame_at};
 use super::protection::{protection_levels, slopes};
 use super::raim::{detection_parameters, test_threshold};
 use super::{
@@ -40,12 +40,34 @@ pub fn solve(
     cfg: &PvtConfig,
     a_priori: Option<Vec3>,
 ) -> Result<Fix, PvtError> {
-    let epoch = Epoch {
+    solve_with(
         meas,
         t_rx_s,
         store,
         origin,
         cfg,
+        a_priori,
+        &mut FromEphemeris,
+    )
+}
+
+/// [`solve`] with the satellites at transmit time taken from `satellites`.
+pub fn solve_with(
+    meas: &[Measurement],
+    t_rx_s: f64,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    cfg: &PvtConfig,
+    a_priori: Option<Vec3>,
+    satellites: &mut dyn Satellites,
+) -> Result<Fix, PvtError> {
+    let mut epoch = Epoch {
+        meas,
+        t_rx_s,
+        store,
+        origin,
+        cfg,
+        satellites,
     };
     let Solution {
         mut fix,
@@ -178,25 +200,24 @@ fn iono_m(cfg: &PvtConfig, place: &ReceiverPlace, sat: SatId, az: f64, el: f64) 
 }
 
 /// The inputs of [`solve`] that every least-squares pass of one epoch shares.
-#[derive(Clone, Copy)]
 struct Epoch<'a> {
     meas: &'a [Measurement],
     t_rx_s: f64,
     store: &'a EphemerisStore,
     origin: &'a TimeOrigin,
     cfg: &'a PvtConfig,
+    satellites: &'a mut dyn Satellites,
 }
 
 impl Epoch<'_> {
     /// One least-squares solution without the satellites of `skip`.
-    fn least_squares(&self, a_priori: Option<Vec3>, skip: &[SatId]) -> Result<Solution, PvtError> {
-        let Epoch {
-            meas,
-            t_rx_s,
-            store,
-            origin,
-            cfg,
-        } = *self;
+    fn least_squares(
+        &mut self,
+        a_priori: Option<Vec3>,
+        skip: &[SatId],
+    ) -> Result<Solution, PvtError> {
+        let (meas, t_rx_s, store, origin, cfg) =
+            (self.meas, self.t_rx_s, self.store, self.origin, self.cfg);
         let meas: Vec<&Measurement> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
         let ephs = meas
             .iter()
@@ -216,7 +237,7 @@ impl Epoch<'_> {
         let sats: Vec<Transmitted> = meas
             .iter()
             .zip(&ephs)
-            .map(|(m, eph)| Transmitted::of(eph, t_rx_s, m.pseudorange_m))
+            .map(|(m, eph)| self.satellites.transmitted(eph, t_rx_s, m.pseudorange_m))
             .collect();
         let mut r = a_priori.unwrap_or_else(Vec3::zeros);
         let mut clocks = vec![0.0; systems.len()];

@@ -4,7 +4,10 @@
 
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
-use crate::pvt::{Fix, Measurement, Predicted, PvtConfig, ViewPoint, solve};
+use crate::pvt::{
+    Fix, FromEphemeris, Measurement, NearAntenna, Predicted, PvtConfig, Recorded, Satellites,
+    ViewPoint, solve_with,
+};
 use hifitime::Epoch;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
@@ -139,7 +142,9 @@ fn first_per_satellite<'r>(
 }
 
 /// The single-point solution of one antenna's `records` (one pseudorange per satellite,
-/// of the first of `signals` that has one) at `t_s` (s since `origin`) with `config`.
+/// of the first of `signals` that has one) at `t_s` (s since `origin`) with `config`,
+/// the satellites taken from `satellites`.
+#[allow(clippy::too_many_arguments)]
 fn single_point(
     records: &[ObsRecord],
     signals: &[Signal],
@@ -148,6 +153,7 @@ fn single_point(
     origin: &TimeOrigin,
     config: &PvtConfig,
     prior: Option<Vec3>,
+    satellites: &mut dyn Satellites,
 ) -> Result<Fix, String> {
     let meas: Vec<Measurement> = first_per_satellite(records, signals)
         .filter(|r| store.select(r.sat, t_s).is_some())
@@ -160,7 +166,7 @@ fn single_point(
             })
         })
         .collect();
-    solve(&meas, t_s, store, origin, config, prior).map_err(|e| e.to_string())
+    solve_with(&meas, t_s, store, origin, config, prior, satellites).map_err(|e| e.to_string())
 }
 
 /// The single-point solution of every epoch of `file` (times in seconds since `origin`)
@@ -178,7 +184,16 @@ pub fn single_point_fixes(
         .iter()
         .map(|e| {
             let t_s = origin.seconds_since_start(e.time);
-            let fix = single_point(&e.sats, signals, t_s, store, origin, config, prior);
+            let fix = single_point(
+                &e.sats,
+                signals,
+                t_s,
+                store,
+                origin,
+                config,
+                prior,
+                &mut FromEphemeris,
+            );
             prior = fix.as_ref().ok().map(|f| f.r_ecef_m).or(prior);
             fix
         })
@@ -317,13 +332,26 @@ pub fn run_files(
     let mut solver = RelativeSolver::new(config, &geometry.positions())?;
     let pvt = PvtConfig::default();
     let mut cursors = vec![0usize; files.len()];
-    // The other antennas' last offsets from the master (the master's fixes come first, in
-    // one pass).
+    // The master's last position and the other antennas' last offsets from it.
+    let mut master_prior = None;
     let mut offsets: Vec<Option<Vec3>> = vec![None; files.len()];
-    let master_fixes = single_point_fixes(master, &store, &origin, &signals, &pvt);
-    for (epoch, fix) in master.epochs.iter().zip(master_fixes) {
+    for epoch in &master.epochs {
         let t_s = origin.seconds_since_start(epoch.time);
+        // The master's satellites, which the other antennas' solutions move to their
+        // own transmit times.
+        let mut satellites = Recorded::new();
+        let fix = single_point(
+            &epoch.sats,
+            &signals,
+            t_s,
+            &store,
+            &origin,
+            &pvt,
+            master_prior,
+            &mut satellites,
+        );
         let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
+        master_prior = master_ecef_m.or(master_prior);
         let mut others: Vec<Vec<ObsRecord>> = Vec::with_capacity(files.len() - 1);
         let mut missing = None;
         let mut master_predictions = fix.as_ref().ok().map(|f| MasterPredictions::new(&store, f));
@@ -337,7 +365,8 @@ pub fn run_files(
                 Some(master) => {
                     // Start from where the antenna last was relative to the master.
                     let prior = offsets[k].map(|b| master.fix.r_ecef_m + b);
-                    match single_point(records, &signals, t_k, &store, &origin, &pvt, prior) {
+                    let near = &mut NearAntenna(&satellites);
+                    match single_point(records, &signals, t_k, &store, &origin, &pvt, prior, near) {
                         Ok(fix_k) => {
                             offsets[k] = Some(fix_k.r_ecef_m - master.fix.r_ecef_m);
                             let c = to_master_model(records, &signals, master, &fix_k);
