@@ -412,10 +412,25 @@ impl BoundEphemeris {
     /// Satellite clock offset (s) at `t_s`: polynomial plus relativistic correction, without TGD.
     /// IS-GPS-200 20.3.3.3.3.1: af0 + af1 dt + af2 dt^2 + F e sqrt(A) sin(Ek), dt = t - toc.
     pub fn clock_offset_s(&self, t_s: f64) -> f64 {
+        self.clock_offset_from(t_s, self.eccentric_anomaly_at(t_s).sin())
+    }
+
+    /// [`Self::clock_offset_s`] at `t_s` with sin(Ek) known.
+    fn clock_offset_from(&self, t_s: f64, sin_e: f64) -> f64 {
         let dt = t_s - self.toc_s;
         let p = &self.eph;
-        let rel = self.k.rel_amp_s * self.eccentric_anomaly_at(t_s).sin();
-        p.af0 + dt * (p.af1 + dt * p.af2) + rel
+        p.af0 + dt * (p.af1 + dt * p.af2) + self.k.rel_amp_s * sin_e
+    }
+
+    /// [`Self::clock_offset_s`] and [`Self::clock_drift`] at `t_s` from one solution of
+    /// Kepler's equation.
+    pub fn clock_offset_and_drift(&self, t_s: f64) -> (f64, f64) {
+        let (sin_e, cos_e) = self.eccentric_anomaly_at(t_s).sin_cos();
+        let e_dot = self.k.n_rad_s / (1.0 - self.eph.e * cos_e);
+        (
+            self.clock_offset_from(t_s, sin_e),
+            self.clock_drift_from(t_s, cos_e, e_dot),
+        )
     }
 
     /// Satellite clock drift (s/s) at `t_s`, including the relativistic term's derivative
@@ -618,6 +633,7 @@ mod tests {
             let num = (b.clock_offset_s(t + h) - b.clock_offset_s(t - h)) / (2.0 * h);
             let d = b.clock_drift(t);
             assert!((num - d).abs() < 1e-17, "t={t} {num:e} vs {d:e}");
+            assert_eq!(b.clock_offset_and_drift(t), (b.clock_offset_s(t), d));
         }
     }
 
