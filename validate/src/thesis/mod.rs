@@ -88,8 +88,8 @@ pub fn known(id: &str) -> bool {
 enum Source {
     /// A bundled scenario, by name (never a file of that name).
     Bundled(&'static str),
-    /// A file of [`raim::SCENARIO_DIR`].
-    RaimFile(&'static str),
+    /// The embedded scenario of a RAIM setting (a file of [`raim::SCENARIO_DIR`]).
+    Raim(fn() -> raim::Setting),
 }
 
 /// An evaluation: the rows of the `wanted` tables of its group.
@@ -228,8 +228,8 @@ const UNITS: &[Unit] = &[
         tables: &[raim::TABLE_MOPS, raim::TABLE_LEO],
         kind: Kind::MonteCarlo,
         scenarios: &[
-            Source::RaimFile("raim-aircraft.toml"),
-            Source::RaimFile("raim-leo.toml"),
+            Source::Raim(raim::mops_setting),
+            Source::Raim(raim::leo_setting),
         ],
         evaluate: |wanted, _, draw| {
             raim::rows(
@@ -246,9 +246,9 @@ const UNITS: &[Unit] = &[
 /// A scenario a run used, as `results.json` records it.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ScenarioSource {
-    /// The bundled name, or the file's path.
+    /// The bundled name, or the path of the file an embedded scenario was compiled from.
     pub name: String,
-    /// `bundled` or `file`.
+    /// `bundled` (a bundled scenario) or `embedded` (a RAIM setting's scenario).
     pub origin: String,
     /// The scenario's text as the run read it.
     pub text: String,
@@ -293,12 +293,15 @@ fn source_of(source: Source) -> ScenarioSource {
                 .find(|b| b.name == name)
                 .map_or_else(String::new, |b| b.text.to_string()),
         },
-        Source::RaimFile(file) => {
-            let path = Path::new(raim::SCENARIO_DIR).join(file);
+        Source::Raim(setting) => {
+            let setting = setting();
             ScenarioSource {
-                text: std::fs::read_to_string(&path).unwrap_or_default(),
-                name: path.display().to_string(),
-                origin: "file".into(),
+                text: setting.scenario_text.to_string(),
+                name: Path::new(raim::SCENARIO_DIR)
+                    .join(setting.scenario_file)
+                    .display()
+                    .to_string(),
+                origin: "embedded".into(),
             }
         }
     }
@@ -404,6 +407,19 @@ pub fn run(opts: &Options, mut starting: impl FnMut(&str)) -> Result<Outcome, Va
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// results.json records every table's scenario text: each source resolves to one.
+    #[test]
+    fn every_scenario_source_has_its_text() {
+        for source in UNITS.iter().flat_map(|u| u.scenarios) {
+            let recorded = source_of(*source);
+            assert!(
+                recorded.text.contains("[time]") || recorded.text.contains("[platform"),
+                "{}: no scenario text",
+                recorded.name
+            );
+        }
+    }
 
     #[test]
     fn figures_are_on_the_registered_seed_also_over_seeds() {
