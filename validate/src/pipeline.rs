@@ -8,7 +8,6 @@
 //! between: the receiver reads the samples as the synthesiser renders them (`skyforge
 //! synth --receive`), for runs whose I/Q would not fit on disk.
 
-use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::input::{InputError, InputParams, Recording, SampleFeed, sample_stream};
 use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
@@ -127,14 +126,10 @@ pub fn synth_and_receive(
     let antennas = session.world().antennas;
     let nav_path = work.join("nav.rnx");
     let mut nav = Vec::new();
-    write_nav(
-        session.broadcast_ephemerides(),
-        "skyforge",
-        &session.broadcast_iono(),
-        &mut nav,
-    )
-    .and_then(|()| std::fs::write(&nav_path, nav))
-    .map_err(io(&nav_path))?;
+    session
+        .write_navigation(&mut nav)
+        .and_then(|()| std::fs::write(&nav_path, nav))
+        .map_err(io(&nav_path))?;
     let mut recordings = SigmfRecordings::create(work, &bands, antennas).map_err(io(work))?;
     let mut truth = TruthCollector {
         files: antennas

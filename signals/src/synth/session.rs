@@ -375,6 +375,17 @@ impl<'a> SynthSession<'a> {
         ]
     }
 
+    /// The navigation file a receiver of this session's signals needs: its broadcast
+    /// ephemerides and ionosphere as RINEX 3.04 navigation, written by `skyforge`.
+    pub fn write_navigation(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
+        skyforge_orbits::ephemeris::rinex_nav_write::write_nav(
+            self.broadcast_ephemerides(),
+            "skyforge",
+            &self.broadcast_iono(),
+            out,
+        )
+    }
+
     /// Whether the signals carry an ionospheric delay.
     pub fn ionosphere_on(&self) -> bool {
         self.iono.model != IonoModel::Off

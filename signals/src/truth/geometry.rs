@@ -323,7 +323,8 @@ impl<'a> GeometryTruth<'a> {
                         .find(|r| !r.is_nan())?;
                     let eph = ephs[k_own * n_sat + s]?;
                     let r_rx = &antennas[i * n_ant + l / n_sat].r_ecef_m;
-                    let guess = by_sat[s].map_or(screened, |lt| (lt.r_sat_rx_frame_m - r_rx).norm());
+                    let guess =
+                        by_sat[s].map_or(screened, |lt| (lt.r_sat_rx_frame_m - r_rx).norm());
                     let lt = light_time::solve(eph, r_rx, t, guess / C_MPS);
                     by_sat[s] = Some(lt);
                     Some(lt)

@@ -12,7 +12,6 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
@@ -142,14 +141,10 @@ pub fn synthesise(
         std::fs::File::create(&nav_path)
             .with_context(|| format!("cannot create {}", nav_path.display()))?,
     );
-    write_nav(
-        session.broadcast_ephemerides(),
-        "skyforge",
-        &session.broadcast_iono(),
-        &mut nav,
-    )
-    .and_then(|()| nav.flush())
-    .with_context(|| writing(&nav_path))?;
+    session
+        .write_navigation(&mut nav)
+        .and_then(|()| nav.flush())
+        .with_context(|| writing(&nav_path))?;
     let streamed_run = receive.is_some();
     let streamed = match receive {
         Some(r) => {

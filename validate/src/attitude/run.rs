@@ -10,7 +10,6 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
-use skyforge_orbits::ephemeris::rinex_nav_write::write_nav;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, System};
 use skyforge_orbits::platform::PlatformState;
 use skyforge_orbits::platform::hermite::Hermite3;
@@ -357,16 +356,12 @@ pub fn signal_run(scenario: &Scenario) -> Result<ObservationRun, RunError> {
     run.ephemerides = session.broadcast_ephemerides().to_vec();
     run.iono = broadcast_iono(&session);
     let mut nav = Vec::new();
-    write_nav(
-        &run.ephemerides,
-        "skyforge",
-        &session.broadcast_iono(),
-        &mut nav,
-    )
-    .map_err(|e| ChainError::Io {
-        path: PathBuf::from("nav.rnx (in memory)"),
-        error: e,
-    })?;
+    session
+        .write_navigation(&mut nav)
+        .map_err(|e| ChainError::Io {
+            path: PathBuf::from("nav.rnx (in memory)"),
+            error: e,
+        })?;
     let (r, v) = session.start_state()?;
     let (config, approximate) = parse_config(&assistance_toml(&r, &v), "receiver.toml (in memory)")
         .map_err(ChainError::Receive)?;
