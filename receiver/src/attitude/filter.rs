@@ -188,18 +188,82 @@ pub fn process_noise<const N: usize>(dt_s: f64, s: &[f64]) -> SMatrix<f64, N, N>
     q
 }
 
+/// What distinguishes the EKF from the UKF: the measurement update of a predicted state.
+pub trait MeasurementUpdate: std::fmt::Debug + Clone + Send {
+    /// The stage this update makes.
+    const METHOD: AttitudeMethod;
+
+    /// The state and covariance after `measured`, from the prediction `(x, p)` of a filter
+    /// with `config` on `geometry`, and what the update saw.
+    fn update(
+        config: &AttitudeConfig,
+        geometry: &BodyGeometry,
+        x: &Vector6<f64>,
+        p: &Matrix6<f64>,
+        measured: &NedBaselines,
+    ) -> Result<(Vector6<f64>, Matrix6<f64>, UpdateInfo), AttitudeError>;
+}
+
+/// A 6-state attitude filter: the shared prediction and start of [`FilterCore`], the
+/// measurement update of `U` ([`super::kalman::Linearised`],
+/// [`super::ukf::Unscented`]).
+#[derive(Debug, Clone)]
+pub struct KalmanAttitude<U> {
+    core: FilterCore,
+    update: std::marker::PhantomData<U>,
+}
+
+impl<U: MeasurementUpdate> KalmanAttitude<U> {
+    /// A filter for `geometry`; without `init` it starts from the first epoch's LS.
+    pub fn new(
+        config: &AttitudeConfig,
+        geometry: BodyGeometry,
+        init: Option<FilterInit>,
+    ) -> Result<Self, AttitudeError> {
+        Ok(Self {
+            core: FilterCore::new(config, geometry, init)?,
+            update: std::marker::PhantomData,
+        })
+    }
+}
+
+impl<U: MeasurementUpdate> AttitudeFilter for KalmanAttitude<U> {
+    fn method(&self) -> AttitudeMethod {
+        U::METHOD
+    }
+
+    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
+        self.core.predict(dt_s)
+    }
+
+    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
+        self.core.geometry.check_count(measured)?;
+        let Some((x, p)) = self.core.xp else {
+            return self.core.start_from_ls(measured);
+        };
+        let (x_new, p_new, info) =
+            U::update(&self.core.config, &self.core.geometry, &x, &p, measured)?;
+        self.core.set(x_new, p_new)?;
+        Ok(info)
+    }
+
+    fn state(&self) -> Option<FilterState> {
+        self.core.state()
+    }
+}
+
 /// The state and covariance both filters carry, their shared prediction (eqs. 2.5-16,
 /// 4.3-16, 4.3-17) and their start from the LS.
 #[derive(Debug, Clone)]
-pub(crate) struct FilterCore {
-    pub config: AttitudeConfig,
-    pub geometry: BodyGeometry,
+struct FilterCore {
+    config: AttitudeConfig,
+    geometry: BodyGeometry,
     /// `(X, P)` once started.
-    pub xp: Option<(Vector6<f64>, Matrix6<f64>)>,
+    xp: Option<(Vector6<f64>, Matrix6<f64>)>,
 }
 
 impl FilterCore {
-    pub fn new(
+    fn new(
         config: &AttitudeConfig,
         geometry: BodyGeometry,
         init: Option<FilterInit>,
@@ -230,7 +294,7 @@ impl FilterCore {
     }
 
     /// Eqs. 2.5-16, 4.3-16, 4.3-17.
-    pub fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
+    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
         if !(dt_s.is_finite() && dt_s >= 0.0) {
             return Err(AttitudeError::Filter(format!(
                 "prediction interval {dt_s} s must be finite and >= 0"
@@ -247,7 +311,7 @@ impl FilterCore {
 
     /// Start from this epoch's LS attitude: angles and their covariance eq. 2.5-13, rates
     /// zero with [`AttitudeConfig::initial_rate_sigma_rad_s`].
-    pub fn start_from_ls(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
+    fn start_from_ls(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
         let est = solve(&self.geometry, measured, None, &self.config.least_squares)?;
         let mut p = Matrix6::zeros();
         p.fixed_view_mut::<3, 3>(0, 0).copy_from(&est.covariance);
@@ -263,7 +327,7 @@ impl FilterCore {
     }
 
     /// Keep an updated state (canonical angles), or fail if it is not finite.
-    pub fn set(&mut self, x: Vector6<f64>, p: Matrix6<f64>) -> Result<(), AttitudeError> {
+    fn set(&mut self, x: Vector6<f64>, p: Matrix6<f64>) -> Result<(), AttitudeError> {
         if !x.iter().chain(p.iter()).all(|v| v.is_finite()) {
             return Err(AttitudeError::Filter(
                 "the updated state is not finite".into(),
@@ -273,7 +337,7 @@ impl FilterCore {
         Ok(())
     }
 
-    pub fn state(&self) -> Option<FilterState> {
+    fn state(&self) -> Option<FilterState> {
         self.xp.map(|(x, p)| FilterState {
             angles: YawPitchRoll::new(x[0], x[1], x[2]),
             rates_rad_s: Some(Vector3::new(x[3], x[4], x[5])),

@@ -5,74 +5,55 @@
 //! this an extended KF. `R = Q_BB_NED`. The covariance update uses the Joseph form.
 
 use super::filter::{
-    AttitudeConfig, AttitudeFilter, AttitudeMethod, FilterCore, FilterInit, FilterState,
-    UpdateInfo, angles_of,
+    AttitudeConfig, AttitudeMethod, KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of,
 };
 use super::jacobian::design_matrix;
 use super::{AttitudeError, BodyGeometry, NedBaselines};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};
 
 /// The attitude EKF.
-#[derive(Debug, Clone)]
-pub struct EkfAttitude {
-    core: FilterCore,
-}
+pub type EkfAttitude = KalmanAttitude<Linearised>;
 
-impl EkfAttitude {
-    /// A filter for `geometry`; without `init` it starts from the first epoch's LS.
-    pub fn new(
-        config: &AttitudeConfig,
-        geometry: BodyGeometry,
-        init: Option<FilterInit>,
-    ) -> Result<Self, AttitudeError> {
-        Ok(Self {
-            core: FilterCore::new(config, geometry, init)?,
-        })
-    }
-}
+/// The EKF's update: linearised at the prediction, Joseph-form covariance.
+#[derive(Debug, Clone, Copy)]
+pub struct Linearised;
 
-impl AttitudeFilter for EkfAttitude {
-    fn method(&self) -> AttitudeMethod {
-        AttitudeMethod::Kf
-    }
+impl MeasurementUpdate for Linearised {
+    const METHOD: AttitudeMethod = AttitudeMethod::Kf;
 
-    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
-        self.core.predict(dt_s)
-    }
-
-    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
-        self.core.geometry.check_count(measured)?;
-        let Some((x, p)) = self.core.xp else {
-            return self.core.start_from_ls(measured);
-        };
+    fn update(
+        _config: &AttitudeConfig,
+        geometry: &BodyGeometry,
+        x: &Vector6<f64>,
+        p: &Matrix6<f64>,
+        measured: &NedBaselines,
+    ) -> Result<(Vector6<f64>, Matrix6<f64>, UpdateInfo), AttitudeError> {
         let n = 3 * measured.len();
-        let angles = angles_of(&x);
+        let angles = angles_of(x);
         let mut h = DMatrix::<f64>::zeros(n, 6);
         h.view_mut((0, 0), (n, 3))
-            .copy_from(&design_matrix(&self.core.geometry, &angles));
+            .copy_from(&design_matrix(geometry, &angles));
         let pd = DMatrix::from_column_slice(6, 6, p.as_slice());
         let r = measured.covariance();
         let s = &h * &pd * h.transpose() + r;
         let s_chol = s.clone().cholesky().ok_or_else(|| {
             AttitudeError::Singular("KF innovation covariance is not positive definite".into())
         })?;
-        let v: DVector<f64> = measured.vec() - self.core.geometry.predict(&angles);
+        let v: DVector<f64> = measured.vec() - geometry.predict(&angles);
         // K = P H^T S^-1.
         let k = s_chol.solve(&(&h * &pd)).transpose();
         let dx = &k * &v;
         let i_kh = DMatrix::<f64>::identity(6, 6) - &k * &h;
         let p_new = &i_kh * &pd * i_kh.transpose() + &k * r * k.transpose();
         let x_new = x + Vector6::from_iterator(dx.iter().copied());
-        self.core
-            .set(x_new, Matrix6::from_iterator(p_new.iter().copied()))?;
-        Ok(UpdateInfo {
-            chi_square: v.dot(&s_chol.solve(&v)),
-            dof: n,
-            initialised: false,
-        })
-    }
-
-    fn state(&self) -> Option<FilterState> {
-        self.core.state()
+        Ok((
+            x_new,
+            Matrix6::from_iterator(p_new.iter().copied()),
+            UpdateInfo {
+                chi_square: v.dot(&s_chol.solve(&v)),
+                dof: n,
+                initialised: false,
+            },
+        ))
     }
 }

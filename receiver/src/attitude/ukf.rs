@@ -8,65 +8,45 @@
 //! 4.3-32), for any number of baselines.
 
 use super::filter::{
-    AttitudeConfig, AttitudeFilter, AttitudeMethod, FilterCore, FilterInit, FilterState,
-    UpdateInfo, angles_of,
+    AttitudeConfig, AttitudeMethod, KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of,
 };
 use super::unscented::{transform, update};
 use super::{AttitudeError, BodyGeometry, NedBaselines};
+use nalgebra::{Matrix6, Vector6};
 
 /// The attitude UKF.
-#[derive(Debug, Clone)]
-pub struct UkfAttitude {
-    core: FilterCore,
-}
+pub type UkfAttitude = KalmanAttitude<Unscented>;
 
-impl UkfAttitude {
-    /// A filter for `geometry`; without `init` it starts from the first epoch's LS.
-    pub fn new(
+/// The UKF's update: sigma points of the prediction through the measurement.
+#[derive(Debug, Clone, Copy)]
+pub struct Unscented;
+
+impl MeasurementUpdate for Unscented {
+    const METHOD: AttitudeMethod = AttitudeMethod::Ukf;
+
+    fn update(
         config: &AttitudeConfig,
-        geometry: BodyGeometry,
-        init: Option<FilterInit>,
-    ) -> Result<Self, AttitudeError> {
-        Ok(Self {
-            core: FilterCore::new(config, geometry, init)?,
-        })
-    }
-}
-
-impl AttitudeFilter for UkfAttitude {
-    fn method(&self) -> AttitudeMethod {
-        AttitudeMethod::Ukf
-    }
-
-    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
-        self.core.predict(dt_s)
-    }
-
-    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
-        self.core.geometry.check_count(measured)?;
-        let Some((x, p)) = self.core.xp else {
-            return self.core.start_from_ls(measured);
-        };
-        let geometry = &self.core.geometry;
-        let t = transform(&x, &p, self.core.config.kappa, |xj| {
-            geometry.predict(&angles_of(xj))
-        })
-        .map_err(|e| AttitudeError::Filter(e.to_string()))?;
-        let (x_new, p_new, v, s) = update(&x, &p, &t, &measured.vec(), measured.covariance())
+        geometry: &BodyGeometry,
+        x: &Vector6<f64>,
+        p: &Matrix6<f64>,
+        measured: &NedBaselines,
+    ) -> Result<(Vector6<f64>, Matrix6<f64>, UpdateInfo), AttitudeError> {
+        let t = transform(x, p, config.kappa, |xj| geometry.predict(&angles_of(xj)))
+            .map_err(|e| AttitudeError::Filter(e.to_string()))?;
+        let (x_new, p_new, v, s) = update(x, p, &t, &measured.vec(), measured.covariance())
             .map_err(|e| AttitudeError::Filter(e.to_string()))?;
         let chi_square = s
             .cholesky()
             .map(|c| v.dot(&c.solve(&v)))
             .unwrap_or(f64::NAN);
-        self.core.set(x_new, p_new)?;
-        Ok(UpdateInfo {
-            chi_square,
-            dof: v.len(),
-            initialised: false,
-        })
-    }
-
-    fn state(&self) -> Option<FilterState> {
-        self.core.state()
+        Ok((
+            x_new,
+            p_new,
+            UpdateInfo {
+                chi_square,
+                dof: v.len(),
+                initialised: false,
+            },
+        ))
     }
 }
