@@ -215,3 +215,48 @@ impl Satellites for NearAntenna<'_> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use skyforge_orbits::ephemeris::{EphemerisStore, nominal};
+    use skyforge_orbits::time::TimeOrigin;
+
+    /// An antenna 3 km from the recording one, sampling 0.5 ms later: every satellite moved
+    /// from the recorded one lies within a micrometre of its own ephemeris evaluation
+    /// (clock within 1e-15 s); one recorded 2 ms away comes from the ephemeris itself.
+    #[test]
+    fn near_antenna_moves_recorded_satellites_to_its_transmit_times() {
+        let start =
+            hifitime::Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, hifitime::TimeScale::GPST);
+        let origin = TimeOrigin::new(start);
+        let store = EphemerisStore::new(nominal::gps(start), &origin);
+        let (t_a, t_b) = (600.0, 600.0005);
+        let mut recorded = Recorded::new();
+        let mut checked = 0;
+        for prn in 1..=32 {
+            let Some(eph) = store.select(SatId::gps(prn), t_a) else {
+                continue;
+            };
+            // Pseudoranges of two antennas 3 km apart along the line of sight.
+            let pr_a = 2.2e7 + f64::from(prn) * 1.0e5;
+            let pr_b = pr_a - 3.0e3;
+            recorded.transmitted(eph, t_a, pr_a);
+            let moved = NearAntenna(&recorded).transmitted(eph, t_b, pr_b);
+            let own = Transmitted::of(eph, t_b, pr_b);
+            assert!((moved.r_ecef_m - own.r_ecef_m).norm() < 1e-6, "G{prn:02}");
+            assert!(
+                (moved.v_ecef_mps - own.v_ecef_mps).norm() < 1e-2,
+                "G{prn:02}"
+            );
+            assert!((moved.clock_s - own.clock_s).abs() < 1e-15, "G{prn:02}");
+            let far = NearAntenna(&recorded).transmitted(eph, t_a + 2e-3, pr_a);
+            assert_eq!(
+                far.r_ecef_m,
+                Transmitted::of(eph, t_a + 2e-3, pr_a).r_ecef_m
+            );
+            checked += 1;
+        }
+        assert!(checked >= 24, "{checked} satellites");
+    }
+}
