@@ -70,8 +70,9 @@ pub fn pll_sigma_m(loops: &Loops, cn0_dbhz: f64, carrier_hz: f64) -> f64 {
         / carrier_hz
 }
 
-/// GNSS-SDR's RINEX observation file in `dir` (`GSDR*.yyO`).
-fn gnss_sdr_obs_file(dir: &Path) -> PathBuf {
+/// GNSS-SDR's RINEX observation file in `dir` (`GSDR*.yyO`), if it wrote one (it does
+/// from its first fix on).
+pub fn find_gnss_sdr_obs_file(dir: &Path) -> Option<PathBuf> {
     std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().path())
@@ -79,12 +80,16 @@ fn gnss_sdr_obs_file(dir: &Path) -> PathBuf {
             let name = p.file_name().unwrap().to_string_lossy().into_owned();
             name.starts_with("GSDR") && name.ends_with('O')
         })
-        .unwrap_or_else(|| {
-            panic!(
-                "no GNSS-SDR RINEX observation file (GSDR*O) in {}",
-                dir.display()
-            )
-        })
+}
+
+/// [`find_gnss_sdr_obs_file`], which must have found one.
+fn gnss_sdr_obs_file(dir: &Path) -> PathBuf {
+    find_gnss_sdr_obs_file(dir).unwrap_or_else(|| {
+        panic!(
+            "no GNSS-SDR RINEX observation file (GSDR*O) in {}",
+            dir.display()
+        )
+    })
 }
 
 /// Compare GNSS-SDR's observations in `out` (antenna 1, `band`) with the truth, print the
