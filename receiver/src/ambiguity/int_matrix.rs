@@ -90,6 +90,23 @@ impl IntMatrix {
 
     /// `self v`, overflow-checked.
     pub(crate) fn mul_vec(&self, v: &[i64]) -> Result<Vec<i64>, AmbiguityError> {
+        // Every partial sum is at most sum_c |v_c| bound_c: below 2^52 the f64 column
+        // sums are exact (and vectorise); otherwise checked integer arithmetic.
+        let reach: f64 = v
+            .iter()
+            .zip(&self.bound)
+            .map(|(&x, b)| (x as f64).abs() * b)
+            .sum();
+        if reach < LIMIT {
+            let mut out = vec![0.0; self.n];
+            for (column, &x) in self.data.chunks_exact(self.n).zip(v) {
+                let x = x as f64;
+                for (o, c) in out.iter_mut().zip(column) {
+                    *o += c * x;
+                }
+            }
+            return Ok(out.into_iter().map(|x| x as i64).collect());
+        }
         (0..self.n)
             .map(|r| {
                 (0..self.n).try_fold(0i64, |acc, c| {
@@ -104,5 +121,51 @@ impl IntMatrix {
 
     pub(crate) fn to_dmatrix(&self) -> DMatrix<f64> {
         DMatrix::from_column_slice(self.n, self.n, &self.data)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `m v` in i128, the oracle.
+    fn naive(m: &IntMatrix, v: &[i64]) -> Vec<i128> {
+        (0..m.n)
+            .map(|r| {
+                (0..m.n)
+                    .map(|c| i128::from(m.get(r, c)) * i128::from(v[c]))
+                    .sum()
+            })
+            .collect()
+    }
+
+    /// A 3 x 3 matrix grown by column updates (entries up to about `mu^2`).
+    fn grown(mu: f64) -> IntMatrix {
+        let mut m = IntMatrix::permutation(&[2, 0, 1]);
+        m.sub_col(0, 1, mu).unwrap();
+        m.sub_col(1, 2, -mu).unwrap();
+        m.sub_col(2, 0, 3.0).unwrap();
+        m.sub_col(0, 2, mu).unwrap();
+        m
+    }
+
+    #[test]
+    fn products_match_integer_arithmetic_on_both_paths() {
+        // Small: the f64 path; a large vector: the checked path, still exact; beyond
+        // i64: an overflow error.
+        let m = grown(1000.0);
+        for v in [[3, -7, 11], [1 << 40, -(1 << 41), 5], [i64::MAX / 2, 0, 1]] {
+            let exact = naive(&m, &v);
+            match m.mul_vec(&v) {
+                Ok(got) => {
+                    let got: Vec<i128> = got.into_iter().map(i128::from).collect();
+                    assert_eq!(got, exact, "{v:?}");
+                }
+                Err(e) => {
+                    assert_eq!(e, AmbiguityError::Overflow);
+                    assert!(exact.iter().any(|x| i64::try_from(*x).is_err()), "{v:?}");
+                }
+            }
+        }
     }
 }

@@ -123,33 +123,58 @@ pub fn lambda(
     q: &DMatrix<f64>,
     count: usize,
 ) -> Result<IntegerSolution, AmbiguityError> {
-    if count == 0 {
-        return Err(AmbiguityError::ZeroCount);
-    }
-    if count > MAX_CANDIDATES {
-        return Err(AmbiguityError::TooManyCandidates(count));
-    }
-    let problem = Decorrelated::new(a_hat, q)?;
-    let found = search::search(
-        &problem.reduced.l,
-        &problem.reduced.d,
-        problem.reduced.z_hat.as_slice(),
-        count,
-    )?;
-    let candidates = found
+    let nearest = Nearest::new(a_hat, q)?;
+    let candidates = nearest
+        .list(count)?
         .into_iter()
         .map(|(z, squared_norm)| {
             Ok(Candidate {
-                integers: problem.to_ambiguities(&z)?,
+                integers: nearest.integers(&z)?,
                 squared_norm,
             })
         })
         .collect::<Result<Vec<_>, AmbiguityError>>()?;
+    let reduced = &nearest.problem.reduced;
     Ok(IntegerSolution {
         candidates,
-        z: problem.reduced.z.to_dmatrix(),
-        success_rate: bootstrap::success_rate_of(&problem.reduced.d),
+        z: reduced.z.to_dmatrix(),
+        success_rate: bootstrap::success_rate_of(&reduced.d),
     })
+}
+
+/// One problem decorrelated once, its nearest integer vectors listed on demand and
+/// back-transformed one at a time (a caller that stops early skips the rest).
+#[derive(Debug)]
+pub struct Nearest {
+    problem: Decorrelated,
+}
+
+impl Nearest {
+    /// The problem `a_hat`, `q` (checked and decorrelated).
+    pub fn new(a_hat: &DVector<f64>, q: &DMatrix<f64>) -> Result<Self, AmbiguityError> {
+        Ok(Self {
+            problem: Decorrelated::new(a_hat, q)?,
+        })
+    }
+
+    /// The `count` nearest integer vectors, best first, as decorrelated integers `z`
+    /// (whole `f64`s; [`Nearest::integers`] gives the ambiguities) with their squared
+    /// norms.
+    pub fn list(&self, count: usize) -> Result<Vec<(Vec<f64>, f64)>, AmbiguityError> {
+        if count == 0 {
+            return Err(AmbiguityError::ZeroCount);
+        }
+        if count > MAX_CANDIDATES {
+            return Err(AmbiguityError::TooManyCandidates(count));
+        }
+        let reduced = &self.problem.reduced;
+        search::search(&reduced.l, &reduced.d, reduced.z_hat.as_slice(), count)
+    }
+
+    /// The ambiguities of a listed `z`.
+    pub fn integers(&self, z: &[f64]) -> Result<Vec<i64>, AmbiguityError> {
+        self.problem.to_ambiguities(z)
+    }
 }
 
 /// `x` rounded to the nearest whole number (ties to even below 2^51) without a libm call:

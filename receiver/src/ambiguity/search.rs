@@ -9,6 +9,9 @@
 
 use super::{AmbiguityError, MAX_SEARCH_NODES, round_fast};
 use nalgebra::DMatrix;
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+use std::ops::ControlFlow;
 
 /// Sign of the next step from `round(zc)` towards the second-nearest integer.
 fn first_step(y: f64) -> f64 {
@@ -23,6 +26,25 @@ pub(crate) fn search(
     z_hat: &[f64],
     count: usize,
 ) -> Result<Vec<(Vec<f64>, f64)>, AmbiguityError> {
+    let mut found = Found::with_capacity(count);
+    enumerate(l, d, z_hat, |z, dist| {
+        ControlFlow::Continue(found.offer(z, dist))
+    })?;
+    found.into_sorted()
+}
+
+/// Visit the integer vectors `z` (whole `f64`s) with squared norm below the bound, in the
+/// search's order, with their squared norms; the bound starts infinite and becomes what
+/// `visit` returns (`Break` ends the search).
+pub(crate) fn enumerate<V>(
+    l: &DMatrix<f64>,
+    d: &[f64],
+    z_hat: &[f64],
+    mut visit: V,
+) -> Result<(), AmbiguityError>
+where
+    V: FnMut(&[f64], f64) -> ControlFlow<(), f64>,
+{
     let n = d.len();
     let lv = l.as_slice();
     let mut zc = vec![0.0; n];
@@ -30,7 +52,6 @@ pub(crate) fn search(
     let mut step = vec![0.0; n];
     // above[k]: the squared norm of levels k+1..n (fixed while level k varies).
     let mut above = vec![0.0; n];
-    let mut found: Vec<(Vec<f64>, f64)> = Vec::with_capacity(count);
     let mut chi2 = f64::INFINITY;
     let mut nodes = 0u64;
 
@@ -61,16 +82,9 @@ pub(crate) fn search(
                 y = zc[k] - z[k];
                 step[k] = first_step(y);
             } else {
-                if found.len() < count {
-                    found.push((z.clone(), dist));
-                    if found.len() == count {
-                        chi2 = worst(&found).1;
-                    }
-                } else {
-                    let (w, _) = worst(&found);
-                    found[w].0.copy_from_slice(&z);
-                    found[w].1 = dist;
-                    chi2 = worst(&found).1;
+                match visit(&z, dist) {
+                    ControlFlow::Continue(bound) => chi2 = bound,
+                    ControlFlow::Break(()) => break,
                 }
                 z[0] += step[0];
                 y = zc[0] - z[0];
@@ -86,19 +100,76 @@ pub(crate) fn search(
             step[k] = -step[k] - first_step(step[k]);
         }
     }
-    if found.len() < count {
-        return Err(AmbiguityError::Degenerate);
-    }
-    found.sort_by(|a, b| a.1.total_cmp(&b.1));
-    Ok(found)
+    Ok(())
 }
 
-/// Index and squared norm of the worst stored candidate.
-fn worst(found: &[(Vec<f64>, f64)]) -> (usize, f64) {
-    found
-        .iter()
-        .enumerate()
-        .fold((0, f64::NEG_INFINITY), |acc, (i, c)| {
-            if c.1 > acc.1 { (i, c.1) } else { acc }
-        })
+/// A squared norm and the slot of its candidate, ordered by the norm (a max-heap entry).
+#[derive(Debug, Clone, Copy)]
+struct Ranked(f64, usize);
+
+impl PartialEq for Ranked {
+    fn eq(&self, other: &Self) -> bool {
+        self.cmp(other) == Ordering::Equal
+    }
+}
+
+impl Eq for Ranked {}
+
+impl PartialOrd for Ranked {
+    fn partial_cmp(&self, other: &Self) -> Option<Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Ranked {
+    fn cmp(&self, other: &Self) -> Ordering {
+        self.0.total_cmp(&other.0)
+    }
+}
+
+/// The best `count` candidates found so far, the worst on top of a heap (a candidate
+/// replaces it in `O(log count)`; a linear scan made a search for a thousand candidates
+/// quadratic).
+struct Found {
+    count: usize,
+    candidates: Vec<(Vec<f64>, f64)>,
+    worst: BinaryHeap<Ranked>,
+}
+
+impl Found {
+    fn with_capacity(count: usize) -> Self {
+        Self {
+            count,
+            candidates: Vec::with_capacity(count),
+            worst: BinaryHeap::with_capacity(count),
+        }
+    }
+
+    /// Keep `z` (squared norm `dist`, below the current bound); returns the new bound:
+    /// the worst kept squared norm once `count` are kept, infinite before.
+    fn offer(&mut self, z: &[f64], dist: f64) -> f64 {
+        if self.candidates.len() < self.count {
+            self.worst.push(Ranked(dist, self.candidates.len()));
+            self.candidates.push((z.to_vec(), dist));
+        } else if let Some(Ranked(_, slot)) = self.worst.pop() {
+            self.candidates[slot].0.copy_from_slice(z);
+            self.candidates[slot].1 = dist;
+            self.worst.push(Ranked(dist, slot));
+        }
+        if self.candidates.len() < self.count {
+            f64::INFINITY
+        } else {
+            self.worst.peek().map_or(f64::INFINITY, |r| r.0)
+        }
+    }
+
+    /// The kept candidates, best first; an error when fewer than `count` were found.
+    fn into_sorted(self) -> Result<Vec<(Vec<f64>, f64)>, AmbiguityError> {
+        if self.candidates.len() < self.count {
+            return Err(AmbiguityError::Degenerate);
+        }
+        let mut found = self.candidates;
+        found.sort_by(|a, b| a.1.total_cmp(&b.1));
+        Ok(found)
+    }
 }

@@ -295,12 +295,19 @@ pub fn search(
     let lengths: Vec<f64> = geometry.baselines().iter().map(|b| b.norm()).collect();
     // Q_b(z) is the same for every candidate: its spheres are built on the first call.
     let mut spheres: Option<Option<LengthMisfit>> = None;
-    search_with_misfit(float, cond, held, accept_ratio, |b, covariance| {
-        spheres
-            .get_or_insert_with(|| LengthMisfit::new(covariance, &lengths))
-            .as_ref()?
-            .misfit(b)
-    })
+    search_with_misfit(
+        float,
+        cond,
+        held,
+        geometry,
+        accept_ratio,
+        |b, covariance| {
+            spheres
+                .get_or_insert_with(|| LengthMisfit::new(covariance, &lengths))
+                .as_ref()?
+                .misfit(b)
+        },
+    )
 }
 
 #[cfg(test)]

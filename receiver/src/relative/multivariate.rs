@@ -7,14 +7,16 @@
 //!
 //! with `b(z)` the baselines given `z` (eq. 2.4-64) and `B_0` the known body geometry.
 //! Solved by search and shrink (exactly, up to the rotation fit of a candidate whose
-//! Gauss-Newton iteration does not converge, scored by an upper bound of its misfit): candidates are taken in increasing
-//! `||a_hat - z||^2` (LAMBDA's enumeration), each scored with its rotation fit, until the
-//! next candidate's ambiguity term alone exceeds the second-best score so far, so that no
-//! unseen candidate can beat the best two. The loop, [`search_with_misfit`], takes the
-//! misfit as a parameter and is shared with the baseline-length constraint of
-//! [`super::length`].
+//! Gauss-Newton iteration does not converge, scored by an upper bound of its misfit):
+//! candidates are taken in increasing `||a_hat - z||^2` (LAMBDA's enumeration), each
+//! scored with its rotation fit, until the next candidate's ambiguity term alone exceeds
+//! the second-best score so far, so that no unseen candidate can beat the best two. A
+//! candidate whose ambiguity term plus a cheap lower bound of its misfit
+//! ([`MisfitFloor`]) reaches that score cannot change the best two and is not fitted. The
+//! loop, [`search_with_misfit`], takes the misfit as a parameter and is shared with the
+//! baseline-length constraint of [`super::length`].
 
-use crate::ambiguity::{MAX_CANDIDATES, lambda};
+use crate::ambiguity::{MAX_CANDIDATES, Nearest};
 use crate::attitude::frames::ned_baselines_from_ecef;
 use crate::attitude::least_squares::misfit_upper_bound;
 use crate::attitude::{AttitudeError, BodyGeometry};
@@ -32,7 +34,7 @@ pub struct ConstrainedFix {
     /// The second-best score, or a lower bound of it when candidates beyond the list
     /// could score lower (the list's last ambiguity term).
     pub second_cost: f64,
-    /// Candidates scored.
+    /// Candidates fitted (those the misfit floor could not rule out).
     pub scored: usize,
     /// The best is proven: no candidate beyond the list can score lower.
     pub exhaustive: bool,
@@ -90,15 +92,113 @@ pub fn search(
     master_ecef_m: &Vec3,
     accept_ratio: f64,
 ) -> Result<ConstrainedFix, ConstrainedError> {
-    search_with_misfit(float, cond, held, accept_ratio, |b, covariance| {
-        rotation_misfit(b, covariance, geometry, master_ecef_m)
-    })
+    search_with_misfit(
+        float,
+        cond,
+        held,
+        geometry,
+        accept_ratio,
+        |b, covariance| rotation_misfit(b, covariance, geometry, master_ecef_m),
+    )
 }
+
+/// A lower bound of both constraints' misfits, cheap enough to try before a fit:
+/// `sum_k (||b_k|| - l_k)^2 / lambda_max(Q_b)`. A misfit is `r^T Q^-1 r >= ||r||^2 /
+/// lambda_max` with `r` the baselines' residual to a point `(b'_k)` with `||b'_k|| = l_k`
+/// (the rotated body geometry, or each baseline's sphere; for a sphere's 3 x 3 block of
+/// `Q_b` its largest eigenvalue is at most `Q_b`'s), and `||b_k - b'_k|| >= | ||b_k|| -
+/// l_k |` by the triangle inequality. A candidate whose ambiguity term plus this bound
+/// reaches the second-best score cannot change the best two, and is not fitted.
+struct MisfitFloor {
+    lengths_m: Vec<f64>,
+    /// `1 / lambda_max(Q_b)`, slightly lowered against rounding; 0 (no bound) when the
+    /// eigenvalue is not positive and finite.
+    inverse_largest_variance: f64,
+}
+
+impl MisfitFloor {
+    fn new(geometry: &BodyGeometry, covariance: &DMatrix<f64>) -> Self {
+        let largest = covariance
+            .clone()
+            .symmetric_eigenvalues()
+            .iter()
+            .copied()
+            .fold(f64::NEG_INFINITY, f64::max);
+        let inverse_largest_variance = if largest.is_finite() && largest > 0.0 {
+            (1.0 - 1e-9) / largest
+        } else {
+            0.0
+        };
+        Self {
+            lengths_m: geometry.baselines().iter().map(|b| b.norm()).collect(),
+            inverse_largest_variance,
+        }
+    }
+
+    /// The bound for the baselines `b` (vec, one 3-vector per baseline).
+    fn of(&self, b: &DVector<f64>) -> f64 {
+        let squared: f64 = b
+            .as_slice()
+            .chunks_exact(3)
+            .zip(&self.lengths_m)
+            .map(|(c, l)| (Vec3::new(c[0], c[1], c[2]).norm() - l).powi(2))
+            .sum();
+        squared * self.inverse_largest_variance
+    }
+}
+
+/// The baselines `b(z) = b_hat - G (a_hat - a(z))` of the candidates (eq. 2.4-64) as
+/// `c + G_free z`, with the held ambiguities' part in `c`: one product per candidate, no
+/// allocation.
+struct CandidateBaselines {
+    constant: Vec<f64>,
+    /// `G`'s columns of the free ambiguities.
+    free_gain: DMatrix<f64>,
+}
+
+impl CandidateBaselines {
+    fn new(
+        float: &FloatBaselines,
+        gain: &DMatrix<f64>,
+        cond: &Conditioned,
+        held: &[(usize, i64)],
+    ) -> Self {
+        // a(z) with the free ambiguities at zero; any other keeps its float value.
+        let mut a = float.ambiguity_vector();
+        for &(i, v) in held {
+            a[i] = v as f64;
+        }
+        for &i in &cond.free {
+            a[i] = 0.0;
+        }
+        let constant = float.baseline_vector() - gain * (float.ambiguity_vector() - a);
+        Self {
+            constant: constant.as_slice().to_vec(),
+            free_gain: gain.select_columns(&cond.free),
+        }
+    }
+
+    /// `b(z)` into `out` for the free ambiguities' `integers`.
+    fn write(&self, integers: &[i64], out: &mut [f64]) {
+        out.copy_from_slice(&self.constant);
+        for (column, &v) in self.free_gain.column_iter().zip(integers) {
+            let v = v as f64;
+            for (o, g) in out.iter_mut().zip(column.iter()) {
+                *o += g * v;
+            }
+        }
+    }
+}
+
+/// Candidates listed first; the longest list ([`MAX_CANDIDATES`]) follows when these do
+/// not settle the search.
+const SHORT_LIST: usize = 64;
 
 /// The search and shrink shared by the constraints ([`search`] here, the baseline lengths
 /// of [`super::length::search`]): the best and second-best of
 /// `C(z) = ||a_hat - z||^2_{Q_a} + misfit(b(z), Q_b)` over the free ambiguities `cond` of
-/// `float` (the held ones, `held`, kept at their values). `misfit(b, q_b)` scores the
+/// `float` (the held ones, `held`, kept at their values), for the body `geometry`.
+/// `misfit(b, q_b)` scores the
 /// baselines `b(z)` of one candidate (vec, ECEF, eq. 2.4-64) given their covariance `q_b`
 /// (eq. 2.4-65, the same for every candidate); it must be non-negative, and `None`
 /// (nothing fits) skips the candidate.
@@ -111,6 +211,7 @@ pub fn search_with_misfit<F>(
     float: &FloatBaselines,
     cond: &Conditioned,
     held: &[(usize, i64)],
+    geometry: &BodyGeometry,
     accept_ratio: f64,
     mut misfit: F,
 ) -> Result<ConstrainedFix, ConstrainedError>
@@ -118,47 +219,45 @@ where
     F: FnMut(&DVector<f64>, &DMatrix<f64>) -> Option<f64>,
 {
     let (gain, covariance) = float.fix_gain()?;
-    let a_hat = float.ambiguity_vector();
-    let b_hat = float.baseline_vector();
-    let mut full = a_hat.clone();
-    for &(i, v) in held {
-        full[i] = v as f64;
-    }
-    let mut count = 64.min(MAX_CANDIDATES);
+    let floor = MisfitFloor::new(geometry, &covariance);
+    let baselines = CandidateBaselines::new(float, &gain, cond, held);
+    let mut b = DVector::zeros(gain.nrows());
+    let nearest = Nearest::new(&cond.ambiguities, &cond.covariance)?;
+    let mut count = SHORT_LIST.min(MAX_CANDIDATES);
     loop {
-        let list = lambda(&cond.ambiguities, &cond.covariance, count)?;
+        let list = nearest.list(count)?;
         let mut best: Option<(f64, Vec<i64>)> = None;
         let mut second = f64::INFINITY;
         let mut scored = 0;
         // Every candidate not listed has an ambiguity term, and so a score, of at least
         // the last listed one's (infinite when the list holds every candidate).
-        let unseen = if list.candidates.len() < count {
+        let unseen = if list.len() < count {
             f64::INFINITY
         } else {
-            list.candidates
-                .last()
-                .map_or(f64::INFINITY, |c| c.squared_norm)
+            list.last().map_or(f64::INFINITY, |c| c.1)
         };
-        for c in &list.candidates {
-            if c.squared_norm > second {
+        for (z, squared_norm) in &list {
+            if *squared_norm > second {
                 break;
             }
-            for (&i, &v) in cond.free.iter().zip(&c.integers) {
-                full[i] = v as f64;
+            let integers = nearest.integers(z)?;
+            baselines.write(&integers, b.as_mut_slice());
+            // A candidate that cannot change the best two is not fitted.
+            if squared_norm + floor.of(&b) >= second {
+                continue;
             }
-            let b = &b_hat - &gain * (&a_hat - &full);
             scored += 1;
             let Some(fit) = misfit(&b, &covariance) else {
                 continue;
             };
-            let cost = c.squared_norm + fit;
+            let cost = squared_norm + fit;
             match &best {
                 Some((b_cost, _)) if cost >= *b_cost => second = second.min(cost),
                 _ => {
                     if let Some((b_cost, _)) = best.take() {
                         second = second.min(b_cost);
                     }
-                    best = Some((cost, c.integers.clone()));
+                    best = Some((cost, integers));
                 }
             }
         }
@@ -173,7 +272,10 @@ where
         let decided = cost <= unseen && second_bound >= accept_ratio * cost;
         let could_pass_with_more = second_bound < second && count < MAX_CANDIDATES;
         if !proven && !decided && could_pass_with_more {
-            count = (count * 4).min(MAX_CANDIDATES);
+            // Most epochs are settled by the short list; the others go to the longest at
+            // once (listing is most of the work, and an intermediate list was usually
+            // followed by the longest: 2.08 -> 1.58 ms per epoch, BENCHMARKS.md).
+            count = MAX_CANDIDATES;
             continue;
         }
         return Ok(ConstrainedFix {
