@@ -7,6 +7,7 @@
 //! `[vec(N); vec(B)]` (in the per-baseline order) is `Q_M (x) P`.
 
 use super::BaselineError;
+use super::memory::AmbiguityPrior;
 use super::model::DdModel;
 use nalgebra::{DMatrix, DVector, Matrix3xX};
 use skyforge_signals::observation::ObsRecord;
@@ -50,6 +51,19 @@ pub struct Conditioned {
     pub held_statistic: f64,
 }
 
+/// `prior` fits `n` ambiguities of `m` baselines.
+fn check_prior(prior: &AmbiguityPrior, n: usize, m: usize) -> Result<(), BaselineError> {
+    let (rows, cols) = prior.information.shape();
+    if (rows, cols) != (n, n) || prior.mean.shape() != (n, m) {
+        return Err(BaselineError::Dimension {
+            what: "ambiguity prior rows",
+            expected: n,
+            found: rows,
+        });
+    }
+    Ok(())
+}
+
 /// Vectorised order: baseline 1's entries, then baseline 2's (vec of a column-major matrix).
 fn vec_of(m: &DMatrix<f64>) -> DVector<f64> {
     DVector::from_column_slice(m.as_slice())
@@ -57,8 +71,13 @@ fn vec_of(m: &DMatrix<f64>) -> DVector<f64> {
 
 impl FloatBaselines {
     /// Least-squares float solution (eq. 2.4-62) of the baselines from `antennas[0]` to
-    /// each other antenna, with the cofactor of eq. 2.4-63.
-    pub fn solve(model: DdModel, antennas: &[&[ObsRecord]]) -> Result<Self, BaselineError> {
+    /// each other antenna, with the cofactor of eq. 2.4-63; with `prior`, earlier epochs'
+    /// information on the ambiguities ([`super::memory`]) joins the normal equations.
+    pub fn solve(
+        model: DdModel,
+        antennas: &[&[ObsRecord]],
+        prior: Option<&AmbiguityPrior>,
+    ) -> Result<Self, BaselineError> {
         let m = model.baseline_count();
         if antennas.len() != m + 1 {
             return Err(BaselineError::Dimension {
@@ -69,7 +88,12 @@ impl FloatBaselines {
         }
         let n = model.ambiguity_count();
         let xtw = model.design.transpose() * &model.weight;
-        let normal = &xtw * &model.design;
+        let mut normal = &xtw * &model.design;
+        if let Some(p) = prior {
+            check_prior(p, n, m)?;
+            let mut block = normal.view_mut((0, 0), (n, n));
+            block += &p.information;
+        }
         let cofactor = normal.cholesky().ok_or(BaselineError::Singular)?.inverse();
         let mut ambiguities = DMatrix::zeros(n, m);
         let mut baselines = Matrix3xX::zeros(m);
@@ -81,7 +105,16 @@ impl FloatBaselines {
                     what: "a double-differenced observation",
                 });
             }
-            let x = &cofactor * (&xtw * &y);
+            // With a prior, the correction to its mean (whose own term is then zero).
+            let x = match prior {
+                Some(p) => {
+                    let mut start = DVector::zeros(n + 3);
+                    start.rows_mut(0, n).copy_from(&p.mean.column(k));
+                    let residual = &y - &model.design * &start;
+                    start + &cofactor * (&xtw * residual)
+                }
+                None => &cofactor * (&xtw * &y),
+            };
             ambiguities.set_column(k, &x.rows(0, n));
             baselines.set_column(k, &x.rows(n, 3));
             observations.set_column(k, &y);

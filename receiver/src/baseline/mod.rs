@@ -17,12 +17,14 @@
 pub mod differences;
 pub mod float;
 pub mod hold;
+pub mod memory;
 pub mod model;
 pub mod noise;
 
 pub use differences::{DdBlock, DdLayout, LineOfSight};
 pub use float::{Conditioned, FixedBaselines, FloatBaselines};
 pub use hold::AmbiguityHold;
+pub use memory::{AmbiguityPrior, FloatMemory};
 pub use model::DdModel;
 pub use noise::{ElevationNoise, NoiseModel};
 

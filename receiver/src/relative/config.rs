@@ -32,6 +32,12 @@ pub struct RelativeConfig {
     /// baseline only (C-LAMBDA per baseline, any number of baselines); `none`: plain
     /// LAMBDA with the ratio test and the success-rate floor.
     pub constraint: Constraint,
+    /// Carry the float ambiguities from epoch to epoch (constant ambiguities, the
+    /// baselines new at every epoch: a kinematic filter's memory,
+    /// [`crate::baseline::memory`]); a satellite's are forgotten when it loses lock.
+    /// Default off: the thesis's chain solves every epoch on its own and holds only
+    /// fixed integers.
+    pub float_memory: bool,
     /// Held integers are dropped when their fit to the epoch's float solution exceeds
     /// the chi-square quantile of this false-alarm probability.
     pub hold_test_pfa: f64,
@@ -87,6 +93,7 @@ impl Default for RelativeConfig {
             min_success_rate: 0.999,
             hold: true,
             constraint: Constraint::Geometry,
+            float_memory: false,
             hold_test_pfa: 1e-4,
             elevation_mask_deg: None,
             attitude: AttitudeConfig::default(),

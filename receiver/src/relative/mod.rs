@@ -19,7 +19,8 @@ use crate::attitude::filter::{AttitudeFilter, FilterState, build};
 use crate::attitude::frames::ned_baselines_from_ecef;
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines};
 use crate::baseline::{
-    AmbiguityHold, BaselineError, DdLayout, DdModel, FixedBaselines, FloatBaselines, LineOfSight,
+    AmbiguityHold, BaselineError, DdLayout, DdModel, FixedBaselines, FloatBaselines, FloatMemory,
+    LineOfSight,
 };
 use skyforge_orbits::Vec3;
 use skyforge_signals::observation::ObsRecord;
@@ -59,6 +60,8 @@ pub struct RelativeSolver {
     config: RelativeConfig,
     antennas: usize,
     hold: AmbiguityHold,
+    /// The float ambiguities of earlier epochs (used with `config.float_memory`).
+    memory: FloatMemory,
     attitude: Box<dyn AttitudeFilter>,
     /// The reverse baseline filter, when configured.
     reverse: Option<ReverseFilter>,
@@ -97,6 +100,7 @@ impl RelativeSolver {
             antennas: body_positions_m.len(),
             config,
             hold: AmbiguityHold::new(),
+            memory: FloatMemory::new(),
             attitude,
             geometry,
             last_t_s: None,
@@ -124,6 +128,7 @@ impl RelativeSolver {
         for records in antennas {
             for r in records.iter().filter(|r| r.loss_of_lock()) {
                 self.hold.slip(r.sat, r.signal);
+                self.memory.slip(r.sat, r.signal);
             }
         }
         let masked: Vec<LineOfSight>;
@@ -141,7 +146,15 @@ impl RelativeSolver {
         };
         let layout = DdLayout::select(antennas, views, &self.config.signals)?;
         let model = DdModel::new(layout, antennas.len(), &self.config.noise_model())?;
-        let float = FloatBaselines::solve(model, antennas)?;
+        let prior = if self.config.float_memory {
+            self.memory.prior(&model.layout, model.baseline_count())?
+        } else {
+            None
+        };
+        let float = FloatBaselines::solve(model, antennas, prior.as_ref())?;
+        if self.config.float_memory {
+            self.memory.remember(&float);
+        }
         let constraint = Some((&self.geometry, master_ecef_m));
         let resolution = resolve::resolve(&float, &mut self.hold, &self.config, constraint)?;
         let mut fixed = resolution.fixed_baselines(&float)?;

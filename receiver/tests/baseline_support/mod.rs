@@ -139,7 +139,7 @@ pub fn solve(scene: &Scene, obs: &[Vec<ObsRecord>], noise: &NoiseModel) -> Float
     let signals = [Signal::GpsL1Ca, Signal::BdsB1I];
     let layout = DdLayout::select(&refs, &scene.views, &signals).unwrap();
     let model = DdModel::new(layout, refs.len(), noise).unwrap();
-    FloatBaselines::solve(model, &refs).unwrap()
+    FloatBaselines::solve(model, &refs, None).unwrap()
 }
 
 /// The true double-difference integers, in the layout's order, baseline by baseline
