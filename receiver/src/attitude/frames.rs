@@ -42,11 +42,17 @@ pub fn ned_baselines_from_ecef(
     q_ecef_m2: &DMatrix<f64>,
     r_ref_ecef_m: &Vec3,
 ) -> Result<NedBaselines, AttitudeError> {
+    baselines_to_frame(b_ecef_m, q_ecef_m2, &ned_frame(r_ref_ecef_m)?)
+}
+
+/// `F = c_ecef_ned` at the geodetic position of the reference antenna `r_ref_ecef_m`
+/// (ECEF, m).
+pub fn ned_frame(r_ref_ecef_m: &Vec3) -> Result<Mat3, AttitudeError> {
     if !r_ref_ecef_m.iter().all(|v| v.is_finite()) || r_ref_ecef_m.norm() < 1.0 {
         return Err(AttitudeError::Measurement(format!(
             "reference antenna position {r_ref_ecef_m:?} m has no geodetic latitude/longitude"
         )));
     }
     let g = ecef_to_geodetic(r_ref_ecef_m);
-    baselines_to_frame(b_ecef_m, q_ecef_m2, &c_ecef_ned(g.lat_rad, g.lon_rad))
+    Ok(c_ecef_ned(g.lat_rad, g.lon_rad))
 }

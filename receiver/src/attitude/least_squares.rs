@@ -75,7 +75,7 @@ fn normal_equations(
 }
 
 /// The Cholesky factor of `Q_BB` after checking the baselines fit the geometry (m >= 2).
-fn weight_factor(
+pub(crate) fn weight_factor(
     geometry: &BodyGeometry,
     measured: &NedBaselines,
 ) -> Result<nalgebra::Cholesky<f64, nalgebra::Dyn>, AttitudeError> {
@@ -105,10 +105,22 @@ pub fn misfit_upper_bound(
     max_iterations: usize,
 ) -> Result<f64, AttitudeError> {
     let q_chol = weight_factor(geometry, measured)?;
+    misfit_upper_bound_with(geometry, measured, &q_chol, max_iterations)
+}
+
+/// [`misfit_upper_bound`] with the Cholesky factor of `measured`'s covariance given (a
+/// caller scoring many baselines of one covariance forms it once).
+pub fn misfit_upper_bound_with(
+    geometry: &BodyGeometry,
+    measured: &NedBaselines,
+    q_chol: &nalgebra::Cholesky<f64, nalgebra::Dyn>,
+    max_iterations: usize,
+) -> Result<f64, AttitudeError> {
+    geometry.check_count(measured)?;
     let mut xi = wahba_attitude(geometry, measured)?;
     let mut best = f64::INFINITY;
     for iteration in 0..=max_iterations {
-        let (n, u, r) = normal_equations(geometry, measured, &q_chol, &xi);
+        let (n, u, r) = normal_equations(geometry, measured, q_chol, &xi);
         best = best.min(r.dot(&q_chol.solve(&r)));
         if iteration == max_iterations {
             break;

@@ -214,6 +214,32 @@ impl NedBaselines {
         })
     }
 
+    /// Other baselines of the same number with this covariance (already checked: only
+    /// the baselines are).
+    pub fn with_baselines(&self, baselines_ned_m: &[Vec3]) -> Result<Self, AttitudeError> {
+        if baselines_ned_m.len() != self.baselines.len() {
+            return Err(AttitudeError::Measurement(format!(
+                "{} baselines for a covariance of {}",
+                baselines_ned_m.len(),
+                self.baselines.len()
+            )));
+        }
+        if let Some(i) = baselines_ned_m
+            .iter()
+            .position(|b| !b.iter().all(|v| v.is_finite()))
+        {
+            return Err(AttitudeError::Measurement(format!(
+                "baseline {} is not finite: {:?}",
+                i + 1,
+                baselines_ned_m[i]
+            )));
+        }
+        Ok(Self {
+            baselines: baselines_ned_m.to_vec(),
+            covariance: self.covariance.clone(),
+        })
+    }
+
     /// The baselines (m).
     pub fn baselines(&self) -> &[Vec3] {
         &self.baselines

@@ -17,12 +17,12 @@
 //! baseline-length constraint of [`super::length`].
 
 use crate::ambiguity::{MAX_CANDIDATES, Nearest};
-use crate::attitude::frames::ned_baselines_from_ecef;
-use crate::attitude::least_squares::misfit_upper_bound;
-use crate::attitude::{AttitudeError, BodyGeometry};
+use crate::attitude::frames::{baselines_to_frame, ned_frame};
+use crate::attitude::least_squares::{misfit_upper_bound_with, weight_factor};
+use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines};
 use crate::baseline::{BaselineError, Conditioned, FloatBaselines};
-use nalgebra::{DMatrix, DVector};
-use skyforge_orbits::Vec3;
+use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
+use skyforge_orbits::{Mat3, Vec3};
 
 /// The best two candidates of the constrained problem.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,23 +62,50 @@ pub enum ConstrainedError {
 /// converges in a few from the Wahba start; a wrong one's may not converge at all.
 const MISFIT_ITERATIONS: usize = 10;
 
-/// Score of the baselines `b` (vec, ECEF) against the geometry: the weighted misfit of
-/// the best rotation (LS attitude in the master's NED frame; an upper bound of it where
-/// the fit does not converge within [`MISFIT_ITERATIONS`], which can only raise a
-/// candidate's score), or `None` when no rotation fits (degenerate).
-fn rotation_misfit(
-    b: &DVector<f64>,
-    covariance: &DMatrix<f64>,
-    geometry: &BodyGeometry,
-    master_ecef_m: &Vec3,
-) -> Option<f64> {
-    let baselines: Vec<Vec3> = b
-        .as_slice()
-        .chunks_exact(3)
-        .map(|c| Vec3::new(c[0], c[1], c[2]))
-        .collect();
-    let ned = ned_baselines_from_ecef(&baselines, covariance, master_ecef_m).ok()?;
-    misfit_upper_bound(geometry, &ned, MISFIT_ITERATIONS).ok()
+/// The rotation fit of one search's candidates: the master's NED frame, and the NED
+/// covariance with its Cholesky factor, the same for every candidate (formed once; they
+/// were formed per candidate, with the same numbers).
+struct RotationFit<'a> {
+    geometry: &'a BodyGeometry,
+    /// ECEF -> NED at the master.
+    frame: Mat3,
+    /// Zero baselines with the NED covariance.
+    template: NedBaselines,
+    factor: Cholesky<f64, Dyn>,
+}
+
+impl<'a> RotationFit<'a> {
+    /// `None` when the master has no geodetic frame or the covariance is unusable.
+    fn new(
+        covariance: &DMatrix<f64>,
+        geometry: &'a BodyGeometry,
+        master_ecef_m: &Vec3,
+    ) -> Option<Self> {
+        let zeros = vec![Vec3::zeros(); covariance.nrows() / 3];
+        let frame = ned_frame(master_ecef_m).ok()?;
+        let template = baselines_to_frame(&zeros, covariance, &frame).ok()?;
+        let factor = weight_factor(geometry, &template).ok()?;
+        Some(Self {
+            geometry,
+            frame,
+            template,
+            factor,
+        })
+    }
+
+    /// Score of the baselines `b` (vec, ECEF) against the geometry: the weighted misfit of
+    /// the best rotation (LS attitude in the master's NED frame; an upper bound of it where
+    /// the fit does not converge within [`MISFIT_ITERATIONS`], which can only raise a
+    /// candidate's score), or `None` when no rotation fits (degenerate).
+    fn misfit(&self, b: &DVector<f64>) -> Option<f64> {
+        let baselines: Vec<Vec3> = b
+            .as_slice()
+            .chunks_exact(3)
+            .map(|c| self.frame * Vec3::new(c[0], c[1], c[2]))
+            .collect();
+        let ned = self.template.with_baselines(&baselines).ok()?;
+        misfit_upper_bound_with(self.geometry, &ned, &self.factor, MISFIT_ITERATIONS).ok()
+    }
 }
 
 /// The constrained best and second-best integers of the free ambiguities `cond` of
@@ -92,13 +119,19 @@ pub fn search(
     master_ecef_m: &Vec3,
     accept_ratio: f64,
 ) -> Result<ConstrainedFix, ConstrainedError> {
+    // Q_b(z) is the same for every candidate: the fit's constants are formed at the first.
+    let mut fit: Option<Option<RotationFit>> = None;
     search_with_misfit(
         float,
         cond,
         held,
         geometry,
         accept_ratio,
-        |b, covariance| rotation_misfit(b, covariance, geometry, master_ecef_m),
+        |b, covariance| {
+            fit.get_or_insert_with(|| RotationFit::new(covariance, geometry, master_ecef_m))
+                .as_ref()?
+                .misfit(b)
+        },
     )
 }
 
