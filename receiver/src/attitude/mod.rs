@@ -197,16 +197,7 @@ impl NedBaselines {
         if m == 0 {
             return Err(AttitudeError::Measurement("no baselines".into()));
         }
-        if let Some(i) = baselines_ned_m
-            .iter()
-            .position(|b| !b.iter().all(|v| v.is_finite()))
-        {
-            return Err(AttitudeError::Measurement(format!(
-                "baseline {} is not finite: {:?}",
-                i + 1,
-                baselines_ned_m[i]
-            )));
-        }
+        check_finite(baselines_ned_m)?;
         check_covariance(&covariance_m2, 3 * m, "Q_BB")?;
         Ok(Self {
             baselines: baselines_ned_m.to_vec(),
@@ -224,16 +215,7 @@ impl NedBaselines {
                 self.baselines.len()
             )));
         }
-        if let Some(i) = baselines_ned_m
-            .iter()
-            .position(|b| !b.iter().all(|v| v.is_finite()))
-        {
-            return Err(AttitudeError::Measurement(format!(
-                "baseline {} is not finite: {:?}",
-                i + 1,
-                baselines_ned_m[i]
-            )));
-        }
+        check_finite(baselines_ned_m)?;
         Ok(Self {
             baselines: baselines_ned_m.to_vec(),
             covariance: self.covariance.clone(),
@@ -271,6 +253,21 @@ impl NedBaselines {
 
 /// Error unless `q` is `n` x `n`, finite, symmetric (relative [`SYMMETRY_TOLERANCE`]) and
 /// positive definite (its Cholesky factor exists).
+/// Every baseline finite; the first that is not, named.
+fn check_finite(baselines_m: &[Vec3]) -> Result<(), AttitudeError> {
+    match baselines_m
+        .iter()
+        .position(|b| !b.iter().all(|v| v.is_finite()))
+    {
+        Some(i) => Err(AttitudeError::Measurement(format!(
+            "baseline {} is not finite: {:?}",
+            i + 1,
+            baselines_m[i]
+        ))),
+        None => Ok(()),
+    }
+}
+
 pub(crate) fn check_covariance(
     q: &DMatrix<f64>,
     n: usize,

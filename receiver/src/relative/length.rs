@@ -20,7 +20,7 @@
 //! multivariate constraint ([`super::multivariate::search_with_misfit`]), which proves
 //! the best when it is exhaustive.
 
-use super::multivariate::{ConstrainedError, ConstrainedFix, search_with_misfit};
+use super::multivariate::{CandidateMisfit, ConstrainedError, ConstrainedFix, search_with_misfit};
 use crate::attitude::{AttitudeError, BodyGeometry};
 use crate::baseline::{Conditioned, FloatBaselines};
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen};
@@ -247,19 +247,6 @@ impl LengthMisfit {
         Some(Self { spheres })
     }
 
-    /// `sum_k min_{||b_k|| = l_k} ||b_hat_k - b_k||^2_{W_k}` of `b_hat` (vec, 3m); `None`
-    /// when its size is wrong or a value not finite.
-    pub fn misfit(&self, b_hat: &DVector<f64>) -> Option<f64> {
-        if b_hat.len() != 3 * self.spheres.len() {
-            return None;
-        }
-        self.spheres
-            .iter()
-            .zip(b_hat.as_slice().chunks_exact(3))
-            .map(|(s, b)| s.fit(&Vec3::new(b[0], b[1], b[2])).map(|f| f.cost))
-            .sum()
-    }
-
     /// The constrained baselines `b_k` (each `||b_k|| = l_k`) of `b_hat` (vec, 3m).
     pub fn fit(&self, b_hat: &DVector<f64>) -> Option<Vec<SphereFit>> {
         if b_hat.len() != 3 * self.spheres.len() {
@@ -270,6 +257,21 @@ impl LengthMisfit {
             .zip(b_hat.as_slice().chunks_exact(3))
             .map(|(s, b)| s.fit(&Vec3::new(b[0], b[1], b[2])))
             .collect()
+    }
+}
+
+impl CandidateMisfit for LengthMisfit {
+    /// `sum_k min_{||b_k|| = l_k} ||b_hat_k - b_k||^2_{W_k}` of `b_hat` (vec, 3m); `None`
+    /// when its size is wrong or a value not finite.
+    fn misfit(&self, b_hat: &DVector<f64>) -> Option<f64> {
+        if b_hat.len() != 3 * self.spheres.len() {
+            return None;
+        }
+        self.spheres
+            .iter()
+            .zip(b_hat.as_slice().chunks_exact(3))
+            .map(|(s, b)| s.fit(&Vec3::new(b[0], b[1], b[2])).map(|f| f.cost))
+            .sum()
     }
 }
 
@@ -293,21 +295,9 @@ pub fn search(
         .into());
     }
     let lengths: Vec<f64> = geometry.baselines().iter().map(|b| b.norm()).collect();
-    // Q_b(z) is the same for every candidate: its spheres are built on the first call.
-    let mut spheres: Option<Option<LengthMisfit>> = None;
-    search_with_misfit(
-        float,
-        cond,
-        held,
-        geometry,
-        accept_ratio,
-        |b, covariance| {
-            spheres
-                .get_or_insert_with(|| LengthMisfit::new(covariance, &lengths))
-                .as_ref()?
-                .misfit(b)
-        },
-    )
+    search_with_misfit(float, cond, held, geometry, accept_ratio, |covariance| {
+        LengthMisfit::new(covariance, &lengths)
+    })
 }
 
 #[cfg(test)]

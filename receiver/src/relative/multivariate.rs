@@ -62,6 +62,13 @@ pub enum ConstrainedError {
 /// converges in a few from the Wahba start; a wrong one's may not converge at all.
 const MISFIT_ITERATIONS: usize = 10;
 
+/// A constraint's score of one candidate's baselines `b` (vec, ECEF, eq. 2.4-64), built
+/// once per search from their covariance `Q_b` (eq. 2.4-65, the same for every
+/// candidate): non-negative, `None` when nothing fits (the candidate is skipped).
+pub trait CandidateMisfit {
+    fn misfit(&self, b: &DVector<f64>) -> Option<f64>;
+}
+
 /// The rotation fit of one search's candidates: the master's NED frame, and the NED
 /// covariance with its Cholesky factor, the same for every candidate (formed once; they
 /// were formed per candidate, with the same numbers).
@@ -92,7 +99,9 @@ impl<'a> RotationFit<'a> {
             factor,
         })
     }
+}
 
+impl CandidateMisfit for RotationFit<'_> {
     /// Score of the baselines `b` (vec, ECEF) against the geometry: the weighted misfit of
     /// the best rotation (LS attitude in the master's NED frame; an upper bound of it where
     /// the fit does not converge within [`MISFIT_ITERATIONS`], which can only raise a
@@ -119,20 +128,9 @@ pub fn search(
     master_ecef_m: &Vec3,
     accept_ratio: f64,
 ) -> Result<ConstrainedFix, ConstrainedError> {
-    // Q_b(z) is the same for every candidate: the fit's constants are formed at the first.
-    let mut fit: Option<Option<RotationFit>> = None;
-    search_with_misfit(
-        float,
-        cond,
-        held,
-        geometry,
-        accept_ratio,
-        |b, covariance| {
-            fit.get_or_insert_with(|| RotationFit::new(covariance, geometry, master_ecef_m))
-                .as_ref()?
-                .misfit(b)
-        },
-    )
+    search_with_misfit(float, cond, held, geometry, accept_ratio, |covariance| {
+        RotationFit::new(covariance, geometry, master_ecef_m)
+    })
 }
 
 /// A lower bound of both constraints' misfits, cheap enough to try before a fit:
@@ -223,6 +221,11 @@ impl CandidateBaselines {
     }
 }
 
+/// The failure of a search in which no candidate fits.
+fn nothing_fits() -> ConstrainedError {
+    AttitudeError::Singular("no candidate fits the body geometry".into()).into()
+}
+
 /// Candidates listed first; the longest list ([`MAX_CANDIDATES`]) follows when these do
 /// not settle the search.
 const SHORT_LIST: usize = 64;
@@ -231,27 +234,29 @@ const SHORT_LIST: usize = 64;
 /// of [`super::length::search`]): the best and second-best of
 /// `C(z) = ||a_hat - z||^2_{Q_a} + misfit(b(z), Q_b)` over the free ambiguities `cond` of
 /// `float` (the held ones, `held`, kept at their values), for the body `geometry`.
-/// `misfit(b, q_b)` scores the
-/// baselines `b(z)` of one candidate (vec, ECEF, eq. 2.4-64) given their covariance `q_b`
-/// (eq. 2.4-65, the same for every candidate); it must be non-negative, and `None`
-/// (nothing fits) skips the candidate.
+/// `misfit_for(q_b)` builds the constraint's score ([`CandidateMisfit`]) from the
+/// candidates' covariance; `None` (unusable) fails the search as one where nothing fits.
 ///
 /// The enumeration grows until the best two are proven, or until the best is proven and
 /// the lower bound of the second-best score already reaches `accept_ratio` times it (the
 /// ratio test's verdict is then decided: more candidates could only tighten the bound);
 /// `f64::INFINITY` always proves both.
-pub fn search_with_misfit<F>(
+pub fn search_with_misfit<F, M>(
     float: &FloatBaselines,
     cond: &Conditioned,
     held: &[(usize, i64)],
     geometry: &BodyGeometry,
     accept_ratio: f64,
-    mut misfit: F,
+    misfit_for: F,
 ) -> Result<ConstrainedFix, ConstrainedError>
 where
-    F: FnMut(&DVector<f64>, &DMatrix<f64>) -> Option<f64>,
+    F: FnOnce(&DMatrix<f64>) -> Option<M>,
+    M: CandidateMisfit,
 {
     let (gain, covariance) = float.fix_gain()?;
+    let Some(score) = misfit_for(&covariance) else {
+        return Err(nothing_fits());
+    };
     let floor = MisfitFloor::new(geometry, &covariance);
     let baselines = CandidateBaselines::new(float, &gain, cond, held);
     let mut b = DVector::zeros(gain.nrows());
@@ -280,7 +285,7 @@ where
                 continue;
             }
             scored += 1;
-            let Some(fit) = misfit(&b, &covariance) else {
+            let Some(fit) = score.misfit(&b) else {
                 continue;
             };
             let cost = squared_norm + fit;
@@ -295,9 +300,7 @@ where
             }
         }
         let Some((cost, integers)) = best else {
-            return Err(
-                AttitudeError::Singular("no candidate fits the body geometry".into()).into(),
-            );
+            return Err(nothing_fits());
         };
         // A lower bound of the true second-best score.
         let second_bound = second.min(unseen);
