@@ -157,7 +157,8 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
             EpochFlag::PowerFailure => true,
             _ => continue,
         };
-        let mut sats: BTreeMap<SatId, ObsRecord> = BTreeMap::new();
+        // One record per satellite and signal (L1 and L2 of one GPS satellite are two).
+        let mut sats: BTreeMap<(SatId, Signal), ObsRecord> = BTreeMap::new();
         for o in &observations.signals {
             let system = match o.sv.constellation {
                 Constellation::GPS => System::Gps,
@@ -179,7 +180,7 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
                 prn: o.sv.prn,
             };
             let entry = sats
-                .entry(sat)
+                .entry((sat, signal))
                 .or_insert_with(|| ObsRecord::empty(sat, signal));
             match kind {
                 Kind::Code => entry.pseudorange_m = Some(o.value),
@@ -301,6 +302,35 @@ mod tests {
             assert_eq!(c.carrier_phase_cycles, Some(187000000.25));
             assert_eq!(c.phase_lli, LLI_HALF_CYCLE);
         }
+    }
+
+    /// GPS L1 C/A and L2 P(Y) of one satellite are two records, each with its own values.
+    #[test]
+    fn gps_l1_and_l2_of_one_satellite_are_two_records() {
+        let text = header("3.04", '2', "GPS").replace(
+            "G    4 C1C L1C D1C S1C                                      ",
+            "G    4 C1C L1C C2W L2W                                      ",
+        );
+        let mut text = text;
+        text += "> 2023 03 12 00 00  1.0000000  0  1\n";
+        text += &format!(
+            "G05{}{}{}{}\n",
+            value(21035576.066, ' ', '7'),
+            value(110542679.964, ' ', '7'),
+            value(21035579.5, ' ', ' '),
+            value(86137163.25, '1', ' ')
+        );
+        let f = parse_obs_text(&text, "test").unwrap();
+        let e = &f.epochs[0];
+        assert_eq!(e.sats.len(), 2, "{:?}", e.sats);
+        let l1 = e.sats.iter().find(|r| r.signal == Signal::GpsL1Ca).unwrap();
+        let l2 = e.sats.iter().find(|r| r.signal == Signal::GpsL2).unwrap();
+        assert_eq!(l1.pseudorange_m, Some(21035576.066));
+        assert_eq!(l1.carrier_phase_cycles, Some(110542679.964));
+        assert_eq!(l1.phase_lli, 0);
+        assert_eq!(l2.pseudorange_m, Some(21035579.5));
+        assert_eq!(l2.carrier_phase_cycles, Some(86137163.25));
+        assert_eq!(l2.phase_lli, LLI_LOSS_OF_LOCK);
     }
 
     /// In RINEX 3.03+ band 1 of BeiDou is B1C, which SkyForge does not compare.
