@@ -252,6 +252,11 @@ mod tests {
         format!("{v:14.3}{lli}{ssi}")
     }
 
+    /// One satellite's observation line of four values.
+    fn line(sat: &str, values: [String; 4]) -> String {
+        format!("{sat}{}\n", values.concat())
+    }
+
     #[test]
     fn a_file_the_rinex_crate_panics_on_is_an_error() {
         // An INTERVAL of inf: the crate makes a Duration of it, which panics.
@@ -268,19 +273,23 @@ mod tests {
         for (version, band) in [("3.04", '2'), ("3.02", '1')] {
             let mut text = header(version, band, "GPS");
             text += "> 2023 03 12 00 00  1.5000000  0  2\n";
-            text += &format!(
-                "G05{}{}{}{}\n",
-                value(21035576.066, ' ', '7'),
-                value(110542679.964, '1', '7'),
-                value(-1423.232, ' ', ' '),
-                value(45.25, ' ', ' ')
+            text += &line(
+                "G05",
+                [
+                    value(21035576.066, ' ', '7'),
+                    value(110542679.964, '1', '7'),
+                    value(-1423.232, ' ', ' '),
+                    value(45.25, ' ', ' '),
+                ],
             );
-            text += &format!(
-                "C07{}{}{}{}\n",
-                value(36000000.5, ' ', ' '),
-                value(187000000.25, '2', ' '),
-                value(1195.909, ' ', ' '),
-                value(44.5, ' ', ' ')
+            text += &line(
+                "C07",
+                [
+                    value(36000000.5, ' ', ' '),
+                    value(187000000.25, '2', ' '),
+                    value(1195.909, ' ', ' '),
+                    value(44.5, ' ', ' '),
+                ],
             );
             let f = parse_obs_text(&text, "test").unwrap();
             assert_eq!(f.epochs.len(), 1, "{version}");
@@ -313,12 +322,14 @@ mod tests {
         );
         let mut text = text;
         text += "> 2023 03 12 00 00  1.0000000  0  1\n";
-        text += &format!(
-            "G05{}{}{}{}\n",
-            value(21035576.066, ' ', '7'),
-            value(110542679.964, ' ', '7'),
-            value(21035579.5, ' ', ' '),
-            value(86137163.25, '1', ' ')
+        text += &line(
+            "G05",
+            [
+                value(21035576.066, ' ', '7'),
+                value(110542679.964, ' ', '7'),
+                value(21035579.5, ' ', ' '),
+                value(86137163.25, '1', ' '),
+            ],
         );
         let f = parse_obs_text(&text, "test").unwrap();
         let e = &f.epochs[0];
