@@ -11,7 +11,6 @@ use super::{AmbiguityError, MAX_SEARCH_NODES, round_fast};
 use nalgebra::DMatrix;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
-use std::ops::ControlFlow;
 
 /// Sign of the next step from `round(zc)` towards the second-nearest integer.
 fn first_step(y: f64) -> f64 {
@@ -26,25 +25,6 @@ pub(crate) fn search(
     z_hat: &[f64],
     count: usize,
 ) -> Result<Vec<(Vec<f64>, f64)>, AmbiguityError> {
-    let mut found = Found::with_capacity(count);
-    enumerate(l, d, z_hat, |z, dist| {
-        ControlFlow::Continue(found.offer(z, dist))
-    })?;
-    found.into_sorted()
-}
-
-/// Visit the integer vectors `z` (whole `f64`s) with squared norm below the bound, in the
-/// search's order, with their squared norms; the bound starts infinite and becomes what
-/// `visit` returns (`Break` ends the search).
-pub(crate) fn enumerate<V>(
-    l: &DMatrix<f64>,
-    d: &[f64],
-    z_hat: &[f64],
-    mut visit: V,
-) -> Result<(), AmbiguityError>
-where
-    V: FnMut(&[f64], f64) -> ControlFlow<(), f64>,
-{
     let n = d.len();
     let lv = l.as_slice();
     let mut zc = vec![0.0; n];
@@ -52,6 +32,7 @@ where
     let mut step = vec![0.0; n];
     // above[k]: the squared norm of levels k+1..n (fixed while level k varies).
     let mut above = vec![0.0; n];
+    let mut found = Found::with_capacity(count);
     let mut chi2 = f64::INFINITY;
     let mut nodes = 0u64;
 
@@ -82,10 +63,7 @@ where
                 y = zc[k] - z[k];
                 step[k] = first_step(y);
             } else {
-                match visit(&z, dist) {
-                    ControlFlow::Continue(bound) => chi2 = bound,
-                    ControlFlow::Break(()) => break,
-                }
+                chi2 = found.offer(&z, dist);
                 z[0] += step[0];
                 y = zc[0] - z[0];
                 step[0] = -step[0] - first_step(step[0]);
@@ -100,7 +78,7 @@ where
             step[k] = -step[k] - first_step(step[k]);
         }
     }
-    Ok(())
+    found.into_sorted()
 }
 
 /// A squared norm and the slot of its candidate, ordered by the norm (a max-heap entry).

@@ -165,6 +165,11 @@ impl BodyGeometry {
     }
 
     /// Error unless `b` has as many baselines as this geometry.
+    /// The baselines' lengths (m).
+    pub fn lengths_m(&self) -> Vec<f64> {
+        self.baselines().iter().map(|b| b.norm()).collect()
+    }
+
     pub(crate) fn check_count(&self, b: &NedBaselines) -> Result<(), AttitudeError> {
         if b.len() == self.len() {
             Ok(())

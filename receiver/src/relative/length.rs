@@ -294,7 +294,7 @@ pub fn search(
         }
         .into());
     }
-    let lengths: Vec<f64> = geometry.baselines().iter().map(|b| b.norm()).collect();
+    let lengths = geometry.lengths_m();
     search_with_misfit(float, cond, held, geometry, accept_ratio, |covariance| {
         LengthMisfit::new(covariance, &lengths)
     })

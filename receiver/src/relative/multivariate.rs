@@ -161,7 +161,7 @@ impl MisfitFloor {
             0.0
         };
         Self {
-            lengths_m: geometry.baselines().iter().map(|b| b.norm()).collect(),
+            lengths_m: geometry.lengths_m(),
             inverse_largest_variance,
         }
     }
@@ -194,15 +194,16 @@ impl CandidateBaselines {
         cond: &Conditioned,
         held: &[(usize, i64)],
     ) -> Self {
-        // a(z) with the free ambiguities at zero; any other keeps its float value.
-        let mut a = float.ambiguity_vector();
+        // a_hat - a(z) with the free ambiguities at zero; any other keeps its float value.
+        let a_hat = float.ambiguity_vector();
+        let mut offset = DVector::zeros(a_hat.len());
         for &(i, v) in held {
-            a[i] = v as f64;
+            offset[i] = a_hat[i] - v as f64;
         }
         for &i in &cond.free {
-            a[i] = 0.0;
+            offset[i] = a_hat[i];
         }
-        let constant = float.baseline_vector() - gain * (float.ambiguity_vector() - a);
+        let constant = float.baseline_vector() - gain * offset;
         Self {
             constant: constant.as_slice().to_vec(),
             free_gain: gain.select_columns(&cond.free),
