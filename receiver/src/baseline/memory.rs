@@ -14,7 +14,6 @@
 //! rows and columns), and a reference satellite that loses lock takes its signal's whole
 //! block.
 
-use super::BaselineError;
 use super::differences::DdLayout;
 use super::float::FloatBaselines;
 use nalgebra::DMatrix;
@@ -93,14 +92,10 @@ impl FloatMemory {
     }
 
     /// The prior of `layout`'s ambiguities for `baselines` baselines; `None` when nothing
-    /// of them is remembered.
-    pub fn prior(
-        &self,
-        layout: &DdLayout,
-        baselines: usize,
-    ) -> Result<Option<AmbiguityPrior>, BaselineError> {
+    /// of them is remembered (or the remembered cofactor is unusable).
+    pub fn prior(&self, layout: &DdLayout, baselines: usize) -> Option<AmbiguityPrior> {
         if self.ids.is_empty() || self.mean.ncols() != baselines {
-            return Ok(None);
+            return None;
         }
         // Rows of C: (new index, +1 row, -1 row) with None for the old reference's zero.
         let mut rows: Vec<(usize, Option<usize>, Option<usize>)> = Vec::new();
@@ -111,7 +106,7 @@ impl FloatMemory {
             }
         }
         if rows.is_empty() {
-            return Ok(None);
+            return None;
         }
         let c = DMatrix::from_fn(rows.len(), self.ids.len(), |r, j| {
             let (_, plus, minus) = rows[r];
@@ -119,10 +114,11 @@ impl FloatMemory {
         });
         let cofactor = &c * &self.cofactor * c.transpose();
         let mean = &c * &self.mean;
-        let information = cofactor
-            .cholesky()
-            .ok_or(BaselineError::Singular)?
-            .inverse();
+        // A prior that is not positive definite (rounding in an extreme case) is dropped:
+        // the epoch solves on its own and is remembered in its place, where an error
+        // would fail every later epoch on the same memory.
+        let factor = cofactor.cholesky()?;
+        let information = factor.inverse();
         let n = layout.ambiguity_count();
         let mut full_information = DMatrix::zeros(n, n);
         let mut full_mean = DMatrix::zeros(n, baselines);
@@ -132,9 +128,9 @@ impl FloatMemory {
                 full_information[(i, j)] = information[(a, b)];
             }
         }
-        Ok(Some(AmbiguityPrior {
+        Some(AmbiguityPrior {
             information: full_information,
             mean: full_mean,
-        }))
+        })
     }
 }

@@ -147,7 +147,7 @@ impl RelativeSolver {
         let layout = DdLayout::select(antennas, views, &self.config.signals)?;
         let model = DdModel::new(layout, antennas.len(), &self.config.noise_model())?;
         let prior = if self.config.float_memory {
-            self.memory.prior(&model.layout, model.baseline_count())?
+            self.memory.prior(&model.layout, model.baseline_count())
         } else {
             None
         };
