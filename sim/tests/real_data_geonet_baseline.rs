@@ -42,9 +42,18 @@ fn baseline_dir() -> PathBuf {
     skyforge_orbits::real_data::require_dir().join("baseline")
 }
 
-/// RTKLIB's kinematic solutions (`-f frequencies`): time of week (s, rounded) -> (rover
-/// ECEF, Q: 1 fixed, 2 float).
-fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, (Vec3, u8)> {
+/// One epoch of RTKLIB's solution file.
+#[derive(Debug, Clone, Copy)]
+struct RtkEpoch {
+    rover: Vec3,
+    /// Q: 1 fixed, 2 float.
+    q: u8,
+    /// Its own standard deviations (ECEF x/y/z, m).
+    sd: Vec3,
+}
+
+/// RTKLIB's kinematic solutions (`-f frequencies`) by time of week (s, rounded).
+fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, RtkEpoch> {
     support::require_rnx2rtkp();
     let pos = out.join(format!("rtklib_f{frequencies}.pos"));
     let b = BASE_ECEF_M.map(|v| format!("{v}"));
@@ -66,13 +75,17 @@ fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, (Vec3, u8)> 
         .filter_map(|l| {
             let f: Vec<f64> = l
                 .split_whitespace()
-                .take(6)
+                .take(10)
                 .filter_map(|x| x.parse().ok())
                 .collect();
-            (f.len() == 6).then(|| {
+            (f.len() == 10).then(|| {
                 (
                     f[1].round() as i64,
-                    (Vec3::new(f[2], f[3], f[4]), f[5] as u8),
+                    RtkEpoch {
+                        rover: Vec3::new(f[2], f[3], f[4]),
+                        q: f[5] as u8,
+                        sd: Vec3::new(f[7], f[8], f[9]),
+                    },
                 )
             })
         })
@@ -117,7 +130,7 @@ fn config(signals: &[Signal], acceptance: Option<f64>) -> RelativeConfig {
 fn skyforge(
     dir: &Path,
     config: RelativeConfig,
-    rtk: &BTreeMap<i64, (Vec3, u8)>,
+    rtk: &BTreeMap<i64, RtkEpoch>,
 ) -> BTreeMap<i64, (String, Option<Vec3>)> {
     let master = read_obs_file(&dir.join("30400920.05o")).unwrap_or_else(|e| panic!("{e}"));
     let rover = read_obs_file(&dir.join("07590920.05o")).unwrap_or_else(|e| panic!("{e}"));
@@ -143,7 +156,7 @@ fn skyforge(
         let tow = (TOW_OF_DAY_START_S + (o.time - day_start).to_seconds()).round() as i64;
         let entry = match o.result {
             Ok(e) => {
-                if let Some((rover, _)) = rtk.get(&tow).filter(|_| tow % 600 == 0) {
+                if let Some(RtkEpoch { rover, .. }) = rtk.get(&tow).filter(|_| tow % 600 == 0) {
                     let float = Vec3::from(e.float.baselines.column(0));
                     let amb = e.float.ambiguity_vector();
                     let sd: Vec<f64> = e
@@ -190,21 +203,39 @@ fn skyforge(
     out
 }
 
+/// The per-axis median of RTKLIB's fixed baselines (rover - `base`) in `rtk`.
+fn static_reference(rtk: &BTreeMap<i64, RtkEpoch>, base: Vec3) -> Vec3 {
+    let fixed: Vec<Vec3> = rtk
+        .values()
+        .filter(|r| r.q == 1)
+        .map(|r| r.rover - base)
+        .collect();
+    assert!(fixed.len() >= 100, "{} fixed RTKLIB epochs", fixed.len());
+    let median = |i: usize| {
+        let mut v: Vec<f64> = fixed.iter().map(|b| b[i]).collect();
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    Vec3::new(median(0), median(1), median(2))
+}
+
 /// ACCEPTANCE (issue #12, "Real data"): fixed on at least as many epochs as rnx2rtkp
 /// (kinematic, fix-and-hold), L1 only and L1 + L2, and the baseline within 1 cm of
 /// RTKLIB's fixed one on every epoch both fix.
 ///
-/// MEASURED (2026-11-28, with the float memory; validation/geonet_baseline.md). Met and
-/// asserted: L1 + L2, SkyForge fixes 120 of 120 (RTKLIB 115 of 115); L1 with RTKLIB's
-/// acceptance (the ratio test alone), 118 of 120 against RTKLIB's 114 of 115, and every
-/// epoch that rule adds is within 1 cm of RTKLIB's fixed baseline. Missed, printed and not
-/// asserted (issue #12's real-data bar is not claimed met): L1 with SkyForge's default
-/// acceptance (ratio 3 and a bootstrapped success rate of 0.999) fixes 111: the ratio
-/// passes at the third epoch, the success rate reaches 0.999 at the tenth; and the
-/// baselines differ from RTKLIB's by up to 6.6 cm (rms 1.0 cm; 24 common epochs over 1
-/// cm): under 1 cm to 00:44:30, a drift to 2 cm by 00:56:30 (mostly up) and 6.6 cm at the
-/// last common epoch, with five satellites, in L1 and L1 + L2 alike and with RTKLIB's
-/// integers. Before the float memory (2026-11-26) L1 fixed no epoch.
+/// MEASURED (2026-11-28, session 18: the float memory and the troposphere difference
+/// removed; validation/geonet_baseline.md). Met and asserted: L1 + L2, SkyForge fixes 120
+/// of 120 (RTKLIB 115 of 115); L1 with RTKLIB's acceptance (the ratio test alone), 119 of
+/// 120 against RTKLIB's 114 of 115, and every epoch that rule adds is within 1 cm of
+/// RTKLIB's fixed baseline. Every common epoch but the last is within 1 cm of RTKLIB (rms
+/// 0.6 cm); the last (five satellites, 5.9 cm) is explained and the explanation asserted
+/// per epoch: RTKLIB's own 3D standard deviation there exceeds 1 cm (10-16 cm) and
+/// SkyForge is nearer than RTKLIB to the stations' static baseline (the median of RTKLIB's
+/// L1 + L2 fixed baselines). Reported, not asserted: L1 with SkyForge's default acceptance
+/// (ratio 3 and a bootstrapped success rate of 0.999) fixes 111: the ratio passes at the
+/// third epoch, the success rate reaches 0.999 at the tenth. Before the float memory
+/// (2026-11-26) L1 fixed no epoch; before the troposphere (session 17) 24 common epochs
+/// were over 1 cm.
 #[test]
 #[ignore = "real-data tier: cargo test -- --ignored"]
 fn geonet_baseline_against_rtklib_kinematic() {
@@ -214,6 +245,10 @@ fn geonet_baseline_against_rtklib_kinematic() {
     let base = Vec3::from(BASE_ECEF_M);
     let (mut failures, mut reported) = (Vec::new(), Vec::new());
     let mut runs: BTreeMap<&str, Vec<(i64, Vec3)>> = BTreeMap::new();
+    let (mut explained_epochs, mut unexplained) = (Vec::new(), Vec::new());
+    // Both stations are monuments: the true baseline is one vector over the hour. Its
+    // stand-in: the per-axis median of RTKLIB's L1 + L2 fixed baselines.
+    let reference = static_reference(&rtklib(&dir, 2, tmp.path()), base);
     for (name, frequencies, signals, acceptance) in [
         ("L1", 1u8, vec![Signal::GpsL1Ca], None),
         ("L1+L2", 2, vec![Signal::GpsL1Ca, Signal::GpsL2], None),
@@ -224,7 +259,7 @@ fn geonet_baseline_against_rtklib_kinematic() {
     ] {
         let rtk = rtklib(&dir, frequencies, tmp.path());
         let sky = skyforge(&dir, config(&signals, acceptance), &rtk);
-        let rtk_fixed = rtk.values().filter(|(_, q)| *q == 1).count();
+        let rtk_fixed = rtk.values().filter(|r| r.q == 1).count();
         let sky_fixed = sky.values().filter(|(_, b)| b.is_some()).count();
         let mut statuses: BTreeMap<&str, usize> = BTreeMap::new();
         for (s, _) in sky.values() {
@@ -232,19 +267,48 @@ fn geonet_baseline_against_rtklib_kinematic() {
             *statuses.entry(key).or_default() += 1;
         }
         let mut diffs: Vec<(i64, Vec3)> = Vec::new();
-        for (tow, (status, b)) in &sky {
-            let (Some(b), Some((rover, 1))) = (b, rtk.get(tow)) else {
-                let _ = status;
+        // Distances to the static reference of the epochs both fix: (SkyForge, RTKLIB).
+        let mut to_reference: Vec<(f64, f64)> = Vec::new();
+        for (tow, (_, b)) in &sky {
+            let (Some(b), Some(r)) = (b, rtk.get(tow).filter(|r| r.q == 1)) else {
                 continue;
             };
-            diffs.push((*tow, b - (rover - base)));
-        }
-        for (tow, d) in diffs.iter().filter(|(_, d)| d.norm() > 0.01) {
+            let rtk_b = r.rover - base;
+            let d = b - rtk_b;
+            diffs.push((*tow, d));
+            let (sky_off, rtk_off) = ((b - reference).norm(), (rtk_b - reference).norm());
+            to_reference.push((sky_off, rtk_off));
+            if d.norm() <= 0.01 {
+                continue;
+            }
+            // Over the bar: explained when the bar is finer than RTKLIB's own standard
+            // deviation at that epoch and SkyForge is the nearer of the two to the static
+            // reference (the stations did not move); otherwise a miss.
+            let explained = r.sd.norm() > 0.01 && sky_off < rtk_off;
             println!(
-                "  {name} tow {tow}: SkyForge - RTKLIB {:+.4} {:+.4} {:+.4} m, status {}",
-                d.x, d.y, d.z, sky[tow].0
+                "  {name} tow {tow}: SkyForge - RTKLIB {:+.4} {:+.4} {:+.4} m, status {}; RTKLIB's sd {:.4} {:.4} {:.4} m; from the static reference SkyForge {sky_off:.4} m, RTKLIB {rtk_off:.4} m: {}",
+                d.x,
+                d.y,
+                d.z,
+                sky[tow].0,
+                r.sd.x,
+                r.sd.y,
+                r.sd.z,
+                if explained { "explained" } else { "MISS" }
             );
+            if explained {
+                explained_epochs.push(format!("{name} tow {tow}: {:.4} m", d.norm()));
+            } else {
+                unexplained.push(format!("{name} tow {tow}: {:.4} m", d.norm()));
+            }
         }
+        let (sky_rms, rtk_rms) = (
+            support::rms(&to_reference.iter().map(|p| p.0).collect::<Vec<_>>()),
+            support::rms(&to_reference.iter().map(|p| p.1).collect::<Vec<_>>()),
+        );
+        println!(
+            "{name}: rms distance to the static reference over the epochs both fix: SkyForge {sky_rms:.4} m, RTKLIB {rtk_rms:.4} m"
+        );
         let norms: Vec<f64> = diffs.iter().map(|(_, d)| d.norm()).collect();
         let max = norms.iter().copied().fold(0.0, f64::max);
         let per_axis_rms: Vec<f64> = (0..3)
@@ -255,7 +319,7 @@ fn geonet_baseline_against_rtklib_kinematic() {
             "{name}: epochs SkyForge {} / RTKLIB {}; fixed SkyForge {sky_fixed} (first at tow {first_fix:?}), RTKLIB {rtk_fixed} (Q=1), RTKLIB float {}",
             sky.len(),
             rtk.len(),
-            rtk.values().filter(|(_, q)| *q == 2).count()
+            rtk.values().filter(|r| r.q == 2).count()
         );
         println!("{name}: SkyForge outcomes {statuses:?}");
         println!(
@@ -275,8 +339,6 @@ fn geonet_baseline_against_rtklib_kinematic() {
         );
         let fix_miss = (sky_fixed < rtk_fixed)
             .then(|| format!("{name}: SkyForge fixed {sky_fixed} epochs, RTKLIB {rtk_fixed}"));
-        let distance_miss = (max > 0.01)
-            .then(|| format!("{name}: baseline {max:.4} m from RTKLIB's fixed one (bar 0.01 m)"));
         if name == "L1" {
             // The measured L1 miss (111 of 120 against 114 of 115): reported, not
             // asserted; explained by the success-rate floor, checked by the next case.
@@ -290,8 +352,6 @@ fn geonet_baseline_against_rtklib_kinematic() {
             );
             failures.extend(fix_miss);
         }
-        // The measured 6.6 cm miss above: reported, not asserted.
-        reported.extend(distance_miss);
         runs.insert(name, diffs);
     }
     // The ratio test alone fixes earlier; the epochs it adds agree with RTKLIB to 1 cm
@@ -306,6 +366,10 @@ fn geonet_baseline_against_rtklib_kinematic() {
             );
         }
     }
+    for e in &explained_epochs {
+        println!("EXPLAINED (over 1 cm from RTKLIB, within its own uncertainty): {e}");
+    }
+    failures.extend(unexplained);
     for miss in &reported {
         println!("MISS (reported, not asserted; validation/geonet_baseline.md): {miss}");
     }

@@ -16,6 +16,10 @@ pub struct LineOfSight {
     /// Unit vector from the master antenna to the satellite, ECEF.
     pub los_ecef: Vector3<f64>,
     pub elevation_rad: f64,
+    /// Gradient (m per m, ECEF) of the satellite's delay along the path at the master
+    /// antenna, for a delay that differs between the antennas (the troposphere between
+    /// ground stations, [`crate::relative::troposphere`]); zero when it cancels.
+    pub delay_gradient: Vector3<f64>,
 }
 
 impl LineOfSight {
@@ -28,7 +32,14 @@ impl LineOfSight {
             elevation_rad: view
                 .az_el_rad
                 .map_or(std::f64::consts::FRAC_PI_2, |(_, e)| e),
+            delay_gradient: Vector3::zeros(),
         }
+    }
+
+    /// The direction `d` with which the observed range (geometry and delay) of an antenna
+    /// at baseline `b` from the master is the master's minus `d . b`, to first order.
+    pub fn model_direction(&self) -> Vector3<f64> {
+        self.los_ecef - self.delay_gradient
     }
 }
 

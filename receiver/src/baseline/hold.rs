@@ -134,6 +134,7 @@ mod tests {
             sat: SatId::gps(prn),
             los_ecef: Vector3::z(),
             elevation_rad: 1.0,
+            delay_gradient: Vector3::zeros(),
         }
     }
 

@@ -51,8 +51,9 @@ impl DdModel {
             let f = noise.signal_factor(block.signal);
             let k = block.others.len();
             for (i, other) in block.others.iter().enumerate() {
-                // Eq. 2.3-10: g = -(l_i - l_ref)^T.
-                let g = -(other.los_ecef - block.reference.los_ecef);
+                // Eq. 2.3-10: g = -(l_i - l_ref)^T (with a delay gradient, the directions
+                // of [`LineOfSight::model_direction`]).
+                let g = -(other.model_direction() - block.reference.model_direction());
                 for c in 0..3 {
                     design[(row + i, n + c)] = g[c];
                     design[(n + row + i, n + c)] = g[c];

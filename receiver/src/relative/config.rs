@@ -45,6 +45,13 @@ pub struct RelativeConfig {
     /// the double differences. Default none (# assumed: on a LEO the local horizon does
     /// not bound tracking); a ground user sets one (e.g. 15).
     pub elevation_mask_deg: Option<f64>,
+    /// Model the difference of the antennas' tropospheric delays in the chain over files
+    /// ([`super::troposphere`]: the master's slant-delay gradient in the double-difference
+    /// design, Saastamoinen with the standard atmosphere and Chao mapping). Ground
+    /// stations apart see a satellite at different elevations (1.7 cm of slant delay at
+    /// 15 deg over 3.3 km) and from different heights (0.3 mm per metre at the zenith);
+    /// zero above 50 km, so a LEO platform's results do not change. Default on.
+    pub troposphere: bool,
     /// The attitude stage.
     pub attitude: AttitudeConfig,
     /// The geometry-offset estimator (`skyforge attitude --estimate-geometry`).
@@ -96,6 +103,7 @@ impl Default for RelativeConfig {
             float_memory: false,
             hold_test_pfa: 1e-4,
             elevation_mask_deg: None,
+            troposphere: true,
             attitude: AttitudeConfig::default(),
             geometry_offsets: OffsetConfig::default(),
             reverse_filter: None,

@@ -2,6 +2,7 @@
 //! navigation file and the body geometry. The master's position comes from its own
 //! single-point solution, the lines of sight from the broadcast ephemerides.
 
+use super::troposphere::slant_delay_gradient;
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
 use crate::pvt::{
@@ -308,7 +309,9 @@ fn corrected(
 /// Run the chain over `files` (one per antenna of `geometry`, same order), handing each
 /// master epoch's outcome to `each`. Every antenna's observations are moved onto the
 /// linear model of the master's epoch ([`ToMasterModel`]: its sampling instant, and the
-/// range difference beyond `-l . b`) when both have a single-point solution.
+/// range difference beyond `-l . b`) when both have a single-point solution. With
+/// `troposphere`, the lines of sight carry the slant delay's gradient
+/// ([`super::troposphere`]).
 pub fn run_files(
     files: &[ObsFile],
     ephemerides: Vec<BroadcastEphemeris>,
@@ -329,6 +332,7 @@ pub fn run_files(
     let origin = TimeOrigin::new(first.time);
     let store = EphemerisStore::new(ephemerides, &origin);
     let signals = config.signals.clone();
+    let troposphere = config.troposphere;
     let mut solver = RelativeSolver::new(config, &geometry.positions())?;
     let pvt = PvtConfig::default();
     let mut cursors = vec![0usize; files.len()];
@@ -393,10 +397,12 @@ pub fn run_files(
                 let views: Vec<LineOfSight> = first_per_satellite(&epoch.sats, &signals)
                     .filter_map(|rec| {
                         let eph = store.select(rec.sat, t_s)?;
-                        Some(LineOfSight::from_view(
-                            rec.sat,
-                            &place.predict(eph, t_s).view,
-                        ))
+                        let view = place.predict(eph, t_s).view;
+                        let mut los = LineOfSight::from_view(rec.sat, &view);
+                        if troposphere {
+                            los.delay_gradient = slant_delay_gradient(&r, &view.r_ecef_m);
+                        }
+                        Some(los)
                     })
                     .collect();
                 let mut antennas: Vec<&[ObsRecord]> = vec![epoch.sats.as_slice()];

@@ -10,6 +10,7 @@ pub mod length;
 pub mod multivariate;
 pub mod resolve;
 pub mod reverse;
+pub mod troposphere;
 
 pub use config::RelativeConfig;
 pub use resolve::{AmbiguityStatus, Resolution};

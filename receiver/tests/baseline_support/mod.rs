@@ -63,6 +63,7 @@ pub fn scene_with(
             sat,
             los_ecef: los,
             elevation_rad: elevation,
+            delay_gradient: Vector3::zeros(),
         });
     }
     let n = views.len();
