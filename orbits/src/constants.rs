@@ -20,5 +20,11 @@ pub const J2: f64 = 1.082_626_683_55e-3;
 pub const F_GPS_L1_HZ: f64 = 1_575.42e6;
 /// GPS L2 carrier frequency (Hz): 120 x 10.23 MHz (IS-GPS-200 §3.3.1.1).
 pub const F_GPS_L2_HZ: f64 = 1_227.60e6;
+/// GPS L5 carrier frequency (Hz): 115 x 10.23 MHz (IS-GPS-705 §3.3.1.1).
+pub const F_GPS_L5_HZ: f64 = 1_176.45e6;
 /// BeiDou B1I carrier frequency (Hz).
 pub const F_BDS_B1I_HZ: f64 = 1_561.098e6;
+/// BeiDou B2I carrier frequency (Hz): 1180 x 1.023 MHz (BDS-SIS-ICD-B2I-1.0 §4.2.1).
+pub const F_BDS_B2I_HZ: f64 = 1_207.14e6;
+/// BeiDou B3I carrier frequency (Hz): 1240 x 1.023 MHz (BDS-SIS-ICD-B3I-1.0 §4.2.1).
+pub const F_BDS_B3I_HZ: f64 = 1_268.52e6;

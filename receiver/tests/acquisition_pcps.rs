@@ -41,7 +41,7 @@ fn synth(
         Signal::GpsL1Ca => rng.random_range(1..=32),
         // D1 satellites (NH-coded): PRN 6..=58.
         Signal::BdsB1I => rng.random_range(6..=58),
-        Signal::GpsL2 => unreachable!("L2 is not synthesised"),
+        other => unreachable!("{other} is not synthesised"),
     };
     let code = signal.code(prn).unwrap();
     let len = code.len() as f64;
@@ -49,7 +49,7 @@ fn synth(
     let carrier = match signal {
         Signal::GpsL1Ca => F_L1_HZ,
         Signal::BdsB1I => F_B1_HZ,
-        Signal::GpsL2 => unreachable!("L2 is not synthesised"),
+        other => unreachable!("{other} is not synthesised"),
     };
     let rc = signal.chip_rate_hz() * (1.0 + doppler_hz / carrier);
     let period_s = signal.code_period_s();
@@ -65,8 +65,8 @@ fn synth(
         let j = k.div_euclid(len as i64) + 1 + bit_offset;
         let bit = bits[(j.div_euclid(20) as usize) % bits.len()];
         let nh = match signal {
-            Signal::GpsL1Ca | Signal::GpsL2 => 1.0,
             Signal::BdsB1I => f64::from(NH20[j.rem_euclid(20) as usize]),
+            _ => 1.0,
         };
         bit * nh * f64::from(code[k.rem_euclid(len as i64) as usize])
     };

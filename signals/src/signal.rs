@@ -4,7 +4,9 @@
 
 use crate::codes::bds_b1i;
 use crate::codes::gps_ca;
-use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ};
+use skyforge_orbits::constants::{
+    F_BDS_B1I_HZ, F_BDS_B2I_HZ, F_BDS_B3I_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ, F_GPS_L5_HZ,
+};
 use std::str::FromStr;
 
 /// A GNSS signal.
@@ -19,6 +21,15 @@ pub enum Signal {
     /// synthesises nor tracks it ([`Signal::SYNTHESISED`]); it is read from other
     /// receivers' RINEX files and used by the relative-positioning chain.
     GpsL2,
+    /// GPS L5 on 1176.45 MHz, 10230 chips at 10.23 Mchip/s (IS-GPS-705 §3.3): observed
+    /// only (read from files, drawn at the observation level).
+    GpsL5,
+    /// BeiDou B2I on 1207.14 MHz, 2046 chips at 2.046 Mchip/s (BDS-SIS-ICD-B2I-1.0 §4):
+    /// observed only.
+    BdsB2I,
+    /// BeiDou B3I on 1268.52 MHz, 10230 chips at 10.23 Mchip/s (BDS-SIS-ICD-B3I-1.0 §4):
+    /// observed only.
+    BdsB3I,
 }
 
 /// How navigation data (and any secondary code) modulate the ranging code.
@@ -54,15 +65,18 @@ pub struct UnknownPrn {
     pub max: u8,
 }
 
-/// A signal name that is not `gps-l1ca`, `bds-b1i` or `gps-l2`.
+/// A signal name that is not one of [`Signal::ALL`]'s tags.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2")]
+#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i")]
 pub struct UnknownSignal(pub String);
 
 /// P-code chipping rate (chip/s), 10.23 MHz (IS-GPS-200 §3.3.1.1).
 const P_CODE_CHIP_RATE_HZ: f64 = 10.23e6;
 /// P-code chips in its one-week period (IS-GPS-200 §3.3.2.2).
 const P_CODE_WEEK_CHIPS: usize = 10_230_000 * 604_800;
+/// Chips of the 1 ms codes at 10.23 Mchip/s: GPS L5 (IS-GPS-705 §3.2.1.1), BeiDou B3I
+/// (BDS-SIS-ICD-B3I-1.0 §4.3.2).
+const CODE_10230: usize = 10_230;
 
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
 /// signal's nominal carrier for the two to be taken as the same.
@@ -71,7 +85,14 @@ pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
 impl Signal {
     /// Every signal: those SkyForge synthesises and tracks, and those it only reads from
     /// other receivers' observation files.
-    pub const ALL: [Signal; 3] = [Signal::GpsL1Ca, Signal::BdsB1I, Signal::GpsL2];
+    pub const ALL: [Signal; 6] = [
+        Signal::GpsL1Ca,
+        Signal::BdsB1I,
+        Signal::GpsL2,
+        Signal::GpsL5,
+        Signal::BdsB2I,
+        Signal::BdsB3I,
+    ];
 
     /// The signals SkyForge synthesises, records (SigMF) and tracks: one per constellation.
     pub const SYNTHESISED: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
@@ -87,6 +108,9 @@ impl Signal {
             Signal::GpsL1Ca => "GPS L1 C/A",
             Signal::BdsB1I => "BDS B1I",
             Signal::GpsL2 => "GPS L2",
+            Signal::GpsL5 => "GPS L5",
+            Signal::BdsB2I => "BDS B2I",
+            Signal::BdsB3I => "BDS B3I",
         }
     }
 
@@ -101,8 +125,10 @@ impl Signal {
     /// The constellation that transmits the signal.
     pub fn system(self) -> skyforge_orbits::ephemeris::System {
         match self {
-            Self::GpsL1Ca | Self::GpsL2 => skyforge_orbits::ephemeris::System::Gps,
-            Self::BdsB1I => skyforge_orbits::ephemeris::System::Beidou,
+            Self::GpsL1Ca | Self::GpsL2 | Self::GpsL5 => skyforge_orbits::ephemeris::System::Gps,
+            Self::BdsB1I | Self::BdsB2I | Self::BdsB3I => {
+                skyforge_orbits::ephemeris::System::Beidou
+            }
         }
     }
 
@@ -113,16 +139,23 @@ impl Signal {
             Signal::GpsL1Ca => "gps-l1ca",
             Signal::BdsB1I => "bds-b1i",
             Signal::GpsL2 => "gps-l2",
+            Signal::GpsL5 => "gps-l5",
+            Signal::BdsB2I => "bds-b2i",
+            Signal::BdsB3I => "bds-b3i",
         }
     }
 
     /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz,
-    /// L2 = 120 x 10.23 MHz); BDS-SIS-ICD-B1I-3.0 §4.2.1 (1561.098 MHz).
+    /// L2 = 120 x 10.23 MHz), IS-GPS-705 (L5 = 115 x 10.23 MHz); the BeiDou ICDs
+    /// (B1I 1561.098, B2I 1207.14, B3I 1268.52 MHz).
     pub fn carrier_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => F_GPS_L1_HZ,
             Signal::BdsB1I => F_BDS_B1I_HZ,
             Signal::GpsL2 => F_GPS_L2_HZ,
+            Signal::GpsL5 => F_GPS_L5_HZ,
+            Signal::BdsB2I => F_BDS_B2I_HZ,
+            Signal::BdsB3I => F_BDS_B3I_HZ,
         }
     }
 
@@ -136,8 +169,8 @@ impl Signal {
     pub fn chip_rate_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => gps_ca::GPS_CA_CHIP_RATE_HZ,
-            Signal::GpsL2 => P_CODE_CHIP_RATE_HZ,
-            Signal::BdsB1I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
+            Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB3I => P_CODE_CHIP_RATE_HZ,
+            Signal::BdsB1I | Signal::BdsB2I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
         }
     }
 
@@ -146,7 +179,8 @@ impl Signal {
         match self {
             Signal::GpsL1Ca => gps_ca::GPS_CA_CODE_LENGTH,
             Signal::GpsL2 => P_CODE_WEEK_CHIPS,
-            Signal::BdsB1I => bds_b1i::BDS_B1I_CODE_LENGTH,
+            Signal::BdsB1I | Signal::BdsB2I => bds_b1i::BDS_B1I_CODE_LENGTH,
+            Signal::GpsL5 | Signal::BdsB3I => CODE_10230,
         }
     }
 
@@ -161,7 +195,7 @@ impl Signal {
         let (code, max) = match self {
             Signal::GpsL1Ca => (gps_ca::gps_ca(prn).map(Vec::from), gps_ca::GPS_CA_PRN_MAX),
             Signal::BdsB1I => (bds_b1i::bds_b1i(prn), bds_b1i::BDS_B1I_PRN_MAX),
-            Signal::GpsL2 => (None, 0),
+            Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => (None, 0),
         };
         code.ok_or(UnknownPrn {
             signal: self,
@@ -171,12 +205,17 @@ impl Signal {
     }
 
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
-    /// D2, the others D1 (BDS-SIS-ICD-B1I-3.0 §5.1).
-    pub fn data_modulation(self, prn: u8) -> DataModulation {
+    /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
+    /// L2 P(Y) carry LNAV. None for L5, whose CNAV (with its FEC and the 10-bit
+    /// Neumann-Hoffman code) SkyForge does not model.
+    pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
-            Signal::GpsL1Ca | Signal::GpsL2 => DataModulation::GpsLnav,
-            Signal::BdsB1I if prn <= 5 || prn >= 59 => DataModulation::BdsD2,
-            Signal::BdsB1I => DataModulation::BdsD1,
+            Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
+            Signal::GpsL5 => None,
+            Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
+                Some(DataModulation::BdsD2)
+            }
+            Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I => Some(DataModulation::BdsD1),
         }
     }
 
@@ -249,10 +288,16 @@ mod tests {
     #[test]
     fn geo_prns_carry_d2() {
         for prn in [1, 5, 59, 63] {
-            assert_eq!(Signal::BdsB1I.data_modulation(prn), DataModulation::BdsD2);
+            assert_eq!(
+                Signal::BdsB1I.data_modulation(prn),
+                Some(DataModulation::BdsD2)
+            );
         }
         for prn in [6, 19, 58] {
-            assert_eq!(Signal::BdsB1I.data_modulation(prn), DataModulation::BdsD1);
+            assert_eq!(
+                Signal::BdsB1I.data_modulation(prn),
+                Some(DataModulation::BdsD1)
+            );
         }
         assert_eq!(DataModulation::BdsD2.periods_per_bit(), 2);
     }
@@ -276,7 +321,34 @@ mod tests {
         assert_eq!(Signal::from_file_name("ant2.sigmf-meta"), None);
         assert_eq!("GPS-L1CA".parse::<Signal>(), Ok(Signal::GpsL1Ca));
         assert!("l5".parse::<Signal>().is_err());
+        assert_eq!("gps-l5".parse::<Signal>(), Ok(Signal::GpsL5));
+        assert_eq!("BDS-B3I".parse::<Signal>(), Ok(Signal::BdsB3I));
         assert_eq!("gps-l2".parse::<Signal>(), Ok(Signal::GpsL2));
+    }
+
+    /// The observed-only signals' carriers, wavelengths and codes: the ICDs' multiples of
+    /// 10.23 and 1.023 MHz; none has a code SkyForge generates.
+    #[test]
+    fn observed_only_signals_follow_the_icds() {
+        assert_eq!(Signal::GpsL5.carrier_hz(), 115.0 * 10.23e6);
+        assert!((Signal::BdsB2I.carrier_hz() - 1180.0 * 1.023e6).abs() < 1e-3);
+        assert!((Signal::BdsB3I.carrier_hz() - 1240.0 * 1.023e6).abs() < 1e-3);
+        assert!((Signal::GpsL5.wavelength_m() - 0.254_828).abs() < 1e-6);
+        for s in [Signal::GpsL5, Signal::BdsB2I, Signal::BdsB3I] {
+            assert!(!s.is_synthesised());
+            assert!(s.code(6).is_err());
+            assert!((s.code_period_s() - 1e-3).abs() < 1e-15, "{s}");
+            assert_eq!(Signal::from_carrier_hz(s.carrier_hz()), None);
+        }
+        assert_eq!(
+            Signal::BdsB3I.system(),
+            skyforge_orbits::ephemeris::System::Beidou
+        );
+        assert_eq!(Signal::GpsL5.data_modulation(1), None);
+        assert_eq!(
+            Signal::BdsB2I.data_modulation(3),
+            Some(DataModulation::BdsD2)
+        );
     }
 
     /// L2 is read from files, never synthesised: no recording is identified as L2.

@@ -79,8 +79,11 @@ impl PcpsStage {
         // between code periods; GPS bits change only every 20 ms.
         config.bit_transition = match signal {
             Signal::BdsB1I => BitTransition::AlignedWindows,
-            // L2 is refused by `Pcps::new` (observed only).
-            Signal::GpsL1Ca | Signal::GpsL2 => BitTransition::Ignore,
+            Signal::GpsL1Ca => BitTransition::Ignore,
+            // Observed only: refused by `Pcps::new` (no code).
+            Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => {
+                BitTransition::Ignore
+            }
         };
         Ok(Self {
             pcps: Pcps::new(config)?,

@@ -12,6 +12,7 @@ use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::observation::rinex_write::{
     Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
 };
+use skyforge_signals::signal::Signal;
 use std::fs::File;
 use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};
@@ -42,7 +43,8 @@ fn writing(path: &Path, e: io::Error) -> io::Error {
 pub struct RinexObsFiles {
     paths: Vec<PathBuf>,
     names: Vec<String>,
-    systems: Vec<System>,
+    /// The signal the receiver tracks of each system.
+    signals: Vec<Signal>,
     approx_ecef_m: Option<Vec3>,
     interval_s: f64,
     states: Vec<State>,
@@ -65,7 +67,7 @@ impl RinexObsFiles {
                 .map(|n| dir.join(format!("{n}.obs.rnx")))
                 .collect(),
             names: names.to_vec(),
-            systems: systems.to_vec(),
+            signals: systems.iter().map(|s| Signal::of_system(*s)).collect(),
             approx_ecef_m,
             interval_s,
             states: names.iter().map(|_| State::Waiting(Vec::new())).collect(),
@@ -90,7 +92,7 @@ impl RinexObsFiles {
             approx_ecef_m: position,
             first,
             interval_s: self.interval_s,
-            systems: &self.systems,
+            signals: &self.signals,
         };
         let mut w =
             ObsWriter::with_header(BufWriter::new(file), &header).map_err(|e| writing(path, e))?;

@@ -442,7 +442,9 @@ impl ChannelTracker {
         }
         // The first code period starts between samples; begin at the first sample after it.
         let lead = handover.code_phase_samples.ceil();
-        let modulation = signal.data_modulation(handover.prn);
+        let modulation = signal.data_modulation(handover.prn).ok_or_else(|| {
+            TrackingError::InvalidConfig(format!("{} is not tracked", signal.name()))
+        })?;
         Ok(Self {
             signal,
             prn: handover.prn,

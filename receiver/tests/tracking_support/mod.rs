@@ -100,7 +100,12 @@ impl TestSignal {
 
     /// Periods per bit of this PRN.
     pub fn periods_per_bit(&self) -> u64 {
-        u64::from(self.signal.data_modulation(self.prn).periods_per_bit())
+        u64::from(
+            self.signal
+                .data_modulation(self.prn)
+                .expect("a synthesised signal")
+                .periods_per_bit(),
+        )
     }
 
     /// Number of the bit that sample `s` falls in.
@@ -121,7 +126,7 @@ impl TestSignal {
         let len = code.len() as f64;
         let amplitude = (10f64.powf(self.cn0_dbhz / 10.0) * 2.0 / self.fs_hz).sqrt();
         let ppb = self.periods_per_bit();
-        let d1 = self.signal.data_modulation(self.prn) == DataModulation::BdsD1;
+        let d1 = self.signal.data_modulation(self.prn) == Some(DataModulation::BdsD1);
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed ^ first.rotate_left(17));
         let mut out = Vec::with_capacity(n);
         const CHUNK: usize = 1024;

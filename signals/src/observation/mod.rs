@@ -5,6 +5,7 @@
 pub mod noise;
 pub mod record;
 pub mod rinex2_read;
+pub mod rinex_codes;
 pub mod rinex_read;
 pub mod rinex_write;
 

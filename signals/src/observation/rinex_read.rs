@@ -1,6 +1,6 @@
 //! RINEX observation files (version 3 here; version 2 in [`super::rinex2_read`]) into
-//! per-epoch GPS L1 C/A, GPS L2 (`2W`) and BeiDou B1I observations
-//! ([`ObsRecord`]), through the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
+//! per-epoch observations of every [`Signal`] ([`ObsRecord`]; the codes of
+//! [`super::rinex_codes`]), through the `rinex` crate (which also reads Hatanaka-compressed and gzipped files).
 //!
 //! Checked on the two kinds of file this module exists for: SkyForge's truth (RINEX 3.04,
 //! `C2I` for B1I, GPS time) and GNSS-SDR 0.0.17's output (RINEX 3.02, B1I as `C1I`,
@@ -9,6 +9,7 @@
 //! to 100 ns, the resolution of the RINEX F11.7 field.
 
 use super::record::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+use super::rinex_codes;
 use super::rinex2_read::{MAX_OBS_BYTES, is_rinex2_obs, parse_rinex2_obs};
 use crate::signal::Signal;
 use flate2::read::GzDecoder;
@@ -30,9 +31,6 @@ pub(super) enum Kind {
     Strength,
 }
 
-/// The signal and quantity of observation `code` (e.g. `C1C`) of `system`, for a file of
-/// RINEX version `major.minor`. RINEX 3.02 names B1I band 1 (`C1I`); 3.03 renamed it band 2
-/// (`C2I`) and gave band 1 to B1C.
 /// Why an observation file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ObsReadError {
@@ -51,7 +49,9 @@ pub enum ObsReadError {
     NotObservation(PathBuf),
 }
 
-fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal, Kind)> {
+/// The signal, quantity and code rank ([`rinex_codes::classify`]) of observation `code`
+/// (e.g. `C1C`) of `system`, for a file of RINEX version `major.minor`.
+fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal, Kind, usize)> {
     let b = code.as_bytes();
     if b.len() != 3 {
         return None;
@@ -63,17 +63,31 @@ fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal,
         b'S' => Kind::Strength,
         _ => return None,
     };
-    let band_attr = &code[1..];
-    let signal = match (system, band_attr) {
-        (System::Gps, "1C") => Signal::GpsL1Ca,
-        // L2 P(Y), semi-codeless (what RINEX 2's `L2`/`P2` of a geodetic receiver are);
-        // the L2C codes (`2S`/`2L`/`2X`) are another tracking and are not read.
-        (System::Gps, "2W") => Signal::GpsL2,
-        (System::Beidou, "2I") => Signal::BdsB1I,
-        (System::Beidou, "1I") if (major, minor) < (3, 3) => Signal::BdsB1I,
+    let (signal, rank) = rinex_codes::classify(system, &code[1..], major, minor)?;
+    Some((signal, kind, rank))
+}
+
+/// A GPS or BeiDou observation of the file: its satellite and code.
+fn gnss_observation(o: &rinex::observation::SignalObservation) -> Option<(SatId, &str)> {
+    let system = match o.sv.constellation {
+        Constellation::GPS => System::Gps,
+        Constellation::BeiDou => System::Beidou,
         _ => return None,
     };
-    Some((signal, kind))
+    let code = match &o.observable {
+        Observable::PseudoRange(c)
+        | Observable::PhaseRange(c)
+        | Observable::Doppler(c)
+        | Observable::SSI(c) => c.as_str(),
+        _ => return None,
+    };
+    Some((
+        SatId {
+            system,
+            prn: o.sv.prn,
+        },
+        code,
+    ))
 }
 
 /// Read a RINEX observation file: version 2 (plain or `.gz`; [`super::rinex2_read`]) or
@@ -150,6 +164,16 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
         .as_obs()
         .ok_or_else(|| ObsReadError::NotObservation(source.to_path_buf()))?;
     let (major, minor) = (rinex.header.version.major, rinex.header.version.minor);
+    // One code per signal for the whole file: the preferred one it has.
+    let mut chosen: BTreeMap<Signal, usize> = BTreeMap::new();
+    for o in record.values().flat_map(|obs| &obs.signals) {
+        if let Some((signal, _, rank)) =
+            gnss_observation(o).and_then(|(sat, code)| classify(sat.system, code, major, minor))
+        {
+            let best = chosen.entry(signal).or_insert(rank);
+            *best = (*best).min(rank);
+        }
+    }
     let mut epochs = Vec::with_capacity(record.len());
     for (key, observations) in record {
         let power_failure = match key.flag {
@@ -160,25 +184,15 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
         // One record per satellite and signal (L1 and L2 of one GPS satellite are two).
         let mut sats: BTreeMap<(SatId, Signal), ObsRecord> = BTreeMap::new();
         for o in &observations.signals {
-            let system = match o.sv.constellation {
-                Constellation::GPS => System::Gps,
-                Constellation::BeiDou => System::Beidou,
-                _ => continue,
-            };
-            let code = match &o.observable {
-                Observable::PseudoRange(c)
-                | Observable::PhaseRange(c)
-                | Observable::Doppler(c)
-                | Observable::SSI(c) => c.as_str(),
-                _ => continue,
-            };
-            let Some((signal, kind)) = classify(system, code, major, minor) else {
+            let Some((sat, code)) = gnss_observation(o) else {
                 continue;
             };
-            let sat = SatId {
-                system,
-                prn: o.sv.prn,
+            let Some((signal, kind, rank)) = classify(sat.system, code, major, minor) else {
+                continue;
             };
+            if chosen.get(&signal) != Some(&rank) {
+                continue;
+            }
             let entry = sats
                 .entry((sat, signal))
                 .or_insert_with(|| ObsRecord::empty(sat, signal));
@@ -345,6 +359,52 @@ mod tests {
     }
 
     /// In RINEX 3.03+ band 1 of BeiDou is B1C, which SkyForge does not compare.
+    /// A file with two trackings of L2 (L2C `2L` and P(Y) `2W`): one code for the whole
+    /// file, the preferred `2W`, so a satellite with only `2L` has no L2 record; a file with
+    /// only `2L` gives L2 from it.
+    #[test]
+    fn one_code_per_signal_for_the_whole_file() {
+        let text = header("3.04", '2', "GPS").replace(
+            "G    4 C1C L1C D1C S1C                                      ",
+            "G    4 C2L L2L C2W L2W                                      ",
+        );
+        let mut both = text.clone();
+        both += "> 2023 03 12 00 00  1.0000000  0  2\n";
+        both += &line(
+            "G05",
+            [
+                value(21035579.1, ' ', ' '),
+                value(86137163.5, ' ', ' '),
+                value(21035579.5, ' ', ' '),
+                value(86137163.25, ' ', ' '),
+            ],
+        );
+        both += &format!(
+            "G07{}{}\n",
+            value(22000000.5, ' ', ' '),
+            value(9.0e7, ' ', ' ')
+        );
+        let f = parse_obs_text(&both, "test").unwrap();
+        let l2: Vec<&ObsRecord> = f.epochs[0].sats.iter().collect();
+        assert_eq!(l2.len(), 1, "{l2:?}");
+        assert_eq!(l2[0].sat.prn, 5);
+        assert_eq!(l2[0].pseudorange_m, Some(21035579.5));
+        let only_l2c = text
+            .replace(" C2W L2W", "        ")
+            .replace("G    4", "G    2");
+        let mut only = only_l2c;
+        only += "> 2023 03 12 00 00  1.0000000  0  1\n";
+        only += &format!(
+            "G07{}{}\n",
+            value(22000000.5, ' ', ' '),
+            value(9.0e7, ' ', ' ')
+        );
+        let f = parse_obs_text(&only, "test").unwrap();
+        assert_eq!(f.epochs[0].sats.len(), 1);
+        assert_eq!(f.epochs[0].sats[0].signal, Signal::GpsL2);
+        assert_eq!(f.epochs[0].sats[0].pseudorange_m, Some(22000000.5));
+    }
+
     #[test]
     fn bds_band_1_is_not_b1i_after_3_02() {
         let mut text = header("3.04", '1', "GPS");

@@ -2,9 +2,12 @@
 //! one file per antenna. One writer serves both the signal truth of `skyforge synth` (whole
 //! seconds) and the bundled receiver's observations (receiver time tags with a fractional
 //! second, loss-of-lock indicators). RINEX 3.04 section 5, tables A2 (header) and A3 (data
-//! records); GPS L1 C/A observation codes 1C, BeiDou B1I 2I (tables 4 and 9).
+//! records); observation codes of [`super::rinex_codes`] (GPS L1 C/A 1C, BeiDou B1I 2I,
+//! tables 4 and 9), every signal of a system on one line per satellite.
 
 use super::record::{LLI_LOSS_OF_LOCK, ObsRecord};
+use super::rinex_codes::written_code;
+use crate::signal::Signal;
 use hifitime::{Duration, Epoch, TimeScale};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
@@ -34,15 +37,42 @@ pub struct ObsHeader<'a> {
     pub first: Calendar,
     /// `INTERVAL` (s); left out unless positive.
     pub interval_s: f64,
-    /// The systems whose observation types the header declares.
-    pub systems: &'a [System],
+    /// The signals whose observation types the header declares (C, L, D, S each), in
+    /// the order of their columns within each system.
+    pub signals: &'a [Signal],
 }
 
 /// Streams epochs of observations into a RINEX 3.04 observation file.
 #[derive(Debug)]
 pub struct ObsWriter<W: Write> {
     out: W,
-    systems: Vec<System>,
+    /// Each declared system (GPS first) and the signals of its columns.
+    columns: Vec<(System, Vec<Signal>)>,
+}
+
+/// The header's systems (GPS first) with their signals, in the order given.
+fn columns(signals: &[Signal]) -> Vec<(System, Vec<Signal>)> {
+    [System::Gps, System::Beidou]
+        .into_iter()
+        .map(|system| {
+            let mut of_system: Vec<Signal> = Vec::new();
+            for s in signals.iter().filter(|s| s.system() == system) {
+                if !of_system.contains(s) {
+                    of_system.push(*s);
+                }
+            }
+            (system, of_system)
+        })
+        .filter(|(_, s)| !s.is_empty())
+        .collect()
+}
+
+/// The four observation types (C, L, D, S) of each of `signals`.
+fn observation_types(signals: &[Signal]) -> Vec<String> {
+    signals
+        .iter()
+        .flat_map(|s| ["C", "L", "D", "S"].map(|t| format!("{t}{}", written_code(*s))))
+        .collect()
 }
 
 /// The calendar epoch of `at` in GPS time.
@@ -137,14 +167,14 @@ fn phase_field(cycles: Option<f64>, lli: u8, ssi: Option<u8>) -> String {
 
 impl<W: Write> ObsWriter<W> {
     /// Write the header of the synthesiser's truth: marker `name` at `approx_ecef_m`, first
-    /// epoch `first` (GPS time), `interval_s`, and which systems are present.
+    /// epoch `first` (GPS time), `interval_s`, and which signals are present.
     pub fn new(
         out: W,
         name: &str,
         approx_ecef_m: &Vec3,
         first: Calendar,
         interval_s: f64,
-        systems: &[System],
+        signals: &[Signal],
     ) -> io::Result<Self> {
         Self::with_header(
             out,
@@ -155,7 +185,7 @@ impl<W: Write> ObsWriter<W> {
                 approx_ecef_m: Some(*approx_ecef_m),
                 first,
                 interval_s,
-                systems,
+                signals,
             },
         )
     }
@@ -163,9 +193,10 @@ impl<W: Write> ObsWriter<W> {
     /// Write the header `h` (RINEX 3.04 table A2).
     pub fn with_header(mut out: W, h: &ObsHeader<'_>) -> io::Result<Self> {
         let first = Stamp::new(h.first)?;
-        let letter = match h.systems {
-            [System::Gps] => 'G',
-            [System::Beidou] => 'C',
+        let columns = columns(h.signals);
+        let letter = match columns.as_slice() {
+            [(System::Gps, _)] => 'G',
+            [(System::Beidou, _)] => 'C',
             _ => 'M',
         };
         writeln!(
@@ -211,18 +242,18 @@ impl<W: Write> ObsWriter<W> {
             "{:14.4}{:14.4}{:14.4}{:18}ANTENNA: DELTA H/E/N",
             0.0, 0.0, 0.0, ""
         )?;
-        for system in h.systems {
-            let types: String = ["C", "L", "D", "S"]
-                .iter()
-                .map(|t| format!(" {t}{}", band(*system)))
-                .collect();
-            writeln!(
-                out,
-                "{}  {:>3}{:<54}SYS / # / OBS TYPES",
-                system.letter(),
-                4,
-                types
-            )?;
+        for (system, signals) in &columns {
+            let types = observation_types(signals);
+            // 13 types per line, continuation lines indented (RINEX 3.04 table A2).
+            for (i, chunk) in types.chunks(13).enumerate() {
+                let listed: String = chunk.iter().map(|t| format!(" {t}")).collect();
+                let head = if i == 0 {
+                    format!("{}  {:>3}", system.letter(), types.len())
+                } else {
+                    " ".repeat(6)
+                };
+                writeln!(out, "{head}{listed:<54}SYS / # / OBS TYPES")?;
+            }
         }
         writeln!(out, "{:<60}SIGNAL STRENGTH UNIT", "DBHZ")?;
         if h.interval_s > 0.0 {
@@ -240,20 +271,19 @@ impl<W: Write> ObsWriter<W> {
             first.ticks,
             ""
         )?;
-        // The phases are those of each system's reference signal (L1C, B1I), so no phase
-        // shift is applied (RINEX 3.04 section 9.1, table A23).
-        for system in h.systems {
-            writeln!(
-                out,
-                "{:<60}SYS / PHASE SHIFT",
-                format!("{} L{}", system.letter(), band(*system))
-            )?;
+        // The phases are those of each signal's reference tracking (the codes written), so
+        // no phase shift is applied (RINEX 3.04 section 9.1, table A23).
+        for (system, signals) in &columns {
+            for s in signals {
+                writeln!(
+                    out,
+                    "{:<60}SYS / PHASE SHIFT",
+                    format!("{} L{}", system.letter(), written_code(*s))
+                )?;
+            }
         }
         writeln!(out, "{:60}END OF HEADER", "")?;
-        Ok(Self {
-            out,
-            systems: h.systems.to_vec(),
-        })
+        Ok(Self { out, columns })
     }
 
     /// Append one epoch (GPS time `at`, written rounded to 100 ns) of observations: epoch
@@ -262,17 +292,26 @@ impl<W: Write> ObsWriter<W> {
     /// table A3, notes 1 and 2). A satellite of a system the header does not declare is
     /// an error.
     pub fn epoch(&mut self, at: Calendar, records: &[ObsRecord]) -> io::Result<()> {
-        if let Some(r) = records
-            .iter()
-            .find(|r| !self.systems.contains(&r.sat.system))
-        {
+        let declared = |r: &ObsRecord| {
+            self.columns
+                .iter()
+                .any(|(system, signals)| *system == r.sat.system && signals.contains(&r.signal))
+        };
+        if let Some(r) = records.iter().find(|r| !declared(r)) {
             return Err(io::Error::new(
                 io::ErrorKind::InvalidInput,
                 format!(
-                    "{}: its system has no observation types in the header",
-                    r.sat
+                    "{} {}: the signal has no observation types in the header",
+                    r.sat, r.signal
                 ),
             ));
+        }
+        // The satellites in the order they first appear.
+        let mut sats = Vec::new();
+        for r in records {
+            if !sats.contains(&r.sat) {
+                sats.push(r.sat);
+            }
         }
         let t = Stamp::new(at)?;
         writeln!(
@@ -285,19 +324,28 @@ impl<W: Write> ObsWriter<W> {
             t.minute,
             t.second,
             t.ticks,
-            records.len()
+            sats.len()
         )?;
-        for r in records {
-            let ssi = r.cn0_dbhz.and_then(signal_strength_indicator);
-            writeln!(
-                self.out,
-                "{}{}{}{}{}",
-                r.sat,
-                field(r.pseudorange_m, None, None),
-                phase_field(r.carrier_phase_cycles, r.phase_lli, ssi),
-                field(r.doppler_hz, None, None),
-                field(r.cn0_dbhz, None, None)
-            )?;
+        for sat in sats {
+            let signals = self
+                .columns
+                .iter()
+                .find(|(system, _)| *system == sat.system)
+                .map_or(&[][..], |(_, s)| s.as_slice());
+            let mut line = sat.to_string();
+            for signal in signals {
+                match records.iter().find(|r| r.sat == sat && r.signal == *signal) {
+                    Some(r) => {
+                        let ssi = r.cn0_dbhz.and_then(signal_strength_indicator);
+                        line += &field(r.pseudorange_m, None, None);
+                        line += &phase_field(r.carrier_phase_cycles, r.phase_lli, ssi);
+                        line += &field(r.doppler_hz, None, None);
+                        line += &field(r.cn0_dbhz, None, None);
+                    }
+                    None => line += &field(None, None, None).repeat(4),
+                }
+            }
+            writeln!(self.out, "{line}")?;
         }
         Ok(())
     }
@@ -306,15 +354,6 @@ impl<W: Write> ObsWriter<W> {
     pub fn finish(mut self) -> io::Result<W> {
         self.out.flush()?;
         Ok(self.out)
-    }
-}
-
-/// Band and attribute of the observation codes: GPS L1 C/A `1C`, BeiDou B1I `2I` (RINEX
-/// 3.04 tables 4 and 9).
-fn band(system: System) -> &'static str {
-    match system {
-        System::Gps => "1C",
-        System::Beidou => "2I",
     }
 }
 
@@ -345,7 +384,7 @@ mod tests {
         }
     }
 
-    fn header(systems: &[System], first: Calendar) -> ObsHeader<'_> {
+    fn header(signals: &[Signal], first: Calendar) -> ObsHeader<'_> {
         ObsHeader {
             marker: "ant1",
             receiver_type: RECEIVER_TYPE,
@@ -353,12 +392,12 @@ mod tests {
             approx_ecef_m: None,
             first,
             interval_s: 0.1,
-            systems,
+            signals,
         }
     }
 
     fn write(first: Calendar, epochs: &[(Calendar, Vec<ObsRecord>)]) -> String {
-        let mut w = ObsWriter::with_header(Vec::new(), &header(&[System::Gps], first)).unwrap();
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&[Signal::GpsL1Ca], first)).unwrap();
         for (at, records) in epochs {
             w.epoch(*at, records).unwrap();
         }
@@ -452,9 +491,11 @@ mod tests {
                     "> {ry:04} {rmo:02} {rd:02} {rh:02} {rmi:02}{rs:3}.{:07}  0  0",
                     rns / 100
                 );
-                let mut w =
-                    ObsWriter::with_header(Vec::new(), &header(&[System::Gps], calendar_gpst(at)))
-                        .unwrap();
+                let mut w = ObsWriter::with_header(
+                    Vec::new(),
+                    &header(&[Signal::GpsL1Ca], calendar_gpst(at)),
+                )
+                .unwrap();
                 w.epoch(calendar_gpst(at), &[]).unwrap();
                 let text = String::from_utf8(w.finish().unwrap()).unwrap();
                 let line = text.lines().find(|l| l.starts_with('>')).unwrap();
@@ -538,10 +579,72 @@ mod tests {
         assert_eq!(&l[35..], " ".repeat(32));
     }
 
+    /// Several signals per system: one line per satellite with every signal's four values
+    /// in the header's order, blanks where a satellite lacks one; the reader returns each
+    /// record as written.
+    #[test]
+    fn several_signals_per_system_round_trip_through_the_reader() {
+        let signals = [
+            Signal::GpsL1Ca,
+            Signal::GpsL2,
+            Signal::GpsL5,
+            Signal::BdsB1I,
+            Signal::BdsB2I,
+            Signal::BdsB3I,
+        ];
+        let c19 = SatId {
+            system: System::Beidou,
+            prn: 19,
+        };
+        let at = (2022, 1, 1, 0, 0, 12.0);
+        let mut records = Vec::new();
+        for (k, signal) in signals.into_iter().enumerate() {
+            let sat = if signal.system() == System::Gps {
+                gps(7)
+            } else {
+                c19
+            };
+            // G07 has no L2.
+            if signal == Signal::GpsL2 {
+                continue;
+            }
+            records.push(ObsRecord::complete(
+                sat,
+                signal,
+                21_000_000.0 + k as f64,
+                110_000_000.25 + k as f64,
+                -1000.5 - k as f64,
+                40.0 + k as f64,
+            ));
+        }
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&signals, at)).unwrap();
+        w.epoch(at, &records).unwrap();
+        let text = String::from_utf8(w.finish().unwrap()).unwrap();
+        assert!(
+            text.contains("G   12 C1C L1C D1C S1C C2W L2W D2W S2W C5I L5I D5I S5I"),
+            "{text}"
+        );
+        assert!(text.contains("C   12 C2I L2I D2I S2I C7I L7I D7I S7I C6I L6I D6I S6I"));
+        let g07 = text.lines().find(|l| l.starts_with("G07")).unwrap();
+        assert_eq!(&g07[3 + 64..3 + 128], " ".repeat(64), "{g07}");
+        let read = crate::observation::parse_obs_text(&text, "t.rnx").unwrap();
+        let mut back = read.epochs[0].sats.clone();
+        back.sort_by_key(|r| (r.sat, r.signal));
+        records.sort_by_key(|r| (r.sat, r.signal));
+        assert_eq!(back.len(), records.len());
+        for (b, r) in back.iter().zip(&records) {
+            assert_eq!((b.sat, b.signal), (r.sat, r.signal));
+            assert_eq!(b.pseudorange_m, r.pseudorange_m);
+            assert_eq!(b.carrier_phase_cycles, r.carrier_phase_cycles);
+            assert_eq!(b.doppler_hz, r.doppler_hz);
+            assert_eq!(b.cn0_dbhz, r.cn0_dbhz);
+        }
+    }
+
     #[test]
     fn undeclared_systems_are_refused() {
         let at = (2022, 1, 1, 0, 0, 1.0);
-        let mut w = ObsWriter::with_header(Vec::new(), &header(&[System::Gps], at)).unwrap();
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&[Signal::GpsL1Ca], at)).unwrap();
         let c19 = SatId {
             system: System::Beidou,
             prn: 19,
@@ -550,7 +653,7 @@ mod tests {
         assert!(
             ObsWriter::with_header(
                 Vec::new(),
-                &header(&[System::Gps], (2022, 2, 30, 0, 0, 0.0))
+                &header(&[Signal::GpsL1Ca], (2022, 2, 30, 0, 0, 0.0))
             )
             .is_err()
         );
@@ -559,14 +662,14 @@ mod tests {
     #[test]
     fn the_rinex_crate_reads_epochs_flags_and_strengths() {
         use rinex::prelude::{Constellation, Observable};
-        let systems = [System::Gps, System::Beidou];
+        let signals = [Signal::GpsL1Ca, Signal::BdsB1I];
         let c19 = SatId {
             system: System::Beidou,
             prn: 19,
         };
         let t0 = (2022, 1, 1, 0, 0, 12.000_000_1);
         let t1 = (2022, 1, 1, 0, 0, 12.100_000_1);
-        let mut w = ObsWriter::with_header(Vec::new(), &header(&systems, t0)).unwrap();
+        let mut w = ObsWriter::with_header(Vec::new(), &header(&signals, t0)).unwrap();
         w.epoch(t0, &[record(gps(7), 45.0, true), record(c19, 30.0, false)])
             .unwrap();
         w.epoch(t1, &[record(gps(7), 45.0, false), record(c19, 11.0, true)])

@@ -11,13 +11,13 @@ use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::System;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
+use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
 use skyforge_signals::synth::session::{
@@ -172,13 +172,13 @@ pub fn synthesise(
         path: truth_path,
         writer: truth_writer,
     };
-    let systems: Vec<System> = bands.iter().map(|b| b.signal.system()).collect();
-    let mut obs = ObsFiles::new(&staged.file(""), antennas, &systems);
+    let signals: Vec<Signal> = bands.iter().map(|b| b.signal).collect();
+    let mut obs = ObsFiles::new(&staged.file(""), antennas, &signals);
     let measured_dir = staged.file(OBSERVATIONS_DIR);
     if observation_level {
         std::fs::create_dir(&measured_dir).with_context(|| writing(&measured_dir))?;
     }
-    let mut measured = ObsFiles::new(&measured_dir, antennas, &systems);
+    let mut measured = ObsFiles::new(&measured_dir, antennas, &signals);
     let n_epochs = epoch_count(duration_s, GEOMETRY_STEP_S);
     let bar = ProgressBar::new(n_epochs as u64).with_style(
         ProgressStyle::with_template("{spinner} synth [{bar:40}] {pos}/{len} s ({eta} left)")

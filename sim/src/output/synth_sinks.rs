@@ -5,10 +5,10 @@
 
 use super::truth_h5::TruthWriter;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::System;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::observation::ObsRecord;
 use skyforge_signals::observation::rinex_write::{ObsWriter, calendar_gpst};
+use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::synth::session::{ObservationSink, SinkError, TruthSink};
 use skyforge_signals::truth::geometry::GeometryChunk;
@@ -58,21 +58,21 @@ type Writer = ObsWriter<BufWriter<File>>;
 pub struct ObsFiles {
     paths: Vec<PathBuf>,
     names: Vec<String>,
-    systems: Vec<System>,
+    signals: Vec<Signal>,
     writers: Vec<Option<Writer>>,
 }
 
 impl ObsFiles {
-    /// The files `dir/<antenna>.obs.rnx` of `antennas`, declaring `systems`; none is
+    /// The files `dir/<antenna>.obs.rnx` of `antennas`, declaring `signals`; none is
     /// created before its first epoch.
-    pub fn new(dir: &Path, antennas: &[Antenna], systems: &[System]) -> Self {
+    pub fn new(dir: &Path, antennas: &[Antenna], signals: &[Signal]) -> Self {
         Self {
             paths: antennas
                 .iter()
                 .map(|a| dir.join(format!("{}.obs.rnx", a.name)))
                 .collect(),
             names: antennas.iter().map(|a| a.name.clone()).collect(),
-            systems: systems.to_vec(),
+            signals: signals.to_vec(),
             writers: antennas.iter().map(|_| None).collect(),
         }
     }
@@ -107,7 +107,7 @@ impl ObservationSink for ObsFiles {
                     position_ecef_m,
                     calendar_gpst(at),
                     OBS_INTERVAL_S,
-                    &self.systems,
+                    &self.signals,
                 )
                 .map_err(|e| writing(path, e))?;
                 empty.insert(w)
