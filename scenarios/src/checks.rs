@@ -66,7 +66,8 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
 }
 
 /// `[observation]`: the observation level needs the `[signal]` table (its C/N0 settings);
-/// noise parameters are finite and non-negative, elevation scales positive.
+/// observed-only signals need the observation level; noise parameters are finite and
+/// non-negative, elevation scales positive.
 fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
     let obs = &scenario.observation;
     if obs.level == Level::Observation && scenario.signal.is_none() {
@@ -74,6 +75,15 @@ fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
             "observation.level",
             "\"observation\"",
             "the observation level draws its noise at the links' C/N0: add a [signal] table",
+        ));
+    }
+    if obs.level == Level::Signal
+        && let Some(s) = obs.observed_signals.first()
+    {
+        return Err(Invalid::new(
+            "observation.observed_signals",
+            s.tag(),
+            "observed-only signals are drawn at the observation level alone (level = \"observation\"); the signal level synthesises GPS L1 C/A and BDS B1I",
         ));
     }
     let non_negative = |field: &str, v: f64| {

@@ -255,6 +255,14 @@ impl std::fmt::Display for Signal {
     }
 }
 
+/// A signal in a configuration file is its tag (`"gps-l1ca"`, any case).
+impl<'de> serde::Deserialize<'de> for Signal {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let name = String::deserialize(d)?;
+        name.parse().map_err(serde::de::Error::custom)
+    }
+}
+
 impl FromStr for Signal {
     type Err = UnknownSignal;
     /// A command-line `--signal` value (the tag, any case).

@@ -203,3 +203,100 @@ fn bundled_calibration_is_reproduced_by_the_calibrate_command() {
     assert_eq!(measured["signals"], bundled["signals"]);
     assert!(!out.join("work").exists(), "the recordings are removed");
 }
+
+/// Observed-only signals (`observed_signals`): every antenna's observation file and truth
+/// file carry L2, L5, B2I and B3I beside L1 C/A and B1I, on one line per satellite, and
+/// they read back as their own signals on the same satellites.
+#[test]
+fn observed_only_signals_are_written_beside_the_synthesised_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let extra = format!(
+        "{TWO_ANTENNAS}\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l2\", \"gps-l5\", \"bds-b2i\", \"bds-b3i\"]\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n"
+    );
+    let path = scenario(dir.path(), "multi", 10, 12, &extra);
+    let out = dir.path().join("out");
+    skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    for file in [
+        out.join("ant2.obs.rnx"),
+        out.join("observations/ant2.obs.rnx"),
+    ] {
+        let text = std::fs::read_to_string(&file).unwrap();
+        assert!(
+            text.contains("G   12 C1C L1C D1C S1C C2W L2W D2W S2W C5I L5I D5I S5I"),
+            "{}",
+            file.display()
+        );
+        assert!(text.contains("C   12 C2I L2I D2I S2I C7I L7I D7I S7I C6I L6I D6I S6I"));
+        let obs = read_obs_file(&file).unwrap();
+        let epoch = &obs.epochs[5];
+        for (synthesised, observed) in [
+            (
+                skyforge_signals::signal::Signal::GpsL1Ca,
+                [
+                    skyforge_signals::signal::Signal::GpsL2,
+                    skyforge_signals::signal::Signal::GpsL5,
+                ],
+            ),
+            (
+                skyforge_signals::signal::Signal::BdsB1I,
+                [
+                    skyforge_signals::signal::Signal::BdsB2I,
+                    skyforge_signals::signal::Signal::BdsB3I,
+                ],
+            ),
+        ] {
+            let sats = |s| {
+                epoch
+                    .sats
+                    .iter()
+                    .filter(|r| r.signal == s && r.carrier_phase_cycles.is_some())
+                    .map(|r| r.sat)
+                    .collect::<Vec<_>>()
+            };
+            assert!(sats(synthesised).len() >= 4, "{synthesised}");
+            for o in observed {
+                assert_eq!(sats(o), sats(synthesised), "{o} in {}", file.display());
+            }
+        }
+    }
+}
+
+/// Observed-only signals need the observation level, and a noise model that has them:
+/// each mistake is one located error and nothing is written.
+#[test]
+fn observed_only_signals_outside_the_observation_level_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    for (name, extra, said) in [
+        (
+            "signal-level",
+            "\n[observation]\nobserved_signals = [\"gps-l2\"]\n",
+            "observed-only signals are drawn at the observation level alone",
+        ),
+        (
+            "calibrated",
+            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l5\"]\n",
+            "the calibrated noise model has no calibration for it",
+        ),
+        (
+            "synthesised",
+            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l1ca\"]\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n",
+            "is synthesised",
+        ),
+        (
+            "unknown",
+            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e1\"]\n",
+            "unknown signal",
+        ),
+    ] {
+        let path = scenario(dir.path(), name, 10, 1, extra);
+        let out = dir.path().join(format!("out-{name}"));
+        let o = support::skyforge(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+        assert_eq!(o.status.code(), Some(2), "{name}: {}", support::text(&o));
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains("observed_signals") && err.contains(said),
+            "{name}: {err}"
+        );
+        assert!(!out.exists(), "{name}");
+    }
+}

@@ -15,7 +15,6 @@ pub struct RelativeConfig {
     /// Signals used (`gps-l1ca`, `bds-b1i`, `gps-l2`); default the two SkyForge
     /// synthesises. Every signal listed of a system must be observed on a satellite for
     /// it to enter the double differences.
-    #[serde(deserialize_with = "signals")]
     pub signals: Vec<Signal>,
     /// Weighting of the double differences: thesis eqs. 2.4-9/2.4-10 for phase and code.
     pub phase: ElevationNoise,
@@ -71,14 +70,6 @@ pub enum Constraint {
     Geometry,
     /// The baseline lengths ([`super::length`]).
     Length,
-}
-
-fn signals<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<Signal>, D::Error> {
-    let names: Vec<String> = Vec::deserialize(d)?;
-    names
-        .iter()
-        .map(|n| n.parse::<Signal>().map_err(serde::de::Error::custom))
-        .collect()
 }
 
 impl Default for RelativeConfig {

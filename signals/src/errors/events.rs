@@ -105,6 +105,19 @@ impl EventEffect {
         carrier_m: 0.0,
         carrier_cycles: 0.0,
     };
+
+    /// The effect on another signal of the satellite, whose ionospheric delay is
+    /// `iono_scale` times this one's: the ionospheric ramp (the only carrier range term,
+    /// `-carrier_m`, also in the code) scales; code steps, phase jumps (the same cycles)
+    /// and power steps act alike on every signal.
+    pub fn with_iono_scale(self, iono_scale: f64) -> Self {
+        let ramp_m = -self.carrier_m;
+        Self {
+            code_m: self.code_m + (iono_scale - 1.0) * ramp_m,
+            carrier_m: iono_scale * self.carrier_m,
+            ..self
+        }
+    }
 }
 
 impl EventConfig {

@@ -3,6 +3,7 @@
 
 use super::calibration::Calibration;
 use crate::observation::ElevationNoise;
+use crate::signal::Signal;
 use serde::Deserialize;
 use std::path::PathBuf;
 
@@ -26,6 +27,11 @@ pub struct ObservationConfig {
     /// The observation-level noise (`[observation.noise]`).
     #[serde(default)]
     pub noise: ObsNoiseConfig,
+    /// Observed-only signals drawn at the observation level besides each system's
+    /// synthesised one (`["gps-l2", "gps-l5", "bds-b2i", "bds-b3i"]`; default none): the
+    /// multi-frequency baseline models of thesis 2.4.2 and 2.4.4.
+    #[serde(default)]
+    pub observed_signals: Vec<Signal>,
 }
 
 /// `[observation.noise]` as written in the scenario.

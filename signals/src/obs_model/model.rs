@@ -69,6 +69,15 @@ impl ObservationModel {
         }
     }
 
+    /// Whether the model has noise for `signal` (the calibrated model only for the signals
+    /// its calibration run measured).
+    pub fn has_noise_for(&self, signal: Signal) -> bool {
+        match &self.noise {
+            ObsNoise::Calibrated(cal) => cal.of(signal).is_some(),
+            ObsNoise::Elevation { .. } | ObsNoise::Constant { .. } => true,
+        }
+    }
+
     /// Code and phase standard deviations (m) and their correlation times (s).
     fn sigmas(&self, signal: Signal, cn0_dbhz: f64, elevation_rad: f64) -> ([f64; 2], [f64; 2]) {
         match &self.noise {
@@ -156,6 +165,7 @@ mod tests {
 
     fn truth(t_s: f64) -> LinkTruth {
         LinkTruth {
+            signal: Signal::GpsL1Ca,
             t_s,
             antenna: 0,
             tx: 0,

@@ -1,4 +1,4 @@
-//! RINEX 2.10/2.11 observation files into per-epoch GPS L1 C/A and L2 observations
+//! RINEX 2.10/2.11 observation files into per-epoch GPS L1 C/A, L2 and L5 observations
 //! ([`ObsRecord`]); [`super::read_obs_file`] hands a file here when its first line says
 //! version 2.
 //!
@@ -10,7 +10,7 @@
 //! signal-strength digit.
 //!
 //! GPS codes used: `L1`/`C1`/`D1`/`S1` for L1 C/A; `L2`/`P2`/`D2`/`S2` for L2 (`C2`, the
-//! L2C code, when the file has no `P2`). `P1` is the L1 P(Y) code, another signal, and is
+//! L2C code, when the file has no `P2`); `L5`/`C5`/`D5`/`S5` for L5. `P1` is the L1 P(Y) code, another signal, and is
 //! left out. Loss-of-lock bit 0 is kept as [`LLI_LOSS_OF_LOCK`]; bit 1 (the wavelength
 //! factor opposite to the header's for this epoch) as [`LLI_HALF_CYCLE`]; bit 2
 //! (anti-spoofing on) is dropped. A band whose `WAVELENGTH FACT L1/2` is 2 (squaring
@@ -52,10 +52,19 @@ fn classify_types(types: &[String], wavelength_factor: [u8; 2]) -> Vec<Option<(S
                 "C2" if !has_p2 => (Signal::GpsL2, Kind::Code),
                 "D2" => (Signal::GpsL2, Kind::Doppler),
                 "S2" => (Signal::GpsL2, Kind::Strength),
+                "L5" => (Signal::GpsL5, Kind::Phase),
+                "C5" => (Signal::GpsL5, Kind::Code),
+                "D5" => (Signal::GpsL5, Kind::Doppler),
+                "S5" => (Signal::GpsL5, Kind::Strength),
                 _ => return None,
             };
-            let band = usize::from(signal == Signal::GpsL2);
-            if kind == Kind::Phase && wavelength_factor[band] != 1 {
+            // The wavelength factors are L1's and L2's (RINEX 2.11 table A1); L5 is whole.
+            let factor = match signal {
+                Signal::GpsL1Ca => wavelength_factor[0],
+                Signal::GpsL2 => wavelength_factor[1],
+                _ => 1,
+            };
+            if kind == Kind::Phase && factor != 1 {
                 return None;
             }
             Some((signal, kind))
@@ -480,6 +489,24 @@ mod tests {
         assert_eq!(g3l2.phase_lli, 0);
         assert_eq!(e.sats[2].sat.to_string(), "G07");
         assert_eq!(e.sats[2].phase_lli, LLI_LOSS_OF_LOCK);
+    }
+
+    /// RINEX 2.11's `L5`/`C5` are GPS L5 (whole cycles, whatever L1/L2's wavelength
+    /// factors).
+    #[test]
+    fn l5_codes_are_gps_l5() {
+        let epoch = " 05  4  2  0  0  0.0000000  0  1G 3
+  55923622.160    24767686.375    43647388.2424   24767684.8224
+";
+        let text = header(&["L1", "C1", "L5", "C5"]) + epoch;
+        let f = parse_rinex2_obs(&text, Path::new("t.05o")).unwrap();
+        let l5 = f.epochs[0]
+            .sats
+            .iter()
+            .find(|r| r.signal == Signal::GpsL5)
+            .unwrap();
+        assert_eq!(l5.carrier_phase_cycles, Some(43647388.242));
+        assert_eq!(l5.pseudorange_m, Some(24767684.822));
     }
 
     #[test]

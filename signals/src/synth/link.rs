@@ -14,6 +14,7 @@
 //! delay, amplitude and phase on top of the direct path.
 
 use crate::errors::multipath::Path;
+use crate::signal::Signal;
 use crate::truth::geometry::LinkGeometry;
 use crate::truth::interp::QuinticHermite;
 use skyforge_orbits::constants::C_MPS;
@@ -64,6 +65,9 @@ impl LinkEnd {
 /// `carrier_phase_cycles`; their effect on an ideal tracking loop is given separately.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LinkTruth {
+    /// The signal: the transmitter's, or at the observation level an observed-only signal
+    /// of the same satellite ([`super::render::Synthesiser::with_observed`]).
+    pub signal: Signal,
     /// Receive time in the receiver's clock (s since the scenario start): the block's
     /// first sample.
     pub t_s: f64,
@@ -194,10 +198,20 @@ impl Segment {
 
     /// The direct path at true receive time `t`.
     pub fn at(&self, t: f64) -> LinkState {
+        self.at_scaled(t, 1.0)
+    }
+
+    /// The direct path at `t` on a carrier whose ionospheric delay is `iono_scale` times
+    /// the link's (`(f_link / f)^2`, the first-order ionosphere): another signal of the
+    /// same satellite.
+    pub fn at_scaled(&self, t: f64, iono_scale: f64) -> LinkState {
         let tau = self.range.value(t) / C_MPS;
         let sat_clock_s = self.clock_s + self.drift * (t - tau - self.clock_t0_s);
-        let (iono_m, tropo_m, antenna_m) =
-            (self.iono_m.at(t), self.tropo_m.at(t), self.antenna_m.at(t));
+        let (iono_m, tropo_m, antenna_m) = (
+            iono_scale * self.iono_m.at(t),
+            self.tropo_m.at(t),
+            self.antenna_m.at(t),
+        );
         LinkState {
             code_delay_s: tau + (iono_m + tropo_m + antenna_m) / C_MPS - sat_clock_s,
             carrier_delay_s: tau + (-iono_m + tropo_m + antenna_m) / C_MPS - sat_clock_s,
@@ -209,10 +223,10 @@ impl Segment {
         }
     }
 
-    /// d D_carr / dt at `t` (s/s).
-    pub fn carrier_delay_rate(&self, t: f64) -> f64 {
+    /// d D_carr / dt at `t` (s/s), the ionosphere scaled by `iono_scale` ([`Self::at_scaled`]).
+    pub fn carrier_delay_rate(&self, t: f64, iono_scale: f64) -> f64 {
         self.range.rate(t) / C_MPS - self.drift
-            + (-self.iono_m.rate + self.tropo_m.rate + self.antenna_m.rate) / C_MPS
+            + (-iono_scale * self.iono_m.rate + self.tropo_m.rate + self.antenna_m.rate) / C_MPS
     }
 
     /// The reflected paths at `t` (in the link's fixed order).

@@ -23,6 +23,7 @@ use crate::errors::clock::{ClockModel, ClockSample};
 use crate::errors::events::{EventEffect, EventSchedule};
 use crate::errors::multipath::{Path, dll_bias_m};
 use crate::sample_format::SampleFormat;
+use crate::signal::Signal;
 use rayon::prelude::*;
 use skyforge_orbits::constants::C_MPS;
 use std::f64::consts::TAU;
@@ -92,6 +93,9 @@ pub struct Synthesiser<'a> {
     /// Render samples (off for the observation level, which needs the truth alone).
     samples: bool,
     truth: Vec<LinkTruth>,
+    /// Observed-only signals whose truth is recorded besides each transmitter's own, for
+    /// the transmitters of their system (the observation level).
+    observed: Vec<Signal>,
     /// Receiver clocks: none (ideal), one shared by every antenna, or one per antenna.
     clocks: Vec<ClockModel>,
     /// Blocks per clock step.
@@ -104,6 +108,16 @@ pub struct Synthesiser<'a> {
     slice_bytes: usize,
     /// The bytes of one slice's blocks.
     slice: Vec<u8>,
+}
+
+/// The instant of one truth record: block start in receiver time `t_rx`, true time `t`,
+/// the receiver clock's offset `dt_rx` (s) and fractional frequency `freq`.
+#[derive(Debug, Clone, Copy)]
+struct TruthInstant {
+    t_rx: f64,
+    t: f64,
+    dt_rx: f64,
+    freq: f64,
 }
 
 /// Noise standard deviation per component (float units before filtering and quantisation).
@@ -131,6 +145,7 @@ impl<'a> Synthesiser<'a> {
             truth_every: 0,
             samples: true,
             truth: Vec::new(),
+            observed: Vec::new(),
             clocks: Vec::new(),
             clock_every: 1,
             clock_last: Vec::new(),
@@ -150,6 +165,15 @@ impl<'a> Synthesiser<'a> {
     /// Render no samples, only truth (the observation level).
     pub fn without_samples(mut self) -> Self {
         self.samples = false;
+        self
+    }
+
+    /// Also record the truth of `signals` (observed-only: L2, L5, B2I, B3I) for every
+    /// transmitter of their system: the same geometry, clocks, troposphere, antenna and
+    /// events, the ionosphere scaled to each carrier (`(f_tx / f)^2`, first order), the
+    /// reflected paths at its wavelength and chip length, the transmitter's C/N0.
+    pub fn with_observed(mut self, signals: Vec<Signal>) -> Self {
+        self.observed = signals;
         self
     }
 
@@ -289,16 +313,16 @@ impl<'a> Synthesiser<'a> {
             c.as_slice()
         };
         if self.truth_every > 0 {
+            let mut truth = std::mem::take(&mut self.truth);
             for b in (b0..b1).filter(|b| b % self.truth_every == 0) {
                 for (a, segs) in segments.iter().enumerate() {
                     let clock = clock_of(a).get((b - b0) as usize).copied();
                     for seg in segs {
-                        if let Some(r) = self.truth_record(seg, a, b, clock) {
-                            self.truth.push(r);
-                        }
+                        self.truth_records(seg, a, b, clock, &mut truth);
                     }
                 }
             }
+            self.truth = truth;
         }
         if !self.samples {
             return Ok(());
@@ -373,32 +397,75 @@ impl<'a> Synthesiser<'a> {
         })
     }
 
-    fn truth_record(
+    /// The truth of link `seg` at antenna `a` and block `b`: one record for the
+    /// transmitter's signal and one per observed-only signal ([`Self::with_observed`]);
+    /// none during an outage.
+    fn truth_records(
         &self,
         seg: &Segment,
         a: usize,
         b: u64,
         clock: Option<ClockSample>,
-    ) -> Option<LinkTruth> {
+        out: &mut Vec<LinkTruth>,
+    ) {
         let t_rx = b as f64 * BLOCK_S;
         let (dt_rx, freq) = Self::rx_clock(clock, t_rx);
         let t = t_rx - dt_rx;
         let ev = self.effect(t, a, seg.tx);
         if ev.amplitude_factor <= 0.0 {
-            return None;
+            return;
         }
         let tx = &self.transmitters[seg.tx];
-        let fc = tx.signal.carrier_hz();
-        let s = seg.at(t);
+        let at = TruthInstant {
+            t_rx,
+            t,
+            dt_rx,
+            freq,
+        };
+        out.push(self.truth_record(seg, a, at, ev, tx.signal, tx.chip_rate_hz));
+        let f_tx = tx.signal.carrier_hz();
+        for &signal in self.observed.iter().filter(|s| s.system() == tx.sat.system) {
+            let scale = (f_tx / signal.carrier_hz()).powi(2);
+            out.push(self.truth_record(
+                seg,
+                a,
+                at,
+                ev.with_iono_scale(scale),
+                signal,
+                signal.chip_rate_hz(),
+            ));
+        }
+    }
+
+    /// The truth of `signal` (chipping at `chip_rate_hz`) on link `seg` at antenna `a` at
+    /// `at`, with the events `ev`.
+    fn truth_record(
+        &self,
+        seg: &Segment,
+        a: usize,
+        at: TruthInstant,
+        ev: EventEffect,
+        signal: Signal,
+        chip_rate_hz: f64,
+    ) -> LinkTruth {
+        let TruthInstant {
+            t_rx,
+            t,
+            dt_rx,
+            freq,
+        } = at;
+        let fc = signal.carrier_hz();
+        let iono_scale = (self.transmitters[seg.tx].signal.carrier_hz() / fc).powi(2);
+        let s = seg.at_scaled(t, iono_scale);
         let (multipath_code_m, multipath_carrier_m) = if seg.has_reflections() {
-            let chip_m = C_MPS / tx.chip_rate_hz;
+            let chip_m = C_MPS / chip_rate_hz;
             let lambda = C_MPS / fc;
             // Relative carrier phase of each path at the correlator.
             let paths: Vec<Path> = seg
                 .reflections_at(t)
                 .map(|p| p.at_carrier(lambda))
                 .collect();
-            let code_len = (tx.chip_rate_hz * BLOCK_S).round() as u32;
+            let code_len = (chip_rate_hz * BLOCK_S).round() as u32;
             (
                 dll_bias_m(&paths, chip_m, code_len, TRUTH_DLL_SPACING_CHIPS),
                 multipath_carrier_m(&paths, chip_m, lambda),
@@ -406,14 +473,15 @@ impl<'a> Synthesiser<'a> {
         } else {
             (0.0, 0.0)
         };
-        Some(LinkTruth {
+        LinkTruth {
+            signal,
             t_s: t_rx,
             antenna: a,
             tx: seg.tx,
             pseudorange_m: C_MPS * (s.code_delay_s + dt_rx) + ev.code_m,
             carrier_phase_cycles: fc * (s.carrier_delay_s + dt_rx + ev.carrier_m / C_MPS)
                 + ev.carrier_cycles,
-            doppler_hz: -fc * (seg.carrier_delay_rate(t) * (1.0 - freq) + freq),
+            doppler_hz: -fc * (seg.carrier_delay_rate(t, iono_scale) * (1.0 - freq) + freq),
             cn0_dbhz: s.cn0_dbhz + 20.0 * ev.amplitude_factor.log10(),
             iono_m: s.iono_m,
             tropo_m: s.tropo_m,
@@ -424,7 +492,7 @@ impl<'a> Synthesiser<'a> {
             event_carrier_cycles: ev.carrier_cycles + ev.carrier_m / C_MPS * fc,
             multipath_code_m,
             multipath_carrier_m,
-        })
+        }
     }
 
     /// Block `b` of antenna `a`, written to `bytes` (one block's worth).

@@ -197,6 +197,8 @@ pub struct SynthSession<'a> {
     filter: Option<BandFilter>,
     /// Set for the observation level: observables from truth and this model, no samples.
     observation_model: Option<ObservationModel>,
+    /// Observed-only signals drawn besides the synthesised ones (observation level).
+    observed: Vec<Signal>,
 }
 
 /// Every satellite's ephemeris at the start (the set its message will carry).
@@ -321,14 +323,40 @@ impl<'a> SynthSession<'a> {
             events,
             filter,
             observation_model: None,
+            observed: Vec::new(),
         })
     }
 
     /// Run at the observation level: no samples; at each whole second `model` turns every
-    /// link's truth into observables for [`Sinks::measurements`].
-    pub fn observation_level(mut self, model: ObservationModel) -> Self {
+    /// link's truth into observables for [`Sinks::measurements`], of each transmitter's
+    /// signal and of the observed-only signals `observed` of its system (GPS L2/L5, BDS
+    /// B2I/B3I: [`Synthesiser::with_observed`]). A synthesised signal in `observed`, or one
+    /// the model has no noise for, is an error.
+    pub fn observation_level(
+        mut self,
+        model: ObservationModel,
+        observed: &[Signal],
+    ) -> Result<Self, SynthError> {
+        let field = "observation.observed_signals";
+        for s in observed {
+            if s.is_synthesised() {
+                return Err(SynthError::Invalid(Invalid::new(
+                    field,
+                    s.tag(),
+                    "is synthesised (every scenario has it); list observed-only signals: gps-l2, gps-l5, bds-b2i, bds-b3i",
+                )));
+            }
+            if !model.has_noise_for(*s) {
+                return Err(SynthError::Invalid(Invalid::new(
+                    field,
+                    s.tag(),
+                    "the calibrated noise model has no calibration for it (set [observation.noise] model = \"elevation\" or \"constant\")",
+                )));
+            }
+        }
         self.observation_model = Some(model);
-        self
+        self.observed = observed.to_vec();
+        Ok(self)
     }
 
     /// The world being synthesised.
@@ -351,6 +379,18 @@ impl<'a> SynthSession<'a> {
     /// The bands with transmitters, GPS first.
     pub fn bands(&self) -> &[Band] {
         &self.bands
+    }
+
+    /// Every signal observed: each band's, then the observed-only signals of the bands'
+    /// systems ([`Self::observation_level`]).
+    pub fn signals(&self) -> Vec<Signal> {
+        let bands = self.bands.iter().map(|b| b.signal);
+        let observed = self
+            .observed
+            .iter()
+            .copied()
+            .filter(|s| self.bands.iter().any(|b| b.signal.system() == s.system()));
+        bands.chain(observed).collect()
     }
 
     /// The transmitting satellites, band by band (the index [`Band::first`] counts in).
@@ -463,7 +503,7 @@ impl<'a> SynthSession<'a> {
                 .with_clocks(clocks.clone())
                 .with_events(self.events.clone());
                 let s = if observation_level {
-                    s.without_samples()
+                    s.without_samples().with_observed(self.observed.clone())
                 } else {
                     s
                 };
@@ -583,7 +623,7 @@ impl Running<'_, '_, '_> {
                 let sat = self.sats[s];
                 whole_second[r.antenna].push(ObsRecord::complete(
                     sat,
-                    band.signal,
+                    r.signal,
                     r.pseudorange_m,
                     r.carrier_phase_cycles,
                     r.doppler_hz,
@@ -591,17 +631,16 @@ impl Running<'_, '_, '_> {
                 ));
                 if let Some(model) = self.model.as_mut() {
                     let elevation = self.elevations[r.antenna * n_sats + s];
-                    measured[r.antenna].push(model.observe(
-                        r.antenna,
-                        sat,
-                        band.signal,
-                        r,
-                        elevation,
-                    ));
+                    measured[r.antenna].push(model.observe(r.antenna, sat, r.signal, r, elevation));
                 }
             }
+            // The truth file holds the transmitted signal's truth.
             for a in 0..n_ant {
-                let records: Vec<_> = truth.iter().filter(|r| r.antenna == a).copied().collect();
+                let records: Vec<_> = truth
+                    .iter()
+                    .filter(|r| r.antenna == a && r.signal == band.signal)
+                    .copied()
+                    .collect();
                 self.sinks.truth.signal(a, &records, band.first)?;
             }
         }

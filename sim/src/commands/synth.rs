@@ -17,7 +17,6 @@ use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
-use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
 use skyforge_signals::synth::session::{
@@ -95,12 +94,12 @@ fn session<'a>(
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
         .map_err(|e| setup_error(scenario, e))?;
     Ok(match noise {
-        Some(noise) => session.observation_level(ObservationModel::new(
-            noise,
-            scenario.seed,
-            n_antennas,
-            GEOMETRY_STEP_S,
-        )),
+        Some(noise) => session
+            .observation_level(
+                ObservationModel::new(noise, scenario.seed, n_antennas, GEOMETRY_STEP_S),
+                &scenario.observation.observed_signals,
+            )
+            .map_err(|e| setup_error(scenario, e))?,
         None => session,
     })
 }
@@ -132,6 +131,7 @@ pub fn synthesise(
         (w.origin, w.antennas, w.duration_s)
     };
     let bands = session.bands().to_vec();
+    let signals = session.signals();
     let info = session.recording_info(&scenario.name);
     let sats = session.satellites();
     let n_ant = antennas.len();
@@ -172,7 +172,6 @@ pub fn synthesise(
         path: truth_path,
         writer: truth_writer,
     };
-    let signals: Vec<Signal> = bands.iter().map(|b| b.signal).collect();
     let mut obs = ObsFiles::new(&staged.file(""), antennas, &signals);
     let measured_dir = staged.file(OBSERVATIONS_DIR);
     if observation_level {

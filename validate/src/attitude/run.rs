@@ -320,7 +320,7 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
     let antennas = &run.antennas;
     let model = ObservationModel::new(noise, scenario.seed, antennas.len(), GEOMETRY_STEP_S);
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?
-        .observation_level(model);
+        .observation_level(model, &scenario.observation.observed_signals)?;
     let mut measured = Collect::new(antennas, "observations");
     let mut truth = Collect::new(antennas, "observation truth");
     let mut platform = PlatformTruth::default();
