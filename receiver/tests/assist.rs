@@ -4,9 +4,8 @@
 
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{EphemerisStore, System, nominal};
+use skyforge_orbits::ephemeris::{System, nominal};
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
-use skyforge_orbits::time::TimeOrigin;
 use skyforge_receiver::assist::{Assistance, search_hints};
 
 fn leo_state(t: f64) -> (Vec3, Vec3) {
@@ -55,8 +54,7 @@ fn true_doppler(eph: &skyforge_orbits::ephemeris::BoundEphemeris, t: f64) -> f64
 #[test]
 fn predicted_doppler_and_windows_for_a_leo() {
     let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
-    let origin = TimeOrigin::new(start);
-    let store = EphemerisStore::new(nominal::gps(start), &origin);
+    let store = nominal::gps_store(start);
     let t = 1234.0;
     let (r, v) = leo_state(t);
     let exact = Assistance {
@@ -128,8 +126,7 @@ fn predicted_doppler_and_windows_for_a_leo() {
 #[test]
 fn ground_receiver_sees_what_is_above_its_mask() {
     let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
-    let origin = TimeOrigin::new(start);
-    let store = EphemerisStore::new(nominal::gps(start), &origin);
+    let store = nominal::gps_store(start);
     let site = geodetic_to_ecef(&Geodetic {
         lat_rad: 0.5,
         lon_rad: 2.0,

@@ -308,8 +308,6 @@ fn one_baseline_truth(sim: &Path, k: usize, view: &Path) {
     std::fs::hard_link(sim.join("truth.h5"), view.join("truth.h5")).unwrap();
 }
 
-/// Run both programs on `setup` and hold SkyForge to RTKLIB's fix rate and 3D RMS, per
-/// baseline and for each of RTKLIB's ambiguity modes.
 /// What the comparison asserts: the fix rate always; the 3D RMS too unless `accuracy` is
 /// `Reported` (a measured miss that stays printed and documented, not asserted).
 #[derive(PartialEq)]
@@ -318,11 +316,25 @@ enum Accuracy {
     Reported,
 }
 
-fn side_by_side(setup: Setup, accuracy: Accuracy) {
-    require_rnx2rtkp();
-    let tmp = tempfile::tempdir().unwrap();
-    let dir = tmp.path();
-    std::fs::write(dir.join("scenario.toml"), &setup.scenario).unwrap();
+/// One baseline of one run beside one of RTKLIB's modes.
+struct Pair {
+    k: usize,
+    armode: &'static str,
+    skyforge: Figures,
+    rtklib: Figures,
+}
+
+/// Run both programs on `setup` with the scenario's seed replaced by `seed` (when given),
+/// in `dir`: every baseline beside each of RTKLIB's ambiguity modes. SkyForge's integers
+/// are checked against the truth.
+fn run_pairs(setup: &Setup, seed: Option<u64>, dir: &Path) -> Vec<Pair> {
+    let scenario = match seed {
+        Some(seed) => setup
+            .scenario
+            .replacen("seed = 12 ", &format!("seed = {seed} "), 1),
+        None => setup.scenario.clone(),
+    };
+    std::fs::write(dir.join("scenario.toml"), &scenario).unwrap();
     let sim = dir.join("sim");
     skyforge_ok(&["run", "scenario.toml", "--out", "sim"], dir);
     let obs: Vec<String> = ANTENNAS
@@ -362,7 +374,7 @@ fn side_by_side(setup: Setup, accuracy: Accuracy) {
         serde_json::from_str(&std::fs::read_to_string(dir.join("skyforge.json")).unwrap()).unwrap();
     assert_eq!(sf["integers"]["wrong"], 0, "SkyForge fixed a wrong integer");
     let epochs = master_epochs(&sim.join("observations/ant1.obs.rnx")).len();
-    let mut misses = Vec::new();
+    let mut pairs = Vec::new();
     for (k, (rover, _)) in ANTENNAS.iter().enumerate().skip(1) {
         let skyforge = Figures::of(&sf, k - 1);
         assert_eq!(skyforge.epochs, epochs);
@@ -386,24 +398,47 @@ fn side_by_side(setup: Setup, accuracy: Accuracy) {
                 rtklib.line()
             );
             assert!(rtklib.fixed > 0, "RTKLIB never fixed: a set-up problem");
-            if skyforge.fix_rate() < rtklib.fix_rate() {
-                misses.push(format!(
-                    "b{k} vs {armode}: fix rate {:.4} < RTKLIB's {:.4}",
-                    skyforge.fix_rate(),
-                    rtklib.fix_rate()
-                ));
-            }
-            if skyforge.rms_3d_m() > rtklib.rms_3d_m() {
-                let miss = format!(
-                    "b{k} vs {armode}: 3D RMS {:.3} mm > RTKLIB's {:.3} mm",
-                    skyforge.rms_3d_m() * 1e3,
-                    rtklib.rms_3d_m() * 1e3
-                );
-                if accuracy == Accuracy::Reported {
-                    println!("{} MISS (reported, not asserted): {miss}", setup.name);
-                } else {
-                    misses.push(miss);
-                }
+            pairs.push(Pair {
+                k,
+                armode,
+                skyforge,
+                rtklib,
+            });
+        }
+    }
+    pairs
+}
+
+/// Run both programs on `setup` (its own seed) and hold SkyForge to RTKLIB's fix rate
+/// and 3D RMS, per baseline and for each of RTKLIB's ambiguity modes.
+fn side_by_side(setup: Setup, accuracy: Accuracy) {
+    require_rnx2rtkp();
+    let tmp = tempfile::tempdir().unwrap();
+    let mut misses = Vec::new();
+    for Pair {
+        k,
+        armode,
+        skyforge,
+        rtklib,
+    } in run_pairs(&setup, None, tmp.path())
+    {
+        if skyforge.fix_rate() < rtklib.fix_rate() {
+            misses.push(format!(
+                "b{k} vs {armode}: fix rate {:.4} < RTKLIB's {:.4}",
+                skyforge.fix_rate(),
+                rtklib.fix_rate()
+            ));
+        }
+        if skyforge.rms_3d_m() > rtklib.rms_3d_m() {
+            let miss = format!(
+                "b{k} vs {armode}: 3D RMS {:.3} mm > RTKLIB's {:.3} mm",
+                skyforge.rms_3d_m() * 1e3,
+                rtklib.rms_3d_m() * 1e3
+            );
+            if accuracy == Accuracy::Reported {
+                println!("{} MISS (reported, not asserted): {miss}", setup.name);
+            } else {
+                misses.push(miss);
             }
         }
     }
@@ -437,4 +472,60 @@ fn ground_baselines_fix_as_often_as_rtklib_moving_base() {
 #[ignore = "interoperability tier: needs rtklib (scripts/test.sh installs it)"]
 fn leo_baselines_at_least_as_good_as_rtklib_moving_base() {
     side_by_side(leo(), Accuracy::Asserted);
+}
+
+/// The ground set-up's accuracy verdict over seeds, since one draw cannot settle a
+/// difference of micrometres: seeds 12 to 19 (# assumed: the single-seed test's seed and
+/// the next seven, chosen before the first run), per baseline and RTKLIB mode the paired
+/// difference of 3D RMS (SkyForge - RTKLIB; both programs read the same files, so the
+/// pairing removes the noise they share) and its standard error over the seeds (runs are
+/// independent; epochs within a run are not). The bar "at least as accurate" holds unless
+/// SkyForge's RMS is larger by more than two standard errors; the fix rate is compared
+/// seed by seed.
+#[test]
+#[ignore = "interoperability tier: needs rtklib (scripts/test.sh installs it)"]
+fn ground_accuracy_over_seeds_is_at_least_rtklibs() {
+    require_rnx2rtkp();
+    const SEEDS: std::ops::RangeInclusive<u64> = 12..=19;
+    let mut by_pair: std::collections::BTreeMap<(usize, &str), Vec<f64>> = Default::default();
+    let mut misses = Vec::new();
+    for seed in SEEDS {
+        let tmp = tempfile::tempdir().unwrap();
+        for p in run_pairs(&ground(), Some(seed), tmp.path()) {
+            if p.skyforge.fix_rate() < p.rtklib.fix_rate() {
+                misses.push(format!(
+                    "seed {seed} b{} vs {}: fix rate {:.4} < RTKLIB's {:.4}",
+                    p.k,
+                    p.armode,
+                    p.skyforge.fix_rate(),
+                    p.rtklib.fix_rate()
+                ));
+            }
+            by_pair
+                .entry((p.k, p.armode))
+                .or_default()
+                .push(p.skyforge.rms_3d_m() - p.rtklib.rms_3d_m());
+        }
+    }
+    for ((k, armode), d) in &by_pair {
+        let n = d.len() as f64;
+        let mean = d.iter().sum::<f64>() / n;
+        let sd = (d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let se = sd / n.sqrt();
+        let worse = d.iter().filter(|x| **x > 0.0).count();
+        println!(
+            "OVER SEEDS b{k} vs {armode}: 3D RMS SkyForge - RTKLIB mean {:+.4} mm +- {:.4} (SE over {} seeds; SkyForge larger on {worse})",
+            mean * 1e3,
+            se * 1e3,
+            d.len()
+        );
+        if mean > 2.0 * se {
+            misses.push(format!(
+                "b{k} vs {armode}: SkyForge's 3D RMS larger by {:.4} mm, more than two standard errors ({:.4} mm)",
+                mean * 1e3,
+                se * 1e3
+            ));
+        }
+    }
+    assert!(misses.is_empty(), "{}", misses.join("\n"));
 }

@@ -126,17 +126,7 @@ fn more_frequencies_raise_the_single_epoch_success_rate() {
             vec![Signal::BdsB1I, Signal::BdsB2I, Signal::BdsB3I],
         ),
         ("GPS+BDS 1f", Signal::SYNTHESISED.to_vec()),
-        (
-            "GPS+BDS 3f",
-            vec![
-                Signal::GpsL1Ca,
-                Signal::BdsB1I,
-                Signal::GpsL2,
-                Signal::GpsL5,
-                Signal::BdsB2I,
-                Signal::BdsB3I,
-            ],
-        ),
+        ("GPS+BDS 3f", Signal::ALL.to_vec()),
     ];
     let mut rates = Vec::new();
     for (name, signals) in &sets {

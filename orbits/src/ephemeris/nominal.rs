@@ -123,6 +123,11 @@ fn gps_slots() -> Vec<Slot> {
         .collect()
 }
 
+/// [`gps`] at `start` in a store whose times count from `start`.
+pub fn gps_store(start: Epoch) -> super::EphemerisStore {
+    super::EphemerisStore::new(gps(start), &crate::time::TimeOrigin::new(start))
+}
+
 /// The nominal GPS constellation (31 PRNs), with toe/toc at `epoch`.
 ///
 /// Slots: [`GPS_SLOTS`] (SPS PS Table 3-1) plus 7 extra satellites (see the PRN rule on

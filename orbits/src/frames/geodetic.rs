@@ -18,6 +18,17 @@ pub struct Geodetic {
     pub h_m: f64,
 }
 
+impl Geodetic {
+    /// Latitude and longitude in degrees, height in metres.
+    pub fn from_degrees(lat_deg: f64, lon_deg: f64, h_m: f64) -> Self {
+        Self {
+            lat_rad: lat_deg.to_radians(),
+            lon_rad: lon_deg.to_radians(),
+            h_m,
+        }
+    }
+}
+
 /// First eccentricity squared of WGS-84.
 const E2: f64 = WGS84_F * (2.0 - WGS84_F);
 /// Semi-minor axis of WGS-84 (m).

@@ -307,12 +307,12 @@ mod tests {
         let cfg = ThresholdConfig {
             false_alarm: 1e-7,
             smoothed_code_m: 0.5,
-            sigma: BTreeMap::from([("gps-l5".to_string(), table())]),
+            sigma: BTreeMap::from([("gal-e1".to_string(), table())]),
         };
         assert!(
             cfg.check()
                 .unwrap_err()
-                .contains("sigma.gps-l5: not a signal")
+                .contains("sigma.gal-e1: not a signal")
         );
         let mut t = table();
         t.elevation_deg = vec![30.0, 10.0, 60.0];

@@ -219,8 +219,7 @@ impl Satellites for NearAntenna<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use skyforge_orbits::ephemeris::{EphemerisStore, nominal};
-    use skyforge_orbits::time::TimeOrigin;
+    use skyforge_orbits::ephemeris::nominal;
 
     /// An antenna 3 km from the recording one, sampling 0.5 ms later: every satellite moved
     /// from the recorded one lies within a micrometre of its own ephemeris evaluation
@@ -229,8 +228,7 @@ mod tests {
     fn near_antenna_moves_recorded_satellites_to_its_transmit_times() {
         let start =
             hifitime::Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, hifitime::TimeScale::GPST);
-        let origin = TimeOrigin::new(start);
-        let store = EphemerisStore::new(nominal::gps(start), &origin);
+        let store = nominal::gps_store(start);
         let (t_a, t_b) = (600.0, 600.0005);
         let mut recorded = Recorded::new();
         let mut checked = 0;

@@ -456,15 +456,8 @@ mod tests {
     fn rover_ranges_land_on_the_masters_linear_model() {
         let start =
             hifitime::Epoch::from_gregorian(2005, 4, 2, 0, 0, 0, 0, hifitime::TimeScale::GPST);
-        let origin = TimeOrigin::new(start);
-        let store = EphemerisStore::new(nominal::gps(start), &origin);
-        let geo = |lat: f64, lon: f64| {
-            geodetic_to_ecef(&Geodetic {
-                lat_rad: lat.to_radians(),
-                lon_rad: lon.to_radians(),
-                h_m: 50.0,
-            })
-        };
+        let store = nominal::gps_store(start);
+        let geo = |lat: f64, lon: f64| geodetic_to_ecef(&Geodetic::from_degrees(lat, lon, 50.0));
         let (master_r, rover_r) = (geo(35.0, 139.0), geo(35.02, 139.025));
         let b0 = rover_r - master_r;
         assert!((3000.0..3500.0).contains(&b0.norm()), "{}", b0.norm());

@@ -51,16 +51,11 @@ pub fn slant_delay_gradient(r_ecef_m: &Vec3, sat_ecef_m: &Vec3) -> Vec3 {
 mod tests {
     use super::*;
     use crate::pvt::predicted_view;
-    use skyforge_orbits::ephemeris::{EphemerisStore, SatId, nominal};
+    use skyforge_orbits::ephemeris::{SatId, nominal};
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
-    use skyforge_orbits::time::TimeOrigin;
 
     fn geo(lat_deg: f64, lon_deg: f64, h_m: f64) -> Vec3 {
-        geodetic_to_ecef(&Geodetic {
-            lat_rad: lat_deg.to_radians(),
-            lon_rad: lon_deg.to_radians(),
-            h_m,
-        })
+        geodetic_to_ecef(&Geodetic::from_degrees(lat_deg, lon_deg, h_m))
     }
 
     /// Two stations 3.3 km and 250 m of height apart, every GPS satellite above 5 deg: the
@@ -74,8 +69,7 @@ mod tests {
     fn the_gradient_predicts_the_delay_difference_over_a_baseline() {
         let start =
             hifitime::Epoch::from_gregorian(2005, 4, 2, 0, 0, 0, 0, hifitime::TimeScale::GPST);
-        let origin = TimeOrigin::new(start);
-        let store = EphemerisStore::new(nominal::gps(start), &origin);
+        let store = nominal::gps_store(start);
         let (master, rover) = (geo(35.0, 139.0, 50.0), geo(35.02, 139.025, 300.0));
         let b = rover - master;
         let t_s = 600.0;

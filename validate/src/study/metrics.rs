@@ -248,12 +248,11 @@ mod tests {
     use crate::attitude::PositionFix;
     use hifitime::{Duration, Epoch, TimeScale};
     use skyforge_orbits::constants::C_MPS;
+    use skyforge_orbits::ephemeris::SatId;
     use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
-    use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
     use skyforge_orbits::frames::euler::YawPitchRoll;
     use skyforge_orbits::platform::PlatformState;
-    use skyforge_orbits::time::TimeOrigin;
     use skyforge_orbits::{Mat3, Vec3};
     use skyforge_receiver::pvt::predicted_view;
     use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsRecord};
@@ -311,8 +310,7 @@ mod tests {
     /// tagged `k` s was sampled at `k - CLOCK_M / c`. Satellites 15 deg up and more; above
     /// the atmosphere, so no delay a receiver would model.
     fn observations(lever_m: Vec3) -> ObsFile {
-        let origin = TimeOrigin::new(start());
-        let store = EphemerisStore::new(nominal::gps(start()), &origin);
+        let store = nominal::gps_store(start());
         let epochs = (1..SECONDS)
             .map(|k| {
                 let t_s = k as f64 - CLOCK_M / C_MPS;
