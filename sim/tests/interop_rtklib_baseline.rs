@@ -456,9 +456,13 @@ fn side_by_side(setup: Setup, accuracy: Accuracy) {
 /// mm). SkyForge MISSES the bar on b1 by 0.003 mm (0.002 mm after the fix). The two programs' b1
 /// agree at every epoch to both files' 0.1 mm rounding in N and E, and in D from the
 /// tenth second on (fix-and-hold); in the first 9 s their D differs by up to 1.3 mm and
-/// SkyForge's is the larger error there. Issue #12's accuracy bar is therefore NOT met
-/// on the ground: the miss is printed and recorded in validation/rtklib_baseline.md, and
-/// only the fix rate and the integers are asserted here (the LEO test asserts both).
+/// SkyForge's is the larger error there. The accuracy bar is therefore not met
+/// on this seed: the miss is printed and recorded in validation/rtklib_baseline.md, and
+/// only the fix rate and the integers are asserted here; the accuracy bar is asserted
+/// over seeds by `ground_accuracy_over_seeds_is_at_least_rtklibs` (met: SkyForge's mean
+/// RMS the smaller by 0.002-0.011 mm, session 18). Re-measured with the troposphere
+/// gradient (session 18): b1 1.990 mm against 1.985 / 1.986, b2 2.073 against 2.074 /
+/// 2.073.
 #[test]
 #[ignore = "interoperability tier: needs rtklib (scripts/test.sh installs it)"]
 fn ground_baselines_fix_as_often_as_rtklib_moving_base() {
