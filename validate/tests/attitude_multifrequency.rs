@@ -131,13 +131,7 @@ fn more_frequencies_raise_the_single_epoch_success_rate() {
     let mut rates = Vec::new();
     for (name, signals) in &sets {
         let r = single_epoch(&s, signals, Constraint::None).unwrap();
-        println!(
-            "MULTIFREQUENCY {name:16} LAMBDA: ILS success {} ; accepted {} with {} wrong ; {} epochs",
-            r.success.describe(1.0, 4),
-            r.accepted.describe(1.0, 4),
-            r.accepted_wrong,
-            r.epochs
-        );
+        println!("MULTIFREQUENCY {name:16} LAMBDA: {}", r.summary());
         rates.push(r);
     }
     let [l1, l12, l125, b1, b123, both1, both3] = &rates[..] else {

@@ -43,13 +43,7 @@ fn geometry_and_more_satellites_never_lower_the_single_epoch_success_rate() {
     for (name, signals) in &sets {
         for constraint in [Constraint::None, Constraint::Length, Constraint::Geometry] {
             let r = single_epoch(&s, signals, constraint).unwrap();
-            println!(
-                "SUCCESS {name:8} {constraint:?}: ILS success {} ; accepted at ratio 3 {} with {} wrong ; {} epochs",
-                r.success.describe(1.0, 4),
-                r.accepted.describe(1.0, 4),
-                r.accepted_wrong,
-                r.epochs
-            );
+            println!("SUCCESS {name:8} {constraint:?}: {}", r.summary());
             table.push((*name, constraint, r));
         }
     }

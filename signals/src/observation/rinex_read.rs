@@ -261,6 +261,15 @@ mod tests {
             .collect()
     }
 
+    /// A RINEX 3.04 header (GPS time) whose GPS satellites list the four observation
+    /// `types` (e.g. `"C1C L1C C2W L2W"`).
+    fn gps_header(types: &str) -> String {
+        header("3.04", '2', "GPS").replace(
+            "G    4 C1C L1C D1C S1C                                      ",
+            &format!("G    4 {types:<53}"),
+        )
+    }
+
     /// RINEX 3 F14.3 value with LLI and signal-strength digits (`' '` for blank).
     fn value(v: f64, lli: char, ssi: char) -> String {
         format!("{v:14.3}{lli}{ssi}")
@@ -330,11 +339,7 @@ mod tests {
     /// GPS L1 C/A and L2 P(Y) of one satellite are two records, each with its own values.
     #[test]
     fn gps_l1_and_l2_of_one_satellite_are_two_records() {
-        let text = header("3.04", '2', "GPS").replace(
-            "G    4 C1C L1C D1C S1C                                      ",
-            "G    4 C1C L1C C2W L2W                                      ",
-        );
-        let mut text = text;
+        let mut text = gps_header("C1C L1C C2W L2W");
         text += "> 2023 03 12 00 00  1.0000000  0  1\n";
         text += &line(
             "G05",
@@ -358,16 +363,12 @@ mod tests {
         assert_eq!(l2.phase_lli, LLI_LOSS_OF_LOCK);
     }
 
-    /// In RINEX 3.03+ band 1 of BeiDou is B1C, which SkyForge does not compare.
     /// A file with two trackings of L2 (L2C `2L` and P(Y) `2W`): one code for the whole
     /// file, the preferred `2W`, so a satellite with only `2L` has no L2 record; a file with
     /// only `2L` gives L2 from it.
     #[test]
     fn one_code_per_signal_for_the_whole_file() {
-        let text = header("3.04", '2', "GPS").replace(
-            "G    4 C1C L1C D1C S1C                                      ",
-            "G    4 C2L L2L C2W L2W                                      ",
-        );
+        let text = gps_header("C2L L2L C2W L2W");
         let mut both = text.clone();
         both += "> 2023 03 12 00 00  1.0000000  0  2\n";
         both += &line(
@@ -405,6 +406,7 @@ mod tests {
         assert_eq!(f.epochs[0].sats[0].pseudorange_m, Some(22000000.5));
     }
 
+    /// In RINEX 3.03+ band 1 of BeiDou is B1C, which SkyForge does not compare.
     #[test]
     fn bds_band_1_is_not_b1i_after_3_02() {
         let mut text = header("3.04", '1', "GPS");

@@ -31,6 +31,20 @@ pub struct SuccessRate {
     pub epochs: usize,
 }
 
+impl SuccessRate {
+    /// `ILS success ... ; accepted ... with N wrong ; M epochs`, for tables printed by the
+    /// tests.
+    pub fn summary(&self) -> String {
+        format!(
+            "ILS success {} ; accepted {} with {} wrong ; {} epochs",
+            self.success.describe(1.0, 4),
+            self.accepted.describe(1.0, 4),
+            self.accepted_wrong,
+            self.epochs
+        )
+    }
+}
+
 /// The chain resolving every epoch on its own with `constraint`; `accept_any` takes the
 /// best candidate whatever its ratio (the ILS success rate), otherwise the default test.
 fn config(signals: &[Signal], constraint: Constraint, accept_any: bool) -> RelativeConfig {
