@@ -14,10 +14,6 @@ use skyforge_receiver::acquisition::pcps::{BitTransition, DopplerWindow, Pcps, P
 use skyforge_signals::codes::neumann_hoffman::NH20;
 use skyforge_signals::signal::Signal;
 
-/// L1 and B1 carrier frequencies (Hz), for the code Doppler.
-const F_L1_HZ: f64 = 1575.42e6;
-const F_B1_HZ: f64 = 1561.098e6;
-
 #[derive(Debug, Clone, Copy)]
 struct Truth {
     prn: u8,
@@ -46,12 +42,7 @@ fn synth(
     let code = signal.code(prn).unwrap();
     let len = code.len() as f64;
     let doppler_hz: f64 = rng.random_range(-doppler_range_hz..doppler_range_hz);
-    let carrier = match signal {
-        Signal::GpsL1Ca => F_L1_HZ,
-        Signal::BdsB1I => F_B1_HZ,
-        other => unreachable!("{other} is not synthesised"),
-    };
-    let rc = signal.chip_rate_hz() * (1.0 + doppler_hz / carrier);
+    let rc = signal.chip_rate_hz() * (1.0 + doppler_hz / signal.carrier_hz());
     let period_s = signal.code_period_s();
     let start_s: f64 = rng.random_range(0.0..period_s);
     let bits: Vec<f64> = (0..64)

@@ -9,6 +9,7 @@
 
 mod support;
 
+use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
 use skyforge_signals::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
 use std::path::Path;
 use std::process::Command;
@@ -18,8 +19,6 @@ const FS_HZ: f64 = 16.368e6;
 const IF_HZ: f64 = 4.092e6;
 /// Samples per 1 ms block.
 const N: usize = 16_368;
-const C_MPS: f64 = 299_792_458.0;
-const L1_HZ: f64 = 1575.42e6;
 /// Satellites in the scenario (visible from 30 N 114 E at the bundled start time).
 const PRNS: [u8; 2] = [5, 24];
 /// A satellite not in the signal.
@@ -146,7 +145,7 @@ impl Block {
             z_re.push(f64::from(v) * c);
             z_im.push(-f64::from(v) * s);
         }
-        let chip_rate = GPS_CA_CHIP_RATE_HZ * (1.0 + truth.doppler_hz / L1_HZ);
+        let chip_rate = GPS_CA_CHIP_RATE_HZ * (1.0 + truth.doppler_hz / F_GPS_L1_HZ);
         Self {
             z_re,
             z_im,

@@ -131,20 +131,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
         let (c1, c2) = (centre(a, 1), centre(a, 2));
         c1 + (c2 - c1) * (t - chunk.t_s[1]) / (chunk.t_s[2] - chunk.t_s[1])
     };
-    let samples: Vec<Vec<(f32, f32)>> = out
-        .iter()
-        .map(|bytes| {
-            bytes
-                .chunks_exact(8)
-                .map(|c| {
-                    (
-                        f32::from_le_bytes(c[0..4].try_into().unwrap()),
-                        f32::from_le_bytes(c[4..8].try_into().unwrap()),
-                    )
-                })
-                .collect()
-        })
-        .collect();
+    let samples: Vec<Vec<(f32, f32)>> = out.iter().map(|b| common::cf32_samples(b)).collect();
     let n = (FS_HZ * 1e-3) as usize;
     assert_eq!(samples[0].len(), 1000 * n);
 

@@ -108,15 +108,7 @@ fn samples_follow_the_truth_of_every_term() {
         let Ok(()) = synth.push_epoch(chunk.t_s[k], vec![end], &mut append_to(&mut out));
     }
     let records = synth.take_truth();
-    let samples: Vec<(f32, f32)> = out[0]
-        .chunks_exact(8)
-        .map(|c| {
-            (
-                f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
-                f32::from_le_bytes([c[4], c[5], c[6], c[7]]),
-            )
-        })
-        .collect();
+    let samples = common::cf32_samples(&out[0]);
     let n = (FS_HZ * BLOCK_S) as usize;
     assert_eq!(samples.len(), 1000 * n);
     // Outage blocks have no record; every other block has one.

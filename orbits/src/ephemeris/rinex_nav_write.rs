@@ -227,20 +227,23 @@ mod tests {
                 a.sat
             );
             assert_eq!((a.iode, a.health), (b.iode, b.health));
-            for (x, y) in [
-                (a.sqrt_a, b.sqrt_a),
-                (a.e, b.e),
-                (a.i0, b.i0),
-                (a.omega0, b.omega0),
-                (a.omega, b.omega),
-                (a.m0, b.m0),
-                (a.omega_dot, b.omega_dot),
-                (a.af0, b.af0),
-                (a.af1, b.af1),
-                (a.crs, b.crs),
-                (a.cuc, b.cuc),
-                (a.tgd_s, b.tgd_s),
-            ] {
+            let values = |e: &BroadcastEphemeris| {
+                [
+                    e.sqrt_a,
+                    e.e,
+                    e.i0,
+                    e.omega0,
+                    e.omega,
+                    e.m0,
+                    e.omega_dot,
+                    e.af0,
+                    e.af1,
+                    e.crs,
+                    e.cuc,
+                    e.tgd_s,
+                ]
+            };
+            for (x, y) in values(a).into_iter().zip(values(b)) {
                 assert!(
                     (x - y).abs() <= 1e-12 * x.abs().max(1e-30),
                     "{}: {x} vs {y}",

@@ -275,8 +275,8 @@ mod tests {
         format!("{v:14.3}{lli}{ssi}")
     }
 
-    /// One satellite's observation line of four values.
-    fn line(sat: &str, values: [String; 4]) -> String {
+    /// One satellite's observation line.
+    fn line(sat: &str, values: &[String]) -> String {
         format!("{sat}{}\n", values.concat())
     }
 
@@ -298,7 +298,7 @@ mod tests {
             text += "> 2023 03 12 00 00  1.5000000  0  2\n";
             text += &line(
                 "G05",
-                [
+                &[
                     value(21035576.066, ' ', '7'),
                     value(110542679.964, '1', '7'),
                     value(-1423.232, ' ', ' '),
@@ -307,7 +307,7 @@ mod tests {
             );
             text += &line(
                 "C07",
-                [
+                &[
                     value(36000000.5, ' ', ' '),
                     value(187000000.25, '2', ' '),
                     value(1195.909, ' ', ' '),
@@ -343,7 +343,7 @@ mod tests {
         text += "> 2023 03 12 00 00  1.0000000  0  1\n";
         text += &line(
             "G05",
-            [
+            &[
                 value(21035576.066, ' ', '7'),
                 value(110542679.964, ' ', '7'),
                 value(21035579.5, ' ', ' '),
@@ -369,22 +369,22 @@ mod tests {
     #[test]
     fn one_code_per_signal_for_the_whole_file() {
         let text = gps_header("C2L L2L C2W L2W");
+        let g07 = line(
+            "G07",
+            &[value(22000000.5, ' ', ' '), value(9.0e7, ' ', ' ')],
+        );
         let mut both = text.clone();
         both += "> 2023 03 12 00 00  1.0000000  0  2\n";
         both += &line(
             "G05",
-            [
+            &[
                 value(21035579.1, ' ', ' '),
                 value(86137163.5, ' ', ' '),
                 value(21035579.5, ' ', ' '),
                 value(86137163.25, ' ', ' '),
             ],
         );
-        both += &format!(
-            "G07{}{}\n",
-            value(22000000.5, ' ', ' '),
-            value(9.0e7, ' ', ' ')
-        );
+        both += &g07;
         let f = parse_obs_text(&both, "test").unwrap();
         let l2: Vec<&ObsRecord> = f.epochs[0].sats.iter().collect();
         assert_eq!(l2.len(), 1, "{l2:?}");
@@ -395,11 +395,7 @@ mod tests {
             .replace("G    4", "G    2");
         let mut only = only_l2c;
         only += "> 2023 03 12 00 00  1.0000000  0  1\n";
-        only += &format!(
-            "G07{}{}\n",
-            value(22000000.5, ' ', ' '),
-            value(9.0e7, ' ', ' ')
-        );
+        only += &g07;
         let f = parse_obs_text(&only, "test").unwrap();
         assert_eq!(f.epochs[0].sats.len(), 1);
         assert_eq!(f.epochs[0].sats[0].signal, Signal::GpsL2);
@@ -411,7 +407,7 @@ mod tests {
     fn bds_band_1_is_not_b1i_after_3_02() {
         let mut text = header("3.04", '1', "GPS");
         text += "> 2023 03 12 00 00  1.0000000  0  1\n";
-        text += &format!("C07{}\n", value(36000000.5, ' ', ' '));
+        text += &line("C07", &[value(36000000.5, ' ', ' ')]);
         let f = parse_obs_text(&text, "test").unwrap();
         assert!(f.epochs[0].sats.is_empty());
     }
@@ -422,7 +418,7 @@ mod tests {
     fn bdt_epochs_are_returned_in_gps_time() {
         let mut text = header("3.02", '1', "BDT");
         text += "> 2023 03 12 00 00 51.0000000  0  1\n";
-        text += &format!("C01{}\n", value(1433736.747, ' ', '7'));
+        text += &line("C01", &[value(1433736.747, ' ', '7')]);
         let f = parse_obs_text(&text, "test").unwrap();
         let gpst = Epoch::from_gregorian(2023, 3, 12, 0, 1, 5, 0, TimeScale::GPST);
         assert_eq!(f.epochs[0].time.to_time_scale(TimeScale::GPST), gpst);
@@ -433,9 +429,9 @@ mod tests {
     fn power_failure_epoch_flags_loss_of_lock_and_slip_records_are_skipped() {
         let mut text = header("3.04", '2', "GPS");
         text += "> 2023 03 12 00 00  1.0000000  1  1\n";
-        text += &format!("G05{}{}\n", value(2.0e7, ' ', ' '), value(1.0e8, ' ', ' '));
+        text += &line("G05", &[value(2.0e7, ' ', ' '), value(1.0e8, ' ', ' ')]);
         text += "> 2023 03 12 00 00  1.0000000  6  1\n";
-        text += &format!("G05{}{}\n", value(2.0e7, ' ', ' '), value(1.0e8, '1', ' '));
+        text += &line("G05", &[value(2.0e7, ' ', ' '), value(1.0e8, '1', ' ')]);
         let f = parse_obs_text(&text, "test").unwrap();
         assert_eq!(f.epochs.len(), 1);
         assert_eq!(f.epochs[0].sats[0].phase_lli, LLI_LOSS_OF_LOCK);

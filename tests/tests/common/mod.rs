@@ -51,3 +51,16 @@ pub fn tcxo_clock_stepping(dt_s: f64) -> ClockModel {
     )
     .unwrap()
 }
+
+/// Samples written as `cf32` (little-endian f32 I, then Q) as (I, Q) pairs.
+pub fn cf32_samples(bytes: &[u8]) -> Vec<(f32, f32)> {
+    bytes
+        .chunks_exact(8)
+        .map(|c| {
+            (
+                f32::from_le_bytes([c[0], c[1], c[2], c[3]]),
+                f32::from_le_bytes([c[4], c[5], c[6], c[7]]),
+            )
+        })
+        .collect()
+}

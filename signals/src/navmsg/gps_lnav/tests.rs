@@ -319,7 +319,6 @@ fn subframes_1_to_3_decode_to_the_input_within_half_an_lsb() {
         &enc.subframe(first + 1),
         &enc.subframe(first + 2),
     );
-    let sc = |rad: f64| rad / GPS_PI;
     assert_eq!(d.wn, 2190 % 1024);
     assert_eq!(
         (d.ura, d.health, d.iodc, d.iode2, d.iode3),
@@ -327,43 +326,45 @@ fn subframes_1_to_3_decode_to_the_input_within_half_an_lsb() {
     );
     assert_eq!(d.fit, 0);
     assert_eq!((d.toc, d.toe), (518_400.0, 518_400.0));
-    within_half_lsb("TGD", d.tgd, eph.tgd_s, p2(-31));
-    within_half_lsb("af2", d.af2, eph.af2, p2(-55));
-    within_half_lsb("af1", d.af1, eph.af1, p2(-43));
-    within_half_lsb("af0", d.af0, eph.af0, p2(-31));
-    within_half_lsb("Crs", d.crs, eph.crs, p2(-5));
-    within_half_lsb("dn", d.delta_n, sc(eph.delta_n), p2(-43));
-    within_half_lsb("M0", d.m0, sc(eph.m0), p2(-31));
-    within_half_lsb("Cuc", d.cuc, eph.cuc, p2(-29));
-    within_half_lsb("e", d.e, eph.e, p2(-33));
-    within_half_lsb("Cus", d.cus, eph.cus, p2(-29));
-    within_half_lsb("sqrtA", d.sqrt_a, eph.sqrt_a, p2(-19));
-    within_half_lsb("Cic", d.cic, eph.cic, p2(-29));
-    within_half_lsb("OMEGA0", d.omega0, sc(eph.omega0), p2(-31));
-    within_half_lsb("Cis", d.cis, eph.cis, p2(-29));
-    within_half_lsb("i0", d.i0, sc(eph.i0), p2(-31));
-    within_half_lsb("Crc", d.crc, eph.crc, p2(-5));
-    within_half_lsb("omega", d.omega, sc(eph.omega), p2(-31));
-    within_half_lsb("OMEGADOT", d.omega_dot, sc(eph.omega_dot), p2(-43));
-    within_half_lsb("IDOT", d.idot, sc(eph.idot), p2(-43));
-
-    // The decoded values are exactly what broadcast_ephemeris() says was sent.
+    // Each value within half an LSB of the input, and exactly what broadcast_ephemeris()
+    // says was sent (`unit`: GPS_PI for the angles, which the message carries in
+    // semicircles).
     let b = enc.broadcast_ephemeris();
-    let same = |x: f64, y: f64| assert!((x - y).abs() <= 1e-15 * y.abs(), "{x} vs {y}");
-    same(d.m0 * GPS_PI, b.m0);
-    same(d.omega0 * GPS_PI, b.omega0);
-    same(d.i0 * GPS_PI, b.i0);
-    same(d.omega * GPS_PI, b.omega);
-    same(d.delta_n * GPS_PI, b.delta_n);
-    same(d.omega_dot * GPS_PI, b.omega_dot);
-    same(d.idot * GPS_PI, b.idot);
-    same(d.sqrt_a, b.sqrt_a);
-    same(d.e, b.e);
-    same(d.af0, b.af0);
-    same(d.af1, b.af1);
-    same(d.tgd, b.tgd_s);
-    same(d.crs, b.crs);
-    same(d.cuc, b.cuc);
+    for (name, decoded, input, sent, lsb, unit) in [
+        ("TGD", d.tgd, eph.tgd_s, b.tgd_s, p2(-31), 1.0),
+        ("af2", d.af2, eph.af2, b.af2, p2(-55), 1.0),
+        ("af1", d.af1, eph.af1, b.af1, p2(-43), 1.0),
+        ("af0", d.af0, eph.af0, b.af0, p2(-31), 1.0),
+        ("Crs", d.crs, eph.crs, b.crs, p2(-5), 1.0),
+        ("dn", d.delta_n, eph.delta_n, b.delta_n, p2(-43), GPS_PI),
+        ("M0", d.m0, eph.m0, b.m0, p2(-31), GPS_PI),
+        ("Cuc", d.cuc, eph.cuc, b.cuc, p2(-29), 1.0),
+        ("e", d.e, eph.e, b.e, p2(-33), 1.0),
+        ("Cus", d.cus, eph.cus, b.cus, p2(-29), 1.0),
+        ("sqrtA", d.sqrt_a, eph.sqrt_a, b.sqrt_a, p2(-19), 1.0),
+        ("Cic", d.cic, eph.cic, b.cic, p2(-29), 1.0),
+        ("OMEGA0", d.omega0, eph.omega0, b.omega0, p2(-31), GPS_PI),
+        ("Cis", d.cis, eph.cis, b.cis, p2(-29), 1.0),
+        ("i0", d.i0, eph.i0, b.i0, p2(-31), GPS_PI),
+        ("Crc", d.crc, eph.crc, b.crc, p2(-5), 1.0),
+        ("omega", d.omega, eph.omega, b.omega, p2(-31), GPS_PI),
+        (
+            "OMEGADOT",
+            d.omega_dot,
+            eph.omega_dot,
+            b.omega_dot,
+            p2(-43),
+            GPS_PI,
+        ),
+        ("IDOT", d.idot, eph.idot, b.idot, p2(-43), GPS_PI),
+    ] {
+        within_half_lsb(name, decoded, input / unit, lsb);
+        let x = decoded * unit;
+        assert!(
+            (x - sent).abs() <= 1e-15 * sent.abs(),
+            "{name}: {x} vs {sent}"
+        );
+    }
     assert_eq!((b.toe, b.toc), (eph.toe, eph.toc));
 }
 
