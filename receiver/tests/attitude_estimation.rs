@@ -99,11 +99,7 @@ fn noise_free_least_squares_recovers_random_attitudes() {
         let m = 2 + trial % 3;
         let g = random_geometry(&mut r, m);
         let truth = random_attitude(&mut r);
-        let b: Vec<Vec3> = g
-            .baselines()
-            .iter()
-            .map(|b| truth.c_body_ref() * b)
-            .collect();
+        let b = g.in_reference(&truth);
         let q = random_spd(&mut r, 3 * m, 1e-6);
         let est = solve(
             &g,
@@ -160,11 +156,7 @@ fn isotropic_least_squares_equals_the_q_method() {
     // The oracle itself on exact data first.
     let g = random_geometry(&mut r, 3);
     let truth = random_attitude(&mut r);
-    let v: Vec<Vec3> = g
-        .baselines()
-        .iter()
-        .map(|b| truth.c_body_ref() * b)
-        .collect();
+    let v = g.in_reference(&truth);
     assert!((q_method(g.baselines(), &v, &[1.0; 3]) - truth.c_body_ref()).amax() < 1e-12);
 
     let mut worst_angle: f64 = 0.0;
@@ -761,11 +753,7 @@ fn gimbal_lock_is_reported_or_solved_never_nan() {
     let g = BodyGeometry::new(&[Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]).unwrap();
     for pitch in [90.0 * DEG, -90.0 * DEG, 89.999_999 * DEG] {
         let truth = YawPitchRoll::new(0.4, pitch, 0.1);
-        let b: Vec<Vec3> = g
-            .baselines()
-            .iter()
-            .map(|b| truth.c_body_ref() * b)
-            .collect();
+        let b = g.in_reference(&truth);
         let meas = NedBaselines::new(&b, DMatrix::identity(6, 6) * 1e-6).unwrap();
         match solve(&g, &meas, None, &LsConfig::default()) {
             Ok(est) => {

@@ -4,7 +4,9 @@ mod support;
 
 use std::path::Path;
 use std::process::Command;
-use support::{dataset, results_file, results_json, short_scenario, skyforge, text};
+use support::{
+    RAW_CI8_4MSPS_GPS, dataset, results_file, results_json, short_scenario, skyforge, text,
+};
 
 #[test]
 fn run_writes_truth_h5_with_the_documented_schema() {
@@ -679,6 +681,15 @@ fn receive_tracks_decodes_and_fixes_on_a_short_recording() {
     assert!(dir.join("rx/receiver.h5").is_file() && dir.join("rx/ant1.nmea").is_file());
 }
 
+/// `bytes` bytes of noise (a multiplicative hash of the index) as `dir/noise.bin`.
+fn write_noise(dir: &Path, bytes: u32) -> Vec<u8> {
+    let noise: Vec<u8> = (0..bytes)
+        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
+        .collect();
+    std::fs::write(dir.join("noise.bin"), &noise).unwrap();
+    noise
+}
+
 /// `receive` with `args` in `dir` must exit 2 with a message containing every `needle`
 /// and leave no output directory.
 fn receive_refuses(dir: &Path, args: &[&str], needles: &[&str]) {
@@ -700,18 +711,14 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     // Noise only: no satellite anywhere.
-    let noise: Vec<u8> = (0..800_000u32)
-        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
-        .collect();
-    std::fs::write(dir.join("noise.bin"), &noise).unwrap();
-    let raw = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
+    let noise = write_noise(dir, 800_000);
     let mut args = vec!["noise.bin"];
-    args.extend_from_slice(&raw);
+    args.extend_from_slice(&RAW_CI8_4MSPS_GPS);
     receive_refuses(dir, &args, &["no signal found", "noise.bin", "searches"]);
     // Too short for one search.
     std::fs::write(dir.join("short.bin"), &noise[..1000]).unwrap();
     let mut args = vec!["short.bin"];
-    args.extend_from_slice(&raw);
+    args.extend_from_slice(&RAW_CI8_4MSPS_GPS);
     receive_refuses(dir, &args, &["500 common samples", "a search needs"]);
     // A raw file without its description.
     receive_refuses(dir, &["noise.bin"], &["noise.bin", "--format"]);
@@ -734,7 +741,7 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
     );
     std::fs::write(dir.join("rx.toml"), "[observables]\nrate_hz = 500.0\n").unwrap();
     let mut args = vec!["noise.bin", "--config", "rx.toml"];
-    args.extend_from_slice(&raw);
+    args.extend_from_slice(&RAW_CI8_4MSPS_GPS);
     receive_refuses(
         dir,
         &args,
@@ -816,23 +823,8 @@ fn the_documented_receiver_configuration_is_accepted() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     std::fs::write(dir.join("receiver.toml"), &doc[start..end]).unwrap();
-    let noise: Vec<u8> = (0..400_000u32)
-        .map(|i| (i.wrapping_mul(2_654_435_761) >> 24) as u8)
-        .collect();
-    std::fs::write(dir.join("noise.bin"), &noise).unwrap();
-    receive_refuses(
-        dir,
-        &[
-            "noise.bin",
-            "--format",
-            "ci8",
-            "--fs",
-            "4e6",
-            "--signal",
-            "gps-l1ca",
-            "--config",
-            "receiver.toml",
-        ],
-        &["no signal found"],
-    );
+    write_noise(dir, 400_000);
+    let mut args = vec!["noise.bin", "--config", "receiver.toml"];
+    args.extend_from_slice(&RAW_CI8_4MSPS_GPS);
+    receive_refuses(dir, &args, &["no signal found"]);
 }

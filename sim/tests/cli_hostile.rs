@@ -9,19 +9,15 @@ mod support;
 
 use skyforge_orbits::fixtures::RINEX3_GPS_NAV;
 use std::path::Path;
-use support::{MEMORY_LIMIT_BYTES, listing, short_scenario, skyforge, skyforge_limited, text};
+use support::{
+    MEMORY_LIMIT_BYTES, RAW_CI8_4MSPS_GPS, listing, short_scenario, skyforge, skyforge_limited,
+    text,
+};
 
 /// `receive` of the raw recording `noise.bin` (4 Msps ci8 GPS L1 C/A).
-const RECEIVE_NOISE: [&str; 8] = [
-    "receive",
-    "noise.bin",
-    "--format",
-    "ci8",
-    "--fs",
-    "4e6",
-    "--signal",
-    "gps-l1ca",
-];
+fn receive_noise() -> Vec<&'static str> {
+    [&["receive", "noise.bin"][..], &RAW_CI8_4MSPS_GPS].concat()
+}
 
 /// `skyforge args` in `dir`, under the 4 GB address-space limit, must exit 2 with one
 /// `error:` message holding every needle and leave `dir` as it was.
@@ -143,9 +139,8 @@ fn recordings_without_an_epoch_or_with_partial_samples_write_nothing() {
         })
         .collect();
     std::fs::write(dir.join("random.bin"), &noise).unwrap();
-    let raw = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
     let mut args = vec!["receive", "random.bin", "--out", "rx"];
-    args.extend_from_slice(&raw);
+    args.extend_from_slice(&RAW_CI8_4MSPS_GPS);
     let out = refused(dir, &args, &["random.bin"]);
     assert!(
         out.contains("no observation epoch") || out.contains("no signal found"),
@@ -225,7 +220,7 @@ fn a_cut_navigation_file_a_directory_and_a_device_are_refused_everywhere() {
                 &["s.toml:", "gnss.gps.nav_file", says],
             );
         }
-        let args = [&RECEIVE_NOISE[..], &["--assist", nav, "--out", "rx"]].concat();
+        let args = [&receive_noise()[..], &["--assist", nav, "--out", "rx"]].concat();
         let out = refused(dir, &args, &[says]);
         assert!(!out.contains("does not exist"), "{out}");
     }
@@ -341,7 +336,7 @@ fn devices_and_directories_are_refused_as_every_kind_of_input() {
         ],
     );
     std::fs::write(dir.join("noise.bin"), vec![0u8; 400_000]).unwrap();
-    let raw = RECEIVE_NOISE;
+    let raw = receive_noise();
     refused(
         dir,
         &[&raw[..], &["--config", "config.toml", "--out", "rx"]].concat(),

@@ -9,7 +9,45 @@ mod support;
 use skyforge_orbits::Vec3;
 use skyforge_receiver::geometry_offset::shape::align;
 use skyforge_receiver::relative::files::BodyGeometryFile;
+use std::path::Path;
 use support::{dataset, short_scenario, skyforge, skyforge_ok, text};
+
+/// The bundled thesis/t-4.3 shortened to `duration_s`, run at the observation level into
+/// `d/run`, then `skyforge attitude --estimate-geometry` on it into `d/att`: what that
+/// printed.
+fn estimate_geometry(d: &Path, duration_s: u32) -> String {
+    let scenario = short_scenario(d, "thesis/t-4.3", duration_s);
+    skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
+    attitude(
+        d,
+        "run/geometry.toml",
+        &["--estimate-geometry", "--out", "att"],
+    )
+}
+
+/// `skyforge attitude` in `d` on the run's observations with `geometry` and `extra`.
+fn attitude(d: &Path, geometry: &str, extra: &[&str]) -> String {
+    let mut args = vec![
+        "attitude",
+        "run/observations/ant1.obs.rnx",
+        "run/observations/ant2.obs.rnx",
+        "run/observations/ant3.obs.rnx",
+        "--nav",
+        "run/nav.rnx",
+        "--geometry",
+        geometry,
+    ];
+    args.extend(extra);
+    skyforge_ok(&args, d)
+}
+
+/// `skyforge report` in `d` of the run with the attitude chain's `att`.
+fn report(d: &Path) -> String {
+    skyforge_ok(
+        &["report", "run", "--attitude", "att", "--out", "r.html"],
+        d,
+    )
+}
 
 /// Baselines (antenna minus the master) of a geometry file's positions.
 fn baselines(positions: &[Vec3]) -> [Vec3; 2] {
@@ -20,27 +58,7 @@ fn baselines(positions: &[Vec3]) -> [Vec3; 2] {
 fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let scenario = short_scenario(d, "thesis/t-4.3", 600);
-    skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
-    // `skyforge attitude` on the run's observations with `geometry` and `extra`.
-    let attitude = |geometry: &str, extra: &[&str]| {
-        let mut args = vec![
-            "attitude",
-            "run/observations/ant1.obs.rnx",
-            "run/observations/ant2.obs.rnx",
-            "run/observations/ant3.obs.rnx",
-            "--nav",
-            "run/nav.rnx",
-            "--geometry",
-            geometry,
-        ];
-        args.extend(extra);
-        skyforge_ok(&args, d)
-    };
-    let printed = attitude(
-        "run/geometry.toml",
-        &["--estimate-geometry", "--out", "att"],
-    );
+    let printed = estimate_geometry(d, 600);
     assert!(printed.contains("plain LAMBDA"), "{printed}");
 
     // The truth: the scenario's true positions (nominal + offset_body_m), turned to the
@@ -91,10 +109,7 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     );
 
     // The report draws the offsets' errors against the truth (thesis figs. 4.3-4/4.3-5).
-    let printed = skyforge_ok(
-        &["report", "run", "--attitude", "att", "--out", "r.html"],
-        d,
-    );
+    let printed = report(d);
     assert!(printed.contains("9 figures"), "{printed}");
     let page = std::fs::read_to_string(d.join("r.html")).unwrap();
     for b in [1, 2] {
@@ -108,7 +123,7 @@ fn estimates_the_offsets_and_writes_a_geometry_attitude_reads() {
     }
 
     // The corrected geometry is a geometry file `attitude` reads.
-    attitude("att/geometry_corrected.toml", &["--out", "att2"]);
+    attitude(d, "att/geometry_corrected.toml", &["--out", "att2"]);
 }
 
 #[test]
@@ -152,28 +167,8 @@ fn too_short_a_run_estimates_nothing_and_the_report_still_draws() {
     // Three epochs: never the four consecutive fixed epochs the UKF starts from.
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let scenario = short_scenario(d, "thesis/t-4.3", 3);
-    skyforge_ok(&["run", scenario.to_str().unwrap(), "--out", "run"], d);
-    let printed = skyforge_ok(
-        &[
-            "attitude",
-            "run/observations/ant1.obs.rnx",
-            "run/observations/ant2.obs.rnx",
-            "run/observations/ant3.obs.rnx",
-            "--nav",
-            "run/nav.rnx",
-            "--geometry",
-            "run/geometry.toml",
-            "--estimate-geometry",
-            "--out",
-            "att",
-        ],
-        d,
-    );
+    let printed = estimate_geometry(d, 3);
     assert!(printed.contains("no update"), "{printed}");
-    let report = skyforge_ok(
-        &["report", "run", "--attitude", "att", "--out", "r.html"],
-        d,
-    );
+    let report = report(d);
     assert!(report.contains("7 figures"), "{report}");
 }

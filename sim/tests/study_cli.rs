@@ -4,7 +4,41 @@
 
 mod support;
 
+use std::path::Path;
 use support::{short_scenario, skyforge, skyforge_ok, small_study, text};
+
+/// Whether the `study.h5` files of output directories `a` and `b` in `d` hold the same
+/// bytes.
+fn same_study(d: &Path, a: &str, b: &str) -> bool {
+    let read = |dir: &str| std::fs::read(d.join(dir).join("study.h5")).unwrap();
+    read(a) == read(b)
+}
+
+/// `study run <study>` as `n` shards into `d/sharded`, then `study merge`: the merged
+/// file must be the bytes of the whole run in `d/whole`. Returns what each shard printed.
+fn shards_merge_to_the_whole(d: &Path, study: &str, n: u32) -> Vec<String> {
+    let printed = (1..=n)
+        .map(|i| {
+            let shard = format!("{i}/{n}");
+            let args = ["study", "run", study, "--out", "sharded", "--shard", &shard];
+            skyforge_ok(&args, d)
+        })
+        .collect();
+    skyforge_ok(&["study", "merge", "sharded"], d);
+    assert!(
+        same_study(d, "whole", "sharded"),
+        "merged shards differ from the whole run"
+    );
+    printed
+}
+
+/// `skyforge args` in `d` must exit 2; returns what it printed.
+fn refused(d: &Path, args: &[&str]) -> String {
+    let o = skyforge(args, d);
+    let said = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{said}");
+    said
+}
 
 #[test]
 fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
@@ -14,29 +48,12 @@ fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
     let whole = skyforge_ok(&["study", "run", "small.toml", "--out", "whole"], d);
     assert!(whole.contains("2 points x 3 seeds = 6 runs"), "{whole}");
     assert!(whole.contains("signal.cn0_dbhz = 45.0"), "{whole}");
-    for i in 1..=3 {
-        let shard = format!("{i}/3");
-        let printed = skyforge_ok(
-            &[
-                "study",
-                "run",
-                "small.toml",
-                "--out",
-                "sharded",
-                "--shard",
-                &shard,
-            ],
-            d,
-        );
+    for (i, printed) in (1..).zip(shards_merge_to_the_whole(d, "small.toml", 3)) {
         assert!(
             printed.contains(&format!("shard      {i}/3: 2 runs")),
             "{printed}"
         );
     }
-    skyforge_ok(&["study", "merge", "sharded"], d);
-    let a = std::fs::read(d.join("whole/study.h5")).unwrap();
-    let b = std::fs::read(d.join("sharded/study.h5")).unwrap();
-    assert!(a == b, "merged shards differ from the whole run");
 
     // The merged file holds every run and per-point summaries of what the runs measured.
     let f = hdf5::File::open(d.join("whole/study.h5")).unwrap();
@@ -59,12 +76,10 @@ fn a_study_run_whole_and_as_three_shards_merges_to_the_same_bytes() {
 
     // A missing shard is named.
     std::fs::remove_file(d.join("sharded/shard-2-of-3.h5")).unwrap();
-    let o = skyforge(&["study", "merge", "sharded", "--out", "m.h5"], d);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let said = refused(d, &["study", "merge", "sharded", "--out", "m.h5"]);
     assert!(
-        text(&o).contains("2 of 6 runs are missing (the first: run 1"),
-        "{}",
-        text(&o)
+        said.contains("2 of 6 runs are missing (the first: run 1"),
+        "{said}"
     );
     assert!(!d.join("m.h5").exists());
 }
@@ -86,23 +101,7 @@ fn a_signal_level_study_run_whole_and_as_two_shards_merges_to_the_same_bytes() {
     .unwrap();
     let whole = skyforge_ok(&["study", "run", "signal.toml", "--out", "whole"], d);
     assert!(whole.contains("2 points x 2 seeds = 4 runs"), "{whole}");
-    for i in 1..=2 {
-        let shard = format!("{i}/2");
-        let args = [
-            "study",
-            "run",
-            "signal.toml",
-            "--out",
-            "sharded",
-            "--shard",
-            &shard,
-        ];
-        skyforge_ok(&args, d);
-    }
-    skyforge_ok(&["study", "merge", "sharded"], d);
-    let a = std::fs::read(d.join("whole/study.h5")).unwrap();
-    let b = std::fs::read(d.join("sharded/study.h5")).unwrap();
-    assert!(a == b, "merged shards differ from the whole run");
+    shards_merge_to_the_whole(d, "signal.toml", 2);
 
     // Every run is measured, from what the receiver made of its own samples: code at
     // decimetres, phase at millimetres, fixes at metres, each falling with the noise
@@ -162,9 +161,10 @@ fn an_interrupted_study_resumes_with_only_the_missing_runs() {
         printed.contains(&format!("{done} already done, {} to make", 24 - done)),
         "{printed}"
     );
-    let a = std::fs::read(d.join("straight/study.h5")).unwrap();
-    let b = std::fs::read(d.join("killed/study.h5")).unwrap();
-    assert!(a == b, "the resumed study differs from the straight one");
+    assert!(
+        same_study(d, "straight", "killed"),
+        "the resumed study differs from the straight one"
+    );
 }
 
 #[test]
@@ -221,9 +221,7 @@ fn bad_study_files_get_one_located_error_and_nothing_is_run() {
     ];
     for (text_of, place, what) in cases {
         std::fs::write(d.join("small.toml"), &text_of).unwrap();
-        let o = skyforge(&["study", "run", "small.toml", "--out", "out"], d);
-        let said = text(&o);
-        assert_eq!(o.status.code(), Some(2), "{said}");
+        let said = refused(d, &["study", "run", "small.toml", "--out", "out"]);
         assert!(
             said.contains(place) && said.contains(what),
             "want {place} .. {what}:\n{said}"
@@ -231,7 +229,8 @@ fn bad_study_files_get_one_located_error_and_nothing_is_run() {
         assert!(!d.join("out").exists(), "{said}");
     }
     std::fs::write(d.join("small.toml"), &good).unwrap();
-    let o = skyforge(
+    let said = refused(
+        d,
         &[
             "study",
             "run",
@@ -241,15 +240,12 @@ fn bad_study_files_get_one_located_error_and_nothing_is_run() {
             "--shard",
             "4/3",
         ],
-        d,
     );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("1 <= i <= n"), "{}", text(&o));
+    assert!(said.contains("1 <= i <= n"), "{said}");
 
     // A directory holding another study's journal is not overwritten.
     skyforge_ok(&["study", "run", "small.toml", "--out", "out"], d);
     std::fs::write(d.join("small.toml"), good.replace("seed = 11", "seed = 12")).unwrap();
-    let o = skyforge(&["study", "run", "small.toml", "--out", "out"], d);
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    assert!(text(&o).contains("another study"), "{}", text(&o));
+    let said = refused(d, &["study", "run", "small.toml", "--out", "out"]);
+    assert!(said.contains("another study"), "{said}");
 }

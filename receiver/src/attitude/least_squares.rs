@@ -216,15 +216,9 @@ mod tests {
     fn exact_baselines_give_the_angles_from_a_far_start() {
         let g = BodyGeometry::new(&[Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]).unwrap();
         let truth = YawPitchRoll::new(3.1, 0.3, -0.5);
-        let b: Vec<Vec3> = g
-            .baselines()
-            .iter()
-            .map(|b| truth.c_body_ref() * b)
-            .collect();
-        let meas = NedBaselines::new(&b, DMatrix::identity(6, 6) * 1e-6).unwrap();
         let est = solve(
             &g,
-            &meas,
+            &measured(&g, truth, Vec3::zeros()),
             Some(YawPitchRoll::new(2.8, 0.1, -0.2)),
             &LsConfig::default(),
         )
@@ -236,11 +230,7 @@ mod tests {
 
     /// Baselines of `truth` on `g` with `error` added to the first (m), covariance 1 mm^2.
     fn measured(g: &BodyGeometry, truth: YawPitchRoll, error: Vec3) -> NedBaselines {
-        let mut b: Vec<Vec3> = g
-            .baselines()
-            .iter()
-            .map(|b| truth.c_body_ref() * b)
-            .collect();
+        let mut b = g.in_reference(&truth);
         b[0] += error;
         NedBaselines::new(&b, DMatrix::identity(6, 6) * 1e-6).unwrap()
     }

@@ -151,16 +151,21 @@ impl BodyGeometry {
         self.baselines.is_empty()
     }
 
+    /// The columns of `R(xi) B_0`: the baselines the attitude `xi` gives in the reference
+    /// frame, eqs. 2.5-7, 2.5-8.
+    pub fn in_reference(&self, angles: &YawPitchRoll) -> Vec<Vec3> {
+        let r = angles.c_body_ref();
+        self.baselines.iter().map(|b| r * b).collect()
+    }
+
     /// `vec(R(xi) B_0)` (3m): the baselines the attitude `xi` predicts in the reference
     /// frame, eqs. 2.5-7, 2.5-8, 4.3-32.
     pub fn predict(&self, angles: &YawPitchRoll) -> DVector<f64> {
-        let r = angles.c_body_ref();
         DVector::from_iterator(
             3 * self.len(),
-            self.baselines.iter().flat_map(|b| {
-                let v = r * b;
-                [v.x, v.y, v.z]
-            }),
+            self.in_reference(angles)
+                .into_iter()
+                .flat_map(|v| [v.x, v.y, v.z]),
         )
     }
 

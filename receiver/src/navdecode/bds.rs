@@ -165,22 +165,10 @@ impl BdsDecoder {
         let tow_s = start_tow_s(self.format, &h);
         let bit_s = self.format.bit_period_s();
         if !(valid(&h) && time_consistent(self.stream.anchor, start_bit, tow_s, bit_s)) {
-            self.stream.stats.dropped_subframes += 1;
-            out.push(NavEvent::SubframeDropped {
-                start_bit,
-                words: 1,
-            });
-            self.stream.record(false, start_bit, out);
+            self.stream.drop_subframe(start_bit, 1, out);
             return;
         }
-        self.stream.record(true, start_bit, out);
-        if let (Some(week), Some((_, last))) = (self.week, self.stream.anchor)
-            && tow_s < last - WEEK_S / 2.0
-        {
-            self.week = Some(week + 1);
-        }
-        self.stream.anchor = Some((start_bit, tow_s));
-        self.stream.stats.subframes += 1;
+        self.stream.accept(start_bit, tow_s, &mut self.week, out);
         self.stream.stats.corrected_bits += u64::from(corrected);
         let page = self.store(&h, info);
         out.push(NavEvent::Subframe(SubframeInfo {
@@ -284,19 +272,18 @@ impl BdsDecoder {
 
 impl NavDecoder for BdsDecoder {
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stream.stats.bits += soft_bits.len() as u64;
-        self.stream.framer.push(soft_bits);
+        self.stream.push(soft_bits);
         let mut out = Vec::new();
         let format = self.format;
-        while let Some(step) = self.stream.framer.poll(|w| confirm(format, w)) {
-            if let Some((start_bit, inverted, bits)) = self.stream.bookkeeping(step, &mut out) {
-                let before = self.iono;
-                self.subframe(start_bit, inverted, &bits, &mut out);
-                if let Some(iono) = self.iono
-                    && before != Some(iono)
-                {
-                    out.push(NavEvent::BdsIono(iono));
-                }
+        while let Some((start_bit, inverted, bits)) =
+            self.stream.next_subframe(|w| confirm(format, w), &mut out)
+        {
+            let before = self.iono;
+            self.subframe(start_bit, inverted, &bits, &mut out);
+            if let Some(iono) = self.iono
+                && before != Some(iono)
+            {
+                out.push(NavEvent::BdsIono(iono));
             }
         }
         out

@@ -2,7 +2,7 @@
 //! a preamble search in both polarities confirmed by a message-specific header check, and
 //! the locked state that hands out one 300-bit subframe after another.
 
-use super::{DecodeStats, NavEvent, SUBFRAME_BITS, hard_bit};
+use super::{DecodeStats, NavEvent, SUBFRAME_BITS, WEEK_S, hard_bit};
 
 /// Consecutive failures (missing preamble or rejected subframe) that end the lock.
 const MAX_FAILURES: u8 = 3;
@@ -357,9 +357,31 @@ impl FramedStream {
         }
     }
 
+    /// Buffer the next soft bits.
+    pub fn push(&mut self, soft_bits: &[f32]) {
+        self.stats.bits += soft_bits.len() as u64;
+        self.framer.push(soft_bits);
+    }
+
+    /// The next subframe (start bit, inversion, bits) of the bits pushed so far, the
+    /// framer's other steps turned into events on the way; `None` when more bits are
+    /// needed.
+    pub fn next_subframe(
+        &mut self,
+        confirm: impl Fn(&[u8]) -> bool,
+        out: &mut Vec<NavEvent>,
+    ) -> Option<(u64, bool, Vec<u8>)> {
+        while let Some(step) = self.framer.poll(&confirm) {
+            if let Some(subframe) = self.bookkeeping(step, out) {
+                return Some(subframe);
+            }
+        }
+        None
+    }
+
     /// Sync acquired or lost and missing preambles become events (and counts); a subframe
     /// (start bit, inversion, bits) is handed back for the message-specific decoding.
-    pub fn bookkeeping(
+    fn bookkeeping(
         &mut self,
         step: Framed,
         out: &mut Vec<NavEvent>,
@@ -396,8 +418,35 @@ impl FramedStream {
         }
     }
 
+    /// The subframe at `start_bit` was rejected (`words`: which of its words were bad).
+    pub fn drop_subframe(&mut self, start_bit: u64, words: u16, out: &mut Vec<NavEvent>) {
+        self.stats.dropped_subframes += 1;
+        out.push(NavEvent::SubframeDropped { start_bit, words });
+        self.record(false, start_bit, out);
+    }
+
+    /// The subframe at `start_bit`, time of week `tow_s`, was accepted: it becomes the
+    /// anchor, and `week` moves on when the time of week went back by more than half a
+    /// week since the last anchor (a week crossing).
+    pub fn accept(
+        &mut self,
+        start_bit: u64,
+        tow_s: f64,
+        week: &mut Option<u32>,
+        out: &mut Vec<NavEvent>,
+    ) {
+        self.record(true, start_bit, out);
+        if let (Some(w), Some((_, last))) = (*week, self.anchor)
+            && tow_s < last - WEEK_S / 2.0
+        {
+            *week = Some(w + 1);
+        }
+        self.anchor = Some((start_bit, tow_s));
+        self.stats.subframes += 1;
+    }
+
     /// Tell the framer whether the subframe at `start_bit` was accepted.
-    pub fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
+    fn record(&mut self, ok: bool, start_bit: u64, out: &mut Vec<NavEvent>) {
         if let Some(Framed::SyncLost { at_bit }) = self.framer.record(ok, start_bit) {
             self.sync_lost(at_bit, out);
         }

@@ -6,7 +6,7 @@ use super::gps_fields::{
 };
 use super::gps_parity::{check_subframe, check_word};
 use super::{
-    DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo, WEEK_S,
+    DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo,
     time_consistent,
 };
 use skyforge_orbits::ephemeris::{SatId, System};
@@ -141,7 +141,7 @@ impl GpsLnavDecoder {
             Ok(src) => src,
             Err(words) => {
                 self.stream.stats.parity_failed_words += u64::from(words.count_ones());
-                self.drop_subframe(start_bit, words, out);
+                self.stream.drop_subframe(start_bit, words, out);
                 return;
             }
         };
@@ -152,16 +152,10 @@ impl GpsLnavDecoder {
             || !time_consistent(self.stream.anchor, start_bit, tow_s, BIT_PERIOD_S)
         {
             // Parity passed but TLM/HOW contradict the stream (undetected errors).
-            self.drop_subframe(start_bit, 0b11, out);
+            self.stream.drop_subframe(start_bit, 0b11, out);
             return;
         }
-        self.stream.record(true, start_bit, out);
-        if let (Some(week), Some((_, last))) = (self.week, self.stream.anchor)
-            && tow_s < last - WEEK_S / 2.0
-        {
-            self.week = Some(week + 1);
-        }
-        self.stream.anchor = Some((start_bit, tow_s));
+        self.stream.accept(start_bit, tow_s, &mut self.week, out);
         let mut page = None;
         match header.id {
             1 => {
@@ -180,7 +174,6 @@ impl GpsLnavDecoder {
             }
             _ => {}
         }
-        self.stream.stats.subframes += 1;
         out.push(NavEvent::Subframe(SubframeInfo {
             start_bit,
             id: header.id,
@@ -225,23 +218,14 @@ impl GpsLnavDecoder {
             });
         }
     }
-
-    fn drop_subframe(&mut self, start_bit: u64, words: u16, out: &mut Vec<NavEvent>) {
-        self.stream.stats.dropped_subframes += 1;
-        out.push(NavEvent::SubframeDropped { start_bit, words });
-        self.stream.record(false, start_bit, out);
-    }
 }
 
 impl NavDecoder for GpsLnavDecoder {
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stream.stats.bits += soft_bits.len() as u64;
-        self.stream.framer.push(soft_bits);
+        self.stream.push(soft_bits);
         let mut out = Vec::new();
-        while let Some(step) = self.stream.framer.poll(confirm) {
-            if let Some((start_bit, inverted, bits)) = self.stream.bookkeeping(step, &mut out) {
-                self.subframe(start_bit, inverted, &bits, &mut out);
-            }
+        while let Some((start_bit, inverted, bits)) = self.stream.next_subframe(confirm, &mut out) {
+            self.subframe(start_bit, inverted, &bits, &mut out);
         }
         out
     }

@@ -26,6 +26,10 @@ pub fn skyforge(args: &[&str], cwd: &Path) -> Output {
         .expect("run skyforge")
 }
 
+/// What tells `receive` how to read a raw recording of 4 Msps ci8 GPS L1 C/A samples (the
+/// options after its file name).
+pub const RAW_CI8_4MSPS_GPS: [&str; 6] = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
+
 /// The address-space limit (`ulimit -v`) issue #11's reproductions must hold under.
 pub const MEMORY_LIMIT_BYTES: u64 = 4 << 30;
 

@@ -38,7 +38,7 @@ pub struct EpochErrors {
 }
 
 /// The chain's outcome over a run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct ChainComparison {
     /// Epochs of the master's observations.
     pub epochs: usize,
@@ -63,6 +63,13 @@ impl ChainComparison {
     /// Fixed epochs over epochs from the first fix on (0 without a fix).
     pub fn fix_rate(&self) -> f64 {
         self.fixed.len() as f64 / self.after_first_fix.max(1) as f64
+    }
+
+    /// Record the integers `check` compared with the truth's.
+    pub(super) fn record_integers(&mut self, check: &IntegerCheck) {
+        self.integers_checked = check.checked;
+        self.integers_wrong = check.wrong;
+        self.largest_integer_distance_cycles = check.largest_distance_cycles;
     }
 
     /// `pick` of each fixed epoch that has it.
@@ -334,17 +341,7 @@ pub fn compare(
         .zip(&run.truth)
         .map(|(m, t)| phase_offsets(m, t, start))
         .collect();
-    let mut out = ChainComparison {
-        epochs: 0,
-        first_fix_s: None,
-        after_first_fix: 0,
-        fixed: Vec::new(),
-        integers_checked: 0,
-        integers_wrong: 0,
-        largest_integer_distance_cycles: 0.0,
-        fixed_epochs: 0,
-        fixed_epochs_wrong: 0,
-    };
+    let mut out = ChainComparison::default();
     let mut integers = IntegerCheck::default();
     run_files(
         &run.measured,
@@ -382,9 +379,7 @@ pub fn compare(
             }
         },
     )?;
-    out.integers_checked = integers.checked;
-    out.integers_wrong = integers.wrong;
-    out.largest_integer_distance_cycles = integers.largest_distance_cycles;
+    out.record_integers(&integers);
     Ok(out)
 }
 

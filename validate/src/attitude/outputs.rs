@@ -409,9 +409,7 @@ pub fn compare_outputs(
     let mut chain = chain;
     chain.fixed_epochs = fixed_epochs;
     chain.fixed_epochs_wrong = wrong_epochs;
-    chain.integers_checked = integers.checked;
-    chain.integers_wrong = integers.wrong;
-    chain.largest_integer_distance_cycles = integers.largest_distance_cycles;
+    chain.record_integers(&integers);
     Ok(OutputsComparison {
         truth_dir: truth_dir.to_path_buf(),
         observations_dir: observations_dir.to_path_buf(),
@@ -460,17 +458,7 @@ fn read_attitude(
         }
         require_columns(path, names, &required)
     };
-    let mut out = ChainComparison {
-        epochs: 0,
-        first_fix_s: None,
-        after_first_fix: 0,
-        fixed: Vec::new(),
-        integers_checked: 0,
-        integers_wrong: 0,
-        largest_integer_distance_cycles: 0.0,
-        fixed_epochs: 0,
-        fixed_epochs_wrong: 0,
-    };
+    let mut out = ChainComparison::default();
     let mut fixed_epochs = 0usize;
     let (first, last) = truth.span();
     read_csv(path, check_header, |header, line, text| {

@@ -112,6 +112,21 @@ fn argmax<'a>(
         .copied()
 }
 
+/// Time from `from` to the first alarm of statistic `k` at the faulted station in
+/// `[from, to)` (NaN when none).
+fn first_alarm(r: &MonitoredRun, from: f64, to: f64, k: usize) -> f64 {
+    let (c, _) = stations(r);
+    first_after(&faulted(r), from, to, |s| alarm(s, c, k))
+}
+
+/// Mean |B| of statistic `k` at the other stations over |B| at the faulted one, at the
+/// epoch after the slip where `key` of the faulted station's B is largest.
+fn ratio_at_peak(r: &MonitoredRun, k: usize, key: fn(f64) -> f64) -> f64 {
+    let (c, o) = stations(r);
+    argmax(&faulted(r), SLIP_S, END_S, |s| key(b(s, c, k)))
+        .map_or(f64::NAN, |(_, s)| mean_abs(s, &o, k) / b(s, c, k).abs())
+}
+
 /// One measured quantity of the table: row label, quantity, unit, the paper's value, the
 /// check, and how a run gives it.
 struct Measure {
@@ -123,6 +138,29 @@ struct Measure {
     ok: fn(f64) -> bool,
     of: fn(&MonitoredRun) -> f64,
     note: &'static str,
+}
+
+impl Measure {
+    /// A count or fraction of alarms where the paper has none: dimensionless, and must
+    /// be 0.
+    fn no_alarm(
+        row: &'static str,
+        quantity: &'static str,
+        tolerance: &'static str,
+        of: fn(&MonitoredRun) -> f64,
+        note: &'static str,
+    ) -> Self {
+        Self {
+            row,
+            quantity,
+            unit: "",
+            paper: Some(0.0),
+            tolerance,
+            ok: |v| v == 0.0,
+            of,
+            note,
+        }
+    }
 }
 
 /// Slip at 500 s: epochs from 510 s are past the transition.
@@ -181,13 +219,7 @@ fn slip_measures() -> Vec<Measure> {
             paper: Some(1.0 / 3.0),
             tolerance: "+-0.05",
             ok: |v| (v - 1.0 / 3.0).abs() <= 0.05,
-            of: |r| {
-                let (c, o) = stations(r);
-                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, SMOOTHED))
-                    .map_or(f64::NAN, |(_, s)| {
-                        mean_abs(s, &o, SMOOTHED) / b(s, c, SMOOTHED).abs()
-                    })
-            },
+            of: |r| ratio_at_peak(r, SMOOTHED, |v| v),
             note: "paper: about a third",
         },
         Measure {
@@ -231,13 +263,7 @@ fn slip_measures() -> Vec<Measure> {
             paper: Some(1.0 / 3.0),
             tolerance: "+-0.05",
             ok: |v| (v - 1.0 / 3.0).abs() <= 0.05,
-            of: |r| {
-                let (c, o) = stations(r);
-                argmax(&faulted(r), SLIP_S, END_S, |s| b(s, c, DIVERGENCE).abs())
-                    .map_or(f64::NAN, |(_, s)| {
-                        mean_abs(s, &o, DIVERGENCE) / b(s, c, DIVERGENCE).abs()
-                    })
-            },
+            of: |r| ratio_at_peak(r, DIVERGENCE, f64::abs),
             note: "paper: about a third",
         },
         Measure {
@@ -247,10 +273,7 @@ fn slip_measures() -> Vec<Measure> {
             paper: Some(1.0),
             tolerance: "<= 1 epoch (1 s)",
             ok: |v| v <= 1.0,
-            of: |r| {
-                let (c, _) = stations(r);
-                first_after(&faulted(r), SLIP_S, END_S, |s| alarm(s, c, CARRIER))
-            },
+            of: |r| first_alarm(r, SLIP_S, END_S, CARRIER),
             note: "paper: detection within a single epoch; the slip enters the first epoch after 500 s",
         },
     ]
@@ -268,9 +291,9 @@ fn multipath_measures() -> Vec<Measure> {
             tolerance: "1",
             ok: |v| v == 1.0,
             of: |r| {
-                let (c, _) = stations(r);
-                let d = first_after(&faulted(r), MULTIPATH_S, 700.0, |s| alarm(s, c, SMOOTHED));
-                f64::from(u8::from(d.is_finite()))
+                f64::from(u8::from(
+                    first_alarm(r, MULTIPATH_S, 700.0, SMOOTHED).is_finite(),
+                ))
             },
             note: "paper: accumulates and gradually exceeds the 0.5 m threshold",
         },
@@ -281,10 +304,7 @@ fn multipath_measures() -> Vec<Measure> {
             paper: None,
             tolerance: "lags, during the event: 1 s <= t < 5 s",
             ok: |v| (1.0..5.0).contains(&v),
-            of: |r| {
-                let (c, _) = stations(r);
-                first_after(&faulted(r), MULTIPATH_S, 700.0, |s| alarm(s, c, SMOOTHED))
-            },
+            of: |r| first_alarm(r, MULTIPATH_S, 700.0, SMOOTHED),
             note: "paper: each epoch enters at 1/N_s, so detection lags (digest 2.4: 2nd epoch)",
         },
         Measure {
@@ -320,41 +340,32 @@ fn any_alarm(r: &MonitoredRun, from: f64, to: f64) -> f64 {
 }
 
 fn ramp_common_measures() -> Vec<Measure> {
-    vec![Measure {
-        row: "common iono ramp: not detected",
-        quantity: "fraction of seeds with an alarm on C03 in 500-1000 s",
-        unit: "",
-        paper: Some(0.0),
-        tolerance: "0",
-        ok: |v| v == 0.0,
-        of: |r| any_alarm(r, 500.0, 1000.0),
-        note: "paper: the gradient is common to the stations and cancels in every B value",
-    }]
+    vec![Measure::no_alarm(
+        "common iono ramp: not detected",
+        "fraction of seeds with an alarm on C03 in 500-1000 s",
+        "0",
+        |r| any_alarm(r, 500.0, 1000.0),
+        "paper: the gradient is common to the stations and cancels in every B value",
+    )]
 }
 
 fn ramp_at_c_measures() -> Vec<Measure> {
-    vec![Measure {
-        row: "iono ramp at C only: detected",
-        quantity: "fraction of seeds with an alarm on C03 in 500-700 s",
-        unit: "",
-        paper: Some(0.0),
-        tolerance: "0 (as printed)",
-        ok: |v| v == 0.0,
-        of: |r| any_alarm(r, 500.0, 700.0),
-        note: "explained: a ramp at C alone reaches 17.3 m of code and -17.3 m of carrier at C by 673 s, far beyond its thresholds (validate/tests/integrity_lab.rs checks the B values); the paper's results fit only a common ramp (digest 2.3)",
-    }]
+    vec![Measure::no_alarm(
+        "iono ramp at C only: detected",
+        "fraction of seeds with an alarm on C03 in 500-700 s",
+        "0 (as printed)",
+        |r| any_alarm(r, 500.0, 700.0),
+        "explained: a ramp at C alone reaches 17.3 m of code and -17.3 m of carrier at C by 673 s, far beyond its thresholds (validate/tests/integrity_lab.rs checks the B values); the paper's results fit only a common ramp (digest 2.3)",
+    )]
 }
 
 fn fault_free_measures() -> Vec<Measure> {
     vec![
-        Measure {
-            row: "fault-free: no alarm",
-            quantity: "alarms per 1800 s run (all satellites, stations, statistics)",
-            unit: "",
-            paper: Some(0.0),
-            tolerance: "0",
-            ok: |v| v == 0.0,
-            of: |r| {
+        Measure::no_alarm(
+            "fault-free: no alarm",
+            "alarms per 1800 s run (all satellites, stations, statistics)",
+            "0",
+            |r| {
                 r.epochs
                     .iter()
                     .flat_map(|e| &e.sats)
@@ -362,8 +373,8 @@ fn fault_free_measures() -> Vec<Measure> {
                     .map(|v| v.alarm.iter().filter(|&&a| a).count() as f64)
                     .sum()
             },
-            note: "paper 4.2.1: code and carrier B values stable; thresholds at 1e-7 per test",
-        },
+            "paper 4.2.1: code and carrier B values stable; thresholds at 1e-7 per test",
+        ),
         Measure {
             row: "fault-free: divergence B at mm level",
             quantity: "RMS of the armed divergence B values",
