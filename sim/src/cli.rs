@@ -82,43 +82,8 @@ pub enum Command {
     /// Files of several antennas share one sample clock; GPS L1 and BeiDou B1 recordings
     /// of the same antenna (same SigMF antenna name) give one combined fix.
     Receive {
-        /// Recordings: .sigmf-meta/.sigmf-data files or raw sample files.
-        #[arg(required = true)]
-        files: Vec<PathBuf>,
-        /// Sample format of raw files: ci8, ci16, cf32 or ri8.
-        #[arg(long, value_name = "F")]
-        format: Option<String>,
-        /// Sample rate of raw files (Hz).
-        #[arg(long, value_name = "HZ")]
-        fs: Option<f64>,
-        /// Intermediate frequency of raw files (Hz; default 0).
-        #[arg(long = "if", value_name = "HZ")]
-        if_hz: Option<f64>,
-        /// Signal of raw files: gps-l1ca or bds-b1i.
-        #[arg(long, value_name = "S")]
-        signal: Option<String>,
-        /// Navigation file (RINEX 2/3/4) for assisted acquisition and immediate fixes.
-        #[arg(long, value_name = "NAV")]
-        assist: Option<PathBuf>,
-        /// Receiver configuration (TOML: [acquisition], [tracking], [observables], [pvt],
-        /// [assist]).
-        #[arg(long, value_name = "TOML")]
-        config: Option<PathBuf>,
-        /// Body geometry (TOML as `skyforge synth` writes it, or `skyforge attitude
-        /// --estimate-geometry`'s geometry_corrected.toml): also run the attitude chain on
-        /// the observations, as `skyforge attitude` does, into DIR/attitude.csv,
-        /// DIR/attitude.h5 and DIR/ambiguities.csv. Needs --assist.
-        #[arg(long, value_name = "TOML")]
-        geometry: Option<PathBuf>,
-        /// The attitude chain's settings (TOML with a [relative] table; docs/attitude.md).
-        #[arg(long, value_name = "TOML", requires = "geometry")]
-        attitude_config: Option<PathBuf>,
-        /// Output directory; created, must not exist unless --force is given.
-        #[arg(long, value_name = "DIR")]
-        out: PathBuf,
-        /// Replace an existing output directory.
-        #[arg(long)]
-        force: bool,
+        #[command(flatten)]
+        args: ReceiveArgs,
     },
     /// Measure the bundled receiver's code and carrier-phase noise against the loop
     /// formulas on SCENARIO (synthesised and received at the signal level, compared with
@@ -461,4 +426,46 @@ pub enum StudyAction {
         #[arg(long, value_name = "FILE")]
         out: Option<PathBuf>,
     },
+}
+
+/// `skyforge receive`'s arguments.
+#[derive(Debug, Args)]
+pub struct ReceiveArgs {
+    /// Recordings: .sigmf-meta/.sigmf-data files or raw sample files.
+    #[arg(required = true)]
+    pub files: Vec<PathBuf>,
+    /// Sample format of raw files: ci8, ci16, cf32 or ri8.
+    #[arg(long, value_name = "F")]
+    pub format: Option<String>,
+    /// Sample rate of raw files (Hz).
+    #[arg(long, value_name = "HZ")]
+    pub fs: Option<f64>,
+    /// Intermediate frequency of raw files (Hz; default 0).
+    #[arg(long = "if", value_name = "HZ")]
+    pub if_hz: Option<f64>,
+    /// Signal of raw files: gps-l1ca or bds-b1i.
+    #[arg(long, value_name = "S")]
+    pub signal: Option<String>,
+    /// Navigation file (RINEX 2/3/4) for assisted acquisition and immediate fixes.
+    #[arg(long, value_name = "NAV")]
+    pub assist: Option<PathBuf>,
+    /// Receiver configuration (TOML: [acquisition], [tracking], [observables], [pvt],
+    /// [assist]).
+    #[arg(long, value_name = "TOML")]
+    pub config: Option<PathBuf>,
+    /// Body geometry (TOML as `skyforge synth` writes it, or `skyforge attitude
+    /// --estimate-geometry`'s geometry_corrected.toml): also run the attitude chain on
+    /// the observations, as `skyforge attitude` does, into DIR/attitude.csv,
+    /// DIR/attitude.h5 and DIR/ambiguities.csv. Needs --assist.
+    #[arg(long, value_name = "TOML")]
+    pub geometry: Option<PathBuf>,
+    /// The attitude chain's settings (TOML with a [relative] table; docs/attitude.md).
+    #[arg(long, value_name = "TOML", requires = "geometry")]
+    pub attitude_config: Option<PathBuf>,
+    /// Output directory; created, must not exist unless --force is given.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory.
+    #[arg(long)]
+    pub force: bool,
 }

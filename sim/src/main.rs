@@ -22,7 +22,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Run { run }
         | cli::Command::Synth { run, .. }
         | cli::Command::Calibrate { run } => Some(run.out.clone()),
-        cli::Command::Receive { out, .. } => Some(out.clone()),
+        cli::Command::Receive { args } => Some(args.out.clone()),
         cli::Command::Attitude { args } => Some(args.out.clone()),
         cli::Command::Monitor {
             action: cli::MonitorAction::Run { args },

@@ -1,6 +1,7 @@
 //! `skyforge receive`: run the bundled receiver over sample recordings.
 
 use crate::BadInput;
+use crate::cli::ReceiveArgs;
 use crate::commands::attitude::{Chain, read_nav};
 use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};
 use crate::output::staged_dir::StagedDir;
@@ -14,35 +15,18 @@ use skyforge_receiver::session::{
 };
 use skyforge_signals::observation::read_obs_file;
 use skyforge_signals::signal::Signal;
-use std::path::PathBuf;
-
-/// What the command line gives.
-#[derive(Debug, Clone)]
-pub struct ReceiveArgs {
-    pub files: Vec<PathBuf>,
-    pub params: InputParams,
-    pub assist: Option<PathBuf>,
-    pub config: Option<PathBuf>,
-    /// Body geometry: run the attitude chain on the receiver's observations.
-    pub geometry: Option<PathBuf>,
-    /// The chain's settings (a TOML file with a `[relative]` table).
-    pub attitude_config: Option<PathBuf>,
-    pub out: PathBuf,
-    pub force: bool,
-}
 
 /// The raw-file description given on the command line.
-pub fn input_params(
-    format: Option<&str>,
-    fs: Option<f64>,
-    if_hz: Option<f64>,
-    signal: Option<&str>,
-) -> anyhow::Result<InputParams> {
-    let format = format
+fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
+    let format = args
+        .format
+        .as_deref()
         .map(|f| parse_format(f, "--format"))
         .transpose()
         .map_err(|e| BadInput(e.to_string()))?;
-    let signal = signal
+    let signal = args
+        .signal
+        .as_deref()
         .map(str::parse::<Signal>)
         .transpose()
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
@@ -55,8 +39,8 @@ pub fn input_params(
     }
     Ok(InputParams {
         format,
-        sample_rate_hz: fs,
-        if_hz,
+        sample_rate_hz: args.fs,
+        if_hz: args.if_hz,
         signal,
     })
 }
@@ -76,8 +60,9 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
         nav: args.assist.clone().map(NavSource::File),
         approximate,
     };
-    let mut session = ReceiveSession::open(&args.files, &args.params, &assistance, config)
-        .map_err(session_error)?;
+    let params = input_params(args)?;
+    let mut session =
+        ReceiveSession::open(&args.files, &params, &assistance, config).map_err(session_error)?;
     let chain = attitude_chain(args, session.antenna_names())?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let mut outputs = ReceiverOutputs::create(
