@@ -329,9 +329,16 @@ struct Pair {
 /// are checked against the truth.
 fn run_pairs(setup: &Setup, seed: Option<u64>, dir: &Path) -> Vec<Pair> {
     let scenario = match seed {
-        Some(seed) => setup
-            .scenario
-            .replacen("seed = 12 ", &format!("seed = {seed} "), 1),
+        Some(seed) => {
+            let text = setup
+                .scenario
+                .replacen("seed = 12 ", &format!("seed = {seed} "), 1);
+            assert!(
+                text.contains(&format!("seed = {seed} ")),
+                "the seed line was not found"
+            );
+            text
+        }
         None => setup.scenario.clone(),
     };
     std::fs::write(dir.join("scenario.toml"), &scenario).unwrap();
@@ -398,6 +405,9 @@ fn run_pairs(setup: &Setup, seed: Option<u64>, dir: &Path) -> Vec<Pair> {
                 rtklib.line()
             );
             assert!(rtklib.fixed > 0, "RTKLIB never fixed: a set-up problem");
+            for (who, f) in [("SkyForge", &skyforge), ("RTKLIB", &rtklib)] {
+                assert!(f.rms_3d_m().is_finite(), "{who}: no RMS for b{k}");
+            }
             pairs.push(Pair {
                 k,
                 armode,
@@ -483,9 +493,9 @@ fn leo_baselines_at_least_as_good_as_rtklib_moving_base() {
 /// the next seven, chosen before the first run), per baseline and RTKLIB mode the paired
 /// difference of 3D RMS (SkyForge - RTKLIB; both programs read the same files, so the
 /// pairing removes the noise they share) and its standard error over the seeds (runs are
-/// independent; epochs within a run are not). The bar "at least as accurate" holds unless
-/// SkyForge's RMS is larger by more than two standard errors; the fix rate is compared
-/// seed by seed.
+/// independent; epochs within a run are not). The bar "at least as accurate" is read as
+/// "not worse beyond the statistical resolution": it holds unless SkyForge's mean RMS is
+/// larger by more than two standard errors; the fix rate is compared seed by seed.
 #[test]
 #[ignore = "interoperability tier: needs rtklib (scripts/test.sh installs it)"]
 fn ground_accuracy_over_seeds_is_at_least_rtklibs() {

@@ -287,6 +287,11 @@ fn observed_only_signals_outside_the_observation_level_are_refused() {
             "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e1\"]\n",
             "unknown signal",
         ),
+        (
+            "twice",
+            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l2\", \"gps-l2\"]\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n",
+            "is listed twice",
+        ),
     ] {
         let path = scenario(dir.path(), name, 10, 1, extra);
         let out = dir.path().join(format!("out-{name}"));

@@ -53,7 +53,8 @@ fn at_least(a: &SuccessRate, b: &SuccessRate) -> bool {
 /// scaled to its carrier: on every satellite the geometry-free code `P_f - P_1` equals the
 /// geometry-free phase `lambda_1 phi_1 - lambda_f phi_f` (the truth has no ambiguity; the
 /// scenario has no multipath or events), and the L5 and L2 (B3I and B2I) ionospheres stand
-/// in the ratio of `(f_1 / f)^2 - 1`, a ratio of carrier frequencies only.
+/// in the ratio of `(f_1 / f)^2 - 1`, a ratio of carrier frequencies only; the Doppler
+/// scales with the carrier.
 #[test]
 fn observed_signals_follow_the_ionosphere_of_their_carrier() {
     let run = observation_run(&scenario()).unwrap();
@@ -87,6 +88,20 @@ fn observed_signals_follow_the_ionosphere_of_their_carrier() {
                     r.sat,
                     x.signal
                 );
+            }
+            // Doppler at each carrier: the same range rate (the ionosphere's rate is mm/s
+            // against km/s).
+            for x in [a, b] {
+                let (d_x, d_r) = (x.doppler_hz.unwrap(), r.doppler_hz.unwrap());
+                if d_r.abs() > 100.0 {
+                    let want = x.signal.carrier_hz() / r.signal.carrier_hz();
+                    assert!(
+                        (d_x / d_r - want).abs() < 1e-4,
+                        "{} {}: Doppler {d_x} Hz against {d_r} Hz",
+                        r.sat,
+                        x.signal
+                    );
+                }
             }
             if gf_a.abs() > 0.05 {
                 let ratio = gf_b / gf_a;

@@ -330,15 +330,30 @@ impl<'a> SynthSession<'a> {
     /// Run at the observation level: no samples; at each whole second `model` turns every
     /// link's truth into observables for [`Sinks::measurements`], of each transmitter's
     /// signal and of the observed-only signals `observed` of its system (GPS L2/L5, BDS
-    /// B2I/B3I: [`Synthesiser::with_observed`]). A synthesised signal in `observed`, or one
-    /// the model has no noise for, is an error.
+    /// B2I/B3I: [`Synthesiser::with_observed`]). A synthesised signal in `observed`, one
+    /// listed twice, one of a system without satellites, or one the model has no noise
+    /// for, is an error.
     pub fn observation_level(
         mut self,
         model: ObservationModel,
         observed: &[Signal],
     ) -> Result<Self, SynthError> {
         let field = "observation.observed_signals";
-        for s in observed {
+        for (i, s) in observed.iter().enumerate() {
+            if observed[..i].contains(s) {
+                return Err(SynthError::Invalid(Invalid::new(
+                    field,
+                    s.tag(),
+                    "is listed twice",
+                )));
+            }
+            if !self.bands.iter().any(|b| b.signal.system() == s.system()) {
+                return Err(SynthError::Invalid(Invalid::new(
+                    field,
+                    s.tag(),
+                    "its system has no satellites in this scenario (enable it under [gnss])",
+                )));
+            }
             if s.is_synthesised() {
                 return Err(SynthError::Invalid(Invalid::new(
                     field,
@@ -381,16 +396,11 @@ impl<'a> SynthSession<'a> {
         &self.bands
     }
 
-    /// Every signal observed: each band's, then the observed-only signals of the bands'
-    /// systems ([`Self::observation_level`]).
+    /// Every signal observed: each band's, then the observed-only signals
+    /// ([`Self::observation_level`]).
     pub fn signals(&self) -> Vec<Signal> {
         let bands = self.bands.iter().map(|b| b.signal);
-        let observed = self
-            .observed
-            .iter()
-            .copied()
-            .filter(|s| self.bands.iter().any(|b| b.signal.system() == s.system()));
-        bands.chain(observed).collect()
+        bands.chain(self.observed.iter().copied()).collect()
     }
 
     /// The transmitting satellites, band by band (the index [`Band::first`] counts in).
