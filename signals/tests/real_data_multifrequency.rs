@@ -163,6 +163,19 @@ fn the_ionosphere_scales_between_the_carriers_of_a_real_receiver() {
         println!("{s}: {} phase observations", count(s));
         assert!(count(s) > 1000, "{s}");
     }
+    // The codes read: P(Y) for L2 (the file also has L2C), the L5 pilot, BeiDou's I.
+    let codes: Vec<(Signal, &str)> = file.codes.iter().map(|(s, c)| (*s, *c)).collect();
+    assert_eq!(
+        codes,
+        [
+            (Signal::GpsL1Ca, "1C"),
+            (Signal::BdsB1I, "2I"),
+            (Signal::GpsL2, "2W"),
+            (Signal::GpsL5, "5Q"),
+            (Signal::BdsB2I, "7I"),
+            (Signal::BdsB3I, "6I"),
+        ]
+    );
     check_changes(&file, Signal::GpsL1Ca, [Signal::GpsL2, Signal::GpsL5]);
     check_changes(&file, Signal::BdsB1I, [Signal::BdsB2I, Signal::BdsB3I]);
 }

@@ -137,6 +137,7 @@ pub fn synth_and_receive(
             .map(|a| ObsFile {
                 source: PathBuf::from(format!("{} observation truth", a.name)),
                 approx_ecef_m: None,
+                codes: Default::default(),
                 epochs: Vec::new(),
             })
             .collect(),

@@ -59,6 +59,16 @@ pub enum FilesError {
     AntennaCount { files: usize, geometry: usize },
     #[error("{0}: no observation epochs")]
     NoEpochs(String),
+    #[error(
+        "{signal}: {first} has it from code {first_code}, {other} from {other_code}; double differences need one tracking of a signal in every file (between trackings RINEX 3.04 table A23 puts phase shifts, and their code biases differ)"
+    )]
+    MixedTracking {
+        signal: Signal,
+        first: String,
+        first_code: &'static str,
+        other: String,
+        other_code: &'static str,
+    },
     #[error(transparent)]
     Relative(#[from] RelativeError),
 }
@@ -306,6 +316,29 @@ fn corrected(
         .collect()
 }
 
+/// Every file that says which code each of `signals` came from ([`ObsFile::codes`]) says
+/// the same one.
+fn check_trackings(files: &[ObsFile], signals: &[Signal]) -> Result<(), FilesError> {
+    for &signal in signals {
+        let mut known = files
+            .iter()
+            .filter_map(|f| Some((f, *f.codes.get(&signal)?)));
+        let Some((first, first_code)) = known.next() else {
+            continue;
+        };
+        if let Some((other, other_code)) = known.find(|(_, c)| *c != first_code) {
+            return Err(FilesError::MixedTracking {
+                signal,
+                first: first.source.display().to_string(),
+                first_code,
+                other: other.source.display().to_string(),
+                other_code,
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Run the chain over `files` (one per antenna of `geometry`, same order), handing each
 /// master epoch's outcome to `each`. Every antenna's observations are moved onto the
 /// linear model of the master's epoch ([`ToMasterModel`]: its sampling instant, and the
@@ -325,6 +358,7 @@ pub fn run_files(
             geometry: geometry.antennas.len(),
         });
     }
+    check_trackings(files, &config.signals)?;
     let master = &files[0];
     let Some(first) = master.epochs.first() else {
         return Err(FilesError::NoEpochs(master.source.display().to_string()));
@@ -564,6 +598,7 @@ mod tests {
             ObsFile {
                 source: "test".into(),
                 approx_ecef_m: Some(r),
+                codes: Default::default(),
                 epochs: vec![ObsEpoch { time, sats }],
             }
         };
@@ -606,5 +641,34 @@ mod tests {
         let (with, without) = (error_m(true), error_m(false));
         assert!(with < 2e-3, "with the gradient: {with} m off");
         assert!(without > 2e-2, "without: only {without} m off");
+    }
+
+    /// Files that read one signal from different trackings (P(Y) `2W` in one, L2C `2L` in
+    /// the other) are refused by name; files that do not say are taken as they are.
+    #[test]
+    fn mixed_trackings_of_a_signal_are_refused() {
+        let file = |name: &str, code: Option<&'static str>| ObsFile {
+            source: name.into(),
+            approx_ecef_m: None,
+            codes: code.map(|c| (Signal::GpsL2, c)).into_iter().collect(),
+            epochs: Vec::new(),
+        };
+        let signals = [Signal::GpsL1Ca, Signal::GpsL2];
+        let e = check_trackings(&[file("a", Some("2W")), file("b", Some("2L"))], &signals)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("GPS L2: a has it from code 2W, b from 2L"),
+            "{e}"
+        );
+        assert!(check_trackings(&[file("a", Some("2W")), file("b", None)], &signals).is_ok());
+        assert!(check_trackings(&[file("a", Some("2W")), file("b", Some("2W"))], &signals).is_ok());
+        assert!(
+            check_trackings(
+                &[file("a", Some("2W")), file("b", Some("2L"))],
+                &signals[..1]
+            )
+            .is_ok()
+        );
     }
 }

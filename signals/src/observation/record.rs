@@ -86,5 +86,9 @@ pub struct ObsFile {
     pub source: PathBuf,
     /// The header's `APPROX POSITION XYZ` (ECEF, m), when it has one.
     pub approx_ecef_m: Option<Vec3>,
+    /// The RINEX 3 code (band and attribute, e.g. `2W`) each signal's observations were
+    /// read from ([`super::rinex_codes`]); empty where the file does not say (RINEX 2,
+    /// observations made in memory).
+    pub codes: std::collections::BTreeMap<Signal, &'static str>,
     pub epochs: Vec<ObsEpoch>,
 }

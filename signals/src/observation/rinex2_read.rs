@@ -395,6 +395,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
     Ok(ObsFile {
         source: PathBuf::from(source),
         approx_ecef_m: header.approx_ecef_m,
+        codes: Default::default(),
         epochs,
     })
 }

@@ -225,6 +225,10 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
     Ok(ObsFile {
         source: source.to_path_buf(),
         approx_ecef_m,
+        codes: chosen
+            .into_iter()
+            .map(|(signal, rank)| (signal, rinex_codes::codes(signal)[rank]))
+            .collect(),
         epochs,
     })
 }
@@ -386,6 +390,7 @@ mod tests {
         );
         both += &g07;
         let f = parse_obs_text(&both, "test").unwrap();
+        assert_eq!(f.codes.get(&Signal::GpsL2), Some(&"2W"));
         let l2: Vec<&ObsRecord> = f.epochs[0].sats.iter().collect();
         assert_eq!(l2.len(), 1, "{l2:?}");
         assert_eq!(l2[0].sat.prn, 5);
@@ -397,6 +402,7 @@ mod tests {
         only += "> 2023 03 12 00 00  1.0000000  0  1\n";
         only += &g07;
         let f = parse_obs_text(&only, "test").unwrap();
+        assert_eq!(f.codes.get(&Signal::GpsL2), Some(&"2L"));
         assert_eq!(f.epochs[0].sats.len(), 1);
         assert_eq!(f.epochs[0].sats[0].signal, Signal::GpsL2);
         assert_eq!(f.epochs[0].sats[0].pseudorange_m, Some(22000000.5));

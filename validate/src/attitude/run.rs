@@ -181,6 +181,7 @@ impl Collect {
                 .map(|a| ObsFile {
                     source: PathBuf::from(format!("{a} {what}")),
                     approx_ecef_m: None,
+                    codes: Default::default(),
                     epochs: Vec::new(),
                 })
                 .collect(),

@@ -337,6 +337,7 @@ mod tests {
         ObsFile {
             source: "a observations".into(),
             approx_ecef_m: None,
+            codes: Default::default(),
             epochs,
         }
     }
