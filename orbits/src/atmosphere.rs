@@ -88,15 +88,42 @@ pub fn chao_mapping(el_rad: f64) -> (f64, f64) {
     )
 }
 
+/// The standard atmosphere's Saastamoinen zenith delays at one place: what every
+/// satellite's slant delay there shares.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StandardZenith {
+    hydrostatic_m: f64,
+    wet_m: f64,
+}
+
+impl StandardZenith {
+    /// At geodetic latitude `lat_rad` and height `height_m`, sea-level relative humidity
+    /// `rh0`; zero above [`TROPOSPHERE_CEILING_M`].
+    pub fn at(lat_rad: f64, height_m: f64, rh0: f64) -> Self {
+        if height_m > TROPOSPHERE_CEILING_M {
+            return Self {
+                hydrostatic_m: 0.0,
+                wet_m: 0.0,
+            };
+        }
+        let atm = standard_atmosphere(height_m, rh0);
+        let (hydrostatic_m, wet_m) = saastamoinen_zenith_m(&atm, lat_rad, height_m);
+        Self {
+            hydrostatic_m,
+            wet_m,
+        }
+    }
+
+    /// The slant delay (m) towards a satellite at `el_rad` (Chao mapping).
+    pub fn slant_m(&self, el_rad: f64) -> f64 {
+        let (m_dry, m_wet) = chao_mapping(el_rad);
+        self.hydrostatic_m * m_dry + self.wet_m * m_wet
+    }
+}
+
 /// Slant delay (m) of the standard atmosphere with sea-level relative humidity `rh0` for a
 /// receiver at geodetic latitude `lat_rad`, height `height_m`, satellite at `el_rad`; zero
 /// above [`TROPOSPHERE_CEILING_M`].
 pub fn standard_slant_delay_m(lat_rad: f64, height_m: f64, el_rad: f64, rh0: f64) -> f64 {
-    if height_m > TROPOSPHERE_CEILING_M {
-        return 0.0;
-    }
-    let atm = standard_atmosphere(height_m, rh0);
-    let (zhd, zwd) = saastamoinen_zenith_m(&atm, lat_rad, height_m);
-    let (m_dry, m_wet) = chao_mapping(el_rad);
-    zhd * m_dry + zwd * m_wet
+    StandardZenith::at(lat_rad, height_m, rh0).slant_m(el_rad)
 }

@@ -27,6 +27,13 @@ impl Geodetic {
             h_m,
         }
     }
+
+    /// The unit ellipsoidal normal (local up, ECEF) at this latitude and longitude.
+    pub fn up(&self) -> Vec3 {
+        let (sin_lat, cos_lat) = self.lat_rad.sin_cos();
+        let (sin_lon, cos_lon) = self.lon_rad.sin_cos();
+        Vec3::new(cos_lat * cos_lon, cos_lat * sin_lon, sin_lat)
+    }
 }
 
 /// First eccentricity squared of WGS-84.

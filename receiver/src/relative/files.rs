@@ -2,7 +2,7 @@
 //! navigation file and the body geometry. The master's position comes from its own
 //! single-point solution, the lines of sight from the broadcast ephemerides.
 
-use super::troposphere::slant_delay_gradient;
+use super::troposphere::DelayGradient;
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
 use crate::pvt::{
@@ -428,13 +428,14 @@ pub fn run_files(
             )),
             (None, Some(r)) => {
                 let place = ViewPoint::new(r);
+                let gradient = troposphere.then(|| DelayGradient::at(&r));
                 let views: Vec<LineOfSight> = first_per_satellite(&epoch.sats, &signals)
                     .filter_map(|rec| {
                         let eph = store.select(rec.sat, t_s)?;
                         let view = place.predict(eph, t_s).view;
                         let mut los = LineOfSight::from_view(rec.sat, &view);
-                        if troposphere {
-                            los.delay_gradient = slant_delay_gradient(&r, &view.r_ecef_m);
+                        if let Some(g) = &gradient {
+                            los.delay_gradient = g.towards(&view.r_ecef_m);
                         }
                         Some(los)
                     })
@@ -570,7 +571,7 @@ mod tests {
     /// mm of the first, not allowing for the geometry's amplification).
     #[test]
     fn the_troposphere_gradient_puts_the_float_baseline_on_the_truth() {
-        use super::super::troposphere::slant_delay_m;
+        use super::super::troposphere::Site;
         use crate::relative::config::Constraint;
         use skyforge_signals::observation::{ObsEpoch, ObsFile};
         let start =
@@ -588,8 +589,8 @@ mod tests {
                     let view = predicted_view(store.select(sat, t_s)?, t_s, &r);
                     let (_, el) = view.az_el_rad?;
                     (el > 15f64.to_radians()).then(|| {
-                        let range =
-                            view.range_m + slant_delay_m(&r, &view.r_ecef_m) - C_MPS * view.clock_s;
+                        let range = view.range_m + Site::at(&r).slant_m(&view.r_ecef_m)
+                            - C_MPS * view.clock_s;
                         let lambda = Signal::GpsL1Ca.wavelength_m();
                         ObsRecord::complete(sat, Signal::GpsL1Ca, range, range / lambda, 0.0, 45.0)
                     })

@@ -14,43 +14,75 @@
 
 use crate::pvt::solve::STANDARD_RH0;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::atmosphere::standard_slant_delay_m;
+use skyforge_orbits::atmosphere::StandardZenith;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 
 /// Step of the central differences (m): the second-order error is `(STEP / 8 km)^2 / 6`
 /// of the gradient, 3e-7; the rounding error of the delays (1e-15 m) over it is 1e-16.
 const STEP_M: f64 = 10.0;
 
-/// The standard-atmosphere slant delay (m) at `r_ecef_m` towards a satellite at
-/// `sat_ecef_m`.
-pub fn slant_delay_m(r_ecef_m: &Vec3, sat_ecef_m: &Vec3) -> f64 {
-    let g = ecef_to_geodetic(r_ecef_m);
-    let (sin_lat, cos_lat) = g.lat_rad.sin_cos();
-    let (sin_lon, cos_lon) = g.lon_rad.sin_cos();
-    let up = Vec3::new(cos_lat * cos_lon, cos_lat * sin_lon, sin_lat);
-    let los = (sat_ecef_m - r_ecef_m).normalize();
-    let el = los.dot(&up).clamp(-1.0, 1.0).asin();
-    standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0)
+/// The standard troposphere seen from one place: its up direction and zenith delays, what
+/// every satellite's slant delay there shares.
+#[derive(Debug, Clone, Copy)]
+pub struct Site {
+    r_ecef_m: Vec3,
+    up: Vec3,
+    zenith: StandardZenith,
 }
 
-/// The gradient (m per m, ECEF) of [`slant_delay_m`] with the antenna position, at
-/// `r_ecef_m` towards `sat_ecef_m`, by central differences.
-pub fn slant_delay_gradient(r_ecef_m: &Vec3, sat_ecef_m: &Vec3) -> Vec3 {
-    let mut gradient = Vec3::zeros();
-    for axis in 0..3 {
-        let mut step = Vec3::zeros();
-        step[axis] = STEP_M;
-        gradient[axis] = (slant_delay_m(&(r_ecef_m + step), sat_ecef_m)
-            - slant_delay_m(&(r_ecef_m - step), sat_ecef_m))
-            / (2.0 * STEP_M);
+impl Site {
+    pub fn at(r_ecef_m: &Vec3) -> Self {
+        let g = ecef_to_geodetic(r_ecef_m);
+        Self {
+            r_ecef_m: *r_ecef_m,
+            up: g.up(),
+            zenith: StandardZenith::at(g.lat_rad, g.h_m, STANDARD_RH0),
+        }
     }
-    gradient
+
+    /// The slant delay (m) towards a satellite at `sat_ecef_m`.
+    pub fn slant_m(&self, sat_ecef_m: &Vec3) -> f64 {
+        let los = (sat_ecef_m - self.r_ecef_m).normalize();
+        self.zenith
+            .slant_m(los.dot(&self.up).clamp(-1.0, 1.0).asin())
+    }
+}
+
+/// The gradient (m per m, ECEF) of the slant delay with the antenna position at one
+/// place, by central differences: the six displaced places are set up once, for every
+/// satellite.
+#[derive(Debug, Clone, Copy)]
+pub struct DelayGradient {
+    /// Per ECEF axis: the place moved by `+STEP_M` and by `-STEP_M`.
+    steps: [(Site, Site); 3],
+}
+
+impl DelayGradient {
+    pub fn at(r_ecef_m: &Vec3) -> Self {
+        Self {
+            steps: [0, 1, 2].map(|axis| {
+                let mut step = Vec3::zeros();
+                step[axis] = STEP_M;
+                (Site::at(&(r_ecef_m + step)), Site::at(&(r_ecef_m - step)))
+            }),
+        }
+    }
+
+    /// The gradient towards a satellite at `sat_ecef_m`.
+    pub fn towards(&self, sat_ecef_m: &Vec3) -> Vec3 {
+        Vec3::from(
+            self.steps.map(|(up, down)| {
+                (up.slant_m(sat_ecef_m) - down.slant_m(sat_ecef_m)) / (2.0 * STEP_M)
+            }),
+        )
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::pvt::predicted_view;
+    use skyforge_orbits::atmosphere::standard_slant_delay_m;
     use skyforge_orbits::ephemeris::{SatId, nominal};
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 
@@ -92,7 +124,7 @@ mod tests {
                 let (_, el) = view.az_el_rad.expect("a position has a local frame");
                 standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0)
             };
-            let gradient = slant_delay_gradient(&master, &at_master.r_ecef_m);
+            let gradient = DelayGradient::at(&master).towards(&at_master.r_ecef_m);
             let error = |scale: f64| {
                 let truth = delay(&(master + b * scale)) - delay(&master);
                 (gradient.dot(&(b * scale)) - truth, truth)
@@ -117,6 +149,6 @@ mod tests {
     fn no_gradient_above_the_troposphere() {
         let leo = geo(10.0, 20.0, 500e3);
         let sat = geo(30.0, 25.0, 20_200e3);
-        assert_eq!(slant_delay_gradient(&leo, &sat), Vec3::zeros());
+        assert_eq!(DelayGradient::at(&leo).towards(&sat), Vec3::zeros());
     }
 }

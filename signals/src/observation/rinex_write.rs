@@ -289,8 +289,8 @@ impl<W: Write> ObsWriter<W> {
     /// Append one epoch (GPS time `at`, written rounded to 100 ns) of observations: epoch
     /// flag 0, then one record per satellite with C, L, D, S; the phase carries the
     /// loss-of-lock indicator and the signal strength indicator of the C/N0 (RINEX 3.04
-    /// table A3, notes 1 and 2). A satellite of a system the header does not declare is
-    /// an error.
+    /// table A3, notes 1 and 2). A record of a signal the header does not declare is an
+    /// error.
     pub fn epoch(&mut self, at: Calendar, records: &[ObsRecord]) -> io::Result<()> {
         let declared = |r: &ObsRecord| {
             self.columns

@@ -422,23 +422,16 @@ impl<'a> Synthesiser<'a> {
             dt_rx,
             freq,
         };
-        out.push(self.truth_record(seg, a, at, ev, tx.signal, tx.chip_rate_hz));
-        let f_tx = tx.signal.carrier_hz();
-        for &signal in self.observed.iter().filter(|s| s.system() == tx.sat.system) {
-            let scale = (f_tx / signal.carrier_hz()).powi(2);
-            out.push(self.truth_record(
-                seg,
-                a,
-                at,
-                ev.with_iono_scale(scale),
-                signal,
-                signal.chip_rate_hz(),
-            ));
+        let observed = self.observed.iter().filter(|s| s.system() == tx.sat.system);
+        for &signal in std::iter::once(&tx.signal).chain(observed) {
+            out.push(self.truth_record(seg, a, at, ev, signal));
         }
     }
 
-    /// The truth of `signal` (chipping at `chip_rate_hz`) on link `seg` at antenna `a` at
-    /// `at`, with the events `ev`.
+    /// The truth of `signal` on link `seg` at antenna `a` at `at`, with the events `ev` of
+    /// the transmitter's signal: for another signal of the satellite the ionosphere (and
+    /// an ionospheric ramp) scaled by `(f_tx / f)^2`, the reflections at its wavelength and
+    /// chip length.
     fn truth_record(
         &self,
         seg: &Segment,
@@ -446,7 +439,6 @@ impl<'a> Synthesiser<'a> {
         at: TruthInstant,
         ev: EventEffect,
         signal: Signal,
-        chip_rate_hz: f64,
     ) -> LinkTruth {
         let TruthInstant {
             t_rx,
@@ -456,6 +448,8 @@ impl<'a> Synthesiser<'a> {
         } = at;
         let fc = signal.carrier_hz();
         let iono_scale = (self.transmitters[seg.tx].signal.carrier_hz() / fc).powi(2);
+        let ev = ev.with_iono_scale(iono_scale);
+        let chip_rate_hz = signal.chip_rate_hz();
         let s = seg.at_scaled(t, iono_scale);
         let (multipath_code_m, multipath_carrier_m) = if seg.has_reflections() {
             let chip_m = C_MPS / chip_rate_hz;
