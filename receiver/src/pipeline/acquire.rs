@@ -79,9 +79,8 @@ impl PcpsStage {
         // between code periods; GPS bits change only every 20 ms.
         config.bit_transition = match signal {
             Signal::BdsB1I => BitTransition::AlignedWindows,
-            Signal::GpsL1Ca => BitTransition::Ignore,
-            // Observed only: refused by `Pcps::new` (no code).
-            Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => {
+            // The observed-only signals are refused by `Pcps::new` (no code).
+            Signal::GpsL1Ca | Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => {
                 BitTransition::Ignore
             }
         };
