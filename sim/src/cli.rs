@@ -230,6 +230,15 @@ pub enum MonitorAction {
               value_parser = clap::value_parser!(u64).range(1..=1000))]
         seeds: u64,
     },
+    /// Measure the fault-free spread of the B values in several receivers' RINEX files
+    /// (the same inputs as `monitor run`: a recorded fault-free span) and write
+    /// DIR/monitor.toml: the given configuration (or the bundled one) with the measured
+    /// thresholds. This is how a ground facility, or the signal-level reference, sets
+    /// thresholds that hold for its own receivers' errors.
+    CalibrateFiles {
+        #[command(flatten)]
+        args: MonitorArgs,
+    },
 }
 
 /// What `monitor run` is given.

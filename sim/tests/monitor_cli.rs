@@ -76,10 +76,10 @@ fn a_slip_at_one_station_is_detected_isolated_and_scored() {
     assert_eq!(score["false_alarms"], 0, "{score}");
 }
 
-#[test]
-fn calibrate_writes_a_configuration_that_run_reads() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
+/// The fault-free lab (`dir/lab.toml`, returned) and its first 400 s
+/// (`dir/short.toml`), calibrated by `monitor calibrate` on `seeds` seeds into
+/// `dir/cal/monitor.toml`.
+fn calibrated_short_lab(d: &Path, seeds: &str) -> String {
     let scenario = lab(d, "");
     let short = std::fs::read_to_string(&scenario)
         .unwrap()
@@ -91,12 +91,20 @@ fn calibrate_writes_a_configuration_that_run_reads() {
             "calibrate",
             "short.toml",
             "--seeds",
-            "2",
+            seeds,
             "--out",
             "cal",
         ],
         d,
     );
+    scenario
+}
+
+#[test]
+fn calibrate_writes_a_configuration_that_run_reads() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let scenario = calibrated_short_lab(d, "2");
     let config = std::fs::read_to_string(d.join("cal/monitor.toml")).unwrap();
     assert!(config.contains("[thresholds.sigma.bds-b1i]"), "{config}");
     assert!(config.contains("[thresholds.sigma.gps-l1ca]"));
@@ -120,6 +128,106 @@ fn calibrate_writes_a_configuration_that_run_reads() {
         "sim/nav.rnx",
         "--config",
         "cal/monitor.toml",
+        "--out",
+        "mon",
+    ]);
+    skyforge_ok(&args, d);
+}
+
+/// The sigma tables of a configuration's text: (signal tag, column key) -> values.
+fn sigma_columns(config: &str) -> std::collections::BTreeMap<(String, String), Vec<f64>> {
+    let value: toml::Table = toml::from_str(config).unwrap();
+    let mut out = std::collections::BTreeMap::new();
+    for (tag, table) in value["thresholds"]["sigma"].as_table().unwrap() {
+        for (key, column) in table.as_table().unwrap() {
+            let values = column
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_float().unwrap())
+                .collect();
+            out.insert((tag.clone(), key.clone()), values);
+        }
+    }
+    out
+}
+
+#[test]
+fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    calibrated_short_lab(d, "1");
+    skyforge_ok(&["run", "short.toml", "--out", "sim"], d);
+    let mut args = vec!["monitor", "calibrate-files"];
+    let f = files(&d.join("sim"));
+    args.extend(f.iter().map(String::as_str));
+    args.extend(["--nav", "sim/nav.rnx", "--out", "calf"]);
+    skyforge_ok(&args, d);
+    // The same run (scenario and seed), once in memory and once through its RINEX files:
+    // the same B values but for the files' rounding, so the same sigma tables.
+    let in_memory = sigma_columns(&std::fs::read_to_string(d.join("cal/monitor.toml")).unwrap());
+    let from_files = sigma_columns(&std::fs::read_to_string(d.join("calf/monitor.toml")).unwrap());
+    assert_eq!(
+        in_memory.keys().collect::<Vec<_>>(),
+        from_files.keys().collect::<Vec<_>>()
+    );
+    for (key, a) in &in_memory {
+        let b = &from_files[key];
+        assert_eq!(a.len(), b.len(), "{key:?}");
+        for (x, y) in a.iter().zip(b) {
+            assert!((x - y).abs() <= 0.02 * x, "{key:?}: {a:?} against {b:?}");
+        }
+    }
+    // A base configuration's stations (here the files' own positions) are kept, and the
+    // result runs.
+    let base = std::fs::read_to_string(d.join("calf/monitor.toml"))
+        .unwrap()
+        .replace("stations = []\n", "");
+    let positions = ["A", "B", "C", "D"]
+        .iter()
+        .map(|s| {
+            let rinex =
+                std::fs::read_to_string(d.join(format!("sim/observations/{s}.obs.rnx"))).unwrap();
+            let line = rinex
+                .lines()
+                .find(|l| l.contains("APPROX POSITION XYZ"))
+                .unwrap()
+                .to_string();
+            let xyz: Vec<f64> = (0..3)
+                .map(|k| line[14 * k..14 * k + 14].trim().parse().unwrap())
+                .collect();
+            format!(
+                "[[stations]]\nname = \"{s}\"\nposition_ecef_m = [{}, {}, {}]\n",
+                xyz[0], xyz[1], xyz[2]
+            )
+        })
+        .collect::<String>();
+    let at = base.find("[thresholds]").unwrap();
+    std::fs::write(
+        d.join("base.toml"),
+        format!("{}{positions}\n{}", &base[..at], &base[at..]),
+    )
+    .unwrap();
+    let mut args = vec!["monitor", "calibrate-files"];
+    args.extend(f.iter().map(String::as_str));
+    args.extend([
+        "--nav",
+        "sim/nav.rnx",
+        "--config",
+        "base.toml",
+        "--out",
+        "calg",
+    ]);
+    skyforge_ok(&args, d);
+    let written = std::fs::read_to_string(d.join("calg/monitor.toml")).unwrap();
+    assert_eq!(written.matches("[[stations]]").count(), 4, "{written}");
+    let mut args = vec!["monitor", "run"];
+    args.extend(f.iter().map(String::as_str));
+    args.extend([
+        "--nav",
+        "sim/nav.rnx",
+        "--config",
+        "calg/monitor.toml",
         "--out",
         "mon",
     ]);

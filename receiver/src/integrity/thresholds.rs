@@ -1,5 +1,6 @@
-//! Alarm thresholds: the paper's 0.5 m for the smoothed pseudorange, the others from a
-//! false-alarm probability and the fault-free spread of the B values by elevation.
+//! Alarm thresholds: the paper's 0.5 m for the smoothed pseudorange (or more, where its
+//! fault-free spread demands it), the others from a false-alarm probability and the
+//! fault-free spread of the B values by elevation.
 
 use super::statistic::{PerStatistic, Statistic};
 use crate::pvt::raim::chi2_threshold;
@@ -104,7 +105,9 @@ pub struct ThresholdConfig {
     /// Probability that one fault-free B value exceeds its threshold (two-sided normal);
     /// sets the multiplier of the sigma table for code, carrier and divergence.
     pub false_alarm: f64,
-    /// Threshold of the smoothed-code B value (m): paper 002 section 4.2.3.
+    /// Threshold of the smoothed-code B value (m): paper 002 section 4.2.3. Where the
+    /// receivers' fault-free smoothed code spreads wider than the paper's did (k sigma
+    /// above this), k sigma is the threshold instead, so the false-alarm probability holds.
     pub smoothed_code_m: f64,
     /// The fault-free sigma table of each signal, by its tag (`gps-l1ca`, `bds-b1i`);
     /// satellites of a signal without one are not monitored.
@@ -121,9 +124,12 @@ impl ThresholdConfig {
     /// multiplier `k`; `None` without a sigma table for the signal.
     pub fn at(&self, k: f64, signal: Signal, elevation_deg: f64) -> Option<PerStatistic<f64>> {
         let table = self.sigma.get(signal.tag())?;
-        Some(Statistic::ALL.map(|stat| match stat {
-            Statistic::SmoothedCode => self.smoothed_code_m,
-            _ => k * table.sigma(stat, elevation_deg),
+        Some(Statistic::ALL.map(|stat| {
+            let spread = k * table.sigma(stat, elevation_deg);
+            match stat {
+                Statistic::SmoothedCode => self.smoothed_code_m.max(spread),
+                _ => spread,
+            }
         }))
     }
 
@@ -284,7 +290,7 @@ mod tests {
     }
 
     #[test]
-    fn thresholds_scale_the_sigma_and_keep_the_papers_smoothed_limit() {
+    fn thresholds_scale_the_sigma_and_keep_the_papers_smoothed_limit_as_a_floor() {
         let cfg = ThresholdConfig {
             false_alarm: 0.05,
             smoothed_code_m: 0.5,
@@ -297,6 +303,15 @@ mod tests {
         let t = cfg.at(k, Signal::GpsL1Ca, 70.0).unwrap();
         assert!((t[Statistic::Code.index()] - 0.3 * k).abs() < 1e-12);
         assert_eq!(t[Statistic::SmoothedCode.index()], 0.5);
+        // A smoothed-code spread wider than the paper's limit allows sets the threshold.
+        let mut wide = table();
+        wide.smoothed_code_m = vec![0.4; 3];
+        let cfg = ThresholdConfig {
+            sigma: BTreeMap::from([("gps-l1ca".to_string(), wide)]),
+            ..cfg
+        };
+        let t = cfg.at(k, Signal::GpsL1Ca, 70.0).unwrap();
+        assert!((t[Statistic::SmoothedCode.index()] - 0.4 * k).abs() < 1e-12);
     }
 
     #[test]

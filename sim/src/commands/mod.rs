@@ -68,6 +68,9 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Monitor {
             action: MonitorAction::Calibrate { run, seeds },
         } => monitor::calibrate(&run, seeds),
+        Command::Monitor {
+            action: MonitorAction::CalibrateFiles { args },
+        } => monitor::calibrate_files(&args),
         Command::Report {
             dir,
             out,

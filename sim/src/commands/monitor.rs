@@ -1,16 +1,20 @@
 //! `skyforge monitor run` (several receivers' RINEX files -> B values, thresholds and
-//! alarms) and `skyforge monitor calibrate` (a scenario's fault-free runs -> thresholds).
+//! alarms), `skyforge monitor calibrate` (a scenario's fault-free runs -> thresholds) and
+//! `skyforge monitor calibrate-files` (fault-free RINEX files -> thresholds).
 
 use crate::BadInput;
 use crate::cli::{MonitorArgs, ScenarioRun};
 use crate::output::monitor_out::{AlarmLog, H5Rows, csv_header, csv_rows};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_receiver::integrity::MonitorConfig;
 use skyforge_receiver::integrity::files::{run_files, stations};
-use skyforge_signals::observation::read_obs_file;
-use skyforge_validate::integrity::monitor::{ELEVATION_BINS_DEG, calibrate as measure, config};
+use skyforge_receiver::integrity::{MonitorConfig, Station};
+use skyforge_signals::observation::{ObsFile, read_obs_file};
+use skyforge_validate::integrity::monitor::{
+    ELEVATION_BINS_DEG, calibrate as measure, calibrate_files as measure_files, config,
+};
 use std::io::Write;
 
 /// The configuration `args` names, or the bundled one.
@@ -31,8 +35,16 @@ fn station_name(path: &std::path::Path) -> String {
     name.split('.').next().unwrap_or(&name).to_string()
 }
 
-/// Run `skyforge monitor run`.
-pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
+/// What `monitor run` and `monitor calibrate-files` read: the configuration, the
+/// observation files, their stations and the ephemerides.
+struct Inputs {
+    config: MonitorConfig,
+    files: Vec<ObsFile>,
+    stations: Vec<Station>,
+    ephemerides: Vec<BroadcastEphemeris>,
+}
+
+fn read_inputs(args: &MonitorArgs) -> anyhow::Result<Inputs> {
     let config = read_config(args)?;
     let files = args
         .files
@@ -40,9 +52,25 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         .map(|p| read_obs_file(p).map_err(|e| BadInput(e.to_string())))
         .collect::<Result<Vec<_>, _>>()?;
     let names: Vec<String> = args.files.iter().map(|p| station_name(p)).collect();
-    let station_list = stations(&files, &names, &config).map_err(|e| BadInput(e.to_string()))?;
+    let stations = stations(&files, &names, &config).map_err(|e| BadInput(e.to_string()))?;
     let ephemerides =
         read_nav_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    Ok(Inputs {
+        config,
+        files,
+        stations,
+        ephemerides,
+    })
+}
+
+/// Run `skyforge monitor run`.
+pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
+    let Inputs {
+        config,
+        files,
+        stations: station_list,
+        ephemerides,
+    } = read_inputs(args)?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let csv_path = staged.file("monitor.csv");
     let mut csv = std::fs::File::create(&csv_path)
@@ -93,6 +121,12 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// How a calibrated configuration's thresholds are used, for the header of the files
+/// the calibrations write.
+const ALARM_RULE: &str = "# code, carrier and divergence alarm beyond their sigma x the normal quantile of\n\
+                          # false_alarm, the smoothed code beyond smoothed_code_m (paper 002) or its own\n\
+                          # k sigma, whichever is larger.\n";
+
 /// Run `skyforge monitor calibrate`.
 pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
     let scenario = super::resolve(args)?;
@@ -108,9 +142,7 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
     let header = format!(
         "# Monitor configuration, written by `skyforge monitor calibrate {} --seed {first} --seeds {seeds}`\n\
          # (seeds {first}..={last}, observation level, no fault events). thresholds.sigma: RMS\n\
-         # of the fault-free B values per signal and elevation bin (lower edges {:?} deg);\n\
-         # code, carrier and divergence alarm beyond their sigma x the normal quantile of\n\
-         # false_alarm, the smoothed code beyond smoothed_code_m (paper 002).\n",
+         # of the fault-free B values per signal and elevation bin (lower edges {:?} deg);\n{ALARM_RULE}",
         args.scenario, ELEVATION_BINS_DEG
     );
     let path = staged.file("monitor.toml");
@@ -121,6 +153,42 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
         "scenario   {} ({}), seeds {first}..={last}",
         scenario.name, scenario.source
     );
+    println!("wrote      {}", dir.join("monitor.toml").display());
+    Ok(())
+}
+
+/// Run `skyforge monitor calibrate-files`.
+pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
+    let inputs = read_inputs(args)?;
+    let calibrated = measure_files(
+        &inputs.files,
+        inputs.stations,
+        inputs.ephemerides,
+        &inputs.config,
+    )
+    .map_err(BadInput)?;
+    let text = toml::to_string(&calibrated).context("cannot encode the configuration")?;
+    let names: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
+    let header = format!(
+        "# Monitor configuration, written by `skyforge monitor calibrate-files` from the\n\
+         # fault-free observation files {} (navigation {}); all but the thresholds as in\n\
+         # {}. thresholds.sigma: RMS of their B values per signal and elevation bin (lower\n\
+         # edges {:?} deg).\n{ALARM_RULE}",
+        names.join(", "),
+        args.nav.display(),
+        args.config
+            .as_ref()
+            .map_or("the bundled configuration".to_string(), |p| p
+                .display()
+                .to_string()),
+        ELEVATION_BINS_DEG
+    );
+    let staged = StagedDir::create(&args.out, args.force)?;
+    let path = staged.file("monitor.toml");
+    std::fs::write(&path, header + &text)
+        .with_context(|| format!("cannot write {}", path.display()))?;
+    let dir = staged.commit()?;
+    println!("calibrated on {}", names.join(", "));
     println!("wrote      {}", dir.join("monitor.toml").display());
     Ok(())
 }

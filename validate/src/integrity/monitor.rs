@@ -3,10 +3,13 @@
 
 use super::lab::{Case, MonitoredRun, monitored, scenario};
 use rayon::prelude::*;
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
+use skyforge_receiver::integrity::files::run_files;
 use skyforge_receiver::integrity::{
-    MonitorConfig, MonitorEpoch, SigmaCalibrator, SigmaTable, Statistic, ThresholdConfig,
+    MonitorConfig, MonitorEpoch, SigmaCalibrator, SigmaTable, Station, Statistic, ThresholdConfig,
 };
 use skyforge_scenarios::Scenario;
+use skyforge_signals::observation::ObsFile;
 use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
@@ -55,16 +58,49 @@ fn unit_sigma() -> Sigmas {
 /// Feed the armed B values of `epochs` to `cal`.
 pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
     for e in epochs {
-        for s in &e.sats {
-            for v in s.stations.iter().flatten() {
-                for stat in Statistic::ALL {
-                    if s.armed[stat.index()] {
-                        cal.add(s.signal, stat, s.elevation_deg, v.b[stat.index()]);
-                    }
+        accumulate_epoch(cal, e);
+    }
+}
+
+/// Feed the armed B values of one epoch to `cal`.
+fn accumulate_epoch(cal: &mut SigmaCalibrator, e: &MonitorEpoch) {
+    for s in &e.sats {
+        for v in s.stations.iter().flatten() {
+            for stat in Statistic::ALL {
+                if s.armed[stat.index()] {
+                    cal.add(s.signal, stat, s.elevation_deg, v.b[stat.index()]);
                 }
             }
         }
     }
+}
+
+/// The fault-free sigma tables of one run recorded in `files` (one per station of
+/// `stations`): what a ground facility measures on its own fault-free data, and what the
+/// signal-level reference uses, where the receivers' observables carry errors the
+/// observation level does not model (docs/integrity.md). `base` gives everything but the
+/// thresholds (stations, common point, time constants); the returned configuration is
+/// `base` with the measured sigma tables.
+pub fn calibrate_files(
+    files: &[ObsFile],
+    stations: Vec<Station>,
+    ephemerides: Vec<BroadcastEphemeris>,
+    base: &MonitorConfig,
+) -> Result<MonitorConfig, String> {
+    let mut measuring = base.clone();
+    measuring.thresholds = config(unit_sigma()).thresholds;
+    let mut cal = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
+    run_files(files, stations, ephemerides, measuring, |e| {
+        accumulate_epoch(&mut cal, e)
+    })
+    .map_err(|e| e.to_string())?;
+    let sigma = cal.tables();
+    if sigma.is_empty() {
+        return Err("the files gave no armed B value to calibrate on".to_string());
+    }
+    let mut out = base.clone();
+    out.thresholds = config(sigma).thresholds;
+    Ok(out)
 }
 
 /// The fault-free sigma tables of `scenario` (observation level, without fault events)
