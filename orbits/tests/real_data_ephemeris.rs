@@ -125,9 +125,9 @@ fn census(ephs: &[BroadcastEphemeris]) -> (usize, usize, usize, usize, usize) {
     // IGSO: geosynchronous semi-major axis (sqrt(A) ~ 6493 m^1/2) but not GEO.
     let igso = bds
         .iter()
-        .filter(|e| e.class == OrbitClass::Standard && e.sqrt_a > 6000.0)
+        .filter(|e| e.class == OrbitClass::Standard && e.orbit.sqrt_a > 6000.0)
         .count();
-    let meo = bds.iter().filter(|e| e.sqrt_a < 6000.0).count();
+    let meo = bds.iter().filter(|e| e.orbit.sqrt_a < 6000.0).count();
     (gps, bds.len(), geo, igso, meo)
 }
 
@@ -225,14 +225,14 @@ fn beidou_geo_and_igso_ground_tracks() {
                 println!("  GEO  {sat}: lon {lo:8.3}..{hi:8.3} E  lat {la:6.2}..{lb:6.2}");
                 assert!(hi - lo < 1.0, "{sat} drifts {lo}..{hi}");
                 assert!(la.abs() < 3.0 && lb.abs() < 3.0, "{sat} lat {la}..{lb}");
-            } else if first.eph.sqrt_a > 6000.0 {
+            } else if first.eph.orbit.sqrt_a > 6000.0 {
                 // Northbound equator crossings.
                 let crossings: Vec<f64> = positions
                     .windows(2)
                     .filter(|w| w[0].z < 0.0 && w[1].z >= 0.0)
                     .map(|w| lon_lat_deg(w[1]).0)
                     .collect();
-                let incl = first.eph.i0.to_degrees();
+                let incl = first.eph.orbit.i0.to_degrees();
                 println!(
                     "  IGSO {sat}: i {incl:5.2} deg, northbound crossing at {crossings:.2?} E"
                 );

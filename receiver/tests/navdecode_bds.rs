@@ -102,28 +102,28 @@ fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb
     let p2 = |n: i32| 2f64.powi(n);
     let sc = PI;
     let fields: [Field; 15] = [
-        ("sqrt_a", |e| e.sqrt_a, p2(-19)),
-        ("e", |e| e.e, p2(-33)),
-        ("delta_n", |e| e.delta_n, sc * p2(-43)),
-        ("idot", |e| e.idot, sc * p2(-43)),
-        ("omega_dot", |e| e.omega_dot, sc * p2(-43)),
-        ("cuc", |e| e.cuc, p2(-31)),
-        ("cus", |e| e.cus, p2(-31)),
-        ("cic", |e| e.cic, p2(-31)),
-        ("cis", |e| e.cis, p2(-31)),
-        ("crc", |e| e.crc, p2(-6)),
-        ("crs", |e| e.crs, p2(-6)),
-        ("af0", |e| e.af0, p2(-33)),
-        ("af1", |e| e.af1, p2(-50)),
-        ("af2", |e| e.af2, p2(-66)),
-        ("tgd1", |e| e.tgd_s, 0.1e-9),
+        ("sqrt_a", |e| e.orbit.sqrt_a, p2(-19)),
+        ("e", |e| e.orbit.e, p2(-33)),
+        ("delta_n", |e| e.orbit.delta_n, sc * p2(-43)),
+        ("idot", |e| e.orbit.idot, sc * p2(-43)),
+        ("omega_dot", |e| e.orbit.omega_dot, sc * p2(-43)),
+        ("cuc", |e| e.harmonics.cuc, p2(-31)),
+        ("cus", |e| e.harmonics.cus, p2(-31)),
+        ("cic", |e| e.harmonics.cic, p2(-31)),
+        ("cis", |e| e.harmonics.cis, p2(-31)),
+        ("crc", |e| e.harmonics.crc, p2(-6)),
+        ("crs", |e| e.harmonics.crs, p2(-6)),
+        ("af0", |e| e.clock.af0, p2(-33)),
+        ("af1", |e| e.clock.af1, p2(-50)),
+        ("af2", |e| e.clock.af2, p2(-66)),
+        ("tgd1", |e| e.clock.tgd_s, 0.1e-9),
     ];
     assert_within_lsb(decoded, reference, &fields, tol_lsb);
     for (name, a, b) in [
-        ("i0", decoded.i0, reference.i0),
-        ("omega0", decoded.omega0, reference.omega0),
-        ("omega", decoded.omega, reference.omega),
-        ("m0", decoded.m0, reference.m0),
+        ("i0", decoded.orbit.i0, reference.orbit.i0),
+        ("omega0", decoded.orbit.omega0, reference.orbit.omega0),
+        ("omega", decoded.orbit.omega, reference.orbit.omega),
+        ("m0", decoded.orbit.m0, reference.orbit.m0),
     ] {
         let d = angle_diff(a, b).abs() / (sc * p2(-31));
         assert!(d <= tol_lsb, "{} {name}: {d:.3e} LSB", reference.sat);

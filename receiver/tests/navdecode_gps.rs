@@ -10,7 +10,7 @@ mod navdecode_support;
 use navdecode_support::{
     Field, assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes,
 };
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, ClockParams, SatId};
 use skyforge_receiver::navdecode::{GpsLnavDecoder, NavDecoder, NavEvent, SUBFRAME_BITS};
 use skyforge_signals::navmsg::gps_lnav::fixtures::{header_iono, real_prn1, utc_week_2190};
 use skyforge_signals::navmsg::gps_lnav::{
@@ -21,13 +21,17 @@ use skyforge_signals::navmsg::gps_lnav::{
 /// non-zero af2, the signs of af0 and TGD flipped and the PRN/IODC changed to exercise
 /// more bits.
 fn ephemeris() -> BroadcastEphemeris {
+    let real = real_prn1();
     BroadcastEphemeris {
         sat: SatId::gps(27),
-        af0: -0.469126738608e-3,
-        af2: -2.0e-16,
-        tgd_s: -0.512227416039e-8,
+        clock: ClockParams {
+            af0: -0.469126738608e-3,
+            af2: -2.0e-16,
+            tgd_s: -0.512227416039e-8,
+            ..real.clock
+        },
         iodc: 256 + 39,
-        ..real_prn1()
+        ..real
     }
 }
 
@@ -56,25 +60,25 @@ fn compare(decoded: &BroadcastEphemeris, reference: &BroadcastEphemeris, tol_lsb
     let p2 = |n: i32| 2f64.powi(n);
     let sc = GPS_PI;
     let fields: [Field; 19] = [
-        ("sqrt_a", |e| e.sqrt_a, p2(-19)),
-        ("e", |e| e.e, p2(-33)),
-        ("i0", |e| e.i0, sc * p2(-31)),
-        ("omega0", |e| e.omega0, sc * p2(-31)),
-        ("omega", |e| e.omega, sc * p2(-31)),
-        ("m0", |e| e.m0, sc * p2(-31)),
-        ("delta_n", |e| e.delta_n, sc * p2(-43)),
-        ("idot", |e| e.idot, sc * p2(-43)),
-        ("omega_dot", |e| e.omega_dot, sc * p2(-43)),
-        ("cuc", |e| e.cuc, p2(-29)),
-        ("cus", |e| e.cus, p2(-29)),
-        ("cic", |e| e.cic, p2(-29)),
-        ("cis", |e| e.cis, p2(-29)),
-        ("crc", |e| e.crc, p2(-5)),
-        ("crs", |e| e.crs, p2(-5)),
-        ("af0", |e| e.af0, p2(-31)),
-        ("af1", |e| e.af1, p2(-43)),
-        ("af2", |e| e.af2, p2(-55)),
-        ("tgd", |e| e.tgd_s, p2(-31)),
+        ("sqrt_a", |e| e.orbit.sqrt_a, p2(-19)),
+        ("e", |e| e.orbit.e, p2(-33)),
+        ("i0", |e| e.orbit.i0, sc * p2(-31)),
+        ("omega0", |e| e.orbit.omega0, sc * p2(-31)),
+        ("omega", |e| e.orbit.omega, sc * p2(-31)),
+        ("m0", |e| e.orbit.m0, sc * p2(-31)),
+        ("delta_n", |e| e.orbit.delta_n, sc * p2(-43)),
+        ("idot", |e| e.orbit.idot, sc * p2(-43)),
+        ("omega_dot", |e| e.orbit.omega_dot, sc * p2(-43)),
+        ("cuc", |e| e.harmonics.cuc, p2(-29)),
+        ("cus", |e| e.harmonics.cus, p2(-29)),
+        ("cic", |e| e.harmonics.cic, p2(-29)),
+        ("cis", |e| e.harmonics.cis, p2(-29)),
+        ("crc", |e| e.harmonics.crc, p2(-5)),
+        ("crs", |e| e.harmonics.crs, p2(-5)),
+        ("af0", |e| e.clock.af0, p2(-31)),
+        ("af1", |e| e.clock.af1, p2(-43)),
+        ("af2", |e| e.clock.af2, p2(-55)),
+        ("tgd", |e| e.clock.tgd_s, p2(-31)),
     ];
     assert_within_lsb(decoded, reference, &fields, tol_lsb);
     assert_same_toe_toc(decoded, reference);

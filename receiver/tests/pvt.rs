@@ -63,7 +63,7 @@ fn observe(
     let g = ecef_to_geodetic(r);
     let (az, el) = az_el(&(c_ecef_ned(g.lat_rad, g.lon_rad) * los));
     let t_tx = t_s - tau;
-    let sat_clock_m = C_MPS * (eph.clock_offset_s(t_tx) - eph.eph.tgd_s);
+    let sat_clock_m = C_MPS * (eph.clock_offset_s(t_tx) - eph.eph.clock.tgd_s);
     let mut media = 0.0;
     if ground {
         let at = w.origin.epoch_at(t_s);

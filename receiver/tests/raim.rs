@@ -63,7 +63,7 @@ fn pseudoranges(w: &World, t_s: f64, r: &Vec3) -> Vec<(SatId, f64, f64)> {
             }
             let los = (at(tau) - r).normalize();
             let (_, el) = az_el(&(c * los));
-            let sat_clock_m = C_MPS * (eph.clock_offset_s(t_s - tau) - eph.eph.tgd_s);
+            let sat_clock_m = C_MPS * (eph.clock_offset_s(t_s - tau) - eph.eph.clock.tgd_s);
             (el > 12f64.to_radians()).then_some((sat, C_MPS * tau - sat_clock_m, el))
         })
         .collect()

@@ -112,7 +112,7 @@ fn check_bits(enc: &BdsNavEncoder, eph: &BroadcastEphemeris) {
             // subframe 3: toe LSBs 38-52.
             let sqrt_a = field(&sf[1], 190, 32) as f64 * sqrt_a_lsb;
             let toe = ((field(&sf[1], 222, 2) << 15) | field(&sf[2], 38, 15)) * 8;
-            assert_on_grid(sqrt_a, eph.sqrt_a, sqrt_a_lsb, eph);
+            assert_on_grid(sqrt_a, eph.orbit.sqrt_a, sqrt_a_lsb, eph);
             assert_eq!(toe as f64, toe_sow, "{}", eph.sat);
         }
         BdsNavFormat::D2 => {
@@ -129,7 +129,7 @@ fn check_bits(enc: &BdsNavEncoder, eph: &BroadcastEphemeris) {
             // Page 6: e LSBs (22), then sqrt(A); page 7: Cic LSBs (8), Cis (18), toe.
             let sqrt_a = field(&pages[5], 64, 32) as f64 * sqrt_a_lsb;
             let toe = field(&pages[6], 68, 17) * 8;
-            assert_on_grid(sqrt_a, eph.sqrt_a, sqrt_a_lsb, eph);
+            assert_on_grid(sqrt_a, eph.orbit.sqrt_a, sqrt_a_lsb, eph);
             assert_eq!(toe as f64, toe_sow, "{}", eph.sat);
         }
     }

@@ -47,26 +47,12 @@ pub struct BroadcastEphemeris {
     pub toe: Epoch,
     /// Reference time of clock.
     pub toc: Epoch,
-    pub sqrt_a: f64,
-    pub e: f64,
-    pub i0: f64,
-    pub omega0: f64,
-    pub omega: f64,
-    pub m0: f64,
-    pub delta_n: f64,
-    pub idot: f64,
-    pub omega_dot: f64,
-    pub cuc: f64,
-    pub cus: f64,
-    pub crc: f64,
-    pub crs: f64,
-    pub cic: f64,
-    pub cis: f64,
-    pub af0: f64,
-    pub af1: f64,
-    pub af2: f64,
-    /// Group delay for the signal SkyForge uses (GPS TGD for L1 C/A; BeiDou TGD1 for B1I).
-    pub tgd_s: f64,
+    /// Keplerian elements at toe and their rates.
+    pub orbit: KeplerElements,
+    /// Harmonic correction amplitudes.
+    pub harmonics: HarmonicCorrections,
+    /// Clock polynomial at toc and group delay.
+    pub clock: ClockParams,
     /// Issue of data (IODE for GPS, AODE for BeiDou).
     pub iode: u32,
     /// Issue of data, clock (IODC for GPS, AODC for BeiDou).
@@ -110,6 +96,7 @@ pub struct ClockParams {
     pub af0: f64,
     pub af1: f64,
     pub af2: f64,
+    /// Group delay for the signal SkyForge uses (GPS TGD for L1 C/A; BeiDou TGD1 for B1I).
     pub tgd_s: f64,
 }
 
@@ -179,55 +166,14 @@ impl BroadcastEphemeris {
         clock: ClockParams,
         fit_interval_s: f64,
     ) -> Self {
-        let KeplerElements {
-            sqrt_a,
-            e,
-            i0,
-            omega0,
-            omega,
-            m0,
-            delta_n,
-            idot,
-            omega_dot,
-        } = orbit;
-        let HarmonicCorrections {
-            cuc,
-            cus,
-            crc,
-            crs,
-            cic,
-            cis,
-        } = harmonics;
-        let ClockParams {
-            af0,
-            af1,
-            af2,
-            tgd_s,
-        } = clock;
         Self {
             sat,
             class,
             toe,
             toc: toe,
-            sqrt_a,
-            e,
-            i0,
-            omega0,
-            omega,
-            m0,
-            delta_n,
-            idot,
-            omega_dot,
-            cuc,
-            cus,
-            crc,
-            crs,
-            cic,
-            cis,
-            af0,
-            af1,
-            af2,
-            tgd_s,
+            orbit,
+            harmonics,
+            clock,
             iode: 0,
             iodc: 0,
             health: 0,
@@ -244,20 +190,20 @@ impl BroadcastEphemeris {
             System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS, TimeScale::BDT),
         };
         let toe_sow = seconds_of_week(self.toe, scale);
-        let a_m = self.sqrt_a * self.sqrt_a;
+        let a_m = self.orbit.sqrt_a * self.orbit.sqrt_a;
         let geo = self.class == OrbitClass::BeidouGeo;
         let k = Precomputed {
             a_m,
-            n_rad_s: (gm / (a_m * a_m * a_m)).sqrt() + self.delta_n,
-            sqrt_1_e2: (1.0 - self.e * self.e).sqrt(),
-            node_at_toe_rad: self.omega0 - omega_e * toe_sow,
+            n_rad_s: (gm / (a_m * a_m * a_m)).sqrt() + self.orbit.delta_n,
+            sqrt_1_e2: (1.0 - self.orbit.e * self.orbit.e).sqrt(),
+            node_at_toe_rad: self.orbit.omega0 - omega_e * toe_sow,
             node_rate_rad_s: if geo {
-                self.omega_dot
+                self.orbit.omega_dot
             } else {
-                self.omega_dot - omega_e
+                self.orbit.omega_dot - omega_e
             },
             omega_e_rad_s: omega_e,
-            rel_amp_s: f_rel * self.e * self.sqrt_a,
+            rel_amp_s: f_rel * self.orbit.e * self.orbit.sqrt_a,
             geo,
         };
         BoundEphemeris {
@@ -299,14 +245,19 @@ impl BoundEphemeris {
     fn plane_state(&self, tk: f64) -> PlaneState {
         let p = &self.eph;
         let k = &self.k;
-        let ea = eccentric_anomaly(p.m0 + k.n_rad_s * tk, p.e);
+        let ea = eccentric_anomaly(p.orbit.m0 + k.n_rad_s * tk, p.orbit.e);
         let (sin_e, cos_e) = ea.sin_cos();
-        let nu = (k.sqrt_1_e2 * sin_e).atan2(cos_e - p.e);
-        let phi = nu + p.omega;
+        let nu = (k.sqrt_1_e2 * sin_e).atan2(cos_e - p.orbit.e);
+        let phi = nu + p.orbit.omega;
         let (sin_2phi, cos_2phi) = (2.0 * phi).sin_cos();
-        let u_rad = phi + p.cus * sin_2phi + p.cuc * cos_2phi;
-        let r_orb_m = k.a_m * (1.0 - p.e * cos_e) + p.crs * sin_2phi + p.crc * cos_2phi;
-        let i_rad = p.i0 + p.idot * tk + p.cis * sin_2phi + p.cic * cos_2phi;
+        let u_rad = phi + p.harmonics.cus * sin_2phi + p.harmonics.cuc * cos_2phi;
+        let r_orb_m = k.a_m * (1.0 - p.orbit.e * cos_e)
+            + p.harmonics.crs * sin_2phi
+            + p.harmonics.crc * cos_2phi;
+        let i_rad = p.orbit.i0
+            + p.orbit.idot * tk
+            + p.harmonics.cis * sin_2phi
+            + p.harmonics.cic * cos_2phi;
         let node_rad = k.node_at_toe_rad + k.node_rate_rad_s * tk;
         let (sin_u, cos_u) = u_rad.sin_cos();
         let (xp, yp) = (r_orb_m * cos_u, r_orb_m * sin_u);
@@ -369,14 +320,15 @@ impl BoundEphemeris {
         let p = &self.eph;
         let k = &self.k;
         let st = self.plane_state(tk);
-        let one_m_ecos = 1.0 - p.e * st.cos_e;
+        let one_m_ecos = 1.0 - p.orbit.e * st.cos_e;
         let e_dot = k.n_rad_s / one_m_ecos;
         let clock_drift = self.clock_drift_from(t_s, st.cos_e, e_dot);
         let nu_dot = k.sqrt_1_e2 * e_dot / one_m_ecos;
         let (s2, c2) = (st.sin_2phi, st.cos_2phi);
-        let u_dot = nu_dot * (1.0 + 2.0 * (p.cus * c2 - p.cuc * s2));
-        let r_dot = k.a_m * p.e * st.sin_e * e_dot + 2.0 * nu_dot * (p.crs * c2 - p.crc * s2);
-        let i_dot = p.idot + 2.0 * nu_dot * (p.cis * c2 - p.cic * s2);
+        let u_dot = nu_dot * (1.0 + 2.0 * (p.harmonics.cus * c2 - p.harmonics.cuc * s2));
+        let r_dot = k.a_m * p.orbit.e * st.sin_e * e_dot
+            + 2.0 * nu_dot * (p.harmonics.crs * c2 - p.harmonics.crc * s2);
+        let i_dot = p.orbit.idot + 2.0 * nu_dot * (p.harmonics.cis * c2 - p.harmonics.cic * s2);
         let node_dot = k.node_rate_rad_s;
 
         let (sin_u, cos_u) = (st.sin_u, st.cos_u);
@@ -404,8 +356,8 @@ impl BoundEphemeris {
     /// Eccentric anomaly at `t_s` (rad).
     fn eccentric_anomaly_at(&self, t_s: f64) -> f64 {
         eccentric_anomaly(
-            self.eph.m0 + self.k.n_rad_s * (t_s - self.toe_s),
-            self.eph.e,
+            self.eph.orbit.m0 + self.k.n_rad_s * (t_s - self.toe_s),
+            self.eph.orbit.e,
         )
     }
 
@@ -419,14 +371,14 @@ impl BoundEphemeris {
     fn clock_offset_from(&self, t_s: f64, sin_e: f64) -> f64 {
         let dt = t_s - self.toc_s;
         let p = &self.eph;
-        p.af0 + dt * (p.af1 + dt * p.af2) + self.k.rel_amp_s * sin_e
+        p.clock.af0 + dt * (p.clock.af1 + dt * p.clock.af2) + self.k.rel_amp_s * sin_e
     }
 
     /// [`Self::clock_offset_s`] and [`Self::clock_drift`] at `t_s` from one solution of
     /// Kepler's equation.
     pub fn clock_offset_and_drift(&self, t_s: f64) -> (f64, f64) {
         let (sin_e, cos_e) = self.eccentric_anomaly_at(t_s).sin_cos();
-        let e_dot = self.k.n_rad_s / (1.0 - self.eph.e * cos_e);
+        let e_dot = self.k.n_rad_s / (1.0 - self.eph.orbit.e * cos_e);
         (
             self.clock_offset_from(t_s, sin_e),
             self.clock_drift_from(t_s, cos_e, e_dot),
@@ -437,7 +389,7 @@ impl BoundEphemeris {
     /// F e sqrt(A) cos(Ek) dEk/dt with dEk/dt = n / (1 - e cos Ek).
     pub fn clock_drift(&self, t_s: f64) -> f64 {
         let cos_e = self.eccentric_anomaly_at(t_s).cos();
-        let e_dot = self.k.n_rad_s / (1.0 - self.eph.e * cos_e);
+        let e_dot = self.k.n_rad_s / (1.0 - self.eph.orbit.e * cos_e);
         self.clock_drift_from(t_s, cos_e, e_dot)
     }
 
@@ -445,7 +397,7 @@ impl BoundEphemeris {
     fn clock_drift_from(&self, t_s: f64, cos_e: f64, e_dot: f64) -> f64 {
         let dt = t_s - self.toc_s;
         let p = &self.eph;
-        p.af1 + 2.0 * p.af2 * dt + self.k.rel_amp_s * cos_e * e_dot
+        p.clock.af1 + 2.0 * p.clock.af2 * dt + self.k.rel_amp_s * cos_e * e_dot
     }
 }
 
@@ -559,13 +511,13 @@ mod tests {
     #[test]
     fn radius_without_harmonics_is_a_one_minus_e_cos_e() {
         let mut eph = gps_eph(toe());
-        eph.crc = 0.0;
-        eph.crs = 0.0;
+        eph.harmonics.crc = 0.0;
+        eph.harmonics.crs = 0.0;
         let b = eph.bind(&origin());
         for i in 0..50 {
             let t = 7200.0 + 600.0 * f64::from(i) - 14_400.0;
             let ea = b.eccentric_anomaly_at(t);
-            let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * ea.cos());
+            let expect = eph.orbit.sqrt_a.powi(2) * (1.0 - eph.orbit.e * ea.cos());
             let got = b.position_ecef(t).norm();
             assert!(
                 (got - expect).abs() < 1e-6,
@@ -580,9 +532,9 @@ mod tests {
         let b = eph.bind(&origin());
         let t = 9000.0;
         let st = b.plane_state(t - b.toe_s);
-        let expect = eph.sqrt_a.powi(2) * (1.0 - eph.e * st.cos_e)
-            + eph.crs * st.sin_2phi
-            + eph.crc * st.cos_2phi;
+        let expect = eph.orbit.sqrt_a.powi(2) * (1.0 - eph.orbit.e * st.cos_e)
+            + eph.harmonics.crs * st.sin_2phi
+            + eph.harmonics.crc * st.cos_2phi;
         assert!((b.position_ecef(t).norm() - expect).abs() < 1e-6);
     }
 
@@ -616,9 +568,9 @@ mod tests {
         let mut eph = gps_eph(toe());
         eph.sat = SatId::beidou(1);
         eph.class = OrbitClass::BeidouGeo;
-        eph.sqrt_a = 6493.3;
-        eph.i0 = 0.09;
-        eph.e = 4.6e-4;
+        eph.orbit.sqrt_a = 6493.3;
+        eph.orbit.i0 = 0.09;
+        eph.orbit.e = 4.6e-4;
         assert_state_consistent(&eph.bind(&origin()));
     }
 
@@ -639,9 +591,9 @@ mod tests {
     fn relativistic_clock_term_amplitude() {
         // For e = 0.0125 and sqrt(A) = 5153.65 the amplitude is |F| e sqrt(A) = 28.6 ns.
         let mut eph = gps_eph(toe());
-        eph.af0 = 0.0;
-        eph.af1 = 0.0;
-        eph.af2 = 0.0;
+        eph.clock.af0 = 0.0;
+        eph.clock.af1 = 0.0;
+        eph.clock.af2 = 0.0;
         let b = eph.bind(&origin());
         let max = (0..4320)
             .map(|i| b.clock_offset_s(f64::from(i) * 10.0).abs())
@@ -653,17 +605,17 @@ mod tests {
     #[test]
     fn period_is_two_pi_over_mean_motion() {
         let mut eph = gps_eph(toe());
-        eph.delta_n = 0.0;
-        eph.omega_dot = OMEGA_E_GPS; // inertially fixed node in ECEF-rotating terms
-        eph.idot = 0.0;
-        eph.cuc = 0.0;
-        eph.cus = 0.0;
-        eph.crc = 0.0;
-        eph.crs = 0.0;
-        eph.cic = 0.0;
-        eph.cis = 0.0;
+        eph.orbit.delta_n = 0.0;
+        eph.orbit.omega_dot = OMEGA_E_GPS; // inertially fixed node in ECEF-rotating terms
+        eph.orbit.idot = 0.0;
+        eph.harmonics.cuc = 0.0;
+        eph.harmonics.cus = 0.0;
+        eph.harmonics.crc = 0.0;
+        eph.harmonics.crs = 0.0;
+        eph.harmonics.cic = 0.0;
+        eph.harmonics.cis = 0.0;
         let b = eph.bind(&origin());
-        let a = eph.sqrt_a.powi(2);
+        let a = eph.orbit.sqrt_a.powi(2);
         let period = TAU / (GM_GPS / (a * a * a)).sqrt();
         // With Omega_dot = OMEGA_E the node does not move in the computation frame, so the
         // orbit closes after exactly one Keplerian period.
@@ -682,11 +634,11 @@ mod tests {
             m0 in -PI..PI,
         ) {
             let mut eph = gps_eph(toe());
-            eph.e = e;
-            eph.m0 = m0;
+            eph.orbit.e = e;
+            eph.orbit.m0 = m0;
             let b = eph.bind(&origin());
             let r = b.position_ecef(t).norm();
-            let a = eph.sqrt_a.powi(2);
+            let a = eph.orbit.sqrt_a.powi(2);
             prop_assert!(r > a * (1.0 - e) - 500.0 && r < a * (1.0 + e) + 500.0);
         }
     }

@@ -297,12 +297,16 @@ fn circular(sat: SatId, epoch: Epoch, a_m: f64, i_deg: f64, slot: Slot) -> Broad
     let (omega_e, gm, scale) = system_constants(sat.system);
     let i0 = i_deg.to_radians();
     let toe_sow = seconds_of_week(epoch, scale);
+    let base = template(sat, OrbitClass::Standard, epoch, a_m);
     BroadcastEphemeris {
-        i0,
-        omega0: wrap_pi(slot.node_lon_deg.to_radians() + omega_e * toe_sow),
-        m0: wrap_pi(slot.arg_lat_deg.to_radians()),
-        omega_dot: j2_nodal_rate_rad_s(gm, a_m, i0),
-        ..template(sat, OrbitClass::Standard, epoch, a_m)
+        orbit: KeplerElements {
+            i0,
+            omega0: wrap_pi(slot.node_lon_deg.to_radians() + omega_e * toe_sow),
+            m0: wrap_pi(slot.arg_lat_deg.to_radians()),
+            omega_dot: j2_nodal_rate_rad_s(gm, a_m, i0),
+            ..base.orbit
+        },
+        ..base
     }
 }
 
@@ -314,11 +318,15 @@ fn circular(sat: SatId, epoch: Epoch, a_m: f64, i_deg: f64, slot: Slot) -> Broad
 fn geostationary(sat: SatId, epoch: Epoch, lon_deg: f64) -> BroadcastEphemeris {
     let (omega_e, _, scale) = system_constants(sat.system);
     let toe_sow = seconds_of_week(epoch, scale);
+    let base = template(sat, OrbitClass::BeidouGeo, epoch, BDS_GSO_A_M);
     BroadcastEphemeris {
-        i0: 5.0f64.to_radians(),
-        omega0: wrap_pi(PI + omega_e * toe_sow),
-        m0: wrap_pi(lon_deg.to_radians() - PI),
-        ..template(sat, OrbitClass::BeidouGeo, epoch, BDS_GSO_A_M)
+        orbit: KeplerElements {
+            i0: 5.0f64.to_radians(),
+            omega0: wrap_pi(PI + omega_e * toe_sow),
+            m0: wrap_pi(lon_deg.to_radians() - PI),
+            ..base.orbit
+        },
+        ..base
     }
 }
 
@@ -385,8 +393,8 @@ mod tests {
         for b in bound(&all) {
             let a = match (
                 b.eph.sat.system,
-                b.eph.sqrt_a > 6000.0,
-                b.eph.sqrt_a > 5200.0,
+                b.eph.orbit.sqrt_a > 6000.0,
+                b.eph.orbit.sqrt_a > 5200.0,
             ) {
                 (System::Gps, _, _) => 26_559.7e3,
                 (_, true, _) => 42_164.2e3,
@@ -409,7 +417,7 @@ mod tests {
                 "{slot}: node {node}"
             );
             assert!(angle_diff_deg(arg, u).abs() < 0.01, "{slot}: u {arg}");
-            let i = b.eph.i0.to_degrees();
+            let i = b.eph.orbit.i0.to_degrees();
             assert!((i - 55.0).abs() < 1e-12);
         }
         // The extras sit in the six planes and keep >= 20 deg from any other satellite

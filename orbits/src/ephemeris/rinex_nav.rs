@@ -647,11 +647,11 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
         assert_eq!(g1.toc, gpst(2022, 1, 1, 0));
         // toe = week 2190, 518400 s = Saturday 2022-01-01 00:00 GPST.
         assert_eq!(g1.toe, gpst(2022, 1, 1, 0));
-        assert_eq!(g1.sqrt_a, 0.515367499542e4);
-        assert_eq!(g1.e, 0.112181392033e-1);
-        assert_eq!(g1.crs, -0.141125e3);
-        assert_eq!(g1.af0, 0.469126738608e-3);
-        assert_eq!(g1.tgd_s, 0.512227416039e-8);
+        assert_eq!(g1.orbit.sqrt_a, 0.515367499542e4);
+        assert_eq!(g1.orbit.e, 0.112181392033e-1);
+        assert_eq!(g1.harmonics.crs, -0.141125e3);
+        assert_eq!(g1.clock.af0, 0.469126738608e-3);
+        assert_eq!(g1.clock.tgd_s, 0.512227416039e-8);
         assert_eq!((g1.iode, g1.iodc, g1.health), (39, 39, 0));
         assert_eq!(g1.fit_interval_s, 4.0 * 3600.0);
         // The second record: health 63, fit-interval field 0 -> 4 h.
@@ -670,7 +670,7 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
         assert_eq!(c5.toc, bdt(22));
         // BDT week 755, sow 338400 = Wednesday 22:00 BDT.
         assert_eq!(c5.toe, bdt(22));
-        assert_eq!(c5.tgd_s, 1.0e-10);
+        assert_eq!(c5.clock.tgd_s, 1.0e-10);
         assert_eq!(c5.fit_interval_s, BDS_FIT_S);
         assert_eq!(c5.iode, 1);
     }
@@ -682,7 +682,7 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
         assert_eq!(sats, ["G01", "C01"]);
         assert_eq!(ephs[0].toe, gpst(2023, 3, 12, 0));
         assert_eq!(ephs[1].class, OrbitClass::BeidouGeo);
-        assert_eq!(ephs[1].tgd_s, -5.4e-9);
+        assert_eq!(ephs[1].clock.tgd_s, -5.4e-9);
     }
 
     /// Longitude, latitude (deg) and radius (m) of an ECEF position.

@@ -102,27 +102,31 @@ pub fn write_nav(
             "{}{:02} {y:04} {mo:02} {d:02} {h:02} {mi:02} {s:02}{}{}{}",
             e.sat.system.letter(),
             e.sat.prn,
-            d19(e.af0),
-            d19(e.af1),
-            d19(e.af2)
+            d19(e.clock.af0),
+            d19(e.clock.af1),
+            d19(e.clock.af2)
         )?;
-        orbit_line(out, [f64::from(e.iode), e.crs, e.delta_n, e.m0])?;
-        orbit_line(out, [e.cuc, e.e, e.cus, e.sqrt_a])?;
-        orbit_line(out, [toe_sow, e.cic, e.omega0, e.cis])?;
-        orbit_line(out, [e.i0, e.crc, e.omega, e.omega_dot])?;
+        let (o, h) = (&e.orbit, &e.harmonics);
+        orbit_line(out, [f64::from(e.iode), h.crs, o.delta_n, o.m0])?;
+        orbit_line(out, [h.cuc, o.e, h.cus, o.sqrt_a])?;
+        orbit_line(out, [toe_sow, h.cic, o.omega0, h.cis])?;
+        orbit_line(out, [o.i0, h.crc, o.omega, o.omega_dot])?;
         // Transmission time: taken as toc (the set is broadcast from then on in SkyForge).
         let (_, toc_sow) = week_sow(e.sat.system, e.toc);
         match e.sat.system {
             System::Gps => {
-                orbit_line(out, [e.idot, 1.0, f64::from(week), 0.0])?;
-                orbit_line(out, [2.0, f64::from(e.health), e.tgd_s, f64::from(e.iodc)])?;
+                orbit_line(out, [o.idot, 1.0, f64::from(week), 0.0])?;
+                orbit_line(
+                    out,
+                    [2.0, f64::from(e.health), e.clock.tgd_s, f64::from(e.iodc)],
+                )?;
                 // Fit interval in hours: the set's own (the embedded nominal sets hold for
                 // the whole run, so a reader must not drop them after the standard 4 h).
                 orbit_line(out, [toc_sow, fit_hours(e.fit_interval_s), 0.0, 0.0])?;
             }
             System::Beidou => {
-                orbit_line(out, [e.idot, 0.0, f64::from(week), 0.0])?;
-                orbit_line(out, [2.0, f64::from(e.health), e.tgd_s, 0.0])?;
+                orbit_line(out, [o.idot, 0.0, f64::from(week), 0.0])?;
+                orbit_line(out, [2.0, f64::from(e.health), e.clock.tgd_s, 0.0])?;
                 orbit_line(out, [toc_sow, f64::from(e.iodc), 0.0, 0.0])?;
             }
         }
@@ -186,11 +190,11 @@ mod tests {
         ephs.extend(nominal::beidou(BeidouSet::Bds3, start));
         for e in &mut ephs {
             // Values as a message carries them: non-zero clocks and harmonics, IOD.
-            e.af0 = 1.234e-5;
-            e.af1 = -3.4e-12;
-            e.crs = 12.5;
-            e.cuc = 1.1e-6;
-            e.tgd_s = -5.1e-9;
+            e.clock.af0 = 1.234e-5;
+            e.clock.af1 = -3.4e-12;
+            e.harmonics.crs = 12.5;
+            e.harmonics.cuc = 1.1e-6;
+            e.clock.tgd_s = -5.1e-9;
             e.iode = 77;
             e.iodc = 77;
             e.fit_interval_s = if e.sat.system == System::Gps {
@@ -229,18 +233,18 @@ mod tests {
             assert_eq!((a.iode, a.health), (b.iode, b.health));
             let values = |e: &BroadcastEphemeris| {
                 [
-                    e.sqrt_a,
-                    e.e,
-                    e.i0,
-                    e.omega0,
-                    e.omega,
-                    e.m0,
-                    e.omega_dot,
-                    e.af0,
-                    e.af1,
-                    e.crs,
-                    e.cuc,
-                    e.tgd_s,
+                    e.orbit.sqrt_a,
+                    e.orbit.e,
+                    e.orbit.i0,
+                    e.orbit.omega0,
+                    e.orbit.omega,
+                    e.orbit.m0,
+                    e.orbit.omega_dot,
+                    e.clock.af0,
+                    e.clock.af1,
+                    e.harmonics.crs,
+                    e.harmonics.cuc,
+                    e.clock.tgd_s,
                 ]
             };
             for (x, y) in values(a).into_iter().zip(values(b)) {

@@ -88,7 +88,7 @@ impl Transmitted {
     pub fn of(eph: &BoundEphemeris, t_rx_s: f64, pseudorange_m: f64) -> Self {
         let t_sv = t_rx_s - pseudorange_m / C_MPS;
         // IS-GPS-200 20.3.3.3.3.1: dt evaluated at t_sv is accurate to far below a ns.
-        let clock_s = eph.clock_offset_s(t_sv) - eph.eph.tgd_s;
+        let clock_s = eph.clock_offset_s(t_sv) - eph.eph.clock.tgd_s;
         let t_tx = t_sv - clock_s;
         let (r_ecef_m, v_ecef_mps, clock_drift) = eph.state_and_clock_drift(t_tx);
         Transmitted {

@@ -136,21 +136,21 @@ fn fields_at(
 ) -> Result<AlmanacFields, BdsNavError> {
     let dt = (toa - eph.toe).to_seconds();
     let toe_sow = bdt_week_sow(eph.toe).1;
-    let a_m = eph.sqrt_a * eph.sqrt_a;
-    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.delta_n;
+    let a_m = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
+    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.orbit.delta_n;
     let sqrt_a_alm = (GM_BDS / (n_rad_s * n_rad_s)).cbrt().sqrt();
     let (node_ecef, incl, argp, omega_dot) = match eph.class {
         OrbitClass::Standard => (
-            eph.omega0 + (eph.omega_dot - OMEGA_E_BDS) * dt - OMEGA_E_BDS * toe_sow,
-            eph.i0 + eph.idot * dt,
-            eph.omega,
-            eph.omega_dot,
+            eph.orbit.omega0 + (eph.orbit.omega_dot - OMEGA_E_BDS) * dt - OMEGA_E_BDS * toe_sow,
+            eph.orbit.i0 + eph.orbit.idot * dt,
+            eph.orbit.omega,
+            eph.orbit.omega_dot,
         ),
         OrbitClass::BeidouGeo => {
             let r_geo = orientation(
-                eph.omega0 - OMEGA_E_BDS * toe_sow + eph.omega_dot * dt,
-                eph.i0 + eph.idot * dt,
-                eph.omega,
+                eph.orbit.omega0 - OMEGA_E_BDS * toe_sow + eph.orbit.omega_dot * dt,
+                eph.orbit.i0 + eph.orbit.idot * dt,
+                eph.orbit.omega,
             );
             let q = rot_z(-OMEGA_E_BDS * dt) * rot_x(GEO_TILT_RAD);
             let (node, incl, argp) = euler_313(&(q * r_geo));
@@ -172,10 +172,15 @@ fn fields_at(
     };
     Ok(AlmanacFields {
         sqrt_a: fixed("almanac sqrt(A)", sqrt_a_alm, alm::SQRT_A, false)?,
-        a1: fixed("almanac a1", eph.af1 + 2.0 * eph.af2 * dtc, alm::A1, true)?,
+        a1: fixed(
+            "almanac a1",
+            eph.clock.af1 + 2.0 * eph.clock.af2 * dtc,
+            alm::A1,
+            true,
+        )?,
         a0: fixed(
             "almanac a0",
-            eph.af0 + (eph.af1 + eph.af2 * dtc) * dtc,
+            eph.clock.af0 + (eph.clock.af1 + eph.clock.af2 * dtc) * dtc,
             alm::A0,
             true,
         )?,
@@ -184,10 +189,10 @@ fn fields_at(
             node_ecef + OMEGA_E_BDS * toa_sow,
             alm::ANGLE_BITS,
         )?,
-        e: fixed("almanac e", eph.e, alm::E, false)?,
+        e: fixed("almanac e", eph.orbit.e, alm::E, false)?,
         delta_i: semicircles("almanac delta_i", wrap_pi(incl - i_ref), alm::DELTA_I)?,
         omega_dot: semicircles("almanac Omega dot", omega_dot, alm::OMEGA_DOT)?,
         omega: q.angle("almanac omega", argp, alm::ANGLE_BITS)?,
-        m0: q.angle("almanac M0", eph.m0 + n_rad_s * dt, alm::ANGLE_BITS)?,
+        m0: q.angle("almanac M0", eph.orbit.m0 + n_rad_s * dt, alm::ANGLE_BITS)?,
     })
 }

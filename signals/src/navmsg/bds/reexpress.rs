@@ -82,35 +82,38 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
     let (toc, dc) = to_grid(eph.toc);
     if dc != 0.0 {
         out.toc = toc;
-        out.af0 = eph.af0 + eph.af1 * dc + eph.af2 * dc * dc;
-        out.af1 = eph.af1 + 2.0 * eph.af2 * dc;
+        out.clock.af0 = eph.clock.af0 + eph.clock.af1 * dc + eph.clock.af2 * dc * dc;
+        out.clock.af1 = eph.clock.af1 + 2.0 * eph.clock.af2 * dc;
     }
     let (toe, d) = to_grid(eph.toe);
     if d == 0.0 {
         return Ok(out);
     }
     out.toe = toe;
-    let a_m = eph.sqrt_a * eph.sqrt_a;
-    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.delta_n;
-    out.m0 = wrap_pi(eph.m0 + n_rad_s * d);
+    let a_m = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
+    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.orbit.delta_n;
+    out.orbit.m0 = wrap_pi(eph.orbit.m0 + n_rad_s * d);
     let toe_sow = bdt_week_sow(eph.toe).1;
     let new_toe_sow = bdt_week_sow(toe).1;
     match eph.class {
         OrbitClass::Standard => {
-            out.i0 = eph.i0 + eph.idot * d;
-            out.omega0 =
-                wrap_pi(eph.omega0 + eph.omega_dot * d + OMEGA_E_BDS * (new_toe_sow - toe_sow - d));
+            out.orbit.i0 = eph.orbit.i0 + eph.orbit.idot * d;
+            out.orbit.omega0 = wrap_pi(
+                eph.orbit.omega0
+                    + eph.orbit.omega_dot * d
+                    + OMEGA_E_BDS * (new_toe_sow - toe_sow - d),
+            );
         }
         OrbitClass::BeidouGeo => {
             let corrections = [
-                eph.cuc,
-                eph.cus,
-                eph.crc,
-                eph.crs,
-                eph.cic,
-                eph.cis,
-                eph.idot,
-                eph.omega_dot,
+                eph.harmonics.cuc,
+                eph.harmonics.cus,
+                eph.harmonics.crc,
+                eph.harmonics.crs,
+                eph.harmonics.cic,
+                eph.harmonics.cis,
+                eph.orbit.idot,
+                eph.orbit.omega_dot,
             ];
             if corrections.iter().any(|&c| c != 0.0) {
                 return Err(BdsNavError::ToeOffGrid {
@@ -118,12 +121,16 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
                     toe_sow,
                 });
             }
-            let r_geo = orientation(eph.omega0 - OMEGA_E_BDS * toe_sow, eph.i0, eph.omega);
+            let r_geo = orientation(
+                eph.orbit.omega0 - OMEGA_E_BDS * toe_sow,
+                eph.orbit.i0,
+                eph.orbit.omega,
+            );
             let q = rot_x(-GEO_TILT_RAD) * rot_z(-OMEGA_E_BDS * d) * rot_x(GEO_TILT_RAD);
             let (node, incl, argp) = euler_313(&(q * r_geo));
-            out.omega0 = wrap_pi(node + OMEGA_E_BDS * new_toe_sow);
-            out.i0 = incl;
-            out.omega = argp;
+            out.orbit.omega0 = wrap_pi(node + OMEGA_E_BDS * new_toe_sow);
+            out.orbit.i0 = incl;
+            out.orbit.omega = argp;
         }
     }
     Ok(out)
@@ -171,9 +178,9 @@ mod tests {
     fn nominal_sets_are_moved_onto_the_grid_without_moving_the_orbit() {
         for set in [BeidouSet::Bds3, BeidouSet::Bds2] {
             for mut eph in nominal::beidou(set, odd_epoch()) {
-                eph.af0 = 1e-4;
-                eph.af1 = 1e-11;
-                eph.af2 = 1e-18;
+                eph.clock.af0 = 1e-4;
+                eph.clock.af1 = 1e-11;
+                eph.clock.af2 = 1e-18;
                 let grid = onto_grid(&eph).expect("nominal sets re-express");
                 let sow = bdt_week_sow(grid.toe).1;
                 assert_eq!(sow % 8.0, 0.0);
@@ -190,16 +197,16 @@ mod tests {
     fn meo_with_harmonics_and_a_week_crossing_is_exact() {
         let epoch = epoch_from_bdt(1000, 604_797.0);
         let mut eph = nominal::beidou(BeidouSet::Bds3, epoch)[0].clone();
-        eph.e = 0.004;
-        eph.omega = 1.1;
-        eph.delta_n = 4e-9;
-        eph.idot = 2e-10;
-        eph.cuc = 1e-5;
-        eph.cus = -2e-5;
-        eph.crc = 300.0;
-        eph.crs = -100.0;
-        eph.cic = 1e-7;
-        eph.cis = -2e-7;
+        eph.orbit.e = 0.004;
+        eph.orbit.omega = 1.1;
+        eph.orbit.delta_n = 4e-9;
+        eph.orbit.idot = 2e-10;
+        eph.harmonics.cuc = 1e-5;
+        eph.harmonics.cus = -2e-5;
+        eph.harmonics.crc = 300.0;
+        eph.harmonics.crs = -100.0;
+        eph.harmonics.cic = 1e-7;
+        eph.harmonics.cis = -2e-7;
         let grid = onto_grid(&eph).expect("standard class always re-expresses");
         assert_eq!(bdt_week_sow(grid.toe), (1001, 0.0));
         let (dr, _) = max_difference(&eph, &grid);
@@ -212,7 +219,7 @@ mod tests {
             .into_iter()
             .find(|e| e.class == OrbitClass::BeidouGeo)
             .expect("a GEO");
-        geo.cuc = 1e-6;
+        geo.harmonics.cuc = 1e-6;
         assert!(matches!(
             onto_grid(&geo),
             Err(BdsNavError::ToeOffGrid { .. })

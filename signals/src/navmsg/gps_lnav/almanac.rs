@@ -124,15 +124,15 @@ impl Almanac {
             });
         }
         Ok(Entry {
-            e: q(&scale::ALM_E, p.e)?,
-            delta_i: q(&scale::ALM_DELTA_I, p.i0 / GPS_PI - I_REF_SC)?,
-            omega_dot: q(&scale::ALM_OMEGA_DOT, p.omega_dot / GPS_PI)?,
-            sqrt_a: q(&scale::ALM_SQRT_A, p.sqrt_a)?,
-            omega0: qa(&scale::ALM_OMEGA0, p.omega0)?,
-            omega: qa(&scale::ALM_OMEGA, p.omega)?,
-            m0: qa(&scale::ALM_M0, p.m0)?,
-            af0: q(&scale::ALM_AF0, p.af0)?,
-            af1: q(&scale::ALM_AF1, p.af1)?,
+            e: q(&scale::ALM_E, p.orbit.e)?,
+            delta_i: q(&scale::ALM_DELTA_I, p.orbit.i0 / GPS_PI - I_REF_SC)?,
+            omega_dot: q(&scale::ALM_OMEGA_DOT, p.orbit.omega_dot / GPS_PI)?,
+            sqrt_a: q(&scale::ALM_SQRT_A, p.orbit.sqrt_a)?,
+            omega0: qa(&scale::ALM_OMEGA0, p.orbit.omega0)?,
+            omega: qa(&scale::ALM_OMEGA, p.orbit.omega)?,
+            m0: qa(&scale::ALM_M0, p.orbit.m0)?,
+            af0: q(&scale::ALM_AF0, p.clock.af0)?,
+            af1: q(&scale::ALM_AF1, p.clock.af1)?,
             health6: eph.health,
         })
     }

@@ -74,16 +74,18 @@ pub(crate) fn reexpress(
     let dc = (i128::from(toc_gps_s) * NS_PER_S - toc_old_ns) as f64 * 1e-9;
     let sow_old = toe_old_ns.rem_euclid(i128::from(super::WEEK_S) * NS_PER_S) as f64 * 1e-9;
     let sow_new = week_and_sow(toe_gps_s).1 as f64;
-    let a = eph.sqrt_a * eph.sqrt_a;
-    let n = (GM_GPS / (a * a * a)).sqrt() + eph.delta_n;
+    let a = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
+    let n = (GM_GPS / (a * a * a)).sqrt() + eph.orbit.delta_n;
     let mut out = eph.clone();
     out.toe = epoch_from_gps_ns(i128::from(toe_gps_s) * NS_PER_S);
     out.toc = epoch_from_gps_ns(i128::from(toc_gps_s) * NS_PER_S);
-    out.m0 = eph.m0 + n * d;
-    out.i0 = eph.i0 + eph.idot * d;
-    out.omega0 = eph.omega0 + (eph.omega_dot - OMEGA_E_GPS) * d + OMEGA_E_GPS * (sow_new - sow_old);
-    out.af0 = eph.af0 + dc * (eph.af1 + dc * eph.af2);
-    out.af1 = eph.af1 + 2.0 * dc * eph.af2;
+    out.orbit.m0 = eph.orbit.m0 + n * d;
+    out.orbit.i0 = eph.orbit.i0 + eph.orbit.idot * d;
+    out.orbit.omega0 = eph.orbit.omega0
+        + (eph.orbit.omega_dot - OMEGA_E_GPS) * d
+        + OMEGA_E_GPS * (sow_new - sow_old);
+    out.clock.af0 = eph.clock.af0 + dc * (eph.clock.af1 + dc * eph.clock.af2);
+    out.clock.af1 = eph.clock.af1 + 2.0 * dc * eph.clock.af2;
     out
 }
 
@@ -142,30 +144,30 @@ impl RawEphemeris {
                 63,
                 "6-bit SV health 0-63",
             )?,
-            tgd: q(&scale::TGD, eph.tgd_s)?,
+            tgd: q(&scale::TGD, eph.clock.tgd_s)?,
             iodc,
-            af2: q(&scale::AF2, p.af2)?,
-            af1: q(&scale::AF1, p.af1)?,
-            af0: q(&scale::AF0, p.af0)?,
+            af2: q(&scale::AF2, p.clock.af2)?,
+            af1: q(&scale::AF1, p.clock.af1)?,
+            af0: q(&scale::AF0, p.clock.af0)?,
             toc_gps_s: toc_s,
             iode,
-            crs: q(&scale::CRS, p.crs)?,
-            delta_n: q(&scale::DELTA_N, p.delta_n / GPS_PI)?,
-            m0: qa(&scale::M0, p.m0)?,
-            cuc: q(&scale::CUC, p.cuc)?,
-            e: q(&scale::ECC, p.e)?,
-            cus: q(&scale::CUS, p.cus)?,
-            sqrt_a: q(&scale::SQRT_A, p.sqrt_a)?,
+            crs: q(&scale::CRS, p.harmonics.crs)?,
+            delta_n: q(&scale::DELTA_N, p.orbit.delta_n / GPS_PI)?,
+            m0: qa(&scale::M0, p.orbit.m0)?,
+            cuc: q(&scale::CUC, p.harmonics.cuc)?,
+            e: q(&scale::ECC, p.orbit.e)?,
+            cus: q(&scale::CUS, p.harmonics.cus)?,
+            sqrt_a: q(&scale::SQRT_A, p.orbit.sqrt_a)?,
             toe_gps_s: toe_s,
             fit_flag: eph.fit_interval_s > FIT_4H_S,
-            cic: q(&scale::CIC, p.cic)?,
-            omega0: qa(&scale::OMEGA0, p.omega0)?,
-            cis: q(&scale::CIS, p.cis)?,
-            i0: qa(&scale::I0, p.i0)?,
-            crc: q(&scale::CRC, p.crc)?,
-            omega: qa(&scale::OMEGA, p.omega)?,
-            omega_dot: q(&scale::OMEGA_DOT, p.omega_dot / GPS_PI)?,
-            idot: q(&scale::IDOT, p.idot / GPS_PI)?,
+            cic: q(&scale::CIC, p.harmonics.cic)?,
+            omega0: qa(&scale::OMEGA0, p.orbit.omega0)?,
+            cis: q(&scale::CIS, p.harmonics.cis)?,
+            i0: qa(&scale::I0, p.orbit.i0)?,
+            crc: q(&scale::CRC, p.harmonics.crc)?,
+            omega: qa(&scale::OMEGA, p.orbit.omega)?,
+            omega_dot: q(&scale::OMEGA_DOT, p.orbit.omega_dot / GPS_PI)?,
+            idot: q(&scale::IDOT, p.orbit.idot / GPS_PI)?,
         })
     }
 

@@ -6,7 +6,9 @@ use super::fixtures::{header_iono, real_prn1, utc_week_2190};
 use super::*;
 use hifitime::TimeScale;
 use proptest::prelude::*;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, nominal};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, SatId, nominal,
+};
 use skyforge_orbits::time::TimeOrigin;
 
 // ---------------------------------------------------------------------------------------
@@ -331,32 +333,109 @@ fn subframes_1_to_3_decode_to_the_input_within_half_an_lsb() {
     // semicircles).
     let b = enc.broadcast_ephemeris();
     for (name, decoded, input, sent, lsb, unit) in [
-        ("TGD", d.tgd, eph.tgd_s, b.tgd_s, p2(-31), 1.0),
-        ("af2", d.af2, eph.af2, b.af2, p2(-55), 1.0),
-        ("af1", d.af1, eph.af1, b.af1, p2(-43), 1.0),
-        ("af0", d.af0, eph.af0, b.af0, p2(-31), 1.0),
-        ("Crs", d.crs, eph.crs, b.crs, p2(-5), 1.0),
-        ("dn", d.delta_n, eph.delta_n, b.delta_n, p2(-43), GPS_PI),
-        ("M0", d.m0, eph.m0, b.m0, p2(-31), GPS_PI),
-        ("Cuc", d.cuc, eph.cuc, b.cuc, p2(-29), 1.0),
-        ("e", d.e, eph.e, b.e, p2(-33), 1.0),
-        ("Cus", d.cus, eph.cus, b.cus, p2(-29), 1.0),
-        ("sqrtA", d.sqrt_a, eph.sqrt_a, b.sqrt_a, p2(-19), 1.0),
-        ("Cic", d.cic, eph.cic, b.cic, p2(-29), 1.0),
-        ("OMEGA0", d.omega0, eph.omega0, b.omega0, p2(-31), GPS_PI),
-        ("Cis", d.cis, eph.cis, b.cis, p2(-29), 1.0),
-        ("i0", d.i0, eph.i0, b.i0, p2(-31), GPS_PI),
-        ("Crc", d.crc, eph.crc, b.crc, p2(-5), 1.0),
-        ("omega", d.omega, eph.omega, b.omega, p2(-31), GPS_PI),
+        ("TGD", d.tgd, eph.clock.tgd_s, b.clock.tgd_s, p2(-31), 1.0),
+        ("af2", d.af2, eph.clock.af2, b.clock.af2, p2(-55), 1.0),
+        ("af1", d.af1, eph.clock.af1, b.clock.af1, p2(-43), 1.0),
+        ("af0", d.af0, eph.clock.af0, b.clock.af0, p2(-31), 1.0),
         (
-            "OMEGADOT",
-            d.omega_dot,
-            eph.omega_dot,
-            b.omega_dot,
+            "Crs",
+            d.crs,
+            eph.harmonics.crs,
+            b.harmonics.crs,
+            p2(-5),
+            1.0,
+        ),
+        (
+            "dn",
+            d.delta_n,
+            eph.orbit.delta_n,
+            b.orbit.delta_n,
             p2(-43),
             GPS_PI,
         ),
-        ("IDOT", d.idot, eph.idot, b.idot, p2(-43), GPS_PI),
+        ("M0", d.m0, eph.orbit.m0, b.orbit.m0, p2(-31), GPS_PI),
+        (
+            "Cuc",
+            d.cuc,
+            eph.harmonics.cuc,
+            b.harmonics.cuc,
+            p2(-29),
+            1.0,
+        ),
+        ("e", d.e, eph.orbit.e, b.orbit.e, p2(-33), 1.0),
+        (
+            "Cus",
+            d.cus,
+            eph.harmonics.cus,
+            b.harmonics.cus,
+            p2(-29),
+            1.0,
+        ),
+        (
+            "sqrtA",
+            d.sqrt_a,
+            eph.orbit.sqrt_a,
+            b.orbit.sqrt_a,
+            p2(-19),
+            1.0,
+        ),
+        (
+            "Cic",
+            d.cic,
+            eph.harmonics.cic,
+            b.harmonics.cic,
+            p2(-29),
+            1.0,
+        ),
+        (
+            "OMEGA0",
+            d.omega0,
+            eph.orbit.omega0,
+            b.orbit.omega0,
+            p2(-31),
+            GPS_PI,
+        ),
+        (
+            "Cis",
+            d.cis,
+            eph.harmonics.cis,
+            b.harmonics.cis,
+            p2(-29),
+            1.0,
+        ),
+        ("i0", d.i0, eph.orbit.i0, b.orbit.i0, p2(-31), GPS_PI),
+        (
+            "Crc",
+            d.crc,
+            eph.harmonics.crc,
+            b.harmonics.crc,
+            p2(-5),
+            1.0,
+        ),
+        (
+            "omega",
+            d.omega,
+            eph.orbit.omega,
+            b.orbit.omega,
+            p2(-31),
+            GPS_PI,
+        ),
+        (
+            "OMEGADOT",
+            d.omega_dot,
+            eph.orbit.omega_dot,
+            b.orbit.omega_dot,
+            p2(-43),
+            GPS_PI,
+        ),
+        (
+            "IDOT",
+            d.idot,
+            eph.orbit.idot,
+            b.orbit.idot,
+            p2(-43),
+            GPS_PI,
+        ),
     ] {
         within_half_lsb(name, decoded, input / unit, lsb);
         let x = decoded * unit;
@@ -389,25 +468,31 @@ fn arb_ephemeris() -> impl Strategy<Value = BroadcastEphemeris> {
         )| {
             let toe = Epoch::from_gpst_seconds(2190.0 * 604_800.0 + f64::from(toe16) * 16.0);
             BroadcastEphemeris {
-                m0,
-                omega0: om0,
-                i0,
-                omega: w,
-                e,
-                sqrt_a,
-                delta_n: dn,
-                omega_dot: odot,
-                idot: dn / 10.0,
-                crs,
-                crc,
-                cuc,
-                cus: -cuc,
-                cic: cis / 3.0,
-                cis,
-                af0,
-                af1,
-                af2,
-                tgd_s: af2 * 1e7,
+                orbit: KeplerElements {
+                    m0,
+                    omega0: om0,
+                    i0,
+                    omega: w,
+                    e,
+                    sqrt_a,
+                    delta_n: dn,
+                    omega_dot: odot,
+                    idot: dn / 10.0,
+                },
+                harmonics: HarmonicCorrections {
+                    crs,
+                    crc,
+                    cuc,
+                    cus: -cuc,
+                    cic: cis / 3.0,
+                    cis,
+                },
+                clock: ClockParams {
+                    af0,
+                    af1,
+                    af2,
+                    tgd_s: af2 * 1e7,
+                },
                 iodc,
                 iode: iodc & 0xFF,
                 toe,
@@ -431,25 +516,25 @@ proptest! {
             let err = wrap(got - rad / GPS_PI).abs();
             assert!(err <= 0.5 * p2(-31) * (1.0 + 1e-6), "{name}: {:.3} LSB", err / p2(-31));
         };
-        angle("M0", d.m0, eph.m0);
-        angle("OMEGA0", d.omega0, eph.omega0);
-        angle("omega", d.omega, eph.omega);
-        within_half_lsb("i0", d.i0, eph.i0 / GPS_PI, p2(-31));
-        within_half_lsb("e", d.e, eph.e, p2(-33));
-        within_half_lsb("sqrtA", d.sqrt_a, eph.sqrt_a, p2(-19));
-        within_half_lsb("dn", d.delta_n, eph.delta_n / GPS_PI, p2(-43));
-        within_half_lsb("OMEGADOT", d.omega_dot, eph.omega_dot / GPS_PI, p2(-43));
-        within_half_lsb("IDOT", d.idot, eph.idot / GPS_PI, p2(-43));
-        within_half_lsb("Crs", d.crs, eph.crs, p2(-5));
-        within_half_lsb("Crc", d.crc, eph.crc, p2(-5));
-        within_half_lsb("Cuc", d.cuc, eph.cuc, p2(-29));
-        within_half_lsb("Cus", d.cus, eph.cus, p2(-29));
-        within_half_lsb("Cic", d.cic, eph.cic, p2(-29));
-        within_half_lsb("Cis", d.cis, eph.cis, p2(-29));
-        within_half_lsb("af0", d.af0, eph.af0, p2(-31));
-        within_half_lsb("af1", d.af1, eph.af1, p2(-43));
-        within_half_lsb("af2", d.af2, eph.af2, p2(-55));
-        within_half_lsb("TGD", d.tgd, eph.tgd_s, p2(-31));
+        angle("M0", d.m0, eph.orbit.m0);
+        angle("OMEGA0", d.omega0, eph.orbit.omega0);
+        angle("omega", d.omega, eph.orbit.omega);
+        within_half_lsb("i0", d.i0, eph.orbit.i0 / GPS_PI, p2(-31));
+        within_half_lsb("e", d.e, eph.orbit.e, p2(-33));
+        within_half_lsb("sqrtA", d.sqrt_a, eph.orbit.sqrt_a, p2(-19));
+        within_half_lsb("dn", d.delta_n, eph.orbit.delta_n / GPS_PI, p2(-43));
+        within_half_lsb("OMEGADOT", d.omega_dot, eph.orbit.omega_dot / GPS_PI, p2(-43));
+        within_half_lsb("IDOT", d.idot, eph.orbit.idot / GPS_PI, p2(-43));
+        within_half_lsb("Crs", d.crs, eph.harmonics.crs, p2(-5));
+        within_half_lsb("Crc", d.crc, eph.harmonics.crc, p2(-5));
+        within_half_lsb("Cuc", d.cuc, eph.harmonics.cuc, p2(-29));
+        within_half_lsb("Cus", d.cus, eph.harmonics.cus, p2(-29));
+        within_half_lsb("Cic", d.cic, eph.harmonics.cic, p2(-29));
+        within_half_lsb("Cis", d.cis, eph.harmonics.cis, p2(-29));
+        within_half_lsb("af0", d.af0, eph.clock.af0, p2(-31));
+        within_half_lsb("af1", d.af1, eph.clock.af1, p2(-43));
+        within_half_lsb("af2", d.af2, eph.clock.af2, p2(-55));
+        within_half_lsb("TGD", d.tgd, eph.clock.tgd_s, p2(-31));
         prop_assert_eq!(d.iodc, u64::from(eph.iodc));
         prop_assert_eq!(d.iode2, u64::from(eph.iode));
         prop_assert_eq!(d.iode3, u64::from(eph.iode));
@@ -674,15 +759,15 @@ fn almanac_pages_decode_to_the_almanac_orbit() {
         assert_eq!(field(&s, 5, 17, 8), 0, "health");
         let close =
             |x: f64, y: f64| assert!((x - y).abs() <= 1e-15 * y.abs().max(1e-30), "{x} vs {y}");
-        close(e, a.e);
-        close((0.30 + di) * GPS_PI, a.i0);
-        close(odot * GPS_PI, a.omega_dot);
-        close(sqrt_a, a.sqrt_a);
-        close(om0 * GPS_PI, a.omega0);
-        close(w * GPS_PI, a.omega);
-        close(m0 * GPS_PI, a.m0);
-        close(af0, a.af0);
-        close(af1, a.af1);
+        close(e, a.orbit.e);
+        close((0.30 + di) * GPS_PI, a.orbit.i0);
+        close(odot * GPS_PI, a.orbit.omega_dot);
+        close(sqrt_a, a.orbit.sqrt_a);
+        close(om0 * GPS_PI, a.orbit.omega0);
+        close(w * GPS_PI, a.orbit.omega);
+        close(m0 * GPS_PI, a.orbit.m0);
+        close(af0, a.clock.af0);
+        close(af1, a.clock.af1);
     }
 }
 
@@ -797,7 +882,10 @@ fn bad_inputs_are_errors() {
     };
     assert!(matches!(make(&bds, 0), Err(LnavError::NotGps { .. })));
     let big_clock = BroadcastEphemeris {
-        af0: 2e-3,
+        clock: ClockParams {
+            af0: 2e-3,
+            ..eph.clock
+        },
         ..eph.clone()
     };
     match make(&big_clock, 0) {

@@ -61,29 +61,34 @@ fn check_half_lsb(
         (u64::from(input.iode.max(1)), u64::from(input.iodc), 0) // AODE 0 is sent as 1
     );
     assert_eq!(d.urai, u64::from(extra.urai));
-    half("sqrt(A)", d.sqrt_a, input.sqrt_a, p2(-19));
-    half("e", d.e, input.e, p2(-33));
-    half_angle("i0", d.i0, input.i0);
-    half_angle("Omega0", d.omega0, input.omega0);
-    half_angle("omega", d.omega, input.omega);
-    half_angle("M0", d.m0, input.m0);
-    half("Delta n", d.delta_n, input.delta_n, PI * p2(-43));
-    half("IDOT", d.idot, input.idot, PI * p2(-43));
-    half("Omega dot", d.omega_dot, input.omega_dot, PI * p2(-43));
+    half("sqrt(A)", d.sqrt_a, input.orbit.sqrt_a, p2(-19));
+    half("e", d.e, input.orbit.e, p2(-33));
+    half_angle("i0", d.i0, input.orbit.i0);
+    half_angle("Omega0", d.omega0, input.orbit.omega0);
+    half_angle("omega", d.omega, input.orbit.omega);
+    half_angle("M0", d.m0, input.orbit.m0);
+    half("Delta n", d.delta_n, input.orbit.delta_n, PI * p2(-43));
+    half("IDOT", d.idot, input.orbit.idot, PI * p2(-43));
+    half(
+        "Omega dot",
+        d.omega_dot,
+        input.orbit.omega_dot,
+        PI * p2(-43),
+    );
     for (what, a, b) in [
-        ("Cuc", d.cuc, input.cuc),
-        ("Cus", d.cus, input.cus),
-        ("Cic", d.cic, input.cic),
-        ("Cis", d.cis, input.cis),
+        ("Cuc", d.cuc, input.harmonics.cuc),
+        ("Cus", d.cus, input.harmonics.cus),
+        ("Cic", d.cic, input.harmonics.cic),
+        ("Cis", d.cis, input.harmonics.cis),
     ] {
         half(what, a, b, p2(-31));
     }
-    half("Crc", d.crc, input.crc, p2(-6));
-    half("Crs", d.crs, input.crs, p2(-6));
-    half("a0", d.a0, input.af0, p2(-33));
-    half("a1", d.a1, input.af1, p2(-50));
-    half("a2", d.a2, input.af2, p2(-66));
-    half("TGD1", d.tgd1_s, input.tgd_s, 0.1e-9);
+    half("Crc", d.crc, input.harmonics.crc, p2(-6));
+    half("Crs", d.crs, input.harmonics.crs, p2(-6));
+    half("a0", d.a0, input.clock.af0, p2(-33));
+    half("a1", d.a1, input.clock.af1, p2(-50));
+    half("a2", d.a2, input.clock.af2, p2(-66));
+    half("TGD1", d.tgd1_s, input.clock.tgd_s, 0.1e-9);
     half("TGD2", d.tgd2_s, extra.tgd2_s, 0.1e-9);
     let (ae, be) = ([-30, -27, -24, -24], [11, 14, 16, 16]);
     for n in 0..4 {
@@ -209,15 +214,15 @@ fn nominal_quantisation_residuals_over_two_hours() {
     for set in [BeidouSet::Bds3, BeidouSet::Bds2] {
         let mut ephs = nominal::beidou(set, epoch);
         for (k, e) in ephs.iter_mut().enumerate() {
-            e.af0 = 3e-4 * (k as f64 - 10.0) / 10.0;
-            e.af1 = 2e-11;
+            e.clock.af0 = 3e-4 * (k as f64 - 10.0) / 10.0;
+            e.clock.af1 = 2e-11;
         }
         // Worst position residual of MEO, IGSO, GEO; worst clock residual (m).
         let mut worst = [0.0f64; 4];
         for e in &ephs {
             let enc = BdsNavEncoder::new(e, &Klobuchar::default(), &ephs, WEEK).expect("nominal");
             let (dr, dc) = residual(e, &enc.broadcast_ephemeris());
-            let k = match (e.class, e.sqrt_a > 6000.0) {
+            let k = match (e.class, e.orbit.sqrt_a > 6000.0) {
                 (OrbitClass::BeidouGeo, _) => 2,
                 (_, true) => 1,
                 _ => 0,

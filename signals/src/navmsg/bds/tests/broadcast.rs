@@ -116,11 +116,11 @@ fn encoder_reproduces_c06_subframes_1_to_3() {
     let q = enc.broadcast_ephemeris();
     assert_eq!(q.toe, eph.toe);
     for (name, a, b) in [
-        ("sqrt_a", q.sqrt_a, eph.sqrt_a),
-        ("M0", q.m0, eph.m0),
-        ("Omega0", q.omega0, eph.omega0),
-        ("af0", q.af0, eph.af0),
-        ("TGD", q.tgd_s, eph.tgd_s),
+        ("sqrt_a", q.orbit.sqrt_a, eph.orbit.sqrt_a),
+        ("M0", q.orbit.m0, eph.orbit.m0),
+        ("Omega0", q.orbit.omega0, eph.orbit.omega0),
+        ("af0", q.clock.af0, eph.clock.af0),
+        ("TGD", q.clock.tgd_s, eph.clock.tgd_s),
     ] {
         assert_close(name, a, b, 1e-15 * b.abs().max(1e-9));
     }

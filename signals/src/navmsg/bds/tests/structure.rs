@@ -151,7 +151,7 @@ fn input_errors_are_reported() {
         Err(BdsNavError::ClassMismatch { .. })
     ));
     let mut big_clock = set[0].clone();
-    big_clock.af0 = 2e-3;
+    big_clock.clock.af0 = 2e-3;
     match BdsNavEncoder::new(&big_clock, &iono, &set, WEEK) {
         Err(BdsNavError::FieldOutOfRange { field, .. }) => assert_eq!(field, "a0"),
         other => panic!("expected a0 out of range, got {other:?}"),
