@@ -187,21 +187,8 @@ fn signal_level_thresholds_hold_where_observation_level_ones_raise_false_alarms(
         "bundled.toml",
         "mon-bundled",
     );
-    let printed = skyforge_ok(
-        &[
-            "validate",
-            "monitor",
-            "--truth",
-            "sim",
-            "--monitor",
-            "mon-bundled",
-            "--json",
-            "score-bundled.json",
-        ],
-        d,
-    );
+    let (printed, bundled) = support::validate_monitor_of(d, "mon-bundled", "score-bundled.json");
     eprintln!("{printed}");
-    let bundled = support::json_file(&d.join("score-bundled.json"));
     assert!(
         bundled["false_alarms"].as_u64().unwrap() > 0,
         "observation-level thresholds: {bundled}"

@@ -89,6 +89,11 @@ pub fn json_file(path: &Path) -> serde_json::Value {
 /// `skyforge validate monitor --truth sim --monitor mon --json score.json` in `dir`, which
 /// must succeed: what it printed and the score.
 pub fn validate_monitor(dir: &Path) -> (String, serde_json::Value) {
+    validate_monitor_of(dir, "mon", "score.json")
+}
+
+/// [`validate_monitor`] of the monitor output `mon`, the score written to `json`.
+pub fn validate_monitor_of(dir: &Path, mon: &str, json: &str) -> (String, serde_json::Value) {
     let printed = skyforge_ok(
         &[
             "validate",
@@ -96,13 +101,13 @@ pub fn validate_monitor(dir: &Path) -> (String, serde_json::Value) {
             "--truth",
             "sim",
             "--monitor",
-            "mon",
+            mon,
             "--json",
-            "score.json",
+            json,
         ],
         dir,
     );
-    (printed, json_file(&dir.join("score.json")))
+    (printed, json_file(&dir.join(json)))
 }
 
 /// The `results.json` `skyforge validate thesis --out <out>` wrote.
