@@ -178,8 +178,8 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
             assert!((x - y).abs() <= 0.02 * x, "{key:?}: {a:?} against {b:?}");
         }
     }
-    // A base configuration's stations (here the files' own positions) are kept, and the
-    // result runs.
+    // A base configuration's stations (here the files' own positions) and false-alarm
+    // probability are kept, and the result runs.
     let base = std::fs::read_to_string(d.join("calf/monitor.toml"))
         .unwrap()
         .replace("stations = []\n", "");
@@ -203,9 +203,11 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
         })
         .collect::<String>();
     let at = base.find("[thresholds]").unwrap();
+    let thresholds = base[at..].replace("false_alarm = 0.0000001", "false_alarm = 0.00001");
+    assert_ne!(thresholds, &base[at..]);
     std::fs::write(
         d.join("base.toml"),
-        format!("{}{positions}\n{}", &base[..at], &base[at..]),
+        format!("{}{positions}\n{thresholds}", &base[..at]),
     )
     .unwrap();
     let mut args = vec!["monitor", "calibrate-files"];
@@ -221,6 +223,7 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
     skyforge_ok(&args, d);
     let written = std::fs::read_to_string(d.join("calg/monitor.toml")).unwrap();
     assert_eq!(written.matches("[[stations]]").count(), 4, "{written}");
+    assert!(written.contains("false_alarm = 0.00001"), "{written}");
     let mut args = vec!["monitor", "run"];
     args.extend(f.iter().map(String::as_str));
     args.extend([
@@ -297,4 +300,16 @@ fn bad_input_gets_one_error_and_nothing_written() {
     );
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("truth.h5"), "{}", text(&o));
+    // calibrate-files on 30 s: no track is old enough to test the divergence.
+    let mut args = vec!["monitor", "calibrate-files"];
+    args.extend(f.iter().map(String::as_str));
+    args.extend(["--nav", "sim/nav.rnx", "--out", "cal"]);
+    let o = skyforge(&args, d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("cannot calibrate") && text(&o).contains("300 s old"),
+        "{}",
+        text(&o)
+    );
+    assert!(!d.join("cal").exists());
 }

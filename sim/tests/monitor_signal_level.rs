@@ -41,22 +41,27 @@ fn surveyed(sim: &Path) -> String {
 /// The lab at the signal level, BeiDou only, `duration_s` long from `start`, on `seed`,
 /// with `events` appended.
 fn signal_lab(d: &Path, duration_s: u32, start: &str, seed: u64, events: &str) -> String {
-    let lab = skyforge_ok(&["scenarios", "show", "integrity-lab"], d);
-    let scenario = lab
-        .replace(
+    let mut scenario = skyforge_ok(&["scenarios", "show", "integrity-lab"], d);
+    for (from, to) in [
+        (
             "duration_s = 1800.0",
-            &format!("duration_s = {duration_s}.0"),
-        )
-        .replace(
+            format!("duration_s = {duration_s}.0"),
+        ),
+        (
             "start = \"2023-03-12T00:00:00 GPST\"",
-            &format!("start = \"{start}\""),
-        )
-        .replace("seed = 2002", &format!("seed = {seed}"))
-        .replace("[gnss.gps]\nsource", "[gnss.gps]\nenabled = false\nsource")
-        .replace("level = \"observation\"", "level = \"signal\"")
-        + events;
-    assert!(scenario.contains(start) && scenario.contains("level = \"signal\""));
-    scenario
+            format!("start = \"{start}\""),
+        ),
+        ("seed = 2002", format!("seed = {seed}")),
+        (
+            "[gnss.gps]\nsource",
+            "[gnss.gps]\nenabled = false\nsource".to_string(),
+        ),
+        ("level = \"observation\"", "level = \"signal\"".to_string()),
+    ] {
+        assert!(scenario.contains(from), "the bundled lab has no {from:?}");
+        scenario = scenario.replace(from, &to);
+    }
+    scenario + events
 }
 
 /// `monitor run` (or with `action` = "calibrate-files", the calibration) of the four
@@ -127,6 +132,10 @@ fn a_code_step_and_a_carrier_jump_at_one_station_are_detected_at_the_signal_leve
 /// `monitor calibrate-files`) hold on the lab's run, where the bundled observation-level
 /// ones raise false alarms on the GEOs (their code errors wander by metres over minutes:
 /// docs/integrity.md), and the paper's multipath is still detected and isolated at C.
+/// (The scoring counts any alarm on C03 from the step to 600 s after it, the end of this
+/// run, as the step's, so "no false alarm" speaks of the other satellites. The last
+/// assertion records that observation-level thresholds do not hold here: should the
+/// receiver's GEO errors shrink enough for it to fail, docs/integrity.md needs a rewrite.)
 #[test]
 #[ignore = "acceptance tier (minutes): cargo test -p skyforge-sim --test monitor_signal_level -- --ignored"]
 fn signal_level_thresholds_hold_where_observation_level_ones_raise_false_alarms() {

@@ -223,6 +223,15 @@ impl SigmaCalibrator {
         )
     }
 
+    /// The signals that have values but lack one statistic's altogether (no table).
+    pub fn incomplete(&self) -> Vec<Signal> {
+        self.sums
+            .iter()
+            .filter(|(_, sums)| self.table(sums).is_none())
+            .map(|(signal, _)| *signal)
+            .collect()
+    }
+
     /// The RMS table of each signal seen, by tag. An empty bin takes the value of the
     /// nearest bin below it with data (above it for the lowest), so every elevation has
     /// a threshold.

@@ -160,6 +160,7 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
 /// Run `skyforge monitor calibrate-files`.
 pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
     let inputs = read_inputs(args)?;
+    let staged = StagedDir::create(&args.out, args.force)?;
     let calibrated = measure_files(
         &inputs.files,
         inputs.stations,
@@ -167,28 +168,31 @@ pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
         &inputs.config,
     )
     .map_err(BadInput)?;
-    let text = toml::to_string(&calibrated).context("cannot encode the configuration")?;
+    let text = toml::to_string(&calibrated.config).context("cannot encode the configuration")?;
     let names: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
+    let base = match &args.config {
+        Some(path) => path.display().to_string(),
+        None => "the bundled configuration".to_string(),
+    };
     let header = format!(
         "# Monitor configuration, written by `skyforge monitor calibrate-files` from the\n\
-         # fault-free observation files {} (navigation {}); all but the thresholds as in\n\
-         # {}. thresholds.sigma: RMS of their B values per signal and elevation bin (lower\n\
-         # edges {:?} deg).\n{ALARM_RULE}",
+         # fault-free observation files {} (navigation {}); all but the sigma tables as in\n\
+         # {base}. thresholds.sigma: RMS of their B values per signal and elevation bin\n\
+         # (lower edges {:?} deg).\n{ALARM_RULE}",
         names.join(", "),
         args.nav.display(),
-        args.config
-            .as_ref()
-            .map_or("the bundled configuration".to_string(), |p| p
-                .display()
-                .to_string()),
         ELEVATION_BINS_DEG
     );
-    let staged = StagedDir::create(&args.out, args.force)?;
     let path = staged.file("monitor.toml");
     std::fs::write(&path, header + &text)
         .with_context(|| format!("cannot write {}", path.display()))?;
     let dir = staged.commit()?;
     println!("calibrated on {}", names.join(", "));
+    for (tag, counts) in &calibrated.values_per_bin {
+        println!(
+            "  {tag:<9} B values per elevation bin {counts:?} (lower edges {ELEVATION_BINS_DEG:?} deg)"
+        );
+    }
     println!("wrote      {}", dir.join("monitor.toml").display());
     Ok(())
 }

@@ -75,32 +75,63 @@ fn accumulate_epoch(cal: &mut SigmaCalibrator, e: &MonitorEpoch) {
     }
 }
 
+/// A configuration calibrated on files, and how many B values each of its sigma bins
+/// rests on (per signal tag, the fewest over the statistics).
+#[derive(Debug, Clone)]
+pub struct FilesCalibration {
+    pub config: MonitorConfig,
+    pub values_per_bin: BTreeMap<String, Vec<u64>>,
+}
+
 /// The fault-free sigma tables of one run recorded in `files` (one per station of
 /// `stations`): what a ground facility measures on its own fault-free data, and what the
 /// signal-level reference uses, where the receivers' observables carry errors the
-/// observation level does not model (docs/integrity.md). `base` gives everything but the
-/// thresholds (stations, common point, time constants); the returned configuration is
-/// `base` with the measured sigma tables.
+/// observation level does not model (docs/integrity.md). The result is `base` (stations,
+/// common point, time constants, false-alarm probability, the smoothed code's floor) with
+/// the measured sigma tables. A signal whose tracks never last long enough to test every
+/// statistic is an error: its satellites would go unmonitored.
 pub fn calibrate_files(
     files: &[ObsFile],
     stations: Vec<Station>,
     ephemerides: Vec<BroadcastEphemeris>,
     base: &MonitorConfig,
-) -> Result<MonitorConfig, String> {
+) -> Result<FilesCalibration, String> {
     let mut measuring = base.clone();
-    measuring.thresholds = config(unit_sigma()).thresholds;
+    measuring.thresholds.sigma = unit_sigma();
     let mut cal = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
     run_files(files, stations, ephemerides, measuring, |e| {
         accumulate_epoch(&mut cal, e)
     })
     .map_err(|e| e.to_string())?;
+    let incomplete = cal.incomplete();
     let sigma = cal.tables();
-    if sigma.is_empty() {
-        return Err("the files gave no armed B value to calibrate on".to_string());
+    if !incomplete.is_empty() || sigma.is_empty() {
+        let tags: Vec<&str> = incomplete.iter().map(|s| s.tag()).collect();
+        return Err(format!(
+            "cannot calibrate{}: every statistic needs fault-free values, and the divergence \
+             is tested only once a track is smoothing_s + divergence_s = {} s old; give files \
+             whose tracks last longer",
+            if tags.is_empty() {
+                String::new()
+            } else {
+                format!(" {}", tags.join(", "))
+            },
+            base.smoothing_s + base.divergence_s
+        ));
     }
-    let mut out = base.clone();
-    out.thresholds = config(sigma).thresholds;
-    Ok(out)
+    let values_per_bin = sigma
+        .keys()
+        .filter_map(|tag| {
+            let signal = tag.parse::<Signal>().ok()?;
+            Some((tag.clone(), cal.counts(signal)))
+        })
+        .collect();
+    let mut config = base.clone();
+    config.thresholds.sigma = sigma;
+    Ok(FilesCalibration {
+        config,
+        values_per_bin,
+    })
 }
 
 /// The fault-free sigma tables of `scenario` (observation level, without fault events)
