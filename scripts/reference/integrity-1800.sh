@@ -49,38 +49,25 @@ for old, new in [
     if old not in s:
         sys.exit("integrity-1800.sh: the bundled lab has no %r" % old)
     s = s.replace(old, new)
+# (kind, station or None for all, satellite, start_s, end_s, value or None); a shorter
+# span keeps the faults that start inside it, ended at its end.
+faults = [
+    ("code-step", "C", "C03", 600.0, 605.0, 30.0),
+    ("phase-jump", "C", "C01", 900.0, 1800.0, 0.25),
+    ("outage", "C", "C02", 1000.0, 1002.0, None),
+    ("iono-ramp", None, "C04", 1200.0, 1373.0, 0.1),
+]
+span = float(os.environ["SPAN"])
 if os.environ["FAULTS"] == "1":
-    s += """
-[[errors.events]]
-kind = "code-step"
-antenna = "C"
-satellite = "C03"
-start_s = 600.0
-end_s = 605.0
-value = 30.0
-
-[[errors.events]]
-kind = "phase-jump"
-antenna = "C"
-satellite = "C01"
-start_s = 900.0
-end_s = 1800.0
-value = 0.25
-
-[[errors.events]]
-kind = "outage"
-antenna = "C"
-satellite = "C02"
-start_s = 1000.0
-end_s = 1002.0
-
-[[errors.events]]
-kind = "iono-ramp"
-satellite = "C04"
-start_s = 1200.0
-end_s = 1373.0
-value = 0.1
-"""
+    for kind, station, sat, start_s, end_s, value in faults:
+        if start_s >= span:
+            continue
+        s += "\n[[errors.events]]\nkind = \"%s\"\n" % kind
+        if station:
+            s += "antenna = \"%s\"\n" % station
+        s += "satellite = \"%s\"\nstart_s = %r\nend_s = %r\n" % (sat, start_s, min(end_s, span))
+        if value is not None:
+            s += "value = %r\n" % value
 print(s, end="")' > "$1"
 }
 
