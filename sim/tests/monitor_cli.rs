@@ -158,11 +158,16 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
     let d = dir.path();
     calibrated_short_lab(d, "1");
     skyforge_ok(&["run", "short.toml", "--out", "sim"], d);
-    let mut args = vec!["monitor", "calibrate-files"];
     let f = files(&d.join("sim"));
-    args.extend(f.iter().map(String::as_str));
-    args.extend(["--nav", "sim/nav.rnx", "--out", "calf"]);
-    skyforge_ok(&args, d);
+    // `monitor ACTION` on the four files with `extra` arguments.
+    let on_files = |action: &str, extra: &[&str]| {
+        let mut args = vec!["monitor", action];
+        args.extend(f.iter().map(String::as_str));
+        args.extend(["--nav", "sim/nav.rnx"]);
+        args.extend(extra);
+        skyforge_ok(&args, d)
+    };
+    on_files("calibrate-files", &["--out", "calf"]);
     // The same run (scenario and seed), once in memory and once through its RINEX files:
     // the same B values but for the files' rounding, so the same sigma tables.
     let in_memory = sigma_columns(&std::fs::read_to_string(d.join("cal/monitor.toml")).unwrap());
@@ -183,25 +188,7 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
     let base = std::fs::read_to_string(d.join("calf/monitor.toml"))
         .unwrap()
         .replace("stations = []\n", "");
-    let positions = ["A", "B", "C", "D"]
-        .iter()
-        .map(|s| {
-            let rinex =
-                std::fs::read_to_string(d.join(format!("sim/observations/{s}.obs.rnx"))).unwrap();
-            let line = rinex
-                .lines()
-                .find(|l| l.contains("APPROX POSITION XYZ"))
-                .unwrap()
-                .to_string();
-            let xyz: Vec<f64> = (0..3)
-                .map(|k| line[14 * k..14 * k + 14].trim().parse().unwrap())
-                .collect();
-            format!(
-                "[[stations]]\nname = \"{s}\"\nposition_ecef_m = [{}, {}, {}]\n",
-                xyz[0], xyz[1], xyz[2]
-            )
-        })
-        .collect::<String>();
+    let positions = support::surveyed_stations(&d.join("sim/observations"));
     let at = base.find("[thresholds]").unwrap();
     let thresholds = base[at..].replace("false_alarm = 0.0000001", "false_alarm = 0.00001");
     assert_ne!(thresholds, &base[at..]);
@@ -210,31 +197,14 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
         format!("{}{positions}\n{thresholds}", &base[..at]),
     )
     .unwrap();
-    let mut args = vec!["monitor", "calibrate-files"];
-    args.extend(f.iter().map(String::as_str));
-    args.extend([
-        "--nav",
-        "sim/nav.rnx",
-        "--config",
-        "base.toml",
-        "--out",
-        "calg",
-    ]);
-    skyforge_ok(&args, d);
+    on_files(
+        "calibrate-files",
+        &["--config", "base.toml", "--out", "calg"],
+    );
     let written = std::fs::read_to_string(d.join("calg/monitor.toml")).unwrap();
     assert_eq!(written.matches("[[stations]]").count(), 4, "{written}");
     assert!(written.contains("false_alarm = 0.00001"), "{written}");
-    let mut args = vec!["monitor", "run"];
-    args.extend(f.iter().map(String::as_str));
-    args.extend([
-        "--nav",
-        "sim/nav.rnx",
-        "--config",
-        "calg/monitor.toml",
-        "--out",
-        "mon",
-    ]);
-    skyforge_ok(&args, d);
+    on_files("run", &["--config", "calg/monitor.toml", "--out", "mon"]);
 }
 
 #[test]

@@ -18,21 +18,7 @@ use support::skyforge_ok;
 /// The bundled monitor configuration with the surveyed station positions: the truth
 /// RINEX headers' APPROX POSITION XYZ in `sim`.
 fn surveyed(sim: &Path) -> String {
-    let mut stations = String::new();
-    for s in ["A", "B", "C", "D"] {
-        let header = std::fs::read_to_string(sim.join(format!("{s}.obs.rnx"))).unwrap();
-        let line = header
-            .lines()
-            .find(|l| l.contains("APPROX POSITION XYZ"))
-            .unwrap();
-        let xyz: Vec<f64> = (0..3)
-            .map(|k| line[14 * k..14 * k + 14].trim().parse().unwrap())
-            .collect();
-        stations += &format!(
-            "[[stations]]\nname = \"{s}\"\nposition_ecef_m = [{:?}, {:?}, {:?}]\n",
-            xyz[0], xyz[1], xyz[2]
-        );
-    }
+    let stations = support::surveyed_stations(sim);
     let bundled = skyforge_scenarios::BUNDLED_MONITOR_CONFIG.replace("stations = []\n", "");
     let at = bundled.find("[thresholds]").unwrap();
     format!("{}{stations}\n{}", &bundled[..at], &bundled[at..])

@@ -314,3 +314,24 @@ pub fn small_study(dir: &Path, seeds: u32) -> String {
     std::fs::write(dir.join("small.toml"), &study).unwrap();
     study
 }
+
+/// `[[stations]]` tables of stations A-D at the positions in the `APPROX POSITION XYZ`
+/// headers of `dir/{A,B,C,D}.obs.rnx` (surveyed positions, for a monitor configuration).
+pub fn surveyed_stations(dir: &Path) -> String {
+    let mut stations = String::new();
+    for s in ["A", "B", "C", "D"] {
+        let header = std::fs::read_to_string(dir.join(format!("{s}.obs.rnx"))).unwrap();
+        let line = header
+            .lines()
+            .find(|l| l.contains("APPROX POSITION XYZ"))
+            .unwrap();
+        let xyz: Vec<f64> = (0..3)
+            .map(|k| line[14 * k..14 * k + 14].trim().parse().unwrap())
+            .collect();
+        stations += &format!(
+            "[[stations]]\nname = \"{s}\"\nposition_ecef_m = [{:?}, {:?}, {:?}]\n",
+            xyz[0], xyz[1], xyz[2]
+        );
+    }
+    stations
+}
