@@ -238,6 +238,10 @@ pub enum MonitorAction {
     CalibrateFiles {
         #[command(flatten)]
         args: MonitorArgs,
+        /// Give the BeiDou GEOs sigma tables of their own (thresholds.sigma_geo): a static
+        /// station sees their code errors wander far more than the other satellites'.
+        #[arg(long)]
+        geo_apart: bool,
     },
 }
 

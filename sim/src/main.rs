@@ -25,7 +25,8 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Receive { args } => Some(args.out.clone()),
         cli::Command::Attitude { args } => Some(args.out.clone()),
         cli::Command::Monitor {
-            action: cli::MonitorAction::Run { args } | cli::MonitorAction::CalibrateFiles { args },
+            action:
+                cli::MonitorAction::Run { args } | cli::MonitorAction::CalibrateFiles { args, .. },
         } => Some(args.out.clone()),
         cli::Command::Monitor {
             action: cli::MonitorAction::Calibrate { run, .. },

@@ -205,6 +205,32 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
     assert_eq!(written.matches("[[stations]]").count(), 4, "{written}");
     assert!(written.contains("false_alarm = 0.00001"), "{written}");
     on_files("run", &["--config", "calg/monitor.toml", "--out", "mon"]);
+    // With the GEOs apart: BeiDou gets a GEO table, GPS none; the other BeiDou satellites'
+    // table leaves the GEOs out; the result runs.
+    on_files("calibrate-files", &["--geo-apart", "--out", "calh"]);
+    let apart: toml::Table =
+        toml::from_str(&std::fs::read_to_string(d.join("calh/monitor.toml")).unwrap()).unwrap();
+    let geo = apart["thresholds"]["sigma_geo"].as_table().unwrap();
+    assert_eq!(geo.keys().collect::<Vec<_>>(), ["bds-b1i"], "{apart}");
+    let code_of = |t: &toml::Value| t["code_m"].clone();
+    assert_ne!(
+        code_of(&apart["thresholds"]["sigma"]["bds-b1i"]),
+        code_of(&geo["bds-b1i"])
+    );
+    let together: toml::Table =
+        toml::from_str(&std::fs::read_to_string(d.join("calf/monitor.toml")).unwrap()).unwrap();
+    assert_ne!(
+        code_of(&apart["thresholds"]["sigma"]["bds-b1i"]),
+        code_of(&together["thresholds"]["sigma"]["bds-b1i"])
+    );
+    assert_eq!(
+        apart["thresholds"]["sigma"]["gps-l1ca"],
+        together["thresholds"]["sigma"]["gps-l1ca"]
+    );
+    on_files(
+        "run",
+        &["--config", "calh/monitor.toml", "--out", "mon-apart"],
+    );
 }
 
 #[test]

@@ -13,7 +13,7 @@ use hifitime::Epoch;
 use skyforge_orbits::Mat3;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::atmosphere::standard_slant_delay_m;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, OrbitClass, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use skyforge_orbits::time::TimeOrigin;
@@ -96,6 +96,8 @@ pub struct StationValues {
 pub struct SatelliteEpoch {
     pub sat: SatId,
     pub signal: Signal,
+    /// A BeiDou GEO (its thresholds come from the GEO sigma tables where there are any).
+    pub geo: bool,
     /// Elevation at the common point (deg).
     pub elevation_deg: f64,
     /// Thresholds of the B values at this elevation.
@@ -259,13 +261,14 @@ impl Monitor {
             self.tracks.remove(&key);
             return None;
         }
+        let geo = eph.eph.class == OrbitClass::BeidouGeo;
         let threshold = self
             .config
             .thresholds
-            .at(self.multiplier, key.1, elevation_deg)?;
+            .at(self.multiplier, key.1, geo, elevation_deg)?;
         self.track(key, t_s, &mapped, lost.contains(&true));
         let track = self.tracks.get(&key)?;
-        let mut outcome = self.outcome(key, elevation_deg, threshold, track, &mapped);
+        let mut outcome = self.outcome(key, geo, elevation_deg, threshold, track, &mapped);
         for (v, lost) in outcome.stations.iter_mut().zip(lost) {
             if let Some(v) = v {
                 v.loss_of_lock = lost;
@@ -331,6 +334,7 @@ impl Monitor {
     fn outcome(
         &self,
         key: (SatId, Signal),
+        geo: bool,
         elevation_deg: f64,
         threshold: PerStatistic<f64>,
         track: &Track,
@@ -384,6 +388,7 @@ impl Monitor {
         SatelliteEpoch {
             sat: key.0,
             signal: key.1,
+            geo,
             elevation_deg,
             threshold,
             armed,

@@ -112,6 +112,11 @@ pub struct ThresholdConfig {
     /// The fault-free sigma table of each signal, by its tag (`gps-l1ca`, `bds-b1i`);
     /// satellites of a signal without one are not monitored.
     pub sigma: BTreeMap<String, SigmaTable>,
+    /// Sigma tables of the BeiDou GEOs alone, by signal tag (`monitor calibrate-files
+    /// --geo-apart`): a static station sees their code errors wander far more than the
+    /// other satellites' (docs/integrity.md). GEOs of a signal without one use `sigma`.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub sigma_geo: BTreeMap<String, SigmaTable>,
 }
 
 impl ThresholdConfig {
@@ -120,10 +125,17 @@ impl ThresholdConfig {
         chi2_threshold(1, self.false_alarm).sqrt()
     }
 
-    /// Thresholds of the four B values of `signal` at `elevation_deg`, given the
-    /// multiplier `k`; `None` without a sigma table for the signal.
-    pub fn at(&self, k: f64, signal: Signal, elevation_deg: f64) -> Option<PerStatistic<f64>> {
-        let table = self.sigma.get(signal.tag())?;
+    /// Thresholds of the four B values of `signal` at `elevation_deg` (from a BeiDou GEO
+    /// when `geo`), given the multiplier `k`; `None` without a sigma table for the signal.
+    pub fn at(
+        &self,
+        k: f64,
+        signal: Signal,
+        geo: bool,
+        elevation_deg: f64,
+    ) -> Option<PerStatistic<f64>> {
+        let own = geo.then(|| self.sigma_geo.get(signal.tag())).flatten();
+        let table = own.or_else(|| self.sigma.get(signal.tag()))?;
         Some(Statistic::ALL.map(|stat| {
             let spread = k * table.sigma(stat, elevation_deg);
             match stat {
@@ -152,10 +164,13 @@ impl ThresholdConfig {
                 "sigma: no table (one per signal: [thresholds.sigma.gps-l1ca], ...)".into(),
             );
         }
-        for (tag, table) in &self.sigma {
-            tag.parse::<Signal>()
-                .map_err(|_| format!("sigma.{tag}: not a signal (gps-l1ca, bds-b1i, gps-l2)"))?;
-            table.check().map_err(|e| format!("sigma.{tag}: {e}"))?;
+        for (key, tables) in [("sigma", &self.sigma), ("sigma_geo", &self.sigma_geo)] {
+            for (tag, table) in tables {
+                tag.parse::<Signal>().map_err(|_| {
+                    format!("{key}.{tag}: not a signal (gps-l1ca, bds-b1i, gps-l2)")
+                })?;
+                table.check().map_err(|e| format!("{key}.{tag}: {e}"))?;
+            }
         }
         Ok(())
     }
@@ -304,12 +319,13 @@ mod tests {
             false_alarm: 0.05,
             smoothed_code_m: 0.5,
             sigma: BTreeMap::from([("gps-l1ca".to_string(), table())]),
+            sigma_geo: BTreeMap::new(),
         };
         assert!(cfg.check().is_ok());
         let k = cfg.multiplier();
         assert!((k - 1.959_964).abs() < 1e-4, "{k}");
-        assert!(cfg.at(k, Signal::BdsB1I, 70.0).is_none());
-        let t = cfg.at(k, Signal::GpsL1Ca, 70.0).unwrap();
+        assert!(cfg.at(k, Signal::BdsB1I, false, 70.0).is_none());
+        let t = cfg.at(k, Signal::GpsL1Ca, false, 70.0).unwrap();
         assert!((t[Statistic::Code.index()] - 0.3 * k).abs() < 1e-12);
         assert_eq!(t[Statistic::SmoothedCode.index()], 0.5);
         // A smoothed-code spread wider than the paper's limit allows sets the threshold.
@@ -319,8 +335,35 @@ mod tests {
             sigma: BTreeMap::from([("gps-l1ca".to_string(), wide)]),
             ..cfg
         };
-        let t = cfg.at(k, Signal::GpsL1Ca, 70.0).unwrap();
+        let t = cfg.at(k, Signal::GpsL1Ca, false, 70.0).unwrap();
         assert!((t[Statistic::SmoothedCode.index()] - 0.4 * k).abs() < 1e-12);
+    }
+
+    #[test]
+    fn geos_take_their_own_table_where_there_is_one() {
+        let mut geo = table();
+        geo.code_m = vec![2.0; 3];
+        let cfg = ThresholdConfig {
+            false_alarm: 0.05,
+            smoothed_code_m: 0.5,
+            sigma: BTreeMap::from([
+                ("bds-b1i".to_string(), table()),
+                ("gps-l1ca".to_string(), table()),
+            ]),
+            sigma_geo: BTreeMap::from([("bds-b1i".to_string(), geo)]),
+        };
+        assert!(cfg.check().is_ok());
+        let k = cfg.multiplier();
+        let code = |signal, geo| cfg.at(k, signal, geo, 70.0).unwrap()[Statistic::Code.index()];
+        assert!((code(Signal::BdsB1I, true) - 2.0 * k).abs() < 1e-12);
+        assert!((code(Signal::BdsB1I, false) - 0.3 * k).abs() < 1e-12);
+        // No GEO table for the signal: the common one.
+        assert!((code(Signal::GpsL1Ca, true) - 0.3 * k).abs() < 1e-12);
+        let bad = ThresholdConfig {
+            sigma_geo: BTreeMap::from([("gal-e1".to_string(), table())]),
+            ..cfg
+        };
+        assert!(bad.check().unwrap_err().contains("sigma_geo.gal-e1"));
     }
 
     #[test]
@@ -332,6 +375,7 @@ mod tests {
             false_alarm: 1e-7,
             smoothed_code_m: 0.5,
             sigma: BTreeMap::from([("gal-e1".to_string(), table())]),
+            sigma_geo: BTreeMap::new(),
         };
         assert!(
             cfg.check()

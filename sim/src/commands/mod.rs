@@ -69,8 +69,8 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             action: MonitorAction::Calibrate { run, seeds },
         } => monitor::calibrate(&run, seeds),
         Command::Monitor {
-            action: MonitorAction::CalibrateFiles { args },
-        } => monitor::calibrate_files(&args),
+            action: MonitorAction::CalibrateFiles { args, geo_apart },
+        } => monitor::calibrate_files(&args, geo_apart),
         Command::Report {
             dir,
             out,

@@ -158,7 +158,7 @@ pub fn calibrate(args: &ScenarioRun, seeds: u64) -> anyhow::Result<()> {
 }
 
 /// Run `skyforge monitor calibrate-files`.
-pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
+pub fn calibrate_files(args: &MonitorArgs, geo_apart: bool) -> anyhow::Result<()> {
     let inputs = read_inputs(args)?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let calibrated = measure_files(
@@ -166,6 +166,7 @@ pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
         inputs.stations,
         inputs.ephemerides,
         &inputs.config,
+        geo_apart,
     )
     .map_err(BadInput)?;
     let text = toml::to_string(&calibrated.config).context("cannot encode the configuration")?;
@@ -178,10 +179,15 @@ pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
         "# Monitor configuration, written by `skyforge monitor calibrate-files` from the\n\
          # fault-free observation files {} (navigation {}); all but the sigma tables as in\n\
          # {base}. thresholds.sigma: RMS of their B values per signal and elevation bin\n\
-         # (lower edges {:?} deg).\n{ALARM_RULE}",
+         # (lower edges {:?} deg){}.\n{ALARM_RULE}",
         names.join(", "),
         args.nav.display(),
-        ELEVATION_BINS_DEG
+        ELEVATION_BINS_DEG,
+        if geo_apart {
+            ";\n# thresholds.sigma_geo: the same of the BeiDou GEOs, left out of thresholds.sigma"
+        } else {
+            ""
+        }
     );
     let path = staged.file("monitor.toml");
     std::fs::write(&path, header + &text)
@@ -190,7 +196,7 @@ pub fn calibrate_files(args: &MonitorArgs) -> anyhow::Result<()> {
     println!("calibrated on {}", names.join(", "));
     for (tag, counts) in &calibrated.values_per_bin {
         println!(
-            "  {tag:<9} B values per elevation bin {counts:?} (lower edges {ELEVATION_BINS_DEG:?} deg)"
+            "  {tag:<17} B values per elevation bin {counts:?} (lower edges {ELEVATION_BINS_DEG:?} deg)"
         );
     }
     println!("wrote      {}", dir.join("monitor.toml").display());

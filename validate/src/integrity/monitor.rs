@@ -6,7 +6,8 @@ use rayon::prelude::*;
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_receiver::integrity::files::run_files;
 use skyforge_receiver::integrity::{
-    MonitorConfig, MonitorEpoch, SigmaCalibrator, SigmaTable, Station, Statistic, ThresholdConfig,
+    MonitorConfig, MonitorEpoch, SatelliteEpoch, SigmaCalibrator, SigmaTable, Station, Statistic,
+    ThresholdConfig,
 };
 use skyforge_scenarios::Scenario;
 use skyforge_signals::observation::ObsFile;
@@ -33,6 +34,7 @@ pub fn config(sigma: Sigmas) -> MonitorConfig {
         false_alarm: FALSE_ALARM,
         smoothed_code_m: SMOOTHED_THRESHOLD_M,
         sigma,
+        sigma_geo: Sigmas::new(),
     })
 }
 
@@ -58,13 +60,17 @@ fn unit_sigma() -> Sigmas {
 /// Feed the armed B values of `epochs` to `cal`.
 pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
     for e in epochs {
-        accumulate_epoch(cal, e);
+        accumulate_epoch(cal, e, |_| true);
     }
 }
 
-/// Feed the armed B values of one epoch to `cal`.
-fn accumulate_epoch(cal: &mut SigmaCalibrator, e: &MonitorEpoch) {
-    for s in &e.sats {
+/// Feed the armed B values of the satellites of one epoch that `keep` takes to `cal`.
+fn accumulate_epoch(
+    cal: &mut SigmaCalibrator,
+    e: &MonitorEpoch,
+    keep: impl Fn(&SatelliteEpoch) -> bool,
+) {
+    for s in e.sats.iter().filter(|s| keep(s)) {
         for v in s.stations.iter().flatten() {
             for stat in Statistic::ALL {
                 if s.armed[stat.index()] {
@@ -76,7 +82,8 @@ fn accumulate_epoch(cal: &mut SigmaCalibrator, e: &MonitorEpoch) {
 }
 
 /// A configuration calibrated on files, and how many B values each of its sigma bins
-/// rests on (per signal tag, the fewest over the statistics).
+/// rests on (per table name, `sigma.<tag>` or `sigma_geo.<tag>`; the fewest over the
+/// statistics).
 #[derive(Debug, Clone)]
 pub struct FilesCalibration {
     pub config: MonitorConfig,
@@ -88,50 +95,71 @@ pub struct FilesCalibration {
 /// signal-level reference uses, where the receivers' observables carry errors the
 /// observation level does not model (docs/integrity.md). The result is `base` (stations,
 /// common point, time constants, false-alarm probability, the smoothed code's floor) with
-/// the measured sigma tables. A signal whose tracks never last long enough to test every
-/// statistic is an error: its satellites would go unmonitored.
+/// the measured sigma tables; with `geo_apart` the BeiDou GEOs get tables of their own
+/// (`sigma_geo`) and the others' leave them out. A signal whose tracks never last long
+/// enough to test every statistic is an error: its satellites would go unmonitored.
 pub fn calibrate_files(
     files: &[ObsFile],
     stations: Vec<Station>,
     ephemerides: Vec<BroadcastEphemeris>,
     base: &MonitorConfig,
+    geo_apart: bool,
 ) -> Result<FilesCalibration, String> {
     let mut measuring = base.clone();
     measuring.thresholds.sigma = unit_sigma();
-    let mut cal = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
+    measuring.thresholds.sigma_geo = Sigmas::new();
+    let mut common = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
+    let mut geo = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
     run_files(files, stations, ephemerides, measuring, |e| {
-        accumulate_epoch(&mut cal, e)
+        accumulate_epoch(&mut common, e, |s| !(geo_apart && s.geo));
+        accumulate_epoch(&mut geo, e, |s| geo_apart && s.geo);
     })
     .map_err(|e| e.to_string())?;
-    let incomplete = cal.incomplete();
-    let sigma = cal.tables();
-    if !incomplete.is_empty() || sigma.is_empty() {
-        let tags: Vec<&str> = incomplete.iter().map(|s| s.tag()).collect();
-        return Err(format!(
-            "cannot calibrate{}: every statistic needs fault-free values, and the divergence \
-             is tested only once a track is smoothing_s + divergence_s = {} s old; give files \
-             whose tracks last longer",
-            if tags.is_empty() {
-                String::new()
-            } else {
-                format!(" {}", tags.join(", "))
-            },
-            base.smoothing_s + base.divergence_s
-        ));
-    }
-    let values_per_bin = sigma
-        .keys()
-        .filter_map(|tag| {
-            let signal = tag.parse::<Signal>().ok()?;
-            Some((tag.clone(), cal.counts(signal)))
-        })
-        .collect();
+    let (sigma, mut values_per_bin) = complete_tables(&common, "sigma", base)?;
     let mut config = base.clone();
     config.thresholds.sigma = sigma;
+    config.thresholds.sigma_geo = Sigmas::new();
+    if geo_apart {
+        let (sigma_geo, counts) = complete_tables(&geo, "sigma_geo", base)?;
+        config.thresholds.sigma_geo = sigma_geo;
+        values_per_bin.extend(counts);
+    }
     Ok(FilesCalibration {
         config,
         values_per_bin,
     })
+}
+
+/// The tables of `cal` (named `key`), and the values per bin of each; an error when a
+/// signal lacks a statistic or no signal has any.
+fn complete_tables(
+    cal: &SigmaCalibrator,
+    key: &str,
+    base: &MonitorConfig,
+) -> Result<(Sigmas, BTreeMap<String, Vec<u64>>), String> {
+    let incomplete: Vec<&str> = cal.incomplete().iter().map(|s| s.tag()).collect();
+    let sigma = cal.tables();
+    if !incomplete.is_empty() || sigma.is_empty() {
+        return Err(format!(
+            "cannot calibrate {key}{}: every statistic needs fault-free values, and the \
+             divergence is tested only once a track is smoothing_s + divergence_s = {} s old; \
+             give files whose tracks last longer",
+            if incomplete.is_empty() {
+                String::new()
+            } else {
+                format!(" of {}", incomplete.join(", "))
+            },
+            base.smoothing_s + base.divergence_s
+        ));
+    }
+    let counts = sigma
+        .keys()
+        .filter_map(|tag| {
+            let signal = tag.parse::<Signal>().ok()?;
+            Some((format!("{key}.{tag}"), cal.counts(signal)))
+        })
+        .collect();
+    Ok((sigma, counts))
 }
 
 /// The fault-free sigma tables of `scenario` (observation level, without fault events)
