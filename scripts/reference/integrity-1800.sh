@@ -13,7 +13,8 @@
 # the lab's start, seed 2003 (assumed, chosen before the first calibrated run: the
 # receivers' signal-level errors, the GEOs' cross-correlation above all, are not in the
 # observation-level calibration the bundled thresholds come from; docs/integrity.md).
-# Set BUNDLED=1 to monitor with the bundled (observation-level) thresholds instead.
+# Set BUNDLED=1 to monitor with the bundled (observation-level) thresholds instead, or
+# GEO_APART=1 to calibrate the BeiDou GEOs' thresholds apart (calibrate-files --geo-apart).
 #
 # Faults at station C (assumed, chosen before the first run): the paper's 30 m multipath
 # on C03 (600-605 s), a quarter-cycle carrier jump on C01 from 900 s (whole cycles are
@@ -94,7 +95,11 @@ else
     scenario calibration.toml "-$span" 2003 0
     "$sky" synth calibration.toml --out calibration --receive --force
     surveyed calibration > calibration-base.toml
-    "$sky" monitor calibrate-files calibration/receive/{A,B,C,D}.obs.rnx \
+    apart=()
+    if [ "${GEO_APART:-0}" = 1 ]; then
+        apart=(--geo-apart)
+    fi
+    "$sky" monitor calibrate-files calibration/receive/{A,B,C,D}.obs.rnx "${apart[@]}" \
         --nav calibration/nav.rnx --config calibration-base.toml --out thresholds --force
     config=thresholds/monitor.toml
 fi
