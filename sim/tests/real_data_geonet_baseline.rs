@@ -22,7 +22,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_receiver::baseline::ElevationNoise;
 use skyforge_receiver::relative::config::Constraint;
-use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna, run_files};
+use skyforge_receiver::relative::files::{BodyGeometryFile, run_files};
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_signals::observation::read_obs_file;
 use skyforge_signals::signal::Signal;
@@ -137,18 +137,13 @@ fn skyforge(
     let nav = read_nav_file(&dir.join("07590920.05n")).unwrap_or_else(|e| panic!("{e}"));
     // The attitude stage needs a body frame: the master's ECEF axes, the rover at the
     // header difference. Nothing is constrained by it (`constraint = "none"`).
-    let geometry = BodyGeometryFile {
-        antennas: vec![
-            GeometryAntenna {
-                name: "3040".into(),
-                position_body_m: [0.0; 3],
-            },
-            GeometryAntenna {
-                name: "0759".into(),
-                position_body_m: [0, 1, 2].map(|i| ROVER_ECEF_M[i] - BASE_ECEF_M[i]),
-            },
-        ],
-    };
+    let geometry = BodyGeometryFile::from_positions([
+        ("3040".to_string(), Vec3::zeros()),
+        (
+            "0759".to_string(),
+            Vec3::from(ROVER_ECEF_M) - Vec3::from(BASE_ECEF_M),
+        ),
+    ]);
     let day_start =
         hifitime::Epoch::from_gregorian(2005, 4, 2, 0, 0, 0, 0, hifitime::TimeScale::GPST);
     let mut out = BTreeMap::new();

@@ -78,6 +78,15 @@ pub struct KeplerElements {
     pub omega_dot: f64,
 }
 
+impl KeplerElements {
+    /// The corrected mean motion n = sqrt(mu / A^3) + delta_n (rad/s), A = sqrt_a^2
+    /// (IS-GPS-200 table 20-IV; BDS-SIS-ICD-B1I-3.0 table 5-11).
+    pub fn mean_motion_rad_s(&self, gm: f64) -> f64 {
+        let a_m = self.sqrt_a * self.sqrt_a;
+        (gm / (a_m * a_m * a_m)).sqrt() + self.delta_n
+    }
+}
+
 /// The harmonic correction amplitudes of an ephemeris: argument of latitude and
 /// inclination (rad), radius (m).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -194,7 +203,7 @@ impl BroadcastEphemeris {
         let geo = self.class == OrbitClass::BeidouGeo;
         let k = Precomputed {
             a_m,
-            n_rad_s: (gm / (a_m * a_m * a_m)).sqrt() + self.orbit.delta_n,
+            n_rad_s: self.orbit.mean_motion_rad_s(gm),
             sqrt_1_e2: (1.0 - self.orbit.e * self.orbit.e).sqrt(),
             node_at_toe_rad: self.orbit.omega0 - omega_e * toe_sow,
             node_rate_rad_s: if geo {

@@ -9,6 +9,7 @@
 
 use crate::Vec3;
 use crate::constants::{WGS84_A_M, WGS84_F};
+use crate::frames::ned::c_ecef_ned;
 
 /// Geodetic coordinates on WGS-84 (radians, metres).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,11 +29,10 @@ impl Geodetic {
         }
     }
 
-    /// The unit ellipsoidal normal (local up, ECEF) at this latitude and longitude.
+    /// The unit ellipsoidal normal (local up, ECEF) at this latitude and longitude: minus
+    /// the NED frame's down axis.
     pub fn up(&self) -> Vec3 {
-        let (sin_lat, cos_lat) = self.lat_rad.sin_cos();
-        let (sin_lon, cos_lon) = self.lon_rad.sin_cos();
-        Vec3::new(cos_lat * cos_lon, cos_lat * sin_lon, sin_lat)
+        -c_ecef_ned(self.lat_rad, self.lon_rad).row(2).transpose()
     }
 }
 

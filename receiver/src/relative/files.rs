@@ -74,6 +74,19 @@ pub enum FilesError {
 }
 
 impl BodyGeometryFile {
+    /// The antennas `(name, body-frame position)`, master first.
+    pub fn from_positions(antennas: impl IntoIterator<Item = (String, Vec3)>) -> Self {
+        Self {
+            antennas: antennas
+                .into_iter()
+                .map(|(name, p)| GeometryAntenna {
+                    name,
+                    position_body_m: [p.x, p.y, p.z],
+                })
+                .collect(),
+        }
+    }
+
     /// Read and check the geometry file at `path`.
     pub fn read(path: &Path) -> Result<Self, FilesError> {
         let error = |message: String| FilesError::Geometry {
@@ -604,18 +617,10 @@ mod tests {
             }
         };
         let truth = rover_r - master_r;
-        let geometry = BodyGeometryFile {
-            antennas: vec![
-                GeometryAntenna {
-                    name: "master".into(),
-                    position_body_m: [0.0; 3],
-                },
-                GeometryAntenna {
-                    name: "rover".into(),
-                    position_body_m: [truth.x, truth.y, truth.z],
-                },
-            ],
-        };
+        let geometry = BodyGeometryFile::from_positions([
+            ("master".to_string(), Vec3::zeros()),
+            ("rover".to_string(), truth),
+        ]);
         let error_m = |troposphere: bool| {
             let config = RelativeConfig {
                 signals: vec![Signal::GpsL1Ca],

@@ -12,7 +12,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_orbits::Vec3;
 use skyforge_receiver::pipeline::assistance_toml;
-use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
+use skyforge_receiver::relative::files::BodyGeometryFile;
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
@@ -275,16 +275,12 @@ pub fn synthesise(
 /// The nominal body geometry of the scenario's antennas (what `skyforge attitude
 /// --geometry` reads): positions without the offsets the scenario may add to the truth.
 fn write_geometry(scenario: &Scenario, path: &Path) -> anyhow::Result<()> {
-    let file = BodyGeometryFile {
-        antennas: scenario
+    let file = BodyGeometryFile::from_positions(
+        scenario
             .antennas
             .iter()
-            .map(|a| GeometryAntenna {
-                name: a.name.clone(),
-                position_body_m: a.position_body_m,
-            })
-            .collect(),
-    };
+            .map(|a| (a.name.clone(), Vec3::from(a.position_body_m))),
+    );
     let text = format!(
         "# Nominal body geometry of scenario {} (antenna phase-centre reference points, body\n\
          # frame, m; master first), for `skyforge attitude --geometry`.\n{}",

@@ -8,7 +8,7 @@ use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_receiver::attitude::BodyGeometry;
 use skyforge_receiver::geometry_offset::stacked_ukf::OffsetState;
-use skyforge_receiver::relative::files::{BodyGeometryFile, GeometryAntenna};
+use skyforge_receiver::relative::files::BodyGeometryFile;
 use std::path::Path;
 
 /// One update: the time of the newest epoch and the estimate.
@@ -139,21 +139,11 @@ pub fn write_h5(path: &Path, rows: &[OffsetRow]) -> hdf5::Result<()> {
 /// master plus its corrected baseline.
 pub fn corrected_file(original: &BodyGeometryFile, corrected: &BodyGeometry) -> BodyGeometryFile {
     let master = original.positions().first().copied().unwrap_or_default();
-    BodyGeometryFile {
-        antennas: original
-            .antennas
-            .iter()
-            .enumerate()
-            .map(|(k, a)| {
-                let p = match k.checked_sub(1).and_then(|i| corrected.baselines().get(i)) {
-                    Some(b) => master + b,
-                    None => master,
-                };
-                GeometryAntenna {
-                    name: a.name.clone(),
-                    position_body_m: [p.x, p.y, p.z],
-                }
-            })
-            .collect(),
-    }
+    BodyGeometryFile::from_positions(original.antennas.iter().enumerate().map(|(k, a)| {
+        let p = match k.checked_sub(1).and_then(|i| corrected.baselines().get(i)) {
+            Some(b) => master + b,
+            None => master,
+        };
+        (a.name.clone(), p)
+    }))
 }

@@ -11,9 +11,7 @@ use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_receiver::attitude::{angle_error, wrap_diff};
-use skyforge_receiver::relative::files::{
-    BodyGeometryFile, EpochOutcome, FilesError, GeometryAntenna, run_files,
-};
+use skyforge_receiver::relative::files::{BodyGeometryFile, EpochOutcome, FilesError, run_files};
 use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
 use skyforge_signals::observation::{ObsFile, ObsRecord};
 use skyforge_signals::signal::Signal;
@@ -201,17 +199,12 @@ impl IntegerCheck {
 
 /// The nominal body geometry of `run` as `skyforge synth` writes it.
 pub fn nominal_geometry(run: &ObservationRun) -> BodyGeometryFile {
-    BodyGeometryFile {
-        antennas: run
-            .antennas
+    BodyGeometryFile::from_positions(
+        run.antennas
             .iter()
-            .zip(&run.nominal_body_m)
-            .map(|(name, p)| GeometryAntenna {
-                name: name.clone(),
-                position_body_m: [p.x, p.y, p.z],
-            })
-            .collect(),
-    }
+            .cloned()
+            .zip(run.nominal_body_m.iter().copied()),
+    )
 }
 
 /// The truth at one epoch: true ECEF and NED baselines and the true attitude from NED

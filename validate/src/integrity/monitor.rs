@@ -59,23 +59,17 @@ fn unit_sigma() -> Sigmas {
 
 /// Feed the armed B values of `epochs` to `cal`.
 pub fn accumulate(cal: &mut SigmaCalibrator, epochs: &[MonitorEpoch]) {
-    for e in epochs {
-        accumulate_epoch(cal, e, |_| true);
+    for s in epochs.iter().flat_map(|e| &e.sats) {
+        accumulate_satellite(cal, s);
     }
 }
 
-/// Feed the armed B values of the satellites of one epoch that `keep` takes to `cal`.
-fn accumulate_epoch(
-    cal: &mut SigmaCalibrator,
-    e: &MonitorEpoch,
-    keep: impl Fn(&SatelliteEpoch) -> bool,
-) {
-    for s in e.sats.iter().filter(|s| keep(s)) {
-        for v in s.stations.iter().flatten() {
-            for stat in Statistic::ALL {
-                if s.armed[stat.index()] {
-                    cal.add(s.signal, stat, s.elevation_deg, v.b[stat.index()]);
-                }
+/// Feed the armed B values of one satellite's epoch to `cal`.
+fn accumulate_satellite(cal: &mut SigmaCalibrator, s: &SatelliteEpoch) {
+    for v in s.stations.iter().flatten() {
+        for stat in Statistic::ALL {
+            if s.armed[stat.index()] {
+                cal.add(s.signal, stat, s.elevation_deg, v.b[stat.index()]);
             }
         }
     }
@@ -111,8 +105,14 @@ pub fn calibrate_files(
     let mut common = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
     let mut geo = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
     run_files(files, stations, ephemerides, measuring, |e| {
-        accumulate_epoch(&mut common, e, |s| !(geo_apart && s.geo));
-        accumulate_epoch(&mut geo, e, |s| geo_apart && s.geo);
+        for s in &e.sats {
+            let cal = if geo_apart && s.geo {
+                &mut geo
+            } else {
+                &mut common
+            };
+            accumulate_satellite(cal, s);
+        }
     })
     .map_err(|e| e.to_string())?;
     let (sigma, mut values_per_bin) = complete_tables(&common, "sigma", base)?;
@@ -152,12 +152,10 @@ fn complete_tables(
             base.smoothing_s + base.divergence_s
         ));
     }
-    let counts = sigma
-        .keys()
-        .filter_map(|tag| {
-            let signal = tag.parse::<Signal>().ok()?;
-            Some((format!("{key}.{tag}"), cal.counts(signal)))
-        })
+    let counts = Signal::ALL
+        .iter()
+        .filter(|s| sigma.contains_key(s.tag()))
+        .map(|&s| (format!("{key}.{}", s.tag()), cal.counts(s)))
         .collect();
     Ok((sigma, counts))
 }

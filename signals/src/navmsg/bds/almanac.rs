@@ -136,8 +136,7 @@ fn fields_at(
 ) -> Result<AlmanacFields, BdsNavError> {
     let dt = (toa - eph.toe).to_seconds();
     let toe_sow = bdt_week_sow(eph.toe).1;
-    let a_m = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
-    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.orbit.delta_n;
+    let n_rad_s = eph.orbit.mean_motion_rad_s(GM_BDS);
     let sqrt_a_alm = (GM_BDS / (n_rad_s * n_rad_s)).cbrt().sqrt();
     let (node_ecef, incl, argp, omega_dot) = match eph.class {
         OrbitClass::Standard => (

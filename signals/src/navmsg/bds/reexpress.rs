@@ -90,8 +90,7 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
         return Ok(out);
     }
     out.toe = toe;
-    let a_m = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
-    let n_rad_s = (GM_BDS / (a_m * a_m * a_m)).sqrt() + eph.orbit.delta_n;
+    let n_rad_s = eph.orbit.mean_motion_rad_s(GM_BDS);
     out.orbit.m0 = wrap_pi(eph.orbit.m0 + n_rad_s * d);
     let toe_sow = bdt_week_sow(eph.toe).1;
     let new_toe_sow = bdt_week_sow(toe).1;
