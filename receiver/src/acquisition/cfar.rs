@@ -36,15 +36,22 @@ pub fn erlang_tail(k: usize, g: f64) -> f64 {
     (max + sum.ln() - g).exp()
 }
 
+/// Checks `0 < p < 1`; the error names the probability.
+fn open_probability(name: &'static str, p: f64) -> Result<(), AcquisitionError> {
+    if p > 0.0 && p < 1.0 {
+        Ok(())
+    } else {
+        Err(AcquisitionError::BadParameter {
+            name,
+            value: p,
+            allowed: "0 < p < 1",
+        })
+    }
+}
+
 /// The threshold `g` with `P(S > g) = pfa_cell` for `K = k` non-coherent sums.
 pub fn cell_threshold(k: usize, pfa_cell: f64) -> Result<f64, AcquisitionError> {
-    if !(pfa_cell > 0.0 && pfa_cell < 1.0) {
-        return Err(AcquisitionError::BadParameter {
-            name: "per-cell false-alarm probability",
-            value: pfa_cell,
-            allowed: "0 < p < 1",
-        });
-    }
+    open_probability("per-cell false-alarm probability", pfa_cell)?;
     // The tail falls monotonically in g; bracket then bisect on log P.
     let target = pfa_cell.ln();
     let log_tail = |g: f64| erlang_tail(k, g).ln();
@@ -70,13 +77,7 @@ pub fn cell_threshold(k: usize, pfa_cell: f64) -> Result<f64, AcquisitionError> 
 /// The per-cell false-alarm probability that gives `pfa_total` over `cells` cells:
 /// `1 - (1 - pfa_total)^(1/cells)`.
 pub fn per_cell_pfa(pfa_total: f64, cells: usize) -> Result<f64, AcquisitionError> {
-    if !(pfa_total > 0.0 && pfa_total < 1.0) {
-        return Err(AcquisitionError::BadParameter {
-            name: "false-alarm probability",
-            value: pfa_total,
-            allowed: "0 < p < 1",
-        });
-    }
+    open_probability("false-alarm probability", pfa_total)?;
     let n = cells.max(1) as f64;
     Ok(-((-pfa_total).ln_1p() / n).exp_m1())
 }

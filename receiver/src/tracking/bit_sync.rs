@@ -113,14 +113,7 @@ impl BitSynchroniser {
 
     fn histogram_decision(&self, ppb: usize) -> Option<u32> {
         let bins = &self.histogram[..ppb];
-        let (best, &count) = bins.iter().enumerate().max_by_key(|(_, c)| **c)?;
-        let runner_up = bins
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != best)
-            .map(|(_, c)| *c)
-            .max()
-            .unwrap_or(0);
+        let (best, count, runner_up) = best_and_runner_up(bins)?;
         (count >= self.config.min_transitions
             && f64::from(count) >= self.config.dominance * f64::from(runner_up))
         .then_some(best as u32)
@@ -143,14 +136,7 @@ impl BitSynchroniser {
                 *score += corr.abs();
             }
         }
-        let (best, &top) = scores.iter().enumerate().max_by_key(|(_, s)| **s)?;
-        let runner_up = scores
-            .iter()
-            .enumerate()
-            .filter(|(i, _)| *i != best)
-            .map(|(_, s)| *s)
-            .max()
-            .unwrap_or(0);
+        let (best, top, runner_up) = best_and_runner_up(&scores)?;
         let full = (L * bits) as i32;
         if 10 * top >= 7 * full && 10 * (top - runner_up) >= 3 * full {
             return Some(((self.first_index + best as u64) % L as u64) as u32);
@@ -160,6 +146,20 @@ impl BitSynchroniser {
         self.first_index += L as u64;
         None
     }
+}
+
+/// The index of the largest score (the last of equals), that score, and the largest of the
+/// others (zero when there are none); `None` for no scores.
+fn best_and_runner_up<T: Copy + Ord + Default>(scores: &[T]) -> Option<(usize, T, T)> {
+    let (best, &top) = scores.iter().enumerate().max_by_key(|(_, s)| **s)?;
+    let runner_up = scores
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| *i != best)
+        .map(|(_, s)| *s)
+        .max()
+        .unwrap_or_default();
+    Some((best, top, runner_up))
 }
 
 #[cfg(test)]

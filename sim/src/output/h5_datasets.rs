@@ -32,6 +32,18 @@ pub(crate) fn create_epoch_file(
     Ok(file)
 }
 
+/// Create the file at `path` with its `schema_version` and `generator` attributes.
+pub(crate) fn create_versioned_file(
+    path: &std::path::Path,
+    schema_version: &str,
+    generator: &str,
+) -> hdf5::Result<hdf5::File> {
+    let file = hdf5::File::create(path)?;
+    text_attr(&file, "schema_version", schema_version)?;
+    text_attr(&file, "generator", generator)?;
+    Ok(file)
+}
+
 /// Write the UTF-8 string attribute `name` on `loc`.
 pub(crate) fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v: VarLenUnicode = value

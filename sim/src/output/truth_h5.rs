@@ -1,7 +1,9 @@
 //! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
 //! The schema is documented in `docs/truth-h5.md`; change both together.
 
-use super::h5_datasets::{append_rows, create_group, create_rows, text_attr};
+use super::h5_datasets::{
+    append_rows, create_group, create_rows, create_versioned_file, text_attr,
+};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
 use skyforge_orbits::ephemeris::SatId;
@@ -19,17 +21,12 @@ const TIME_CHUNK: usize = 600;
 /// Values per HDF5 chunk of the per-link datasets.
 const LINK_CHUNK: usize = 8192;
 
-/// A per-link field: dataset name, unit, description, accessor.
-type LinkField = (
-    &'static str,
-    &'static str,
-    &'static str,
-    fn(&LinkGeometry) -> f64,
-);
+/// A dataset of per-record values: name, unit, description, accessor.
+type Field<R> = (&'static str, &'static str, &'static str, fn(&R) -> f64);
 
 /// Per-link datasets of an antenna: one value per visible link, in row-major order of the
 /// `[epoch, satellite]` `visible` mask (so `dense[visible == 1] = field`).
-const LINK_FIELDS: &[LinkField] = &[
+const LINK_FIELDS: &[Field<LinkGeometry>] = &[
     (
         "range_m",
         "m",
@@ -149,14 +146,8 @@ struct SignalSets {
     rows: usize,
 }
 
-/// Signal-truth datasets: name, unit, description, accessor (docs/truth-h5.md).
-type SignalField = (
-    &'static str,
-    &'static str,
-    &'static str,
-    fn(&LinkTruth) -> f64,
-);
-const SIGNAL_FIELDS: &[SignalField] = &[
+/// Signal-truth datasets (docs/truth-h5.md).
+const SIGNAL_FIELDS: &[Field<LinkTruth>] = &[
     (
         "pseudorange_m",
         "m",
@@ -289,11 +280,9 @@ impl TruthWriter {
         sats: &[SatId],
         antennas: &[Antenna],
     ) -> hdf5::Result<Self> {
-        let file = hdf5::File::create(path)?;
-        text_attr(&file, "schema_version", SCHEMA_VERSION)?;
-        text_attr(
-            &file,
-            "generator",
+        let file = create_versioned_file(
+            path,
+            SCHEMA_VERSION,
             concat!("skyforge ", env!("CARGO_PKG_VERSION")),
         )?;
         text_attr(&file, "scenario", &meta.scenario)?;

@@ -87,31 +87,57 @@ pub fn monte_carlo(
     seed: u64,
 ) -> Result<McPoint, ValidateError> {
     let pmf = PmfFft::new(M, l)?;
-    let p = pmf.p();
     let sigma_chip = (0.5 / SNR).sqrt();
     let sigma = (sigma_chip * (l as f64).sqrt() / M as f64) as f32;
     let signal = filter_outputs_of_tone(&pmf, fd_tc)?;
     let sums = chunked(trials, |range| {
         let mut scratch = pmf.scratch();
-        let mut noise = ThermalNoise::new(seed, stream, sigma);
-        let (mut re, mut im) = (vec![0f32; p], vec![0f32; p]);
-        let mut y = vec![Complex32::default(); p];
+        let mut inputs = NoisyTrials::new(&signal, seed, stream, sigma);
         let mut s = Sums::default();
         for t in range {
-            let rot = phase(t);
-            for ((r, i), &v) in re.iter_mut().zip(&mut im).zip(&signal) {
-                let v = v * rot;
-                (*r, *i) = (v.re, v.im);
-            }
-            noise.add((t * p) as u64, &mut re, &mut im);
-            for ((yi, &r), &i) in y.iter_mut().zip(&re).zip(&im) {
-                *yi = Complex32::new(r, i);
-            }
-            s.push(pmf.estimate_filters(&y, &mut scratch)?.fine_fd_tc, fd_tc, l);
+            let y = inputs.trial(t);
+            s.push(pmf.estimate_filters(y, &mut scratch)?.fine_fd_tc, fd_tc, l);
         }
         Ok(s)
     })?;
     Ok(sums.point(fd_tc))
+}
+
+/// Trial `t`'s input: the clean samples turned by the trial's phase, plus the seeded
+/// thermal noise of the trial's slot (`t * len` onwards) of the noise stream.
+struct NoisyTrials<'a> {
+    clean: &'a [Complex32],
+    noise: ThermalNoise,
+    re: Vec<f32>,
+    im: Vec<f32>,
+    out: Vec<Complex32>,
+}
+
+impl<'a> NoisyTrials<'a> {
+    fn new(clean: &'a [Complex32], seed: u64, stream: u32, sigma: f32) -> Self {
+        let n = clean.len();
+        Self {
+            clean,
+            noise: ThermalNoise::new(seed, stream, sigma),
+            re: vec![0.0; n],
+            im: vec![0.0; n],
+            out: vec![Complex32::default(); n],
+        }
+    }
+
+    fn trial(&mut self, t: usize) -> &[Complex32] {
+        let rot = phase(t);
+        for ((r, i), &v) in self.re.iter_mut().zip(&mut self.im).zip(self.clean) {
+            let v = v * rot;
+            (*r, *i) = (v.re, v.im);
+        }
+        let n = self.clean.len();
+        self.noise.add((t * n) as u64, &mut self.re, &mut self.im);
+        for ((o, &r), &i) in self.out.iter_mut().zip(&self.re).zip(&self.im) {
+            *o = Complex32::new(r, i);
+        }
+        &self.out
+    }
 }
 
 /// The noiseless tone `exp(j 2 pi fd Tc n)`, `n < M`, made by the receiver's NCO.
@@ -623,21 +649,11 @@ mod tests {
         let sigma = (0.5 / SNR).sqrt() as f32;
         chunked(trials, |range| {
             let mut scratch = pmf.scratch();
-            let mut noise = ThermalNoise::new(SEED, stream, sigma);
-            let (mut re, mut im) = (vec![0f32; M], vec![0f32; M]);
-            let mut x = vec![Complex32::default(); M];
+            let mut inputs = NoisyTrials::new(&tone, SEED, stream, sigma);
             let mut s = Sums::default();
             for t in range {
-                let rot = phase(t);
-                for ((r, i), &v) in re.iter_mut().zip(&mut im).zip(&tone) {
-                    let v = v * rot;
-                    (*r, *i) = (v.re, v.im);
-                }
-                noise.add((t * M) as u64, &mut re, &mut im);
-                for ((xn, &r), &i) in x.iter_mut().zip(&re).zip(&im) {
-                    *xn = Complex32::new(r, i);
-                }
-                s.push(pmf.estimate(&x, &mut scratch)?.fine_fd_tc, fd_tc, l);
+                let x = inputs.trial(t);
+                s.push(pmf.estimate(x, &mut scratch)?.fine_fd_tc, fd_tc, l);
             }
             Ok(s)
         })

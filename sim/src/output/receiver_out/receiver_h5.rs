@@ -16,7 +16,9 @@
 //! [`FLUSH_ROWS`] at a time, so memory stays bounded by satellites x `FLUSH_ROWS` rows
 //! however long the run.
 
-use crate::output::h5_datasets::{append_rows, create_group, create_rows, text_attr};
+use crate::output::h5_datasets::{
+    append_rows, create_group, create_rows, create_versioned_file, text_attr,
+};
 use hdf5::{Dataset, Group, H5Type, Location};
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::SatId;
@@ -286,11 +288,9 @@ pub(super) struct ReceiverH5 {
 impl ReceiverH5 {
     /// Create the file, its root attributes and a group per antenna.
     pub(super) fn create(path: &Path, names: &[String]) -> hdf5::Result<Self> {
-        let file = hdf5::File::create(path)?;
-        text_attr(&file, "schema_version", SCHEMA_VERSION)?;
-        text_attr(
-            &file,
-            "generator",
+        let file = create_versioned_file(
+            path,
+            SCHEMA_VERSION,
             concat!("skyforge receive ", env!("CARGO_PKG_VERSION")),
         )?;
         text_attr(&file, "time_system", "GPST, receiver clock")?;
