@@ -9,8 +9,9 @@ use super::curves::{Curve, CurveSeries, Mark, Reference, Value};
 use super::draw::Draw;
 use crate::report::{Row, Verdict};
 use rayon::prelude::*;
+use skyforge_receiver::acquisition::AcquisitionError;
 use skyforge_receiver::acquisition::Complex32;
-use skyforge_receiver::acquisition::pmf_fft::{PmfFft, theory};
+use skyforge_receiver::acquisition::pmf_fft::{PmfEstimate, PmfFft, PmfScratch, theory};
 use skyforge_receiver::acquisition::replica::wipe_carrier;
 use skyforge_signals::synth::noise::ThermalNoise;
 use std::time::Instant;
@@ -90,13 +91,48 @@ pub fn monte_carlo(
     let sigma_chip = (0.5 / SNR).sqrt();
     let sigma = (sigma_chip * (l as f64).sqrt() / M as f64) as f32;
     let signal = filter_outputs_of_tone(&pmf, fd_tc)?;
+    let noise = NoiseStream {
+        seed,
+        stream,
+        sigma,
+    };
+    trial_errors(
+        &pmf,
+        &signal,
+        noise,
+        trials,
+        fd_tc,
+        PmfFft::estimate_filters,
+    )
+}
+
+/// Where a Monte Carlo's noise comes from: the synthesiser's seeded thermal noise.
+#[derive(Debug, Clone, Copy)]
+struct NoiseStream {
+    seed: u64,
+    stream: u32,
+    /// Per-component standard deviation.
+    sigma: f32,
+}
+
+/// `trials` noisy trials of `clean` (see [`NoisyTrials`]) through `estimate`, the wrapped
+/// errors of its fine Doppler against `fd_tc` summed in chunks on every core.
+fn trial_errors(
+    pmf: &PmfFft,
+    clean: &[Complex32],
+    noise: NoiseStream,
+    trials: usize,
+    fd_tc: f64,
+    estimate: impl Fn(&PmfFft, &[Complex32], &mut PmfScratch) -> Result<PmfEstimate, AcquisitionError>
+    + Sync,
+) -> Result<McPoint, ValidateError> {
     let sums = chunked(trials, |range| {
         let mut scratch = pmf.scratch();
-        let mut inputs = NoisyTrials::new(&signal, seed, stream, sigma);
+        let mut inputs = NoisyTrials::new(clean, noise);
         let mut s = Sums::default();
         for t in range {
-            let y = inputs.trial(t);
-            s.push(pmf.estimate_filters(y, &mut scratch)?.fine_fd_tc, fd_tc, l);
+            let est = estimate(pmf, inputs.trial(t), &mut scratch)?;
+            s.push(est.fine_fd_tc, fd_tc, pmf.l());
         }
         Ok(s)
     })?;
@@ -114,11 +150,11 @@ struct NoisyTrials<'a> {
 }
 
 impl<'a> NoisyTrials<'a> {
-    fn new(clean: &'a [Complex32], seed: u64, stream: u32, sigma: f32) -> Self {
+    fn new(clean: &'a [Complex32], noise: NoiseStream) -> Self {
         let n = clean.len();
         Self {
             clean,
-            noise: ThermalNoise::new(seed, stream, sigma),
+            noise: ThermalNoise::new(noise.seed, noise.stream, noise.sigma),
             re: vec![0.0; n],
             im: vec![0.0; n],
             out: vec![Complex32::default(); n],
@@ -647,18 +683,12 @@ mod tests {
         let pmf = PmfFft::new(M, l).unwrap();
         let tone = tone(fd_tc);
         let sigma = (0.5 / SNR).sqrt() as f32;
-        chunked(trials, |range| {
-            let mut scratch = pmf.scratch();
-            let mut inputs = NoisyTrials::new(&tone, SEED, stream, sigma);
-            let mut s = Sums::default();
-            for t in range {
-                let x = inputs.trial(t);
-                s.push(pmf.estimate(x, &mut scratch)?.fine_fd_tc, fd_tc, l);
-            }
-            Ok(s)
-        })
-        .unwrap()
-        .point(fd_tc)
+        let noise = NoiseStream {
+            seed: SEED,
+            stream,
+            sigma,
+        };
+        trial_errors(&pmf, &tone, noise, trials, fd_tc, PmfFft::estimate).unwrap()
     }
 
     #[test]
