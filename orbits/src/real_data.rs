@@ -20,3 +20,17 @@ pub fn require_dir() -> PathBuf {
     );
     dir
 }
+
+/// The `system` broadcast ephemerides of the real-data navigation file `rel` (a path
+/// inside [`require_dir`]); panics on a read error, as the tier's tests want.
+pub fn ephemerides(
+    rel: &str,
+    system: crate::ephemeris::System,
+) -> Vec<crate::ephemeris::BroadcastEphemeris> {
+    let path = require_dir().join(rel);
+    crate::ephemeris::rinex_nav::read_nav_file(&path)
+        .unwrap_or_else(|e| panic!("{e}"))
+        .into_iter()
+        .filter(|e| e.sat.system == system)
+        .collect()
+}

@@ -152,6 +152,16 @@ fn unwrap(angles: &[f64]) -> Vec<f64> {
     out
 }
 
+/// Semi-major axis (m), eccentricity and inclination (rad) of the per-revolution mean
+/// elements `means`, averaged over the revolutions.
+fn average_a_e_i(means: &[RevMean]) -> (f64, f64, f64) {
+    let n = means.len() as f64;
+    let a = means.iter().map(|m| m.a_m).sum::<f64>() / n;
+    let i = means.iter().map(|m| m.i_rad).sum::<f64>() / n;
+    let e = means.iter().map(|m| m.ex.hypot(m.ey)).sum::<f64>() / n;
+    (a, e, i)
+}
+
 /// First-order secular J2 rates (rad/s) of the node and the perigee for mean `a`, `e`, `i`
 /// (e.g. Vallado, *Fundamentals of Astrodynamics and Applications*, eq. 9-41 and 9-42).
 fn j2_rates(a: f64, e: f64, i: f64) -> (f64, f64) {
@@ -181,10 +191,7 @@ fn b_j2_secular_rates_of_the_thesis_orbit() {
     let t: Vec<f64> = means.iter().map(|m| m.t_mid).collect();
     let raan = unwrap(&means.iter().map(|m| m.raan_rad).collect::<Vec<_>>());
     let argp = unwrap(&means.iter().map(|m| m.ey.atan2(m.ex)).collect::<Vec<_>>());
-    let n = means.len() as f64;
-    let a = means.iter().map(|m| m.a_m).sum::<f64>() / n;
-    let i = means.iter().map(|m| m.i_rad).sum::<f64>() / n;
-    let e = means.iter().map(|m| m.ex.hypot(m.ey)).sum::<f64>() / n;
+    let (a, e, i) = average_a_e_i(&means);
     let (raan_rate, argp_rate) = j2_rates(a, e, i);
     let raan_measured = slope(&t, &raan);
     let argp_measured = slope(&t, &argp);
@@ -231,10 +238,7 @@ fn b_j2_argp_rate_of_an_eccentric_orbit() {
     let means = nodal_means(&traj, t1);
     let t: Vec<f64> = means.iter().map(|m| m.t_mid).collect();
     let argp = unwrap(&means.iter().map(|m| m.ey.atan2(m.ex)).collect::<Vec<_>>());
-    let n = means.len() as f64;
-    let a = means.iter().map(|m| m.a_m).sum::<f64>() / n;
-    let i = means.iter().map(|m| m.i_rad).sum::<f64>() / n;
-    let e = means.iter().map(|m| m.ex.hypot(m.ey)).sum::<f64>() / n;
+    let (a, e, i) = average_a_e_i(&means);
     let (_, argp_rate) = j2_rates(a, e, i);
     let measured = slope(&t, &argp);
     let deg_day = 86_400.0_f64.to_degrees();

@@ -18,7 +18,8 @@ use skyforge_receiver::attitude::kalman::EkfAttitude;
 use skyforge_receiver::attitude::least_squares::{LsConfig, solve};
 use skyforge_receiver::attitude::ukf::UkfAttitude;
 use skyforge_receiver::attitude::{
-    AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, angle_error, wrap_diff, wrap_pi,
+    AttitudeError, AttitudeEstimate, BodyGeometry, NedBaselines, YawPitchRoll, angle_error,
+    wrap_diff, wrap_pi,
 };
 use std::f64::consts::{PI, TAU};
 
@@ -34,6 +35,18 @@ fn n01(r: &mut ChaCha8Rng) -> f64 {
 
 fn gauss3(r: &mut ChaCha8Rng) -> Vec3 {
     Vec3::new(n01(r), n01(r), n01(r))
+}
+
+/// The least-squares attitude (default settings, no start value) from the reference-frame
+/// baselines `b` with covariance `q`; both must be valid and the solution must succeed.
+fn ls_attitude(g: &BodyGeometry, b: &[Vec3], q: DMatrix<f64>) -> AttitudeEstimate {
+    solve(
+        g,
+        &NedBaselines::new(b, q).unwrap(),
+        None,
+        &LsConfig::default(),
+    )
+    .unwrap()
 }
 
 /// Yaw and roll anywhere, pitch within +/-80 deg (away from gimbal lock).
@@ -101,13 +114,7 @@ fn noise_free_least_squares_recovers_random_attitudes() {
         let truth = random_attitude(&mut r);
         let b = g.in_reference(&truth);
         let q = random_spd(&mut r, 3 * m, 1e-6);
-        let est = solve(
-            &g,
-            &NedBaselines::new(&b, q).unwrap(),
-            None,
-            &LsConfig::default(),
-        )
-        .unwrap();
+        let est = ls_attitude(&g, &b, q);
         worst = worst.max(angle_error(&est.angles, &truth).amax());
     }
     assert!(worst < 1e-9, "largest angle error {worst:e} rad");
@@ -171,13 +178,7 @@ fn isotropic_least_squares_equals_the_q_method() {
             .map(|b| truth.c_body_ref() * b + gauss3(&mut r) * sigma)
             .collect();
         let q = DMatrix::identity(3 * m, 3 * m) * sigma * sigma;
-        let est = solve(
-            &g,
-            &NedBaselines::new(&v, q).unwrap(),
-            None,
-            &LsConfig::default(),
-        )
-        .unwrap();
+        let est = ls_attitude(&g, &v, q);
         let c_q = q_method(g.baselines(), &v, &vec![1.0; m]);
         let oracle = YawPitchRoll::from_c_ref_body(&c_q.transpose());
         worst_angle = worst_angle.max(angle_error(&est.angles, &oracle).amax());
@@ -248,13 +249,7 @@ fn monte_carlo_covariance_matches_eq_2_5_13() {
     let mut chi2 = 0.0;
     for _ in 0..n {
         let b = draw_two_baselines(&mut r, &g, &truth, &l_ant);
-        let est = solve(
-            &g,
-            &NedBaselines::new(&b, q.clone()).unwrap(),
-            None,
-            &LsConfig::default(),
-        )
-        .unwrap();
+        let est = ls_attitude(&g, &b, q.clone());
         errors.push(angle_error(&est.angles, &truth));
         predicted += est.covariance / n as f64;
         chi2 += est.chi_square / n as f64;

@@ -9,8 +9,8 @@
 //! the data folder comes from `SKYFORGE_DATA` (default `../shared/data` beside the
 //! workspace).
 
-use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, System};
+use skyforge_orbits::real_data::ephemerides;
 use skyforge_orbits::time::bdt_week_sow;
 use skyforge_receiver::navdecode::{BdsDecoder, GpsLnavDecoder, NavDecoder, NavEvent};
 use skyforge_signals::navmsg::bds::{BdsNavEncoder, BdsNavFormat, Klobuchar};
@@ -19,15 +19,6 @@ use skyforge_signals::navmsg::gps_lnav::{
 };
 use std::collections::BTreeSet;
 use std::f64::consts::PI;
-
-fn ephemerides(file: &str, system: System) -> Vec<BroadcastEphemeris> {
-    let path = skyforge_orbits::real_data::require_dir().join(file);
-    read_nav_file(&path)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .into_iter()
-        .filter(|e| e.sat.system == system)
-        .collect()
-}
 
 fn soft(bits: &[u8]) -> Vec<f32> {
     bits.iter()

@@ -13,23 +13,15 @@
 //! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`
 //! next to the workspace).
 
-use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, System};
 use skyforge_orbits::time::{TimeOrigin, bdt_week_sow};
 use skyforge_signals::navmsg::bds::{BdsNavEncoder, BdsNavFormat, Klobuchar};
-use std::path::PathBuf;
-
-fn data_dir() -> PathBuf {
-    skyforge_orbits::real_data::require_dir()
-}
 
 fn beidou_ephemerides() -> Vec<BroadcastEphemeris> {
-    let path = data_dir().join("nav/BRD400DLR_S_20230710000_01D_MN.rnx.gz");
-    read_nav_file(&path)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .into_iter()
-        .filter(|e| e.sat.system == System::Beidou)
-        .collect()
+    skyforge_orbits::real_data::ephemerides(
+        "nav/BRD400DLR_S_20230710000_01D_MN.rnx.gz",
+        System::Beidou,
+    )
 }
 
 /// Remainder of a 15-bit word divided by g(x) = x^4 + x + 1.

@@ -12,24 +12,16 @@
 //! next to the workspace).
 
 use hifitime::{Epoch, TimeScale};
-use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, System};
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::navmsg::gps_lnav::fixtures::{header_iono, header_utc};
 use skyforge_signals::navmsg::gps_lnav::{Almanac, GPS_PI, LnavEncoder};
-use std::path::PathBuf;
-
-fn data_dir() -> PathBuf {
-    skyforge_orbits::real_data::require_dir()
-}
 
 fn gps_ephemerides() -> Vec<BroadcastEphemeris> {
-    let path = data_dir().join("nav/ESBC00DNK_R_20201770000_01D_MN.rnx.gz");
-    read_nav_file(&path)
-        .unwrap_or_else(|e| panic!("{e}"))
-        .into_iter()
-        .filter(|e| e.sat.system == System::Gps)
-        .collect()
+    skyforge_orbits::real_data::ephemerides(
+        "nav/ESBC00DNK_R_20201770000_01D_MN.rnx.gz",
+        System::Gps,
+    )
 }
 
 /// Distance of `value / lsb` from the nearest integer, in LSB.

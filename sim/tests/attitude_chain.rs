@@ -8,7 +8,7 @@ mod support;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::outputs::AxisStats;
 use std::path::Path;
-use support::{skyforge, skyforge_ok, text};
+use support::{receive_all_recordings, skyforge, skyforge_ok, text};
 
 /// The thesis LEO with three antennas (master at the body origin, baselines of 1 m along
 /// body X and Y), GPS + BDS-3 at 45 dB-Hz, a slow pitch oscillation, `duration_s` long.
@@ -52,25 +52,7 @@ fov_half_angle_deg = 80.0
 
 /// `skyforge receive` over every recording in `sim` into `rx`; returns `rx`.
 fn receive(sim: &Path, rx: &Path, extra: &[&str]) -> std::path::PathBuf {
-    let mut meta: Vec<String> = std::fs::read_dir(sim)
-        .unwrap()
-        .map(|e| e.unwrap().path().to_string_lossy().into_owned())
-        .filter(|p| p.ends_with(".sigmf-meta"))
-        .collect();
-    meta.sort();
-    let (nav, config) = (sim.join("nav.rnx"), sim.join("receiver.toml"));
-    let mut args: Vec<&str> = vec!["receive"];
-    args.extend(meta.iter().map(String::as_str));
-    args.extend([
-        "--assist",
-        nav.to_str().unwrap(),
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        rx.to_str().unwrap(),
-    ]);
-    args.extend(extra);
-    println!("{}", skyforge_ok(&args, sim));
+    println!("{}", receive_all_recordings(sim, rx, extra, sim));
     rx.to_path_buf()
 }
 

@@ -25,7 +25,7 @@ use skyforge_receiver::session::RinexObsFiles;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
-use support::skyforge_ok;
+use support::{rtklib_numeric_rows, skyforge_ok};
 
 fn require(program: &str) {
     assert!(
@@ -252,19 +252,11 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
     );
     let pos = std::fs::read_to_string(recv_dir.join("spp.pos")).unwrap();
     // Columns: GPS week, seconds of week, x, y, z, quality, satellites, ...
-    let solutions: Vec<(f64, f64, usize)> = pos
-        .lines()
-        .filter(|l| !l.starts_with('%'))
-        .filter_map(|l| {
-            let f: Vec<f64> = l
-                .split_whitespace()
-                .take(7)
-                .filter_map(|x| x.parse().ok())
-                .collect();
-            (f.len() == 7).then(|| {
-                let r = skyforge_orbits::Vec3::new(f[2], f[3], f[4]);
-                (f[1], (r - site).norm(), f[6] as usize)
-            })
+    let solutions: Vec<(f64, f64, usize)> = rtklib_numeric_rows(&pos, 7)
+        .iter()
+        .map(|f| {
+            let r = skyforge_orbits::Vec3::new(f[2], f[3], f[4]);
+            (f[1], (r - site).norm(), f[6] as usize)
         })
         .collect();
     let worst_time = solutions

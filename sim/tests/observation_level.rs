@@ -8,8 +8,8 @@ mod support;
 
 use skyforge_orbits::ephemeris::System;
 use skyforge_validate::observables::{ObsComparison, compare, read_obs_file};
-use std::path::Path;
-use support::skyforge_ok;
+use std::path::{Path, PathBuf};
+use support::{receive_all_recordings, skyforge_ok};
 
 /// The calibration scenario with `duration_s`, `seed`, `start` and extra TOML.
 fn scenario(dir: &Path, name: &str, duration_s: u32, seed: u64, extra: &str) -> String {
@@ -55,6 +55,26 @@ boresight_body = [0.0, 0.0, -1.0]
 fov_half_angle_deg = 80.0
 "#;
 
+/// `skyforge run` in `dir` of the calibration scenario ([`scenario`] `name`, `duration_s`,
+/// `seed`) at the observation level on [`TWO_ANTENNAS`] with constant noise (code 0.4 m,
+/// phase 2 mm), `observation` (whole lines) added to its `[observation]` table; returns
+/// the output directory `dir/out`.
+fn run_with_constant_noise(
+    dir: &Path,
+    name: &str,
+    duration_s: u32,
+    seed: u64,
+    observation: &str,
+) -> PathBuf {
+    let extra = format!(
+        "{TWO_ANTENNAS}\n[observation]\nlevel = \"observation\"\n{observation}[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n"
+    );
+    let path = scenario(dir, name, duration_s, seed, &extra);
+    let out = dir.join("out");
+    skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir);
+    out
+}
+
 /// Constant noise: every antenna gets `observations/<antenna>.obs.rnx` and no recording;
 /// against the truth, code and phase scatter as configured. The comparison removes a
 /// clock offset per epoch fitted to about 20 pseudoranges (a few per cent less scatter)
@@ -63,12 +83,7 @@ fov_half_angle_deg = 80.0
 #[test]
 fn observation_level_writes_receiver_style_files_with_the_configured_noise() {
     let dir = tempfile::tempdir().unwrap();
-    let extra = format!(
-        "{TWO_ANTENNAS}\n[observation]\nlevel = \"observation\"\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n"
-    );
-    let path = scenario(dir.path(), "obs", 40, 11, &extra);
-    let out = dir.path().join("out");
-    skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    let out = run_with_constant_noise(dir.path(), "obs", 40, 11, "");
     let names: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
@@ -139,25 +154,7 @@ fn bundled_calibration_matches_the_signal_level_on_another_seed_and_hour() {
         &["synth", &signal, "--out", sig_out.to_str().unwrap()],
         dir.path(),
     );
-    let meta: Vec<String> = std::fs::read_dir(&sig_out)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.to_string_lossy().ends_with(".sigmf-meta"))
-        .map(|p| p.to_string_lossy().into_owned())
-        .collect();
-    let mut args: Vec<&str> = vec!["receive"];
-    args.extend(meta.iter().map(String::as_str));
-    let assist = sig_out.join("nav.rnx");
-    let config = sig_out.join("receiver.toml");
-    args.extend([
-        "--assist",
-        assist.to_str().unwrap(),
-        "--config",
-        config.to_str().unwrap(),
-        "--out",
-        rx_out.to_str().unwrap(),
-    ]);
-    skyforge_ok(&args, dir.path());
+    receive_all_recordings(&sig_out, &rx_out, &[], dir.path());
     skyforge_ok(
         &["run", &observation, "--out", obs_out.to_str().unwrap()],
         dir.path(),
@@ -210,12 +207,8 @@ fn bundled_calibration_is_reproduced_by_the_calibrate_command() {
 #[test]
 fn observed_only_signals_are_written_beside_the_synthesised_ones() {
     let dir = tempfile::tempdir().unwrap();
-    let extra = format!(
-        "{TWO_ANTENNAS}\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l2\", \"gps-l5\", \"bds-b2i\", \"bds-b3i\"]\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n"
-    );
-    let path = scenario(dir.path(), "multi", 10, 12, &extra);
-    let out = dir.path().join("out");
-    skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    let observed = "observed_signals = [\"gps-l2\", \"gps-l5\", \"bds-b2i\", \"bds-b3i\"]\n";
+    let out = run_with_constant_noise(dir.path(), "multi", 10, 12, observed);
     for file in [
         out.join("ant2.obs.rnx"),
         out.join("observations/ant2.obs.rnx"),

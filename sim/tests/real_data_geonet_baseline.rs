@@ -70,24 +70,17 @@ fn rtklib(dir: &Path, frequencies: u8, out: &Path) -> BTreeMap<i64, RtkEpoch> {
     }
     support::rnx2rtkp(&args, out);
     let text = std::fs::read_to_string(&pos).expect("rnx2rtkp's solution file");
-    text.lines()
-        .filter(|l| !l.starts_with('%'))
-        .filter_map(|l| {
-            let f: Vec<f64> = l
-                .split_whitespace()
-                .take(10)
-                .filter_map(|x| x.parse().ok())
-                .collect();
-            (f.len() == 10).then(|| {
-                (
-                    f[1].round() as i64,
-                    RtkEpoch {
-                        rover: Vec3::new(f[2], f[3], f[4]),
-                        q: f[5] as u8,
-                        sd: Vec3::new(f[7], f[8], f[9]),
-                    },
-                )
-            })
+    support::rtklib_numeric_rows(&text, 10)
+        .iter()
+        .map(|f| {
+            (
+                f[1].round() as i64,
+                RtkEpoch {
+                    rover: Vec3::new(f[2], f[3], f[4]),
+                    q: f[5] as u8,
+                    sd: Vec3::new(f[7], f[8], f[9]),
+                },
+            )
         })
         .collect()
 }

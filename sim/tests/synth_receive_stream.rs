@@ -6,20 +6,35 @@
 
 mod support;
 
+use std::path::Path;
 use support::{skyforge, skyforge_ok, text};
+
+/// Bundled scenario `name` with every `(from, to)` of `edits` replaced (each edit must
+/// take), written to `d/file`.
+fn edited_scenario(d: &Path, name: &str, edits: &[(&str, &str)], file: &str) {
+    let mut scenario = skyforge_ok(&["scenarios", "show", name], d);
+    for (from, to) in edits {
+        scenario = scenario.replace(from, to);
+    }
+    assert!(edits.iter().all(|(_, to)| scenario.contains(to)));
+    std::fs::write(d.join(file), &scenario).unwrap();
+}
 
 #[test]
 fn receiving_while_synthesising_gives_what_receiving_the_recordings_gives() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let lab = skyforge_ok(&["scenarios", "show", "integrity-lab"], d);
     // assumed: 15 s (two navigation subframes: the receiver times its channels), GPS L1
     // C/A and BeiDou B1I, the lab's four antennas at the signal level.
-    let scenario = lab
-        .replace("duration_s = 1800.0", "duration_s = 15.0")
-        .replace("level = \"observation\"", "level = \"signal\"");
-    assert!(scenario.contains("duration_s = 15.0") && scenario.contains("level = \"signal\""));
-    std::fs::write(d.join("lab.toml"), &scenario).unwrap();
+    edited_scenario(
+        d,
+        "integrity-lab",
+        &[
+            ("duration_s = 1800.0", "duration_s = 15.0"),
+            ("level = \"observation\"", "level = \"signal\""),
+        ],
+        "lab.toml",
+    );
 
     let printed = skyforge_ok(&["synth", "lab.toml", "--out", "streamed", "--receive"], d);
     assert!(printed.contains("received as rendered"), "{printed}");
@@ -94,13 +109,16 @@ fn receiving_while_synthesising_gives_what_receiving_the_recordings_gives() {
 fn a_receiver_that_finds_nothing_fails_the_run_and_nothing_is_written() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
-    let bds = skyforge_ok(&["scenarios", "show", "interop-bds-static"], d);
     // 8 s at 10 dB-Hz: nothing to detect.
-    let faint = bds
-        .replace("duration_s = 90.0", "duration_s = 8.0")
-        .replace("cn0_dbhz = 45.0", "cn0_dbhz = 10.0");
-    assert!(faint.contains("cn0_dbhz = 10.0") && faint.contains("duration_s = 8.0"));
-    std::fs::write(d.join("faint.toml"), faint).unwrap();
+    edited_scenario(
+        d,
+        "interop-bds-static",
+        &[
+            ("duration_s = 90.0", "duration_s = 8.0"),
+            ("cn0_dbhz = 45.0", "cn0_dbhz = 10.0"),
+        ],
+        "faint.toml",
+    );
     let o = skyforge(&["synth", "faint.toml", "--out", "out", "--receive"], d);
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("no signal found"), "{}", text(&o));

@@ -8,17 +8,10 @@ mod common;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
-use skyforge_signals::truth::geometry::GeometryTruth;
 
 #[test]
 fn truth_carries_the_coarse_clock_at_whole_seconds() {
-    let scenario = skyforge_scenarios::resolve("thesis-leo").unwrap();
-    let mut world = scenario.build().unwrap();
-    let (txs, store, sats) = common::gps_transmitters(&world);
-    let antennas = &world.antennas[..1];
-    let truth = GeometryTruth::new(&store, &sats, antennas, 1.0);
-    let window = world.platform.window(-2.0, 6.0).unwrap();
-    let chunk = truth.chunk(&window, 0.0, 4);
+    let (txs, _, chunk) = common::gps_links("thesis-leo", 1, 6.0, 4);
     let cfg = SignalConfig {
         truth_rate_hz: 1,
         ..SignalConfig::default()

@@ -11,17 +11,10 @@ use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
-use skyforge_signals::truth::geometry::GeometryTruth;
 
 /// Samples of two antennas over [0 s, 1 s] and the clipped count, `slice_bytes` at a time.
 fn render(slice_bytes: usize) -> (Vec<Vec<u8>>, u64) {
-    let scenario = skyforge_scenarios::resolve("thesis-leo").unwrap();
-    let mut world = scenario.build().unwrap();
-    let (txs, store, sats) = common::gps_transmitters(&world);
-    let antennas = &world.antennas[..2];
-    let truth = GeometryTruth::new(&store, &sats, antennas, 1.0);
-    let window = world.platform.window(-2.0, 4.0).unwrap();
-    let chunk = truth.chunk(&window, 0.0, 2);
+    let (txs, _, chunk) = common::gps_links("thesis-leo", 2, 4.0, 2);
     let cfg = SignalConfig {
         sample_rate_hz: 2.046e6,
         format: SampleFormat::Ci8,

@@ -14,7 +14,6 @@ use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
 use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser, append_to};
 use skyforge_signals::synth::transmitter::Transmitter;
-use skyforge_signals::truth::geometry::GeometryTruth;
 use std::f64::consts::TAU;
 
 const FS_HZ: f64 = 4.0e6;
@@ -65,12 +64,7 @@ fn correlate(tx: &Transmitter, samples: &[(f32, f32)], r: &LinkTruth) -> [(f64, 
 
 #[test]
 fn samples_follow_the_truth_of_every_term() {
-    let scenario = skyforge_scenarios::resolve("interop-gps-static").unwrap();
-    let mut world = scenario.build().unwrap();
-    let (txs, store, sats) = common::gps_transmitters(&world);
-    let truth = GeometryTruth::new(&store, &sats, &world.antennas[..1], 1.0);
-    let window = world.platform.window(-2.0, 10.0).unwrap();
-    let chunk = truth.chunk(&window, 0.0, 3);
+    let (txs, sats, chunk) = common::gps_links("interop-gps-static", 1, 10.0, 3);
     let s = (0..sats.len())
         .find(|&s| (0..=1).all(|k| chunk.link(k, 0, s).visible))
         .expect("a visible GPS satellite");

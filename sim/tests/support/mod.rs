@@ -56,6 +56,31 @@ pub fn skyforge_ok(args: &[&str], cwd: &Path) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
+/// `skyforge receive` in `cwd` of every recording (`*.sigmf-meta`, in name order) in
+/// `sim`, with the navigation file and receiver configuration `synth` wrote beside them,
+/// into `rx`, `extra` appended; it must succeed. Returns its standard output.
+pub fn receive_all_recordings(sim: &Path, rx: &Path, extra: &[&str], cwd: &Path) -> String {
+    let mut meta: Vec<String> = std::fs::read_dir(sim)
+        .expect("read the recordings' directory")
+        .map(|e| e.expect("dir entry").path().to_string_lossy().into_owned())
+        .filter(|p| p.ends_with(".sigmf-meta"))
+        .collect();
+    meta.sort();
+    let (nav, config) = (sim.join("nav.rnx"), sim.join("receiver.toml"));
+    let mut args: Vec<&str> = vec!["receive"];
+    args.extend(meta.iter().map(String::as_str));
+    args.extend([
+        "--assist",
+        nav.to_str().unwrap(),
+        "--config",
+        config.to_str().unwrap(),
+        "--out",
+        rx.to_str().unwrap(),
+    ]);
+    args.extend(extra);
+    skyforge_ok(&args, cwd)
+}
+
 /// Standard output followed by standard error.
 pub fn text(o: &Output) -> String {
     format!(
@@ -142,6 +167,22 @@ pub fn rnx2rtkp<S: AsRef<std::ffi::OsStr>>(args: &[S], cwd: &Path) {
     assert!(o.status.success(), "rnx2rtkp failed: {}", text(&o));
 }
 
+/// The first `n` fields of each line of an `rnx2rtkp` solution file (header lines start
+/// with `%`) whose first `n` fields are all numbers; other lines are passed over.
+pub fn rtklib_numeric_rows(pos: &str, n: usize) -> Vec<Vec<f64>> {
+    pos.lines()
+        .filter(|l| !l.starts_with('%'))
+        .filter_map(|l| {
+            let f: Vec<f64> = l
+                .split_whitespace()
+                .take(n)
+                .filter_map(|x| x.parse().ok())
+                .collect();
+            (f.len() == n).then_some(f)
+        })
+        .collect()
+}
+
 /// The ECEF positions (m) of an `rnx2rtkp` solution file written with
 /// `out-solformat=xyz` and the default time format: header lines start with `%`, then one
 /// line per epoch of GPS week, seconds of week, x, y, z, ...
@@ -216,6 +257,22 @@ pub fn observable_errors(sim: &Path, rx: &Path) -> (f64, f64, usize) {
         c.carrier_phase_m.overall.std.expect("phase std"),
         c.matched_epochs,
     )
+}
+
+/// The bars of the bundled receiver's acceptance on the static ground scenarios: 45 fixes
+/// or more within 5 m 3D RMS (`fixes` of them, `rms_m`) and, against the truth, 70 epochs
+/// matched or more, pseudorange error std below 0.5 m and carrier-phase error std below
+/// 2 mm (as [`observable_errors`] returns them).
+pub fn assert_static_ground_bars(
+    fixes: usize,
+    rms_m: f64,
+    (pr_std, phase_std, matched): (f64, f64, usize),
+) {
+    assert!(fixes >= 45, "{fixes} fixes");
+    assert!(rms_m < 5.0, "3D RMS {rms_m} m");
+    assert!(matched >= 70, "{matched} epochs matched");
+    assert!(pr_std < 0.5, "pseudorange error std {pr_std} m");
+    assert!(phase_std < 2e-3, "carrier-phase error std {phase_std} m");
 }
 
 /// One epoch of an `rnx2rtkp` solution file written with `out-solformat=enu` and

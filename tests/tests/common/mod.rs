@@ -9,6 +9,7 @@ use skyforge_signals::errors::seed::{Stream, stream_rng};
 use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::transmitter::Transmitter;
+use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
 
 /// The scenario's GPS satellites at t = 0 as L1 C/A transmitters (default ionosphere
 /// parameters in their messages), the store of the ephemerides they broadcast, and their
@@ -27,6 +28,24 @@ pub fn gps_transmitters(world: &World) -> (Vec<Transmitter>, EphemerisStore, Vec
     );
     let sats = txs.iter().map(|t| t.sat).collect();
     (txs, store, sats)
+}
+
+/// Bundled scenario `name`'s GPS transmitters ([`gps_transmitters`]), their IDs, and the
+/// 1 s geometry of their links to its first `antennas` antennas over `epochs` epochs from
+/// t = 0 (the platform propagated over [-2 s, `window_end_s`]).
+pub fn gps_links(
+    name: &str,
+    antennas: usize,
+    window_end_s: f64,
+    epochs: usize,
+) -> (Vec<Transmitter>, Vec<SatId>, GeometryChunk) {
+    let scenario = skyforge_scenarios::resolve(name).unwrap();
+    let mut world = scenario.build().unwrap();
+    let (txs, store, sats) = gps_transmitters(&world);
+    let truth = GeometryTruth::new(&store, &sats, &world.antennas[..antennas], 1.0);
+    let window = world.platform.window(-2.0, window_end_s).unwrap();
+    let chunk = truth.chunk(&window, 0.0, epochs);
+    (txs, sats, chunk)
 }
 
 /// A TCXO-like receiver clock 100 us ahead, drifting at 2e-7, stepping at the synthesis
