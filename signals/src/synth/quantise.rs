@@ -240,19 +240,31 @@ impl Quantiser {
         }
     }
 
-    /// [`Self::write`], compiled once per instruction set.
+    /// [`Self::write`], compiled once per instruction set. The ci8 and ci16 loops are
+    /// written apart on purpose: one loop for both with a packing closure made the
+    /// synthesis bar 3 % slower (scripts/bench-synth-bar.sh, 2026-11-28).
     #[inline(always)]
     fn write_block(&mut self, i: &[f32], q: &[f32], out: &mut [u8]) {
         let n = self.samples(i, q);
         let per = self.format.bytes_per_sample();
         let out = &mut out[..n * per];
+        let (mut li, mut lq) = ([0i32; CHUNK], [0i32; CHUNK]);
         match self.format {
-            SampleFormat::Ci8 => self.write_complex::<2>(&i[..n], &q[..n], out, |b, a, c| {
-                b[0] = a as i8 as u8;
-                b[1] = c as i8 as u8;
-            }),
+            SampleFormat::Ci8 => {
+                for ((ci, cq), bytes) in i[..n]
+                    .chunks(CHUNK)
+                    .zip(q[..n].chunks(CHUNK))
+                    .zip(out.chunks_mut(2 * CHUNK))
+                {
+                    self.chunk_levels(ci, &mut li);
+                    self.chunk_levels(cq, &mut lq);
+                    for ((b, &a), &c) in bytes.chunks_exact_mut(2).zip(&li).zip(&lq) {
+                        b[0] = a as i8 as u8;
+                        b[1] = c as i8 as u8;
+                    }
+                }
+            }
             SampleFormat::Ri8 => {
-                let mut li = [0i32; CHUNK];
                 for (ci, bytes) in i[..n].chunks(CHUNK).zip(out.chunks_mut(CHUNK)) {
                     self.chunk_levels(ci, &mut li);
                     for (b, &a) in bytes.iter_mut().zip(&li) {
@@ -260,39 +272,25 @@ impl Quantiser {
                     }
                 }
             }
-            SampleFormat::Ci16 => self.write_complex::<4>(&i[..n], &q[..n], out, |b, a, c| {
-                b[..2].copy_from_slice(&(a as i16).to_le_bytes());
-                b[2..].copy_from_slice(&(c as i16).to_le_bytes());
-            }),
+            SampleFormat::Ci16 => {
+                for ((ci, cq), bytes) in i[..n]
+                    .chunks(CHUNK)
+                    .zip(q[..n].chunks(CHUNK))
+                    .zip(out.chunks_mut(4 * CHUNK))
+                {
+                    self.chunk_levels(ci, &mut li);
+                    self.chunk_levels(cq, &mut lq);
+                    for ((b, &a), &c) in bytes.chunks_exact_mut(4).zip(&li).zip(&lq) {
+                        b[..2].copy_from_slice(&(a as i16).to_le_bytes());
+                        b[2..].copy_from_slice(&(c as i16).to_le_bytes());
+                    }
+                }
+            }
             SampleFormat::Cf32 => {
                 for ((&a, &b), bytes) in i[..n].iter().zip(&q[..n]).zip(out.chunks_exact_mut(8)) {
                     bytes[..4].copy_from_slice(&a.to_le_bytes());
                     bytes[4..].copy_from_slice(&b.to_le_bytes());
                 }
-            }
-        }
-    }
-
-    /// A complex integer format: I and Q quantised chunk by chunk, `pack` writing one
-    /// sample's `PER` bytes from its I and Q levels.
-    #[inline(always)]
-    fn write_complex<const PER: usize>(
-        &mut self,
-        i: &[f32],
-        q: &[f32],
-        out: &mut [u8],
-        pack: impl Fn(&mut [u8], i32, i32),
-    ) {
-        let (mut li, mut lq) = ([0i32; CHUNK], [0i32; CHUNK]);
-        for ((ci, cq), bytes) in i
-            .chunks(CHUNK)
-            .zip(q.chunks(CHUNK))
-            .zip(out.chunks_mut(PER * CHUNK))
-        {
-            self.chunk_levels(ci, &mut li);
-            self.chunk_levels(cq, &mut lq);
-            for ((b, &a), &c) in bytes.chunks_exact_mut(PER).zip(&li).zip(&lq) {
-                pack(b, a, c);
             }
         }
     }
