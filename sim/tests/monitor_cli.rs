@@ -185,18 +185,13 @@ fn calibrate_files_measures_what_calibrate_measures_on_the_same_run() {
     }
     // A base configuration's stations (here the files' own positions) and false-alarm
     // probability are kept, and the result runs.
-    let base = std::fs::read_to_string(d.join("calf/monitor.toml"))
-        .unwrap()
-        .replace("stations = []\n", "");
-    let positions = support::surveyed_stations(&d.join("sim/observations"));
-    let at = base.find("[thresholds]").unwrap();
-    let thresholds = base[at..].replace("false_alarm = 0.0000001", "false_alarm = 0.00001");
-    assert_ne!(thresholds, &base[at..]);
-    std::fs::write(
-        d.join("base.toml"),
-        format!("{}{positions}\n{thresholds}", &base[..at]),
-    )
-    .unwrap();
+    let surveyed = support::with_stations(
+        &std::fs::read_to_string(d.join("calf/monitor.toml")).unwrap(),
+        &support::surveyed_stations(&d.join("sim/observations")),
+    );
+    let base = surveyed.replace("false_alarm = 0.0000001", "false_alarm = 0.00001");
+    assert_ne!(base, surveyed);
+    std::fs::write(d.join("base.toml"), base).unwrap();
     on_files(
         "calibrate-files",
         &["--config", "base.toml", "--out", "calg"],

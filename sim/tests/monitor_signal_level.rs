@@ -18,10 +18,10 @@ use support::skyforge_ok;
 /// The bundled monitor configuration with the surveyed station positions: the truth
 /// RINEX headers' APPROX POSITION XYZ in `sim`.
 fn surveyed(sim: &Path) -> String {
-    let stations = support::surveyed_stations(sim);
-    let bundled = skyforge_scenarios::BUNDLED_MONITOR_CONFIG.replace("stations = []\n", "");
-    let at = bundled.find("[thresholds]").unwrap();
-    format!("{}{stations}\n{}", &bundled[..at], &bundled[at..])
+    support::with_stations(
+        skyforge_scenarios::BUNDLED_MONITOR_CONFIG,
+        &support::surveyed_stations(sim),
+    )
 }
 
 /// The lab at the signal level, BeiDou only, `duration_s` long from `start`, on `seed`,

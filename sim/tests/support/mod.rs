@@ -227,14 +227,18 @@ pub fn fixes(rx: &Path) -> Vec<(f64, Vec3, f64)> {
 
 /// The site the truth RINEX header gives (the scenario's antenna position).
 pub fn truth_site(sim: &Path) -> Vec3 {
-    let text = std::fs::read_to_string(sim.join("ant1.obs.rnx")).expect("truth RINEX");
+    header_position(&sim.join("ant1.obs.rnx"))
+}
+
+/// The `APPROX POSITION XYZ` (three F14.4 fields) of the RINEX observation file `path`.
+pub fn header_position(path: &Path) -> Vec3 {
+    let text = std::fs::read_to_string(path).expect("RINEX observation file");
     let line = text
         .lines()
         .find(|l| l.contains("APPROX POSITION XYZ"))
         .expect("APPROX POSITION XYZ");
-    let v: Vec<f64> = line[..42]
-        .split_whitespace()
-        .map(|x| x.parse().expect("number"))
+    let v: Vec<f64> = (0..3)
+        .map(|k| line[14 * k..14 * k + 14].trim().parse().expect("number"))
         .collect();
     Vec3::new(v[0], v[1], v[2])
 }
@@ -377,18 +381,19 @@ pub fn small_study(dir: &Path, seeds: u32) -> String {
 pub fn surveyed_stations(dir: &Path) -> String {
     let mut stations = String::new();
     for s in ["A", "B", "C", "D"] {
-        let header = std::fs::read_to_string(dir.join(format!("{s}.obs.rnx"))).unwrap();
-        let line = header
-            .lines()
-            .find(|l| l.contains("APPROX POSITION XYZ"))
-            .unwrap();
-        let xyz: Vec<f64> = (0..3)
-            .map(|k| line[14 * k..14 * k + 14].trim().parse().unwrap())
-            .collect();
+        let r = header_position(&dir.join(format!("{s}.obs.rnx")));
         stations += &format!(
             "[[stations]]\nname = \"{s}\"\nposition_ecef_m = [{:?}, {:?}, {:?}]\n",
-            xyz[0], xyz[1], xyz[2]
+            r.x, r.y, r.z
         );
     }
     stations
+}
+
+/// Monitor configuration text `config` with `stations` (`[[stations]]` tables) in place
+/// of its empty station list, before its `[thresholds]` table.
+pub fn with_stations(config: &str, stations: &str) -> String {
+    let config = config.replace("stations = []\n", "");
+    let at = config.find("[thresholds]").expect("a [thresholds] table");
+    format!("{}{stations}\n{}", &config[..at], &config[at..])
 }

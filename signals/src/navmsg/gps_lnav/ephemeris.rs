@@ -74,8 +74,7 @@ pub(crate) fn reexpress(
     let dc = (i128::from(toc_gps_s) * NS_PER_S - toc_old_ns) as f64 * 1e-9;
     let sow_old = toe_old_ns.rem_euclid(i128::from(super::WEEK_S) * NS_PER_S) as f64 * 1e-9;
     let sow_new = week_and_sow(toe_gps_s).1 as f64;
-    let a = eph.orbit.sqrt_a * eph.orbit.sqrt_a;
-    let n = (GM_GPS / (a * a * a)).sqrt() + eph.orbit.delta_n;
+    let n = eph.orbit.mean_motion_rad_s(GM_GPS);
     let mut out = eph.clone();
     out.toe = epoch_from_gps_ns(i128::from(toe_gps_s) * NS_PER_S);
     out.toc = epoch_from_gps_ns(i128::from(toc_gps_s) * NS_PER_S);
