@@ -115,12 +115,13 @@ pub fn calibrate_files(
         }
     })
     .map_err(|e| e.to_string())?;
-    let (sigma, mut values_per_bin) = complete_tables(&common, "sigma", base)?;
+    let (sigma, mut values_per_bin) = complete_tables(&common, "sigma", "any satellite", base)?;
     let mut config = base.clone();
     config.thresholds.sigma = sigma;
     config.thresholds.sigma_geo = Sigmas::new();
     if geo_apart {
-        let (sigma_geo, counts) = complete_tables(&geo, "sigma_geo", base)?;
+        let (sigma_geo, counts) =
+            complete_tables(&geo, "sigma_geo", "a BeiDou GEO (--geo-apart)", base)?;
         config.thresholds.sigma_geo = sigma_geo;
         values_per_bin.extend(counts);
     }
@@ -130,27 +131,31 @@ pub fn calibrate_files(
     })
 }
 
-/// The tables of `cal` (named `key`), and the values per bin of each; an error when a
-/// signal lacks a statistic or no signal has any.
+/// The tables of `cal` (named `key`, calibrated on `what`), and the values per bin of
+/// each; an error when a signal lacks a statistic or no signal has any values.
 fn complete_tables(
     cal: &SigmaCalibrator,
     key: &str,
+    what: &str,
     base: &MonitorConfig,
 ) -> Result<(Sigmas, BTreeMap<String, Vec<u64>>), String> {
     let incomplete: Vec<&str> = cal.incomplete().iter().map(|s| s.tag()).collect();
     let sigma = cal.tables();
     if !incomplete.is_empty() || sigma.is_empty() {
-        return Err(format!(
-            "cannot calibrate {key}{}: every statistic needs fault-free values, and the \
-             divergence is tested only once a track is smoothing_s + divergence_s = {} s old; \
-             give files whose tracks last longer",
-            if incomplete.is_empty() {
-                String::new()
-            } else {
-                format!(" of {}", incomplete.join(", "))
-            },
+        let short = format!(
+            "every statistic needs fault-free values, and the divergence is tested only once \
+             a track is smoothing_s + divergence_s = {} s old; give files whose tracks last \
+             longer",
             base.smoothing_s + base.divergence_s
-        ));
+        );
+        return Err(if incomplete.is_empty() {
+            format!("cannot calibrate {key}: the files hold no B values of {what}; {short}")
+        } else {
+            format!(
+                "cannot calibrate {key} of {}: {short}",
+                incomplete.join(", ")
+            )
+        });
     }
     let counts = Signal::ALL
         .iter()
@@ -210,4 +215,27 @@ pub fn case_run(case: Case, seed: u64, sigma: &Sigmas) -> Result<MonitoredRun, S
         &scenario(&case.events(), seed, None)?,
         &config(sigma.clone()),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_calibration_without_values_or_with_a_statistic_missing_says_which() {
+        let base = config(unit_sigma());
+        let empty = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
+        let e =
+            complete_tables(&empty, "sigma_geo", "a BeiDou GEO (--geo-apart)", &base).unwrap_err();
+        assert!(
+            e.starts_with("cannot calibrate sigma_geo: the files hold no B values of a BeiDou GEO"),
+            "{e}"
+        );
+        assert!(e.contains("300 s old"), "{e}");
+        // Code values only: the divergence (and the rest) missing for B1I.
+        let mut code_only = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
+        code_only.add(Signal::BdsB1I, Statistic::Code, 40.0, 0.3);
+        let e = complete_tables(&code_only, "sigma", "any satellite", &base).unwrap_err();
+        assert!(e.starts_with("cannot calibrate sigma of bds-b1i: "), "{e}");
+    }
 }
