@@ -11,7 +11,9 @@
 # --base-bin uses an already built binary. SCENARIO is a bundled name or a file; the
 # default list is the one issue #10 names: interop-gps-static, interop-bds-static,
 # thesis/t-5.4-2 and scenarios/check/leo-three-antennas.toml (multi-antenna LEO), plus
-# `run` of thesis-leo (24 h geometry truth). Exits 1 on the first difference, naming
+# `run` of thesis-leo (24 h geometry truth), then (unless BIT_IDENTITY_MORE=0) issue #31's
+# attitude-leo-gps through synth, receive --geometry and attitude, the integrity-lab
+# monitor and a small study. Exits 1 on the first difference, naming
 # the files that differ. Needs about 10 GB of disk under --work (default: a temporary
 # directory, removed at the end).
 set -euo pipefail
@@ -88,4 +90,27 @@ for s in "${scenarios[@]}"; do
   same "$work" "$tag/receive"
   rm -rf "$work"/{base,new}/"$tag"
 done
+# Issue #31's further runs: the attitude chain through `receive --geometry` and `attitude`
+# (attitude-leo-gps), the integrity monitor on the lab's observation-level run, and a
+# small study (two C/N0 points x two seeds of attitude-cn0).
+if [ "${BIT_IDENTITY_MORE:-1}" = 1 ]; then
+  study="$work/small-study.toml"
+  sed -e "s|^scenario = \"../|scenario = \"$root/|" -e 's/^seeds = .*/seeds = 2/' \
+    -e 's/^values = .*/values = [40.0, 45.0]/' "$root/studies/attitude-cn0.toml" >"$study"
+  for which in base new; do
+    bin=$base_bin; [ $which = new ] && bin=$new_bin
+    out="$work/$which"
+    "$bin" synth attitude-leo-gps --out "$out/att/synth" >/dev/null
+    s="$out/att/synth"
+    "$bin" receive "$s"/*.sigmf-meta --assist "$s/nav.rnx" --config "$s/receiver.toml" \
+      --geometry "$s/geometry.toml" --out "$out/att/receive" >/dev/null
+    "$bin" attitude "$out"/att/receive/*.obs.rnx --nav "$s/nav.rnx" \
+      --geometry "$s/geometry.toml" --out "$out/att/attitude" >/dev/null
+    "$bin" run integrity-lab --out "$out/lab/run" >/dev/null
+    "$bin" monitor run "$out"/lab/run/observations/{A,B,C,D}.obs.rnx --nav "$out/lab/run/nav.rnx" \
+      --out "$out/lab/monitor" >/dev/null
+    "$bin" study run "$study" --out "$out/study" >/dev/null
+  done
+  for d in att/synth att/receive att/attitude lab/run lab/monitor study; do same "$work" "$d"; done
+fi
 echo "bit-identity: all outputs identical"

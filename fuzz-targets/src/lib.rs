@@ -7,10 +7,10 @@
 //! are formatted, since locating an error is code too): a panic, an abort or an allocation
 //! that grows with a number in the input rather than with the input's size is the bug.
 
+use skyforge_gnss::observation::{rinex_read, rinex2_read};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{rinex_nav, rinex_nav_iono};
 use skyforge_receiver::input::{BlockReader, InputParams, Recording, SampleFormat};
-use skyforge_signals::observation::{rinex_read, rinex2_read};
-use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 use std::sync::{Once, OnceLock};
 

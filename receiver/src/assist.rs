@@ -4,12 +4,12 @@
 //! A LEO receiver needs this: its Doppler spans about +/-45 kHz and changes by up to
 //! 80 Hz/s, too wide for a blind search at every start.
 
-use crate::pvt::predicted_view;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::pvt::predicted_view;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, GM_GPS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_signals::signal::Signal;
 
 /// Half step of the central differences (s).
 const DIFF_STEP_S: f64 = 0.05;

@@ -1,5 +1,5 @@
 //! PCPS acquisition on synthetic signals made here: a ranging code from
-//! `skyforge_signals::codes` (with code Doppler) through an integrate-and-dump front end,
+//! `skyforge_gnss::codes` (with code Doppler) through an integrate-and-dump front end,
 //! navigation data (GPS 50 bps; BeiDou D1
 //! bits times the NH20 code), a carrier and complex white Gaussian noise at a given C/N0;
 //! random PRN, code phase, Doppler and carrier phase. Plus noise-only runs against the
@@ -9,10 +9,10 @@ use num_complex::Complex32;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
+use skyforge_gnss::codes::neumann_hoffman::NH20;
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::acquisition::cfar;
 use skyforge_receiver::acquisition::pcps::{BitTransition, DopplerWindow, Pcps, PcpsConfig};
-use skyforge_signals::codes::neumann_hoffman::NH20;
-use skyforge_signals::signal::Signal;
 
 #[derive(Debug, Clone, Copy)]
 struct Truth {

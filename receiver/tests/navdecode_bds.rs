@@ -11,12 +11,12 @@ use navdecode_support::{
 };
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
+use skyforge_gnss::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
 };
 use skyforge_orbits::time::epoch_from_bdt;
 use skyforge_receiver::navdecode::{BdsDecoder, NavDecoder, NavEvent};
-use skyforge_signals::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use std::f64::consts::PI;
 
 const WEEK: u32 = 900;

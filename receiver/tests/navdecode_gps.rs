@@ -10,12 +10,12 @@ mod navdecode_support;
 use navdecode_support::{
     Field, assert_same_toe_toc, assert_within_lsb, ephemerides, soft, subframes,
 };
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, ClockParams, SatId};
-use skyforge_receiver::navdecode::{GpsLnavDecoder, NavDecoder, NavEvent, SUBFRAME_BITS};
-use skyforge_signals::navmsg::gps_lnav::fixtures::{header_iono, real_prn1, utc_week_2190};
-use skyforge_signals::navmsg::gps_lnav::{
+use skyforge_gnss::navmsg::gps_lnav::fixtures::{header_iono, real_prn1, utc_week_2190};
+use skyforge_gnss::navmsg::gps_lnav::{
     Almanac, GPS_PI, LnavEncoder, SUBFRAMES_PER_WEEK, UtcParams, subframe_index_at,
 };
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, ClockParams, SatId};
+use skyforge_receiver::navdecode::{GpsLnavDecoder, NavDecoder, NavEvent, SUBFRAME_BITS};
 
 /// A realistic ephemeris: GPS PRN 1 of brdc0010.22n, 2022-01-01 ([`real_prn1`]), with a
 /// non-zero af2, the signs of af0 and TGD flipped and the PRN/IODC changed to exercise

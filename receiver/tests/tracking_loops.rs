@@ -4,11 +4,11 @@
 
 mod tracking_support;
 
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::tracking::channel::{
     ChannelTracker, FrontEnd, Handover, TrackingConfig, TrackingRecord,
 };
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
-use skyforge_signals::signal::Signal;
 use std::ops::Range;
 use tracking_support::{TestSignal, mean_std, phase_errors};
 

@@ -3,12 +3,12 @@
 
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
+use skyforge_gnss::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
-use skyforge_signals::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Highest GPS PRN (IS-GPS-200: PRNs 1..32 for the operational constellation).

@@ -4,8 +4,8 @@
 //! channel-samples per second = 12 x 4.092e6 / time.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::ephemeris::nominal;
-use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};

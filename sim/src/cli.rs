@@ -110,7 +110,7 @@ pub enum Command {
         /// Number of integer candidates to print (best first).
         #[arg(long, value_name = "K", default_value_t = 2,
               value_parser = clap::value_parser!(u32)
-                  .range(1..=skyforge_receiver::ambiguity::MAX_CANDIDATES as i64))]
+                  .range(1..=skyforge_navigation::ambiguity::MAX_CANDIDATES as i64))]
         candidates: u32,
         /// Print the result as JSON.
         #[arg(long)]

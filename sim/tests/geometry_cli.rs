@@ -6,9 +6,9 @@
 
 mod support;
 
+use skyforge_navigation::geometry_offset::shape::align;
+use skyforge_navigation::relative::files::BodyGeometryFile;
 use skyforge_orbits::Vec3;
-use skyforge_receiver::geometry_offset::shape::align;
-use skyforge_receiver::relative::files::BodyGeometryFile;
 use std::path::Path;
 use support::{dataset, short_scenario, skyforge, skyforge_ok, text};
 

@@ -7,9 +7,9 @@
 
 mod support;
 
+use skyforge_navigation::geometry_offset::shape::align;
+use skyforge_navigation::relative::files::BodyGeometryFile;
 use skyforge_orbits::Vec3;
-use skyforge_receiver::geometry_offset::shape::align;
-use skyforge_receiver::relative::files::BodyGeometryFile;
 use support::{short_scenario, skyforge_ok};
 
 /// Seconds of signal (# assumed: the "at least 600 s").

@@ -224,17 +224,17 @@ fn observed_only_signals_are_written_beside_the_synthesised_ones() {
         let epoch = &obs.epochs[5];
         for (synthesised, observed) in [
             (
-                skyforge_signals::signal::Signal::GpsL1Ca,
+                skyforge_gnss::signal::Signal::GpsL1Ca,
                 [
-                    skyforge_signals::signal::Signal::GpsL2,
-                    skyforge_signals::signal::Signal::GpsL5,
+                    skyforge_gnss::signal::Signal::GpsL2,
+                    skyforge_gnss::signal::Signal::GpsL5,
                 ],
             ),
             (
-                skyforge_signals::signal::Signal::BdsB1I,
+                skyforge_gnss::signal::Signal::BdsB1I,
                 [
-                    skyforge_signals::signal::Signal::BdsB2I,
-                    skyforge_signals::signal::Signal::BdsB3I,
+                    skyforge_gnss::signal::Signal::BdsB2I,
+                    skyforge_gnss::signal::Signal::BdsB3I,
                 ],
             ),
         ] {

@@ -18,14 +18,14 @@
 
 mod support;
 
+use skyforge_gnss::observation::read_obs_file;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::baseline::ElevationNoise;
+use skyforge_navigation::relative::config::Constraint;
+use skyforge_navigation::relative::files::{BodyGeometryFile, run_files};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_receiver::baseline::ElevationNoise;
-use skyforge_receiver::relative::config::Constraint;
-use skyforge_receiver::relative::files::{BodyGeometryFile, run_files};
-use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
-use skyforge_signals::observation::read_obs_file;
-use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 

@@ -112,7 +112,7 @@ fn doppler_is_minus_range_rate_over_wavelength_and_angles_are_consistent() {
     let mut seen = 0;
     for a in 0..world.antennas.len() {
         for (s, sat) in sats.iter().enumerate() {
-            let f = skyforge_signals::signal::Signal::of_system(sat.system).carrier_hz();
+            let f = skyforge_gnss::signal::Signal::of_system(sat.system).carrier_hz();
             for k in 0..chunk.t_s.len() {
                 let l = chunk.link(k, a, s);
                 if !l.visible {

@@ -5,13 +5,13 @@
 
 use hifitime::TimeScale;
 use rinex::prelude::{Constellation, Observable};
+use skyforge_navigation::pvt::{Measurement, PvtConfig, solve};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
 use skyforge_orbits::time::TimeOrigin;
-use skyforge_receiver::pvt::{Measurement, PvtConfig, solve};
 use std::collections::BTreeMap;
 
 /// One epoch every this many seconds.

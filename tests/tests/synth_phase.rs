@@ -6,13 +6,13 @@
 
 mod common;
 
+use skyforge_gnss::codes::gps_ca::gps_ca;
+use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_signals::antenna::AntennaGrid;
-use skyforge_signals::codes::gps_ca::gps_ca;
 use skyforge_signals::errors::ionosphere::{IonoConfig, IonoModel};
 use skyforge_signals::errors::multipath::{MultipathConfig, TapConfig};
 use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
-use skyforge_signals::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
 use skyforge_signals::synth::render::{Synthesiser, append_to};

@@ -7,7 +7,7 @@
 
 mod common;
 
-use skyforge_signals::sample_format::SampleFormat;
+use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};

@@ -1,99 +1,129 @@
-//! The receiver must never read simulator truth (DESIGN.md, "The truth firewall"): the
-//! receiver crate may not depend on the crates that produce or compare truth, and of
-//! `skyforge-signals` its library code may use only what every receiver has: the signal
-//! definitions, the ranging codes, the navigation-message formats, the sample-file formats,
-//! the NCO helpers and the observation vocabulary (records and RINEX observation files).
+//! The receiver and the navigation estimators must never read simulator truth (DESIGN.md,
+//! "The truth firewall"). The firewall is a missing Cargo edge: nothing the receiver and
+//! navigation crates depend on, directly or
+//! through another crate, and none of its test or bench dependencies, is a crate that
+//! produces or compares truth. Of the simulator's side it may use only the GNSS vocabulary
+//! (`skyforge-gnss`: signals, codes, navigation-message, sample and observation formats).
+//! The check reads the resolved dependency graph of `cargo metadata`, so no import alias
+//! or re-export can pass it.
 
-use std::path::{Path, PathBuf};
+use serde_json::Value;
+use std::collections::{BTreeSet, HashMap};
+use std::path::Path;
+use std::process::Command;
 
-fn dependencies(manifest: &Path) -> Vec<String> {
-    let text = std::fs::read_to_string(manifest).unwrap();
-    let doc: toml::Table = toml::from_str(&text).unwrap();
-    ["dependencies", "build-dependencies"]
+/// The crates that produce or compare truth.
+const TRUTH_CRATES: [&str; 5] = [
+    "skyforge-signals",
+    "skyforge-scenarios",
+    "skyforge-validate",
+    "skyforge-sim",
+    "skyforge-studies",
+];
+
+/// `cargo metadata` of the workspace.
+fn metadata() -> Value {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let out = Command::new(cargo)
+        .args(["metadata", "--format-version", "1", "--offline"])
+        .current_dir(root)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Package names by package id.
+fn names(meta: &Value) -> HashMap<String, String> {
+    meta["packages"]
+        .as_array()
+        .unwrap()
         .iter()
-        .filter_map(|k| doc.get(*k).and_then(|d| d.as_table()))
-        .flat_map(|t| t.keys().cloned())
+        .map(|p| {
+            (
+                p["id"].as_str().unwrap().to_owned(),
+                p["name"].as_str().unwrap().to_owned(),
+            )
+        })
         .collect()
 }
 
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap() {
-        let path = entry.unwrap().path();
-        if path.is_dir() {
-            rust_files(&path, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
-            out.push(path);
+/// Every package reachable from `root` in the resolved graph, following normal, build and
+/// (for `root` itself) dev edges.
+fn reachable(meta: &Value, root: &str) -> BTreeSet<String> {
+    let names = names(meta);
+    let nodes: HashMap<&str, &Value> = meta["resolve"]["nodes"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|n| (n["id"].as_str().unwrap(), n))
+        .collect();
+    let root_id = names
+        .iter()
+        .find(|(_, n)| *n == root)
+        .map(|(id, _)| id.clone())
+        .unwrap();
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![(root_id, true)];
+    while let Some((id, is_root)) = stack.pop() {
+        if !seen.insert(names[&id].clone()) {
+            continue;
+        }
+        for dep in nodes[id.as_str()]["deps"].as_array().unwrap() {
+            let kinds: Vec<Option<&str>> = dep["dep_kinds"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|k| k["kind"].as_str())
+                .collect();
+            let follow = kinds.iter().any(|k| *k != Some("dev")) || is_root;
+            if follow {
+                stack.push((dep["pkg"].as_str().unwrap().to_owned(), false));
+            }
         }
     }
+    seen
 }
-
-/// Every `skyforge_signals::<module>` a source text names.
-fn signals_modules(text: &str) -> Vec<String> {
-    let key = "skyforge_signals::";
-    let mut found = Vec::new();
-    let mut rest = text;
-    while let Some(at) = rest.find(key) {
-        rest = &rest[at + key.len()..];
-        let module: String = rest
-            .chars()
-            .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == '{')
-            .collect();
-        found.push(module);
-    }
-    found
-}
-
-/// The modules of `skyforge-signals` the receiver's library code may use.
-const ALLOWED: [&str; 6] = [
-    "signal",
-    "codes",
-    "navmsg",
-    "sample_format",
-    "nco",
-    "observation",
-];
 
 #[test]
-fn receiver_does_not_depend_on_truth_producers() {
-    let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("../receiver/Cargo.toml");
-    let deps = dependencies(&manifest);
-    for forbidden in ["skyforge-validate", "skyforge-scenarios", "skyforge-sim"] {
+fn the_receiver_reaches_no_crate_that_holds_truth() {
+    let meta = metadata();
+    let reach = reachable(&meta, "skyforge-receiver");
+    assert!(
+        reach.contains("skyforge-gnss"),
+        "the graph walk found no vocabulary: {reach:?}"
+    );
+    for forbidden in TRUTH_CRATES {
         assert!(
-            !deps.iter().any(|d| d == forbidden),
-            "receiver depends on {forbidden}: {deps:?}"
+            !reach.contains(forbidden),
+            "skyforge-receiver reaches {forbidden}: {reach:?}"
         );
     }
 }
 
 #[test]
-fn receiver_uses_only_codes_and_message_formats_of_signals() {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("../receiver/src");
-    let mut files = Vec::new();
-    rust_files(&src, &mut files);
-    assert!(!files.is_empty(), "no sources under {}", src.display());
-    for file in files {
-        let text = std::fs::read_to_string(&file).unwrap();
-        // Unit tests may build test signals; the library code may not look at truth.
-        let library = text.split("#[cfg(test)]").next().unwrap_or("");
-        for module in signals_modules(library) {
+fn navigation_and_the_vocabulary_reach_no_crate_that_holds_truth() {
+    let meta = metadata();
+    for krate in ["skyforge-navigation", "skyforge-gnss"] {
+        let reach = reachable(&meta, krate);
+        for forbidden in TRUTH_CRATES {
             assert!(
-                ALLOWED.contains(&module.as_str()),
-                "{} uses skyforge_signals::{module}: only {ALLOWED:?} are allowed",
-                file.display()
+                !reach.contains(forbidden),
+                "{krate} reaches {forbidden}: {reach:?}"
             );
         }
-        assert!(
-            !library.contains("use skyforge_signals;") && !library.contains("skyforge_signals::*"),
-            "{}: glob use of skyforge_signals",
-            file.display()
-        );
     }
 }
 
 #[test]
-fn the_source_scan_sees_forbidden_paths() {
-    let modules = signals_modules(
-        "use skyforge_signals::codes::gps_ca;\nlet t = skyforge_signals::truth::x;\nuse skyforge_signals::{codes, synth};",
-    );
-    assert_eq!(modules, ["codes", "truth", "{codes"]);
+fn the_graph_walk_sees_the_simulator_where_it_is() {
+    // The check must be able to fail: the validation crate does reach the simulator.
+    let reach = reachable(&metadata(), "skyforge-validate");
+    assert!(reach.contains("skyforge-signals"), "{reach:?}");
+    assert!(reach.contains("skyforge-receiver"), "{reach:?}");
 }

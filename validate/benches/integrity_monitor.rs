@@ -5,14 +5,14 @@
 //! alignment, mapping to the common point, Hatch filters, divergence, B values, alarms.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use skyforge_receiver::integrity::files::{run_files, stations};
+use skyforge_navigation::integrity::files::{run_files, stations};
 use skyforge_validate::attitude::observation_run;
 use skyforge_validate::integrity::lab::scenario;
 use std::hint::black_box;
 
 fn monitor(c: &mut Criterion) {
     let run = observation_run(&scenario(&[], 2002, None).expect("lab")).expect("run");
-    let cfg = skyforge_receiver::integrity::MonitorConfig::parse(
+    let cfg = skyforge_navigation::integrity::MonitorConfig::parse(
         skyforge_scenarios::BUNDLED_MONITOR_CONFIG,
     )
     .expect("bundled configuration");

@@ -12,11 +12,11 @@ use crate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use crate::observables::{ObsError, ObsFile};
 use crate::pipeline::{ChainError, synth_and_receive};
 use hifitime::Duration;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_receiver::tracking::channel::TrackingConfig;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};
-use skyforge_signals::signal::Signal;
 use std::path::Path;
 
 /// Seconds at the start of the run left out: acquisition, pull-in and loop narrowing.

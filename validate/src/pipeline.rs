@@ -8,13 +8,13 @@
 //! between: the receiver reads the samples as the synthesiser renders them (`skyforge
 //! synth --receive`), for runs whose I/Q would not fit on disk.
 
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
 use skyforge_receiver::input::{InputError, InputParams, Recording, SampleFeed, sample_stream};
 use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
     Assistance, EpochSink, NavSource, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
-use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
 use skyforge_signals::synth::session::{
     Discard, ObservationSink, SampleSink, SinkError, Sinks, SynthError, SynthReport, SynthSession,
     TruthSink,

@@ -6,10 +6,10 @@
 //! The table is printed (`cargo test -p skyforge-validate --test attitude_multifrequency
 //! -- --nocapture`); docs/attitude.md records it.
 
-use skyforge_receiver::relative::config::Constraint;
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::config::Constraint;
 use skyforge_signals::obs_model::ObsNoiseConfig;
-use skyforge_signals::observation::ObsRecord;
-use skyforge_signals::signal::Signal;
 use skyforge_validate::attitude::observation_run;
 use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
 

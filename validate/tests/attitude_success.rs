@@ -9,8 +9,8 @@
 //! least squares that also knows the (correct) baseline lengths or body geometry succeeds
 //! at least as often as without them, and two systems at least as often as either alone.
 
-use skyforge_receiver::relative::config::Constraint;
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::config::Constraint;
 use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
 
 // assumed: 300 s of the 600 s scenario, chosen before the first run, to keep the default

@@ -10,13 +10,13 @@
 //!   (eq. 4.3-34); the joint LS is told B0 and the shape of dB0 and estimates its size
 //!   (truly 1) with the attitude, every epoch.
 
+use skyforge_navigation::attitude::least_squares::{LsConfig, solve};
+use skyforge_navigation::attitude::{BodyGeometry, YawPitchRoll};
+use skyforge_navigation::geometry_offset::iterative::{self, AntennaLevers};
+use skyforge_navigation::geometry_offset::joint_ls::{self, DeformationModel};
+use skyforge_navigation::relative::RelativeConfig;
+use skyforge_navigation::relative::config::Constraint;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_receiver::attitude::least_squares::{LsConfig, solve};
-use skyforge_receiver::attitude::{BodyGeometry, YawPitchRoll};
-use skyforge_receiver::geometry_offset::iterative::{self, AntennaLevers};
-use skyforge_receiver::geometry_offset::joint_ls::{self, DeformationModel};
-use skyforge_receiver::relative::RelativeConfig;
-use skyforge_receiver::relative::config::Constraint;
 use skyforge_validate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
 use skyforge_validate::attitude::{ObservationRun, observation_run};
 

@@ -2,8 +2,8 @@
 //! fault cases, the physical argument behind the one row marked `explained`, and the
 //! detection curves on a few seeds (`validate thesis --only P2` runs the full counts).
 
-use skyforge_receiver::integrity::{SatelliteEpoch, Statistic};
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::integrity::{SatelliteEpoch, Statistic};
 use skyforge_validate::integrity::detection;
 use skyforge_validate::integrity::lab::{Case, FAULT_SATELLITE, MonitoredRun};
 use skyforge_validate::integrity::monitor::{Sigmas, calibrate_lab, case_run};
@@ -130,7 +130,7 @@ fn detection_rises_with_the_fault_size() {
 fn the_bundled_configuration_is_the_labs_calibration() {
     // `skyforge monitor calibrate integrity-lab --seed 1 --seeds 8` wrote it; the same
     // runs here give the same tables.
-    let bundled = skyforge_receiver::integrity::MonitorConfig::parse(
+    let bundled = skyforge_navigation::integrity::MonitorConfig::parse(
         skyforge_scenarios::BUNDLED_MONITOR_CONFIG,
     )
     .unwrap();

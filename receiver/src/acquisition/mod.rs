@@ -18,7 +18,7 @@ pub use num_complex::Complex32;
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AcquisitionError {
     #[error(transparent)]
-    UnknownPrn(#[from] skyforge_signals::signal::UnknownPrn),
+    UnknownPrn(#[from] skyforge_gnss::signal::UnknownPrn),
     #[error("{name} = {value} is not allowed: {allowed}")]
     BadParameter {
         name: &'static str,
@@ -29,5 +29,5 @@ pub enum AcquisitionError {
     TooFewSamples { needed: usize, got: usize },
     /// A signal SkyForge reads from files but does not track (GPS L2).
     #[error("{0} is read from observation files only; SkyForge does not acquire or track it")]
-    NotTracked(skyforge_signals::signal::Signal),
+    NotTracked(skyforge_gnss::signal::Signal),
 }

@@ -18,7 +18,7 @@ use super::replica::{mean_edge_delay_samples, sample_code, wipe_carrier};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
 use std::sync::Arc;
 
 /// How correlations handle sign changes between code periods (GPS data bits every

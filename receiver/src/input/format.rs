@@ -10,7 +10,7 @@ use super::error::InputError;
 use num_complex::Complex32;
 
 /// The sample containers (shared with the synthesiser that writes them).
-pub use skyforge_signals::sample_format::SampleFormat;
+pub use skyforge_gnss::sample_format::SampleFormat;
 
 /// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
 pub const ALLOWED_DATATYPES: &str =

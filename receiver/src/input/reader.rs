@@ -10,7 +10,7 @@ use super::recording::{InputParams, Recording};
 use super::stream::StreamReader;
 use hifitime::{Duration, Epoch};
 use num_complex::Complex32;
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};
 use std::path::{Path, PathBuf};

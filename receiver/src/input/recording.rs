@@ -7,9 +7,9 @@ use super::error::{Finding, InputError};
 use super::format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::time::{SUPPORTED_RANGE, in_supported_range};
-use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 
 /// Largest SigMF metadata file read (annotations included).

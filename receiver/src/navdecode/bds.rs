@@ -7,9 +7,9 @@ use super::{
     DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SUBFRAME_BITS,
     SubframeInfo, WEEK_S, time_consistent,
 };
+use skyforge_gnss::navmsg::bds::BdsNavFormat;
+use skyforge_gnss::navmsg::bds::Klobuchar;
 use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
-use skyforge_signals::navmsg::bds::BdsNavFormat;
-use skyforge_signals::navmsg::bds::Klobuchar;
 
 /// Preamble 11100010010 (BDS-SIS-ICD-B1I-3.0 §5.2.3).
 const PREAMBLE: u32 = 0b111_0001_0010;

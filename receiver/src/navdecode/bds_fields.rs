@@ -7,11 +7,11 @@
 //! splits fields across pages: the MSBs end page n, the LSBs start page n + 1.
 
 use super::{DecodedEphemeris, sign_extend, week_of_reference};
+use skyforge_gnss::navmsg::bds::Klobuchar;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
 };
 use skyforge_orbits::time::epoch_from_bdt;
-use skyforge_signals::navmsg::bds::Klobuchar;
 use std::f64::consts::PI;
 
 /// Validity interval given to a decoded BeiDou ephemeris (s): the 6 h around toe that the

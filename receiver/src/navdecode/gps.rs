@@ -9,12 +9,12 @@ use super::{
     DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo,
     time_consistent,
 };
+use skyforge_gnss::navmsg::gps_lnav::BIT_PERIOD_S;
+use skyforge_gnss::navmsg::gps_lnav::IonoParams;
+use skyforge_gnss::navmsg::gps_lnav::PREAMBLE;
+use skyforge_gnss::navmsg::gps_lnav::SUBFRAMES_PER_WEEK;
+use skyforge_gnss::navmsg::gps_lnav::UtcParams;
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_signals::navmsg::gps_lnav::BIT_PERIOD_S;
-use skyforge_signals::navmsg::gps_lnav::IonoParams;
-use skyforge_signals::navmsg::gps_lnav::PREAMBLE;
-use skyforge_signals::navmsg::gps_lnav::SUBFRAMES_PER_WEEK;
-use skyforge_signals::navmsg::gps_lnav::UtcParams;
 
 /// Default reference for resolving the 10-bit week number: the middle of the third
 /// 1024-week era (weeks 2048-3071, April 2019 to November 2038).

@@ -5,13 +5,13 @@
 //! word number (1-10) and first bit (1-24).
 
 use super::{DecodedEphemeris, WEEK_S, sign_extend, week_of_reference};
+use skyforge_gnss::navmsg::gps_lnav::GPS_PI;
+use skyforge_gnss::navmsg::gps_lnav::IonoParams;
+use skyforge_gnss::navmsg::gps_lnav::UtcParams;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
 };
 use skyforge_orbits::time::epoch_from_gpst;
-use skyforge_signals::navmsg::gps_lnav::GPS_PI;
-use skyforge_signals::navmsg::gps_lnav::IonoParams;
-use skyforge_signals::navmsg::gps_lnav::UtcParams;
 
 /// Fit interval for fit interval flag 0 (IS-GPS-200 20.3.3.4.3.1: 4 hours).
 const FIT_FLAG0_S: f64 = 4.0 * 3600.0;

@@ -6,7 +6,7 @@
 //! together when the whole stream is complemented, the check and the recovered source bits
 //! do not depend on the stream polarity, provided D29*, D30* come from the same stream.
 
-use skyforge_signals::navmsg::gps_lnav::parity::encode_word;
+use skyforge_gnss::navmsg::gps_lnav::parity::encode_word;
 
 /// The 24 source bits (d1 at bit 23) of transmitted word `word` if its parity holds given
 /// `d29_star`, `d30_star` (the last two bits of the previous word), else `None`: the
@@ -43,7 +43,7 @@ pub(crate) fn check_subframe(bits: &[u8]) -> Result<[u32; 10], u16> {
 mod tests {
     use super::*;
     use proptest::prelude::*;
-    use skyforge_signals::navmsg::gps_lnav::fixtures::TSUI_PARITY_MATRIX;
+    use skyforge_gnss::navmsg::gps_lnav::fixtures::TSUI_PARITY_MATRIX;
 
     /// Encode by brute force: the parity bits that make `check_word` accept, computed
     /// independently from the equations as a matrix over GF(2) (the H matrix printed in

@@ -30,10 +30,10 @@ mod gps_parity;
 pub use bds::BdsDecoder;
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder};
 
+use skyforge_gnss::navmsg::bds::Klobuchar;
+use skyforge_gnss::navmsg::gps_lnav::IonoParams;
+use skyforge_gnss::navmsg::gps_lnav::UtcParams;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
-use skyforge_signals::navmsg::bds::Klobuchar;
-use skyforge_signals::navmsg::gps_lnav::IonoParams;
-use skyforge_signals::navmsg::gps_lnav::UtcParams;
 
 /// Bits per subframe, GPS LNAV and BeiDou D1/D2 alike.
 pub const SUBFRAME_BITS: usize = 300;

@@ -11,10 +11,10 @@
 //! - Doppler (RINEX sign: positive when approaching), C/N0, lock time and a loss-of-lock
 //!   indicator for the epoch.
 
+use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_signals::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
-use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
 /// What one channel knows at one of its code-period boundaries.

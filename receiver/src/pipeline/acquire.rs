@@ -9,7 +9,7 @@ use crate::acquisition::pcps::{Acquisition, BitTransition, DopplerWindow, Pcps, 
 use crate::acquisition::pmf_fft::{ChipTiming, PmfFft, despread_to_chips};
 use num_complex::Complex32;
 use rayon::prelude::*;
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
 
 /// A satellite to search for, with its Doppler window and predicted Doppler rate.
 #[derive(Debug, Clone, Copy, PartialEq)]

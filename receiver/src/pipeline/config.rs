@@ -1,9 +1,9 @@
 //! Receiver settings: acquisition, tracking, observation rate, PVT, and the approximate
 //! state a receiver can be told (assistance).
 
-use crate::pvt::PvtConfig;
 use crate::tracking::carrier::CarrierMethod;
 use crate::tracking::channel::TrackingConfig;
+use skyforge_navigation::pvt::PvtConfig;
 use skyforge_orbits::Vec3;
 
 /// The acquisition stage.

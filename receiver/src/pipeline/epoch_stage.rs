@@ -7,9 +7,9 @@ use super::AntennaFix;
 use super::config::{EpochStageKind, ReceiverConfig};
 use super::navdata::NavData;
 use crate::observables::Observation;
-use crate::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
-use skyforge_signals::signal::Signal;
 
 /// An antenna's latest fix, for assisting its searches.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -3,8 +3,8 @@
 //! feature only.
 use crate::observables::Observation;
 use crate::pipeline::{AntennaFix, EpochReport};
-use crate::pvt::{Dop, Fix, PvtError, VelocityFix};
 use hifitime::{Epoch, TimeScale};
+use skyforge_navigation::pvt::{Dop, Fix, PvtError, VelocityFix};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::{SatId, System};
 

@@ -21,9 +21,9 @@ pub use epoch_stage::LastFix;
 pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};
 
 use crate::observables::Observation;
-use crate::pvt::{Fix, PvtError, VelocityFix};
 use hifitime::Epoch;
-use skyforge_signals::observation::ObsRecord;
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_navigation::pvt::{Fix, PvtError, VelocityFix};
 
 /// The fix of one antenna at one epoch.
 #[derive(Debug, Clone, PartialEq)]

@@ -18,9 +18,9 @@ use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover, MAX_COHERENT_
 use hifitime::Epoch;
 use num_complex::Complex32;
 use rayon::prelude::*;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
-use skyforge_signals::signal::Signal;
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).
 const NOMINAL_FLIGHT_S: f64 = 0.075;

@@ -14,11 +14,11 @@ use crate::pipeline::{
     ApproximateState, BandInput, EpochReport, Receiver, ReceiverConfig, ReceiverFile,
     ReceiverSetup, ReceiverSummary,
 };
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav::{parse_nav, read_nav_file};
 use skyforge_orbits::ephemeris::rinex_nav_iono::{BroadcastIono, parse_iono, read_iono_file};
-use skyforge_signals::signal::Signal;
 use std::path::{Path, PathBuf};
 
 /// Largest receiver configuration file read.

@@ -6,13 +6,13 @@
 
 use super::{EpochSink, SinkError};
 use crate::pipeline::EpochReport;
-use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::System;
-use skyforge_signals::observation::ObsRecord;
-use skyforge_signals::observation::rinex_write::{
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::observation::rinex_write::{
     Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
 };
-use skyforge_signals::signal::Signal;
+use skyforge_gnss::signal::Signal;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::System;
 use std::fs::File;
 use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};

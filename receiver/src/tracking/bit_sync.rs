@@ -11,9 +11,9 @@
 
 use std::collections::VecDeque;
 
-use skyforge_signals::codes::neumann_hoffman;
+use skyforge_gnss::codes::neumann_hoffman;
 
-use skyforge_signals::signal::DataModulation;
+use skyforge_gnss::signal::DataModulation;
 
 /// Decision thresholds of the synchroniser.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]

@@ -14,7 +14,7 @@
 //! far as the PLL bandwidth in use allows (`Bn T <= 0.1`).
 
 use num_complex::Complex;
-use skyforge_signals::codes::neumann_hoffman;
+use skyforge_gnss::codes::neumann_hoffman;
 
 use super::TrackingError;
 use super::bit_sync::{BitSyncConfig, BitSynchroniser};
@@ -24,7 +24,7 @@ use super::discriminators::{FllDiscriminator, PllDiscriminator, dll_envelope_chi
 use super::error_budget::LoopOrder;
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{aided_code_rate, dll_rate_correction};
-use skyforge_signals::signal::{DataModulation, Signal};
+use skyforge_gnss::signal::{DataModulation, Signal};
 
 /// Longest coherent integration after bit sync (code periods): one GPS or D1 bit.
 pub const MAX_COHERENT_MS: u32 = 20;
@@ -956,7 +956,7 @@ mod tests {
         assert_eq!(
             ChannelTracker::new(no_code, FRONT_END, TrackingConfig::default()).map(|_| ()),
             Err(TrackingError::UnknownPrn(
-                skyforge_signals::signal::UnknownPrn {
+                skyforge_gnss::signal::UnknownPrn {
                     signal: Signal::GpsL1Ca,
                     prn: 0,
                     max: 63

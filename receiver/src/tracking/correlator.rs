@@ -20,7 +20,7 @@
 //! its data into blocks around that call.
 
 use num_complex::Complex;
-use skyforge_signals::nco::LanePhasors;
+use skyforge_gnss::nco::LanePhasors;
 
 use super::TrackingError;
 

@@ -58,7 +58,7 @@ pub fn dynamic_stress_3rd_deg(fd_accel_hzps2: f64, bn_hz: f64) -> f64 {
 
 /// Thesis eq. 3.2-3: PLL thermal-noise jitter (deg, 1 sigma).
 pub fn thermal_jitter_deg(bn_hz: f64, cn0_dbhz: f64, t_coh_s: f64) -> f64 {
-    360.0 * skyforge_signals::observation::pll_thermal_cycles(bn_hz, cn0_dbhz, t_coh_s)
+    360.0 * skyforge_gnss::observation::pll_thermal_cycles(bn_hz, cn0_dbhz, t_coh_s)
 }
 
 /// Thesis eq. 3.2-4 (2nd order, factor 144) and 3.2-5 (3rd order, factor 160):

@@ -19,7 +19,7 @@ pub enum TrackingError {
     InvalidConfig(String),
     /// The PRN has no ranging code for the signal.
     #[error(transparent)]
-    UnknownPrn(#[from] skyforge_signals::signal::UnknownPrn),
+    UnknownPrn(#[from] skyforge_gnss::signal::UnknownPrn),
     /// A block did not start where the previous one ended.
     #[error("sample blocks must be contiguous: expected first sample {expected}, got {got}")]
     NonContiguous {

@@ -1,9 +1,9 @@
 //! Tracking-noise calibration: how the bundled receiver's code and phase noise compare with
 //! the loop thermal-noise formulas, measured on signal-level runs (`skyforge calibrate`).
 
-use crate::observation::{dll_thermal_chips, pll_thermal_cycles};
-use crate::signal::Signal;
 use serde::{Deserialize, Serialize};
+use skyforge_gnss::observation::{dll_thermal_chips, pll_thermal_cycles};
+use skyforge_gnss::signal::Signal;
 
 /// The loop settings the formulas are evaluated with (the receiver's after pull-in).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

@@ -2,9 +2,9 @@
 //! observation-level noise model.
 
 use super::calibration::Calibration;
-use crate::observation::ElevationNoise;
-use crate::signal::Signal;
 use serde::Deserialize;
+use skyforge_gnss::observation::ElevationNoise;
+use skyforge_gnss::signal::Signal;
 use std::path::PathBuf;
 
 /// Where observables come from.

@@ -4,12 +4,12 @@
 
 use super::config::ObsNoise;
 use crate::errors::seed::{Stream, stream_rng};
-use crate::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
-use crate::signal::Signal;
 use crate::synth::link::LinkTruth;
 use rand::Rng;
 use rand_chacha::ChaCha20Rng;
 use rand_distr::{Distribution, StandardNormal};
+use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use std::collections::HashMap;
 

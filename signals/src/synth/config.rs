@@ -2,7 +2,7 @@
 
 use super::filter::FilterConfig;
 use crate::errors::link_budget::LinkBudgetConfig;
-use crate::sample_format::SampleFormat;
+use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::ephemeris::SatId;
 use std::collections::BTreeMap;

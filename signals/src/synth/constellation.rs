@@ -4,9 +4,9 @@
 
 use super::transmitter::Transmitter;
 use crate::errors::ionosphere::KlobucharCoeffs;
-use crate::navmsg::bds::{BdsNavEncoder, BdsNavError, Klobuchar};
-use crate::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use hifitime::Epoch;
+use skyforge_gnss::navmsg::bds::{BdsNavEncoder, BdsNavError, Klobuchar};
+use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 
 /// Why a constellation's transmitters could not be built.

@@ -8,7 +8,7 @@
 //! It decodes D2 (GEO) navigation data for C01-C05. The `.conf` says so in a comment.
 
 use super::config::SignalConfig;
-use crate::sample_format::SampleFormat;
+use skyforge_gnss::sample_format::SampleFormat;
 use std::fmt::Write;
 
 /// Highest BeiDou PRN for which GNSS-SDR 0.0.17 generates a B1I replica (read from the
@@ -45,14 +45,14 @@ const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
 pub fn recording_config(
     cfg: &SignalConfig,
     name: &str,
-    signal: crate::signal::Signal,
+    signal: skyforge_gnss::signal::Signal,
     leo: bool,
     iono_on: bool,
     tropo_on: bool,
 ) -> String {
     let present = SignalsPresent {
-        gps_l1ca: signal == crate::signal::Signal::GpsL1Ca,
-        bds_b1i: signal == crate::signal::Signal::BdsB1I,
+        gps_l1ca: signal == skyforge_gnss::signal::Signal::GpsL1Ca,
+        bds_b1i: signal == skyforge_gnss::signal::Signal::BdsB1I,
     };
     let doppler = if leo {
         DOPPLER_MAX_LEO_HZ

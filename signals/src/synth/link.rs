@@ -14,9 +14,9 @@
 //! delay, amplitude and phase on top of the direct path.
 
 use crate::errors::multipath::Path;
-use crate::signal::Signal;
 use crate::truth::geometry::LinkGeometry;
 use crate::truth::interp::QuinticHermite;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 
 /// One end (a geometry epoch) of a link's interval.

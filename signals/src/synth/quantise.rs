@@ -9,7 +9,7 @@
 //! blocks, the output does not depend on block size. The clip count counts components
 //! beyond the top level for 4, 8 and 16 bits (1- and 2-bit words saturate by design).
 
-use crate::sample_format::SampleFormat;
+use skyforge_gnss::sample_format::SampleFormat;
 
 /// Word lengths the quantiser supports.
 pub const SUPPORTED_BITS: [u8; 5] = [1, 2, 4, 8, 16];

@@ -22,9 +22,9 @@ use super::transmitter::Transmitter;
 use crate::errors::clock::{ClockModel, ClockSample};
 use crate::errors::events::{EventEffect, EventSchedule};
 use crate::errors::multipath::{Path, dll_bias_m};
-use crate::sample_format::SampleFormat;
-use crate::signal::Signal;
 use rayon::prelude::*;
+use skyforge_gnss::sample_format::SampleFormat;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use std::f64::consts::TAU;
 

@@ -4,9 +4,9 @@
 
 use super::session::{Band, SampleSink, SinkError};
 use crate::antenna::Antenna;
-use crate::sample_format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::{Value, json};
+use skyforge_gnss::sample_format::SampleFormat;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};

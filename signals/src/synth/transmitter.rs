@@ -1,13 +1,13 @@
 //! A transmitting satellite as the synthesiser sees it: ranging code, data bits and the
 //! time scale its code and data are counted in.
 
-use crate::codes::bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
-use crate::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, gps_ca};
-use crate::codes::neumann_hoffman::NH20;
-use crate::navmsg::bds::{BdsNavEncoder, BdsNavFormat};
-use crate::navmsg::gps_lnav::LnavEncoder;
-use crate::signal::Signal;
 use hifitime::Epoch;
+use skyforge_gnss::codes::bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+use skyforge_gnss::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, gps_ca};
+use skyforge_gnss::codes::neumann_hoffman::NH20;
+use skyforge_gnss::navmsg::bds::{BdsNavEncoder, BdsNavFormat};
+use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Data modulating a signal.

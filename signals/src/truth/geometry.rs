@@ -11,8 +11,8 @@
 
 use super::light_time::{self, LightTime};
 use crate::antenna::Antenna;
-use crate::signal::Signal;
 use rayon::prelude::*;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{BoundEphemeris, EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;

@@ -1,7 +1,7 @@
 //! `skyforge ambiguity FILE`: LAMBDA on a float solution read from a file.
 
 use crate::BadInput;
-use skyforge_receiver::ambiguity::{IntegerSolution, lambda, problem_file};
+use skyforge_navigation::ambiguity::{IntegerSolution, lambda, problem_file};
 use std::path::Path;
 
 /// Read `file`, resolve its ambiguities and print `candidates` integer vectors.

@@ -12,14 +12,14 @@ use crate::output::attitude_out::{EpochValues, csv_header, csv_row, integer_rows
 use crate::output::geometry_out::{self, OffsetRow};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_gnss::observation::{ObsFile, read_obs_file};
+use skyforge_navigation::attitude::BodyGeometry;
+use skyforge_navigation::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
+use skyforge_navigation::relative::config::Constraint;
+use skyforge_navigation::relative::files::{BodyGeometryFile, run_files};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_receiver::attitude::BodyGeometry;
-use skyforge_receiver::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
-use skyforge_receiver::relative::config::Constraint;
-use skyforge_receiver::relative::files::{BodyGeometryFile, run_files};
-use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
-use skyforge_signals::observation::{ObsFile, read_obs_file};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -106,7 +106,7 @@ impl EpochWriters {
     fn write(
         &mut self,
         v: &EpochValues,
-        o: &skyforge_receiver::relative::files::EpochOutcome,
+        o: &skyforge_navigation::relative::files::EpochOutcome,
         m: usize,
     ) {
         if self.error.is_none() {

@@ -7,11 +7,11 @@ use crate::cli::{MonitorArgs, ScenarioRun};
 use crate::output::monitor_out::{AlarmLog, H5Rows, csv_header, csv_rows};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_gnss::observation::{ObsFile, read_obs_file};
+use skyforge_navigation::integrity::files::{run_files, stations};
+use skyforge_navigation::integrity::{MonitorConfig, Station};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_receiver::integrity::files::{run_files, stations};
-use skyforge_receiver::integrity::{MonitorConfig, Station};
-use skyforge_signals::observation::{ObsFile, read_obs_file};
 use skyforge_validate::integrity::monitor::{
     ELEVATION_BINS_DEG, calibrate as measure, calibrate_files as measure_files, config,
 };

@@ -7,14 +7,14 @@ use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_gnss::observation::read_obs_file;
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::format::parse_format;
 use skyforge_receiver::pipeline::ReceiverSummary;
 use skyforge_receiver::session::{
     Assistance, NavSource, ReceiveSession, SessionError, read_config,
 };
-use skyforge_signals::observation::read_obs_file;
-use skyforge_signals::signal::Signal;
 
 /// The raw-file description given on the command line.
 fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {

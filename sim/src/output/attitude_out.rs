@@ -4,8 +4,8 @@
 
 use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
-use skyforge_receiver::relative::AmbiguityStatus;
-use skyforge_receiver::relative::files::EpochOutcome;
+use skyforge_navigation::relative::AmbiguityStatus;
+use skyforge_navigation::relative::files::EpochOutcome;
 use std::path::Path;
 
 /// A fixed baseline in the master's NED frame and its standard deviations (m).

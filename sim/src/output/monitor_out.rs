@@ -4,7 +4,7 @@
 use super::h5_datasets::{append_rows, create_rows, text_attr};
 use hifitime::Epoch;
 use serde::Serialize;
-use skyforge_receiver::integrity::{MonitorEpoch, Station, Statistic};
+use skyforge_navigation::integrity::{MonitorEpoch, Station, Statistic};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 use std::path::Path;

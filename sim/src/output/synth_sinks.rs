@@ -4,11 +4,11 @@
 //! first epoch with the antenna's position there).
 
 use super::truth_h5::TruthWriter;
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::observation::rinex_write::{ObsWriter, calendar_gpst};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::observation::ObsRecord;
-use skyforge_signals::observation::rinex_write::{ObsWriter, calendar_gpst};
-use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::synth::session::{ObservationSink, SinkError, TruthSink};
 use skyforge_signals::truth::geometry::GeometryChunk;

@@ -6,9 +6,9 @@ use super::h5_datasets::{
 };
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
 use std::path::Path;

@@ -5,10 +5,10 @@
 
 pub mod side_by_side;
 
+use skyforge_gnss::observation::dll_thermal_chips;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::tracking::error_budget::thermal_jitter_deg;
-use skyforge_signals::observation::dll_thermal_chips;
-use skyforge_signals::signal::Signal;
 use skyforge_validate::observables::compare::{CompareOptions, ObsComparison, compare_with};
 use skyforge_validate::observables::table::cell;
 use skyforge_validate::observables::{ObsFile, read_obs_file};

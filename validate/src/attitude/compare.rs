@@ -5,16 +5,16 @@
 
 use super::run::ObservationRun;
 use hifitime::Epoch;
+use skyforge_gnss::observation::{ObsFile, ObsRecord};
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::attitude::{angle_error, wrap_diff};
+use skyforge_navigation::relative::files::{BodyGeometryFile, EpochOutcome, FilesError, run_files};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_receiver::attitude::{angle_error, wrap_diff};
-use skyforge_receiver::relative::files::{BodyGeometryFile, EpochOutcome, FilesError, run_files};
-use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
-use skyforge_signals::observation::{ObsFile, ObsRecord};
-use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::session::GEOMETRY_STEP_S;
 use std::collections::HashMap;
 

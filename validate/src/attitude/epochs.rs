@@ -4,10 +4,10 @@
 
 use super::compare::epoch_truth;
 use super::{ObservationRun, nominal_geometry};
+use skyforge_navigation::attitude::NedBaselines;
+use skyforge_navigation::relative::files::{FilesError, run_files};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::frames::euler::YawPitchRoll;
-use skyforge_receiver::attitude::NedBaselines;
-use skyforge_receiver::relative::files::{FilesError, run_files};
-use skyforge_receiver::relative::{AmbiguityStatus, RelativeConfig};
 
 /// One epoch of the chain.
 #[derive(Debug, Clone)]

@@ -27,15 +27,15 @@ use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
 use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
+use skyforge_gnss::observation::{ObsReadError, read_obs_file};
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::files::{BodyGeometryFile, FilesError};
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::time::parse_epoch;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_receiver::relative::files::{BodyGeometryFile, FilesError};
 use skyforge_signals::antenna::check_antenna_name;
-use skyforge_signals::observation::{ObsReadError, read_obs_file};
-use skyforge_signals::signal::Signal;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 

@@ -6,6 +6,10 @@
 
 use crate::pipeline::{ChainError, StreamSinks, StreamedChain};
 use hifitime::{Duration, Epoch};
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::pvt::{Fix, PvtConfig};
+use skyforge_navigation::relative::files::single_point_fixes;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
@@ -15,15 +19,11 @@ use skyforge_orbits::platform::PlatformState;
 use skyforge_orbits::platform::hermite::Hermite3;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_receiver::pipeline::{EpochReport, ReceiverConfig, assistance_toml};
-use skyforge_receiver::pvt::{Fix, PvtConfig};
-use skyforge_receiver::relative::files::single_point_fixes;
 use skyforge_receiver::session::{
     Assistance, EpochSink, NavSource, SessionError, SinkError as EpochSinkError, parse_config,
 };
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::obs_model::{Level, ObservationModel};
-use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsRecord};
-use skyforge_signals::signal::Signal;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::link::LinkTruth;
 use skyforge_signals::synth::session::{

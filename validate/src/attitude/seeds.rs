@@ -7,7 +7,7 @@
 use super::{ChainComparison, compare, nominal_geometry, observation_run};
 use crate::thesis::draw::Draw;
 use rayon::prelude::*;
-use skyforge_receiver::relative::RelativeConfig;
+use skyforge_navigation::relative::RelativeConfig;
 use skyforge_scenarios::Scenario;
 
 /// Independent runs per setting: the scenario's seed and the next seven.

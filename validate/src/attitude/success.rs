@@ -11,10 +11,10 @@
 
 use super::{ChainComparison, seed_runs};
 use crate::stats::AcrossRuns;
-use skyforge_receiver::relative::RelativeConfig;
-use skyforge_receiver::relative::config::Constraint;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::RelativeConfig;
+use skyforge_navigation::relative::config::Constraint;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::signal::Signal;
 
 /// One search on one signal set over the runs.
 #[derive(Debug, Clone)]

@@ -8,8 +8,8 @@ use super::chart::{Chart, Series};
 use super::page::Figure;
 use super::{ReportError, figure, read_dataset};
 use crate::attitude::OutputsComparison;
+use skyforge_navigation::geometry_offset::shape::align;
 use skyforge_orbits::Vec3;
-use skyforge_receiver::geometry_offset::shape::align;
 use std::path::Path;
 
 /// The file `skyforge attitude --estimate-geometry` writes.

@@ -13,7 +13,7 @@ use super::monitor::{Sigmas, config};
 use crate::report::{Row, Verdict};
 use crate::thesis::draw::Draw;
 use rayon::prelude::*;
-use skyforge_receiver::integrity::{PerStatistic, Statistic};
+use skyforge_navigation::integrity::{PerStatistic, Statistic};
 
 /// The table group's identifier.
 pub const TABLE: &str = "P2-PD";

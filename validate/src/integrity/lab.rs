@@ -2,8 +2,8 @@
 //! cases, run at the observation level and monitored.
 
 use crate::attitude::{ObservationRun, observation_run};
-use skyforge_receiver::integrity::files::{run_files, stations};
-use skyforge_receiver::integrity::{MonitorConfig, MonitorEpoch};
+use skyforge_navigation::integrity::files::{run_files, stations};
+use skyforge_navigation::integrity::{MonitorConfig, MonitorEpoch};
 use skyforge_scenarios::Scenario;
 use std::path::Path;
 

@@ -3,15 +3,15 @@
 
 use super::lab::{Case, MonitoredRun, monitored, scenario};
 use rayon::prelude::*;
-use skyforge_orbits::ephemeris::BroadcastEphemeris;
-use skyforge_receiver::integrity::files::run_files;
-use skyforge_receiver::integrity::{
+use skyforge_gnss::observation::ObsFile;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::integrity::files::run_files;
+use skyforge_navigation::integrity::{
     MonitorConfig, MonitorEpoch, SatelliteEpoch, SigmaCalibrator, SigmaTable, Station, Statistic,
     ThresholdConfig,
 };
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::observation::ObsFile;
-use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
 /// Lower edges of the threshold table's elevation bins (deg). # assumed: finer where the

@@ -8,7 +8,7 @@ use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
 use crate::thesis::draw::Draw;
 use rayon::prelude::*;
-use skyforge_receiver::integrity::{SatelliteEpoch, Statistic};
+use skyforge_navigation::integrity::{SatelliteEpoch, Statistic};
 
 /// The table group's identifier.
 pub const TABLE: &str = "P2-4.2";

@@ -13,7 +13,7 @@
 //! model is exactly truth + sigma x N(0, 1), independent per epoch, and the event enters
 //! the truth's pseudorange additively; the test `per_run_draws_are_the_observation_model`
 //! checks both against a run of the observation model itself. The receiver's
-//! [`solve`](skyforge_receiver::pvt::solve) (chi-square test, one-satellite exclusion,
+//! [`solve`](skyforge_navigation::pvt::solve) (chi-square test, one-satellite exclusion,
 //! protection levels) processes every epoch as it would a receiver's.
 //!
 //! Each [`Setting`] tests at its own false-alarm probability per epoch (its table's
@@ -34,14 +34,14 @@ use crate::thesis::ValidateError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha20Rng;
 use rayon::prelude::*;
+use skyforge_navigation::pvt::raim::chi2_survival;
+use skyforge_navigation::pvt::{Measurement, PvtConfig, solve};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::F_GPS_L1_HZ;
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::time::TimeOrigin;
-use skyforge_receiver::pvt::raim::chi2_survival;
-use skyforge_receiver::pvt::{Measurement, PvtConfig, solve};
 use skyforge_scenarios::Scenario;
 use std::path::Path;
 

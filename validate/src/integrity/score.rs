@@ -4,9 +4,9 @@
 
 use hifitime::Epoch;
 use serde::Serialize;
+use skyforge_navigation::integrity::Statistic;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::time::{TimeOrigin, parse_epoch};
-use skyforge_receiver::integrity::Statistic;
 use skyforge_signals::errors::events::EventConfig;
 use std::path::Path;
 

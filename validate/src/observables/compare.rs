@@ -35,9 +35,9 @@ use super::fixed_effects::{self, Fit, Sample};
 use super::interpolate::Series;
 use hifitime::{Duration, Epoch};
 use serde::{Serialize, Serializer};
+use skyforge_gnss::observation::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_signals::observation::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

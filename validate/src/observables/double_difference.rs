@@ -33,8 +33,8 @@ use super::error_stats::{ErrorStats, display};
 use crate::stats::batch_means_standard_error;
 use hifitime::Epoch;
 use serde::{Serialize, Serializer};
+use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_signals::observation::{LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 

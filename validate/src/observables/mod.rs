@@ -15,9 +15,9 @@ pub mod table;
 
 pub use compare::{ObsComparison, compare};
 pub use error_stats::{ErrorStats, SatErrors};
-pub use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsRecord, read_obs_file};
+pub use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord, read_obs_file};
 
-use skyforge_signals::observation::ObsReadError;
+use skyforge_gnss::observation::ObsReadError;
 
 /// Why observations could not be read or compared.
 #[derive(Debug, thiserror::Error)]

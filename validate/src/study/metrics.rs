@@ -7,11 +7,11 @@
 use crate::attitude::compare::offsets;
 use crate::attitude::{ChainComparison, ObservationRun, compare, nominal_geometry};
 use crate::stats::rms;
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::RelativeConfig;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_receiver::relative::RelativeConfig;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::observation::ObsRecord;
-use skyforge_signals::signal::Signal;
 use std::collections::BTreeMap;
 
 /// One per-run statistic.
@@ -247,6 +247,8 @@ mod tests {
     use super::*;
     use crate::attitude::PositionFix;
     use hifitime::{Duration, Epoch, TimeScale};
+    use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
+    use skyforge_navigation::pvt::predicted_view;
     use skyforge_orbits::constants::C_MPS;
     use skyforge_orbits::ephemeris::SatId;
     use skyforge_orbits::ephemeris::nominal;
@@ -254,8 +256,6 @@ mod tests {
     use skyforge_orbits::frames::euler::YawPitchRoll;
     use skyforge_orbits::platform::PlatformState;
     use skyforge_orbits::{Mat3, Vec3};
-    use skyforge_receiver::pvt::predicted_view;
-    use skyforge_signals::observation::{ObsEpoch, ObsFile, ObsRecord};
 
     /// Seconds simulated.
     const SECONDS: usize = 20;

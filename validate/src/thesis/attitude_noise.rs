@@ -15,9 +15,9 @@ use super::draw::Draw;
 use crate::attitude::ChainComparison;
 use crate::report::Row;
 use crate::thesis::ValidateError;
-use skyforge_receiver::attitude::filter::AttitudeMethod;
-use skyforge_receiver::baseline::ElevationNoise;
-use skyforge_receiver::relative::RelativeConfig;
+use skyforge_navigation::attitude::filter::AttitudeMethod;
+use skyforge_navigation::baseline::ElevationNoise;
+use skyforge_navigation::relative::RelativeConfig;
 use skyforge_signals::obs_model::ObsNoiseConfig;
 
 /// Table identifiers.

@@ -17,8 +17,8 @@ use super::draw::Draw;
 use crate::attitude::ChainComparison;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
-use skyforge_receiver::attitude::filter::AttitudeMethod;
-use skyforge_receiver::relative::RelativeConfig;
+use skyforge_navigation::attitude::filter::AttitudeMethod;
+use skyforge_navigation::relative::RelativeConfig;
 
 /// Table identifiers: ECEF baseline errors, NED baseline errors, attitude errors (one
 /// run serves the three).

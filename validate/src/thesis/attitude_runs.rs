@@ -123,7 +123,7 @@ pub fn growth_row(table: &str, row: String, thesis: f64, ours: f64) -> Row {
 /// [`crate::attitude::seed_runs`] with `N` configurations, its error as a table's.
 pub fn seed_runs<const N: usize>(
     scenario: &skyforge_scenarios::Scenario,
-    configs: [skyforge_receiver::relative::RelativeConfig; N],
+    configs: [skyforge_navigation::relative::RelativeConfig; N],
     draw: super::draw::Draw,
 ) -> Result<[Vec<ChainComparison>; N], ValidateError> {
     crate::attitude::seed_runs(scenario, &configs, draw)

@@ -29,8 +29,8 @@ use super::draw::Draw;
 use crate::attitude::{ChainComparison, EpochErrors};
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
-use skyforge_receiver::attitude::filter::AttitudeMethod;
-use skyforge_receiver::relative::{RelativeConfig, ReverseConfig};
+use skyforge_navigation::attitude::filter::AttitudeMethod;
+use skyforge_navigation::relative::{RelativeConfig, ReverseConfig};
 use skyforge_signals::obs_model::ObsNoiseConfig;
 
 /// Table identifier.

@@ -6,8 +6,8 @@
 
 use rand::Rng;
 use rand_chacha::ChaCha8Rng;
+use skyforge_gnss::observation::{ObsFile, parse_obs_text};
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
-use skyforge_signals::observation::{ObsFile, parse_obs_text};
 
 /// Standard normal by Box-Muller.
 pub fn normal(rng: &mut ChaCha8Rng) -> f64 {

@@ -13,7 +13,7 @@
 
 mod spread;
 
-use crate::nco::LanePhasors;
+use skyforge_gnss::nco::LanePhasors;
 
 /// Phasor recurrences run side by side: two AVX-512 registers of f32 (four AVX2 ones),
 /// so that two independent multiply-add chains hide each other's latency.

@@ -6,9 +6,9 @@
 use super::writing;
 use anyhow::Context;
 use hifitime::{Duration, Epoch};
+use skyforge_navigation::pvt::nmea::{gga, gsa, rmc};
+use skyforge_navigation::pvt::{Fix, VelocityFix};
 use skyforge_orbits::constants::C_MPS;
-use skyforge_receiver::pvt::nmea::{gga, gsa, rmc};
-use skyforge_receiver::pvt::{Fix, VelocityFix};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};

@@ -11,9 +11,9 @@
 use super::writing;
 use anyhow::Context;
 use hifitime::Epoch;
+use skyforge_navigation::pvt::{Fix, IntegrityStatus, VelocityFix};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::time::gpst_week_sow;
-use skyforge_receiver::pvt::{Fix, IntegrityStatus, VelocityFix};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -110,10 +110,10 @@ impl PvtCsv {
 mod tests {
     use super::*;
     use hifitime::TimeScale;
+    use skyforge_navigation::pvt::Protection;
     use skyforge_orbits::Vec3;
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
     use skyforge_receiver::pipeline::fixtures::{bds, fix, gps};
-    use skyforge_receiver::pvt::Protection;
 
     #[test]
     fn header_and_rows() {

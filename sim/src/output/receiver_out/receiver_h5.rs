@@ -21,11 +21,11 @@ use crate::output::h5_datasets::{
 };
 use hdf5::{Dataset, Group, H5Type, Location};
 use hifitime::Epoch;
+use skyforge_navigation::pvt::{Fix, VelocityFix};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::time::{epoch_from_gpst, gpst_week_sow};
 use skyforge_receiver::observables::Observation;
 use skyforge_receiver::pipeline::EpochReport;
-use skyforge_receiver::pvt::{Fix, VelocityFix};
 use std::collections::BTreeMap;
 use std::path::Path;
 

@@ -11,18 +11,18 @@ use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{mean, std};
 use crate::thesis::draw::Draw;
 use rayon::prelude::*;
-use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::euler::YawPitchRoll;
-use skyforge_receiver::attitude::filter::{AttitudeConfig, AttitudeFilter, THESIS_KAPPA};
-use skyforge_receiver::attitude::ukf::UkfAttitude;
-use skyforge_receiver::attitude::{BodyGeometry, wrap_diff};
-use skyforge_receiver::geometry_offset::shape::{align, invariants};
-use skyforge_receiver::geometry_offset::stacked_ukf::{
+use skyforge_navigation::attitude::filter::{AttitudeConfig, AttitudeFilter, THESIS_KAPPA};
+use skyforge_navigation::attitude::ukf::UkfAttitude;
+use skyforge_navigation::attitude::{BodyGeometry, wrap_diff};
+use skyforge_navigation::geometry_offset::shape::{align, invariants};
+use skyforge_navigation::geometry_offset::stacked_ukf::{
     OffsetConfig, OffsetEstimator, OffsetState, Orientation, Step, THESIS_OFFSET_RATE_PSD,
     THESIS_RATE_PSD, WindowWeighting,
 };
-use skyforge_receiver::relative::RelativeConfig;
-use skyforge_receiver::relative::config::Constraint;
+use skyforge_navigation::relative::RelativeConfig;
+use skyforge_navigation::relative::config::Constraint;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::frames::euler::YawPitchRoll;
 
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
 const CUT_OFF_DEG: f64 = 5.0;
