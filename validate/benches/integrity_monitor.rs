@@ -6,7 +6,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use skyforge_navigation::integrity::files::{run_files, stations};
-use skyforge_validate::attitude::observation_run;
+use skyforge_runner::observation_run;
 use skyforge_validate::integrity::lab::scenario;
 use std::hint::black_box;
 

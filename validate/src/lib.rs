@@ -4,12 +4,9 @@
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod attitude;
-pub mod calibrate;
-pub mod html_report;
+pub mod draw;
 pub mod integrity;
 pub mod observables;
-pub mod pipeline;
 pub mod report;
 pub mod stats;
-pub mod study;
 pub mod thesis;

@@ -44,7 +44,7 @@ pub struct Row {
     /// The row's distribution over the draws of `validate thesis --seeds N` (absent for
     /// one evaluation on the registered seeds).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub over_seeds: Option<crate::thesis::draw::OverSeeds>,
+    pub over_seeds: Option<crate::draw::OverSeeds>,
 }
 
 impl Row {

@@ -9,8 +9,8 @@
 use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::relative::config::Constraint;
+use skyforge_runner::observation_run;
 use skyforge_signals::obs_model::ObsNoiseConfig;
-use skyforge_validate::attitude::observation_run;
 use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
 
 // assumed (chosen before the first run): T-1.2-2's middle phase noise, 3 mm, and 0.5 m of

@@ -17,8 +17,8 @@ use skyforge_navigation::geometry_offset::joint_ls::{self, DeformationModel};
 use skyforge_navigation::relative::RelativeConfig;
 use skyforge_navigation::relative::config::Constraint;
 use skyforge_orbits::{Mat3, Vec3};
+use skyforge_runner::{ObservationRun, observation_run};
 use skyforge_validate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
-use skyforge_validate::attitude::{ObservationRun, observation_run};
 
 // assumed: 300 s, one seed (the scenario's), chosen before the first run.
 const DURATION_S: f64 = 300.0;

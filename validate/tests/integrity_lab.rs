@@ -4,12 +4,12 @@
 
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::integrity::{SatelliteEpoch, Statistic};
+use skyforge_validate::draw::Draw;
 use skyforge_validate::integrity::detection;
 use skyforge_validate::integrity::lab::{Case, FAULT_SATELLITE, MonitoredRun};
 use skyforge_validate::integrity::monitor::{Sigmas, calibrate_lab, case_run};
 use skyforge_validate::integrity::patterns;
 use skyforge_validate::report::Verdict;
-use skyforge_validate::thesis::draw::Draw;
 use std::sync::OnceLock;
 
 /// The lab's thresholds, calibrated once for the tests of this file.

@@ -4,7 +4,7 @@
 use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
-use skyforge_validate::calibrate::{SETTLING_S, calibrate as measure};
+use skyforge_studies::calibrate::{SETTLING_S, calibrate as measure};
 
 /// Calibrate on the scenario `args` names.
 pub fn calibrate(args: &ScenarioRun) -> anyhow::Result<()> {

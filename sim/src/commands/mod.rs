@@ -16,7 +16,7 @@ mod validate;
 use crate::cli::{
     Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, StudyAction, ValidateSuite,
 };
-use skyforge_validate::thesis::draw::SeedPlan;
+use skyforge_validate::draw::SeedPlan;
 
 /// The scenario `args` name, with its seed overridden when `--seed` is given.
 fn resolve(args: &ScenarioRun) -> anyhow::Result<skyforge_scenarios::Scenario> {
@@ -78,7 +78,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             attitude,
             observations,
         } => report::report(
-            skyforge_validate::html_report::Inputs {
+            skyforge_studies::html_report::Inputs {
                 dir: &dir,
                 attitude: attitude.as_deref(),
                 observations: observations.as_deref(),

@@ -1,10 +1,10 @@
 //! `skyforge report DIR`: the HTML page of a directory's outputs
-//! (`skyforge_validate::html_report`), written whole or not at all.
+//! (`skyforge_studies::html_report`), written whole or not at all.
 
 use crate::BadInput;
 use crate::output::{manifest, whole_file};
 use anyhow::Context;
-use skyforge_validate::html_report::{Inputs, build};
+use skyforge_studies::html_report::{Inputs, build};
 use std::io::Read;
 use std::path::Path;
 

@@ -10,7 +10,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use skyforge_orbits::bounded_read::read_text;
-use skyforge_validate::study::{RunResult, Shard, Study};
+use skyforge_studies::study::{RunResult, Shard, Study};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;

@@ -14,6 +14,7 @@ use skyforge_navigation::relative::files::BodyGeometryFile;
 use skyforge_orbits::Vec3;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
+use skyforge_runner::{ChainError, StreamSinks, StreamedChain};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
@@ -24,7 +25,6 @@ use skyforge_signals::synth::session::{
 };
 use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
-use skyforge_validate::pipeline::{ChainError, StreamSinks, StreamedChain};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

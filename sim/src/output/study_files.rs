@@ -8,13 +8,13 @@ use anyhow::Context;
 use hdf5::types::VarLenUnicode;
 use hdf5::{File, Group, H5Type};
 use serde::{Deserialize, Serialize};
-use skyforge_validate::study::{MetricSummary, RunResult, Shard, Study, run_seed};
+use skyforge_studies::study::{MetricSummary, RunResult, Shard, Study, run_seed};
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};
 
 /// The `format` attribute of a study file.
 const FORMAT: &str = "skyforge-study 1";
-pub use skyforge_validate::study::MERGED_FILE;
+pub use skyforge_studies::study::MERGED_FILE;
 
 /// The journal's first line: the study it belongs to.
 #[derive(Debug, Serialize, Deserialize)]

@@ -3,7 +3,6 @@
 //! the fixed baselines (ECEF and the master's NED) against the true ones, the attitude
 //! against the true yaw/pitch/roll from NED (thesis eqs. 2.5-3..2.5-6).
 
-use super::run::ObservationRun;
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
@@ -15,6 +14,7 @@ use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
+use skyforge_runner::ObservationRun;
 use skyforge_signals::synth::session::GEOMETRY_STEP_S;
 use std::collections::HashMap;
 
@@ -128,7 +128,7 @@ pub(super) fn whole_second(t: Epoch, start: Epoch) -> Option<i64> {
 /// Measured minus true `pick` (an observable of a record, in its unit) per (second,
 /// satellite, signal) wherever both exist at a whole second since `start`, in the order of
 /// `measured`'s epochs and records.
-pub(crate) fn offsets(
+pub fn offsets(
     measured: &ObsFile,
     truth: &ObsFile,
     start: Epoch,

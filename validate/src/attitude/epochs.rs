@@ -3,11 +3,12 @@
 //! estimators that start from baselines (thesis chapters 4 and 5.5).
 
 use super::compare::epoch_truth;
-use super::{ObservationRun, nominal_geometry};
+use super::nominal_geometry;
 use skyforge_navigation::attitude::NedBaselines;
 use skyforge_navigation::relative::files::{FilesError, run_files};
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_runner::ObservationRun;
 
 /// One epoch of the chain.
 #[derive(Debug, Clone)]

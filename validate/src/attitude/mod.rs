@@ -1,4 +1,4 @@
-//! The attitude chain against the truth: a run in memory ([`run`], at the observation or
+//! The attitude chain against the truth: a run in memory (`skyforge_runner::ObservationRun`, at the observation or
 //! the signal level) and the chain's integers, baselines and attitude compared with that
 //! run's truth ([`compare`]); or the chain's files (`skyforge attitude`'s output) compared
 //! with the truth files of the run they came from ([`outputs`], `skyforge validate
@@ -7,11 +7,9 @@
 pub mod compare;
 pub mod epochs;
 pub mod outputs;
-pub mod run;
 pub mod seeds;
 pub mod success;
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
 pub use outputs::{AttitudeValidation, OutputsComparison, OutputsError, compare_outputs};
-pub use run::{ObservationRun, PositionFix, RunError, observation_run, run_at_level, signal_run};
 pub use seeds::seed_runs;

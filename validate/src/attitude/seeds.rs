@@ -4,10 +4,11 @@
 //! double differences sharing a reference), so statistics are taken per run and their
 //! spread over runs gives the standard error.
 
-use super::{ChainComparison, compare, nominal_geometry, observation_run};
-use crate::thesis::draw::Draw;
+use super::{ChainComparison, compare, nominal_geometry};
+use crate::draw::Draw;
 use rayon::prelude::*;
 use skyforge_navigation::relative::RelativeConfig;
+use skyforge_runner::observation_run;
 use skyforge_scenarios::Scenario;
 
 /// Independent runs per setting: the scenario's seed and the next seven.

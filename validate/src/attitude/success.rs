@@ -81,7 +81,7 @@ pub fn single_epoch(
         config(signals, constraint, false),
     ];
     let [best, tested]: [Vec<ChainComparison>; 2] =
-        seed_runs(scenario, &configs, crate::thesis::draw::Draw::REGISTERED)?
+        seed_runs(scenario, &configs, crate::draw::Draw::REGISTERED)?
             .try_into()
             .map_err(|_| format!("{}: one set of runs per configuration", scenario.name))?;
     let none = || format!("{}: no runs", scenario.name);

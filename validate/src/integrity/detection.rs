@@ -10,8 +10,8 @@
 
 use super::lab::{Fault, MonitoredRun, monitored, scenario};
 use super::monitor::{Sigmas, config};
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
-use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_navigation::integrity::{PerStatistic, Statistic};
 

@@ -11,8 +11,8 @@ pub mod patterns;
 pub mod raim;
 pub mod score;
 
+use crate::draw::Draw;
 use crate::report::Row;
-use crate::thesis::draw::Draw;
 
 /// Both table groups on the seeds of `draw` (registered or shifted): thresholds
 /// calibrated on the lab's fault-free seeds, the paper's cases on [`patterns::SEEDS`]

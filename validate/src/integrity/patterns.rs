@@ -4,9 +4,9 @@
 use super::lab::{Case, FAULT_SATELLITE, FAULT_STATION, MonitoredRun};
 use super::monitor::Sigmas;
 use super::monitor::case_run;
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
-use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_navigation::integrity::{SatelliteEpoch, Statistic};
 

@@ -28,7 +28,6 @@
 //! Runs are independent; epochs within a run are not (the ramp grows, the alarm
 //! persists), so every rate is counted per run and its standard error taken over runs.
 
-use crate::attitude::observation_run;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use rand::{Rng, SeedableRng};
@@ -42,6 +41,7 @@ use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::time::TimeOrigin;
+use skyforge_runner::observation_run;
 use skyforge_scenarios::Scenario;
 use std::path::Path;
 

@@ -11,8 +11,8 @@
 //! chain's fix counts.
 
 use super::attitude_runs::{SeriesStats, chain_note, factor_row, growth_row, seed_runs};
-use super::draw::Draw;
 use crate::attitude::ChainComparison;
+use crate::draw::Draw;
 use crate::report::Row;
 use crate::thesis::ValidateError;
 use skyforge_navigation::attitude::filter::AttitudeMethod;

@@ -13,8 +13,8 @@
 //! std of epoch-by-epoch LS on the same runs (what the KF's smoothing gains).
 
 use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
-use super::draw::Draw;
 use crate::attitude::ChainComparison;
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use skyforge_navigation::attitude::filter::AttitudeMethod;

@@ -124,7 +124,7 @@ pub fn growth_row(table: &str, row: String, thesis: f64, ours: f64) -> Row {
 pub fn seed_runs<const N: usize>(
     scenario: &skyforge_scenarios::Scenario,
     configs: [skyforge_navigation::relative::RelativeConfig; N],
-    draw: super::draw::Draw,
+    draw: crate::draw::Draw,
 ) -> Result<[Vec<ChainComparison>; N], ValidateError> {
     crate::attitude::seed_runs(scenario, &configs, draw)
         .map_err(ValidateError::Pipeline)?

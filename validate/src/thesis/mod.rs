@@ -7,7 +7,6 @@ pub mod attitude_noise;
 pub mod attitude_realtime;
 mod attitude_runs;
 pub mod curves;
-pub mod draw;
 pub mod fast_sync;
 pub mod geometry_offsets;
 mod geometry_run;
@@ -17,10 +16,10 @@ pub mod reverse_filter;
 pub mod visibility;
 pub mod zero_baseline;
 
+use crate::draw::{self, Draw, Kind, SeedPlan};
 use crate::integrity::raim;
 use crate::report::Row;
 use curves::Curve;
-use draw::{Draw, Kind, SeedPlan};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::{Path, PathBuf};
@@ -63,7 +62,7 @@ pub struct Options {
     pub only: Vec<String>,
     /// The real-data folder (`SKYFORGE_DATA`); tables add real-data rows when it exists.
     pub data_dir: Option<PathBuf>,
-    /// `--seeds N --seed-base B`: each table as a study over seeds ([`draw`]); `None`:
+    /// `--seeds N --seed-base B`: each table as a study over seeds ([`crate::draw`]); `None`:
     /// each table once on its registered seeds.
     pub plan: Option<SeedPlan>,
 }

@@ -6,7 +6,7 @@
 
 use super::ValidateError;
 use super::curves::{Curve, CurveSeries, Mark, Reference, Value};
-use super::draw::Draw;
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use rayon::prelude::*;
 use skyforge_receiver::acquisition::AcquisitionError;
@@ -658,7 +658,7 @@ impl Points {
 }
 
 /// Every row of T-3.3-R.
-pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+pub fn rows(draw: crate::draw::Draw) -> Result<Vec<Row>, ValidateError> {
     Ok(points(draw, TRIALS)?.rows())
 }
 

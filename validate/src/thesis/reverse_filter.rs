@@ -25,8 +25,8 @@
 use super::attitude_noise::config as constant_noise_config;
 use super::attitude_runs::{self, SeriesStats, chain_note, factor_row, seed_runs};
 use super::curves::{Curve, Decimated, Value};
-use super::draw::Draw;
 use crate::attitude::{ChainComparison, EpochErrors};
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use skyforge_navigation::attitude::filter::AttitudeMethod;

@@ -2,8 +2,8 @@
 //! field of view (thesis section 1.2.1, figures 1.2-1..1.2-3).
 
 use super::ValidateError;
-use super::draw::Draw;
 use super::geometry_run::for_each_chunk;
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::Summary;
 use skyforge_orbits::ephemeris::System;

@@ -21,10 +21,10 @@
 
 use crate::observables::double_difference::{BATCH_EPOCHS, SystemDd, ZeroBaseline, zero_baseline};
 use crate::observables::{ErrorStats, ObsError, read_obs_file};
-use crate::pipeline::synth_and_receive;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use skyforge_orbits::ephemeris::System;
+use skyforge_runner::synth_and_receive;
 use std::path::Path;
 
 /// Table identifier.
@@ -85,7 +85,7 @@ const RECEIVER_NOTE: &str = "; receiver: its default configuration (the a-priori
 
 /// Synthesise, receive and difference: the rows of T-5.4-2. The recordings (about 2 GB)
 /// go to a temporary directory, removed when done.
-pub fn rows_from_chain(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+pub fn rows_from_chain(draw: crate::draw::Draw) -> Result<Vec<Row>, ValidateError> {
     let mut scenario = skyforge_scenarios::named(SCENARIO)?;
     scenario.seed = draw.seed(scenario.seed);
     let work = tempfile::Builder::new()

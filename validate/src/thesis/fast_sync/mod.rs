@@ -11,11 +11,11 @@
 
 mod signal;
 
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::batch_means_standard_error;
 use crate::thesis::ValidateError;
 use crate::thesis::curves::{Curve, CurveSeries, Mark, Value};
-use crate::thesis::draw::Draw;
 use nalgebra::{Matrix4, Vector4};
 use num_complex::Complex64;
 use signal::{SignalSource, SignalSpec};
@@ -536,7 +536,7 @@ impl Experiment {
 }
 
 /// The table's rows on the signal of `draw`'s seed.
-pub fn rows(draw: super::draw::Draw) -> Result<Vec<Row>, ValidateError> {
+pub fn rows(draw: crate::draw::Draw) -> Result<Vec<Row>, ValidateError> {
     Ok(experiment(draw)?.rows())
 }
 

@@ -30,12 +30,12 @@
 
 mod seed;
 
+use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::AcrossRuns;
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{factor_row, mean, std};
 use crate::thesis::curves::{Curve, Decimated, Value};
-use crate::thesis::draw::Draw;
 use seed::{AxisSeries, SeedResult};
 
 /// The table.

@@ -6,10 +6,9 @@ use super::{COMPARISON_EPOCHS, ESTIMATION_EPOCHS, SCENARIO};
 use crate::attitude::compare::attitude_errors_deg;
 use crate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
 use crate::attitude::seeds::SEEDS;
-use crate::attitude::{ObservationRun, observation_run};
+use crate::draw::Draw;
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{mean, std};
-use crate::thesis::draw::Draw;
 use rayon::prelude::*;
 use skyforge_navigation::attitude::filter::{AttitudeConfig, AttitudeFilter, THESIS_KAPPA};
 use skyforge_navigation::attitude::ukf::UkfAttitude;
@@ -23,6 +22,7 @@ use skyforge_navigation::relative::RelativeConfig;
 use skyforge_navigation::relative::config::Constraint;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_runner::{ObservationRun, observation_run};
 
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
 const CUT_OFF_DEG: f64 = 5.0;

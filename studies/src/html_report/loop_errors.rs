@@ -13,8 +13,8 @@ use super::chart::{Chart, Series};
 use super::page::Figure;
 use super::truth::Links;
 use super::{ReportError, figure};
-use crate::thesis::loop_budget::{LoopFigure, figure_settings};
 use skyforge_receiver::tracking::error_budget::{Budget, DopplerDynamics, LOCK_THRESHOLD_DEG};
+use skyforge_validate::thesis::loop_budget::{LoopFigure, figure_settings};
 use std::path::Path;
 
 /// The pass the figures follow: the satellite column and, at each of its epochs, the

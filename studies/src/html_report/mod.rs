@@ -59,7 +59,10 @@ pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
     let makers: [(&str, Maker); 4] = [
         ("truth.h5", truth::section),
         ("results.json", results::section),
-        (crate::thesis::curves::CURVES_FILE, curves::section),
+        (
+            skyforge_validate::thesis::curves::CURVES_FILE,
+            curves::section,
+        ),
         (crate::study::MERGED_FILE, study::section),
     ];
     let mut page = Page {
@@ -87,7 +90,7 @@ pub fn build(inputs: Inputs<'_>) -> Result<Page, ReportError> {
             format!(
                 "nothing to report: none of truth.h5 (skyforge synth or run), results.json \
                  or {} (validate thesis --out) or {} (study run or merge) is here",
-                crate::thesis::curves::CURVES_FILE,
+                skyforge_validate::thesis::curves::CURVES_FILE,
                 crate::study::MERGED_FILE
             ),
         ));

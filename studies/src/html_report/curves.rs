@@ -1,13 +1,13 @@
 //! Thesis figures 3.3-7 to 3.3-11, 4.3-2, 4.3-3, 4.3-6 to 4.3-10 and 5.5-2 to 5.5-5 from
 //! `curves.json` (`skyforge validate thesis --out`):
 //! the data of the figures the validation tables compute on their registered seeds
-//! ([`crate::thesis::curves`]), one figure per curve, each caption giving SkyForge's
+//! ([`skyforge_validate::thesis::curves`]), one figure per curve, each caption giving SkyForge's
 //! numbers beside the thesis's where it prints any.
 
 use super::chart::{Chart, Series};
 use super::page::Section;
 use super::{ReportError, figure, read_text};
-use crate::thesis::curves::{Curve, CurvesFile, Mark, Value};
+use skyforge_validate::thesis::curves::{Curve, CurvesFile, Mark, Value};
 use std::path::Path;
 
 /// Largest `curves.json` read (bytes): a whole thesis run writes about 300 kB.
@@ -127,7 +127,7 @@ fn printed(x: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::thesis::curves::{CurveSeries, Reference};
+    use skyforge_validate::thesis::curves::{CurveSeries, Reference};
 
     fn curve() -> Curve {
         Curve {

@@ -7,7 +7,7 @@
 use super::chart::{Chart, Series};
 use super::page::{Figure, Section};
 use super::{ReportError, figure};
-use crate::attitude::{AttitudeValidation, OutputsComparison, compare_outputs};
+use skyforge_validate::attitude::{AttitudeValidation, OutputsComparison, compare_outputs};
 use std::path::Path;
 
 /// The attitude section: the chain's output in `attitude` against the truth in `truth`,

@@ -8,15 +8,15 @@
 //! Multipath and fault events in the calibration scenario would count as noise: calibrate
 //! on a scenario without them.
 
-use crate::observables::compare::{CompareOptions, SampleSpan, compare_with};
-use crate::observables::{ObsError, ObsFile};
-use crate::pipeline::{ChainError, synth_and_receive};
 use hifitime::Duration;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_receiver::tracking::channel::TrackingConfig;
+use skyforge_runner::{ChainError, synth_and_receive};
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};
+use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
+use skyforge_validate::observables::{ObsError, ObsFile};
 use std::path::Path;
 
 /// Seconds at the start of the run left out: acquisition, pull-in and loop narrowing.

@@ -6,7 +6,7 @@
 use super::file::Study;
 use super::metrics::measure;
 use super::summary::MetricSummary;
-use crate::attitude::run_at_level;
+use skyforge_runner::run_at_level;
 
 /// Largest shard count.
 pub const MAX_SHARDS: u64 = 100_000;

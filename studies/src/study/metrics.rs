@@ -1,17 +1,18 @@
 //! The per-run statistics a study can keep: each one number per run, computed from the
 //! run's observables (the observation-level model's or the receiver's), its first
 //! antenna's single-point fixes and the attitude chain's comparison with the run's own
-//! truth ([`crate::attitude`]). A run without the quantity (no fixed epoch, say) gives
+//! truth ([`skyforge_validate::attitude`]). A run without the quantity (no fixed epoch, say) gives
 //! NaN, which the summaries leave out and count.
 
-use crate::attitude::compare::offsets;
-use crate::attitude::{ChainComparison, ObservationRun, compare, nominal_geometry};
-use crate::stats::rms;
 use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::relative::RelativeConfig;
 use skyforge_orbits::ephemeris::SatId;
+use skyforge_runner::ObservationRun;
 use skyforge_scenarios::Scenario;
+use skyforge_validate::attitude::compare::offsets;
+use skyforge_validate::attitude::{ChainComparison, compare, nominal_geometry};
+use skyforge_validate::stats::rms;
 use std::collections::BTreeMap;
 
 /// One per-run statistic.
@@ -245,7 +246,6 @@ fn position_rms(run: &ObservationRun) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::attitude::PositionFix;
     use hifitime::{Duration, Epoch, TimeScale};
     use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
     use skyforge_navigation::pvt::predicted_view;
@@ -256,6 +256,7 @@ mod tests {
     use skyforge_orbits::frames::euler::YawPitchRoll;
     use skyforge_orbits::platform::PlatformState;
     use skyforge_orbits::{Mat3, Vec3};
+    use skyforge_runner::PositionFix;
 
     /// Seconds simulated.
     const SECONDS: usize = 20;

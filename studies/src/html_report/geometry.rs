@@ -7,9 +7,9 @@
 use super::chart::{Chart, Series};
 use super::page::Figure;
 use super::{ReportError, figure, read_dataset};
-use crate::attitude::OutputsComparison;
 use skyforge_navigation::geometry_offset::shape::align;
 use skyforge_orbits::Vec3;
+use skyforge_validate::attitude::OutputsComparison;
 use std::path::Path;
 
 /// The file `skyforge attitude --estimate-geometry` writes.
@@ -42,7 +42,7 @@ pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, Re
             ),
         ));
     }
-    let body = |f: fn(&crate::attitude::outputs::AntennaPosition) -> [f64; 3]| {
+    let body = |f: fn(&skyforge_validate::attitude::outputs::AntennaPosition) -> [f64; 3]| {
         let p: Vec<Vec3> = c.antennas.iter().map(|a| Vec3::from(f(a))).collect();
         [p[1] - p[0], p[2] - p[0]]
     };

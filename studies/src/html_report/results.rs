@@ -5,7 +5,7 @@
 use super::chart::{Chart, Series};
 use super::page::{Cell, Section, Table};
 use super::{ReportError, figure, read_text};
-use crate::report::{Row, Verdict, parse_results};
+use skyforge_validate::report::{Row, Verdict, parse_results};
 use std::path::Path;
 
 /// Largest `results.json` read (bytes): a whole thesis run writes a few hundred kB.
@@ -110,7 +110,7 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
 }
 
 /// What the run was: commit, seeds, scenarios.
-fn provenance_text(p: Option<&crate::thesis::Provenance>) -> String {
+fn provenance_text(p: Option<&skyforge_validate::thesis::Provenance>) -> String {
     let Some(p) = p else {
         return "This results.json records no provenance (written before SkyForge recorded it)."
             .into();
@@ -123,7 +123,7 @@ fn provenance_text(p: Option<&crate::thesis::Provenance>) -> String {
                 plan.draws,
                 plan.base,
                 plan.base + plan.draws.saturating_sub(1),
-                crate::thesis::draw::BAR
+                skyforge_validate::draw::BAR
             )
         },
     );

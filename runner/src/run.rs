@@ -4,7 +4,7 @@
 //! at every geometry epoch and the broadcast navigation data: what the attitude chain and
 //! the studies' metrics read and what they are compared with.
 
-use crate::pipeline::{ChainError, StreamSinks, StreamedChain};
+use crate::chain::{ChainError, StreamSinks, StreamedChain};
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
