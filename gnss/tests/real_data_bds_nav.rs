@@ -9,7 +9,7 @@
 //!   right FraID and SOW, and decode (with the small decoder below, written from the ICD
 //!   bit positions) to the file's sqrt(A) and toe.
 //!
-//! Run with `cargo test -p skyforge-signals --test real_data_bds_nav -- --ignored
+//! Run with `cargo test -p skyforge-gnss --test real_data_bds_nav -- --ignored
 //! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`
 //! next to the workspace).
 

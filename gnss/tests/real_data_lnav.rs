@@ -7,7 +7,7 @@
 //! scale factor shows up as a value that is not an integer number of LSBs, and the
 //! re-encoded orbit must match the file's to far below the quantisation step.
 //!
-//! Run with `cargo test -p skyforge-signals --test real_data_lnav -- --ignored
+//! Run with `cargo test -p skyforge-gnss --test real_data_lnav -- --ignored
 //! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`
 //! next to the workspace).
 

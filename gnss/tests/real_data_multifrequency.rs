@@ -11,7 +11,7 @@
 //! phase wind-up and multipath against metres of ionospheric change over hours
 //! ([`check_changes`]).
 //!
-//! Run with `cargo test -p skyforge-signals --test real_data_multifrequency -- --ignored
+//! Run with `cargo test -p skyforge-gnss --test real_data_multifrequency -- --ignored
 //! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`).
 
 use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsFile, read_obs_file};

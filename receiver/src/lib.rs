@@ -8,7 +8,6 @@
 
 pub mod acquisition;
 pub mod assist;
-pub mod fast_sync;
 pub mod input;
 pub mod navdecode;
 pub mod observables;

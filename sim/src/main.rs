@@ -1,5 +1,6 @@
 //! `skyforge`: GNSS constellation and LEO scenario simulator.
 
+mod bad_input;
 mod cli;
 mod commands;
 mod output;
@@ -8,14 +9,7 @@ use clap::Parser;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// Exit code for bad user input (scenario errors, existing output without `--force`).
-const EXIT_BAD_INPUT: u8 = 2;
-
-/// An error that is the user's input, reported with exit code 2.
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-pub struct BadInput(String);
-
+use bad_input::{EXIT_BAD_INPUT, is_bad_input};
 /// The output directory of a command that writes one.
 fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
     match &args.command {
@@ -56,10 +50,7 @@ fn main() -> ExitCode {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
             eprintln!("error: {e:#}");
-            let bad_input = e.downcast_ref::<BadInput>().is_some()
-                || e.downcast_ref::<skyforge_scenarios::ScenarioError>()
-                    .is_some();
-            if bad_input {
+            if is_bad_input(&e) {
                 ExitCode::from(EXIT_BAD_INPUT)
             } else {
                 // A run that failed while writing (e.g. a full disk): outputs are staged and

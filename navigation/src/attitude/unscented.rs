@@ -12,7 +12,7 @@
 //!
 //! The state has a compile-time dimension `N`, the measurement any run-time dimension. It
 //! knows nothing about attitude: written once, so that the UKF carrier tracker
-//! (`fast_sync::ukf`, which has its own copy for N = 4, M = 2) can use it later.
+//! (`receiver::tracking::ukf_carrier`, which has its own copy for N = 4, M = 2) can use it later.
 //! Differences are plain subtractions: a caller with angles in its *measurement* must map
 //! them to a continuous space first (this crate's attitude UKF measures baseline vectors,
 //! so it need not).

@@ -1,7 +1,7 @@
 //! Carrier tracking stages behind one interface ([`CarrierTracker`]), chosen by the
 //! receiver configuration (`[stages] carrier`): the FLL-assisted PLL
 //! ([`PllFll`], the default) or the unscented Kalman filter of thesis section 3.3.4
-//! ([`UkfTracker`] over [`crate::fast_sync::ukf::UkfCarrier`]).
+//! ([`UkfTracker`] over [`super::ukf_carrier::UkfCarrier`]).
 //!
 //! A channel closes each coherent integration by handing the stage the prompt and the NCO
 //! it was correlated with; the stage answers with the carrier NCO of the next integration
@@ -11,7 +11,7 @@ use super::TrackingError;
 use super::channel::TrackingConfig;
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::loop_filter::CarrierLoopFilter;
-use crate::fast_sync::ukf::{THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig};
+use super::ukf_carrier::{THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig};
 use nalgebra::{Matrix4, Vector4};
 use num_complex::{Complex, Complex64};
 use std::f64::consts::TAU;

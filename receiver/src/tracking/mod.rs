@@ -10,6 +10,7 @@ pub mod discriminators;
 pub mod error_budget;
 pub mod lock;
 pub mod loop_filter;
+pub mod ukf_carrier;
 
 /// Errors of the tracking stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -1,6 +1,6 @@
 //! `skyforge ambiguity FILE`: LAMBDA on a float solution read from a file.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use skyforge_navigation::ambiguity::{IntegerSolution, lambda, problem_file};
 use std::path::Path;
 

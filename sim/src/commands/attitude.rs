@@ -6,7 +6,7 @@
 //! corrected geometry `DIR/geometry_corrected.toml`. [`Chain`] is the same for `skyforge
 //! receive --geometry`, which runs it on the receiver's own observations.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::cli::AttitudeArgs;
 use crate::output::attitude_out::{EpochValues, csv_header, csv_row, integer_rows, write_h5};
 use crate::output::geometry_out::{self, OffsetRow};

@@ -2,7 +2,7 @@
 //! alarms), `skyforge monitor calibrate` (a scenario's fault-free runs -> thresholds) and
 //! `skyforge monitor calibrate-files` (fault-free RINEX files -> thresholds).
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::cli::{MonitorArgs, ScenarioRun};
 use crate::output::monitor_out::{AlarmLog, H5Rows, csv_header, csv_rows};
 use crate::output::staged_dir::StagedDir;

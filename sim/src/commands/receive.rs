@@ -1,6 +1,6 @@
 //! `skyforge receive`: run the bundled receiver over sample recordings.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::cli::ReceiveArgs;
 use crate::commands::attitude::{Chain, read_nav};
 use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};

@@ -1,7 +1,7 @@
 //! `skyforge report DIR`: the HTML page of a directory's outputs
 //! (`skyforge_studies::html_report`), written whole or not at all.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::output::{manifest, whole_file};
 use anyhow::Context;
 use skyforge_studies::html_report::{Inputs, build};

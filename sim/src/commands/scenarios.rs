@@ -1,6 +1,6 @@
 //! `skyforge scenarios list|show`.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 
 /// Print bundled scenario names and summaries.
 pub fn list() -> anyhow::Result<()> {

@@ -1,7 +1,7 @@
 //! `skyforge study`: run a study or one shard of it (resumable: runs already in the
 //! shard's journal are not made again), and merge shards into one file.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::output::slurm_scripts::SlurmJob;
 use crate::output::study_files::{
     Journal, MERGED_FILE, read_shard, shard_path, shard_study_text, write_merged, write_shard,

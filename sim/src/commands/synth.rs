@@ -2,7 +2,7 @@
 //! configuration), the geometry truth of the transmitted signals, and a RINEX 3.04
 //! navigation file of the ephemerides as broadcast.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::cli::ScenarioRun;
 use crate::output::receiver_out::ReceiverOutputs;
 use crate::output::staged_dir::StagedDir;

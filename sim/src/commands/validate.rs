@@ -1,6 +1,6 @@
 //! `skyforge validate thesis`, `obs`, `attitude` and `monitor`.
 
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use crate::output::staged_dir::StagedDir;
 use crate::output::whole_file;
 use anyhow::Context;

@@ -6,7 +6,7 @@
 //! directory stays in place until the new one is complete.
 
 use super::{interrupt, manifest};
-use crate::BadInput;
+use crate::bad_input::BadInput;
 use anyhow::Context;
 use nix::fcntl::{AT_FDCWD, RenameFlags, renameat2};
 use std::path::{Path, PathBuf};

@@ -67,10 +67,13 @@ impl Journal {
                 let line = line.with_context(|| format!("cannot read {}", path.display()))?;
                 if n == 0 {
                     let found: JournalHead = serde_json::from_slice(&line).map_err(|_| {
-                        crate::BadInput(format!("{}: not a study journal", path.display()))
+                        crate::bad_input::BadInput(format!(
+                            "{}: not a study journal",
+                            path.display()
+                        ))
                     })?;
                     if found.study != head.study || found.shard != head.shard {
-                        return Err(crate::BadInput(format!(
+                        return Err(crate::bad_input::BadInput(format!(
                             "{}: the journal of another study or shard ({}); use another --out",
                             path.display(),
                             found.shard
@@ -251,7 +254,7 @@ pub fn read_shard(path: &Path, metrics: &[&str]) -> anyhow::Result<ShardFile> {
         })
     };
     read().map_err(|e| {
-        crate::BadInput(format!(
+        crate::bad_input::BadInput(format!(
             "{}: not a study shard file of this study ({e})",
             path.display()
         ))
@@ -273,6 +276,7 @@ pub fn shard_study_text(path: &Path) -> anyhow::Result<String> {
             .to_string())
     };
     read().map_err(|e| {
-        crate::BadInput(format!("{}: not a study shard file ({e})", path.display())).into()
+        crate::bad_input::BadInput(format!("{}: not a study shard file ({e})", path.display()))
+            .into()
     })
 }

@@ -1,4 +1,7 @@
-//! UKF carrier tracking, thesis section 3.3.4, eqs. 3.3-57..3.3-73.
+//! UKF carrier tracking, thesis section 3.3.4, eqs. 3.3-57..3.3-73: the carrier loop of
+//! the thesis's fast synchronisation scheme (section 3.3, figure 3.3-6), in which a fine
+//! Doppler estimate from the PMF-FFT acquisition hands over to a loop whose phase
+//! discriminator and loop filter an unscented Kalman filter replaces.
 //!
 //! State `X = [theta, omega, alpha, alpha_t]`: carrier phase (rad), angular frequency
 //! (rad/s), its first and second rates (rad/s^2, rad/s^3), at the middle of the current
