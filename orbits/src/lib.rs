@@ -9,6 +9,7 @@
 // Library code returns errors instead of panicking; tests may unwrap.
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
+pub mod angles;
 pub mod atmosphere;
 pub mod bounded_read;
 pub mod check;

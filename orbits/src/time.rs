@@ -13,7 +13,9 @@ use std::str::FromStr;
 /// Nanoseconds in one second.
 const NS_PER_S: i128 = 1_000_000_000;
 /// Seconds in one week.
-const S_PER_WEEK: i128 = 604_800;
+/// Seconds in a GPS or BeiDou week.
+pub const SECONDS_PER_WEEK: u32 = 604_800;
+const S_PER_WEEK: i128 = SECONDS_PER_WEEK as i128;
 
 /// The times SkyForge handles, as users are told: scenario starts and recording start
 /// times (SigMF `core:datetime`) must lie in it ([`in_supported_range`]).

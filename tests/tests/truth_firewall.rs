@@ -4,8 +4,8 @@
 //! through another crate, and none of its test or bench dependencies, is a crate that
 //! produces or compares truth. Of the simulator's side it may use only the GNSS vocabulary
 //! (`skyforge-gnss`: signals, codes, navigation-message, sample and observation formats).
-//! The check reads the resolved dependency graph of `cargo metadata`, so no import alias
-//! or re-export can pass it.
+//! The check walks the workspace's dependency graph as `cargo metadata` reads it from the
+//! manifests, so no import alias or re-export can pass it.
 
 use serde_json::Value;
 use std::collections::{BTreeSet, HashMap};
@@ -21,12 +21,19 @@ const TRUTH_CRATES: [&str; 5] = [
     "skyforge-studies",
 ];
 
-/// `cargo metadata` of the workspace.
+/// `cargo metadata --no-deps`: the workspace's own packages with their declared
+/// dependencies, read from the manifests (no registry needed).
 fn metadata() -> Value {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let out = Command::new(cargo)
-        .args(["metadata", "--format-version", "1", "--offline"])
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
         .current_dir(root)
         .output()
         .unwrap();
@@ -38,52 +45,49 @@ fn metadata() -> Value {
     serde_json::from_slice(&out.stdout).unwrap()
 }
 
-/// Package names by package id.
-fn names(meta: &Value) -> HashMap<String, String> {
-    meta["packages"]
-        .as_array()
-        .unwrap()
+/// Each workspace package's dependencies on other workspace packages: (name, kind), kind
+/// `None` for normal, `Some("dev")` or `Some("build")`.
+fn workspace_edges(meta: &Value) -> HashMap<String, Vec<(String, Option<String>)>> {
+    let packages = meta["packages"].as_array().unwrap();
+    let members: BTreeSet<&str> = packages
+        .iter()
+        .map(|p| p["name"].as_str().unwrap())
+        .collect();
+    packages
         .iter()
         .map(|p| {
-            (
-                p["id"].as_str().unwrap().to_owned(),
-                p["name"].as_str().unwrap().to_owned(),
-            )
+            let deps = p["dependencies"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|d| {
+                    let name = d["name"].as_str().unwrap().to_owned();
+                    (name, d["kind"].as_str().map(str::to_owned))
+                })
+                .filter(|(name, _)| members.contains(name.as_str()))
+                .collect();
+            (p["name"].as_str().unwrap().to_owned(), deps)
         })
         .collect()
 }
 
-/// Every package reachable from `root` in the resolved graph, following normal, build and
-/// (for `root` itself) dev edges.
+/// Every workspace package reachable from `root`, following normal and build edges and,
+/// for `root` itself, dev edges too (its tests and benches).
 fn reachable(meta: &Value, root: &str) -> BTreeSet<String> {
-    let names = names(meta);
-    let nodes: HashMap<&str, &Value> = meta["resolve"]["nodes"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|n| (n["id"].as_str().unwrap(), n))
-        .collect();
-    let root_id = names
-        .iter()
-        .find(|(_, n)| *n == root)
-        .map(|(id, _)| id.clone())
-        .unwrap();
+    let edges = workspace_edges(meta);
+    assert!(
+        edges.contains_key(root),
+        "{root} is not a workspace package"
+    );
     let mut seen = BTreeSet::new();
-    let mut stack = vec![(root_id, true)];
-    while let Some((id, is_root)) = stack.pop() {
-        if !seen.insert(names[&id].clone()) {
+    let mut stack = vec![(root.to_owned(), true)];
+    while let Some((name, is_root)) = stack.pop() {
+        if !seen.insert(name.clone()) {
             continue;
         }
-        for dep in nodes[id.as_str()]["deps"].as_array().unwrap() {
-            let kinds: Vec<Option<&str>> = dep["dep_kinds"]
-                .as_array()
-                .unwrap()
-                .iter()
-                .map(|k| k["kind"].as_str())
-                .collect();
-            let follow = kinds.iter().any(|k| *k != Some("dev")) || is_root;
-            if follow {
-                stack.push((dep["pkg"].as_str().unwrap().to_owned(), false));
+        for (dep, kind) in &edges[&name] {
+            if is_root || kind.as_deref() != Some("dev") {
+                stack.push((dep.clone(), false));
             }
         }
     }

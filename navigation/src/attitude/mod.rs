@@ -34,7 +34,6 @@ pub mod wahba;
 use nalgebra::{DMatrix, DVector, Matrix3};
 use skyforge_orbits::Vec3;
 pub use skyforge_orbits::frames::euler::YawPitchRoll;
-use std::f64::consts::{PI, TAU};
 
 /// Shortest body-frame baseline accepted (m): anything shorter is treated as zero.
 pub const MIN_BASELINE_M: f64 = 1e-4;
@@ -328,10 +327,7 @@ pub fn wrap_diff(a_rad: f64, b_rad: f64) -> f64 {
     wrap_pi(a_rad - b_rad)
 }
 
-/// An angle wrapped into [-pi, pi).
-pub fn wrap_pi(a_rad: f64) -> f64 {
-    (a_rad + PI).rem_euclid(TAU) - PI
-}
+pub use skyforge_orbits::angles::wrap_pi;
 
 /// The angle errors `est - truth` (yaw, pitch, roll; rad), each wrapped into [-pi, pi).
 pub fn angle_error(est: &YawPitchRoll, truth: &YawPitchRoll) -> Vec3 {

@@ -270,10 +270,7 @@ pub fn j2_nodal_rate_rad_s(gm: f64, a_m: f64, i_rad: f64) -> f64 {
     -1.5 * J2 * (WGS84_A_M / a_m).powi(2) * n * i_rad.cos()
 }
 
-/// Wrap an angle to [-pi, pi).
-fn wrap_pi(x: f64) -> f64 {
-    (x + PI).rem_euclid(2.0 * PI) - PI
-}
+use crate::angles::wrap_pi;
 
 /// The ephemeris template: circular, no corrections, zero clock, healthy.
 fn template(sat: SatId, class: OrbitClass, epoch: Epoch, a_m: f64) -> BroadcastEphemeris {

@@ -47,7 +47,7 @@ const GPS_DEFAULT_FIT_S: f64 = 4.0 * 3600.0;
 /// BeiDou validity interval (s), +-3 h about toe (see the module notes).
 const BDS_FIT_S: f64 = 6.0 * 3600.0;
 /// Seconds per week.
-const WEEK_S: f64 = 604_800.0;
+const WEEK_S: f64 = crate::time::SECONDS_PER_WEEK as f64;
 
 /// Read every GPS LNAV and BeiDou D1/D2 ephemeris in the file.
 pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {

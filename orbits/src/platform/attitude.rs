@@ -11,7 +11,7 @@ use crate::frames::euler::YawPitchRoll;
 use crate::platform::PlatformError;
 use crate::platform::csv_table::read_numeric_csv;
 use crate::platform::hermite::Hermite3;
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -103,11 +103,7 @@ impl AttitudeTable {
     }
 }
 
-/// Wraps an angle to (-pi, pi].
-fn wrap_pi(a: f64) -> f64 {
-    let w = (a + PI).rem_euclid(TAU) - PI;
-    if w == -PI { PI } else { w }
-}
+use crate::angles::wrap_pi_upper as wrap_pi;
 
 /// A resolved attitude profile.
 #[derive(Debug, Clone)]
@@ -240,6 +236,7 @@ fn axis_sinusoid(name: &str, axis: &AxisProfileConfig) -> Result<AxisSinusoid, I
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::f64::consts::PI;
     use std::io::Write;
 
     fn axis(
@@ -385,13 +382,5 @@ mod tests {
             }
             other => panic!("{other:?}"),
         }
-    }
-
-    #[test]
-    fn wrap_pi_range() {
-        assert_eq!(wrap_pi(PI), PI);
-        assert_eq!(wrap_pi(-PI), PI);
-        assert!((wrap_pi(3.0 * PI / 2.0) + PI / 2.0).abs() < 1e-15);
-        assert!((wrap_pi(0.1 - 4.0 * TAU) - 0.1).abs() < 1e-12);
     }
 }

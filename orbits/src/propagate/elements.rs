@@ -11,6 +11,7 @@
 //! conventions only decide how a nearly undefined angle is split between its neighbours.
 
 use crate::Vec3;
+use crate::angles::wrap_two_pi;
 use std::f64::consts::{PI, TAU};
 
 /// Below this eccentricity the argument of perigee is undefined (set to 0).
@@ -132,12 +133,6 @@ pub fn solve_kepler(mean_anomaly_rad: f64, e: f64) -> f64 {
     }
     // Back to the branch of the caller's mean anomaly.
     ecc + (mean_anomaly_rad - m)
-}
-
-/// An angle reduced to `[0, 2 pi)`.
-pub fn wrap_two_pi(angle_rad: f64) -> f64 {
-    let wrapped = angle_rad.rem_euclid(TAU);
-    if wrapped >= TAU { 0.0 } else { wrapped }
 }
 
 #[cfg(test)]

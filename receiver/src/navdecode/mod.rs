@@ -177,7 +177,7 @@ fn hard_bit(soft: f32) -> u8 {
 }
 
 /// Seconds per week.
-const WEEK_S: f64 = 604_800.0;
+const WEEK_S: f64 = skyforge_orbits::time::SECONDS_PER_WEEK as f64;
 
 /// The week of a reference time given as seconds of week `ref_sow` relative to the week
 /// `week` in which another time (at `tx_sow`) lies: the reference is at most half a week

@@ -9,7 +9,7 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, Syst
 use skyforge_orbits::time::{TimeOrigin, epoch_from_gpst, gpst_week_sow};
 
 /// Seconds per week.
-const WEEK_S: f64 = 604_800.0;
+const WEEK_S: f64 = skyforge_orbits::time::SECONDS_PER_WEEK as f64;
 /// BDT = GPST - 14 s (BDS-SIS-ICD-B1I 3.0 section 5.1.2: BDT started 2006-01-01 UTC, when
 /// GPST - UTC was 14 s).
 const BDT_BEHIND_GPST_S: f64 = 14.0;

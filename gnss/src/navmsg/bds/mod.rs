@@ -45,7 +45,7 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, System};
 use skyforge_orbits::time::{bdt_week_sow, epoch_from_bdt};
 
 /// Seconds per week.
-const WEEK_S: u64 = 604_800;
+const WEEK_S: u64 = skyforge_orbits::time::SECONDS_PER_WEEK as u64;
 /// Bits per subframe.
 const SUBFRAME_BITS: u64 = 300;
 /// TAI - BDT (s): BDT was UTC on 2006-01-01, when TAI - UTC was 33 s (§3.3).

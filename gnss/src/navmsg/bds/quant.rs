@@ -151,10 +151,7 @@ impl Quantiser<'_> {
     }
 }
 
-/// Wrap an angle to [-pi, pi).
-pub(super) fn wrap_pi(x: f64) -> f64 {
-    (x + PI).rem_euclid(2.0 * PI) - PI
-}
+pub(super) use skyforge_orbits::angles::wrap_pi;
 
 /// The clock and ephemeris fields of subframes 1-3 (D1) or subframe 1 pages 1-10 (D2), as
 /// integers in units of their LSB.

@@ -72,7 +72,7 @@ pub const PREAMBLE: u32 = 0x8B;
 /// Nanoseconds in one second.
 const NS_PER_S: i128 = 1_000_000_000;
 /// Seconds in one week.
-const WEEK_S: i64 = 604_800;
+const WEEK_S: i64 = skyforge_orbits::time::SECONDS_PER_WEEK as i64;
 
 /// Error building the LNAV message.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

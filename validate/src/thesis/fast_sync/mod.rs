@@ -25,7 +25,7 @@ use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
 use skyforge_receiver::tracking::ukf_carrier::{
     THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig,
 };
-use std::f64::consts::{PI, TAU};
+use std::f64::consts::TAU;
 
 /// Table identifier.
 pub const TABLE: &str = "T-3.3-S";
@@ -137,9 +137,7 @@ impl Run {
     }
 }
 
-fn wrap(x: f64) -> f64 {
-    (x + PI).rem_euclid(TAU) - PI
-}
+use skyforge_orbits::angles::wrap_pi as wrap;
 
 /// Track `DURATION_S` of the signal with a UKF started at Doppler `f_start_hz` (the
 /// estimate for the middle of the first millisecond) with uncertainty `sigma_f_hz` and
