@@ -6,6 +6,8 @@
 #
 #   scripts/bit-identity.sh --base-rev REV  [--work DIR] [SCENARIO...]
 #   scripts/bit-identity.sh --base-bin PATH [--work DIR] [SCENARIO...]
+#   ... [--new-bin PATH]   compare against an already built binary instead of building
+#                          the working tree (while the tree is being edited)
 #
 # --base-rev builds REV in a temporary git worktree (its own target directory);
 # --base-bin uses an already built binary. SCENARIO is a bundled name or a file; the
@@ -18,13 +20,14 @@
 # directory, removed at the end).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
-base_rev="" base_bin="" work=""
+base_rev="" base_bin="" new_built="" work=""
 scenarios=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --base-rev) base_rev=$2; shift 2 ;;
     --base-bin) base_bin=$2; shift 2 ;;
     --work) work=$2; shift 2 ;;
+    --new-bin) new_built=$2; shift 2 ;;
     *) scenarios+=("$1"); shift ;;
   esac
 done
@@ -48,11 +51,14 @@ if [ -n "$base_rev" ]; then
   CARGO_TARGET_DIR="$root/target/bit-identity-base" cargo build --quiet --manifest-path "$src/Cargo.toml" -p skyforge-sim
   base_bin="$root/target/bit-identity-base/debug/skyforge"
 fi
-echo "bit-identity: building the working tree"
-cargo build --quiet --manifest-path "$root/Cargo.toml" -p skyforge-sim
+if [ -z "$new_built" ]; then
+  echo "bit-identity: building the working tree"
+  cargo build --quiet --manifest-path "$root/Cargo.toml" -p skyforge-sim
+  new_built="$root/target/debug/skyforge"
+fi
 # A copy, so that a rebuild during the check does not change the binary under test.
 new_bin="$work/skyforge-new"
-cp "$root/target/debug/skyforge" "$new_bin"
+cp "$new_built" "$new_bin"
 
 # Every file below $1 with its SHA-256, paths relative to $1 (the --force manifest,
 # .skyforge-manifest, is left out: binaries before it did not write one).

@@ -26,7 +26,7 @@ use nalgebra::Vector3;
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use skyforge_gnss::observation::ObsRecord;
-use skyforge_navigation::attitude::filter::AttitudeMethod;
+use skyforge_navigation::attitude::config::AttitudeMethod;
 use skyforge_navigation::relative::config::Constraint;
 use skyforge_navigation::relative::{RelativeConfig, RelativeSolver};
 use skyforge_orbits::Vec3;

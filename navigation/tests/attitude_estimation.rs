@@ -6,9 +6,9 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
-use skyforge_navigation::attitude::filter::{
-    AttitudeConfig, AttitudeFilter, AttitudeMethod, FilterInit, build,
-};
+use skyforge_navigation::attitude::build;
+use skyforge_navigation::attitude::config::{AttitudeConfig, AttitudeMethod};
+use skyforge_navigation::attitude::filter::{AttitudeFilter, FilterInit};
 use skyforge_navigation::attitude::frames::ned_baselines_from_ecef;
 use skyforge_navigation::attitude::jacobian::vec_r_jacobian;
 use skyforge_navigation::attitude::kalman::EkfAttitude;

@@ -4,7 +4,8 @@
 mod tracking_support;
 
 use skyforge_receiver::tracking::TrackingError;
-use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, TrackingConfig};
+use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd};
+use skyforge_receiver::tracking::config::TrackingConfig;
 use tracking_support::TestSignal;
 
 #[test]

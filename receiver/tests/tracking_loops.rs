@@ -5,9 +5,8 @@
 mod tracking_support;
 
 use skyforge_gnss::signal::Signal;
-use skyforge_receiver::tracking::channel::{
-    ChannelTracker, FrontEnd, Handover, TrackingConfig, TrackingRecord,
-};
+use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, Handover, TrackingRecord};
+use skyforge_receiver::tracking::config::TrackingConfig;
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
 use std::ops::Range;
 use tracking_support::{TestSignal, mean_std, phase_errors};

@@ -3,6 +3,9 @@
 use clap::{Args, Parser, Subcommand};
 use std::path::PathBuf;
 
+/// Geometry epochs per streamed chunk unless `synth --chunk-epochs` says otherwise.
+pub const DEFAULT_CHUNK_EPOCHS: u32 = 10;
+
 /// SkyForge: simulate GPS and BeiDou constellations and a receiving platform (a LEO
 /// satellite, a ground site or a trajectory), and write what its antennas see.
 #[derive(Debug, Parser)]
@@ -55,7 +58,7 @@ pub enum Command {
         /// fewer costs overhead. Every file but truth.h5 is byte-identical whatever it is;
         /// truth.h5 holds the same datasets and values, but HDF5 places its chunks in the
         /// order they are written, so its bytes differ.
-        #[arg(long, value_name = "N", default_value_t = crate::commands::synth::DEFAULT_CHUNK_EPOCHS,
+        #[arg(long, value_name = "N", default_value_t = DEFAULT_CHUNK_EPOCHS,
               value_parser = clap::value_parser!(u32).range(1..=3600))]
         chunk_epochs: u32,
         /// Check the scenario and print what the run would write (each recording's size,

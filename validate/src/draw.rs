@@ -10,7 +10,7 @@
 //! seconds, does not shrink them), and its verdict is decided on the fraction of draws in
 //! tolerance against [`BAR`].
 
-use crate::report::{Row, Verdict};
+use crate::report::{OverSeeds, Row, Verdict};
 use serde::{Deserialize, Serialize};
 use std::ops::Range;
 
@@ -85,29 +85,6 @@ pub enum Kind {
     /// Rows are already rates or statistics over many seeds of the table's own (Monte
     /// Carlo): evaluated once, on its registered seeds shifted by the plan's base.
     MonteCarlo,
-}
-
-/// A row's distribution over the draws of a plan (`results.json` key `over_seeds`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct OverSeeds {
-    /// Draws that gave this row.
-    pub draws: u64,
-    /// The plan's base: the draws' offsets are `base .. base + draws` of the plan.
-    pub base: u64,
-    pub mean: f64,
-    /// Standard deviation of the draws' values (`n - 1`).
-    pub std: f64,
-    /// `std / sqrt(draws)`: draws are independent runs.
-    pub standard_error: f64,
-    pub min: f64,
-    pub max: f64,
-    /// Fraction of draws reproduced.
-    pub in_tolerance: f64,
-    /// Fraction of draws explained.
-    pub explained: f64,
-    /// Whether the fraction in tolerance is more than two binomial standard errors (at the
-    /// bar) from [`BAR`]: a second plan with other seeds should give the same verdict.
-    pub settled: bool,
 }
 
 /// The verdict over draws: reproduced when at least [`BAR`] of the draws are; otherwise

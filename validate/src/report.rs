@@ -44,7 +44,7 @@ pub struct Row {
     /// The row's distribution over the draws of `validate thesis --seeds N` (absent for
     /// one evaluation on the registered seeds).
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub over_seeds: Option<crate::draw::OverSeeds>,
+    pub over_seeds: Option<OverSeeds>,
 }
 
 impl Row {
@@ -145,6 +145,29 @@ pub fn parse_results(text: &str) -> serde_json::Result<(Option<Provenance>, Vec<
     }
     let r: Results = serde_json::from_str(text)?;
     Ok((Some(r.provenance), r.rows))
+}
+
+/// A row's distribution over the draws of a plan (`results.json` key `over_seeds`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct OverSeeds {
+    /// Draws that gave this row.
+    pub draws: u64,
+    /// The plan's base: the draws' offsets are `base .. base + draws` of the plan.
+    pub base: u64,
+    pub mean: f64,
+    /// Standard deviation of the draws' values (`n - 1`).
+    pub std: f64,
+    /// `std / sqrt(draws)`: draws are independent runs.
+    pub standard_error: f64,
+    pub min: f64,
+    pub max: f64,
+    /// Fraction of draws reproduced.
+    pub in_tolerance: f64,
+    /// Fraction of draws explained.
+    pub explained: f64,
+    /// Whether the fraction in tolerance is more than two binomial standard errors (at the
+    /// bar) from [`BAR`]: a second plan with other seeds should give the same verdict.
+    pub settled: bool,
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 //! RINEX), and the one RINEX 3.04 observation writer and reader.
 
 pub mod noise;
+mod read_error;
 pub mod record;
 pub mod rinex2_read;
 pub mod rinex_codes;
@@ -10,5 +11,6 @@ pub mod rinex_read;
 pub mod rinex_write;
 
 pub use noise::{ElevationNoise, dll_thermal_chips, pll_thermal_cycles};
+pub use read_error::ObsReadError;
 pub use record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
-pub use rinex_read::{ObsReadError, parse_obs_text, read_obs_file};
+pub use rinex_read::{parse_obs_text, read_obs_file};

@@ -19,9 +19,8 @@
 //! header lines) and 6 (cycle-slip records) are skipped; a power failure (flag 1) marks
 //! every phase of its epoch as lock lost.
 
+use super::read_error::{Kind, ObsReadError};
 use super::record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
-use super::rinex_read::Kind;
-use super::rinex_read::ObsReadError;
 use crate::signal::Signal;
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::Vec3;

@@ -8,6 +8,7 @@
 //! loss-of-lock indicator of every value and the epoch flag; it parses the epoch's seconds
 //! to 100 ns, the resolution of the RINEX F11.7 field.
 
+use super::read_error::{Kind, ObsReadError};
 use super::record::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 use super::rinex_codes;
 use super::rinex2_read::{MAX_OBS_BYTES, is_rinex2_obs, parse_rinex2_obs};
@@ -21,33 +22,6 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
-
-/// Which quantity an observation code holds (RINEX 3 and 2 alike).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) enum Kind {
-    Code,
-    Phase,
-    Doppler,
-    Strength,
-}
-
-/// Why an observation file could not be read.
-#[derive(Debug, thiserror::Error)]
-pub enum ObsReadError {
-    /// The file could not be read or parsed as RINEX.
-    #[error("{path}: {message}")]
-    Read { path: PathBuf, message: String },
-    /// The file is not well formed at `line` (1-based; 0 when the whole file is at fault).
-    #[error("{path}:{line}: {message}")]
-    Syntax {
-        path: PathBuf,
-        line: usize,
-        message: String,
-    },
-    /// The file is RINEX but not an observation file.
-    #[error("{0}: not a RINEX observation file")]
-    NotObservation(PathBuf),
-}
 
 /// The signal, quantity and code rank ([`rinex_codes::classify`]) of observation `code`
 /// (e.g. `C1C`) of `system`, for a file of RINEX version `major.minor`.

@@ -1,5 +1,5 @@
-//! The real-time attitude stages behind one trait, their configuration, and the process
-//! model both filters share.
+//! The attitude stage's trait ([`AttitudeFilter`]) and the Kalman core both filters share:
+//! the process model, the constant-rate state and its canonical angles.
 //!
 //! State `X = [yaw, pitch, roll, yaw', pitch', roll']` (rad, rad/s; eqs. 2.5-16, 4.3-27),
 //! transition `Phi = [[I_3, T I_3], [0, I_3]]` (eqs. 2.5-16, 4.3-28) and process noise
@@ -13,87 +13,11 @@
 //! changes sign). The measurement is a vector of baselines, so its innovation has no
 //! angle to wrap; angle *differences* (errors, NEES) use [`super::wrap_diff`].
 
-use super::kalman::EkfAttitude;
-use super::least_squares::{LsConfig, solve};
-use super::ukf::UkfAttitude;
+use super::config::{AttitudeConfig, AttitudeMethod};
+use super::least_squares::solve;
 use super::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};
 use nalgebra::{DMatrix, Matrix3, Matrix6, SMatrix, Vector3, Vector6};
 use std::f64::consts::{FRAC_PI_2, PI};
-
-/// Which attitude stage runs (`[stages] attitude` in a receiver TOML, later).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum AttitudeMethod {
-    /// Epoch-by-epoch iterated LS (eqs. 2.5-9..2.5-13), no rates (default).
-    #[default]
-    LeastSquares,
-    /// The real-time KF of eqs. 2.5-16, 2.5-17, an EKF (linearised with J(xi)).
-    Kf,
-    /// The UKF of eqs. 4.3-16..4.3-32.
-    Ukf,
-}
-
-/// Thesis section 4.3: the sigma-point spread kappa of its UKF simulations.
-pub const THESIS_KAPPA: f64 = 0.5;
-
-/// Settings of the attitude stage.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct AttitudeConfig {
-    /// `least-squares`, `kf` or `ukf`.
-    pub method: AttitudeMethod,
-    /// Power spectral densities `S` of the yaw, pitch and roll accelerations
-    /// (rad^2/s^3), eqs. 2.5-16 / 4.3-30. Default 1e-8 each (# assumed: the thesis gives
-    /// no value; 1e-4 rad/s^2 of acceleration noise over 1 s, a slowly turning LEO).
-    pub rate_psd_rad2_s3: [f64; 3],
-    /// 1-sigma of the rates when a filter starts from its first LS attitude (rad/s).
-    /// Default 0.01 rad/s (0.57 deg/s).
-    pub initial_rate_sigma_rad_s: f64,
-    /// UKF sigma-point spread kappa (eqs. 4.3-18..4.3-20), `6 + kappa > 0`. Default 0.5,
-    /// the thesis's value.
-    pub kappa: f64,
-    /// The LS (the `least-squares` stage, and the filters' first epoch).
-    pub least_squares: LsConfig,
-}
-
-impl Default for AttitudeConfig {
-    fn default() -> Self {
-        Self {
-            method: AttitudeMethod::default(),
-            rate_psd_rad2_s3: [1e-8; 3],
-            initial_rate_sigma_rad_s: 0.01,
-            kappa: THESIS_KAPPA,
-            least_squares: LsConfig::default(),
-        }
-    }
-}
-
-impl AttitudeConfig {
-    /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
-    pub fn check(&self) -> Result<(), AttitudeError> {
-        if !settings_ok(
-            6,
-            &self.rate_psd_rad2_s3,
-            self.initial_rate_sigma_rad_s,
-            self.kappa,
-        ) {
-            return Err(AttitudeError::Config(format!(
-                "rate_psd_rad2_s3 must be finite and >= 0, initial_rate_sigma_rad_s finite and > 0, kappa finite with 6 + kappa > 0; got {self:?}"
-            )));
-        }
-        self.least_squares.check()
-    }
-}
-
-/// The settings a constant-rate filter of `states` states shares: spectral densities `S`
-/// finite and >= 0, the starting rate sigma finite and > 0, `states + kappa > 0`.
-pub(crate) fn settings_ok(states: usize, psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
-    psd.iter().all(|s| s.is_finite() && *s >= 0.0)
-        && rate_sigma.is_finite()
-        && rate_sigma > 0.0
-        && kappa.is_finite()
-        && states as f64 + kappa > 0.0
-}
 
 /// A filter's state.
 #[derive(Debug, Clone, PartialEq)]
@@ -131,23 +55,6 @@ pub trait AttitudeFilter: std::fmt::Debug + Send {
     fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError>;
     /// The current state; `None` before the first successful update.
     fn state(&self) -> Option<FilterState>;
-}
-
-/// The stage `config.method` with the body geometry `geometry`, no initial state.
-pub fn build(
-    config: &AttitudeConfig,
-    geometry: BodyGeometry,
-) -> Result<Box<dyn AttitudeFilter>, AttitudeError> {
-    config.check()?;
-    Ok(match config.method {
-        AttitudeMethod::LeastSquares => Box::new(LeastSquaresStage {
-            config: config.least_squares,
-            geometry,
-            last: None,
-        }),
-        AttitudeMethod::Kf => Box::new(EkfAttitude::new(config, geometry, None)?),
-        AttitudeMethod::Ukf => Box::new(UkfAttitude::new(config, geometry, None)?),
-    })
 }
 
 /// A filter's starting point.
@@ -382,63 +289,9 @@ fn canonical(mut x: Vector6<f64>, mut p: Matrix6<f64>) -> (Vector6<f64>, Matrix6
     (x, p)
 }
 
-/// The `least-squares` stage: eqs. 2.5-9..2.5-13 every epoch from the Wahba start.
-#[derive(Debug, Clone)]
-pub struct LeastSquaresStage {
-    config: LsConfig,
-    geometry: BodyGeometry,
-    last: Option<super::AttitudeEstimate>,
-}
-
-impl LeastSquaresStage {
-    /// The stage for `geometry`.
-    pub fn new(config: LsConfig, geometry: BodyGeometry) -> Result<Self, AttitudeError> {
-        config.check()?;
-        Ok(Self {
-            config,
-            geometry,
-            last: None,
-        })
-    }
-}
-
-impl AttitudeFilter for LeastSquaresStage {
-    fn method(&self) -> AttitudeMethod {
-        AttitudeMethod::LeastSquares
-    }
-
-    fn predict(&mut self, dt_s: f64) -> Result<(), AttitudeError> {
-        if dt_s.is_finite() && dt_s >= 0.0 {
-            Ok(())
-        } else {
-            Err(AttitudeError::Filter(format!(
-                "prediction interval {dt_s} s must be finite and >= 0"
-            )))
-        }
-    }
-
-    fn update(&mut self, measured: &NedBaselines) -> Result<UpdateInfo, AttitudeError> {
-        let est = solve(&self.geometry, measured, None, &self.config)?;
-        let info = UpdateInfo {
-            chi_square: est.chi_square,
-            dof: 3 * measured.len() - 3,
-            initialised: self.last.is_none(),
-        };
-        self.last = Some(est);
-        Ok(info)
-    }
-
-    fn state(&self) -> Option<FilterState> {
-        self.last.as_ref().map(|e| FilterState {
-            angles: e.angles,
-            rates_rad_s: None,
-            covariance: DMatrix::from_column_slice(3, 3, e.covariance.as_slice()),
-        })
-    }
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::config::THESIS_KAPPA;
     use super::*;
 
     #[test]

@@ -4,9 +4,8 @@
 //! linearised at the prediction with `H = [h J(xi), 0]` (eqs. 2.5-8, 2.5-10), which makes
 //! this an extended KF. `R = Q_BB_NED`. The covariance update uses the Joseph form.
 
-use super::filter::{
-    AttitudeConfig, AttitudeMethod, KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of,
-};
+use super::config::{AttitudeConfig, AttitudeMethod};
+use super::filter::{KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of};
 use super::jacobian::design_matrix;
 use super::{AttitudeError, BodyGeometry, NedBaselines};
 use nalgebra::{DMatrix, DVector, Matrix6, Vector6};

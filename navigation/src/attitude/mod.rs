@@ -22,18 +22,25 @@
 //!   linearised with `J(xi)`).
 //! * [`ukf`]: the UKF of eqs. 4.3-16..4.3-32.
 
+pub mod config;
 pub mod filter;
 pub mod frames;
 pub mod jacobian;
 pub mod kalman;
 pub mod least_squares;
+mod ls_stage;
 pub mod ukf;
 pub mod unscented;
 pub mod wahba;
 
+use config::{AttitudeConfig, AttitudeMethod};
+use filter::AttitudeFilter;
+use kalman::EkfAttitude;
+pub use ls_stage::LeastSquaresStage;
 use nalgebra::{DMatrix, DVector, Matrix3};
 use skyforge_orbits::Vec3;
 pub use skyforge_orbits::frames::euler::YawPitchRoll;
+use ukf::UkfAttitude;
 
 /// Shortest body-frame baseline accepted (m): anything shorter is treated as zero.
 pub const MIN_BASELINE_M: f64 = 1e-4;
@@ -328,6 +335,21 @@ pub fn wrap_diff(a_rad: f64, b_rad: f64) -> f64 {
 }
 
 pub use skyforge_orbits::angles::wrap_pi;
+
+/// The stage `config.method` with the body geometry `geometry`, no initial state.
+pub fn build(
+    config: &AttitudeConfig,
+    geometry: BodyGeometry,
+) -> Result<Box<dyn AttitudeFilter>, AttitudeError> {
+    config.check()?;
+    Ok(match config.method {
+        AttitudeMethod::LeastSquares => {
+            Box::new(LeastSquaresStage::new(config.least_squares, geometry)?)
+        }
+        AttitudeMethod::Kf => Box::new(EkfAttitude::new(config, geometry, None)?),
+        AttitudeMethod::Ukf => Box::new(UkfAttitude::new(config, geometry, None)?),
+    })
+}
 
 /// The angle errors `est - truth` (yaw, pitch, roll; rad), each wrapped into [-pi, pi).
 pub fn angle_error(est: &YawPitchRoll, truth: &YawPitchRoll) -> Vec3 {

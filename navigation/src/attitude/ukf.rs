@@ -7,9 +7,8 @@
 //! `Z_k = vec(B) = [R(xi) b'_1; R(xi) b'_2; ...] + r_k` with `R = Q_BB` (eqs. 4.3-31,
 //! 4.3-32), for any number of baselines.
 
-use super::filter::{
-    AttitudeConfig, AttitudeMethod, KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of,
-};
+use super::config::{AttitudeConfig, AttitudeMethod};
+use super::filter::{KalmanAttitude, MeasurementUpdate, UpdateInfo, angles_of};
 use super::unscented::{transform, update};
 use super::{AttitudeError, BodyGeometry, NedBaselines};
 use nalgebra::{Matrix6, Vector6};

@@ -7,10 +7,21 @@
 //! `[vec(N); vec(B)]` (in the per-baseline order) is `Q_M (x) P`.
 
 use super::BaselineError;
-use super::memory::AmbiguityPrior;
 use super::model::DdModel;
 use nalgebra::{DMatrix, DVector, Matrix3xX};
 use skyforge_gnss::observation::ObsRecord;
+
+/// A prior on one epoch's ambiguities, in the layout's order: its mean and its
+/// information (`information` joins the ambiguity block of the normal matrix; the
+/// solution is formed as a correction to `mean`, which keeps its digits: ambiguities of
+/// real receivers run to 1e8 cycles).
+#[derive(Debug, Clone, PartialEq)]
+pub struct AmbiguityPrior {
+    /// `(C P_NN C^T)^{-1}`, zero rows and columns for ambiguities without a prior.
+    pub information: DMatrix<f64>,
+    /// `C N_hat` (n x m), zero rows for ambiguities without a prior.
+    pub mean: DMatrix<f64>,
+}
 
 /// Float ambiguities and baselines of one epoch.
 #[derive(Debug, Clone, PartialEq)]

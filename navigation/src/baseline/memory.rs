@@ -15,7 +15,7 @@
 //! block.
 
 use super::differences::DdLayout;
-use super::float::FloatBaselines;
+use super::float::{AmbiguityPrior, FloatBaselines};
 use nalgebra::DMatrix;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
@@ -29,18 +29,6 @@ pub struct FloatMemory {
     mean: DMatrix<f64>,
     /// `P_NN` (ambiguities x ambiguities).
     cofactor: DMatrix<f64>,
-}
-
-/// A prior on one epoch's ambiguities, in the layout's order: its mean and its
-/// information (`information` joins the ambiguity block of the normal matrix; the
-/// solution is formed as a correction to `mean`, which keeps its digits: ambiguities of
-/// real receivers run to 1e8 cycles).
-#[derive(Debug, Clone, PartialEq)]
-pub struct AmbiguityPrior {
-    /// `(C P_NN C^T)^{-1}`, zero rows and columns for ambiguities without a prior.
-    pub information: DMatrix<f64>,
-    /// `C N_hat` (n x m), zero rows for ambiguities without a prior.
-    pub mean: DMatrix<f64>,
 }
 
 impl FloatMemory {

@@ -22,9 +22,10 @@ pub mod model;
 pub mod noise;
 
 pub use differences::{DdBlock, DdLayout, LineOfSight};
+pub use float::AmbiguityPrior;
 pub use float::{Conditioned, FixedBaselines, FloatBaselines};
 pub use hold::AmbiguityHold;
-pub use memory::{AmbiguityPrior, FloatMemory};
+pub use memory::FloatMemory;
 pub use model::DdModel;
 pub use noise::{ElevationNoise, NoiseModel};
 

@@ -22,7 +22,7 @@
 //! nominal `B_0` (eqs. 2.5-9..2.5-13), their mean rate, offsets and offset rate zero, with
 //! the prior sigmas of [`OffsetConfig`].
 
-use crate::attitude::filter::settings_ok;
+use crate::attitude::config::settings_ok;
 use crate::attitude::least_squares::{LsConfig, solve};
 use crate::attitude::unscented::{transform, update};
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};

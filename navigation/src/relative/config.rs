@@ -1,7 +1,7 @@
 //! Settings of the relative-positioning and attitude chain (`[relative]` of a TOML file).
 
 use super::reverse::ReverseConfig;
-use crate::attitude::filter::AttitudeConfig;
+use crate::attitude::config::AttitudeConfig;
 use crate::baseline::{ElevationNoise, NoiseModel};
 use crate::geometry_offset::stacked_ukf::OffsetConfig;
 use serde::Deserialize;

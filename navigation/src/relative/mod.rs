@@ -16,7 +16,8 @@ pub use config::RelativeConfig;
 pub use resolve::{AmbiguityStatus, Resolution};
 pub use reverse::{ReverseConfig, ReverseFilter};
 
-use crate::attitude::filter::{AttitudeFilter, FilterState, build};
+use crate::attitude::build;
+use crate::attitude::filter::{AttitudeFilter, FilterState};
 use crate::attitude::frames::ned_baselines_from_ecef;
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines};
 use crate::baseline::{

@@ -22,7 +22,8 @@
 //! It reads observations and the receiver's own integers, never truth.
 
 use super::resolve::{AmbiguityStatus, Resolution};
-use crate::attitude::filter::{THESIS_KAPPA, process_noise, settings_ok, transition};
+use crate::attitude::config::{THESIS_KAPPA, settings_ok};
+use crate::attitude::filter::{process_noise, transition};
 use crate::attitude::unscented::{UnscentedError, transform, update};
 use crate::baseline::{BaselineError, FixedBaselines, FloatBaselines};
 use nalgebra::{DMatrix, DVector, Matrix3xX, SMatrix, SVector};

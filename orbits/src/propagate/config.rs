@@ -1,6 +1,5 @@
 //! `[platform.leo]` configuration: initial state, force model, integrator.
 
-use super::tle::Tle;
 use crate::Vec3;
 use crate::check::Invalid;
 use crate::constants::{GM_GPS, OMEGA_E_GPS, WGS84_A_M};
@@ -266,34 +265,6 @@ impl KeplerianElementsConfig {
             self.semi_major_axis_km.to_string(),
             a_m * (1.0 + e),
         )
-    }
-}
-
-impl TleConfig {
-    fn check(&self) -> Result<(), Invalid> {
-        match Tle::parse(self) {
-            Ok(_) => Ok(()),
-            Err(err) => {
-                let msg = err.to_string();
-                let (field, value) = if msg.contains("line 2") {
-                    ("line2", self.line2.as_str())
-                } else if msg.contains("line 1") {
-                    ("line1", self.line1.as_str())
-                } else {
-                    ("", "")
-                };
-                let value = if field.is_empty() {
-                    format!("{:?} / {:?}", self.line1, self.line2)
-                } else {
-                    format!("{value:?}")
-                };
-                Err(Invalid::new(
-                    field,
-                    value,
-                    format!("must be a valid two-line element set ({msg})"),
-                ))
-            }
-        }
     }
 }
 

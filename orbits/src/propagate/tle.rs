@@ -13,6 +13,7 @@
 use super::PropagateError;
 use super::config::TleConfig;
 use crate::Vec3;
+use crate::check::Invalid;
 use hifitime::{Duration, Epoch};
 
 /// The parsed TLE, its SGP4 constants and its epoch.
@@ -58,6 +59,35 @@ impl Tle {
         let r = Vec3::from(prediction.position) * 1e3;
         let v = Vec3::from(prediction.velocity) * 1e3;
         Ok((r, v))
+    }
+}
+
+impl TleConfig {
+    /// The TLE parses: the scenario check of `[platform.tle]`.
+    pub(crate) fn check(&self) -> Result<(), Invalid> {
+        match Tle::parse(self) {
+            Ok(_) => Ok(()),
+            Err(err) => {
+                let msg = err.to_string();
+                let (field, value) = if msg.contains("line 2") {
+                    ("line2", self.line2.as_str())
+                } else if msg.contains("line 1") {
+                    ("line1", self.line1.as_str())
+                } else {
+                    ("", "")
+                };
+                let value = if field.is_empty() {
+                    format!("{:?} / {:?}", self.line1, self.line2)
+                } else {
+                    format!("{value:?}")
+                };
+                Err(Invalid::new(
+                    field,
+                    value,
+                    format!("must be a valid two-line element set ({msg})"),
+                ))
+            }
+        }
     }
 }
 

@@ -1,8 +1,12 @@
 //! What can be wrong with sample input: errors that stop reading ([`InputError`]) and
 //! findings that reading works around and reports ([`Finding`]).
 
-use super::format::{ALLOWED_DATATYPES, SampleFormat};
+use skyforge_gnss::sample_format::SampleFormat;
 use std::path::PathBuf;
+
+/// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
+pub const ALLOWED_DATATYPES: &str =
+    "ci8, ci16_le (or ci16), cf32_le (or cf32), ri8 (all little-endian)";
 
 /// Reading cannot go on.
 #[derive(Debug, thiserror::Error)]

@@ -6,15 +6,12 @@
 //! passed through unchanged (their scale is whatever the writer used: SkyForge's float
 //! output has noise of standard deviation 1 per component).
 
+pub use super::error::ALLOWED_DATATYPES;
 use super::error::InputError;
 use num_complex::Complex32;
 
 /// The sample containers (shared with the synthesiser that writes them).
 pub use skyforge_gnss::sample_format::SampleFormat;
-
-/// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
-pub const ALLOWED_DATATYPES: &str =
-    "ci8, ci16_le (or ci16), cf32_le (or cf32), ri8 (all little-endian)";
 
 /// The format named by a SigMF `core:datatype` or a command-line `--format` value;
 /// `origin` (a file or `--format`) goes into the error message.

@@ -1,8 +1,8 @@
 //! Receiver settings: acquisition, tracking, observation rate, PVT, and the approximate
 //! state a receiver can be told (assistance).
 
-use crate::tracking::carrier::CarrierMethod;
-use crate::tracking::channel::TrackingConfig;
+use crate::tracking::config::CarrierMethod;
+use crate::tracking::config::TrackingConfig;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_orbits::Vec3;
 

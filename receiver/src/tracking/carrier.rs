@@ -8,24 +8,13 @@
 //! (its Doppler, and a phase step applied at its start).
 
 use super::TrackingError;
-use super::channel::TrackingConfig;
+use super::config::{CarrierMethod, TrackingConfig, UkfSettings};
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::loop_filter::CarrierLoopFilter;
-use super::ukf_carrier::{THESIS_KAPPA, THESIS_PROPOSED_Q, UkfCarrier, UkfConfig};
+use super::ukf_carrier::{UkfCarrier, UkfConfig};
 use nalgebra::{Matrix4, Vector4};
 use num_complex::{Complex, Complex64};
 use std::f64::consts::TAU;
-
-/// Which carrier tracking stage a channel runs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum CarrierMethod {
-    /// Second/third-order PLL with FLL assist during pull-in (default).
-    #[default]
-    FllPll,
-    /// The UKF of thesis section 3.3.4 (eqs. 3.3-57..3.3-73).
-    Ukf,
-}
 
 /// What a channel knows when it closes a coherent integration.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -218,57 +207,6 @@ impl CarrierTracker for PllFll {
 
     fn rate_hzps(&self) -> f64 {
         self.filter.rate_hzps()
-    }
-}
-
-/// Settings of the UKF stage (`[tracking.ukf]`).
-#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct UkfSettings {
-    /// Process noise spectral densities (Q_theta, Q_omega, Q_alpha, Q_alpha_t) of eq.
-    /// 3.3-59 (rad^2/s, rad^2/s^3, rad^2/s^5, rad^2/s^7). Default: the thesis's proposed
-    /// values (section 3.3.5).
-    pub q: [f64; 4],
-    /// Sigma-point spread kappa (eqs. 3.3-65..3.3-67); the thesis uses 0.5.
-    pub kappa: f64,
-    /// 1-sigma Doppler uncertainty at the hand-over (Hz).
-    pub initial_doppler_sigma_hz: f64,
-    /// 1-sigma Doppler-rate uncertainty at the hand-over (Hz/s).
-    pub initial_rate_sigma_hzps: f64,
-}
-
-impl Default for UkfSettings {
-    fn default() -> Self {
-        Self {
-            q: THESIS_PROPOSED_Q,
-            kappa: THESIS_KAPPA,
-            // assumed: a uniform error over one 500 Hz acquisition bin (144 Hz), as
-            // validate's T-3.3-S gives the coarse estimate.
-            initial_doppler_sigma_hz: 144.0,
-            // assumed: LEO-sized dynamics, as T-3.3-S.
-            initial_rate_sigma_hzps: 2500.0,
-        }
-    }
-}
-
-impl UkfSettings {
-    /// Every value finite, the spread and uncertainties positive, Q non-negative.
-    pub(crate) fn check(&self) -> Result<(), TrackingError> {
-        let q_ok = self.q.iter().all(|q| q.is_finite() && *q >= 0.0);
-        let positive = [
-            self.kappa,
-            self.initial_doppler_sigma_hz,
-            self.initial_rate_sigma_hzps,
-        ]
-        .iter()
-        .all(|v| v.is_finite() && *v > 0.0);
-        if q_ok && positive {
-            Ok(())
-        } else {
-            Err(TrackingError::InvalidConfig(format!(
-                "ukf: q must be finite and >= 0, kappa and the initial uncertainties finite and > 0, got {self:?}"
-            )))
-        }
     }
 }
 

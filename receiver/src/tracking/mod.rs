@@ -5,6 +5,7 @@
 pub mod bit_sync;
 pub mod carrier;
 pub mod channel;
+pub mod config;
 pub mod correlator;
 pub mod discriminators;
 pub mod error_budget;

@@ -15,7 +15,6 @@ use super::filter::BandFilter;
 use super::link_terms::{AntennaEpoch, LinkTerms};
 use super::quantise::QuantiseError;
 use super::render::{LinkTruth, Synthesiser};
-use super::sigmf::RunInfo;
 use super::transmitter::Transmitter;
 use crate::antenna::Antenna;
 use crate::errors::clock::ClockModel;
@@ -27,6 +26,7 @@ use crate::obs_model::ObservationModel;
 use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
 use hifitime::Epoch;
 use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::check::Invalid;
@@ -675,6 +675,18 @@ impl Running<'_, '_, '_> {
         }
         Ok(())
     }
+}
+
+/// What every recording of a synthesis shares.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunInfo {
+    pub format: SampleFormat,
+    pub sample_rate_hz: f64,
+    pub if_hz: f64,
+    /// Time of the first sample.
+    pub start: Epoch,
+    pub scenario: String,
+    pub seed: u64,
 }
 
 #[cfg(test)]

@@ -2,7 +2,7 @@
 //! [`SigmfRecordings`], the sample sink of a synthesis session that writes one
 //! `<antenna>.<tag>.sigmf-data` + `.sigmf-meta` pair per antenna and band.
 
-use super::session::{Band, SampleSink, SinkError};
+use super::session::{Band, RunInfo, SampleSink, SinkError};
 use crate::antenna::Antenna;
 use hifitime::Epoch;
 use serde_json::{Value, json};
@@ -71,18 +71,6 @@ pub fn sigmf_datetime(at: Epoch) -> String {
 /// The file-name stem of antenna `antenna`'s recording of `band`: `<antenna>.<tag>`.
 pub fn recording_name(antenna: &str, band: &Band) -> String {
     format!("{antenna}.{}", band.signal.tag())
-}
-
-/// What every recording of a synthesis shares.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunInfo {
-    pub format: SampleFormat,
-    pub sample_rate_hz: f64,
-    pub if_hz: f64,
-    /// Time of the first sample.
-    pub start: Epoch,
-    pub scenario: String,
-    pub seed: u64,
 }
 
 impl RunInfo {

@@ -23,7 +23,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
             &signal,
             out,
             force,
-            super::synth::DEFAULT_CHUNK_EPOCHS as usize,
+            crate::cli::DEFAULT_CHUNK_EPOCHS as usize,
             None,
         );
     }

@@ -20,10 +20,11 @@ use skyforge_signals::errors::troposphere::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
+use skyforge_signals::synth::session::RunInfo;
 use skyforge_signals::synth::session::{
     Discard, GEOMETRY_STEP_S, Sinks, SynthError, SynthReport, SynthSession,
 };
-use skyforge_signals::synth::sigmf::{RunInfo, SigmfRecordings, recording_name};
+use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
 use skyforge_signals::truth::geometry::epoch_count;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -34,8 +35,6 @@ pub const RECEIVE_DIR: &str = "receive";
 /// Subdirectory of the observation level's observables (`<antenna>.obs.rnx`, as
 /// `skyforge receive` writes them).
 pub const OBSERVATIONS_DIR: &str = "observations";
-/// Geometry epochs per streamed chunk unless `synth --chunk-epochs` says otherwise.
-pub const DEFAULT_CHUNK_EPOCHS: u32 = 10;
 /// Error context naming an output file.
 fn writing(path: &Path) -> String {
     format!("cannot write {}", path.display())
