@@ -13,6 +13,7 @@ pub mod ambiguity;
 pub mod attitude;
 pub mod baseline;
 pub mod continued_fraction;
+pub mod geometry_file;
 pub mod geometry_offset;
 pub mod integrity;
 pub mod pvt;

@@ -5,25 +5,21 @@
 use super::troposphere::DelayGradient;
 use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
+use crate::geometry_file::BodyGeometryFile;
 use crate::pvt::{
     Fix, FromEphemeris, Measurement, NearAntenna, Predicted, PvtConfig, Recorded, Satellites,
     ViewPoint, solve_with,
 };
 use hifitime::Epoch;
-use serde::{Deserialize, Serialize};
 use skyforge_gnss::observation::{ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeMap;
-use std::path::Path;
 
-/// Largest geometry file read (bytes).
-const MAX_GEOMETRY_BYTES: u64 = 1 << 20;
 /// Epochs of different files closer than this (s) are the same epoch: receivers whose
 /// clock is not steered tag their epochs on their own clock and let it drift some
 /// milliseconds from GPS time before a jump (the GEONET Trimble 5700 files tag from
@@ -31,28 +27,9 @@ const MAX_GEOMETRY_BYTES: u64 = 1 << 20;
 /// difference of the sampling instants is corrected ([`ToMasterModel`]).
 pub(crate) const SAME_EPOCH_S: f64 = 0.025;
 
-/// One antenna of the body geometry.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct GeometryAntenna {
-    pub name: String,
-    /// Nominal phase-centre position in the body frame (m).
-    pub position_body_m: [f64; 3],
-}
-
-/// The body geometry file (TOML, `[[antennas]]` with `name` and `position_body_m`, master
-/// first), as `skyforge synth` writes it for its scenario.
-#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
-#[serde(deny_unknown_fields)]
-pub struct BodyGeometryFile {
-    pub antennas: Vec<GeometryAntenna>,
-}
-
 /// Why the files could not be processed.
 #[derive(Debug, thiserror::Error)]
 pub enum FilesError {
-    #[error("{path}: {message}")]
-    Geometry { path: String, message: String },
     #[error(
         "{files} observation files for the {geometry} antennas of the geometry file (one file per antenna, in its order)"
     )]
@@ -71,57 +48,6 @@ pub enum FilesError {
     },
     #[error(transparent)]
     Relative(#[from] RelativeError),
-}
-
-impl BodyGeometryFile {
-    /// The antennas `(name, body-frame position)`, master first.
-    pub fn from_positions(antennas: impl IntoIterator<Item = (String, Vec3)>) -> Self {
-        Self {
-            antennas: antennas
-                .into_iter()
-                .map(|(name, p)| GeometryAntenna {
-                    name,
-                    position_body_m: [p.x, p.y, p.z],
-                })
-                .collect(),
-        }
-    }
-
-    /// Read and check the geometry file at `path`.
-    pub fn read(path: &Path) -> Result<Self, FilesError> {
-        let error = |message: String| FilesError::Geometry {
-            path: path.display().to_string(),
-            message,
-        };
-        let text = read_text(path, MAX_GEOMETRY_BYTES, "geometry file")
-            .map_err(|e| error(e.to_string()))?;
-        let file: Self = toml::from_str(&text).map_err(|e| error(e.to_string()))?;
-        if file.antennas.len() < 2 {
-            return Err(error(format!(
-                "{} antennas; at least two are needed for a baseline",
-                file.antennas.len()
-            )));
-        }
-        if let Some(a) = file
-            .antennas
-            .iter()
-            .find(|a| a.position_body_m.iter().any(|v| !v.is_finite()))
-        {
-            return Err(error(format!(
-                "antenna {}: position_body_m is not finite",
-                a.name
-            )));
-        }
-        Ok(file)
-    }
-
-    /// Body positions, master first.
-    pub fn positions(&self) -> Vec<Vec3> {
-        self.antennas
-            .iter()
-            .map(|a| Vec3::from(a.position_body_m))
-            .collect()
-    }
 }
 
 /// One epoch of the master's file and what became of it.

@@ -14,9 +14,10 @@ use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::attitude::BodyGeometry;
+use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
 use skyforge_navigation::relative::config::Constraint;
-use skyforge_navigation::relative::files::{BodyGeometryFile, run_files};
+use skyforge_navigation::relative::files::run_files;
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
@@ -309,7 +310,9 @@ fn write_offsets(
         .map_err(|e| BadInput(format!("geometry offsets: {e}")))?;
     let toml_path = staged.file("geometry_corrected.toml");
     let file = geometry_out::corrected_file(geometry, &corrected);
-    let text = toml::to_string(&file).context("cannot format the corrected geometry")?;
+    let text = file
+        .to_text("")
+        .context("cannot format the corrected geometry")?;
     std::fs::write(&toml_path, text)
         .with_context(|| format!("cannot write {}", toml_path.display()))
 }

@@ -10,7 +10,7 @@ use crate::output::synth_sinks::{ObsFiles, TruthFile};
 use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use skyforge_navigation::relative::files::BodyGeometryFile;
+use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_orbits::Vec3;
 use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
@@ -280,12 +280,14 @@ fn write_geometry(scenario: &Scenario, path: &Path) -> anyhow::Result<()> {
             .iter()
             .map(|a| (a.name.clone(), Vec3::from(a.position_body_m))),
     );
-    let text = format!(
-        "# Nominal body geometry of scenario {} (antenna phase-centre reference points, body\n\
-         # frame, m; master first), for `skyforge attitude --geometry`.\n{}",
-        scenario.name,
-        toml::to_string(&file).context("cannot encode the geometry")?
+    let header = format!(
+        "Nominal body geometry of scenario {} (antenna phase-centre reference points, body\n\
+         frame, m; master first), for `skyforge attitude --geometry`.",
+        scenario.name
     );
+    let text = file
+        .to_text(&header)
+        .context("cannot encode the geometry")?;
     std::fs::write(path, text).with_context(|| writing(path))
 }
 

@@ -7,8 +7,8 @@
 use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_navigation::attitude::BodyGeometry;
+use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::stacked_ukf::OffsetState;
-use skyforge_navigation::relative::files::BodyGeometryFile;
 use std::path::Path;
 
 /// One update: the time of the newest epoch and the estimate.

@@ -29,7 +29,8 @@ use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
 use skyforge_gnss::observation::{ObsReadError, read_obs_file};
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::relative::files::{BodyGeometryFile, FilesError};
+
+use skyforge_navigation::geometry_file::{BodyGeometryFile, GeometryFileError};
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
@@ -68,7 +69,7 @@ pub enum OutputsError {
     #[error(transparent)]
     Observations(#[from] ObsReadError),
     #[error(transparent)]
-    Geometry(#[from] FilesError),
+    Geometry(#[from] GeometryFileError),
 }
 
 fn file_error(path: &Path, message: impl Into<String>) -> OutputsError {
