@@ -8,7 +8,6 @@ use pvt_support::{World, world};
 
 use skyforge_navigation::pvt::{Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::atmosphere::standard_slant_delay_m;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, OMEGA_E_BDS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::klobuchar::{
     KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
@@ -17,6 +16,7 @@ use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
+use skyforge_orbits::troposphere::standard_slant_delay_m;
 
 const GPS_IONO: KlobucharCoeffs = KlobucharCoeffs {
     alpha: [1.2e-8, -7.5e-9, -6.0e-8, 1.2e-7],

@@ -10,7 +10,6 @@
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod angles;
-pub mod atmosphere;
 pub mod bounded_read;
 pub mod check;
 pub mod constants;
@@ -22,6 +21,7 @@ pub mod platform;
 pub mod propagate;
 pub mod real_data;
 pub mod time;
+pub mod troposphere;
 pub mod visibility;
 
 /// A 3-vector of `f64` (frame and unit are carried by the variable name).

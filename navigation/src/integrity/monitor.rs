@@ -14,11 +14,11 @@ use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Mat3;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::atmosphere::standard_slant_delay_m;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, OrbitClass, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
 use skyforge_orbits::time::TimeOrigin;
+use skyforge_orbits::troposphere::standard_slant_delay_m;
 use std::collections::BTreeMap;
 
 /// A gap longer than this many times the previous epoch spacing restarts a track.

@@ -14,8 +14,8 @@
 
 use crate::pvt::solve::STANDARD_RH0;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::atmosphere::StandardZenith;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::troposphere::StandardZenith;
 
 /// Step of the central differences (m): the second-order error is `(STEP / 8 km)^2 / 6`
 /// of the gradient, 3e-7; the rounding error of the delays (1e-15 m) over it is 1e-16.
@@ -82,9 +82,9 @@ impl DelayGradient {
 mod tests {
     use super::*;
     use crate::pvt::predicted_view;
-    use skyforge_orbits::atmosphere::standard_slant_delay_m;
     use skyforge_orbits::ephemeris::{SatId, nominal};
     use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_orbits::troposphere::standard_slant_delay_m;
 
     fn geo(lat_deg: f64, lon_deg: f64, h_m: f64) -> Vec3 {
         geodetic_to_ecef(&Geodetic::from_degrees(lat_deg, lon_deg, h_m))

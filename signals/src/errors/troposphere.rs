@@ -1,13 +1,13 @@
 //! Tropospheric delay for receivers inside the neutral atmosphere: the scenario's choice
 //! of model. The model itself (Saastamoinen zenith delays from a standard atmosphere,
-//! Chao mapping; formulas and sources) is `skyforge_orbits::atmosphere`, shared with the
+//! Chao mapping; formulas and sources) is `skyforge_orbits::troposphere`, shared with the
 //! receiver.
 //!
 //! The troposphere is not dispersive: code and carrier are both delayed by the same amount.
 
 use skyforge_orbits::check::Invalid;
 
-pub use skyforge_orbits::atmosphere::{
+pub use skyforge_orbits::troposphere::{
     Atmosphere, TROPOSPHERE_CEILING_M, chao_mapping, saastamoinen_zenith_m, standard_atmosphere,
 };
 
@@ -62,7 +62,7 @@ impl TropoConfig {
     pub fn delay_m(&self, lat_rad: f64, height_m: f64, el_rad: f64) -> f64 {
         match self.model {
             TropoModel::Off => 0.0,
-            TropoModel::Saastamoinen => skyforge_orbits::atmosphere::standard_slant_delay_m(
+            TropoModel::Saastamoinen => skyforge_orbits::troposphere::standard_slant_delay_m(
                 lat_rad,
                 height_m,
                 el_rad,

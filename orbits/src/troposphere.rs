@@ -1,6 +1,7 @@
-//! The neutral atmosphere as GNSS users model it: Saastamoinen zenith delays from a
-//! standard atmosphere, mapped to the line of sight by Chao's functions. The synthesiser
-//! puts this delay into the signal (when the scenario asks); the receiver removes it.
+//! The troposphere (the neutral atmosphere) as GNSS users model it: Saastamoinen zenith
+//! delays from a standard atmosphere, mapped to the line of sight by Chao's functions. The
+//! synthesiser puts this delay into the signal (when the scenario asks); the receiver
+//! removes it.
 //!
 //! - Standard atmosphere (Berg 1948, as given in Hofmann-Wellenhof et al., "GNSS", 2008,
 //!   section 5.3.3): `p = 1013.25 (1 - 2.26e-5 h)^5.225` hPa, `T = 291.15 - 0.0065 h` K,
