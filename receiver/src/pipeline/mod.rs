@@ -2,7 +2,6 @@
 //! tracking channel per antenna x satellite, navigation decoding, observables on a common
 //! receive time and a PVT fix per antenna at every observation epoch.
 
-mod acquire;
 mod channel;
 mod config;
 mod epoch_stage;

@@ -3,13 +3,13 @@
 //! a fix per antenna.
 
 use super::EpochReport;
-use super::acquire::{AcquisitionStage, Candidate, acquisition_stage};
 use super::channel::Channel;
 use super::config::{ApproximateState, ReceiverConfig};
 use super::epoch_stage::{EpochInput, EpochStage, epoch_stage};
 use super::navdata::NavData;
 use crate::acquisition::AcquisitionError;
 use crate::acquisition::pcps::DopplerWindow;
+use crate::acquisition::{AcquisitionStage, Candidate};
 use crate::assist::{Assistance, search_hints};
 use crate::navdecode::NavDecodeError;
 use crate::observables::ObservablesBuilder;
@@ -154,7 +154,7 @@ impl Receiver {
         let searches = setup
             .bands
             .iter()
-            .map(|b| acquisition_stage(b.signal, fs, b.if_hz, &config.acquisition))
+            .map(|b| crate::acquisition::build(b.signal, fs, b.if_hz, &config.acquisition))
             .collect::<Result<Vec<_>, _>>()?;
         let nav = NavData::new(
             setup.ephemerides.clone(),

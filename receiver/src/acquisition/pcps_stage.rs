@@ -1,0 +1,74 @@
+//! The `pcps` acquisition stage: the parallel code-phase search over Doppler bins.
+
+use super::config::AcquisitionSettings;
+use super::pcps::{Acquisition, BitTransition, DopplerWindow, Pcps, PcpsConfig};
+use super::{AcquisitionError, AcquisitionStage, Candidate};
+use num_complex::Complex32;
+use rayon::prelude::*;
+use skyforge_gnss::signal::Signal;
+
+/// Parallel code-phase search over Doppler bins.
+pub(super) struct PcpsStage {
+    pcps: Pcps,
+}
+
+impl PcpsStage {
+    pub(super) fn new(
+        signal: Signal,
+        sample_rate_hz: f64,
+        if_hz: f64,
+        s: &AcquisitionSettings,
+    ) -> Result<Self, AcquisitionError> {
+        let mut config = PcpsConfig::cold(signal, sample_rate_hz);
+        config.carrier_offset_hz = if_hz;
+        config.coherent_periods = s.coherent_ms;
+        config.noncoherent = s.noncoherent;
+        config.pfa = s.pfa;
+        config.window = DopplerWindow {
+            centre_hz: 0.0,
+            half_width_hz: s.cold_half_width_hz,
+        };
+        // BeiDou: NH chips (D1) every 1 ms and D2 bits every 2 ms change the sign
+        // between code periods; GPS bits change only every 20 ms.
+        config.bit_transition = match signal {
+            Signal::BdsB1I => BitTransition::AlignedWindows,
+            // The observed-only signals are refused by `Pcps::new` (no code).
+            Signal::GpsL1Ca | Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => {
+                BitTransition::Ignore
+            }
+        };
+        Ok(Self {
+            pcps: Pcps::new(config)?,
+        })
+    }
+}
+
+impl AcquisitionStage for PcpsStage {
+    fn samples_needed(&self) -> usize {
+        self.pcps.samples_needed()
+    }
+
+    fn doppler_step_hz(&self) -> f64 {
+        self.pcps.config().doppler_step()
+    }
+
+    fn cold_window(&self) -> DopplerWindow {
+        self.pcps.config().window
+    }
+
+    fn run(
+        &self,
+        samples: &[Complex32],
+        candidates: &[Candidate],
+    ) -> Result<Vec<(Candidate, Acquisition)>, AcquisitionError> {
+        let found: Result<Vec<_>, AcquisitionError> = candidates
+            .par_iter()
+            .map(|c| {
+                let code = self.pcps.prepare(c.prn)?;
+                let acq = self.pcps.search_window(samples, &code, c.window)?;
+                Ok((*c, acq))
+            })
+            .collect();
+        Ok(found?.into_iter().filter(|(_, a)| a.detected).collect())
+    }
+}
