@@ -13,9 +13,10 @@ use std::path::Path;
 use std::process::Command;
 
 /// The crates that produce or compare truth.
-const TRUTH_CRATES: [&str; 5] = [
+const TRUTH_CRATES: [&str; 6] = [
     "skyforge-signals",
     "skyforge-scenarios",
+    "skyforge-runner",
     "skyforge-validate",
     "skyforge-sim",
     "skyforge-studies",

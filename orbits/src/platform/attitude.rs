@@ -6,6 +6,7 @@
 //! the platform's reference frame (orbital frame for a LEO, NED otherwise).
 
 use crate::Vec3;
+use crate::angles::wrap_pi_upper;
 use crate::check::Invalid;
 use crate::frames::euler::YawPitchRoll;
 use crate::platform::PlatformError;
@@ -82,7 +83,7 @@ impl AttitudeTable {
             let raw = Vec3::new(row.values[1], row.values[2], row.values[3]).map(f64::to_radians);
             // Unwrap: each step is taken as the shortest turn, so 359 deg -> 1 deg is +2 deg.
             let a = match angles.last() {
-                Some(prev) => prev + (raw - prev).map(wrap_pi),
+                Some(prev) => prev + (raw - prev).map(wrap_pi_upper),
                 None => raw,
             };
             angles.push(a);
@@ -102,8 +103,6 @@ impl AttitudeTable {
         YawPitchRoll::new(a.x, a.y, a.z)
     }
 }
-
-use crate::angles::wrap_pi_upper as wrap_pi;
 
 /// A resolved attitude profile.
 #[derive(Debug, Clone)]
@@ -182,9 +181,9 @@ impl AttitudeProfile {
             Self::Table(table) => {
                 let a = table.at(t_s);
                 YawPitchRoll::new(
-                    wrap_pi(a.yaw_rad),
-                    wrap_pi(a.pitch_rad),
-                    wrap_pi(a.roll_rad),
+                    wrap_pi_upper(a.yaw_rad),
+                    wrap_pi_upper(a.pitch_rad),
+                    wrap_pi_upper(a.roll_rad),
                 )
             }
         }

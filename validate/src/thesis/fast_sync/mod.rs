@@ -137,7 +137,7 @@ impl Run {
     }
 }
 
-use skyforge_orbits::angles::wrap_pi as wrap;
+use skyforge_orbits::angles::wrap_pi;
 
 /// Track `DURATION_S` of the signal with a UKF started at Doppler `f_start_hz` (the
 /// estimate for the middle of the first millisecond) with uncertainty `sigma_f_hz` and
@@ -206,7 +206,7 @@ fn track(
         let [theta, omega, _, _] = ukf.state();
         let t_mid = (k as f64 + 0.5) * T_S;
         // Phase modulo pi: the data sign is not known to the tracker.
-        let phase_err = wrap(2.0 * (theta - spec.doppler_phase_rad(t_mid))) / 2.0;
+        let phase_err = wrap_pi(2.0 * (theta - spec.doppler_phase_rad(t_mid))) / 2.0;
         errors.push((phase_err, omega / TAU - spec.doppler_hz(t_mid)));
         t_s.push(t_mid);
     }
