@@ -8,7 +8,7 @@ mod support;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::outputs::AxisStats;
 use std::path::Path;
-use support::{receive_all_recordings, skyforge, skyforge_ok, text};
+use support::{h5_contents, receive_all_recordings, skyforge, skyforge_ok, text};
 
 /// The thesis LEO with three antennas (master at the body origin, baselines of 1 m along
 /// body X and Y), GPS + BDS-3 at 45 dB-Hz, a slow pitch oscillation, `duration_s` long.
@@ -127,6 +127,23 @@ fn run_chain(
                 "receive --geometry: {f} differs"
             );
         }
+        // Every dataset to the bit (the file's own bytes hold creation times).
+        let (a, b) = (
+            h5_contents(&observations.join("attitude.h5")),
+            h5_contents(&out.join("attitude.h5")),
+        );
+        let differing: Vec<&str> = a
+            .iter()
+            .zip(&b)
+            .filter(|(x, y)| x != y)
+            .map(|(x, _)| x.0.as_str())
+            .collect();
+        assert!(
+            !a.is_empty() && a.len() == b.len() && differing.is_empty(),
+            "receive --geometry: attitude.h5 differs ({} and {} datasets; {differing:?})",
+            a.len(),
+            b.len()
+        );
     }
     ChainDirs {
         sim,
@@ -237,8 +254,10 @@ fn check_chain(signal_level: Option<u32>) {
     }
 }
 
-/// `skyforge receive --geometry` runs the chain on its own observations and writes what
-/// `skyforge attitude` writes from them (checked in [`run_chain`]); a geometry naming an
+/// `skyforge receive --geometry` runs the chain as an epoch stage on its own observations,
+/// in memory, and writes what `skyforge attitude` writes from the RINEX files of the same
+/// run (checked in [`run_chain`]: the two CSV files byte for byte, `attitude.h5` dataset by
+/// dataset); a geometry naming an
 /// antenna without a recording, or without `--assist`, is refused before anything is
 /// written.
 #[test]

@@ -5,7 +5,8 @@ mod support;
 use std::path::Path;
 use std::process::Command;
 use support::{
-    RAW_CI8_4MSPS_GPS, dataset, results_file, results_json, short_scenario, skyforge, text,
+    RAW_CI8_4MSPS_GPS, dataset, h5_contents, results_file, results_json, short_scenario, skyforge,
+    text,
 };
 
 #[test]
@@ -344,46 +345,6 @@ fn validate_thesis_over_seeds_gives_each_row_its_draws() {
     let o = skyforge(&["validate", "agree", "v", "nowhere"], tmp.path());
     assert_eq!(o.status.code(), Some(2), "{}", text(&o));
     assert!(text(&o).contains("nowhere"), "{}", text(&o));
-}
-
-/// Every dataset of an HDF5 file as (path, raw little-endian bytes), sorted by path.
-fn h5_contents(path: &Path) -> Vec<(String, Vec<u8>)> {
-    use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
-    /// The dataset's values as `T`, each turned into bytes.
-    fn bytes<T: hdf5::H5Type, B: AsRef<[u8]>>(ds: &hdf5::Dataset, of: fn(&T) -> B) -> Vec<u8> {
-        let values = ds.read_raw::<T>().unwrap();
-        values
-            .iter()
-            .flat_map(|x| of(x).as_ref().to_vec())
-            .collect()
-    }
-    fn walk(g: &hdf5::Group, prefix: &str, out: &mut Vec<(String, Vec<u8>)>) {
-        for name in g.member_names().unwrap() {
-            let full = format!("{prefix}/{name}");
-            if let Ok(sub) = g.group(&name) {
-                walk(&sub, &full, out);
-                continue;
-            }
-            let ds = g.dataset(&name).unwrap();
-            let data: Vec<u8> = match ds.dtype().unwrap().to_descriptor().unwrap() {
-                TypeDescriptor::Float(FloatSize::U8) => bytes(&ds, |x: &f64| x.to_le_bytes()),
-                TypeDescriptor::Float(FloatSize::U4) => bytes(&ds, |x: &f32| x.to_le_bytes()),
-                TypeDescriptor::Unsigned(IntSize::U1) => ds.read_raw::<u8>().unwrap(),
-                TypeDescriptor::Unsigned(IntSize::U2) => bytes(&ds, |x: &u16| x.to_le_bytes()),
-                TypeDescriptor::Unsigned(IntSize::U4) => bytes(&ds, |x: &u32| x.to_le_bytes()),
-                TypeDescriptor::VarLenUnicode => {
-                    bytes(&ds, |x: &VarLenUnicode| x.as_bytes().to_vec())
-                }
-                other => panic!("{full}: compare type {other:?} too"),
-            };
-            out.push((full, data));
-        }
-    }
-    let file = hdf5::File::open(path).unwrap();
-    let mut out = Vec::new();
-    walk(&file, "", &mut out);
-    out.sort();
-    out
 }
 
 #[test]

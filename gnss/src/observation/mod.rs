@@ -2,6 +2,7 @@
 //! whoever measured it (the bundled receiver, the synthesiser's truth, another receiver's
 //! RINEX), and the one RINEX 3.04 observation writer and reader.
 
+pub mod as_written;
 pub mod noise;
 mod read_error;
 pub mod record;

@@ -93,7 +93,7 @@ pub fn signal_strength_indicator(cn0_dbhz: f64) -> Option<u8> {
 /// An epoch rounded to the 100 ns resolution of the RINEX epoch fields (F11.7 seconds),
 /// the rounding carried through minutes, hours, days, months and years.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Stamp {
+pub(crate) struct Stamp {
     year: i32,
     month: u8,
     day: u8,
@@ -105,7 +105,7 @@ struct Stamp {
 }
 
 impl Stamp {
-    fn new(at: Calendar) -> io::Result<Self> {
+    pub(crate) fn new(at: Calendar) -> io::Result<Self> {
         let (y, mo, d, h, mi, s) = at;
         let invalid = |what: String| {
             io::Error::new(io::ErrorKind::InvalidInput, format!("epoch {at:?}: {what}"))
@@ -129,6 +129,20 @@ impl Stamp {
         })
     }
 
+    /// The epoch the fields name (GPS time).
+    pub(crate) fn epoch(&self) -> Epoch {
+        Epoch::from_gregorian(
+            self.year,
+            self.month,
+            self.day,
+            self.hour,
+            self.minute,
+            self.second,
+            self.ticks * 100,
+            TimeScale::GPST,
+        )
+    }
+
     /// `yyyymmdd hhmmss` of the header's `PGM / RUN BY / DATE`.
     fn compact(&self) -> String {
         format!(
@@ -138,30 +152,35 @@ impl Stamp {
     }
 }
 
+/// The F14.3 text of `value` (RINEX 3.04 table A3), or `None` when it is not finite or
+/// does not fit (the field is then blank).
+pub(crate) fn f14_3(value: f64) -> Option<String> {
+    let text = format!("{value:14.3}");
+    (value.is_finite() && text.len() <= 14).then_some(text)
+}
+
 /// One observation field: F14.3, loss-of-lock indicator I1, signal strength indicator I1
 /// (RINEX 3.04 table A3); a value that does not fit F14.3 or is not finite is blank.
 fn field(value: Option<f64>, lli: Option<u8>, ssi: Option<u8>) -> String {
     let digit = |d: Option<u8>| d.map_or(' ', |d| char::from(b'0' + d.min(9)));
-    let Some(value) = value else {
-        return " ".repeat(16);
-    };
-    let text = format!("{value:14.3}");
-    if !value.is_finite() || text.len() > 14 {
-        return " ".repeat(16);
+    match value.and_then(f14_3) {
+        Some(text) => format!("{text}{}{}", digit(lli), digit(ssi)),
+        None => " ".repeat(16),
     }
-    format!("{text}{}{}", digit(lli), digit(ssi))
 }
 
-/// The phase field: a phase that overflows F14.3 is brought back into range by whole
+/// The phase as written: a phase that overflows F14.3 is brought back into range by whole
 /// multiples of 10^9 cycles and flagged with loss-of-lock bit 0 (RINEX 3.04 table A3).
-/// The loss-of-lock indicator `lli` is written when not 0.
+pub(crate) fn wrapped_phase(cycles: Option<f64>, lli: u8) -> (Option<f64>, u8) {
+    match cycles {
+        Some(c) if c.is_finite() && f14_3(c).is_none() => (Some(c % 1e9), lli | LLI_LOSS_OF_LOCK),
+        c => (c, lli),
+    }
+}
+
+/// The phase field ([`wrapped_phase`]); the loss-of-lock indicator is written when not 0.
 fn phase_field(cycles: Option<f64>, lli: u8, ssi: Option<u8>) -> String {
-    let fits = |v: f64| format!("{v:14.3}").len() <= 14;
-    let (cycles, wrapped) = match cycles {
-        Some(c) if c.is_finite() && !fits(c) => (Some(c % 1e9), true),
-        c => (c, false),
-    };
-    let lli = if wrapped { lli | LLI_LOSS_OF_LOCK } else { lli };
+    let (cycles, lli) = wrapped_phase(cycles, lli);
     field(cycles, (lli != 0).then_some(lli), ssi)
 }
 

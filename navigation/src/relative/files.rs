@@ -278,12 +278,155 @@ fn check_trackings(files: &[ObsFile], signals: &[Signal]) -> Result<(), FilesErr
     Ok(())
 }
 
-/// Run the chain over `files` (one per antenna of `geometry`, same order), handing each
-/// master epoch's outcome to `each`. Every antenna's observations are moved onto the
-/// linear model of the master's epoch ([`ToMasterModel`]: its sampling instant, and the
-/// range difference beyond `-l . b`) when both have a single-point solution. With
-/// `troposphere`, the lines of sight carry the slant delay's gradient
-/// ([`super::troposphere`]).
+/// The chain fed one master epoch at a time: [`run_files`] feeds it from files,
+/// `skyforge receive --geometry` from the receiver's epochs in memory. Every antenna's
+/// observations are moved onto the linear model of the master's epoch ([`ToMasterModel`]:
+/// its sampling instant, and the range difference beyond `-l . b`) when both have a
+/// single-point solution. With `troposphere`, the lines of sight carry the slant delay's
+/// gradient ([`super::troposphere`]).
+#[derive(Debug)]
+pub struct EpochChain {
+    /// The broadcast ephemerides until the master's first epoch gives the time origin.
+    pending: Vec<BroadcastEphemeris>,
+    ready: Option<(TimeOrigin, EphemerisStore)>,
+    names: Vec<String>,
+    signals: Vec<Signal>,
+    troposphere: bool,
+    solver: RelativeSolver,
+    pvt: PvtConfig,
+    /// The master's last position.
+    master_prior: Option<Vec3>,
+    /// The other antennas' last offsets from the master (index 0 unused).
+    offsets: Vec<Option<Vec3>>,
+}
+
+/// One other antenna's epoch: its time tag and records.
+pub type AntennaEpoch<'r> = (Epoch, &'r [ObsRecord]);
+
+impl EpochChain {
+    /// The chain for the antennas of `geometry` (master first) with `config`; the time
+    /// origin is the first master epoch given to [`Self::epoch`].
+    pub fn new(
+        ephemerides: Vec<BroadcastEphemeris>,
+        geometry: &BodyGeometryFile,
+        config: RelativeConfig,
+    ) -> Result<Self, RelativeError> {
+        let signals = config.signals.clone();
+        let troposphere = config.troposphere;
+        let solver = RelativeSolver::new(config, &geometry.positions())?;
+        Ok(Self {
+            pending: ephemerides,
+            ready: None,
+            names: geometry.antennas.iter().map(|a| a.name.clone()).collect(),
+            signals,
+            troposphere,
+            solver,
+            pvt: PvtConfig::default(),
+            master_prior: None,
+            offsets: vec![None; geometry.antennas.len()],
+        })
+    }
+
+    /// One epoch of the master (`time`, its `records`) with every other antenna's epoch
+    /// in geometry order (`None` where an antenna has none).
+    pub fn epoch(
+        &mut self,
+        time: Epoch,
+        records: &[ObsRecord],
+        others: &[Option<AntennaEpoch<'_>>],
+    ) -> EpochOutcome {
+        let pending = &mut self.pending;
+        let (origin, store) = &*self.ready.get_or_insert_with(|| {
+            let origin = TimeOrigin::new(time);
+            let store = EphemerisStore::new(std::mem::take(pending), &origin);
+            (origin, store)
+        });
+        let origin = *origin;
+        let (signals, pvt) = (&self.signals, &self.pvt);
+        let t_s = origin.seconds_since_start(time);
+        // The master's satellites, which the other antennas' solutions move to their
+        // own transmit times.
+        let mut satellites = Recorded::new();
+        let fix = single_point(
+            records,
+            signals,
+            t_s,
+            store,
+            &origin,
+            pvt,
+            self.master_prior,
+            &mut satellites,
+        );
+        let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
+        self.master_prior = master_ecef_m.or(self.master_prior);
+        let mut aligned_others: Vec<Vec<ObsRecord>> = Vec::with_capacity(others.len());
+        let mut missing = None;
+        let mut master_predictions = fix.as_ref().ok().map(|f| MasterPredictions::new(store, f));
+        for (k, other) in others.iter().enumerate().map(|(i, o)| (i + 1, o)) {
+            let Some((time_k, records_k)) = *other else {
+                missing = missing.or(Some(k));
+                continue;
+            };
+            let t_k = origin.seconds_since_start(time_k);
+            let aligned = match master_predictions.as_mut() {
+                Some(master) => {
+                    // Start from where the antenna last was relative to the master.
+                    let prior = self.offsets[k].map(|b| master.fix.r_ecef_m + b);
+                    let near = &mut NearAntenna(&satellites);
+                    match single_point(records_k, signals, t_k, store, &origin, pvt, prior, near) {
+                        Ok(fix_k) => {
+                            self.offsets[k] = Some(fix_k.r_ecef_m - master.fix.r_ecef_m);
+                            let c = to_master_model(records_k, signals, master, &fix_k);
+                            corrected(records_k, &c)
+                        }
+                        Err(_) => records_k.to_vec(),
+                    }
+                }
+                None => records_k.to_vec(),
+            };
+            aligned_others.push(aligned);
+        }
+        let result = match (missing, master_ecef_m) {
+            (Some(k), _) => Err(format!(
+                "antenna {} has no epoch at {}",
+                self.names[k], time
+            )),
+            (None, None) => Err(format!(
+                "no single-point position of the master: {}",
+                fix.err().unwrap_or_default()
+            )),
+            (None, Some(r)) => {
+                let place = ViewPoint::new(r);
+                let gradient = self.troposphere.then(|| DelayGradient::at(&r));
+                let views: Vec<LineOfSight> = first_per_satellite(records, signals)
+                    .filter_map(|rec| {
+                        let eph = store.select(rec.sat, t_s)?;
+                        let view = place.predict(eph, t_s).view;
+                        let mut los = LineOfSight::from_view(rec.sat, &view);
+                        if let Some(g) = &gradient {
+                            los.delay_gradient = g.towards(&view.r_ecef_m);
+                        }
+                        Some(los)
+                    })
+                    .collect();
+                let mut antennas: Vec<&[ObsRecord]> = vec![records];
+                antennas.extend(aligned_others.iter().map(Vec::as_slice));
+                self.solver
+                    .epoch(t_s, &antennas, &views, &r)
+                    .map_err(|e| e.to_string())
+            }
+        };
+        EpochOutcome {
+            time,
+            master_ecef_m,
+            result,
+        }
+    }
+}
+
+/// Run the chain over `files` (one per antenna of `geometry`, same order; [`EpochChain`]),
+/// handing each master epoch's outcome to `each`; another antenna's epoch is the one
+/// within [`SAME_EPOCH_S`] of the master's.
 pub fn run_files(
     files: &[ObsFile],
     ephemerides: Vec<BroadcastEphemeris>,
@@ -299,98 +442,19 @@ pub fn run_files(
     }
     check_trackings(files, &config.signals)?;
     let master = &files[0];
-    let Some(first) = master.epochs.first() else {
+    if master.epochs.is_empty() {
         return Err(FilesError::NoEpochs(master.source.display().to_string()));
-    };
-    let origin = TimeOrigin::new(first.time);
-    let store = EphemerisStore::new(ephemerides, &origin);
-    let signals = config.signals.clone();
-    let troposphere = config.troposphere;
-    let mut solver = RelativeSolver::new(config, &geometry.positions())?;
-    let pvt = PvtConfig::default();
+    }
+    let mut chain = EpochChain::new(ephemerides, geometry, config)?;
     let mut cursors = vec![0usize; files.len()];
-    // The master's last position and the other antennas' last offsets from it.
-    let mut master_prior = None;
-    let mut offsets: Vec<Option<Vec3>> = vec![None; files.len()];
     for epoch in &master.epochs {
-        let t_s = origin.seconds_since_start(epoch.time);
-        // The master's satellites, which the other antennas' solutions move to their
-        // own transmit times.
-        let mut satellites = Recorded::new();
-        let fix = single_point(
-            &epoch.sats,
-            &signals,
-            t_s,
-            &store,
-            &origin,
-            &pvt,
-            master_prior,
-            &mut satellites,
-        );
-        let master_ecef_m = fix.as_ref().ok().map(|f| f.r_ecef_m);
-        master_prior = master_ecef_m.or(master_prior);
-        let mut others: Vec<Vec<ObsRecord>> = Vec::with_capacity(files.len() - 1);
-        let mut missing = None;
-        let mut master_predictions = fix.as_ref().ok().map(|f| MasterPredictions::new(&store, f));
-        for (k, file) in files.iter().enumerate().skip(1) {
-            let Some((time, records)) = records_at(file, &mut cursors[k], epoch.time) else {
-                missing = missing.or(Some(k));
-                continue;
-            };
-            let t_k = origin.seconds_since_start(time);
-            let aligned = match master_predictions.as_mut() {
-                Some(master) => {
-                    // Start from where the antenna last was relative to the master.
-                    let prior = offsets[k].map(|b| master.fix.r_ecef_m + b);
-                    let near = &mut NearAntenna(&satellites);
-                    match single_point(records, &signals, t_k, &store, &origin, &pvt, prior, near) {
-                        Ok(fix_k) => {
-                            offsets[k] = Some(fix_k.r_ecef_m - master.fix.r_ecef_m);
-                            let c = to_master_model(records, &signals, master, &fix_k);
-                            corrected(records, &c)
-                        }
-                        Err(_) => records.to_vec(),
-                    }
-                }
-                None => records.to_vec(),
-            };
-            others.push(aligned);
-        }
-        let result = match (missing, master_ecef_m) {
-            (Some(k), _) => Err(format!(
-                "antenna {} has no epoch at {}",
-                geometry.antennas[k].name, epoch.time
-            )),
-            (None, None) => Err(format!(
-                "no single-point position of the master: {}",
-                fix.err().unwrap_or_default()
-            )),
-            (None, Some(r)) => {
-                let place = ViewPoint::new(r);
-                let gradient = troposphere.then(|| DelayGradient::at(&r));
-                let views: Vec<LineOfSight> = first_per_satellite(&epoch.sats, &signals)
-                    .filter_map(|rec| {
-                        let eph = store.select(rec.sat, t_s)?;
-                        let view = place.predict(eph, t_s).view;
-                        let mut los = LineOfSight::from_view(rec.sat, &view);
-                        if let Some(g) = &gradient {
-                            los.delay_gradient = g.towards(&view.r_ecef_m);
-                        }
-                        Some(los)
-                    })
-                    .collect();
-                let mut antennas: Vec<&[ObsRecord]> = vec![epoch.sats.as_slice()];
-                antennas.extend(others.iter().map(Vec::as_slice));
-                solver
-                    .epoch(t_s, &antennas, &views, &r)
-                    .map_err(|e| e.to_string())
-            }
-        };
-        each(EpochOutcome {
-            time: epoch.time,
-            master_ecef_m,
-            result,
-        });
+        let others: Vec<_> = files
+            .iter()
+            .zip(&mut cursors)
+            .skip(1)
+            .map(|(file, cursor)| records_at(file, cursor, epoch.time))
+            .collect();
+        each(chain.epoch(epoch.time, &epoch.sats, &others));
     }
     Ok(())
 }

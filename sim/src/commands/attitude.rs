@@ -12,15 +12,17 @@ use crate::output::attitude_out::{EpochValues, csv_header, csv_row, integer_rows
 use crate::output::geometry_out::{self, OffsetRow};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_gnss::observation::as_written::epoch_as_written;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
 use skyforge_navigation::relative::config::Constraint;
-use skyforge_navigation::relative::files::run_files;
+use skyforge_navigation::relative::files::{EpochChain, EpochOutcome, run_files};
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_receiver::pipeline::EpochReport;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -104,12 +106,7 @@ impl EpochWriters {
     }
 
     /// One epoch's rows; the first write error is kept for [`Self::finish`].
-    fn write(
-        &mut self,
-        v: &EpochValues,
-        o: &skyforge_navigation::relative::files::EpochOutcome,
-        m: usize,
-    ) {
+    fn write(&mut self, v: &EpochValues, o: &EpochOutcome, m: usize) {
         if self.error.is_none() {
             self.error = writeln!(self.csv, "{}", csv_row(v, m))
                 .and_then(|()| write!(self.ints, "{}", integer_rows(o)))
@@ -168,67 +165,181 @@ impl Chain {
     /// Run over `files` (one per antenna, geometry order) and write the outputs into
     /// `staged`.
     pub fn run(
-        mut self,
+        self,
         files: &[ObsFile],
         ephemerides: Vec<BroadcastEphemeris>,
         staged: &StagedDir,
     ) -> anyhow::Result<ChainSummary> {
-        // The estimator's clock: seconds since the master's first epoch.
-        let start = files
-            .first()
-            .and_then(|f| f.epochs.first())
-            .map_or(hifitime::Epoch::from_gpst_seconds(0.0), |e| e.time);
-        let m = self.geometry.antennas.len() - 1;
-        let mut writers = EpochWriters::create(staged, m)?;
-        let mut summary = ChainSummary {
-            epochs: 0,
-            fixed: 0,
-            attitudes: 0,
-            estimating: self.offsets.is_some(),
-            offset_rows: Vec::new(),
-        };
-        let (mut values, mut offset_error) = (Vec::new(), None);
-        let offsets = &mut self.offsets;
+        let mut outputs = ChainOutputs::create(staged, &self.geometry, self.offsets)?;
         run_files(files, ephemerides, &self.geometry, self.config, |o| {
-            summary.epochs += 1;
-            if let Ok(e) = &o.result {
-                let whole = e.resolution.status == AmbiguityStatus::Fixed;
-                summary.fixed += usize::from(whole);
-                summary.attitudes +=
-                    usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
-                if let (Some(f), Some(ned), None, true) =
-                    (offsets.as_mut(), &e.fixed_ned, &offset_error, whole)
-                {
-                    match f.push((o.time - start).to_seconds(), ned.clone()) {
-                        Ok(Step::Updated { chi_square, dof }) => {
-                            summary.offset_rows.extend(f.state().map(|state| OffsetRow {
-                                time: o.time,
-                                state,
-                                chi_square,
-                                dof,
-                            }))
-                        }
-                        Ok(_) => {}
-                        Err(err) => offset_error = Some(format!("{}: {err}", o.time)),
-                    }
-                }
-            }
-            let v = EpochValues::of(&o, m);
-            writers.write(&v, &o, m);
-            values.push(v);
+            outputs.push(&o)
         })
         .map_err(|e| BadInput(e.to_string()))?;
-        writers.finish()?;
+        outputs.finish(staged, &self.geometry)
+    }
+
+    /// The chain as an epoch stage of the receiver, whose antennas are `recorded` (the
+    /// geometry's must be among them): its outputs go into `staged`.
+    pub fn stage(
+        self,
+        ephemerides: Vec<BroadcastEphemeris>,
+        recorded: &[String],
+        staged: &StagedDir,
+    ) -> anyhow::Result<AttitudeStage> {
+        let receiver_index = self
+            .antennas()
+            .map(|a| recorded.iter().position(|n| n == a))
+            .collect::<Option<Vec<_>>>()
+            .ok_or_else(|| BadInput("the geometry names an antenna without a recording".into()))?;
+        let chain = EpochChain::new(ephemerides, &self.geometry, self.config)
+            .map_err(|e| BadInput(e.to_string()))?;
+        Ok(AttitudeStage {
+            chain,
+            receiver_index,
+            outputs: ChainOutputs::create(staged, &self.geometry, self.offsets)?,
+            geometry: self.geometry,
+        })
+    }
+}
+
+/// The chain's outputs as its epochs come: the epoch rows written, the counts of the
+/// summary, and with `--estimate-geometry` the offsets estimated from the fixed epochs.
+struct ChainOutputs {
+    /// Baselines (antennas - 1).
+    m: usize,
+    writers: EpochWriters,
+    summary: ChainSummary,
+    values: Vec<EpochValues>,
+    offsets: Option<OffsetEstimator>,
+    offset_error: Option<String>,
+    /// The estimator's clock starts at the first epoch.
+    start: Option<hifitime::Epoch>,
+}
+
+impl ChainOutputs {
+    fn create(
+        staged: &StagedDir,
+        geometry: &BodyGeometryFile,
+        offsets: Option<OffsetEstimator>,
+    ) -> anyhow::Result<Self> {
+        let m = geometry.antennas.len() - 1;
+        Ok(Self {
+            m,
+            writers: EpochWriters::create(staged, m)?,
+            summary: ChainSummary {
+                epochs: 0,
+                fixed: 0,
+                attitudes: 0,
+                estimating: offsets.is_some(),
+                offset_rows: Vec::new(),
+            },
+            values: Vec::new(),
+            offsets,
+            offset_error: None,
+            start: None,
+        })
+    }
+
+    /// One master epoch's outcome.
+    fn push(&mut self, o: &EpochOutcome) {
+        let start = *self.start.get_or_insert(o.time);
+        let summary = &mut self.summary;
+        summary.epochs += 1;
+        if let Ok(e) = &o.result {
+            let whole = e.resolution.status == AmbiguityStatus::Fixed;
+            summary.fixed += usize::from(whole);
+            summary.attitudes += usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
+            if let (Some(f), Some(ned), None, true) = (
+                self.offsets.as_mut(),
+                &e.fixed_ned,
+                &self.offset_error,
+                whole,
+            ) {
+                match f.push((o.time - start).to_seconds(), ned.clone()) {
+                    Ok(Step::Updated { chi_square, dof }) => {
+                        summary.offset_rows.extend(f.state().map(|state| OffsetRow {
+                            time: o.time,
+                            state,
+                            chi_square,
+                            dof,
+                        }))
+                    }
+                    Ok(_) => {}
+                    Err(err) => self.offset_error = Some(format!("{}: {err}", o.time)),
+                }
+            }
+        }
+        let v = EpochValues::of(o, self.m);
+        self.writers.write(&v, o, self.m);
+        self.values.push(v);
+    }
+
+    /// Close the epoch files and write `attitude.h5` and the geometry offsets' files.
+    fn finish(
+        self,
+        staged: &StagedDir,
+        geometry: &BodyGeometryFile,
+    ) -> anyhow::Result<ChainSummary> {
+        self.writers.finish()?;
         let h5_path = staged.file("attitude.h5");
-        write_h5(&h5_path, &values, m)
+        write_h5(&h5_path, &self.values, self.m)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
         if let Some(f) = &self.offsets {
-            if let Some(e) = offset_error {
+            if let Some(e) = self.offset_error {
                 return Err(BadInput(format!("geometry offsets: {e}")).into());
             }
-            write_offsets(staged, &self.geometry, f, &summary.offset_rows)?;
+            write_offsets(staged, geometry, f, &self.summary.offset_rows)?;
         }
-        Ok(summary)
+        Ok(self.summary)
+    }
+}
+
+/// `skyforge receive --geometry`: the chain as an epoch stage of the receiver. At every
+/// epoch it takes each antenna's observations as its RINEX file keeps them
+/// ([`epoch_as_written`]: what `skyforge attitude` reads back), so both commands write the
+/// same outputs; the antennas share the receiver's clock, so their epochs pair exactly.
+pub(crate) struct AttitudeStage {
+    chain: EpochChain,
+    /// Each geometry antenna's index among the receiver's (master first).
+    receiver_index: Vec<usize>,
+    outputs: ChainOutputs,
+    geometry: BodyGeometryFile,
+}
+
+impl AttitudeStage {
+    /// One epoch of the receiver; an antenna without observations has no epoch (its file
+    /// has none), and the chain runs on the master's epochs.
+    pub fn epoch(&mut self, report: &EpochReport) -> std::io::Result<()> {
+        let epochs = self
+            .receiver_index
+            .iter()
+            .map(|&a| {
+                let records = report.records(a);
+                (!records.is_empty())
+                    .then(|| epoch_as_written(report.t_rx, &records))
+                    .transpose()
+            })
+            .collect::<std::io::Result<Vec<_>>>()?;
+        let Some(master) = &epochs[0] else {
+            return Ok(());
+        };
+        let others: Vec<_> = epochs[1..]
+            .iter()
+            .map(|e| e.as_ref().map(|e| (e.time, e.sats.as_slice())))
+            .collect();
+        let outcome = self.chain.epoch(master.time, &master.sats, &others);
+        self.outputs.push(&outcome);
+        Ok(())
+    }
+
+    /// Close the outputs; a master antenna that never observed is the error `skyforge
+    /// attitude` gives for its empty file.
+    pub fn finish(self, staged: &StagedDir) -> anyhow::Result<ChainSummary> {
+        if self.outputs.summary.epochs == 0 {
+            let master = &self.geometry.antennas[0].name;
+            return Err(BadInput(format!("{master}: no observation epochs")).into());
+        }
+        self.outputs.finish(staged, &self.geometry)
     }
 }
 

@@ -2,18 +2,17 @@
 
 use crate::bad_input::BadInput;
 use crate::cli::ReceiveArgs;
-use crate::commands::attitude::{Chain, read_nav};
+use crate::commands::attitude::{AttitudeStage, Chain, read_nav};
 use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
-use skyforge_gnss::observation::read_obs_file;
 use skyforge_gnss::signal::Signal;
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::format::parse_format;
-use skyforge_receiver::pipeline::ReceiverSummary;
+use skyforge_receiver::pipeline::{EpochReport, ReceiverSummary};
 use skyforge_receiver::session::{
-    Assistance, NavSource, ReceiveSession, SessionError, read_config,
+    Assistance, EpochSink, NavSource, ReceiveSession, SessionError, SinkError, read_config,
 };
 
 /// The raw-file description given on the command line.
@@ -72,12 +71,22 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
         approximate.map(|a| a.r_ecef_m),
         1.0 / session.config().observation_rate_hz,
     )?;
+    let mut attitude = match (chain, &args.assist) {
+        (Some(chain), Some(nav)) => {
+            Some(chain.stage(read_nav(nav)?, session.antenna_names(), &staged)?)
+        }
+        _ => None,
+    };
     let bar = ProgressBar::new(session.common_samples()).with_style(
         ProgressStyle::with_template("receive {bar:40} {percent}% {msg} eta {eta}")
             .context("progress style")?,
     );
+    let mut sink = Stages {
+        outputs: &mut outputs,
+        attitude: attitude.as_mut(),
+    };
     let summary = session
-        .run(&mut outputs, |sample, s| {
+        .run(&mut sink, |sample, s| {
             bar.set_position(sample);
             bar.set_message(format!(
                 "{} channels timed, {} fixes",
@@ -89,19 +98,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     bar.finish_and_clear();
     let written = outputs.finish()?;
     print_summary(&summary, session.antenna_names(), &written);
-    let chain_summary = match (chain, &args.assist) {
-        (Some(chain), Some(nav)) => {
-            let files = chain
-                .antennas()
-                .map(|a| {
-                    let path = staged.file(&format!("{a}.obs.rnx"));
-                    read_obs_file(&path).map_err(|e| BadInput(e.to_string()))
-                })
-                .collect::<Result<Vec<_>, _>>()?;
-            Some(chain.run(&files, read_nav(nav)?, &staged)?)
-        }
-        _ => None,
-    };
+    let chain_summary = attitude.map(|a| a.finish(&staged)).transpose()?;
     let dir = staged.commit()?;
     println!("receive: wrote {}", dir.display());
     if let Some(s) = chain_summary {
@@ -110,7 +107,24 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// With `--geometry`, the attitude chain to run on the observations once written; its
+/// What runs at every epoch the receiver forms: its output files, then with `--geometry`
+/// the attitude chain on the same observations.
+struct Stages<'a> {
+    outputs: &'a mut ReceiverOutputs,
+    attitude: Option<&'a mut AttitudeStage>,
+}
+
+impl EpochSink for Stages<'_> {
+    fn epoch(&mut self, report: &EpochReport) -> Result<(), SinkError> {
+        self.outputs.epoch(report)?;
+        if let Some(a) = self.attitude.as_mut() {
+            a.epoch(report)?;
+        }
+        Ok(())
+    }
+}
+
+/// With `--geometry`, the attitude chain to run on the receiver's observations; its
 /// antennas must be the recordings' (in any order), and the ephemerides come from
 /// `--assist`.
 fn attitude_chain(args: &ReceiveArgs, antennas: &[String]) -> anyhow::Result<Option<Chain>> {

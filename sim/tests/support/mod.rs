@@ -397,3 +397,43 @@ pub fn with_stations(config: &str, stations: &str) -> String {
     let at = config.find("[thresholds]").expect("a [thresholds] table");
     format!("{}{stations}\n{}", &config[..at], &config[at..])
 }
+
+/// Every dataset of an HDF5 file as (path, raw little-endian bytes), sorted by path.
+pub fn h5_contents(path: &Path) -> Vec<(String, Vec<u8>)> {
+    use hdf5::types::{FloatSize, IntSize, TypeDescriptor, VarLenUnicode};
+    /// The dataset's values as `T`, each turned into bytes.
+    fn bytes<T: hdf5::H5Type, B: AsRef<[u8]>>(ds: &hdf5::Dataset, of: fn(&T) -> B) -> Vec<u8> {
+        let values = ds.read_raw::<T>().unwrap();
+        values
+            .iter()
+            .flat_map(|x| of(x).as_ref().to_vec())
+            .collect()
+    }
+    fn walk(g: &hdf5::Group, prefix: &str, out: &mut Vec<(String, Vec<u8>)>) {
+        for name in g.member_names().unwrap() {
+            let full = format!("{prefix}/{name}");
+            if let Ok(sub) = g.group(&name) {
+                walk(&sub, &full, out);
+                continue;
+            }
+            let ds = g.dataset(&name).unwrap();
+            let data: Vec<u8> = match ds.dtype().unwrap().to_descriptor().unwrap() {
+                TypeDescriptor::Float(FloatSize::U8) => bytes(&ds, |x: &f64| x.to_le_bytes()),
+                TypeDescriptor::Float(FloatSize::U4) => bytes(&ds, |x: &f32| x.to_le_bytes()),
+                TypeDescriptor::Unsigned(IntSize::U1) => ds.read_raw::<u8>().unwrap(),
+                TypeDescriptor::Unsigned(IntSize::U2) => bytes(&ds, |x: &u16| x.to_le_bytes()),
+                TypeDescriptor::Unsigned(IntSize::U4) => bytes(&ds, |x: &u32| x.to_le_bytes()),
+                TypeDescriptor::VarLenUnicode => {
+                    bytes(&ds, |x: &VarLenUnicode| x.as_bytes().to_vec())
+                }
+                other => panic!("{full}: compare type {other:?} too"),
+            };
+            out.push((full, data));
+        }
+    }
+    let file = hdf5::File::open(path).unwrap();
+    let mut out = Vec::new();
+    walk(&file, "", &mut out);
+    out.sort();
+    out
+}
