@@ -8,10 +8,12 @@
 
 use crate::bad_input::BadInput;
 use crate::cli::AttitudeArgs;
-use crate::output::attitude_out::{EpochValues, csv_header, csv_row, integer_rows, write_h5};
 use crate::output::geometry_out::{self, OffsetRow};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_formats::attitude::{
+    ATTITUDE_CSV, ATTITUDE_H5, EpochFiles, EpochValues, integer_rows, write_h5,
+};
 use skyforge_gnss::observation::as_written::epoch_as_written;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::attitude::BodyGeometry;
@@ -23,8 +25,7 @@ use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_receiver::pipeline::EpochReport;
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Run `skyforge attitude`.
 pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
@@ -76,56 +77,6 @@ pub(crate) struct ChainSummary {
     /// `--estimate-geometry` was given.
     estimating: bool,
     offset_rows: Vec<OffsetRow>,
-}
-
-/// The epoch rows the chain writes as it goes.
-struct EpochWriters {
-    csv: std::io::BufWriter<std::fs::File>,
-    ints: std::io::BufWriter<std::fs::File>,
-    paths: [PathBuf; 2],
-    error: Option<std::io::Error>,
-}
-
-impl EpochWriters {
-    fn create(staged: &StagedDir, m: usize) -> anyhow::Result<Self> {
-        let paths = [staged.file("attitude.csv"), staged.file("ambiguities.csv")];
-        let create = |p: &Path| {
-            std::fs::File::create(p)
-                .map(std::io::BufWriter::new)
-                .with_context(|| format!("cannot create {}", p.display()))
-        };
-        let (mut csv, mut ints) = (create(&paths[0])?, create(&paths[1])?);
-        writeln!(csv, "{}", csv_header(m))?;
-        writeln!(ints, "time_gpst,baseline,signal,sat,reference,integer")?;
-        Ok(Self {
-            csv,
-            ints,
-            paths,
-            error: None,
-        })
-    }
-
-    /// One epoch's rows; the first write error is kept for [`Self::finish`].
-    fn write(&mut self, v: &EpochValues, o: &EpochOutcome, m: usize) {
-        if self.error.is_none() {
-            self.error = writeln!(self.csv, "{}", csv_row(v, m))
-                .and_then(|()| write!(self.ints, "{}", integer_rows(o)))
-                .err();
-        }
-    }
-
-    fn finish(self) -> anyhow::Result<()> {
-        let [csv_path, ints_path] = self.paths;
-        if let Some(e) = self.error {
-            return Err(e).with_context(|| format!("cannot write {}", csv_path.display()));
-        }
-        for (w, p) in [(self.csv, &csv_path), (self.ints, &ints_path)] {
-            w.into_inner()
-                .map_err(|e| e.into_error())
-                .with_context(|| format!("cannot write {}", p.display()))?;
-        }
-        Ok(())
-    }
 }
 
 impl Chain {
@@ -207,7 +158,7 @@ impl Chain {
 struct ChainOutputs {
     /// Baselines (antennas - 1).
     m: usize,
-    writers: EpochWriters,
+    files: EpochFiles,
     summary: ChainSummary,
     values: Vec<EpochValues>,
     offsets: Option<OffsetEstimator>,
@@ -225,7 +176,7 @@ impl ChainOutputs {
         let m = geometry.antennas.len() - 1;
         Ok(Self {
             m,
-            writers: EpochWriters::create(staged, m)?,
+            files: EpochFiles::create(&staged.file(""), m)?,
             summary: ChainSummary {
                 epochs: 0,
                 fixed: 0,
@@ -270,7 +221,7 @@ impl ChainOutputs {
             }
         }
         let v = EpochValues::of(o, self.m);
-        self.writers.write(&v, o, self.m);
+        self.files.write(&v, &integer_rows(o));
         self.values.push(v);
     }
 
@@ -280,8 +231,8 @@ impl ChainOutputs {
         staged: &StagedDir,
         geometry: &BodyGeometryFile,
     ) -> anyhow::Result<ChainSummary> {
-        self.writers.finish()?;
-        let h5_path = staged.file("attitude.h5");
+        self.files.finish()?;
+        let h5_path = staged.file(ATTITUDE_H5);
         write_h5(&h5_path, &self.values, self.m)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
         if let Some(f) = &self.offsets {
@@ -353,7 +304,7 @@ impl ChainSummary {
             100.0 * self.fixed as f64 / self.epochs.max(1) as f64
         );
         println!("attitude   {} epochs", self.attitudes);
-        println!("wrote      {}", dir.join("attitude.csv").display());
+        println!("wrote      {}", dir.join(ATTITUDE_CSV).display());
         if !self.estimating {
             return;
         }

@@ -4,8 +4,8 @@
 //! `geometry_corrected.toml` that `skyforge attitude --geometry` and `skyforge receive
 //! --geometry` read.
 
-use crate::output::h5_datasets::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
+use skyforge_formats::h5::{append_rows, create_epoch_file, create_rows};
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::stacked_ukf::OffsetState;

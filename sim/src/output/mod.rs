@@ -1,8 +1,6 @@
 //! Output writers and the all-or-nothing output directory.
 
-pub mod attitude_out;
 pub mod geometry_out;
-mod h5_datasets;
 pub mod interrupt;
 pub mod manifest;
 pub mod monitor_out;

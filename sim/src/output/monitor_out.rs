@@ -1,9 +1,9 @@
 //! `skyforge monitor run`'s files: `monitor.csv` (one row per epoch, satellite and
 //! station), `monitor.h5` (the same as datasets) and `summary.json` (the alarms).
 
-use super::h5_datasets::{append_rows, create_rows, text_attr};
 use hifitime::Epoch;
 use serde::Serialize;
+use skyforge_formats::h5::{append_rows, create_rows, text_attr};
 use skyforge_navigation::integrity::{MonitorEpoch, Station, Statistic};
 use std::collections::BTreeMap;
 use std::fmt::Write as _;

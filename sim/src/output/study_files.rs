@@ -3,11 +3,11 @@
 //! once every run is in, and the merged HDF5 file with the per-point summaries. Files are
 //! written in run order without modification times: the same runs give the same bytes.
 
-use super::h5_datasets::{create_group, text_attr};
 use anyhow::Context;
 use hdf5::types::VarLenUnicode;
 use hdf5::{File, Group, H5Type};
 use serde::{Deserialize, Serialize};
+use skyforge_formats::h5::{create_group, text_attr};
 use skyforge_studies::study::{MetricSummary, RunResult, Shard, Study, run_seed};
 use std::io::{BufRead, BufReader, Write};
 use std::path::{Path, PathBuf};

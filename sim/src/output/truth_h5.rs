@@ -1,11 +1,11 @@
 //! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
 //! The schema is documented in `docs/truth-h5.md`; change both together.
 
-use super::h5_datasets::{
-    append_rows, create_group, create_rows, create_versioned_file, text_attr,
-};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
+use skyforge_formats::h5::{
+    append_rows, create_group, create_rows, create_versioned_file, text_attr,
+};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;

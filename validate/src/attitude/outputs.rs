@@ -27,12 +27,13 @@ use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
 use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
+use skyforge_formats::CsvError;
+use skyforge_formats::attitude::{
+    AMBIGUITIES_CSV, ATTITUDE_CSV, Line, Status, read_ambiguities_csv, read_attitude_csv,
+};
 use skyforge_gnss::observation::{ObsReadError, read_obs_file};
-use skyforge_gnss::signal::Signal;
 
 use skyforge_navigation::geometry_file::{BodyGeometryFile, GeometryFileError};
-use skyforge_orbits::bounded_read::read_text;
-use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::time::parse_epoch;
 use skyforge_orbits::{Mat3, Vec3};
@@ -40,9 +41,6 @@ use skyforge_signals::antenna::check_antenna_name;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-/// Largest CSV file read (bytes): a day of 1 Hz epochs of `ambiguities.csv` with two
-/// baselines and 40 double differences is about 200 MB.
-const MAX_CSV_BYTES: u64 = 1 << 30;
 /// Most rows of a `truth.h5` series read (48 days at 1 Hz).
 const MAX_TRUTH_ROWS: usize = 1 << 22;
 /// Truth rows this close (s) to an epoch are that epoch's.
@@ -59,13 +57,9 @@ pub enum OutputsError {
     /// A file is missing, unreadable, too large or not what it should be.
     #[error("{path}: {message}")]
     File { path: PathBuf, message: String },
-    /// A line of a CSV file is malformed.
-    #[error("{path}:{line}: {message}")]
-    Row {
-        path: PathBuf,
-        line: usize,
-        message: String,
-    },
+    /// A line of one of the chain's CSV files is malformed or not of this run.
+    #[error(transparent)]
+    Csv(#[from] CsvError),
     #[error(transparent)]
     Observations(#[from] ObsReadError),
     #[error(transparent)]
@@ -233,115 +227,6 @@ impl PlatformTruth {
     }
 }
 
-/// A CSV file read whole, size-capped: `header` checks its header (the column
-/// names), `each` gets every data line with its 1-based line number.
-fn read_csv(
-    path: &Path,
-    header: impl FnOnce(&[&str]) -> Result<(), OutputsError>,
-    mut each: impl FnMut(&[&str], usize, &str) -> Result<(), OutputsError>,
-) -> Result<(), OutputsError> {
-    let err = |m: String| file_error(path, m);
-    let text = read_text(path, MAX_CSV_BYTES, "CSV file").map_err(|e| err(e.to_string()))?;
-    let mut lines = text.lines();
-    let Some(first) = lines.next() else {
-        return Err(err("empty file: no header line".into()));
-    };
-    let names: Vec<&str> = first.split(',').map(str::trim).collect();
-    header(&names)?;
-    for (i, line) in lines.enumerate() {
-        let number = i + 2;
-        if line.trim().is_empty() {
-            continue;
-        }
-        each(&names, number, line)?;
-    }
-    Ok(())
-}
-
-/// One data line split on commas, its fields looked up by header name.
-struct Fields<'a> {
-    path: &'a Path,
-    line: usize,
-    header: &'a [&'a str],
-    fields: Vec<&'a str>,
-}
-
-impl<'a> Fields<'a> {
-    fn new(
-        path: &'a Path,
-        line: usize,
-        header: &'a [&'a str],
-        text: &'a str,
-    ) -> Result<Self, OutputsError> {
-        let fields: Vec<&str> = text.split(',').map(str::trim).collect();
-        let f = Self {
-            path,
-            line,
-            header,
-            fields,
-        };
-        if f.fields.len() != header.len() {
-            return Err(f.error(format!(
-                "{} fields; the header has {}",
-                f.fields.len(),
-                header.len()
-            )));
-        }
-        Ok(f)
-    }
-
-    fn error(&self, message: String) -> OutputsError {
-        OutputsError::Row {
-            path: self.path.to_path_buf(),
-            line: self.line,
-            message,
-        }
-    }
-
-    fn text(&self, column: &str) -> Result<&'a str, OutputsError> {
-        self.header
-            .iter()
-            .position(|h| *h == column)
-            .and_then(|i| self.fields.get(i).copied())
-            .ok_or_else(|| self.error(format!("no column {column}")))
-    }
-
-    /// A number, `None` when the field is empty.
-    fn number(&self, column: &str) -> Result<Option<f64>, OutputsError> {
-        let t = self.text(column)?;
-        if t.is_empty() {
-            return Ok(None);
-        }
-        match t.parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(Some(v)),
-            _ => Err(self.error(format!("{column} = {t:?} is not a finite number"))),
-        }
-    }
-
-    fn parse<T: std::str::FromStr>(&self, column: &str, what: &str) -> Result<T, OutputsError> {
-        let t = self.text(column)?;
-        t.parse()
-            .map_err(|_| self.error(format!("{column} = {t:?} is not {what}")))
-    }
-
-    fn epoch(&self, column: &str) -> Result<Epoch, OutputsError> {
-        let t = self.text(column)?;
-        parse_epoch(t).map_err(|e| self.error(format!("{column}: {e}")))
-    }
-}
-
-/// The header of `path` must name every one of `columns`.
-fn require_columns(path: &Path, header: &[&str], columns: &[String]) -> Result<(), OutputsError> {
-    match columns.iter().find(|c| !header.contains(&c.as_str())) {
-        Some(c) => Err(OutputsError::Row {
-            path: path.to_path_buf(),
-            line: 1,
-            message: format!("the header has no column {c}"),
-        }),
-        None => Ok(()),
-    }
-}
-
 /// The chain's files compared with the truth.
 #[derive(Debug, Clone)]
 pub struct OutputsComparison {
@@ -382,8 +267,8 @@ pub fn compare_outputs(
     }
     let truth = PlatformTruth::read(&truth_dir.join("truth.h5"), &geometry)?;
     let baselines = geometry.antennas.len() - 1;
-    let att_path = attitude_dir.join("attitude.csv");
-    let int_path = attitude_dir.join("ambiguities.csv");
+    let att_path = attitude_dir.join(ATTITUDE_CSV);
+    let int_path = attitude_dir.join(AMBIGUITIES_CSV);
     // Both of the chain's files before the (slower) observation files.
     for p in [&att_path, &int_path] {
         std::fs::metadata(p).map_err(|e| file_error(p, e.to_string()))?;
@@ -429,106 +314,65 @@ fn read_attitude(
     truth: &PlatformTruth,
     baselines: usize,
 ) -> Result<(ChainComparison, usize), OutputsError> {
-    let check_header = |names: &[&str]| {
-        let in_file = (1..)
-            .take_while(|k| names.contains(&format!("b{k}_x_m").as_str()))
-            .count();
-        if in_file != baselines {
-            return Err(file_error(
-                path,
-                format!(
-                    "{in_file} baselines, but geometry.toml has {} antennas ({baselines} baselines): not the chain of this run",
-                    baselines + 1
-                ),
-            ));
-        }
-        let mut required: Vec<String> = [
-            "time_gpst",
-            "status",
-            "yaw_deg",
-            "pitch_deg",
-            "roll_deg",
-            "note",
-        ]
-        .map(String::from)
-        .to_vec();
-        for k in 1..=baselines {
-            for c in ["x", "y", "z", "n", "e", "d"] {
-                required.push(format!("b{k}_{c}_m"));
-            }
-        }
-        require_columns(path, names, &required)
-    };
+    let file = read_attitude_csv(path)?;
+    if file.baselines != baselines {
+        return Err(file_error(
+            path,
+            format!(
+                "{} baselines, but geometry.toml has {} antennas ({baselines} baselines): not the chain of this run",
+                file.baselines,
+                baselines + 1
+            ),
+        ));
+    }
     let mut out = ChainComparison::default();
     let mut fixed_epochs = 0usize;
     let (first, last) = truth.span();
-    read_csv(path, check_header, |header, line, text| {
-        let f = Fields::new(path, line, header, text)?;
-        let time = f.epoch("time_gpst")?;
-        let status = f.text("status")?;
-        if !["fixed", "partial", "float", "none"].contains(&status) {
-            return Err(f.error(format!(
-                "status = {status:?}; expected fixed, partial, float or none"
-            )));
-        }
+    for Line { line, row: v } in &file.rows {
+        let row_error = |m: String| OutputsError::from(CsvError::row(path, *line, m));
         out.epochs += 1;
-        let t_s = (time - truth.start).to_seconds();
-        let is_fixed = status == "fixed";
+        let t_s = (v.time - truth.start).to_seconds();
+        let is_fixed = v.status == Status::Fixed;
         if is_fixed && out.first_fix_s.is_none() {
             out.first_fix_s = Some(t_s);
         }
         if out.first_fix_s.is_none() {
-            return Ok(());
+            continue;
         }
         out.after_first_fix += 1;
         if !is_fixed {
-            return Ok(());
+            continue;
         }
         fixed_epochs += 1;
+        if v.ecef_m.len() != baselines {
+            return Err(row_error("a fixed epoch without its baselines".into()));
+        }
         let tr = truth.truth_at(t_s).ok_or_else(|| {
-            f.error(format!(
-                "{time} is {t_s} s after the truth's start, outside truth.h5 ({first} .. {last} s): not the same run"
+            row_error(format!(
+                "{} is {t_s} s after the truth's start, outside truth.h5 ({first} .. {last} s): not the same run",
+                v.time
             ))
         })?;
-        let vector = |k: usize, axes: [&str; 3]| -> Result<Option<Vec3>, OutputsError> {
-            let v = axes
-                .iter()
-                .map(|c| f.number(&format!("b{k}_{c}_m")))
-                .collect::<Result<Vec<_>, _>>()?;
-            Ok(match v.as_slice() {
-                [Some(a), Some(b), Some(c)] => Some(Vec3::new(*a, *b, *c)),
-                _ => None,
-            })
-        };
-        let diff = |a: &Vec3, b: &Vec3| [a.x - b.x, a.y - b.y, a.z - b.z];
-        let mut baseline_ecef_m = Vec::new();
-        let mut ned = Vec::new();
-        for k in 1..=baselines {
-            let ecef = vector(k, ["x", "y", "z"])?
-                .ok_or_else(|| f.error(format!("a fixed epoch without baseline b{k}_x/y/z_m")))?;
-            baseline_ecef_m.push(diff(&ecef, &tr.ecef[k - 1]));
-            ned.push(vector(k, ["n", "e", "d"])?.map(|v| diff(&v, &tr.ned[k - 1])));
-        }
+        let diff = |a: &[f64; 3], b: &Vec3| [a[0] - b.x, a[1] - b.y, a[2] - b.z];
+        let baseline_ecef_m = (0..baselines)
+            .map(|k| diff(&v.ecef_m[k], &tr.ecef[k]))
+            .collect();
         // NED baselines are blank when the ECEF -> NED rotation failed; such an epoch
         // is fixed but has no NED errors.
-        let baseline_ned_m = ned
-            .into_iter()
-            .collect::<Option<Vec<_>>>()
-            .unwrap_or_default();
-        let angles = (
-            f.number("yaw_deg")?,
-            f.number("pitch_deg")?,
-            f.number("roll_deg")?,
-        );
+        let baseline_ned_m = v.ned_m.as_ref().map_or_else(Vec::new, |ned| {
+            (0..baselines)
+                .map(|k| diff(&ned[k].ned_m, &tr.ned[k]))
+                .collect()
+        });
         // A note on a fixed epoch says the attitude stage skipped it (what it shows is
         // its last state): no attitude error, as for an in-memory run.
-        let note = f.text("note")?;
-        let attitude_deg = match angles {
-            (Some(y), Some(p), Some(r)) if note.is_empty() => {
+        let attitude_deg = match &v.attitude {
+            Some(a) if v.note.is_empty() => {
+                let [y, p, r] = a.angles_deg.map(f64::to_radians);
                 let estimate = YawPitchRoll {
-                    yaw_rad: y.to_radians(),
-                    pitch_rad: p.to_radians(),
-                    roll_rad: r.to_radians(),
+                    yaw_rad: y,
+                    pitch_rad: p,
+                    roll_rad: r,
                 };
                 Some(attitude_errors_deg(&estimate, &tr.attitude))
             }
@@ -541,8 +385,7 @@ fn read_attitude(
             attitude_deg,
             rate_deg_s: None,
         });
-        Ok(())
-    })?;
+    }
     Ok((out, fixed_epochs))
 }
 
@@ -556,46 +399,25 @@ fn check_integers(
     start: Epoch,
     baselines: usize,
 ) -> Result<(IntegerCheck, usize), OutputsError> {
-    let required = [
-        "time_gpst",
-        "baseline",
-        "signal",
-        "sat",
-        "reference",
-        "integer",
-    ]
-    .map(String::from);
     let mut check = IntegerCheck::default();
     let mut wrong_seconds = std::collections::BTreeSet::new();
-    read_csv(
-        path,
-        |names| require_columns(path, names, &required),
-        |header, line, text| {
-            let f = Fields::new(path, line, header, text)?;
-            let time = f.epoch("time_gpst")?;
-            let k: usize = f.parse("baseline", "a baseline number")?;
-            if k == 0 || k > baselines {
-                return Err(f.error(format!(
-                    "baseline = {k}; the run has baselines 1..{baselines}"
-                )));
+    for Line { line, row } in read_ambiguities_csv(path)? {
+        let k = row.baseline;
+        if k == 0 || k > baselines {
+            let m = format!("baseline = {k}; the run has baselines 1..{baselines}");
+            return Err(CsvError::row(path, line, m).into());
+        }
+        let Some(second) = whole_second(row.time, start) else {
+            continue;
+        };
+        if let Some(dd) = dd_offset(offsets, second, k, row.signal, row.sat, row.reference) {
+            let wrong_before = check.wrong;
+            check.add(dd, row.integer);
+            if check.wrong > wrong_before {
+                wrong_seconds.insert(second);
             }
-            let signal: Signal = f.parse("signal", "a signal tag (gps-l1ca, bds-b1i)")?;
-            let sat: SatId = f.parse("sat", "a satellite (e.g. G05)")?;
-            let reference: SatId = f.parse("reference", "a satellite (e.g. G05)")?;
-            let integer: i64 = f.parse("integer", "an integer")?;
-            let Some(second) = whole_second(time, start) else {
-                return Ok(());
-            };
-            if let Some(dd) = dd_offset(offsets, second, k, signal, sat, reference) {
-                let wrong_before = check.wrong;
-                check.add(dd, integer);
-                if check.wrong > wrong_before {
-                    wrong_seconds.insert(second);
-                }
-            }
-            Ok(())
-        },
-    )?;
+        }
+    }
     Ok((check, wrong_seconds.len()))
 }
 
@@ -872,56 +694,6 @@ mod tests {
         assert!((s.rms.unwrap() - (11.0f64 / 3.0).sqrt()).abs() < 1e-15);
         let e = AxisStats::of(&[]);
         assert_eq!((e.count, e.mean, e.std, e.rms), (0, None, None, None));
-    }
-
-    fn csv(dir: &Path, name: &str, text: &str) -> PathBuf {
-        let p = dir.join(name);
-        std::fs::write(&p, text).unwrap();
-        p
-    }
-
-    #[test]
-    fn csv_rows_name_file_and_line() {
-        let dir = tempfile::tempdir().unwrap();
-        let p = csv(
-            dir.path(),
-            "a.csv",
-            "time_gpst,n\n2023-03-12T00:00:00 GPST,1\nx\n",
-        );
-        let mut seen = Vec::new();
-        let e = read_csv(
-            &p,
-            |_| Ok(()),
-            |h, line, text| {
-                let f = Fields::new(&p, line, h, text)?;
-                seen.push(f.number("n")?);
-                Ok(())
-            },
-        )
-        .unwrap_err()
-        .to_string();
-        assert_eq!(seen, [Some(1.0)]);
-        assert!(e.contains("a.csv:3: 1 fields; the header has 2"), "{e}");
-        let p = csv(
-            dir.path(),
-            "b.csv",
-            "time_gpst,n\n2023-03-12T00:00:00 GPST,nan\n",
-        );
-        let e = read_csv(
-            &p,
-            |_| Ok(()),
-            |h, line, text| Fields::new(&p, line, h, text)?.number("n").map(|_| ()),
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(
-            e.contains("b.csv:2: n = \"nan\" is not a finite number"),
-            "{e}"
-        );
-        let e = read_csv(&dir.path().join("none.csv"), |_| Ok(()), |_, _, _| Ok(()))
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("none.csv"), "{e}");
     }
 
     #[test]

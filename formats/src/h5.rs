@@ -1,4 +1,4 @@
-//! Resizable HDF5 datasets shared by the writers of `truth.h5` and `receiver.h5`: creating
+//! Resizable HDF5 datasets shared by SkyForge's HDF5 writers: creating
 //! a dataset that grows along its first axis, appending rows to it, writing text
 //! attributes and creating the groups that hold them.
 
@@ -8,7 +8,7 @@ use ndarray::ArrayView2;
 
 /// Create the group `name` in `parent`, without modification times (the same run writes
 /// the same bytes).
-pub(crate) fn create_group(parent: &Group, name: &str) -> hdf5::Result<Group> {
+pub fn create_group(parent: &Group, name: &str) -> hdf5::Result<Group> {
     parent
         .create_group_builder()
         .obj_track_times(false)
@@ -17,7 +17,7 @@ pub(crate) fn create_group(parent: &Group, name: &str) -> hdf5::Result<Group> {
 
 /// Create the per-epoch table file at `path` with its `schema` attribute and the
 /// `start_gpst` its `t_s` column counts from (empty without epochs).
-pub(crate) fn create_epoch_file(
+pub fn create_epoch_file(
     path: &std::path::Path,
     schema: &str,
     start: Option<hifitime::Epoch>,
@@ -33,7 +33,7 @@ pub(crate) fn create_epoch_file(
 }
 
 /// Create the file at `path` with its `schema_version` and `generator` attributes.
-pub(crate) fn create_versioned_file(
+pub fn create_versioned_file(
     path: &std::path::Path,
     schema_version: &str,
     generator: &str,
@@ -45,7 +45,7 @@ pub(crate) fn create_versioned_file(
 }
 
 /// Write the UTF-8 string attribute `name` on `loc`.
-pub(crate) fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
+pub fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result<()> {
     let v: VarLenUnicode = value
         .parse()
         .map_err(|e| hdf5::Error::from(format!("{e}")))?;
@@ -59,7 +59,7 @@ pub(crate) fn text_attr(loc: &Location, name: &str, value: &str) -> hdf5::Result
 /// and `description`. Integer masks and indices are LZF-compressed (they shrink tenfold
 /// for almost nothing); floating-point values are stored raw, because compressing the
 /// truth geometry cost 5 s per 24 h run for 20 % space.
-pub(crate) fn create_rows<T: H5Type>(
+pub fn create_rows<T: H5Type>(
     group: &Group,
     name: &str,
     width: usize,
@@ -92,7 +92,7 @@ pub(crate) fn create_rows<T: H5Type>(
 
 /// Append `data` (whole rows of `width` values, row-major; one value per row when
 /// `width == 0`) to a dataset of [`create_rows`] that holds `rows` rows so far.
-pub(crate) fn append_rows<T: H5Type>(
+pub fn append_rows<T: H5Type>(
     ds: &Dataset,
     rows: usize,
     data: &[T],
