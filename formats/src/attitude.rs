@@ -4,7 +4,7 @@
 //! the writers ([`EpochFiles`], [`write_h5`]) and the readers of the two CSV files
 //! ([`read_attitude_csv`], [`read_ambiguities_csv`]).
 
-use crate::csv::{CsvError, Fields, read_csv, require_columns};
+use crate::csv::{Fields, FormatError, read_csv, require_columns};
 use crate::h5::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_gnss::signal::Signal;
@@ -68,14 +68,16 @@ impl std::str::FromStr for Status {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NedBaseline {
     pub ned_m: [f64; 3],
-    pub sigma_m: [f64; 3],
+    /// Standard deviations, where the solver gives them.
+    pub sigma_m: Option<[f64; 3]>,
 }
 
 /// The attitude stage's state: yaw, pitch, roll (deg), standard deviations, rates.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AttitudeValues {
     pub angles_deg: [f64; 3],
-    pub std_deg: [f64; 3],
+    /// Standard deviations, where the solver gives them.
+    pub std_deg: Option<[f64; 3]>,
     /// Filters only.
     pub rates_dps: Option<[f64; 3]>,
 }
@@ -150,7 +152,7 @@ impl EpochValues {
                     let s = |i: usize| q[(3 * k + i, 3 * k + i)].sqrt();
                     NedBaseline {
                         ned_m: [b.x, b.y, b.z],
-                        sigma_m: [s(0), s(1), s(2)],
+                        sigma_m: Some([s(0), s(1), s(2)]),
                     }
                 })
                 .collect()
@@ -159,7 +161,7 @@ impl EpochValues {
             let a = [s.angles.yaw_rad, s.angles.pitch_rad, s.angles.roll_rad];
             AttitudeValues {
                 angles_deg: a.map(f64::to_degrees),
-                std_deg: [0, 1, 2].map(|i| s.covariance[(i, i)].sqrt().to_degrees()),
+                std_deg: Some([0, 1, 2].map(|i| s.covariance[(i, i)].sqrt().to_degrees())),
                 rates_dps: s
                     .rates_rad_s
                     .map(|r| [r[0], r[1], r[2]].map(f64::to_degrees)),
@@ -203,8 +205,12 @@ fn csv_header(m: usize) -> String {
 fn csv_row(v: &EpochValues, m: usize) -> String {
     let fmt = |x: &[f64], digits: usize| x.iter().map(|v| format!("{v:.digits$}")).collect();
     let blank = |n: usize| vec![String::new(); n];
+    let opt = |x: &Option<[f64; 3]>, digits: usize| match x {
+        Some(x) => fmt(x, digits),
+        None => blank(3),
+    };
     let mut f = vec![v.time.to_string(), v.status.name().to_string()];
-    if v.success_rate.is_none() {
+    if v.status == Status::None {
         f.extend(blank(5 + 9 * m + 9));
     } else {
         f.push(v.ambiguities.to_string());
@@ -217,7 +223,7 @@ fn csv_row(v: &EpochValues, m: usize) -> String {
             match &v.ned_m {
                 Some(ned) => {
                     f.extend::<Vec<String>>(fmt(&ned[k].ned_m, 4));
-                    f.extend::<Vec<String>>(fmt(&ned[k].sigma_m, 5));
+                    f.extend::<Vec<String>>(opt(&ned[k].sigma_m, 5));
                 }
                 None => f.extend(blank(6)),
             }
@@ -225,11 +231,8 @@ fn csv_row(v: &EpochValues, m: usize) -> String {
         match &v.attitude {
             Some(a) => {
                 f.extend::<Vec<String>>(fmt(&a.angles_deg, 5));
-                f.extend::<Vec<String>>(fmt(&a.std_deg, 5));
-                match a.rates_dps {
-                    Some(r) => f.extend::<Vec<String>>(fmt(&r, 5)),
-                    None => f.extend(blank(3)),
-                }
+                f.extend::<Vec<String>>(opt(&a.std_deg, 5));
+                f.extend::<Vec<String>>(opt(&a.rates_dps, 5));
             }
             None => f.extend(blank(9)),
         }
@@ -346,9 +349,10 @@ pub struct AttitudeCsv {
     pub rows: Vec<Line<EpochValues>>,
 }
 
-/// Three numbers of `row`, all present or none; one or two present is an error.
-fn triple(f: &Fields<'_>, columns: [String; 3]) -> Result<Option<[f64; 3]>, CsvError> {
-    let v = [0, 1, 2].map(|i| f.number(&columns[i]));
+/// Three numbers of a row, all present or none (also when the columns are absent); one or
+/// two present is an error.
+fn triple(f: &Fields<'_>, columns: [String; 3]) -> Result<Option<[f64; 3]>, FormatError> {
+    let v = [0, 1, 2].map(|i| optional(f, &columns[i]));
     match v {
         [Ok(Some(a)), Ok(Some(b)), Ok(Some(c))] => Ok(Some([a, b, c])),
         [Ok(None), Ok(None), Ok(None)] => Ok(None),
@@ -361,8 +365,37 @@ fn triple(f: &Fields<'_>, columns: [String; 3]) -> Result<Option<[f64; 3]>, CsvE
     }
 }
 
+/// The columns every `attitude.csv` has for `m` baselines: what another program's solution
+/// must give to be compared with the truth (`skyforge validate attitude`). The other
+/// columns are read where present.
+fn required_columns(m: usize) -> Vec<String> {
+    let mut c: Vec<String> = [
+        "time_gpst",
+        "status",
+        "yaw_deg",
+        "pitch_deg",
+        "roll_deg",
+        "note",
+    ]
+    .map(String::from)
+    .to_vec();
+    for k in 1..=m {
+        c.extend(["x", "y", "z", "n", "e", "d"].map(|a| format!("b{k}_{a}_m")));
+    }
+    c
+}
+
+/// A number of an optional column: `None` when the column or the value is absent.
+fn optional(f: &Fields<'_>, column: &str) -> Result<Option<f64>, FormatError> {
+    if f.has(column) {
+        f.number(column)
+    } else {
+        Ok(None)
+    }
+}
+
 /// The values of one data line of `attitude.csv` with `m` baselines.
-fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, CsvError> {
+fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError> {
     let status = f.text("status")?;
     let status: Status = status.parse().map_err(|()| {
         f.error(format!(
@@ -375,49 +408,50 @@ fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, CsvError> {
         ambiguities: 0,
         fixed_combinations: 0,
         held: 0,
-        ratio: f.number("ratio")?,
-        success_rate: f.number("success_rate")?,
+        ratio: optional(f, "ratio")?,
+        success_rate: optional(f, "success_rate")?,
         ecef_m: Vec::new(),
         ned_m: None,
         attitude: None,
         note: f.text("note")?.to_string(),
     };
-    if v.success_rate.is_none() {
+    if v.status == Status::None {
         return Ok(v);
     }
-    v.ambiguities = f.parse("ambiguities", "a count")?;
-    v.fixed_combinations = f.parse("fixed_combinations", "a count")?;
-    v.held = f.parse("held", "a count")?;
+    let count = |c: &str| match f.has(c) {
+        true => f.parse(c, "a count"),
+        false => Ok(0),
+    };
+    v.ambiguities = count("ambiguities")?;
+    v.fixed_combinations = count("fixed_combinations")?;
+    v.held = count("held")?;
     let axes = |k: usize, c: [&str; 3]| c.map(|c| format!("b{k}_{c}_m"));
     let mut ned = Vec::with_capacity(m);
     for k in 1..=m {
         let ecef = triple(f, axes(k, ["x", "y", "z"]))?
             .ok_or_else(|| f.error(format!("a solved epoch without baseline b{k}_x/y/z_m")))?;
         v.ecef_m.push(ecef);
-        let ned_m = triple(f, axes(k, ["n", "e", "d"]))?;
         let sigma_m = triple(f, axes(k, ["sn", "se", "sd"]))?;
-        ned.push(
-            ned_m
-                .zip(sigma_m)
-                .map(|(ned_m, sigma_m)| NedBaseline { ned_m, sigma_m }),
-        );
+        let ned_m = triple(f, axes(k, ["n", "e", "d"]))?;
+        ned.push(ned_m.map(|ned_m| NedBaseline { ned_m, sigma_m }));
     }
     v.ned_m = ned.into_iter().collect();
     let angles = |suffix: &str| ["yaw", "pitch", "roll"].map(|a| format!("{a}_{suffix}"));
-    v.attitude = match (triple(f, angles("deg"))?, triple(f, angles("std_deg"))?) {
-        (Some(angles_deg), Some(std_deg)) => Some(AttitudeValues {
+    v.attitude = match triple(f, angles("deg"))? {
+        Some(angles_deg) => Some(AttitudeValues {
             angles_deg,
-            std_deg,
+            std_deg: triple(f, angles("std_deg"))?,
             rates_dps: triple(f, angles("rate_dps"))?,
         }),
-        _ => None,
+        None => None,
     };
     Ok(v)
 }
 
-/// Read `attitude.csv` at `path`: the header names every column for its baselines, every
-/// row's values parse.
-pub fn read_attitude_csv(path: &Path) -> Result<AttitudeCsv, CsvError> {
+/// Read `attitude.csv` at `path`: the header names at least the required columns for its
+/// baselines ([`required_columns`]; another program's solution may give only those),
+/// every row's values parse.
+pub fn read_attitude_csv(path: &Path) -> Result<AttitudeCsv, FormatError> {
     let baselines = std::cell::Cell::new(0);
     let mut rows = Vec::new();
     let check_header = |names: &[&str]| {
@@ -425,8 +459,7 @@ pub fn read_attitude_csv(path: &Path) -> Result<AttitudeCsv, CsvError> {
             .take_while(|k| names.contains(&format!("b{k}_x_m").as_str()))
             .count();
         baselines.set(m);
-        let expected: Vec<String> = csv_header(m).split(',').map(String::from).collect();
-        require_columns(path, names, &expected)
+        require_columns(path, names, &required_columns(m))
     };
     read_csv(path, check_header, |header, line, text| {
         let f = Fields::new(path, line, header, text)?;
@@ -468,7 +501,7 @@ impl IntegerRow {
 }
 
 /// Read `ambiguities.csv` at `path`.
-pub fn read_ambiguities_csv(path: &Path) -> Result<Vec<Line<IntegerRow>>, CsvError> {
+pub fn read_ambiguities_csv(path: &Path) -> Result<Vec<Line<IntegerRow>>, FormatError> {
     let required = AMBIGUITY_COLUMNS.map(String::from);
     let mut rows = Vec::new();
     read_csv(
@@ -546,9 +579,9 @@ pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<(
             row
         }),
     )?;
-    let ned = |pick: fn(&NedBaseline) -> [f64; 3]| {
+    let ned = |pick: fn(&NedBaseline) -> Option<[f64; 3]>| {
         per(&move |v: &EpochValues| match &v.ned_m {
-            Some(b) => b.iter().flat_map(pick).collect(),
+            Some(b) => b.iter().flat_map(|b| pick(b).unwrap_or([nan; 3])).collect(),
             None => vec![nan; 3 * m],
         })
     };
@@ -557,7 +590,7 @@ pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<(
         3 * m,
         "m",
         "fixed baselines in the master's NED frame, n e d per baseline",
-        ned(|b| b.ned_m),
+        ned(|b| Some(b.ned_m)),
     )?;
     column(
         "baseline_ned_sigma_m",
@@ -587,7 +620,7 @@ pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<(
         3,
         "deg",
         "standard deviations of attitude_deg",
-        attitude(|a| Some(a.std_deg)),
+        attitude(|a| a.std_deg),
     )?;
     column(
         "attitude_rate_dps",
@@ -618,14 +651,14 @@ mod tests {
                 vec![
                     NedBaseline {
                         ned_m: [0.1, 0.2, 0.3],
-                        sigma_m: [1e-3; 3],
+                        sigma_m: Some([1e-3; 3]),
                     };
                     2
                 ]
             }),
             attitude: fixed.then_some(AttitudeValues {
                 angles_deg: [10.0, 2.0, -1.0],
-                std_deg: [0.01; 3],
+                std_deg: Some([0.01; 3]),
                 rates_dps: None,
             }),
             note: String::new(),
@@ -728,6 +761,33 @@ mod tests {
         let e = write(part.join(","));
         assert!(
             e.contains("attitude.csv:3: b1_x_m, b1_y_m, b1_z_m given in part"),
+            "{e}"
+        );
+    }
+
+    /// Another program's solution needs only the required columns: its rows read with
+    /// what they give, the rest absent.
+    #[test]
+    fn a_table_of_the_required_columns_reads() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(ATTITUDE_CSV);
+        let text = "time_gpst,status,b1_x_m,b1_y_m,b1_z_m,b1_n_m,b1_e_m,b1_d_m,yaw_deg,pitch_deg,roll_deg,note\n\
+                    2024-01-01T00:00:00 GPST,fixed,1.5,0.5,-0.25,0.1,1.2,0.3,,,,\n\
+                    2024-01-01T00:00:01 GPST,none,,,,,,,,,,Q=5\n";
+        std::fs::write(&path, text).unwrap();
+        let read = read_attitude_csv(&path).unwrap();
+        assert_eq!(read.baselines, 1);
+        let (fixed, none) = (&read.rows[0].row, &read.rows[1].row);
+        assert_eq!(fixed.status, Status::Fixed);
+        assert_eq!(fixed.ecef_m, [[1.5, 0.5, -0.25]]);
+        let ned = fixed.ned_m.as_ref().unwrap();
+        assert_eq!((ned[0].ned_m, ned[0].sigma_m), ([0.1, 1.2, 0.3], None));
+        assert_eq!((fixed.success_rate, fixed.attitude), (None, None));
+        assert_eq!((none.status, none.note.as_str()), (Status::None, "Q=5"));
+        std::fs::write(&path, text.replace("roll_deg,", "")).unwrap();
+        let e = read_attitude_csv(&path).unwrap_err().to_string();
+        assert!(
+            e.contains("attitude.csv:1: the header has no column roll_deg"),
             "{e}"
         );
     }

@@ -11,13 +11,13 @@ use std::path::{Path, PathBuf};
 /// baselines and 40 double differences is about 200 MB.
 pub(crate) const MAX_CSV_BYTES: u64 = 1 << 30;
 
-/// Why a table could not be read. Every variant names the file.
+/// Why one of SkyForge's files could not be read. Every variant names the file.
 #[derive(Debug, thiserror::Error)]
-pub enum CsvError {
+pub enum FormatError {
     /// The file is missing, unreadable, too large or not what it should be.
     #[error("{path}: {message}")]
     File { path: PathBuf, message: String },
-    /// A line is malformed (`line` counts from 1, the header's).
+    /// A line of a table is malformed (`line` counts from 1, the header's).
     #[error("{path}:{line}: {message}")]
     Row {
         path: PathBuf,
@@ -26,7 +26,7 @@ pub enum CsvError {
     },
 }
 
-impl CsvError {
+impl FormatError {
     pub fn file(path: &Path, message: impl Into<String>) -> Self {
         Self::File {
             path: path.to_path_buf(),
@@ -47,14 +47,14 @@ impl CsvError {
 /// gets every data line with its 1-based line number.
 pub(crate) fn read_csv(
     path: &Path,
-    header: impl FnOnce(&[&str]) -> Result<(), CsvError>,
-    mut each: impl FnMut(&[&str], usize, &str) -> Result<(), CsvError>,
-) -> Result<(), CsvError> {
+    header: impl FnOnce(&[&str]) -> Result<(), FormatError>,
+    mut each: impl FnMut(&[&str], usize, &str) -> Result<(), FormatError>,
+) -> Result<(), FormatError> {
     let text = read_text(path, MAX_CSV_BYTES, "CSV file")
-        .map_err(|e| CsvError::file(path, e.to_string()))?;
+        .map_err(|e| FormatError::file(path, e.to_string()))?;
     let mut lines = text.lines();
     let Some(first) = lines.next() else {
-        return Err(CsvError::file(path, "empty file: no header line"));
+        return Err(FormatError::file(path, "empty file: no header line"));
     };
     let names: Vec<&str> = first.split(',').map(str::trim).collect();
     header(&names)?;
@@ -73,9 +73,9 @@ pub(crate) fn require_columns(
     path: &Path,
     header: &[&str],
     columns: &[String],
-) -> Result<(), CsvError> {
+) -> Result<(), FormatError> {
     match columns.iter().find(|c| !header.contains(&c.as_str())) {
-        Some(c) => Err(CsvError::row(
+        Some(c) => Err(FormatError::row(
             path,
             1,
             format!("the header has no column {c}"),
@@ -98,7 +98,7 @@ impl<'a> Fields<'a> {
         line: usize,
         header: &'a [&'a str],
         text: &'a str,
-    ) -> Result<Self, CsvError> {
+    ) -> Result<Self, FormatError> {
         let fields: Vec<&str> = text.split(',').map(str::trim).collect();
         let f = Self {
             path,
@@ -116,11 +116,16 @@ impl<'a> Fields<'a> {
         Ok(f)
     }
 
-    pub(crate) fn error(&self, message: String) -> CsvError {
-        CsvError::row(self.path, self.line, message)
+    pub(crate) fn error(&self, message: String) -> FormatError {
+        FormatError::row(self.path, self.line, message)
     }
 
-    pub(crate) fn text(&self, column: &str) -> Result<&'a str, CsvError> {
+    /// Whether the header names `column`.
+    pub(crate) fn has(&self, column: &str) -> bool {
+        self.header.contains(&column)
+    }
+
+    pub(crate) fn text(&self, column: &str) -> Result<&'a str, FormatError> {
         self.header
             .iter()
             .position(|h| *h == column)
@@ -129,7 +134,7 @@ impl<'a> Fields<'a> {
     }
 
     /// A number, `None` when the field is empty.
-    pub(crate) fn number(&self, column: &str) -> Result<Option<f64>, CsvError> {
+    pub(crate) fn number(&self, column: &str) -> Result<Option<f64>, FormatError> {
         let t = self.text(column)?;
         if t.is_empty() {
             return Ok(None);
@@ -144,13 +149,13 @@ impl<'a> Fields<'a> {
         &self,
         column: &str,
         what: &str,
-    ) -> Result<T, CsvError> {
+    ) -> Result<T, FormatError> {
         let t = self.text(column)?;
         t.parse()
             .map_err(|_| self.error(format!("{column} = {t:?} is not {what}")))
     }
 
-    pub(crate) fn epoch(&self, column: &str) -> Result<Epoch, CsvError> {
+    pub(crate) fn epoch(&self, column: &str) -> Result<Epoch, FormatError> {
         let t = self.text(column)?;
         parse_epoch(t).map_err(|e| self.error(format!("{column}: {e}")))
     }

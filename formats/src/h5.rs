@@ -110,6 +110,24 @@ pub fn append_rows<T: H5Type>(
     }
 }
 
+/// Dataset `name` of `file` (at `path`) read whole, refused beyond `max_elements` values.
+pub fn read_column<T: H5Type>(
+    file: &hdf5::File,
+    path: &std::path::Path,
+    name: &str,
+    max_elements: usize,
+) -> Result<Vec<T>, crate::FormatError> {
+    let err = |m: String| crate::FormatError::file(path, format!("dataset {name}: {m}"));
+    let ds = file.dataset(name).map_err(|e| err(e.to_string()))?;
+    if ds.size() > max_elements {
+        return Err(err(format!(
+            "{} values; at most {max_elements} are read",
+            ds.size()
+        )));
+    }
+    ds.read_raw().map_err(|e| err(e.to_string()))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -3,6 +3,7 @@
 //! `skyforge attitude --estimate-geometry` writes the corrected one, and the attitude chain
 //! reads it: the one definition of the format, reader and writer together.
 
+use crate::attitude::BodyGeometry;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::bounded_read::read_text;
@@ -37,6 +38,19 @@ pub struct BodyGeometryFile {
 }
 
 impl BodyGeometryFile {
+    /// This geometry with every antenna but the master moved to the master plus its
+    /// `corrected` baseline (the estimate of `skyforge attitude --estimate-geometry`).
+    pub fn corrected(&self, corrected: &BodyGeometry) -> Self {
+        let master = self.positions().first().copied().unwrap_or_default();
+        Self::from_positions(self.antennas.iter().enumerate().map(|(k, a)| {
+            let p = match k.checked_sub(1).and_then(|i| corrected.baselines().get(i)) {
+                Some(b) => master + b,
+                None => master,
+            };
+            (a.name.clone(), p)
+        }))
+    }
+
     /// The antennas `(name, body-frame position)`, master first.
     pub fn from_positions(antennas: impl IntoIterator<Item = (String, Vec3)>) -> Self {
         Self {

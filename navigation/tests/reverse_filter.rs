@@ -11,7 +11,8 @@ use nalgebra::{Rotation3, Vector3};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use skyforge_navigation::baseline::{FixedBaselines, FloatBaselines};
-use skyforge_navigation::relative::reverse::{BaselineMeasurement, ReverseConfig, ReverseFilter};
+use skyforge_navigation::relative::ReverseConfig;
+use skyforge_navigation::relative::reverse::{BaselineMeasurement, ReverseFilter};
 
 #[test]
 fn the_measurement_solved_alone_is_the_fixed_solution() {

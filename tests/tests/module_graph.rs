@@ -1,5 +1,5 @@
-//! The module graph of the library crates: no two source files import each other (issue
-//! #31). A file imports another when its code outside the unit tests names a path into
+//! The module graph of the library crates: no source files import each other, in pairs or
+//! around a longer cycle (issue #31). A file imports another when its code outside the unit tests names a path into
 //! it (`crate::a::b`, `super::c`); a folder's `mod.rs` or a crate's `lib.rs` declaring its
 //! children is not an import. Configuration types sit in files the stages import, shared
 //! types where both users reach them, so a pair of files that need each other says that a
@@ -8,13 +8,14 @@
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-const LIBRARIES: [&str; 10] = [
+const LIBRARIES: [&str; 11] = [
     "orbits",
     "gnss",
     "signals",
     "scenarios",
     "receiver",
     "navigation",
+    "formats",
     "runner",
     "validate",
     "studies",
@@ -141,32 +142,61 @@ fn is_parent(file: &Path) -> bool {
     )
 }
 
-/// Pairs of files (neither a module's parent) that import each other.
-fn mutual_pairs(src: &Path) -> Vec<(PathBuf, PathBuf)> {
-    let graph = imports(src);
-    let mut pairs = Vec::new();
-    for (a, targets) in &graph {
-        for b in targets {
-            if a < b && !is_parent(a) && !is_parent(b) && graph[b].contains(a) {
-                pairs.push((a.clone(), b.clone()));
-            }
+/// The files `from` reaches through imports, none of them a module's parent.
+fn reachable(graph: &BTreeMap<PathBuf, BTreeSet<PathBuf>>, from: &Path) -> BTreeSet<PathBuf> {
+    let mut seen = BTreeSet::new();
+    let mut next: Vec<&PathBuf> = graph[from].iter().filter(|f| !is_parent(f)).collect();
+    while let Some(f) = next.pop() {
+        if seen.insert(f.clone()) {
+            next.extend(graph[f].iter().filter(|g| !is_parent(g)));
         }
     }
-    pairs
+    seen
 }
 
-#[test]
-fn no_two_files_import_each_other() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
-    let mut pairs = Vec::new();
-    for krate in LIBRARIES {
-        pairs.extend(mutual_pairs(&root.join(krate).join("src")));
+/// Groups of files (none a module's parent) that import each other, directly or around a
+/// cycle through the group; each group sorted, the groups in order.
+fn import_cycles(src: &Path) -> Vec<Vec<PathBuf>> {
+    let graph = imports(src);
+    let reach: BTreeMap<&PathBuf, BTreeSet<PathBuf>> = graph
+        .keys()
+        .filter(|f| !is_parent(f))
+        .map(|f| (f, reachable(&graph, f)))
+        .collect();
+    let mut grouped = BTreeSet::new();
+    let mut cycles = Vec::new();
+    for (a, from_a) in &reach {
+        if grouped.contains(*a) {
+            continue;
+        }
+        let group: Vec<PathBuf> = from_a
+            .iter()
+            .filter(|b| reach.get(b).is_some_and(|from_b| from_b.contains(*a)))
+            .cloned()
+            .collect();
+        if group.len() >= 2 {
+            grouped.extend(group.iter().cloned());
+            cycles.push(group);
+        }
     }
-    assert!(pairs.is_empty(), "files that import each other: {pairs:#?}");
+    cycles
 }
 
 #[test]
-fn the_scan_finds_a_pair_that_imports_each_other() {
+fn no_files_import_each_other() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let mut cycles = Vec::new();
+    for krate in LIBRARIES {
+        cycles.extend(import_cycles(&root.join(krate).join("src")));
+    }
+    assert!(
+        cycles.is_empty(),
+        "files that import each other: {cycles:#?}"
+    );
+}
+
+#[test]
+fn the_scan_finds_pairs_and_longer_cycles() {
     let dir = tempfile::tempdir().unwrap();
     let src = dir.path();
     std::fs::create_dir_all(src.join("stage")).unwrap();
@@ -186,12 +216,19 @@ fn the_scan_finds_a_pair_that_imports_each_other() {
         "use crate::stage::config::Config;\n#[cfg(test)]\nmod tests { use super::super::config; }\n",
     )
     .unwrap();
-    let pairs = mutual_pairs(src);
-    assert_eq!(
-        pairs,
-        [(src.join("stage/config.rs"), src.join("stage/kalman.rs"))]
-    );
-    // Without the back edge there is no pair.
-    std::fs::write(src.join("stage/config.rs"), "pub struct Config;\n").unwrap();
-    assert!(mutual_pairs(src).is_empty());
+    let (config, kalman) = (src.join("stage/config.rs"), src.join("stage/kalman.rs"));
+    assert_eq!(import_cycles(src), [vec![config.clone(), kalman.clone()]]);
+    // Without the back edge there is no cycle.
+    std::fs::write(&config, "pub struct Config;\n").unwrap();
+    assert!(import_cycles(src).is_empty());
+    // config -> reverse -> kalman -> config: a cycle of three, found whole.
+    std::fs::write(
+        src.join("stage/mod.rs"),
+        "pub mod config;\npub mod kalman;\npub mod reverse;\n",
+    )
+    .unwrap();
+    std::fs::write(&config, "use super::reverse::Reverse;\n").unwrap();
+    let reverse = src.join("stage/reverse.rs");
+    std::fs::write(&reverse, "use crate::stage::kalman::Kalman;\n").unwrap();
+    assert_eq!(import_cycles(src), [vec![config, kalman, reverse]]);
 }

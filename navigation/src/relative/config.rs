@@ -1,7 +1,6 @@
 //! Settings of the relative-positioning and attitude chain (`[relative]` of a TOML file).
 
-use super::reverse::ReverseConfig;
-use crate::attitude::config::AttitudeConfig;
+use crate::attitude::config::{AttitudeConfig, THESIS_KAPPA};
 use crate::baseline::{ElevationNoise, NoiseModel};
 use crate::geometry_offset::stacked_ukf::OffsetConfig;
 use serde::Deserialize;
@@ -159,6 +158,33 @@ impl RelativeConfig {
             return Err(error(&"relative.signals: at least one signal"));
         }
         Ok(config)
+    }
+}
+
+/// `reverse_filter` of `[relative]`: the reverse filter's settings (thesis 5.5;
+/// `ReverseConfig::check` beside the filter in `reverse.rs`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ReverseConfig {
+    /// `S` of eq. 5.5-7 for x1, y1, z1, x2, y2, z2 (ECEF, m^2/s^3). Default 1e-6 each
+    /// (# assumed: the thesis gives no value; 1e-3 m/s^2 of acceleration noise over 1 s,
+    /// a 1 m baseline turning with about 1 mrad/s^2).
+    pub rate_psd_m2_s3: [f64; 6],
+    /// 1-sigma of the baseline rates when the filter starts (m/s). Default 0.1 m/s
+    /// (# assumed: a 1 m baseline turning at up to 6 deg/s).
+    pub initial_rate_sigma_m_s: f64,
+    /// Sigma-point spread kappa (eqs. 5.5-12..5.5-14), `12 + kappa > 0`. Default 0.5, the
+    /// thesis's value.
+    pub kappa: f64,
+}
+
+impl Default for ReverseConfig {
+    fn default() -> Self {
+        Self {
+            rate_psd_m2_s3: [1e-6; 6],
+            initial_rate_sigma_m_s: 0.1,
+            kappa: THESIS_KAPPA,
+        }
     }
 }
 

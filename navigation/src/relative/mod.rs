@@ -12,9 +12,9 @@ pub mod resolve;
 pub mod reverse;
 pub mod troposphere;
 
-pub use config::RelativeConfig;
+pub use config::{RelativeConfig, ReverseConfig};
 pub use resolve::{AmbiguityStatus, Resolution};
-pub use reverse::{ReverseConfig, ReverseFilter};
+pub use reverse::ReverseFilter;
 
 use crate::attitude::build;
 use crate::attitude::filter::{AttitudeFilter, FilterState};

@@ -21,8 +21,9 @@
 //! partial fix has no `vec(N)` to put back) and hands other epochs' baselines through.
 //! It reads observations and the receiver's own integers, never truth.
 
+use super::config::ReverseConfig;
 use super::resolve::{AmbiguityStatus, Resolution};
-use crate::attitude::config::{THESIS_KAPPA, settings_ok};
+use crate::attitude::config::settings_ok;
 use crate::attitude::filter::{process_noise, transition};
 use crate::attitude::unscented::{UnscentedError, transform, update};
 use crate::baseline::{BaselineError, FixedBaselines, FloatBaselines};
@@ -45,32 +46,6 @@ pub enum ReverseError {
     Unscented(#[from] UnscentedError),
     #[error("reverse baseline filter: {0}")]
     Baseline(#[from] BaselineError),
-}
-
-/// `reverse_filter` of `[relative]`: the filter's settings.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ReverseConfig {
-    /// `S` of eq. 5.5-7 for x1, y1, z1, x2, y2, z2 (ECEF, m^2/s^3). Default 1e-6 each
-    /// (# assumed: the thesis gives no value; 1e-3 m/s^2 of acceleration noise over 1 s,
-    /// a 1 m baseline turning with about 1 mrad/s^2).
-    pub rate_psd_m2_s3: [f64; 6],
-    /// 1-sigma of the baseline rates when the filter starts (m/s). Default 0.1 m/s
-    /// (# assumed: a 1 m baseline turning at up to 6 deg/s).
-    pub initial_rate_sigma_m_s: f64,
-    /// Sigma-point spread kappa (eqs. 5.5-12..5.5-14), `12 + kappa > 0`. Default 0.5, the
-    /// thesis's value.
-    pub kappa: f64,
-}
-
-impl Default for ReverseConfig {
-    fn default() -> Self {
-        Self {
-            rate_psd_m2_s3: [1e-6; 6],
-            initial_rate_sigma_m_s: 0.1,
-            kappa: THESIS_KAPPA,
-        }
-    }
 }
 
 impl ReverseConfig {
@@ -263,6 +238,7 @@ impl ReverseFilter {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::attitude::config::THESIS_KAPPA;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 

@@ -18,7 +18,7 @@ use skyforge_gnss::codes::neumann_hoffman;
 
 use super::TrackingError;
 use super::bit_sync::BitSynchroniser;
-use super::carrier::{Carrier, CarrierTracker, IntegrationEnd};
+use super::carrier::{self, CarrierTracker, IntegrationEnd};
 use super::config::TrackingConfig;
 use super::correlator::{Correlator, NcoState, TapSet};
 use super::discriminators::dll_envelope_chips;
@@ -148,7 +148,7 @@ struct BitAccumulator {
 }
 
 /// One satellite's tracking channel.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct ChannelTracker {
     signal: Signal,
     prn: u8,
@@ -159,7 +159,7 @@ pub struct ChannelTracker {
     /// DLL bandwidth and early-late spacing in use (wide until bit sync).
     dll_bandwidth_hz: f64,
     early_late_spacing_chips: f64,
-    carrier: Carrier,
+    carrier: Box<dyn CarrierTracker>,
     // NCO state at `next_index`, the first sample of the next code period.
     next_index: u64,
     code_phase_chips: f64,
@@ -222,7 +222,7 @@ impl ChannelTracker {
                 early_late_spacing_chips: config.early_late_spacing_chips,
             },
         )?;
-        let carrier = Carrier::new(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
+        let carrier = carrier::build(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
         let code_rate = aided_code_rate(
             signal.chip_rate_hz(),
             handover.doppler_hz,

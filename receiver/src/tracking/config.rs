@@ -6,7 +6,12 @@ use super::TrackingError;
 use super::bit_sync::BitSyncConfig;
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::error_budget::LoopOrder;
-use super::ukf_carrier::{THESIS_KAPPA, THESIS_PROPOSED_Q};
+
+/// Thesis section 3.3.5: the proposed process noise densities (Q_theta, Q_omega, Q_alpha,
+/// Q_alpha_t) of eq. 3.3-59.
+pub const THESIS_PROPOSED_Q: [f64; 4] = [1e-10, 1e-4, 1e2, 1e8];
+/// Thesis section 3.3.5: the sigma-point spread kappa.
+pub const THESIS_KAPPA: f64 = 0.5;
 
 /// Longest coherent integration after bit sync (code periods): one GPS or D1 bit.
 pub const MAX_COHERENT_MS: u32 = 20;

@@ -24,12 +24,6 @@ use std::f64::consts::{PI, TAU};
 /// State dimension.
 const N: usize = 4;
 
-/// Thesis section 3.3.5: the proposed process noise densities (Q_theta, Q_omega, Q_alpha,
-/// Q_alpha_t) of eq. 3.3-59.
-pub const THESIS_PROPOSED_Q: [f64; 4] = [1e-10, 1e-4, 1e2, 1e8];
-/// Thesis section 3.3.5: the sigma-point spread kappa.
-pub const THESIS_KAPPA: f64 = 0.5;
-
 /// Settings of the filter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UkfConfig {

@@ -8,11 +8,13 @@
 
 use crate::bad_input::BadInput;
 use crate::cli::AttitudeArgs;
-use crate::output::geometry_out::{self, OffsetRow};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use skyforge_formats::attitude::{
     ATTITUDE_CSV, ATTITUDE_H5, EpochFiles, EpochValues, integer_rows, write_h5,
+};
+use skyforge_formats::geometry_offsets::{
+    self, GEOMETRY_CORRECTED_TOML, GEOMETRY_OFFSETS_CSV, GEOMETRY_OFFSETS_H5, OffsetRow,
 };
 use skyforge_gnss::observation::as_written::epoch_as_written;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
@@ -330,10 +332,7 @@ impl ChainSummary {
                 self.offset_rows.len()
             );
         }
-        println!(
-            "wrote      {}",
-            dir.join("geometry_corrected.toml").display()
-        );
+        println!("wrote      {}", dir.join(GEOMETRY_CORRECTED_TOML).display());
     }
 }
 
@@ -357,21 +356,21 @@ fn write_offsets(
     estimator: &OffsetEstimator,
     rows: &[OffsetRow],
 ) -> anyhow::Result<()> {
-    let csv_path = staged.file("geometry_offsets.csv");
-    let mut text = geometry_out::csv_header() + "\n";
+    let csv_path = staged.file(GEOMETRY_OFFSETS_CSV);
+    let mut text = geometry_offsets::csv_header() + "\n";
     for r in rows {
-        text += &(geometry_out::csv_row(r) + "\n");
+        text += &(geometry_offsets::csv_row(r) + "\n");
     }
     std::fs::write(&csv_path, text)
         .with_context(|| format!("cannot write {}", csv_path.display()))?;
-    let h5_path = staged.file("geometry_offsets.h5");
-    geometry_out::write_h5(&h5_path, rows)
+    let h5_path = staged.file(GEOMETRY_OFFSETS_H5);
+    geometry_offsets::write_h5(&h5_path, rows)
         .with_context(|| format!("cannot write {}", h5_path.display()))?;
     let corrected = estimator
         .corrected_geometry()
         .map_err(|e| BadInput(format!("geometry offsets: {e}")))?;
-    let toml_path = staged.file("geometry_corrected.toml");
-    let file = geometry_out::corrected_file(geometry, &corrected);
+    let toml_path = staged.file(GEOMETRY_CORRECTED_TOML);
+    let file = geometry.corrected(&corrected);
     let text = file
         .to_text("")
         .context("cannot format the corrected geometry")?;

@@ -4,9 +4,11 @@
 
 use crate::bad_input::BadInput;
 use crate::cli::{MonitorArgs, ScenarioRun};
-use crate::output::monitor_out::{AlarmLog, H5Rows, csv_header, csv_rows};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use skyforge_formats::monitor::{
+    AlarmLog, H5Rows, MONITOR_CSV, MONITOR_H5, SUMMARY_JSON, csv_header, csv_rows,
+};
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::integrity::files::{run_files, stations};
 use skyforge_navigation::integrity::{MonitorConfig, Station};
@@ -72,7 +74,7 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         ephemerides,
     } = read_inputs(args)?;
     let staged = StagedDir::create(&args.out, args.force)?;
-    let csv_path = staged.file("monitor.csv");
+    let csv_path = staged.file(MONITOR_CSV);
     let mut csv = std::fs::File::create(&csv_path)
         .map(std::io::BufWriter::new)
         .with_context(|| format!("cannot create {}", csv_path.display()))?;
@@ -95,13 +97,13 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     csv.into_inner()
         .map_err(|e| e.into_error())
         .with_context(|| format!("cannot write {}", csv_path.display()))?;
-    let h5_path = staged.file("monitor.h5");
+    let h5_path = staged.file(MONITOR_H5);
     if let Some(start) = start {
         rows.write(&h5_path, start, &station_list)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
     }
     let summary = log.summary(&station_list, common.into());
-    let json_path = staged.file("summary.json");
+    let json_path = staged.file(SUMMARY_JSON);
     std::fs::write(&json_path, serde_json::to_string_pretty(&summary)?)
         .with_context(|| format!("cannot write {}", json_path.display()))?;
     let dir = staged.commit()?;
@@ -117,7 +119,7 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
             a.station, a.sat, a.statistic, a.first_gpst, a.first_t_s, a.epochs, a.peak_ratio
         );
     }
-    println!("wrote      {}", dir.join("monitor.csv").display());
+    println!("wrote      {}", dir.join(MONITOR_CSV).display());
     Ok(())
 }
 

@@ -5,11 +5,12 @@ use crate::output::staged_dir::StagedDir;
 use crate::output::whole_file;
 use anyhow::Context;
 use hifitime::Epoch;
+use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::outputs::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
-use skyforge_validate::integrity::score::{print_score, read_monitor_csv, run_scenario, score};
+use skyforge_validate::integrity::score::{print_score, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
@@ -208,8 +209,8 @@ pub fn attitude(
 /// in `truth`, print the table and optionally write the JSON.
 pub fn monitor(truth: &Path, monitor: &Path, json: Option<&Path>) -> anyhow::Result<()> {
     let scenario = run_scenario(truth).map_err(BadInput)?;
-    let record =
-        read_monitor_csv(&monitor.join("monitor.csv"), scenario.time.start).map_err(BadInput)?;
+    let record = read_monitor_csv(&monitor.join(MONITOR_CSV), scenario.time.start)
+        .map_err(|e| BadInput(e.to_string()))?;
     let score = score(&scenario.errors.events, &record);
     print_score(&score, &mut std::io::stdout().lock())?;
     if let Some(path) = json {

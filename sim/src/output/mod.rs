@@ -1,9 +1,7 @@
 //! Output writers and the all-or-nothing output directory.
 
-pub mod geometry_out;
 pub mod interrupt;
 pub mod manifest;
-pub mod monitor_out;
 pub mod receiver_out;
 pub mod slurm_scripts;
 pub mod staged_dir;

@@ -6,38 +6,30 @@
 
 use super::chart::{Chart, Series};
 use super::page::Figure;
-use super::{ReportError, figure, read_dataset};
+use super::{ReportError, figure};
+use skyforge_formats::geometry_offsets::{GEOMETRY_OFFSETS_H5, read_h5};
 use skyforge_navigation::geometry_offset::shape::align;
 use skyforge_orbits::Vec3;
 use skyforge_validate::attitude::OutputsComparison;
 use std::path::Path;
 
-/// The file `skyforge attitude --estimate-geometry` writes.
-pub const FILE: &str = "geometry_offsets.h5";
-
-/// The two figures, when `attitude` holds [`FILE`]; `c` gives the nominal and true body
-/// positions (two baselines).
+/// The two figures, when `attitude` holds `geometry_offsets.h5`; `c` gives the nominal and
+/// true body positions (two baselines).
 pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, ReportError> {
-    let path = attitude.join(FILE);
+    let path = attitude.join(GEOMETRY_OFFSETS_H5);
     if !path.is_file() {
         return Ok(Vec::new());
     }
-    let file = hdf5::File::open(&path).map_err(|e| ReportError::new(&path, e.to_string()))?;
-    let t: Vec<f64> = read_dataset(&file, &path, "t_s")?;
-    if t.is_empty() {
+    let h5 = read_h5(&path)?;
+    let Some(last_cov) = h5.covariance_m2.last() else {
         // The estimator never had four consecutive fixed epochs: nothing to draw.
         return Ok(Vec::new());
-    }
-    let offsets: Vec<f64> = read_dataset(&file, &path, "offsets")?;
-    let cov: Vec<f64> = read_dataset(&file, &path, "offsets_covariance")?;
-    if c.antennas.len() != 3 || offsets.len() != 6 * t.len() || cov.len() != 36 * t.len() {
+    };
+    if c.antennas.len() != 3 {
         return Err(ReportError::new(
             &path,
             format!(
-                "{} updates, {} offset and {} covariance values, {} antennas: not the 6 offsets of two baselines",
-                t.len(),
-                offsets.len(),
-                cov.len(),
+                "{} antennas: the offsets are of two baselines",
                 c.antennas.len()
             ),
         ));
@@ -48,8 +40,7 @@ pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, Re
     };
     let (b0, truth) = (body(|a| a.nominal_body_m), body(|a| a.true_body_m));
     let mut errors: [Vec<(f64, f64)>; 6] = Default::default();
-    for (k, t_s) in t.iter().enumerate() {
-        let row = &offsets[6 * k..6 * k + 6];
+    for (t_s, row) in h5.t_s.iter().zip(&h5.offsets_m) {
         let est = [0, 1].map(|b| b0[b] + Vec3::new(row[3 * b], row[3 * b + 1], row[3 * b + 2]));
         let turned = align(&truth, &est)
             .map_err(|e| ReportError::new(&path, e.to_string()))?
@@ -58,7 +49,7 @@ pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, Re
             series.push((*t_s, 1e3 * (est[i / 3][i % 3] - turned[i / 3][i % 3])));
         }
     }
-    let last_sigma_mm = |i: usize| 1e3 * cov[cov.len() - 36 + 7 * i].sqrt();
+    let last_sigma_mm = |i: usize| 1e3 * last_cov[7 * i].sqrt();
     let mut out = Vec::new();
     for b in 0..2 {
         let mut chart = Chart::new(
@@ -84,7 +75,7 @@ pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, Re
              estimate's orientation (which baselines do not see), over {} updates; last: {}. \
              Thesis figures 4.3-4/4.3-5 (table 4.3-4: std about 0.21 mm).",
             b + 1,
-            t.len(),
+            h5.t_s.len(),
             last.join(", ")
         );
         out.push(figure(&chart, caption, &path)?);

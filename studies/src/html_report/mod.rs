@@ -17,6 +17,8 @@ pub mod truth;
 use chart::Chart;
 use hdf5::H5Type;
 use page::{Figure, Page};
+use skyforge_formats::FormatError;
+use skyforge_formats::h5::read_column;
 use std::path::{Path, PathBuf};
 
 /// Largest dataset read (elements): beyond this a file is not one SkyForge wrote for a
@@ -36,6 +38,22 @@ impl ReportError {
         ReportError {
             path: path.to_path_buf(),
             message,
+        }
+    }
+}
+
+impl From<FormatError> for ReportError {
+    fn from(e: FormatError) -> Self {
+        match e {
+            FormatError::File { path, message } => ReportError { path, message },
+            FormatError::Row {
+                path,
+                line,
+                message,
+            } => ReportError {
+                path,
+                message: format!("line {line}: {message}"),
+            },
         }
     }
 }
@@ -124,13 +142,5 @@ fn read_dataset<T: H5Type>(
     path: &Path,
     name: &str,
 ) -> Result<Vec<T>, ReportError> {
-    let err = |m: String| ReportError::new(path, format!("dataset {name}: {m}"));
-    let ds = file.dataset(name).map_err(|e| err(e.to_string()))?;
-    if ds.size() > MAX_ELEMENTS {
-        return Err(err(format!(
-            "{} values; at most {MAX_ELEMENTS} are read",
-            ds.size()
-        )));
-    }
-    ds.read_raw().map_err(|e| err(e.to_string()))
+    read_column(file, path, name, MAX_ELEMENTS).map_err(ReportError::from)
 }

@@ -27,7 +27,7 @@ use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
 use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
-use skyforge_formats::CsvError;
+use skyforge_formats::FormatError;
 use skyforge_formats::attitude::{
     AMBIGUITIES_CSV, ATTITUDE_CSV, Line, Status, read_ambiguities_csv, read_attitude_csv,
 };
@@ -59,7 +59,7 @@ pub enum OutputsError {
     File { path: PathBuf, message: String },
     /// A line of one of the chain's CSV files is malformed or not of this run.
     #[error(transparent)]
-    Csv(#[from] CsvError),
+    Csv(#[from] FormatError),
     #[error(transparent)]
     Observations(#[from] ObsReadError),
     #[error(transparent)]
@@ -329,7 +329,7 @@ fn read_attitude(
     let mut fixed_epochs = 0usize;
     let (first, last) = truth.span();
     for Line { line, row: v } in &file.rows {
-        let row_error = |m: String| OutputsError::from(CsvError::row(path, *line, m));
+        let row_error = |m: String| OutputsError::from(FormatError::row(path, *line, m));
         out.epochs += 1;
         let t_s = (v.time - truth.start).to_seconds();
         let is_fixed = v.status == Status::Fixed;
@@ -405,7 +405,7 @@ fn check_integers(
         let k = row.baseline;
         if k == 0 || k > baselines {
             let m = format!("baseline = {k}; the run has baselines 1..{baselines}");
-            return Err(CsvError::row(path, line, m).into());
+            return Err(FormatError::row(path, line, m).into());
         }
         let Some(second) = whole_second(row.time, start) else {
             continue;

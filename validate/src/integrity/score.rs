@@ -2,118 +2,15 @@
 //! (`skyforge validate monitor`): detection and its delay per event, the statistic and
 //! station that flagged it first, and alarms no event explains (false alarms).
 
-use hifitime::Epoch;
 use serde::Serialize;
-use skyforge_navigation::integrity::Statistic;
-use skyforge_orbits::bounded_read::read_text;
-use skyforge_orbits::time::{TimeOrigin, parse_epoch};
+use skyforge_formats::monitor::{Alarm, MonitorRecord};
 use skyforge_signals::errors::events::EventConfig;
 use std::path::Path;
 
-/// Largest monitor.csv read (bytes).
-const MAX_CSV_BYTES: u64 = 1 << 30;
 /// How long after an event's end its satellite's alarms are still its own (s).
 /// # assumed: the smoothed code keeps 1 % of a step 460 s later, the divergence is tested
 /// 300 s after it starts; 600 s covers both. Chosen before any run.
 pub const HOLD_S: f64 = 600.0;
-
-/// One alarmed statistic of one station and satellite at one epoch.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Alarm {
-    /// Seconds since the scenario start.
-    pub t_s: f64,
-    pub station: String,
-    pub sat: String,
-    pub statistic: String,
-    /// |B| over its threshold.
-    pub ratio: f64,
-}
-
-/// A loss of lock a station's receiver flagged (RINEX LLI) on a satellite.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Flag {
-    /// Seconds since the scenario start.
-    pub t_s: f64,
-    pub station: String,
-    pub sat: String,
-}
-
-/// What `monitor.csv` holds for the scoring.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct MonitorRecord {
-    pub alarms: Vec<Alarm>,
-    pub flags: Vec<Flag>,
-}
-
-/// The alarms and loss-of-lock flags of `monitor.csv` at `path`, timed from `start`.
-pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, String> {
-    let err = |line: usize, m: String| format!("{}:{line}: {m}", path.display());
-    let text = read_text(path, MAX_CSV_BYTES, "CSV file").map_err(|e| err(0, e.to_string()))?;
-    let mut lines = text.lines().enumerate();
-    let header: Vec<&str> = lines
-        .next()
-        .map(|(_, h)| h.split(',').collect())
-        .unwrap_or_default();
-    let col = |name: &str| {
-        header
-            .iter()
-            .position(|h| *h == name)
-            .ok_or_else(|| err(1, format!("no column {name:?} (not a monitor.csv)")))
-    };
-    let (c_time, c_station, c_sat) = (col("time_gpst")?, col("station")?, col("sat")?);
-    let c_lli = col("loss_of_lock")?;
-    let stat_cols: Vec<(usize, usize, usize)> = Statistic::ALL
-        .iter()
-        .map(|s| {
-            let s = s.key();
-            Ok((
-                col(&format!("{s}_alarm"))?,
-                col(&format!("{s}_b"))?,
-                col(&format!("{s}_threshold"))?,
-            ))
-        })
-        .collect::<Result<_, String>>()?;
-    let origin = TimeOrigin::new(start);
-    let mut out = MonitorRecord::default();
-    for (i, line) in lines {
-        let f: Vec<&str> = line.split(',').collect();
-        if f.len() != header.len() {
-            return Err(err(
-                i + 1,
-                format!("{} fields, the header has {}", f.len(), header.len()),
-            ));
-        }
-        let flagged = f[c_lli] == "1";
-        if !flagged && stat_cols.iter().all(|&(alarm, _, _)| f[alarm] != "1") {
-            continue;
-        }
-        let time = parse_epoch(f[c_time]).map_err(|e| err(i + 1, format!("time_gpst: {e}")))?;
-        let t_s = origin.seconds_since_start(time);
-        if flagged {
-            out.flags.push(Flag {
-                t_s,
-                station: f[c_station].to_string(),
-                sat: f[c_sat].to_string(),
-            });
-        }
-        let num = |c: usize| {
-            f[c].parse::<f64>()
-                .map_err(|_| err(i + 1, format!("{}: {:?} is not a number", header[c], f[c])))
-        };
-        for (k, &(alarm, b, threshold)) in stat_cols.iter().enumerate() {
-            if f[alarm] == "1" {
-                out.alarms.push(Alarm {
-                    t_s,
-                    station: f[c_station].to_string(),
-                    sat: f[c_sat].to_string(),
-                    statistic: Statistic::ALL[k].key().to_string(),
-                    ratio: num(b)?.abs() / num(threshold)?,
-                });
-            }
-        }
-    }
-    Ok(out)
-}
 
 /// The scenario a run was made from: the `scenario_toml` attribute of `run_dir/truth.h5`.
 pub fn run_scenario(run_dir: &Path) -> Result<skyforge_scenarios::Scenario, String> {
@@ -273,6 +170,7 @@ pub fn print_score(score: &MonitorScore, out: &mut impl std::io::Write) -> std::
 #[cfg(test)]
 mod tests {
     use super::*;
+    use skyforge_formats::monitor::Flag;
     use skyforge_signals::errors::events::EventKind;
 
     fn alarm(t_s: f64, station: &str, sat: &str, ratio: f64) -> Alarm {
