@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The test suite: formatting, lints, the default tests, the interoperability tier (the
 # real GNSS-SDR, RTKLIB, Slurm and Chromium from Debian's gnss-sdr, rtklib, slurm-wlm,
-# munge and chromium packages, installed here when missing) and the real-data tier.
+# munge and chromium packages, installed here when missing) and the real-data tier. The long
+# signal-level acceptance tests listed in scripts/long-tests.txt run by scripts/acceptance.sh.
 #   scripts/test.sh              real-data tier runs when the data folder exists
 #   scripts/test.sh --real-data  the real-data tier is required (CI)
 # The data folder is $SKYFORGE_DATA, default ../shared/data (relative to the repo root).
@@ -12,6 +13,11 @@ require_data=0
 
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
+# The long acceptance tests run by scripts/acceptance.sh, not here (scripts/long-tests.txt).
+skips=()
+while read -r _ _ name; do
+  if [ -n "$name" ]; then skips+=(--skip "$name"); fi
+done < <(grep -v '^#' scripts/long-tests.txt)
 
 scripts/deps.sh gnss-sdr rtklib slurm-wlm munge chromium
 echo "test: cargo fmt --check"
@@ -24,7 +30,7 @@ cargo test --workspace 2>&1 | tee -a "$log"
 data="${SKYFORGE_DATA:-$(pwd)/../shared/data}"
 if [ -d "$data" ]; then
   echo "test: interoperability and real-data tiers with SKYFORGE_DATA=$data"
-  SKYFORGE_DATA="$data" cargo test --workspace -- --ignored 2>&1 | tee -a "$log"
+  SKYFORGE_DATA="$data" cargo test --workspace -- --ignored "${skips[@]}" 2>&1 | tee -a "$log"
 elif [ $require_data -eq 1 ]; then
   echo "test: REAL-DATA FOLDER MISSING: $data (set SKYFORGE_DATA)" >&2
   exit 1
