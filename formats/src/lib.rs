@@ -9,13 +9,25 @@
 //!   geometry-offset estimate (`skyforge attitude --estimate-geometry`);
 //! - [`monitor`]: `monitor.csv`, `monitor.h5` and `summary.json`, what the integrity
 //!   monitor writes (`skyforge monitor run`);
-//! - [`h5`]: resizable HDF5 tables, shared by the HDF5 writers (those not yet here:
-//!   `truth.h5`, `receiver.h5`, `study.h5`).
+//! - [`truth`]: `truth.h5`, the geometry and signal truth of a run (`skyforge run`,
+//!   `skyforge synth`), which validate and the report read;
+//! - [`receiver`]: what `skyforge receive` writes per epoch besides its RINEX files:
+//!   `pvt.csv`, `<antenna>.nmea` and `receiver.h5`;
+//! - [`h5`]: resizable HDF5 tables, shared by the HDF5 writers.
+//!
+//! A study's files (`study.h5`, its shards and journals) live with the study, in
+//! `skyforge_studies::study::results`: their rows are the study's types.
+//!
+//! The crate writes the simulator's truth, so it sits above the simulator and, like it,
+//! out of the receiver's and the estimators' reach (the truth firewall,
+//! `tests/tests/truth_firewall.rs`).
 
 pub mod attitude;
 mod csv;
 pub mod geometry_offsets;
 pub mod h5;
 pub mod monitor;
+pub mod receiver;
+pub mod truth;
 
 pub use csv::FormatError;

@@ -19,7 +19,8 @@ use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::baseline::{AmbiguityHold, ElevationNoise, FloatBaselines, NoiseModel};
 use skyforge_navigation::relative::config::Constraint;
 use skyforge_navigation::relative::resolve::resolve;
-use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, length, multivariate};
+use skyforge_navigation::relative::search::{self, NoConstraint, length, multivariate};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 
 /// Constant sigmas (a0 = 0): 3 mm phase, 0.3 m code.
 fn noise() -> NoiseModel {
@@ -91,15 +92,13 @@ fn length_constraint_finds_the_integers_at_least_as_often_as_lambda() {
             }
             // resolve() with constraint = "length" takes the same search and accepts it
             // by the same rule.
-            let r = resolve(&float, &mut AmbiguityHold::new(), &config, None).unwrap();
-            assert_eq!(r.ratio, plain.ratio(), "without a geometry: plain LAMBDA");
-            let r = resolve(
-                &float,
-                &mut AmbiguityHold::new(),
-                &config,
-                Some((&geometry, &Vector3::new(4.0e6, 3.0e6, 3.5e6))),
-            )
-            .unwrap();
+            let master = Vector3::new(4.0e6, 3.0e6, 3.5e6);
+            let mut hold = AmbiguityHold::new();
+            let r = resolve(&float, &mut hold, &config, &NoConstraint, &master).unwrap();
+            assert_eq!(r.ratio, plain.ratio(), "without a constraint: plain LAMBDA");
+            let by_length = search::build(Constraint::Length, &geometry);
+            let mut hold = AmbiguityHold::new();
+            let r = resolve(&float, &mut hold, &config, by_length.as_ref(), &master).unwrap();
             // resolve() stops the enumeration once the ratio test is decided: the same
             // verdict and integers as the fully enumerated search, its ratio a lower
             // bound of the full one's.

@@ -8,8 +8,8 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_gnss::signal::Signal;
-use skyforge_receiver::acquisition::pcps::{Pcps, PcpsConfig};
 use skyforge_receiver::acquisition::pmf_fft::PmfFft;
+use skyforge_receiver::acquisition::{Pcps, PcpsConfig};
 use std::hint::black_box;
 
 /// One code period of PRN 7 at 45 dB-Hz, 2.7 kHz Doppler, in unit noise.

@@ -8,9 +8,9 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_complex::Complex;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
-use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, Handover};
-use skyforge_receiver::tracking::config::TrackingConfig;
-use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
+use skyforge_receiver::tracking::TrackingConfig;
+use skyforge_receiver::tracking::{ChannelTracker, FrontEnd, Handover};
+use skyforge_receiver::tracking::{Correlator, NcoState, TapSet};
 
 const FS_HZ: f64 = 4.092e6;
 const BLOCK: usize = 4092;

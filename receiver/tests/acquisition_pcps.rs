@@ -12,7 +12,7 @@ use rand_distr::{Distribution, StandardNormal};
 use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::signal::Signal;
 use skyforge_receiver::acquisition::cfar;
-use skyforge_receiver::acquisition::pcps::{BitTransition, DopplerWindow, Pcps, PcpsConfig};
+use skyforge_receiver::acquisition::{BitTransition, DopplerWindow, Pcps, PcpsConfig};
 
 #[derive(Debug, Clone, Copy)]
 struct Truth {

@@ -182,7 +182,7 @@ fn bad_field_values_say_what_was_expected() {
 
 #[test]
 fn unknown_command_line_values_list_the_allowed_ones() {
-    let e = skyforge_receiver::input::format::parse_format("i8", "--format").unwrap_err();
+    let e = skyforge_receiver::input::parse_format("i8", "--format").unwrap_err();
     assert_eq!(
         e.to_string(),
         "--format: unknown sample datatype \"i8\"; allowed: ci8, ci16_le (or ci16), cf32_le (or cf32), ri8 (all little-endian)"
@@ -199,7 +199,7 @@ fn unknown_command_line_values_list_the_allowed_ones() {
     );
     // Real samples need an IF inside Nyquist.
     let params = InputParams {
-        format: Some(skyforge_receiver::input::format::parse_format("ri8", "--format").unwrap()),
+        format: Some(skyforge_receiver::input::parse_format("ri8", "--format").unwrap()),
         sample_rate_hz: Some(4e6),
         ..InputParams::default()
     };

@@ -78,8 +78,8 @@ fn read_speed_three_antennas_at_4_092_msps() {
 #[ignore = "speed measurement: cargo test --release --test input_speed -- --ignored --nocapture"]
 fn decode_speed_in_memory() {
     use num_complex::Complex32;
-    use skyforge_receiver::input::format::{decode_cf32, decode_ci8, decode_ci16, decode_ri8};
-    use skyforge_receiver::input::if_mixer::IfMixer;
+    use skyforge_receiver::input::IfMixer;
+    use skyforge_receiver::input::{decode_cf32, decode_ci8, decode_ci16, decode_ri8};
     let n = 4092;
     let blocks = 20_000;
     let bytes: Vec<u8> = (0..8 * n).map(|k| (k * 37 % 251) as u8 & 0x3f).collect();

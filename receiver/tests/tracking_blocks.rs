@@ -3,9 +3,9 @@
 
 mod tracking_support;
 
+use skyforge_receiver::tracking::TrackingConfig;
 use skyforge_receiver::tracking::TrackingError;
-use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd};
-use skyforge_receiver::tracking::config::TrackingConfig;
+use skyforge_receiver::tracking::{ChannelTracker, FrontEnd};
 use tracking_support::TestSignal;
 
 #[test]

@@ -5,9 +5,9 @@
 mod tracking_support;
 
 use skyforge_gnss::signal::Signal;
-use skyforge_receiver::tracking::channel::{ChannelTracker, FrontEnd, Handover, TrackingRecord};
-use skyforge_receiver::tracking::config::TrackingConfig;
+use skyforge_receiver::tracking::TrackingConfig;
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
+use skyforge_receiver::tracking::{ChannelTracker, FrontEnd, Handover, TrackingRecord};
 use std::ops::Range;
 use tracking_support::{TestSignal, mean_std, phase_errors};
 

@@ -1,5 +1,7 @@
 //! Errors that are the user's input: reported with exit code 2, whatever command met them.
 
+use skyforge_studies::study::results::ResultsError;
+
 /// Exit code for bad user input (scenario errors, existing output without `--force`).
 pub const EXIT_BAD_INPUT: u8 = 2;
 
@@ -8,9 +10,14 @@ pub const EXIT_BAD_INPUT: u8 = 2;
 #[error("{0}")]
 pub struct BadInput(pub String);
 
-/// Whether `e` is the user's input: a [`BadInput`] or a scenario the checks refused.
+/// Whether `e` is the user's input: a [`BadInput`], a scenario the checks refused, or a
+/// study file that is not the study's.
 pub fn is_bad_input(e: &anyhow::Error) -> bool {
     e.downcast_ref::<BadInput>().is_some()
         || e.downcast_ref::<skyforge_scenarios::ScenarioError>()
             .is_some()
+        || matches!(
+            e.downcast_ref::<ResultsError>(),
+            Some(ResultsError::NotThisStudy(_))
+        )
 }

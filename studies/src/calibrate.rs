@@ -11,7 +11,7 @@
 use hifitime::Duration;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_receiver::tracking::config::TrackingConfig;
+use skyforge_receiver::tracking::TrackingConfig;
 use skyforge_runner::{ChainError, synth_and_receive};
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};

@@ -13,8 +13,9 @@ use std::path::Path;
 use std::process::Command;
 
 /// The crates that produce or compare truth.
-const TRUTH_CRATES: [&str; 6] = [
+const TRUTH_CRATES: [&str; 7] = [
     "skyforge-signals",
+    "skyforge-formats",
     "skyforge-scenarios",
     "skyforge-runner",
     "skyforge-validate",

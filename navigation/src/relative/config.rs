@@ -65,9 +65,9 @@ pub struct RelativeConfig {
 pub enum Constraint {
     /// Plain LAMBDA.
     None,
-    /// The whole body geometry ([`super::multivariate`]).
+    /// The whole body geometry ([`super::search::multivariate`]).
     Geometry,
-    /// The baseline lengths ([`super::length`]).
+    /// The baseline lengths ([`super::search::length`]).
     Length,
 }
 

@@ -6,15 +6,15 @@
 
 pub mod config;
 pub mod files;
-pub mod length;
-pub mod multivariate;
 pub mod resolve;
 pub mod reverse;
+pub mod search;
 pub mod troposphere;
 
 pub use config::{RelativeConfig, ReverseConfig};
 pub use resolve::{AmbiguityStatus, Resolution};
 pub use reverse::ReverseFilter;
+use search::ConstrainedSearch;
 
 use crate::attitude::build;
 use crate::attitude::filter::{AttitudeFilter, FilterState};
@@ -65,10 +65,10 @@ pub struct RelativeSolver {
     /// The float ambiguities of earlier epochs (used with `config.float_memory`).
     memory: FloatMemory,
     attitude: Box<dyn AttitudeFilter>,
+    /// The integer search besides plain LAMBDA (`config.constraint`).
+    search: Box<dyn ConstrainedSearch>,
     /// The reverse baseline filter, when configured.
     reverse: Option<ReverseFilter>,
-    /// Body baselines (antenna k minus the master).
-    geometry: BodyGeometry,
     last_t_s: Option<f64>,
 }
 
@@ -84,7 +84,8 @@ impl RelativeSolver {
         }
         let baselines: Vec<Vec3> = others.iter().map(|p| p - master).collect();
         let geometry = BodyGeometry::new(&baselines)?;
-        let attitude = build(&config.attitude, geometry.clone())?;
+        let search = search::build(config.constraint, &geometry);
+        let attitude = build(&config.attitude, geometry)?;
         let reverse = match config.reverse_filter {
             Some(c) if baselines.len() == reverse::BASELINES => Some(ReverseFilter::new(c)?),
             Some(_) => {
@@ -104,7 +105,7 @@ impl RelativeSolver {
             hold: AmbiguityHold::new(),
             memory: FloatMemory::new(),
             attitude,
-            geometry,
+            search,
             last_t_s: None,
         })
     }
@@ -157,8 +158,13 @@ impl RelativeSolver {
         if self.config.float_memory {
             self.memory.remember(&float);
         }
-        let constraint = Some((&self.geometry, master_ecef_m));
-        let resolution = resolve::resolve(&float, &mut self.hold, &self.config, constraint)?;
+        let resolution = resolve::resolve(
+            &float,
+            &mut self.hold,
+            &self.config,
+            self.search.as_ref(),
+            master_ecef_m,
+        )?;
         let mut fixed = resolution.fixed_baselines(&float)?;
         if let Some(last) = self.last_t_s {
             let dt_s = (t_s - last).max(0.0);

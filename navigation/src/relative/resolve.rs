@@ -3,10 +3,9 @@
 //! the ratio test and the bootstrapped success rate; otherwise the largest reliable subset
 //! of decorrelated combinations (partial fixing), or none.
 
-use super::config::Constraint;
-use super::{RelativeConfig, RelativeError, length, multivariate};
+use super::search::ConstrainedSearch;
+use super::{RelativeConfig, RelativeError};
 use crate::ambiguity::{lambda, partial};
-use crate::attitude::BodyGeometry;
 use crate::baseline::{AmbiguityHold, FixedBaselines, FloatBaselines};
 use crate::pvt::raim::test_threshold;
 use nalgebra::DMatrix;
@@ -61,17 +60,17 @@ fn unit_rows(indices: &[usize], nm: usize) -> DMatrix<f64> {
     })
 }
 
-/// Resolve the ambiguities of `float`, using and updating `hold`. With `constraint` (the
-/// body geometry and the master's position) and `config.constraint =
-/// Constraint::Geometry` (two or more baselines), the free ambiguities are searched under
-/// the geometry ([`super::multivariate`]); with `Constraint::Length`, under the
-/// baselines' lengths ([`super::length`]); either is accepted when its search is
+/// Resolve the ambiguities of `float`, using and updating `hold`. The free ambiguities are
+/// searched by `search` too ([`super::search`]: under the body geometry or the baselines'
+/// lengths, the master at `master_ecef_m`); its result is accepted when the search is
 /// exhaustive and the ratio of its two best scores reaches `config.ratio_threshold`.
+/// Without one, LAMBDA's ratio test and success-rate floor decide.
 pub fn resolve(
     float: &FloatBaselines,
     hold: &mut AmbiguityHold,
     config: &RelativeConfig,
-    constraint: Option<(&BodyGeometry, &Vec3)>,
+    search: &dyn ConstrainedSearch,
+    master_ecef_m: &Vec3,
 ) -> Result<Resolution, RelativeError> {
     let layout = &float.model.layout;
     let m = float.model.baseline_count();
@@ -107,41 +106,20 @@ pub fn resolve(
             integers,
         });
     }
-    let search = lambda(&cond.ambiguities, &cond.covariance, 2)?;
-    let geometric = match (constraint, config.constraint) {
-        (Some((geometry, master)), Constraint::Geometry) if geometry.len() >= 2 => {
-            multivariate::search(
-                float,
-                &cond,
-                &held,
-                geometry,
-                master,
-                config.ratio_threshold,
-            )
-            .ok()
-        }
-        (Some((geometry, _)), Constraint::Length) => {
-            length::search(float, &cond, &held, geometry, config.ratio_threshold).ok()
-        }
-        _ => None,
-    };
+    let plain = lambda(&cond.ambiguities, &cond.covariance, 2)?;
+    let geometric = search.search(float, &cond, &held, master_ecef_m, config.ratio_threshold);
     let (ratio, success_rate, accepted, best) = match &geometric {
         Some(g) => (
             Some(g.ratio()),
-            search.success_rate,
+            plain.success_rate,
             g.exhaustive && g.ratio() >= config.ratio_threshold,
             g.integers.clone(),
         ),
         None => {
-            let ratio = search.ratio();
+            let ratio = plain.ratio();
             let ok = ratio.is_some_and(|r| r >= config.ratio_threshold)
-                && search.success_rate >= config.min_success_rate;
-            (
-                ratio,
-                search.success_rate,
-                ok,
-                search.best().integers.clone(),
-            )
+                && plain.success_rate >= config.min_success_rate;
+            (ratio, plain.success_rate, ok, plain.best().integers.clone())
         }
     };
     if accepted {

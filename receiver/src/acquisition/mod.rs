@@ -7,19 +7,21 @@
 //! - [`replica`]: ranging-code replicas at any sample rate and the carrier wipe-off.
 
 pub mod cfar;
-pub mod config;
-pub mod pcps;
+pub(crate) mod config;
+pub(crate) mod pcps;
 mod pcps_stage;
 pub mod pmf_fft;
 mod pmf_fft_stage;
-pub mod replica;
+pub(crate) mod replica;
 
 /// The complex `f32` sample type the acquisition functions take.
 use config::{AcquisitionMethod, AcquisitionSettings};
 pub use num_complex::Complex32;
-use pcps::{Acquisition, DopplerWindow};
+use pcps::Acquisition;
+pub use pcps::{BitTransition, DopplerWindow, Pcps, PcpsConfig};
 use pcps_stage::PcpsStage;
 use pmf_fft_stage::PmfFftStage;
+pub use replica::wipe_carrier;
 use skyforge_gnss::signal::Signal;
 
 /// Why an acquisition could not run.

@@ -6,7 +6,6 @@
 //! passed through unchanged (their scale is whatever the writer used: SkyForge's float
 //! output has noise of standard deviation 1 per component).
 
-pub use super::error::ALLOWED_DATATYPES;
 use super::error::InputError;
 use num_complex::Complex32;
 
@@ -116,7 +115,10 @@ mod tests {
         let e = parse_format("ci16_be", "--format").unwrap_err().to_string();
         assert_eq!(
             e,
-            format!("--format: unknown sample datatype \"ci16_be\"; allowed: {ALLOWED_DATATYPES}")
+            format!(
+                "--format: unknown sample datatype \"ci16_be\"; allowed: {}",
+                super::super::error::ALLOWED_DATATYPES
+            )
         );
     }
 

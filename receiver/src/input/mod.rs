@@ -8,16 +8,17 @@
 //! returns `None`. Samples arrive as complex f32 at the full scale documented in
 //! [`format`]; real IF input is mixed to complex baseband ([`if_mixer`]).
 
-pub mod datetime;
-pub mod error;
-pub mod format;
-pub mod if_mixer;
-pub mod reader;
-pub mod recording;
-pub mod stream;
+pub(crate) mod datetime;
+pub(crate) mod error;
+pub(crate) mod format;
+pub(crate) mod if_mixer;
+pub(crate) mod reader;
+pub(crate) mod recording;
+pub(crate) mod stream;
 
 pub use error::{Finding, InputError};
-pub use format::SampleFormat;
+pub use format::{SampleFormat, decode_cf32, decode_ci8, decode_ci16, decode_ri8, parse_format};
+pub use if_mixer::IfMixer;
 pub use reader::{AntennaInput, Block, BlockReader, InputReport};
 pub use recording::{InputParams, Recording};
 pub use stream::{FeedError, SampleFeed, StreamReader, sample_stream};

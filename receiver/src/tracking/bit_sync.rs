@@ -75,11 +75,6 @@ impl BitSynchroniser {
         self.edge
     }
 
-    /// Forget the evidence gathered so far (e.g. after the PLL lost lock).
-    pub fn restart(&mut self) {
-        *self = Self::new(self.modulation, self.config);
-    }
-
     /// Add the in-phase prompt of code period `period_index`; returns the edge phase when
     /// (or once) decided. A gap in the period indices restarts the evidence chain.
     pub fn feed(&mut self, period_index: u64, prompt_i: f64) -> Option<u32> {

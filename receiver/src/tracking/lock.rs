@@ -34,11 +34,6 @@ impl PllLockIndicator {
         }
         self.value
     }
-
-    /// Current value.
-    pub fn value(&self) -> f64 {
-        self.value
-    }
 }
 
 /// C/N0 estimator by the second- and fourth-order moments (M2M4) of the prompt: for a
@@ -86,11 +81,6 @@ impl Cn0Estimator {
             since_fresh: 0,
             peak: 0.0,
         }
-    }
-
-    /// Coherent integration time of the prompts (s).
-    pub fn integration_s(&self) -> f64 {
-        self.t_s
     }
 
     /// Add a prompt.

@@ -125,11 +125,6 @@ impl CarrierLoopFilter {
         self.w_fll = 0.0;
     }
 
-    /// Current Doppler estimate (Hz): the velocity accumulator.
-    pub fn doppler_hz(&self) -> f64 {
-        self.doppler_hz
-    }
-
     /// Current Doppler-rate estimate (Hz/s); 0 for the 2nd order.
     pub fn rate_hzps(&self) -> f64 {
         self.rate_hzps

@@ -2,16 +2,21 @@
 //! detectors and C/N0, bit synchronisation, and the per-satellite channel tracker that
 //! ties them together.
 
-pub mod bit_sync;
-pub mod carrier;
-pub mod channel;
-pub mod config;
-pub mod correlator;
-pub mod discriminators;
+pub(crate) mod bit_sync;
+pub(crate) mod carrier;
+pub(crate) mod channel;
+pub(crate) mod config;
+pub(crate) mod correlator;
+pub(crate) mod discriminators;
 pub mod error_budget;
-pub mod lock;
-pub mod loop_filter;
-pub mod ukf_carrier;
+pub(crate) mod lock;
+pub(crate) mod loop_filter;
+pub(crate) mod ukf_carrier;
+
+pub use channel::{ChannelTracker, FrontEnd, Handover, TrackingRecord};
+pub use config::{THESIS_KAPPA, THESIS_PROPOSED_Q, TrackingConfig};
+pub use correlator::{Correlator, NcoState, TapSet};
+pub use ukf_carrier::{UkfCarrier, UkfConfig};
 
 /// Errors of the tracking stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

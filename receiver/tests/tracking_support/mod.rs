@@ -9,7 +9,7 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::signal::{DataModulation, Signal};
-use skyforge_receiver::tracking::channel::Handover;
+use skyforge_receiver::tracking::Handover;
 
 /// One satellite signal and its truth.
 #[derive(Debug, Clone)]

@@ -1,7 +1,7 @@
 //! `skyforge synth --dry-run`: what a synthesis would write and the memory it needs,
 //! without writing anything.
 
-use crate::output::truth_h5;
+use skyforge_formats::truth::size_bound;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::synth::budget::Budget;
 use skyforge_signals::synth::session::SynthSession;
@@ -30,7 +30,7 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
             );
         }
     }
-    let truth = truth_h5::size_bound(b.epochs, n_ant, n_sats, b.truth_records_max);
+    let truth = size_bound(b.epochs, n_ant, n_sats, b.truth_records_max);
     println!(
         "truth.h5   at most {} ({} signal-truth records at most)",
         human(truth),

@@ -3,13 +3,13 @@
 use crate::bad_input::BadInput;
 use crate::cli::ReceiveArgs;
 use crate::commands::attitude::{AttitudeStage, Chain, read_nav};
-use crate::output::receiver_out::{ReceiverOutputs, Summary as OutputSummary};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_formats::receiver::{ReceiverOutputs, Summary as OutputSummary};
 use skyforge_gnss::signal::Signal;
 use skyforge_receiver::input::InputParams;
-use skyforge_receiver::input::format::parse_format;
+use skyforge_receiver::input::parse_format;
 use skyforge_receiver::pipeline::{EpochReport, ReceiverSummary};
 use skyforge_receiver::session::{
     Assistance, EpochSink, NavSource, ReceiveSession, SessionError, SinkError, read_config,

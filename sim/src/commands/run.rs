@@ -2,9 +2,9 @@
 
 use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
-use crate::output::truth_h5::{RunMeta, TruthWriter};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
 use skyforge_signals::truth::geometry::{GeometryChunk, epoch_count};
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
@@ -30,7 +30,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
     let mut world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;
     let meta = RunMeta::new(&scenario, world.origin.start(), world.step_s);
-    let path = staged.file("truth.h5");
+    let path = staged.file(TRUTH_H5);
     let mut writer = TruthWriter::create(&path, &meta, &world.satellites, &world.antennas)
         .with_context(|| format!("cannot create {}", path.display()))?;
 
@@ -89,7 +89,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
             *sum as f64 / n_epochs as f64
         );
     }
-    println!("wrote      {}", dir.join("truth.h5").display());
+    println!("wrote      {}", dir.join(TRUTH_H5).display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
 }

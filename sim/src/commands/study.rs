@@ -3,13 +3,14 @@
 
 use crate::bad_input::BadInput;
 use crate::output::slurm_scripts::SlurmJob;
-use crate::output::study_files::{
-    Journal, MERGED_FILE, read_shard, shard_path, shard_study_text, write_merged, write_shard,
-};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use skyforge_orbits::bounded_read::read_text;
+use skyforge_studies::study::MERGED_FILE;
+use skyforge_studies::study::results::{
+    Journal, read_shard, shard_path, shard_study_text, write_merged, write_shard,
+};
 use skyforge_studies::study::{RunResult, Shard, Study};
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};

@@ -4,12 +4,12 @@
 
 use crate::bad_input::BadInput;
 use crate::cli::ScenarioRun;
-use crate::output::receiver_out::ReceiverOutputs;
 use crate::output::staged_dir::StagedDir;
-use crate::output::synth_sinks::{ObsFiles, TruthFile};
-use crate::output::truth_h5::{RunMeta, TruthWriter};
+use crate::output::synth_sinks::ObsFiles;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
+use skyforge_formats::receiver::ReceiverOutputs;
+use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_orbits::Vec3;
 use skyforge_receiver::pipeline::assistance_toml;
@@ -161,16 +161,12 @@ pub fn synthesise(
         Some(SigmfRecordings::create(&staged.file(""), &bands, antennas)?)
     };
     let meta = RunMeta::new(scenario, origin.start(), GEOMETRY_STEP_S);
-    let truth_path = staged.file("truth.h5");
-    let mut truth_writer = TruthWriter::create(&truth_path, &meta, &sats, antennas)
+    let truth_path = staged.file(TRUTH_H5);
+    let mut truth = TruthWriter::create(&truth_path, &meta, &sats, antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
     if signal.truth_rate_hz > 0 {
-        truth_writer.create_signal(antennas)?;
+        truth.create_signal(antennas)?;
     }
-    let mut truth = TruthFile {
-        path: truth_path,
-        writer: truth_writer,
-    };
     let mut obs = ObsFiles::new(&staged.file(""), antennas, &signals);
     let measured_dir = staged.file(OBSERVATIONS_DIR);
     if observation_level {
@@ -212,10 +208,7 @@ pub fn synthesise(
     };
     obs.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
-    truth
-        .writer
-        .finish()
-        .with_context(|| writing(&truth.path))?;
+    truth.finish().with_context(|| writing(&truth_path))?;
     bar.finish_and_clear();
     let wrote_recordings = recordings.is_some();
     if let Some(recordings) = recordings {

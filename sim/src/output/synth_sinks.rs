@@ -1,17 +1,15 @@
-//! The writers `skyforge synth` plugs into a synthesis session: the geometry and signal
-//! truth into `truth.h5`, and the observation truth (and at the observation level the
-//! observables) into one RINEX 3.04 file per antenna (`<antenna>.obs.rnx`, opened at its
-//! first epoch with the antenna's position there).
+//! The observation writers `skyforge synth` plugs into a synthesis session: the
+//! observation truth (and at the observation level the observables) into one RINEX 3.04
+//! file per antenna (`<antenna>.obs.rnx`, opened at its first epoch with the antenna's
+//! position there). The truth sink is `truth.h5`'s writer
+//! (`skyforge_formats::truth::TruthWriter`).
 
-use super::truth_h5::TruthWriter;
 use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::observation::rinex_write::{ObsWriter, calendar_gpst};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::synth::render::LinkTruth;
-use skyforge_signals::synth::session::{ObservationSink, SinkError, TruthSink};
-use skyforge_signals::truth::geometry::GeometryChunk;
+use skyforge_signals::synth::session::{ObservationSink, SinkError};
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};
@@ -22,32 +20,6 @@ const OBS_INTERVAL_S: f64 = 1.0;
 /// `error` with the file it concerns.
 fn writing(path: &Path, error: impl std::fmt::Display) -> SinkError {
     format!("cannot write {}: {error}", path.display()).into()
-}
-
-/// `truth.h5` as a truth sink.
-#[derive(Debug)]
-pub struct TruthFile {
-    pub path: PathBuf,
-    pub writer: TruthWriter,
-}
-
-impl TruthSink for TruthFile {
-    fn signal(
-        &mut self,
-        antenna: usize,
-        records: &[LinkTruth],
-        first_sat: usize,
-    ) -> Result<(), SinkError> {
-        self.writer
-            .append_signal(antenna, records, first_sat)
-            .map_err(|e| writing(&self.path, e))
-    }
-
-    fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
-        self.writer
-            .append(chunk)
-            .map_err(|e| writing(&self.path, e))
-    }
 }
 
 type Writer = ObsWriter<BufWriter<File>>;

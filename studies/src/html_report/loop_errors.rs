@@ -11,8 +11,8 @@
 
 use super::chart::{Chart, Series};
 use super::page::Figure;
-use super::truth::Links;
 use super::{ReportError, figure};
+use skyforge_formats::truth::VisibleLinks;
 use skyforge_receiver::tracking::error_budget::{Budget, DopplerDynamics, LOCK_THRESHOLD_DEG};
 use skyforge_validate::thesis::loop_budget::{LoopFigure, figure_settings};
 use std::path::Path;
@@ -33,7 +33,7 @@ impl Pass {
     /// epochs that holds that peak. `rate_hzps` and `accel_hzps2` hold fd' and fd'' per
     /// link of `links`; `None` when no GPS satellite is in view.
     pub(super) fn most_dynamic(
-        links: &Links,
+        links: &VisibleLinks,
         t_s: &[f64],
         ids: &[String],
         rate_hzps: &[f64],
@@ -185,8 +185,8 @@ mod tests {
     }
 
     /// Links of (epoch, satellite) in truth order, 1 s epochs.
-    fn links(pairs: &[(u32, u16)]) -> Links {
-        Links {
+    fn links(pairs: &[(u32, u16)]) -> VisibleLinks {
+        VisibleLinks {
             epoch: pairs.iter().map(|p| p.0).collect(),
             sat: pairs.iter().map(|p| p.1).collect(),
         }

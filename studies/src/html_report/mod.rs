@@ -15,10 +15,8 @@ pub mod study;
 pub mod truth;
 
 use chart::Chart;
-use hdf5::H5Type;
 use page::{Figure, Page};
 use skyforge_formats::FormatError;
-use skyforge_formats::h5::read_column;
 use std::path::{Path, PathBuf};
 
 /// Largest dataset read (elements): beyond this a file is not one SkyForge wrote for a
@@ -134,13 +132,4 @@ fn figure(chart: &Chart, caption: String, path: &Path) -> Result<Figure, ReportE
         .to_svg()
         .map_err(|e| ReportError::new(path, e.to_string()))?;
     Ok(Figure { caption, svg })
-}
-
-/// The whole dataset `name` of `file` (at most `MAX_ELEMENTS` values).
-fn read_dataset<T: H5Type>(
-    file: &hdf5::File,
-    path: &Path,
-    name: &str,
-) -> Result<Vec<T>, ReportError> {
-    read_column(file, path, name, MAX_ELEMENTS).map_err(ReportError::from)
 }

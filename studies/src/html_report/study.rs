@@ -4,21 +4,18 @@
 
 use super::chart::{Chart, Series};
 use super::page::Section;
-use super::{ReportError, figure, read_dataset};
+use super::{ReportError, figure};
 use crate::study::Study;
-use hdf5::types::VarLenUnicode;
+use crate::study::results::{MEAN, MEAN_CI_HIGH, MEAN_CI_LOW, MergedFile, P95};
 use std::collections::BTreeMap;
 use std::path::Path;
 
 /// The study section of the report for `path`.
 pub fn section(path: &Path) -> Result<Section, ReportError> {
     let err = |m: String| ReportError::new(path, m);
-    let file = hdf5::File::open(path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
-    let text: VarLenUnicode = file
-        .attr("study_toml")
-        .and_then(|a| a.read_scalar())
-        .map_err(|e| err(format!("attribute study_toml: {e}")))?;
-    let study = Study::parse_plan(text.as_str(), &path.display().to_string())
+    let file = MergedFile::open(path)?;
+    let text = file.study_toml()?;
+    let study = Study::parse_plan(&text, &path.display().to_string())
         .map_err(|e| err(format!("attribute study_toml: {e}")))?;
     let points = study.points() as usize;
     let along = study
@@ -42,21 +39,12 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
     };
     for metric in &study.metrics {
         let name = metric.name();
-        let read = |stat: &str| -> Result<Vec<f64>, ReportError> {
-            let v: Vec<f64> = read_dataset(&file, path, &format!("summary/{name}/{stat}"))?;
-            if v.len() != points {
-                return Err(err(format!(
-                    "summary/{name}/{stat} has {} values for {points} points",
-                    v.len()
-                )));
-            }
-            Ok(v)
-        };
+        let read = |stat: &str| file.summary(name, stat, points);
         let (mean, low, high, p95) = (
-            read("mean")?,
-            read("mean_ci_low")?,
-            read("mean_ci_high")?,
-            read("p95")?,
+            read(MEAN)?,
+            read(MEAN_CI_LOW)?,
+            read(MEAN_CI_HIGH)?,
+            read(P95)?,
         );
         let y_label = format!("{name} ({})", metric.unit());
         let mut chart = Chart::new(&format!("{name} against {x_label}"), &x_label, &y_label);

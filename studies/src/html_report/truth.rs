@@ -5,8 +5,10 @@
 
 use super::chart::{Chart, Series};
 use super::page::Section;
-use super::{ReportError, figure, loop_errors, read_dataset};
-use hdf5::types::VarLenUnicode;
+use super::{MAX_ELEMENTS, ReportError, figure, loop_errors};
+use skyforge_formats::truth::{
+    DOPPLER_ACCEL_HZPS2, DOPPLER_HZ, DOPPLER_RATE_HZPS, TruthFile, VisibleLinks,
+};
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -16,19 +18,11 @@ const MAX_LEGEND: usize = 12;
 /// The truth section of the report for `path`.
 pub fn section(path: &Path) -> Result<Section, ReportError> {
     let err = |m: String| ReportError::new(path, m);
-    let file = hdf5::File::open(path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
-    let t_s: Vec<f64> = read_dataset(&file, path, "time/t_s")?;
-    let ids: Vec<VarLenUnicode> = read_dataset(&file, path, "satellites/id")?;
-    let ids: Vec<String> = ids.iter().map(|s| s.as_str().to_string()).collect();
-    let antennas = file
-        .group("antennas")
-        .and_then(|g| g.member_names())
-        .map_err(|e| err(format!("group antennas: {e}")))?;
-    let scenario: String = file
-        .attr("scenario")
-        .and_then(|a| a.read_scalar::<VarLenUnicode>())
-        .map(|s| s.as_str().to_string())
-        .unwrap_or_default();
+    let file = TruthFile::open(path)?;
+    let t_s = file.times(MAX_ELEMENTS)?;
+    let ids = file.satellite_ids(MAX_ELEMENTS)?;
+    let antennas = file.antenna_names()?;
+    let scenario = file.scenario_name().unwrap_or_default();
     let mut section = Section {
         heading: format!("Truth: scenario {scenario}"),
         paragraphs: vec![format!(
@@ -45,25 +39,18 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
         .len()
         .checked_mul(t_s.len())
         .and_then(|n| n.checked_mul(ids.len()));
-    if cells.is_none_or(|n| n > super::MAX_ELEMENTS) {
+    if cells.is_none_or(|n| n > MAX_ELEMENTS) {
         return Err(err(format!(
             "{} antennas x {} epochs x {} satellites of visibility; at most {} are read",
             antennas.len(),
             t_s.len(),
             ids.len(),
-            super::MAX_ELEMENTS
+            MAX_ELEMENTS
         )));
     }
     let mut visible = Vec::with_capacity(antennas.len());
     for name in &antennas {
-        let v: Vec<u8> = read_dataset(&file, path, &format!("antennas/{name}/visible"))?;
-        if v.len() != t_s.len() * ids.len() {
-            return Err(err(format!(
-                "antennas/{name}/visible has {} values, not epochs x satellites = {}",
-                v.len(),
-                t_s.len() * ids.len()
-            )));
-        }
+        let v = file.visible(name, t_s.len(), ids.len(), MAX_ELEMENTS)?;
         visible.push((name.as_str(), v));
     }
     for (system, thesis) in systems(&ids) {
@@ -80,30 +67,19 @@ pub fn section(path: &Path) -> Result<Section, ReportError> {
         )?);
     }
     if let Some(name) = antennas.first() {
-        let links = Links::read(&file, path, name, t_s.len(), ids.len())?;
-        let read = |dataset: &str| -> Result<Vec<f64>, ReportError> {
-            let values: Vec<f64> =
-                read_dataset(&file, path, &format!("antennas/{name}/{dataset}"))?;
-            if values.len() != links.epoch.len() {
-                return Err(err(format!(
-                    "antennas/{name}/{dataset} has {} values for {} links",
-                    values.len(),
-                    links.epoch.len()
-                )));
-            }
-            Ok(values)
-        };
+        let links = file.links(name, t_s.len(), ids.len(), MAX_ELEMENTS)?;
         let doppler = [
-            read("doppler_hz")?,
-            read("doppler_rate_hzps")?,
-            read("doppler_accel_hzps2")?,
+            file.link_values(name, DOPPLER_HZ, &links)?,
+            file.link_values(name, DOPPLER_RATE_HZPS, &links)?,
+            file.link_values(name, DOPPLER_ACCEL_HZPS2, &links)?,
         ];
         for (values, (title, unit, figure_no)) in doppler.iter().zip([
             ("Doppler shift", "Hz", "3.2-1"),
             ("Doppler rate", "Hz/s", "3.2-2"),
             ("Doppler acceleration", "Hz/s^2", "3.2-3"),
         ]) {
-            let chart = links.chart(
+            let chart = links_chart(
+                &links,
                 &format!("{title}, antenna {name}"),
                 &format!("{title} ({unit})"),
                 &t_s,
@@ -218,52 +194,28 @@ fn visible_chart(
     (chart, stats)
 }
 
-/// The visible links of one antenna: epoch row and satellite column of each.
-pub(super) struct Links {
-    pub(super) epoch: Vec<u32>,
-    pub(super) sat: Vec<u16>,
-}
-
-impl Links {
-    fn read(
-        file: &hdf5::File,
-        path: &Path,
-        antenna: &str,
-        epochs: usize,
-        sats: usize,
-    ) -> Result<Self, ReportError> {
-        let epoch: Vec<u32> = read_dataset(file, path, &format!("antennas/{antenna}/epoch_index"))?;
-        let sat: Vec<u16> = read_dataset(file, path, &format!("antennas/{antenna}/sat_index"))?;
-        let bad = epoch.len() != sat.len()
-            || epoch.iter().any(|&e| e as usize >= epochs)
-            || sat.iter().any(|&s| s as usize >= sats);
-        if bad {
-            return Err(ReportError::new(
-                path,
-                format!(
-                    "antennas/{antenna}: epoch_index and sat_index do not index the epochs and satellites"
-                ),
-            ));
-        }
-        Ok(Links { epoch, sat })
+/// One curve per satellite of `v` (one value per link) against time.
+fn links_chart(
+    links: &VisibleLinks,
+    title: &str,
+    y_label: &str,
+    t_s: &[f64],
+    ids: &[String],
+    v: &[f64],
+) -> Chart {
+    let mut per_sat: BTreeMap<u16, Vec<(f64, f64)>> = BTreeMap::new();
+    for ((&e, &s), &value) in links.epoch.iter().zip(&links.sat).zip(v) {
+        per_sat.entry(s).or_default().push((t_s[e as usize], value));
     }
-
-    /// One curve per satellite of `values` (one per link) against time.
-    fn chart(&self, title: &str, y_label: &str, t_s: &[f64], ids: &[String], v: &[f64]) -> Chart {
-        let mut per_sat: BTreeMap<u16, Vec<(f64, f64)>> = BTreeMap::new();
-        for ((&e, &s), &value) in self.epoch.iter().zip(&self.sat).zip(v) {
-            per_sat.entry(s).or_default().push((t_s[e as usize], value));
-        }
-        let mut chart = Chart::new(title, "time (s)", y_label);
-        let many = per_sat.len() > MAX_LEGEND;
-        for (s, points) in per_sat {
-            let name = if many {
-                String::new()
-            } else {
-                ids[s as usize].clone()
-            };
-            chart.series.push(Series::line(name, points));
-        }
-        chart
+    let mut chart = Chart::new(title, "time (s)", y_label);
+    let many = per_sat.len() > MAX_LEGEND;
+    for (s, points) in per_sat {
+        let name = if many {
+            String::new()
+        } else {
+            ids[s as usize].clone()
+        };
+        chart.series.push(Series::line(name, points));
     }
+    chart
 }

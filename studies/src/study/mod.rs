@@ -6,6 +6,7 @@
 pub mod file;
 pub mod metrics;
 pub mod plan;
+pub mod results;
 pub mod summary;
 
 pub use file::{Parameter, Study, StudyError};

@@ -23,19 +23,18 @@ use super::compare::{
 use crate::observables::ErrorStats;
 use crate::stats::rms;
 use crate::thesis::attitude_realtime::{ATTITUDE_ROW, BASELINE_ROWS};
-use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
-use nalgebra::{Quaternion, UnitQuaternion};
+use nalgebra::UnitQuaternion;
 use serde::Serialize;
 use skyforge_formats::FormatError;
 use skyforge_formats::attitude::{
     AMBIGUITIES_CSV, ATTITUDE_CSV, Line, Status, read_ambiguities_csv, read_attitude_csv,
 };
+use skyforge_formats::truth::{NOMINAL_BODY_ATTR, TRUE_BODY_ATTR, TRUTH_H5, TruthFile};
 use skyforge_gnss::observation::{ObsReadError, read_obs_file};
 
 use skyforge_navigation::geometry_file::{BodyGeometryFile, GeometryFileError};
 use skyforge_orbits::frames::euler::YawPitchRoll;
-use skyforge_orbits::time::parse_epoch;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_signals::antenna::check_antenna_name;
 use std::io::Write;
@@ -57,9 +56,10 @@ pub enum OutputsError {
     /// A file is missing, unreadable, too large or not what it should be.
     #[error("{path}: {message}")]
     File { path: PathBuf, message: String },
-    /// A line of one of the chain's CSV files is malformed or not of this run.
+    /// `truth.h5` or one of the chain's CSV files is unreadable or malformed, or a line is
+    /// not of this run.
     #[error(transparent)]
-    Csv(#[from] FormatError),
+    Format(#[from] FormatError),
     #[error(transparent)]
     Observations(#[from] ObsReadError),
     #[error(transparent)]
@@ -98,78 +98,25 @@ struct PlatformTruth {
 impl PlatformTruth {
     /// Read `path` for the antennas of `geometry` (names and nominal positions checked).
     fn read(path: &Path, geometry: &BodyGeometryFile) -> Result<Self, OutputsError> {
-        let err = |m: String| file_error(path, m);
-        std::fs::metadata(path).map_err(|e| err(e.to_string()))?;
-        let file = hdf5::File::open(path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
-        let start: VarLenUnicode = file
-            .attr("start_epoch")
-            .and_then(|a| a.read_scalar())
-            .map_err(|e| err(format!("attribute start_epoch: {e}")))?;
-        let start =
-            parse_epoch(start.as_str()).map_err(|e| err(format!("attribute start_epoch: {e}")))?;
-        let series = |name: &str, width: usize| -> Result<Vec<f64>, OutputsError> {
-            let ds = file
-                .dataset(name)
-                .map_err(|e| err(format!("dataset {name}: {e}")))?;
-            let shape = ds.shape();
-            let rows = shape.first().copied().unwrap_or(0);
-            let expected = if width == 1 { 1 } else { 2 };
-            if shape.len() != expected || (width > 1 && shape[1] != width) {
-                return Err(err(format!("dataset {name}: shape {shape:?}")));
-            }
-            if rows > MAX_TRUTH_ROWS {
-                return Err(err(format!(
-                    "dataset {name}: {rows} rows; at most {MAX_TRUTH_ROWS} are read"
-                )));
-            }
-            let v: Vec<f64> = ds
-                .read_raw()
-                .map_err(|e| err(format!("dataset {name}: {e}")))?;
-            if v.iter().any(|x| !x.is_finite()) {
-                return Err(err(format!("dataset {name}: a value is not finite")));
-            }
-            Ok(v)
-        };
-        let t_s = series("time/t_s", 1)?;
-        let r = series("platform/r_ecef_m", 3)?;
-        let q = series("platform/q_body_ecef", 4)?;
-        if r.len() != 3 * t_s.len() || q.len() != 4 * t_s.len() {
-            return Err(err(format!(
-                "time/t_s, platform/r_ecef_m and platform/q_body_ecef have {}, {} and {} rows",
-                t_s.len(),
-                r.len() / 3,
-                q.len() / 4
-            )));
-        }
-        if t_s.is_empty() || t_s.windows(2).any(|w| w[1] <= w[0]) {
-            return Err(err("time/t_s is empty or not increasing".into()));
-        }
+        let file = TruthFile::open(path)?;
+        let start = file.start_epoch()?;
+        let platform = file.platform(MAX_TRUTH_ROWS)?;
         let mut antennas = Vec::new();
         for a in &geometry.antennas {
-            let attr = |name: &str| -> Result<[f64; 3], OutputsError> {
-                let v: Vec<f64> = file
-                    .group(&format!("antennas/{}", a.name))
-                    .and_then(|g| g.attr(name))
-                    .and_then(|x| x.read_raw())
-                    .map_err(|e| err(format!("antenna {} attribute {name}: {e}", a.name)))?;
-                match v.as_slice() {
-                    [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([*x, *y, *z]),
-                    _ => Err(err(format!(
-                        "antenna {} attribute {name}: {v:?} is not a finite 3-vector",
-                        a.name
-                    ))),
-                }
-            };
-            let (nominal, true_m) = (attr("nominal_body_m")?, attr("true_body_m")?);
+            let nominal = file.antenna_vector(&a.name, NOMINAL_BODY_ATTR)?;
+            let true_m = file.antenna_vector(&a.name, TRUE_BODY_ATTR)?;
             if nominal
                 .iter()
                 .zip(&a.position_body_m)
                 .any(|(x, y)| (x - y).abs() > 1e-9)
             {
-                return Err(err(format!(
-                    "antenna {} is at {nominal:?} (nominal) here but at {:?} in geometry.toml: not the same run",
-                    a.name, a.position_body_m
-                )));
+                return Err(file_error(
+                    path,
+                    format!(
+                        "antenna {} is at {nominal:?} (nominal) here but at {:?} in geometry.toml: not the same run",
+                        a.name, a.position_body_m
+                    ),
+                ));
             }
             antennas.push(AntennaPosition {
                 name: a.name.clone(),
@@ -179,14 +126,11 @@ impl PlatformTruth {
         }
         Ok(Self {
             start,
-            r_ecef_m: r.chunks_exact(3).map(Vec3::from_column_slice).collect(),
-            q_body_ecef: q
-                .chunks_exact(4)
-                .map(|c| UnitQuaternion::from_quaternion(Quaternion::new(c[0], c[1], c[2], c[3])))
-                .collect(),
+            r_ecef_m: platform.r_ecef_m,
+            q_body_ecef: platform.q_body_ecef,
             true_body_m: antennas.iter().map(|a| Vec3::from(a.true_body_m)).collect(),
             antennas,
-            t_s,
+            t_s: platform.t_s,
         })
     }
 
@@ -265,7 +209,7 @@ pub fn compare_outputs(
             file_error(&geometry_path, format!("antenna name {:?}: {rule}", a.name))
         })?;
     }
-    let truth = PlatformTruth::read(&truth_dir.join("truth.h5"), &geometry)?;
+    let truth = PlatformTruth::read(&truth_dir.join(TRUTH_H5), &geometry)?;
     let baselines = geometry.antennas.len() - 1;
     let att_path = attitude_dir.join(ATTITUDE_CSV);
     let int_path = attitude_dir.join(AMBIGUITIES_CSV);

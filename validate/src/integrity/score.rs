@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 use skyforge_formats::monitor::{Alarm, MonitorRecord};
+use skyforge_formats::truth::{TRUTH_H5, TruthFile};
 use skyforge_signals::errors::events::EventConfig;
 use std::path::Path;
 
@@ -14,16 +15,12 @@ pub const HOLD_S: f64 = 600.0;
 
 /// The scenario a run was made from: the `scenario_toml` attribute of `run_dir/truth.h5`.
 pub fn run_scenario(run_dir: &Path) -> Result<skyforge_scenarios::Scenario, String> {
-    let path = run_dir.join("truth.h5");
-    let err = |m: String| format!("{}: {m}", path.display());
-    std::fs::metadata(&path).map_err(|e| err(e.to_string()))?;
-    let file = hdf5::File::open(&path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
-    let text: hdf5::types::VarLenUnicode = file
-        .attr("scenario_toml")
-        .and_then(|a| a.read_scalar())
-        .map_err(|e| err(format!("attribute scenario_toml: {e}")))?;
-    skyforge_scenarios::parse(text.as_str(), &path.display().to_string(), run_dir)
-        .map_err(|e| err(format!("attribute scenario_toml: {e}")))
+    let path = run_dir.join(TRUTH_H5);
+    let text = TruthFile::open(&path)
+        .and_then(|f| f.scenario_toml())
+        .map_err(|e| e.to_string())?;
+    skyforge_scenarios::parse(&text, &path.display().to_string(), run_dir)
+        .map_err(|e| format!("{}: attribute scenario_toml: {e}", path.display()))
 }
 
 /// How one fault event was seen.

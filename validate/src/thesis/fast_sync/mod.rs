@@ -21,9 +21,9 @@ use num_complex::Complex64;
 use signal::{SignalSource, SignalSpec};
 use skyforge_gnss::codes::gps_ca::gps_ca;
 use skyforge_receiver::acquisition::pmf_fft::{ChipTiming, PmfFft, despread_to_chips, theory};
-use skyforge_receiver::tracking::config::{THESIS_KAPPA, THESIS_PROPOSED_Q};
-use skyforge_receiver::tracking::correlator::{Correlator, NcoState, TapSet};
-use skyforge_receiver::tracking::ukf_carrier::{UkfCarrier, UkfConfig};
+use skyforge_receiver::tracking::{Correlator, NcoState, TapSet};
+use skyforge_receiver::tracking::{THESIS_KAPPA, THESIS_PROPOSED_Q};
+use skyforge_receiver::tracking::{UkfCarrier, UkfConfig};
 use std::f64::consts::TAU;
 
 /// Table identifier.

@@ -16,11 +16,9 @@
 //! [`FLUSH_ROWS`] at a time, so memory stays bounded by satellites x `FLUSH_ROWS` rows
 //! however long the run.
 
+use crate::h5::{append_rows, create_group, create_rows, create_versioned_file, text_attr};
 use hdf5::{Dataset, Group, H5Type, Location};
 use hifitime::Epoch;
-use skyforge_formats::h5::{
-    append_rows, create_group, create_rows, create_versioned_file, text_attr,
-};
 use skyforge_navigation::pvt::{Fix, VelocityFix};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::time::{epoch_from_gpst, gpst_week_sow};

@@ -16,6 +16,7 @@
 //! loop, [`search_with_misfit`], takes the misfit as a parameter and is shared with the
 //! baseline-length constraint of [`super::length`].
 
+use super::ConstrainedSearch;
 use crate::ambiguity::{MAX_CANDIDATES, Nearest};
 use crate::attitude::frames::{baselines_to_frame, ned_frame};
 use crate::attitude::least_squares::{misfit_upper_bound_with, weight_factor};
@@ -322,5 +323,42 @@ where
             scored,
             exhaustive: cost <= unseen,
         });
+    }
+}
+
+/// The search under the whole body geometry (`constraint = "geometry"`); it applies to
+/// two or more baselines.
+#[derive(Debug, Clone)]
+pub struct GeometrySearch {
+    geometry: BodyGeometry,
+}
+
+impl GeometrySearch {
+    pub fn new(geometry: BodyGeometry) -> Self {
+        Self { geometry }
+    }
+}
+
+impl ConstrainedSearch for GeometrySearch {
+    fn search(
+        &self,
+        float: &FloatBaselines,
+        cond: &Conditioned,
+        held: &[(usize, i64)],
+        master_ecef_m: &Vec3,
+        accept_ratio: f64,
+    ) -> Option<ConstrainedFix> {
+        if self.geometry.len() < 2 {
+            return None;
+        }
+        search(
+            float,
+            cond,
+            held,
+            &self.geometry,
+            master_ecef_m,
+            accept_ratio,
+        )
+        .ok()
     }
 }

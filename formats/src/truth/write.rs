@@ -1,17 +1,22 @@
-//! `truth.h5`: geometry truth streamed chunk by chunk into resizable HDF5 datasets.
-//! The schema is documented in `docs/truth-h5.md`; change both together.
+//! The `truth.h5` writer: geometry truth streamed chunk by chunk into resizable HDF5
+//! datasets, and the signal truth beside it.
 
+use super::{
+    ANTENNAS_GROUP, DOPPLER_ACCEL_HZPS2, DOPPLER_HZ, DOPPLER_RATE_HZPS, EPOCH_INDEX,
+    NOMINAL_BODY_ATTR, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
+    SATELLITES_GROUP, SCENARIO_ATTR, SCENARIO_TOML_ATTR, START_EPOCH_ATTR, T_S, TIME_GROUP,
+    TRUE_BODY_ATTR, VISIBLE,
+};
+use crate::h5::{append_rows, create_group, create_rows, create_versioned_file, text_attr};
 use hdf5::types::VarLenUnicode;
 use hdf5::{Dataset, Group, H5Type, Location};
-use skyforge_formats::h5::{
-    append_rows, create_group, create_rows, create_versioned_file, text_attr,
-};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::synth::render::LinkTruth;
+use skyforge_signals::synth::session::{SinkError, TruthSink};
 use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// Schema version written to the root attribute `schema_version`.
 pub const SCHEMA_VERSION: &str = "1";
@@ -41,15 +46,15 @@ const LINK_FIELDS: &[Field<LinkGeometry>] = &[
         l.range_jerk_mps3
     }),
     (
-        "doppler_hz",
+        DOPPLER_HZ,
         "Hz",
         "geometric Doppler -range_rate/lambda at the satellite's carrier",
         |l| l.doppler_hz,
     ),
-    ("doppler_rate_hzps", "Hz/s", "d(doppler)/dt", |l| {
+    (DOPPLER_RATE_HZPS, "Hz/s", "d(doppler)/dt", |l| {
         l.doppler_rate_hzps
     }),
-    ("doppler_accel_hzps2", "Hz/s^2", "d2(doppler)/dt2", |l| {
+    (DOPPLER_ACCEL_HZPS2, "Hz/s^2", "d2(doppler)/dt2", |l| {
         l.doppler_accel_hzps2
     }),
     ("light_time_s", "s", "signal travel time tau", |l| {
@@ -123,9 +128,10 @@ impl RunMeta {
     }
 }
 
-/// Streams geometry chunks into `truth.h5`.
+/// Streams geometry chunks into `truth.h5`; a synthesis session's truth sink.
 #[derive(Debug)]
 pub struct TruthWriter {
+    path: PathBuf,
     file: hdf5::File,
     t_s: Dataset,
     platform: [Dataset; 4],
@@ -248,7 +254,7 @@ fn series<T: H5Type>(
     unit: &str,
     description: &str,
 ) -> hdf5::Result<Dataset> {
-    let chunk_rows = if width == 0 && name != "t_s" {
+    let chunk_rows = if width == 0 && name != T_S {
         LINK_CHUNK
     } else {
         TIME_CHUNK
@@ -285,28 +291,28 @@ impl TruthWriter {
             SCHEMA_VERSION,
             concat!("skyforge ", env!("CARGO_PKG_VERSION")),
         )?;
-        text_attr(&file, "scenario", &meta.scenario)?;
+        text_attr(&file, SCENARIO_ATTR, &meta.scenario)?;
         text_attr(&file, "scenario_source", &meta.source)?;
-        text_attr(&file, "scenario_toml", &meta.text)?;
-        text_attr(&file, "start_epoch", &meta.start_epoch)?;
+        text_attr(&file, SCENARIO_TOML_ATTR, &meta.text)?;
+        text_attr(&file, START_EPOCH_ATTR, &meta.start_epoch)?;
         file.new_attr::<u64>()
             .create("seed")?
             .write_scalar(&meta.seed)?;
         f64_attr(&file, "step_s", &[meta.step_s])?;
 
-        let time = create_group(&file, "time")?;
+        let time = create_group(&file, TIME_GROUP)?;
         let t_s = series::<f64>(
             &time,
-            "t_s",
+            T_S,
             0,
             "s",
             "receive time, seconds since start_epoch (GPST)",
         )?;
-        let pg = create_group(&file, "platform")?;
+        let pg = create_group(&file, PLATFORM_GROUP)?;
         let platform = [
             series::<f64>(
                 &pg,
-                "r_ecef_m",
+                POSITION,
                 3,
                 "m",
                 "centre-of-mass position, ECEF (WGS-84)",
@@ -314,7 +320,7 @@ impl TruthWriter {
             series::<f64>(&pg, "v_ecef_mps", 3, "m/s", "centre-of-mass velocity, ECEF")?,
             series::<f64>(
                 &pg,
-                "q_body_ecef",
+                ROTATION,
                 4,
                 "1",
                 "body-to-ECEF rotation quaternion (w, x, y, z)",
@@ -327,7 +333,7 @@ impl TruthWriter {
                 "yaw, pitch, roll (3-2-1) of the body relative to the reference frame (orbital for a LEO, NED otherwise)",
             )?,
         ];
-        let sg = create_group(&file, "satellites")?;
+        let sg = create_group(&file, SATELLITES_GROUP)?;
         let ids: Vec<VarLenUnicode> = sats
             .iter()
             .filter_map(|s| s.to_string().parse().ok())
@@ -335,7 +341,7 @@ impl TruthWriter {
         sg.new_dataset_builder()
             .obj_track_times(false)
             .with_data(&ids)
-            .create("id")?;
+            .create(SATELLITE_ID)?;
         let carriers: Vec<f64> = sats
             .iter()
             .map(|s| Signal::of_system(s.system).carrier_hz())
@@ -346,12 +352,12 @@ impl TruthWriter {
             .create("carrier_hz")?;
         text_attr(&ds, "units", "Hz")?;
 
-        let ag = create_group(&file, "antennas")?;
+        let ag = create_group(&file, ANTENNAS_GROUP)?;
         let mut ants = Vec::new();
         for ant in antennas {
             let g = create_group(&ag, ant.name.as_str())?;
-            f64_attr(&g, "nominal_body_m", ant.nominal_body_m.as_slice())?;
-            f64_attr(&g, "true_body_m", ant.true_body_m.as_slice())?;
+            f64_attr(&g, NOMINAL_BODY_ATTR, ant.nominal_body_m.as_slice())?;
+            f64_attr(&g, TRUE_BODY_ATTR, ant.true_body_m.as_slice())?;
             f64_attr(&g, "boresight_body", ant.boresight_body.as_slice())?;
             f64_attr(&g, "fov_half_angle_rad", &[ant.fov_half_angle_rad])?;
             f64_attr(&g, "elevation_mask_rad", &[ant.elevation_mask_rad])?;
@@ -363,21 +369,21 @@ impl TruthWriter {
             ants.push(AntennaSets {
                 visible: series::<u8>(
                     &g,
-                    "visible",
+                    VISIBLE,
                     sats.len(),
                     "1",
                     "1 when inside field of view and mask and not Earth-blocked",
                 )?,
                 epoch_index: series::<u32>(
                     &g,
-                    "epoch_index",
+                    EPOCH_INDEX,
                     0,
                     "1",
                     "row of time/t_s of each visible link",
                 )?,
                 sat_index: series::<u16>(
                     &g,
-                    "sat_index",
+                    SAT_INDEX,
                     0,
                     "1",
                     "row of satellites/id of each visible link",
@@ -387,6 +393,7 @@ impl TruthWriter {
             });
         }
         Ok(Self {
+            path: path.to_path_buf(),
             file,
             t_s,
             platform,
@@ -401,17 +408,17 @@ impl TruthWriter {
     /// link and truth epoch).
     pub fn create_signal(&mut self, antennas: &[Antenna]) -> hdf5::Result<()> {
         for ant in antennas {
-            let antenna = self.file.group(&format!("antennas/{}", ant.name))?;
+            let antenna = self.file.group(&format!("{ANTENNAS_GROUP}/{}", ant.name))?;
             let g = create_group(&antenna, "signal")?;
             self.signal.push(SignalSets {
                 t_s: series::<f64>(
                     &g,
-                    "t_s",
+                    T_S,
                     0,
                     "s",
                     "receive time in receiver-clock time (block start)",
                 )?,
-                sat_index: series::<u16>(&g, "sat_index", 0, "1", "row of satellites/id")?,
+                sat_index: series::<u16>(&g, SAT_INDEX, 0, "1", "row of satellites/id")?,
                 fields: SIGNAL_FIELDS
                     .iter()
                     .map(|(name, unit, desc, _)| series::<f64>(&g, name, 0, unit, desc))
@@ -510,5 +517,26 @@ impl TruthWriter {
     pub fn finish(self) -> hdf5::Result<()> {
         self.file.flush()?;
         self.file.close()
+    }
+
+    /// `error` with the file it concerns.
+    fn writing(&self, error: hdf5::Error) -> SinkError {
+        format!("cannot write {}: {error}", self.path.display()).into()
+    }
+}
+
+impl TruthSink for TruthWriter {
+    fn signal(
+        &mut self,
+        antenna: usize,
+        records: &[LinkTruth],
+        first_sat: usize,
+    ) -> Result<(), SinkError> {
+        self.append_signal(antenna, records, first_sat)
+            .map_err(|e| self.writing(e))
+    }
+
+    fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
+        self.append(chunk).map_err(|e| self.writing(e))
     }
 }

@@ -20,6 +20,7 @@
 //! multivariate constraint ([`super::multivariate::search_with_misfit`]), which proves
 //! the best when it is exhaustive.
 
+use super::ConstrainedSearch;
 use super::multivariate::{CandidateMisfit, ConstrainedError, ConstrainedFix, search_with_misfit};
 use crate::attitude::{AttitudeError, BodyGeometry};
 use crate::baseline::{Conditioned, FloatBaselines};
@@ -298,6 +299,32 @@ pub fn search(
     search_with_misfit(float, cond, held, geometry, accept_ratio, |covariance| {
         LengthMisfit::new(covariance, &lengths)
     })
+}
+
+/// The search under each baseline's length (`constraint = "length"`), any number of
+/// baselines.
+#[derive(Debug, Clone)]
+pub struct LengthSearch {
+    geometry: BodyGeometry,
+}
+
+impl LengthSearch {
+    pub fn new(geometry: BodyGeometry) -> Self {
+        Self { geometry }
+    }
+}
+
+impl ConstrainedSearch for LengthSearch {
+    fn search(
+        &self,
+        float: &FloatBaselines,
+        cond: &Conditioned,
+        held: &[(usize, i64)],
+        _: &Vec3,
+        accept_ratio: f64,
+    ) -> Option<ConstrainedFix> {
+        search(float, cond, held, &self.geometry, accept_ratio).ok()
+    }
 }
 
 #[cfg(test)]

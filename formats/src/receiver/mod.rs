@@ -1,5 +1,5 @@
 //! What `skyforge receive` writes at every observation epoch of the bundled receiver, into
-//! one directory (the caller's staged output directory):
+//! one directory (the caller's staged output directory), and the files' names:
 //! - `<antenna>.obs.rnx`: RINEX 3.04 observations with loss-of-lock and signal strength
 //!   indicators, tagged with the receiver time
 //!   ([`RinexObsFiles`], the receiver crate's writer); the header is written at
@@ -27,6 +27,16 @@ use skyforge_receiver::pipeline::EpochReport;
 use skyforge_receiver::session::{EpochSink, RinexObsFiles, SinkError};
 use skyforge_signals::antenna::check_antenna_name;
 use std::path::Path;
+
+/// The fixes of every antenna, one row per antenna and epoch.
+pub const PVT_CSV: &str = "pvt.csv";
+/// The observations and fixes in HDF5.
+pub const RECEIVER_H5: &str = "receiver.h5";
+
+/// An antenna's NMEA log.
+pub fn nmea_file(antenna: &str) -> String {
+    format!("{antenna}.nmea")
+}
 
 /// What was written.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -83,14 +93,14 @@ impl ReceiverOutputs {
         }
         let nmea = names
             .iter()
-            .map(|n| NmeaLog::create(&dir.join(format!("{n}.nmea"))))
+            .map(|n| NmeaLog::create(&dir.join(nmea_file(n))))
             .collect::<anyhow::Result<Vec<_>>>()?;
-        let h5_path = dir.join("receiver.h5");
+        let h5_path = dir.join(RECEIVER_H5);
         let h5 = ReceiverH5::create(&h5_path, &names)
             .with_context(|| format!("cannot create {}", h5_path.display()))?;
         Ok(Self {
             rinex: RinexObsFiles::new(dir, &names, systems, approx_ecef_m, interval_s),
-            csv: PvtCsv::create(&dir.join("pvt.csv"))?,
+            csv: PvtCsv::create(&dir.join(PVT_CSV))?,
             nmea,
             h5,
             summary: Summary {
