@@ -9,7 +9,7 @@ use crate::h5::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::relative::AmbiguityStatus;
-use skyforge_navigation::relative::files::EpochOutcome;
+use skyforge_navigation::relative::EpochOutcome;
 use skyforge_orbits::ephemeris::SatId;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};

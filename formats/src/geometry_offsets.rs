@@ -7,7 +7,7 @@
 use crate::csv::FormatError;
 use crate::h5::{append_rows, create_epoch_file, create_rows, read_column};
 use hifitime::Epoch;
-use skyforge_navigation::geometry_offset::stacked_ukf::OffsetState;
+use skyforge_navigation::geometry_offset::OffsetState;
 use std::path::Path;
 
 /// One row per update.
@@ -195,7 +195,7 @@ fn rows<const N: usize>(v: &[f64]) -> Vec<[f64; N]> {
 mod tests {
     use super::*;
     use skyforge_orbits::Vec3;
-    use skyforge_orbits::frames::euler::YawPitchRoll;
+    use skyforge_orbits::frames::YawPitchRoll;
 
     fn row(t_s: f64, k: f64) -> OffsetRow {
         let angles = YawPitchRoll {

@@ -10,7 +10,7 @@ use skyforge_formats::truth::{
 };
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::platform::PlatformState;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
@@ -34,7 +34,7 @@ fn antenna(name: &str, x: f64) -> Antenna {
 
 /// Whether satellite `s` is in view of antenna `a` at epoch `k`: a pattern with gaps.
 fn in_view(k: usize, a: usize, s: usize) -> bool {
-    (k + 2 * a + s) % 3 != 0
+    !(k + 2 * a + s).is_multiple_of(3)
 }
 
 /// Epochs `first..first + n` of a platform turning about Z, with link values that encode

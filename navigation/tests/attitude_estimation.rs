@@ -6,18 +6,18 @@ use nalgebra::{DMatrix, DVector, Matrix3, Matrix4, SymmetricEigen, Vector3};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
+use skyforge_navigation::attitude::EkfAttitude;
+use skyforge_navigation::attitude::UkfAttitude;
 use skyforge_navigation::attitude::build;
-use skyforge_navigation::attitude::config::{AttitudeConfig, AttitudeMethod};
-use skyforge_navigation::attitude::filter::{AttitudeFilter, FilterInit};
-use skyforge_navigation::attitude::frames::ned_baselines_from_ecef;
-use skyforge_navigation::attitude::jacobian::vec_r_jacobian;
-use skyforge_navigation::attitude::kalman::EkfAttitude;
 use skyforge_navigation::attitude::least_squares::{LsConfig, solve};
-use skyforge_navigation::attitude::ukf::UkfAttitude;
+use skyforge_navigation::attitude::ned_baselines_from_ecef;
+use skyforge_navigation::attitude::vec_r_jacobian;
+use skyforge_navigation::attitude::{AttitudeConfig, AttitudeMethod};
 use skyforge_navigation::attitude::{
     AttitudeError, AttitudeEstimate, BodyGeometry, NedBaselines, YawPitchRoll, angle_error,
     wrap_diff, wrap_pi,
 };
+use skyforge_navigation::attitude::{AttitudeFilter, FilterInit};
 use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
@@ -458,9 +458,9 @@ fn kf_and_ukf_are_consistent_on_their_own_process_model() {
             initial_rate_sigma_rad_s: rate0,
             ..AttitudeConfig::default()
         };
-        let q6 = skyforge_navigation::attitude::filter::process_noise::<6>(1.0, &[s_psd; 3]);
+        let q6 = skyforge_navigation::attitude::process_noise::<6>(1.0, &[s_psd; 3]);
         let l6 = q6.cholesky().unwrap().l();
-        let phi = skyforge_navigation::attitude::filter::transition::<6>(1.0);
+        let phi = skyforge_navigation::attitude::transition::<6>(1.0);
         let stats = run_filter(&config, 61, RUNS, epochs, 100, |r| {
             let mut x = nalgebra::Vector6::new(
                 179.0 * DEG,

@@ -19,7 +19,7 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::baseline::{
     AmbiguityPrior, DdLayout, FloatBaselines, FloatMemory, LineOfSight,
 };
-use skyforge_navigation::relative::config::Constraint;
+use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, RelativeSolver};
 use skyforge_orbits::ephemeris::SatId;
 

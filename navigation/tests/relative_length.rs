@@ -17,8 +17,8 @@ use rand_chacha::ChaCha8Rng;
 use skyforge_navigation::ambiguity::lambda;
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::baseline::{AmbiguityHold, ElevationNoise, FloatBaselines, NoiseModel};
-use skyforge_navigation::relative::config::Constraint;
-use skyforge_navigation::relative::resolve::resolve;
+use skyforge_navigation::relative::Constraint;
+use skyforge_navigation::relative::resolve;
 use skyforge_navigation::relative::search::{self, NoConstraint, length, multivariate};
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 

@@ -12,7 +12,7 @@ use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
 use skyforge_navigation::baseline::{FixedBaselines, FloatBaselines};
 use skyforge_navigation::relative::ReverseConfig;
-use skyforge_navigation::relative::reverse::{BaselineMeasurement, ReverseFilter};
+use skyforge_navigation::relative::{BaselineMeasurement, ReverseFilter};
 
 #[test]
 fn the_measurement_solved_alone_is_the_fixed_solution() {

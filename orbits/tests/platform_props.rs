@@ -2,8 +2,8 @@
 
 use hifitime::Epoch;
 use proptest::prelude::*;
+use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::frames::euler::YawPitchRoll;
 use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};

@@ -7,8 +7,8 @@
 
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::read_sp3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_orbits::ephemeris::sp3::read_sp3;
 use skyforge_orbits::ephemeris::{
     BoundEphemeris, BroadcastEphemeris, EphemerisStore, OrbitClass, SatId, System, nominal,
 };

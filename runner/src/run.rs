@@ -9,14 +9,14 @@ use hifitime::{Duration, Epoch};
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Fix, PvtConfig};
-use skyforge_navigation::relative::files::single_point_fixes;
+use skyforge_navigation::relative::single_point_fixes;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, System};
+use skyforge_orbits::platform::Hermite3;
 use skyforge_orbits::platform::PlatformState;
-use skyforge_orbits::platform::hermite::Hermite3;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_receiver::pipeline::{EpochReport, ReceiverConfig, assistance_toml};
 use skyforge_receiver::session::{

@@ -5,8 +5,8 @@
 
 mod support;
 
+use skyforge_validate::attitude::AxisStats;
 use skyforge_validate::attitude::compare_outputs;
-use skyforge_validate::attitude::outputs::AxisStats;
 use std::path::Path;
 use support::{h5_contents, receive_all_recordings, skyforge, skyforge_ok, text};
 

@@ -481,7 +481,7 @@ fn link_budget_and_per_antenna_clocks_reach_the_signal_truth() {
     };
     // C/N0 from the budget: default GPS EIRP, free-space loss over the link's range,
     // 0 dBi (no gain pattern), kT at 290 K.
-    let eirp = skyforge_signals::errors::link_budget::default_gps_eirp_dbw();
+    let eirp = skyforge_signals::errors::default_gps_eirp_dbw();
     let k_t = 10.0 * (1.380_649e-23f64 * 290.0).log10();
     let (pr, cn0, rx, sat_clock, iono, tropo) = (
         read("ant1", "pseudorange_m"),

@@ -7,7 +7,7 @@
 mod support;
 
 use skyforge_navigation::geometry_file::BodyGeometryFile;
-use skyforge_navigation::geometry_offset::shape::align;
+use skyforge_navigation::geometry_offset::align;
 use skyforge_orbits::Vec3;
 use std::path::Path;
 use support::{dataset, short_scenario, skyforge, skyforge_ok, text};

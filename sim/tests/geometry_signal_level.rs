@@ -8,7 +8,7 @@
 mod support;
 
 use skyforge_navigation::geometry_file::BodyGeometryFile;
-use skyforge_navigation::geometry_offset::shape::align;
+use skyforge_navigation::geometry_offset::align;
 use skyforge_orbits::Vec3;
 use support::{short_scenario, skyforge_ok};
 

@@ -21,7 +21,7 @@ use serde_json::Value;
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
 use skyforge_orbits::frames::ned::c_ecef_ned;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_validate::attitude::outputs::compare_outputs;
+use skyforge_validate::attitude::compare_outputs;
 use std::path::Path;
 use support::{require_rnx2rtkp, rnx2rtkp, rtklib_enu_solutions, skyforge_ok, truth_site};
 

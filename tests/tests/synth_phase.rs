@@ -16,8 +16,8 @@ use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
 use skyforge_signals::synth::render::{Synthesiser, append_to};
+use skyforge_signals::truth::QuinticHermite;
 use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
-use skyforge_signals::truth::interp::QuinticHermite;
 
 const FS_HZ: f64 = 4.0e6;
 const BLOCKS: usize = 200;

@@ -8,7 +8,7 @@
 
 use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::relative::config::Constraint;
+use skyforge_navigation::relative::Constraint;
 use skyforge_runner::observation_run;
 use skyforge_signals::obs_model::ObsNoiseConfig;
 use skyforge_validate::attitude::success::{SuccessRate, single_epoch};

@@ -10,7 +10,7 @@
 //! at least as often as without them, and two systems at least as often as either alone.
 
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::relative::config::Constraint;
+use skyforge_navigation::relative::Constraint;
 use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
 
 // assumed: 300 s of the 600 s scenario, chosen before the first run, to keep the default

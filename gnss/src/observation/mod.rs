@@ -2,14 +2,16 @@
 //! whoever measured it (the bundled receiver, the synthesiser's truth, another receiver's
 //! RINEX), and the one RINEX 3.04 observation writer and reader.
 
-pub mod as_written;
-pub mod noise;
+pub(crate) mod as_written;
+pub(crate) mod noise;
 mod read_error;
-pub mod record;
+pub(crate) mod record;
 pub mod rinex2_read;
-pub mod rinex_codes;
+pub(crate) mod rinex_codes;
 pub mod rinex_read;
 pub mod rinex_write;
+
+pub use as_written::epoch_as_written;
 
 pub use noise::{ElevationNoise, dll_thermal_chips, pll_thermal_cycles};
 pub use read_error::ObsReadError;

@@ -22,25 +22,27 @@
 //!   linearised with `J(xi)`).
 //! * [`ukf`]: the UKF of eqs. 4.3-16..4.3-32.
 
-pub mod config;
-pub mod filter;
-pub mod frames;
-pub mod jacobian;
-pub mod kalman;
+pub(crate) mod config;
+pub(crate) mod filter;
+pub(crate) mod frames;
+pub(crate) mod jacobian;
+pub(crate) mod kalman;
 pub mod least_squares;
 mod ls_stage;
-pub mod ukf;
-pub mod unscented;
-pub mod wahba;
+pub(crate) mod ukf;
+pub(crate) mod unscented;
+pub(crate) mod wahba;
 
-use config::{AttitudeConfig, AttitudeMethod};
-use filter::AttitudeFilter;
-use kalman::EkfAttitude;
+pub use config::{AttitudeConfig, AttitudeMethod, THESIS_KAPPA};
+pub use filter::{AttitudeFilter, FilterInit, process_noise, transition};
+pub use frames::ned_baselines_from_ecef;
+pub use jacobian::vec_r_jacobian;
+pub use kalman::EkfAttitude;
 pub use ls_stage::LeastSquaresStage;
 use nalgebra::{DMatrix, DVector, Matrix3};
 use skyforge_orbits::Vec3;
-pub use skyforge_orbits::frames::euler::YawPitchRoll;
-use ukf::UkfAttitude;
+pub use skyforge_orbits::frames::YawPitchRoll;
+pub use ukf::UkfAttitude;
 
 /// Shortest body-frame baseline accepted (m): anything shorter is treated as zero.
 pub const MIN_BASELINE_M: f64 = 1e-4;

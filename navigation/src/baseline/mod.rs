@@ -14,12 +14,12 @@
 //! (eq. 2.4-61), so the least-squares float solution of all baselines (eqs. 2.4-62,
 //! 2.4-63) is one small solve shared by every baseline: see [`float`].
 
-pub mod differences;
-pub mod float;
-pub mod hold;
-pub mod memory;
-pub mod model;
-pub mod noise;
+pub(crate) mod differences;
+pub(crate) mod float;
+pub(crate) mod hold;
+pub(crate) mod memory;
+pub(crate) mod model;
+pub(crate) mod noise;
 
 pub use differences::{DdBlock, DdLayout, LineOfSight};
 pub use float::AmbiguityPrior;

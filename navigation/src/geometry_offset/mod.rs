@@ -14,5 +14,11 @@
 
 pub mod iterative;
 pub mod joint_ls;
-pub mod shape;
-pub mod stacked_ukf;
+pub(crate) mod shape;
+pub(crate) mod stacked_ukf;
+
+pub use shape::{align, invariants};
+pub use stacked_ukf::{
+    OffsetConfig, OffsetEstimator, OffsetState, Orientation, Step, THESIS_OFFSET_RATE_PSD,
+    THESIS_RATE_PSD, WindowWeighting,
+};

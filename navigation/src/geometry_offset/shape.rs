@@ -15,7 +15,9 @@
 
 use crate::attitude::AttitudeError;
 use crate::attitude::wahba::wahba_svd;
-use nalgebra::{Matrix3, SMatrix, Vector3};
+use nalgebra::Vector3;
+#[cfg(test)]
+use nalgebra::{Matrix3, SMatrix};
 use skyforge_orbits::{Mat3, Vec3};
 
 /// The shape of two baselines: their lengths and their dot product (m, m, m^2), which no
@@ -28,6 +30,7 @@ pub fn invariants(b: &[Vec3; 2]) -> Invariants {
 }
 
 /// `d invariants / d (b1, b2)` (3 x 6, order `x1, y1, z1, x2, y2, z2`).
+#[cfg(test)]
 pub fn invariants_jacobian(b: &[Vec3; 2]) -> SMatrix<f64, 3, 6> {
     let mut j = SMatrix::<f64, 3, 6>::zeros();
     for a in 0..3 {
@@ -41,6 +44,7 @@ pub fn invariants_jacobian(b: &[Vec3; 2]) -> SMatrix<f64, 3, 6> {
 
 /// The covariance of the [`Invariants`] of `b` from the covariance `p` of its six
 /// components (first order).
+#[cfg(test)]
 pub fn invariants_covariance(b: &[Vec3; 2], p: &SMatrix<f64, 6, 6>) -> Matrix3<f64> {
     let j = invariants_jacobian(b);
     j * p * j.transpose()
@@ -50,6 +54,7 @@ pub fn invariants_covariance(b: &[Vec3; 2], p: &SMatrix<f64, 6, 6>) -> Matrix3<f
 /// covariance from `p` (the estimate's six components): chi-square with 3 degrees of
 /// freedom when the estimate and its covariance agree. `None` if that covariance is not
 /// positive definite.
+#[cfg(test)]
 pub fn shape_nees(estimate: &[Vec3; 2], p: &SMatrix<f64, 6, 6>, truth: &[Vec3; 2]) -> Option<f64> {
     let e = invariants(estimate) - invariants(truth);
     let c = invariants_covariance(estimate, p).cholesky()?;
@@ -85,6 +90,7 @@ pub fn align(estimate: &[Vec3; 2], nominal: &[Vec3; 2]) -> Result<Aligned, Attit
 
 /// A small rotation about `axis` by `angle` (Rodrigues), for tests and callers that
 /// build rotated geometries.
+#[cfg(test)]
 pub fn rotation(axis: &Vec3, angle_rad: f64) -> Mat3 {
     nalgebra::Rotation3::from_axis_angle(&nalgebra::Unit::new_normalize(*axis), angle_rad)
         .into_inner()

@@ -11,17 +11,18 @@
 //! the largest normalised residual ([`exclusion`]), and the fix carries its protection
 //! levels and integrity verdict ([`protection`], [`Protection`]).
 
-pub mod exclusion;
+pub(crate) mod exclusion;
 mod geometry;
 pub mod nmea;
-pub mod protection;
-pub mod raim;
+pub(crate) mod protection;
+pub(crate) mod raim;
 pub(crate) mod solve;
 #[cfg(test)]
 mod test_geometry;
 mod velocity;
 
 pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
+pub use raim::{chi2_survival, detection_parameters};
 pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 

@@ -110,6 +110,7 @@ const POISSON_TERMS: usize = 5_000;
 /// n = `dof` (the digest's corrected exponent 2^{2j}: each term is the Poisson weight
 /// e^{-lambda/2} (lambda/2)^j / j! times the central chi-square(n + 2j) density). The sum
 /// is taken in logarithms about its largest term.
+#[cfg(test)]
 pub fn ncx2_pdf(dof: usize, lambda: f64, x: f64) -> f64 {
     if x <= 0.0 || dof == 0 {
         return 0.0;

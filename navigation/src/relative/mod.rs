@@ -4,16 +4,17 @@
 //! ([`crate::attitude`]). It runs on observation records, so equally on the receiver's
 //! observables, the observation level's and anyone's RINEX.
 
-pub mod config;
-pub mod files;
-pub mod resolve;
-pub mod reverse;
+pub(crate) mod config;
+pub(crate) mod files;
+pub(crate) mod resolve;
+pub(crate) mod reverse;
 pub mod search;
-pub mod troposphere;
+pub(crate) mod troposphere;
 
-pub use config::{RelativeConfig, ReverseConfig};
-pub use resolve::{AmbiguityStatus, Resolution};
-pub use reverse::ReverseFilter;
+pub use config::{Constraint, RelativeConfig, ReverseConfig};
+pub use files::{EpochChain, EpochOutcome, FilesError, run_files, single_point_fixes};
+pub use resolve::{AmbiguityStatus, Resolution, resolve};
+pub use reverse::{BaselineMeasurement, ReverseFilter};
 use search::ConstrainedSearch;
 
 use crate::attitude::build;

@@ -2,16 +2,19 @@
 //! D1/D2 user algorithms, RINEX 2/3/4 navigation files, SP3 precise orbits, ephemeris
 //! selection, and the embedded default constellations.
 
-pub mod broadcast;
+pub(crate) mod broadcast;
 pub mod config;
 pub mod klobuchar;
 pub mod nominal;
 pub mod rinex_nav;
 pub mod rinex_nav_iono;
-pub mod rinex_nav_write;
-pub mod sat_id;
-pub mod sp3;
-pub mod store;
+pub(crate) mod rinex_nav_write;
+pub(crate) mod sat_id;
+pub(crate) mod sp3;
+pub(crate) mod store;
+
+pub use rinex_nav_write::write_nav;
+pub use sp3::read_sp3;
 
 pub use broadcast::{
     BoundEphemeris, BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements,

@@ -2,7 +2,9 @@
 //! orbital frame of thesis section 2.5.1, and yaw/pitch/roll (3-2-1) with quaternions.
 
 pub mod earth_rotation;
-pub mod euler;
+pub(crate) mod euler;
 pub mod geodetic;
 pub mod ned;
-pub mod orbital;
+pub(crate) mod orbital;
+
+pub use euler::YawPitchRoll;

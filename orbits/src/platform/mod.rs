@@ -16,10 +16,12 @@
 pub mod attitude;
 pub mod config;
 pub(crate) mod csv_table;
-pub mod ground;
-pub mod hermite;
+pub(crate) mod ground;
+pub(crate) mod hermite;
 mod leo;
-pub mod trajectory;
+pub(crate) mod trajectory;
+
+pub use hermite::Hermite3;
 
 use crate::check::Invalid;
 use crate::frames::earth_rotation::EarthRotation;

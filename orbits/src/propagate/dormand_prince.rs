@@ -128,6 +128,7 @@ impl DenseStep {
         self.t_start_s + self.h_s
     }
     /// Step size (s).
+    #[cfg(test)]
     pub fn h_s(&self) -> f64 {
         self.h_s
     }
@@ -184,11 +185,6 @@ impl DormandPrince {
     /// Current time (s): the end of the last accepted step.
     pub fn t_s(&self) -> f64 {
         self.t_s
-    }
-
-    /// Current state.
-    pub fn y(&self) -> &State6 {
-        &self.y
     }
 
     /// Take one accepted step (retrying with smaller steps as the error control demands)

@@ -1,14 +1,16 @@
 //! The LEO numerical propagator: two-body + J2 (J3..J6 optional) + atmospheric drag,
 //! integrated by an adaptive Dormand-Prince 5(4) with dense output.
 
-pub mod atmosphere;
+pub(crate) mod atmosphere;
 pub mod config;
-pub mod dormand_prince;
-pub mod elements;
-pub mod forces;
+pub(crate) mod dormand_prince;
+pub(crate) mod elements;
+pub(crate) mod forces;
 pub mod leo;
-pub mod sun;
-pub mod tle;
+pub(crate) mod sun;
+pub(crate) mod tle;
+
+pub use elements::KeplerianElements;
 
 /// Error during propagation.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -44,6 +44,7 @@ impl Tle {
     }
 
     /// The TLE epoch (UTC).
+    #[cfg(test)]
     pub fn epoch(&self) -> Epoch {
         self.epoch
     }

@@ -4,10 +4,12 @@
 pub mod clock;
 pub mod events;
 pub mod ionosphere;
-pub mod link_budget;
+pub(crate) mod link_budget;
 pub mod multipath;
 pub mod seed;
 pub mod troposphere;
+
+pub use link_budget::default_gps_eirp_dbw;
 
 use clock::OscillatorConfig;
 use events::EventConfig;

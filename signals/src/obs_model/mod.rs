@@ -9,9 +9,9 @@
 //! (`skyforge calibrate`), the elevation model of thesis eqs. 2.4-9/2.4-10, or constant
 //! standard deviations (what thesis table 1.2-2 prescribes).
 
-pub mod calibration;
-pub mod config;
-pub mod model;
+pub(crate) mod calibration;
+pub(crate) mod config;
+pub(crate) mod model;
 
 pub use calibration::{Calibration, LoopNoise, SignalCalibration};
 pub use config::{Level, ObsNoise, ObsNoiseConfig, ObservationConfig};

@@ -428,7 +428,7 @@ impl<'a> SynthSession<'a> {
     /// The navigation file a receiver of this session's signals needs: its broadcast
     /// ephemerides and ionosphere as RINEX 3.04 navigation, written by `skyforge`.
     pub fn write_navigation(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
-        skyforge_orbits::ephemeris::rinex_nav_write::write_nav(
+        skyforge_orbits::ephemeris::write_nav(
             self.broadcast_ephemerides(),
             "skyforge",
             &self.broadcast_iono(),

@@ -2,5 +2,7 @@
 //! join it with the synthesiser.
 
 pub mod geometry;
-pub mod interp;
+pub(crate) mod interp;
 pub mod light_time;
+
+pub use interp::QuinticHermite;

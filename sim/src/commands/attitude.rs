@@ -16,14 +16,14 @@ use skyforge_formats::attitude::{
 use skyforge_formats::geometry_offsets::{
     self, GEOMETRY_CORRECTED_TOML, GEOMETRY_OFFSETS_CSV, GEOMETRY_OFFSETS_H5, OffsetRow,
 };
-use skyforge_gnss::observation::as_written::epoch_as_written;
+use skyforge_gnss::observation::epoch_as_written;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
-use skyforge_navigation::geometry_offset::stacked_ukf::{OffsetEstimator, Step};
-use skyforge_navigation::relative::config::Constraint;
-use skyforge_navigation::relative::files::{EpochChain, EpochOutcome, run_files};
+use skyforge_navigation::geometry_offset::{OffsetEstimator, Step};
+use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
+use skyforge_navigation::relative::{EpochChain, EpochOutcome, run_files};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_receiver::pipeline::EpochReport;

@@ -3,7 +3,7 @@
 
 use skyforge_formats::truth::size_bound;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::synth::budget::Budget;
+use skyforge_signals::synth::Budget;
 use skyforge_signals::synth::session::SynthSession;
 use skyforge_signals::synth::sigmf::recording_name;
 

@@ -7,7 +7,7 @@ use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
 use skyforge_validate::attitude::compare_outputs;
-use skyforge_validate::attitude::outputs::print_validation;
+use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
 use skyforge_validate::integrity::score::{print_score, run_scenario, score};

@@ -8,7 +8,7 @@ use super::chart::{Chart, Series};
 use super::page::Figure;
 use super::{ReportError, figure};
 use skyforge_formats::geometry_offsets::{GEOMETRY_OFFSETS_H5, read_h5};
-use skyforge_navigation::geometry_offset::shape::align;
+use skyforge_navigation::geometry_offset::align;
 use skyforge_orbits::Vec3;
 use skyforge_validate::attitude::OutputsComparison;
 use std::path::Path;
@@ -34,7 +34,7 @@ pub fn figures(c: &OutputsComparison, attitude: &Path) -> Result<Vec<Figure>, Re
             ),
         ));
     }
-    let body = |f: fn(&skyforge_validate::attitude::outputs::AntennaPosition) -> [f64; 3]| {
+    let body = |f: fn(&skyforge_validate::attitude::AntennaPosition) -> [f64; 3]| {
         let p: Vec<Vec3> = c.antennas.iter().map(|a| Vec3::from(f(a))).collect();
         [p[1] - p[0], p[2] - p[0]]
     };

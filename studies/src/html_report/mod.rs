@@ -4,15 +4,15 @@
 //! (`study.h5`), each as a section of the page when present, and the attitude chain's
 //! errors when its output directory is named.
 
-pub mod attitude;
-pub mod chart;
-pub mod curves;
-pub mod geometry;
+pub(crate) mod attitude;
+pub(crate) mod chart;
+pub(crate) mod curves;
+pub(crate) mod geometry;
 mod loop_errors;
-pub mod page;
-pub mod results;
-pub mod study;
-pub mod truth;
+pub(crate) mod page;
+pub(crate) mod results;
+pub(crate) mod study;
+pub(crate) mod truth;
 
 use chart::Chart;
 use page::{Figure, Page};

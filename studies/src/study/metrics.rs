@@ -253,7 +253,7 @@ mod tests {
     use skyforge_orbits::ephemeris::SatId;
     use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
-    use skyforge_orbits::frames::euler::YawPitchRoll;
+    use skyforge_orbits::frames::YawPitchRoll;
     use skyforge_orbits::platform::PlatformState;
     use skyforge_orbits::{Mat3, Vec3};
     use skyforge_runner::PositionFix;

@@ -3,11 +3,11 @@
 //! same result whatever the layout (docs/study.md). `skyforge study` drives them and
 //! writes their files.
 
-pub mod file;
-pub mod metrics;
-pub mod plan;
+pub(crate) mod file;
+pub(crate) mod metrics;
+pub(crate) mod plan;
 pub mod results;
-pub mod summary;
+pub(crate) mod summary;
 
 pub use file::{Parameter, Study, StudyError};
 pub use metrics::Metric;

@@ -6,9 +6,9 @@ use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_scenarios::World;
 use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
 use skyforge_signals::errors::seed::{Stream, stream_rng};
+use skyforge_signals::synth::Transmitter;
 use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::constellation;
-use skyforge_signals::synth::transmitter::Transmitter;
 use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
 
 /// The scenario's GPS satellites at t = 0 as L1 C/A transmitters (default ionosphere

@@ -5,9 +5,9 @@
 use super::compare::epoch_truth;
 use super::nominal_geometry;
 use skyforge_navigation::attitude::NedBaselines;
-use skyforge_navigation::relative::files::{FilesError, run_files};
 use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
-use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_navigation::relative::{FilesError, run_files};
+use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_runner::ObservationRun;
 
 /// One epoch of the chain.

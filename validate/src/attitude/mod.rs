@@ -6,10 +6,13 @@
 
 pub mod compare;
 pub mod epochs;
-pub mod outputs;
-pub mod seeds;
+pub(crate) mod outputs;
+pub(crate) mod seeds;
 pub mod success;
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
-pub use outputs::{AttitudeValidation, OutputsComparison, OutputsError, compare_outputs};
+pub use outputs::{
+    AntennaPosition, AttitudeValidation, AxisStats, OutputsComparison, OutputsError,
+    compare_outputs, print_validation,
+};
 pub use seeds::seed_runs;

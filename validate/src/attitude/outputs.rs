@@ -34,7 +34,7 @@ use skyforge_formats::truth::{NOMINAL_BODY_ATTR, TRUE_BODY_ATTR, TRUTH_H5, Truth
 use skyforge_gnss::observation::{ObsReadError, read_obs_file};
 
 use skyforge_navigation::geometry_file::{BodyGeometryFile, GeometryFileError};
-use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_signals::antenna::check_antenna_name;
 use std::io::Write;

@@ -12,8 +12,8 @@
 use super::{ChainComparison, seed_runs};
 use crate::stats::AcrossRuns;
 use skyforge_gnss::signal::Signal;
+use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::RelativeConfig;
-use skyforge_navigation::relative::config::Constraint;
 use skyforge_scenarios::Scenario;
 
 /// One search on one signal set over the runs.

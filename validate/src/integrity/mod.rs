@@ -1,14 +1,16 @@
 //! Integrity monitoring against its references: the B-value monitor on paper 002's lab
 //! set-up (its fault cases as patterns, fault-free false alarms, detection curves), and
 //! RAIM against Yuan 2000 tables 5-1 and 5-2 ([`raim`], table 5-1 on the en-route leg of
-//! [`aircraft`]).
+//! `aircraft`).
 
-pub mod aircraft;
+/// The aircraft trajectory's generator, run by its tests.
+#[cfg(test)]
+mod aircraft;
 pub mod detection;
 pub mod lab;
 pub mod monitor;
 pub mod patterns;
-pub mod raim;
+pub(crate) mod raim;
 pub mod score;
 
 use crate::draw::Draw;

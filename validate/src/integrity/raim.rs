@@ -33,7 +33,7 @@ use crate::thesis::ValidateError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha20Rng;
 use rayon::prelude::*;
-use skyforge_navigation::pvt::raim::chi2_survival;
+use skyforge_navigation::pvt::chi2_survival;
 use skyforge_navigation::pvt::{Measurement, PvtConfig, solve};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::F_GPS_L1_HZ;
@@ -521,6 +521,7 @@ pub fn fault_outcome(epochs: &[EpochResult], fault: SatId, limit: &Limit) -> Fau
 pub type Runs = (Vec<(SatId, Vec<EpochResult>)>, Vec<Vec<EpochResult>>);
 
 /// Run `runs` faulted and `runs` fault-free draws of `setting` (in parallel).
+#[cfg(test)]
 pub fn monte_carlo(setting: &Setting, runs: usize) -> Result<Runs, ValidateError> {
     monte_carlo_on(setting, &geometry(&scenario(setting)?)?, runs)
 }

@@ -15,7 +15,7 @@ use crate::attitude::ChainComparison;
 use crate::draw::Draw;
 use crate::report::Row;
 use crate::thesis::ValidateError;
-use skyforge_navigation::attitude::config::AttitudeMethod;
+use skyforge_navigation::attitude::AttitudeMethod;
 use skyforge_navigation::baseline::ElevationNoise;
 use skyforge_navigation::relative::RelativeConfig;
 use skyforge_signals::obs_model::ObsNoiseConfig;

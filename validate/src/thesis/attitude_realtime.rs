@@ -17,7 +17,7 @@ use crate::attitude::ChainComparison;
 use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
-use skyforge_navigation::attitude::config::AttitudeMethod;
+use skyforge_navigation::attitude::AttitudeMethod;
 use skyforge_navigation::relative::RelativeConfig;
 
 /// Table identifiers: ECEF baseline errors, NED baseline errors, attitude errors (one

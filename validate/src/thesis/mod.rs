@@ -3,18 +3,18 @@
 //! printed number; T-3.3-R, T-3.3-S, T-4.3 and T-5.5 also give the data of the thesis
 //! figures they compute ([`curves`]).
 
-pub mod attitude_noise;
-pub mod attitude_realtime;
+pub(crate) mod attitude_noise;
+pub(crate) mod attitude_realtime;
 mod attitude_runs;
 pub mod curves;
-pub mod fast_sync;
-pub mod geometry_offsets;
+pub(crate) mod fast_sync;
+pub(crate) mod geometry_offsets;
 mod geometry_run;
 pub mod loop_budget;
-pub mod pmf_fft;
-pub mod reverse_filter;
-pub mod visibility;
-pub mod zero_baseline;
+pub(crate) mod pmf_fft;
+pub(crate) mod reverse_filter;
+pub(crate) mod visibility;
+pub(crate) mod zero_baseline;
 
 use crate::draw::{self, Draw, Kind, SeedPlan};
 use crate::integrity::raim;

@@ -13,7 +13,7 @@ use skyforge_receiver::acquisition::AcquisitionError;
 use skyforge_receiver::acquisition::Complex32;
 use skyforge_receiver::acquisition::pmf_fft::{PmfEstimate, PmfFft, PmfScratch, theory};
 use skyforge_receiver::acquisition::wipe_carrier;
-use skyforge_signals::synth::noise::ThermalNoise;
+use skyforge_signals::synth::ThermalNoise;
 use std::time::Instant;
 
 /// Table identifier.

@@ -29,7 +29,7 @@ use crate::attitude::{ChainComparison, EpochErrors};
 use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
-use skyforge_navigation::attitude::config::AttitudeMethod;
+use skyforge_navigation::attitude::AttitudeMethod;
 use skyforge_navigation::relative::{RelativeConfig, ReverseConfig};
 use skyforge_signals::obs_model::ObsNoiseConfig;
 

@@ -19,13 +19,12 @@
 //! thesis's GPS code mean is a hardware inter-channel bias, which a simulated zero
 //! baseline does not have.
 
+use crate::observables::ErrorStats;
 use crate::observables::double_difference::{BATCH_EPOCHS, SystemDd, ZeroBaseline, zero_baseline};
-use crate::observables::{ErrorStats, ObsError, read_obs_file};
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use skyforge_orbits::ephemeris::System;
 use skyforge_runner::synth_and_receive;
-use std::path::Path;
 
 /// Table identifier.
 pub const TABLE: &str = "T-5.4-2";
@@ -106,13 +105,6 @@ pub fn rows_from_chain(draw: crate::draw::Draw) -> Result<Vec<Row>, ValidateErro
         row.note.push_str(RECEIVER_NOTE);
     }
     Ok(rows)
-}
-
-/// The rows of T-5.4-2 from the observation files of the two antennas.
-pub fn rows_from_obs(ant1: &Path, ant2: &Path) -> Result<Vec<Row>, ObsError> {
-    let a = read_obs_file(ant1)?;
-    let b = read_obs_file(ant2)?;
-    Ok(rows(&zero_baseline(&a, &b)?))
 }
 
 /// The DD statistics of `t`'s observable in `dd`, and its mean's standard error.

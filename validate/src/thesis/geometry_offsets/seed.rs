@@ -10,19 +10,19 @@ use crate::draw::Draw;
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{mean, std};
 use rayon::prelude::*;
-use skyforge_navigation::attitude::config::{AttitudeConfig, THESIS_KAPPA};
-use skyforge_navigation::attitude::filter::AttitudeFilter;
-use skyforge_navigation::attitude::ukf::UkfAttitude;
+use skyforge_navigation::attitude::AttitudeFilter;
+use skyforge_navigation::attitude::UkfAttitude;
+use skyforge_navigation::attitude::{AttitudeConfig, THESIS_KAPPA};
 use skyforge_navigation::attitude::{BodyGeometry, wrap_diff};
-use skyforge_navigation::geometry_offset::shape::{align, invariants};
-use skyforge_navigation::geometry_offset::stacked_ukf::{
+use skyforge_navigation::geometry_offset::{
     OffsetConfig, OffsetEstimator, OffsetState, Orientation, Step, THESIS_OFFSET_RATE_PSD,
     THESIS_RATE_PSD, WindowWeighting,
 };
+use skyforge_navigation::geometry_offset::{align, invariants};
+use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::RelativeConfig;
-use skyforge_navigation::relative::config::Constraint;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::euler::YawPitchRoll;
+use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_runner::{ObservationRun, observation_run};
 
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
