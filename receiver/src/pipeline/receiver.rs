@@ -5,7 +5,7 @@
 use super::EpochReport;
 use super::channel::Channel;
 use super::config::{ApproximateState, ReceiverConfig};
-use super::epoch_stage::{EpochInput, EpochStage, epoch_stage};
+use super::epoch_stage::{self, EpochInput, EpochStage};
 use super::navdata::NavData;
 use crate::acquisition::AcquisitionError;
 use crate::acquisition::pcps::DopplerWindow;
@@ -172,7 +172,7 @@ impl Receiver {
             next_epoch: None,
             next_search_sample: 0,
             search_rounds: 0,
-            epoch_stage: epoch_stage(&config, antennas),
+            epoch_stage: epoch_stage::build(&config, antennas),
             summary: ReceiverSummary {
                 tracked: vec![Vec::new(); antennas],
                 timed: vec![Vec::new(); antennas],

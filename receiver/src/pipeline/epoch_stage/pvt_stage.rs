@@ -1,62 +1,27 @@
-//! Stages that run at every observation epoch, after the observables, behind one interface
-//! ([`EpochStage`]) chosen by the configuration (`[stages] epoch`): single-point PVT per
-//! antenna ([`PvtStage`]) today; relative positioning, ambiguity resolution and attitude
-//! plug in here next, consuming the same observations.
+//! The epoch stage `pvt`: single-point position, velocity and time per antenna, with RAIM.
 
-use super::AntennaFix;
-use super::config::{EpochStageKind, ReceiverConfig};
-use super::navdata::NavData;
-use crate::observables::Observation;
+use super::{EpochInput, EpochStage, LastFix};
+use crate::pipeline::AntennaFix;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
 
-/// An antenna's latest fix, for assisting its searches.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LastFix {
-    /// Receiver time of the fix (s since the origin).
-    pub t_s: f64,
-    pub r_ecef_m: Vec3,
-    /// Zero when no velocity was solved.
-    pub v_ecef_mps: Vec3,
-}
-
-/// What an epoch stage is given at one epoch.
-pub(crate) struct EpochInput<'a> {
-    /// Receiver time of the epoch (s since the origin).
-    pub(crate) t_s: f64,
-    /// Every antenna's observations.
-    pub(crate) observations: &'a [Observation],
-    /// The navigation data decoded or given so far.
-    pub(crate) nav: &'a NavData,
-}
-
-/// A stage run at every epoch.
-pub(crate) trait EpochStage: Send {
-    /// One result per antenna, in antenna order.
-    fn epoch(&mut self, input: &EpochInput<'_>) -> Vec<AntennaFix>;
-    /// The latest fix of `antenna`, if the stage has one.
-    fn last_fix(&self, antenna: usize) -> Option<LastFix>;
-}
-
-/// The configured epoch stage for `antennas` antennas.
-pub(crate) fn epoch_stage(config: &ReceiverConfig, antennas: usize) -> Box<dyn EpochStage> {
-    match config.epoch_stage {
-        EpochStageKind::Pvt => Box::new(PvtStage {
-            config: config.pvt.clone(),
-            last_fix: vec![None; antennas],
-        }),
-    }
-}
-
 /// Single-point position, velocity and time of each antenna (with RAIM), the previous fix
 /// as the a-priori position.
-struct PvtStage {
+pub(super) struct PvtStage {
     config: PvtConfig,
     last_fix: Vec<Option<LastFix>>,
 }
 
 impl PvtStage {
+    /// The stage for `antennas` antennas, with the PVT settings `config`.
+    pub(super) fn new(config: PvtConfig, antennas: usize) -> Self {
+        Self {
+            config,
+            last_fix: vec![None; antennas],
+        }
+    }
+
     fn fix(&mut self, antenna: usize, input: &EpochInput<'_>) -> AntennaFix {
         let (nav, t_k) = (input.nav, input.t_s);
         let meas: Vec<Measurement> = input
