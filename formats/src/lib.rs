@@ -1,7 +1,8 @@
 //! SkyForge's own files, one module per format: its writer, its reader and its column and
 //! dataset names, defined once, with a round-trip test. Other people's formats live with
-//! their vocabulary (RINEX observations in `skyforge_gnss::observation`, navigation files
-//! and SP3 in `skyforge_orbits`), `geometry.toml` in `skyforge_navigation::geometry_file`.
+//! their vocabulary (RINEX observations in `skyforge_gnss::observation`, SigMF recording
+//! metadata in `skyforge_gnss::sigmf`, navigation files and SP3 in `skyforge_orbits`),
+//! `geometry.toml` in `skyforge_navigation::geometry_file`.
 //!
 //! - [`attitude`]: `attitude.csv`, `attitude.h5` and `ambiguities.csv`, what the attitude
 //!   chain (`skyforge attitude`, `skyforge receive --geometry`) writes per epoch;

@@ -1,6 +1,6 @@
 //! The GNSS vocabulary: what every receiver knows. Signal identifiers, ranging codes,
-//! navigation-message formats, sample-file formats, NCO helpers, and the observation record
-//! with its RINEX observation files. Both the simulator (`skyforge-signals`) and the
+//! navigation-message formats, sample-file formats with their SigMF recording metadata,
+//! NCO helpers, and the observation record with its RINEX observation files. Both the simulator (`skyforge-signals`) and the
 //! receiver build on it; it knows nothing of truth, so the receiver's truth firewall is a
 //! missing Cargo edge (tests/tests/truth_firewall.rs reads the manifests).
 
@@ -12,4 +12,5 @@ pub mod navmsg;
 pub mod nco;
 pub mod observation;
 pub mod sample_format;
+pub mod sigmf;
 pub mod signal;

@@ -6,6 +6,7 @@ use hifitime::Epoch;
 use num_complex::{Complex32, Complex64};
 use skyforge_gnss::codes::gps_ca::gps_ca;
 use skyforge_gnss::sample_format::SampleFormat as WriterFormat;
+use skyforge_gnss::sigmf::RecordingMeta;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::nominal;
@@ -14,7 +15,6 @@ use skyforge_signals::synth::Quantiser;
 use skyforge_signals::synth::config::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
-use skyforge_signals::synth::sigmf::RecordingMeta;
 use std::f64::consts::TAU;
 use std::path::{Path, PathBuf};
 
@@ -27,11 +27,7 @@ const START_UTC: &str = "2023-03-12T00:00:00.000000000Z";
 fn write_recording(dir: &Path, name: &str, meta: &RecordingMeta, bytes: &[u8]) -> PathBuf {
     std::fs::write(dir.join(format!("{name}.sigmf-data")), bytes).unwrap();
     let path = dir.join(format!("{name}.sigmf-meta"));
-    std::fs::write(
-        &path,
-        serde_json::to_string_pretty(&meta.to_json()).unwrap(),
-    )
-    .unwrap();
+    std::fs::write(&path, meta.to_text()).unwrap();
     path
 }
 

@@ -2,7 +2,8 @@
 //! findings that reading works around and reports ([`Finding`]).
 
 use skyforge_gnss::sample_format::SampleFormat;
-use std::path::PathBuf;
+use skyforge_gnss::sigmf::MetaError;
+use std::path::{Path, PathBuf};
 
 /// The SigMF datatypes (and command-line spellings) this reader accepts, for messages.
 pub const ALLOWED_DATATYPES: &str =
@@ -28,7 +29,7 @@ pub enum InputError {
     #[error("{}: the metadata has no {field} (required: {why})", .path.display())]
     MissingField {
         path: PathBuf,
-        field: &'static str,
+        field: String,
         why: &'static str,
     },
     /// A metadata field has a value the receiver cannot use.
@@ -151,6 +152,28 @@ impl InputError {
             InputError::Missing { path }
         } else {
             InputError::Unreadable { path, source }
+        }
+    }
+
+    /// The error for what is wrong with the SigMF metadata file `meta_path`.
+    pub fn meta(meta_path: &Path, error: MetaError) -> Self {
+        let path = meta_path.to_owned();
+        match error {
+            MetaError::NotSigmf { detail } => InputError::NotSigmf { path, detail },
+            MetaError::BadField {
+                field,
+                found,
+                expected,
+            } => InputError::BadField {
+                path,
+                field,
+                found,
+                expected,
+            },
+            MetaError::UnknownDatatype { found } => InputError::UnknownDatatype {
+                origin: meta_path.display().to_string(),
+                found,
+            },
         }
     }
 }

@@ -12,8 +12,8 @@ use num_complex::Complex32;
 /// The sample containers (shared with the synthesiser that writes them).
 pub use skyforge_gnss::sample_format::SampleFormat;
 
-/// The format named by a SigMF `core:datatype` or a command-line `--format` value;
-/// `origin` (a file or `--format`) goes into the error message.
+/// The format named by a command-line `--format` value (a SigMF `core:datatype` or a
+/// shorter spelling); `origin` (where the name came from) goes into the error message.
 pub fn parse_format(name: &str, origin: &str) -> Result<SampleFormat, InputError> {
     SampleFormat::from_name(name).ok_or_else(|| InputError::UnknownDatatype {
         origin: origin.to_owned(),

@@ -8,7 +8,6 @@
 //! returns `None`. Samples arrive as complex f32 at the full scale documented in
 //! [`format`]; real IF input is mixed to complex baseband ([`if_mixer`]).
 
-pub(crate) mod datetime;
 pub(crate) mod error;
 pub(crate) mod format;
 pub(crate) mod if_mixer;

@@ -1,15 +1,14 @@
 //! What one antenna's sample file holds: from its SigMF metadata (SigMF 1.0 `core`
-//! fields plus SkyForge's `skyforge:` extension, see `skyforge_signals` `synth::sigmf`), or
-//! from raw-file parameters given on the command line.
+//! fields plus SkyForge's `skyforge:` extension, read by [`skyforge_gnss::sigmf`]) merged
+//! with what the command line gives, or from raw-file parameters given on the command line.
 
-use super::datetime::parse_utc;
 use super::error::{Finding, InputError};
 use super::format::SampleFormat;
 use hifitime::Epoch;
-use serde_json::{Map, Value};
+use serde_json::Value;
+use skyforge_gnss::sigmf::{ParsedMeta, keys};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
-use skyforge_orbits::time::{SUPPORTED_RANGE, in_supported_range};
 use std::path::{Path, PathBuf};
 
 /// Largest SigMF metadata file read (annotations included).
@@ -80,99 +79,64 @@ fn stem(path: &Path) -> String {
     )
 }
 
-/// Typed access to one JSON object of a metadata file, with errors naming the field.
-struct Fields<'a> {
-    path: &'a Path,
-    section: &'static str,
-    obj: &'a Map<String, Value>,
+/// Metadata values merged with command-line values: the findings of the overrides.
+struct Merge<'a> {
+    meta_path: &'a Path,
+    findings: Vec<Finding>,
 }
 
-impl Fields<'_> {
-    fn bad(&self, key: &str, v: &Value, expected: &str) -> InputError {
-        InputError::BadField {
-            path: self.path.to_owned(),
-            field: format!("{} {key}", self.section),
-            found: v.to_string(),
-            expected: expected.to_owned(),
+impl Merge<'_> {
+    /// `given` when there is one (reported when it replaces a different `meta`), else
+    /// `meta`.
+    fn pick<T: ToString>(&mut self, field: &str, meta: Option<T>, given: Option<T>) -> Option<T> {
+        if let (Some(meta), Some(given)) = (&meta, &given) {
+            let (metadata, given) = (meta.to_string(), given.to_string());
+            if metadata != given {
+                self.findings.push(Finding::Overridden {
+                    path: self.meta_path.to_owned(),
+                    field: field.to_owned(),
+                    metadata,
+                    given,
+                });
+            }
+        }
+        given.or(meta)
+    }
+
+    /// The error for a global field `key` that neither the metadata nor the command line
+    /// gives (`why` the receiver needs it).
+    fn missing(&self, key: &str, why: &'static str) -> InputError {
+        InputError::MissingField {
+            path: self.meta_path.to_owned(),
+            field: format!("{} {key}", keys::GLOBAL),
+            why,
         }
     }
-    fn f64(&self, key: &str) -> Result<Option<f64>, InputError> {
-        self.obj
-            .get(key)
-            .map(|v| v.as_f64().ok_or_else(|| self.bad(key, v, "a number")))
-            .transpose()
-    }
-    fn u64(&self, key: &str) -> Result<Option<u64>, InputError> {
-        self.obj
-            .get(key)
-            .map(|v| {
-                v.as_u64()
-                    .ok_or_else(|| self.bad(key, v, "a non-negative integer"))
-            })
-            .transpose()
-    }
-    fn str(&self, key: &str) -> Result<Option<&str>, InputError> {
-        self.obj
-            .get(key)
-            .map(|v| v.as_str().ok_or_else(|| self.bad(key, v, "a string")))
-            .transpose()
-    }
-    /// A UTC time in the supported range (a recording dated 1900 or 9999 gave RINEX
-    /// epochs in 1899: GPS weeks do not reach there).
-    fn epoch(&self, key: &str) -> Result<Option<Epoch>, InputError> {
-        self.str(key)?
-            .map(|s| {
-                let epoch = parse_utc(s).ok_or_else(|| {
-                    self.bad(
-                        key,
-                        &Value::from(s),
-                        "an ISO-8601 UTC time such as 2023-03-12T00:00:00.000Z",
-                    )
-                })?;
-                if !in_supported_range(epoch) {
-                    return Err(self.bad(
-                        key,
-                        &Value::from(s),
-                        &format!("a time {SUPPORTED_RANGE}"),
-                    ));
-                }
-                Ok(epoch)
-            })
-            .transpose()
-    }
-    fn vec3(&self, key: &str) -> Result<Option<[f64; 3]>, InputError> {
-        self.obj
-            .get(key)
-            .map(|v| {
-                let xs: Option<Vec<f64>> = v
-                    .as_array()
-                    .map(|a| a.iter().filter_map(Value::as_f64).collect());
-                xs.and_then(|xs| <[f64; 3]>::try_from(xs).ok())
-                    .ok_or_else(|| self.bad(key, v, "three numbers [x, y, z] in metres"))
-            })
-            .transpose()
+
+    /// The signal recorded: the command line's, else the metadata's (the one whose carrier
+    /// is the centre frequency plus `skyforge:if_hz`, else the one in the band recorded,
+    /// else the one the file name names).
+    fn signal(
+        &mut self,
+        meta: &ParsedMeta,
+        sample_rate_hz: f64,
+        given: Option<Signal>,
+    ) -> Option<Signal> {
+        let centre = meta.first_capture.frequency_hz;
+        let by_carrier = centre
+            .zip(meta.if_hz)
+            .and_then(|(c, f_if)| Signal::from_carrier_hz(c + f_if));
+        let meta_signal = by_carrier
+            .or_else(|| centre.and_then(|c| Signal::in_band(c, sample_rate_hz)))
+            .or_else(|| Signal::from_file_name(&file_name(self.meta_path)));
+        self.pick("the signal", meta_signal, given)
     }
 }
 
-/// Capture segment `i` of `captures` (an empty one when there is none).
-fn capture_fields<'a>(
-    meta_path: &'a Path,
-    captures: &'a [Value],
-    i: usize,
-    empty: &'a Map<String, Value>,
-) -> Result<Fields<'a>, InputError> {
-    let obj = match captures.get(i) {
-        None => empty,
-        Some(c) => c.as_object().ok_or_else(|| InputError::NotSigmf {
-            path: meta_path.to_owned(),
-            detail: "a capture segment is not an object".into(),
-        })?,
-    };
-    Ok(Fields {
-        path: meta_path,
-        section: "captures[]",
-        obj,
-    })
+/// The last component of `path`, or nothing.
+fn file_name(path: &Path) -> String {
+    path.file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
 }
 
 impl Recording {
@@ -243,145 +207,43 @@ impl Recording {
         json: &Value,
         params: &InputParams,
     ) -> Result<Self, InputError> {
-        let not_sigmf = |detail: &str| InputError::NotSigmf {
-            path: meta_path.to_owned(),
-            detail: detail.to_owned(),
+        let meta = ParsedMeta::from_json(json).map_err(|e| InputError::meta(meta_path, e))?;
+        let mut merge = Merge {
+            meta_path,
+            findings: Vec::new(),
         };
-        let global = json
-            .get("global")
-            .and_then(Value::as_object)
-            .ok_or_else(|| not_sigmf("no \"global\" object"))?;
-        let g = Fields {
-            path: meta_path,
-            section: "global",
-            obj: global,
-        };
-        let mut findings = Vec::new();
-        // Records a command-line value that replaces a different metadata value.
-        let overridden = |findings: &mut Vec<Finding>, field: &str, meta: String, given: String| {
-            if meta != given {
-                findings.push(Finding::Overridden {
-                    path: meta_path.to_owned(),
-                    field: field.to_owned(),
-                    metadata: meta,
-                    given,
-                });
-            }
-        };
-        let missing = |field: &'static str, why: &'static str| InputError::MissingField {
-            path: meta_path.to_owned(),
-            field,
-            why,
-        };
-
-        let format = match (g.str("core:datatype")?, params.format) {
-            (Some(d), given) => {
-                let meta = super::format::parse_format(d, &meta_path.display().to_string())?;
-                if let Some(given) = given {
-                    overridden(
-                        &mut findings,
-                        "core:datatype",
-                        meta.to_string(),
-                        given.to_string(),
-                    );
-                }
-                given.unwrap_or(meta)
-            }
-            (None, Some(given)) => given,
-            (None, None) => {
-                return Err(missing(
-                    "global core:datatype",
-                    "the sample format; or give --format",
-                ));
-            }
-        };
-        let sample_rate_hz = match (g.f64("core:sample_rate")?, params.sample_rate_hz) {
-            (Some(meta), Some(given)) => {
-                overridden(
-                    &mut findings,
-                    "core:sample_rate",
-                    meta.to_string(),
-                    given.to_string(),
-                );
-                given
-            }
-            (meta, given) => given.or(meta).ok_or_else(|| {
-                missing(
-                    "global core:sample_rate",
+        let format = merge
+            .pick(keys::DATATYPE, meta.format, params.format)
+            .ok_or_else(|| merge.missing(keys::DATATYPE, "the sample format; or give --format"))?;
+        let sample_rate_hz = merge
+            .pick(
+                keys::SAMPLE_RATE,
+                meta.sample_rate_hz,
+                params.sample_rate_hz,
+            )
+            .ok_or_else(|| {
+                merge.missing(
+                    keys::SAMPLE_RATE,
                     "the receiver needs the sample rate; or give --fs",
                 )
-            })?,
-        };
-        if let Some(n) = g.u64("core:num_channels")?
-            && n != 1
-        {
-            return Err(g.bad(
-                "core:num_channels",
-                &Value::from(n),
-                "1 (multi-channel datasets are not supported: give one file per antenna)",
-            ));
-        }
-
-        let captures: &[Value] = match json.get("captures") {
-            None => &[],
-            Some(Value::Array(a)) => a,
-            Some(_) => return Err(not_sigmf("\"captures\" is not an array")),
-        };
-        let empty = Map::new();
-        let capture = |i: usize| capture_fields(meta_path, captures, i, &empty);
-        let c0 = capture(0)?;
-        for i in 1..captures.len() {
-            let c = capture(i)?;
-            if let Some(n) = c.u64("core:header_bytes")?
-                && n > 0
-            {
-                return Err(c.bad(
-                    "core:header_bytes",
-                    &Value::from(n),
-                    "0 after the first capture (header bytes between segments are not supported)",
-                ));
-            }
-        }
-        if captures.len() > 1 {
-            findings.push(Finding::SeveralCaptures {
+            })?;
+        if meta.capture_count > 1 {
+            merge.findings.push(Finding::SeveralCaptures {
                 path: meta_path.to_owned(),
-                count: captures.len(),
+                count: meta.capture_count,
             });
         }
-        let centre_frequency_hz = c0.f64("core:frequency")?;
-        let name = meta_path
-            .file_name()
-            .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-        let meta_if_hz = g.f64("skyforge:if_hz")?;
-        let by_carrier = centre_frequency_hz
-            .zip(meta_if_hz)
-            .and_then(|(c, f_if)| Signal::from_carrier_hz(c + f_if));
-        let meta_signal = by_carrier
-            .or_else(|| centre_frequency_hz.and_then(|c| Signal::in_band(c, sample_rate_hz)))
-            .or_else(|| Signal::from_file_name(&name));
-        if let (Some(meta), Some(given)) = (meta_signal, params.signal) {
-            overridden(
-                &mut findings,
-                "the signal",
-                meta.to_string(),
-                given.to_string(),
-            );
-        }
-        let signal = params.signal.or(meta_signal);
-        let carrier_offset = signal
-            .zip(centre_frequency_hz)
-            .map(|(s, c)| s.carrier_hz() - c);
-        let if_hz = match (meta_if_hz.or(carrier_offset), params.if_hz) {
-            (Some(meta), Some(given)) => {
-                overridden(&mut findings, "the IF", meta.to_string(), given.to_string());
-                given
-            }
-            (meta, given) => given.or(meta).unwrap_or(0.0),
-        };
-        let antenna = match g.str("skyforge:antenna")? {
-            Some(a) => a.to_owned(),
-            None => name.trim_end_matches(".sigmf-meta").to_owned(),
-        };
+        let signal = merge.signal(&meta, sample_rate_hz, params.signal);
+        let c0 = &meta.first_capture;
+        let carrier_offset = signal.zip(c0.frequency_hz).map(|(s, c)| s.carrier_hz() - c);
+        let if_hz = merge
+            .pick("the IF", meta.if_hz.or(carrier_offset), params.if_hz)
+            .unwrap_or(0.0);
+        let antenna = meta.antenna.clone().unwrap_or_else(|| {
+            file_name(meta_path)
+                .trim_end_matches(".sigmf-meta")
+                .to_owned()
+        });
         Ok(Self {
             antenna,
             data_path: meta_path.with_extension("sigmf-data"),
@@ -389,15 +251,15 @@ impl Recording {
             format,
             sample_rate_hz,
             if_hz,
-            centre_frequency_hz,
+            centre_frequency_hz: c0.frequency_hz,
             signal,
-            start_utc: c0.epoch("core:datetime")?,
-            global_index: c0.u64("core:global_index")?,
-            first_sample: c0.u64("core:sample_start")?.unwrap_or(0),
-            header_bytes: c0.u64("core:header_bytes")?.unwrap_or(0),
-            trailing_bytes: g.u64("core:trailing_bytes")?.unwrap_or(0),
-            antenna_position_body_m: g.vec3("skyforge:antenna_position_body_m")?,
-            findings,
+            start_utc: c0.datetime,
+            global_index: c0.global_index,
+            first_sample: c0.sample_start.unwrap_or(0),
+            header_bytes: c0.header_bytes.unwrap_or(0),
+            trailing_bytes: meta.trailing_bytes.unwrap_or(0),
+            antenna_position_body_m: meta.antenna_position_body_m,
+            findings: merge.findings,
         })
     }
 
@@ -419,22 +281,29 @@ impl Recording {
         let fs = self.sample_rate_hz;
         if !(fs.is_finite() && fs > 0.0) {
             return Err(bad(
-                "the sample rate (core:sample_rate or --fs)",
+                &format!("the sample rate ({} or --fs)", keys::SAMPLE_RATE),
                 fs,
                 "a positive number of samples per second".into(),
             ));
         }
         let nyquist = fs / 2.0;
+        let if_field = || {
+            format!(
+                "the IF ({}, carrier - {}, or --if)",
+                keys::IF_HZ,
+                keys::FREQUENCY
+            )
+        };
         if !(self.if_hz.is_finite() && self.if_hz.abs() < nyquist) {
             return Err(bad(
-                "the IF (skyforge:if_hz, carrier - core:frequency, or --if)",
+                &if_field(),
                 self.if_hz,
                 format!("|IF| < fs / 2 = {nyquist} Hz"),
             ));
         }
         if !self.format.is_complex() && self.if_hz <= 0.0 {
             return Err(bad(
-                "the IF (skyforge:if_hz, carrier - core:frequency, or --if)",
+                &if_field(),
                 self.if_hz,
                 format!("0 < IF < {nyquist} Hz for real (ri8) samples: give --if"),
             ));

@@ -1,7 +1,14 @@
-//! SigMF `core:datetime`: ISO-8601 UTC `YYYY-MM-DDTHH:MM:SS[.fraction]Z`, the fraction of
-//! any length (SigMF 1.0 "Captures Array": the time MUST be UTC, ending in `Z`).
+//! SigMF `core:datetime`: ISO-8601 UTC `YYYY-MM-DDTHH:MM:SS[.fraction]Z` (SigMF 1.0
+//! "Captures Array": the time MUST be UTC, ending in `Z`), written to the nanosecond
+//! ([`format_utc`]) and read with a fraction of any length ([`parse_utc`]).
 
 use hifitime::Epoch;
+
+/// The `core:datetime` of `at`: ISO-8601 UTC with nanoseconds and a trailing Z.
+pub fn format_utc(at: Epoch) -> String {
+    let (y, mo, d, h, mi, sec, ns) = at.to_gregorian_utc();
+    format!("{y:04}-{mo:02}-{d:02}T{h:02}:{mi:02}:{sec:02}.{ns:09}Z")
+}
 
 /// The UTC epoch of an ISO-8601 `YYYY-MM-DDTHH:MM:SS[.fraction]Z` string (fraction kept
 /// to the nanosecond, further digits truncated), or `None` when it is not one.
@@ -70,6 +77,13 @@ mod tests {
             parse_utc("2020-06-25T13:15:30Z").unwrap(),
             Epoch::from_gregorian_utc_hms(2020, 6, 25, 13, 15, 30)
         );
+    }
+
+    #[test]
+    fn reads_back_what_it_writes() {
+        let at = Epoch::from_gregorian_utc(2024, 2, 29, 23, 59, 59, 123_456_789);
+        assert_eq!(format_utc(at), "2024-02-29T23:59:59.123456789Z");
+        assert_eq!(parse_utc(&format_utc(at)), Some(at));
     }
 
     #[test]
