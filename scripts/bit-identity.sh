@@ -62,7 +62,12 @@ cp "$new_built" "$new_bin"
 
 # Every file below $1 with its SHA-256, paths relative to $1 (the --force manifest,
 # .skyforge-manifest, is left out: binaries before it did not write one).
-digest() { (cd "$1" && find . -type f ! -name .skyforge-manifest -print0 | sort -z | xargs -0 sha256sum); }
+# A study journal (*.runs.jsonl) holds one line per finished run in the order the runs
+# finished, which parallel runs do not fix: its lines are compared sorted.
+digest() {
+  (cd "$1" && find . -type f ! -name .skyforge-manifest ! -name '*.runs.jsonl' -print0 | sort -z | xargs -0 sha256sum
+   find . -type f -name '*.runs.jsonl' | sort | while read -r f; do echo "$(sort "$f" | sha256sum | cut -d' ' -f1)  $f (lines sorted)"; done)
+}
 
 # Compare directories $1/base/$2 and $1/new/$2.
 same() {

@@ -2,11 +2,9 @@
 
 use super::bds_bch::decode_subframe;
 use super::bds_fields::{self, Clock, Header};
-use super::framer::{FrameSpec, FramedStream};
-use super::{
-    DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SUBFRAME_BITS,
-    SubframeInfo, WEEK_S, time_consistent,
-};
+use super::decoder::{Common, Decoder, MessageFormat};
+use super::framer::FrameSpec;
+use super::{NavDecodeError, NavEvent, SUBFRAME_BITS, SubframeInfo, WEEK_S, time_consistent};
 use skyforge_gnss::navmsg::bds::BdsNavFormat;
 use skyforge_gnss::navmsg::bds::Klobuchar;
 use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
@@ -92,17 +90,17 @@ fn confirm(format: BdsNavFormat, window: &[u8]) -> bool {
 /// codeword) and accepted when its FraID and SOW agree with the stream time of the
 /// previous accepted subframe. D1: clock from subframe 1, orbit from subframes 2-3 of
 /// the same frame. D2: subframe 1 pages 1-10 of one 30-s cycle assembled.
+pub type BdsDecoder = Decoder<D1D2>;
+
+/// D1/D2's own decoding state: the format, the subframes and pages of the ephemeris, the
+/// Klobuchar coefficients.
 #[derive(Debug, Clone)]
-pub struct BdsDecoder {
-    sat: SatId,
+pub struct D1D2 {
     format: BdsNavFormat,
-    stream: FramedStream,
-    week: Option<u32>,
     /// D1: frame number (SOW / 30) and information bits of subframes 1-3.
     d1: [Option<(u32, Vec<u8>)>; 3],
     /// D2: 30-s cycle number (SOW / 30) and information bits of subframe 1 pages 1-10.
     d2: Vec<Option<(u32, Vec<u8>)>>,
-    ephemeris: Option<DecodedEphemeris>,
     iono: Option<Klobuchar>,
 }
 
@@ -111,7 +109,7 @@ const CYCLE_S: u32 = 30;
 /// Pages of D2 subframe 1.
 const D2_PAGES: usize = 10;
 
-impl BdsDecoder {
+impl Decoder<D1D2> {
     /// A decoder for BeiDou satellite `sat` (PRN 1-63); D2 for the GEO PRNs 1-5 and
     /// 59-63, D1 otherwise.
     pub fn new(sat: SatId) -> Result<Self, NavDecodeError> {
@@ -121,79 +119,94 @@ impl BdsDecoder {
                 what: "D1/D2 are broadcast by BeiDou PRN 1-63",
             });
         }
-        Ok(Self {
-            sat,
+        let message = D1D2 {
             format: BdsNavFormat::for_prn(sat.prn),
-            stream: FramedStream::new(SPEC),
-            week: None,
             d1: [None, None, None],
             d2: vec![None; D2_PAGES],
-            ephemeris: None,
             iono: None,
-        })
+        };
+        Ok(Decoder::with(sat, SPEC, message))
     }
 
     /// The message format being decoded.
     pub fn format(&self) -> BdsNavFormat {
-        self.format
-    }
-
-    /// The last complete ephemeris.
-    pub fn ephemeris(&self) -> Option<&DecodedEphemeris> {
-        self.ephemeris.as_ref()
+        self.message.format
     }
 
     /// The last Klobuchar coefficients.
     pub fn iono(&self) -> Option<Klobuchar> {
-        self.iono
+        self.message.iono
+    }
+}
+
+impl MessageFormat for D1D2 {
+    fn confirm(&self, window: &[u8]) -> bool {
+        confirm(self.format, window)
     }
 
-    /// BDT week of the last decoded subframe, once known.
-    pub fn week(&self) -> Option<u32> {
-        self.week
+    /// Decode one subframe; a changed ionosphere is announced after it.
+    fn subframe(
+        &mut self,
+        c: &mut Common,
+        start_bit: u64,
+        inverted: bool,
+        bits: &[u8],
+        out: &mut Vec<NavEvent>,
+    ) {
+        let before = self.iono;
+        self.decode(c, start_bit, inverted, bits, out);
+        if let Some(iono) = self.iono
+            && before != Some(iono)
+        {
+            out.push(NavEvent::BdsIono(iono));
+        }
     }
+}
 
-    /// Whether subframe synchronisation is held.
-    pub fn is_synchronised(&self) -> bool {
-        self.stream.framer.is_locked()
-    }
-
-    fn subframe(&mut self, start_bit: u64, inverted: bool, bits: &[u8], out: &mut Vec<NavEvent>) {
+impl D1D2 {
+    fn decode(
+        &mut self,
+        c: &mut Common,
+        start_bit: u64,
+        inverted: bool,
+        bits: &[u8],
+        out: &mut Vec<NavEvent>,
+    ) {
         let body = bits.get(2..).unwrap_or(&[]);
         let (info, corrected) = decode_subframe(body);
         let h = Header::new(&info);
         let tow_s = start_tow_s(self.format, &h);
         let bit_s = self.format.bit_period_s();
-        if !(valid(&h) && time_consistent(self.stream.anchor, start_bit, tow_s, bit_s)) {
-            self.stream.drop_subframe(start_bit, 1, out);
+        if !(valid(&h) && time_consistent(c.stream.anchor, start_bit, tow_s, bit_s)) {
+            c.stream.drop_subframe(start_bit, 1, out);
             return;
         }
-        self.stream.accept(start_bit, tow_s, &mut self.week, out);
-        self.stream.stats.corrected_bits += u64::from(corrected);
-        let page = self.store(&h, info);
+        c.stream.accept(start_bit, tow_s, &mut c.week, out);
+        c.stream.stats.corrected_bits += u64::from(corrected);
+        let page = self.store(c, &h, info);
         out.push(NavEvent::Subframe(SubframeInfo {
             start_bit,
             id: h.fra_id,
             page,
-            week: self.week,
+            week: c.week,
             tow_s,
             inverted,
             corrected_bits: corrected,
         }));
         match self.format {
-            BdsNavFormat::D1 => self.try_d1(tow_s, out),
-            BdsNavFormat::D2 => self.try_d2(tow_s, out),
+            BdsNavFormat::D1 => self.try_d1(c, tow_s, out),
+            BdsNavFormat::D2 => self.try_d2(c, tow_s, out),
         }
     }
 
     /// Keep what the ephemeris needs; returns the page number of paged subframes.
-    fn store(&mut self, h: &Header, info: Vec<u8>) -> Option<u8> {
+    fn store(&mut self, c: &mut Common, h: &Header, info: Vec<u8>) -> Option<u8> {
         let cycle = h.sow / CYCLE_S;
         match (self.format, h.fra_id) {
             (BdsNavFormat::D1, 1..=3) => {
                 if h.fra_id == 1 {
                     let (clock, iono) = bds_fields::d1_subframe1(&info);
-                    self.week = Some(clock.wn);
+                    c.week = Some(clock.wn);
                     self.iono = Some(iono);
                 }
                 self.d1[usize::from(h.fra_id - 1)] = Some((cycle, info));
@@ -205,7 +218,7 @@ impl BdsDecoder {
             (BdsNavFormat::D2, 1) => {
                 let pnum = bds_fields::page_number(&info, 0, 4);
                 match pnum {
-                    1 => self.week = Some(bds_fields::d2_page1(&info).wn),
+                    1 => c.week = Some(bds_fields::d2_page1(&info).wn),
                     2 => self.iono = Some(bds_fields::d2_page2(&info)),
                     _ => {}
                 }
@@ -219,7 +232,7 @@ impl BdsDecoder {
         }
     }
 
-    fn try_d1(&mut self, tx_sow: f64, out: &mut Vec<NavEvent>) {
+    fn try_d1(&self, c: &mut Common, tx_sow: f64, out: &mut Vec<NavEvent>) {
         let [Some((k1, s1)), Some((k2, s2)), Some((k3, s3))] = &self.d1 else {
             return;
         };
@@ -228,10 +241,10 @@ impl BdsDecoder {
         }
         let (clock, _) = bds_fields::d1_subframe1(s1);
         let orbit = bds_fields::d1_orbit(s2, s3);
-        self.emit(&clock, &orbit, tx_sow, out);
+        self.emit(c, &clock, &orbit, tx_sow, out);
     }
 
-    fn try_d2(&mut self, tx_sow: f64, out: &mut Vec<NavEvent>) {
+    fn try_d2(&self, c: &mut Common, tx_sow: f64, out: &mut Vec<NavEvent>) {
         let Some(Some((cycle, _))) = self.d2.first() else {
             return;
         };
@@ -248,11 +261,12 @@ impl BdsDecoder {
             return;
         };
         let (clock, orbit) = bds_fields::d2_pages(&pages);
-        self.emit(&clock, &orbit, tx_sow, out);
+        self.emit(c, &clock, &orbit, tx_sow, out);
     }
 
     fn emit(
-        &mut self,
+        &self,
+        c: &mut Common,
         clock: &Clock,
         orbit: &bds_fields::Orbit,
         tx_sow: f64,
@@ -262,42 +276,9 @@ impl BdsDecoder {
             BdsNavFormat::D1 => OrbitClass::Standard,
             BdsNavFormat::D2 => OrbitClass::BeidouGeo,
         };
-        let eph = bds_fields::ephemeris(self.sat, class, tx_sow, clock, orbit);
-        if self.ephemeris.as_ref() != Some(&eph) {
-            self.ephemeris = Some(eph.clone());
-            out.push(NavEvent::Ephemeris(Box::new(eph)));
-        }
-    }
-}
-
-impl NavDecoder for BdsDecoder {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stream.push(soft_bits);
-        let mut out = Vec::new();
-        let format = self.format;
-        while let Some((start_bit, inverted, bits)) =
-            self.stream.next_subframe(|w| confirm(format, w), &mut out)
-        {
-            let before = self.iono;
-            self.subframe(start_bit, inverted, &bits, &mut out);
-            if let Some(iono) = self.iono
-                && before != Some(iono)
-            {
-                out.push(NavEvent::BdsIono(iono));
-            }
-        }
-        out
-    }
-
-    fn restart(&mut self) {
-        self.stream.restart();
-    }
-
-    fn stats(&self) -> DecodeStats {
-        self.stream.stats
-    }
-
-    fn satellite(&self) -> SatId {
-        self.sat
+        c.offer_ephemeris(
+            bds_fields::ephemeris(c.sat, class, tx_sow, clock, orbit),
+            out,
+        );
     }
 }

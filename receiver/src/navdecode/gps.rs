@@ -1,14 +1,12 @@
 //! GPS LNAV decoder state machine (IS-GPS-200 20.3.2-20.3.5).
 
-use super::framer::{FrameSpec, FramedStream};
+use super::decoder::{Common, Decoder, MessageFormat};
+use super::framer::FrameSpec;
 use super::gps_fields::{
     self, Header, PAGE18_SV_ID, Page18, Subframe1, Subframe2, Subframe3, nearest_week,
 };
 use super::gps_parity::{check_subframe, check_word};
-use super::{
-    DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo,
-    time_consistent,
-};
+use super::{NavDecodeError, NavEvent, SubframeInfo, time_consistent};
 use skyforge_gnss::navmsg::gps_lnav::BIT_PERIOD_S;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;
 use skyforge_gnss::navmsg::gps_lnav::PREAMBLE;
@@ -61,26 +59,24 @@ fn confirm(window: &[u8]) -> bool {
 
 /// Decoder of one GPS satellite's LNAV stream.
 ///
-/// Feed soft bits with [`NavDecoder::feed`]. Subframe sync: preamble 10001011 in either
+/// Feed soft bits with [`super::NavDecoder::feed`]. Subframe sync: preamble 10001011 in either
 /// polarity confirmed by TLM and HOW parity; then every 300 bits a subframe whose ten
 /// words must all pass parity (table 20-XIV) or the whole subframe is dropped. The ten
 /// bits of week number are resolved to the full week nearest the reference week.
+pub type GpsLnavDecoder = Decoder<Lnav>;
+
+/// LNAV's own decoding state: the reference week, subframes 1-3 and page 18.
 #[derive(Debug, Clone)]
-pub struct GpsLnavDecoder {
-    sat: SatId,
+pub struct Lnav {
     reference_week: u32,
-    stream: FramedStream,
-    /// Full week of the last decoded subframe.
-    week: Option<u32>,
     sf1: Option<Subframe1>,
     sf2: Option<Subframe2>,
     sf3: Option<Subframe3>,
     page18: Option<Page18>,
-    ephemeris: Option<DecodedEphemeris>,
     iono_utc: Option<(IonoParams, UtcParams)>,
 }
 
-impl GpsLnavDecoder {
+impl Decoder<Lnav> {
     /// A decoder for GPS satellite `sat` (PRN 1-32), resolving weeks near
     /// [`DEFAULT_GPS_REFERENCE_WEEK`].
     pub fn new(sat: SatId) -> Result<Self, NavDecodeError> {
@@ -96,42 +92,36 @@ impl GpsLnavDecoder {
                 what: "LNAV is broadcast by GPS PRN 1-32",
             });
         }
-        Ok(Self {
-            sat,
+        let lnav = Lnav {
             reference_week,
-            stream: FramedStream::new(SPEC),
-            week: None,
             sf1: None,
             sf2: None,
             sf3: None,
             page18: None,
-            ephemeris: None,
             iono_utc: None,
-        })
-    }
-
-    /// The last complete ephemeris.
-    pub fn ephemeris(&self) -> Option<&DecodedEphemeris> {
-        self.ephemeris.as_ref()
+        };
+        Ok(Decoder::with(sat, SPEC, lnav))
     }
 
     /// The last Klobuchar and UTC parameters (page 18).
     pub fn iono_utc(&self) -> Option<(IonoParams, UtcParams)> {
-        self.iono_utc
+        self.message.iono_utc
+    }
+}
+
+impl MessageFormat for Lnav {
+    fn confirm(&self, window: &[u8]) -> bool {
+        confirm(window)
     }
 
-    /// Full GPS week of the last decoded subframe, once subframe 1 has been seen.
-    pub fn week(&self) -> Option<u32> {
-        self.week
-    }
-
-    /// Whether subframe synchronisation is held.
-    pub fn is_synchronised(&self) -> bool {
-        self.stream.framer.is_locked()
-    }
-
-    /// Decode one polarity-corrected subframe.
-    fn subframe(&mut self, start_bit: u64, inverted: bool, bits: &[u8], out: &mut Vec<NavEvent>) {
+    fn subframe(
+        &mut self,
+        c: &mut Common,
+        start_bit: u64,
+        inverted: bool,
+        bits: &[u8],
+        out: &mut Vec<NavEvent>,
+    ) {
         // The previous word 10 ends with D29 = D30 = 0 in true polarity (IS-GPS-200
         // 20.3.5.2): using these instead of the received bits keeps an error there from
         // spoiling this subframe too.
@@ -140,8 +130,8 @@ impl GpsLnavDecoder {
         let src = match check_subframe(&bits) {
             Ok(src) => src,
             Err(words) => {
-                self.stream.stats.parity_failed_words += u64::from(words.count_ones());
-                self.stream.drop_subframe(start_bit, words, out);
+                c.stream.stats.parity_failed_words += u64::from(words.count_ones());
+                c.stream.drop_subframe(start_bit, words, out);
                 return;
             }
         };
@@ -149,18 +139,18 @@ impl GpsLnavDecoder {
         let tow_s = header.start_tow_s();
         if header.preamble != PREAMBLE
             || !(1..=5).contains(&header.id)
-            || !time_consistent(self.stream.anchor, start_bit, tow_s, BIT_PERIOD_S)
+            || !time_consistent(c.stream.anchor, start_bit, tow_s, BIT_PERIOD_S)
         {
             // Parity passed but TLM/HOW contradict the stream (undetected errors).
-            self.stream.drop_subframe(start_bit, 0b11, out);
+            c.stream.drop_subframe(start_bit, 0b11, out);
             return;
         }
-        self.stream.accept(start_bit, tow_s, &mut self.week, out);
+        c.stream.accept(start_bit, tow_s, &mut c.week, out);
         let mut page = None;
         match header.id {
             1 => {
                 let s1 = Subframe1::new(&src);
-                self.week = Some(nearest_week(s1.wn10, 10, self.reference_week));
+                c.week = Some(nearest_week(s1.wn10, 10, self.reference_week));
                 self.sf1 = Some(s1);
             }
             2 => self.sf2 = Some(Subframe2::new(&src)),
@@ -178,35 +168,36 @@ impl GpsLnavDecoder {
             start_bit,
             id: header.id,
             page,
-            week: self.week,
+            week: c.week,
             tow_s,
             inverted,
             corrected_bits: 0,
         }));
-        self.try_ephemeris(tow_s, out);
-        self.try_iono_utc(out);
+        self.try_ephemeris(c, tow_s, out);
+        self.try_iono_utc(c.week, out);
     }
+}
 
+impl Lnav {
     /// Emit the ephemeris when subframes 1-3 share one issue of data (IODE of subframes 2
     /// and 3 equal to the 8 LSBs of IODC, IS-GPS-200 20.3.4.4) and it changed.
-    fn try_ephemeris(&mut self, tx_sow: f64, out: &mut Vec<NavEvent>) {
-        let (Some(s1), Some(s2), Some(s3), Some(week)) = (self.sf1, self.sf2, self.sf3, self.week)
+    fn try_ephemeris(&mut self, c: &mut Common, tx_sow: f64, out: &mut Vec<NavEvent>) {
+        let (Some(s1), Some(s2), Some(s3), Some(week)) = (self.sf1, self.sf2, self.sf3, c.week)
         else {
             return;
         };
         if s2.iode != s3.iode || s1.iodc & 0xFF != s2.iode {
             return;
         }
-        let eph = gps_fields::ephemeris(self.sat, week, tx_sow, &s1, &s2, &s3);
-        if self.ephemeris.as_ref() != Some(&eph) {
-            self.ephemeris = Some(eph.clone());
-            out.push(NavEvent::Ephemeris(Box::new(eph)));
-        }
+        c.offer_ephemeris(
+            gps_fields::ephemeris(c.sat, week, tx_sow, &s1, &s2, &s3),
+            out,
+        );
     }
 
     /// Emit page 18 once the week is known and when it changed.
-    fn try_iono_utc(&mut self, out: &mut Vec<NavEvent>) {
-        let (Some(p), Some(week)) = (self.page18, self.week) else {
+    fn try_iono_utc(&mut self, week: Option<u32>, out: &mut Vec<NavEvent>) {
+        let (Some(p), Some(week)) = (self.page18, week) else {
             return;
         };
         let now = (p.iono, p.utc(week));
@@ -217,28 +208,5 @@ impl GpsLnavDecoder {
                 utc: now.1,
             });
         }
-    }
-}
-
-impl NavDecoder for GpsLnavDecoder {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.stream.push(soft_bits);
-        let mut out = Vec::new();
-        while let Some((start_bit, inverted, bits)) = self.stream.next_subframe(confirm, &mut out) {
-            self.subframe(start_bit, inverted, &bits, &mut out);
-        }
-        out
-    }
-
-    fn restart(&mut self) {
-        self.stream.restart();
-    }
-
-    fn stats(&self) -> DecodeStats {
-        self.stream.stats
-    }
-
-    fn satellite(&self) -> SatId {
-        self.sat
     }
 }

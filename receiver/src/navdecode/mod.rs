@@ -22,13 +22,15 @@
 mod bds;
 mod bds_bch;
 mod bds_fields;
+mod decoder;
 mod framer;
 mod gps;
 mod gps_fields;
 mod gps_parity;
 
-pub use bds::BdsDecoder;
-pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder};
+pub use bds::{BdsDecoder, D1D2};
+pub use decoder::{Decoder, MessageFormat};
+pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
 
 use skyforge_gnss::navmsg::bds::Klobuchar;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;

@@ -172,6 +172,11 @@ mod tests {
         };
         assert_eq!(recording_name("ant2", &band), "ant2.bds-b1i");
         let meta = run.meta(&band, "ant2", [0.5, -0.25, 0.1]);
-        assert_eq!(meta.to_text(), RI8_BDS_TEXT);
+        // Captured at version 0.1.0; the recorder is this build's.
+        let expected = RI8_BDS_TEXT.replace(
+            "\"skyforge 0.1.0\"",
+            concat!("\"skyforge ", env!("CARGO_PKG_VERSION"), "\""),
+        );
+        assert_eq!(meta.to_text(), expected);
     }
 }
