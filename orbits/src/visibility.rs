@@ -31,8 +31,24 @@ pub fn within_fov(los_unit: &Vec3, boresight_unit: &Vec3, half_angle_rad: f64) -
 /// True when the straight line from receiver to satellite (ECEF) passes below
 /// `grazing_height_m` above the WGS-84 ellipsoid.
 pub fn earth_blocked(r_rx_ecef_m: &Vec3, r_sat_ecef_m: &Vec3, grazing_height_m: f64) -> bool {
-    let radius_m = WGS84_A_M + grazing_height_m;
-    let polar_m = WGS84_A_M * (1.0 - WGS84_F) + grazing_height_m;
+    segment_blocked(
+        r_rx_ecef_m,
+        r_sat_ecef_m,
+        WGS84_A_M + grazing_height_m,
+        WGS84_A_M * (1.0 - WGS84_F) + grazing_height_m,
+    )
+}
+
+/// True when the straight segment from `r_rx_ecef_m` to `r_sat_ecef_m` passes, between its
+/// ends, inside the spheroid about the geocentre of equatorial radius `radius_m` and polar
+/// radius `polar_m` (a sphere when they are equal). Ends inside it do not count: only a
+/// crossing does.
+pub fn segment_blocked(
+    r_rx_ecef_m: &Vec3,
+    r_sat_ecef_m: &Vec3,
+    radius_m: f64,
+    polar_m: f64,
+) -> bool {
     let scale = Vec3::new(1.0, 1.0, radius_m / polar_m);
     let p0 = r_rx_ecef_m.component_mul(&scale);
     let d = (r_sat_ecef_m - r_rx_ecef_m).component_mul(&scale);
@@ -67,6 +83,18 @@ mod tests {
         // Tiny angles are resolved (1 micro-radian off with a 0.5 micro-radian cone).
         let l = Vec3::new(1e-6, 0.0, 1.0).normalize();
         assert!(!within_fov(&l, &b, 0.5e-6) && within_fov(&l, &b, 1.5e-6));
+    }
+
+    #[test]
+    fn a_spheroid_blocks_the_segments_that_cross_it() {
+        let r = 6.4e6;
+        let (leo, gnss) = (Vec3::new(7e6, 0.0, 0.0), Vec3::new(2.6e7, 0.0, 0.0));
+        assert!(segment_blocked(&leo, &-gnss, r, r));
+        assert!(!segment_blocked(&leo, &gnss, r, r));
+        // Over the pole 1 m above a sphere; a larger polar radius brings the surface up.
+        let (a, b) = (Vec3::new(-7e6, 0.0, r + 1.0), Vec3::new(7e6, 0.0, r + 1.0));
+        assert!(!segment_blocked(&a, &b, r, r));
+        assert!(segment_blocked(&a, &b, r, r + 2.0));
     }
 
     #[test]

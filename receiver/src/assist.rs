@@ -10,6 +10,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, GM_GPS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::visibility::segment_blocked;
 
 /// Half step of the central differences (s).
 const DIFF_STEP_S: f64 = 0.05;
@@ -57,11 +58,11 @@ fn free_fall_ecef(r: &Vec3, v: &Vec3) -> Vec3 {
     -GM_GPS * r / r.norm().powi(3) - 2.0 * w.cross(v) - w.cross(&w.cross(r))
 }
 
-/// Whether the segment from `a` to `b` stays clear of a sphere of the Earth's polar radius.
+/// Whether the segment from `a` to `b` stays clear of a sphere of the Earth's polar radius:
+/// inside the ellipsoid everywhere, so that the prediction keeps every satellite the
+/// ellipsoid might let through. Used above 100 km, where `a` is outside the sphere.
 fn clear_of_earth(a: &Vec3, b: &Vec3) -> bool {
-    let d = b - a;
-    let s = (-a.dot(&d) / d.norm_squared()).clamp(0.0, 1.0);
-    (a + d * s).norm() > EARTH_POLAR_RADIUS_M
+    !segment_blocked(a, b, EARTH_POLAR_RADIUS_M, EARTH_POLAR_RADIUS_M)
 }
 
 /// Hints for every satellite of `store` that is in view of the assisted receiver, sorted

@@ -153,25 +153,7 @@ impl MessageFormat for D1D2 {
         bits: &[u8],
         out: &mut Vec<NavEvent>,
     ) {
-        let before = self.iono;
-        self.decode(c, start_bit, inverted, bits, out);
-        if let Some(iono) = self.iono
-            && before != Some(iono)
-        {
-            out.push(NavEvent::BdsIono(iono));
-        }
-    }
-}
-
-impl D1D2 {
-    fn decode(
-        &mut self,
-        c: &mut Common,
-        start_bit: u64,
-        inverted: bool,
-        bits: &[u8],
-        out: &mut Vec<NavEvent>,
-    ) {
+        let iono_before = self.iono;
         let body = bits.get(2..).unwrap_or(&[]);
         let (info, corrected) = decode_subframe(body);
         let h = Header::new(&info);
@@ -197,8 +179,15 @@ impl D1D2 {
             BdsNavFormat::D1 => self.try_d1(c, tow_s, out),
             BdsNavFormat::D2 => self.try_d2(c, tow_s, out),
         }
+        if let Some(iono) = self.iono
+            && iono_before != Some(iono)
+        {
+            out.push(NavEvent::BdsIono(iono));
+        }
     }
+}
 
+impl D1D2 {
     /// Keep what the ephemeris needs; returns the page number of paged subframes.
     fn store(&mut self, c: &mut Common, h: &Header, info: Vec<u8>) -> Option<u8> {
         let cycle = h.sow / CYCLE_S;
