@@ -13,7 +13,7 @@ use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::platform::PlatformState;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
+use skyforge_signals::truth::{GeometryChunk, LinkGeometry};
 use std::path::Path;
 
 const SATS: usize = 3;

@@ -13,7 +13,7 @@
 //! --nocapture`. The data folder comes from `SKYFORGE_DATA` (default `../shared/data`
 //! next to the workspace).
 
-use skyforge_gnss::navmsg::bds::{BdsNavEncoder, BdsNavFormat, Klobuchar};
+use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat, Klobuchar};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, System};
 use skyforge_orbits::time::{TimeOrigin, bdt_week_sow};
 

@@ -7,8 +7,8 @@
 use hifitime::{Duration, Epoch, TimeScale};
 use proptest::prelude::*;
 use skyforge_gnss::observation::epoch_as_written;
-use skyforge_gnss::observation::rinex_write::{ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst};
 use skyforge_gnss::observation::{ObsEpoch, ObsRecord, parse_obs_text};
+use skyforge_gnss::observation::{ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 

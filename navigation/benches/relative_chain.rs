@@ -31,8 +31,8 @@ use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::{RelativeConfig, RelativeSolver};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::YawPitchRoll;
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use std::hint::black_box;
 
 const EPOCHS: usize = 200;

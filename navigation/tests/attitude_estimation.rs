@@ -18,8 +18,8 @@ use skyforge_navigation::attitude::{
     wrap_diff, wrap_pi,
 };
 use skyforge_navigation::attitude::{AttitudeFilter, FilterInit};
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_orbits::{Mat3, Vec3};
 use std::f64::consts::{PI, TAU};
 

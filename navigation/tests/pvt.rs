@@ -9,12 +9,10 @@ use pvt_support::{World, world};
 use skyforge_navigation::pvt::{Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, OMEGA_E_BDS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::klobuchar::{
-    KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
-};
+use skyforge_orbits::ephemeris::{KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
-use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{az_el, c_ecef_ned};
 use skyforge_orbits::time::{bdt_week_sow, gpst_week_sow};
 use skyforge_orbits::troposphere::standard_slant_delay_m;
 
@@ -307,7 +305,7 @@ fn too_few_satellites_is_an_error() {
 
 #[test]
 fn gga_and_rmc_carry_the_fix() {
-    use skyforge_navigation::pvt::nmea::{gga, gsa, rmc};
+    use skyforge_navigation::pvt::{gga, gsa, rmc};
     let w = world(true);
     let r = site();
     let v = Vec3::new(3.0, 4.0, 0.0);
@@ -329,7 +327,7 @@ fn gga_and_rmc_carry_the_fix() {
     let line = rmc(&fix, &vel, 3723.5, "120323");
     let f: Vec<&str> = line.split(',').collect();
     let speed_mps = f[7].parse::<f64>().unwrap() * 1852.0 / 3600.0;
-    let g = skyforge_orbits::frames::geodetic::ecef_to_geodetic(&r);
+    let g = skyforge_orbits::frames::ecef_to_geodetic(&r);
     let v_ned = c_ecef_ned(g.lat_rad, g.lon_rad) * v;
     assert!((speed_mps - v_ned.x.hypot(v_ned.y)).abs() < 0.01, "{line}");
     assert_eq!(f[9], "120323");

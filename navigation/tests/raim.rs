@@ -15,8 +15,8 @@ use skyforge_navigation::pvt::{chi2_survival, detection_parameters};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
-use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{az_el, c_ecef_ned};
 
 fn site() -> Vec3 {
     geodetic_to_ecef(&Geodetic {

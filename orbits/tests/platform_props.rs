@@ -3,18 +3,18 @@
 use hifitime::Epoch;
 use proptest::prelude::*;
 use skyforge_orbits::frames::YawPitchRoll;
+use skyforge_orbits::frames::c_ecef_ned;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
-use skyforge_orbits::frames::ned::c_ecef_ned;
-use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};
-use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig, TrajectoryConfig};
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
+use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{
     EDGE_MARGIN_S, Platform, PlatformError, PlatformKind, PlatformWindow,
 };
-use skyforge_orbits::propagate::config::{
+use skyforge_orbits::platform::{GroundConfig, PlatformConfig, TrajectoryConfig};
+use skyforge_orbits::propagate::LeoPropagator;
+use skyforge_orbits::propagate::{
     ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, LeoConfig,
 };
-use skyforge_orbits::propagate::leo::LeoPropagator;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_orbits::{Mat3, Vec3};
 use std::path::{Path, PathBuf};

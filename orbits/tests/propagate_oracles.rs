@@ -11,10 +11,10 @@ use skyforge_orbits::constants::{GM_GPS, J2, OMEGA_E_GPS, WGS84_A_M};
 use skyforge_orbits::fixtures::thesis_elements;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::propagate::KeplerianElements;
-use skyforge_orbits::propagate::config::{
+use skyforge_orbits::propagate::{DenseTrajectory, LeoPropagator};
+use skyforge_orbits::propagate::{
     DensityModel, ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, LeoConfig,
 };
-use skyforge_orbits::propagate::leo::{DenseTrajectory, LeoPropagator};
 use skyforge_orbits::time::TimeOrigin;
 
 fn forces(j2: bool, drag: bool) -> ForceModelConfig {

@@ -9,7 +9,7 @@ use skyforge_navigation::pvt::predicted_view;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, GM_GPS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::visibility::segment_blocked;
 
 /// Half step of the central differences (s).

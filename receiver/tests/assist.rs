@@ -5,7 +5,7 @@
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{System, nominal};
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_receiver::assist::{Assistance, search_hints};
 
 fn leo_state(t: f64) -> (Vec3, Vec3) {

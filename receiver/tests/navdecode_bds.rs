@@ -11,7 +11,7 @@ use navdecode_support::{
 };
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
-use skyforge_gnss::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
+use skyforge_gnss::navmsg::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
 };

@@ -9,10 +9,10 @@
 //! the data folder comes from `SKYFORGE_DATA` (default `../shared/data` beside the
 //! workspace).
 
-use skyforge_gnss::navmsg::bds::{BdsNavEncoder, BdsNavFormat, Klobuchar};
 use skyforge_gnss::navmsg::gps_lnav::{
     Almanac, GPS_PI, IonoParams, LnavEncoder, UtcParams, subframe_index_at,
 };
+use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat, Klobuchar};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, System};
 use skyforge_orbits::real_data::ephemerides;
 use skyforge_orbits::time::bdt_week_sow;

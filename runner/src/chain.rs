@@ -15,12 +15,12 @@ use skyforge_receiver::session::{
     Assistance, EpochSink, NavSource, ReceiveSession, RinexObsFiles, SessionError, read_config,
 };
 use skyforge_scenarios::Scenario;
-use skyforge_signals::synth::session::RunInfo;
-use skyforge_signals::synth::session::{
+use skyforge_signals::synth::RunInfo;
+use skyforge_signals::synth::{
     Discard, ObservationSink, SampleSink, SinkError, Sinks, SynthError, SynthReport, SynthSession,
     TruthSink,
 };
-use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
+use skyforge_signals::synth::{SigmfRecordings, recording_name};
 use std::path::{Path, PathBuf};
 
 /// Geometry epochs per streamed chunk (as `skyforge synth`'s default).

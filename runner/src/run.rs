@@ -12,7 +12,7 @@ use skyforge_navigation::pvt::{Fix, PvtConfig};
 use skyforge_navigation::relative::single_point_fixes;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
+use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, System};
 use skyforge_orbits::platform::Hermite3;
@@ -24,13 +24,13 @@ use skyforge_receiver::session::{
 };
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::obs_model::{Level, ObservationModel};
-use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::link::LinkTruth;
-use skyforge_signals::synth::session::{
+use skyforge_signals::synth::{
     Discard, GEOMETRY_STEP_S, ObservationSink, SinkError, Sinks, SynthError, SynthSession,
     TruthSink,
 };
-use skyforge_signals::truth::geometry::GeometryChunk;
+use skyforge_signals::truth::GeometryChunk;
 use std::path::PathBuf;
 
 /// Geometry epochs per streamed chunk (as `skyforge synth`'s default).

@@ -7,16 +7,16 @@ use crate::error::ScenarioError;
 use crate::parse::locate_invalid;
 use crate::schema::Scenario;
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::ephemeris::config::{ConstellationConfig, ConstellationSource};
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System, nominal};
+use skyforge_orbits::ephemeris::{ConstellationConfig, ConstellationSource};
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, PlatformKind};
 use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
-use skyforge_signals::synth::session::SynthWorld;
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
+use skyforge_signals::synth::SynthWorld;
+use skyforge_signals::truth::{GeometryChunk, GeometryTruth, StreamError};
 use std::path::Path;
 
 /// Everything a simulation run needs, built from a [`Scenario`].

@@ -3,10 +3,10 @@
 
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
-use skyforge_gnss::codes::{bds_b1i::BDS_B1I_CHIP_RATE_HZ, gps_ca::GPS_CA_CHIP_RATE_HZ};
+use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, GPS_CA_CHIP_RATE_HZ};
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::platform::attitude::{AttitudeConfig, AxisProfileConfig};
-use skyforge_orbits::platform::config::{GroundConfig, PlatformConfig};
+use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
+use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};

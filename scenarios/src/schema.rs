@@ -4,12 +4,12 @@
 
 use hifitime::Epoch;
 use serde::Deserialize;
-use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationConfig, ConstellationSource};
-use skyforge_orbits::platform::config::PlatformConfig;
+use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSource};
+use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::ErrorsConfig;
 use skyforge_signals::obs_model::ObservationConfig;
-use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::SignalConfig;
 use std::path::PathBuf;
 
 /// A checked scenario: every value parsed, defaulted and checked (checks that need files

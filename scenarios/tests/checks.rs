@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationSource};
+use skyforge_orbits::ephemeris::{BeidouSet, ConstellationSource};
 use std::path::Path;
 
 #[test]

@@ -2,7 +2,7 @@
 //! baseband (real taps on I and Q), complex at an IF (complex taps), and a real IF.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
+use skyforge_signals::synth::{BandFilter, FilterConfig};
 
 fn filter(c: &mut Criterion) {
     let fs = 4.092e6;

@@ -1,7 +1,7 @@
 //! Mixing kernel throughput: one GPS L1 C/A channel, 4.092 Msps complex, 1 ms blocks.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use skyforge_signals::synth::mix::{ChannelBlock, MixScratch, mix_into};
+use skyforge_signals::synth::{ChannelBlock, MixScratch, mix_into};
 
 fn mix(c: &mut Criterion) {
     let n = 4092;

@@ -6,7 +6,7 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::ephemeris::nominal;
-use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
 use std::io::Write;
@@ -17,7 +17,7 @@ const FS_HZ: f64 = 4.092e6;
 fn synth(c: &mut Criterion) {
     let start = hifitime::Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").expect("epoch");
     let ephs = nominal::gps(start);
-    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
+    let iono = skyforge_signals::errors::IonoConfig::default();
     let txs = constellation::gps_l1ca(&ephs[..CHANNELS], start, &iono.gps).expect("transmitters");
     // Plausible ground-receiver links: 20-26 Mm, +-800 m/s.
     let links: Vec<Option<LinkEnd>> = (0..CHANNELS)

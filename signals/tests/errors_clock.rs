@@ -8,11 +8,11 @@
 //! and 10 s the spread is 1.5 % and 4 %. The single-seed acceptance therefore uses the
 //! first seed tried (0) and the seed-averaged checks carry the statistical weight.
 
-use skyforge_signals::errors::clock::{
+use skyforge_signals::errors::{
     ClockModel, ClockSample, OscillatorPreset, PowerLaw, overlapping_adev, overlapping_avar,
     predicted_adev, predicted_avar,
 };
-use skyforge_signals::errors::seed::{Stream, stream_rng};
+use skyforge_signals::errors::{Stream, stream_rng};
 
 const DT_S: f64 = 0.01;
 const DURATION_S: f64 = 2000.0;

@@ -7,8 +7,8 @@
 use proptest::prelude::*;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::frames::geodetic::Geodetic;
-use skyforge_signals::errors::ionosphere::{
+use skyforge_orbits::frames::Geodetic;
+use skyforge_signals::errors::{
     IonoConfig, IonoModel, KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
     remaining_fraction, scale_to_frequency,
 };

@@ -1,7 +1,7 @@
 //! Saastamoinen troposphere with the standard atmosphere and Chao mapping.
 
 use proptest::prelude::*;
-use skyforge_signals::errors::troposphere::{
+use skyforge_signals::errors::{
     TROPOSPHERE_CEILING_M, TropoConfig, TropoModel, chao_mapping, saastamoinen_zenith_m,
     standard_atmosphere,
 };

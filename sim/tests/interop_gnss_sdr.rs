@@ -6,11 +6,11 @@
 mod interop_observables;
 mod support;
 
-use skyforge_gnss::codes::bds_b1i::BDS_B1I_CHIP_RATE_HZ;
-use skyforge_gnss::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
+use skyforge_gnss::codes::BDS_B1I_CHIP_RATE_HZ;
+use skyforge_gnss::codes::GPS_CA_CHIP_RATE_HZ;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use std::path::Path;
 use std::process::Command;
 use support::dataset;

@@ -5,7 +5,7 @@
 
 mod support;
 
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use support::{require_rnx2rtkp, rnx2rtkp, rtklib_xyz_solutions, skyforge_ok};
 
 #[test]

@@ -18,8 +18,8 @@
 mod support;
 
 use serde_json::Value;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_validate::attitude::compare_outputs;
 use std::path::Path;

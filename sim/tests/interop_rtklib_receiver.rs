@@ -17,7 +17,7 @@ use rinex::prelude::{Constellation, Observable};
 use skyforge_navigation::pvt::PvtError;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_receiver::observables::Observation;
 use skyforge_receiver::pipeline::fixtures::{fix, report};
 use skyforge_receiver::pipeline::{AntennaFix, EpochReport};

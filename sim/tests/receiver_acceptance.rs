@@ -13,7 +13,7 @@
 
 mod support;
 
-use skyforge_gnss::codes::gps_ca::GPS_CA_CHIP_RATE_HZ;
+use skyforge_gnss::codes::GPS_CA_CHIP_RATE_HZ;
 use skyforge_orbits::Vec3;
 use skyforge_validate::observables::{ObsFile, read_obs_file};
 use std::path::{Path, PathBuf};

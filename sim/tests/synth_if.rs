@@ -9,7 +9,7 @@
 
 mod support;
 
-use skyforge_gnss::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
+use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
 use std::path::Path;
 use std::process::Command;

@@ -2,7 +2,7 @@
 //! embedded GPS + BeiDou satellites, 1 Hz). Multiply by 24 for the 24 h acceptance run.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use skyforge_signals::truth::geometry::GeometryTruth;
+use skyforge_signals::truth::GeometryTruth;
 
 fn one_hour(c: &mut Criterion) {
     let scenario = skyforge_scenarios::resolve("thesis-leo").expect("bundled scenario");

@@ -6,8 +6,8 @@ use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::platform::PlatformWindow;
 use skyforge_signals::truth::QuinticHermite;
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
 use skyforge_signals::truth::light_time;
+use skyforge_signals::truth::{GeometryChunk, GeometryTruth};
 
 /// Ten minutes of 1 Hz geometry of the thesis LEO (all antennas, GPS + BeiDou).
 fn thesis_chunk() -> (

@@ -4,7 +4,7 @@
 
 use hifitime::Epoch;
 use num_complex::{Complex32, Complex64};
-use skyforge_gnss::codes::gps_ca::gps_ca;
+use skyforge_gnss::codes::gps_ca;
 use skyforge_gnss::sample_format::SampleFormat as WriterFormat;
 use skyforge_gnss::sigmf::RecordingMeta;
 use skyforge_gnss::signal::Signal;
@@ -12,7 +12,7 @@ use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::nominal;
 use skyforge_receiver::input::{BlockReader, InputParams, Recording, SampleFormat};
 use skyforge_signals::synth::Quantiser;
-use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::constellation;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
 use std::f64::consts::TAU;
@@ -67,7 +67,7 @@ fn link(range_m: f64, cn0_dbhz: f64) -> Option<LinkEnd> {
 fn synthesise(cfg: &SignalConfig, ranges_m: &[f64], cn0_dbhz: f64, ms: u32) -> (Vec<Vec<u8>>, u8) {
     let start = Epoch::from_gregorian_str("2023-03-12T00:00:00 GPST").unwrap();
     let ephs = nominal::gps(start);
-    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
+    let iono = skyforge_signals::errors::IonoConfig::default();
     let txs = constellation::gps_l1ca(&ephs[..1], start, &iono.gps).unwrap();
     let n = ranges_m.len();
     let mut synth = Synthesiser::new(cfg, &txs, n, 11).unwrap();

@@ -6,8 +6,8 @@
 mod common;
 
 use skyforge_orbits::constants::C_MPS;
-use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser};
+use skyforge_signals::synth::{BLOCK_S, SignalConfig};
 
 #[test]
 fn truth_carries_the_coarse_clock_at_whole_seconds() {

@@ -6,18 +6,18 @@
 
 mod common;
 
-use skyforge_gnss::codes::gps_ca::gps_ca;
+use skyforge_gnss::codes::gps_ca;
 use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_signals::antenna::AntennaGrid;
-use skyforge_signals::errors::ionosphere::{IonoConfig, IonoModel};
-use skyforge_signals::errors::multipath::{MultipathConfig, TapConfig};
-use skyforge_signals::errors::troposphere::{TropoConfig, TropoModel};
-use skyforge_signals::synth::config::SignalConfig;
-use skyforge_signals::synth::link_terms::{AntennaEpoch, LinkTerms};
+use skyforge_signals::errors::{IonoConfig, IonoModel};
+use skyforge_signals::errors::{MultipathConfig, TapConfig};
+use skyforge_signals::errors::{TropoConfig, TropoModel};
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::render::{Synthesiser, append_to};
+use skyforge_signals::synth::{AntennaEpoch, LinkTerms};
 use skyforge_signals::truth::QuinticHermite;
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
+use skyforge_signals::truth::{GeometryChunk, GeometryTruth};
 
 const FS_HZ: f64 = 4.0e6;
 const BLOCKS: usize = 200;

@@ -8,9 +8,9 @@
 mod common;
 
 use skyforge_gnss::sample_format::SampleFormat;
-use skyforge_signals::synth::config::SignalConfig;
-use skyforge_signals::synth::filter::{BandFilter, FilterConfig};
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::render::{LinkEnd, Synthesiser, append_to};
+use skyforge_signals::synth::{BandFilter, FilterConfig};
 
 /// Samples of two antennas over [0 s, 1 s] and the clipped count, `slice_bytes` at a time.
 fn render(slice_bytes: usize) -> (Vec<Vec<u8>>, u64) {

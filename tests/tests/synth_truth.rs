@@ -10,10 +10,10 @@ mod common;
 
 use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_signals::errors::events::{EventConfig, EventKind, EventSchedule};
+use skyforge_signals::errors::{EventConfig, EventKind, EventSchedule};
 use skyforge_signals::synth::Transmitter;
-use skyforge_signals::synth::config::{BLOCK_S, SignalConfig};
 use skyforge_signals::synth::render::{LinkEnd, LinkTruth, Synthesiser, append_to};
+use skyforge_signals::synth::{BLOCK_S, SignalConfig};
 use std::f64::consts::TAU;
 
 const FS_HZ: f64 = 4.0e6;

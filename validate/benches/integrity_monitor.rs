@@ -5,9 +5,9 @@
 //! alignment, mapping to the common point, Hatch filters, divergence, B values, alarms.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use skyforge_navigation::integrity::files::{run_files, stations};
+use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_runner::observation_run;
-use skyforge_validate::integrity::lab::scenario;
+use skyforge_validate::integrity::scenario;
 use std::hint::black_box;
 
 fn monitor(c: &mut Criterion) {

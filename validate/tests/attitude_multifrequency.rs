@@ -11,7 +11,7 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::relative::Constraint;
 use skyforge_runner::observation_run;
 use skyforge_signals::obs_model::ObsNoiseConfig;
-use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
+use skyforge_validate::attitude::{SuccessRate, single_epoch};
 
 // assumed (chosen before the first run): T-1.2-2's middle phase noise, 3 mm, and 0.5 m of
 // code, constant and the same on every frequency (Q_f = I, as thesis 2.4.2 writes it when

@@ -11,7 +11,7 @@
 
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::relative::Constraint;
-use skyforge_validate::attitude::success::{SuccessRate, single_epoch};
+use skyforge_validate::attitude::{SuccessRate, single_epoch};
 
 // assumed: 300 s of the 600 s scenario, chosen before the first run, to keep the default
 // suite short; eight seeds (the tables' count).

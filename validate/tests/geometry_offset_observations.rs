@@ -18,7 +18,7 @@ use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::RelativeConfig;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_runner::{ObservationRun, observation_run};
-use skyforge_validate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
+use skyforge_validate::attitude::{FixedEpoch, fixed_baselines, true_attitudes};
 
 // assumed: 300 s, one seed (the scenario's), chosen before the first run.
 const DURATION_S: f64 = 300.0;

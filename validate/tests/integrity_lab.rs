@@ -6,9 +6,9 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::integrity::{SatelliteEpoch, Statistic};
 use skyforge_validate::draw::Draw;
 use skyforge_validate::integrity::detection;
-use skyforge_validate::integrity::lab::{Case, FAULT_SATELLITE, MonitoredRun};
-use skyforge_validate::integrity::monitor::{Sigmas, calibrate_lab, case_run};
 use skyforge_validate::integrity::patterns;
+use skyforge_validate::integrity::{Case, FAULT_SATELLITE, MonitoredRun};
+use skyforge_validate::integrity::{Sigmas, calibrate_lab, case_run};
 use skyforge_validate::report::Verdict;
 use std::sync::OnceLock;
 
@@ -147,7 +147,7 @@ fn the_bundled_configuration_is_the_labs_calibration() {
             }
         }
     }
-    let lab = skyforge_validate::integrity::monitor::config(fresh.clone());
+    let lab = skyforge_validate::integrity::config(fresh.clone());
     assert_eq!(bundled.smoothing_s, lab.smoothing_s);
     assert_eq!(bundled.divergence_s, lab.divergence_s);
     assert_eq!(bundled.thresholds.false_alarm, lab.thresholds.false_alarm);

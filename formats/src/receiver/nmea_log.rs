@@ -6,8 +6,8 @@
 use super::writing;
 use anyhow::Context;
 use hifitime::{Duration, Epoch};
-use skyforge_navigation::pvt::nmea::{gga, gsa, rmc};
 use skyforge_navigation::pvt::{Fix, VelocityFix};
+use skyforge_navigation::pvt::{gga, gsa, rmc};
 use skyforge_orbits::constants::C_MPS;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -66,7 +66,7 @@ mod tests {
     use super::*;
     use hifitime::TimeScale;
     use skyforge_orbits::Vec3;
-    use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
     use skyforge_receiver::pipeline::fixtures::{fix, gps};
 
     /// Check a sentence's checksum: the XOR of the bytes between `$` and `*` (NMEA 0183).

@@ -12,7 +12,7 @@ use super::writing;
 use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_navigation::pvt::{Fix, IntegrityStatus, VelocityFix};
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::time::gpst_week_sow;
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -112,7 +112,7 @@ mod tests {
     use hifitime::TimeScale;
     use skyforge_navigation::pvt::Protection;
     use skyforge_orbits::Vec3;
-    use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
     use skyforge_receiver::pipeline::fixtures::{bds, fix, gps};
 
     #[test]

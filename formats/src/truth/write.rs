@@ -14,8 +14,8 @@ use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
 use skyforge_signals::synth::render::LinkTruth;
-use skyforge_signals::synth::session::{SinkError, TruthSink};
-use skyforge_signals::truth::geometry::{GeometryChunk, LinkGeometry};
+use skyforge_signals::synth::{SinkError, TruthSink};
+use skyforge_signals::truth::{GeometryChunk, LinkGeometry};
 use std::path::{Path, PathBuf};
 
 /// Schema version written to the root attribute `schema_version`.

@@ -16,8 +16,6 @@ use super::{level_from_logic, shift_register_step, stage};
 pub const BDS_B1I_CHIP_RATE_HZ: f64 = 2.046e6;
 /// B1I code length in chips: the 2047-chip Gold code less its last chip (§4.3).
 pub const BDS_B1I_CODE_LENGTH: usize = 2046;
-/// B1I code period, seconds.
-pub const BDS_B1I_CODE_PERIOD_S: f64 = BDS_B1I_CODE_LENGTH as f64 / BDS_B1I_CHIP_RATE_HZ;
 /// Highest PRN with a B1I phase assignment in BDS-SIS-ICD-B1I-3.0.
 pub const BDS_B1I_PRN_MAX: u8 = 63;
 
@@ -268,10 +266,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    #[test]
-    fn period_is_one_millisecond() {
-        assert!((BDS_B1I_CODE_PERIOD_S - 1e-3).abs() < 1e-15);
     }
 }

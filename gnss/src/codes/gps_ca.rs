@@ -14,8 +14,6 @@ use super::{level_from_logic, shift_register_step, stage};
 pub const GPS_CA_CHIP_RATE_HZ: f64 = 1.023e6;
 /// C/A code length in chips: one period is 1 ms (IS-GPS-200 §3.3.2.3).
 pub const GPS_CA_CODE_LENGTH: usize = 1023;
-/// C/A code period, seconds.
-pub const GPS_CA_CODE_PERIOD_S: f64 = GPS_CA_CODE_LENGTH as f64 / GPS_CA_CHIP_RATE_HZ;
 /// Highest PRN with a C/A code assignment in IS-GPS-200 Tables 3-Ia and 3-Ib.
 pub const GPS_CA_PRN_MAX: u8 = 63;
 
@@ -254,10 +252,5 @@ mod tests {
             }
         }
         assert_eq!(worst, 65, "the bound is reached by some pair");
-    }
-
-    #[test]
-    fn period_is_one_millisecond() {
-        assert!((GPS_CA_CODE_PERIOD_S - 1e-3).abs() < 1e-15);
     }
 }

@@ -8,12 +8,15 @@
 //! BPSK convention (IS-GPS-200 §3.3.1.1 and BDS-SIS-ICD-B1I §4.2.2 both modulate by
 //! modulo-2 addition, which this mapping turns into a product).
 
-pub mod bds_b1i;
-pub mod gps_ca;
+pub(crate) mod bds_b1i;
+pub(crate) mod gps_ca;
 pub mod neumann_hoffman;
 
 #[cfg(test)]
 mod bit_correlation;
+
+pub use bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+pub use gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
 
 /// Signal level of a logic chip: logic 0 -> +1, logic 1 -> -1 (only the lowest bit is used).
 pub const fn level_from_logic(bit: u8) -> i8 {

@@ -1,4 +1,6 @@
 //! Navigation messages a real receiver decodes: GPS LNAV and BeiDou D1/D2.
 
-pub mod bds;
+pub(crate) mod bds;
 pub mod gps_lnav;
+
+pub use bds::{BdsExtraFields, BdsNavEncoder, BdsNavError, BdsNavFormat, Klobuchar};

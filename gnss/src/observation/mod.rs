@@ -9,7 +9,9 @@ pub(crate) mod record;
 pub mod rinex2_read;
 pub(crate) mod rinex_codes;
 pub mod rinex_read;
-pub mod rinex_write;
+pub(crate) mod rinex_write;
+
+pub use rinex_write::{Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst};
 
 pub use as_written::epoch_as_written;
 

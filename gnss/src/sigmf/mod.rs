@@ -5,7 +5,7 @@
 //! (`skyforge_signals` `synth::sigmf`) writes the files; the receiver's `input::recording`
 //! reads them.
 
-pub mod datetime;
+pub(crate) mod datetime;
 pub mod keys;
 mod read;
 mod write;
@@ -15,3 +15,5 @@ pub use write::RecordingMeta;
 
 #[cfg(test)]
 mod tests;
+
+pub use datetime::format_utc;

@@ -8,8 +8,8 @@
 
 use super::{AttitudeError, NedBaselines, check_covariance};
 use nalgebra::DMatrix;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::{Mat3, Vec3};
 
 /// Eqs. 2.4-66, 2.4-67 with any rotation `f` (ECEF -> reference frame): baselines

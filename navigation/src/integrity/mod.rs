@@ -26,11 +26,13 @@
 mod b_value;
 mod config;
 mod divergence;
-pub mod files;
+pub(crate) mod files;
 mod hatch;
 mod monitor;
 mod statistic;
 mod thresholds;
+
+pub use files::{run_files, stations};
 
 pub use b_value::b_values;
 pub use config::{MonitorConfig, StationPosition};

@@ -3,8 +3,8 @@
 
 use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{BoundEphemeris, SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
-use skyforge_orbits::frames::ned::{az_el, c_ecef_ned};
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
+use skyforge_orbits::frames::{az_el, c_ecef_ned};
 use skyforge_orbits::{Mat3, Vec3};
 use std::collections::BTreeMap;
 

@@ -13,7 +13,7 @@
 
 pub(crate) mod exclusion;
 mod geometry;
-pub mod nmea;
+pub(crate) mod nmea;
 pub(crate) mod protection;
 pub(crate) mod raim;
 pub(crate) mod solve;
@@ -21,14 +21,16 @@ pub(crate) mod solve;
 mod test_geometry;
 mod velocity;
 
+pub use nmea::{gga, gsa, rmc};
+
 pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
 pub use raim::{chi2_survival, detection_parameters};
 pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 
 use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
 
 /// The satellite of `eph` for a receiver at `r_rx_m` at time `t_s` (s since the ephemeris
 /// origin), before any measurement: the flight time from the geometry alone (a typical

@@ -4,8 +4,8 @@
 
 use super::{Fix, VelocityFix};
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::ecef_to_geodetic;
 
 /// Knots per m/s.
 const KNOTS_PER_MPS: f64 = 3600.0 / 1852.0;

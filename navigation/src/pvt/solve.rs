@@ -11,10 +11,10 @@ use super::{
 use nalgebra::{DMatrix, DVector};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
-use skyforge_orbits::ephemeris::klobuchar::{bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::ephemeris::{bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
 use skyforge_orbits::troposphere::standard_slant_delay_m;
 

@@ -464,7 +464,7 @@ mod tests {
     use super::*;
     use crate::pvt::{Dop, predicted_view};
     use skyforge_orbits::ephemeris::nominal;
-    use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 
     fn fix(t_s: f64, r_ecef_m: Vec3) -> Fix {
         Fix {

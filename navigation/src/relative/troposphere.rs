@@ -14,7 +14,7 @@
 
 use crate::pvt::solve::STANDARD_RH0;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::troposphere::StandardZenith;
 
 /// Step of the central differences (m): the second-order error is `(STEP / 8 km)^2 / 6`
@@ -83,7 +83,7 @@ mod tests {
     use super::*;
     use crate::pvt::predicted_view;
     use skyforge_orbits::ephemeris::{SatId, nominal};
-    use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+    use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
     use skyforge_orbits::troposphere::standard_slant_delay_m;
 
     fn geo(lat_deg: f64, lon_deg: f64, h_m: f64) -> Vec3 {

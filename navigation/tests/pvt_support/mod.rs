@@ -1,7 +1,7 @@
 //! Shared by the single-point and RAIM tests: the embedded nominal constellations on the
 //! bundled scenarios' day.
 
-use skyforge_orbits::ephemeris::config::BeidouSet;
+use skyforge_orbits::ephemeris::BeidouSet;
 use skyforge_orbits::ephemeris::{EphemerisStore, nominal};
 use skyforge_orbits::time::TimeOrigin;
 

@@ -3,8 +3,8 @@
 //! selection, and the embedded default constellations.
 
 pub(crate) mod broadcast;
-pub mod config;
-pub mod klobuchar;
+pub(crate) mod config;
+pub(crate) mod klobuchar;
 pub mod nominal;
 pub mod rinex_nav;
 pub mod rinex_nav_iono;
@@ -12,6 +12,9 @@ pub(crate) mod rinex_nav_write;
 pub(crate) mod sat_id;
 pub(crate) mod sp3;
 pub(crate) mod store;
+
+pub use config::{BeidouSet, ConstellationConfig, ConstellationSource};
+pub use klobuchar::{KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 
 pub use rinex_nav_write::write_nav;
 pub use sp3::read_sp3;

@@ -3,8 +3,11 @@
 
 pub mod earth_rotation;
 pub(crate) mod euler;
-pub mod geodetic;
-pub mod ned;
+pub(crate) mod geodetic;
+pub(crate) mod ned;
 pub(crate) mod orbital;
+
+pub use geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
+pub use ned::{az_el, c_ecef_ned};
 
 pub use euler::YawPitchRoll;

@@ -13,13 +13,16 @@
 //! holding only what the window needs (a LEO's dense output for the window; ground sites
 //! and trajectories share their data through `Arc`), so many threads can query it.
 
-pub mod attitude;
-pub mod config;
+pub(crate) mod attitude;
+pub(crate) mod config;
 pub(crate) mod csv_table;
 pub(crate) mod ground;
 pub(crate) mod hermite;
 mod leo;
 pub(crate) mod trajectory;
+
+pub use attitude::{AttitudeConfig, AxisProfileConfig};
+pub use config::{GroundConfig, PlatformConfig, TrajectoryConfig};
 
 pub use hermite::Hermite3;
 
@@ -32,7 +35,6 @@ use crate::propagate::leo::{DenseTrajectory, LeoPropagator};
 use crate::time::TimeOrigin;
 use crate::{Mat3, Vec3};
 use attitude::AttitudeProfile;
-use config::PlatformConfig;
 use ground::GroundSite;
 use std::path::Path;
 use std::sync::Arc;

@@ -2,13 +2,18 @@
 //! integrated by an adaptive Dormand-Prince 5(4) with dense output.
 
 pub(crate) mod atmosphere;
-pub mod config;
+pub(crate) mod config;
 pub(crate) mod dormand_prince;
 pub(crate) mod elements;
 pub(crate) mod forces;
-pub mod leo;
+pub(crate) mod leo;
 pub(crate) mod sun;
 pub(crate) mod tle;
+
+pub use config::{
+    DensityModel, ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, LeoConfig,
+};
+pub use leo::{DenseTrajectory, LeoPropagator};
 
 pub use elements::KeplerianElements;
 

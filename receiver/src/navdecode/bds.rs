@@ -5,8 +5,8 @@ use super::bds_fields::{self, Clock, Header};
 use super::decoder::{Common, Decoder, MessageFormat};
 use super::framer::FrameSpec;
 use super::{NavDecodeError, NavEvent, SUBFRAME_BITS, SubframeInfo, WEEK_S, time_consistent};
-use skyforge_gnss::navmsg::bds::BdsNavFormat;
-use skyforge_gnss::navmsg::bds::Klobuchar;
+use skyforge_gnss::navmsg::BdsNavFormat;
+use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
 
 /// Preamble 11100010010 (BDS-SIS-ICD-B1I-3.0 §5.2.3).

@@ -7,7 +7,7 @@
 //! splits fields across pages: the MSBs end page n, the LSBs start page n + 1.
 
 use super::{DecodedEphemeris, sign_extend, week_of_reference};
-use skyforge_gnss::navmsg::bds::Klobuchar;
+use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
 };

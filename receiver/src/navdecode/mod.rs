@@ -32,7 +32,7 @@ pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
 
-use skyforge_gnss::navmsg::bds::Klobuchar;
+use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;
 use skyforge_gnss::navmsg::gps_lnav::UtcParams;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};

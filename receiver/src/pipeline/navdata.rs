@@ -4,7 +4,7 @@
 
 use crate::navdecode::NavEvent;
 use hifitime::Epoch;
-use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
+use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_orbits::time::{TimeOrigin, epoch_from_gpst, gpst_week_sow};
 

@@ -20,7 +20,7 @@ use hifitime::Epoch;
 use num_complex::Complex32;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::ephemeris::klobuchar::KlobucharCoeffs;
+use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).

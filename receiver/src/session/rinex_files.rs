@@ -7,9 +7,7 @@
 use super::{EpochSink, SinkError};
 use crate::pipeline::EpochReport;
 use skyforge_gnss::observation::ObsRecord;
-use skyforge_gnss::observation::rinex_write::{
-    Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst,
-};
+use skyforge_gnss::observation::{Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;

@@ -19,11 +19,9 @@
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::frames::geodetic::Geodetic;
+use skyforge_orbits::frames::Geodetic;
 
-pub use skyforge_orbits::ephemeris::klobuchar::{
-    KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
-};
+pub use skyforge_orbits::ephemeris::{KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 
 /// Height below which the whole ionosphere is above the receiver (m).
 pub const FULL_IONOSPHERE_BELOW_M: f64 = 100e3;

@@ -1,22 +1,34 @@
 //! Error models: receiver oscillator, ionosphere, troposphere, link budget, multipath,
 //! fault events.
 
-pub mod clock;
-pub mod events;
-pub mod ionosphere;
+pub(crate) mod clock;
+pub(crate) mod events;
+pub(crate) mod ionosphere;
 pub(crate) mod link_budget;
-pub mod multipath;
-pub mod seed;
-pub mod troposphere;
+pub(crate) mod multipath;
+pub(crate) mod seed;
+pub(crate) mod troposphere;
+
+pub use clock::{
+    ClockModel, ClockSample, OscillatorPreset, PowerLaw, overlapping_adev, overlapping_avar,
+    predicted_adev, predicted_avar,
+};
+pub use events::{EventConfig, EventKind, EventSchedule};
+pub use ionosphere::{
+    IonoConfig, IonoModel, KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s,
+    remaining_fraction, scale_to_frequency,
+};
+pub use multipath::{MultipathConfig, TapConfig};
+pub use seed::{Stream, stream_rng};
+pub use troposphere::{
+    TROPOSPHERE_CEILING_M, TropoConfig, TropoModel, chao_mapping, saastamoinen_zenith_m,
+    standard_atmosphere,
+};
 
 pub use link_budget::default_gps_eirp_dbw;
 
 use clock::OscillatorConfig;
-use events::EventConfig;
-use ionosphere::IonoConfig;
-use multipath::MultipathConfig;
 use serde::Deserialize;
-use troposphere::TropoConfig;
 
 /// `[errors]`: error sources applied to the synthesised signal.
 #[derive(Debug, Clone, PartialEq, Default, Deserialize)]

@@ -8,7 +8,7 @@
 use skyforge_orbits::check::Invalid;
 
 pub use skyforge_orbits::troposphere::{
-    Atmosphere, TROPOSPHERE_CEILING_M, chao_mapping, saastamoinen_zenith_m, standard_atmosphere,
+    TROPOSPHERE_CEILING_M, chao_mapping, saastamoinen_zenith_m, standard_atmosphere,
 };
 
 /// Troposphere model choice.

@@ -11,8 +11,8 @@ use crate::errors::troposphere::TropoConfig;
 use crate::truth::geometry::LinkGeometry;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
-use skyforge_orbits::frames::geodetic::{Geodetic, ecef_to_geodetic};
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::platform::PlatformState;
 use skyforge_orbits::{Mat3, Vec3};
 

@@ -3,19 +3,29 @@
 //! formats with their SigMF metadata, and the streaming session that drives them.
 
 pub(crate) mod budget;
-pub mod config;
+pub(crate) mod config;
 pub mod constellation;
-pub mod filter;
+pub(crate) mod filter;
 pub mod gnss_sdr;
 pub mod link;
-pub mod link_terms;
-pub mod mix;
+pub(crate) mod link_terms;
+pub(crate) mod mix;
 pub(crate) mod noise;
 pub(crate) mod quantise;
 pub mod render;
-pub mod session;
-pub mod sigmf;
+pub(crate) mod session;
+pub(crate) mod sigmf;
 pub(crate) mod transmitter;
+
+pub use config::{BLOCK_S, SignalConfig};
+pub use filter::{BandFilter, FilterConfig};
+pub use link_terms::{AntennaEpoch, LinkTerms};
+pub use mix::{ChannelBlock, MixScratch, mix_into};
+pub use session::{
+    Discard, GEOMETRY_STEP_S, ObservationSink, RunInfo, SampleSink, SinkError, Sinks, SynthError,
+    SynthReport, SynthSession, SynthWorld, TruthSink,
+};
+pub use sigmf::{SigmfRecordings, recording_name};
 
 pub use budget::Budget;
 pub use noise::ThermalNoise;

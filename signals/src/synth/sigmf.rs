@@ -6,7 +6,7 @@
 use super::session::{Band, RunInfo, SampleSink, SinkError};
 use crate::antenna::Antenna;
 use skyforge_gnss::sigmf::RecordingMeta;
-use skyforge_gnss::sigmf::datetime::format_utc;
+use skyforge_gnss::sigmf::format_utc;
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};

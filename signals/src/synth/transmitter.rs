@@ -2,11 +2,11 @@
 //! time scale its code and data are counted in.
 
 use hifitime::Epoch;
-use skyforge_gnss::codes::bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
-use skyforge_gnss::codes::gps_ca::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::neumann_hoffman::NH20;
-use skyforge_gnss::navmsg::bds::{BdsNavEncoder, BdsNavFormat};
+use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
+use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 

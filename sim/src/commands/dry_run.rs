@@ -4,8 +4,8 @@
 use skyforge_formats::truth::size_bound;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::synth::Budget;
-use skyforge_signals::synth::session::SynthSession;
-use skyforge_signals::synth::sigmf::recording_name;
+use skyforge_signals::synth::SynthSession;
+use skyforge_signals::synth::recording_name;
 
 /// RINEX observation bytes per satellite and epoch, at most (one record line).
 const RINEX_BYTES_PER_RECORD: u64 = 80;

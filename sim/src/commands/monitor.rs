@@ -10,11 +10,11 @@ use skyforge_formats::monitor::{
     AlarmLog, H5Rows, MONITOR_CSV, MONITOR_H5, SUMMARY_JSON, csv_header, csv_rows,
 };
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
-use skyforge_navigation::integrity::files::{run_files, stations};
 use skyforge_navigation::integrity::{MonitorConfig, Station};
+use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_validate::integrity::monitor::{
+use skyforge_validate::integrity::{
     ELEVATION_BINS_DEG, calibrate as measure, calibrate_files as measure_files, config,
 };
 use std::io::Write;

@@ -5,7 +5,7 @@ use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
-use skyforge_signals::truth::geometry::{GeometryChunk, epoch_count};
+use skyforge_signals::truth::{GeometryChunk, epoch_count};
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
 

@@ -16,16 +16,16 @@ use skyforge_receiver::pipeline::assistance_toml;
 use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_runner::{ChainError, StreamSinks, StreamedChain};
 use skyforge_scenarios::{Scenario, World};
-use skyforge_signals::errors::troposphere::TropoModel;
+use skyforge_signals::errors::TropoModel;
 use skyforge_signals::obs_model::{Level, ObservationModel};
-use skyforge_signals::synth::config::SignalConfig;
+use skyforge_signals::synth::RunInfo;
+use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
-use skyforge_signals::synth::session::RunInfo;
-use skyforge_signals::synth::session::{
+use skyforge_signals::synth::{
     Discard, GEOMETRY_STEP_S, Sinks, SynthError, SynthReport, SynthSession,
 };
-use skyforge_signals::synth::sigmf::{SigmfRecordings, recording_name};
-use skyforge_signals::truth::geometry::epoch_count;
+use skyforge_signals::synth::{SigmfRecordings, recording_name};
+use skyforge_signals::truth::epoch_count;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;

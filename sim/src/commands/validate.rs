@@ -10,7 +10,7 @@ use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
-use skyforge_validate::integrity::score::{print_score, run_scenario, score};
+use skyforge_validate::integrity::{print_score, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;

@@ -5,11 +5,11 @@
 //! (`skyforge_formats::truth::TruthWriter`).
 
 use skyforge_gnss::observation::ObsRecord;
-use skyforge_gnss::observation::rinex_write::{ObsWriter, calendar_gpst};
+use skyforge_gnss::observation::{ObsWriter, calendar_gpst};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_signals::antenna::Antenna;
-use skyforge_signals::synth::session::{ObservationSink, SinkError};
+use skyforge_signals::synth::{ObservationSink, SinkError};
 use std::fs::File;
 use std::io::BufWriter;
 use std::path::{Path, PathBuf};

@@ -14,7 +14,7 @@ use super::page::Figure;
 use super::{ReportError, figure};
 use skyforge_formats::truth::VisibleLinks;
 use skyforge_receiver::tracking::error_budget::{Budget, DopplerDynamics, LOCK_THRESHOLD_DEG};
-use skyforge_validate::thesis::loop_budget::{LoopFigure, figure_settings};
+use skyforge_validate::thesis::{LoopFigure, figure_settings};
 use std::path::Path;
 
 /// The pass the figures follow: the satellite column and, at each of its epochs, the

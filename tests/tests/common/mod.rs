@@ -4,12 +4,12 @@
 
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_scenarios::World;
-use skyforge_signals::errors::clock::{ClockModel, PowerLaw};
-use skyforge_signals::errors::seed::{Stream, stream_rng};
+use skyforge_signals::errors::{ClockModel, PowerLaw};
+use skyforge_signals::errors::{Stream, stream_rng};
+use skyforge_signals::synth::BLOCK_S;
 use skyforge_signals::synth::Transmitter;
-use skyforge_signals::synth::config::BLOCK_S;
 use skyforge_signals::synth::constellation;
-use skyforge_signals::truth::geometry::{GeometryChunk, GeometryTruth};
+use skyforge_signals::truth::{GeometryChunk, GeometryTruth};
 
 /// The scenario's GPS satellites at t = 0 as L1 C/A transmitters (default ionosphere
 /// parameters in their messages), the store of the ephemerides they broadcast, and their
@@ -20,7 +20,7 @@ pub fn gps_transmitters(world: &World) -> (Vec<Transmitter>, EphemerisStore, Vec
         .iter()
         .filter_map(|&s| world.ephemerides.select(s, 0.0).map(|b| b.eph.clone()))
         .collect();
-    let iono = skyforge_signals::errors::ionosphere::IonoConfig::default();
+    let iono = skyforge_signals::errors::IonoConfig::default();
     let txs = constellation::gps_l1ca(&ephs, world.origin.start(), &iono.gps).unwrap();
     let store = EphemerisStore::new(
         txs.iter().map(|t| t.broadcast_ephemeris()).collect(),

@@ -12,11 +12,11 @@ use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, RelativeEpo
 use skyforge_navigation::relative::{EpochOutcome, FilesError, run_files};
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::YawPitchRoll;
-use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-use skyforge_orbits::frames::ned::c_ecef_ned;
+use skyforge_orbits::frames::c_ecef_ned;
+use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_runner::ObservationRun;
-use skyforge_signals::synth::session::GEOMETRY_STEP_S;
+use skyforge_signals::synth::GEOMETRY_STEP_S;
 use std::collections::HashMap;
 
 /// Estimate minus truth at one fixed epoch.

@@ -5,10 +5,13 @@
 //! attitude`).
 
 pub mod compare;
-pub mod epochs;
+pub(crate) mod epochs;
 pub(crate) mod outputs;
 pub(crate) mod seeds;
-pub mod success;
+pub(crate) mod success;
+
+pub use epochs::{FixedEpoch, fixed_baselines, true_attitudes};
+pub use success::{SuccessRate, single_epoch};
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
 pub use outputs::{

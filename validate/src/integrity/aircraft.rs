@@ -15,7 +15,7 @@
 //! course within a fraction of a degree of a geodesic's: a cruise, not a survey line.
 
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::geodetic::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 
 /// Start of the leg (deg).
 // assumed: the static site of the earlier ground rows and ground-static (30 N 114 E), so
@@ -79,8 +79,8 @@ pub fn csv() -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use skyforge_orbits::frames::geodetic::ecef_to_geodetic;
-    use skyforge_orbits::frames::ned::c_ecef_ned;
+    use skyforge_orbits::frames::c_ecef_ned;
+    use skyforge_orbits::frames::ecef_to_geodetic;
 
     const CSV_PATH: &str = concat!(
         env!("CARGO_MANIFEST_DIR"),

@@ -1,8 +1,8 @@
 //! Paper 002's laboratory set-up (the bundled `integrity-lab` scenario) with its fault
 //! cases, run at the observation level and monitored.
 
-use skyforge_navigation::integrity::files::{run_files, stations};
 use skyforge_navigation::integrity::{MonitorConfig, MonitorEpoch};
+use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_runner::{ObservationRun, observation_run};
 use skyforge_scenarios::Scenario;
 use std::path::Path;

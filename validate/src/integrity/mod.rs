@@ -7,11 +7,17 @@
 #[cfg(test)]
 mod aircraft;
 pub mod detection;
-pub mod lab;
-pub mod monitor;
+pub(crate) mod lab;
+pub(crate) mod monitor;
 pub mod patterns;
 pub(crate) mod raim;
-pub mod score;
+pub(crate) mod score;
+
+pub use lab::{Case, FAULT_SATELLITE, MonitoredRun, scenario};
+pub use monitor::{
+    ELEVATION_BINS_DEG, Sigmas, calibrate, calibrate_files, calibrate_lab, case_run, config,
+};
+pub use score::{print_score, run_scenario, score};
 
 use crate::draw::Draw;
 use crate::report::Row;

@@ -5,7 +5,7 @@ use super::lab::{Case, MonitoredRun, monitored, scenario};
 use rayon::prelude::*;
 use skyforge_gnss::observation::ObsFile;
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::integrity::files::run_files;
+use skyforge_navigation::integrity::run_files;
 use skyforge_navigation::integrity::{
     MonitorConfig, MonitorEpoch, SatelliteEpoch, SigmaCalibrator, SigmaTable, Station, Statistic,
     ThresholdConfig,

@@ -5,7 +5,7 @@
 use serde::Serialize;
 use skyforge_formats::monitor::{Alarm, MonitorRecord};
 use skyforge_formats::truth::{TRUTH_H5, TruthFile};
-use skyforge_signals::errors::events::EventConfig;
+use skyforge_signals::errors::EventConfig;
 use std::path::Path;
 
 /// How long after an event's end its satellite's alarms are still its own (s).
@@ -168,7 +168,7 @@ pub fn print_score(score: &MonitorScore, out: &mut impl std::io::Write) -> std::
 mod tests {
     use super::*;
     use skyforge_formats::monitor::Flag;
-    use skyforge_signals::errors::events::EventKind;
+    use skyforge_signals::errors::EventKind;
 
     fn alarm(t_s: f64, station: &str, sat: &str, ratio: f64) -> Alarm {
         Alarm {

@@ -3,7 +3,7 @@
 use super::ValidateError;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_scenarios::Scenario;
-use skyforge_signals::truth::geometry::GeometryChunk;
+use skyforge_signals::truth::GeometryChunk;
 use std::convert::Infallible;
 
 /// Epochs per chunk: one hour at 1 Hz.

@@ -10,11 +10,13 @@ pub mod curves;
 pub(crate) mod fast_sync;
 pub(crate) mod geometry_offsets;
 mod geometry_run;
-pub mod loop_budget;
+pub(crate) mod loop_budget;
 pub(crate) mod pmf_fft;
 pub(crate) mod reverse_filter;
 pub(crate) mod visibility;
 pub(crate) mod zero_baseline;
+
+pub use loop_budget::{LoopFigure, figure_settings};
 
 use crate::draw::{self, Draw, Kind, SeedPlan};
 use crate::integrity::raim;

@@ -7,7 +7,7 @@ use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::Summary;
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::ephemeris::config::{BeidouSet, ConstellationSource};
+use skyforge_orbits::ephemeris::{BeidouSet, ConstellationSource};
 use skyforge_scenarios::Scenario;
 use std::path::Path;
 

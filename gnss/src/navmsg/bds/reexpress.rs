@@ -138,7 +138,7 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use skyforge_orbits::ephemeris::config::BeidouSet;
+    use skyforge_orbits::ephemeris::BeidouSet;
     use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::time::TimeOrigin;
 

@@ -11,7 +11,7 @@ mod allan;
 mod model;
 
 pub use allan::{overlapping_adev, overlapping_avar, predicted_adev, predicted_avar};
-pub use model::{ClockModel, ClockSample, FLICKER_MAX_TIME_CONSTANT_S};
+pub use model::{ClockModel, ClockSample};
 
 use skyforge_orbits::check::Invalid;
 

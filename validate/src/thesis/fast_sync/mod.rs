@@ -19,7 +19,7 @@ use crate::thesis::curves::{Curve, CurveSeries, Mark, Value};
 use nalgebra::{Matrix4, Vector4};
 use num_complex::Complex64;
 use signal::{SignalSource, SignalSpec};
-use skyforge_gnss::codes::gps_ca::gps_ca;
+use skyforge_gnss::codes::gps_ca;
 use skyforge_receiver::acquisition::pmf_fft::{ChipTiming, PmfFft, despread_to_chips, theory};
 use skyforge_receiver::tracking::{Correlator, NcoState, TapSet};
 use skyforge_receiver::tracking::{THESIS_KAPPA, THESIS_PROPOSED_Q};

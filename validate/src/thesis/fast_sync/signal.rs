@@ -6,7 +6,7 @@
 use rand::Rng;
 use skyforge_orbits::constants::F_GPS_L1_HZ;
 use skyforge_receiver::acquisition::Complex32;
-use skyforge_signals::errors::seed::{Stream, stream_rng};
+use skyforge_signals::errors::{Stream, stream_rng};
 use skyforge_signals::synth::ThermalNoise;
 
 /// The experiment's signal parameters.

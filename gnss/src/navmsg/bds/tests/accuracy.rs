@@ -6,7 +6,7 @@ use super::{assert_close, logical};
 use crate::navmsg::bds::{BdsExtraFields, BdsNavEncoder, BdsNavFormat, Klobuchar};
 use proptest::prelude::*;
 use skyforge_orbits::constants::{GM_BDS, OMEGA_E_BDS};
-use skyforge_orbits::ephemeris::config::BeidouSet;
+use skyforge_orbits::ephemeris::BeidouSet;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SatId,
     nominal,

@@ -5,7 +5,7 @@ use super::super::test_decoder::{bch_correct, deinterleave, header, read_u};
 use super::logical;
 use crate::navmsg::bds::{BdsNavEncoder, BdsNavError, BdsNavFormat, Klobuchar};
 use proptest::prelude::*;
-use skyforge_orbits::ephemeris::config::BeidouSet;
+use skyforge_orbits::ephemeris::BeidouSet;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, nominal};
 use skyforge_orbits::time::epoch_from_bdt;
 
