@@ -11,7 +11,7 @@ mod read;
 mod write;
 
 pub use read::{Capture, MetaError, ParsedMeta};
-pub use write::RecordingMeta;
+pub use write::{RECORDER, RecordingMeta};
 
 #[cfg(test)]
 mod tests;

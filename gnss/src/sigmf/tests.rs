@@ -115,10 +115,7 @@ const ODD_TEXT: &str = r#"{
 
 /// A captured text with the recorder of this build (captured at version 0.1.0).
 fn this_version(text: &str) -> String {
-    text.replace(
-        "\"skyforge 0.1.0\"",
-        concat!("\"skyforge ", env!("CARGO_PKG_VERSION"), "\""),
-    )
+    text.replace("\"skyforge 0.1.0\"", &format!("\"{}\"", super::RECORDER))
 }
 
 #[test]

@@ -4,6 +4,9 @@ use super::keys;
 use crate::sample_format::SampleFormat;
 use serde_json::{Value, json};
 
+/// What SkyForge writes as `core:recorder`: its name and this build's version.
+pub const RECORDER: &str = concat!("skyforge ", env!("CARGO_PKG_VERSION"));
+
 /// The SigMF version the documents follow.
 const SIGMF_VERSION: &str = "1.0.0";
 /// The version of the `skyforge` extension.
@@ -44,7 +47,7 @@ impl RecordingMeta {
                 (keys::VERSION): SIGMF_VERSION,
                 (keys::NUM_CHANNELS): 1,
                 (keys::DESCRIPTION): self.description,
-                (keys::RECORDER): concat!("skyforge ", env!("CARGO_PKG_VERSION")),
+                (keys::RECORDER): RECORDER,
                 (keys::EXTENSIONS): [{
                     (keys::EXTENSION_NAME): keys::SKYFORGE,
                     (keys::EXTENSION_VERSION): SKYFORGE_EXTENSION_VERSION,

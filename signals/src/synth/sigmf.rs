@@ -175,7 +175,7 @@ mod tests {
         // Captured at version 0.1.0; the recorder is this build's.
         let expected = RI8_BDS_TEXT.replace(
             "\"skyforge 0.1.0\"",
-            concat!("\"skyforge ", env!("CARGO_PKG_VERSION"), "\""),
+            &format!("\"{}\"", skyforge_gnss::sigmf::RECORDER),
         );
         assert_eq!(meta.to_text(), expected);
     }
