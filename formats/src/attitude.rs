@@ -8,8 +8,7 @@ use crate::csv::{Fields, FormatError, read_csv, require_columns};
 use crate::h5::{append_rows, create_epoch_file, create_rows};
 use hifitime::Epoch;
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::relative::AmbiguityStatus;
-use skyforge_navigation::relative::EpochOutcome;
+use skyforge_navigation::relative::{AmbiguityStatus, EpochOutcome, FixMethod};
 use skyforge_orbits::ephemeris::SatId;
 use std::fs::File;
 use std::io::{self, BufWriter, Write};
@@ -23,13 +22,14 @@ pub const ATTITUDE_H5: &str = "attitude.h5";
 pub const AMBIGUITIES_CSV: &str = "ambiguities.csv";
 
 /// The columns of `ambiguities.csv`.
-const AMBIGUITY_COLUMNS: [&str; 6] = [
+const AMBIGUITY_COLUMNS: [&str; 7] = [
     "time_gpst",
     "baseline",
     "signal",
     "sat",
     "reference",
     "integer",
+    "method",
 ];
 
 /// What became of an epoch's ambiguities; its index is the code in `attitude.h5`'s
@@ -87,6 +87,9 @@ pub struct AttitudeValues {
 pub struct EpochValues {
     pub time: Epoch,
     pub status: Status,
+    /// What decided the integers (`None` where the epoch has no solution, or a solution
+    /// read back does not say).
+    pub method: Option<FixMethod>,
     pub ambiguities: usize,
     pub fixed_combinations: usize,
     pub held: usize,
@@ -97,6 +100,12 @@ pub struct EpochValues {
     /// Per baseline: fixed N, E, D and their standard deviations.
     pub ned_m: Option<Vec<NedBaseline>>,
     pub attitude: Option<AttitudeValues>,
+    /// Why the configured constrained search did not decide and LAMBDA did (empty when
+    /// it did not fall back).
+    pub fallback: String,
+    /// Why the reverse filter failed this epoch and restarts (its baselines are the
+    /// epoch's own); empty when it did not.
+    pub reverse_restart: String,
     /// Why there is no solution, or why the attitude stage skipped the epoch.
     pub note: String,
 }
@@ -107,6 +116,7 @@ impl EpochValues {
         let mut v = Self {
             time: o.time,
             status: Status::None,
+            method: None,
             ambiguities: 0,
             fixed_combinations: 0,
             held: 0,
@@ -115,6 +125,8 @@ impl EpochValues {
             ecef_m: Vec::new(),
             ned_m: None,
             attitude: None,
+            fallback: String::new(),
+            reverse_restart: String::new(),
             note: String::new(),
         };
         let e = match &o.result {
@@ -130,6 +142,7 @@ impl EpochValues {
             AmbiguityStatus::Partial { combinations } => (Status::Partial, combinations),
             AmbiguityStatus::Fixed => (Status::Fixed, e.float.ambiguities.len()),
         };
+        v.method = Some(r.method);
         v.ambiguities = e.float.ambiguities.len();
         v.held = r.held;
         v.ratio = r.ratio;
@@ -167,6 +180,8 @@ impl EpochValues {
                     .map(|r| [r[0], r[1], r[2]].map(f64::to_degrees)),
             }
         });
+        v.fallback = r.fallback.clone().unwrap_or_default();
+        v.reverse_restart = e.reverse_restarted.clone().unwrap_or_default();
         v.note = e.attitude_skipped.clone().unwrap_or_default();
         v
     }
@@ -177,6 +192,7 @@ fn csv_header(m: usize) -> String {
     let mut cols: Vec<String> = [
         "time_gpst",
         "status",
+        "method",
         "ambiguities",
         "fixed_combinations",
         "held",
@@ -197,7 +213,7 @@ fn csv_header(m: usize) -> String {
             cols.push(format!("{c}_{suffix}"));
         }
     }
-    cols.push("note".into());
+    cols.extend(["fallback", "reverse_restart", "note"].map(String::from));
     cols.join(",")
 }
 
@@ -209,7 +225,8 @@ fn csv_row(v: &EpochValues, m: usize) -> String {
         Some(x) => fmt(x, digits),
         None => blank(3),
     };
-    let mut f = vec![v.time.to_string(), v.status.name().to_string()];
+    let method = v.method.map_or("", FixMethod::name);
+    let mut f = vec![v.time.to_string(), v.status.name().into(), method.into()];
     if v.status == Status::None {
         f.extend(blank(5 + 9 * m + 9));
     } else {
@@ -237,7 +254,9 @@ fn csv_row(v: &EpochValues, m: usize) -> String {
             None => f.extend(blank(9)),
         }
     }
-    f.push(v.note.replace(',', ";"));
+    for text in [&v.fallback, &v.reverse_restart, &v.note] {
+        f.push(text.replace(',', ";"));
+    }
     f.join(",")
 }
 
@@ -246,6 +265,7 @@ pub fn integer_rows(o: &EpochOutcome) -> Vec<IntegerRow> {
     let Ok(e) = &o.result else {
         return Vec::new();
     };
+    let method = e.resolution.method;
     let ids: Vec<_> = e.float.model.layout.ambiguity_ids().collect();
     e.resolution
         .integers
@@ -260,6 +280,7 @@ pub fn integer_rows(o: &EpochOutcome) -> Vec<IntegerRow> {
                 sat,
                 reference,
                 integer: (*value)?,
+                method,
             })
         })
         .collect()
@@ -394,6 +415,14 @@ fn optional(f: &Fields<'_>, column: &str) -> Result<Option<f64>, FormatError> {
     }
 }
 
+/// The text of an optional column (empty when the column is absent).
+fn text_or_empty(f: &Fields<'_>, column: &str) -> Result<String, FormatError> {
+    match f.has(column) {
+        true => Ok(f.text(column)?.to_string()),
+        false => Ok(String::new()),
+    }
+}
+
 /// The values of one data line of `attitude.csv` with `m` baselines.
 fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError> {
     let status = f.text("status")?;
@@ -402,9 +431,18 @@ fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError>
             "status = {status:?}; expected fixed, partial, float or none"
         ))
     })?;
+    let method = match text_or_empty(f, "method")?.as_str() {
+        "" => None,
+        m => Some(m.parse().map_err(|()| {
+            f.error(format!(
+                "method = {m:?}; expected none, held, lambda, geometry, length or partial"
+            ))
+        })?),
+    };
     let mut v = EpochValues {
         time: f.epoch("time_gpst")?,
         status,
+        method,
         ambiguities: 0,
         fixed_combinations: 0,
         held: 0,
@@ -413,6 +451,8 @@ fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError>
         ecef_m: Vec::new(),
         ned_m: None,
         attitude: None,
+        fallback: text_or_empty(f, "fallback")?,
+        reverse_restart: text_or_empty(f, "reverse_restart")?,
         note: f.text("note")?.to_string(),
     };
     if v.status == Status::None {
@@ -483,19 +523,22 @@ pub struct IntegerRow {
     pub sat: SatId,
     pub reference: SatId,
     pub integer: i64,
+    /// What decided the epoch's integers.
+    pub method: FixMethod,
 }
 
 impl IntegerRow {
     /// The row's line of `ambiguities.csv`.
     fn csv_line(&self) -> String {
         format!(
-            "{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{}",
             self.time,
             self.baseline,
             self.signal.tag(),
             self.sat,
             self.reference,
-            self.integer
+            self.integer,
+            self.method.name()
         )
     }
 }
@@ -516,6 +559,10 @@ pub fn read_ambiguities_csv(path: &Path) -> Result<Vec<Line<IntegerRow>>, Format
                 sat: f.parse("sat", "a satellite (e.g. G05)")?,
                 reference: f.parse("reference", "a satellite (e.g. G05)")?,
                 integer: f.parse("integer", "an integer")?,
+                method: f.parse(
+                    "method",
+                    "a method (held, lambda, geometry, length, partial)",
+                )?,
             };
             rows.push(Line { line, row });
             Ok(())
@@ -554,6 +601,38 @@ pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<(
         "0 no solution, 1 float, 2 partial, 3 fixed",
     )?;
     append_rows(&ds, 0, &codes, 0)?;
+    let methods: Vec<u8> = epochs
+        .iter()
+        .map(|v| v.method.unwrap_or(FixMethod::None) as u8)
+        .collect();
+    let ds = create_rows::<u8>(
+        root,
+        "method",
+        0,
+        chunk,
+        "-",
+        "what decided the integers: 0 none, 1 held, 2 lambda, 3 geometry, 4 length, 5 partial",
+    )?;
+    append_rows(&ds, 0, &methods, 0)?;
+    for (name, what, text) in [
+        (
+            "fallback",
+            "1 where the configured constrained search did not decide and LAMBDA did",
+            (|v| &v.fallback) as fn(&EpochValues) -> &String,
+        ),
+        (
+            "reverse_restart",
+            "1 where the reverse filter failed (the epoch's own baselines) and restarts",
+            |v| &v.reverse_restart,
+        ),
+    ] {
+        let flags: Vec<u8> = epochs
+            .iter()
+            .map(|v| u8::from(!text(v).is_empty()))
+            .collect();
+        let ds = create_rows::<u8>(root, name, 0, chunk, "-", what)?;
+        append_rows(&ds, 0, &flags, 0)?;
+    }
     column(
         "ratio",
         0,
@@ -641,6 +720,11 @@ mod tests {
         EpochValues {
             time,
             status: if fixed { Status::Fixed } else { Status::Float },
+            method: Some(if fixed {
+                FixMethod::Geometry
+            } else {
+                FixMethod::None
+            }),
             ambiguities: 20,
             fixed_combinations: if fixed { 20 } else { 0 },
             held: 0,
@@ -661,6 +745,8 @@ mod tests {
                 std_deg: Some([0.01; 3]),
                 rates_dps: None,
             }),
+            fallback: String::new(),
+            reverse_restart: String::new(),
             note: String::new(),
         }
     }
@@ -669,13 +755,21 @@ mod tests {
     fn h5_columns_hold_every_epoch_with_nan_where_none() {
         let dir = tempfile::tempdir().unwrap();
         let path = dir.path().join("attitude.h5");
-        let epochs = [values(0.0, false), values(1.0, true)];
+        let mut epochs = [values(0.0, false), values(1.0, true)];
+        epochs[0].fallback = "geometry search failed".into();
+        epochs[1].reverse_restart = "reverse baseline filter: not finite".into();
         write_h5(&path, &epochs, 2).unwrap();
         let f = hdf5::File::open(&path).unwrap();
         let t: Vec<f64> = f.dataset("t_s").unwrap().read_raw().unwrap();
         assert_eq!(t, [0.0, 1.0]);
         let status: Vec<u8> = f.dataset("status").unwrap().read_raw().unwrap();
         assert_eq!(status, [1, 3]);
+        let method: Vec<u8> = f.dataset("method").unwrap().read_raw().unwrap();
+        assert_eq!(method, [0, 3]);
+        let fallback: Vec<u8> = f.dataset("fallback").unwrap().read_raw().unwrap();
+        assert_eq!(fallback, [1, 0]);
+        let restart: Vec<u8> = f.dataset("reverse_restart").unwrap().read_raw().unwrap();
+        assert_eq!(restart, [0, 1]);
         let ecef: Vec<f64> = f.dataset("baseline_ecef_m").unwrap().read_raw().unwrap();
         assert_eq!(ecef.len(), 12);
         assert_eq!(ecef[6..], [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
@@ -696,9 +790,12 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let mut none = values(2.0, false);
         (none.status, none.success_rate, none.ratio) = (Status::None, None, None);
+        none.method = None;
         (none.ecef_m, none.note) = (Vec::new(), "no position: too few, of 4".into());
         let mut rated = values(3.0, true);
         rated.attitude.as_mut().unwrap().rates_dps = Some([0.5, -0.25, 1e-3]);
+        rated.fallback = "geometry search failed: no candidate fits".into();
+        rated.reverse_restart = "reverse baseline filter: x, y".into();
         let epochs = [values(0.0, false), values(1.0, true), none, rated];
         let integers = |v: &EpochValues| {
             (v.status == Status::Fixed)
@@ -709,6 +806,7 @@ mod tests {
                     sat: SatId::beidou(7),
                     reference: SatId::beidou(11),
                     integer: -123_456,
+                    method: FixMethod::Held,
                 })
                 .into_iter()
                 .collect::<Vec<_>>()
@@ -724,9 +822,14 @@ mod tests {
         for (k, (r, v)) in read.rows.iter().zip(&epochs).enumerate() {
             assert_eq!(r.line, k + 2);
             assert_eq!((r.row.time, r.row.status), (v.time, v.status));
+            assert_eq!(r.row.method, v.method);
             assert_eq!(csv_row(&r.row, 2), csv_row(v, 2));
         }
         assert_eq!(read.rows[2].row.note, "no position: too few; of 4");
+        let rated = &read.rows[3].row;
+        assert_eq!(rated.method, Some(FixMethod::Geometry));
+        assert_eq!(rated.fallback, "geometry search failed: no candidate fits");
+        assert_eq!(rated.reverse_restart, "reverse baseline filter: x; y");
         assert_eq!(
             read.rows[3].row.attitude.unwrap().rates_dps,
             Some([0.5, -0.25, 1e-3])

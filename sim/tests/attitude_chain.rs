@@ -5,6 +5,8 @@
 
 mod support;
 
+use skyforge_formats::attitude::{Status, read_attitude_csv};
+use skyforge_navigation::relative::FixMethod;
 use skyforge_validate::attitude::AxisStats;
 use skyforge_validate::attitude::compare_outputs;
 use std::path::Path;
@@ -184,6 +186,21 @@ fn chain_errors(
     );
     assert!(checked > 0);
     assert_eq!(wrong, 0, "fixed integers differ from the truth's");
+    // Every fixed epoch says what fixed it: the body geometry's search, then the hold
+    // (the default constraint); no fallback to LAMBDA on this sky.
+    let table = read_attitude_csv(&run.attitude.join("attitude.csv")).unwrap();
+    for line in &table.rows {
+        let v = &line.row;
+        if v.status == Status::Fixed {
+            assert!(
+                matches!(v.method, Some(FixMethod::Geometry | FixMethod::Held)),
+                "line {}: {:?} ({})",
+                line.line,
+                v.method,
+                v.note
+            );
+        }
+    }
     assert!(
         worst < 0.25,
         "an observed DD is {worst} cycles from an integer"
@@ -330,7 +347,32 @@ fn attitude_input_errors_are_clear() {
             "nav.rnx",
         ),
     ];
-    for (files, expected) in cases {
+    let all = || {
+        ["ant1", "ant2", "ant3"]
+            .map(|a| s(&format!("observations/{a}.obs.rnx")))
+            .to_vec()
+    };
+    let config = dir.path().join("rel.toml");
+    let config_arg = config.to_string_lossy().into_owned();
+    let mut cases: Vec<_> = cases.into_iter().map(|(f, e)| (f, e, None)).collect();
+    // Settings outside their domain (issue #32): the file, the key, what is allowed.
+    for (line, expected) in [
+        (
+            "phase = { sigma0_m = 0.0, a0 = 0.0, elev0_deg = 10.0 }",
+            "rel.toml: relative.phase.sigma0_m = 0: must be a finite number above 0",
+        ),
+        (
+            "code = { sigma0_m = 0.3, a0 = 0.0, elev0_deg = 0.0 }",
+            "rel.toml: relative.code.elev0_deg = 0: must be a finite number above 0",
+        ),
+        (
+            "reverse_filter = { rate_psd_m2_s3 = [1e300, 0, 0, 0, 0, 0] }",
+            "rate_psd_m2_s3[0] = 1e300: allowed 0 to 1e6",
+        ),
+    ] {
+        cases.push((all(), expected, Some(format!("[relative]\n{line}\n"))));
+    }
+    for (files, expected, settings) in cases {
         let mut args: Vec<String> = vec!["attitude".into()];
         args.extend(files);
         args.extend([
@@ -341,6 +383,10 @@ fn attitude_input_errors_are_clear() {
             "--out".into(),
             o_.clone(),
         ]);
+        if let Some(text) = settings {
+            std::fs::write(&config, text).unwrap();
+            args.extend(["--config".into(), config_arg.clone()]);
+        }
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
         let o = skyforge(&refs, dir.path());
         assert_eq!(o.status.code(), Some(2), "{}", text(&o));

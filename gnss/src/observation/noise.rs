@@ -27,6 +27,28 @@ impl ElevationNoise {
         self.sigma0_m * self.factor(elevation_rad)
     }
 
+    /// The domain of eqs. 2.4-9/2.4-10: `sigma0_m` finite and above 0, `a0` finite and at
+    /// least 0, `elev0_deg` finite and above 0. The error names the field of `key` (the
+    /// table, e.g. `relative.phase`), its value and what is allowed.
+    pub fn check(&self, key: &str) -> Result<(), String> {
+        let (finite, a0) = (|v: f64| v.is_finite(), self.a0);
+        let problem = if !(finite(self.sigma0_m) && self.sigma0_m > 0.0) {
+            Some(("sigma0_m", self.sigma0_m, "above 0"))
+        } else if !(finite(a0) && a0 >= 0.0) {
+            Some(("a0", a0, "0 or more"))
+        } else if !(finite(self.elev0_deg) && self.elev0_deg > 0.0) {
+            Some(("elev0_deg", self.elev0_deg, "above 0"))
+        } else {
+            None
+        };
+        match problem {
+            Some((field, v, allowed)) => Err(format!(
+                "{key}.{field} = {v}: must be a finite number {allowed}"
+            )),
+            None => Ok(()),
+        }
+    }
+
     /// A constant standard deviation, independent of elevation (what T-1.2-2 prescribes).
     pub fn constant(sigma_m: f64) -> Self {
         Self {

@@ -52,30 +52,55 @@ impl Default for AttitudeConfig {
 }
 
 impl AttitudeConfig {
-    /// Every value finite; S >= 0, the rate sigma > 0, 6 + kappa > 0; the LS settings.
+    /// The filter settings in their domain ([`check_filter`], `6 + kappa > 0`); the LS
+    /// settings.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        if !settings_ok(
+        check_filter(
             6,
-            &self.rate_psd_rad2_s3,
-            self.initial_rate_sigma_rad_s,
+            ("rate_psd_rad2_s3", &self.rate_psd_rad2_s3),
+            ("initial_rate_sigma_rad_s", self.initial_rate_sigma_rad_s),
             self.kappa,
-        ) {
-            return Err(AttitudeError::Config(format!(
-                "rate_psd_rad2_s3 must be finite and >= 0, initial_rate_sigma_rad_s finite and > 0, kappa finite with 6 + kappa > 0; got {self:?}"
-            )));
-        }
+        )
+        .map_err(AttitudeError::Config)?;
         self.least_squares.check()
     }
 }
 
-/// The settings a constant-rate filter of `states` states shares: spectral densities `S`
-/// finite and >= 0, the starting rate sigma finite and > 0, `states + kappa > 0`.
-pub(crate) fn settings_ok(states: usize, psd: &[f64], rate_sigma: f64, kappa: f64) -> bool {
-    psd.iter().all(|s| s.is_finite() && *s >= 0.0)
-        && rate_sigma.is_finite()
-        && rate_sigma > 0.0
-        && kappa.is_finite()
-        && states as f64 + kappa > 0.0
+/// Largest power spectral density a filter accepts (its unit squared per s^3): 1e3 m/s^2
+/// (or rad/s^2) of white acceleration noise over a second, far beyond any body; larger
+/// values only overflow the predicted covariance.
+pub const MAX_PSD: f64 = 1e6;
+/// Largest starting rate sigma a filter accepts (m/s or rad/s).
+pub const MAX_RATE_SIGMA: f64 = 1e3;
+
+/// The settings a constant-rate filter of `states` states shares, each named by its key:
+/// every spectral density in `[0, MAX_PSD]`, the starting rate sigma in
+/// `(0, MAX_RATE_SIGMA]`, kappa finite with `states + kappa > 0`. The error names the key,
+/// the value and the range allowed.
+pub(crate) fn check_filter(
+    states: usize,
+    (psd_key, psd): (&str, &[f64]),
+    (sigma_key, sigma): (&str, f64),
+    kappa: f64,
+) -> Result<(), String> {
+    if let Some((i, v)) = psd
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !(0.0..=MAX_PSD).contains(*v))
+    {
+        return Err(format!("{psd_key}[{i}] = {v:e}: allowed 0 to {MAX_PSD:e}"));
+    }
+    if !(sigma > 0.0 && sigma <= MAX_RATE_SIGMA) {
+        return Err(format!(
+            "{sigma_key} = {sigma:e}: allowed above 0 and at most {MAX_RATE_SIGMA:e}"
+        ));
+    }
+    if !(kappa.is_finite() && states as f64 + kappa > 0.0) {
+        return Err(format!(
+            "kappa = {kappa}: must be finite with {states} + kappa > 0"
+        ));
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -22,7 +22,7 @@
 //! nominal `B_0` (eqs. 2.5-9..2.5-13), their mean rate, offsets and offset rate zero, with
 //! the prior sigmas of [`OffsetConfig`].
 
-use crate::attitude::config::settings_ok;
+use crate::attitude::config::{MAX_PSD, check_filter};
 use crate::attitude::least_squares::{LsConfig, solve};
 use crate::attitude::unscented::{transform, update};
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines, YawPitchRoll, wrap_pi};
@@ -133,30 +133,37 @@ impl Default for OffsetConfig {
 }
 
 impl OffsetConfig {
-    /// Every value finite; PSDs >= 0; period and sigmas > 0; `22 + kappa > 0`.
+    /// The filter settings in their domain ([`check_filter`], `22 + kappa > 0`), the
+    /// offsets' spectral density in `[0, MAX_PSD]`, the period and the prior sigmas finite
+    /// and > 0.
     pub fn check(&self) -> Result<(), AttitudeError> {
-        let shared = settings_ok(
+        let error = AttitudeError::Config;
+        check_filter(
             STATES,
-            &self.rate_psd_rad2_s3,
-            self.initial_rate_sigma_rad_s,
+            ("rate_psd_rad2_s3", &self.rate_psd_rad2_s3),
+            ("initial_rate_sigma_rad_s", self.initial_rate_sigma_rad_s),
             self.kappa,
-        );
-        let offset_psd_ok =
-            self.offset_rate_psd_m2_s3.is_finite() && self.offset_rate_psd_m2_s3 >= 0.0;
-        let positive = [
-            self.period_s,
-            self.initial_offset_sigma_m,
-            self.initial_offset_rate_sigma_m_s,
-        ]
-        .iter()
-        .all(|v| v.is_finite() && *v > 0.0);
-        if shared && offset_psd_ok && positive {
-            Ok(())
-        } else {
-            Err(AttitudeError::Config(format!(
-                "geometry offsets: power spectral densities must be finite and >= 0, the period and the prior sigmas finite and > 0, and {STATES} + kappa > 0; got {self:?}"
-            )))
+        )
+        .map_err(error)?;
+        let psd = self.offset_rate_psd_m2_s3;
+        if !(0.0..=MAX_PSD).contains(&psd) {
+            return Err(error(format!(
+                "offset_rate_psd_m2_s3 = {psd:e}: allowed 0 to {MAX_PSD:e}"
+            )));
         }
+        for (key, v) in [
+            ("period_s", self.period_s),
+            ("initial_offset_sigma_m", self.initial_offset_sigma_m),
+            (
+                "initial_offset_rate_sigma_m_s",
+                self.initial_offset_rate_sigma_m_s,
+            ),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(error(format!("{key} = {v}: must be finite and above 0")));
+            }
+        }
+        Ok(())
     }
 }
 

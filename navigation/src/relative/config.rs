@@ -127,10 +127,24 @@ impl RelativeConfig {
             read_text(path, MAX_CONFIG_BYTES, "configuration file").map_err(|e| error(&e))?;
         let file: RelativeFile = toml::from_str(&text).map_err(|e| error(&e))?;
         let config = file.relative.unwrap_or_default();
-        config.attitude.check().map_err(|e| error(&e))?;
-        config.geometry_offsets.check().map_err(|e| error(&e))?;
+        config
+            .phase
+            .check("relative.phase")
+            .map_err(|e| error(&e))?;
+        config.code.check("relative.code").map_err(|e| error(&e))?;
+        let table =
+            |key: &'static str| move |e: &dyn std::fmt::Display| error(&format!("{key}: {e}"));
+        config
+            .attitude
+            .check()
+            .map_err(|e| table("relative.attitude")(&e))?;
+        config
+            .geometry_offsets
+            .check()
+            .map_err(|e| table("relative.geometry_offsets")(&e))?;
         if let Some(r) = &config.reverse_filter {
-            r.check().map_err(|e| error(&e))?;
+            r.check()
+                .map_err(|e| table("relative.reverse_filter")(&e))?;
         }
         let positive = [
             ("relative.ratio_threshold", config.ratio_threshold),
@@ -210,6 +224,56 @@ mod tests {
         assert_eq!(constraint(""), Ok(Constraint::Geometry));
         let bad = constraint("[relative]\nconstraint = \"Length\"\n").unwrap_err();
         assert!(bad.contains("length"), "{bad}");
+    }
+
+    /// Each setting outside its domain is one error naming the file, the key, the value
+    /// and what is allowed.
+    #[test]
+    fn settings_outside_their_domain_are_refused_by_key() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("rel.toml");
+        let cases = [
+            (
+                "phase = { sigma0_m = 0.0, a0 = 0.0, elev0_deg = 10.0 }",
+                "relative.phase.sigma0_m = 0: must be a finite number above 0",
+            ),
+            (
+                "code = { sigma0_m = -0.3, a0 = 0.0, elev0_deg = 10.0 }",
+                "relative.code.sigma0_m = -0.3",
+            ),
+            (
+                "phase = { sigma0_m = 0.002, a0 = -1.0, elev0_deg = 10.0 }",
+                "relative.phase.a0 = -1: must be a finite number 0 or more",
+            ),
+            (
+                "code = { sigma0_m = 0.3, a0 = 1.0, elev0_deg = 0.0 }",
+                "relative.code.elev0_deg = 0: must be a finite number above 0",
+            ),
+            (
+                "reverse_filter = { rate_psd_m2_s3 = [1e300, 0, 0, 0, 0, 0] }",
+                "relative.reverse_filter: reverse baseline filter: rate_psd_m2_s3[0] = 1e300: allowed 0 to 1e6",
+            ),
+            (
+                "attitude = { initial_rate_sigma_rad_s = 0.0 }",
+                "relative.attitude: attitude config: initial_rate_sigma_rad_s = 0e0: allowed above 0",
+            ),
+            (
+                "geometry_offsets = { period_s = -1.0 }",
+                "relative.geometry_offsets: attitude config: period_s = -1: must be finite and above 0",
+            ),
+        ];
+        for (line, expected) in cases {
+            std::fs::write(&path, format!("[relative]\n{line}\n")).unwrap();
+            let e = RelativeConfig::read(&path).unwrap_err();
+            assert!(e.starts_with(&format!("{}: ", path.display())), "{e}");
+            assert!(e.contains(expected), "{line}: {e}");
+        }
+        std::fs::write(
+            &path,
+            "[relative]\nphase = { sigma0_m = 0.002, a0 = 0.0, elev0_deg = 10.0 }\n",
+        )
+        .unwrap();
+        assert!(RelativeConfig::read(&path).is_ok());
     }
 
     #[test]

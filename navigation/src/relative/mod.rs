@@ -13,7 +13,7 @@ pub(crate) mod troposphere;
 
 pub use config::{Constraint, RelativeConfig, ReverseConfig};
 pub use files::{EpochChain, EpochOutcome, FilesError, run_files, single_point_fixes};
-pub use resolve::{AmbiguityStatus, Resolution, resolve};
+pub use resolve::{AmbiguityStatus, FixMethod, Resolution, resolve};
 pub use reverse::{BaselineMeasurement, ReverseFilter};
 use search::ConstrainedSearch;
 
@@ -55,6 +55,9 @@ pub struct RelativeEpoch {
     pub attitude: Option<FilterState>,
     /// Why the attitude stage did not update this epoch, if it did not.
     pub attitude_skipped: Option<String>,
+    /// Why the reverse filter failed this epoch (its baselines are the epoch's own, and
+    /// the filter starts again at the next fixed epoch), if it did.
+    pub reverse_restarted: Option<String>,
 }
 
 /// The chain, keeping the held ambiguities and the attitude filter between epochs.
@@ -175,10 +178,13 @@ impl RelativeSolver {
             }
         }
         self.last_t_s = Some(t_s);
-        if let Some(r) = &mut self.reverse {
-            fixed = fixed
-                .map(|ls| r.epoch(&float, &resolution, ls))
-                .transpose()?;
+        let mut reverse_restarted = None;
+        if let Some(r) = &mut self.reverse
+            && let Some(ls) = fixed.take()
+        {
+            let (baselines, failure) = r.epoch(&float, &resolution, ls);
+            fixed = Some(baselines);
+            reverse_restarted = failure.map(|e| format!("{e}; the filter restarts"));
         }
         let ned = match &fixed {
             Some(f) => {
@@ -199,6 +205,7 @@ impl RelativeSolver {
             fixed_ned: ned.and_then(Result::ok),
             attitude: self.attitude.state(),
             attitude_skipped,
+            reverse_restarted,
         })
     }
 }

@@ -3,7 +3,7 @@
 //! the ratio test and the bootstrapped success rate; otherwise the largest reliable subset
 //! of decorrelated combinations (partial fixing), or none.
 
-use super::search::ConstrainedSearch;
+use super::search::{ConstrainedSearch, Searched};
 use super::{RelativeConfig, RelativeError};
 use crate::ambiguity::{lambda, partial};
 use crate::baseline::{AmbiguityHold, FixedBaselines, FloatBaselines};
@@ -22,10 +22,63 @@ pub enum AmbiguityStatus {
     Fixed,
 }
 
+/// What decided an epoch's integers.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FixMethod {
+    /// Nothing fixed.
+    None = 0,
+    /// Every ambiguity held from earlier epochs.
+    Held = 1,
+    /// LAMBDA's ratio test and success-rate floor on the free ambiguities.
+    Lambda = 2,
+    /// The search under the body geometry ([`super::search::multivariate`]).
+    Geometry = 3,
+    /// The search under the baselines' lengths ([`super::search::length`]).
+    Length = 4,
+    /// The reliable decorrelated combinations only (partial fixing), besides any held.
+    Partial = 5,
+}
+
+impl FixMethod {
+    /// Every method, in the order of their codes (`method as u8`).
+    pub const ALL: [FixMethod; 6] = [
+        FixMethod::None,
+        FixMethod::Held,
+        FixMethod::Lambda,
+        FixMethod::Geometry,
+        FixMethod::Length,
+        FixMethod::Partial,
+    ];
+
+    /// The word the outputs write.
+    pub fn name(self) -> &'static str {
+        match self {
+            FixMethod::None => "none",
+            FixMethod::Held => "held",
+            FixMethod::Lambda => "lambda",
+            FixMethod::Geometry => "geometry",
+            FixMethod::Length => "length",
+            FixMethod::Partial => "partial",
+        }
+    }
+}
+
+impl std::str::FromStr for FixMethod {
+    type Err = ();
+    fn from_str(s: &str) -> Result<Self, ()> {
+        FixMethod::ALL.into_iter().find(|m| m.name() == s).ok_or(())
+    }
+}
+
 /// The integers of one epoch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resolution {
     pub status: AmbiguityStatus,
+    /// What decided them.
+    pub method: FixMethod,
+    /// Why the configured constrained search did not decide, when it could not run or
+    /// failed and LAMBDA decided instead (the search's error).
+    pub fallback: Option<String>,
     /// Second-best over best score of the search on the free ambiguities: squared norms
     /// (LAMBDA), or constrained scores under the body geometry or the baseline lengths.
     pub ratio: Option<f64>,
@@ -99,6 +152,8 @@ pub fn resolve(
     if cond.free.is_empty() {
         return Ok(Resolution {
             status: AmbiguityStatus::Fixed,
+            method: FixMethod::Held,
+            fallback: None,
             ratio: None,
             success_rate: 1.0,
             held: held.len(),
@@ -107,19 +162,26 @@ pub fn resolve(
         });
     }
     let plain = lambda(&cond.ambiguities, &cond.covariance, 2)?;
-    let geometric = search.search(float, &cond, &held, master_ecef_m, config.ratio_threshold);
-    let (ratio, success_rate, accepted, best) = match &geometric {
+    let (geometric, fallback) =
+        match search.search(float, &cond, &held, master_ecef_m, config.ratio_threshold) {
+            Searched::Found(fix) => (Some(fix), None),
+            Searched::NotConfigured => (None, None),
+            Searched::Fallback(why) => (None, Some(why)),
+        };
+    let (ratio, success_rate, accepted, best, method) = match &geometric {
         Some(g) => (
             Some(g.ratio()),
             plain.success_rate,
             g.exhaustive && g.ratio() >= config.ratio_threshold,
             g.integers.clone(),
+            search.method(),
         ),
         None => {
             let ratio = plain.ratio();
             let ok = ratio.is_some_and(|r| r >= config.ratio_threshold)
                 && plain.success_rate >= config.min_success_rate;
-            (ratio, plain.success_rate, ok, plain.best().integers.clone())
+            let best = plain.best().integers.clone();
+            (ratio, plain.success_rate, ok, best, FixMethod::Lambda)
         }
     };
     if accepted {
@@ -132,6 +194,8 @@ pub fn resolve(
         let all: Vec<i64> = integers.iter().map(|v| v.unwrap_or(0)).collect();
         return Ok(Resolution {
             status: AmbiguityStatus::Fixed,
+            method,
+            fallback,
             ratio,
             success_rate,
             held: held.len(),
@@ -151,15 +215,19 @@ pub fn resolve(
         }
     }
     let values: Vec<i64> = held_values.into_iter().chain(part.integers).collect();
-    let status = if values.is_empty() {
-        AmbiguityStatus::Float
+    let (status, method) = if values.is_empty() {
+        (AmbiguityStatus::Float, FixMethod::None)
     } else {
-        AmbiguityStatus::Partial {
-            combinations: values.len(),
-        }
+        let combinations = values.len();
+        (
+            AmbiguityStatus::Partial { combinations },
+            FixMethod::Partial,
+        )
     };
     Ok(Resolution {
         status,
+        method,
+        fallback,
         ratio,
         success_rate,
         held: held.len(),

@@ -19,11 +19,13 @@
 //! The filter starts at its first fixed epoch from that epoch's baselines (eqs. 2.4-64,
 //! 2.4-65) with zero rates; it updates only on epochs whose every ambiguity is fixed (a
 //! partial fix has no `vec(N)` to put back) and hands other epochs' baselines through.
+//! An epoch whose update fails keeps its epoch-by-epoch baselines and the filter starts
+//! again at the next fixed epoch ([`ReverseFilter::epoch`]).
 //! It reads observations and the receiver's own integers, never truth.
 
 use super::config::ReverseConfig;
 use super::resolve::{AmbiguityStatus, Resolution};
-use crate::attitude::config::settings_ok;
+use crate::attitude::config::check_filter;
 use crate::attitude::filter::{process_noise, transition};
 use crate::attitude::unscented::{UnscentedError, transform, update};
 use crate::baseline::{BaselineError, FixedBaselines, FloatBaselines};
@@ -49,20 +51,15 @@ pub enum ReverseError {
 }
 
 impl ReverseConfig {
-    /// `S` finite and >= 0, the rate sigma finite and > 0, `12 + kappa > 0`.
+    /// The filter settings in their domain ([`check_filter`], `12 + kappa > 0`).
     pub fn check(&self) -> Result<(), ReverseError> {
-        if settings_ok(
+        check_filter(
             STATES,
-            &self.rate_psd_m2_s3,
-            self.initial_rate_sigma_m_s,
+            ("rate_psd_m2_s3", &self.rate_psd_m2_s3),
+            ("initial_rate_sigma_m_s", self.initial_rate_sigma_m_s),
             self.kappa,
-        ) {
-            Ok(())
-        } else {
-            Err(ReverseError::Config(format!(
-                "rate_psd_m2_s3 must be finite and >= 0, initial_rate_sigma_m_s finite and > 0, kappa finite with 12 + kappa > 0; got {self:?}"
-            )))
-        }
+        )
+        .map_err(ReverseError::Config)
     }
 }
 
@@ -218,19 +215,36 @@ impl ReverseFilter {
     }
 
     /// One epoch of the chain: the filtered baselines when `resolution` fixed every
-    /// ambiguity of `float`, else `ls` (the epoch-by-epoch baselines) unchanged.
+    /// ambiguity of `float`, else `ls` (the epoch-by-epoch baselines) unchanged. Where the
+    /// update fails, `ls` with the failure, and the filter is cleared: its next fixed epoch
+    /// starts it again.
     pub fn epoch(
         &mut self,
         float: &FloatBaselines,
         resolution: &Resolution,
         ls: FixedBaselines,
-    ) -> Result<FixedBaselines, ReverseError> {
+    ) -> (FixedBaselines, Option<ReverseError>) {
         let integers: Option<Vec<i64>> = resolution.integers.iter().copied().collect();
-        match integers {
-            Some(n) if resolution.status == AmbiguityStatus::Fixed => {
-                self.update(&BaselineMeasurement::new(float, &n)?, &ls)
+        let Some(n) = integers.filter(|_| resolution.status == AmbiguityStatus::Fixed) else {
+            return (ls, None);
+        };
+        self.recovering(BaselineMeasurement::new(float, &n), ls)
+    }
+
+    /// The update with `measurement` (or its construction's error), or, where it fails,
+    /// `ls` with the failure and the filter cleared, so that its next update starts it.
+    fn recovering(
+        &mut self,
+        measurement: Result<BaselineMeasurement, ReverseError>,
+        ls: FixedBaselines,
+    ) -> (FixedBaselines, Option<ReverseError>) {
+        let filtered = measurement.and_then(|measurement| self.update(&measurement, &ls));
+        match filtered {
+            Ok(b) => (b, None),
+            Err(e) => {
+                self.xp = None;
+                (ls, Some(e))
             }
-            _ => Ok(ls),
         }
     }
 }
@@ -311,6 +325,38 @@ mod tests {
         assert!(f.predict(-1.0).is_err());
     }
 
+    /// A failed update (here a covariance made non-finite, as an overflowing prediction
+    /// leaves it) hands the epoch's own baselines through with the error and clears the
+    /// filter; the next epoch starts it again and the one after filters.
+    #[test]
+    fn a_failed_update_keeps_the_epoch_and_restarts_the_filter() {
+        let ls = FixedBaselines {
+            baselines: Matrix3xX::from_column_slice(&[1.0, 0.0, 0.0, 0.0, 1.0, 0.0]),
+            covariance: DMatrix::identity(6, 6) * 1e-4,
+        };
+        let mut rng = ChaCha8Rng::seed_from_u64(2);
+        let mut f = ReverseFilter::new(ReverseConfig::default()).unwrap();
+        let (first, failure) = f.recovering(Ok(random_measurement(&mut rng, 8)), ls.clone());
+        assert_eq!((first, failure), (ls.clone(), None));
+        let (x, mut p) = f.xp.unwrap();
+        p[(0, 0)] = f64::INFINITY;
+        f.xp = Some((x, p));
+        let (kept, failure) = f.recovering(Ok(random_measurement(&mut rng, 8)), ls.clone());
+        assert_eq!(kept, ls);
+        assert!(failure.is_some());
+        assert!(f.xp.is_none(), "the filter is cleared");
+        let bad = Err(BaselineError::NotFinite { what: "a test" }.into());
+        let (kept, failure) = f.recovering(bad, ls.clone());
+        assert_eq!(kept, ls);
+        assert!(failure.unwrap().to_string().contains("a test"));
+        let (restarted, failure) = f.recovering(Ok(random_measurement(&mut rng, 8)), ls.clone());
+        assert_eq!((restarted, failure), (ls.clone(), None));
+        f.predict(1.0).unwrap();
+        let (filtered, failure) = f.recovering(Ok(random_measurement(&mut rng, 8)), ls.clone());
+        assert!(failure.is_none());
+        assert_ne!(filtered, ls, "filtered again");
+    }
+
     #[test]
     fn config_parses_and_rejects_bad_values() {
         let c: ReverseConfig = toml::from_str("rate_psd_m2_s3 = [1, 1, 1, 2, 2, 2]").unwrap();
@@ -330,8 +376,27 @@ mod tests {
                 rate_psd_m2_s3: [f64::NAN; 6],
                 ..ReverseConfig::default()
             },
+            ReverseConfig {
+                rate_psd_m2_s3: [1e-6, 1e-6, 1e300, 1e-6, 1e-6, 1e-6],
+                ..ReverseConfig::default()
+            },
+            ReverseConfig {
+                initial_rate_sigma_m_s: 1e300,
+                ..ReverseConfig::default()
+            },
         ] {
             assert!(ReverseFilter::new(bad).is_err());
         }
+        let e = ReverseConfig {
+            rate_psd_m2_s3: [1e-6, 1e-6, 1e300, 1e-6, 1e-6, 1e-6],
+            ..ReverseConfig::default()
+        }
+        .check()
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("rate_psd_m2_s3[2] = 1e300: allowed 0 to 1e6"),
+            "{e}"
+        );
     }
 }

@@ -22,7 +22,7 @@ use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::{OffsetEstimator, Step};
 use skyforge_navigation::relative::Constraint;
-use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
+use skyforge_navigation::relative::{AmbiguityStatus, FixMethod, RelativeConfig};
 use skyforge_navigation::relative::{EpochChain, EpochOutcome, run_files};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
@@ -76,6 +76,12 @@ pub(crate) struct ChainSummary {
     epochs: usize,
     fixed: usize,
     attitudes: usize,
+    /// Epochs whose integers each method decided (indexed by `FixMethod as usize`).
+    methods: [usize; FixMethod::ALL.len()],
+    /// Epochs where the constrained search fell back to LAMBDA, and the first reason.
+    fallbacks: (usize, Option<String>),
+    /// Epochs where the reverse filter failed and restarted, and the first reason.
+    reverse_restarts: (usize, Option<String>),
     /// `--estimate-geometry` was given.
     estimating: bool,
     offset_rows: Vec<OffsetRow>,
@@ -183,6 +189,9 @@ impl ChainOutputs {
                 epochs: 0,
                 fixed: 0,
                 attitudes: 0,
+                methods: [0; FixMethod::ALL.len()],
+                fallbacks: (0, None),
+                reverse_restarts: (0, None),
                 estimating: offsets.is_some(),
                 offset_rows: Vec::new(),
             },
@@ -202,6 +211,16 @@ impl ChainOutputs {
             let whole = e.resolution.status == AmbiguityStatus::Fixed;
             summary.fixed += usize::from(whole);
             summary.attitudes += usize::from(e.attitude.is_some() && e.attitude_skipped.is_none());
+            summary.methods[e.resolution.method as usize] += 1;
+            for (count, why) in [
+                (&mut summary.fallbacks, &e.resolution.fallback),
+                (&mut summary.reverse_restarts, &e.reverse_restarted),
+            ] {
+                if let Some(why) = why {
+                    count.0 += 1;
+                    count.1.get_or_insert_with(|| format!("{}: {why}", o.time));
+                }
+            }
             if let (Some(f), Some(ned), None, true) = (
                 self.offsets.as_mut(),
                 &e.fixed_ned,
@@ -305,6 +324,21 @@ impl ChainSummary {
             self.fixed,
             100.0 * self.fixed as f64 / self.epochs.max(1) as f64
         );
+        let methods: Vec<String> = FixMethod::ALL
+            .iter()
+            .zip(&self.methods)
+            .filter(|(_, n)| **n > 0)
+            .map(|(m, n)| format!("{} {n}", m.name()))
+            .collect();
+        println!("method     {}", methods.join(", "));
+        for (what, (n, first)) in [
+            ("fallback   to LAMBDA", &self.fallbacks),
+            ("reverse    filter restarted", &self.reverse_restarts),
+        ] {
+            if let Some(first) = first {
+                println!("{what} at {n} epochs, first {first}");
+            }
+        }
         println!("attitude   {} epochs", self.attitudes);
         println!("wrote      {}", dir.join(ATTITUDE_CSV).display());
         if !self.estimating {

@@ -20,10 +20,11 @@
 //! multivariate constraint ([`super::multivariate::search_with_misfit`]), which proves
 //! the best when it is exhaustive.
 
-use super::ConstrainedSearch;
 use super::multivariate::{CandidateMisfit, ConstrainedError, ConstrainedFix, search_with_misfit};
+use super::{ConstrainedSearch, Searched};
 use crate::attitude::{AttitudeError, BodyGeometry};
 use crate::baseline::{Conditioned, FloatBaselines};
+use crate::relative::resolve::FixMethod;
 use nalgebra::{DMatrix, DVector, Matrix3, SymmetricEigen};
 use skyforge_orbits::Vec3;
 
@@ -322,8 +323,15 @@ impl ConstrainedSearch for LengthSearch {
         held: &[(usize, i64)],
         _: &Vec3,
         accept_ratio: f64,
-    ) -> Option<ConstrainedFix> {
-        search(float, cond, held, &self.geometry, accept_ratio).ok()
+    ) -> Searched {
+        Searched::of(
+            "length",
+            search(float, cond, held, &self.geometry, accept_ratio),
+        )
+    }
+
+    fn method(&self) -> FixMethod {
+        FixMethod::Length
     }
 }
 

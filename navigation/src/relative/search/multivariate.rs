@@ -16,12 +16,13 @@
 //! loop, [`search_with_misfit`], takes the misfit as a parameter and is shared with the
 //! baseline-length constraint of [`super::length`].
 
-use super::ConstrainedSearch;
+use super::{ConstrainedSearch, Searched};
 use crate::ambiguity::{MAX_CANDIDATES, Nearest};
 use crate::attitude::frames::{baselines_to_frame, ned_frame};
 use crate::attitude::least_squares::{misfit_upper_bound_with, weight_factor};
 use crate::attitude::{AttitudeError, BodyGeometry, NedBaselines};
 use crate::baseline::{BaselineError, Conditioned, FloatBaselines};
+use crate::relative::resolve::FixMethod;
 use nalgebra::{Cholesky, DMatrix, DVector, Dyn};
 use skyforge_orbits::{Mat3, Vec3};
 
@@ -347,18 +348,22 @@ impl ConstrainedSearch for GeometrySearch {
         held: &[(usize, i64)],
         master_ecef_m: &Vec3,
         accept_ratio: f64,
-    ) -> Option<ConstrainedFix> {
+    ) -> Searched {
         if self.geometry.len() < 2 {
-            return None;
+            return Searched::Fallback("the geometry search needs two or more baselines".into());
         }
-        search(
+        let result = search(
             float,
             cond,
             held,
             &self.geometry,
             master_ecef_m,
             accept_ratio,
-        )
-        .ok()
+        );
+        Searched::of("geometry", result)
+    }
+
+    fn method(&self) -> FixMethod {
+        FixMethod::Geometry
     }
 }
