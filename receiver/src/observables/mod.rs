@@ -112,14 +112,27 @@ impl ObservablesBuilder {
     }
 
     /// Forget a channel (it stopped tracking).
+    /// The loss-of-lock flags of `observations` (of an epoch not reported) stay pending
+    /// for the next epoch.
+    pub fn keep_pending(&mut self, observations: &[Observation]) {
+        for o in observations.iter().filter(|o| o.loss_of_lock) {
+            if let Some(track) = self.channels.get_mut(&(o.antenna, o.sat)) {
+                track.slip_pending = true;
+            }
+        }
+    }
+
     pub fn drop_channel(&mut self, antenna: usize, sat: SatId) {
         self.channels.remove(&(antenna, sat));
     }
 
     /// Observations at sample `epoch_sample` with receiver time `t_rx_s` there: every
     /// channel whose two newest boundaries bracket the epoch (or end within one code
-    /// period before it: then extrapolated linearly).
-    pub fn at(&mut self, epoch_sample: f64, t_rx_s: f64) -> Vec<Observation> {
+    /// period before it: then extrapolated linearly). `clock_steps_s` is the sum of the
+    /// re-anchoring corrections the receiver clock has had: the carrier phase moves by
+    /// `f clock_steps_s` cycles with the pseudorange's `c clock_steps_s`, so code and
+    /// carrier stay consistent across a clock jump.
+    pub fn at(&mut self, epoch_sample: f64, t_rx_s: f64, clock_steps_s: f64) -> Vec<Observation> {
         let fs = self.sample_rate_hz;
         let mut out = Vec::new();
         for (&(antenna, sat), track) in &mut self.channels {
@@ -140,7 +153,9 @@ impl ObservablesBuilder {
                 antenna,
                 sat,
                 pseudorange_m: C_MPS * (t_rx_s - t_tx),
-                carrier_phase_cycles: -nco + half,
+                carrier_phase_cycles: -nco
+                    + half
+                    + clock_steps_s * Signal::of_system(sat.system).carrier_hz(),
                 doppler_hz: lerp(a.doppler_hz, b.doppler_hz),
                 cn0_dbhz: b.cn0_dbhz,
                 lock_time_s: (epoch_sample - track.locked_since).max(0.0) / fs,
@@ -196,7 +211,7 @@ mod tests {
             let s = boundary(k, fs, t0_rx, range0);
             if s.sample_index > epoch_t * fs {
                 b.push(0, sat, s);
-                let obs = b.at(epoch_t * fs, t0_rx + epoch_t);
+                let obs = b.at(epoch_t * fs, t0_rx + epoch_t, 0.0);
                 assert_eq!(obs.len(), 1);
                 let o = obs[0];
                 let range = range0 + 500.0 * epoch_t + epoch_t * epoch_t;
@@ -221,6 +236,37 @@ mod tests {
         assert_eq!(checked, 1);
     }
 
+    /// A re-anchored receiver clock moves the pseudorange and the carrier phase alike:
+    /// code minus carrier does not jump.
+    #[test]
+    fn a_clock_jump_moves_code_and_carrier_alike() {
+        let (fs, t0_rx, range0) = (4.092e6, 100.07, 2.1e7);
+        let sat = SatId {
+            system: System::Gps,
+            prn: 3,
+        };
+        let mut b = ObservablesBuilder::new(fs);
+        let epoch = 1.5 * fs;
+        for k in 0..1600 {
+            let s = boundary(k, fs, t0_rx, range0);
+            b.push(0, sat, s);
+            if s.sample_index > epoch {
+                break;
+            }
+        }
+        let before = b.at(epoch, t0_rx + 1.5, 0.0)[0];
+        let jump_s = 8.1e-3;
+        let after = b.at(epoch, t0_rx + 1.5 - jump_s, -jump_s)[0];
+        assert!((before.pseudorange_m - after.pseudorange_m - C_MPS * jump_s).abs() < 1e-6);
+        let lambda = Signal::GpsL1Ca.wavelength_m();
+        let cmc = |o: &Observation| o.pseudorange_m - o.carrier_phase_cycles * lambda;
+        assert!(
+            (cmc(&before) - cmc(&after)).abs() < 1e-6,
+            "{}",
+            cmc(&before) - cmc(&after)
+        );
+    }
+
     #[test]
     fn a_slip_restarts_the_lock_time_and_flags_the_next_epoch_only() {
         let (fs, t0_rx, range0) = (4.092e6, 100.07, 2.1e7);
@@ -235,7 +281,7 @@ mod tests {
             s.slip = k == 1200;
             b.push(1, sat, s);
             if k % 100 == 50 && k > 0 {
-                let o = b.at(s.sample_index, t0_rx + s.sample_index / fs);
+                let o = b.at(s.sample_index, t0_rx + s.sample_index / fs, 0.0);
                 flags.push((k, o[0].loss_of_lock, o[0].lock_time_s));
             }
         }
@@ -245,6 +291,6 @@ mod tests {
         let at_1250 = flags.iter().find(|f| f.0 == 1250).unwrap().2;
         assert!((at_1250 - 0.05).abs() < 1e-3, "{at_1250}");
         // An epoch beyond the newest boundary by more than a period is not extrapolated.
-        assert!(b.at(1e12, 0.0).is_empty());
+        assert!(b.at(1e12, 0.0, 0.0).is_empty());
     }
 }

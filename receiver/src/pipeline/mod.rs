@@ -41,7 +41,9 @@ pub struct EpochReport {
     /// The epoch's (fractional) sample index on the common sample clock.
     pub sample_index: f64,
     /// Receiver time of the epoch (GPST, the receiver's own clock: the recording's start
-    /// time plus samples / rate; the fix's clock bias says how far off it is).
+    /// time plus samples / rate, re-anchored to GPS time by a fix that finds it more than
+    /// 0.5 us off, so GPS time within a microsecond after the first fix; the fix's clock
+    /// bias says how far off it is).
     pub t_rx: Epoch,
     /// Observations of every antenna and satellite tracked at the epoch.
     pub observations: Vec<Observation>,

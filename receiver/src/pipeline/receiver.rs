@@ -20,11 +20,25 @@ use hifitime::Epoch;
 use num_complex::Complex32;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
+use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Typical signal flight time used to start a receiver clock that has no time tag (s).
 const NOMINAL_FLIGHT_S: f64 = 0.075;
+/// Receiver clock offset from GPS time (s) beyond which a fix re-anchors the clock to GPS
+/// time ([`Receiver::steer`]). # assumed: half the microsecond the time tags must keep
+/// (issue #32), so that the drift of an oscillator up to 0.5 ppm over a one-second epoch
+/// keeps them within it; well above the noise of a fix's clock (nanoseconds).
+const STEER_THRESHOLD_S: f64 = 0.5e-6;
+/// Satellites a band's first blind search (every PRN on every antenna) must find; with
+/// fewer its cold Doppler window widens to [`WIDE_COLD_HALF_WIDTH_HZ`]. # assumed: six,
+/// the fewest with which RAIM can exclude a fault; a ground receiver's first search over
+/// +/-10 kHz finds more.
+const WIDEN_BELOW: usize = 6;
+/// Half width of the widened cold window (Hz): a LEO's line-of-sight speed to a GNSS
+/// satellite reaches about 9 km/s, 47 kHz at L1, plus the oscillator's offset.
+const WIDE_COLD_HALF_WIDTH_HZ: f64 = 50e3;
 /// Code periods past an epoch every channel must have tracked before the epoch is formed:
 /// a channel reports an integration when it ends, so the first integration starting after
 /// the epoch is known only up to two of the longest integrations (plus a code period of
@@ -99,9 +113,16 @@ pub struct ReceiverSummary {
     /// subframe decoded).
     pub tracked: Vec<Vec<SatId>>,
     pub timed: Vec<Vec<SatId>>,
-    /// Epochs formed and fixes per antenna.
+    /// Epochs formed and fixes per antenna (of the epochs reported).
     pub epochs: usize,
     pub fixes: Vec<usize>,
+    /// Times a fix re-anchored the receiver clock to GPS time, and the sum of the
+    /// corrections (s; receiver time minus GPS time removed).
+    pub clock_steps: usize,
+    pub clock_steered_s: f64,
+    /// Bands whose first blind search found fewer than six satellites, with how many,
+    /// after which their cold Doppler window widened to +/-50 kHz.
+    pub widened: Vec<(Signal, usize)>,
     /// Ephemerides known at the end.
     pub ephemerides: usize,
 }
@@ -116,6 +137,14 @@ pub struct Receiver {
     observables: ObservablesBuilder,
     /// GPST (s since the origin) of sample 0 in the receiver's clock, once known.
     clock_offset_s: Option<f64>,
+    /// The clock was started from a nominal flight time (no time tag): its epochs are
+    /// provisional, not reported, until a fix sets it.
+    clock_guessed: bool,
+    /// Sum of the re-anchoring corrections applied to `clock_offset_s` (s): the carrier
+    /// phases move with the pseudoranges ([`ObservablesBuilder::at`]).
+    clock_steps_s: f64,
+    /// Per band: the cold Doppler window widened after a first search found too few.
+    widened: Vec<bool>,
     next_epoch: Option<i64>,
     next_search_sample: u64,
     /// Searches run so far (rounds over every band and antenna).
@@ -169,6 +198,9 @@ impl Receiver {
             channels: Vec::new(),
             nav,
             clock_offset_s: None,
+            clock_guessed: false,
+            clock_steps_s: 0.0,
+            widened: vec![false; setup.bands.len()],
             next_epoch: None,
             next_search_sample: 0,
             search_rounds: 0,
@@ -275,9 +307,10 @@ impl Receiver {
         self.set_clock_from_start_time();
         if self.clock_offset_s.is_none() {
             // No time tag: start the clock one nominal flight time after the first timed
-            // code epoch; the PVT's clock bias absorbs the difference.
+            // code epoch; the first fix sets it to GPS time ([`Self::steer`]).
             if let Some(s) = self.channels.iter().find_map(|c| c.queue.front()) {
                 self.clock_offset_s = Some(s.t_tx_s + NOMINAL_FLIGHT_S - s.sample_index / fs);
+                self.clock_guessed = true;
             }
         }
         for c in self.channels.iter().filter(|c| c.is_lost()) {
@@ -303,6 +336,8 @@ impl Receiver {
         let t_s = self.receiver_time(first_sample as f64);
         let round = self.search_rounds;
         self.search_rounds += 1;
+        // (band, satellites found) of each band searched blind in the first round.
+        let mut widen = Vec::new();
         for (b, band) in self.setup.bands.iter().enumerate() {
             let system = band.signal.system();
             let n_antennas = band.antennas.len();
@@ -310,6 +345,8 @@ impl Receiver {
             // Doppler of each PRN found in this band this round (all antennas share the
             // platform's motion and oscillator: within a few Hz of each other).
             let mut found_here: Vec<(u8, f64)> = Vec::new();
+            // Whether the band was searched blind (over the cold window).
+            let mut blind = false;
             for (local, &antenna) in band.antennas.iter().enumerate() {
                 let tracked = |prn: u8| {
                     self.channels
@@ -323,8 +360,9 @@ impl Receiver {
                         .find_map(Channel::doppler_hz)
                         .or_else(|| found_here.iter().find(|f| f.0 == prn).map(|f| f.1))
                 };
-                let candidates: Vec<Candidate> = self
-                    .candidates(b, antenna, t_s)
+                let all = self.candidates(b, antenna, t_s);
+                blind |= all.iter().any(|c| c.cold);
+                let candidates: Vec<Candidate> = all
                     .into_iter()
                     .filter(|c| !tracked(c.prn))
                     .filter_map(|c| match (c.cold, elsewhere(c.prn)) {
@@ -347,7 +385,9 @@ impl Receiver {
                 self.summary.searches += candidates.len();
                 let found = self.searches[b].run(&bands[b][local][..len], &candidates)?;
                 for (c, acq) in found {
-                    found_here.push((c.prn, acq.doppler_hz));
+                    if !found_here.iter().any(|f| f.0 == c.prn) {
+                        found_here.push((c.prn, acq.doppler_hz));
+                    }
                     let handover = Handover {
                         signal: band.signal,
                         prn: c.prn,
@@ -367,8 +407,26 @@ impl Receiver {
                     self.summary.detections += 1;
                 }
             }
+            if round == 0 && blind {
+                widen.push((b, found_here.len()));
+            }
+        }
+        for (band, found) in widen {
+            self.widen_if_too_few(band, found);
         }
         Ok(())
+    }
+
+    /// After band `band`'s first blind search (every PRN on every antenna over the cold
+    /// window) found `found` satellites: fewer than [`WIDEN_BELOW`] widens its cold window
+    /// (a fast platform's Doppler lies beyond +/-10 kHz).
+    fn widen_if_too_few(&mut self, band: usize, found: usize) {
+        let cold = self.searches[band].cold_window();
+        if found < WIDEN_BELOW && cold.half_width_hz < WIDE_COLD_HALF_WIDTH_HZ {
+            self.widened[band] = true;
+            let signal = self.setup.bands[band].signal;
+            self.summary.widened.push((signal, found));
+        }
     }
 
     /// What to search for on `antenna`: the satellites predicted in view (ephemerides, an
@@ -396,7 +454,10 @@ impl Receiver {
                     .collect();
             }
         }
-        let window = search.cold_window();
+        let mut window = search.cold_window();
+        if self.widened[band] {
+            window.half_width_hz = WIDE_COLD_HALF_WIDTH_HZ;
+        }
         (1..=system.max_prn())
             .map(|prn| Candidate {
                 prn,
@@ -444,32 +505,29 @@ impl Receiver {
     fn epochs(&mut self, end: u64) -> Result<Vec<EpochReport>, PipelineError> {
         let fs = self.setup.sample_rate_hz;
         let rate = self.config.observation_rate_hz;
-        let Some(t0) = self.clock_offset_s else {
-            return Ok(Vec::new());
-        };
-        let next = *self
-            .next_epoch
-            .get_or_insert_with(|| ((t0 * rate).ceil()) as i64);
         let margin = EPOCH_MARGIN_PERIODS * 1e-3 * fs;
         let mut reports = Vec::new();
-        let mut k = next;
-        loop {
+        // The clock may be re-anchored by an epoch's fix: each epoch reads it anew.
+        while let Some(t0) = self.clock_offset_s {
+            let k = *self
+                .next_epoch
+                .get_or_insert_with(|| ((t0 * rate).ceil()) as i64);
             let t_k = k as f64 / rate;
             let n_k = (t_k - t0) * fs;
             if n_k + margin > end as f64 {
                 break;
             }
+            self.next_epoch = Some(k + 1);
             if n_k >= 0.0 {
-                reports.push(self.epoch(n_k, t_k));
+                reports.extend(self.epoch(n_k, t_k));
             }
-            k += 1;
         }
-        self.next_epoch = Some(k);
         Ok(reports)
     }
 
-    /// Observations and fixes at sample `n_k`, receiver time `t_k`.
-    fn epoch(&mut self, n_k: f64, t_k: f64) -> EpochReport {
+    /// Observations and fixes at sample `n_k`, receiver time `t_k`; `None` for an epoch of
+    /// a guessed clock (no time tag) before a fix has set it.
+    fn epoch(&mut self, n_k: f64, t_k: f64) -> Option<EpochReport> {
         for ch in &mut self.channels {
             while let Some(s) = ch.queue.pop_front() {
                 self.observables.push(ch.antenna, ch.sat, s);
@@ -478,23 +536,57 @@ impl Receiver {
                 }
             }
         }
-        let observations = self.observables.at(n_k, t_k);
+        let observations = self.observables.at(n_k, t_k, self.clock_steps_s);
         self.summary.epochs += 1;
         let fixes = self.epoch_stage.epoch(&EpochInput {
             t_s: t_k,
             observations: &observations,
             nav: &self.nav,
         });
+        let provisional = self.clock_guessed;
+        let bias_s = fixes
+            .iter()
+            .find_map(|f| f.fix.as_ref().ok())
+            .map(|f| f.clock_bias_m / C_MPS);
+        let steered = bias_s.is_some_and(|b| self.steer(b, n_k));
+        if provisional && (bias_s.is_none() || steered) {
+            self.observables.keep_pending(&observations);
+            return None;
+        }
         for f in fixes.iter().filter(|f| f.fix.is_ok()) {
             self.summary.fixes[f.antenna] += 1;
         }
         let origin = self.nav.origin().map(|o| o.epoch_at(t_k));
-        EpochReport {
+        Some(EpochReport {
             sample_index: n_k,
             t_rx: origin.unwrap_or_default(),
             observations,
             fixes,
+        })
+    }
+
+    /// A fix at sample `n_k` found the receiver clock `bias_s` ahead of GPS time: beyond
+    /// [`STEER_THRESHOLD_S`] the clock is re-anchored to GPS time (a clock jump, as a
+    /// receiver steering its clock makes), so that the following epochs and every output's
+    /// time tags are GPS time. Returns whether it jumped. The clock counts as set from then
+    /// on; the next epoch is the first after `n_k` on the new clock.
+    fn steer(&mut self, bias_s: f64, n_k: f64) -> bool {
+        self.clock_guessed = false;
+        let Some(t0) = self.clock_offset_s else {
+            return false;
+        };
+        if !(bias_s.is_finite() && bias_s.abs() > STEER_THRESHOLD_S) {
+            return false;
         }
+        let t0 = t0 - bias_s;
+        self.clock_offset_s = Some(t0);
+        self.clock_steps_s -= bias_s;
+        self.summary.clock_steps += 1;
+        self.summary.clock_steered_s -= bias_s;
+        let (fs, rate) = (self.setup.sample_rate_hz, self.config.observation_rate_hz);
+        let after = ((t0 + n_k / fs) * rate).floor() as i64 + 1;
+        self.next_epoch = Some(self.next_epoch.map_or(after, |k| k.max(after)));
+        true
     }
 }
 

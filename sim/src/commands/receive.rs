@@ -179,4 +179,23 @@ pub(crate) fn print_summary(
         s.losses_of_lock,
         s.ephemerides
     );
+    if s.clock_steps > 0 {
+        println!(
+            "receive: receiver clock set to GPS time by the fixes: {} step(s), {:+.6} ms in all",
+            s.clock_steps,
+            1e3 * s.clock_steered_s
+        );
+    }
+    for (signal, found) in &s.widened {
+        println!(
+            "receive: note: the first search of {} over +/-10 kHz found {found} satellite(s); later searches span +/-50 kHz (a fast platform; --assist with an approximate state narrows them)",
+            signal.tag()
+        );
+    }
+    let most = s.tracked.iter().map(Vec::len).max().unwrap_or(0);
+    if most < 5 {
+        println!(
+            "receive: hint: {most} satellite(s) tracked at most on an antenna, fewer than a checked fix needs (5); check the signal, the sample rate and the IF, or give --assist"
+        );
+    }
 }
