@@ -79,7 +79,7 @@ fn the_papers_cases_show_their_patterns_on_two_seeds() {
         },
     )
     .unwrap();
-    assert_eq!(rows.len(), 15);
+    assert_eq!(rows.len(), 16);
     let find = |label: &str| rows.iter().find(|r| r.row == label).unwrap();
     for label in [
         "cycle slip: carrier B at C",
@@ -90,6 +90,7 @@ fn the_papers_cases_show_their_patterns_on_two_seeds() {
         "multipath: smoothed-code B at C crosses 0.5 m",
         "multipath: carrier B at C unchanged",
         "common iono ramp: not detected",
+        "iono ramp at C only: B at C beyond its thresholds",
     ] {
         assert_eq!(
             find(label).verdict,
