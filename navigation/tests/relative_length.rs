@@ -6,7 +6,9 @@
 //!
 //! Seeds and counts were fixed before the first run: 300 draws per satellite count, a
 //! new sky, integer offsets and noise per draw; and 200 draws of two baselines and six
-//! satellites for the three searches side by side (printed, not asserted).
+//! satellites for the three searches side by side. docs/attitude.md quotes the counts;
+//! each is asserted within two binomial standard errors of the quoted figure
+//! ([`near_quoted`]).
 
 mod baseline_support;
 
@@ -45,6 +47,18 @@ fn epoch(seed: u64, gps: usize, baselines: Vec<Vector3<f64>>) -> (FloatBaselines
     let float = solve(&scene, &obs, &noise);
     let truth = true_integers(&scene, &float);
     (float, truth)
+}
+
+/// `count` of `n` draws within two binomial standard errors (at least one draw) of the
+/// figure docs/attitude.md quotes.
+fn near_quoted(what: &str, count: usize, n: usize, quoted: usize) -> bool {
+    let p = quoted as f64 / n as f64;
+    let se = (n as f64 * p * (1.0 - p)).sqrt();
+    let ok = (count as f64 - quoted as f64).abs() <= (2.0 * se).max(1.0);
+    if !ok {
+        println!("{what}: {count} of {n}, docs/attitude.md quotes {quoted}");
+    }
+    ok
 }
 
 #[derive(Debug, Default)]
@@ -129,11 +143,24 @@ fn length_constraint_finds_the_integers_at_least_as_often_as_lambda() {
             t.length_accepted.1,
         );
         assert!(t.length_right >= t.lambda_right, "{gps} GPS: {t:?}");
+        // docs/attitude.md: best == truth LAMBDA 3.3/22.3/66.7 %, length 76.7/95.7/99.0 %
+        // of 300; every length search exhaustive; accepted 63/160/256, wrong 1/1/0.
+        let k = gps - 5;
+        let quoted = [
+            ("LAMBDA right", t.lambda_right, [10, 67, 200][k]),
+            ("length right", t.length_right, [230, 287, 297][k]),
+            ("length accepted", t.length_accepted.0, [63, 160, 256][k]),
+        ];
+        for (what, count, q) in quoted {
+            assert!(near_quoted(what, count, t.draws, q), "{gps} GPS: {t:?}");
+        }
+        assert_eq!(t.length_exhaustive, t.draws);
+        assert!(t.length_accepted.1 <= [1, 1, 0][k], "{gps} GPS: {t:?}");
     }
 }
 
 /// Two baselines, six GPS satellites: plain LAMBDA, the lengths, and the whole geometry
-/// (multivariate) side by side; printed only.
+/// (multivariate) side by side, against the counts docs/attitude.md quotes.
 #[test]
 fn two_baselines_lambda_length_and_geometry_side_by_side() {
     let baselines = two_baselines();
@@ -158,4 +185,8 @@ fn two_baselines_lambda_length_and_geometry_side_by_side() {
         "6 GPS, two 1 m baselines, {draws} draws: best == truth LAMBDA {plain_ok}, length \
          {length_ok}, geometry {geometry_ok} (geometry search failed on {geometry_failed})"
     );
+    assert!(near_quoted("LAMBDA right", plain_ok, draws, 21));
+    assert!(near_quoted("length right", length_ok, draws, 177));
+    assert!(near_quoted("geometry right", geometry_ok, draws, 194));
+    assert_eq!(geometry_failed, 0);
 }
