@@ -333,7 +333,13 @@ pub fn is_root() -> bool {
 pub struct Tmpfs(pub PathBuf);
 
 impl Tmpfs {
+    /// Mount it; a test that needs one fails (not passes) where the suite does not run as
+    /// root (CI and `scripts/test.sh` in a container do).
     pub fn mount(dir: &Path, size: &str) -> Self {
+        assert!(
+            is_root(),
+            "\n*** this test mounts a small tmpfs (a disk that fills up) and needs root: run it as root ***\n"
+        );
         std::fs::create_dir(dir).expect("create mount point");
         let o = Command::new("mount")
             .args(["-t", "tmpfs", "-o", &format!("size={size}"), "tmpfs"])
