@@ -21,15 +21,15 @@ pub const ATTITUDE_H5: &str = "attitude.h5";
 /// The fixed integers, one row per double difference.
 pub const AMBIGUITIES_CSV: &str = "ambiguities.csv";
 
-/// The columns of `ambiguities.csv`.
-const AMBIGUITY_COLUMNS: [&str; 7] = [
+/// The columns of `ambiguities.csv`: the required ones, then `method` (what SkyForge
+/// writes; another program's file may leave it out).
+const AMBIGUITY_COLUMNS: [&str; 6] = [
     "time_gpst",
     "baseline",
     "signal",
     "sat",
     "reference",
     "integer",
-    "method",
 ];
 
 /// What became of an epoch's ambiguities; its index is the code in `attitude.h5`'s
@@ -280,7 +280,7 @@ pub fn integer_rows(o: &EpochOutcome) -> Vec<IntegerRow> {
                 sat,
                 reference,
                 integer: (*value)?,
-                method,
+                method: Some(method),
             })
         })
         .collect()
@@ -314,7 +314,8 @@ impl EpochFiles {
         };
         let (mut csv, mut ints) = (create(&paths[0])?, create(&paths[1])?);
         writeln!(csv, "{}", csv_header(m)).map_err(|e| on(&paths[0], "write", e))?;
-        writeln!(ints, "{}", AMBIGUITY_COLUMNS.join(",")).map_err(|e| on(&paths[1], "write", e))?;
+        writeln!(ints, "{},method", AMBIGUITY_COLUMNS.join(","))
+            .map_err(|e| on(&paths[1], "write", e))?;
         Ok(Self {
             m,
             csv,
@@ -423,6 +424,18 @@ fn text_or_empty(f: &Fields<'_>, column: &str) -> Result<String, FormatError> {
     }
 }
 
+/// The optional `method` column: `None` when absent or empty.
+fn method_of(f: &Fields<'_>) -> Result<Option<FixMethod>, FormatError> {
+    match text_or_empty(f, "method")?.as_str() {
+        "" => Ok(None),
+        m => m.parse().map(Some).map_err(|()| {
+            f.error(format!(
+                "method = {m:?}; expected none, held, lambda, geometry, length or partial"
+            ))
+        }),
+    }
+}
+
 /// The values of one data line of `attitude.csv` with `m` baselines.
 fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError> {
     let status = f.text("status")?;
@@ -431,14 +444,7 @@ fn attitude_values(f: &Fields<'_>, m: usize) -> Result<EpochValues, FormatError>
             "status = {status:?}; expected fixed, partial, float or none"
         ))
     })?;
-    let method = match text_or_empty(f, "method")?.as_str() {
-        "" => None,
-        m => Some(m.parse().map_err(|()| {
-            f.error(format!(
-                "method = {m:?}; expected none, held, lambda, geometry, length or partial"
-            ))
-        })?),
-    };
+    let method = method_of(f)?;
     let mut v = EpochValues {
         time: f.epoch("time_gpst")?,
         status,
@@ -523,8 +529,8 @@ pub struct IntegerRow {
     pub sat: SatId,
     pub reference: SatId,
     pub integer: i64,
-    /// What decided the epoch's integers.
-    pub method: FixMethod,
+    /// What decided the epoch's integers (`None` where a file read back does not say).
+    pub method: Option<FixMethod>,
 }
 
 impl IntegerRow {
@@ -538,7 +544,7 @@ impl IntegerRow {
             self.sat,
             self.reference,
             self.integer,
-            self.method.name()
+            self.method.map_or("", FixMethod::name)
         )
     }
 }
@@ -559,10 +565,7 @@ pub fn read_ambiguities_csv(path: &Path) -> Result<Vec<Line<IntegerRow>>, Format
                 sat: f.parse("sat", "a satellite (e.g. G05)")?,
                 reference: f.parse("reference", "a satellite (e.g. G05)")?,
                 integer: f.parse("integer", "an integer")?,
-                method: f.parse(
-                    "method",
-                    "a method (held, lambda, geometry, length, partial)",
-                )?,
+                method: method_of(&f)?,
             };
             rows.push(Line { line, row });
             Ok(())
@@ -806,7 +809,7 @@ mod tests {
                     sat: SatId::beidou(7),
                     reference: SatId::beidou(11),
                     integer: -123_456,
-                    method: FixMethod::Held,
+                    method: Some(FixMethod::Held),
                 })
                 .into_iter()
                 .collect::<Vec<_>>()
@@ -841,6 +844,15 @@ mod tests {
             written
         );
         assert_eq!(ints.iter().map(|l| l.line).collect::<Vec<_>>(), [2, 3]);
+        // Another program's integers need no method column.
+        let other = dir.path().join("other.csv");
+        std::fs::write(
+            &other,
+            "time_gpst,baseline,signal,sat,reference,integer\n2024-01-01T00:00:00 GPST,1,gps-l1ca,G05,G07,-3\n",
+        )
+        .unwrap();
+        let read = read_ambiguities_csv(&other).unwrap();
+        assert_eq!((read[0].row.integer, read[0].row.method), (-3, None));
     }
 
     /// A status the writer never writes, or a baseline given in part, is refused with its
