@@ -4,10 +4,8 @@
 
 mod baseline_support;
 
-use baseline_support::{observe, scene_with, solve, true_integers, two_baselines};
+use baseline_support::{single_epoch, two_baselines};
 use nalgebra::Vector3;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::baseline::{AmbiguityHold, ElevationNoise, FloatBaselines, NoiseModel};
 use skyforge_navigation::relative::search::{self, ConstrainedSearch};
@@ -18,17 +16,16 @@ use skyforge_navigation::relative::{
 /// A single epoch of eight GPS satellites over `baselines` (2 mm phase, 0.3 m code): its
 /// float solution and true integers.
 fn epoch(seed: u64, baselines: Vec<Vector3<f64>>) -> (FloatBaselines, Vec<i64>) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let scene = scene_with(&mut rng, 8, 0, baselines);
-    let e = |s| ElevationNoise::constant(s);
-    let noise = NoiseModel::new(e(0.002), e(0.3));
-    let zero = vec![0.0; 8];
-    let obs: Vec<_> = (0..=scene.baselines.len())
-        .map(|a| observe(&scene, a, (0.0, &zero), Some((&noise, &mut rng))))
-        .collect();
-    let float = solve(&scene, &obs, &noise);
-    let truth = true_integers(&scene, &float);
-    (float, truth)
+    let e = ElevationNoise::constant;
+    single_epoch(seed, 8, baselines, &NoiseModel::new(e(0.002), e(0.3)))
+}
+
+/// LAMBDA (or partial fixing, or nothing) decided, not a constrained search.
+fn lambda_decided(r: &Resolution) -> bool {
+    matches!(
+        r.method,
+        FixMethod::Lambda | FixMethod::Partial | FixMethod::None
+    )
 }
 
 /// A master on the Earth's surface (the geometry search's local frame).
@@ -72,14 +69,7 @@ fn without_a_constraint_lambda_decides_and_nothing_is_a_fallback() {
     let none = search::build(Constraint::None, &geometry);
     let (float, _) = epoch(2, baselines);
     let r = resolve_with(&float, &mut AmbiguityHold::new(), none.as_ref(), &master());
-    assert!(
-        matches!(
-            r.method,
-            FixMethod::Lambda | FixMethod::Partial | FixMethod::None
-        ),
-        "{:?}",
-        r.method
-    );
+    assert!(lambda_decided(&r), "{:?}", r.method);
     assert_eq!(r.fallback, None);
 }
 
@@ -112,14 +102,7 @@ fn a_search_that_cannot_decide_is_a_recorded_fallback() {
         by_geometry.as_ref(),
         &centre,
     );
-    assert!(
-        matches!(
-            r.method,
-            FixMethod::Lambda | FixMethod::Partial | FixMethod::None
-        ),
-        "{:?}",
-        r.method
-    );
+    assert!(lambda_decided(&r), "{:?}", r.method);
     let why = r.fallback.expect("a fallback");
     assert!(why.starts_with("geometry search failed: "), "{why}");
 }

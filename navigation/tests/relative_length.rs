@@ -12,10 +12,8 @@
 
 mod baseline_support;
 
-use baseline_support::{observe, scene_with, solve, true_integers, two_baselines};
+use baseline_support::{single_epoch, two_baselines};
 use nalgebra::Vector3;
-use rand::SeedableRng;
-use rand_chacha::ChaCha8Rng;
 use skyforge_navigation::ambiguity::lambda;
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::baseline::{AmbiguityHold, ElevationNoise, FloatBaselines, NoiseModel};
@@ -37,16 +35,7 @@ fn noise() -> NoiseModel {
 /// One single-epoch float solution of `gps` GPS satellites and `baselines`, and its true
 /// integers (vec(N)).
 fn epoch(seed: u64, gps: usize, baselines: Vec<Vector3<f64>>) -> (FloatBaselines, Vec<i64>) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let scene = scene_with(&mut rng, gps, 0, baselines);
-    let noise = noise();
-    let zero = vec![0.0; gps];
-    let obs: Vec<_> = (0..=scene.baselines.len())
-        .map(|a| observe(&scene, a, (0.0, &zero), Some((&noise, &mut rng))))
-        .collect();
-    let float = solve(&scene, &obs, &noise);
-    let truth = true_integers(&scene, &float);
-    (float, truth)
+    single_epoch(seed, gps, baselines, &noise())
 }
 
 /// `count` of `n` draws within two binomial standard errors (at least one draw) of the

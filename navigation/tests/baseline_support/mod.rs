@@ -161,3 +161,23 @@ pub fn true_integers(scene: &Scene, float: &FloatBaselines) -> Vec<i64> {
 pub fn clocks(rng: &mut ChaCha8Rng, n: usize) -> Vec<f64> {
     (0..n).map(|_| rng.random_range(-3e5..3e5)).collect()
 }
+
+/// One single-epoch float solution of `gps` GPS satellites over `baselines` with `noise`,
+/// no clocks (sky, integer offsets and noise from `seed`), and its true integers (vec(N)).
+pub fn single_epoch(
+    seed: u64,
+    gps: usize,
+    baselines: Vec<Vector3<f64>>,
+    noise: &NoiseModel,
+) -> (FloatBaselines, Vec<i64>) {
+    use rand::SeedableRng;
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let scene = scene_with(&mut rng, gps, 0, baselines);
+    let zero = vec![0.0; gps];
+    let obs: Vec<_> = (0..=scene.baselines.len())
+        .map(|a| observe(&scene, a, (0.0, &zero), Some((noise, &mut rng))))
+        .collect();
+    let float = solve(&scene, &obs, noise);
+    let truth = true_integers(&scene, &float);
+    (float, truth)
+}

@@ -2,17 +2,17 @@
 //! time the code epochs, form observations at the epochs of the receiver clock and solve
 //! a fix per antenna.
 
-use super::EpochReport;
 use super::channel::Channel;
 use super::config::{ApproximateState, ReceiverConfig};
 use super::epoch_stage::{self, EpochInput, EpochStage};
 use super::navdata::NavData;
+use super::{AntennaFix, EpochReport};
 use crate::acquisition::AcquisitionError;
 use crate::acquisition::pcps::DopplerWindow;
 use crate::acquisition::{AcquisitionStage, Candidate};
 use crate::assist::{Assistance, search_hints};
 use crate::navdecode::NavDecodeError;
-use crate::observables::ObservablesBuilder;
+use crate::observables::{ObservablesBuilder, Observation};
 use crate::tracking::TrackingError;
 use crate::tracking::channel::{ChannelTracker, FrontEnd, Handover};
 use crate::tracking::config::MAX_COHERENT_MS;
@@ -526,7 +526,10 @@ impl Receiver {
     }
 
     /// Observations and fixes at sample `n_k`, receiver time `t_k`; `None` for an epoch of
-    /// a guessed clock (no time tag) before a fix has set it.
+    /// a guessed clock (no time tag) before a fix has set it. An epoch whose fix re-anchors
+    /// the clock ([`Self::steer`]) is formed again at the same sample on the new clock: its
+    /// time tag is the GPS time `t_k` minus the bias (not a whole second), its
+    /// pseudoranges and phases and its fix those of that clock.
     fn epoch(&mut self, n_k: f64, t_k: f64) -> Option<EpochReport> {
         for ch in &mut self.channels {
             while let Some(s) = ch.queue.pop_front() {
@@ -536,20 +539,21 @@ impl Receiver {
                 }
             }
         }
-        let observations = self.observables.at(n_k, t_k, self.clock_steps_s);
         self.summary.epochs += 1;
-        let fixes = self.epoch_stage.epoch(&EpochInput {
-            t_s: t_k,
-            observations: &observations,
-            nav: &self.nav,
-        });
+        let (mut t_k, mut observations, mut fixes) = self.solve_epoch(n_k, t_k);
         let provisional = self.clock_guessed;
         let bias_s = fixes
             .iter()
             .find_map(|f| f.fix.as_ref().ok())
             .map(|f| f.clock_bias_m / C_MPS);
-        let steered = bias_s.is_some_and(|b| self.steer(b, n_k));
-        if provisional && (bias_s.is_none() || steered) {
+        if let Some(b) = bias_s
+            && self.steer(b, n_k)
+        {
+            // The same sample again on the clock just set: its time tag is GPS time.
+            self.observables.keep_pending(&observations);
+            (t_k, observations, fixes) = self.solve_epoch(n_k, t_k - b);
+        } else if provisional {
+            // A guessed clock and no fix to set it: nothing reported.
             self.observables.keep_pending(&observations);
             return None;
         }
@@ -565,11 +569,23 @@ impl Receiver {
         })
     }
 
+    /// The observations at sample `n_k`, receiver time `t_k`, and the epoch stage's
+    /// results for them.
+    fn solve_epoch(&mut self, n_k: f64, t_k: f64) -> (f64, Vec<Observation>, Vec<AntennaFix>) {
+        let observations = self.observables.at(n_k, t_k, self.clock_steps_s);
+        let fixes = self.epoch_stage.epoch(&EpochInput {
+            t_s: t_k,
+            observations: &observations,
+            nav: &self.nav,
+        });
+        (t_k, observations, fixes)
+    }
+
     /// A fix at sample `n_k` found the receiver clock `bias_s` ahead of GPS time: beyond
     /// [`STEER_THRESHOLD_S`] the clock is re-anchored to GPS time (a clock jump, as a
     /// receiver steering its clock makes), so that the following epochs and every output's
     /// time tags are GPS time. Returns whether it jumped. The clock counts as set from then
-    /// on; the next epoch is the first after `n_k` on the new clock.
+    /// on; the next epoch is the first whole one after `n_k` on the new clock.
     fn steer(&mut self, bias_s: f64, n_k: f64) -> bool {
         self.clock_guessed = false;
         let Some(t0) = self.clock_offset_s else {
