@@ -2,7 +2,8 @@
 //! antenna geometry offsets): the bundled `thesis/t-4.3` (30247 + 25000 epochs) on eight
 //! seeds. Checked: the selection runs this table alone, every row is there with a finite
 //! value and a verdict, the thesis rows carry the thesis's number and SkyForge's own rows
-//! none, and an `explained` row says what explains it; figures 4.3-2, 4.3-3 and
+//! none, an `explained` row says what explains it, and none of the chain's fixed integers
+//! is wrong (as the other attitude tables assert); figures 4.3-2, 4.3-3 and
 //! 4.3-6..4.3-10 draw the first run, thinned, and quote the 18 attitude and rate rows.
 //! Ignored tier: about 4 minutes in a
 //! release build, longer here. The table is printed (`cargo test -p skyforge-validate
@@ -18,8 +19,17 @@ use thesis_support::{check_figures, table_and_figures};
 fn t_4_3_writes_every_row_with_finite_values() {
     let (rows, curves) = table_and_figures("T-4.3");
     // 3 + 3 (tables 4.3-2, 4.3-3), 6 offsets + 2 lengths + 6 held offsets (4.3-4),
-    // 3 + 3 + 3 ratios (4.3-5), 3 + 3 (4.3-6).
-    assert_eq!(rows.len(), 35, "{rows:#?}");
+    // 3 + 3 stds, 3 + 3 means, 3 ratios (4.3-5), 3 + 3 (4.3-6), the chain's integers.
+    assert_eq!(rows.len(), 42, "{rows:#?}");
+    let integers = rows
+        .iter()
+        .find(|r| r.row == "chain fixed integers wrong (SkyForge)")
+        .unwrap();
+    assert_eq!(
+        (integers.ours, integers.verdict),
+        (Some(0.0), Verdict::Reproduced),
+        "{integers:?}"
+    );
     for r in &rows {
         assert_eq!(r.table, "T-4.3");
         assert!(r.ours.unwrap().is_finite(), "{r:?}");
@@ -32,6 +42,8 @@ fn t_4_3_writes_every_row_with_finite_values() {
             );
         }
         assert!(r.note.contains("8 runs") || own, "{r:?}");
+        let chain_in_note = !(r.row.starts_with("4.3-4 final") || r.row.contains("ratio"));
+        assert!(r.note.contains(", 0 wrong") || !chain_in_note, "{r:?}");
     }
 
     let expected = [

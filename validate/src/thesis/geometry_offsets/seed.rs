@@ -1,15 +1,18 @@
-//! One seed of T-4.3: the observation-level run, the chain's fixed baselines, the
-//! estimation run (the printed 22-state UKF, and the default estimator for SkyForge's own
-//! rows) and the comparison run (the 6-state UKF on `B0` and on the corrected `B0'`).
+//! One seed of T-4.3: the observation-level run, the chain's fixed baselines (its fixed
+//! integers checked against the truth's), the estimation run (the printed 22-state UKF,
+//! and the default estimator for SkyForge's own rows) and the comparison run (the 6-state
+//! UKF on `B0` and on the corrected `B0'`).
 
 use super::{COMPARISON_EPOCHS, ESTIMATION_EPOCHS, SCENARIO};
-use crate::attitude::compare::attitude_errors_deg;
-use crate::attitude::epochs::{FixedEpoch, fixed_baselines, true_attitudes};
+use crate::attitude::compare::{attitude_errors_deg, offsets};
+use crate::attitude::epochs::{FixedEpoch, true_attitudes};
+use crate::attitude::nominal_geometry;
 use crate::attitude::seeds::SEEDS;
 use crate::draw::Draw;
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{mean, std};
 use rayon::prelude::*;
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::attitude::AttitudeFilter;
 use skyforge_navigation::attitude::UkfAttitude;
 use skyforge_navigation::attitude::{AttitudeConfig, THESIS_KAPPA};
@@ -20,10 +23,13 @@ use skyforge_navigation::geometry_offset::{
 };
 use skyforge_navigation::geometry_offset::{align, invariants};
 use skyforge_navigation::relative::Constraint;
-use skyforge_navigation::relative::RelativeConfig;
-use skyforge_orbits::Vec3;
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
+use skyforge_navigation::relative::{FilesError, run_files};
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::YawPitchRoll;
+use skyforge_orbits::{Mat3, Vec3};
 use skyforge_runner::{ObservationRun, observation_run};
+use std::collections::HashMap;
 
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
 const CUT_OFF_DEG: f64 = 5.0;
@@ -114,6 +120,59 @@ impl Estimation {
     }
 }
 
+/// The chain's fixed integers against the truth's double-difference integers (as the
+/// other attitude tables check theirs: `attitude::compare`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(super) struct Integers {
+    /// Fixed integers compared with the truth's, and how many differed.
+    pub checked: usize,
+    pub wrong: usize,
+    /// Epochs with every ambiguity fixed (those the estimators take) and a wrong integer.
+    pub wrong_epochs: usize,
+    /// Largest distance (cycles) of an observed-minus-true double difference from its
+    /// nearest integer (noise; 0.5 would be ambiguous).
+    pub largest_distance_cycles: f64,
+}
+
+/// Measured minus true carrier phase (cycles) of one antenna per (second since the start,
+/// satellite, signal): its integer ambiguity plus noise.
+type PhaseOffsets = HashMap<(i64, SatId, Signal), f64, foldhash::fast::FixedState>;
+
+/// Epochs this close (s) to a whole second since the start are that second's (the
+/// observation truth is written at whole seconds).
+const WHOLE_SECOND_S: f64 = 1e-3;
+
+impl Integers {
+    /// Each integer `e` fixed at `t_s` (s since the start) against the truth's: the
+    /// observed minus true double difference of its satellite pair, rounded.
+    fn check(&mut self, e: &RelativeEpoch, t_s: f64, offsets: &[PhaseOffsets]) {
+        if (t_s - t_s.round()).abs() > WHOLE_SECOND_S {
+            return;
+        }
+        let second = t_s.round() as i64;
+        let ids: Vec<_> = e.float.model.layout.ambiguity_ids().collect();
+        for (i, value) in e.resolution.integers.iter().enumerate() {
+            let Some(n) = value else { continue };
+            let (signal, sat, reference) = ids[i % ids.len()];
+            let rover = i / ids.len() + 1;
+            let d = |a: usize, s: SatId| offsets.get(a)?.get(&(second, s, signal)).copied();
+            let dd =
+                || Some(d(rover, sat)? - d(0, sat)? - (d(rover, reference)? - d(0, reference)?));
+            if let Some(dd) = dd() {
+                self.add(dd, *n);
+            }
+        }
+    }
+
+    /// The fixed integer `n` against `dd`, the observed minus true double difference
+    /// (cycles): the truth's integer plus noise.
+    fn add(&mut self, dd: f64, n: i64) {
+        self.checked += 1;
+        self.wrong += usize::from(dd.round() as i64 != n);
+        self.largest_distance_cycles = self.largest_distance_cycles.max((dd - dd.round()).abs());
+    }
+}
+
 /// What one seed gave.
 pub(super) struct SeedResult {
     pub seed: u64,
@@ -125,10 +184,17 @@ pub(super) struct SeedResult {
     pub pinned_final: [f64; 6],
     pub after: AxisSeries,
     pub before: AxisSeries,
+    /// The same attitude errors against the true attitude of the antennas turned to the
+    /// orientation of `B0'` (after) and of `B0` (before): what is left once the constant
+    /// misalignment of the told geometry, which baselines do not see, is taken out.
+    pub after_turned: AxisSeries,
+    pub before_turned: AxisSeries,
     pub rate_after: AxisSeries,
     pub rate_before: AxisSeries,
     /// Fixed epochs in the estimation and the comparison run.
     pub fixed: [usize; 2],
+    /// The chain's fixed integers over the whole run against the truth's.
+    pub integers: Integers,
 }
 
 /// The chain's settings: plain LAMBDA (the thesis's method, and one that does not lean on
@@ -204,12 +270,52 @@ fn estimate(
     Ok((f, fixed))
 }
 
-/// The comparison run: the 6-state UKF on `geometry`, errors per fixed epoch.
+/// The chain over every epoch of `run` (told the nominal geometry) with
+/// [`chain_config`]: the fixed baselines of each epoch, and every fixed integer against the
+/// truth's.
+fn chain(run: &ObservationRun) -> Result<(Vec<FixedEpoch>, Integers), FilesError> {
+    let offsets: Vec<PhaseOffsets> = run
+        .measured
+        .iter()
+        .zip(&run.truth)
+        .map(|(m, t)| {
+            offsets(m, t, run.start, |r| r.carrier_phase_cycles)
+                .into_iter()
+                .collect()
+        })
+        .collect();
+    let (mut epochs, mut integers) = (Vec::new(), Integers::default());
+    run_files(
+        &run.measured,
+        run.ephemerides.clone(),
+        &nominal_geometry(run),
+        chain_config(),
+        |o| {
+            let t_s = (o.time - run.start).to_seconds();
+            let mut baselines = None;
+            if let Ok(e) = &o.result {
+                let wrong = integers.wrong;
+                integers.check(e, t_s, &offsets);
+                if e.resolution.status == AmbiguityStatus::Fixed {
+                    integers.wrong_epochs += usize::from(integers.wrong > wrong);
+                    baselines = e.fixed_ned.clone();
+                }
+            }
+            epochs.push(FixedEpoch { t_s, baselines });
+        },
+    )?;
+    Ok((epochs, integers))
+}
+
+/// The comparison run: the 6-state UKF on `geometry`, errors per fixed epoch against the
+/// truth and against the truth turned by `turn` (the rotation taking the true antenna
+/// baselines closest to `geometry`'s: `shape::align`).
 fn compare(
     epochs: &[FixedEpoch],
     geometry: BodyGeometry,
+    turn: &Mat3,
     truth: &[YawPitchRoll],
-) -> Result<(AxisSeries, AxisSeries, usize), ValidateError> {
+) -> Result<(AxisSeries, AxisSeries, AxisSeries, usize), ValidateError> {
     let fail = |e: &dyn std::fmt::Display| ValidateError::Pipeline(format!("{SCENARIO}: {e}"));
     let config = AttitudeConfig {
         rate_psd_rad2_s3: [THESIS_RATE_PSD; 3],
@@ -217,8 +323,13 @@ fn compare(
         ..AttitudeConfig::default()
     };
     let mut ukf = UkfAttitude::new(&config, geometry, None).map_err(|e| fail(&e))?;
-    let (mut att, mut rates, mut fixed, mut last) =
-        (AxisSeries::default(), AxisSeries::default(), 0, None);
+    let (mut att, mut turned, mut rates, mut fixed, mut last) = (
+        AxisSeries::default(),
+        AxisSeries::default(),
+        AxisSeries::default(),
+        0,
+        None,
+    );
     for e in epochs
         .iter()
         .skip(ESTIMATION_EPOCHS)
@@ -239,12 +350,14 @@ fn compare(
         }
         if let Some(t) = truth.get(k) {
             att.push(e.t_s, attitude_errors_deg(&state.angles, t));
+            let t_turned = YawPitchRoll::from_c_ref_body(&(turn * t.c_ref_body()));
+            turned.push(e.t_s, attitude_errors_deg(&state.angles, &t_turned));
         }
         if let (Some(r), Some(tr)) = (state.rates_rad_s, true_rate(truth, k)) {
             rates.push(e.t_s, rate_errors_deg(&r, &tr));
         }
     }
-    Ok((att, rates, fixed))
+    Ok((att, turned, rates, fixed))
 }
 
 /// The default estimator's final offsets against the true geometry turned to the
@@ -268,7 +381,7 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
         ValidateError::Pipeline(format!("{SCENARIO} seed {}: {e}", scenario.seed))
     };
     let run = observation_run(scenario).map_err(|e| fail(&e))?;
-    let epochs = fixed_baselines(&run, chain_config()).map_err(|e| fail(&e))?;
+    let (epochs, integers) = chain(&run).map_err(|e| fail(&e))?;
     let truth = true_attitudes(&run);
     let (b0, b_true) = body_baselines(&run);
     let mut estimation = Estimation::default();
@@ -280,9 +393,17 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
     let corrected = thesis.corrected_geometry().map_err(|e| fail(&e))?;
     let shape =
         invariants(&[corrected.baselines()[0], corrected.baselines()[1]]) - invariants(&b_true);
+    let corrected_turn = align(
+        &b_true,
+        &[corrected.baselines()[0], corrected.baselines()[1]],
+    )
+    .map_err(|e| fail(&e))?
+    .rotation;
+    let nominal_turn = align(&b_true, &b0).map_err(|e| fail(&e))?.rotation;
     let nominal = BodyGeometry::new(&b0).map_err(|e| fail(&e))?;
-    let (after, rate_after, fixed_comparison) = compare(&epochs, corrected, &truth)?;
-    let (before, rate_before, _) = compare(&epochs, nominal, &truth)?;
+    let (after, after_turned, rate_after, fixed_comparison) =
+        compare(&epochs, corrected, &corrected_turn, &truth)?;
+    let (before, before_turned, rate_before, _) = compare(&epochs, nominal, &nominal_turn, &truth)?;
     Ok(SeedResult {
         seed: scenario.seed,
         estimation,
@@ -290,9 +411,12 @@ fn run_seed(scenario: &skyforge_scenarios::Scenario) -> Result<SeedResult, Valid
         pinned_final: pinned_error(&epochs, &b0, &b_true)?,
         after,
         before,
+        after_turned,
+        before_turned,
         rate_after,
         rate_before,
         fixed: [fixed_estimation, fixed_comparison],
+        integers,
     })
 }
 
@@ -308,4 +432,20 @@ pub(super) fn runs(draw: Draw) -> Result<Vec<SeedResult>, ValidateError> {
             run_seed(&s)
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_integer_off_the_truths_is_counted_wrong() {
+        let mut n = Integers::default();
+        n.add(3.04, 3);
+        n.add(-1.97, -2);
+        assert_eq!((n.checked, n.wrong), (2, 0));
+        n.add(4.1, 3);
+        assert_eq!((n.checked, n.wrong), (3, 1));
+        assert!((n.largest_distance_cycles - 0.1).abs() < 1e-9);
+    }
 }
