@@ -114,14 +114,14 @@ type BySecond = HashMap<(i64, SatId, Signal), f64, foldhash::fast::FixedState>;
 
 /// Measured minus true carrier phase (cycles) per (second, satellite, signal) of one
 /// antenna: its integer ambiguity plus noise.
-pub(super) type PhaseOffsets = BySecond;
+pub(crate) type PhaseOffsets = BySecond;
 
 /// Epochs this close (s) to a whole second since the start are that second's; the
 /// observation truth is written at whole seconds.
 const WHOLE_SECOND_S: f64 = 1e-3;
 
 /// Whole seconds from `start` to `t`, when `t` lies on one.
-pub(super) fn whole_second(t: Epoch, start: Epoch) -> Option<i64> {
+pub(crate) fn whole_second(t: Epoch, start: Epoch) -> Option<i64> {
     let s = (t - start).to_seconds();
     ((s - s.round()).abs() <= WHOLE_SECOND_S).then_some(s.round() as i64)
 }
@@ -160,7 +160,8 @@ pub fn offsets(
         .collect()
 }
 
-pub(super) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
+/// Measured minus true carrier phase (cycles) of one antenna ([`offsets`]).
+pub(crate) fn phase_offsets(measured: &ObsFile, truth: &ObsFile, start: Epoch) -> PhaseOffsets {
     offsets(measured, truth, start, |r| r.carrier_phase_cycles)
         .into_iter()
         .collect()
@@ -183,7 +184,7 @@ pub(super) fn dd_offset(
 
 /// Fixed integers checked against the truth's double-difference integers.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub(super) struct IntegerCheck {
+pub(crate) struct IntegerCheck {
     pub checked: usize,
     pub wrong: usize,
     pub largest_distance_cycles: f64,
@@ -195,6 +196,17 @@ impl IntegerCheck {
         self.checked += 1;
         self.wrong += usize::from(dd.round() as i64 != integer);
         self.largest_distance_cycles = self.largest_distance_cycles.max((dd - dd.round()).abs());
+    }
+
+    /// Two checks together (over several runs): counts summed, the largest distance.
+    pub fn merge(self, other: Self) -> Self {
+        Self {
+            checked: self.checked + other.checked,
+            wrong: self.wrong + other.wrong,
+            largest_distance_cycles: self
+                .largest_distance_cycles
+                .max(other.largest_distance_cycles),
+        }
     }
 }
 
@@ -302,8 +314,9 @@ fn errors(
     })
 }
 
-/// Each fixed integer of `e` against the truth's.
-fn check_integers(
+/// Each fixed integer of `e` (at `second`, whole seconds since the start) against the
+/// truth's.
+pub(crate) fn check_integers(
     e: &RelativeEpoch,
     second: Option<i64>,
     offsets: &[PhaseOffsets],

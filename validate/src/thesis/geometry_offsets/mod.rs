@@ -111,8 +111,8 @@ impl<'a> Table<'a> {
             ESTIMATION_EPOCHS * runs.len(),
             fixed(1),
             COMPARISON_EPOCHS * runs.len(),
-            integers.checked,
-            integers.wrong
+            integers.check.checked,
+            integers.check.wrong
         );
         Self { runs, chain }
     }
@@ -305,7 +305,10 @@ impl<'a> Table<'a> {
 
     /// SkyForge's row on the chain: its fixed integers against the truth's, none wrong.
     fn integer_row(&self) -> Row {
-        let n = integers(self.runs);
+        let (n, wrong_epochs) = {
+            let i = integers(self.runs);
+            (i.check, i.wrong_epochs)
+        };
         Row::measured(
             TABLE,
             "chain fixed integers wrong (SkyForge)",
@@ -320,7 +323,7 @@ impl<'a> Table<'a> {
         )
         .with_note(format!(
             "{} of {} fixed integers wrong against the truth's double-difference integers ({} epochs with every ambiguity fixed had a wrong one; largest distance of an observed double difference from the truth's integer {:.3} cycles); {}",
-            n.wrong, n.checked, n.wrong_epochs, n.largest_distance_cycles, self.chain
+            n.wrong, n.checked, wrong_epochs, n.largest_distance_cycles, self.chain
         ))
     }
 
@@ -352,12 +355,7 @@ impl<'a> Table<'a> {
 fn integers(runs: &[SeedResult]) -> seed::Integers {
     runs.iter()
         .map(|r| r.integers)
-        .fold(seed::Integers::default(), |a, b| seed::Integers {
-            checked: a.checked + b.checked,
-            wrong: a.wrong + b.wrong,
-            wrong_epochs: a.wrong_epochs + b.wrong_epochs,
-            largest_distance_cycles: a.largest_distance_cycles.max(b.largest_distance_cycles),
-        })
+        .fold(seed::Integers::default(), seed::Integers::merge)
 }
 
 /// A row in tolerance of 1 mm: SkyForge's own (`thesis` None) or against the thesis's mean.
@@ -626,6 +624,7 @@ pub fn rows_and_curves() -> Result<(Vec<Row>, Vec<Curve>), ValidateError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::attitude::compare::IntegerCheck;
     use crate::thesis::curves::MAX_POINTS;
     use seed::Estimation;
 
@@ -676,10 +675,12 @@ mod tests {
             rate_before: axes(m, 5000.0, [7e-5; 3], 0.009 * scale),
             fixed: [n, m],
             integers: seed::Integers {
-                checked: 10 * n,
-                wrong: 0,
+                check: IntegerCheck {
+                    checked: 10 * n,
+                    wrong: 0,
+                    largest_distance_cycles: 0.1,
+                },
                 wrong_epochs: 0,
-                largest_distance_cycles: 0.1,
             },
         }
     }
@@ -733,7 +734,7 @@ mod tests {
         let mut runs = [run(7, 1.0), run(8, 1.5)];
         for r in &mut runs {
             r.after = axes(3000, 5000.0, [2.0, 0.002, 0.1], 0.08);
-            r.integers.wrong = 1;
+            r.integers.check.wrong = 1;
             r.integers.wrong_epochs = 1;
         }
         let rows = Table::new(&runs).rows().unwrap();

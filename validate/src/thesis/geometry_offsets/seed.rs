@@ -4,7 +4,9 @@
 //! UKF on `B0` and on the corrected `B0'`).
 
 use super::{COMPARISON_EPOCHS, ESTIMATION_EPOCHS, SCENARIO};
-use crate::attitude::compare::{attitude_errors_deg, offsets};
+use crate::attitude::compare::{
+    IntegerCheck, PhaseOffsets, attitude_errors_deg, check_integers, phase_offsets, whole_second,
+};
 use crate::attitude::epochs::{FixedEpoch, true_attitudes};
 use crate::attitude::nominal_geometry;
 use crate::attitude::seeds::SEEDS;
@@ -12,7 +14,6 @@ use crate::draw::Draw;
 use crate::thesis::ValidateError;
 use crate::thesis::attitude_runs::{mean, std};
 use rayon::prelude::*;
-use skyforge_gnss::signal::Signal;
 use skyforge_navigation::attitude::AttitudeFilter;
 use skyforge_navigation::attitude::UkfAttitude;
 use skyforge_navigation::attitude::{AttitudeConfig, THESIS_KAPPA};
@@ -23,13 +24,11 @@ use skyforge_navigation::geometry_offset::{
 };
 use skyforge_navigation::geometry_offset::{align, invariants};
 use skyforge_navigation::relative::Constraint;
-use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig, RelativeEpoch};
+use skyforge_navigation::relative::{AmbiguityStatus, RelativeConfig};
 use skyforge_navigation::relative::{FilesError, run_files};
-use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::{Mat3, Vec3};
 use skyforge_runner::{ObservationRun, observation_run};
-use std::collections::HashMap;
 
 /// Thesis 4.3.4: the cut-off above the local horizon (deg).
 const CUT_OFF_DEG: f64 = 5.0;
@@ -120,56 +119,22 @@ impl Estimation {
     }
 }
 
-/// The chain's fixed integers against the truth's double-difference integers (as the
-/// other attitude tables check theirs: `attitude::compare`).
+/// The chain's fixed integers against the truth's double-difference integers (the check
+/// of the other attitude tables, `attitude::compare`).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub(super) struct Integers {
-    /// Fixed integers compared with the truth's, and how many differed.
-    pub checked: usize,
-    pub wrong: usize,
+    pub check: IntegerCheck,
     /// Epochs with every ambiguity fixed (those the estimators take) and a wrong integer.
     pub wrong_epochs: usize,
-    /// Largest distance (cycles) of an observed-minus-true double difference from its
-    /// nearest integer (noise; 0.5 would be ambiguous).
-    pub largest_distance_cycles: f64,
 }
 
-/// Measured minus true carrier phase (cycles) of one antenna per (second since the start,
-/// satellite, signal): its integer ambiguity plus noise.
-type PhaseOffsets = HashMap<(i64, SatId, Signal), f64, foldhash::fast::FixedState>;
-
-/// Epochs this close (s) to a whole second since the start are that second's (the
-/// observation truth is written at whole seconds).
-const WHOLE_SECOND_S: f64 = 1e-3;
-
 impl Integers {
-    /// Each integer `e` fixed at `t_s` (s since the start) against the truth's: the
-    /// observed minus true double difference of its satellite pair, rounded.
-    fn check(&mut self, e: &RelativeEpoch, t_s: f64, offsets: &[PhaseOffsets]) {
-        if (t_s - t_s.round()).abs() > WHOLE_SECOND_S {
-            return;
+    /// Two seeds' together.
+    pub fn merge(self, other: Self) -> Self {
+        Self {
+            check: self.check.merge(other.check),
+            wrong_epochs: self.wrong_epochs + other.wrong_epochs,
         }
-        let second = t_s.round() as i64;
-        let ids: Vec<_> = e.float.model.layout.ambiguity_ids().collect();
-        for (i, value) in e.resolution.integers.iter().enumerate() {
-            let Some(n) = value else { continue };
-            let (signal, sat, reference) = ids[i % ids.len()];
-            let rover = i / ids.len() + 1;
-            let d = |a: usize, s: SatId| offsets.get(a)?.get(&(second, s, signal)).copied();
-            let dd =
-                || Some(d(rover, sat)? - d(0, sat)? - (d(rover, reference)? - d(0, reference)?));
-            if let Some(dd) = dd() {
-                self.add(dd, *n);
-            }
-        }
-    }
-
-    /// The fixed integer `n` against `dd`, the observed minus true double difference
-    /// (cycles): the truth's integer plus noise.
-    fn add(&mut self, dd: f64, n: i64) {
-        self.checked += 1;
-        self.wrong += usize::from(dd.round() as i64 != n);
-        self.largest_distance_cycles = self.largest_distance_cycles.max((dd - dd.round()).abs());
     }
 }
 
@@ -278,11 +243,7 @@ fn chain(run: &ObservationRun) -> Result<(Vec<FixedEpoch>, Integers), FilesError
         .measured
         .iter()
         .zip(&run.truth)
-        .map(|(m, t)| {
-            offsets(m, t, run.start, |r| r.carrier_phase_cycles)
-                .into_iter()
-                .collect()
-        })
+        .map(|(m, t)| phase_offsets(m, t, run.start))
         .collect();
     let (mut epochs, mut integers) = (Vec::new(), Integers::default());
     run_files(
@@ -294,10 +255,11 @@ fn chain(run: &ObservationRun) -> Result<(Vec<FixedEpoch>, Integers), FilesError
             let t_s = (o.time - run.start).to_seconds();
             let mut baselines = None;
             if let Ok(e) = &o.result {
-                let wrong = integers.wrong;
-                integers.check(e, t_s, &offsets);
+                let wrong = integers.check.wrong;
+                let second = whole_second(o.time, run.start);
+                check_integers(e, second, &offsets, &mut integers.check);
                 if e.resolution.status == AmbiguityStatus::Fixed {
-                    integers.wrong_epochs += usize::from(integers.wrong > wrong);
+                    integers.wrong_epochs += usize::from(integers.check.wrong > wrong);
                     baselines = e.fixed_ned.clone();
                 }
             }
@@ -439,13 +401,18 @@ mod tests {
     use super::*;
 
     #[test]
-    fn an_integer_off_the_truths_is_counted_wrong() {
-        let mut n = Integers::default();
-        n.add(3.04, 3);
-        n.add(-1.97, -2);
-        assert_eq!((n.checked, n.wrong), (2, 0));
-        n.add(4.1, 3);
-        assert_eq!((n.checked, n.wrong), (3, 1));
-        assert!((n.largest_distance_cycles - 0.1).abs() < 1e-9);
+    fn seeds_merge_their_integer_checks() {
+        let mut a = Integers::default();
+        a.check.add(3.04, 3);
+        a.check.add(4.1, 3);
+        a.wrong_epochs = 1;
+        let mut b = Integers::default();
+        b.check.add(-1.97, -2);
+        let both = a.merge(b);
+        assert_eq!(
+            (both.check.checked, both.check.wrong, both.wrong_epochs),
+            (3, 1, 1)
+        );
+        assert!((both.check.largest_distance_cycles - 0.1).abs() < 1e-9);
     }
 }
