@@ -39,6 +39,17 @@ pub const MAX_CANDIDATES: usize = 1000;
 pub const MAX_ABS_FLOAT: f64 = 1e12;
 /// Relative tolerance of the symmetry check: `|Q_ij - Q_ji| <= tol * max(|Q_ii|, |Q_jj|)`.
 pub const SYMMETRY_TOLERANCE: f64 = 1e-9;
+/// Smallest diagonal entry (variance) of `Q` accepted, cycles^2.
+pub const MIN_VARIANCE: f64 = 1e-100;
+/// Largest magnitude of an entry of `Q` accepted, cycles^2.
+///
+/// With every variance in `[MIN_VARIANCE, MAX_VARIANCE]`, far beyond any carrier-phase
+/// covariance on either side, the factorisation's products of two entries, the
+/// conditional variances (at least 1e-14 of a diagonal entry) and the squared norms of
+/// 500 levels stay far inside the range of `f64`: no intermediate overflows, and no
+/// squared norm underflows to 0 (a variance of 1e308 made every norm 0 and the ratio
+/// 0/0).
+pub const MAX_VARIANCE: f64 = 1e100;
 /// Search nodes after which [`lambda`] gives up (only numerically degenerate `Q` get here).
 pub const MAX_SEARCH_NODES: u64 = 100_000_000;
 
@@ -57,6 +68,10 @@ pub enum AmbiguityError {
     NonFinite { field: String, value: f64 },
     #[error("a_hat[{index}] = {value} is out of range (|a_hat| at most {MAX_ABS_FLOAT:e} cycles)")]
     OutOfRange { index: usize, value: f64 },
+    #[error(
+        "Q[{i}][{j}] = {value:e} is out of range (variances on the diagonal from {MIN_VARIANCE:e} to {MAX_VARIANCE:e} cycles^2, other entries at most {MAX_VARIANCE:e} in magnitude)"
+    )]
+    CovarianceOutOfRange { i: usize, j: usize, value: f64 },
     #[error(
         "Q is not symmetric: Q[{i}][{j}] = {a} but Q[{j}][{i}] = {b} (allowed difference: {SYMMETRY_TOLERANCE:e} relative)"
     )]
@@ -218,7 +233,9 @@ impl Decorrelated {
     }
 }
 
-/// Checks `q` alone: square, within the size limit, finite, symmetric.
+/// Checks `q` alone: square, within the size limit, finite, within
+/// [`MIN_VARIANCE`]..[`MAX_VARIANCE`], symmetric. A variance of 0 or below is left to the
+/// factorisation (not positive definite).
 fn check_q(q: &DMatrix<f64>) -> Result<(), AmbiguityError> {
     let n = q.nrows();
     if n != q.ncols() {
@@ -242,6 +259,9 @@ fn check_q(q: &DMatrix<f64>) -> Result<(), AmbiguityError> {
                     field: format!("Q[{i}][{j}]"),
                     value: v,
                 });
+            }
+            if v.abs() > MAX_VARIANCE || (i == j && v > 0.0 && v < MIN_VARIANCE) {
+                return Err(AmbiguityError::CovarianceOutOfRange { i, j, value: v });
             }
         }
     }
@@ -286,3 +306,6 @@ fn check_problem(a_hat: &DVector<f64>, q: &DMatrix<f64>) -> Result<(), Ambiguity
     }
     check_q(q)
 }
+
+#[cfg(test)]
+mod tests;
