@@ -9,7 +9,9 @@
 //!   with `z = Z^T a` nearly decorrelated (de Jonge & Tiberius 1996 §3.5-3.7, the
 //!   reduction of Chang, Yang & Zhou 2005 §3);
 //! - `search`: depth-first search of the shrinking ellipsoid in Schnorr-Euchner order
-//!   (Chang, Yang & Zhou 2005 §4), keeping the `count` best;
+//!   (Chang, Yang & Zhou 2005 §4), keeping the `count` best, pruned in long searches by
+//!   lower bounds of what the levels below a node must add (Stojnic, Vikalo & Hassibi
+//!   2008);
 //! - `bootstrap`: the bootstrapped success rate (Teunissen 1998);
 //! - `partial`: partial ambiguity resolution on the decorrelated ambiguities;
 //! - [`problem_file`]: a float solution and its covariance read from JSON or CSV.
@@ -50,7 +52,8 @@ pub const MIN_VARIANCE: f64 = 1e-100;
 /// squared norm underflows to 0 (a variance of 1e308 made every norm 0 and the ratio
 /// 0/0).
 pub const MAX_VARIANCE: f64 = 1e100;
-/// Search nodes after which [`lambda`] gives up (only numerically degenerate `Q` get here).
+/// Search nodes after which [`lambda`] gives up: the integer vectors within the search
+/// bound are too many to enumerate (see `search`).
 pub const MAX_SEARCH_NODES: u64 = 100_000_000;
 
 /// Why an ambiguity problem was rejected. Indices are 0-based.
@@ -89,9 +92,9 @@ pub enum AmbiguityError {
     #[error("the decorrelating transformation overflowed 64-bit integers (Q too ill-conditioned)")]
     Overflow,
     #[error(
-        "the search visited {MAX_SEARCH_NODES} nodes without finishing (Q too ill-conditioned)"
+        "the search for the integers of {n} ambiguities stopped after {MAX_SEARCH_NODES} nodes: too many integer vectors lie within its bound to enumerate (fix fewer ambiguities, e.g. by partial ambiguity resolution)"
     )]
-    SearchLimit,
+    SearchLimit { n: usize },
     #[error("Q is numerically degenerate: the decorrelation produced non-finite values")]
     Degenerate,
 }
