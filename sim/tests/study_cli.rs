@@ -167,6 +167,39 @@ fn an_interrupted_study_resumes_with_only_the_missing_runs() {
     );
 }
 
+/// A control character in a path or option of `study slurm` (a newline in `--out` once
+/// ran the rest of the path as a command when the job ran) is refused, exit 2, nothing
+/// written.
+#[test]
+fn study_slurm_refuses_control_characters_and_writes_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 2);
+    let cases: [(&[&str], &str); 3] = [
+        (&["--out", "x\ntouch PWNED"], "--out"),
+        (
+            &["--out", "x", "--sbatch", "--comment=a\u{1b}b"],
+            "--sbatch",
+        ),
+        (&["--out", "x\ry"], "--out"),
+    ];
+    for (extra, what) in cases {
+        let mut args = vec!["study", "slurm", "small.toml", "--shards", "3"];
+        args.extend_from_slice(extra);
+        let said = refused(d, &args);
+        assert!(
+            said.contains(what) && said.contains("control character"),
+            "{said}"
+        );
+        let mut left: Vec<_> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        left.sort();
+        assert_eq!(left, ["small.toml", "t-5.4-3.toml"], "{said}");
+    }
+}
+
 #[test]
 fn bad_study_files_get_one_located_error_and_nothing_is_run() {
     let tmp = tempfile::tempdir().unwrap();

@@ -2,7 +2,7 @@
 //! shard's journal are not made again), and merge shards into one file.
 
 use crate::bad_input::BadInput;
-use crate::output::slurm_scripts::SlurmJob;
+use crate::output::slurm_scripts::{SlurmJob, refuse_control_characters};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -215,21 +215,31 @@ pub fn slurm(
     options: &[String],
 ) -> anyhow::Result<()> {
     let study = load(path)?;
-    if let Some(bad) = options
-        .iter()
-        .find(|o| !o.starts_with('-') || o.contains('\n'))
-    {
+    if let Some(bad) = options.iter().find(|o| !o.starts_with('-')) {
         return Err(BadInput(format!(
             "--sbatch {bad:?}: an sbatch option on one line, starting with - (e.g. --partition=short)"
         ))
         .into());
     }
+
     let absolute = |p: &Path| std::path::absolute(p).with_context(|| format!("{}", p.display()));
     let exe = match skyforge {
         Some(p) => p.to_path_buf(),
         None => std::env::current_exe().context("the path of this skyforge binary")?,
     };
     let (study_path, out) = (absolute(path)?, absolute(out)?);
+    // Every path and option the scripts hold: no control character (a newline in --out
+    // ran the rest of the path as a command when the job ran).
+    let paths = [
+        ("--out", &out),
+        ("the study file", &study_path),
+        ("the skyforge binary", &exe),
+    ];
+    let paths = paths.map(|(what, p)| (what, p.display().to_string()));
+    let sbatch = options.iter().map(|o| ("--sbatch", o.clone()));
+    for (what, text) in paths.into_iter().chain(sbatch) {
+        refuse_control_characters(what, &text).map_err(BadInput)?;
+    }
     let dir = out.join("slurm");
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let job = SlurmJob {

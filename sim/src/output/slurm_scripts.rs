@@ -20,6 +20,19 @@ pub struct SlurmJob<'a> {
     pub options: &'a [String],
 }
 
+/// `text` (a path or an option, named `what`) refused when it holds a control character:
+/// a newline in a `#SBATCH` or comment line of a script ends it, and what follows runs as
+/// a command when the job runs.
+pub fn refuse_control_characters(what: &str, text: &str) -> Result<(), String> {
+    match text.chars().find(|c| c.is_control()) {
+        Some(c) => Err(format!(
+            "{what} {text:?} holds the control character U+{:04X}, which cannot go into a Slurm script: choose one without",
+            u32::from(c)
+        )),
+        None => Ok(()),
+    }
+}
+
 /// `path` quoted for a POSIX shell.
 fn quoted(path: &Path) -> String {
     format!("'{}'", path.display().to_string().replace('\'', r"'\''"))
@@ -88,6 +101,17 @@ impl SlurmJob<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn control_characters_are_refused() {
+        let e = refuse_control_characters("--out", "W/x\ntouch W/PWNED").unwrap_err();
+        assert!(
+            e.contains("--out \"W/x\\ntouch W/PWNED\" holds the control character U+000A"),
+            "{e}"
+        );
+        assert!(refuse_control_characters("--out", "a\u{1b}[2J").is_err());
+        assert!(refuse_control_characters("--out", "/data/sky forge/it's $(x) `y` #z").is_ok());
+    }
 
     #[test]
     fn scripts_quote_paths_and_name_the_shards() {
