@@ -594,48 +594,32 @@ pub fn write_h5(path: &Path, epochs: &[EpochValues], m: usize) -> hdf5::Result<(
         "epoch time since start_gpst",
         per(&|v| vec![start.map_or(0.0, |s| (v.time - s).to_seconds())]),
     )?;
-    let codes: Vec<u8> = epochs.iter().map(|v| v.status as u8).collect();
-    let ds = create_rows::<u8>(
-        root,
-        "status",
-        0,
-        chunk,
-        "-",
-        "0 no solution, 1 float, 2 partial, 3 fixed",
-    )?;
-    append_rows(&ds, 0, &codes, 0)?;
-    let methods: Vec<u8> = epochs
-        .iter()
-        .map(|v| v.method.unwrap_or(FixMethod::None) as u8)
-        .collect();
-    let ds = create_rows::<u8>(
-        root,
-        "method",
-        0,
-        chunk,
-        "-",
-        "what decided the integers: 0 none, 1 held, 2 lambda, 3 geometry, 4 length, 5 partial",
-    )?;
-    append_rows(&ds, 0, &methods, 0)?;
-    for (name, what, text) in [
-        (
-            "fallback",
-            "1 where the configured constrained search did not decide and LAMBDA did",
-            (|v| &v.fallback) as fn(&EpochValues) -> &String,
-        ),
-        (
-            "reverse_restart",
-            "1 where the reverse filter failed (the epoch's own baselines) and restarts",
-            |v| &v.reverse_restart,
-        ),
-    ] {
-        let flags: Vec<u8> = epochs
-            .iter()
-            .map(|v| u8::from(!text(v).is_empty()))
-            .collect();
+    // One code per epoch: `code(v)` of every epoch as a dataset of bytes.
+    let codes = |name: &str, what: &str, code: &dyn Fn(&EpochValues) -> u8| {
+        let data: Vec<u8> = epochs.iter().map(code).collect();
         let ds = create_rows::<u8>(root, name, 0, chunk, "-", what)?;
-        append_rows(&ds, 0, &flags, 0)?;
-    }
+        append_rows(&ds, 0, &data, 0)
+    };
+    codes(
+        "status",
+        "0 no solution, 1 float, 2 partial, 3 fixed",
+        &|v| v.status as u8,
+    )?;
+    codes(
+        "method",
+        "what decided the integers: 0 none, 1 held, 2 lambda, 3 geometry, 4 length, 5 partial",
+        &|v| v.method.unwrap_or(FixMethod::None) as u8,
+    )?;
+    codes(
+        "fallback",
+        "1 where the configured constrained search did not decide and LAMBDA did",
+        &|v| u8::from(!v.fallback.is_empty()),
+    )?;
+    codes(
+        "reverse_restart",
+        "1 where the reverse filter failed (the epoch's own baselines) and restarts",
+        &|v| u8::from(!v.reverse_restart.is_empty()),
+    )?;
     column(
         "ratio",
         0,

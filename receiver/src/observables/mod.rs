@@ -111,7 +111,6 @@ impl ObservablesBuilder {
         track.last = [track.last[1], Some(s)];
     }
 
-    /// Forget a channel (it stopped tracking).
     /// The loss-of-lock flags of `observations` (of an epoch not reported) stay pending
     /// for the next epoch.
     pub fn keep_pending(&mut self, observations: &[Observation]) {
@@ -122,6 +121,7 @@ impl ObservablesBuilder {
         }
     }
 
+    /// Forget a channel (it stopped tracking).
     pub fn drop_channel(&mut self, antenna: usize, sat: SatId) {
         self.channels.remove(&(antenna, sat));
     }

@@ -231,6 +231,7 @@ impl Receiver {
     /// Counters so far.
     pub fn summary(&self) -> ReceiverSummary {
         let mut s = self.summary.clone();
+        s.clock_steered_s = self.clock_steps_s;
         s.ephemerides = self
             .nav
             .store()
@@ -530,7 +531,7 @@ impl Receiver {
     /// the clock ([`Self::steer`]) is formed again at the same sample on the new clock: its
     /// time tag is the GPS time `t_k` minus the bias (not a whole second), its
     /// pseudoranges and phases and its fix those of that clock.
-    fn epoch(&mut self, n_k: f64, t_k: f64) -> Option<EpochReport> {
+    fn epoch(&mut self, n_k: f64, mut t_k: f64) -> Option<EpochReport> {
         for ch in &mut self.channels {
             while let Some(s) = ch.queue.pop_front() {
                 self.observables.push(ch.antenna, ch.sat, s);
@@ -540,7 +541,7 @@ impl Receiver {
             }
         }
         self.summary.epochs += 1;
-        let (mut t_k, mut observations, mut fixes) = self.solve_epoch(n_k, t_k);
+        let (mut observations, mut fixes) = self.solve_epoch(n_k, t_k);
         let provisional = self.clock_guessed;
         let bias_s = fixes
             .iter()
@@ -551,7 +552,8 @@ impl Receiver {
         {
             // The same sample again on the clock just set: its time tag is GPS time.
             self.observables.keep_pending(&observations);
-            (t_k, observations, fixes) = self.solve_epoch(n_k, t_k - b);
+            t_k -= b;
+            (observations, fixes) = self.solve_epoch(n_k, t_k);
         } else if provisional {
             // A guessed clock and no fix to set it: nothing reported.
             self.observables.keep_pending(&observations);
@@ -571,14 +573,14 @@ impl Receiver {
 
     /// The observations at sample `n_k`, receiver time `t_k`, and the epoch stage's
     /// results for them.
-    fn solve_epoch(&mut self, n_k: f64, t_k: f64) -> (f64, Vec<Observation>, Vec<AntennaFix>) {
+    fn solve_epoch(&mut self, n_k: f64, t_k: f64) -> (Vec<Observation>, Vec<AntennaFix>) {
         let observations = self.observables.at(n_k, t_k, self.clock_steps_s);
         let fixes = self.epoch_stage.epoch(&EpochInput {
             t_s: t_k,
             observations: &observations,
             nav: &self.nav,
         });
-        (t_k, observations, fixes)
+        (observations, fixes)
     }
 
     /// A fix at sample `n_k` found the receiver clock `bias_s` ahead of GPS time: beyond
@@ -598,7 +600,6 @@ impl Receiver {
         self.clock_offset_s = Some(t0);
         self.clock_steps_s -= bias_s;
         self.summary.clock_steps += 1;
-        self.summary.clock_steered_s -= bias_s;
         let (fs, rate) = (self.setup.sample_rate_hz, self.config.observation_rate_hz);
         let after = ((t0 + n_k / fs) * rate).floor() as i64 + 1;
         self.next_epoch = Some(self.next_epoch.map_or(after, |k| k.max(after)));
