@@ -554,8 +554,9 @@ impl Receiver {
             self.observables.keep_pending(&observations);
             t_k -= b;
             (observations, fixes) = self.solve_epoch(n_k, t_k);
-        } else if provisional {
-            // A guessed clock and no fix to set it: nothing reported.
+        } else if provisional && bias_s.is_none() {
+            // A guessed clock and no fix to set it: nothing reported (a fix that finds it
+            // within the threshold has set it: reported as it is).
             self.observables.keep_pending(&observations);
             return None;
         }
