@@ -1,4 +1,5 @@
-//! LAMBDA on 20 ambiguities (issue bar: median under 50 us).
+//! LAMBDA on 20 ambiguities (issue bar: median under 50 us), and on large well-conditioned
+//! problems of 100 and 500 ambiguities (issue #32).
 //!
 //! The covariance is that of a single-epoch double-difference GPS L1 model: 11 satellites
 //! at spread elevations and azimuths, two baselines sharing antenna A (A-B, A-C), 10 DD
@@ -108,5 +109,45 @@ fn bench(c: &mut Criterion) {
     });
 }
 
-criterion_group!(benches, bench);
+/// Large problems (issue #32): `n` ambiguities with `a_hat` uniform over [-50, 50) cycles
+/// (a fixed xorshift sequence) and `Q = var I` plus symmetric off-diagonals uniform in
+/// `+/- off * var` (0 for a diagonal `Q`).
+fn large_problem(n: usize, var: f64, off: f64) -> (DVector<f64>, DMatrix<f64>) {
+    let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut uniform = move || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let a_hat = DVector::from_fn(n, |_, _| 100.0 * uniform() - 50.0);
+    let mut q = DMatrix::identity(n, n) * var;
+    for i in 0..n {
+        for j in 0..i {
+            let v = off * var * (2.0 * uniform() - 1.0);
+            q[(i, j)] = v;
+            q[(j, i)] = v;
+        }
+    }
+    (a_hat, q)
+}
+
+fn bench_large(c: &mut Criterion) {
+    let mut group = c.benchmark_group("lambda_large");
+    group.sample_size(10);
+    for (name, n, var, off) in [
+        ("identity_100", 100, 1.0, 0.0),
+        ("identity_500", 500, 1.0, 0.0),
+        ("near_diagonal_1e-5_500", 500, 0.05, 1e-5),
+    ] {
+        let (a_hat, q) = large_problem(n, var, off);
+        lambda(&a_hat, &q, 2).expect("the large problem is solved");
+        group.bench_function(name, |b| {
+            b.iter(|| lambda(black_box(&a_hat), black_box(&q), 2))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench, bench_large);
 criterion_main!(benches);
