@@ -7,7 +7,7 @@ mod support;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use support::{skyforge_ok, small_study};
+use support::{HOSTILE_DIRS, skyforge_ok, small_study};
 
 /// The cluster, stopped when the test ends however it ends.
 struct Cluster(PathBuf);
@@ -43,13 +43,49 @@ fn a_study_run_as_a_slurm_job_array_merges_to_the_bytes_of_a_local_run() {
     let _cluster = Cluster(state.clone());
     let conf = state.join("slurm.conf");
 
+    // sbatch accepts the scripts whatever the output path holds.
+    for name in HOSTILE_DIRS {
+        let out = d.join("test-only").join(name);
+        skyforge_ok(
+            &[
+                "study",
+                "slurm",
+                "small.toml",
+                "--out",
+                out.to_str().unwrap(),
+                "--shards",
+                "4",
+                "--sbatch",
+                "--comment=a b $(touch PWNED)",
+            ],
+            d,
+        );
+        for script in ["array.sbatch", "merge.sbatch"] {
+            let tested = Command::new("sbatch")
+                .arg("--test-only")
+                .arg(out.join("slurm").join(script))
+                .env("SLURM_CONF", &conf)
+                .current_dir(d)
+                .output()
+                .unwrap();
+            assert!(
+                tested.status.success(),
+                "sbatch --test-only {name:?}/{script}: {}",
+                String::from_utf8_lossy(&tested.stderr)
+            );
+        }
+    }
+
+    // The study itself runs in a directory whose name holds a space, both quotes, `$()`,
+    // backquotes, `#` and `%`: its logs must land in its slurm/ folder.
+    let out_name = "cluster out it's \"q\" $(x) `y` #z 50%";
     let printed = skyforge_ok(
         &[
             "study",
             "slurm",
             "small.toml",
             "--out",
-            "cluster-out",
+            out_name,
             "--shards",
             "4",
         ],
@@ -57,7 +93,7 @@ fn a_study_run_as_a_slurm_job_array_merges_to_the_bytes_of_a_local_run() {
     );
     assert!(printed.contains("6 runs in 4 array tasks"), "{printed}");
     let submitted = Command::new("bash")
-        .arg(d.join("cluster-out/slurm/submit.sh"))
+        .arg(d.join(out_name).join("slurm/submit.sh"))
         .env("SLURM_CONF", &conf)
         .current_dir(d)
         .output()
@@ -71,9 +107,9 @@ fn a_study_run_as_a_slurm_job_array_merges_to_the_bytes_of_a_local_run() {
     );
 
     // The merge job writes study.h5 once every array task has succeeded.
-    let merged = d.join("cluster-out/study.h5");
+    let merged = d.join(out_name).join("study.h5");
     let logs = || {
-        std::fs::read_dir(d.join("cluster-out/slurm"))
+        std::fs::read_dir(d.join(out_name).join("slurm"))
             .unwrap()
             .filter_map(Result::ok)
             .filter(|e| e.path().extension().is_some_and(|x| x == "log"))
@@ -89,7 +125,7 @@ fn a_study_run_as_a_slurm_job_array_merges_to_the_bytes_of_a_local_run() {
     };
     let t0 = std::time::Instant::now();
     while !(merged.exists()
-        && std::fs::read_to_string(d.join("cluster-out/slurm/merge.log"))
+        && std::fs::read_to_string(d.join(out_name).join("slurm/merge.log"))
             .is_ok_and(|l| l.contains("wrote")))
     {
         assert!(
@@ -101,7 +137,7 @@ fn a_study_run_as_a_slurm_job_array_merges_to_the_bytes_of_a_local_run() {
     }
     for i in 1..=4 {
         assert!(
-            d.join(format!("cluster-out/shard-{i}-of-4.h5")).exists(),
+            d.join(out_name).join(format!("shard-{i}-of-4.h5")).exists(),
             "{}",
             logs()
         );

@@ -5,7 +5,7 @@
 mod support;
 
 use std::path::Path;
-use support::{short_scenario, skyforge, skyforge_ok, small_study, text};
+use support::{HOSTILE_DIRS, short_scenario, skyforge, skyforge_ok, small_study, text};
 
 /// Whether the `study.h5` files of output directories `a` and `b` in `d` hold the same
 /// bytes.
@@ -168,35 +168,112 @@ fn an_interrupted_study_resumes_with_only_the_missing_runs() {
 }
 
 /// A control character in a path or option of `study slurm` (a newline in `--out` once
-/// ran the rest of the path as a command when the job ran) is refused, exit 2, nothing
-/// written.
+/// ran the rest of the path as a command when the job ran), or a backslash in the log
+/// path (Slurm's "no patterns"), is refused, exit 2, nothing written.
 #[test]
 fn study_slurm_refuses_control_characters_and_writes_nothing() {
     let tmp = tempfile::tempdir().unwrap();
     let d = tmp.path();
     small_study(d, 2);
-    let cases: [(&[&str], &str); 3] = [
-        (&["--out", "x\ntouch PWNED"], "--out"),
+    let cases: [(&[&str], &str, &str); 4] = [
+        (&["--out", "x\ntouch PWNED"], "--out", "control character"),
         (
             &["--out", "x", "--sbatch", "--comment=a\u{1b}b"],
             "--sbatch",
+            "control character",
         ),
-        (&["--out", "x\ry"], "--out"),
+        (&["--out", "x\ry"], "--out", "control character"),
+        (&["--out", "a\\b"], "--out", "backslash"),
     ];
-    for (extra, what) in cases {
+    for (extra, what, why) in cases {
         let mut args = vec!["study", "slurm", "small.toml", "--shards", "3"];
         args.extend_from_slice(extra);
         let said = refused(d, &args);
-        assert!(
-            said.contains(what) && said.contains("control character"),
-            "{said}"
-        );
+        assert!(said.contains(what) && said.contains(why), "{said}");
         let mut left: Vec<_> = std::fs::read_dir(d)
             .unwrap()
             .map(|e| e.unwrap().file_name())
             .collect();
         left.sort();
         assert_eq!(left, ["small.toml", "t-5.4-3.toml"], "{said}");
+    }
+}
+
+/// The generated scripts are valid bash whatever the output path holds, and the array
+/// task hands the program exactly the paths it was given (a stand-in binary records its
+/// arguments): nothing in a path runs.
+#[test]
+fn study_slurm_scripts_carry_hostile_paths_intact() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 2);
+    let stand_in = d.join("record-args");
+    std::fs::write(
+        &stand_in,
+        "#!/bin/sh\nfor a in \"$@\"; do printf '%s\\n' \"$a\"; done > \"$ARGS_FILE\"\n",
+    )
+    .unwrap();
+    std::process::Command::new("chmod")
+        .arg("+x")
+        .arg(&stand_in)
+        .status()
+        .unwrap();
+    for name in HOSTILE_DIRS {
+        let out = d.join(name);
+        let stand_in = stand_in.to_str().unwrap();
+        let out_arg = out.to_str().unwrap();
+        skyforge_ok(
+            &[
+                "study",
+                "slurm",
+                "small.toml",
+                "--out",
+                out_arg,
+                "--shards",
+                "3",
+                "--skyforge",
+                stand_in,
+                "--sbatch",
+                "--comment=a b $(touch PWNED3)",
+            ],
+            d,
+        );
+        let slurm = out.join("slurm");
+        for script in ["array.sbatch", "merge.sbatch", "submit.sh"] {
+            let checked = std::process::Command::new("bash")
+                .arg("-n")
+                .arg(slurm.join(script))
+                .output()
+                .unwrap();
+            assert!(
+                checked.status.success(),
+                "{name:?}/{script}: {}",
+                String::from_utf8_lossy(&checked.stderr)
+            );
+        }
+        let args_file = d.join("args.txt");
+        for (script, task) in [("array.sbatch", Some("2")), ("merge.sbatch", None)] {
+            let mut run = std::process::Command::new("bash");
+            run.arg(slurm.join(script))
+                .env("ARGS_FILE", &args_file)
+                .current_dir(d);
+            if let Some(t) = task {
+                run.env("SLURM_ARRAY_TASK_ID", t);
+            }
+            assert!(run.status().unwrap().success(), "{name:?}/{script}");
+            let args = std::fs::read_to_string(&args_file).unwrap();
+            let want = match task {
+                Some(_) => format!(
+                    "study\nrun\n{}\n--out\n{out_arg}\n--shard\n2/3\n",
+                    d.join("small.toml").display()
+                ),
+                None => format!("study\nmerge\n{out_arg}\n"),
+            };
+            assert_eq!(args, want, "{name:?}/{script}");
+        }
+        for pwned in ["PWNED", "PWNED2", "PWNED3"] {
+            assert!(!d.join(pwned).exists(), "{name:?} ran {pwned}");
+        }
     }
 }
 

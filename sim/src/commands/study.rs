@@ -2,7 +2,7 @@
 //! shard's journal are not made again), and merge shards into one file.
 
 use crate::bad_input::BadInput;
-use crate::output::slurm_scripts::{SlurmJob, refuse_control_characters};
+use crate::output::slurm_scripts::{SlurmJob, refuse_backslash, refuse_control_characters};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -240,6 +240,7 @@ pub fn slurm(
     for (what, text) in paths.into_iter().chain(sbatch) {
         refuse_control_characters(what, &text).map_err(BadInput)?;
     }
+    refuse_backslash("--out", &out.display().to_string()).map_err(BadInput)?;
     let dir = out.join("slurm");
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let job = SlurmJob {

@@ -33,6 +33,34 @@ pub fn refuse_control_characters(what: &str, text: &str) -> Result<(), String> {
     }
 }
 
+/// `text` (a path, named `what`) refused when it holds a backslash: Slurm reads a
+/// backslash in a log path as "no patterns", so `shard-%a.log` would not name the task.
+pub fn refuse_backslash(what: &str, text: &str) -> Result<(), String> {
+    if text.contains('\\') {
+        return Err(format!(
+            "{what} {text:?} holds a backslash, which Slurm reads in a log path as \"no patterns\": choose a path without"
+        ));
+    }
+    Ok(())
+}
+
+/// `text` as one value on an `#SBATCH` line: in double quotes, `\` and `"` escaped
+/// (sbatch's own parser of the line, checked with slurm-wlm 22.05: a space, `'`, `#`,
+/// `$(...)` and backquotes inside the quotes stay as they are).
+fn sbatch_value(text: &str) -> String {
+    format!("\"{}\"", text.replace('\\', "\\\\").replace('"', "\\\""))
+}
+
+/// An `--sbatch` option as an `#SBATCH` line's words: `--name=value` with the value
+/// quoted as one ([`sbatch_value`]), so that `--comment=cn0 sweep` stays one comment; an
+/// option without `=` (`--exclusive`, `-p short`) as given.
+fn sbatch_option(option: &str) -> String {
+    match option.split_once('=') {
+        Some((name, value)) => format!("{name}={}", sbatch_value(value)),
+        None => option.to_string(),
+    }
+}
+
 /// `path` quoted for a POSIX shell.
 fn quoted(path: &Path) -> String {
     format!("'{}'", path.display().to_string().replace('\'', r"'\''"))
@@ -54,13 +82,21 @@ impl SlurmJob<'_> {
         format!("skyforge-{name}")
     }
 
+    /// The `#SBATCH` lines. The log path is a Slurm filename pattern (`log` holds `%a`),
+    /// so a `%` of the output directory is written `%%`.
     fn header(&self, name: &str, log: &str) -> String {
+        let dir = self
+            .out
+            .join("slurm")
+            .display()
+            .to_string()
+            .replace('%', "%%");
         let mut s = format!(
-            "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}/{log}\n",
-            self.out.join("slurm").display()
+            "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}\n",
+            sbatch_value(&format!("{dir}/{log}"))
         );
         for o in self.options {
-            s.push_str(&format!("#SBATCH {o}\n"));
+            s.push_str(&format!("#SBATCH {}\n", sbatch_option(o)));
         }
         s
     }
@@ -111,15 +147,21 @@ mod tests {
         );
         assert!(refuse_control_characters("--out", "a\u{1b}[2J").is_err());
         assert!(refuse_control_characters("--out", "/data/sky forge/it's $(x) `y` #z").is_ok());
+        assert!(refuse_backslash("--out", "/data/a\\b").is_err());
+        assert!(refuse_backslash("--out", "/data/sky forge/it's $(x) `y` #z").is_ok());
     }
 
     #[test]
     fn scripts_quote_paths_and_name_the_shards() {
-        let options = ["--partition=short".to_string()];
+        let options = [
+            "--partition=short".to_string(),
+            "--comment=say \"hi\" # now".to_string(),
+            "-p short".to_string(),
+        ];
         let job = SlurmJob {
             skyforge: Path::new("/opt/sky forge/skyforge"),
             study: Path::new("/data/it's.toml"),
-            out: Path::new("/data/out"),
+            out: Path::new("/data/out 50%"),
             shards: 4,
             name: "cn0 sweep!",
             options: &options,
@@ -130,9 +172,18 @@ mod tests {
             a.contains("#SBATCH --job-name=skyforge-cn0_sweep_\n"),
             "{a}"
         );
-        assert!(a.contains("#SBATCH --partition=short\n"), "{a}");
-        assert!(a.contains("exec '/opt/sky forge/skyforge' study run '/data/it'\\''s.toml' --out '/data/out' --shard \"${SLURM_ARRAY_TASK_ID}/4\""), "{a}");
-        assert!(job.merge().contains("study merge '/data/out'"));
+        assert!(a.contains("#SBATCH --partition=\"short\"\n"), "{a}");
+        assert!(
+            a.contains("#SBATCH --comment=\"say \\\"hi\\\" # now\"\n"),
+            "{a}"
+        );
+        assert!(a.contains("#SBATCH -p short\n"), "{a}");
+        assert!(
+            a.contains("#SBATCH --output=\"/data/out 50%%/slurm/shard-%a.log\"\n"),
+            "{a}"
+        );
+        assert!(a.contains("exec '/opt/sky forge/skyforge' study run '/data/it'\\''s.toml' --out '/data/out 50%' --shard \"${SLURM_ARRAY_TASK_ID}/4\""), "{a}");
+        assert!(job.merge().contains("study merge '/data/out 50%'"));
         assert!(job.submit().contains("--dependency=afterok:"));
     }
 }

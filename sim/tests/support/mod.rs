@@ -367,6 +367,15 @@ impl Drop for Tmpfs {
     }
 }
 
+/// Output directories as a careless user or an attacker names them: a space, both quotes,
+/// `$(...)`, backquotes, `#` and `%`.
+pub const HOSTILE_DIRS: [&str; 4] = [
+    "out dir",
+    "it's \"q\" #z",
+    "$(touch PWNED) `touch PWNED2`",
+    "50% %a",
+];
+
 /// A small study of the T-5.4-3 set-up: 60 s runs, two signal levels, `seeds` seeds.
 pub fn small_study(dir: &Path, seeds: u32) -> String {
     let scenario = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/thesis/t-5.4-3.toml");
