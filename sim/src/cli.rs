@@ -333,6 +333,9 @@ pub enum ValidateSuite {
         /// Also write the full comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
         /// Seconds added to the estimate's time tags (for tags in another time scale than
         /// the header says, e.g. -14 for GPS-time tags in a file labelled BDT).
         #[arg(
@@ -370,6 +373,9 @@ pub enum ValidateSuite {
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
     },
     /// Compare `skyforge monitor run`'s alarms with the fault events of the run's
     /// scenario: per event, whether and when it was detected, by which statistic and
@@ -385,6 +391,9 @@ pub enum ValidateSuite {
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
     },
     /// Put two `validate thesis --seeds` runs (other --seed-base) side by side: each row's
     /// verdict and fraction of draws in tolerance in both, and the rows far from the bar
@@ -411,6 +420,10 @@ pub enum StudyAction {
         /// Make only shard i of n (1-based): runs r with r % n == i - 1.
         #[arg(long, value_name = "i/n")]
         shard: Option<String>,
+        /// Replace another study's files in DIR (this study's own are rewritten by a rerun;
+        /// a file skyforge did not write never is).
+        #[arg(long)]
+        force: bool,
     },
     /// Write Slurm scripts for STUDY into DIR/slurm/: a job array of N tasks (task i runs
     /// `study run --shard i/N`), a merge job, and submit.sh, which submits the array and
@@ -432,6 +445,9 @@ pub enum StudyAction {
         /// (repeatable).
         #[arg(long = "sbatch", value_name = "OPTION", allow_hyphen_values = true)]
         sbatch: Vec<String>,
+        /// Replace the scripts of an earlier `study slurm` in DIR/slurm/.
+        #[arg(long)]
+        force: bool,
     },
     /// Merge the shard files of DIR... (every shard-*-of-*.h5, or files) into one file,
     /// byte-identical to a whole run's study.h5.
@@ -441,6 +457,10 @@ pub enum StudyAction {
         /// The merged file (default: the first DIR's study.h5).
         #[arg(long, value_name = "FILE")]
         out: Option<PathBuf>,
+        /// Replace another study's file at --out (this study's own is rewritten; a file
+        /// skyforge did not write never is).
+        #[arg(long)]
+        force: bool,
     },
 }
 

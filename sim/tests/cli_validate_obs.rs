@@ -88,6 +88,52 @@ fn validate_obs_prints_per_satellite_errors_and_writes_json() {
     assert_eq!(v["pseudorange_m"]["per_satellite"][1]["sat"], "G07");
 }
 
+/// `--json` follows the rules of every output: a file `validate` did not write stays,
+/// `--force` or not (a JSON object of another kind included); its own is replaced only
+/// with `--force`; a directory or a missing folder is refused before the comparison.
+#[test]
+fn validate_obs_json_replaces_only_its_own_file_with_force() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(d.join("est.rnx"), rinex(1.25, 20, 300.0, |_, _| 0.0)).unwrap();
+    let refused = |args: &[&str], needle: &str| {
+        let mut all = vec!["--estimate", "est.rnx"];
+        all.extend_from_slice(args);
+        let o = validate_obs(d, &all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", text(&o));
+        assert!(text(&o).contains(needle), "{args:?}: {}", text(&o));
+    };
+    // A JSON object that begins as ours is told apart by its first key, once the
+    // comparison is made.
+    let foreign = "not a validation JSON skyforge wrote";
+    let user_files = [
+        ("notes.json", "precious\n", foreign),
+        ("other.json", "{\n  \"mine\": 1\n}\n", "give --force"),
+    ];
+    for (name, content, unforced) in user_files {
+        std::fs::write(d.join(name), content).unwrap();
+        refused(&["--json", name], unforced);
+        refused(&["--json", name, "--force"], foreign);
+        assert_eq!(std::fs::read_to_string(d.join(name)).unwrap(), content);
+    }
+    std::fs::create_dir(d.join("sub")).unwrap();
+    refused(&["--json", "sub"], "is a directory");
+    refused(
+        &["--json", "nowhere/cmp.json"],
+        "nowhere is not a directory",
+    );
+
+    let ok = |args: &[&str]| {
+        let mut all = vec!["--estimate", "est.rnx"];
+        all.extend_from_slice(args);
+        let o = validate_obs(d, &all);
+        assert!(o.status.success(), "{args:?}: {}", text(&o));
+    };
+    ok(&["--json", "cmp.json"]);
+    refused(&["--json", "cmp.json"], "give --force");
+    ok(&["--json", "cmp.json", "--force"]);
+}
+
 #[test]
 fn validate_obs_rejects_a_missing_file_as_bad_input() {
     let dir = tempfile::tempdir().unwrap();

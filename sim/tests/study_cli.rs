@@ -277,6 +277,107 @@ fn study_slurm_scripts_carry_hostile_paths_intact() {
     }
 }
 
+/// Every study output follows `run`'s rules: a file skyforge did not write is never
+/// replaced, `--force` or not; another study's file only with `--force`; the study's own
+/// is rewritten by a rerun; a directory in the place of a file is refused with nothing
+/// left beside it. (Each was overwritten or left `.partial` before.)
+#[test]
+fn study_outputs_replace_nothing_skyforge_did_not_write() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 1);
+    let precious = "precious\n";
+    let kept = |path: &str| {
+        assert_eq!(
+            std::fs::read_to_string(d.join(path)).unwrap(),
+            precious,
+            "{path} was replaced"
+        );
+    };
+    let refused_twice = |args: &[&str], path: &str| {
+        let mut forced = args.to_vec();
+        forced.push("--force");
+        for a in [args, &forced] {
+            let said = refused(d, a);
+            assert!(
+                said.contains(path) && said.contains("not a study file skyforge wrote")
+                    || said.contains("not a Slurm script skyforge wrote"),
+                "{said}"
+            );
+        }
+        kept(path);
+    };
+
+    // study run into a user's folder holding a study.h5 of their own.
+    std::fs::create_dir(d.join("u")).unwrap();
+    std::fs::write(d.join("u/study.h5"), precious).unwrap();
+    refused_twice(&["study", "run", "small.toml", "--out", "u"], "u/study.h5");
+    assert!(!d.join("u/shard-1-of-1.runs.jsonl").exists());
+
+    // A study run twice rewrites its own files; the shards merge into a user's file never.
+    skyforge_ok(&["study", "run", "small.toml", "--out", "s"], d);
+    skyforge_ok(&["study", "run", "small.toml", "--out", "s"], d);
+    std::fs::write(d.join("m.h5"), precious).unwrap();
+    refused_twice(&["study", "merge", "s", "--out", "m.h5"], "m.h5");
+    std::fs::write(d.join("s/study.h5"), precious).unwrap();
+    refused_twice(&["study", "merge", "s"], "s/study.h5");
+    std::fs::remove_file(d.join("s/study.h5")).unwrap();
+    skyforge_ok(&["study", "merge", "s"], d);
+    skyforge_ok(&["study", "merge", "s"], d);
+
+    // Another study's merged file is replaced only with --force.
+    let other = std::fs::read_to_string(d.join("small.toml"))
+        .unwrap()
+        .replace("seed = 11", "seed = 12");
+    std::fs::write(d.join("other.toml"), other).unwrap();
+    skyforge_ok(&["study", "run", "other.toml", "--out", "o"], d);
+    let said = refused(d, &["study", "merge", "s", "--out", "o/study.h5"]);
+    assert!(
+        said.contains("o/study.h5: the file of another study; give --force"),
+        "{said}"
+    );
+    skyforge_ok(
+        &["study", "merge", "s", "--out", "o/study.h5", "--force"],
+        d,
+    );
+
+    // A directory in the place of the merged file: refused, nothing left beside it.
+    std::fs::create_dir(d.join("m-dir")).unwrap();
+    let said = refused(d, &["study", "merge", "s", "--out", "m-dir"]);
+    assert!(
+        said.contains("m-dir") && said.contains("is a directory"),
+        "{said}"
+    );
+    let partial = std::fs::read_dir(d)
+        .unwrap()
+        .filter_map(Result::ok)
+        .filter(|e| e.file_name().to_string_lossy().contains("partial"))
+        .count();
+    assert_eq!(partial, 0);
+
+    // study slurm: a user's submit.sh stays; its own scripts are replaced with --force.
+    std::fs::create_dir_all(d.join("c/slurm")).unwrap();
+    std::fs::write(d.join("c/slurm/submit.sh"), precious).unwrap();
+    let slurm = [
+        "study",
+        "slurm",
+        "small.toml",
+        "--out",
+        "c",
+        "--shards",
+        "2",
+    ];
+    refused_twice(&slurm, "c/slurm/submit.sh");
+    assert!(!d.join("c/slurm/array.sbatch").exists());
+    std::fs::remove_file(d.join("c/slurm/submit.sh")).unwrap();
+    skyforge_ok(&slurm, d);
+    let said = refused(d, &slurm);
+    assert!(said.contains("give --force"), "{said}");
+    let mut forced = slurm.to_vec();
+    forced.push("--force");
+    skyforge_ok(&forced, d);
+}
+
 #[test]
 fn bad_study_files_get_one_located_error_and_nothing_is_run() {
     let tmp = tempfile::tempdir().unwrap();

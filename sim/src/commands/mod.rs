@@ -45,15 +45,21 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Calibrate { run } => calibrate::calibrate(&run),
         Command::Study { action } => match action {
-            StudyAction::Run { study, out, shard } => study::run(&study, &out, shard.as_deref()),
-            StudyAction::Merge { dirs, out } => study::merge(&dirs, out.as_deref()),
+            StudyAction::Run {
+                study,
+                out,
+                shard,
+                force,
+            } => study::run(&study, &out, shard.as_deref(), force),
+            StudyAction::Merge { dirs, out, force } => study::merge(&dirs, out.as_deref(), force),
             StudyAction::Slurm {
                 study,
                 out,
                 shards,
                 skyforge,
                 sbatch,
-            } => study::slurm(&study, &out, shards, skyforge.as_deref(), &sbatch),
+                force,
+            } => study::slurm(&study, &out, shards, skyforge.as_deref(), &sbatch, force),
         },
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Receive { args } => receive::receive(&args),
@@ -118,6 +124,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     truth,
                     estimate,
                     json,
+                    force,
                     tag_offset_s,
                     from,
                     to,
@@ -125,7 +132,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         } => validate::obs(
             &truth,
             &estimate,
-            json.as_deref(),
+            validate::JsonOut::new(json.as_deref(), force)?,
             tag_offset_s,
             from.zip(to).as_ref(),
         ),
@@ -136,16 +143,27 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
                     observations,
                     attitude,
                     json,
+                    force,
                 },
-        } => validate::attitude(&truth, &observations, &attitude, json.as_deref()),
+        } => validate::attitude(
+            &truth,
+            &observations,
+            &attitude,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
         Command::Validate {
             suite:
                 ValidateSuite::Monitor {
                     truth,
                     monitor,
                     json,
+                    force,
                 },
-        } => validate::monitor(&truth, &monitor, json.as_deref()),
+        } => validate::monitor(
+            &truth,
+            &monitor,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
         Command::Validate {
             suite: ValidateSuite::Agree { first, second },
         } => validate::agree(&first, &second),

@@ -5,7 +5,6 @@ use crate::bad_input::BadInput;
 use crate::output::{manifest, whole_file};
 use anyhow::Context;
 use skyforge_studies::html_report::{Inputs, build};
-use std::io::Read;
 use std::path::Path;
 
 /// How every page `report` writes begins: the mark of a page `--force` may replace.
@@ -20,17 +19,9 @@ pub fn report(inputs: Inputs<'_>, out: Option<&Path>, force: bool) -> anyhow::Re
     }
     let default = dir.join("report.html");
     let target = out.unwrap_or(&default);
-    if target.exists() {
-        let ours = starts_like_a_report(target);
-        if !force || !ours {
-            let why = if ours {
-                "give --force to replace it"
-            } else {
-                "it is not a report skyforge wrote; remove it yourself if it should go"
-            };
-            return Err(BadInput(format!("{} exists: {why}", target.display())).into());
-        }
-    }
+    whole_file::check_target(target, force, "a report", |p| {
+        whole_file::starts_with(p, PAGE_START.as_bytes())
+    })?;
     let page = build(inputs).map_err(|e| BadInput(e.to_string()))?;
     let html = page.to_html();
     debug_assert!(html.starts_with(PAGE_START));
@@ -47,13 +38,4 @@ pub fn report(inputs: Inputs<'_>, out: Option<&Path>, force: bool) -> anyhow::Re
         page.figures()
     );
     Ok(())
-}
-
-/// Whether the file at `path` begins as every page `report` writes (only that many bytes
-/// are read, whatever the file's size).
-fn starts_like_a_report(path: &Path) -> bool {
-    let mut head = Vec::with_capacity(PAGE_START.len());
-    std::fs::File::open(path)
-        .and_then(|f| f.take(PAGE_START.len() as u64).read_to_end(&mut head))
-        .is_ok_and(|_| head == PAGE_START.as_bytes())
 }

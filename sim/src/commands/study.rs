@@ -2,7 +2,10 @@
 //! shard's journal are not made again), and merge shards into one file.
 
 use crate::bad_input::BadInput;
-use crate::output::slurm_scripts::{SlurmJob, refuse_backslash, refuse_control_characters};
+use crate::output::slurm_scripts::{
+    SlurmJob, refuse_backslash, refuse_control_characters, written_by_skyforge,
+};
+use crate::output::whole_file;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -31,8 +34,24 @@ pub fn load(path: &Path) -> anyhow::Result<Study> {
         .map_err(|e| BadInput(e.to_string()).into())
 }
 
-/// `skyforge study run STUDY --out DIR [--shard i/n]`.
-pub fn run(path: &Path, out: &Path, shard: Option<&str>) -> anyhow::Result<()> {
+/// Whether a study file may be written at `target`: absent, this study's own (a rerun
+/// writes the same runs again), or another study's with `force`; never a file that is no
+/// study file ([`whole_file::check_target`]).
+fn check_study_target(target: &Path, study_text: &str, force: bool) -> Result<(), BadInput> {
+    match shard_study_text(target) {
+        Ok(text) if text == study_text => Ok(()),
+        Ok(_) if !force => Err(BadInput(format!(
+            "{}: the file of another study; give --force to replace it, or choose another --out",
+            target.display()
+        ))),
+        _ => whole_file::check_target(target, force, "a study file", |p| {
+            shard_study_text(p).is_ok()
+        }),
+    }
+}
+
+/// `skyforge study run STUDY --out DIR [--shard i/n] [--force]`.
+pub fn run(path: &Path, out: &Path, shard: Option<&str>, force: bool) -> anyhow::Result<()> {
     let study = load(path)?;
     let shard = shard
         .map(str::parse::<Shard>)
@@ -43,6 +62,11 @@ pub fn run(path: &Path, out: &Path, shard: Option<&str>) -> anyhow::Result<()> {
         return Err(BadInput(format!("--out {}: not a directory", out.display())).into());
     }
     std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    let shard_file = shard_path(out, shard);
+    let merged = out.join(MERGED_FILE);
+    for target in std::iter::once(&shard_file).chain((shard == Shard::WHOLE).then_some(&merged)) {
+        check_study_target(target, &study.text, force)?;
+    }
     let (journal, done) = Journal::open(out, &study, shard)?;
     let mine: Vec<u64> = shard.runs(study.runs()).collect();
     let done_runs: HashSet<u64> = done.iter().map(|r| r.run).collect();
@@ -99,11 +123,9 @@ pub fn run(path: &Path, out: &Path, shard: Option<&str>) -> anyhow::Result<()> {
     let mut runs: Vec<RunResult> = done.into_iter().chain(made).collect();
     runs.sort_by_key(|r| r.run);
     runs.dedup_by_key(|r| r.run);
-    let shard_file = shard_path(out, shard);
     write_shard(&shard_file, &study, shard, &runs)?;
     println!("wrote      {}", shard_file.display());
     if shard == Shard::WHOLE {
-        let merged = out.join(MERGED_FILE);
         let runs = study.merge(vec![runs]).map_err(|e| anyhow::anyhow!(e))?;
         write_merged(&merged, &study, &runs)?;
         print_summary(&study, &runs);
@@ -142,8 +164,8 @@ fn shard_files(dirs: &[PathBuf]) -> anyhow::Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-/// `skyforge study merge DIR... [--out FILE]`.
-pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> anyhow::Result<()> {
+/// `skyforge study merge DIR... [--out FILE] [--force]`.
+pub fn merge(dirs: &[PathBuf], out: Option<&Path>, force: bool) -> anyhow::Result<()> {
     let files = shard_files(dirs)?;
     let first = files
         .first()
@@ -151,6 +173,8 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> anyhow::Result<()> {
     let text = shard_study_text(first)?;
     let study = Study::parse_plan(&text, &first.display().to_string())
         .map_err(|e| BadInput(e.to_string()))?;
+    let path = out.map_or_else(|| dirs[0].join(MERGED_FILE), Path::to_path_buf);
+    check_study_target(&path, &text, force)?;
     let names: Vec<&str> = study.metrics.iter().map(|m| m.name()).collect();
     let mut parts = Vec::new();
     for f in &files {
@@ -168,7 +192,6 @@ pub fn merge(dirs: &[PathBuf], out: Option<&Path>) -> anyhow::Result<()> {
     let runs = study
         .merge(parts)
         .map_err(|e| BadInput(format!("merging {} shard files: {e}", files.len())))?;
-    let path = out.map_or_else(|| dirs[0].join(MERGED_FILE), Path::to_path_buf);
     write_merged(&path, &study, &runs)?;
     print_summary(&study, &runs);
     println!(
@@ -213,6 +236,7 @@ pub fn slurm(
     shards: u64,
     skyforge: Option<&Path>,
     options: &[String],
+    force: bool,
 ) -> anyhow::Result<()> {
     let study = load(path)?;
     if let Some(bad) = options.iter().find(|o| !o.starts_with('-')) {
@@ -242,6 +266,13 @@ pub fn slurm(
     }
     refuse_backslash("--out", &out.display().to_string()).map_err(BadInput)?;
     let dir = out.join("slurm");
+    const SCRIPTS: [&str; 3] = ["array.sbatch", "merge.sbatch", "submit.sh"];
+    for name in SCRIPTS {
+        let p = dir.join(name);
+        if dir.is_dir() {
+            whole_file::check_target(&p, force, "a Slurm script", written_by_skyforge)?;
+        }
+    }
     std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let job = SlurmJob {
         skyforge: &exe,
@@ -251,13 +282,13 @@ pub fn slurm(
         name: &study.name,
         options,
     };
-    for (name, text) in [
-        ("array.sbatch", job.array()),
-        ("merge.sbatch", job.merge()),
-        ("submit.sh", job.submit()),
-    ] {
+    for (name, text) in SCRIPTS
+        .into_iter()
+        .zip([job.array(), job.merge(), job.submit()])
+    {
         let p = dir.join(name);
-        std::fs::write(&p, text).with_context(|| format!("cannot write {}", p.display()))?;
+        whole_file::write(&p, text.as_bytes())
+            .with_context(|| format!("cannot write {}", p.display()))?;
     }
     println!(
         "study      {}: {} runs in {shards} array tasks",

@@ -142,7 +142,7 @@ pub fn agree(first: &Path, second: &Path) -> anyhow::Result<()> {
 pub fn obs(
     truth: &Path,
     estimate: &Path,
-    json: Option<&Path>,
+    json: JsonOut<'_>,
     tag_offset_s: f64,
     window: Option<&(String, String)>,
 ) -> anyhow::Result<()> {
@@ -172,18 +172,52 @@ pub fn obs(
     };
     let comparison = compare_with(&estimate, &truth, &opts).map_err(|e| bad(&e))?;
     print_comparison(&comparison, &mut std::io::stdout().lock())?;
-    if let Some(path) = json {
-        write_json_text(serde_json::to_string_pretty(&comparison)?, path)?;
-    }
-    Ok(())
+    json.write(&comparison)
 }
 
-/// Write JSON `text` to `path`, whole or not at all ([`whole_file`]).
-fn write_json_text(text: String, path: &Path) -> anyhow::Result<()> {
-    whole_file::write(path, (text + "\n").as_bytes())
-        .with_context(|| format!("cannot write {}", path.display()))?;
-    println!("wrote {}", path.display());
-    Ok(())
+/// What the JSON files `validate` writes are called in messages.
+const JSON_WHAT: &str = "a validation JSON";
+/// How every JSON file `validate` writes begins (an object, pretty-printed).
+const JSON_START: &str = "{\n  \"";
+
+/// Where `--json` goes, checked before any comparison is made ([`whole_file::check_target`]:
+/// a missing directory, a directory, a file skyforge did not write, or one it did without
+/// `--force` is refused).
+#[derive(Debug, Clone, Copy)]
+pub struct JsonOut<'a> {
+    path: Option<&'a Path>,
+    force: bool,
+}
+
+impl<'a> JsonOut<'a> {
+    pub fn new(path: Option<&'a Path>, force: bool) -> Result<Self, BadInput> {
+        if let Some(p) = path {
+            whole_file::check_target(p, force, JSON_WHAT, |f| {
+                whole_file::starts_with(f, JSON_START.as_bytes())
+            })?;
+        }
+        Ok(Self { path, force })
+    }
+
+    /// Write `value` pretty-printed, whole or not at all ([`whole_file`]); an existing
+    /// file is replaced only when it begins with the same first key (the same kind of
+    /// comparison).
+    fn write(self, value: &impl serde::Serialize) -> anyhow::Result<()> {
+        let Some(path) = self.path else {
+            return Ok(());
+        };
+        let text = serde_json::to_string_pretty(value)? + "\n";
+        let first_key = text
+            .find("\":")
+            .map_or(text.as_str(), |end| &text[..end + 2]);
+        whole_file::check_target(path, self.force, JSON_WHAT, |f| {
+            whole_file::starts_with(f, first_key.as_bytes())
+        })?;
+        whole_file::write(path, text.as_bytes())
+            .with_context(|| format!("cannot write {}", path.display()))?;
+        println!("wrote {}", path.display());
+        Ok(())
+    }
 }
 
 /// Compare `skyforge attitude`'s output in `attitude` with the truth of the run in
@@ -193,28 +227,22 @@ pub fn attitude(
     truth: &Path,
     observations: &Path,
     attitude: &Path,
-    json: Option<&Path>,
+    json: JsonOut<'_>,
 ) -> anyhow::Result<()> {
     let comparison =
         compare_outputs(truth, observations, attitude).map_err(|e| BadInput(e.to_string()))?;
     let summary = comparison.summary();
     print_validation(&summary, &mut std::io::stdout().lock())?;
-    if let Some(path) = json {
-        write_json_text(serde_json::to_string_pretty(&summary)?, path)?;
-    }
-    Ok(())
+    json.write(&summary)
 }
 
 /// Compare `skyforge monitor run`'s alarms in `monitor` with the fault events of the run
 /// in `truth`, print the table and optionally write the JSON.
-pub fn monitor(truth: &Path, monitor: &Path, json: Option<&Path>) -> anyhow::Result<()> {
+pub fn monitor(truth: &Path, monitor: &Path, json: JsonOut<'_>) -> anyhow::Result<()> {
     let scenario = run_scenario(truth).map_err(BadInput)?;
     let record = read_monitor_csv(&monitor.join(MONITOR_CSV), scenario.time.start)
         .map_err(|e| BadInput(e.to_string()))?;
     let score = score(&scenario.errors.events, &record);
     print_score(&score, &mut std::io::stdout().lock())?;
-    if let Some(path) = json {
-        write_json_text(serde_json::to_string_pretty(&score)?, path)?;
-    }
-    Ok(())
+    json.write(&score)
 }

@@ -3,7 +3,21 @@
 //! journal), a merge job, and `submit.sh`, which submits the array and the merge with
 //! `--dependency=afterok` on it.
 
+use super::whole_file;
 use std::path::Path;
+
+/// How the job scripts begin (their job names all start `skyforge-`).
+const JOB_START: &str = "#!/bin/bash\n#SBATCH --job-name=skyforge-";
+/// How `submit.sh` begins.
+const SUBMIT_START: &str =
+    "#!/bin/bash\n# Submit the study's job array and its merge job (after every task succeeded).\n";
+
+/// Whether the file at `path` is a script `study slurm` wrote (it begins as one).
+pub fn written_by_skyforge(path: &Path) -> bool {
+    [JOB_START, SUBMIT_START]
+        .iter()
+        .any(|start| whole_file::starts_with(path, start.as_bytes()))
+}
 
 /// What the scripts run and where.
 #[derive(Debug, Clone)]
@@ -91,6 +105,7 @@ impl SlurmJob<'_> {
             .display()
             .to_string()
             .replace('%', "%%");
+        debug_assert!(name.starts_with("skyforge-"));
         let mut s = format!(
             "#!/bin/bash\n#SBATCH --job-name={name}\n#SBATCH --output={}\n",
             sbatch_value(&format!("{dir}/{log}"))
@@ -129,7 +144,7 @@ impl SlurmJob<'_> {
     pub fn submit(&self) -> String {
         let dir = quoted(&self.out.join("slurm"));
         format!(
-            "#!/bin/bash\n# Submit the study's job array and its merge job (after every task succeeded).\nset -euo pipefail\narray=$(sbatch --parsable {dir}/array.sbatch)\nmerge=$(sbatch --parsable --dependency=afterok:\"${{array%%;*}}\" {dir}/merge.sbatch)\necho \"array job ${{array%%;*}}, merge job ${{merge%%;*}}\"\n"
+            "{SUBMIT_START}set -euo pipefail\narray=$(sbatch --parsable {dir}/array.sbatch)\nmerge=$(sbatch --parsable --dependency=afterok:\"${{array%%;*}}\" {dir}/merge.sbatch)\necho \"array job ${{array%%;*}}, merge job ${{merge%%;*}}\"\n"
         )
     }
 }

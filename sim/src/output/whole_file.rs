@@ -1,9 +1,58 @@
 //! One file written whole or not at all, outside a staged output directory: the bytes go
 //! to a new file beside the target (`.NAME.partial-PID`, never an existing one), renamed
 //! over the target when complete. A failure removes only the file this call created.
+//! Before anything is made, [`check_target`] applies the rules of every output: nothing
+//! replaced that SkyForge did not write, `--force` to replace what it did.
 
-use std::io::Write;
+use crate::bad_input::BadInput;
+use std::io::{Read, Write};
 use std::path::Path;
+
+/// Whether `target` may be written: its directory exists, and it is absent or a file
+/// SkyForge wrote (`ours`, told what it is: `what`, e.g. "a report") replaced with
+/// `force`. Checked before any work, so that a refusal costs nothing and leaves nothing.
+pub fn check_target(
+    target: &Path,
+    force: bool,
+    what: &str,
+    ours: impl FnOnce(&Path) -> bool,
+) -> Result<(), BadInput> {
+    let refuse = |why: &str| Err(BadInput(format!("{}: {why}", target.display())));
+    let parent = target
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    if !parent.is_dir() {
+        return refuse(&format!(
+            "cannot write it: {} is not a directory",
+            parent.display()
+        ));
+    }
+    let Ok(meta) = std::fs::symlink_metadata(target) else {
+        return Ok(());
+    };
+    if meta.is_dir() {
+        return refuse("is a directory; give the path of a file");
+    }
+    if !meta.is_file() || !ours(target) {
+        return refuse(&format!(
+            "exists and is not {what} skyforge wrote; remove it yourself if it should go"
+        ));
+    }
+    if !force {
+        return refuse(&format!("exists ({what}); give --force to replace it"));
+    }
+    Ok(())
+}
+
+/// Whether the file at `path` begins with `prefix` (only that many bytes are read,
+/// whatever the file's size).
+pub fn starts_with(path: &Path, prefix: &[u8]) -> bool {
+    let mut head = Vec::with_capacity(prefix.len());
+    std::fs::File::open(path)
+        .and_then(|f| f.take(prefix.len() as u64).read_to_end(&mut head))
+        .is_ok_and(|_| head == prefix)
+}
 
 /// Write `bytes` to `target` through a new file beside it, renamed when complete.
 pub fn write(target: &Path, bytes: &[u8]) -> std::io::Result<()> {

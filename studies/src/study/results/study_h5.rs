@@ -48,13 +48,26 @@ fn write_common(file: &File, study: &Study, shard: &str, runs: &[RunResult]) -> 
     Ok(())
 }
 
-/// Write `path` (through a temporary file beside it, renamed when complete).
+/// Write `path` through a new file beside it (`.NAME.partial-PID`, never an existing
+/// one), renamed over `path` when complete; on any failure only that file is removed.
 fn write_atomically(
     path: &Path,
     write: impl FnOnce(&File) -> hdf5::Result<()>,
 ) -> Result<(), ResultsError> {
-    let tmp = path.with_extension("h5.partial");
-    let written = File::create(&tmp).and_then(|f| {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let tmp = path.with_file_name(format!(
+        ".{}.partial-{}",
+        name.unwrap_or_default(),
+        std::process::id()
+    ));
+    if std::fs::symlink_metadata(&tmp).is_ok() {
+        return Err(ResultsError::Io(format!(
+            "cannot write {}: {} exists (another run?)",
+            path.display(),
+            tmp.display()
+        )));
+    }
+    let written = File::create_excl(&tmp).and_then(|f| {
         write(&f)?;
         f.close()
     });
@@ -65,7 +78,10 @@ fn write_atomically(
             path.display()
         )));
     }
-    std::fs::rename(&tmp, path).map_err(|e| io("write", path, e))
+    std::fs::rename(&tmp, path).map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        io("write", path, e)
+    })
 }
 
 /// Write the shard file of `shard` (its runs, sorted).
@@ -158,9 +174,23 @@ pub fn read_shard(path: &Path, metrics: &[&str]) -> Result<ShardFile, ResultsErr
     })
 }
 
-/// The study text a shard file belongs to.
+/// The first bytes of every HDF5 file SkyForge writes (no user block).
+const HDF5_SIGNATURE: &[u8; 8] = b"\x89HDF\r\n\x1a\n";
+
+/// Whether the file at `path` begins with the HDF5 signature (8 bytes read).
+fn starts_as_hdf5(path: &Path) -> bool {
+    let mut head = [0u8; 8];
+    std::fs::File::open(path)
+        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
+        .is_ok_and(|()| &head == HDF5_SIGNATURE)
+}
+
+/// The study text a study file (a shard's or the merged one) belongs to.
 pub fn shard_study_text(path: &Path) -> Result<String, ResultsError> {
     let read = || -> hdf5::Result<String> {
+        if !starts_as_hdf5(path) {
+            return Err("not an HDF5 file".into());
+        }
         let f = File::open(path)?;
         let format = f.attr(FORMAT_ATTR)?.read_scalar::<VarLenUnicode>()?;
         if format.as_str() != FORMAT {
