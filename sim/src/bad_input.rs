@@ -10,14 +10,14 @@ pub const EXIT_BAD_INPUT: u8 = 2;
 #[error("{0}")]
 pub struct BadInput(pub String);
 
-/// Whether `e` is the user's input: a [`BadInput`], a scenario the checks refused, or a
-/// study file that is not the study's.
+/// Whether `e` is the user's input: a [`BadInput`], a scenario the checks refused, a
+/// study file that is not the study's, or a shard another process is making.
 pub fn is_bad_input(e: &anyhow::Error) -> bool {
     e.downcast_ref::<BadInput>().is_some()
         || e.downcast_ref::<skyforge_scenarios::ScenarioError>()
             .is_some()
         || matches!(
             e.downcast_ref::<ResultsError>(),
-            Some(ResultsError::NotThisStudy(_))
+            Some(ResultsError::NotThisStudy(_) | ResultsError::Busy(_))
         )
 }

@@ -366,3 +366,29 @@ fn devices_and_directories_are_refused_as_every_kind_of_input() {
     ];
     refused(dir, &obs, &["z.obs.rnx"]);
 }
+
+/// Issue #33 (13): `--seed-base 18446744073709551615` gave no draw and exit 0 with no
+/// row; a plan past the largest offset is refused before any table runs.
+#[test]
+fn a_seed_plan_past_the_largest_offset_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    for (seeds, base) in [("1", "18446744073709551615"), ("2", "9999")] {
+        refused(
+            tmp.path(),
+            &[
+                "validate",
+                "thesis",
+                "--only",
+                "T-3.2",
+                "--seeds",
+                seeds,
+                "--seed-base",
+                base,
+            ],
+            &[
+                &format!("--seeds {seeds} --seed-base {base}"),
+                "seed-base + seeds <= 10000",
+            ],
+        );
+    }
+}

@@ -378,6 +378,34 @@ fn study_outputs_replace_nothing_skyforge_did_not_write() {
     skyforge_ok(&forced, d);
 }
 
+/// A second run of a shard while another process holds it (a requeued Slurm task
+/// overlapping the first) exits 2 naming the holder, and makes and writes nothing.
+#[test]
+fn a_shard_held_by_another_process_is_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    small_study(d, 1);
+    std::fs::create_dir(d.join("s")).unwrap();
+    let lock = std::fs::File::create(d.join("s/shard-2-of-2.lock")).unwrap();
+    lock.try_lock().unwrap();
+    std::fs::write(d.join("s/shard-2-of-2.lock"), "host node7, process 4242\n").unwrap();
+    let said = refused(
+        d,
+        &["study", "run", "small.toml", "--out", "s", "--shard", "2/2"],
+    );
+    assert!(
+        said.contains("shard 2/2 is being made by another process (host node7, process 4242)"),
+        "{said}"
+    );
+    assert!(!d.join("s/shard-2-of-2.runs.jsonl").exists());
+    assert!(!d.join("s/shard-2-of-2.h5").exists());
+    drop(lock);
+    skyforge_ok(
+        &["study", "run", "small.toml", "--out", "s", "--shard", "2/2"],
+        d,
+    );
+}
+
 #[test]
 fn bad_study_files_get_one_located_error_and_nothing_is_run() {
     let tmp = tempfile::tempdir().unwrap();

@@ -119,3 +119,86 @@ fn another_studys_files_are_the_users_input() {
     let e = MergedFile::open(&text).unwrap_err().to_string();
     assert!(e.contains("not readable as HDF5"), "{e}");
 }
+
+/// One process at a time holds a shard: a second open (a requeued Slurm task overlapping
+/// the first made every run again and corrupted the journal) is refused, naming the
+/// holder, and leaves the journal as it was; the lock goes with the first journal.
+#[test]
+fn a_second_holder_of_a_shard_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study();
+    let (mut first, _) = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap();
+    first.append(&runs(&study)[0]).unwrap();
+    let journal = dir.path().join("shard-1-of-1.runs.jsonl");
+    let before = std::fs::read(&journal).unwrap();
+    let e = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap_err();
+    assert!(matches!(e, ResultsError::Busy(_)), "{e}");
+    let said = e.to_string();
+    assert!(
+        said.contains("shard-1-of-1.lock: shard 1/1 is being made by another process (host ")
+            && said.contains(&format!("process {})", std::process::id())),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(&journal).unwrap(), before);
+    // Another shard is not held.
+    Journal::open(dir.path(), &study, Shard { index: 2, count: 2 }).unwrap();
+    drop(first);
+    let (_, done) = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap();
+    assert_eq!(done.len(), 1);
+}
+
+/// A last line cut by a crash is dropped, the head line too (the journal starts again);
+/// a run that is not one of the shard's is the user's input, named by line.
+#[test]
+fn a_torn_last_line_is_dropped_and_a_foreign_run_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = study();
+    let (mut j, _) = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap();
+    j.append(&runs(&study)[0]).unwrap();
+    drop(j);
+    let path = dir.path().join("shard-1-of-1.runs.jsonl");
+    let whole = std::fs::read_to_string(&path).unwrap();
+    let lines: Vec<&str> = whole.lines().collect();
+
+    // The run's line without its newline: cut.
+    std::fs::write(&path, format!("{}\n{}", lines[0], lines[1])).unwrap();
+    let (_, done) = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap();
+    assert!(done.is_empty());
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        format!("{}\n", lines[0])
+    );
+
+    // Half a head line: the journal starts again.
+    std::fs::write(&path, &lines[0][..10]).unwrap();
+    let (_, done) = Journal::open(dir.path(), &study, Shard::WHOLE).unwrap();
+    assert!(done.is_empty());
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        format!("{}\n", lines[0])
+    );
+
+    // Run 99999999 of a 6-run study, and a run of another shard.
+    for (line, shard) in [
+        (
+            lines[1].replace("\"run\":0", "\"run\":99999999"),
+            Shard::WHOLE,
+        ),
+        (lines[1].to_string(), Shard { index: 2, count: 2 }),
+    ] {
+        let head = lines[0].replace("\"1/1\"", &format!("\"{}/{}\"", shard.index, shard.count));
+        let path = dir.path().join(format!("{}.runs.jsonl", shard.tag()));
+        std::fs::write(&path, format!("{head}\n{line}\n")).unwrap();
+        let e = Journal::open(dir.path(), &study, shard).unwrap_err();
+        assert!(matches!(e, ResultsError::NotThisStudy(_)), "{e}");
+        assert!(
+            e.to_string().contains(&format!(
+                "runs.jsonl:2: run {} is not a run of shard {}/{} of this study (6 runs)",
+                if shard == Shard::WHOLE { 99999999 } else { 0 },
+                shard.index,
+                shard.count
+            )),
+            "{e}"
+        );
+    }
+}

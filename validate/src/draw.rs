@@ -68,7 +68,23 @@ pub struct SeedPlan {
     pub base: u64,
 }
 
+/// Largest `base + draws` of a plan.
+// assumed: V-1.2.1 moves its start by 25 h per draw offset; 10 000 offsets are 28.5
+// years, which keeps every draw's start (2023 + 28.5) inside the scenarios' range (before
+// 2100) and every seed far from the end of u64 (a base near it gave no draw at all).
+pub const MAX_OFFSET: u64 = 10_000;
+
 impl SeedPlan {
+    /// `draws` draws from offset `base`: `base + draws` at most [`MAX_OFFSET`].
+    pub fn new(draws: u64, base: u64) -> Result<Self, String> {
+        match base.checked_add(draws) {
+            Some(end) if draws >= 1 && end <= MAX_OFFSET => Ok(Self { draws, base }),
+            _ => Err(format!(
+                "--seeds {draws} --seed-base {base}: the draws need 1 <= seeds and seed-base + seeds <= {MAX_OFFSET}"
+            )),
+        }
+    }
+
     /// The plan's draws, one run each.
     pub fn each(self) -> impl Iterator<Item = Draw> {
         (self.base..self.base.saturating_add(self.draws)).map(Draw::one)

@@ -13,6 +13,7 @@ mod study;
 pub(crate) mod synth;
 mod validate;
 
+use crate::bad_input::BadInput;
 use crate::cli::{
     Cli, Command, MonitorAction, ScenarioRun, ScenariosAction, StudyAction, ValidateSuite,
 };
@@ -113,10 +114,10 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             out.as_deref(),
             force,
             data,
-            seeds.map(|draws| SeedPlan {
-                draws,
-                base: seed_base.unwrap_or(0),
-            }),
+            seeds
+                .map(|draws| SeedPlan::new(draws, seed_base.unwrap_or(0)))
+                .transpose()
+                .map_err(BadInput)?,
         ),
         Command::Validate {
             suite:

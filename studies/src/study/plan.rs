@@ -42,6 +42,11 @@ impl Shard {
         (self.index - 1..total).step_by(self.count as usize)
     }
 
+    /// Whether run `run` of a study of `total` runs is one of this shard's.
+    pub fn holds(self, run: u64, total: u64) -> bool {
+        run < total && run % self.count == self.index - 1
+    }
+
     /// `shard-<i>-of-<n>`: the stem of its files.
     pub fn tag(self) -> String {
         format!("shard-{}-of-{}", self.index, self.count)

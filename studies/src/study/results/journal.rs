@@ -1,10 +1,12 @@
 //! A shard's journal: the runs it finished, one JSON line each, flushed as they finish,
-//! so that a rerun after a crash makes only the missing runs.
+//! so that a rerun after a crash makes only the missing runs. One process at a time holds
+//! a shard ([`ShardLock`]): a second (a requeued Slurm task overlapping the first) is
+//! refused before it touches the journal.
 
 use super::{ResultsError, io};
 use crate::study::{RunResult, Shard, Study};
 use serde::{Deserialize, Serialize};
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::path::{Path, PathBuf};
 
 /// One JSON line (a journal's own records always serialise).
@@ -31,6 +33,58 @@ struct JournalRun {
 pub struct Journal {
     path: PathBuf,
     file: std::fs::File,
+    /// Held as long as the journal is open.
+    _lock: ShardLock,
+}
+
+/// An exclusive lock on `shard-<i>-of-<n>.lock` (`flock`), which the operating system
+/// releases when the process ends however it ends (no stale lock after a kill or a lost
+/// node); the holder's host and process id are written inside for the message that
+/// refuses a second holder.
+#[derive(Debug)]
+struct ShardLock {
+    _file: std::fs::File,
+}
+
+impl ShardLock {
+    fn take(dir: &Path, shard: Shard) -> Result<Self, ResultsError> {
+        let path = dir.join(format!("{}.lock", shard.tag()));
+        let mut file = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(false)
+            .open(&path)
+            .map_err(|e| io("write", &path, e))?;
+        match file.try_lock() {
+            Ok(()) => {}
+            Err(std::fs::TryLockError::WouldBlock) => {
+                let mut holder = String::new();
+                let _ = (&file).take(200).read_to_string(&mut holder);
+                return Err(ResultsError::Busy(format!(
+                    "{}: shard {}/{} is being made by another process ({}); wait for it, or \
+                     stop it, before running this shard again",
+                    path.display(),
+                    shard.index,
+                    shard.count,
+                    holder.trim()
+                )));
+            }
+            Err(std::fs::TryLockError::Error(e)) => return Err(io("lock", &path, e)),
+        }
+        let host = std::fs::read_to_string("/proc/sys/kernel/hostname")
+            .map_or_else(|_| "an unknown host".to_string(), |h| h.trim().to_string());
+        file.set_len(0)
+            .and_then(|()| writeln!(file, "host {host}, process {}", std::process::id()))
+            .map_err(|e| io("write", &path, e))?;
+        Ok(Self { _file: file })
+    }
+}
+
+/// Whether the file at `path` goes on past byte `end` (a line ending there has its
+/// newline: it was written whole).
+fn goes_on_past(path: &Path, end: u64) -> bool {
+    std::fs::metadata(path).is_ok_and(|m| m.len() > end)
 }
 
 /// The journal's path in `dir`.
@@ -39,13 +93,16 @@ fn journal_path(dir: &Path, shard: Shard) -> PathBuf {
 }
 
 impl Journal {
-    /// Open (or start) the journal of `shard` of `study` in `dir`; the runs it holds. A
-    /// journal of another study is an error; a last line cut by a crash is dropped.
+    /// Open (or start) the journal of `shard` of `study` in `dir`, holding the shard's
+    /// lock; the runs it holds. A journal of another study, or naming a run that is not
+    /// one of this shard's, is an error; a last line cut by a crash is dropped (the head
+    /// line too: the journal starts again).
     pub fn open(
         dir: &Path,
         study: &Study,
         shard: Shard,
     ) -> Result<(Self, Vec<RunResult>), ResultsError> {
+        let lock = ShardLock::take(dir, shard)?;
         let path = journal_path(dir, shard);
         let head = JournalHead {
             study: study.text.clone(),
@@ -56,8 +113,12 @@ impl Journal {
         if path.exists() {
             let reader =
                 BufReader::new(std::fs::File::open(&path).map_err(|e| io("read", &path, e))?);
-            for (n, line) in reader.split(b'\n').enumerate() {
+            let mut lines = reader.split(b'\n').enumerate().peekable();
+            while let Some((n, line)) = lines.next() {
                 let line = line.map_err(|e| io("read", &path, e))?;
+                if lines.peek().is_none() && !goes_on_past(&path, keep_bytes + line.len() as u64) {
+                    break; // the last line, cut by a crash
+                }
                 if n == 0 {
                     let found: JournalHead = serde_json::from_slice(&line).map_err(|_| {
                         ResultsError::NotThisStudy(format!(
@@ -76,6 +137,17 @@ impl Journal {
                     let Ok(run) = serde_json::from_slice::<JournalRun>(&line) else {
                         break; // cut by a crash: the run is made again
                     };
+                    if !shard.holds(run.run, study.runs()) {
+                        return Err(ResultsError::NotThisStudy(format!(
+                            "{}:{}: run {} is not a run of shard {}/{} of this study ({} runs)",
+                            path.display(),
+                            n + 1,
+                            run.run,
+                            shard.index,
+                            shard.count,
+                            study.runs()
+                        )));
+                    }
                     done.push(RunResult {
                         run: run.run,
                         values: run.bits.iter().map(|&b| f64::from_bits(b)).collect(),
@@ -96,7 +168,14 @@ impl Journal {
             file.set_len(keep_bytes)
         };
         written.map_err(|e| io("write", &path, e))?;
-        Ok((Self { path, file }, done))
+        Ok((
+            Self {
+                path,
+                file,
+                _lock: lock,
+            },
+            done,
+        ))
     }
 
     /// Append a finished run and flush it to disk.

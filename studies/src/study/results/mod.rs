@@ -36,6 +36,9 @@ pub enum ResultsError {
     /// The file is not this study's (the user's input: another `--out`, another file).
     #[error("{0}")]
     NotThisStudy(String),
+    /// Another process is making the shard (the user's input: a second run of it).
+    #[error("{0}")]
+    Busy(String),
     /// Reading or writing failed.
     #[error("{0}")]
     Io(String),
