@@ -136,3 +136,56 @@ fn the_largest_allowed_scenario_gets_its_figures() {
     assert!(dry.contains("disk       more than"), "{dry}");
     assert!(!dir.path().join("out").exists());
 }
+
+/// The channel-samples figure of the dry run's `time` line.
+fn channel_samples(dry_run: &str) -> f64 {
+    let line = dry_run
+        .lines()
+        .find(|l| l.starts_with("time "))
+        .unwrap_or_else(|| panic!("no time line in:\n{dry_run}"));
+    let open = line.find('(').expect("a (N channel-samples) figure") + 1;
+    line[open..]
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap()
+}
+
+/// Issue #33 (6): 5000 multipath taps on 2 s of signal ran for minutes, and `--dry-run`
+/// said nothing about time. The taps are bounded (64), and the dry run's time estimate
+/// counts every reflected path as one more channel: 64 taps on every link make it 65
+/// times the direct paths' work.
+#[test]
+fn multipath_taps_are_bounded_and_the_dry_run_counts_them() {
+    let dir = tempfile::tempdir().unwrap();
+    let s = scenario(dir.path(), 2, 4.0e6, "ci8", 8);
+    let plain = std::fs::read_to_string(&s).unwrap();
+    let direct = channel_samples(&skyforge_ok(
+        &["synth", &s, "--out", "out", "--dry-run"],
+        dir.path(),
+    ));
+    let with_taps = |n: usize| {
+        let taps = "\n[[errors.multipath.taps]]\ndelay_m = 5.0\nrelative_amplitude = 0.1\n";
+        std::fs::write(&s, format!("{plain}{}", taps.repeat(n))).unwrap();
+    };
+    with_taps(64);
+    let dry = skyforge_ok(&["synth", &s, "--out", "out", "--dry-run"], dir.path());
+    // Printed to four figures.
+    let ratio = channel_samples(&dry) / direct;
+    assert!((ratio - 65.0).abs() < 65.0e-3, "{ratio}: {dry}");
+    assert!(dry.contains("at most about"), "{dry}");
+    with_taps(65);
+    let o = skyforge_limited(
+        &["synth", &s, "--out", "out", "--dry-run"],
+        dir.path(),
+        MEMORY_LIMIT_BYTES,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert!(
+        text(&o).contains("errors.multipath.taps") && text(&o).contains("at most 64"),
+        "{}",
+        text(&o)
+    );
+    assert!(!dir.path().join("out").exists());
+}

@@ -7,6 +7,12 @@ use skyforge_signals::synth::Budget;
 use skyforge_signals::synth::SynthSession;
 use skyforge_signals::synth::recording_name;
 
+/// Rendering throughput the time estimate assumes: channel-samples (one path of one
+/// satellite at one antenna, one sample) per CPU-second.
+// assumed: issue #14's end-to-end figure on this project's 2-core VM writing ci16 to disk
+// (5.7e8-5.9e8 per CPU-second, BENCHMARKS.md); other machines differ, hence "about".
+const CHANNEL_SAMPLES_PER_CPU_S: f64 = 5.7e8;
+
 /// RINEX observation bytes per satellite and epoch, at most (one record line).
 const RINEX_BYTES_PER_RECORD: u64 = 80;
 /// RINEX observation bytes per epoch line and the header, at most.
@@ -54,6 +60,49 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
         "memory     at most {} ({threads} rendering threads; RAYON_NUM_THREADS sets them)",
         human(b.memory_bytes)
     );
+    if session.renders_samples() {
+        let work = channel_samples(scenario, session);
+        let seconds = work / CHANNEL_SAMPLES_PER_CPU_S / threads as f64;
+        println!(
+            "time       at most about {} to render ({work:.3e} channel-samples: every \
+             satellite at every antenna as if always visible, each reflected path one more; \
+             at {CHANNEL_SAMPLES_PER_CPU_S:.1e} per CPU-second, measured on a 2-core VM, \
+             BENCHMARKS.md)",
+            duration(seconds)
+        );
+    }
+}
+
+/// Paths mixed over the run, times samples: per band, its sample rate x the duration x,
+/// for every antenna and satellite of the band, the direct path and the reflected paths
+/// that apply to the link.
+fn channel_samples(scenario: &Scenario, session: &SynthSession<'_>) -> f64 {
+    let sats = session.satellites();
+    let multipath = &scenario.errors.multipath;
+    let samples = session.world().duration_s * session.signal_config().sample_rate_hz;
+    let paths: usize = session
+        .bands()
+        .iter()
+        .flat_map(|band| &sats[band.first..band.first + band.count])
+        .flat_map(|&sat| {
+            session
+                .world()
+                .antennas
+                .iter()
+                .map(move |ant| 1 + multipath.paths_of(&ant.name, sat))
+        })
+        .sum();
+    samples * paths as f64
+}
+
+/// Seconds as a human reads them: seconds, minutes, hours or days.
+fn duration(seconds: f64) -> String {
+    match seconds {
+        s if s < 120.0 => format!("{s:.1} s"),
+        s if s < 7200.0 => format!("{:.1} min", s / 60.0),
+        s if s < 172_800.0 => format!("{:.1} h", s / 3600.0),
+        s => format!("{:.1} days", s / 86_400.0),
+    }
 }
 
 /// RINEX observation files of every antenna (truth, plus the observables at the
