@@ -448,7 +448,13 @@ fn bad_study_files_get_one_located_error_and_nothing_is_run() {
             "needs two antennas or more (the scenario has 1)",
         ),
         (
-            // Without the C/N0 parameter, which would create the table.
+            // A parameter may not add a table: this one made every run signal-level.
+            good.replace("t-5.4-3.toml\"", "ground-static\""),
+            "small.toml:13:10: parameters[1].values",
+            "the base scenario has no [signal] table",
+        ),
+        (
+            // Without the C/N0 parameter.
             good.replace("t-5.4-3.toml\"", "ground-static\"")
                 .split("\n[[parameters]]\nkey = \"signal.")
                 .next()

@@ -309,8 +309,11 @@ fn base_scenario(arg: &str, base_dir: &Path) -> Result<(String, String, PathBuf)
     }
 }
 
-/// Set the dotted `key` (segments `name` or `name[index]`) of `doc` to `value`, creating
-/// missing tables on the way.
+/// Set the dotted `key` (segments `name` or `name[index]`) of `doc` to `value`. Every
+/// table on the way must be in the base scenario (the last field may be absent: it then
+/// replaces its default): a study varies the base's settings and adds no table, since a
+/// table can change what a run is (`signal.cn0_dbhz` on a scenario without `[signal]`
+/// made every run a signal-level one).
 fn set_key(doc: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), String> {
     let segments: Vec<&str> = key.split('.').collect();
     let mut table = doc;
@@ -322,9 +325,14 @@ fn set_key(doc: &mut toml::Table, key: &str, value: toml::Value) -> Result<(), S
                 table.insert(name.to_string(), value);
                 return Ok(());
             }
-            None => table
-                .entry(name.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new())),
+            None => table.get_mut(name).ok_or_else(|| {
+                let path = segments[..=n].join(".");
+                format!(
+                    "the base scenario has no [{path}] table; a study varies the base's settings \
+                     and adds no table (a table can change what a run is: [signal] makes it \
+                     signal-level): add [{path}] to the scenario"
+                )
+            })?,
             Some(i) => {
                 let array = table
                     .get_mut(name)
@@ -369,7 +377,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn keys_reach_nested_tables_and_arrays_of_tables() {
+    fn keys_reach_nested_tables_and_arrays_of_tables_but_add_no_table() {
         let mut doc: toml::Table =
             toml::from_str("[signal]\ncn0_dbhz = 45.0\n[[antennas]]\nname = \"a\"\n").unwrap();
         set_key(&mut doc, "signal.cn0_dbhz", toml::Value::Float(40.0)).unwrap();
@@ -379,15 +387,18 @@ mod tests {
             toml::Value::String("b".into()),
         )
         .unwrap();
-        set_key(
+        set_key(&mut doc, "signal.if_hz", toml::Value::Float(1.0e3)).unwrap();
+        let e = set_key(
             &mut doc,
             "errors.multipath.enabled",
             toml::Value::Boolean(true),
         )
-        .unwrap();
+        .unwrap_err();
+        assert!(e.contains("the base scenario has no [errors] table"), "{e}");
         assert_eq!(doc["signal"]["cn0_dbhz"].as_float(), Some(40.0));
+        assert_eq!(doc["signal"]["if_hz"].as_float(), Some(1.0e3));
         assert_eq!(doc["antennas"][0]["name"].as_str(), Some("b"));
-        assert_eq!(doc["errors"]["multipath"]["enabled"].as_bool(), Some(true));
+        assert!(!doc.contains_key("errors"));
         let e = set_key(&mut doc, "antennas[3].name", toml::Value::Integer(1)).unwrap_err();
         assert!(e.contains("1 entries"), "{e}");
         assert!(set_key(&mut doc, "signal.cn0_dbhz.x", toml::Value::Integer(1)).is_err());
