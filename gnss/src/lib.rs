@@ -7,6 +7,7 @@
 // Library code returns errors instead of panicking; tests may unwrap.
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
+pub mod antenna_name;
 pub mod codes;
 pub mod navmsg;
 pub mod nco;

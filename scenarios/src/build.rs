@@ -202,7 +202,7 @@ impl Scenario {
 
     /// The platform of `[platform]`, with its CSV tables checked to cover the span.
     fn platform(&self, origin: &TimeOrigin) -> Result<Platform, ScenarioError> {
-        let located = |e: PlatformError| self.located(self.platform_invalid(e));
+        let located = |e: PlatformError| self.platform_error(e);
         let mut platform =
             Platform::new(&self.platform, origin, &self.base_dir).map_err(located)?;
         let end_s = self.time.duration_s;
@@ -221,6 +221,12 @@ impl Scenario {
             platform.window(0.0, end_s).map_err(located)?;
         }
         Ok(platform)
+    }
+
+    /// A platform error met while building or moving the platform (an orbit that decays
+    /// during the run), located at the field that caused it: the scenario's fault.
+    pub fn platform_error(&self, error: PlatformError) -> ScenarioError {
+        self.located(self.platform_invalid(error))
     }
 
     /// A platform error, attributed to the field that caused it.

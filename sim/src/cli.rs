@@ -477,7 +477,7 @@ pub struct ReceiveArgs {
     #[arg(long, value_name = "HZ")]
     pub fs: Option<f64>,
     /// Intermediate frequency of raw files (Hz; default 0).
-    #[arg(long = "if", value_name = "HZ")]
+    #[arg(long = "if", value_name = "HZ", allow_negative_numbers = true)]
     pub if_hz: Option<f64>,
     /// Signal of raw files: gps-l1ca or bds-b1i.
     #[arg(long, value_name = "S")]

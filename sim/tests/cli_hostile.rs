@@ -392,3 +392,82 @@ fn a_seed_plan_past_the_largest_offset_is_refused() {
         );
     }
 }
+
+/// Issue #33 (14): these exited 1, and the SigMF antenna names with a message naming
+/// neither the file nor the key; each is the user's input: exit 2, the file and the field
+/// named, nothing written.
+#[test]
+fn bad_input_beyond_the_scenario_exits_2_naming_the_file_and_field() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    two_second_recording(d);
+    let sim = d.join("sim");
+    std::fs::hard_link(
+        sim.join("ant1.gps-l1ca.sigmf-data"),
+        sim.join("x.sigmf-data"),
+    )
+    .unwrap();
+    std::fs::hard_link(sim.join("ant1.gps-l1ca.sigmf-data"), d.join("raw.bin")).unwrap();
+    let meta: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(sim.join("ant1.gps-l1ca.sigmf-meta")).unwrap(),
+    )
+    .unwrap();
+    let long = "a".repeat(10_000);
+    for name in ["../../evil", "/abs", "a/b", "", ".", &long, "a\0b", "a\nb"] {
+        let mut json = meta.clone();
+        json["global"]["skyforge:antenna"] = name.into();
+        std::fs::write(sim.join("x.sigmf-meta"), json.to_string()).unwrap();
+        refused(
+            d,
+            &["receive", "sim/x.sigmf-meta", "--out", "rx"],
+            &[
+                "sim/x.sigmf-meta: global skyforge:antenna is",
+                "an antenna name",
+            ],
+        );
+    }
+
+    // A negative IF is a value (clap read it as an option), checked against the rate.
+    refused(
+        d,
+        &[
+            "receive", "raw.bin", "--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca", "--if",
+            "-3e6", "--out", "rx",
+        ],
+        &["--if", "-3000000", "fs / 2"],
+    );
+
+    // An orbit that decays during the run: the scenario's platform.leo, located.
+    let scenario = short_scenario(d, "thesis-leo", 3000);
+    let text = std::fs::read_to_string(&scenario).unwrap();
+    let decaying = text
+        .replace(
+            "semi_major_axis_km = 6971.593",
+            "semi_major_axis_km = 6528.137",
+        )
+        .replace("eccentricity = 0.000846", "eccentricity = 0.0")
+        .replace("area_m2 = 1.0 ", "area_m2 = 10.0 ");
+    assert_ne!(decaying, text);
+    std::fs::write(&scenario, decaying).unwrap();
+    refused(
+        d,
+        &["run", "short.toml", "--out", "decayed"],
+        &["short.toml:", "platform.leo", "orbit decayed"],
+    );
+    std::fs::remove_file(&scenario).unwrap();
+
+    // A study's output directory below a file.
+    support::small_study(d, 1);
+    std::fs::write(d.join("afile"), "").unwrap();
+    for command in ["run", "slurm"] {
+        let mut args = vec!["study", command, "small.toml", "--out", "afile/x"];
+        if command == "slurm" {
+            args.extend(["--shards", "2"]);
+        }
+        refused(
+            d,
+            &args,
+            &["cannot create", "afile is a file, not a directory"],
+        );
+    }
+}

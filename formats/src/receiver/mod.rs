@@ -21,11 +21,11 @@ use anyhow::{Context, bail};
 use nmea_log::NmeaLog;
 use pvt_csv::PvtCsv;
 use receiver_h5::ReceiverH5;
+use skyforge_gnss::antenna_name::check_antenna_name;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
 use skyforge_receiver::pipeline::EpochReport;
 use skyforge_receiver::session::{EpochSink, RinexObsFiles, SinkError};
-use skyforge_signals::antenna::check_antenna_name;
 use std::path::Path;
 
 /// The fixes of every antenna, one row per antenna and epoch.

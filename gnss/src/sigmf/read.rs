@@ -4,6 +4,7 @@
 
 use super::datetime::parse_utc;
 use super::keys;
+use crate::antenna_name::check_antenna_name;
 use crate::sample_format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
@@ -97,7 +98,7 @@ impl ParsedMeta {
         }
         let frequency_hz = c0.f64(keys::FREQUENCY)?;
         let if_hz = g.f64(keys::IF_HZ)?;
-        let antenna = g.str(keys::ANTENNA)?.map(str::to_owned);
+        let antenna = g.antenna_name()?;
         let first_capture = c0.capture(frequency_hz)?;
         let trailing_bytes = g.u64(keys::TRAILING_BYTES)?;
         let antenna_position_body_m = g.vec3(keys::ANTENNA_POSITION_BODY_M)?;
@@ -198,6 +199,19 @@ impl Fields<'_> {
             .get(key)
             .map(|v| v.as_str().ok_or_else(|| self.bad(key, v, "a string")))
             .transpose()
+    }
+
+    /// The antenna name (`skyforge:antenna`), if present: it names output files, so it
+    /// keeps [`check_antenna_name`].
+    fn antenna_name(&self) -> Result<Option<String>, MetaError> {
+        let Some(v) = self.obj.get(keys::ANTENNA) else {
+            return Ok(None);
+        };
+        let name = self.str(keys::ANTENNA)?.unwrap_or_default();
+        check_antenna_name(name).map_err(|rule| {
+            self.bad(keys::ANTENNA, v, &format!("an antenna name, which {rule}"))
+        })?;
+        Ok(Some(name.to_owned()))
     }
 
     /// The container named by `core:datatype`.

@@ -5,7 +5,7 @@ use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
-use skyforge_signals::truth::{GeometryChunk, epoch_count};
+use skyforge_signals::truth::{GeometryChunk, StreamError, epoch_count};
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
 
@@ -69,7 +69,10 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
             .join()
             .map_err(|_| anyhow::anyhow!("HDF5 writer thread panicked"))?;
         written.with_context(|| format!("writing {}", path.display()))?;
-        streamed.context("geometry")?;
+        streamed.map_err(|e| match e {
+            StreamError::Platform(p) => scenario.platform_error(p).into(),
+            e => anyhow::Error::new(e).context("geometry"),
+        })?;
         Ok(())
     })?;
     bar.finish_and_clear();

@@ -5,7 +5,7 @@ use crate::bad_input::BadInput;
 use crate::output::slurm_scripts::{
     SlurmJob, refuse_backslash, refuse_control_characters, written_by_skyforge,
 };
-use crate::output::whole_file;
+use crate::output::{staged_dir, whole_file};
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
@@ -61,7 +61,7 @@ pub fn run(path: &Path, out: &Path, shard: Option<&str>, force: bool) -> anyhow:
     if out.exists() && !out.is_dir() {
         return Err(BadInput(format!("--out {}: not a directory", out.display())).into());
     }
-    std::fs::create_dir_all(out).with_context(|| format!("cannot create {}", out.display()))?;
+    staged_dir::create_shared(out)?;
     let shard_file = shard_path(out, shard);
     let merged = out.join(MERGED_FILE);
     for target in std::iter::once(&shard_file).chain((shard == Shard::WHOLE).then_some(&merged)) {
@@ -273,7 +273,7 @@ pub fn slurm(
             whole_file::check_target(&p, force, "a Slurm script", written_by_skyforge)?;
         }
     }
-    std::fs::create_dir_all(&dir).with_context(|| format!("cannot create {}", dir.display()))?;
+    staged_dir::create_shared(&dir)?;
     let job = SlurmJob {
         skyforge: &exe,
         study: &study_path,

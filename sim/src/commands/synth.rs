@@ -204,7 +204,7 @@ pub fn synthesise(
                     progress: &mut |n| bar.inc(n as u64),
                 },
             )
-            .map_err(|e| anyhow::anyhow!("{e:#}"))?,
+            .map_err(|e| setup_error(scenario, e))?,
     };
     obs.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
@@ -284,11 +284,13 @@ fn write_geometry(scenario: &Scenario, path: &Path) -> anyhow::Result<()> {
     std::fs::write(path, text).with_context(|| writing(path))
 }
 
-/// A session that cannot be set up: a located scenario error for a bad setting.
+/// A session that cannot be set up or run: a located scenario error for a bad setting
+/// or a platform the scenario cannot move (an orbit that decays during the run).
 fn setup_error(scenario: &Scenario, e: SynthError) -> anyhow::Error {
     match e {
         SynthError::Invalid(invalid) => scenario.located(invalid).into(),
-        e => anyhow::anyhow!("{e}"),
+        SynthError::Platform(p) => scenario.platform_error(p).into(),
+        e => anyhow::anyhow!("{e:#}"),
     }
 }
 

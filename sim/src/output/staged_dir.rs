@@ -43,6 +43,20 @@ pub(super) fn remove_created(created: &[PathBuf]) {
     }
 }
 
+/// Create `dir` with its parents, for outputs written into it without staging (a study's
+/// directory, shared by its shards and resumed into). A path through a file, or one that
+/// cannot be created (permissions, a read-only file system), is the user's input.
+pub fn create_shared(dir: &Path) -> Result<(), BadInput> {
+    let cannot = |reason: String| BadInput(format!("cannot create {}: {reason}", dir.display()));
+    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+        return Err(cannot(format!(
+            "{} is a file, not a directory",
+            file.display()
+        )));
+    }
+    std::fs::create_dir_all(dir).map_err(|e| cannot(e.to_string()))
+}
+
 /// `--force` replaces only what skyforge wrote: bad input otherwise.
 fn refuse_foreign(target: &Path) -> anyhow::Result<()> {
     match manifest::refuse_replacing(target) {

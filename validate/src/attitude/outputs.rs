@@ -33,10 +33,10 @@ use skyforge_formats::attitude::{
 use skyforge_formats::truth::{NOMINAL_BODY_ATTR, TRUE_BODY_ATTR, TRUTH_H5, TruthFile};
 use skyforge_gnss::observation::{ObsReadError, read_obs_file};
 
+use skyforge_gnss::antenna_name::check_antenna_name;
 use skyforge_navigation::geometry_file::{BodyGeometryFile, GeometryFileError};
 use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::{Mat3, Vec3};
-use skyforge_signals::antenna::check_antenna_name;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
