@@ -3,7 +3,7 @@
 //! `skyforge attitude --estimate-geometry` writes the corrected one, and the attitude chain
 //! reads it: the one definition of the format, reader and writer together.
 
-use crate::attitude::BodyGeometry;
+use crate::attitude::{BodyGeometry, MAX_BASELINE_M};
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::bounded_read::read_text;
@@ -89,6 +89,15 @@ impl BodyGeometryFile {
                 a.name
             )));
         }
+        let far = |a: &&GeometryAntenna| Vec3::from(a.position_body_m).norm() > MAX_BASELINE_M;
+        if let Some(a) = file.antennas.iter().find(far) {
+            return Err(error(format!(
+                "antenna {}: position_body_m {:?} is {:e} m from the body origin; at most {MAX_BASELINE_M} m (antennas on one body)",
+                a.name,
+                a.position_body_m,
+                Vec3::from(a.position_body_m).norm()
+            )));
+        }
         Ok(file)
     }
 
@@ -127,6 +136,30 @@ mod tests {
             "{text}"
         );
         assert_eq!(BodyGeometryFile::read(&path).unwrap(), file);
+    }
+
+    /// A 1e300 m antenna was reported as "collinear" by the attitude chain; it is refused
+    /// where the file is read, naming the file and the antenna.
+    #[test]
+    fn an_antenna_beyond_the_body_is_refused_naming_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("geometry.toml");
+        for far in [1e300, 1000.5] {
+            let file = BodyGeometryFile::from_positions([
+                ("A".to_owned(), Vec3::new(0.0, 0.0, 0.0)),
+                ("B".to_owned(), Vec3::new(far, 0.0, 0.0)),
+            ]);
+            std::fs::write(&path, file.to_text("").unwrap()).unwrap();
+            let e = BodyGeometryFile::read(&path).unwrap_err().to_string();
+            assert!(
+                e.contains("geometry.toml")
+                    && e.contains("antenna B: position_body_m")
+                    && e.contains("at most 1000 m"),
+                "{e}"
+            );
+        }
+        let g = BodyGeometry::new(&[Vec3::new(1e300, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)]);
+        assert!(g.unwrap_err().to_string().contains("longer than 1000 m"));
     }
 
     #[test]

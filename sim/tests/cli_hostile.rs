@@ -427,6 +427,16 @@ fn bad_input_beyond_the_scenario_exits_2_naming_the_file_and_field() {
         );
     }
 
+    // A sample rate out of the receiver's range names the file and the key.
+    let mut json = meta.clone();
+    json["global"]["core:sample_rate"] = 1e15.into();
+    std::fs::write(sim.join("x.sigmf-meta"), json.to_string()).unwrap();
+    refused(
+        d,
+        &["receive", "sim/x.sigmf-meta", "--out", "rx"],
+        &["sim/x.sigmf-meta: the sample rate (core:sample_rate or --fs) is 1000000000000000 Hz"],
+    );
+
     // A negative IF is a value (clap read it as an option), checked against the rate.
     refused(
         d,
@@ -453,6 +463,15 @@ fn bad_input_beyond_the_scenario_exits_2_naming_the_file_and_field() {
         d,
         &["run", "short.toml", "--out", "decayed"],
         &["short.toml:", "platform.leo", "orbit decayed"],
+    );
+    std::fs::remove_file(&scenario).unwrap();
+
+    // A scenario too short to calibrate on: its duration, located.
+    let scenario = short_scenario(d, "interop-gps-static", 5);
+    refused(
+        d,
+        &["calibrate", "short.toml", "--out", "cal"],
+        &["short.toml:", "time.duration_s = 5", "at least 20 s"],
     );
     std::fs::remove_file(&scenario).unwrap();
 

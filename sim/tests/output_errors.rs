@@ -197,3 +197,49 @@ fn absurd_receiver_settings_are_refused_before_allocating() {
         );
     }
 }
+
+/// Issue #33 (15): a full disk under `receive` (HDF5's error buried the path) and under
+/// `validate thesis` ("No space left on device" alone) names the file that could not be
+/// written.
+#[test]
+fn a_full_disk_under_receive_and_validate_names_the_file() {
+    let tmp = tempfile::tempdir().expect("temp dir");
+    let d = tmp.path();
+    // 15 s: long enough for the receiver to time its satellites and write epochs.
+    short_scenario(d, SCENARIO, 15);
+    let o = skyforge(&["synth", "short.toml", "--out", "sim"], d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let disk = Tmpfs::mount(&d.join("small"), "64k");
+    let o = skyforge(
+        &[
+            "receive",
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "--out",
+            "small/rx",
+        ],
+        d,
+    );
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    let first = msg.lines().next().unwrap_or_default();
+    assert!(
+        first.starts_with("error: cannot write small/.rx.partial-")
+            && msg.contains("No space left"),
+        "{msg}"
+    );
+    assert!(listing(&disk.0).is_empty(), "{:?}", listing(&disk.0));
+    // One page: results.json does not fit.
+    let tiny = Tmpfs::mount(&d.join("tiny"), "4k");
+    let o = skyforge(
+        &["validate", "thesis", "--only", "T-3.2", "--out", "tiny/v"],
+        d,
+    );
+    let msg = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{msg}");
+    assert!(
+        msg.contains("error: cannot write tiny/.v.partial-")
+            && msg.contains("/results.json: No space left on device"),
+        "{msg}"
+    );
+    assert!(listing(&tiny.0).is_empty(), "{:?}", listing(&tiny.0));
+}

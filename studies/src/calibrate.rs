@@ -21,6 +21,8 @@ use std::path::Path;
 
 /// Seconds at the start of the run left out: acquisition, pull-in and loop narrowing.
 pub const SETTLING_S: f64 = 10.0;
+/// The shortest run calibrated on: the settling and 10 s of observations.
+pub const MIN_DURATION_S: f64 = SETTLING_S + 10.0;
 
 /// Why a calibration could not be made.
 #[derive(Debug, thiserror::Error)]
@@ -30,7 +32,7 @@ pub enum CalibrateError {
     #[error("comparing antenna {antenna} with its truth: {error}")]
     Compare { antenna: String, error: ObsError },
     #[error(
-        "the run is {0} s long: at least {SETTLING_S} s of settling and 10 s of observations are needed"
+        "the run is {0} s long: at least {MIN_DURATION_S} s ({SETTLING_S} s of settling, then observations) are needed"
     )]
     TooShort(f64),
 }
@@ -103,7 +105,7 @@ fn formula_variances(
 /// can take gigabytes).
 pub fn calibrate(scenario: &Scenario, work: &Path) -> Result<Calibration, CalibrateError> {
     let duration_s = scenario.time.duration_s;
-    if duration_s < SETTLING_S + 10.0 {
+    if duration_s < MIN_DURATION_S {
         return Err(CalibrateError::TooShort(duration_s));
     }
     let chain = synth_and_receive(scenario, work, None)?;

@@ -26,7 +26,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::System;
 use skyforge_receiver::pipeline::EpochReport;
 use skyforge_receiver::session::{EpochSink, RinexObsFiles, SinkError};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 /// The fixes of every antenna, one row per antenna and epoch.
 pub const PVT_CSV: &str = "pvt.csv";
@@ -57,6 +57,8 @@ pub struct ReceiverOutputs {
     csv: PvtCsv,
     nmea: Vec<NmeaLog>,
     h5: ReceiverH5,
+    /// Where `h5` is written (HDF5's own errors bury the path in their text).
+    h5_path: PathBuf,
     summary: Summary,
 }
 
@@ -103,6 +105,7 @@ impl ReceiverOutputs {
             csv: PvtCsv::create(&dir.join(PVT_CSV))?,
             nmea,
             h5,
+            h5_path,
             summary: Summary {
                 epochs: 0,
                 observations: vec![0; names.len()],
@@ -128,7 +131,10 @@ impl ReceiverOutputs {
             );
         }
         self.rinex.write_epoch(report)?;
-        self.h5.write_epoch(report)?;
+        let h5_path = &self.h5_path;
+        self.h5
+            .write_epoch(report)
+            .with_context(|| format!("cannot write {}", h5_path.display()))?;
         for af in &report.fixes {
             let Ok(fix) = &af.fix else {
                 continue;
@@ -152,7 +158,10 @@ impl ReceiverOutputs {
         for log in self.nmea {
             log.finish()?;
         }
-        self.h5.finish()?;
+        let h5_path = self.h5_path;
+        self.h5
+            .finish()
+            .with_context(|| format!("cannot write {}", h5_path.display()))?;
         Ok(self.summary)
     }
 }

@@ -46,6 +46,11 @@ pub use ukf::UkfAttitude;
 
 /// Shortest body-frame baseline accepted (m): anything shorter is treated as zero.
 pub const MIN_BASELINE_M: f64 = 1e-4;
+/// Longest body-frame baseline accepted (m).
+// assumed: antennas on one rigid body (the thesis's 1 m, ships and aircraft up to about
+// 100 m); 1 km leaves room and keeps products of baselines far from overflow (a 1e300 m
+// antenna was reported as "collinear").
+pub const MAX_BASELINE_M: f64 = 1000.0;
 /// Smallest sine of the angle between two body baselines for a geometry to count as not
 /// collinear (1e-3: 0.06 deg; the roll about a nearly common axis then has a variance
 /// about 1e6 times that of the other angles, which is no attitude any more).
@@ -94,7 +99,7 @@ pub enum AttitudeError {
 }
 
 /// The body-frame baselines `B_0` (3 x m, thesis eq. 2.5-7), m >= 1, metres. Validated:
-/// finite, each at least [`MIN_BASELINE_M`] long and, for m >= 2, not all collinear (some
+/// finite, each at least [`MIN_BASELINE_M`] and at most [`MAX_BASELINE_M`] long and, for m >= 2, not all collinear (some
 /// pair at least [`MIN_BASELINE_SINE`] apart).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BodyGeometry {
@@ -117,6 +122,13 @@ impl BodyGeometry {
             if b.norm() < MIN_BASELINE_M {
                 return Err(AttitudeError::Geometry(format!(
                     "baseline {} is {} m long, shorter than {MIN_BASELINE_M} m",
+                    i + 1,
+                    b.norm()
+                )));
+            }
+            if b.norm() > MAX_BASELINE_M {
+                return Err(AttitudeError::Geometry(format!(
+                    "baseline {} is {:e} m long, longer than {MAX_BASELINE_M} m (antennas on one body)",
                     i + 1,
                     b.norm()
                 )));

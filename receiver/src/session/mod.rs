@@ -170,16 +170,17 @@ fn open_bands(
         reports: Vec::new(),
         antenna_names: Vec::new(),
     };
-    let fs = groups
+    let first = groups
         .first()
         .and_then(|g| g.2.first())
-        .map(|r| r.sample_rate_hz)
         .ok_or_else(|| SessionError::Input("no sample files given".into()))?;
+    let fs = first.sample_rate_hz;
     for (signal, _, _) in &groups {
         let min = signal.chip_rate_hz();
         if !(fs >= min && fs <= MAX_SAMPLE_RATE_HZ) {
             return Err(SessionError::Input(format!(
-                "sample rate {fs} Hz: {} needs {min} to {MAX_SAMPLE_RATE_HZ} Hz",
+                "{}: the sample rate (core:sample_rate or --fs) is {fs} Hz; {} needs {min} to {MAX_SAMPLE_RATE_HZ} Hz",
+                first.source_path().display(),
                 signal.name()
             )));
         }

@@ -4,11 +4,24 @@
 use crate::cli::ScenarioRun;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
-use skyforge_studies::calibrate::{SETTLING_S, calibrate as measure};
+use skyforge_orbits::check::Invalid;
+use skyforge_studies::calibrate::{MIN_DURATION_S, SETTLING_S, calibrate as measure};
 
 /// Calibrate on the scenario `args` names.
 pub fn calibrate(args: &ScenarioRun) -> anyhow::Result<()> {
     let scenario = super::resolve(args)?;
+    let duration_s = scenario.time.duration_s;
+    if duration_s < MIN_DURATION_S {
+        return Err(scenario
+            .located(Invalid::new(
+                "time.duration_s",
+                duration_s,
+                format!(
+                    "at least {MIN_DURATION_S} s to calibrate on ({SETTLING_S} s of settling, then observations)"
+                ),
+            ))
+            .into());
+    }
     let staged = StagedDir::create(&args.out, args.force)?;
     let work = staged.file("work");
     std::fs::create_dir(&work).with_context(|| format!("cannot create {}", work.display()))?;

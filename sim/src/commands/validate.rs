@@ -51,7 +51,9 @@ pub fn thesis(
     let outcome = thesis::run(&opts, |table| eprintln!("validate: running {table}"))?;
     print_table(&outcome.results.rows, &mut std::io::stdout().lock())?;
     if let Some(staged) = staged {
-        write_json(&outcome.results, &staged.file("results.json"))?;
+        let path = staged.file("results.json");
+        write_json(&outcome.results, &path)
+            .with_context(|| format!("cannot write {}", path.display()))?;
         let mut written = vec!["results.json"];
         if !outcome.curves.is_empty() {
             let curves = CurvesFile {
