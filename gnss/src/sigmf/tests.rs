@@ -30,7 +30,7 @@ fn odd() -> RecordingMeta {
         centre_frequency_hz: 1561.098e6 - 250e3,
         if_hz: 250e3,
         datetime_utc: "2024-02-29T23:59:59.999999999Z".into(),
-        antenna_name: "left \"wing\" ü".into(),
+        antenna_name: "left \"wing\" #1".into(),
         antenna_position_body_m: [-0.125, 0.3, 1e-9],
         scenario: "odd/scénario".into(),
         seed: u64::MAX,
@@ -100,7 +100,7 @@ const ODD_TEXT: &str = r#"{
     "core:recorder": "skyforge 0.1.0",
     "core:sample_rate": 2600000.0,
     "core:version": "1.0.0",
-    "skyforge:antenna": "left \"wing\" ü",
+    "skyforge:antenna": "left \"wing\" #1",
     "skyforge:antenna_position_body_m": [
       -0.125,
       0.3,
@@ -262,11 +262,18 @@ fn epoch() -> impl Strategy<Value = Epoch> {
         .prop_map(|(y, mo, d, h, mi, s, ns)| Epoch::from_gregorian_utc(y, mo, d, h, mi, s, ns))
 }
 
+/// An antenna name as `crate::antenna_name::check_antenna_name` allows: 1 to 60 printable ASCII characters
+/// but `/` and `\`, no leading or trailing space, not `.` or `..`.
+fn antenna_name() -> impl Strategy<Value = String> {
+    "[!-.0-\\[\\]-~]([ !-.0-\\[\\]-~]{0,58}[!-.0-\\[\\]-~])?"
+        .prop_filter("not . or ..", |n| n != "." && n != "..")
+}
+
 /// A recording's metadata, its numbers drawn from `number`.
 fn any_meta(number: impl Strategy<Value = f64> + Clone) -> impl Strategy<Value = RecordingMeta> {
     let frequencies = [number.clone(), number.clone(), number.clone()];
     let position = [number.clone(), number.clone(), number];
-    let texts = (any::<String>(), any::<String>(), any::<String>());
+    let texts = (antenna_name(), any::<String>(), any::<String>());
     let format = prop::sample::select(SampleFormat::ALL.to_vec());
     (format, frequencies, epoch(), position, texts, any::<u64>()).prop_map(
         |(format, [sample_rate_hz, centre_frequency_hz, if_hz], start, position, texts, seed)| {
@@ -285,6 +292,34 @@ fn any_meta(number: impl Strategy<Value = f64> + Clone) -> impl Strategy<Value =
             }
         },
     )
+}
+
+/// A name that would become a path or break the RINEX MARKER NAME is refused where the
+/// metadata is read, naming the key.
+#[test]
+fn an_antenna_name_outside_the_rule_is_refused() {
+    for name in [
+        "../../evil",
+        "/abs",
+        "a/b",
+        "",
+        ".",
+        "left \"wing\" ü",
+        " a",
+    ] {
+        let mut meta = odd();
+        meta.antenna_name = name.into();
+        let e = ParsedMeta::from_json(&meta.to_json()).unwrap_err();
+        assert!(
+            matches!(&e, MetaError::BadField { field, .. } if field == "global skyforge:antenna"),
+            "{name:?}: {e}"
+        );
+    }
+    for name in ["ant1", "left \"wing\" #1", &"a".repeat(60)] {
+        let mut meta = odd();
+        meta.antenna_name = name.into();
+        assert!(ParsedMeta::from_json(&meta.to_json()).is_ok(), "{name:?}");
+    }
 }
 
 proptest! {
