@@ -599,7 +599,9 @@ fn attitude_refuses_inputs_with_which_no_epoch_forms() {
     };
     let (a1, a2, a3) = (obs("ant1"), obs("ant2"), obs("ant3"));
     let nav = "sim/nav.rnx";
-    let cases: Vec<([&str; 3], &str, Option<&str>, &[&str])> = vec![
+    /// The files, the navigation file, `--config`, what the message must hold.
+    type Case<'a> = ([&'a str; 3], &'a str, Option<&'a str>, &'a [&'a str]);
+    let cases: Vec<Case> = vec![
         (
             [&a1, "junk.rnx", &a3],
             nav,

@@ -137,7 +137,7 @@ pub(crate) fn check_physical(rec: &ObsRecord) -> Result<(), String> {
     }
     if let Some(l) = rec
         .carrier_phase_cycles
-        .filter(|l| !(l.abs() < PHASE_MAX_CYCLES))
+        .filter(|l| l.is_nan() || l.abs() >= PHASE_MAX_CYCLES)
     {
         return what(
             "carrier phase (cycles)",
@@ -145,7 +145,10 @@ pub(crate) fn check_physical(rec: &ObsRecord) -> Result<(), String> {
             format!("magnitude below {PHASE_MAX_CYCLES:e} cycles"),
         );
     }
-    if let Some(d) = rec.doppler_hz.filter(|d| !(d.abs() <= DOPPLER_MAX_HZ)) {
+    if let Some(d) = rec
+        .doppler_hz
+        .filter(|d| d.is_nan() || d.abs() > DOPPLER_MAX_HZ)
+    {
         return what(
             "Doppler (Hz)",
             d,

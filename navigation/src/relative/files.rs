@@ -41,24 +41,19 @@ pub enum FilesError {
     )]
     NoSignal { file: String, signals: String },
     #[error(
-        "{file}: no epoch within {SAME_EPOCH_S} s of an epoch of the master's file {master} (this file from {from} to {to}, the master's from {master_from} to {master_to})"
+        "{file}: no epoch within {SAME_EPOCH_S} s of an epoch of the master's file {master} (this file {span}, the master's {master_span})"
     )]
     NoCommonEpoch {
         file: String,
         master: String,
-        from: Epoch,
-        to: Epoch,
-        master_from: Epoch,
-        master_to: Epoch,
+        /// `from T0 to T1`.
+        span: String,
+        master_span: String,
     },
     #[error(
-        "no ephemeris of the navigation file is valid at an epoch of {master} ({from} to {to}) for a satellite it observes"
+        "no ephemeris of the navigation file is valid at an epoch of {master} ({master_span}) for a satellite it observes"
     )]
-    NoEphemeris {
-        master: String,
-        from: Epoch,
-        to: Epoch,
-    },
+    NoEphemeris { master: String, master_span: String },
     #[error(
         "{signal}: {first} has it from code {first_code}, {other} from {other_code}; double differences need one tracking of a signal in every file (between trackings RINEX 3.04 table A23 puts phase shifts, and their code biases differ)"
     )]
@@ -474,8 +469,10 @@ fn check_files(
         }
     }
     let master = &files[0];
-    let span = |f: &ObsFile| (f.epochs[0].time, f.epochs[f.epochs.len() - 1].time);
-    let (master_from, master_to) = span(master);
+    let span = |f: &ObsFile| {
+        let (from, to) = (f.epochs[0].time, f.epochs[f.epochs.len() - 1].time);
+        format!("from {from} to {to}")
+    };
     for f in &files[1..] {
         let mut cursor = 0;
         if !master
@@ -483,18 +480,15 @@ fn check_files(
             .iter()
             .any(|e| records_at(f, &mut cursor, e.time).is_some())
         {
-            let (from, to) = span(f);
             return Err(FilesError::NoCommonEpoch {
                 file: name(f),
                 master: name(master),
-                from,
-                to,
-                master_from,
-                master_to,
+                span: span(f),
+                master_span: span(master),
             });
         }
     }
-    let origin = TimeOrigin::new(master_from);
+    let origin = TimeOrigin::new(master.epochs[0].time);
     let store = EphemerisStore::new(ephemerides.to_vec(), &origin);
     let valid = master.epochs.iter().any(|e| {
         let t_s = origin.seconds_since_start(e.time);
@@ -503,8 +497,7 @@ fn check_files(
     if !valid {
         return Err(FilesError::NoEphemeris {
             master: name(master),
-            from: master_from,
-            to: master_to,
+            master_span: span(master),
         });
     }
     Ok(())
