@@ -14,20 +14,29 @@ use skyforge_orbits::ephemeris::SatId;
 
 /// A value of one field: often ordinary, sometimes missing, not finite or too wide.
 fn value(ordinary: std::ops::Range<f64>) -> impl Strategy<Value = Option<f64>> {
+    value_near(ordinary, [1e9 - 0.0004, -0.0004])
+}
+
+/// [`value`] with two values at the edges of the field's rounding (the reader refuses
+/// pseudoranges and Dopplers outside their physical ranges, issue #33).
+fn value_near(
+    ordinary: std::ops::Range<f64>,
+    [a, b]: [f64; 2],
+) -> impl Strategy<Value = Option<f64>> {
     prop_oneof![
         6 => ordinary.prop_map(Some),
         1 => Just(None),
         1 => Just(Some(f64::NAN)),
-        1 => prop_oneof![Just(1e12), Just(-2.5e11), Just(1e9 - 0.0004), Just(-0.0004)].prop_map(Some),
+        1 => prop_oneof![Just(1e12), Just(-2.5e11), Just(a), Just(b)].prop_map(Some),
     ]
 }
 
 fn record() -> impl Strategy<Value = ObsRecord> {
     (
         (any::<bool>(), 1u8..=37),
-        value(1.9e7..4.2e7),
+        value_near(1.9e7..4.2e7, [1e9 - 0.0004, 1e6 - 0.0004]),
         prop_oneof![value(-2e9..2e9), (-3e11..3e11f64).prop_map(Some)],
-        value(-6e3..6e3),
+        value_near(-6e3..6e3, [1e5 - 0.0004, -0.0004]),
         value(-5.0..70.0),
         0u8..=12,
     )

@@ -20,6 +20,7 @@ pub mod frames;
 pub mod platform;
 pub mod propagate;
 pub mod real_data;
+pub mod rinex_header;
 pub mod time;
 pub mod troposphere;
 pub mod visibility;

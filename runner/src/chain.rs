@@ -140,6 +140,8 @@ pub fn synth_and_receive(
                 approx_ecef_m: None,
                 codes: Default::default(),
                 epochs: Vec::new(),
+                marker: None,
+                dropped: Vec::new(),
             })
             .collect(),
     };

@@ -183,6 +183,8 @@ impl Collect {
                     approx_ecef_m: None,
                     codes: Default::default(),
                     epochs: Vec::new(),
+                    marker: None,
+                    dropped: Vec::new(),
                 })
                 .collect(),
         )

@@ -517,3 +517,235 @@ fn validate_attitude_command_reports_and_names_bad_files() {
         assert!(!json.exists());
     }
 }
+
+/// Issue #33 (5, 9, 12): files with which no epoch can be formed gave exit 0 and every
+/// epoch "none" (junk after the header, NaN values, epoch flag 9, version 9.99,
+/// pseudoranges of 9.99e300 m, another day, swapped or repeated files, `[relative]
+/// signals` absent, no common satellite, a navigation file of another day), and `INTERVAL
+/// inf` printed a panic and its backtrace. Each is now one message naming the file and
+/// the reason, exit code 2, nothing written; a file that loses one malformed epoch is
+/// read with a warning naming the line, and the summary counts the epochs without a
+/// result by reason.
+#[test]
+fn attitude_refuses_inputs_with_which_no_epoch_forms() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = scenario(d, 10, false, true);
+    skyforge_ok(&["run", &path, "--out", "sim"], d);
+    // The same scenario eight days later: its navigation file is of another day.
+    let other_day = std::fs::read_to_string(&path)
+        .unwrap()
+        .replace("2023-03-12T00:00:00", "2023-03-20T00:00:00");
+    std::fs::write(d.join("later.toml"), other_day).unwrap();
+    skyforge_ok(&["run", "later.toml", "--out", "later"], d);
+    let obs = |a: &str| format!("sim/observations/{a}.obs.rnx");
+    let ant2 = std::fs::read_to_string(d.join(obs("ant2"))).unwrap();
+    let end = ant2.find("END OF HEADER\n").unwrap() + "END OF HEADER\n".len();
+    let satellite_lines = regex_free_sat_lines(&ant2);
+    let first_sat = satellite_lines[0].clone();
+    let value_of = |v: &str| format!("{}{v:>14}{}", &first_sat[..3], &first_sat[17..]);
+    // ant2 with every satellite renamed to one that no file observes: no common satellite.
+    let seen: Vec<String> = ["ant1", "ant2", "ant3"]
+        .iter()
+        .flat_map(|a| regex_free_sat_lines(&std::fs::read_to_string(d.join(obs(a))).unwrap()))
+        .map(|l| l[..3].to_string())
+        .collect();
+    let mut free: Vec<String> = (1..=32)
+        .map(|p| format!("G{p:02}"))
+        .chain((1..=63).map(|p| format!("C{p:02}")))
+        .filter(|n| !seen.contains(n))
+        .collect();
+    let mut names: Vec<String> = satellite_lines.iter().map(|l| l[..3].to_string()).collect();
+    names.sort();
+    names.dedup();
+    let mut renamed = ant2.clone();
+    for name in &names {
+        let to = free.remove(free.iter().position(|f| f[..1] == name[..1]).unwrap());
+        renamed = renamed.replace(&format!("\n{name} "), &format!("\n{to} "));
+    }
+    let edits: Vec<(&str, String)> = vec![
+        ("junk", ant2[..end].to_string() + &"junk\n".repeat(20)),
+        ("nan", ant2.replacen(&first_sat, &value_of("NaN"), 1)),
+        ("big", ant2.replacen(&first_sat, &value_of("9.99e300"), 1)),
+        ("flag9", ant2.replace("0000000  0 ", "0000000  9 ")),
+        ("v999", ant2.replacen("     3.04", "     9.99", 1)),
+        (
+            "interval",
+            ant2.replacen("     1.000      ", "       inf      ", 1),
+        ),
+        ("day", ant2.replace("> 2023 03 12", "> 2023 03 13")),
+        ("nocommon", renamed),
+    ];
+    for (name, text) in &edits {
+        assert_ne!(text, &ant2, "{name}: the edit changed nothing");
+        std::fs::write(d.join(format!("{name}.rnx")), text).unwrap();
+    }
+    std::fs::write(d.join("bds.toml"), "[relative]\nsignals = [\"bds-b3i\"]\n").unwrap();
+    let run = |files: [&str; 3], nav: &str, config: Option<&str>| {
+        let mut args = vec!["attitude"];
+        args.extend(files);
+        args.extend([
+            "--nav",
+            nav,
+            "--geometry",
+            "sim/geometry.toml",
+            "--out",
+            "att",
+        ]);
+        if let Some(c) = config {
+            args.extend(["--config", c]);
+        }
+        skyforge(&args, d)
+    };
+    let (a1, a2, a3) = (obs("ant1"), obs("ant2"), obs("ant3"));
+    let nav = "sim/nav.rnx";
+    /// The files, the navigation file, `--config`, what the message must hold.
+    type Case<'a> = ([&'a str; 3], &'a str, Option<&'a str>, &'a [&'a str]);
+    let cases: Vec<Case> = vec![
+        (
+            [&a1, "junk.rnx", &a3],
+            nav,
+            None,
+            &[
+                "junk.rnx: 20 of 20 epochs and lines cannot be read",
+                "line 18: neither an epoch line",
+            ],
+        ),
+        (
+            [&a1, "nan.rnx", &a3],
+            nav,
+            None,
+            &["nan.rnx:19: ", "pseudorange (m) NaN: allowed 1e6 to 1e9 m"],
+        ),
+        (
+            [&a1, "big.rnx", &a3],
+            nav,
+            None,
+            &["big.rnx:19: ", "pseudorange (m) 9.99e300"],
+        ),
+        (
+            [&a1, "flag9.rnx", &a3],
+            nav,
+            None,
+            &["flag9.rnx: 10 of 10 epochs", "epoch flag 9: allowed 0 to 6"],
+        ),
+        (
+            [&a1, "v999.rnx", &a3],
+            nav,
+            None,
+            &["v999.rnx:1: RINEX version 9.99 is not read"],
+        ),
+        (
+            [&a1, "interval.rnx", &a3],
+            nav,
+            None,
+            &["interval.rnx:13: INTERVAL inf: allowed 0 to 86400 s"],
+        ),
+        (
+            [&a1, "day.rnx", &a3],
+            nav,
+            None,
+            &["day.rnx: no epoch within 0.025 s of an epoch of the master's file"],
+        ),
+        (
+            [&a2, &a1, &a3],
+            nav,
+            None,
+            &["ant2.obs.rnx: MARKER NAME \"ant2\", but it is given for antenna \"ant1\""],
+        ),
+        (
+            [&a1, &a1, &a3],
+            nav,
+            None,
+            &[
+                "geometry.toml: antenna \"ant2\" has no file (the files' MARKER NAMEs: ant1, ant1, ant3)",
+            ],
+        ),
+        (
+            [&a1, &a2, &a3],
+            nav,
+            Some("bds.toml"),
+            &["ant1.obs.rnx: none of the signals of [relative] signals (bds-b3i)"],
+        ),
+        (
+            [&a1, "nocommon.rnx", &a3],
+            nav,
+            None,
+            &[
+                "ant1.obs.rnx: no epoch could be formed (10 of 10 epochs",
+                "satellites common to all antennas",
+            ],
+        ),
+        (
+            [&a1, &a2, &a3],
+            "later/nav.rnx",
+            None,
+            &[
+                "ant1.obs.rnx: no epoch could be formed",
+                "no single-point position of the master (10)",
+                "later/nav.rnx",
+            ],
+        ),
+    ];
+    for (files, nav, config, needles) in cases {
+        let o = run(files, nav, config);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{files:?} {nav}:\n{out}");
+        assert_eq!(out.matches("error:").count(), 1, "{files:?}:\n{out}");
+        assert!(!out.contains("panicked"), "{files:?}:\n{out}");
+        for n in needles {
+            assert!(out.contains(n), "{files:?} {nav}: missing {n:?} in\n{out}");
+        }
+        assert!(!d.join("att").exists());
+    }
+    // One malformed epoch of ten: read with a warning; the summary counts the epoch ant2
+    // lacks.
+    let minute = ant2.replacen("> 2023 03 12 00 00  5.0", "> 2023 03 12 00 99  5.0", 1);
+    std::fs::write(d.join("minute.rnx"), minute).unwrap();
+    let o = run([&a1, "minute.rnx", &a3], nav, None);
+    let out = text(&o);
+    assert!(o.status.success(), "{out}");
+    assert!(
+        out.contains(
+            "warning: minute.rnx: 1 malformed epochs or lines left out (9 epochs read): line "
+        ),
+        "{out}"
+    );
+    assert!(out.contains(": epoch minute 99: allowed 0 to 59"), "{out}");
+    assert!(
+        out.contains("none       1 epochs gave no result: antenna ant2 has no epoch (1)"),
+        "{out}"
+    );
+    // `validate obs` reads the same way: no panic for INTERVAL inf.
+    let o = skyforge(
+        &[
+            "validate",
+            "obs",
+            "--truth",
+            &a2,
+            "--estimate",
+            "interval.rnx",
+        ],
+        d,
+    );
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("interval.rnx:13: INTERVAL inf") && !out.contains("panicked"),
+        "{out}"
+    );
+}
+
+/// The satellite lines of RINEX 3 text (a system letter and two digits, then values).
+fn regex_free_sat_lines(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|l| {
+            let b = l.as_bytes();
+            b.len() > 3
+                && matches!(b[0], b'G' | b'C')
+                && b[1].is_ascii_digit()
+                && b[2].is_ascii_digit()
+        })
+        .map(|l| l.to_string() + "\n")
+        .collect()
+}

@@ -7,6 +7,7 @@ pub(crate) mod noise;
 mod read_error;
 pub(crate) mod record;
 pub mod rinex2_read;
+mod rinex3_scan;
 pub(crate) mod rinex_codes;
 pub mod rinex_read;
 pub(crate) mod rinex_write;
@@ -17,5 +18,6 @@ pub use as_written::epoch_as_written;
 
 pub use noise::{ElevationNoise, dll_thermal_chips, pll_thermal_cycles};
 pub use read_error::ObsReadError;
-pub use record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+pub use read_error::{DOPPLER_MAX_HZ, PHASE_MAX_CYCLES, PSEUDORANGE_RANGE_M};
+pub use record::{Dropped, LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 pub use rinex_read::{parse_obs_text, read_obs_file};

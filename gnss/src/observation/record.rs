@@ -91,4 +91,49 @@ pub struct ObsFile {
     /// observations made in memory).
     pub codes: std::collections::BTreeMap<Signal, &'static str>,
     pub epochs: Vec<ObsEpoch>,
+    /// The header's `MARKER NAME` (SkyForge writes the antenna's name), when it has one.
+    pub marker: Option<String>,
+    /// Epochs and lines the reader could not use and left out, in file order.
+    pub dropped: Vec<Dropped>,
+}
+
+/// An epoch (or a line between epochs) the reader left out, and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dropped {
+    /// 1-based line of the file.
+    pub line: usize,
+    pub reason: String,
+}
+
+/// At most this many dropped lines are named in a message; the rest are counted.
+const NAMED: usize = 5;
+
+/// `dropped` as one line: each named with its reason, the first [`NAMED`] of them.
+pub(crate) fn list_dropped(dropped: &[Dropped]) -> String {
+    let mut text = dropped
+        .iter()
+        .take(NAMED)
+        .map(|d| format!("line {}: {}", d.line, d.reason))
+        .collect::<Vec<_>>()
+        .join("; ");
+    if dropped.len() > NAMED {
+        text += &format!("; and {} more", dropped.len() - NAMED);
+    }
+    text
+}
+
+impl ObsFile {
+    /// What the reader left out, as a warning naming the file and the lines; `None` when
+    /// it left nothing out.
+    pub fn dropped_warning(&self) -> Option<String> {
+        (!self.dropped.is_empty()).then(|| {
+            format!(
+                "{}: {} malformed epochs or lines left out ({} epochs read): {}",
+                self.source.display(),
+                self.dropped.len(),
+                self.epochs.len(),
+                list_dropped(&self.dropped)
+            )
+        })
+    }
 }

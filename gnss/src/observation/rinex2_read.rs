@@ -19,12 +19,13 @@
 //! header lines) and 6 (cycle-slip records) are skipped; a power failure (flag 1) marks
 //! every phase of its epoch as lock lost.
 
-use super::read_error::{Kind, ObsReadError};
+use super::read_error::{EpochFields, Kind, ObsReadError, check_physical, marker_name};
 use super::record::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 use crate::signal::Signal;
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_orbits::rinex_header::{label, supported_major, version_and_type};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -89,17 +90,10 @@ fn field(line: &str, from: usize, to: usize) -> &str {
     line.get(from..end).unwrap_or("")
 }
 
-/// The header label (columns 61-80) of `line`.
-fn label(line: &str) -> &str {
-    field(line, 60, 80).trim()
-}
-
 /// Whether `text` (the start of an observation file) is RINEX 2 observation data.
 pub fn is_rinex2_obs(text: &str) -> bool {
     let first = text.lines().next().unwrap_or("");
-    let version: Option<f64> = field(first, 0, 9).trim().parse().ok();
-    version.is_some_and(|v| (2.0..3.0).contains(&v))
-        && field(first, 20, 21) == "O"
+    version_and_type(first).is_ok_and(|(v, kind)| supported_major(v) == Ok(2) && kind == "O")
         && label(first) == "RINEX VERSION / TYPE"
 }
 
@@ -108,6 +102,7 @@ struct Header {
     types: Vec<String>,
     wavelength_factor: [u8; 2],
     approx_ecef_m: Option<Vec3>,
+    marker: Option<String>,
 }
 
 /// Parse the header from `lines`, leaving them after `END OF HEADER`.
@@ -119,6 +114,7 @@ fn parse_header<'a>(
     let mut expected_types: Option<usize> = None;
     let mut wavelength_factor = [1u8; 2];
     let mut approx_ecef_m = None;
+    let mut marker = None;
     let mut first = true;
     for (n, line) in lines.by_ref() {
         let lab = label(line);
@@ -183,6 +179,7 @@ fn parse_header<'a>(
                 approx_ecef_m = (v.len() == 3 && v.iter().all(|x| x.is_finite()))
                     .then(|| Vec3::new(v[0], v[1], v[2]));
             }
+            "MARKER NAME" => marker = marker_name(line),
             "TIME OF FIRST OBS" => {
                 let system = field(line, 48, 51).trim();
                 if !matches!(system, "" | "GPS") {
@@ -211,6 +208,7 @@ fn parse_header<'a>(
                     types,
                     wavelength_factor,
                     approx_ecef_m,
+                    marker,
                 });
             }
             _ => {}
@@ -236,27 +234,21 @@ fn epoch_time(line: &str, n: usize, source: &Path) -> Result<Epoch, ObsReadError
     } else {
         2000 + i32::from(yy)
     };
-    let (month, day) = (int(3, 6, "month")?, int(6, 9, "day")?);
-    let (hour, minute) = (int(9, 12, "hour")?, int(12, 15, "minute")?);
-    let seconds: f64 = field(line, 15, 26)
-        .trim()
-        .parse()
-        .map_err(|_| at(source, n, "epoch seconds (columns 16-26)"))?;
-    if !(1..=12).contains(&month)
-        || !(1..=31).contains(&day)
-        || hour > 23
-        || minute > 59
-        || !(0.0..61.0).contains(&seconds)
-    {
-        return Err(at(source, n, "epoch date or time out of range"));
-    }
-    // The F11.7 field resolves 100 ns.
-    let ns = (seconds.fract() * 1e7).round() as u32 * 100;
-    let start = Epoch::maybe_from_gregorian(year, month, day, hour, minute, 0, 0, TimeScale::GPST)
-        .map_err(|e| at(source, n, format!("epoch date: {e}")))?;
-    Ok(start
-        + hifitime::Duration::from_seconds(seconds.trunc())
-        + hifitime::Duration::from_total_nanoseconds(i128::from(ns)))
+    let fields = EpochFields {
+        year,
+        month: int(3, 6, "month")?,
+        day: int(6, 9, "day")?,
+        hour: int(9, 12, "hour")?,
+        minute: int(12, 15, "minute")?,
+        seconds: field(line, 15, 26)
+            .trim()
+            .parse()
+            .map_err(|_| at(source, n, "epoch seconds (columns 16-26)"))?,
+    };
+    fields
+        .check()
+        .and_then(|()| fields.epoch(TimeScale::GPST))
+        .map_err(|m| at(source, n, m))
 }
 
 /// Parse RINEX 2 observation `text`; `source` names it in errors.
@@ -316,6 +308,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
         for name in &sat_names {
             let sat = parse_sat(name).map_err(|m| at(source, list_n, m))?;
             let mut values: Vec<(Option<f64>, u8)> = Vec::with_capacity(header.types.len());
+            let mut m_first = None;
             for _ in 0..lines_per_sat {
                 let (m, data) = lines.next().ok_or_else(|| {
                     at(
@@ -324,6 +317,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
                         format!("{name}: observation lines missing at end of file"),
                     )
                 })?;
+                m_first.get_or_insert(m);
                 for k in 0..5 {
                     if values.len() == header.types.len() {
                         break;
@@ -335,7 +329,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
                         let v: f64 = text.parse().map_err(|_| {
                             at(source, m, format!("{name}: value {text:?} is not a number"))
                         })?;
-                        v.is_finite().then_some(v)
+                        Some(v)
                     };
                     let lli = field(data, 16 * k + 14, 16 * k + 15).trim();
                     let lli: u8 = if lli.is_empty() {
@@ -354,6 +348,7 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
             if flag == "6" {
                 continue;
             }
+            let first_line = m_first.unwrap_or(n);
             for ((value, lli), target) in values.iter().zip(&targets) {
                 let (Some((signal, kind)), Some(v)) = (target, value) else {
                     continue;
@@ -376,6 +371,9 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
                     Kind::Strength => entry.cn0_dbhz = Some(*v),
                 }
             }
+            for (_, rec) in sats.iter().filter(|(k, _)| k.0 == sat) {
+                check_physical(rec).map_err(|m| at(source, first_line, m))?;
+            }
         }
         if flag == "6" {
             continue;
@@ -396,6 +394,8 @@ pub fn parse_rinex2_obs(text: &str, source: &Path) -> Result<ObsFile, ObsReadErr
         approx_ecef_m: header.approx_ecef_m,
         codes: Default::default(),
         epochs,
+        marker: header.marker,
+        dropped: Vec::new(),
     })
 }
 
@@ -611,7 +611,11 @@ mod tests {
                 7,
                 "epoch flag",
             ),
-            (good.replace(" 05  4  2", " 05 13  2"), 7, "out of range"),
+            (
+                good.replace(" 05  4  2", " 05 13  2"),
+                7,
+                "epoch month 13: allowed 1 to 12",
+            ),
             (good.replace("     4    L1", "     5    L1"), 6, "announced"),
             (good.replace("     GPS  ", "     GLO  "), 5, "time system"),
             (

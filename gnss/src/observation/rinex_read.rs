@@ -8,17 +8,18 @@
 //! loss-of-lock indicator of every value and the epoch flag; it parses the epoch's seconds
 //! to 100 ns, the resolution of the RINEX F11.7 field.
 
-use super::read_error::{Kind, ObsReadError};
+use super::read_error::{Kind, ObsReadError, check_physical};
 use super::record::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 use super::rinex_codes;
 use super::rinex2_read::{MAX_OBS_BYTES, is_rinex2_obs, parse_rinex2_obs};
+use super::rinex3_scan::{Scan, scan};
 use crate::signal::Signal;
 use flate2::read::GzDecoder;
 use hifitime::TimeScale;
 use rinex::observation::EpochFlag;
 use rinex::prelude::{Constellation, Observable, Rinex};
 use skyforge_orbits::ephemeris::{SatId, System};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fs::File;
 use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
@@ -96,8 +97,10 @@ pub fn read_obs_file(path: &Path) -> Result<ObsFile, ObsReadError> {
     if is_rinex2_obs(&start) {
         return parse_rinex2_obs(&String::from_utf8_lossy(&bytes), path);
     }
+    let text = String::from_utf8_lossy(&bytes);
+    let scan = scan(&text, path)?;
     let rinex = parse_rinex(&bytes).map_err(error)?;
-    from_rinex(&rinex, path)
+    from_rinex(&rinex, path, scan)
 }
 
 /// Parse RINEX 2 or 3 observation `text`; `label` names it in errors.
@@ -105,17 +108,19 @@ pub fn parse_obs_text(text: &str, label: &str) -> Result<ObsFile, ObsReadError> 
     if is_rinex2_obs(text) {
         return parse_rinex2_obs(text, Path::new(label));
     }
+    let scan = scan(text, Path::new(label))?;
     let rinex = parse_rinex(text.as_bytes()).map_err(|message| ObsReadError::Read {
         path: PathBuf::from(label),
         message,
     })?;
-    from_rinex(&rinex, Path::new(label))
+    from_rinex(&rinex, Path::new(label), scan)
 }
 
-/// The `rinex` crate's reading of `bytes`. The crate panics on some malformed files (an
-/// `INTERVAL` of `inf`, short or non-ASCII fields: found by fuzzing, docs/fuzzing.md);
-/// such a panic is caught here and becomes an error like any other. (Its message still
-/// goes to the panic hook, i.e. stderr.)
+/// The `rinex` crate's reading of `bytes`, whose header [`scan`] has checked (an
+/// `INTERVAL` of `inf` made the crate panic). The crate has panicked on other malformed
+/// files (short or non-ASCII fields: found by fuzzing, docs/fuzzing.md); such a panic is
+/// caught here and becomes an error like any other. (Its message still goes to the panic
+/// hook, i.e. stderr.)
 fn parse_rinex(bytes: &[u8]) -> Result<Rinex, String> {
     let parsed = std::panic::catch_unwind(|| Rinex::parse(&mut BufReader::new(bytes)));
     match parsed {
@@ -132,7 +137,9 @@ fn parse_rinex(bytes: &[u8]) -> Result<Rinex, String> {
     }
 }
 
-fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
+/// The observations of the crate's `rinex`, less the epochs [`scan`] refused; every value
+/// within its physical range ([`check_physical`]).
+fn from_rinex(rinex: &Rinex, source: &Path, mut scan: Scan) -> Result<ObsFile, ObsReadError> {
     let record = rinex
         .record
         .as_obs()
@@ -149,12 +156,23 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
         }
     }
     let mut epochs = Vec::with_capacity(record.len());
+    let mut delivered = BTreeSet::new();
     for (key, observations) in record {
         let power_failure = match key.flag {
             EpochFlag::Ok => false,
             EpochFlag::PowerFailure => true,
             _ => continue,
         };
+        let calendar = key.epoch.to_gregorian(key.epoch.time_scale);
+        // Only the epoch lines the scan found good (all, in a Hatanaka file).
+        let scanned = match &scan.epochs {
+            Some(good) => match good.get(&calendar) {
+                Some(e) => Some(e),
+                None => continue,
+            },
+            None => None,
+        };
+        delivered.insert(calendar);
         // One record per satellite and signal (L1 and L2 of one GPS satellite are two).
         let mut sats: BTreeMap<(SatId, Signal), ObsRecord> = BTreeMap::new();
         for o in &observations.signals {
@@ -185,12 +203,28 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
                 s.phase_lli |= LLI_LOSS_OF_LOCK;
             }
         }
+        for rec in sats.values() {
+            check_physical(rec).map_err(|message| {
+                let line = scanned.map_or(0, |e| {
+                    e.sat_lines
+                        .get(&rec.sat.to_string())
+                        .copied()
+                        .unwrap_or(e.line)
+                });
+                ObsReadError::Syntax {
+                    path: source.to_path_buf(),
+                    line,
+                    message,
+                }
+            })?;
+        }
         epochs.push(ObsEpoch {
             time: key.epoch.to_time_scale(TimeScale::GPST),
             sats: sats.into_values().collect(),
         });
     }
     epochs.sort_by_key(|e| e.time);
+    scan.settle(&delivered, source)?;
     let approx_ecef_m = rinex
         .header
         .rx_position
@@ -204,6 +238,8 @@ fn from_rinex(rinex: &Rinex, source: &Path) -> Result<ObsFile, ObsReadError> {
             .map(|(signal, rank)| (signal, rinex_codes::codes(signal)[rank]))
             .collect(),
         epochs,
+        marker: scan.marker,
+        dropped: scan.dropped,
     })
 }
 
@@ -256,17 +292,6 @@ mod tests {
     /// One satellite's observation line.
     fn line(sat: &str, values: &[String]) -> String {
         format!("{sat}{}\n", values.concat())
-    }
-
-    #[test]
-    fn a_file_the_rinex_crate_panics_on_is_an_error() {
-        // An INTERVAL of inf: the crate makes a Duration of it, which panics.
-        let text = header("3.04", '2', "GPS").replace(
-            "  2023    03",
-            &format!("{:<60}INTERVAL\n  2023    03", "       inf"),
-        );
-        let e = parse_obs_text(&text, "t.rnx").unwrap_err().to_string();
-        assert!(e.starts_with("t.rnx: malformed RINEX"), "{e}");
     }
 
     #[test]
@@ -415,6 +440,132 @@ mod tests {
         let f = parse_obs_text(&text, "test").unwrap();
         assert_eq!(f.epochs.len(), 1);
         assert_eq!(f.epochs[0].sats[0].phase_lli, LLI_LOSS_OF_LOCK);
+    }
+
+    /// Issue #33 (5): the header is checked before the crate reads it; `INTERVAL inf`
+    /// made the crate panic (and print a backtrace) before.
+    #[test]
+    fn a_non_finite_interval_is_refused_before_the_crate_reads_it() {
+        for bad in ["inf", "NaN", "-5", "1e300"] {
+            let text = header("3.04", '2', "GPS").replace(
+                "  2023    03",
+                &format!("{bad:>10}{:50}INTERVAL\n  2023    03", ""),
+            );
+            let hook = std::panic::take_hook();
+            std::panic::set_hook(Box::new(|_| panic!("the crate panicked")));
+            let result = std::panic::catch_unwind(|| parse_obs_text(&text, "t.rnx"));
+            std::panic::set_hook(hook);
+            let e = result.expect("no panic").unwrap_err().to_string();
+            assert!(e.starts_with("t.rnx:4: INTERVAL"), "{bad}: {e}");
+        }
+    }
+
+    /// Issue #33 (12): versions other than 2.xx, 3.xx and 4.xx are refused (9.99 was read
+    /// as 3.x); 4.xx is read like 3.04.
+    #[test]
+    fn unsupported_versions_are_refused_and_version_4_is_read() {
+        let epoch = "> 2023 03 12 00 00  1.0000000  0  1\n".to_string()
+            + &line("G05", &[value(2.1e7, ' ', ' '), value(1.1e8, ' ', ' ')]);
+        for v in ["9.99", "1.00", "5.00"] {
+            let text = header(v, '2', "GPS") + &epoch;
+            let e = parse_obs_text(&text, "t.rnx").unwrap_err().to_string();
+            assert!(
+                e.contains("t.rnx:1: RINEX version") && e.contains("is not read"),
+                "{e}"
+            );
+        }
+        let f = parse_obs_text(&(header("4.01", '2', "GPS") + &epoch), "t").unwrap();
+        assert_eq!(f.epochs.len(), 1);
+        assert_eq!(f.epochs[0].sats[0].pseudorange_m, Some(2.1e7));
+    }
+
+    /// Ten good epochs of G05 (1 s apart), starting at line 6.
+    fn ten_epochs() -> Vec<String> {
+        (0..10)
+            .flat_map(|k| {
+                [
+                    format!("> 2023 03 12 00 00 {:>10.7}  0  1\n", f64::from(k)),
+                    line("G05", &[value(2.1e7, ' ', ' '), value(1.1e8, ' ', ' ')]),
+                ]
+            })
+            .collect()
+    }
+
+    /// Issue #33 (12): malformed epochs were dropped without a word (minute 99, NaN or
+    /// 1e308 seconds, -5 satellites, flag 9) and a year 0 was read as 2000; junk between
+    /// epochs was skipped. One of ten is left out with its line named; more than 10 % or
+    /// every epoch is an error naming the lines.
+    #[test]
+    fn malformed_epochs_are_left_out_and_counted() {
+        let text = |body: &[String]| header("3.04", '2', "GPS") + &body.concat();
+        for (bad, why) in [
+            ("> 2023 03 12 00 99  5.0000000  0  1\n", "epoch minute 99"),
+            ("> 2023 03 12 00 00        NaN  0  1\n", "epoch seconds NaN"),
+            (
+                "> 2023 03 12 00 00      1e308  0  1\n",
+                "epoch seconds 1e308",
+            ),
+            ("> 2023 03 12 00 00  5.0000000  0 -5\n", "\"-5\""),
+            ("> 2023 03 12 00 00  5.0000000  9  1\n", "epoch flag 9"),
+            ("> 0000 03 12 00 00  5.0000000  0  1\n", "epoch year 0"),
+        ] {
+            let mut body = ten_epochs();
+            body[10] = bad.to_string();
+            let f = parse_obs_text(&text(&body), "t.rnx").unwrap();
+            assert_eq!(f.epochs.len(), 9, "{bad}");
+            assert_eq!(f.dropped.len(), 1, "{bad}");
+            assert_eq!(f.dropped[0].line, 16, "{bad}");
+            let w = f.dropped_warning().unwrap();
+            assert!(w.starts_with("t.rnx: 1 malformed"), "{w}");
+            assert!(w.contains("line 16: ") && w.contains(why), "{why}: {w}");
+            // Two of ten: refused.
+            body[2] = bad.to_string();
+            let e = parse_obs_text(&text(&body), "t.rnx")
+                .unwrap_err()
+                .to_string();
+            assert!(e.contains("2 of 10 epochs and lines cannot be read"), "{e}");
+            assert!(e.contains("line 8: ") && e.contains("line 16: "), "{e}");
+        }
+        // Junk after the header, and nothing else: no epoch left.
+        let e = parse_obs_text(&text(&["junk\n".into(), "more junk\n".into()]), "t.rnx")
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("no epoch left") && e.contains("line 6: neither"),
+            "{e}"
+        );
+    }
+
+    /// Issue #33 (12): observations of 1e308 (and NaN) were used; outside the physical
+    /// ranges they are an error naming the satellite's line.
+    #[test]
+    fn non_physical_observations_are_refused() {
+        // As another writer might put them: the shortest text, right-aligned.
+        let raw = |v: f64| {
+            let t = v.to_string();
+            let t = if t.len() > 14 { format!("{v:e}") } else { t };
+            format!("{t:>14}  ")
+        };
+        let g = |values: [f64; 4]| {
+            let mut body = ten_epochs();
+            body[3] = line("G05", &values.map(raw));
+            header("3.04", '2', "GPS") + &body.concat()
+        };
+        for (values, what) in [
+            (
+                [9.99e300, 1.1e8, 1.0, 40.0],
+                "pseudorange (m) 9.99e300: allowed 1e6 to 1e9 m",
+            ),
+            ([f64::NAN, 1.1e8, 1.0, 40.0], "pseudorange (m) NaN"),
+            ([5e5, 1.1e8, 1.0, 40.0], "pseudorange (m) 5e5"),
+            ([2.1e7, 1e308, 1.0, 40.0], "carrier phase (cycles) 1e308"),
+            ([2.1e7, 1.1e8, -2e5, 40.0], "Doppler (Hz) -2e5"),
+            ([2.1e7, 1.1e8, 1.0, f64::NAN], "signal strength NaN"),
+        ] {
+            let e = parse_obs_text(&g(values), "t.rnx").unwrap_err().to_string();
+            assert!(e.starts_with("t.rnx:9: G05 GPS L1 C/A "), "{e}");
+            assert!(e.contains(what), "{what}: {e}");
+        }
     }
 
     #[test]

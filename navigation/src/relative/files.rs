@@ -11,7 +11,7 @@ use crate::pvt::{
     ViewPoint, solve_with,
 };
 use hifitime::Epoch;
-use skyforge_gnss::observation::{ObsFile, ObsRecord};
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
@@ -36,6 +36,24 @@ pub enum FilesError {
     AntennaCount { files: usize, geometry: usize },
     #[error("{0}: no observation epochs")]
     NoEpochs(String),
+    #[error(
+        "{file}: none of the signals of [relative] signals ({signals}) has a pseudorange in the file"
+    )]
+    NoSignal { file: String, signals: String },
+    #[error(
+        "{file}: no epoch within {SAME_EPOCH_S} s of an epoch of the master's file {master} (this file {span}, the master's {master_span})"
+    )]
+    NoCommonEpoch {
+        file: String,
+        master: String,
+        /// `from T0 to T1`.
+        span: String,
+        master_span: String,
+    },
+    #[error(
+        "no ephemeris of the navigation file is valid at an epoch of {master} ({master_span}) for a satellite it observes"
+    )]
+    NoEphemeris { master: String, master_span: String },
     #[error(
         "{signal}: {first} has it from code {first_code}, {other} from {other_code}; double differences need one tracking of a signal in every file (between trackings RINEX 3.04 table A23 puts phase shifts, and their code biases differ)"
     )]
@@ -424,6 +442,67 @@ impl EpochChain {
     }
 }
 
+/// Why no epoch of `files` (master first) can be formed, whatever the chain does: a file
+/// without epochs or without a pseudorange of `signals`, another file with no epoch at
+/// the master's (another day), or no ephemeris valid at any master epoch for the
+/// satellites it observes (a navigation file of another day).
+fn check_files(
+    files: &[ObsFile],
+    signals: &[Signal],
+    ephemerides: &[BroadcastEphemeris],
+) -> Result<(), FilesError> {
+    let name = |f: &ObsFile| f.source.display().to_string();
+    for f in files {
+        if f.epochs.is_empty() {
+            return Err(FilesError::NoEpochs(name(f)));
+        }
+        let observed = |e: &ObsEpoch| first_per_satellite(&e.sats, signals).next().is_some();
+        if !f.epochs.iter().any(observed) {
+            return Err(FilesError::NoSignal {
+                file: name(f),
+                signals: signals
+                    .iter()
+                    .map(|s| s.tag())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        }
+    }
+    let master = &files[0];
+    let span = |f: &ObsFile| {
+        let (from, to) = (f.epochs[0].time, f.epochs[f.epochs.len() - 1].time);
+        format!("from {from} to {to}")
+    };
+    for f in &files[1..] {
+        let mut cursor = 0;
+        if !master
+            .epochs
+            .iter()
+            .any(|e| records_at(f, &mut cursor, e.time).is_some())
+        {
+            return Err(FilesError::NoCommonEpoch {
+                file: name(f),
+                master: name(master),
+                span: span(f),
+                master_span: span(master),
+            });
+        }
+    }
+    let origin = TimeOrigin::new(master.epochs[0].time);
+    let store = EphemerisStore::new(ephemerides.to_vec(), &origin);
+    let valid = master.epochs.iter().any(|e| {
+        let t_s = origin.seconds_since_start(e.time);
+        first_per_satellite(&e.sats, signals).any(|r| store.select(r.sat, t_s).is_some())
+    });
+    if !valid {
+        return Err(FilesError::NoEphemeris {
+            master: name(master),
+            master_span: span(master),
+        });
+    }
+    Ok(())
+}
+
 /// Run the chain over `files` (one per antenna of `geometry`, same order; [`EpochChain`]),
 /// handing each master epoch's outcome to `each`; another antenna's epoch is the one
 /// within [`SAME_EPOCH_S`] of the master's.
@@ -441,10 +520,8 @@ pub fn run_files(
         });
     }
     check_trackings(files, &config.signals)?;
+    check_files(files, &config.signals, &ephemerides)?;
     let master = &files[0];
-    if master.epochs.is_empty() {
-        return Err(FilesError::NoEpochs(master.source.display().to_string()));
-    }
     let mut chain = EpochChain::new(ephemerides, geometry, config)?;
     let mut cursors = vec![0usize; files.len()];
     for epoch in &master.epochs {
@@ -604,6 +681,8 @@ mod tests {
                 approx_ecef_m: Some(r),
                 codes: Default::default(),
                 epochs: vec![ObsEpoch { time, sats }],
+                marker: None,
+                dropped: Vec::new(),
             }
         };
         let truth = rover_r - master_r;
@@ -648,6 +727,8 @@ mod tests {
             approx_ecef_m: None,
             codes: code.map(|c| (Signal::GpsL2, c)).into_iter().collect(),
             epochs: Vec::new(),
+            marker: None,
+            dropped: Vec::new(),
         };
         let signals = [Signal::GpsL1Ca, Signal::GpsL2];
         let e = check_trackings(&[file("a", Some("2W")), file("b", Some("2L"))], &signals)

@@ -39,6 +39,7 @@ use super::{
     sat_id::{SatId, System},
 };
 use crate::bounded_read::{read_bytes, read_limited, too_large};
+use crate::rinex_header::{label, supported_major, version_and_type};
 use hifitime::{Epoch, TimeScale, Unit};
 use std::path::Path;
 
@@ -87,13 +88,7 @@ pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, Na
     let p = Parser { source };
     let lines: Vec<&str> = text.lines().map(|l| l.trim_end_matches('\r')).collect();
     let first = lines.first().ok_or_else(|| p.err(1, "empty file"))?;
-    let version: f64 = first
-        .get(..9)
-        .unwrap_or(first)
-        .trim()
-        .parse()
-        .map_err(|_| p.err(1, "no RINEX version in columns 1-9"))?;
-    let file_type = first.get(20..21).unwrap_or("");
+    let (version, file_type) = version_and_type(first).map_err(|m| p.err(1, m))?;
     if file_type != "N" {
         return Err(p.err(
             1,
@@ -102,17 +97,16 @@ pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, Na
     }
     let end = lines
         .iter()
-        .position(|l| l.get(60..).unwrap_or("").trim_end() == "END OF HEADER")
+        .position(|l| label(l) == "END OF HEADER")
         .ok_or_else(|| p.err(lines.len(), "no END OF HEADER"))?;
     let body = Body {
         lines: &lines,
         start: end + 1,
     };
-    match version {
-        v if (2.0..3.0).contains(&v) => p.parse_v2(&body),
-        v if (3.0..4.0).contains(&v) => p.parse_v3(&body),
-        v if (4.0..5.0).contains(&v) => p.parse_v4(&body),
-        v => Err(p.err(1, format!("unsupported RINEX version {v}"))),
+    match supported_major(version).map_err(|m| p.err(1, m))? {
+        2 => p.parse_v2(&body),
+        3 => p.parse_v3(&body),
+        _ => p.parse_v4(&body),
     }
 }
 

@@ -64,7 +64,7 @@ pub fn parse_iono(text: &str, source: &str) -> Result<BroadcastIono, NavError> {
     }
     let mut in_header = true;
     for (i, line) in lines.iter().enumerate() {
-        let label = line.get(60..).unwrap_or("").trim_end();
+        let label = crate::rinex_header::label(line);
         if in_header {
             match label {
                 "END OF HEADER" => in_header = false,

@@ -16,17 +16,18 @@ use skyforge_formats::attitude::{
 use skyforge_formats::geometry_offsets::{
     self, GEOMETRY_CORRECTED_TOML, GEOMETRY_OFFSETS_CSV, GEOMETRY_OFFSETS_H5, OffsetRow,
 };
+use skyforge_gnss::observation::ObsFile;
 use skyforge_gnss::observation::epoch_as_written;
-use skyforge_gnss::observation::{ObsFile, read_obs_file};
 use skyforge_navigation::attitude::BodyGeometry;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_navigation::geometry_offset::{OffsetEstimator, Step};
 use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::{AmbiguityStatus, FixMethod, RelativeConfig};
-use skyforge_navigation::relative::{EpochChain, EpochOutcome, run_files};
+use skyforge_navigation::relative::{EpochChain, EpochOutcome, FilesError, run_files};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_receiver::pipeline::EpochReport;
+use std::collections::BTreeMap;
 use std::path::Path;
 
 /// Run `skyforge attitude`.
@@ -48,11 +49,12 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
     let files = args
         .files
         .iter()
-        .map(|p| read_obs_file(p).map_err(|e| BadInput(e.to_string())))
+        .map(|p| super::read_observations(p))
         .collect::<Result<Vec<_>, _>>()?;
+    chain.check_markers(&args.geometry, &files)?;
     let ephemerides = read_nav(&args.nav)?;
     let staged = StagedDir::create(&args.out, args.force)?;
-    let summary = chain.run(&files, ephemerides, &staged)?;
+    let summary = chain.run(&files, ephemerides, &args.nav, &staged)?;
     let dir = staged.commit()?;
     summary.print(&dir);
     Ok(())
@@ -82,6 +84,9 @@ pub(crate) struct ChainSummary {
     fallbacks: (usize, Option<String>),
     /// Epochs where the reverse filter failed and restarted, and the first reason.
     reverse_restarts: (usize, Option<String>),
+    /// Epochs that gave no result, by reason ([`reason_kind`]), and the first in full.
+    none: BTreeMap<String, usize>,
+    first_none: Option<(hifitime::Epoch, String)>,
     /// `--estimate-geometry` was given.
     estimating: bool,
     offset_rows: Vec<OffsetRow>,
@@ -121,19 +126,88 @@ impl Chain {
         self.geometry.antennas.iter().map(|a| a.name.as_str())
     }
 
-    /// Run over `files` (one per antenna, geometry order) and write the outputs into
-    /// `staged`.
+    /// The geometry's antennas that `recorded` (names) lacks are an error naming the
+    /// geometry file at `path` and saying `what` they lack and how the names were `listed`
+    /// (`receive --geometry`: the recordings; `attitude`: the files' `MARKER NAME`s).
+    pub fn check_recorded(
+        &self,
+        path: &Path,
+        recorded: &[String],
+        (what, listed): (&str, &str),
+    ) -> Result<(), BadInput> {
+        match self.antennas().find(|a| !recorded.iter().any(|n| n == a)) {
+            Some(missing) => Err(BadInput(format!(
+                "{}: antenna {missing:?} has no {what} ({listed}: {})",
+                path.display(),
+                recorded.join(", ")
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// `files` (one per antenna, in the order of the geometry at `path`) whose `MARKER
+    /// NAME`s contradict the geometry: where any file names one of its antennas, every
+    /// antenna must have its file ([`Self::check_recorded`]: a file given twice), in the
+    /// geometry's order (files swapped). Files that name none of them (another
+    /// receiver's station names) are taken in the order given.
+    fn check_markers(&self, path: &Path, files: &[ObsFile]) -> Result<(), BadInput> {
+        let markers: Vec<String> = files
+            .iter()
+            .map(|f| f.marker.clone().unwrap_or_default())
+            .collect();
+        if !markers.iter().any(|m| self.antennas().any(|a| a == m)) {
+            return Ok(());
+        }
+        self.check_recorded(path, &markers, ("file", "the files' MARKER NAMEs"))?;
+        match self
+            .antennas()
+            .zip(files)
+            .find(|(a, f)| f.marker.as_deref() != Some(*a))
+        {
+            Some((antenna, f)) => Err(BadInput(format!(
+                "{}: MARKER NAME {:?}, but it is given for antenna {antenna:?} of {} (one file per antenna, in its order: {})",
+                f.source.display(),
+                f.marker.as_deref().unwrap_or(""),
+                path.display(),
+                self.antennas().collect::<Vec<_>>().join(", ")
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// Run over `files` (one per antenna, geometry order) with the ephemerides of the
+    /// navigation file `nav` and write the outputs into `staged`. Files with which no
+    /// epoch can be formed are an error, and so is a run in which none was.
     pub fn run(
         self,
         files: &[ObsFile],
         ephemerides: Vec<BroadcastEphemeris>,
+        nav: &Path,
         staged: &StagedDir,
     ) -> anyhow::Result<ChainSummary> {
         let mut outputs = ChainOutputs::create(staged, &self.geometry, self.offsets)?;
         run_files(files, ephemerides, &self.geometry, self.config, |o| {
             outputs.push(&o)
         })
-        .map_err(|e| BadInput(e.to_string()))?;
+        .map_err(|e| match e {
+            FilesError::NoEphemeris { .. } => BadInput(format!("{}: {e}", nav.display())),
+            e => BadInput(e.to_string()),
+        })?;
+        let summary = &outputs.summary;
+        if let (true, Some((time, why))) = (
+            summary.none.values().sum::<usize>() == summary.epochs,
+            &summary.first_none,
+        ) {
+            return Err(BadInput(format!(
+                "{}: no epoch could be formed ({} of {} epochs: {}; the first, at {time}: {why}; the master's position comes from its pseudoranges and the ephemerides of {})",
+                files[0].source.display(),
+                summary.epochs,
+                summary.epochs,
+                summary.none_counts(),
+                nav.display()
+            ))
+            .into());
+        }
         outputs.finish(staged, &self.geometry)
     }
 
@@ -192,6 +266,8 @@ impl ChainOutputs {
                 methods: [0; FixMethod::ALL.len()],
                 fallbacks: (0, None),
                 reverse_restarts: (0, None),
+                none: BTreeMap::new(),
+                first_none: None,
                 estimating: offsets.is_some(),
                 offset_rows: Vec::new(),
             },
@@ -207,6 +283,12 @@ impl ChainOutputs {
         let start = *self.start.get_or_insert(o.time);
         let summary = &mut self.summary;
         summary.epochs += 1;
+        if let Err(why) = &o.result {
+            *summary.none.entry(reason_kind(why, o.time)).or_default() += 1;
+            summary
+                .first_none
+                .get_or_insert_with(|| (o.time, why.clone()));
+        }
         if let Ok(e) = &o.result {
             let whole = e.resolution.status == AmbiguityStatus::Fixed;
             summary.fixed += usize::from(whole);
@@ -315,10 +397,35 @@ impl AttitudeStage {
     }
 }
 
+/// The kind of reason `why` an epoch at `time` gave no result: its text before the
+/// first `": "` (the details), without the epoch's time.
+fn reason_kind(why: &str, time: hifitime::Epoch) -> String {
+    let kind = why.split(": ").next().unwrap_or(why);
+    kind.replace(&format!(" at {time}"), "")
+}
+
 impl ChainSummary {
+    /// The epochs without a result, counted by reason (`reason 3, other 1`).
+    fn none_counts(&self) -> String {
+        let mut counts: Vec<(&String, &usize)> = self.none.iter().collect();
+        counts.sort_by_key(|(_, n)| std::cmp::Reverse(**n));
+        counts
+            .iter()
+            .map(|(why, n)| format!("{why} ({n})"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// The summary lines, with the files' final paths under `dir`.
     pub fn print(&self, dir: &Path) {
         println!("epochs     {}", self.epochs);
+        if !self.none.is_empty() {
+            println!(
+                "none       {} epochs gave no result: {}",
+                self.none.values().sum::<usize>(),
+                self.none_counts()
+            );
+        }
         println!(
             "fixed      {} ({:.1} %)",
             self.fixed,

@@ -170,3 +170,17 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         } => validate::agree(&first, &second),
     }
 }
+
+/// The RINEX observation file at `path` (`attitude`, `monitor`, `validate obs`); what the
+/// reader left out is a warning on stderr naming the file and the lines, what it refused
+/// the one error.
+fn read_observations(
+    path: &std::path::Path,
+) -> Result<skyforge_gnss::observation::ObsFile, crate::bad_input::BadInput> {
+    let file = skyforge_gnss::observation::read_obs_file(path)
+        .map_err(|e| crate::bad_input::BadInput(e.to_string()))?;
+    if let Some(warning) = file.dropped_warning() {
+        eprintln!("warning: {warning}");
+    }
+    Ok(file)
+}

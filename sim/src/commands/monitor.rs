@@ -9,7 +9,7 @@ use anyhow::Context;
 use skyforge_formats::monitor::{
     AlarmLog, H5Rows, MONITOR_CSV, MONITOR_H5, SUMMARY_JSON, csv_header, csv_rows,
 };
-use skyforge_gnss::observation::{ObsFile, read_obs_file};
+use skyforge_gnss::observation::ObsFile;
 use skyforge_navigation::integrity::{MonitorConfig, Station};
 use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
@@ -51,7 +51,7 @@ fn read_inputs(args: &MonitorArgs) -> anyhow::Result<Inputs> {
     let files = args
         .files
         .iter()
-        .map(|p| read_obs_file(p).map_err(|e| BadInput(e.to_string())))
+        .map(|p| super::read_observations(p))
         .collect::<Result<Vec<_>, _>>()?;
     let names: Vec<String> = args.files.iter().map(|p| station_name(p)).collect();
     let stations = stations(&files, &names, &config).map_err(|e| BadInput(e.to_string()))?;

@@ -138,14 +138,7 @@ fn attitude_chain(args: &ReceiveArgs, antennas: &[String]) -> anyhow::Result<Opt
         .into());
     }
     let chain = Chain::new(geometry, args.attitude_config.as_deref(), false)?;
-    if let Some(missing) = chain.antennas().find(|a| !antennas.iter().any(|n| n == a)) {
-        return Err(BadInput(format!(
-            "{}: antenna {missing:?} has no recording (recorded: {})",
-            geometry.display(),
-            antennas.join(", ")
-        ))
-        .into());
-    }
+    chain.check_recorded(geometry, antennas, ("recording", "recorded"))?;
     Ok(Some(chain))
 }
 

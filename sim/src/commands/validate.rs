@@ -12,7 +12,6 @@ use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
 use skyforge_validate::integrity::{print_score, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
-use skyforge_validate::observables::read_obs_file;
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
 use skyforge_validate::thesis::curves::{CURVES_FILE, CurvesFile};
@@ -166,8 +165,8 @@ pub fn obs(
         None => None,
     };
     let bad = |e: &dyn std::fmt::Display| BadInput(e.to_string());
-    let truth = read_obs_file(truth).map_err(|e| bad(&e))?;
-    let estimate = read_obs_file(estimate).map_err(|e| bad(&e))?;
+    let truth = super::read_observations(truth)?;
+    let estimate = super::read_observations(estimate)?;
     let opts = CompareOptions {
         tag_offset_s,
         window,

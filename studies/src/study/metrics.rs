@@ -340,6 +340,8 @@ mod tests {
             approx_ecef_m: None,
             codes: Default::default(),
             epochs,
+            marker: None,
+            dropped: Vec::new(),
         }
     }
 
