@@ -1,4 +1,4 @@
-//! Ranging codes: GPS L1 C/A, BeiDou B1I, and the Neumann-Hoffman secondary code.
+//! Ranging codes: GPS L1 C/A and L5 and BeiDou B1I, with their secondary codes.
 //!
 //! Chips are given in two forms:
 //! - logic level, `u8` in {0, 1}, as printed in the ICD tables;
@@ -10,17 +10,39 @@
 
 pub(crate) mod bds_b1i;
 pub(crate) mod gps_ca;
+pub(crate) mod gps_l5;
 pub mod neumann_hoffman;
+mod table;
 
 #[cfg(test)]
 mod bit_correlation;
 
 pub use bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 pub use gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
+pub use gps_l5::{
+    GPS_L5_CHIP_RATE_HZ, GPS_L5_CODE_LENGTH, GPS_L5_I_NH10, GPS_L5_PRN_MAX, GPS_L5_Q_NH20,
+    gps_l5_i, gps_l5_q,
+};
 
 /// Signal level of a logic chip: logic 0 -> +1, logic 1 -> -1 (only the lowest bit is used).
 pub const fn level_from_logic(bit: u8) -> i8 {
     1 - 2 * (bit & 1) as i8
+}
+
+/// Signal levels of a whole sequence of logic chips ([`level_from_logic`] chip by chip).
+pub const fn levels_from_logic<const N: usize>(logic: [u8; N]) -> [i8; N] {
+    let mut levels = [0i8; N];
+    let mut i = 0;
+    while i < N {
+        levels[i] = level_from_logic(logic[i]);
+        i += 1;
+    }
+    levels
+}
+
+/// Signal levels of a vector of logic chips.
+fn levels(logic: Vec<u8>) -> Vec<i8> {
+    logic.into_iter().map(level_from_logic).collect()
 }
 
 /// Bit mask of shift-register stage `k` (1-based), stage k being bit k-1.
@@ -39,6 +61,51 @@ const fn shift_register_step(state: u16, feedback: u16, stages: u32) -> (u8, u16
     let input = ((state & feedback).count_ones() & 1) as u16;
     let mask = (1u16 << stages) - 1;
     (output, ((state << 1) | input) & mask)
+}
+
+/// A register state printed as a binary number whose leftmost digit is stage 1 (as
+/// IS-GPS-705 Tables 3-Ia/3-Ib and BDS-SIS-ICD-B2a Tables 5-2/5-3 print them), in the
+/// stage-k-in-bit-(k-1) form of [`shift_register_step`].
+const fn state_from_stage_1_first(printed: u32, stages: u32) -> u16 {
+    (printed.reverse_bits() >> (32 - stages)) as u16
+}
+
+/// A Fibonacci shift register as [`shift_register_step`] clocks it: its number of stages,
+/// its feedback stages and the state it starts from (stage k in bit k-1).
+#[derive(Clone, Copy, Debug)]
+struct Register {
+    stages: u32,
+    feedback: u16,
+    start: u16,
+}
+
+impl Register {
+    /// The register's state after `clocks` clocks from its start state.
+    #[cfg(test)]
+    fn state_after(self, clocks: usize) -> u16 {
+        (0..clocks).fold(self.start, |state, _| {
+            shift_register_step(state, self.feedback, self.stages).1
+        })
+    }
+}
+
+/// The first `length` chips of the modulo-2 sum of two registers' outputs, register 1
+/// restarting from its start state every `restart_1` chips (the "short cycle" of IS-GPS-705
+/// §3.3.2 and BDS-SIS-ICD-B2a §5.2.1; a `restart_1` of `length` or more never restarts).
+///
+/// This is the code generator of IS-GPS-705 §3.3.2, Galileo OS SIS ICD §3.4.1 and
+/// BDS-SIS-ICD-B2a §5.2.1: one register starts from all ones, the other from a PRN's state.
+fn two_register_code(r1: Register, restart_1: usize, r2: Register, length: usize) -> Vec<u8> {
+    let (mut s1, mut s2) = (r1.start, r2.start);
+    let mut chips = Vec::with_capacity(length);
+    for i in 1..=length {
+        let (out1, next1) = shift_register_step(s1, r1.feedback, r1.stages);
+        let (out2, next2) = shift_register_step(s2, r2.feedback, r2.stages);
+        chips.push(out1 ^ out2);
+        s1 = if i % restart_1 == 0 { r1.start } else { next1 };
+        s2 = next2;
+    }
+    chips
 }
 
 #[cfg(test)]
