@@ -1,4 +1,4 @@
-//! Ranging codes: GPS L1 C/A and L5 and BeiDou B1I, with their secondary codes.
+//! Ranging codes: GPS L1 C/A and L5, Galileo E5a and BeiDou B1I, with their secondary codes.
 //!
 //! Chips are given in two forms:
 //! - logic level, `u8` in {0, 1}, as printed in the ICD tables;
@@ -9,6 +9,7 @@
 //! modulo-2 addition, which this mapping turns into a product).
 
 pub(crate) mod bds_b1i;
+pub(crate) mod galileo_e5a;
 pub(crate) mod gps_ca;
 pub(crate) mod gps_l5;
 pub mod neumann_hoffman;
@@ -18,6 +19,11 @@ mod table;
 mod bit_correlation;
 
 pub use bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+pub use galileo_e5a::{
+    GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_CODE_LENGTH, GALILEO_E5A_I_SECONDARY,
+    GALILEO_E5A_PRN_MAX, GALILEO_E5A_Q_SECONDARY_LENGTH, galileo_e5a_i, galileo_e5a_q,
+    galileo_e5a_q_secondary,
+};
 pub use gps_ca::{GPS_CA_CHIP_RATE_HZ, GPS_CA_CODE_LENGTH, gps_ca};
 pub use gps_l5::{
     GPS_L5_CHIP_RATE_HZ, GPS_L5_CODE_LENGTH, GPS_L5_I_NH10, GPS_L5_PRN_MAX, GPS_L5_Q_NH20,

@@ -32,6 +32,40 @@ pub(super) fn numeric_rows(name: &str, text: &str, radices: &[u32]) -> Vec<Vec<u
         .collect()
 }
 
+/// The chips of every row of a hexadecimal code table `name` (row i is PRN i + 1): one column
+/// of hexadecimal digits, the first chip in the most significant bit of the first digit, of
+/// which the first `length` chips are kept (the ICD pads the last digit with zeros).
+pub(super) fn hex_chip_rows(name: &str, text: &str, length: usize) -> Vec<Vec<u8>> {
+    rows(name, text)
+        .map(|(line, fields)| {
+            assert_eq!(
+                fields.len(),
+                1,
+                "{name} line {line}: expected one hex column"
+            );
+            let chips = hex_chips(fields[0])
+                .unwrap_or_else(|| panic!("{name} line {line}: not hexadecimal"));
+            assert!(
+                chips.len() >= length && chips.len() < length + 4,
+                "{name} line {line}: {} chips, expected {length}",
+                chips.len()
+            );
+            chips[..length].to_vec()
+        })
+        .collect()
+}
+
+/// The chips of hexadecimal digits, 4 per digit, most significant bit first; `None` if a
+/// character is not a hexadecimal digit.
+pub(super) fn hex_chips(hex: &str) -> Option<Vec<u8>> {
+    let mut chips = Vec::with_capacity(4 * hex.len());
+    for digit in hex.chars() {
+        let value = digit.to_digit(16)?;
+        chips.extend((0..4).rev().map(|bit| ((value >> bit) & 1) as u8));
+    }
+    Some(chips)
+}
+
 /// (line number, value fields) of every data row, checking that the PRN column counts 1, 2, ...
 fn rows<'a>(name: &'a str, text: &'a str) -> impl Iterator<Item = (usize, Vec<&'a str>)> + 'a {
     text.lines()
@@ -68,5 +102,15 @@ mod tests {
     #[should_panic(expected = "PRN column")]
     fn rows_out_of_prn_order_are_refused() {
         numeric_rows("sample", "2 1\n", &[10]);
+    }
+
+    #[test]
+    fn hex_rows_keep_the_first_chips_of_a_padded_last_digit() {
+        // 380AD90: the 25 chips 0011100000001010110110010 and three padding zeros.
+        let rows = hex_chip_rows("cs25", "1 380AD90\n", 25);
+        let text: String = rows[0].iter().map(|c| char::from(b'0' + c)).collect();
+        assert_eq!(text, "0011100000001010110110010");
+        assert_eq!(hex_chips("F0"), Some(vec![1, 1, 1, 1, 0, 0, 0, 0]));
+        assert_eq!(hex_chips("G"), None);
     }
 }
