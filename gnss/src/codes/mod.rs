@@ -1,4 +1,5 @@
-//! Ranging codes: GPS L1 C/A and L5, Galileo E5a and BeiDou B1I, with their secondary codes.
+//! Ranging codes: GPS L1 C/A and L5, Galileo E5a, BeiDou B1I and B1C, with their secondary
+//! codes.
 //!
 //! Chips are given in two forms:
 //! - logic level, `u8` in {0, 1}, as printed in the ICD tables;
@@ -8,16 +9,22 @@
 //! BPSK convention (IS-GPS-200 §3.3.1.1 and BDS-SIS-ICD-B1I §4.2.2 both modulate by
 //! modulo-2 addition, which this mapping turns into a product).
 
+pub(crate) mod bds_b1c;
 pub(crate) mod bds_b1i;
 pub(crate) mod galileo_e5a;
 pub(crate) mod gps_ca;
 pub(crate) mod gps_l5;
 pub mod neumann_hoffman;
 mod table;
+mod weil;
 
 #[cfg(test)]
 mod bit_correlation;
 
+pub use bds_b1c::{
+    BDS_B1C_CHIP_RATE_HZ, BDS_B1C_CODE_LENGTH, BDS_B1C_PRN_MAX, BDS_B1C_SECONDARY_LENGTH,
+    bds_b1c_data, bds_b1c_pilot, bds_b1c_pilot_secondary,
+};
 pub use bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 pub use galileo_e5a::{
     GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_CODE_LENGTH, GALILEO_E5A_I_SECONDARY,
