@@ -1,5 +1,5 @@
-//! Ranging codes: GPS L1 C/A and L5, Galileo E5a, BeiDou B1I and B1C, with their secondary
-//! codes.
+//! Ranging codes: GPS L1 C/A and L5, Galileo E5a, BeiDou B1I, B1C and B2a, with their
+//! secondary codes.
 //!
 //! Chips are given in two forms:
 //! - logic level, `u8` in {0, 1}, as printed in the ICD tables;
@@ -11,6 +11,7 @@
 
 pub(crate) mod bds_b1c;
 pub(crate) mod bds_b1i;
+pub(crate) mod bds_b2a;
 pub(crate) mod galileo_e5a;
 pub(crate) mod gps_ca;
 pub(crate) mod gps_l5;
@@ -26,6 +27,11 @@ pub use bds_b1c::{
     bds_b1c_data, bds_b1c_pilot, bds_b1c_pilot_secondary,
 };
 pub use bds_b1i::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+pub use bds_b2a::{
+    BDS_B2A_CHIP_RATE_HZ, BDS_B2A_CODE_LENGTH, BDS_B2A_DATA_SECONDARY,
+    BDS_B2A_PILOT_SECONDARY_LENGTH, BDS_B2A_PRN_MAX, bds_b2a_data, bds_b2a_pilot,
+    bds_b2a_pilot_secondary,
+};
 pub use galileo_e5a::{
     GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_CODE_LENGTH, GALILEO_E5A_I_SECONDARY,
     GALILEO_E5A_PRN_MAX, GALILEO_E5A_Q_SECONDARY_LENGTH, galileo_e5a_i, galileo_e5a_q,
