@@ -76,6 +76,7 @@ pub fn bds_b1c_pilot_secondary(prn: u8) -> Option<Vec<i8>> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::assert_distinct;
     use super::*;
 
     #[test]
@@ -99,14 +100,12 @@ mod tests {
     }
 
     #[test]
-    fn data_and_pilot_codes_differ_for_every_prn_pair() {
-        let data: Vec<_> = (1..=BDS_B1C_PRN_MAX)
-            .map(|prn| bds_b1c_data_logic(prn).expect("PRN in range"))
+    fn all_data_and_pilot_codes_are_distinct() {
+        let codes: Vec<_> = (1..=BDS_B1C_PRN_MAX)
+            .flat_map(|prn| [bds_b1c_data_logic(prn), bds_b1c_pilot_logic(prn)])
+            .map(|code| code.expect("PRN in range"))
             .collect();
-        for prn in 1..=BDS_B1C_PRN_MAX {
-            let pilot = bds_b1c_pilot_logic(prn).expect("PRN in range");
-            assert!(!data.contains(&pilot), "pilot {prn} equals a data code");
-        }
+        assert_distinct("B1C data and pilot", &codes);
     }
 
     #[test]

@@ -120,12 +120,8 @@ pub fn bds_b2a_pilot_secondary(prn: u8) -> Option<Vec<i8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::shift_register_step;
+    use super::super::{assert_distinct, chips_word as word, register_period};
     use super::*;
-
-    fn word(chips: &[u8]) -> u32 {
-        chips.iter().fold(0, |acc, &c| (acc << 1) | u32::from(c))
-    }
 
     /// First and last 24 chips (octal) printed in BDS-SIS-ICD-B2a-1.0 Tables 5-2, 5-3 and
     /// 5-4 for the PRNs whose printed values could be read here: quoted as "from the ICD"
@@ -167,16 +163,7 @@ mod tests {
     #[test]
     fn all_four_registers_are_maximal_length_with_period_8191() {
         for feedback in [DATA_G1, DATA_G2, PILOT_G1, PILOT_G2] {
-            let mut state = ALL_ONES;
-            let mut period = 0;
-            loop {
-                state = shift_register_step(state, feedback, STAGES).1;
-                period += 1;
-                if state == ALL_ONES || period > 9000 {
-                    break;
-                }
-            }
-            assert_eq!(period, 8191, "feedback {feedback:013b}");
+            assert_eq!(register_period(feedback, STAGES), 8191, "{feedback:013b}");
         }
     }
 
@@ -187,12 +174,8 @@ mod tests {
             .flat_map(|prn| [bds_b2a_data_logic(prn), bds_b2a_pilot_logic(prn)])
             .map(|code| code.expect("PRN in range"))
             .collect();
-        for a in 0..primaries.len() {
-            assert_eq!(primaries[a].len(), BDS_B2A_CODE_LENGTH);
-            for b in a + 1..primaries.len() {
-                assert_ne!(primaries[a], primaries[b], "codes {a} and {b}");
-            }
-        }
+        assert!(primaries.iter().all(|c| c.len() == BDS_B2A_CODE_LENGTH));
+        assert_distinct("B2a data and pilot", &primaries);
         let secondaries: Vec<_> = (1..=BDS_B2A_PRN_MAX)
             .map(|prn| bds_b2a_pilot_secondary_logic(prn).expect("PRN in range"))
             .collect();

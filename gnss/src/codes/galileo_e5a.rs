@@ -118,12 +118,8 @@ pub fn galileo_e5a_q_secondary(prn: u8) -> Option<Vec<i8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::shift_register_step;
+    use super::super::{assert_distinct, chips_word as word, register_period};
     use super::*;
-
-    fn word(chips: &[u8]) -> u32 {
-        chips.iter().fold(0, |acc, &c| (acc << 1) | u32::from(c))
-    }
 
     /// Every code's first 24 chips equal the hexadecimal value the ICD prints beside its
     /// start value, for E5a-I and E5a-Q codes 1-50.
@@ -154,16 +150,7 @@ mod tests {
     fn both_registers_are_maximal_length_with_period_16383() {
         for taps in [R1_TAPS_OCTAL, R2_TAPS_OCTAL] {
             let feedback = feedback_from_octal_taps(taps);
-            let mut state = ALL_ONES;
-            let mut period = 0;
-            loop {
-                state = shift_register_step(state, feedback, STAGES).1;
-                period += 1;
-                if state == ALL_ONES || period > 20_000 {
-                    break;
-                }
-            }
-            assert_eq!(period, 16383, "taps {taps:o}");
+            assert_eq!(register_period(feedback, STAGES), 16383, "taps {taps:o}");
         }
     }
 
@@ -173,11 +160,7 @@ mod tests {
             .flat_map(|prn| [galileo_e5a_i_logic(prn), galileo_e5a_q_logic(prn)])
             .map(|code| code.expect("code in range"))
             .collect();
-        for a in 0..codes.len() {
-            for b in a + 1..codes.len() {
-                assert_ne!(codes[a], codes[b], "codes {a} and {b}");
-            }
-        }
+        assert_distinct("E5a-I and E5a-Q", &codes);
     }
 
     /// CS20_1 is 842E9; CS100_1 starts 83F6F69D8F6E and CS100_50 ends F749F56 as printed. The
@@ -196,15 +179,13 @@ mod tests {
         let last = galileo_e5a_q_secondary(50).expect("code 50");
         let last_logic: Vec<u8> = last.iter().map(|&v| u8::from(v < 0)).collect();
         assert_eq!(word(&last_logic[72..]), 0xF749F56);
-        let all: Vec<_> = (1..=GALILEO_E5A_PRN_MAX)
-            .map(|prn| galileo_e5a_q_secondary(prn).expect("code in range"))
-            .collect();
-        for a in 0..all.len() {
-            assert_eq!(all[a].len(), GALILEO_E5A_Q_SECONDARY_LENGTH);
-            for b in a + 1..all.len() {
-                assert_ne!(all[a], all[b], "CS100_{} = CS100_{}", a + 1, b + 1);
-            }
-        }
+        assert_eq!(cs100().len(), usize::from(GALILEO_E5A_PRN_MAX));
+        assert!(
+            cs100()
+                .iter()
+                .all(|c| c.len() == GALILEO_E5A_Q_SECONDARY_LENGTH)
+        );
+        assert_distinct("CS100", cs100());
         assert!(galileo_e5a_q_secondary(51).is_none());
     }
 

@@ -117,12 +117,8 @@ pub fn gps_l5_q(prn: u8) -> Option<Vec<i8>> {
 
 #[cfg(test)]
 mod tests {
-    use super::super::shift_register_step;
+    use super::super::{assert_distinct, chips_word as word, register_period};
     use super::*;
-
-    fn word(chips: &[u8]) -> u32 {
-        chips.iter().fold(0, |acc, &c| (acc << 1) | u32::from(c))
-    }
 
     /// The two columns the ICD prints for each PRN must describe the same register: the
     /// all-ones XB state clocked "XB code advance" times is the printed initial XB state.
@@ -195,16 +191,7 @@ mod tests {
     #[test]
     fn xa_and_xb_are_maximal_length_with_period_8191() {
         for feedback in [XA_FEEDBACK, XB_FEEDBACK] {
-            let mut state = ALL_ONES;
-            let mut period = 0;
-            loop {
-                state = shift_register_step(state, feedback, STAGES).1;
-                period += 1;
-                if state == ALL_ONES || period > 9000 {
-                    break;
-                }
-            }
-            assert_eq!(period, 8191);
+            assert_eq!(register_period(feedback, STAGES), 8191);
         }
     }
 
@@ -214,12 +201,8 @@ mod tests {
             .flat_map(|prn| [gps_l5_i_logic(prn), gps_l5_q_logic(prn)])
             .map(|code| code.expect("PRN in range"))
             .collect();
-        for a in 0..codes.len() {
-            assert_eq!(codes[a].len(), GPS_L5_CODE_LENGTH);
-            for b in a + 1..codes.len() {
-                assert_ne!(codes[a], codes[b], "codes {a} and {b}");
-            }
-        }
+        assert!(codes.iter().all(|c| c.len() == GPS_L5_CODE_LENGTH));
+        assert_distinct("L5 I5 and Q5", &codes);
     }
 
     #[test]

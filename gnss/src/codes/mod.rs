@@ -127,6 +127,38 @@ fn two_register_code(r1: Register, restart_1: usize, r2: Register, length: usize
     chips
 }
 
+/// Test support: chips packed into a word, first chip in the most significant bit (the way
+/// the ICDs print first and last chips in octal or hexadecimal).
+#[cfg(test)]
+fn chips_word(chips: &[u8]) -> u32 {
+    chips.iter().fold(0, |acc, &c| (acc << 1) | u32::from(c))
+}
+
+/// Test support: the period of the register with `feedback` started from all ones (2^n - 1
+/// for a maximal-length register; gives up past 2^n).
+#[cfg(test)]
+fn register_period(feedback: u16, stages: u32) -> usize {
+    let all_ones = (1u16 << stages) - 1;
+    let mut state = all_ones;
+    for period in 1..=1usize << stages {
+        state = shift_register_step(state, feedback, stages).1;
+        if state == all_ones {
+            return period;
+        }
+    }
+    usize::MAX
+}
+
+/// Test support: asserts that no two of `codes` are equal (`what` names them in the message).
+#[cfg(test)]
+fn assert_distinct(what: &str, codes: &[Vec<u8>]) {
+    for (a, code) in codes.iter().enumerate() {
+        if let Some(b) = codes[a + 1..].iter().position(|other| other == code) {
+            panic!("{what}: codes {a} and {} are equal", a + 1 + b);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::level_from_logic;

@@ -103,8 +103,8 @@ impl WeilFamily {
     /// beside its w and p, and that no two codes are equal.
     #[cfg(test)]
     pub(super) fn assert_matches_printed_chips(&self) {
+        use super::{assert_distinct, chips_word as word};
         assert!(self.printed_chips, "{} prints no chips", self.name);
-        let word = |chips: &[u8]| chips.iter().fold(0u32, |acc, &c| (acc << 1) | u32::from(c));
         let mut codes = Vec::new();
         for (index, row) in self.rows().iter().enumerate() {
             let prn = u8::try_from(index + 1).expect("small table");
@@ -117,13 +117,9 @@ impl WeilFamily {
                 self.name
             );
             assert_eq!(last, row[3], "{} PRN {prn}: last 24 {last:08o}", self.name);
-            assert!(
-                !codes.contains(&code),
-                "{} PRN {prn} repeats a code",
-                self.name
-            );
             codes.push(code);
         }
+        assert_distinct(self.name, &codes);
     }
 }
 
