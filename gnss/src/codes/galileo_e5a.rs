@@ -1,6 +1,7 @@
 //! Galileo E5a ranging codes E5a-I (F/NAV data) and E5a-Q (pilot) with their secondary
-//! codes (Galileo OS SIS ICD Issue 2.1, §3.4 "Spreading codes and secondary codes" and
-//! Annex C).
+//! codes (Galileo OS SIS ICD Issue 2.1, 2023-11: the E5 code generator parameters, the
+//! E5a-I and E5a-Q start-value tables, Tables 16 and 17 in the numbering the transcription of
+//! `data/galileo_e5a.txt` cites, and the secondary-code tables).
 //!
 //! Each 10230-chip (1 ms) primary code is the modulo-2 sum of two 14-stage registers, the
 //! truncated sum of two m-sequences of period 16383. Both components use the same feedback:
@@ -15,15 +16,15 @@ use std::sync::OnceLock;
 use super::table::{hex_chip_rows, numeric_rows};
 use super::{Register, levels, levels_from_logic, two_register_code};
 
-/// E5a chip rate, chips per second (Galileo OS SIS ICD §3.4).
+/// E5a chip rate, chips per second (Galileo OS SIS ICD).
 pub const GALILEO_E5A_CHIP_RATE_HZ: f64 = 10.23e6;
-/// E5a primary code length in chips: one period is 1 ms (Galileo OS SIS ICD §3.4).
+/// E5a primary code length in chips: one period is 1 ms (Galileo OS SIS ICD).
 pub const GALILEO_E5A_CODE_LENGTH: usize = 10230;
 /// Highest E5a code number in the ICD's tables (code n is used by the satellite of SVID n).
 pub const GALILEO_E5A_PRN_MAX: u8 = 50;
 
 /// E5a-I secondary code CS20_1, logic chips, first chip first: hexadecimal 842E9 as the
-/// ICD's secondary-code table prints it (§3.4.2).
+/// ICD's secondary-code table prints it.
 pub const GALILEO_E5A_I_CS20_LOGIC: [u8; 20] =
     [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, 1, 1, 0, 1, 0, 0, 1];
 /// CS20_1 as signal levels, one chip per 1 ms primary period (20 ms, one F/NAV symbol).
@@ -32,7 +33,7 @@ pub const GALILEO_E5A_I_SECONDARY: [i8; 20] = levels_from_logic(GALILEO_E5A_I_CS
 pub const GALILEO_E5A_Q_SECONDARY_LENGTH: usize = 100;
 
 const STAGES: u32 = 14;
-/// Register 1 taps, octal 40503 (ICD §3.4.1, table of E5 code generator parameters).
+/// Register 1 taps, octal 40503 (the ICD's table of E5 code generator parameters).
 const R1_TAPS_OCTAL: u32 = 0o40503;
 /// Register 2 taps, octal 50661 (same table).
 const R2_TAPS_OCTAL: u32 = 0o50661;
@@ -44,7 +45,7 @@ const fn feedback_from_octal_taps(taps: u32) -> u16 {
     (taps >> 1) as u16
 }
 
-/// Annex C tables of register-2 start values and first chips; see the file's header.
+/// Tables 16/17: register-2 start values and first chips; see the file's header.
 const TABLE: &str = include_str!("data/galileo_e5a.txt");
 /// The CS100 table, codes 1-50.
 const CS100: &str = include_str!("data/galileo_cs100.txt");

@@ -112,7 +112,7 @@ impl Register {
 /// restarting from its start state every `restart_1` chips (the "short cycle" of IS-GPS-705
 /// §3.3.2 and BDS-SIS-ICD-B2a §5.2.1; a `restart_1` of `length` or more never restarts).
 ///
-/// This is the code generator of IS-GPS-705 §3.3.2, Galileo OS SIS ICD §3.4.1 and
+/// This is the code generator of IS-GPS-705 §3.3.2, the Galileo OS SIS ICD's E5 codes and
 /// BDS-SIS-ICD-B2a §5.2.1: one register starts from all ones, the other from a PRN's state.
 fn two_register_code(r1: Register, restart_1: usize, r2: Register, length: usize) -> Vec<u8> {
     let (mut s1, mut s2) = (r1.start, r2.start);
