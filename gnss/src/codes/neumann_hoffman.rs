@@ -5,7 +5,7 @@
 //! (0,0,0,0,0,1,0,0,1,1,0,1,0,1,0,0,1,1,1,0), one NH chip per 1 ms ranging-code period,
 //! the first NH chip starting together with the navigation bit.
 
-use super::level_from_logic;
+use super::levels_from_logic;
 
 /// NH code length in chips (one navigation bit).
 pub const NH20_LENGTH: usize = 20;
@@ -17,15 +17,7 @@ pub const NH20_LOGIC: [u8; NH20_LENGTH] =
     [0, 0, 0, 0, 0, 1, 0, 0, 1, 1, 0, 1, 0, 1, 0, 0, 1, 1, 1, 0];
 
 /// The NH code as signal levels (logic 0 -> +1, logic 1 -> -1), first chip first.
-pub const NH20: [i8; NH20_LENGTH] = {
-    let mut levels = [0i8; NH20_LENGTH];
-    let mut i = 0;
-    while i < NH20_LENGTH {
-        levels[i] = level_from_logic(NH20_LOGIC[i]);
-        i += 1;
-    }
-    levels
-};
+pub const NH20: [i8; NH20_LENGTH] = levels_from_logic(NH20_LOGIC);
 
 /// NH level of the `code_period_index`-th 1 ms code period counted from the start of a
 /// navigation bit (wraps every 20 periods).
