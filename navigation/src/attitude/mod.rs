@@ -46,11 +46,12 @@ pub use ukf::UkfAttitude;
 
 /// Shortest body-frame baseline accepted (m): anything shorter is treated as zero.
 pub const MIN_BASELINE_M: f64 = 1e-4;
-/// Longest body-frame baseline accepted (m).
-// assumed: antennas on one rigid body (the thesis's 1 m, ships and aircraft up to about
-// 100 m); 1 km leaves room and keeps products of baselines far from overflow (a 1e300 m
-// antenna was reported as "collinear").
-pub const MAX_BASELINE_M: f64 = 1000.0;
+/// Longest baseline accepted (m).
+// assumed: 100 000 km, SkyForge's largest apogee radius: baselines here are antennas on
+// one body (the thesis's 1 m) but also stations kilometres apart (relative positioning,
+// GeoNet), and any two receivers SkyForge simulates are closer; a 1e300 m antenna was
+// reported as "collinear".
+pub const MAX_BASELINE_M: f64 = 1.0e8;
 /// Smallest sine of the angle between two body baselines for a geometry to count as not
 /// collinear (1e-3: 0.06 deg; the roll about a nearly common axis then has a variance
 /// about 1e6 times that of the other angles, which is no attitude any more).
@@ -128,7 +129,7 @@ impl BodyGeometry {
             }
             if b.norm() > MAX_BASELINE_M {
                 return Err(AttitudeError::Geometry(format!(
-                    "baseline {} is {:e} m long, longer than {MAX_BASELINE_M} m (antennas on one body)",
+                    "baseline {} is {:e} m long, longer than {MAX_BASELINE_M:e} m",
                     i + 1,
                     b.norm()
                 )));

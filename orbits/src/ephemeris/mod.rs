@@ -5,6 +5,7 @@
 pub(crate) mod broadcast;
 pub(crate) mod config;
 pub(crate) mod klobuchar;
+pub(crate) mod nav_text;
 pub mod nominal;
 pub mod rinex_nav;
 pub mod rinex_nav_iono;

@@ -33,12 +33,13 @@
 //! - Records whose orbit is physically impossible (sqrt(A) outside 1000..10000 m^1/2,
 //!   e outside [0, 1), non-finite values) are format errors.
 
+use super::nav_text::read_text_maybe_gz;
+use super::rinex_nav_iono::parse_iono;
 use super::{
     NavError,
     broadcast::{BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass},
     sat_id::{SatId, System},
 };
-use crate::bounded_read::{read_bytes, read_limited, too_large};
 use crate::rinex_header::{label, supported_major, version_and_type};
 use hifitime::{Epoch, TimeScale, Unit};
 use std::path::Path;
@@ -54,33 +55,6 @@ const WEEK_S: f64 = crate::time::SECONDS_PER_WEEK as f64;
 pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
     let text = read_text_maybe_gz(path)?;
     parse_nav(&text, &path.display().to_string())
-}
-
-/// Largest navigation file read, compressed or after decompression (bytes): a day of
-/// every constellation's broadcast ephemerides (RINEX 4 BRD4 files) is about 15 MB.
-pub const NAV_FILE_MAX_BYTES: u64 = 256 * 1024 * 1024;
-
-/// Read a whole text file, gunzipping it when it starts with the gzip magic bytes; a
-/// directory, or more than [`NAV_FILE_MAX_BYTES`] (a device such as `/dev/zero`), is an
-/// error before memory runs out.
-pub(crate) fn read_text_maybe_gz(path: &Path) -> Result<String, NavError> {
-    const KIND: &str = "navigation file";
-    let io_err = |source| NavError::Io {
-        path: path.display().to_string(),
-        source,
-    };
-    let raw = read_bytes(path, NAV_FILE_MAX_BYTES, KIND).map_err(io_err)?;
-    let bytes = if raw.starts_with(&[0x1f, 0x8b]) {
-        read_limited(
-            flate2::read::MultiGzDecoder::new(raw.as_slice()),
-            NAV_FILE_MAX_BYTES,
-        )
-        .map_err(io_err)?
-        .ok_or_else(|| io_err(too_large(NAV_FILE_MAX_BYTES, KIND)))?
-    } else {
-        raw
-    };
-    Ok(String::from_utf8_lossy(&bytes).into_owned())
 }
 
 /// Parse the text of a RINEX 2/3/4 navigation file. `source` names the file in errors.
@@ -99,6 +73,9 @@ pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, Na
         .iter()
         .position(|l| label(l) == "END OF HEADER")
         .ok_or_else(|| p.err(lines.len(), "no END OF HEADER"))?;
+    // The header's Klobuchar lines must read as numbers wherever the file is read (they
+    // were ignored here and refused by the receiver's reader).
+    parse_iono(text, source)?;
     let body = Body {
         lines: &lines,
         start: end + 1,
@@ -525,6 +502,25 @@ fn split_records<'a>(body: &Body<'a>, starts: impl Fn(&str) -> bool) -> Vec<Reco
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue #33 (12): an `IONOSPHERIC CORR` line that does not read as numbers was
+    /// ignored by this reader (and refused by the receiver's); it is refused with its line.
+    #[test]
+    fn an_unreadable_ionosphere_header_line_is_refused() {
+        let fixture = crate::fixtures::RINEX3_GPS_NAV;
+        let good = "GPSA   1.1176E-08  1.4901E-08 -5.9605E-08 -1.1921E-07       IONOSPHERIC CORR\n";
+        let bad = "GPSA   1.1176E-08  x.4901E-08 -5.9605E-08 -1.1921E-07       IONOSPHERIC CORR\n";
+        let with = |line: &str| {
+            fixture.replacen(
+                "RINEX VERSION / TYPE\n",
+                &format!("RINEX VERSION / TYPE\n{line}"),
+                1,
+            )
+        };
+        assert_eq!(parse_nav(&with(good), "nav.rnx").unwrap().len(), 1);
+        let e = parse_nav(&with(bad), "nav.rnx").unwrap_err().to_string();
+        assert!(e.starts_with("nav.rnx:2: "), "{e}");
+    }
 
     /// Issue #11: `--assist /dev/zero` read until memory ran out, and a directory was
     /// reported as missing.

@@ -4,7 +4,7 @@
 
 use super::NavError;
 use super::klobuchar::KlobucharCoeffs;
-use super::rinex_nav::read_text_maybe_gz;
+use super::nav_text::read_text_maybe_gz;
 use std::path::Path;
 
 /// The ionosphere coefficients a navigation file carries.

@@ -10,7 +10,7 @@
 //! 999999.999999 (or more) is "missing". Velocity (`V`) and correlation (`EP`/`EV`) lines
 //! are ignored.
 
-use super::{NavError, rinex_nav::read_text_maybe_gz, sat_id::SatId};
+use super::{NavError, nav_text::read_text_maybe_gz, sat_id::SatId};
 use crate::Vec3;
 use hifitime::{Epoch, TimeScale};
 use std::path::Path;
