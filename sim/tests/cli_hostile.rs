@@ -279,7 +279,7 @@ fn force_names_and_sizes_are_refused_under_the_memory_limit() {
         &["--fs", "4e6", "--config", "wide.toml", "--out", "rx"],
     ]
     .concat();
-    refused(&dir, &wide, &["pll_bandwidth_hz"]);
+    refused(&dir, &wide, &["wide.toml: tracking.pll_bandwidth_hz"]);
     std::fs::remove_file(dir.join("wide.toml")).unwrap();
     let assisted = [
         &raw[..],
