@@ -143,6 +143,13 @@ pub fn shown(value: f64) -> String {
     }
 }
 
+/// Every `(field, value, allowed)` row checked in order; the first value outside its
+/// interval is the error.
+pub fn check_table(rows: &[(&str, f64, Allowed)]) -> Result<(), Invalid> {
+    rows.iter()
+        .try_for_each(|(field, value, allowed)| allowed.check(field, *value))
+}
+
 impl std::fmt::Display for Allowed {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let open = if self.lo_open { '(' } else { '[' };

@@ -6,7 +6,7 @@ use crate::tracking::config::CarrierMethod;
 use crate::tracking::config::TrackingConfig;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::check::{Invalid, NEAR_EARTH_RADIUS_M, check_position};
+use skyforge_orbits::check::{Invalid, NEAR_EARTH_RADIUS_M, check_position, check_table};
 
 /// The stage after observables, at every epoch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
@@ -244,9 +244,7 @@ impl ReceiverFile {
             ),
             ("pvt.raim_hal_m", p.raim_hal_m, ALARM_LIMIT_M),
         ];
-        for (field, value, allowed) in values {
-            allowed.check(field, value)?;
-        }
+        check_table(&values)?;
         for (field, v) in [("pvt.raim_pfa", p.raim_pfa), ("pvt.raim_pmd", p.raim_pmd)] {
             if v != 0.0 {
                 RAIM_PROBABILITY.check(field, v)?;
@@ -316,9 +314,7 @@ impl AssistFile {
             ),
             ("assist.oscillator_ppm", self.oscillator_ppm, OSCILLATOR_PPM),
         ];
-        for (field, value, allowed) in values {
-            allowed.check(field, value)?;
-        }
+        check_table(&values)?;
         Ok(ApproximateState {
             r_ecef_m: Vec3::from(self.position_ecef_m),
             v_ecef_mps: Vec3::from(self.velocity_ecef_mps),

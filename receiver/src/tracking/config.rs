@@ -5,7 +5,7 @@
 use super::bit_sync::BitSyncConfig;
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::error_budget::LoopOrder;
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Invalid, check_table};
 
 /// Thesis section 3.3.5: the proposed process noise densities (Q_theta, Q_omega, Q_alpha,
 /// Q_alpha_t) of eq. 3.3-59.
@@ -246,11 +246,11 @@ impl TrackingConfig {
             ("bit_sync.dominance", Some(b.dominance), DOMINANCE),
             ("bit_sync.nh_bits", Some(b.nh_bits as f64), NH_BITS),
         ];
-        for (field, value, allowed) in values {
-            if let Some(v) = value {
-                allowed.check(field, v)?;
-            }
-        }
+        let given: Vec<_> = values
+            .into_iter()
+            .filter_map(|(field, value, allowed)| Some((field, value?, allowed)))
+            .collect();
+        check_table(&given)?;
         self.ukf.check().map_err(|e| e.within("ukf"))
     }
 }
