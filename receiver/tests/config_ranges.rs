@@ -59,7 +59,7 @@ fn tracking_values_out_of_range_are_refused_at_parse_naming_the_file() {
         ),
         (
             "[tracking.ukf]\nq = [1e300, 0.0, 0.0, 0.0]\n",
-            "tracking.ukf.q[0] = 1e300: must be in [0, 1e12]",
+            "tracking.ukf.q[0] = 1e300: must be in [0, 1e16]",
         ),
         (
             "[tracking.ukf]\ninitial_doppler_sigma_hz = 1e30\n",
@@ -108,6 +108,7 @@ fn the_defaults_and_the_written_assistance_are_in_range() {
         assist.as_str(),
         "[tracking]\npll_narrow_bandwidth_hz = 2.0\nfll_assist_s = inf\ncoherent_ms = 20\n",
         "[stages]\ncarrier = \"ukf\"\n[tracking.ukf]\nq = [1e-10, 1e-4, 1e2, 1e8]\n",
+        "[tracking.ukf]\nq = [1e-5, 10.0, 1e7, 1e13]\n",
         "[pvt]\nraim_pfa = 0.0\nraim_pmd = 0.0\n",
     ] {
         assert!(parse_config(text, "rx.toml").is_ok(), "{text}");

@@ -157,9 +157,9 @@ mod limits {
     pub(super) const DOMINANCE: Allowed = Allowed::closed(1.0, 100.0, "");
     /// assumed: 100 windows (2 s) of NH correlation are past any use.
     pub(super) const NH_BITS: Allowed = Allowed::closed(1.0, 100.0, "windows of 20 ms");
-    /// The UKF's process noise densities: assumed up to 1e12 (the thesis's largest, Q_alpha_t,
-    /// is 1e8).
-    pub(super) const UKF_Q: Allowed = Allowed::closed(0.0, 1e12, "");
+    /// The UKF's process noise densities: assumed up to 1e16, a thousand times the largest
+    /// the thesis uses (the "traditional" Q_alpha_t of 1e13 that section 3.3.5 compares).
+    pub(super) const UKF_Q: Allowed = Allowed::closed(0.0, 1e16, "");
     pub(super) const UKF_KAPPA: Allowed = Allowed::above(0.0, 10.0, "");
     /// Up to the acquisition's widest search (60 kHz).
     pub(super) const UKF_DOPPLER_SIGMA_HZ: Allowed = Allowed::above(0.0, 60e3, "Hz");

@@ -56,9 +56,9 @@ impl EventKind {
             // assumed: 100 km, far beyond the metres to kilometres of the faults an
             // integrity monitor is tested on.
             EventKind::CodeStep => Some(Allowed::closed(-100e3, 100e3, "m")),
-            // assumed: 10 m/s, a hundred times the steepest ionospheric gradient seen
-            // (about 0.1 m/s in the storms of 2003).
-            EventKind::IonoRamp => Some(Allowed::closed(-10.0, 10.0, "m/s")),
+            // assumed: 1 km/s, ten times the fastest ramp the RAIM tables inject (100 m/s,
+            // validate::integrity::raim); an ionospheric gradient stays below 1 m/s.
+            EventKind::IonoRamp => Some(Allowed::closed(-1000.0, 1000.0, "m/s")),
             // assumed: a million cycles (190 km), as the code step.
             EventKind::PhaseJump => Some(Allowed::closed(-1e6, 1e6, "cycles")),
         }
