@@ -7,9 +7,9 @@ use crate::csv::{Fields, FormatError, read_csv, require_columns};
 use crate::h5::{append_rows, create_rows, text_attr};
 use hifitime::Epoch;
 use serde::Serialize;
-use skyforge_navigation::integrity::{MonitorEpoch, Station, Statistic};
+use skyforge_navigation::integrity::{MonitorEpoch, Station, Statistic, Unmonitored};
 use skyforge_orbits::time::TimeOrigin;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -117,6 +117,10 @@ pub struct Flag {
 pub struct MonitorRecord {
     pub alarms: Vec<Alarm>,
     pub flags: Vec<Flag>,
+    /// The first and last row's time (s since the scenario start); `None` without rows.
+    pub span_s: Option<(f64, f64)>,
+    /// Every station of the rows.
+    pub stations: BTreeSet<String>,
 }
 
 /// The alarms and loss-of-lock flags of `monitor.csv` at `path`, timed from `start`.
@@ -126,6 +130,15 @@ pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, Form
     let mut out = MonitorRecord::default();
     let each = |header: &[&str], line: usize, text: &str| {
         let f = Fields::new(path, line, header, text)?;
+        let t_s = origin.seconds_since_start(f.epoch(LEADING[0])?);
+        out.span_s = Some(
+            out.span_s
+                .map_or((t_s, t_s), |(a, b)| (a.min(t_s), b.max(t_s))),
+        );
+        let station = f.text("station")?;
+        if !out.stations.contains(station) {
+            out.stations.insert(station.to_string());
+        }
         let flagged = f.text(LOSS_OF_LOCK)? == "1";
         let mut alarmed = Vec::new();
         for stat in Statistic::ALL {
@@ -136,7 +149,6 @@ pub fn read_monitor_csv(path: &Path, start: Epoch) -> Result<MonitorRecord, Form
         if !flagged && alarmed.is_empty() {
             return Ok(());
         }
-        let t_s = origin.seconds_since_start(f.epoch(LEADING[0])?);
         let (station, sat) = (f.text("station")?.to_string(), f.text("sat")?.to_string());
         if flagged {
             out.flags.push(Flag {
@@ -185,7 +197,14 @@ pub struct Summary {
     pub stations: Vec<String>,
     pub common_point_ecef_m: [f64; 3],
     pub epochs: usize,
+    /// Epochs at which at least one satellite was monitored.
+    pub epochs_monitored: usize,
+    /// Station-satellite values monitored (rows of `monitor.csv`).
     pub monitored: usize,
+    /// The satellites monitored at some epoch.
+    pub satellites_monitored: Vec<String>,
+    /// Satellite-epochs observed but not monitored, by reason.
+    pub unmonitored: Unmonitored,
     pub alarms: Vec<AlarmSummary>,
 }
 
@@ -193,7 +212,9 @@ pub struct Summary {
 #[derive(Debug, Default)]
 pub struct AlarmLog {
     by_key: BTreeMap<(String, String, &'static str), AlarmSummary>,
+    satellites: BTreeSet<String>,
     pub epochs: usize,
+    pub epochs_monitored: usize,
     pub monitored: usize,
 }
 
@@ -201,7 +222,11 @@ impl AlarmLog {
     /// Take one epoch.
     pub fn add(&mut self, e: &MonitorEpoch, stations: &[Station]) {
         self.epochs += 1;
+        if !e.sats.is_empty() {
+            self.epochs_monitored += 1;
+        }
         for s in &e.sats {
+            self.satellites.insert(s.sat.to_string());
             for (station, v) in stations.iter().zip(&s.stations) {
                 let Some(v) = v else { continue };
                 self.monitored += 1;
@@ -228,14 +253,22 @@ impl AlarmLog {
     }
 
     /// The summary, alarms by first time.
-    pub fn summary(self, stations: &[Station], common: [f64; 3]) -> Summary {
+    pub fn summary(
+        self,
+        stations: &[Station],
+        common: [f64; 3],
+        unmonitored: Unmonitored,
+    ) -> Summary {
         let mut alarms: Vec<AlarmSummary> = self.by_key.into_values().collect();
         alarms.sort_by(|a, b| a.first_t_s.total_cmp(&b.first_t_s));
         Summary {
             stations: stations.iter().map(|s| s.name.clone()).collect(),
             common_point_ecef_m: common,
             epochs: self.epochs,
+            epochs_monitored: self.epochs_monitored,
             monitored: self.monitored,
+            satellites_monitored: self.satellites.into_iter().collect(),
+            unmonitored,
             alarms,
         }
     }

@@ -4,7 +4,8 @@
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, GPS_CA_CHIP_RATE_HZ};
-use skyforge_orbits::check::Invalid;
+use skyforge_gnss::observation::NOISE_SIGMA0_M;
+use skyforge_orbits::check::{Allowed, GROUND_RADIUS_M, Invalid, check_position, check_table};
 use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
@@ -24,11 +25,11 @@ pub(crate) const MAX_GEOMETRY_RATE_HZ: f64 = 1000.0;
 /// beam-forming receivers carry; each antenna adds a recording per band and its truth.
 pub(crate) const MAX_ANTENNAS: usize = 64;
 /// Ground-site height limits (m above the WGS-84 ellipsoid): below the lowest dry land
-/// (about -430 m) with margin, up to the Karman line.
-const GROUND_HEIGHT_RANGE_M: (f64, f64) = (-1_000.0, 100_000.0);
-/// Ground-site ECEF norm limits (m): the WGS-84 polar radius (6 356 752 m) and equatorial
-/// radius (6 378 137 m), widened by the height limits above.
-const GROUND_ECEF_NORM_RANGE_M: (f64, f64) = (6_355_000.0, 6_480_000.0);
+/// (about -430 m) with margin, up to the Karman line. `ecef_m` is checked against
+/// `orbits::check::GROUND_RADIUS_M`, these widened by the Earth's radii.
+const GROUND_HEIGHT_M: Allowed = Allowed::closed(-1_000.0, 100_000.0, "m above the ellipsoid");
+const LATITUDE_DEG: Allowed = Allowed::closed(-90.0, 90.0, "deg");
+const LONGITUDE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg (east positive)");
 
 /// Every check that needs no file, in file order. [`crate::parse`] runs it on the parsed
 /// scenario, [`Scenario::build`] again on whatever the caller may have changed since.
@@ -66,8 +67,8 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
 }
 
 /// `[observation]`: the observation level needs the `[signal]` table (its C/N0 settings);
-/// observed-only signals need the observation level; noise parameters are finite and
-/// non-negative, elevation scales positive.
+/// observed-only signals need the observation level; noise parameters in their ranges
+/// (`gnss::observation::NOISE_SIGMA0_M`, `ElevationNoise::check`).
 fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
     let obs = &scenario.observation;
     if obs.level == Level::Observation && scenario.signal.is_none() {
@@ -86,36 +87,15 @@ fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
             "observed-only signals are drawn at the observation level alone (level = \"observation\"); the signal level synthesises GPS L1 C/A and BDS B1I",
         ));
     }
-    let non_negative = |field: &str, v: f64| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(())
-        } else {
-            Err(Invalid::new(
-                format!("observation.noise.{field}"),
-                v,
-                "must be a finite number >= 0",
-            ))
-        }
-    };
     match &obs.noise {
         ObsNoiseConfig::Calibrated { .. } => Ok(()),
         ObsNoiseConfig::Constant { phase_m, code_m } => {
-            non_negative("phase_m", *phase_m)?;
-            non_negative("code_m", *code_m)
+            NOISE_SIGMA0_M.check("observation.noise.phase_m", *phase_m)?;
+            NOISE_SIGMA0_M.check("observation.noise.code_m", *code_m)
         }
         ObsNoiseConfig::Elevation { phase, code } => {
-            for (name, e) in [("phase", phase), ("code", code)] {
-                non_negative(&format!("{name}.sigma0_m"), e.sigma0_m)?;
-                non_negative(&format!("{name}.a0"), e.a0)?;
-                if !(e.elev0_deg.is_finite() && e.elev0_deg > 0.0) {
-                    return Err(Invalid::new(
-                        format!("observation.noise.{name}.elev0_deg"),
-                        e.elev0_deg,
-                        "must be a positive number of degrees",
-                    ));
-                }
-            }
-            Ok(())
+            phase.check("observation.noise.phase", NOISE_SIGMA0_M)?;
+            code.check("observation.noise.code", NOISE_SIGMA0_M)
         }
     }
 }
@@ -323,7 +303,7 @@ fn check_ground(g: &GroundConfig) -> Result<(), Invalid> {
             "no position",
             "give latitude_deg, longitude_deg and height_m, or ecef_m",
         )),
-        (0, Some(ecef)) => check_ecef(&ecef),
+        (0, Some(ecef)) => check_position("ecef_m", &ecef, GROUND_RADIUS_M),
         (_, Some(_)) => Err(Invalid::new(
             "ecef_m",
             "given with latitude/longitude/height",
@@ -335,14 +315,9 @@ fn check_ground(g: &GroundConfig) -> Result<(), Invalid> {
                 g.longitude_deg.unwrap_or_default(),
                 g.height_m.unwrap_or_default(),
             );
-            check_range("latitude_deg", lat, (-90.0, 90.0), "deg")?;
-            check_range("longitude_deg", lon, (-360.0, 360.0), "deg (east positive)")?;
-            check_range(
-                "height_m",
-                h,
-                GROUND_HEIGHT_RANGE_M,
-                "m above the ellipsoid",
-            )
+            LATITUDE_DEG.check("latitude_deg", lat)?;
+            LONGITUDE_DEG.check("longitude_deg", lon)?;
+            GROUND_HEIGHT_M.check("height_m", h)
         }
         _ => {
             let missing = geodetic
@@ -358,39 +333,13 @@ fn check_ground(g: &GroundConfig) -> Result<(), Invalid> {
     }
 }
 
-fn check_ecef(ecef: &[f64; 3]) -> Result<(), Invalid> {
-    if let Some(i) = ecef.iter().position(|x| !x.is_finite()) {
-        return Err(Invalid::new(
-            format!("ecef_m[{i}]"),
-            ecef[i],
-            "must be a finite number",
-        ));
-    }
-    let norm = ecef.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let (lo, hi) = GROUND_ECEF_NORM_RANGE_M;
-    if !(lo..=hi).contains(&norm) {
-        return Err(Invalid::new(
-            "ecef_m",
-            format!("[{}, {}, {}] (norm {norm:.0} m)", ecef[0], ecef[1], ecef[2]),
-            format!("must be a point near the Earth's surface: norm in [{lo}, {hi}] m"),
-        ));
-    }
-    Ok(())
-}
+/// An attitude profile's angles (deg): one turn either way.
+const PROFILE_ANGLE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg");
+/// An attitude profile's period (s; 0: a constant offset): assumed up to 1e8 s (three
+/// years), a constant over any scenario (at most 366 days).
+const PROFILE_PERIOD_S: Allowed = Allowed::closed(0.0, 1e8, "s");
 
-fn check_range(field: &str, value: f64, (lo, hi): (f64, f64), unit: &str) -> Result<(), Invalid> {
-    if (lo..=hi).contains(&value) {
-        Ok(())
-    } else {
-        Err(Invalid::new(
-            field,
-            value,
-            format!("must be in [{lo}, {hi}] {unit}"),
-        ))
-    }
-}
-
-/// `[platform.attitude]`: finite profile values, `period_s >= 0` and `> 0` when the axis
+/// `[platform.attitude]`: profile values in their ranges, `period_s > 0` when the axis
 /// oscillates, and either a CSV or profiles.
 fn check_attitude(attitude: &AttitudeConfig) -> Result<(), Invalid> {
     let axes = [
@@ -419,21 +368,12 @@ fn check_attitude(attitude: &AttitudeConfig) -> Result<(), Invalid> {
 
 fn check_axis(axis: &AxisProfileConfig) -> Result<(), Invalid> {
     let values = [
-        ("offset_deg", axis.offset_deg),
-        ("amplitude_deg", axis.amplitude_deg),
-        ("period_s", axis.period_s),
-        ("phase_deg", axis.phase_deg),
+        ("offset_deg", axis.offset_deg, PROFILE_ANGLE_DEG),
+        ("amplitude_deg", axis.amplitude_deg, PROFILE_ANGLE_DEG),
+        ("period_s", axis.period_s, PROFILE_PERIOD_S),
+        ("phase_deg", axis.phase_deg, PROFILE_ANGLE_DEG),
     ];
-    if let Some((field, value)) = values.iter().find(|(_, v)| !v.is_finite()) {
-        return Err(Invalid::new(*field, value, "must be a finite number"));
-    }
-    if axis.period_s < 0.0 {
-        return Err(Invalid::new(
-            "period_s",
-            axis.period_s,
-            "must be >= 0 (0 means a constant offset)",
-        ));
-    }
+    check_table(&values)?;
     if axis.period_s == 0.0 && axis.amplitude_deg != 0.0 {
         return Err(Invalid::new(
             "period_s",

@@ -4,7 +4,7 @@
 
 use skyforge_gnss::antenna_name::check_antenna_name;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Allowed, Invalid};
 
 /// A phase-centre-variation or gain grid over the antenna frame: values at
 /// `zenith_deg[i]` x `azimuth_deg[j]`, row-major (`values[i * azimuth.len() + j]`).
@@ -86,10 +86,10 @@ impl AntennaConfig {
         if let Err(rule) = check_antenna_name(&self.name) {
             return Err(Invalid::new("name", format!("{:?}", self.name), rule));
         }
-        check_finite3("position_body_m", &self.position_body_m)?;
-        check_finite3("offset_body_m", &self.offset_body_m)?;
-        check_finite3("boresight_body", &self.boresight_body)?;
-        check_finite3("pco_m", &self.pco_m)?;
+        check_vec3("position_body_m", &self.position_body_m, LEVER_ARM_M)?;
+        check_vec3("offset_body_m", &self.offset_body_m, OFFSET_M)?;
+        check_vec3("boresight_body", &self.boresight_body, BORESIGHT)?;
+        check_vec3("pco_m", &self.pco_m, PCO_M)?;
         let boresight_norm = Vec3::from(self.boresight_body).norm();
         if boresight_norm < MIN_BORESIGHT_NORM {
             return Err(Invalid::new(
@@ -115,10 +115,10 @@ impl AntennaConfig {
             ));
         }
         if let Some(grid) = &self.pcv_m {
-            grid.check().map_err(|e| e.within("pcv_m"))?;
+            grid.check(PCV_M).map_err(|e| e.within("pcv_m"))?;
         }
         if let Some(grid) = &self.gain_dbi {
-            grid.check().map_err(|e| e.within("gain_dbi"))?;
+            grid.check(GAIN_DBI).map_err(|e| e.within("gain_dbi"))?;
         }
         Ok(())
     }
@@ -146,8 +146,8 @@ const MIN_BORESIGHT_NORM: f64 = 1e-9;
 
 impl AntennaGrid {
     /// Checks: both axes non-empty, finite and strictly increasing, zenith in [0, 180],
-    /// azimuth in [0, 360], `values` finite with `zenith x azimuth` entries.
-    pub fn check(&self) -> Result<(), Invalid> {
+    /// azimuth in [0, 360], `values` in `allowed` with `zenith x azimuth` entries.
+    pub fn check(&self, allowed: Allowed) -> Result<(), Invalid> {
         check_axis("zenith_deg", &self.zenith_deg, 180.0)?;
         check_axis("azimuth_deg", &self.azimuth_deg, 360.0)?;
         let expected = self.zenith_deg.len() * self.azimuth_deg.len();
@@ -162,12 +162,8 @@ impl AntennaGrid {
                 ),
             ));
         }
-        if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
-            return Err(Invalid::new(
-                format!("values[{i}]"),
-                self.values[i],
-                "must be a finite number",
-            ));
+        for (i, v) in self.values.iter().enumerate() {
+            allowed.check(&format!("values[{i}]"), *v)?;
         }
         Ok(())
     }
@@ -294,16 +290,28 @@ fn check_axis(field: &str, axis: &[f64], max_deg: f64) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// Every component finite; the failing component is named `field[i]`.
-fn check_finite3(field: &str, v: &[f64; 3]) -> Result<(), Invalid> {
-    match v.iter().position(|x| !x.is_finite()) {
-        Some(i) => Err(Invalid::new(
-            format!("{field}[{i}]"),
-            v[i],
-            "must be a finite number",
-        )),
-        None => Ok(()),
+/// Lever-arm components (m): assumed up to 10 km, beyond the largest platform (a ship of
+/// 400 m) and the reference stations of one lab placed as antennas of one site (hundreds
+/// of metres apart).
+const LEVER_ARM_M: Allowed = Allowed::closed(-10e3, 10e3, "m");
+/// Components of the true position's offset from the nominal one (m): assumed up to
+/// 100 m (a geometry error of centimetres is what the thesis estimates).
+const OFFSET_M: Allowed = Allowed::closed(-100.0, 100.0, "m");
+/// Boresight components: any length (it is normalised) short of overflowing its norm.
+const BORESIGHT: Allowed = Allowed::closed(-1e6, 1e6, "");
+/// Phase-centre offset components (m): assumed up to 1 m (real antennas: centimetres).
+const PCO_M: Allowed = Allowed::closed(-1.0, 1.0, "m");
+/// Phase-centre variations (m): as the offset, up to 1 m (real antennas: millimetres).
+const PCV_M: Allowed = PCO_M;
+/// Gain pattern (dBi): assumed from -100 dBi (no signal) to 30 dBi (a dish).
+const GAIN_DBI: Allowed = Allowed::closed(-100.0, 30.0, "dBi");
+
+/// Every component in `allowed`; the failing component is named `field[i]`.
+fn check_vec3(field: &str, v: &[f64; 3], allowed: Allowed) -> Result<(), Invalid> {
+    for (i, x) in v.iter().enumerate() {
+        allowed.check(&format!("{field}[{i}]"), *x)?;
     }
+    Ok(())
 }
 
 fn format_vec3(v: &[f64; 3]) -> String {
@@ -499,7 +507,7 @@ mod tests {
     #[test]
     fn grid_is_exact_at_nodes_and_linear_along_edges() {
         let g = bilinear_grid();
-        assert_eq!(g.check(), Ok(()));
+        assert_eq!(g.check(GAIN_DBI), Ok(()));
         for &z in &g.zenith_deg {
             for &a in &g.azimuth_deg[..3] {
                 assert!((g.value_at(z, a) - bilinear(z, a)).abs() < 1e-12, "{z} {a}");
@@ -534,7 +542,7 @@ mod tests {
             azimuth_deg,
             values,
         };
-        assert_eq!(g.check(), Ok(()));
+        assert_eq!(g.check(Allowed::closed(0.0, 1350.0, "")), Ok(()));
         // 359 deg: 0.9 of the way from the 350 column (350) to the 0 column (0): 35.
         assert!((g.value_at(0.0, 359.0) - 35.0).abs() < 1e-9);
         assert!((g.value_at(0.0, 355.0) - 175.0).abs() < 1e-9);
@@ -553,7 +561,7 @@ mod tests {
             azimuth_deg: vec![0.0, 45.0, 90.0],
             values: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0],
         };
-        assert_eq!(sector.check(), Ok(()));
+        assert_eq!(sector.check(GAIN_DBI), Ok(()));
         assert!((sector.value_at(0.0, 180.0) - 3.0).abs() < 1e-12);
         assert!((sector.value_at(90.0, 300.0) - 6.0).abs() < 1e-12);
         assert!((sector.value_at(45.0, 22.5) - 3.0).abs() < 1e-12);

@@ -1,7 +1,8 @@
 //! Issue #11: a generated table of bad scenarios. Every value of two scenarios that between
 //! them use most tables (a three-antenna LEO with GPS + BeiDou and every error source; an
 //! observation-level thesis scenario) is replaced in turn by values no field accepts: NaN,
-//! infinity, a value of the wrong type. Each mutant must give exit code 2, one message
+//! infinity, a value of the wrong type, and +-1e300 (finite, but outside every physical
+//! range: issue #33 item 10). Each mutant must give exit code 2, one message
 //! that points at the mutated line and names the field, and nothing written.
 
 mod support;
@@ -10,11 +11,18 @@ use std::path::Path;
 use support::{listing, skyforge};
 
 /// Values a field accepts by design, though other fields refuse them: (key, value, why).
-const ACCEPTED: &[(&str, &str, &str)] = &[(
-    "end_s",
-    "inf",
-    "a fault event without end (docs/scenario.md, events)",
-)];
+const ACCEPTED: &[(&str, &str, &str)] = &[
+    (
+        "end_s",
+        "inf",
+        "a fault event without end (docs/scenario.md, events)",
+    ),
+    (
+        "end_s",
+        "1e300",
+        "an end beyond the scenario's (the fault lasts to it)",
+    ),
+];
 
 /// One value of a scenario text: its line (1-based), key, and byte span in the line.
 struct Value {
@@ -91,7 +99,7 @@ fn check_all(dir: &Path, text: &str) -> usize {
         let bad: &[&str] = if v.is_string {
             &["42"]
         } else {
-            &["nan", "inf", "\"text\""]
+            &["nan", "inf", "\"text\"", "1e300", "-1e300"]
         };
         for by in bad {
             if ACCEPTED.iter().any(|(k, b, _)| *k == v.key && b == by) {
@@ -148,4 +156,48 @@ fn every_value_replaced_by_nan_infinity_or_a_wrong_type_is_refused_at_its_line()
         total += check_all(tmp.path(), text);
     }
     println!("{total} mutants refused");
+}
+
+/// Issue #33 item 10: a trajectory at the Earth's centre or at 1e30 m (finite, so it
+/// passed before and gave NaN or blank truth) is refused with the CSV's file and line.
+#[test]
+fn a_trajectory_off_the_earth_is_refused_at_its_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    let scenarios = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/integrity");
+    let scenario = std::fs::read_to_string(scenarios.join("raim-aircraft.toml"))
+        .unwrap()
+        .replace("duration_s = 3600.0", "duration_s = 5.0");
+    std::fs::write(dir.join("s.toml"), scenario).unwrap();
+    let csv = std::fs::read_to_string(scenarios.join("raim-aircraft.csv")).unwrap();
+    let before = listing(dir);
+    for (row, shown) in [
+        ("3,0.0,0.0,0.0", "[0, 0, 0] (radius 0 m)"),
+        ("3,1e30,0.0,0.0", "[1e30, 0, 0] (radius 1e30 m)"),
+    ] {
+        // The data row of t = 3 s replaced.
+        let (mut lines, mut at) = (Vec::new(), 0);
+        for (i, l) in csv.lines().enumerate() {
+            if l.starts_with("3,") || l.starts_with("3.0,") {
+                lines.push(row.to_string());
+                at = i + 1;
+            } else {
+                lines.push(l.to_string());
+            }
+        }
+        assert!(at > 0, "no row at t = 3 s");
+        std::fs::write(dir.join("raim-aircraft.csv"), lines.join("\n") + "\n").unwrap();
+        let o = skyforge(&["run", "s.toml", "--out", "out"], dir);
+        let err = String::from_utf8_lossy(&o.stderr).into_owned();
+        assert_eq!(o.status.code(), Some(2), "{row}: {err}");
+        assert_eq!(err.matches("error:").count(), 1, "{err}");
+        let says = format!("raim-aircraft.csv:{at}: x_m, y_m, z_m = {shown}");
+        assert!(err.contains(&says), "{row}: missing {says:?} in {err}");
+        assert!(
+            err.contains("must lie at a radius in [6355000, 1e8] m"),
+            "{err}"
+        );
+        std::fs::remove_file(dir.join("raim-aircraft.csv")).unwrap();
+        assert_eq!(listing(dir), before, "{row}: wrote something");
+    }
 }

@@ -279,7 +279,7 @@ fn force_names_and_sizes_are_refused_under_the_memory_limit() {
         &["--fs", "4e6", "--config", "wide.toml", "--out", "rx"],
     ]
     .concat();
-    refused(&dir, &wide, &["pll_bandwidth_hz"]);
+    refused(&dir, &wide, &["wide.toml: tracking.pll_bandwidth_hz"]);
     std::fs::remove_file(dir.join("wide.toml")).unwrap();
     let assisted = [
         &raw[..],
@@ -489,4 +489,31 @@ fn bad_input_beyond_the_scenario_exits_2_naming_the_file_and_field() {
             &["cannot create", "afile is a file, not a directory"],
         );
     }
+}
+
+/// Issue #33 item 11: a SigMF metadata file that gives a key twice (JSON readers keep
+/// either value, serde_json the last) is refused, naming the file and the key.
+#[test]
+fn a_sigmf_key_given_twice_is_refused_naming_the_file_and_the_key() {
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path();
+    std::fs::write(
+        dir.join("twice.sigmf-meta"),
+        r#"{"global": {"core:datatype": "ci8", "core:version": "1.0.0",
+  "core:sample_rate": 4000000.0,
+  "core:sample_rate": 8000000.0},
+ "captures": [{"core:sample_start": 0, "core:frequency": 1575420000.0}],
+ "annotations": []}"#,
+    )
+    .unwrap();
+    std::fs::write(dir.join("twice.sigmf-data"), [0u8; 64]).unwrap();
+    refused(
+        dir,
+        &["receive", "twice.sigmf-meta", "--out", "rx"],
+        &[
+            "twice.sigmf-meta",
+            "\"core:sample_rate\" given twice",
+            "line 3",
+        ],
+    );
 }

@@ -255,7 +255,7 @@ fn bad_input_gets_one_error_and_nothing_written() {
             "false_alarm = 2",
         ),
         (
-            "[[stations]]\nname = \"A\"\nposition_ecef_m = [1.0, 2.0, 3.0]\n[thresholds]\nfalse_alarm = 1e-7\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
+            "[[stations]]\nname = \"A\"\nposition_ecef_m = [-2267000.0, 5009000.0, 3221000.0]\n[thresholds]\nfalse_alarm = 1e-7\nsmoothed_code_m = 0.5\n[thresholds.sigma.gps-l1ca]\nelevation_deg = [10.0]\ncode_m = [1.0]\nsmoothed_code_m = [1.0]\ncarrier_cycles = [1.0]\ndivergence_mps = [1.0]\n",
             "4 observation files but 1 [[stations]]",
         ),
     ] {
@@ -303,4 +303,173 @@ fn bad_input_gets_one_error_and_nothing_written() {
         text(&o)
     );
     assert!(!d.join("cal").exists());
+}
+
+/// The 30 s fault-free lab run into `dir/NAME` from `start`; the scenario file is removed.
+fn short_lab_run(d: &Path, name: &str, start: &str) {
+    let scenario = lab(d, "");
+    let text = std::fs::read_to_string(&scenario)
+        .unwrap()
+        .replace("duration_s = 1800.0", "duration_s = 30.0")
+        .replace("2023-03-12T00:00:00 GPST", start);
+    std::fs::write(&scenario, text).unwrap();
+    skyforge_ok(&["run", &scenario, "--out", name], d);
+    std::fs::remove_file(scenario).unwrap();
+}
+
+/// `f`'s text with its `APPROX POSITION XYZ` record replaced by `x y z`, written to `to`.
+fn with_position(f: &str, to: &Path, xyz: [&str; 3]) -> String {
+    let text: String = std::fs::read_to_string(f)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            if l.ends_with("APPROX POSITION XYZ") {
+                format!(
+                    "{:>14}{:>14}{:>14}{:18}APPROX POSITION XYZ\n",
+                    xyz[0], xyz[1], xyz[2], ""
+                )
+            } else {
+                format!("{l}\n")
+            }
+        })
+        .collect();
+    std::fs::write(to, text).unwrap();
+    to.display().to_string()
+}
+
+/// Issue #33 item 8: a monitor run that could monitor nothing (a navigation file of
+/// another day or without records, stations of different days, positions off the ground,
+/// two files of one station name, a common point at the Earth's centre) is refused with
+/// the file and the reason, never reported as "alarms 0"; a run monitors and says how
+/// much; `validate monitor` refuses another run's truth.
+#[test]
+fn a_monitor_that_can_monitor_nothing_is_refused_with_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    short_lab_run(d, "sim", "2023-03-12T00:00:00 GPST");
+    short_lab_run(d, "later", "2023-03-14T00:00:00 GPST");
+    let f = files(&d.join("sim"));
+    let g = files(&d.join("later"));
+    let refused = |files: &[&str], extra: &[&str], says: &[&str]| {
+        let mut args = vec!["monitor", "run"];
+        args.extend(files);
+        args.extend(["--out", "mon"]);
+        args.extend(extra);
+        let o = skyforge(&args, d);
+        let out = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {out}");
+        assert_eq!(out.matches("error:").count(), 1, "{args:?}: {out}");
+        for s in says {
+            assert!(out.contains(s), "{args:?}: missing {s:?} in {out}");
+        }
+        assert!(!d.join("mon").exists(), "{args:?}");
+    };
+    let sim: Vec<&str> = f.iter().map(String::as_str).collect();
+    // A navigation file of another day: SkyForge's own are valid at any time (fit
+    // interval 277 778 h), so give them the usual 4 h; no ephemeris is valid two days on.
+    let nav = std::fs::read_to_string(d.join("sim/nav.rnx")).unwrap();
+    let four_hours = nav.replace("2.777777777778E+05", "4.000000000000E+00");
+    assert_ne!(four_hours, nav);
+    std::fs::write(d.join("day.rnx"), four_hours).unwrap();
+    let later: Vec<&str> = g.iter().map(String::as_str).collect();
+    refused(
+        &later,
+        &["--nav", "day.rnx"],
+        &[
+            "monitored no satellite in 30 epochs of ",
+            "satellite-epochs without an ephemeris in day.rnx valid then",
+        ],
+    );
+    // A navigation file with its header only.
+    let header = &nav[..nav.find("END OF HEADER").unwrap() + "END OF HEADER\n".len()];
+    std::fs::write(d.join("empty.rnx"), header).unwrap();
+    refused(
+        &sim,
+        &["--nav", "empty.rnx"],
+        &["empty.rnx: no GPS or BeiDou ephemeris record"],
+    );
+    // A station of another day.
+    let mixed = [sim[0], sim[1], sim[2], g[3].as_str()];
+    refused(
+        &mixed,
+        &["--nav", "sim/nav.rnx"],
+        &[
+            "later/observations/D.obs.rnx: no epoch in common with",
+            "A.obs.rnx",
+        ],
+    );
+    // Positions at 1e13 m and at the Earth's centre.
+    for (xyz, shown) in [
+        (["1e13", "0.0", "0.0"], "[1e13, 0, 0] (radius 1e13 m)"),
+        (["0.0", "0.0", "0.0"], "[0, 0, 0] (radius 0 m)"),
+    ] {
+        let moved = with_position(&f[1], &d.join("B.obs.rnx"), xyz);
+        refused(
+            &[sim[0], &moved, sim[2], sim[3]],
+            &["--nav", "sim/nav.rnx"],
+            &[
+                &format!("B.obs.rnx: APPROX POSITION XYZ = {shown}"),
+                "must lie at a radius in [6355000, 6480000] m",
+            ],
+        );
+    }
+    // Two files of one station name.
+    std::fs::create_dir(d.join("copy")).unwrap();
+    std::fs::copy(&f[0], d.join("copy/A.obs.rnx")).unwrap();
+    refused(
+        &[sim[0], "copy/A.obs.rnx", sim[2], sim[3]],
+        &["--nav", "sim/nav.rnx"],
+        &[
+            "copy/A.obs.rnx: station name \"A\" is also",
+            "sim/observations/A.obs.rnx",
+        ],
+    );
+    // A common point at the Earth's centre.
+    let bundled =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenarios/calibration/monitor-lab.toml");
+    let config = std::fs::read_to_string(bundled).unwrap();
+    std::fs::write(
+        d.join("centre.toml"),
+        format!("common_point_ecef_m = [0.0, 0.0, 0.0]\n{config}"),
+    )
+    .unwrap();
+    refused(
+        &sim,
+        &["--nav", "sim/nav.rnx", "--config", "centre.toml"],
+        &["centre.toml: common_point_ecef_m = [0, 0, 0] (radius 0 m): must lie at a radius"],
+    );
+    // A run that monitors says how much it monitored.
+    let mut args = vec!["monitor", "run"];
+    args.extend(&sim);
+    args.extend(["--nav", "sim/nav.rnx", "--out", "mon"]);
+    let printed = skyforge_ok(&args, d);
+    assert!(
+        printed.contains("monitored  30 of 30 epochs; satellites "),
+        "{printed}"
+    );
+    let summary = support::json_file(&d.join("mon/summary.json"));
+    assert_eq!(summary["epochs_monitored"], 30, "{summary}");
+    assert!(
+        summary["unmonitored"]["below_mask"].as_u64().is_some(),
+        "{summary}"
+    );
+    // validate monitor against the truth of another run (two days later).
+    let o = skyforge(
+        &[
+            "validate",
+            "monitor",
+            "--truth",
+            "later",
+            "--monitor",
+            "mon",
+        ],
+        d,
+    );
+    let out = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{out}");
+    assert!(
+        out.contains("mon/monitor.csv: epochs from -172800.0 s")
+            && out.contains("the monitor watched another run"),
+        "{out}"
+    );
 }

@@ -16,7 +16,9 @@ pub use rinex_write::{Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gp
 
 pub use as_written::epoch_as_written;
 
-pub use noise::{ElevationNoise, dll_thermal_chips, pll_thermal_cycles};
+pub use noise::{
+    ElevationNoise, NOISE_SIGMA0_M, WEIGHT_SIGMA0_M, dll_thermal_chips, pll_thermal_cycles,
+};
 pub use read_error::ObsReadError;
 pub use read_error::{DOPPLER_MAX_HZ, PHASE_MAX_CYCLES, PSEUDORANGE_RANGE_M};
 pub use record::{Dropped, LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};

@@ -3,6 +3,19 @@
 //! receiver's relative positioning weighs double differences with it.
 
 use serde::Deserialize;
+use skyforge_orbits::check::{Allowed, Invalid};
+
+/// Zenith standard deviation of noise drawn at the observation level (m): 0 is
+/// noiseless; assumed: 100 m, beyond any receiver's code noise (a few metres at 30 dB-Hz).
+pub const NOISE_SIGMA0_M: Allowed = Allowed::closed(0.0, 100.0, "m");
+/// Zenith standard deviation of a weighting model (m): above 0 (a weight of infinity
+/// makes the normal equations singular), up to [`NOISE_SIGMA0_M`]'s 100 m.
+pub const WEIGHT_SIGMA0_M: Allowed = Allowed::above(0.0, 100.0, "m");
+/// The amplification at the horizon, `a0`: assumed up to 100 (the thesis's models use
+/// about 10).
+const A0: Allowed = Allowed::closed(0.0, 100.0, "");
+/// The elevation scale `elev0` (deg).
+const ELEV0_DEG: Allowed = Allowed::above(0.0, 90.0, "deg");
 
 /// Thesis eqs. 2.4-9/2.4-10: `sigma0 [1 + a0 exp(-elev / elev0)]` for one observation type.
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
@@ -27,26 +40,16 @@ impl ElevationNoise {
         self.sigma0_m * self.factor(elevation_rad)
     }
 
-    /// The domain of eqs. 2.4-9/2.4-10: `sigma0_m` finite and above 0, `a0` finite and at
-    /// least 0, `elev0_deg` finite and above 0. The error names the field of `key` (the
-    /// table, e.g. `relative.phase`), its value and what is allowed.
-    pub fn check(&self, key: &str) -> Result<(), String> {
-        let (finite, a0) = (|v: f64| v.is_finite(), self.a0);
-        let problem = if !(finite(self.sigma0_m) && self.sigma0_m > 0.0) {
-            Some(("sigma0_m", self.sigma0_m, "above 0"))
-        } else if !(finite(a0) && a0 >= 0.0) {
-            Some(("a0", a0, "0 or more"))
-        } else if !(finite(self.elev0_deg) && self.elev0_deg > 0.0) {
-            Some(("elev0_deg", self.elev0_deg, "above 0"))
-        } else {
-            None
-        };
-        match problem {
-            Some((field, v, allowed)) => Err(format!(
-                "{key}.{field} = {v}: must be a finite number {allowed}"
-            )),
-            None => Ok(()),
-        }
+    /// The domain of eqs. 2.4-9/2.4-10 within plausible ranges: `sigma0_m` in `sigma0`
+    /// ([`NOISE_SIGMA0_M`] for drawn noise, [`WEIGHT_SIGMA0_M`] for weights), `a0` in
+    /// [`A0`], `elev0_deg` in [`ELEV0_DEG`]. The error names the field of `key` (the
+    /// table, e.g. `relative.phase`), its value and the range.
+    pub fn check(&self, key: &str, sigma0: Allowed) -> Result<(), Invalid> {
+        sigma0
+            .check("sigma0_m", self.sigma0_m)
+            .and_then(|()| A0.check("a0", self.a0))
+            .and_then(|()| ELEV0_DEG.check("elev0_deg", self.elev0_deg))
+            .map_err(|e| e.within(key))
     }
 
     /// A constant standard deviation, independent of elevation (what T-1.2-2 prescribes).

@@ -10,7 +10,7 @@ pub mod keys;
 mod read;
 mod write;
 
-pub use read::{Capture, MetaError, ParsedMeta};
+pub use read::{Capture, MetaError, ParsedMeta, parse_json};
 pub use write::{RECORDER, RecordingMeta};
 
 #[cfg(test)]

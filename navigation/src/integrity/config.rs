@@ -3,6 +3,7 @@
 use super::thresholds::ThresholdConfig;
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::bounded_read::read_text;
+use skyforge_orbits::check::{GROUND_RADIUS_M, check_position};
 use std::path::Path;
 
 /// Largest monitor configuration read (bytes).
@@ -103,19 +104,16 @@ impl MonitorConfig {
                 self.elevation_mask_deg
             ));
         }
-        let finite = |p: &[f64; 3]| p.iter().all(|v| v.is_finite());
-        if let Some(s) = self.stations.iter().find(|s| !finite(&s.position_ecef_m)) {
-            return Err(format!(
-                "stations: {:?} has a position that is not a number",
-                s.name
-            ));
+        for (i, s) in self.stations.iter().enumerate() {
+            check_position(
+                &format!("stations[{i}].position_ecef_m"),
+                &s.position_ecef_m,
+                GROUND_RADIUS_M,
+            )
+            .map_err(|e| format!("station {:?}: {e}", s.name))?;
         }
-        if self
-            .common_point_ecef_m
-            .as_ref()
-            .is_some_and(|p| !finite(p))
-        {
-            return Err("common_point_ecef_m: not a number".into());
+        if let Some(p) = &self.common_point_ecef_m {
+            check_position("common_point_ecef_m", p, GROUND_RADIUS_M).map_err(|e| e.to_string())?;
         }
         self.thresholds
             .check()

@@ -32,12 +32,14 @@ mod monitor;
 mod statistic;
 mod thresholds;
 
-pub use files::{run_files, stations};
+pub use files::{Monitored, run_files, stations};
 
 pub use b_value::b_values;
 pub use config::{MonitorConfig, StationPosition};
 pub use divergence::Divergence;
 pub use hatch::Hatch;
-pub use monitor::{Monitor, MonitorEpoch, MonitorError, SatelliteEpoch, Station, StationValues};
+pub use monitor::{
+    Monitor, MonitorEpoch, MonitorError, SatelliteEpoch, Station, StationValues, Unmonitored,
+};
 pub use statistic::{PerStatistic, Statistic};
 pub use thresholds::{SigmaCalibrator, SigmaTable, ThresholdConfig};

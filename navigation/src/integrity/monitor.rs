@@ -121,6 +121,21 @@ pub struct MonitorEpoch {
     pub sats: Vec<SatelliteEpoch>,
 }
 
+/// Satellite-epochs (a satellite's signal observed at some station at one epoch) the
+/// monitor could not monitor, by reason: what `monitor run` reports when it monitored
+/// nothing, or only part.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Unmonitored {
+    /// No healthy ephemeris of the satellite within its fit interval at the epoch.
+    pub no_ephemeris: usize,
+    /// Below the elevation mask at the common point.
+    pub below_mask: usize,
+    /// Code and phase at fewer than two stations.
+    pub one_station: usize,
+    /// No threshold for the signal (the configuration has no sigma table for it).
+    pub no_threshold: usize,
+}
+
 /// Why the monitor could not start.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MonitorError {
@@ -166,6 +181,7 @@ pub struct Monitor {
     origin: TimeOrigin,
     store: EphemerisStore,
     tracks: BTreeMap<(SatId, Signal), Track>,
+    unmonitored: Unmonitored,
 }
 
 impl Monitor {
@@ -191,12 +207,18 @@ impl Monitor {
             store: EphemerisStore::new(ephemerides, &origin),
             origin,
             tracks: BTreeMap::new(),
+            unmonitored: Unmonitored::default(),
         })
     }
 
     /// The common point (ECEF, m).
     pub fn common_point(&self) -> Vec3 {
         self.common.r_ecef_m
+    }
+
+    /// The satellite-epochs not monitored so far, by reason.
+    pub fn unmonitored(&self) -> Unmonitored {
+        self.unmonitored
     }
 
     /// Process one epoch: `records[m]` is station m's observations at `time` (`None`
@@ -226,6 +248,7 @@ impl Monitor {
     ) -> Option<SatelliteEpoch> {
         let Some(eph) = self.store.select(key.0, t_s) else {
             self.tracks.remove(&key);
+            self.unmonitored.no_ephemeris += 1;
             return None;
         };
         let r_sat = predicted_view(eph, t_s, &self.common.r_ecef_m).r_ecef_m;
@@ -234,6 +257,7 @@ impl Monitor {
         let elevation_deg = el_rad.to_degrees();
         if elevation_deg < self.config.elevation_mask_deg {
             self.tracks.remove(&key);
+            self.unmonitored.below_mask += 1;
             return None;
         }
         let mut lost = vec![false; self.places.len()];
@@ -259,13 +283,18 @@ impl Monitor {
             .collect();
         if mapped.iter().flatten().count() < 2 {
             self.tracks.remove(&key);
+            self.unmonitored.one_station += 1;
             return None;
         }
         let geo = eph.eph.class == OrbitClass::BeidouGeo;
-        let threshold = self
+        let Some(threshold) = self
             .config
             .thresholds
-            .at(self.multiplier, key.1, geo, elevation_deg)?;
+            .at(self.multiplier, key.1, geo, elevation_deg)
+        else {
+            self.unmonitored.no_threshold += 1;
+            return None;
+        };
         self.track(key, t_s, &mapped, lost.contains(&true));
         let track = self.tracks.get(&key)?;
         let mut outcome = self.outcome(key, geo, elevation_deg, threshold, track, &mapped);

@@ -4,6 +4,7 @@ use crate::attitude::config::{AttitudeConfig, THESIS_KAPPA};
 use crate::baseline::{ElevationNoise, NoiseModel};
 use crate::geometry_offset::stacked_ukf::OffsetConfig;
 use serde::Deserialize;
+use skyforge_gnss::observation::WEIGHT_SIGMA0_M;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
 
@@ -127,11 +128,12 @@ impl RelativeConfig {
             read_text(path, MAX_CONFIG_BYTES, "configuration file").map_err(|e| error(&e))?;
         let file: RelativeFile = toml::from_str(&text).map_err(|e| error(&e))?;
         let config = file.relative.unwrap_or_default();
-        config
-            .phase
-            .check("relative.phase")
-            .map_err(|e| error(&e))?;
-        config.code.check("relative.code").map_err(|e| error(&e))?;
+        for (key, noise) in [
+            ("relative.phase", config.phase),
+            ("relative.code", config.code),
+        ] {
+            noise.check(key, WEIGHT_SIGMA0_M).map_err(|e| error(&e))?;
+        }
         let table =
             |key: &'static str| move |e: &dyn std::fmt::Display| error(&format!("{key}: {e}"));
         config
@@ -235,7 +237,7 @@ mod tests {
         let cases = [
             (
                 "phase = { sigma0_m = 0.0, a0 = 0.0, elev0_deg = 10.0 }",
-                "relative.phase.sigma0_m = 0: must be a finite number above 0",
+                "relative.phase.sigma0_m = 0: must be in (0, 100] m",
             ),
             (
                 "code = { sigma0_m = -0.3, a0 = 0.0, elev0_deg = 10.0 }",
@@ -243,11 +245,23 @@ mod tests {
             ),
             (
                 "phase = { sigma0_m = 0.002, a0 = -1.0, elev0_deg = 10.0 }",
-                "relative.phase.a0 = -1: must be a finite number 0 or more",
+                "relative.phase.a0 = -1: must be in [0, 100]",
+            ),
+            (
+                "phase = { sigma0_m = 1e300, a0 = 0.0, elev0_deg = 10.0 }",
+                "relative.phase.sigma0_m = 1e300: must be in (0, 100] m",
+            ),
+            (
+                "code = { sigma0_m = 0.3, a0 = 1e300, elev0_deg = 10.0 }",
+                "relative.code.a0 = 1e300: must be in [0, 100]",
+            ),
+            (
+                "code = { sigma0_m = 0.3, a0 = 1.0, elev0_deg = 1e300 }",
+                "relative.code.elev0_deg = 1e300: must be in (0, 90] deg",
             ),
             (
                 "code = { sigma0_m = 0.3, a0 = 1.0, elev0_deg = 0.0 }",
-                "relative.code.elev0_deg = 0: must be a finite number above 0",
+                "relative.code.elev0_deg = 0: must be in (0, 90] deg",
             ),
             (
                 "reverse_filter = { rate_psd_m2_s3 = [1e300, 0, 0, 0, 0, 0] }",

@@ -13,10 +13,29 @@ use super::csv_table::read_numeric_csv;
 use super::hermite::Hermite3;
 use super::{EDGE_MARGIN_S, PlatformError};
 use crate::Vec3;
+use crate::check::{Allowed, Invalid, NEAR_EARTH_RADIUS_M, check_position};
 use std::path::Path;
 
 /// Column names of the trajectory CSV, in order.
 const COLUMNS: [&str; 7] = ["t_s", "x_m", "y_m", "z_m", "vx_mps", "vy_mps", "vz_mps"];
+
+/// Velocity components (m/s) of a trajectory: assumed up to 100 km/s, nine times the
+/// Earth's escape speed (11.2 km/s).
+const VELOCITY_MPS: Allowed = Allowed::closed(-100e3, 100e3, "m/s");
+
+/// A row's position at a radius SkyForge supports ([`NEAR_EARTH_RADIUS_M`]) and its
+/// velocity (when given) within [`VELOCITY_MPS`].
+fn check_row(values: &[f64]) -> Result<(), Invalid> {
+    check_position(
+        "x_m, y_m, z_m",
+        &[values[1], values[2], values[3]],
+        NEAR_EARTH_RADIUS_M,
+    )?;
+    for (name, v) in COLUMNS[4..].iter().zip(values.iter().skip(4)) {
+        VELOCITY_MPS.check(name, *v)?;
+    }
+    Ok(())
+}
 
 /// An interpolated ECEF trajectory.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +47,13 @@ impl Trajectory {
     /// Reads a trajectory CSV.
     pub fn from_csv(path: &Path) -> Result<Self, PlatformError> {
         let rows = read_numeric_csv(path, &COLUMNS, &[4, 7])?;
+        for row in &rows {
+            check_row(&row.values).map_err(|e| PlatformError::Csv {
+                path: path.display().to_string(),
+                line: row.line,
+                message: e.to_string(),
+            })?;
+        }
         let t_s = rows.iter().map(|r| r.values[0]).collect();
         let r: Vec<Vec3> = rows
             .iter()

@@ -1,7 +1,7 @@
 //! `[platform.leo]` configuration: initial state, force model, integrator.
 
 use crate::Vec3;
-use crate::check::Invalid;
+use crate::check::{Allowed, Invalid};
 use crate::constants::{GM_GPS, OMEGA_E_GPS, WGS84_A_M};
 
 /// `[platform.leo]`: exactly one of `elements`, `tle`, `state` gives the initial state.
@@ -245,9 +245,9 @@ impl KeplerianElementsConfig {
                 "must be in [0, 180] deg",
             ));
         }
-        finite("raan_deg", self.raan_deg)?;
-        finite("arg_perigee_deg", self.arg_perigee_deg)?;
-        finite("mean_anomaly_deg", self.mean_anomaly_deg)?;
+        ANGLE_DEG.check("raan_deg", self.raan_deg)?;
+        ANGLE_DEG.check("arg_perigee_deg", self.arg_perigee_deg)?;
+        ANGLE_DEG.check("mean_anomaly_deg", self.mean_anomaly_deg)?;
         let perigee_altitude_m = a_m * (1.0 - e) - WGS84_A_M;
         if perigee_altitude_m < MIN_ALTITUDE_M {
             return Err(Invalid::new(
@@ -320,12 +320,20 @@ impl StateVectorConfig {
     }
 }
 
+/// An angle of the elements (deg): one turn either way.
+const ANGLE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg");
+/// assumed: 10, beyond any shape's drag coefficient (2.2 is the usual value).
+const DRAG_COEFFICIENT: Allowed = Allowed::above(0.0, 10.0, "");
+/// assumed: 10 000 m^2, beyond the ISS's cross-section (about 2 500 m^2 with its arrays).
+const AREA_M2: Allowed = Allowed::above(0.0, 1e4, "m^2");
+/// assumed: 1 000 t, beyond the ISS's 420 t.
+const MASS_KG: Allowed = Allowed::above(0.0, 1e6, "kg");
+
 impl ForceModelConfig {
     fn check(&self) -> Result<(), Invalid> {
-        positive("drag_coefficient", self.drag_coefficient)?;
-        positive("area_m2", self.area_m2)?;
-        positive("mass_kg", self.mass_kg)?;
-        Ok(())
+        DRAG_COEFFICIENT.check("drag_coefficient", self.drag_coefficient)?;
+        AREA_M2.check("area_m2", self.area_m2)?;
+        MASS_KG.check("mass_kg", self.mass_kg)
     }
 }
 

@@ -6,7 +6,7 @@ use super::error::{Finding, InputError};
 use super::format::SampleFormat;
 use hifitime::Epoch;
 use serde_json::Value;
-use skyforge_gnss::sigmf::{ParsedMeta, keys};
+use skyforge_gnss::sigmf::{ParsedMeta, keys, parse_json};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
 use std::path::{Path, PathBuf};
@@ -193,10 +193,7 @@ impl Recording {
                     _ => InputError::io(&meta_path, e),
                 }
             })?;
-        let json: Value = serde_json::from_str(&text).map_err(|e| InputError::NotSigmf {
-            path: meta_path.clone(),
-            detail: format!("invalid JSON: {e}"),
-        })?;
+        let json = parse_json(&text).map_err(|e| InputError::meta(&meta_path, e))?;
         Self::from_sigmf_json(&meta_path, &json, params)
     }
 

@@ -6,6 +6,7 @@ use crate::tracking::config::CarrierMethod;
 use crate::tracking::config::TrackingConfig;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_orbits::Vec3;
+use skyforge_orbits::check::{Invalid, NEAR_EARTH_RADIUS_M, check_position, check_table};
 
 /// The stage after observables, at every epoch.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize)]
@@ -174,122 +175,86 @@ fn default_oscillator_ppm() -> f64 {
     1.0
 }
 
-/// A value of the configuration file outside its range.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{field} = {value}: allowed {allowed}")]
-pub struct ConfigValueError {
-    pub field: &'static str,
-    pub value: String,
-    pub allowed: &'static str,
+/// The range of every `[acquisition]`, `[observables]`, `[pvt]` and `[assist]` value
+/// (docs/limits.md lists them; `[tracking]`'s are beside its settings).
+mod limits {
+    use skyforge_orbits::check::Allowed;
+
+    pub(super) const ACQUISITION_COHERENT_MS: Allowed = Allowed::closed(1.0, 20.0, "ms");
+    pub(super) const NONCOHERENT: Allowed = Allowed::closed(1.0, 100.0, "sums");
+    /// assumed: a search that false-alarms more often than not is no search; 1e-12 is
+    /// below any threshold the CFAR tables give.
+    pub(super) const ACQUISITION_PFA: Allowed = Allowed::closed(1e-12, 0.5, "");
+    pub(super) const DOPPLER_HALF_WIDTH_HZ: Allowed = Allowed::above(0.0, 60e3, "Hz");
+    /// assumed: an hour between searches is longer than any recording worth a search.
+    pub(super) const REACQUIRE_INTERVAL_S: Allowed = Allowed::above(0.0, 3600.0, "s");
+    pub(super) const OBSERVATION_RATE_HZ: Allowed = Allowed::closed(1.0, 100.0, "Hz");
+    /// Below the zenith: a mask of 90 deg leaves no satellite.
+    pub(super) const ELEVATION_MASK_DEG: Allowed = Allowed::closed(0.0, 89.0, "deg");
+    /// Probabilities of the residual test and of the protection levels (0 turns them
+    /// off): assumed from 1e-12 (below any integrity requirement, 1e-7 per hour for
+    /// aviation) to 0.5.
+    pub(super) const RAIM_PROBABILITY: Allowed = Allowed::closed(1e-12, 0.5, "(or 0: off)");
+    /// assumed: 100 km, beyond any alarm limit in use (556 m for en-route aviation).
+    pub(super) const ALARM_LIMIT_M: Allowed = Allowed::above(0.0, 100e3, "m");
+    /// assumed: 1000 km/s, far beyond a LEO's 8 km/s (the receiver is near the Earth).
+    pub(super) const VELOCITY_MPS: Allowed = Allowed::closed(-1e6, 1e6, "m/s");
+    /// assumed: the whole Earth's diameter and more says nothing about the position.
+    pub(super) const POSITION_UNCERTAINTY_M: Allowed = Allowed::closed(0.0, 1e8, "m");
+    pub(super) const VELOCITY_UNCERTAINTY_MPS: Allowed = Allowed::closed(0.0, 1e4, "m/s");
+    /// assumed: a day of time uncertainty is a cold start, not an assistance.
+    pub(super) const TIME_UNCERTAINTY_S: Allowed = Allowed::closed(0.0, 86_400.0, "s");
+    /// assumed: 1000 ppm (0.1 %) is beyond the worst crystal oscillator.
+    pub(super) const OSCILLATOR_PPM: Allowed = Allowed::closed(0.0, 1000.0, "ppm");
 }
 
 impl ReceiverFile {
-    /// The settings, with every value checked.
-    pub fn resolve(&self) -> Result<(ReceiverConfig, Option<ApproximateState>), ConfigValueError> {
-        let a = &self.acquisition;
-        let bad = |field, value: String, allowed| ConfigValueError {
-            field,
-            value,
-            allowed,
-        };
-        if !(1..=20).contains(&a.coherent_ms) {
-            return Err(bad(
+    /// The settings, with every value checked against its range: the error names the
+    /// field (`tracking.pll_bandwidth_hz`), its value and the range.
+    pub fn resolve(&self) -> Result<(ReceiverConfig, Option<ApproximateState>), Invalid> {
+        use limits::*;
+        let (a, p) = (&self.acquisition, &self.pvt);
+        let values = [
+            (
                 "acquisition.coherent_ms",
-                a.coherent_ms.to_string(),
-                "1 to 20",
-            ));
-        }
-        if !(1..=100).contains(&a.noncoherent) {
-            return Err(bad(
-                "acquisition.noncoherent",
-                a.noncoherent.to_string(),
-                "1 to 100",
-            ));
-        }
-        if !(a.pfa > 0.0 && a.pfa < 1.0) {
-            return Err(bad("acquisition.pfa", a.pfa.to_string(), "between 0 and 1"));
-        }
-        if !(a.doppler_half_width_hz > 0.0 && a.doppler_half_width_hz <= 60e3) {
-            return Err(bad(
+                a.coherent_ms as f64,
+                ACQUISITION_COHERENT_MS,
+            ),
+            ("acquisition.noncoherent", a.noncoherent as f64, NONCOHERENT),
+            ("acquisition.pfa", a.pfa, ACQUISITION_PFA),
+            (
                 "acquisition.doppler_half_width_hz",
-                a.doppler_half_width_hz.to_string(),
-                "above 0, at most 60000",
-            ));
-        }
-        if !(a.reacquire_interval_s.is_finite() && a.reacquire_interval_s > 0.0) {
-            return Err(bad(
+                a.doppler_half_width_hz,
+                DOPPLER_HALF_WIDTH_HZ,
+            ),
+            (
                 "acquisition.reacquire_interval_s",
-                a.reacquire_interval_s.to_string(),
-                "positive",
-            ));
-        }
-        if !(1.0..=100.0).contains(&self.observables.rate_hz) {
-            return Err(bad(
+                a.reacquire_interval_s,
+                REACQUIRE_INTERVAL_S,
+            ),
+            (
                 "observables.rate_hz",
-                self.observables.rate_hz.to_string(),
-                "1 to 100",
-            ));
-        }
-        let p = &self.pvt;
-        if !(0.0..90.0).contains(&p.elevation_mask_deg) {
-            return Err(bad(
+                self.observables.rate_hz,
+                OBSERVATION_RATE_HZ,
+            ),
+            (
                 "pvt.elevation_mask_deg",
-                p.elevation_mask_deg.to_string(),
-                "0 to below 90",
-            ));
-        }
-        for (key, v) in [("pvt.raim_pfa", p.raim_pfa), ("pvt.raim_pmd", p.raim_pmd)] {
-            if !(0.0..1.0).contains(&v) {
-                return Err(bad(key, v.to_string(), "0 (off) to below 1"));
+                p.elevation_mask_deg,
+                ELEVATION_MASK_DEG,
+            ),
+            ("pvt.raim_hal_m", p.raim_hal_m, ALARM_LIMIT_M),
+        ];
+        check_table(&values)?;
+        for (field, v) in [("pvt.raim_pfa", p.raim_pfa), ("pvt.raim_pmd", p.raim_pmd)] {
+            if v != 0.0 {
+                RAIM_PROBABILITY.check(field, v)?;
             }
         }
-        for (key, v) in [
-            ("pvt.raim_hal_m", Some(p.raim_hal_m)),
-            ("pvt.raim_val_m", p.raim_val_m),
-        ] {
-            if let Some(v) = v.filter(|v| !(v.is_finite() && *v > 0.0)) {
-                return Err(bad(key, v.to_string(), "a positive number of metres"));
-            }
+        if let Some(v) = p.raim_val_m {
+            ALARM_LIMIT_M.check("pvt.raim_val_m", v)?;
         }
-        let approximate = match self.assist {
-            None => None,
-            Some(s) => {
-                let finite = s
-                    .position_ecef_m
-                    .iter()
-                    .chain(&s.velocity_ecef_mps)
-                    .all(|x| x.is_finite());
-                if !finite {
-                    return Err(bad(
-                        "assist.position_ecef_m/velocity_ecef_mps",
-                        format!("{:?} {:?}", s.position_ecef_m, s.velocity_ecef_mps),
-                        "finite numbers",
-                    ));
-                }
-                let positive = [
-                    ("assist.position_uncertainty_m", s.position_uncertainty_m),
-                    (
-                        "assist.velocity_uncertainty_mps",
-                        s.velocity_uncertainty_mps,
-                    ),
-                    ("assist.time_uncertainty_s", s.time_uncertainty_s),
-                    ("assist.oscillator_ppm", s.oscillator_ppm),
-                ];
-                for (field, v) in positive {
-                    if !(v.is_finite() && v >= 0.0) {
-                        return Err(bad(field, v.to_string(), "finite and >= 0"));
-                    }
-                }
-                Some(ApproximateState {
-                    r_ecef_m: Vec3::from(s.position_ecef_m),
-                    v_ecef_mps: Vec3::from(s.velocity_ecef_mps),
-                    position_uncertainty_m: s.position_uncertainty_m,
-                    velocity_uncertainty_mps: s.velocity_uncertainty_mps,
-                    time_uncertainty_s: s.time_uncertainty_s,
-                    oscillator_uncertainty: s.oscillator_ppm * 1e-6,
-                })
-            }
-        };
+        self.tracking.check().map_err(|e| e.within("tracking"))?;
+        let approximate = self.assist.as_ref().map(AssistFile::resolve).transpose()?;
         let config = ReceiverConfig {
             acquisition: AcquisitionSettings {
                 method: self.stages.acquisition,
@@ -316,6 +281,48 @@ impl ReceiverFile {
             },
         };
         Ok((config, approximate))
+    }
+}
+
+impl AssistFile {
+    /// The approximate state, with every value checked against its range.
+    fn resolve(&self) -> Result<ApproximateState, Invalid> {
+        use limits::*;
+        check_position(
+            "assist.position_ecef_m",
+            &self.position_ecef_m,
+            NEAR_EARTH_RADIUS_M,
+        )?;
+        for (i, v) in self.velocity_ecef_mps.iter().enumerate() {
+            VELOCITY_MPS.check(&format!("assist.velocity_ecef_mps[{i}]"), *v)?;
+        }
+        let values = [
+            (
+                "assist.position_uncertainty_m",
+                self.position_uncertainty_m,
+                POSITION_UNCERTAINTY_M,
+            ),
+            (
+                "assist.velocity_uncertainty_mps",
+                self.velocity_uncertainty_mps,
+                VELOCITY_UNCERTAINTY_MPS,
+            ),
+            (
+                "assist.time_uncertainty_s",
+                self.time_uncertainty_s,
+                TIME_UNCERTAINTY_S,
+            ),
+            ("assist.oscillator_ppm", self.oscillator_ppm, OSCILLATOR_PPM),
+        ];
+        check_table(&values)?;
+        Ok(ApproximateState {
+            r_ecef_m: Vec3::from(self.position_ecef_m),
+            v_ecef_mps: Vec3::from(self.velocity_ecef_mps),
+            position_uncertainty_m: self.position_uncertainty_m,
+            velocity_uncertainty_mps: self.velocity_uncertainty_mps,
+            time_uncertainty_s: self.time_uncertainty_s,
+            oscillator_uncertainty: self.oscillator_ppm * 1e-6,
+        })
     }
 }
 

@@ -13,8 +13,8 @@ mod timing;
 
 pub use config::{
     AcquisitionFile, AcquisitionMethod, AcquisitionSettings, ApproximateState, AssistFile,
-    ConfigValueError, EpochStageKind, ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile,
-    StagesFile, assistance_toml,
+    EpochStageKind, ObservablesFile, PvtFile, ReceiverConfig, ReceiverFile, StagesFile,
+    assistance_toml,
 };
 pub use epoch_stage::LastFix;
 pub use receiver::{BandInput, PipelineError, Receiver, ReceiverSetup, ReceiverSummary};

@@ -179,7 +179,7 @@ impl Receiver {
                 allowed: "positive",
             });
         }
-        config.tracking.check()?;
+        config.tracking.check().map_err(TrackingError::from)?;
         let searches = setup
             .bands
             .iter()

@@ -2,10 +2,10 @@
 //! (`[stages] carrier`, `[tracking.ukf]`). The stages import these; nothing here imports
 //! a stage.
 
-use super::TrackingError;
 use super::bit_sync::BitSyncConfig;
 use super::discriminators::{FllDiscriminator, PllDiscriminator};
 use super::error_budget::LoopOrder;
+use skyforge_orbits::check::{Invalid, check_table};
 
 /// Thesis section 3.3.5: the proposed process noise densities (Q_theta, Q_omega, Q_alpha,
 /// Q_alpha_t) of eq. 3.3-59.
@@ -117,103 +117,141 @@ impl Default for TrackingConfig {
     }
 }
 
+/// The range of every `[tracking]` value (docs/limits.md lists them).
+mod limits {
+    use super::{MAX_CARRIER_BANDWIDTH_HZ, MAX_COHERENT_MS, MAX_DLL_BANDWIDTH_HZ};
+    use skyforge_orbits::check::Allowed;
+
+    /// assumed: below 0.1 Hz a PLL cannot follow even a static receiver's oscillator drift.
+    pub(super) const PLL_BANDWIDTH_HZ: Allowed =
+        Allowed::closed(0.1, MAX_CARRIER_BANDWIDTH_HZ, "Hz");
+    /// 0 turns the FLL assist off.
+    pub(super) const FLL_BANDWIDTH_HZ: Allowed =
+        Allowed::closed(0.0, MAX_CARRIER_BANDWIDTH_HZ, "Hz");
+    /// assumed: 0.01 Hz is narrower than any carrier-aided DLL in use (0.05 Hz and up).
+    pub(super) const DLL_BANDWIDTH_HZ: Allowed = Allowed::closed(0.01, MAX_DLL_BANDWIDTH_HZ, "Hz");
+    /// Above 0: at least one sample; 0.01 chips is one sample of GPS L1 C/A at the
+    /// receiver's highest rate (100 MHz). The channel checks the sample at its own rate.
+    /// Up to 2 chips, where early and late still see the correlation peak.
+    pub(super) const SPACING_CHIPS: Allowed = Allowed::closed(0.01, 2.0, "chips");
+    pub(super) const COHERENT_MS: Allowed =
+        Allowed::closed(1.0, MAX_COHERENT_MS as f64, "code periods");
+    /// At least 20 prompts of 1 ms; assumed: a minute is the longest a C/N0 estimate
+    /// stays meaningful on a moving receiver.
+    pub(super) const CN0_WINDOW_S: Allowed = Allowed::closed(0.02, 60.0, "s");
+    /// assumed: transitions and lock decisions over at most a minute.
+    pub(super) const SECONDS: Allowed = Allowed::above(0.0, 60.0, "s");
+    /// Infinity keeps the FLL on.
+    pub(super) const FLL_ASSIST_S: Allowed = Allowed::closed(0.0, f64::INFINITY, "s");
+    /// The lock indicator is cos 2 phi in [-1, 1]: at 0 or below every phase error up to
+    /// 45 deg reads as lock, and at 1 no phase error does.
+    pub(super) const PLL_LOCK_THRESHOLD: Allowed = Allowed::above(0.0, 0.99, "");
+    /// assumed: the strongest GNSS signals received reach about 55 dB-Hz.
+    pub(super) const CN0_LOCK_THRESHOLD_DBHZ: Allowed = Allowed::closed(0.0, 60.0, "dB-Hz");
+    /// assumed: 1 sigma flags a slip at every other bit, 20 sigma never.
+    pub(super) const SLIP_THRESHOLD_SIGMA: Allowed = Allowed::closed(1.0, 20.0, "sigma");
+    /// At least one transition decides; assumed: 1000 of them (20 s of alternating bits)
+    /// is past any use.
+    pub(super) const MIN_TRANSITIONS: Allowed = Allowed::closed(1.0, 1000.0, "transitions");
+    /// The winning bin at least as full as the runner-up.
+    pub(super) const DOMINANCE: Allowed = Allowed::closed(1.0, 100.0, "");
+    /// assumed: 100 windows (2 s) of NH correlation are past any use.
+    pub(super) const NH_BITS: Allowed = Allowed::closed(1.0, 100.0, "windows of 20 ms");
+    /// The UKF's process noise densities: assumed up to 1e16, a thousand times the largest
+    /// the thesis uses (the "traditional" Q_alpha_t of 1e13 that section 3.3.5 compares).
+    pub(super) const UKF_Q: Allowed = Allowed::closed(0.0, 1e16, "");
+    pub(super) const UKF_KAPPA: Allowed = Allowed::above(0.0, 10.0, "");
+    /// Up to the acquisition's widest search (60 kHz).
+    pub(super) const UKF_DOPPLER_SIGMA_HZ: Allowed = Allowed::above(0.0, 60e3, "Hz");
+    /// assumed: 100 kHz/s is a hundred times a LEO's Doppler rate.
+    pub(super) const UKF_RATE_SIGMA_HZPS: Allowed = Allowed::above(0.0, 1e5, "Hz/s");
+}
+
 impl TrackingConfig {
-    pub(crate) fn check(&self) -> Result<(), TrackingError> {
-        let positive = [
-            ("pll_bandwidth_hz", self.pll_bandwidth_hz),
-            ("dll_bandwidth_hz", self.dll_bandwidth_hz),
-            ("early_late_spacing_chips", self.early_late_spacing_chips),
-            ("cn0_window_s", self.cn0_window_s),
-            ("pll_narrowing_s", self.pll_narrowing_s),
-            ("lock_indicator_tau_s", self.lock_indicator_tau_s),
-            ("loss_of_lock_s", self.loss_of_lock_s),
-        ];
-        for (name, v) in positive {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(TrackingError::InvalidConfig(format!(
-                    "{name} must be positive and finite, got {v}"
-                )));
-            }
-        }
-        let narrow = [
-            ("pll_narrow_bandwidth_hz", self.pll_narrow_bandwidth_hz),
-            ("dll_narrow_bandwidth_hz", self.dll_narrow_bandwidth_hz),
-            (
-                "narrow_early_late_spacing_chips",
-                self.narrow_early_late_spacing_chips,
-            ),
-        ];
-        for (name, v) in narrow {
-            if let Some(v) = v
-                && !(v.is_finite() && v > 0.0)
-            {
-                return Err(TrackingError::InvalidConfig(format!(
-                    "{name} must be positive and finite, got {v}"
-                )));
-            }
-        }
-        for (name, v, max) in [
+    /// Every value in its range ([`limits`]); the error names the field within
+    /// `[tracking]`, its value and the range.
+    pub(crate) fn check(&self) -> Result<(), Invalid> {
+        use limits::*;
+        let b = &self.bit_sync;
+        let values = [
             (
                 "pll_bandwidth_hz",
                 Some(self.pll_bandwidth_hz),
-                MAX_CARRIER_BANDWIDTH_HZ,
+                PLL_BANDWIDTH_HZ,
             ),
             (
                 "pll_narrow_bandwidth_hz",
                 self.pll_narrow_bandwidth_hz,
-                MAX_CARRIER_BANDWIDTH_HZ,
+                PLL_BANDWIDTH_HZ,
             ),
+            ("pll_narrowing_s", Some(self.pll_narrowing_s), SECONDS),
             (
                 "fll_bandwidth_hz",
                 Some(self.fll_bandwidth_hz),
-                MAX_CARRIER_BANDWIDTH_HZ,
+                FLL_BANDWIDTH_HZ,
             ),
+            ("fll_assist_s", Some(self.fll_assist_s), FLL_ASSIST_S),
             (
                 "dll_bandwidth_hz",
                 Some(self.dll_bandwidth_hz),
-                MAX_DLL_BANDWIDTH_HZ,
+                DLL_BANDWIDTH_HZ,
             ),
             (
                 "dll_narrow_bandwidth_hz",
                 self.dll_narrow_bandwidth_hz,
-                MAX_DLL_BANDWIDTH_HZ,
+                DLL_BANDWIDTH_HZ,
             ),
-        ] {
-            if let Some(v) = v
-                && v > max
-            {
-                return Err(TrackingError::InvalidConfig(format!(
-                    "{name} must be at most {max} Hz, got {v}"
-                )));
-            }
-        }
-        if !(self.fll_bandwidth_hz >= 0.0 && self.fll_assist_s >= 0.0) {
-            return Err(TrackingError::InvalidConfig(format!(
-                "fll_bandwidth_hz and fll_assist_s must be >= 0, got {} and {}",
-                self.fll_bandwidth_hz, self.fll_assist_s
-            )));
-        }
-        self.ukf.check()?;
-        if !(1..=MAX_COHERENT_MS).contains(&self.coherent_ms) {
-            return Err(TrackingError::InvalidConfig(format!(
-                "coherent_ms must be 1..=20, got {}",
-                self.coherent_ms
-            )));
-        }
-        for d in [
-            Some(self.early_late_spacing_chips),
-            self.narrow_early_late_spacing_chips,
-        ]
-        .into_iter()
-        .flatten()
-        {
-            if d > 2.0 {
-                return Err(TrackingError::InvalidConfig(format!(
-                    "early-late spacing must be at most 2 chips, got {d}"
-                )));
-            }
-        }
-        Ok(())
+            (
+                "early_late_spacing_chips",
+                Some(self.early_late_spacing_chips),
+                SPACING_CHIPS,
+            ),
+            (
+                "narrow_early_late_spacing_chips",
+                self.narrow_early_late_spacing_chips,
+                SPACING_CHIPS,
+            ),
+            (
+                "coherent_ms",
+                Some(f64::from(self.coherent_ms)),
+                COHERENT_MS,
+            ),
+            ("cn0_window_s", Some(self.cn0_window_s), CN0_WINDOW_S),
+            (
+                "lock_indicator_tau_s",
+                Some(self.lock_indicator_tau_s),
+                SECONDS,
+            ),
+            (
+                "pll_lock_threshold",
+                Some(self.pll_lock_threshold),
+                PLL_LOCK_THRESHOLD,
+            ),
+            (
+                "cn0_lock_threshold_dbhz",
+                Some(self.cn0_lock_threshold_dbhz),
+                CN0_LOCK_THRESHOLD_DBHZ,
+            ),
+            ("loss_of_lock_s", Some(self.loss_of_lock_s), SECONDS),
+            (
+                "slip_threshold_sigma",
+                Some(self.slip_threshold_sigma),
+                SLIP_THRESHOLD_SIGMA,
+            ),
+            (
+                "bit_sync.min_transitions",
+                Some(f64::from(b.min_transitions)),
+                MIN_TRANSITIONS,
+            ),
+            ("bit_sync.dominance", Some(b.dominance), DOMINANCE),
+            ("bit_sync.nh_bits", Some(b.nh_bits as f64), NH_BITS),
+        ];
+        let given: Vec<_> = values
+            .into_iter()
+            .filter_map(|(field, value, allowed)| Some((field, value?, allowed)))
+            .collect();
+        check_table(&given)?;
+        self.ukf.check().map_err(|e| e.within("ukf"))
     }
 }
 
@@ -259,22 +297,14 @@ impl Default for UkfSettings {
 }
 
 impl UkfSettings {
-    /// Every value finite, the spread and uncertainties positive, Q non-negative.
-    pub(crate) fn check(&self) -> Result<(), TrackingError> {
-        let q_ok = self.q.iter().all(|q| q.is_finite() && *q >= 0.0);
-        let positive = [
-            self.kappa,
-            self.initial_doppler_sigma_hz,
-            self.initial_rate_sigma_hzps,
-        ]
-        .iter()
-        .all(|v| v.is_finite() && *v > 0.0);
-        if q_ok && positive {
-            Ok(())
-        } else {
-            Err(TrackingError::InvalidConfig(format!(
-                "ukf: q must be finite and >= 0, kappa and the initial uncertainties finite and > 0, got {self:?}"
-            )))
+    /// Every value in its range ([`limits`]).
+    pub(crate) fn check(&self) -> Result<(), Invalid> {
+        use limits::*;
+        for (i, q) in self.q.iter().enumerate() {
+            UKF_Q.check(&format!("q[{i}]"), *q)?;
         }
+        UKF_KAPPA.check("kappa", self.kappa)?;
+        UKF_DOPPLER_SIGMA_HZ.check("initial_doppler_sigma_hz", self.initial_doppler_sigma_hz)?;
+        UKF_RATE_SIGMA_HZPS.check("initial_rate_sigma_hzps", self.initial_rate_sigma_hzps)
     }
 }

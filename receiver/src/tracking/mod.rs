@@ -18,6 +18,12 @@ pub use config::{THESIS_KAPPA, THESIS_PROPOSED_Q, TrackingConfig};
 pub use correlator::{Correlator, NcoState, TapSet};
 pub use ukf_carrier::{UkfCarrier, UkfConfig};
 
+impl From<skyforge_orbits::check::Invalid> for TrackingError {
+    fn from(e: skyforge_orbits::check::Invalid) -> Self {
+        Self::InvalidConfig(e.to_string())
+    }
+}
+
 /// Errors of the tracking stage.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TrackingError {

@@ -13,7 +13,7 @@
 //! Overlapping events combine: power steps add in dB, an outage wins over any power step,
 //! code steps, ramps and phase jumps add.
 
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Allowed, Invalid, shown};
 use skyforge_orbits::ephemeris::SatId;
 
 /// The kind of a fault event; the unit of [`EventConfig::value`] depends on it.
@@ -45,14 +45,22 @@ impl EventKind {
         }
     }
 
-    /// The unit of `value` for this kind (`None` for an outage, which has no value).
-    pub fn value_unit(self) -> Option<&'static str> {
+    /// The range of `value` for this kind, with its unit (`None` for an outage, which has
+    /// no value).
+    pub fn value_range(self) -> Option<Allowed> {
         match self {
             EventKind::Outage => None,
-            EventKind::PowerStep => Some("dB"),
-            EventKind::CodeStep => Some("m"),
-            EventKind::IonoRamp => Some("m/s"),
-            EventKind::PhaseJump => Some("cycles"),
+            // assumed: 100 dB down is an outage in all but name; 40 dB up is past any
+            // signal a receiver sees outdoors.
+            EventKind::PowerStep => Some(Allowed::closed(-100.0, 40.0, "dB")),
+            // assumed: 100 km, far beyond the metres to kilometres of the faults an
+            // integrity monitor is tested on.
+            EventKind::CodeStep => Some(Allowed::closed(-100e3, 100e3, "m")),
+            // assumed: 1 km/s, ten times the fastest ramp the RAIM tables inject (100 m/s,
+            // validate::integrity::raim); an ionospheric gradient stays below 1 m/s.
+            EventKind::IonoRamp => Some(Allowed::closed(-1000.0, 1000.0, "m/s")),
+            // assumed: a million cycles (190 km), as the code step.
+            EventKind::PhaseJump => Some(Allowed::closed(-1e6, 1e6, "cycles")),
         }
     }
 }
@@ -73,7 +81,7 @@ pub struct EventConfig {
     pub start_s: f64,
     /// End of the fault (s from the scenario start, exclusive; may lie beyond the end).
     pub end_s: f64,
-    /// Size of the fault in the unit of its kind ([`EventKind::value_unit`]); required
+    /// Size of the fault in the unit of its kind ([`EventKind::value_range`]); required
     /// except for an outage. Absent is stored as NaN so `check` can tell.
     #[serde(default = "absent_value")]
     pub value: f64,
@@ -140,21 +148,18 @@ impl EventConfig {
                 format!("must be greater than start_s ({})", self.start_s),
             ));
         }
-        if let Some(unit) = self.kind.value_unit()
-            && !self.value.is_finite()
+        if let Some(range) = self.kind.value_range()
+            && !range.contains(self.value)
         {
             let shown = if self.value.is_nan() {
                 "absent".to_string()
             } else {
-                self.value.to_string()
+                shown(self.value)
             };
             return Err(Invalid::new(
                 "value",
                 shown,
-                format!(
-                    "a {} event needs a finite value in {unit}",
-                    self.kind.name()
-                ),
+                format!("a {} event needs a value in {range}", self.kind.name()),
             ));
         }
         if let Some(text) = &self.satellite {

@@ -18,7 +18,7 @@
 //! bias needs the full carrier phase at the correlator: see [`Path::at_carrier`].
 
 use skyforge_orbits::Vec3;
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Allowed, Invalid};
 use skyforge_orbits::ephemeris::SatId;
 
 /// `[errors.multipath]`.
@@ -191,19 +191,13 @@ impl MultipathConfig {
 }
 
 impl TapConfig {
-    /// Checks: delay finite > 0, amplitude in (0, 1), phase and Doppler finite, satellite a
+    /// Checks: delay, phase and Doppler in their ranges, amplitude in (0, 1), satellite a
     /// valid id, antenna non-empty.
     pub fn check(&self) -> Result<(), Invalid> {
-        if !(self.delay_m.is_finite() && self.delay_m > 0.0) {
-            return Err(Invalid::new(
-                "delay_m",
-                self.delay_m,
-                "must be a finite extra path length > 0 m",
-            ));
-        }
+        DELAY_M.check("delay_m", self.delay_m)?;
         check_unit_open("relative_amplitude", self.relative_amplitude)?;
-        check_finite("phase_deg", self.phase_deg)?;
-        check_finite("doppler_hz", self.doppler_hz)?;
+        PHASE_DEG.check("phase_deg", self.phase_deg)?;
+        DOPPLER_HZ.check("doppler_hz", self.doppler_hz)?;
         if let Some(text) = &self.satellite {
             text.parse::<SatId>().map_err(|e| {
                 Invalid::new(
@@ -231,20 +225,16 @@ impl TapConfig {
 }
 
 impl SurfaceConfig {
-    /// Checks: name non-empty, point finite, normal finite and non-zero, coefficient in
-    /// (0, 1), phase finite, half sizes finite > 0, antenna names non-empty.
+    /// Checks: name non-empty, point, normal (non-zero), phase and half sizes in their
+    /// ranges, coefficient in (0, 1), antenna names non-empty.
     pub fn check(&self) -> Result<(), Invalid> {
         check_name("name", &self.name)?;
-        for (field, v) in [
-            ("point_body_m", &self.point_body_m),
-            ("normal_body", &self.normal_body),
+        for (field, v, allowed) in [
+            ("point_body_m", &self.point_body_m, POINT_M),
+            ("normal_body", &self.normal_body, NORMAL),
         ] {
-            if let Some(k) = v.iter().position(|x| !x.is_finite()) {
-                return Err(Invalid::new(
-                    format!("{field}[{k}]"),
-                    v[k],
-                    "must be a finite number",
-                ));
+            for (k, x) in v.iter().enumerate() {
+                allowed.check(&format!("{field}[{k}]"), *x)?;
             }
         }
         if Vec3::from(self.normal_body).norm() < MIN_NORMAL_NORM {
@@ -255,15 +245,16 @@ impl SurfaceConfig {
             ));
         }
         check_unit_open("reflection_coefficient", self.reflection_coefficient)?;
-        check_finite("phase_deg", self.phase_deg)?;
-        if let Some(half) = &self.half_size_m
-            && let Some(k) = half.iter().position(|h| !(h.is_finite() && *h > 0.0))
-        {
-            return Err(Invalid::new(
-                format!("half_size_m[{k}]"),
-                half[k],
-                "must be a finite half size > 0 m (omit half_size_m for an infinite plane)",
-            ));
+        PHASE_DEG.check("phase_deg", self.phase_deg)?;
+        if let Some(half) = &self.half_size_m {
+            for (k, h) in half.iter().enumerate() {
+                HALF_SIZE_M
+                    .check(&format!("half_size_m[{k}]"), *h)
+                    .map_err(|e| Invalid {
+                        allowed: format!("{} (omit half_size_m for an infinite plane)", e.allowed),
+                        ..e
+                    })?;
+            }
         }
         for (j, name) in self.antennas.iter().flatten().enumerate() {
             check_name(&format!("antennas[{j}]"), name)?;
@@ -293,13 +284,20 @@ impl SurfaceConfig {
     }
 }
 
-fn check_finite(field: &str, value: f64) -> Result<(), Invalid> {
-    if value.is_finite() {
-        Ok(())
-    } else {
-        Err(Invalid::new(field, value, "must be a finite number"))
-    }
-}
+/// Extra path length of a tap (m): assumed up to 10 km (multipath models use metres to
+/// hundreds of metres; farther reflections arrive far below the direct signal).
+const DELAY_M: Allowed = Allowed::above(0.0, 10e3, "m");
+/// A phase (deg): one turn either way.
+const PHASE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg");
+/// Fading rate of a tap relative to the direct path (Hz): assumed up to 10 kHz, the
+/// Doppler difference of a LEO's ground reflection.
+const DOPPLER_HZ: Allowed = Allowed::closed(-10e3, 10e3, "Hz");
+/// A surface's point in the body frame (m): as an antenna's lever arm, within 10 km.
+const POINT_M: Allowed = Allowed::closed(-10e3, 10e3, "m");
+/// A surface normal's components: any length (it is normalised) short of overflowing.
+const NORMAL: Allowed = Allowed::closed(-1e6, 1e6, "");
+/// A finite surface's half size (m): up to 10 km.
+const HALF_SIZE_M: Allowed = Allowed::above(0.0, 10e3, "m");
 
 fn check_unit_open(field: &str, value: f64) -> Result<(), Invalid> {
     if value > 0.0 && value < 1.0 {

@@ -10,7 +10,7 @@ use skyforge_formats::monitor::{
     AlarmLog, H5Rows, MONITOR_CSV, MONITOR_H5, SUMMARY_JSON, csv_header, csv_rows,
 };
 use skyforge_gnss::observation::ObsFile;
-use skyforge_navigation::integrity::{MonitorConfig, Station};
+use skyforge_navigation::integrity::{MonitorConfig, Station, Unmonitored};
 use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
@@ -57,6 +57,13 @@ fn read_inputs(args: &MonitorArgs) -> anyhow::Result<Inputs> {
     let stations = stations(&files, &names, &config).map_err(|e| BadInput(e.to_string()))?;
     let ephemerides =
         read_nav_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    if ephemerides.is_empty() {
+        return Err(BadInput(format!(
+            "{}: no GPS or BeiDou ephemeris record; the monitor maps the stations with them",
+            args.nav.display()
+        ))
+        .into());
+    }
     Ok(Inputs {
         config,
         files,
@@ -82,7 +89,8 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     let (mut log, mut rows) = (AlarmLog::default(), H5Rows::default());
     let mut write_error = None;
     let mut start = None;
-    let common = run_files(&files, station_list.clone(), ephemerides, config, |e| {
+    let mask_deg = config.elevation_mask_deg;
+    let monitored = run_files(&files, station_list.clone(), ephemerides, config, |e| {
         start.get_or_insert(e.time);
         if write_error.is_none() {
             write_error = write!(csv, "{}", csv_rows(e, &station_list)).err();
@@ -91,6 +99,9 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         rows.add(e);
     })
     .map_err(|e| BadInput(e.to_string()))?;
+    if log.monitored == 0 {
+        return Err(nothing_monitored(args, log.epochs, monitored.unmonitored, mask_deg).into());
+    }
     if let Some(e) = write_error {
         return Err(e).with_context(|| format!("cannot write {}", csv_path.display()));
     }
@@ -102,7 +113,11 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         rows.write(&h5_path, start, &station_list)
             .with_context(|| format!("cannot write {}", h5_path.display()))?;
     }
-    let summary = log.summary(&station_list, common.into());
+    let summary = log.summary(
+        &station_list,
+        monitored.common_point_ecef_m.into(),
+        monitored.unmonitored,
+    );
     let json_path = staged.file(SUMMARY_JSON);
     std::fs::write(&json_path, serde_json::to_string_pretty(&summary)?)
         .with_context(|| format!("cannot write {}", json_path.display()))?;
@@ -112,6 +127,18 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
         "epochs     {} ({} station-satellite values)",
         summary.epochs, summary.monitored
     );
+    println!(
+        "monitored  {} of {} epochs; satellites {}",
+        summary.epochs_monitored,
+        summary.epochs,
+        summary.satellites_monitored.join(" ")
+    );
+    if summary.unmonitored != Unmonitored::default() {
+        println!(
+            "not monitored: {}",
+            unmonitored_reasons(&summary.unmonitored, &args.nav, mask_deg)
+        );
+    }
     println!("alarms     {}", summary.alarms.len());
     for a in &summary.alarms {
         println!(
@@ -121,6 +148,50 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     }
     println!("wrote      {}", dir.join(MONITOR_CSV).display());
     Ok(())
+}
+
+/// Why satellite-epochs went unmonitored, in words (the reasons that occurred).
+fn unmonitored_reasons(u: &Unmonitored, nav: &std::path::Path, mask_deg: f64) -> String {
+    let reasons = [
+        (
+            u.no_ephemeris,
+            format!("without an ephemeris in {} valid then", nav.display()),
+        ),
+        (
+            u.below_mask,
+            format!("below the elevation mask ({mask_deg} deg) at the common point"),
+        ),
+        (
+            u.one_station,
+            "observed (code and phase) by fewer than two stations".to_string(),
+        ),
+        (
+            u.no_threshold,
+            "of a signal the configuration has no thresholds for".to_string(),
+        ),
+    ];
+    reasons
+        .iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, why)| format!("{n} satellite-epochs {why}"))
+        .collect::<Vec<_>>()
+        .join("; ")
+}
+
+/// The refusal of a run that monitored no satellite at any epoch (an integrity monitor
+/// that watched nothing must not report an all-clear).
+fn nothing_monitored(args: &MonitorArgs, epochs: usize, u: Unmonitored, mask_deg: f64) -> BadInput {
+    let files: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
+    let why = unmonitored_reasons(&u, &args.nav, mask_deg);
+    BadInput(format!(
+        "monitored no satellite in {epochs} epochs of {}: {}",
+        files.join(", "),
+        if why.is_empty() {
+            "no satellite observed".to_string()
+        } else {
+            why
+        }
+    ))
 }
 
 /// How a calibrated configuration's thresholds are used, for the header of the files

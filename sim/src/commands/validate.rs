@@ -10,7 +10,7 @@ use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
-use skyforge_validate::integrity::{print_score, run_scenario, score};
+use skyforge_validate::integrity::{check_same_run, print_score, run_scenario, score};
 use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
@@ -241,8 +241,10 @@ pub fn attitude(
 /// in `truth`, print the table and optionally write the JSON.
 pub fn monitor(truth: &Path, monitor: &Path, json: JsonOut<'_>) -> anyhow::Result<()> {
     let scenario = run_scenario(truth).map_err(BadInput)?;
-    let record = read_monitor_csv(&monitor.join(MONITOR_CSV), scenario.time.start)
-        .map_err(|e| BadInput(e.to_string()))?;
+    let csv = monitor.join(MONITOR_CSV);
+    let record =
+        read_monitor_csv(&csv, scenario.time.start).map_err(|e| BadInput(e.to_string()))?;
+    check_same_run(&scenario, &record, &csv, truth).map_err(BadInput)?;
     let score = score(&scenario.errors.events, &record);
     print_score(&score, &mut std::io::stdout().lock())?;
     json.write(&score)

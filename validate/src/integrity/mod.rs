@@ -17,7 +17,7 @@ pub use lab::{Case, FAULT_SATELLITE, MonitoredRun, scenario};
 pub use monitor::{
     ELEVATION_BINS_DEG, Sigmas, calibrate, calibrate_files, calibrate_lab, case_run, config,
 };
-pub use score::{print_score, run_scenario, score};
+pub use score::{check_same_run, print_score, run_scenario, score};
 
 use crate::draw::Draw;
 use crate::report::Row;

@@ -23,6 +23,53 @@ pub fn run_scenario(run_dir: &Path) -> Result<skyforge_scenarios::Scenario, Stri
         .map_err(|e| format!("{}: attribute scenario_toml: {e}", path.display()))
 }
 
+/// How far (s) a monitor's epochs may lie outside its run's span: the receive times of
+/// the observation files, a few tens of milliseconds from the scenario's grid.
+const SPAN_MARGIN_S: f64 = 1.0;
+
+/// `record` (from `monitor_csv`) is of the run of `scenario` (from `truth`): its epochs lie
+/// within the run's span and its stations are the run's antennas. Scoring another run's
+/// alarms against these events would report detections and false alarms of nothing.
+pub fn check_same_run(
+    scenario: &skyforge_scenarios::Scenario,
+    record: &MonitorRecord,
+    monitor_csv: &Path,
+    truth: &Path,
+) -> Result<(), String> {
+    let csv = monitor_csv.display();
+    let Some((first_s, last_s)) = record.span_s else {
+        return Err(format!("{csv}: no rows; the monitor monitored nothing"));
+    };
+    let duration = scenario.time.duration_s;
+    if first_s < -SPAN_MARGIN_S || last_s > duration + SPAN_MARGIN_S {
+        return Err(format!(
+            "{csv}: epochs from {first_s:.1} s to {last_s:.1} s after the start of the run in {} \
+             ({}, {duration} s from {}): the monitor watched another run",
+            truth.display(),
+            scenario.name,
+            scenario.time.start
+        ));
+    }
+    let antennas: Vec<&str> = scenario.antennas.iter().map(|a| a.name.as_str()).collect();
+    let strangers: Vec<&str> = record
+        .stations
+        .iter()
+        .map(String::as_str)
+        .filter(|s| !antennas.contains(s))
+        .collect();
+    if !strangers.is_empty() {
+        return Err(format!(
+            "{csv}: stations {} are not antennas of the run in {} ({}: {}): the monitor \
+             watched another run",
+            strangers.join(", "),
+            truth.display(),
+            scenario.name,
+            antennas.join(", ")
+        ));
+    }
+    Ok(())
+}
+
 /// How one fault event was seen.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct EventOutcome {
@@ -210,6 +257,7 @@ mod tests {
                 station: "C".into(),
                 sat: "G07".into(),
             }],
+            ..MonitorRecord::default()
         };
         let s = score(&[slip, missed], &record);
         assert!(s.events[0].detected);

@@ -96,9 +96,7 @@ impl ClockModel {
             ("h_minus2", h.h_minus2),
         ];
         for (name, value) in coefficients {
-            if !(value.is_finite() && value >= 0.0) {
-                return Err(Invalid::new(name, value, "must be a finite number >= 0"));
-            }
+            super::H_COEFFICIENT.check(name, value)?;
         }
         if !(bias_s.is_finite() && drift.is_finite()) {
             return Err(Invalid::new(
