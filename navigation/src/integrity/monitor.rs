@@ -136,6 +136,45 @@ pub struct Unmonitored {
     pub no_threshold: usize,
 }
 
+impl Unmonitored {
+    /// The counts of `other` added to these.
+    pub fn add(&mut self, other: &Unmonitored) {
+        self.no_ephemeris += other.no_ephemeris;
+        self.below_mask += other.below_mask;
+        self.one_station += other.one_station;
+        self.no_threshold += other.no_threshold;
+    }
+
+    /// The reasons that occurred, in words: `ephemerides` names where the ephemerides
+    /// came from, `mask_deg` is the elevation mask.
+    pub fn describe(&self, ephemerides: &str, mask_deg: f64) -> String {
+        let reasons = [
+            (
+                self.no_ephemeris,
+                format!("without an ephemeris in {ephemerides} valid then"),
+            ),
+            (
+                self.below_mask,
+                format!("below the elevation mask ({mask_deg} deg) at the common point"),
+            ),
+            (
+                self.one_station,
+                "observed (code and phase) by fewer than two stations".to_string(),
+            ),
+            (
+                self.no_threshold,
+                "of a signal the configuration has no thresholds for".to_string(),
+            ),
+        ];
+        reasons
+            .iter()
+            .filter(|(n, _)| *n > 0)
+            .map(|(n, why)| format!("{n} satellite-epochs {why}"))
+            .collect::<Vec<_>>()
+            .join("; ")
+    }
+}
+
 /// Why the monitor could not start.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MonitorError {

@@ -16,7 +16,7 @@
 //! Elevations below 0 (seen from orbit) are evaluated at 0: the models do not describe
 //! limb paths.
 
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Allowed, Invalid};
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::frames::Geodetic;
@@ -128,8 +128,30 @@ impl Default for IonoConfig {
     }
 }
 
+/// The largest magnitudes of the Klobuchar coefficients (alpha_0..3 in s, s/semicircle^n;
+/// beta_0..3 in s, s/semicircle^n): 8-bit two's complement fields, 128 times their scale
+/// factors 2^-30, 2^-27, 2^-24, 2^-24 and 2^11, 2^14, 2^16, 2^16 (IS-GPS-200 section
+/// 20.3.3.5.1, Table 20-X; the BeiDou D1/D2 fields have the same, BDS-SIS-ICD-B1I
+/// section 5.2.4.7).
+pub const COEFFICIENT_RANGE: ([f64; 4], [f64; 4]) = (
+    [
+        128.0 / 1_073_741_824.0,
+        128.0 / 134_217_728.0,
+        128.0 / 16_777_216.0,
+        128.0 / 16_777_216.0,
+    ],
+    [
+        128.0 * 2048.0,
+        128.0 * 16_384.0,
+        128.0 * 65_536.0,
+        128.0 * 65_536.0,
+    ],
+);
+
 impl IonoConfig {
-    /// Checks: `leo_scale` in [0, 1]; coefficients finite.
+    /// Checks: `leo_scale` in [0, 1]; every coefficient within what the navigation
+    /// message can broadcast ([`COEFFICIENT_RANGE`]: SkyForge writes them into its
+    /// navigation files and messages).
     pub fn check(&self) -> Result<(), Invalid> {
         if let Some(s) = self.leo_scale
             && !(0.0..=1.0).contains(&s)
@@ -137,13 +159,12 @@ impl IonoConfig {
             return Err(Invalid::new("leo_scale", s, "must be in [0, 1]"));
         }
         for (name, set) in [("gps", &self.gps), ("bds", &self.bds)] {
-            for (part, values) in [("alpha", &set.alpha), ("beta", &set.beta)] {
-                if let Some(i) = values.iter().position(|v| !v.is_finite()) {
-                    return Err(Invalid::new(
-                        format!("{name}.{part}[{i}]"),
-                        values[i],
-                        "must be a finite number",
-                    ));
+            for (part, values, ranges) in [
+                ("alpha", &set.alpha, &COEFFICIENT_RANGE.0),
+                ("beta", &set.beta, &COEFFICIENT_RANGE.1),
+            ] {
+                for (i, (&v, &limit)) in values.iter().zip(ranges).enumerate() {
+                    Allowed::closed(-limit, limit, "").check(&format!("{name}.{part}[{i}]"), v)?;
                 }
             }
         }
@@ -195,5 +216,25 @@ impl IonoConfig {
             code_m,
             carrier_m: -code_m,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue #33 (14): an alpha of 1e30 passed "finite" and failed later with exit 1.
+    #[test]
+    fn coefficients_beyond_what_is_broadcast_are_refused() {
+        IonoConfig::default().check().unwrap();
+        let mut c = IonoConfig::default();
+        c.gps.alpha[0] = 1e30;
+        let e = c.check().unwrap_err();
+        assert_eq!(e.field, "gps.alpha[0]", "{e}");
+        let mut c = IonoConfig::default();
+        c.bds.beta[3] = -9.0e6;
+        assert_eq!(c.check().unwrap_err().field, "bds.beta[3]");
+        c.bds.beta[3] = -8.3e6;
+        c.check().unwrap();
     }
 }

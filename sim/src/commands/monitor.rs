@@ -136,7 +136,9 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     if summary.unmonitored != Unmonitored::default() {
         println!(
             "not monitored: {}",
-            unmonitored_reasons(&summary.unmonitored, &args.nav, mask_deg)
+            summary
+                .unmonitored
+                .describe(&args.nav.display().to_string(), mask_deg)
         );
     }
     println!("alarms     {}", summary.alarms.len());
@@ -150,39 +152,11 @@ pub fn run(args: &MonitorArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Why satellite-epochs went unmonitored, in words (the reasons that occurred).
-fn unmonitored_reasons(u: &Unmonitored, nav: &std::path::Path, mask_deg: f64) -> String {
-    let reasons = [
-        (
-            u.no_ephemeris,
-            format!("without an ephemeris in {} valid then", nav.display()),
-        ),
-        (
-            u.below_mask,
-            format!("below the elevation mask ({mask_deg} deg) at the common point"),
-        ),
-        (
-            u.one_station,
-            "observed (code and phase) by fewer than two stations".to_string(),
-        ),
-        (
-            u.no_threshold,
-            "of a signal the configuration has no thresholds for".to_string(),
-        ),
-    ];
-    reasons
-        .iter()
-        .filter(|(n, _)| *n > 0)
-        .map(|(n, why)| format!("{n} satellite-epochs {why}"))
-        .collect::<Vec<_>>()
-        .join("; ")
-}
-
 /// The refusal of a run that monitored no satellite at any epoch (an integrity monitor
 /// that watched nothing must not report an all-clear).
 fn nothing_monitored(args: &MonitorArgs, epochs: usize, u: Unmonitored, mask_deg: f64) -> BadInput {
     let files: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
-    let why = unmonitored_reasons(&u, &args.nav, mask_deg);
+    let why = u.describe(&args.nav.display().to_string(), mask_deg);
     BadInput(format!(
         "monitored no satellite in {epochs} epochs of {}: {}",
         files.join(", "),

@@ -1,7 +1,7 @@
 //! Paper 002's laboratory set-up (the bundled `integrity-lab` scenario) with its fault
 //! cases, run at the observation level and monitored.
 
-use skyforge_navigation::integrity::{MonitorConfig, MonitorEpoch};
+use skyforge_navigation::integrity::{MonitorConfig, MonitorEpoch, Unmonitored};
 use skyforge_navigation::integrity::{run_files, stations};
 use skyforge_runner::{ObservationRun, observation_run};
 use skyforge_scenarios::Scenario;
@@ -130,6 +130,8 @@ pub fn scenario(faults: &[Fault], seed: u64, duration_s: Option<f64>) -> Result<
 pub struct MonitoredRun {
     pub run: ObservationRun,
     pub epochs: Vec<MonitorEpoch>,
+    /// The satellite-epochs the monitor could not monitor, by reason.
+    pub unmonitored: Unmonitored,
 }
 
 /// Run `scenario` at the observation level and monitor its four receivers.
@@ -138,7 +140,7 @@ pub fn monitored(scenario: &Scenario, config: &MonitorConfig) -> Result<Monitore
     let run = observation_run(scenario).map_err(|e| fail(&e))?;
     let mut epochs = Vec::with_capacity(run.platform.len());
     let stations = stations(&run.measured, &run.antennas, config).map_err(|e| fail(&e))?;
-    run_files(
+    let monitored = run_files(
         &run.measured,
         stations,
         run.ephemerides.clone(),
@@ -146,5 +148,9 @@ pub fn monitored(scenario: &Scenario, config: &MonitorConfig) -> Result<Monitore
         |e| epochs.push(e.clone()),
     )
     .map_err(|e| fail(&e))?;
-    Ok(MonitoredRun { run, epochs })
+    Ok(MonitoredRun {
+        run,
+        epochs,
+        unmonitored: monitored.unmonitored,
+    })
 }

@@ -8,7 +8,7 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::integrity::run_files;
 use skyforge_navigation::integrity::{
     MonitorConfig, MonitorEpoch, SatelliteEpoch, SigmaCalibrator, SigmaTable, Station, Statistic,
-    ThresholdConfig,
+    ThresholdConfig, Unmonitored,
 };
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_scenarios::Scenario;
@@ -185,16 +185,31 @@ pub fn calibrate(
             let run = monitored(&s, &config(unit_sigma()))?;
             let mut cal = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
             accumulate(&mut cal, &run.epochs);
-            Ok(cal)
+            Ok((cal, run.epochs.len(), run.unmonitored))
         })
         .collect::<Result<Vec<_>, String>>()?;
     let mut all = SigmaCalibrator::new(ELEVATION_BINS_DEG.to_vec());
-    for c in &cal {
+    let (mut epochs, mut unmonitored) = (0, Unmonitored::default());
+    for (c, n, u) in &cal {
         all.merge(c);
+        epochs += n;
+        unmonitored.add(u);
     }
     let tables = all.tables();
     if tables.is_empty() {
-        return Err("the calibration runs gave no B value".to_string());
+        let why = unmonitored.describe(
+            "the scenario's constellation",
+            config(unit_sigma()).elevation_mask_deg,
+        );
+        return Err(format!(
+            "the calibration runs ({} seeds, {epochs} epochs) gave no B value: {}",
+            cal.len(),
+            if why.is_empty() {
+                "no satellite observed".to_string()
+            } else {
+                why
+            }
+        ));
     }
     Ok(tables)
 }
