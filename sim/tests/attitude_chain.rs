@@ -359,11 +359,11 @@ fn attitude_input_errors_are_clear() {
     for (line, expected) in [
         (
             "phase = { sigma0_m = 0.0, a0 = 0.0, elev0_deg = 10.0 }",
-            "rel.toml: relative.phase.sigma0_m = 0: must be a finite number above 0",
+            "rel.toml: relative.phase.sigma0_m = 0: must be in (0, 100] m",
         ),
         (
             "code = { sigma0_m = 0.3, a0 = 0.0, elev0_deg = 0.0 }",
-            "rel.toml: relative.code.elev0_deg = 0: must be a finite number above 0",
+            "rel.toml: relative.code.elev0_deg = 0: must be in (0, 90] deg",
         ),
         (
             "reverse_filter = { rate_psd_m2_s3 = [1e300, 0, 0, 0, 0, 0] }",

@@ -706,7 +706,7 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
     receive_refuses(
         dir,
         &args,
-        &["rx.toml", "observables.rate_hz", "500", "1 to 100"],
+        &["rx.toml", "observables.rate_hz", "500", "[1, 100] Hz"],
     );
     std::fs::write(dir.join("rx.toml"), "[tracking]\npll_bw = 5.0\n").unwrap();
     receive_refuses(dir, &args, &["rx.toml", "line 2", "pll_bw"]);

@@ -127,11 +127,12 @@ impl BodyGeometry {
                     b.norm()
                 )));
             }
-            if b.norm() > MAX_BASELINE_M {
+            // Component by component first: the norm of a 1e300 m baseline overflows.
+            if b.amax() > MAX_BASELINE_M || b.norm() > MAX_BASELINE_M {
                 return Err(AttitudeError::Geometry(format!(
-                    "baseline {} is {:e} m long, longer than {MAX_BASELINE_M:e} m",
+                    "baseline {} {:?} is longer than {MAX_BASELINE_M:e} m",
                     i + 1,
-                    b.norm()
+                    [b.x, b.y, b.z]
                 )));
             }
         }
