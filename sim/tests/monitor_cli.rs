@@ -473,3 +473,42 @@ fn a_monitor_that_can_monitor_nothing_is_refused_with_the_reason() {
         "{out}"
     );
 }
+
+/// Issue #33 (15): `monitor calibrate` said "no B value" without the reason. With every
+/// station but the first blind (a 0.5 deg field of view), no satellite is seen by two
+/// stations, and the refusal says so, with the counts.
+#[test]
+fn a_calibration_without_b_values_says_why() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let path = support::short_scenario(d, "integrity-lab", 60);
+    let text_of = std::fs::read_to_string(&path).unwrap();
+    let mut parts: Vec<String> = text_of.split("[[antennas]]").map(String::from).collect();
+    for p in parts.iter_mut().skip(2) {
+        *p = p.replacen("fov_half_angle_deg = 90.0", "fov_half_angle_deg = 0.5", 1);
+    }
+    let blind = parts.join("[[antennas]]");
+    assert_ne!(blind, text_of);
+    std::fs::write(&path, blind).unwrap();
+    let o = skyforge(
+        &[
+            "monitor",
+            "calibrate",
+            "short.toml",
+            "--out",
+            "x",
+            "--seeds",
+            "2",
+        ],
+        d,
+    );
+    let said = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{said}");
+    assert!(
+        said.contains("the calibration runs (2 seeds, 120 epochs) gave no B value:")
+            && said
+                .contains("satellite-epochs observed (code and phase) by fewer than two stations"),
+        "{said}"
+    );
+    assert!(!d.join("x").exists());
+}
