@@ -615,7 +615,7 @@ fn attitude_refuses_inputs_with_which_no_epoch_forms() {
             [&a1, "nan.rnx", &a3],
             nav,
             None,
-            &["nan.rnx:19: ", "pseudorange (m) NaN: allowed 1e6 to 1e9 m"],
+            &["nan.rnx:19: ", "pseudorange (m) NaN: allowed -1e9 to 1e9 m"],
         ),
         (
             [&a1, "big.rnx", &a3],

@@ -106,9 +106,11 @@ impl EpochFields {
 /// The physical range of a pseudorange (m): from the Earth's surface or an orbit within
 /// SkyForge's limits (apogee radius up to 100 000 km, docs/limits.md) to a GNSS satellite
 /// (MEO 19 100-23 200 km up, GEO/IGSO 35 800 km) the range lies between about 1.9e7 and
-/// 1.3e8 m; a receiver's clock offset (up to the 1 ms that receivers steer to) moves it by
-/// 3e5 m. Outside [1e6, 1e9] m no satellite is measured.
-pub const PSEUDORANGE_RANGE_M: std::ops::RangeInclusive<f64> = 1e6..=1e9;
+/// 1.3e8 m, but a receiver that does not steer its clock adds c times its offset, which
+/// can be a good part of a second (GNSS-SDR 0.0.17 writes BeiDou pseudoranges 3.5e7 m
+/// below the range, seen in the interoperability tier). A magnitude of 1e9 m (3.3
+/// light-seconds) bounds both; beyond it no satellite is measured.
+pub const PSEUDORANGE_RANGE_M: std::ops::RangeInclusive<f64> = -1e9..=1e9;
 /// Largest carrier phase magnitude (cycles): what the RINEX F14.3 field can hold
 /// (9 999 999 999.999; RINEX 3.04 table A3). Phase has an arbitrary start, so the field's
 /// width is its only bound.

@@ -554,7 +554,7 @@ mod tests {
         for (values, what) in [
             (
                 [9.99e300, 1.1e8, 1.0, 40.0],
-                "pseudorange (m) 9.99e300: allowed 1e6 to 1e9 m",
+                "pseudorange (m) 9.99e300: allowed -1e9 to 1e9 m",
             ),
             ([f64::NAN, 1.1e8, 1.0, 40.0], "pseudorange (m) NaN"),
             ([5e5, 1.1e8, 1.0, 40.0], "pseudorange (m) 5e5"),
