@@ -557,7 +557,7 @@ mod tests {
                 "pseudorange (m) 9.99e300: allowed -1e9 to 1e9 m",
             ),
             ([f64::NAN, 1.1e8, 1.0, 40.0], "pseudorange (m) NaN"),
-            ([5e5, 1.1e8, 1.0, 40.0], "pseudorange (m) 5e5"),
+            ([-1.5e9, 1.1e8, 1.0, 40.0], "pseudorange (m) -1.5e9"),
             ([2.1e7, 1e308, 1.0, 40.0], "carrier phase (cycles) 1e308"),
             ([2.1e7, 1.1e8, -2e5, 40.0], "Doppler (Hz) -2e5"),
             ([2.1e7, 1.1e8, 1.0, f64::NAN], "signal strength NaN"),
