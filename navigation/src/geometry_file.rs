@@ -3,7 +3,7 @@
 //! `skyforge attitude --estimate-geometry` writes the corrected one, and the attitude chain
 //! reads it: the one definition of the format, reader and writer together.
 
-use crate::attitude::{BodyGeometry, MAX_BASELINE_M};
+use crate::attitude::{BodyGeometry, MAX_BASELINE_M, beyond_max_baseline};
 use serde::{Deserialize, Serialize};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::bounded_read::read_text;
@@ -89,11 +89,7 @@ impl BodyGeometryFile {
                 a.name
             )));
         }
-        // Component by component first: the norm of a 1e300 m position overflows.
-        let far = |a: &&GeometryAntenna| {
-            let p = Vec3::from(a.position_body_m);
-            p.amax() > MAX_BASELINE_M || p.norm() > MAX_BASELINE_M
-        };
+        let far = |a: &&GeometryAntenna| beyond_max_baseline(&Vec3::from(a.position_body_m));
         if let Some(a) = file.antennas.iter().find(far) {
             return Err(error(format!(
                 "antenna {}: position_body_m {:?} lies beyond {MAX_BASELINE_M:e} m of the body origin",

@@ -54,6 +54,15 @@ fn size_text(bytes: u64) -> String {
     }
 }
 
+/// Whether the file at `path` begins with `prefix` (only that many bytes are read,
+/// whatever the file's size): how a writer recognises a file it wrote.
+pub fn starts_with(path: &Path, prefix: &[u8]) -> bool {
+    let mut head = Vec::with_capacity(prefix.len());
+    std::fs::File::open(path)
+        .and_then(|f| f.take(prefix.len() as u64).read_to_end(&mut head))
+        .is_ok_and(|_| head == prefix)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

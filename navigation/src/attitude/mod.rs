@@ -52,6 +52,12 @@ pub const MIN_BASELINE_M: f64 = 1e-4;
 // GeoNet), and any two receivers SkyForge simulates are closer; a 1e300 m antenna was
 // reported as "collinear".
 pub const MAX_BASELINE_M: f64 = 1.0e8;
+
+/// Whether `v` reaches beyond [`MAX_BASELINE_M`], component by component first (the norm
+/// of a 1e300 m vector overflows).
+pub(crate) fn beyond_max_baseline(v: &Vec3) -> bool {
+    v.amax() > MAX_BASELINE_M || v.norm() > MAX_BASELINE_M
+}
 /// Smallest sine of the angle between two body baselines for a geometry to count as not
 /// collinear (1e-3: 0.06 deg; the roll about a nearly common axis then has a variance
 /// about 1e6 times that of the other angles, which is no attitude any more).
@@ -127,8 +133,7 @@ impl BodyGeometry {
                     b.norm()
                 )));
             }
-            // Component by component first: the norm of a 1e300 m baseline overflows.
-            if b.amax() > MAX_BASELINE_M || b.norm() > MAX_BASELINE_M {
+            if beyond_max_baseline(b) {
                 return Err(AttitudeError::Geometry(format!(
                     "baseline {} {:?} is longer than {MAX_BASELINE_M:e} m",
                     i + 1,

@@ -145,8 +145,9 @@ impl Unmonitored {
         self.no_threshold += other.no_threshold;
     }
 
-    /// The reasons that occurred, in words: `ephemerides` names where the ephemerides
-    /// came from, `mask_deg` is the elevation mask.
+    /// The reasons that occurred, in words ("no satellite observed" when none did):
+    /// `ephemerides` names where the ephemerides came from, `mask_deg` is the elevation
+    /// mask.
     pub fn describe(&self, ephemerides: &str, mask_deg: f64) -> String {
         let reasons = [
             (
@@ -166,12 +167,16 @@ impl Unmonitored {
                 "of a signal the configuration has no thresholds for".to_string(),
             ),
         ];
-        reasons
+        let said: Vec<String> = reasons
             .iter()
             .filter(|(n, _)| *n > 0)
             .map(|(n, why)| format!("{n} satellite-epochs {why}"))
-            .collect::<Vec<_>>()
-            .join("; ")
+            .collect();
+        if said.is_empty() {
+            "no satellite observed".to_string()
+        } else {
+            said.join("; ")
+        }
     }
 }
 

@@ -158,13 +158,8 @@ fn nothing_monitored(args: &MonitorArgs, epochs: usize, u: Unmonitored, mask_deg
     let files: Vec<String> = args.files.iter().map(|p| p.display().to_string()).collect();
     let why = u.describe(&args.nav.display().to_string(), mask_deg);
     BadInput(format!(
-        "monitored no satellite in {epochs} epochs of {}: {}",
-        files.join(", "),
-        if why.is_empty() {
-            "no satellite observed".to_string()
-        } else {
-            why
-        }
+        "monitored no satellite in {epochs} epochs of {}: {why}",
+        files.join(", ")
     ))
 }
 

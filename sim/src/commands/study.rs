@@ -38,15 +38,14 @@ pub fn load(path: &Path) -> anyhow::Result<Study> {
 /// writes the same runs again), or another study's with `force`; never a file that is no
 /// study file ([`whole_file::check_target`]).
 fn check_study_target(target: &Path, study_text: &str, force: bool) -> Result<(), BadInput> {
-    match shard_study_text(target) {
+    let existing = shard_study_text(target);
+    match &existing {
         Ok(text) if text == study_text => Ok(()),
         Ok(_) if !force => Err(BadInput(format!(
             "{}: the file of another study; give --force to replace it, or choose another --out",
             target.display()
         ))),
-        _ => whole_file::check_target(target, force, "a study file", |p| {
-            shard_study_text(p).is_ok()
-        }),
+        _ => whole_file::check_target(target, force, "a study file", |_| existing.is_ok()),
     }
 }
 
@@ -267,10 +266,14 @@ pub fn slurm(
     refuse_backslash("--out", &out.display().to_string()).map_err(BadInput)?;
     let dir = out.join("slurm");
     const SCRIPTS: [&str; 3] = ["array.sbatch", "merge.sbatch", "submit.sh"];
-    for name in SCRIPTS {
-        let p = dir.join(name);
-        if dir.is_dir() {
-            whole_file::check_target(&p, force, "a Slurm script", written_by_skyforge)?;
+    if dir.is_dir() {
+        for name in SCRIPTS {
+            whole_file::check_target(
+                &dir.join(name),
+                force,
+                "a Slurm script",
+                written_by_skyforge,
+            )?;
         }
     }
     staged_dir::create_shared(&dir)?;

@@ -43,12 +43,18 @@ pub(super) fn remove_created(created: &[PathBuf]) {
     }
 }
 
+/// A regular file among `dir` and its ancestors (create_dir_all would only say "File
+/// exists" or "Not a directory").
+fn file_on_the_way(dir: &Path) -> Option<&Path> {
+    dir.ancestors().find(|a| a.is_file())
+}
+
 /// Create `dir` with its parents, for outputs written into it without staging (a study's
 /// directory, shared by its shards and resumed into). A path through a file, or one that
 /// cannot be created (permissions, a read-only file system), is the user's input.
 pub fn create_shared(dir: &Path) -> Result<(), BadInput> {
     let cannot = |reason: String| BadInput(format!("cannot create {}: {reason}", dir.display()));
-    if let Some(file) = dir.ancestors().find(|a| a.is_file()) {
+    if let Some(file) = file_on_the_way(dir) {
         return Err(cannot(format!(
             "{} is a file, not a directory",
             file.display()
@@ -112,7 +118,7 @@ impl StagedDir {
             .filter(|p| !p.as_os_str().is_empty())
             .unwrap_or(Path::new("."));
         // create_dir_all reports "File exists" when a path component is a regular file.
-        if let Some(file) = parent.ancestors().find(|a| a.is_file()) {
+        if let Some(file) = file_on_the_way(parent) {
             return Err(
                 unwritable(format!("{} is a file, not a directory", file.display())).into(),
             );

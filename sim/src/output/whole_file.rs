@@ -5,7 +5,8 @@
 //! replaced that SkyForge did not write, `--force` to replace what it did.
 
 use crate::bad_input::BadInput;
-use std::io::{Read, Write};
+pub use skyforge_orbits::bounded_read::starts_with;
+use std::io::Write;
 use std::path::Path;
 
 /// Whether `target` may be written: its directory exists, and it is absent or a file
@@ -43,15 +44,6 @@ pub fn check_target(
         return refuse(&format!("exists ({what}); give --force to replace it"));
     }
     Ok(())
-}
-
-/// Whether the file at `path` begins with `prefix` (only that many bytes are read,
-/// whatever the file's size).
-pub fn starts_with(path: &Path, prefix: &[u8]) -> bool {
-    let mut head = Vec::with_capacity(prefix.len());
-    std::fs::File::open(path)
-        .and_then(|f| f.take(prefix.len() as u64).read_to_end(&mut head))
-        .is_ok_and(|_| head == prefix)
 }
 
 /// Write `bytes` to `target` through a new file beside it, renamed when complete.

@@ -202,13 +202,8 @@ pub fn calibrate(
             config(unit_sigma()).elevation_mask_deg,
         );
         return Err(format!(
-            "the calibration runs ({} seeds, {epochs} epochs) gave no B value: {}",
-            cal.len(),
-            if why.is_empty() {
-                "no satellite observed".to_string()
-            } else {
-                why
-            }
+            "the calibration runs ({} seeds, {epochs} epochs) gave no B value: {why}",
+            cal.len()
         ));
     }
     Ok(tables)

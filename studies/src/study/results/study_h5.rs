@@ -11,6 +11,7 @@ use hdf5::types::VarLenUnicode;
 use hdf5::{File, Group, H5Type};
 use skyforge_formats::FormatError;
 use skyforge_formats::h5::{create_group, read_column, text_attr};
+use skyforge_orbits::bounded_read::starts_with;
 use std::path::{Path, PathBuf};
 
 /// A 1-D dataset `name` of `data` in `group`, with its unit.
@@ -177,18 +178,10 @@ pub fn read_shard(path: &Path, metrics: &[&str]) -> Result<ShardFile, ResultsErr
 /// The first bytes of every HDF5 file SkyForge writes (no user block).
 const HDF5_SIGNATURE: &[u8; 8] = b"\x89HDF\r\n\x1a\n";
 
-/// Whether the file at `path` begins with the HDF5 signature (8 bytes read).
-fn starts_as_hdf5(path: &Path) -> bool {
-    let mut head = [0u8; 8];
-    std::fs::File::open(path)
-        .and_then(|mut f| std::io::Read::read_exact(&mut f, &mut head))
-        .is_ok_and(|()| &head == HDF5_SIGNATURE)
-}
-
 /// The study text a study file (a shard's or the merged one) belongs to.
 pub fn shard_study_text(path: &Path) -> Result<String, ResultsError> {
     let read = || -> hdf5::Result<String> {
-        if !starts_as_hdf5(path) {
+        if !starts_with(path, HDF5_SIGNATURE) {
             return Err("not an HDF5 file".into());
         }
         let f = File::open(path)?;
