@@ -289,11 +289,12 @@ pub struct H5Rows {
     loss_of_lock: Vec<u8>,
 }
 
-/// A satellite as one number: 1000 x system (1 GPS, 2 BeiDou) + PRN.
+/// A satellite as one number: 1000 x system (1 GPS, 2 BeiDou, 3 Galileo) + PRN.
 fn sat_code(sat: skyforge_orbits::ephemeris::SatId) -> u16 {
     let system = match sat.system {
         skyforge_orbits::ephemeris::System::Gps => 1,
         skyforge_orbits::ephemeris::System::Beidou => 2,
+        skyforge_orbits::ephemeris::System::Galileo => 3,
     };
     1000 * system + u16::from(sat.prn)
 }

@@ -3,9 +3,11 @@
 //! names users and files give them.
 
 use crate::codes::bds_b1i;
+use crate::codes::galileo_e5a;
 use crate::codes::gps_ca;
 use skyforge_orbits::constants::{
-    F_BDS_B1I_HZ, F_BDS_B2I_HZ, F_BDS_B3I_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ, F_GPS_L5_HZ,
+    F_BDS_B1I_HZ, F_BDS_B2I_HZ, F_BDS_B3I_HZ, F_GAL_E1_HZ, F_GAL_E5A_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ,
+    F_GPS_L5_HZ,
 };
 use std::str::FromStr;
 
@@ -30,6 +32,12 @@ pub enum Signal {
     /// BeiDou B3I on 1268.52 MHz, 10230 chips at 10.23 Mchip/s (BDS-SIS-ICD-B3I-1.0 §4):
     /// observed only.
     BdsB3I,
+    /// Galileo E1 (E1-B data with I/NAV, E1-C pilot) on 1575.42 MHz, 4092 chips at
+    /// 1.023 Mchip/s, CBOC(6,1,1/11) (Galileo OS SIS ICD §2.3, §3.4): observed only.
+    GalE1,
+    /// Galileo E5a (E5a-I data with F/NAV, E5a-Q pilot) on 1176.45 MHz, 10230 chips at
+    /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): observed only.
+    GalE5a,
 }
 
 /// How navigation data (and any secondary code) modulate the ranging code.
@@ -67,7 +75,9 @@ pub struct UnknownPrn {
 
 /// A signal name that is not one of [`Signal::ALL`]'s tags.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i")]
+#[error(
+    "unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, gal-e5a"
+)]
 pub struct UnknownSignal(pub String);
 
 /// P-code chipping rate (chip/s), 10.23 MHz (IS-GPS-200 §3.3.1.1).
@@ -77,6 +87,11 @@ const P_CODE_WEEK_CHIPS: usize = 10_230_000 * 604_800;
 /// Chips of the 1 ms codes at 10.23 Mchip/s: GPS L5 (IS-GPS-705 §3.2.1.1), BeiDou B3I
 /// (BDS-SIS-ICD-B3I-1.0 §4.3.2).
 const CODE_10230: usize = 10_230;
+/// Galileo E1-B/C primary code: 4092 chips at 1.023 Mchip/s, 4 ms (Galileo OS SIS ICD §3.4,
+/// Table 18).
+const GAL_E1_CODE_LENGTH: usize = 4092;
+/// Galileo E1 chip rate (chip/s), Galileo OS SIS ICD Table 18.
+const GAL_E1_CHIP_RATE_HZ: f64 = 1.023e6;
 
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
 /// signal's nominal carrier for the two to be taken as the same.
@@ -85,13 +100,15 @@ pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
 impl Signal {
     /// Every signal: those SkyForge synthesises and tracks, and those it only reads from
     /// other receivers' observation files.
-    pub const ALL: [Signal; 6] = [
+    pub const ALL: [Signal; 8] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL2,
         Signal::GpsL5,
         Signal::BdsB2I,
         Signal::BdsB3I,
+        Signal::GalE1,
+        Signal::GalE5a,
     ];
 
     /// The signals SkyForge synthesises, records (SigMF) and tracks: one per constellation.
@@ -111,14 +128,18 @@ impl Signal {
             Signal::GpsL5 => "GPS L5",
             Signal::BdsB2I => "BDS B2I",
             Signal::BdsB3I => "BDS B3I",
+            Signal::GalE1 => "GAL E1",
+            Signal::GalE5a => "GAL E5a",
         }
     }
 
-    /// The signal SkyForge transmits and tracks for `system` (one per constellation).
+    /// The system's first signal, the one SkyForge transmits and tracks (GPS L1 C/A,
+    /// BeiDou B1I) and, for Galileo, E1 (observed only so far).
     pub fn of_system(system: skyforge_orbits::ephemeris::System) -> Self {
         match system {
             skyforge_orbits::ephemeris::System::Gps => Self::GpsL1Ca,
             skyforge_orbits::ephemeris::System::Beidou => Self::BdsB1I,
+            skyforge_orbits::ephemeris::System::Galileo => Self::GalE1,
         }
     }
 
@@ -129,6 +150,7 @@ impl Signal {
             Self::BdsB1I | Self::BdsB2I | Self::BdsB3I => {
                 skyforge_orbits::ephemeris::System::Beidou
             }
+            Self::GalE1 | Self::GalE5a => skyforge_orbits::ephemeris::System::Galileo,
         }
     }
 
@@ -142,12 +164,15 @@ impl Signal {
             Signal::GpsL5 => "gps-l5",
             Signal::BdsB2I => "bds-b2i",
             Signal::BdsB3I => "bds-b3i",
+            Signal::GalE1 => "gal-e1",
+            Signal::GalE5a => "gal-e5a",
         }
     }
 
     /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz,
     /// L2 = 120 x 10.23 MHz), IS-GPS-705 (L5 = 115 x 10.23 MHz); the BeiDou ICDs
-    /// (B1I 1561.098, B2I 1207.14, B3I 1268.52 MHz).
+    /// (B1I 1561.098, B2I 1207.14, B3I 1268.52 MHz), the Galileo OS SIS ICD (E1 = 154 x
+    /// 10.23 MHz, E5a = 115 x 10.23 MHz).
     pub fn carrier_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => F_GPS_L1_HZ,
@@ -156,6 +181,8 @@ impl Signal {
             Signal::GpsL5 => F_GPS_L5_HZ,
             Signal::BdsB2I => F_BDS_B2I_HZ,
             Signal::BdsB3I => F_BDS_B3I_HZ,
+            Signal::GalE1 => F_GAL_E1_HZ,
+            Signal::GalE5a => F_GAL_E5A_HZ,
         }
     }
 
@@ -171,6 +198,8 @@ impl Signal {
             Signal::GpsL1Ca => gps_ca::GPS_CA_CHIP_RATE_HZ,
             Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB3I => P_CODE_CHIP_RATE_HZ,
             Signal::BdsB1I | Signal::BdsB2I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
+            Signal::GalE1 => GAL_E1_CHIP_RATE_HZ,
+            Signal::GalE5a => galileo_e5a::GALILEO_E5A_CHIP_RATE_HZ,
         }
     }
 
@@ -181,10 +210,13 @@ impl Signal {
             Signal::GpsL2 => P_CODE_WEEK_CHIPS,
             Signal::BdsB1I | Signal::BdsB2I => bds_b1i::BDS_B1I_CODE_LENGTH,
             Signal::GpsL5 | Signal::BdsB3I => CODE_10230,
+            Signal::GalE1 => GAL_E1_CODE_LENGTH,
+            Signal::GalE5a => galileo_e5a::GALILEO_E5A_CODE_LENGTH,
         }
     }
 
-    /// Code period (s): 1 ms for the synthesised signals (a week for the P code of L2).
+    /// Code period (s): 1 ms for the synthesised signals, 4 ms for Galileo E1 (a week for
+    /// the P code of L2).
     pub fn code_period_s(self) -> f64 {
         self.code_length() as f64 / self.chip_rate_hz()
     }
@@ -195,7 +227,12 @@ impl Signal {
         let (code, max) = match self {
             Signal::GpsL1Ca => (gps_ca::gps_ca(prn).map(Vec::from), gps_ca::GPS_CA_PRN_MAX),
             Signal::BdsB1I => (bds_b1i::bds_b1i(prn), bds_b1i::BDS_B1I_PRN_MAX),
-            Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => (None, 0),
+            Signal::GpsL2
+            | Signal::GpsL5
+            | Signal::BdsB2I
+            | Signal::BdsB3I
+            | Signal::GalE1
+            | Signal::GalE5a => (None, 0),
         };
         code.ok_or(UnknownPrn {
             signal: self,
@@ -207,11 +244,11 @@ impl Signal {
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
     /// L2 P(Y) carry LNAV. None for L5, whose CNAV (with its FEC and the 10-bit
-    /// Neumann-Hoffman code) SkyForge does not model.
+    /// Neumann-Hoffman code) SkyForge does not model, and for Galileo's I/NAV and F/NAV.
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
-            Signal::GpsL5 => None,
+            Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a => None,
             Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
                 Some(DataModulation::BdsD2)
             }

@@ -67,7 +67,7 @@ fn observe(
         let at = w.origin.epoch_at(t_s);
         media += C_MPS
             * match sat.system {
-                System::Gps => {
+                System::Gps | System::Galileo => {
                     gps_klobuchar_l1_s(&GPS_IONO, g.lat_rad, g.lon_rad, az, el, gpst_week_sow(at).1)
                 }
                 System::Beidou => {

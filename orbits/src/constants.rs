@@ -10,6 +10,11 @@ pub const GM_BDS: f64 = 3.986_004_418e14;
 pub const OMEGA_E_GPS: f64 = 7.292_115_146_7e-5;
 /// CGCS2000 Earth rotation rate (rad/s), BDS-SIS-ICD.
 pub const OMEGA_E_BDS: f64 = 7.292_115e-5;
+/// Earth gravitational constant of the Galileo user algorithm (m^3/s^2), Galileo OS SIS
+/// ICD Issue 2.1 §5.1.1 (GTRF).
+pub const GM_GAL: f64 = 3.986_004_418e14;
+/// Earth rotation rate of the Galileo user algorithm (rad/s), Galileo OS SIS ICD §5.1.1.
+pub const OMEGA_E_GAL: f64 = 7.292_115_146_7e-5;
 /// WGS-84 semi-major axis (m).
 pub const WGS84_A_M: f64 = 6_378_137.0;
 /// WGS-84 flattening.
@@ -22,6 +27,10 @@ pub const F_GPS_L1_HZ: f64 = 1_575.42e6;
 pub const F_GPS_L2_HZ: f64 = 1_227.60e6;
 /// GPS L5 carrier frequency (Hz): 115 x 10.23 MHz (IS-GPS-705 §3.3.1.1).
 pub const F_GPS_L5_HZ: f64 = 1_176.45e6;
+/// Galileo E1 carrier frequency (Hz): 154 x 10.23 MHz (Galileo OS SIS ICD §2.3.1).
+pub const F_GAL_E1_HZ: f64 = 1_575.42e6;
+/// Galileo E5a carrier frequency (Hz): 115 x 10.23 MHz (Galileo OS SIS ICD §2.3.1).
+pub const F_GAL_E5A_HZ: f64 = 1_176.45e6;
 /// BeiDou B1I carrier frequency (Hz).
 pub const F_BDS_B1I_HZ: f64 = 1_561.098e6;
 /// BeiDou B2I carrier frequency (Hz): 1180 x 1.023 MHz (BDS-SIS-ICD-B2I-1.0 §4.2.1).

@@ -4,7 +4,7 @@
 
 use crate::Vec3;
 use crate::ephemeris::BoundEphemeris;
-use crate::ephemeris::nominal::system_constants;
+use crate::ephemeris::broadcast::system_constants;
 use crate::propagate::config::KeplerianElementsConfig;
 
 /// The thesis LEO (THESIS_TARGETS.md, common setup).
@@ -24,7 +24,7 @@ pub fn thesis_elements() -> KeplerianElementsConfig {
 /// deg).
 pub fn node_and_arg_lat(b: &BoundEphemeris, t: f64) -> (f64, f64) {
     let (r, v) = b.state_ecef(t);
-    let (omega_e, _, _) = system_constants(b.eph.sat.system);
+    let omega_e = system_constants(b.eph.sat.system).omega_e;
     let w = Vec3::new(0.0, 0.0, omega_e);
     let h = r.cross(&(v + w.cross(&r)));
     let node = Vec3::z().cross(&h).normalize();

@@ -10,7 +10,8 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::read_sp3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{
-    BoundEphemeris, BroadcastEphemeris, EphemerisStore, OrbitClass, SatId, System, nominal,
+    BoundEphemeris, BroadcastEphemeris, EphemerisStore, NavMessage, OrbitClass, SatId, System,
+    nominal,
 };
 use skyforge_orbits::fixtures::{angle_diff_deg, node_and_arg_lat};
 use skyforge_orbits::time::TimeOrigin;
@@ -48,7 +49,59 @@ fn lon_lat_deg(r: Vec3) -> (f64, f64) {
 #[ignore = "real-data tier: cargo test -- --ignored"]
 fn gps_broadcast_matches_precise_orbits() {
     let _ = IGNORE;
-    let ephs = load("nav/ESBC00DNK_R_20201770000_01D_MN.rnx.gz");
+    let stats = broadcast_against_precise(System::Gps, None);
+    assert!(
+        stats.len() >= 28,
+        "only {} GPS satellites compared",
+        stats.len()
+    );
+    let compared: usize = stats.values().map(|s| s.2).sum();
+    // The station file holds the sets ESBC tracked: most satellites are covered for
+    // 16-20 h of the day.
+    assert!(compared >= 1800, "only {compared} comparisons");
+    for (sat, (ss, _, n, _)) in &stats {
+        let rms = (ss / *n as f64).sqrt();
+        assert!(*n >= 40, "{sat}: only {n} epochs");
+        assert!(rms < 5.0, "{sat}: 3D RMS {rms:.3} m >= 5 m");
+    }
+}
+
+/// The Galileo user algorithm (GTRF constants, GST, the RINEX week being the GPS week)
+/// against the same day's precise orbits, once with the I/NAV sets and once with the
+/// F/NAV sets of the station file: the same 5 m bound per satellite as GPS. The APC-CoM
+/// offset of the Galileo satellites (about 0.6-1.0 m along the body z axis) is inside it.
+#[test]
+#[ignore = "real-data tier: cargo test -- --ignored"]
+fn galileo_broadcast_matches_precise_orbits() {
+    for message in [NavMessage::GalileoInav, NavMessage::GalileoFnav] {
+        let stats = broadcast_against_precise(System::Galileo, Some(message));
+        assert!(
+            stats.len() >= 20,
+            "{message:?}: only {} Galileo satellites compared",
+            stats.len()
+        );
+        let compared: usize = stats.values().map(|s| s.2).sum();
+        assert!(compared >= 1200, "{message:?}: only {compared} comparisons");
+        for (sat, (ss, _, n, _)) in &stats {
+            let rms = (ss / *n as f64).sqrt();
+            assert!(*n >= 20, "{message:?} {sat}: only {n} epochs");
+            assert!(rms < 5.0, "{message:?} {sat}: 3D RMS {rms:.3} m >= 5 m");
+        }
+    }
+}
+
+/// Per satellite of `system` (and of `message`, where given): the sum of squared 3D
+/// errors, the radial error sum, the count and the largest error of the broadcast orbit
+/// of the 2020-06-25 station file against the precise orbit, at every 15-min SP3 epoch
+/// where a usable ephemeris exists. Prints the table.
+fn broadcast_against_precise(
+    system: System,
+    message: Option<NavMessage>,
+) -> BTreeMap<SatId, (f64, f64, usize, f64)> {
+    let ephs: Vec<_> = load("nav/ESBC00DNK_R_20201770000_01D_MN.rnx.gz")
+        .into_iter()
+        .filter(|e| e.sat.system == system && message.is_none_or(|m| e.message == m))
+        .collect();
     let sp3 = read_sp3(&data_dir().join("sp3/GRG0MGXFIN_20201770000_01D_15M_ORB.SP3.gz"))
         .unwrap_or_else(|e| panic!("{e}"));
     let origin = TimeOrigin::new(Epoch::from_gregorian(
@@ -62,11 +115,9 @@ fn gps_broadcast_matches_precise_orbits() {
         TimeScale::GPST,
     ));
     let store = EphemerisStore::new(ephs, &origin);
-
-    // Per satellite: sum of squared 3D errors, radial error sum, count, max.
     let mut stats: BTreeMap<SatId, (f64, f64, usize, f64)> = BTreeMap::new();
     let mut missing = 0usize;
-    for rec in sp3.iter().filter(|r| r.sat.system == System::Gps) {
+    for rec in sp3.iter().filter(|r| r.sat.system == system) {
         let t = (rec.epoch - origin.start()).to_seconds();
         let Some(b) = store.select(rec.sat, t) else {
             missing += 1;
@@ -80,6 +131,7 @@ fn gps_broadcast_matches_precise_orbits() {
         s.2 += 1;
         s.3 = f64::max(s.3, d.norm());
     }
+    println!("{system:?} {message:?}");
     println!("sat  epochs  3D-RMS(m)  max(m)  mean-radial(m)   [broadcast APC - SP3 CoM]");
     let mut worst = 0.0f64;
     for (sat, (ss, rad, n, max)) in &stats {
@@ -91,23 +143,41 @@ fn gps_broadcast_matches_precise_orbits() {
         );
     }
     println!(
-        "{} satellites, worst RMS {worst:.3} m, {missing} SP3 records without a usable ephemeris",
-        stats.len()
+        "{} satellites, worst RMS {worst:.3} m, {missing} SP3 records without a usable \
+         ephemeris, {} comparisons",
+        stats.len(),
+        stats.values().map(|s| s.2).sum::<usize>()
     );
-    assert!(
-        stats.len() >= 28,
-        "only {} GPS satellites compared",
-        stats.len()
-    );
-    let compared: usize = stats.values().map(|s| s.2).sum();
-    println!("{compared} comparisons");
-    // The station file holds the sets ESBC tracked: most satellites are covered for
-    // 16-20 h of the day.
-    assert!(compared >= 1800, "only {compared} comparisons");
-    for (sat, (ss, _, n, _)) in &stats {
-        let rms = (ss / *n as f64).sqrt();
-        assert!(*n >= 40, "{sat}: only {n} epochs");
-        assert!(rms < 5.0, "{sat}: 3D RMS {rms:.3} m >= 5 m");
+    stats
+}
+
+/// The embedded Galileo plane/slot assignment (`nominal::GAL_PLANES`) against the real
+/// I/NAV ephemerides of 2023-03-12 00:00 GST: the satellites of one nominal plane share
+/// the node longitude (within 1 deg of the embedded one), and every satellite is within
+/// 6 deg of its embedded argument of latitude.
+#[test]
+#[ignore = "real-data tier: cargo test -- --ignored"]
+fn galileo_planes_match_the_embedded_assignment() {
+    let ephs: Vec<_> = load("nav/BRD400DLR_S_20230710000_01D_MN.rnx.gz")
+        .into_iter()
+        .filter(|e| e.message == NavMessage::GalileoInav)
+        .collect();
+    let t0 = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST);
+    let origin = TimeOrigin::new(t0);
+    let store = EphemerisStore::new(ephs, &origin);
+    let nominal = EphemerisStore::new(nominal::galileo(t0), &origin);
+    assert_eq!(nominal.satellites().len(), 24);
+    for sat in nominal.satellites() {
+        let b = store
+            .select(sat, 0.0)
+            .or_else(|| store.ephemerides(sat).first())
+            .unwrap_or_else(|| panic!("no ephemeris for {sat}"));
+        let (node, u) = node_and_arg_lat(b, 0.0);
+        let embedded = nominal.select(sat, 0.0).expect("embedded set");
+        let (node0, u0) = node_and_arg_lat(embedded, 0.0);
+        println!("{sat}: node {node:8.2} (embedded {node0:8.2}), u {u:7.2} ({u0:7.2})");
+        assert!(angle_diff_deg(node, node0).abs() < 1.0, "{sat}: node");
+        assert!(angle_diff_deg(u, u0).abs() < 6.0, "{sat}: u");
     }
 }
 
@@ -181,12 +251,43 @@ fn all_navigation_files_load() {
             // Hourly sets (a station file holds only those it tracked).
             assert!(bds >= 8 * bds_sats.len(), "{rel}: {bds} BeiDou sets");
         }
-        // Every set evaluates to a sensible radius at its toe.
+        // Galileo: I/NAV and F/NAV sets of the 24+ satellites in the version 3 and 4 files.
+        let gal = |m: NavMessage| ephs.iter().filter(|e| e.message == m).count();
+        let gal_sats: std::collections::BTreeSet<_> = ephs
+            .iter()
+            .filter(|e| e.sat.system == System::Galileo)
+            .map(|e| e.sat)
+            .collect();
+        let (inav, fnav) = (gal(NavMessage::GalileoInav), gal(NavMessage::GalileoFnav));
+        println!(
+            "  Galileo: {} sats, {inav} I/NAV and {fnav} F/NAV sets",
+            gal_sats.len()
+        );
+        if version == 2 {
+            assert!(gal_sats.is_empty());
+        } else {
+            assert!(
+                gal_sats.len() >= 22,
+                "{rel}: {} Galileo sats",
+                gal_sats.len()
+            );
+            assert!(inav >= 6 * gal_sats.len() && fnav >= 6 * gal_sats.len());
+        }
+        // Every set evaluates to a radius between its perigee and apogee at its toe, and
+        // the semi-major axis is a MEO's or a geosynchronous one's (Galileo E14 and E18
+        // fly eccentric orbits with their perigee near 23 800 km).
         let origin = TimeOrigin::new(ephs[0].toe);
         for e in &ephs {
             let b = e.bind(&origin);
             let r = b.position_ecef(b.toe_s).norm();
-            assert!((2.5e7..4.3e7).contains(&r), "{} at toe: r = {r}", e.sat);
+            let a = e.orbit.sqrt_a * e.orbit.sqrt_a;
+            assert!((2.5e7..4.3e7).contains(&a), "{}: a = {a}", e.sat);
+            let (lo, hi) = (a * (1.0 - e.orbit.e), a * (1.0 + e.orbit.e));
+            assert!(
+                (lo - 2e4..hi + 2e4).contains(&r),
+                "{} at toe: r = {r}",
+                e.sat
+            );
         }
     }
 }

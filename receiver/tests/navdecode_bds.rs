@@ -69,6 +69,7 @@ fn ephemeris(prn: u8) -> BroadcastEphemeris {
         af1: 7.2e-12,
         af2: -1.1e-19,
         tgd_s: 1.23e-8,
+        tgd2_s: 0.0,
     };
     BroadcastEphemeris {
         toc: epoch_from_bdt(WEEK, TOE_SOW - 3600.0),

@@ -28,6 +28,7 @@ fn ephemeris() -> BroadcastEphemeris {
             af0: -0.469126738608e-3,
             af2: -2.0e-16,
             tgd_s: -0.512227416039e-8,
+            tgd2_s: 0.0,
             ..real.clock
         },
         iodc: 256 + 39,

@@ -123,6 +123,7 @@ impl Scenario {
                 let all = match system {
                     System::Gps => nominal::gps(start),
                     System::Beidou => nominal::beidou(config.embedded_set, start),
+                    System::Galileo => nominal::galileo(start),
                 };
                 let described = "the embedded constellation".to_string();
                 (
@@ -163,7 +164,7 @@ impl Scenario {
                 format!(
                     "{described} has no healthy {} ephemeris valid at the scenario start \
                      ({start}); use a file for the scenario's day",
-                    system_name(system)
+                    system.name()
                 ),
             )));
         }
@@ -283,13 +284,5 @@ impl Scenario {
     /// `invalid`, placed in this scenario's text.
     pub fn located(&self, invalid: Invalid) -> ScenarioError {
         locate_invalid(&self.text, &self.source, invalid)
-    }
-}
-
-/// The name users know a system by.
-fn system_name(system: System) -> &'static str {
-    match system {
-        System::Gps => "GPS",
-        System::Beidou => "BeiDou",
     }
 }

@@ -7,9 +7,9 @@
 
 use crate::signal::Signal;
 
-/// The codes of `signal`, preferred first; the first is what SkyForge writes (each
-/// system's reference signal for the phase, RINEX 3.04 table A23, so no phase shift
-/// applies). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]).
+/// The codes of `signal`, preferred first; the first is what SkyForge writes (for GPS and
+/// BeiDou each system's reference signal for the phase, RINEX 3.04 table A23, so no phase
+/// shift applies; for Galileo the pilot, 1C and 5Q, as pilot-tracking receivers write). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]).
 pub fn codes(signal: Signal) -> &'static [&'static str] {
     match signal {
         Signal::GpsL1Ca => &["1C"],
@@ -19,6 +19,9 @@ pub fn codes(signal: Signal) -> &'static [&'static str] {
         Signal::BdsB1I => &["2I"],
         Signal::BdsB2I => &["7I"],
         Signal::BdsB3I => &["6I"],
+        // Pilot tracking (E1-C, E5a-Q), then data + pilot, then data alone.
+        Signal::GalE1 => &["1C", "1X", "1B"],
+        Signal::GalE5a => &["5Q", "5X", "5I"],
     }
 }
 

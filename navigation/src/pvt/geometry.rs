@@ -1,8 +1,8 @@
 //! One satellite as seen at the receive epoch: transmit time, clock, Sagnac-rotated
 //! position, range, line of sight and angles.
 
-use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{BoundEphemeris, SatId, System};
+use skyforge_orbits::constants::C_MPS;
+use skyforge_orbits::ephemeris::{BoundEphemeris, SatId};
 use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
 use skyforge_orbits::frames::{az_el, c_ecef_ned};
 use skyforge_orbits::{Mat3, Vec3};
@@ -29,14 +29,6 @@ pub struct SatView {
     pub los: Vec3,
     /// Azimuth and elevation at the receiver (rad), when the receiver position is known.
     pub az_el_rad: Option<(f64, f64)>,
-}
-
-/// Earth rotation rate of the system's reference frame (rad/s).
-fn omega_e(system: System) -> f64 {
-    match system {
-        System::Gps => OMEGA_E_GPS,
-        System::Beidou => OMEGA_E_BDS,
-    }
 }
 
 /// Rotation about Z by `-angle` (the frame turning by `angle` while the signal flies).
@@ -96,7 +88,7 @@ impl Transmitted {
             v_ecef_mps,
             clock_s,
             clock_drift,
-            omega_e: omega_e(eph.eph.sat.system),
+            omega_e: eph.eph.sat.system.earth_rotation_rad_s(),
         }
     }
 

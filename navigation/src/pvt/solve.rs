@@ -194,6 +194,10 @@ fn iono_m(cfg: &PvtConfig, place: &ReceiverPlace, sat: SatId, az: f64, el: f64) 
         (System::Gps, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
         (System::Beidou, _, Some(c)) => bds(c),
         (System::Beidou, Some(c), None) => gps(c) * (F_GPS_L1_HZ / F_BDS_B1I_HZ).powi(2),
+        // Galileo's measurements are E1's, on the L1 frequency (NeQuick-G, Galileo's own
+        // model, is not applied: the GPS or BeiDou coefficients stand in).
+        (System::Galileo, Some(c), _) => gps(c),
+        (System::Galileo, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
         (_, None, None) => 0.0,
     };
     seconds * C_MPS

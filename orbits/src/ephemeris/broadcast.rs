@@ -1,6 +1,7 @@
 //! Broadcast ephemeris parameters and the user algorithms: GPS LNAV (IS-GPS-200 table
 //! 20-IV, relativistic clock correction, TGD) and BeiDou D1/D2 (BDS-SIS-ICD, MEO/IGSO and
-//! the GEO transformation, BDT).
+//! the GEO transformation, BDT) and Galileo I/NAV and F/NAV (Galileo OS SIS ICD Issue 2.1
+//! §5.1.1 and §5.1.4: the GPS user algorithm with the GTRF constants, GST).
 //!
 //! Velocity is the analytic time derivative of the same model (not a finite difference), so
 //! position and velocity are exactly consistent; the tests check it against a central
@@ -8,7 +9,7 @@
 
 use super::sat_id::{SatId, System};
 use crate::Vec3;
-use crate::constants::{GM_BDS, GM_GPS, OMEGA_E_BDS, OMEGA_E_GPS};
+use crate::constants::{GM_BDS, GM_GAL, GM_GPS, OMEGA_E_BDS, OMEGA_E_GAL, OMEGA_E_GPS};
 use crate::time::TimeOrigin;
 use hifitime::{Epoch, TimeScale};
 use std::f64::consts::{PI, TAU};
@@ -18,6 +19,37 @@ pub const F_REL_GPS: f64 = -4.442_807_633e-10;
 /// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2) with the CGCS2000 mu,
 /// BDS-SIS-ICD-B1I-3.0 5.2.4 (clock correction).
 pub const F_REL_BDS: f64 = -4.442_807_309e-10;
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), Galileo OS SIS ICD §5.1.4.
+pub const F_REL_GAL: f64 = -4.442_807_309e-10;
+
+/// The constants of a system's user algorithm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SystemConstants {
+    /// Earth gravitational constant (m^3/s^2).
+    pub gm: f64,
+    /// Earth rotation rate (rad/s).
+    pub omega_e: f64,
+    /// Relativistic clock constant F (s/m^1/2).
+    pub f_rel: f64,
+    /// The time scale of toe, toc and the week.
+    pub scale: TimeScale,
+}
+
+/// The user-algorithm constants of `system` (IS-GPS-200 20.3.3.4.3, BDS-SIS-ICD 5.2.4,
+/// Galileo OS SIS ICD §5.1.1).
+pub(crate) fn system_constants(system: System) -> SystemConstants {
+    let (gm, omega_e, f_rel) = match system {
+        System::Gps => (GM_GPS, OMEGA_E_GPS, F_REL_GPS),
+        System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS),
+        System::Galileo => (GM_GAL, OMEGA_E_GAL, F_REL_GAL),
+    };
+    SystemConstants {
+        gm,
+        omega_e,
+        f_rel,
+        scale: system.time_scale(),
+    }
+}
 
 /// Tilt of the BeiDou GEO computation frame (-5 deg about X), BDS-SIS-ICD 5.2.4.
 const BDS_GEO_TILT_RAD: f64 = -5.0 * PI / 180.0;
@@ -26,6 +58,35 @@ const BDS_GEO_TILT_RAD: f64 = -5.0 * PI / 180.0;
 const KEPLER_TOL_RAD: f64 = 1e-15;
 /// Iteration cap of the Kepler solver (Newton converges in 3-5 steps for e < 0.1).
 const KEPLER_MAX_ITER: usize = 30;
+
+/// The navigation message an ephemeris is broadcast in: it says which signals the clock
+/// polynomial refers to and which group delay [`ClockParams::tgd_s`] holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum NavMessage {
+    /// GPS LNAV: clock for the L1/L2 P(Y) ionosphere-free pair, TGD (IS-GPS-200
+    /// 20.3.3.3.3.2).
+    GpsLnav,
+    /// BeiDou D1/D2: clock for B3I, TGD1 for B1I (BDS-SIS-ICD-B1I-3.0 §5.2.4.10).
+    BdsD1D2,
+    /// Galileo I/NAV (E1-B, E5b-I): clock for the E1/E5b pair, BGD(E1,E5b) (Galileo OS SIS
+    /// ICD §5.1.5).
+    GalileoInav,
+    /// Galileo F/NAV (E5a-I): clock for the E1/E5a pair, BGD(E1,E5a) (Galileo OS SIS ICD
+    /// §5.1.5).
+    GalileoFnav,
+}
+
+impl NavMessage {
+    /// The message SkyForge assumes for `system` where nothing says otherwise (Galileo:
+    /// I/NAV, the message of E1-B).
+    pub fn default_for(system: System) -> Self {
+        match system {
+            System::Gps => Self::GpsLnav,
+            System::Beidou => Self::BdsD1D2,
+            System::Galileo => Self::GalileoInav,
+        }
+    }
+}
 
 /// How the orbit is evaluated.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -43,6 +104,8 @@ pub enum OrbitClass {
 pub struct BroadcastEphemeris {
     pub sat: SatId,
     pub class: OrbitClass,
+    /// The message the set is broadcast in.
+    pub message: NavMessage,
     /// Reference time of ephemeris (in the system's own time scale).
     pub toe: Epoch,
     /// Reference time of clock.
@@ -105,8 +168,12 @@ pub struct ClockParams {
     pub af0: f64,
     pub af1: f64,
     pub af2: f64,
-    /// Group delay for the signal SkyForge uses (GPS TGD for L1 C/A; BeiDou TGD1 for B1I).
+    /// The message's group delay ([`NavMessage`]): GPS TGD; BeiDou TGD1 (B1I); Galileo
+    /// BGD(E1,E5b) in I/NAV, BGD(E1,E5a) in F/NAV.
     pub tgd_s: f64,
+    /// A second group delay where the message has one: Galileo I/NAV's BGD(E1,E5a); 0
+    /// otherwise (BeiDou's TGD2 is not kept).
+    pub tgd2_s: f64,
 }
 
 /// An ephemeris bound to a scenario time origin: evaluates at `t_s` seconds since the start.
@@ -164,8 +231,9 @@ struct PlaneState {
 impl BroadcastEphemeris {
     /// The ephemeris of `sat` with `orbit`, `harmonics` and `clock` referred to `toe`
     /// (also the clock's reference time toc), usable for `fit_interval_s` around it;
-    /// issues of data 0, healthy. Other values (a separate toc, issues of data, health)
-    /// are set with struct-update syntax on the result.
+    /// issues of data 0, healthy, in the system's default message
+    /// ([`NavMessage::default_for`]). Other values (a separate toc, issues of data, health,
+    /// the message) are set with struct-update syntax on the result.
     pub fn from_elements(
         sat: SatId,
         class: OrbitClass,
@@ -178,6 +246,7 @@ impl BroadcastEphemeris {
         Self {
             sat,
             class,
+            message: NavMessage::default_for(sat.system),
             toe,
             toc: toe,
             orbit,
@@ -194,10 +263,12 @@ impl BroadcastEphemeris {
     pub fn bind(&self, origin: &TimeOrigin) -> BoundEphemeris {
         let toe_s = (self.toe - origin.start()).to_seconds();
         let toc_s = (self.toc - origin.start()).to_seconds();
-        let (gm, omega_e, f_rel, scale) = match self.sat.system {
-            System::Gps => (GM_GPS, OMEGA_E_GPS, F_REL_GPS, TimeScale::GPST),
-            System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS, TimeScale::BDT),
-        };
+        let SystemConstants {
+            gm,
+            omega_e,
+            f_rel,
+            scale,
+        } = system_constants(self.sat.system);
         let toe_sow = seconds_of_week(self.toe, scale);
         let a_m = self.orbit.sqrt_a * self.orbit.sqrt_a;
         let geo = self.class == OrbitClass::BeidouGeo;
@@ -224,7 +295,8 @@ impl BroadcastEphemeris {
     }
 }
 
-/// Seconds of week of `epoch` in `scale` (GPST or BDT), exact to the nanosecond.
+/// Seconds of week of `epoch` in `scale` (GPST, BDT or GST, whose weeks begin with GPST's),
+/// exact to the nanosecond.
 pub(crate) fn seconds_of_week(epoch: Epoch, scale: TimeScale) -> f64 {
     let (_, ns) = epoch.to_time_scale(scale).to_time_of_week();
     ns as f64 * 1e-9
@@ -443,6 +515,7 @@ mod tests {
             af1: -3.865e-12,
             af2: 1.0e-19,
             tgd_s: 4.66e-9,
+            tgd2_s: 0.0,
         };
         BroadcastEphemeris {
             iode: 59,

@@ -1,5 +1,5 @@
-//! GNSS satellites and their broadcast ephemerides: identifiers, the GPS LNAV and BeiDou
-//! D1/D2 user algorithms, RINEX 2/3/4 navigation files, SP3 precise orbits, ephemeris
+//! GNSS satellites and their broadcast ephemerides: identifiers, the GPS LNAV, BeiDou D1/D2
+//! and Galileo I/NAV and F/NAV user algorithms, RINEX 2/3/4 navigation files, SP3 precise orbits, ephemeris
 //! selection, and the embedded default constellations.
 
 pub(crate) mod broadcast;
@@ -22,7 +22,7 @@ pub use sp3::read_sp3;
 
 pub use broadcast::{
     BoundEphemeris, BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements,
-    OrbitClass,
+    NavMessage, OrbitClass,
 };
 pub use sat_id::{SatId, System};
 pub use store::EphemerisStore;

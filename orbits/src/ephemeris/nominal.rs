@@ -14,11 +14,12 @@
 //! Omega(tk = 0) = Omega0 - OMEGA_E * toe_sow equals that longitude.
 
 use super::broadcast::{
-    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, seconds_of_week,
+    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SystemConstants, seconds_of_week,
+    system_constants,
 };
-use super::{BroadcastEphemeris, SatId, System, config::BeidouSet};
-use crate::constants::{GM_BDS, GM_GPS, J2, OMEGA_E_BDS, OMEGA_E_GPS, WGS84_A_M};
-use hifitime::{Epoch, TimeScale};
+use super::{BroadcastEphemeris, SatId, config::BeidouSet};
+use crate::constants::{J2, WGS84_A_M};
+use hifitime::Epoch;
 use std::f64::consts::PI;
 
 /// Fit interval of embedded ephemerides (s): ~31 years, i.e. never expires.
@@ -256,12 +257,53 @@ pub fn beidou(set: BeidouSet, epoch: Epoch) -> Vec<BroadcastEphemeris> {
     out
 }
 
-/// Earth rotation rate, gravitational constant and time scale of a system.
-pub(crate) fn system_constants(system: System) -> (f64, f64, TimeScale) {
-    match system {
-        System::Gps => (OMEGA_E_GPS, GM_GPS, TimeScale::GPST),
-        System::Beidou => (OMEGA_E_BDS, GM_BDS, TimeScale::BDT),
+/// Galileo nominal semi-major axis (m), Galileo OS SDD Issue 1.2 §2.1 (reference
+/// constellation: Walker 24/3/1, 29 600.318 km, 56 deg).
+pub const GAL_A_M: f64 = 29_600.318e3;
+/// Galileo nominal inclination (deg), Galileo OS SDD §2.1.
+pub const GAL_I_DEG: f64 = 56.0;
+
+/// Galileo Walker 24/3/1 planes: Earth-fixed node longitude of the first plane at toe
+/// (deg) and the argument of latitude of its first slot (deg). Rounded from the I/NAV
+/// ephemerides of BRD400DLR_S_20230710000 at 2023-03-12 00:00 GST (planes at -155.3,
+/// -35.2 and 85.1 deg; slot phases 30 + 45 j + 15 k deg; see the test tier).
+const GAL_PLANE1_NODE_DEG: f64 = -155.2;
+const GAL_SLOT1_ARG_LAT_DEG: f64 = 30.0;
+
+/// Galileo PRNs per plane (k = 0, 1, 2, planes 120 deg apart eastward) in slot order
+/// (j = 0..8, increasing argument of latitude), as broadcast on 2023-03-12; 0 marks the
+/// slot that was empty that day.
+pub const GAL_PLANES: [[u8; 8]; 3] = [
+    [15, 34, 36, 11, 12, 33, 26, 13],
+    [9, 4, 19, 0, 7, 8, 3, 5],
+    [21, 27, 30, 2, 25, 24, 31, 1],
+];
+
+/// The Galileo satellite outside the Walker slots on 2023-03-12: E10 in the first plane,
+/// halfway between slots 3 and 4 (argument of latitude 187.3 deg measured; 187.5 used).
+pub const GAL_AUXILIARY: (u8, f64) = (10, 187.5);
+
+/// The nominal Galileo constellation (24 satellites), with toe/toc at `epoch`: 23 in the
+/// Walker 24/3/1 slots of [`GAL_PLANES`] and E10 in its auxiliary slot, a = 29 600.318
+/// km, i = 56 deg, in the I/NAV message. E14 and E18 (eccentric orbits) and the
+/// satellites not healthy on 2023-03-12 are left out.
+pub fn galileo(epoch: Epoch) -> Vec<BroadcastEphemeris> {
+    let slot = |k: usize, u: f64| Slot {
+        node_lon_deg: GAL_PLANE1_NODE_DEG + 120.0 * k as f64,
+        arg_lat_deg: u,
+    };
+    let meo = |prn, slot| circular(SatId::galileo(prn), epoch, GAL_A_M, GAL_I_DEG, slot);
+    let mut out = Vec::new();
+    for (k, plane) in GAL_PLANES.iter().enumerate() {
+        for (j, &prn) in plane.iter().enumerate().filter(|(_, p)| **p != 0) {
+            let u = GAL_SLOT1_ARG_LAT_DEG + 45.0 * j as f64 + 15.0 * k as f64;
+            out.push(meo(prn, slot(k, u)));
+        }
     }
+    let (prn, u) = GAL_AUXILIARY;
+    out.push(meo(prn, slot(0, u)));
+    out.sort_by_key(|e| e.sat);
+    out
 }
 
 /// J2 secular drift of the node, -3/2 J2 (R_E / a)^2 n cos i (rad/s).
@@ -291,7 +333,9 @@ fn template(sat: SatId, class: OrbitClass, epoch: Epoch, a_m: f64) -> BroadcastE
 
 /// A circular inclined orbit (standard user algorithm) in `slot` at toe.
 fn circular(sat: SatId, epoch: Epoch, a_m: f64, i_deg: f64, slot: Slot) -> BroadcastEphemeris {
-    let (omega_e, gm, scale) = system_constants(sat.system);
+    let SystemConstants {
+        omega_e, gm, scale, ..
+    } = system_constants(sat.system);
     let i0 = i_deg.to_radians();
     let toe_sow = seconds_of_week(epoch, scale);
     let base = template(sat, OrbitClass::Standard, epoch, a_m);
@@ -313,7 +357,7 @@ fn circular(sat: SatId, epoch: Epoch, a_m: f64, i_deg: f64, slot: Slot) -> Broad
 /// (Omega = 180 deg) is exactly equatorial after the Rx(-5 deg) rotation, and the argument
 /// of latitude u maps to the longitude u + 180 deg.
 fn geostationary(sat: SatId, epoch: Epoch, lon_deg: f64) -> BroadcastEphemeris {
-    let (omega_e, _, scale) = system_constants(sat.system);
+    let SystemConstants { omega_e, scale, .. } = system_constants(sat.system);
     let toe_sow = seconds_of_week(epoch, scale);
     let base = template(sat, OrbitClass::BeidouGeo, epoch, BDS_GSO_A_M);
     BroadcastEphemeris {
@@ -331,9 +375,12 @@ fn geostationary(sat: SatId, epoch: Epoch, lon_deg: f64) -> BroadcastEphemeris {
 mod tests {
     use super::*;
     use crate::Vec3;
+    use crate::constants::{GM_BDS, GM_GPS};
     use crate::ephemeris::BoundEphemeris;
+    use crate::ephemeris::System;
     use crate::fixtures::{angle_diff_deg, node_and_arg_lat};
     use crate::time::TimeOrigin;
+    use hifitime::TimeScale;
 
     fn epoch() -> Epoch {
         // Mid-week, odd seconds: exercises the toe seconds-of-week handling.
@@ -378,6 +425,35 @@ mod tests {
                 .chain(&b3)
                 .all(|e| e.health == 0 && e.toe == epoch())
         );
+    }
+
+    #[test]
+    fn galileo_is_24_satellites_on_their_slots() {
+        let g = galileo(epoch());
+        assert_eq!(g.len(), 24);
+        let mut sats: Vec<SatId> = g.iter().map(|e| e.sat).collect();
+        sats.dedup();
+        assert_eq!(sats.len(), 24);
+        for b in bound(&g) {
+            let (node, u) = node_and_arg_lat(&b, 0.0);
+            let plane = GAL_PLANES
+                .iter()
+                .position(|p| p.contains(&b.eph.sat.prn))
+                .unwrap_or(0);
+            let node_expected = -155.2 + 120.0 * plane as f64;
+            assert!(angle_diff_deg(node, node_expected).abs() < 0.01, "{node}");
+            // Walker 24/3/1: slots 45 deg apart, planes phased by 15 deg.
+            let auxiliary = b.eph.sat.prn == GAL_AUXILIARY.0;
+            let expected_phase = if auxiliary { 22.5 } else { 0.0 };
+            let off = (u - 30.0 - 15.0 * plane as f64 - expected_phase + 22.5).rem_euclid(45.0);
+            assert!((off - 22.5).abs() < 0.01, "{}: u {u}", b.eph.sat);
+            assert_eq!(b.eph.message, crate::ephemeris::NavMessage::GalileoInav);
+            for k in 0..5 {
+                let r = b.position_ecef(3600.0 * f64::from(k)).norm();
+                assert!((r - 29_600.318e3).abs() < 1e-3);
+            }
+            assert!((b.eph.orbit.i0.to_degrees() - 56.0).abs() < 1e-12);
+        }
     }
 
     #[test]

@@ -1,5 +1,6 @@
 //! RINEX navigation files, versions 2 (GPS), 3 (mixed) and 4 (message types), plain or
-//! gzip-compressed. Only GPS LNAV and BeiDou D1/D2 records are kept; others are skipped.
+//! gzip-compressed. GPS LNAV, BeiDou D1/D2 and Galileo I/NAV and F/NAV records are kept;
+//! others are skipped.
 //!
 //! Format facts used (RINEX 2.11, 3.05 and 4.00 specifications, "navigation message file"
 //! tables for GPS and BDS):
@@ -17,6 +18,14 @@
 //!   TGD is the L1/L2 P(Y) group delay; the fit interval is in hours.
 //! - BeiDou: toe is BDT week + seconds of week; health is SatH1; TGD1 (B1I) is kept; the
 //!   last line carries AODC.
+//! - Galileo: the first orbit line carries IODnav (kept as IODE and IODC); the fifth
+//!   carries the data sources, whose bit 1 marks an F/NAV record and bits 0 and 2 an I/NAV
+//!   one (RINEX 3.05 Table A8; a record that claims both is an error; version 4 names the
+//!   message on its `> EPH E05 INAV` line, which must agree); the week goes with toe and
+//!   is the continuous GPS week (RINEX 3.05 §6.12, not the GST week, which is 1024 less);
+//!   health is the SV health field (E1-B, E5a and E5b data validity and health bits);
+//!   the group delay kept is the one of the message's clock pair: BGD(E1,E5b) for I/NAV,
+//!   BGD(E1,E5a) for F/NAV ([`super::NavMessage`]).
 //!
 //! Choices (documented here, tested below):
 //! - GPS fit interval: the field in hours; 0, missing, or a value below 4 (some writers put
@@ -27,6 +36,8 @@
 //!   set of a daily file has toe 23:00). Measured on the bundled RINEX 4 file
 //!   (`tests/real_data_ephemeris.rs`): a set used 1, 2, 3 h after its toe differs from the
 //!   newer set by at most 4.7, 7.2, 10.0 m.
+//! - Galileo fit interval: 4 h. The ICD gives none; Galileo uploads a new set every 10 min
+//!   to 3 h (IODnav changes), and a set's nominal validity is 4 h (Galileo OS SDD).
 //! - BeiDou GEO: classified by PRN (C01-C05 and C59-C63), not by the D1/D2 label.
 //! - toe week: the week field goes with toe; if toe and toc then differ by more than half
 //!   a week (a writer that put the transmission week), the week is corrected by one.
@@ -37,6 +48,7 @@ use super::nav_text::read_text_maybe_gz;
 use super::rinex_nav_iono::parse_iono;
 use super::{
     NavError,
+    broadcast::NavMessage,
     broadcast::{BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, OrbitClass},
     sat_id::{SatId, System},
 };
@@ -48,10 +60,16 @@ use std::path::Path;
 const GPS_DEFAULT_FIT_S: f64 = 4.0 * 3600.0;
 /// BeiDou validity interval (s), +-3 h about toe (see the module notes).
 const BDS_FIT_S: f64 = 6.0 * 3600.0;
+/// Galileo validity interval (s), +-2 h about toe (see the module notes).
+const GAL_FIT_S: f64 = 4.0 * 3600.0;
+/// Galileo data-sources bits (RINEX 3.05 Table A8): I/NAV E1-B, F/NAV E5a-I, I/NAV E5b-I.
+const GAL_SOURCE_INAV_E1B: u32 = 1 << 0;
+const GAL_SOURCE_FNAV: u32 = 1 << 1;
+const GAL_SOURCE_INAV_E5B: u32 = 1 << 2;
 /// Seconds per week.
 const WEEK_S: f64 = crate::time::SECONDS_PER_WEEK as f64;
 
-/// Read every GPS LNAV and BeiDou D1/D2 ephemeris in the file.
+/// Read every GPS LNAV, BeiDou D1/D2 and Galileo I/NAV and F/NAV ephemeris in the file.
 pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
     let text = read_text_maybe_gz(path)?;
     parse_nav(&text, &path.display().to_string())
@@ -209,6 +227,7 @@ impl Parser<'_> {
                 [">", "EPH", sat, msg, ..] => {
                     (sat.starts_with('G') && *msg == "LNAV")
                         || (sat.starts_with('C') && (*msg == "D1" || *msg == "D2"))
+                        || (sat.starts_with('E') && (*msg == "INAV" || *msg == "FNAV"))
                 }
                 [">", "EPH", ..] => {
                     return Err(self.err(n0, "EPH record line without satellite and message type"));
@@ -220,9 +239,23 @@ impl Parser<'_> {
                 continue;
             }
             match self.v3_record(&rec[1..])? {
-                Some(eph) if eph.sat.to_string() == t[2] => out.push(eph),
-                Some(_) => return Err(self.err(rec[1].0, "satellite differs from the > line")),
-                None => return Err(self.err(rec[1].0, "EPH data line is not GPS/BeiDou")),
+                Some(eph) if eph.sat.to_string() != t[2] => {
+                    return Err(self.err(rec[1].0, "satellite differs from the > line"));
+                }
+                Some(eph)
+                    if eph.sat.system == System::Galileo && galileo_label(eph.message) != t[3] =>
+                {
+                    return Err(self.err(
+                        rec[1].0,
+                        format!(
+                            "the data sources say {} but the > line says {}",
+                            galileo_label(eph.message),
+                            t[3]
+                        ),
+                    ));
+                }
+                Some(eph) => out.push(eph),
+                None => return Err(self.err(rec[1].0, "EPH data line is not GPS/BeiDou/Galileo")),
             }
         }
         Ok(out)
@@ -302,7 +335,7 @@ impl Parser<'_> {
             return Err(self.err(
                 last,
                 format!(
-                    "record cut short: it has {} lines (from line {}), a GPS/BeiDou record has 8 \
+                    "record cut short: it has {} lines (from line {}), a GPS/BeiDou/Galileo record has 8 \
                      (the epoch line and seven broadcast orbit lines)",
                     rec.len(),
                     rec[0].0
@@ -364,8 +397,8 @@ impl Parser<'_> {
         Ok(Some(x))
     }
 
-    /// Build the ephemeris from the record fields (RINEX 3.05 GPS and BDS navigation
-    /// message record tables; version 2 GPS records have the same layout).
+    /// Build the ephemeris from the record fields (RINEX 3.05 GPS, Galileo and BDS
+    /// navigation message record tables; version 2 GPS records have the same layout).
     fn ephemeris(
         &self,
         line: usize,
@@ -373,10 +406,15 @@ impl Parser<'_> {
         toc: Epoch,
         f: &Fields,
     ) -> Result<BroadcastEphemeris, NavError> {
-        let scale = sat.system.time_scale();
+        // Galileo's RINEX week is the continuous GPS week (the module notes).
+        let scale = match sat.system {
+            System::Galileo => TimeScale::GPST,
+            system => system.time_scale(),
+        };
         let (week_name, iode_name) = match sat.system {
             System::Gps => ("GPS week", "IODE"),
             System::Beidou => ("BDT week", "AODE"),
+            System::Galileo => ("GAL week", "IODnav"),
         };
         let need = |line, k, name| f.need(self, line, k, name);
         let toe_sow = need(3, 1, "toe")?;
@@ -409,7 +447,22 @@ impl Parser<'_> {
         // The transmission time is not used, but every complete record has it: without it
         // the record (the file) was cut after its sixth orbit line.
         need(7, 1, "transmission time")?;
+        let mut message = NavMessage::default_for(sat.system);
+        let mut tgd2_s = 0.0;
         let (class, tgd_s, iodc, fit_interval_s) = match sat.system {
+            System::Galileo => {
+                message = galileo_message(count(need(5, 2, "data sources")?)?)
+                    .map_err(|m| self.err(f.line_no[5], m))?;
+                let tgd_s = match message {
+                    NavMessage::GalileoFnav => need(6, 3, "BGD E5a/E1")?,
+                    _ => {
+                        tgd2_s = need(6, 3, "BGD E5a/E1")?;
+                        need(6, 4, "BGD E5b/E1")?
+                    }
+                };
+                let iod = count(need(1, 1, iode_name)?)?;
+                (OrbitClass::Standard, tgd_s, iod, GAL_FIT_S)
+            }
             System::Gps => {
                 let fit_h = f.orbit(7, 2);
                 let fit_s = if fit_h < 4.0 {
@@ -462,9 +515,11 @@ impl Parser<'_> {
             af1: f.clock(self, 1)?,
             af2: f.clock(self, 2)?,
             tgd_s,
+            tgd2_s,
         };
         Ok(BroadcastEphemeris {
             toc,
+            message,
             iode: count(need(1, 1, iode_name)?)?,
             iodc,
             health: count(need(6, 2, "health")?)?,
@@ -478,6 +533,29 @@ impl Parser<'_> {
                 fit_interval_s,
             )
         })
+    }
+}
+
+/// The message of a Galileo record from its data-sources field (RINEX 3.05 Table A8).
+fn galileo_message(sources: u32) -> Result<NavMessage, String> {
+    let inav = sources & (GAL_SOURCE_INAV_E1B | GAL_SOURCE_INAV_E5B) != 0;
+    match (inav, sources & GAL_SOURCE_FNAV != 0) {
+        (true, false) => Ok(NavMessage::GalileoInav),
+        (false, true) => Ok(NavMessage::GalileoFnav),
+        (true, true) => Err(format!(
+            "data sources {sources} claim both I/NAV (bits 0, 2) and F/NAV (bit 1)"
+        )),
+        (false, false) => Err(format!(
+            "data sources {sources} name neither I/NAV (bits 0, 2) nor F/NAV (bit 1)"
+        )),
+    }
+}
+
+/// The RINEX 4 message label of a Galileo message (`INAV`, `FNAV`).
+fn galileo_label(message: NavMessage) -> &'static str {
+    match message {
+        NavMessage::GalileoFnav => "FNAV",
+        _ => "INAV",
     }
 }
 
@@ -625,6 +703,58 @@ C19 2023 03 12 00 00 00-8.956108940765e-04-9.041656312547e-13 0.000000000000e+00
 
     fn gpst(y: i32, mo: u8, d: u8, h: u8) -> Epoch {
         Epoch::from_gregorian(y, mo, d, h, 0, 0, 0, TimeScale::GPST)
+    }
+
+    /// A RINEX 4 file with one Galileo record under `label` (`INAV`, `FNAV`), its data
+    /// sources `sources`.
+    fn galileo_v4(label: &str, sources: f64) -> String {
+        let record = [
+            "E05 2023 03 12 00 00 00-8.700000000000e-05 3.600000000000e-12 0.000000000000e+00",
+            "     0.000000000000e+00-5.400000000000e+01 3.500000000000e-09 1.600000000000e+00",
+            "    -2.600000000000e-06 1.700000000000e-04 5.100000000000e-06 5.440600000000e+03",
+            "     0.000000000000e+00 2.900000000000e-08-6.100000000000e-01 5.500000000000e-09",
+            "     9.500000000000e-01 2.200000000000e+02-1.600000000000e+00-5.800000000000e-09",
+        ];
+        let mut text = format!(
+            "{:>9}{:11}{:<20}{:<20}RINEX VERSION / TYPE\n{:60}END OF HEADER\n> EPH E05 {label}\n",
+            "4.00", "", "NAVIGATION DATA", "M", ""
+        );
+        for line in record {
+            text.push_str(line);
+            text.push('\n');
+        }
+        text.push_str(&format!(
+            "    -2.800000000000e-10{sources:19.12e} 2.253000000000e+03\n"
+        ));
+        text.push_str(
+            "     3.120000000000e+00 0.000000000000e+00 3.200000000000e-09 3.700000000000e-09\n",
+        );
+        text.push_str("     6.640000000000e+02\n");
+        text
+    }
+
+    #[test]
+    fn rinex4_galileo_inav_and_fnav_records() {
+        let inav = parse(&galileo_v4("INAV", 517.0)).unwrap();
+        assert_eq!(inav.len(), 1);
+        let e = &inav[0];
+        assert_eq!(e.sat, SatId::galileo(5));
+        assert_eq!(e.message, NavMessage::GalileoInav);
+        // I/NAV: the E1/E5b clock's BGD(E1,E5b), and BGD(E1,E5a) beside it.
+        assert_eq!((e.clock.tgd_s, e.clock.tgd2_s), (3.7e-9, 3.2e-9));
+        // toc in GST; toe from week 2253 (continuous GPS week) + 0 s.
+        assert_eq!(
+            e.toc,
+            Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST)
+        );
+        assert_eq!(e.toe, Epoch::from_time_of_week(2253, 0, TimeScale::GPST));
+        assert_eq!(e.fit_interval_s, 4.0 * 3600.0);
+        let fnav = parse(&galileo_v4("FNAV", 258.0)).unwrap();
+        assert_eq!(fnav[0].message, NavMessage::GalileoFnav);
+        assert_eq!((fnav[0].clock.tgd_s, fnav[0].clock.tgd2_s), (3.2e-9, 0.0));
+        // The label and the data sources must agree.
+        let err = parse(&galileo_v4("FNAV", 517.0)).unwrap_err().to_string();
+        assert!(err.contains("say INAV but the > line says FNAV"), "{err}");
     }
 
     #[test]

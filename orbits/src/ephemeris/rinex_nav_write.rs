@@ -1,9 +1,9 @@
-//! Writing RINEX 3.04 mixed navigation files: GPS LNAV and BeiDou D1/D2 records, with the
-//! record layout the reader in [`super::rinex_nav`] expects (RINEX 3.04 tables A6 and
-//! A14). The header date is the first record's toc, not the wall clock, so that the same
+//! Writing RINEX 3.04 mixed navigation files: GPS LNAV, Galileo I/NAV and F/NAV and
+//! BeiDou D1/D2 records, with the record layout the reader in [`super::rinex_nav`] expects
+//! (RINEX 3.04 tables A6, A8 and A14). The header date is the first record's toc, not the wall clock, so that the same
 //! scenario writes the same bytes.
 
-use super::broadcast::BroadcastEphemeris;
+use super::broadcast::{BroadcastEphemeris, NavMessage};
 use super::sat_id::System;
 use hifitime::Epoch;
 use std::io::{self, Write};
@@ -24,13 +24,23 @@ fn d19(x: f64) -> String {
     fortran(x, 12, 19)
 }
 
-/// Week number and seconds of week of `epoch` in `system`'s time scale.
+/// Week number and seconds of week of `epoch` in `system`'s time scale; Galileo's RINEX
+/// week is the continuous GPS week (RINEX 3.05 §6.12), its seconds of week GST's, which
+/// equal GPST's.
 fn week_sow(system: System, epoch: Epoch) -> (u32, f64) {
     match system {
-        System::Gps => crate::time::gpst_week_sow(epoch),
+        System::Gps | System::Galileo => crate::time::gpst_week_sow(epoch),
         System::Beidou => crate::time::bdt_week_sow(epoch),
     }
 }
+
+/// Galileo data sources (RINEX 3.05 Table A8): I/NAV E1-B and E5b-I with the E5b,E1 clock
+/// (bits 0, 2, 9); F/NAV E5a-I with the E5a,E1 clock (bits 1, 8).
+const GAL_SOURCES_INAV: f64 = 517.0;
+const GAL_SOURCES_FNAV: f64 = 258.0;
+/// The Galileo SISA field (m) SkyForge writes: 3.12 m, the value Galileo satellites
+/// broadcast in nominal operation (seen in every record of the bundled 2020 and 2023 files).
+const GAL_SISA_M: f64 = 3.12;
 
 fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
     writeln!(
@@ -52,12 +62,8 @@ pub fn write_nav(
     out: &mut impl Write,
 ) -> io::Result<()> {
     let systems: Vec<System> = ephemerides.iter().map(|e| e.sat.system).collect();
-    let letter = match (
-        systems.contains(&System::Gps),
-        systems.contains(&System::Beidou),
-    ) {
-        (true, false) => 'G',
-        (false, true) => 'C',
+    let letter = match systems.first() {
+        Some(&first) if systems.iter().all(|&s| s == first) => first.letter(),
         _ => 'M',
     };
     writeln!(
@@ -81,6 +87,7 @@ pub fn write_nav(
         let tag = match system {
             System::Gps => "GPS",
             System::Beidou => "BDS",
+            System::Galileo => continue,
         };
         for (part, v) in [('A', alpha), ('B', beta)] {
             writeln!(
@@ -124,6 +131,15 @@ pub fn write_nav(
                 // the whole run, so a reader must not drop them after the standard 4 h).
                 orbit_line(out, [toc_sow, fit_hours(e.fit_interval_s), 0.0, 0.0])?;
             }
+            System::Galileo => {
+                let (sources, bgd_e5a, bgd_e5b) = match e.message {
+                    NavMessage::GalileoFnav => (GAL_SOURCES_FNAV, e.clock.tgd_s, 0.0),
+                    _ => (GAL_SOURCES_INAV, e.clock.tgd2_s, e.clock.tgd_s),
+                };
+                orbit_line(out, [o.idot, sources, f64::from(week), 0.0])?;
+                orbit_line(out, [GAL_SISA_M, f64::from(e.health), bgd_e5a, bgd_e5b])?;
+                orbit_line(out, [toc_sow, 0.0, 0.0, 0.0])?;
+            }
             System::Beidou => {
                 orbit_line(out, [o.idot, 0.0, f64::from(week), 0.0])?;
                 orbit_line(out, [2.0, f64::from(e.health), e.clock.tgd_s, 0.0])?;
@@ -147,6 +163,7 @@ fn fit_hours(fit_s: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::ephemeris::NavMessage;
     use crate::ephemeris::config::BeidouSet;
     use crate::ephemeris::nominal;
     use crate::ephemeris::rinex_nav::parse_nav;
@@ -157,6 +174,40 @@ mod tests {
         text.lines().any(|l| {
             l.starts_with("GPSA   1.1176E-08") && l.len() == 76 && l.ends_with("IONOSPHERIC CORR")
         })
+    }
+
+    /// One nominal Galileo set of `message` as a RINEX 3.04 file.
+    fn galileo_text(message: NavMessage) -> String {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST);
+        let mut e = nominal::galileo(start).remove(0);
+        e.message = message;
+        let mut buf = Vec::new();
+        write_nav(&[e], "skyforge", &[], &mut buf).unwrap();
+        String::from_utf8(buf).unwrap()
+    }
+
+    #[test]
+    fn galileo_records_name_their_message_by_the_data_sources() {
+        let inav = galileo_text(NavMessage::GalileoInav);
+        assert!(inav.contains(" 5.170000000000E+02"), "{inav}");
+        assert!(inav.starts_with("     3.04           N: GNSS NAV DATA    E"));
+        let fnav = galileo_text(NavMessage::GalileoFnav);
+        assert!(fnav.contains(" 2.580000000000E+02"));
+        let back = parse_nav(&fnav, "f.rnx").unwrap();
+        assert_eq!(back[0].message, NavMessage::GalileoFnav);
+        // The week is the GPS week (2253 on 2023-03-12), not the GST week (1229).
+        assert!(fnav.contains(" 2.253000000000E+03"), "{fnav}");
+        assert_eq!(
+            back[0].toe,
+            Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST)
+        );
+        // A record claiming I/NAV and F/NAV at once is refused.
+        let both = inav.replace(" 5.170000000000E+02", " 5.190000000000E+02");
+        let err = parse_nav(&both, "both.rnx").unwrap_err().to_string();
+        assert!(err.contains("both I/NAV"), "{err}");
+        let neither = inav.replace(" 5.170000000000E+02", " 5.120000000000E+02");
+        let err = parse_nav(&neither, "neither.rnx").unwrap_err().to_string();
+        assert!(err.contains("neither"), "{err}");
     }
 
     #[test]
@@ -187,8 +238,17 @@ mod tests {
     fn nominal_gps_and_beidou_survive_a_round_trip() {
         let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
         let mut ephs = nominal::gps(start);
+        ephs.extend(nominal::galileo(start));
         ephs.extend(nominal::beidou(BeidouSet::Bds3, start));
-        for e in &mut ephs {
+        for (k, e) in ephs.iter_mut().enumerate() {
+            if e.sat.system == System::Galileo {
+                // Both Galileo messages; I/NAV carries the second group delay.
+                if k % 2 == 0 {
+                    e.message = NavMessage::GalileoFnav;
+                } else {
+                    e.clock.tgd2_s = 2.7e-9;
+                }
+            }
             // Values as a message carries them: non-zero clocks and harmonics, IOD.
             e.clock.af0 = 1.234e-5;
             e.clock.af1 = -3.4e-12;
@@ -230,7 +290,7 @@ mod tests {
                 "{}",
                 a.sat
             );
-            assert_eq!((a.iode, a.health), (b.iode, b.health));
+            assert_eq!((a.iode, a.health, a.message), (b.iode, b.health, b.message));
             let values = |e: &BroadcastEphemeris| {
                 [
                     e.orbit.sqrt_a,
@@ -245,6 +305,7 @@ mod tests {
                     e.harmonics.crs,
                     e.harmonics.cuc,
                     e.clock.tgd_s,
+                    e.clock.tgd2_s,
                 ]
             };
             for (x, y) in values(a).into_iter().zip(values(b)) {

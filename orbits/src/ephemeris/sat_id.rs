@@ -7,6 +7,8 @@
 pub enum System {
     Gps,
     Beidou,
+    /// Galileo, opt-in in scenarios (`[gnss.galileo]`).
+    Galileo,
 }
 
 impl System {
@@ -15,14 +17,31 @@ impl System {
         match self {
             System::Gps => hifitime::TimeScale::GPST,
             System::Beidou => hifitime::TimeScale::BDT,
+            System::Galileo => hifitime::TimeScale::GST,
         }
     }
 
-    /// The RINEX system letter (`G`, `C`).
+    /// Earth rotation rate of the frame the system's ephemerides are expressed in (rad/s):
+    /// WGS-84 (GPS), CGCS2000 (BeiDou), GTRF (Galileo).
+    pub fn earth_rotation_rad_s(self) -> f64 {
+        crate::ephemeris::broadcast::system_constants(self).omega_e
+    }
+
+    /// The name users know the system by: `GPS`, `BeiDou`, `Galileo`.
+    pub fn name(self) -> &'static str {
+        match self {
+            System::Gps => "GPS",
+            System::Beidou => "BeiDou",
+            System::Galileo => "Galileo",
+        }
+    }
+
+    /// The RINEX system letter (`G`, `C`, `E`).
     pub fn letter(self) -> char {
         match self {
             System::Gps => 'G',
             System::Beidou => 'C',
+            System::Galileo => 'E',
         }
     }
 
@@ -31,15 +50,18 @@ impl System {
         match letter {
             'G' => Some(System::Gps),
             'C' => Some(System::Beidou),
+            'E' => Some(System::Galileo),
             _ => None,
         }
     }
 
-    /// Highest PRN number the system's signals define (GPS 1..=32, BeiDou 1..=63).
+    /// Highest PRN number the system's signals define (GPS 1..=32, BeiDou 1..=63, Galileo
+    /// 1..=36: the SVIDs RINEX 3/4 gives Galileo, RINEX 3.05 §5.1).
     pub fn max_prn(self) -> u8 {
         match self {
             System::Gps => 32,
             System::Beidou => 63,
+            System::Galileo => 36,
         }
     }
 }
@@ -67,6 +89,14 @@ impl SatId {
             prn,
         }
     }
+
+    /// A Galileo satellite.
+    pub fn galileo(prn: u8) -> Self {
+        Self {
+            system: System::Galileo,
+            prn,
+        }
+    }
 }
 
 impl std::fmt::Display for SatId {
@@ -77,7 +107,7 @@ impl std::fmt::Display for SatId {
 
 /// Error parsing a satellite identifier.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("not a GPS/BeiDou satellite id {text:?} (expected e.g. G05, C19, \"G 5\")")]
+#[error("not a GPS/BeiDou/Galileo satellite id {text:?} (expected e.g. G05, C19, E11, \"G 5\")")]
 pub struct SatIdError {
     /// The text that failed to parse.
     pub text: String,
@@ -122,12 +152,13 @@ mod tests {
         assert_eq!("G 5".parse::<SatId>(), Ok(SatId::gps(5)));
         assert_eq!("g7".parse::<SatId>(), Ok(SatId::gps(7)));
         assert_eq!(" C63 ".parse::<SatId>(), Ok(SatId::beidou(63)));
+        assert_eq!("E36".parse::<SatId>(), Ok(SatId::galileo(36)));
     }
 
     #[test]
     fn rejects_bad_ids() {
         for bad in [
-            "", "G", "G00", "G33", "C64", "E05", "R01", "G123", "G-1", "5", "G 0x",
+            "", "G", "G00", "G33", "C64", "E37", "E00", "R01", "G123", "G-1", "5", "G 0x",
         ] {
             assert!(bad.parse::<SatId>().is_err(), "{bad:?} accepted");
         }

@@ -154,8 +154,11 @@ EOF
 
     #[test]
     fn reads_positions_clocks_and_epochs() {
-        let recs = parse_sp3(SP3, "t.sp3").unwrap();
-        assert_eq!(recs.len(), 3);
+        let all = parse_sp3(SP3, "t.sp3").unwrap();
+        assert_eq!(all.len(), 4);
+        assert_eq!(all[0].sat, SatId::galileo(1));
+        assert!((all[0].r_ecef_m.x + 11_562_163.582).abs() < 1e-6);
+        let recs = &all[1..];
         let t0 = Epoch::from_gregorian(2020, 6, 25, 0, 0, 0, 0, TimeScale::GPST);
         assert_eq!(recs[0].sat, SatId::gps(1));
         assert_eq!(recs[0].epoch, t0);

@@ -3,7 +3,12 @@
 //!
 //! Selection rule (what [`EphemerisStore::select`] implements):
 //! 1. only healthy sets (health 0) are stored at all;
-//! 2. a set is usable at `t` when `|t - toe| <= fit_interval / 2 + SELECT_MARGIN_S`;
+//! 2. a set is usable at `t` when `|t - toe| <= fit_interval / 2 + SELECT_MARGIN_S`; a
+//!    Galileo set (I/NAV or F/NAV) only forward, when
+//!    `-SELECT_MARGIN_S <= t - toe <= fit_interval + SELECT_MARGIN_S`: Galileo broadcasts
+//!    a set from about its toe on (every transmission time in the bundled 2020 and 2023
+//!    files is after the toe), and a set used 2 h before its toe is off by up to 18 m
+//!    (measured against the 2020-06-25 precise orbits), 0.7-1 m at 2 h after;
 //! 3. among the usable sets the one with the nearest toe wins; on a tie the later toe wins
 //!    (a GPS set is normally broadcast from about 2 h before its toe: in the bundled files
 //!    the set with toe 02:00 has a transmission time of 00:00:18, so at 01:00 a receiver
@@ -14,7 +19,7 @@
 //!
 //! Two healthy sets of one satellite with the same toe: the one read last is kept.
 
-use super::{BoundEphemeris, BroadcastEphemeris, SatId};
+use super::{BoundEphemeris, BroadcastEphemeris, NavMessage, SatId};
 use crate::time::TimeOrigin;
 
 /// Tolerance added to half the fit interval (s): absorbs toe offsets of a few seconds
@@ -88,9 +93,7 @@ impl EphemerisStore {
     pub fn select(&self, sat: SatId, t_s: f64) -> Option<&BoundEphemeris> {
         let sets = self.ephemerides(sat);
         let after = sets.partition_point(|e| e.toe_s <= t_s);
-        let usable = |e: &&BoundEphemeris| {
-            (t_s - e.toe_s).abs() <= 0.5 * e.eph.fit_interval_s + SELECT_MARGIN_S
-        };
+        let usable = |e: &&BoundEphemeris| usable_at(e, t_s);
         let before = after
             .checked_sub(1)
             .and_then(|i| sets.get(i))
@@ -106,6 +109,18 @@ impl EphemerisStore {
             }
             (b, l) => b.or(l),
         }
+    }
+}
+
+/// Whether `e` may be used at `t_s` (rule 2 of the module documentation).
+fn usable_at(e: &BoundEphemeris, t_s: f64) -> bool {
+    let age_s = t_s - e.toe_s;
+    let fit_s = e.eph.fit_interval_s;
+    match e.eph.message {
+        NavMessage::GalileoInav | NavMessage::GalileoFnav => {
+            (-SELECT_MARGIN_S..=fit_s + SELECT_MARGIN_S).contains(&age_s)
+        }
+        NavMessage::GpsLnav | NavMessage::BdsD1D2 => age_s.abs() <= 0.5 * fit_s + SELECT_MARGIN_S,
     }
 }
 
@@ -204,6 +219,27 @@ mod tests {
         // Before the first toe.
         assert_eq!(iode_at(&s, g1, -2.0), Some(1));
         assert_eq!(iode_at(&s, g1, -2.1), None);
+    }
+
+    #[test]
+    fn galileo_sets_are_used_forward_from_their_toe() {
+        let e5 = SatId::galileo(5);
+        let s = EphemerisStore::new(
+            vec![eph(e5, 1.0, 4.0, 0, 10), eph(e5, 3.0, 4.0, 0, 11)],
+            &origin(),
+        );
+        // Before the first toe: only within the margin.
+        assert_eq!(iode_at(&s, e5, 0.5), None);
+        assert_eq!(
+            s.select(e5, 3600.0 - SELECT_MARGIN_S).map(|b| b.eph.iode),
+            Some(10)
+        );
+        // Between toes: the earlier set until the later one is broadcast.
+        assert_eq!(iode_at(&s, e5, 2.9), Some(10));
+        assert_eq!(iode_at(&s, e5, 3.0), Some(11));
+        // After the last toe: the whole fit interval forward, not half of it.
+        assert_eq!(iode_at(&s, e5, 6.9), Some(11));
+        assert_eq!(iode_at(&s, e5, 7.1), None);
     }
 
     #[test]

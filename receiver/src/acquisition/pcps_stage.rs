@@ -33,9 +33,13 @@ impl PcpsStage {
         config.bit_transition = match signal {
             Signal::BdsB1I => BitTransition::AlignedWindows,
             // The observed-only signals are refused by `Pcps::new` (no code).
-            Signal::GpsL1Ca | Signal::GpsL2 | Signal::GpsL5 | Signal::BdsB2I | Signal::BdsB3I => {
-                BitTransition::Ignore
-            }
+            Signal::GpsL1Ca
+            | Signal::GpsL2
+            | Signal::GpsL5
+            | Signal::BdsB2I
+            | Signal::BdsB3I
+            | Signal::GalE1
+            | Signal::GalE5a => BitTransition::Ignore,
         };
         Ok(Self {
             pcps: Pcps::new(config)?,

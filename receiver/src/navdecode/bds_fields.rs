@@ -307,6 +307,7 @@ pub(crate) fn ephemeris(
         af1: c.a1,
         af2: c.a2,
         tgd_s: c.tgd1_s,
+        tgd2_s: 0.0,
     };
     DecodedEphemeris {
         eph: BroadcastEphemeris {

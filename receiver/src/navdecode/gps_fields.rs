@@ -281,6 +281,7 @@ pub(crate) fn ephemeris(
         af1: s1.af1,
         af2: s1.af2,
         tgd_s: s1.tgd_s,
+        tgd2_s: 0.0,
     };
     let fit_interval_s = if s2.fit_flag {
         FIT_FLAG1_S

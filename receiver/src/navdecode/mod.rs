@@ -170,6 +170,12 @@ pub fn decoder_for(sat: SatId) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
     Ok(match sat.system {
         System::Gps => Box::new(GpsLnavDecoder::new(sat)?),
         System::Beidou => Box::new(BdsDecoder::new(sat)?),
+        System::Galileo => {
+            return Err(NavDecodeError::WrongSatellite {
+                sat: sat.to_string(),
+                what: "a GPS or BeiDou satellite (no Galileo message is decoded yet)",
+            });
+        }
     })
 }
 

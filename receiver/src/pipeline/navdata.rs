@@ -15,6 +15,8 @@ const WEEK_S: f64 = skyforge_orbits::time::SECONDS_PER_WEEK as f64;
 const BDT_BEHIND_GPST_S: f64 = 14.0;
 /// BDT week 0 began at GPS week 1356.
 const BDT_WEEK0_IN_GPS_WEEKS: u32 = 1356;
+/// GST week 0 (1999-08-22 00:00 GST, GST = GPST) in GPS weeks (Galileo OS SIS ICD §5.1.2).
+const GST_WEEK0_IN_GPS_WEEKS: u32 = 1024;
 
 /// Ephemerides, ionosphere and the time origin.
 #[derive(Debug, Clone, Default)]
@@ -128,6 +130,7 @@ impl NavData {
                 week.map(|w| w + BDT_WEEK0_IN_GPS_WEEKS),
                 tow_s + BDT_BEHIND_GPST_S,
             ),
+            System::Galileo => (week.map(|w| w + GST_WEEK0_IN_GPS_WEEKS), tow_s),
         };
         if let Some(w) = gps_week {
             self.set_origin_week(w);

@@ -195,7 +195,10 @@ impl IonoConfig {
             IonoModel::Off => 0.0,
             IonoModel::Klobuchar => {
                 let (delay_s, f_ref_hz) = match system {
-                    System::Gps => (
+                    // Galileo's own model (NeQuick-G) is not simulated: its signals take the
+                    // GPS coefficients' delay, scaled to their carrier (GST's seconds of
+                    // day are GPST's).
+                    System::Gps | System::Galileo => (
                         gps_klobuchar_l1_s(
                             &self.gps, rx.lat_rad, rx.lon_rad, az_rad, el_rad, t_system_s,
                         ),

@@ -17,6 +17,11 @@
 //!   3.0, 2019, user received power levels). The minimum holds for every orbit class, so the EIRP is set from the
 //!   longest range, the geosynchronous (GEO/IGSO) one at 42 164.2 km: slant range 41 127 km,
 //!   `L_fs` 188.60 dB, EIRP 25.60 dBW. MEO satellites then arrive 3.8 dB above the minimum.
+//! - Galileo E1: -157 dBW for E1-B and E1-C together at the output of a 0 dBi RHCP
+//!   antenna, for elevations above 10 deg (Galileo OS SIS ICD Issue 2.1 §2.3.3, minimum
+//!   received power on ground), from the nominal 29 600.318 km orbit: slant range
+//!   27 056 km, `L_fs` 185.04 dB, EIRP 28.04 dBW. The same EIRP serves E5a, whose minimum
+//!   (-155 dBW) it exceeds at its lower frequency.
 //!
 //! Real satellites usually exceed the minimum by a few dB; raise the EIRP to model that.
 //!
@@ -28,9 +33,9 @@
 //! `system_noise_temperature_k` to model a given receiver.
 
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, WGS84_A_M};
+use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GAL_E1_HZ, F_GPS_L1_HZ, WGS84_A_M};
 use skyforge_orbits::ephemeris::System;
-use skyforge_orbits::ephemeris::nominal::{BDS_GSO_A_M, GPS_A_M};
+use skyforge_orbits::ephemeris::nominal::{BDS_GSO_A_M, GAL_A_M, GPS_A_M};
 
 /// Boltzmann's constant (J/K), exact in the 2019 SI.
 pub const BOLTZMANN_J_PER_K: f64 = 1.380_649e-23;
@@ -38,8 +43,13 @@ pub const BOLTZMANN_J_PER_K: f64 = 1.380_649e-23;
 pub const GPS_L1CA_MIN_POWER_DBW: f64 = -158.5;
 /// BDS-SIS-ICD-B1I minimum received B1I power (dBW), 0 dBi RHCP user antenna, >= 5 deg.
 pub const BDS_B1I_MIN_POWER_DBW: f64 = -163.0;
-/// Elevation at which the ICD minimum powers are specified (deg).
+/// Galileo OS SIS ICD §2.3.3 minimum received E1 power, E1-B and E1-C together (dBW),
+/// 0 dBi RHCP user antenna, >= 10 deg.
+pub const GAL_E1_MIN_POWER_DBW: f64 = -157.0;
+/// Elevation at which the GPS and BeiDou ICD minimum powers are specified (deg).
 pub const ICD_MIN_POWER_ELEVATION_DEG: f64 = 5.0;
+/// Elevation at which the Galileo ICD minimum powers are specified (deg).
+pub const GAL_MIN_POWER_ELEVATION_DEG: f64 = 10.0;
 /// Default system noise temperature (K): the 290 K reference temperature.
 pub const DEFAULT_SYSTEM_NOISE_TEMPERATURE_K: f64 = 290.0;
 
@@ -53,6 +63,10 @@ pub struct LinkBudgetConfig {
     /// BeiDou B1I EIRP towards the user (dBW); default [`default_bds_eirp_dbw`].
     #[serde(default = "default_bds_eirp_dbw")]
     pub bds_eirp_dbw: f64,
+    /// Galileo EIRP towards the user (dBW), every Galileo signal; default
+    /// [`default_gal_eirp_dbw`].
+    #[serde(default = "default_gal_eirp_dbw")]
+    pub gal_eirp_dbw: f64,
     /// System noise temperature referred to the antenna output (K); default 290 K.
     #[serde(default = "default_system_noise_temperature_k")]
     pub system_noise_temperature_k: f64,
@@ -67,6 +81,7 @@ impl Default for LinkBudgetConfig {
         Self {
             gps_eirp_dbw: default_gps_eirp_dbw(),
             bds_eirp_dbw: default_bds_eirp_dbw(),
+            gal_eirp_dbw: default_gal_eirp_dbw(),
             system_noise_temperature_k: default_system_noise_temperature_k(),
             losses_db: 0.0,
         }
@@ -76,27 +91,49 @@ impl Default for LinkBudgetConfig {
 /// GPS L1 C/A EIRP (dBW) that delivers [`GPS_L1CA_MIN_POWER_DBW`] to a 0 dBic ground antenna
 /// at 5 deg elevation from the nominal GPS orbit radius (about 25.9 dBW).
 pub fn default_gps_eirp_dbw() -> f64 {
-    eirp_for_min_power_dbw(GPS_L1CA_MIN_POWER_DBW, GPS_A_M, F_GPS_L1_HZ)
+    eirp_for_min_power_dbw(
+        GPS_L1CA_MIN_POWER_DBW,
+        GPS_A_M,
+        F_GPS_L1_HZ,
+        ICD_MIN_POWER_ELEVATION_DEG,
+    )
+}
+
+/// Galileo EIRP (dBW) that delivers [`GAL_E1_MIN_POWER_DBW`] on E1 to a 0 dBi ground
+/// antenna at 10 deg elevation from the nominal Galileo orbit radius (about 28.0 dBW).
+pub fn default_gal_eirp_dbw() -> f64 {
+    eirp_for_min_power_dbw(
+        GAL_E1_MIN_POWER_DBW,
+        GAL_A_M,
+        F_GAL_E1_HZ,
+        GAL_MIN_POWER_ELEVATION_DEG,
+    )
 }
 
 /// BeiDou B1I EIRP (dBW) that delivers [`BDS_B1I_MIN_POWER_DBW`] to a 0 dBi ground antenna at
 /// 5 deg elevation from the geosynchronous radius, the longest BDS range (about 25.6 dBW).
 pub fn default_bds_eirp_dbw() -> f64 {
-    eirp_for_min_power_dbw(BDS_B1I_MIN_POWER_DBW, BDS_GSO_A_M, F_BDS_B1I_HZ)
+    eirp_for_min_power_dbw(
+        BDS_B1I_MIN_POWER_DBW,
+        BDS_GSO_A_M,
+        F_BDS_B1I_HZ,
+        ICD_MIN_POWER_ELEVATION_DEG,
+    )
 }
 
 fn default_system_noise_temperature_k() -> f64 {
     DEFAULT_SYSTEM_NOISE_TEMPERATURE_K
 }
 
-/// EIRP (dBW) giving `min_power_dbw` at the ICD elevation to a user on the WGS-84 equatorial
-/// radius, from a satellite at orbit radius `orbit_radius_m`.
-fn eirp_for_min_power_dbw(min_power_dbw: f64, orbit_radius_m: f64, carrier_hz: f64) -> f64 {
-    let range_m = slant_range_m(
-        WGS84_A_M,
-        orbit_radius_m,
-        ICD_MIN_POWER_ELEVATION_DEG.to_radians(),
-    );
+/// EIRP (dBW) giving `min_power_dbw` at the ICD's elevation `el_deg` to a user on the
+/// WGS-84 equatorial radius, from a satellite at orbit radius `orbit_radius_m`.
+fn eirp_for_min_power_dbw(
+    min_power_dbw: f64,
+    orbit_radius_m: f64,
+    carrier_hz: f64,
+    el_deg: f64,
+) -> f64 {
+    let range_m = slant_range_m(WGS84_A_M, orbit_radius_m, el_deg.to_radians());
     min_power_dbw + free_space_loss_db(range_m, carrier_hz)
 }
 
@@ -119,6 +156,7 @@ impl LinkBudgetConfig {
         for (field, value) in [
             ("gps_eirp_dbw", self.gps_eirp_dbw),
             ("bds_eirp_dbw", self.bds_eirp_dbw),
+            ("gal_eirp_dbw", self.gal_eirp_dbw),
         ] {
             if !value.is_finite() {
                 return Err(Invalid::new(field, value, "must be a finite number (dBW)"));
@@ -149,6 +187,7 @@ impl LinkBudgetConfig {
         let eirp_dbw = match system {
             System::Gps => self.gps_eirp_dbw,
             System::Beidou => self.bds_eirp_dbw,
+            System::Galileo => self.gal_eirp_dbw,
         };
         let n0_dbw_per_hz = 10.0 * (BOLTZMANN_J_PER_K * self.system_noise_temperature_k).log10();
         eirp_dbw - free_space_loss_db(range_m, carrier_hz) + rx_gain_dbi

@@ -599,7 +599,8 @@ impl Running<'_, '_, '_> {
             .collect();
         let at = self.origin.epoch_at(chunk.t_s[k]);
         let sow = |system: System| match system {
-            System::Gps => gpst_week_sow(at).1,
+            // GST's seconds of week are GPST's.
+            System::Gps | System::Galileo => gpst_week_sow(at).1,
             System::Beidou => bdt_week_sow(at).1,
         };
         let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];

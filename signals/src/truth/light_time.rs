@@ -11,8 +11,8 @@
 //! differences of the range smooth.
 
 use skyforge_orbits::Vec3;
-use skyforge_orbits::constants::{C_MPS, OMEGA_E_BDS, OMEGA_E_GPS};
-use skyforge_orbits::ephemeris::{BoundEphemeris, System};
+use skyforge_orbits::constants::C_MPS;
+use skyforge_orbits::ephemeris::BoundEphemeris;
 
 /// Iteration stops when the light time changes by less than this (s): 3e-9 mm.
 const TAU_CONVERGED_S: f64 = 1e-17;
@@ -36,14 +36,6 @@ impl LightTime {
     }
 }
 
-/// Earth rotation rate of the frame a system's ephemerides are expressed in.
-pub fn earth_rate(system: System) -> f64 {
-    match system {
-        System::Gps => OMEGA_E_GPS,
-        System::Beidou => OMEGA_E_BDS,
-    }
-}
-
 /// `r_ecef` at transmit time, expressed in the Earth-fixed frame `tau_s` later.
 pub fn rotate_to_receive_frame(r_ecef_m: &Vec3, omega_e: f64, tau_s: f64) -> Vec3 {
     let (s, c) = (omega_e * tau_s).sin_cos();
@@ -57,7 +49,7 @@ pub fn rotate_to_receive_frame(r_ecef_m: &Vec3, omega_e: f64, tau_s: f64) -> Vec
 /// Solve the light time for a signal received at `t_rx_s` by an antenna at `r_rx_ecef_m`
 /// (Earth-fixed at the receive instant), starting from `tau_guess_s`.
 pub fn solve(eph: &BoundEphemeris, r_rx_ecef_m: &Vec3, t_rx_s: f64, tau_guess_s: f64) -> LightTime {
-    let omega_e = earth_rate(eph.eph.sat.system);
+    let omega_e = eph.eph.sat.system.earth_rotation_rad_s();
     let mut tau_s = tau_guess_s;
     let mut r_sat = rotate_to_receive_frame(&eph.position_ecef(t_rx_s - tau_s), omega_e, tau_s);
     for _ in 0..MAX_ITERATIONS {

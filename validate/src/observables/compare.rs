@@ -157,10 +157,7 @@ pub struct ObsComparison {
 }
 
 fn system_name<S: Serializer>(s: &System, ser: S) -> Result<S::Ok, S::Error> {
-    ser.serialize_str(match s {
-        System::Gps => "GPS",
-        System::Beidou => "BeiDou",
-    })
+    ser.serialize_str(s.name())
 }
 
 fn display_all<S: Serializer>(v: &[SatId], ser: S) -> Result<S::Ok, S::Error> {

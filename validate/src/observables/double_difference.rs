@@ -145,10 +145,7 @@ impl ZeroBaseline {
 }
 
 fn system_name<S: Serializer>(s: &System, ser: S) -> Result<S::Ok, S::Error> {
-    ser.serialize_str(match s {
-        System::Gps => "GPS",
-        System::Beidou => "BeiDou",
-    })
+    ser.serialize_str(s.name())
 }
 
 /// Between-receiver single differences of one satellite at one common epoch.

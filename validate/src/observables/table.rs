@@ -93,11 +93,7 @@ pub fn print_comparison(c: &ObsComparison, out: &mut impl Write) -> std::io::Res
         line(out, &s.sat.to_string(), obs.map(|o| of_sat(o, s.sat)))?;
     }
     for s in &c.pseudorange_m.per_system {
-        let name = match s.system {
-            System::Gps => "GPS",
-            System::Beidou => "BeiDou",
-        };
-        line(out, name, obs.map(|o| of_system(o, s.system)))?;
+        line(out, s.system.name(), obs.map(|o| of_system(o, s.system)))?;
     }
     line(out, "overall", obs.map(|o| Some(o.overall)))?;
     let integer = c.arcs.iter().filter(|a| a.integer_like).count();

@@ -36,18 +36,19 @@ pub fn count_visible(scenario: &Scenario) -> Result<VisibleCounts, ValidateError
     let mut counts = VisibleCounts::default();
     for_each_chunk(scenario, |chunk, sats| {
         for k in 0..chunk.t_s.len() {
-            let (mut gps, mut bds) = (0.0, 0.0);
+            let (mut gps, mut bds, mut gal) = (0.0, 0.0, 0.0);
             for (s, sat) in sats.iter().enumerate() {
                 if chunk.link(k, 0, s).visible {
                     match sat.system {
                         System::Gps => gps += 1.0,
                         System::Beidou => bds += 1.0,
+                        System::Galileo => gal += 1.0,
                     }
                 }
             }
             counts.gps.push(gps);
             counts.beidou.push(bds);
-            counts.all.push(gps + bds);
+            counts.all.push(gps + bds + gal);
         }
     })?;
     Ok(counts)

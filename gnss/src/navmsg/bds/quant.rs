@@ -265,6 +265,7 @@ impl EphFields {
             af1: f(self.a1, lsb::a1()),
             af2: f(self.a2, lsb::a2()),
             tgd_s: f(self.tgd1, lsb::TGD_S),
+            tgd2_s: 0.0,
         };
         BroadcastEphemeris {
             toc: grid.toc,

@@ -200,6 +200,7 @@ impl RawEphemeris {
             af1: v(&scale::AF1, self.af1),
             af2: v(&scale::AF2, self.af2),
             tgd_s: v(&scale::TGD, self.tgd),
+            tgd2_s: 0.0,
         };
         BroadcastEphemeris {
             toc: epoch_from_gps_ns(i128::from(self.toc_gps_s) * NS_PER_S),

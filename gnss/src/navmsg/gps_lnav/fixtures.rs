@@ -36,6 +36,7 @@ pub fn real_prn1() -> BroadcastEphemeris {
         af1: -0.100044417195e-10,
         af2: 0.0,
         tgd_s: 0.512227416039e-8,
+        tgd2_s: 0.0,
     };
     BroadcastEphemeris {
         iode: 39,

@@ -417,6 +417,7 @@ fn arb_ephemeris() -> impl Strategy<Value = BroadcastEphemeris> {
                     af1,
                     af2,
                     tgd_s: af2 * 1e7,
+                    tgd2_s: 0.0,
                 },
                 iodc,
                 iode: iodc & 0xFF,

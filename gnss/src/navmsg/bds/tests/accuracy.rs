@@ -136,6 +136,7 @@ prop_compose! {
             af1: clock[1] * 1.8e-9,
             af2: clock[2] * 1.3e-17,
             tgd_s: tgd[0],
+            tgd2_s: 0.0,
         };
         let toe = epoch_from_bdt(WEEK, 8.0 * f64::from(toe_8s));
         (BroadcastEphemeris {

@@ -49,6 +49,7 @@ fn from_decoded(
         af1: d.a1,
         af2: d.a2,
         tgd_s: d.tgd1_s,
+        tgd2_s: 0.0,
     };
     let toe = epoch_from_bdt(week, d.toe_s);
     let eph = BroadcastEphemeris {
