@@ -133,13 +133,14 @@ impl Signal {
         }
     }
 
-    /// The system's first signal, the one SkyForge transmits and tracks (GPS L1 C/A,
-    /// BeiDou B1I) and, for Galileo, E1 (observed only so far).
+    /// The system's first signal, the one SkyForge transmits and tracks: GPS L1 C/A,
+    /// BeiDou B1I, Galileo E5a (whose codes SkyForge generates; E1's memory codes it does
+    /// not ship, docs/signals.md).
     pub fn of_system(system: skyforge_orbits::ephemeris::System) -> Self {
         match system {
             skyforge_orbits::ephemeris::System::Gps => Self::GpsL1Ca,
             skyforge_orbits::ephemeris::System::Beidou => Self::BdsB1I,
-            skyforge_orbits::ephemeris::System::Galileo => Self::GalE1,
+            skyforge_orbits::ephemeris::System::Galileo => Self::GalE5a,
         }
     }
 

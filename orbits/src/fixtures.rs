@@ -4,7 +4,7 @@
 
 use crate::Vec3;
 use crate::ephemeris::BoundEphemeris;
-use crate::ephemeris::broadcast::system_constants;
+use crate::ephemeris::sat_id::system_constants;
 use crate::propagate::config::KeplerianElementsConfig;
 
 /// The thesis LEO (THESIS_TARGETS.md, common setup).

@@ -8,7 +8,9 @@ use crate::parse::locate_invalid;
 use crate::schema::Scenario;
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System, nominal};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, EphemerisStore, NavMessage, SatId, System, nominal,
+};
 use skyforge_orbits::ephemeris::{ConstellationConfig, ConstellationSource};
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, PlatformKind};
@@ -88,6 +90,7 @@ impl Scenario {
         let constellations = [
             (System::Gps, "gnss.gps", &self.gnss.gps),
             (System::Beidou, "gnss.beidou", &self.gnss.beidou),
+            (System::Galileo, "gnss.galileo", &self.gnss.galileo),
         ];
         for (system, table, config) in constellations {
             if config.enabled {
@@ -150,8 +153,13 @@ impl Scenario {
                 (all, field, value, path.display().to_string())
             }
         };
-        let of_system: Vec<BroadcastEphemeris> =
-            all.into_iter().filter(|e| e.sat.system == system).collect();
+        // One message per system: the one of the signal SkyForge transmits (Galileo's
+        // F/NAV; a file's I/NAV sets, with the same orbits but the E1/E5b clock, are left).
+        let message = NavMessage::default_for(system);
+        let of_system: Vec<BroadcastEphemeris> = all
+            .into_iter()
+            .filter(|e| e.sat.system == system && e.message == message)
+            .collect();
         let mut store = EphemerisStore::new(of_system, origin);
         let usable_at_start = store
             .satellites()
@@ -164,7 +172,10 @@ impl Scenario {
                 format!(
                     "{described} has no healthy {} ephemeris valid at the scenario start \
                      ({start}); use a file for the scenario's day",
-                    system.name()
+                    match system {
+                        System::Galileo => "Galileo F/NAV",
+                        _ => system.name(),
+                    }
                 ),
             )));
         }

@@ -5,7 +5,9 @@ use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, GPS_CA_CHIP_RATE_HZ};
 use skyforge_gnss::observation::NOISE_SIGMA0_M;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::check::{Allowed, GROUND_RADIUS_M, Invalid, check_position, check_table};
+use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
@@ -35,7 +37,7 @@ const LONGITUDE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg (east positiv
 /// scenario, [`Scenario::build`] again on whatever the caller may have changed since.
 pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_name(&scenario.name)?;
-    check_time(&scenario.time, scenario.gnss.beidou.enabled)?;
+    check_time(&scenario.time, &scenario.gnss)?;
     check_truth(&scenario.truth, scenario.time.duration_s)?;
     check_gnss(&scenario.gnss)?;
     check_platform(&scenario.platform)?;
@@ -55,6 +57,11 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
                 scenario.gnss.beidou.enabled,
                 "BeiDou B1I",
                 BDS_B1I_CHIP_RATE_HZ,
+            ),
+            (
+                scenario.gnss.galileo.enabled,
+                "Galileo E5a",
+                Signal::GalE5a.chip_rate_hz(),
             ),
         ];
         for (_, name, chip_rate) in bands.into_iter().filter(|b| b.0) {
@@ -178,10 +185,11 @@ fn check_name(name: &str) -> Result<(), Invalid> {
 
 /// `[time]`: a start in the supported range (and, with BeiDou, not before the BDT epoch);
 /// a duration in (0, 366 days].
-fn check_time(time: &TimeSpan, beidou: bool) -> Result<(), Invalid> {
+fn check_time(time: &TimeSpan, gnss: &GnssConfig) -> Result<(), Invalid> {
     let start = time.start;
     let shown = format!("{:?}", start.to_string());
     let bdt_epoch = Epoch::from_bdt_seconds(0.0);
+    let gst_epoch = Epoch::from_gst_seconds(0.0);
     if !in_supported_range(start) {
         return Err(Invalid::new(
             "time.start",
@@ -189,7 +197,15 @@ fn check_time(time: &TimeSpan, beidou: bool) -> Result<(), Invalid> {
             format!("must be {SUPPORTED_RANGE}"),
         ));
     }
-    if beidou && start < bdt_epoch {
+    if gnss.galileo.enabled && start < gst_epoch {
+        return Err(Invalid::new(
+            "time.start",
+            shown,
+            "must not precede the Galileo epoch (1999-08-22T00:00:00 GST) while gnss.galileo \
+             is enabled",
+        ));
+    }
+    if gnss.beidou.enabled && start < bdt_epoch {
         return Err(Invalid::new(
             "time.start",
             shown,
@@ -238,10 +254,13 @@ fn check_gnss(gnss: &GnssConfig) -> Result<(), Invalid> {
     gnss.beidou
         .check(BEIDOU_MAX_PRN)
         .map_err(|e| e.within("gnss.beidou"))?;
-    if !gnss.gps.enabled && !gnss.beidou.enabled {
+    gnss.galileo
+        .check(System::Galileo.max_prn())
+        .map_err(|e| e.within("gnss.galileo"))?;
+    if !gnss.gps.enabled && !gnss.beidou.enabled && !gnss.galileo.enabled {
         return Err(Invalid::new(
             "gnss",
-            "gps and beidou disabled",
+            "gps, beidou and galileo disabled",
             "at least one constellation must be enabled",
         ));
     }

@@ -5,7 +5,9 @@ use crate::bundled::bundled;
 use crate::checks;
 use crate::error::{ScenarioError, shorten};
 use crate::locate::{Document, line_column};
-use crate::schema::{GnssConfig, Scenario, ScenarioFile, TimeSpan, default_constellation};
+use crate::schema::{
+    GnssConfig, Scenario, ScenarioFile, TimeSpan, absent_galileo, default_constellation,
+};
 use serde::Deserialize;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::Invalid;
@@ -26,6 +28,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
     let gnss = GnssConfig {
         gps: file.gnss.gps.unwrap_or_else(default_constellation),
         beidou: file.gnss.beidou.unwrap_or_else(default_constellation),
+        galileo: file.gnss.galileo.unwrap_or_else(absent_galileo),
     };
     let start =
         checks::parse_start(&file.time.start).map_err(|e| locate_invalid(text, source, e))?;

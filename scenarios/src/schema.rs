@@ -78,13 +78,16 @@ fn default_geometry_rate_hz() -> f64 {
     1.0
 }
 
-/// `[gnss]`: the constellations (each defaults to its embedded constellation, enabled).
+/// `[gnss]`: the constellations (GPS and BeiDou default to their embedded constellations,
+/// enabled; Galileo is opt-in: enabled when its table is written).
 #[derive(Debug, Clone, PartialEq)]
 pub struct GnssConfig {
     /// `[gnss.gps]`.
     pub gps: ConstellationConfig,
     /// `[gnss.beidou]`.
     pub beidou: ConstellationConfig,
+    /// `[gnss.galileo]`.
+    pub galileo: ConstellationConfig,
 }
 
 /// A constellation table left out of the file: the embedded constellation, enabled.
@@ -95,6 +98,15 @@ pub(crate) fn default_constellation() -> ConstellationConfig {
         nav_file: None,
         embedded_set: BeidouSet::default(),
         prns: None,
+    }
+}
+
+/// The Galileo table left out of the file: disabled, so that scenarios written before
+/// Galileo existed keep their outputs.
+pub(crate) fn absent_galileo() -> ConstellationConfig {
+    ConstellationConfig {
+        enabled: false,
+        ..default_constellation()
     }
 }
 
@@ -141,4 +153,6 @@ pub(crate) struct GnssFile {
     pub gps: Option<ConstellationConfig>,
     #[serde(default)]
     pub beidou: Option<ConstellationConfig>,
+    #[serde(default)]
+    pub galileo: Option<ConstellationConfig>,
 }

@@ -690,8 +690,8 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
         &["gone.sigmf-meta", "no such file"],
     );
     let mut args = vec!["noise.bin"];
-    args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gal-e1"]);
-    receive_refuses(dir, &args, &["--signal", "gal-e1", "gps-l1ca, bds-b1i"]);
+    args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gal-e6"]);
+    receive_refuses(dir, &args, &["--signal", "gal-e6", "gps-l1ca, bds-b1i"]);
     // A signal SkyForge knows from observation files but does not track.
     let mut args = vec!["noise.bin"];
     args.extend_from_slice(&["--format", "ci8", "--fs", "4e6", "--signal", "gps-l2"]);

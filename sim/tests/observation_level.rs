@@ -277,7 +277,7 @@ fn observed_only_signals_outside_the_observation_level_are_refused() {
         ),
         (
             "unknown",
-            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e1\"]\n",
+            "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e6\"]\n",
             "unknown signal",
         ),
         (

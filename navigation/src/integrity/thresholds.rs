@@ -360,10 +360,10 @@ mod tests {
         // No GEO table for the signal: the common one.
         assert!((code(Signal::GpsL1Ca, true) - 0.3 * k).abs() < 1e-12);
         let bad = ThresholdConfig {
-            sigma_geo: BTreeMap::from([("gal-e1".to_string(), table())]),
+            sigma_geo: BTreeMap::from([("gal-e6".to_string(), table())]),
             ..cfg
         };
-        assert!(bad.check().unwrap_err().contains("sigma_geo.gal-e1"));
+        assert!(bad.check().unwrap_err().contains("sigma_geo.gal-e6"));
     }
 
     #[test]
@@ -374,13 +374,13 @@ mod tests {
         let cfg = ThresholdConfig {
             false_alarm: 1e-7,
             smoothed_code_m: 0.5,
-            sigma: BTreeMap::from([("gal-e1".to_string(), table())]),
+            sigma: BTreeMap::from([("gal-e6".to_string(), table())]),
             sigma_geo: BTreeMap::new(),
         };
         assert!(
             cfg.check()
                 .unwrap_err()
-                .contains("sigma.gal-e1: not a signal")
+                .contains("sigma.gal-e6: not a signal")
         );
         let mut t = table();
         t.elevation_deg = vec![30.0, 10.0, 60.0];

@@ -7,49 +7,11 @@
 //! position and velocity are exactly consistent; the tests check it against a central
 //! difference of the position.
 
-use super::sat_id::{SatId, System};
+use super::sat_id::{SatId, System, SystemConstants, system_constants};
 use crate::Vec3;
-use crate::constants::{GM_BDS, GM_GAL, GM_GPS, OMEGA_E_BDS, OMEGA_E_GAL, OMEGA_E_GPS};
 use crate::time::TimeOrigin;
 use hifitime::{Epoch, TimeScale};
 use std::f64::consts::{PI, TAU};
-
-/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), IS-GPS-200 20.3.3.3.3.1.
-pub const F_REL_GPS: f64 = -4.442_807_633e-10;
-/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2) with the CGCS2000 mu,
-/// BDS-SIS-ICD-B1I-3.0 5.2.4 (clock correction).
-pub const F_REL_BDS: f64 = -4.442_807_309e-10;
-/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), Galileo OS SIS ICD §5.1.4.
-pub const F_REL_GAL: f64 = -4.442_807_309e-10;
-
-/// The constants of a system's user algorithm.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct SystemConstants {
-    /// Earth gravitational constant (m^3/s^2).
-    pub gm: f64,
-    /// Earth rotation rate (rad/s).
-    pub omega_e: f64,
-    /// Relativistic clock constant F (s/m^1/2).
-    pub f_rel: f64,
-    /// The time scale of toe, toc and the week.
-    pub scale: TimeScale,
-}
-
-/// The user-algorithm constants of `system` (IS-GPS-200 20.3.3.4.3, BDS-SIS-ICD 5.2.4,
-/// Galileo OS SIS ICD §5.1.1).
-pub(crate) fn system_constants(system: System) -> SystemConstants {
-    let (gm, omega_e, f_rel) = match system {
-        System::Gps => (GM_GPS, OMEGA_E_GPS, F_REL_GPS),
-        System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS),
-        System::Galileo => (GM_GAL, OMEGA_E_GAL, F_REL_GAL),
-    };
-    SystemConstants {
-        gm,
-        omega_e,
-        f_rel,
-        scale: system.time_scale(),
-    }
-}
 
 /// Tilt of the BeiDou GEO computation frame (-5 deg about X), BDS-SIS-ICD 5.2.4.
 const BDS_GEO_TILT_RAD: f64 = -5.0 * PI / 180.0;
@@ -77,13 +39,13 @@ pub enum NavMessage {
 }
 
 impl NavMessage {
-    /// The message SkyForge assumes for `system` where nothing says otherwise (Galileo:
-    /// I/NAV, the message of E1-B).
+    /// The message SkyForge assumes for `system` where nothing says otherwise: the message
+    /// of the signal it transmits (Galileo: F/NAV, the message of E5a).
     pub fn default_for(system: System) -> Self {
         match system {
             System::Gps => Self::GpsLnav,
             System::Beidou => Self::BdsD1D2,
-            System::Galileo => Self::GalileoInav,
+            System::Galileo => Self::GalileoFnav,
         }
     }
 }
@@ -485,7 +447,7 @@ impl BoundEphemeris {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::constants::C_MPS;
+    use crate::constants::{GM_GPS, OMEGA_E_GPS};
     use hifitime::Unit;
     use proptest::prelude::*;
 
@@ -547,14 +509,6 @@ mod tests {
 
     fn toe() -> Epoch {
         origin().start() + 2.0 * Unit::Hour
-    }
-
-    #[test]
-    fn relativistic_constants_match_minus_two_sqrt_mu_over_c2() {
-        let f_gps = -2.0 * GM_GPS.sqrt() / (C_MPS * C_MPS);
-        let f_bds = -2.0 * GM_BDS.sqrt() / (C_MPS * C_MPS);
-        assert!((f_gps - F_REL_GPS).abs() < 1e-18, "{f_gps:e}");
-        assert!((f_bds - F_REL_BDS).abs() < 1e-18, "{f_bds:e}");
     }
 
     #[test]

@@ -14,9 +14,9 @@
 //! Omega(tk = 0) = Omega0 - OMEGA_E * toe_sow equals that longitude.
 
 use super::broadcast::{
-    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, SystemConstants, seconds_of_week,
-    system_constants,
+    ClockParams, HarmonicCorrections, KeplerElements, OrbitClass, seconds_of_week,
 };
+use super::sat_id::{SystemConstants, system_constants};
 use super::{BroadcastEphemeris, SatId, config::BeidouSet};
 use crate::constants::{J2, WGS84_A_M};
 use hifitime::Epoch;
@@ -285,7 +285,8 @@ pub const GAL_AUXILIARY: (u8, f64) = (10, 187.5);
 
 /// The nominal Galileo constellation (24 satellites), with toe/toc at `epoch`: 23 in the
 /// Walker 24/3/1 slots of [`GAL_PLANES`] and E10 in its auxiliary slot, a = 29 600.318
-/// km, i = 56 deg, in the I/NAV message. E14 and E18 (eccentric orbits) and the
+/// km, i = 56 deg, in the F/NAV message (that of E5a, the Galileo signal SkyForge
+/// transmits). E14 and E18 (eccentric orbits) and the
 /// satellites not healthy on 2023-03-12 are left out.
 pub fn galileo(epoch: Epoch) -> Vec<BroadcastEphemeris> {
     let slot = |k: usize, u: f64| Slot {
@@ -447,7 +448,7 @@ mod tests {
             let expected_phase = if auxiliary { 22.5 } else { 0.0 };
             let off = (u - 30.0 - 15.0 * plane as f64 - expected_phase + 22.5).rem_euclid(45.0);
             assert!((off - 22.5).abs() < 0.01, "{}: u {u}", b.eph.sat);
-            assert_eq!(b.eph.message, crate::ephemeris::NavMessage::GalileoInav);
+            assert_eq!(b.eph.message, crate::ephemeris::NavMessage::GalileoFnav);
             for k in 0..5 {
                 let r = b.position_ecef(3600.0 * f64::from(k)).norm();
                 assert!((r - 29_600.318e3).abs() < 1e-3);

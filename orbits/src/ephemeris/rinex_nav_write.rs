@@ -246,6 +246,7 @@ mod tests {
                 if k % 2 == 0 {
                     e.message = NavMessage::GalileoFnav;
                 } else {
+                    e.message = NavMessage::GalileoInav;
                     e.clock.tgd2_s = 2.7e-9;
                 }
             }

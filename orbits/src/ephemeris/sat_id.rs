@@ -1,4 +1,7 @@
-//! Satellite identifiers.
+//! Satellite identifiers, and the constants of each system's user algorithm.
+
+use crate::constants::{GM_BDS, GM_GAL, GM_GPS, OMEGA_E_BDS, OMEGA_E_GAL, OMEGA_E_GPS};
+use hifitime::TimeScale;
 
 /// A GNSS.
 #[derive(
@@ -24,7 +27,7 @@ impl System {
     /// Earth rotation rate of the frame the system's ephemerides are expressed in (rad/s):
     /// WGS-84 (GPS), CGCS2000 (BeiDou), GTRF (Galileo).
     pub fn earth_rotation_rad_s(self) -> f64 {
-        crate::ephemeris::broadcast::system_constants(self).omega_e
+        system_constants(self).omega_e
     }
 
     /// The name users know the system by: `GPS`, `BeiDou`, `Galileo`.
@@ -140,10 +143,60 @@ impl std::str::FromStr for SatId {
     }
 }
 
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), IS-GPS-200 20.3.3.3.3.1.
+const F_REL_GPS: f64 = -4.442_807_633e-10;
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2) with the CGCS2000 mu,
+/// BDS-SIS-ICD-B1I-3.0 5.2.4 (clock correction).
+const F_REL_BDS: f64 = -4.442_807_309e-10;
+/// Relativistic clock constant F = -2 sqrt(mu) / c^2 (s/m^1/2), Galileo OS SIS ICD §5.1.4.
+const F_REL_GAL: f64 = -4.442_807_309e-10;
+
+/// The constants of a system's user algorithm.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct SystemConstants {
+    /// Earth gravitational constant (m^3/s^2).
+    pub gm: f64,
+    /// Earth rotation rate (rad/s).
+    pub omega_e: f64,
+    /// Relativistic clock constant F (s/m^1/2).
+    pub f_rel: f64,
+    /// The time scale of toe, toc and the week.
+    pub scale: TimeScale,
+}
+
+/// The user-algorithm constants of `system` (IS-GPS-200 20.3.3.4.3, BDS-SIS-ICD 5.2.4,
+/// Galileo OS SIS ICD §5.1.1).
+pub(crate) fn system_constants(system: System) -> SystemConstants {
+    let (gm, omega_e, f_rel) = match system {
+        System::Gps => (GM_GPS, OMEGA_E_GPS, F_REL_GPS),
+        System::Beidou => (GM_BDS, OMEGA_E_BDS, F_REL_BDS),
+        System::Galileo => (GM_GAL, OMEGA_E_GAL, F_REL_GAL),
+    };
+    SystemConstants {
+        gm,
+        omega_e,
+        f_rel,
+        scale: system.time_scale(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn relativistic_constants_match_minus_two_sqrt_mu_over_c2() {
+        let c = crate::constants::C_MPS;
+        for (gm, f) in [
+            (GM_GPS, F_REL_GPS),
+            (GM_BDS, F_REL_BDS),
+            (GM_GAL, F_REL_GAL),
+        ] {
+            let expect = -2.0 * gm.sqrt() / (c * c);
+            assert!((expect - f).abs() < 1e-18, "{expect:e} vs {f:e}");
+        }
+    }
 
     #[test]
     fn parses_rinex_forms() {

@@ -20,7 +20,7 @@
 //! - Galileo E1: -157 dBW for E1-B and E1-C together at the output of a 0 dBi RHCP
 //!   antenna, for elevations above 10 deg (Galileo OS SIS ICD Issue 2.1 §2.3.3, minimum
 //!   received power on ground), from the nominal 29 600.318 km orbit: slant range
-//!   27 056 km, `L_fs` 185.04 dB, EIRP 28.04 dBW. The same EIRP serves E5a, whose minimum
+//!   27 819 km, `L_fs` 185.28 dB, EIRP 28.28 dBW. The same EIRP serves E5a, whose minimum
 //!   (-155 dBW) it exceeds at its lower frequency.
 //!
 //! Real satellites usually exceed the minimum by a few dB; raise the EIRP to model that.
@@ -100,7 +100,7 @@ pub fn default_gps_eirp_dbw() -> f64 {
 }
 
 /// Galileo EIRP (dBW) that delivers [`GAL_E1_MIN_POWER_DBW`] on E1 to a 0 dBi ground
-/// antenna at 10 deg elevation from the nominal Galileo orbit radius (about 28.0 dBW).
+/// antenna at 10 deg elevation from the nominal Galileo orbit radius (about 28.3 dBW).
 pub fn default_gal_eirp_dbw() -> f64 {
     eirp_for_min_power_dbw(
         GAL_E1_MIN_POWER_DBW,

@@ -738,7 +738,7 @@ mod tests {
             ),
             (
                 with_tap(TapConfig {
-                    satellite: Some("E11".into()),
+                    satellite: Some("R11".into()),
                     ..tap()
                 }),
                 "taps[1].satellite",

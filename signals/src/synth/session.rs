@@ -259,6 +259,16 @@ impl<'a> SynthSession<'a> {
         errors: &'a ErrorsConfig,
         seed: u64,
     ) -> Result<Self, SynthError> {
+        if world.satellites.iter().any(|s| s.system == System::Galileo) {
+            // Until the Galileo transmitters exist (E5a with F/NAV), say so rather than
+            // leave Galileo out silently.
+            return Err(SynthError::Invalid(Invalid::new(
+                "gnss.galileo",
+                "enabled",
+                "Galileo signals are not synthesised yet (neither samples nor the observation \
+                 level); `skyforge run` at the truth level includes Galileo",
+            )));
+        }
         let ephs = ephemerides_at_start(&world);
         let start = world.origin.start();
         let mut iono = errors.ionosphere.clone();
