@@ -2,10 +2,10 @@
 //! (Galileo OS SIS ICD, "Checksum": §5.1.9.4 in Issue 1), also used by GPS CNAV and
 //! BeiDou B-CNAV.
 //!
-//! Generator polynomial g(X) = X^24 + X^23 + X^18 + X^17 + X^14 + X^11 + X^10 + X^7 + X^6
-//! + X^5 + X^4 + X^3 + X + 1 (0x1864CFB); the register starts at zero, bits are fed most
-//! significant first, and there is no reflection or final inversion. Appending the 24
-//! parity bits to the message makes the whole sequence divisible by g(X).
+//! Generator polynomial g(X) = X^24 + X^23 + X^18 + X^17 + X^14 + X^11 + X^10 + X^7 +
+//! X^6 + X^5 + X^4 + X^3 + X + 1 (0x1864CFB); the register starts at zero, bits are fed
+//! most significant first, and there is no reflection or final inversion. Appending the
+//! 24 parity bits to the message makes the whole sequence divisible by g(X).
 
 /// The generator polynomial with its X^24 term (0x1864CFB).
 pub const CRC24Q_POLY: u32 = 0x0186_4CFB;

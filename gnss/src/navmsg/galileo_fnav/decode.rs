@@ -1,5 +1,5 @@
 //! Receiving F/NAV: one page from its 500 soft symbols (the ICD's page processing
-//! sequence, §4.1.5: synchronisation pattern, de-interleaving, Viterbi decoding, CRC,
+//! sequence at reception: synchronisation pattern, de-interleaving, Viterbi decoding, CRC,
 //! fields), and the assembly of page types 1-4 into an ephemeris.
 //!
 //! Soft symbols: positive = logic 0, negative = logic 1 (BPSK +1 for 0), magnitude the

@@ -222,19 +222,17 @@ impl FnavEncoder {
     /// The raw field values of page `page`, in its layout's order.
     fn page_values(&self, page: u64) -> Vec<i64> {
         let page_type = self.page_type(page);
-        let layout = pages::layout(page_type).unwrap_or(&[]);
+        let (wn, tow) = self.page_time(page);
         if page_type >= 5 {
-            let (wn, tow) = self.page_time(page);
             let frame = (u64::from(wn) * WEEK_S + u64::from(tow)) / FRAME_S;
             let subframe = page % (PAGES_PER_SUBFRAME * SUBFRAMES_PER_FRAME) / PAGES_PER_SUBFRAME;
             let pair = (frame * SUBFRAMES_PER_FRAME / 2 + subframe / 2) % self.almanac.len() as u64;
             return self.almanac[pair as usize][usize::from(page_type - 5)].clone();
         }
-        let (wn, tow) = self.page_time(page);
         let mut f = self.fields.clone();
         f.set(&q::WN, i64::from(wn % (1 << q::WN.bits)));
         f.set(&q::TOW, i64::from(tow));
-        f.values_for(layout)
+        f.values_for(pages::layout(page_type).unwrap_or(&[]))
     }
 
     /// The 214 data bits (page type and navigation data) of page `page`.

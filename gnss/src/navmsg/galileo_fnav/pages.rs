@@ -5,7 +5,7 @@
 //! 24 CRC bits and 6 zero tail bits (244 bits), convolutionally encoded (rate 1/2, K = 7,
 //! G2 inverted, `conv_k7`) from the zero state and block-interleaved (§4.1.4.2: 61
 //! columns where the data is written, 8 rows where it is read). Bits are sent most
-//! significant first (§4.1.3).
+//! significant first (§4.1, bit and byte ordering).
 //!
 //! Layouts (§4.2.4, Issue 1 Tables 31-36; widths and order agree with the layouts GNSSTk
 //! documents, e.g. TOW starting at bits 167, 194, 186, 189 of page types 1-4):

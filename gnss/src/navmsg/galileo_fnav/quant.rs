@@ -1,7 +1,8 @@
 //! F/NAV field definitions: bit widths, signedness and scale factors (Galileo OS SIS ICD
 //! §5.1: ephemeris §5.1.1, clock §5.1.3, NeQuick §5.1.6, BGD §5.1.5, GST-UTC §5.1.7,
 //! GST-GPS §5.1.8, service parameters §5.1.9, almanac §5.1.10; Issue 1 Tables 61-79),
-//! and quantisation of SI values onto them.
+//! and quantisation of SI values onto them. Widths and scale exponents agree with the
+//! ones GNSSTk's F/NAV bit tables give (GalFBits.hpp, which cites the same ICD tables).
 //!
 //! Signed fields are two's complement. Angles are broadcast in semicircles (the LSB
 //! below is already in radians: 1 semicircle = pi rad); a value outside its field is an
@@ -99,16 +100,16 @@ const fn field(name: &'static str, bits: u32, signed: bool, lsb: Lsb) -> Field {
 
 /// Page type (6 bits).
 pub const PAGE_TYPE: Field = field("Type", 6, false, Lsb::Count);
-/// Satellite ID (§5.1.9.1).
+/// Satellite ID (§5.1.9, service parameters).
 pub const SVID: Field = field("SVID", 6, false, Lsb::Count);
-/// Issue of data of the navigation batch (§5.1.9.2).
+/// Issue of data of the navigation batch (§5.1.9).
 pub const IODNAV: Field = field("IODnav", 10, false, Lsb::Count);
 /// Clock (§5.1.3).
 pub const TOC: Field = field("t0c", 14, false, Lsb::Value(60.0));
 pub const AF0: Field = field("af0", 31, true, Lsb::Pow2(-34));
 pub const AF1: Field = field("af1", 21, true, Lsb::Pow2(-46));
 pub const AF2: Field = field("af2", 6, true, Lsb::Pow2(-59));
-/// SISA(E1,E5a) index (§5.1.12), carried as given.
+/// SISA(E1,E5a) index (the ICD's SISA section), carried as given.
 pub const SISA: Field = field("SISA(E1,E5a)", 8, false, Lsb::Count);
 /// NeQuick effective ionisation level coefficients (§5.1.6): sfu, sfu/deg, sfu/deg^2.
 pub const AI0: Field = field("ai0", 11, false, Lsb::Pow2(-2));
@@ -118,7 +119,7 @@ pub const AI2: Field = field("ai2", 14, true, Lsb::Pow2(-15));
 pub const REGION_FLAGS: Field = field("Region 1-5 flags", 5, false, Lsb::Count);
 /// BGD(E1,E5a) (§5.1.5), s.
 pub const BGD_E1_E5A: Field = field("BGD(E1,E5a)", 10, true, Lsb::Pow2(-32));
-/// E5a signal health status and data validity status (§5.1.9.3).
+/// E5a signal health status and data validity status (§5.1.9; Issue 1 Tables 74-78).
 pub const E5A_HS: Field = field("E5aHS", 2, false, Lsb::Count);
 pub const E5A_DVS: Field = field("E5aDVS", 1, false, Lsb::Count);
 /// GST week number and time of week (§5.1.2).
