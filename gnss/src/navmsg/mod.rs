@@ -1,6 +1,9 @@
 //! Navigation messages a real receiver decodes: GPS LNAV and BeiDou D1/D2.
 
 pub(crate) mod bds;
+pub mod conv_k7;
+pub mod crc24q;
+pub mod galileo_fnav;
 pub mod gps_lnav;
 
 pub use bds::{BdsExtraFields, BdsNavEncoder, BdsNavError, BdsNavFormat, Klobuchar};
