@@ -1,12 +1,13 @@
-//! Galileo through the CLI: `run` writes its satellites into the truth, `synth` says
-//! plainly that Galileo signals are not synthesised yet (exit 2, nothing written).
+//! Galileo through the CLI: `run` writes its satellites into the truth, `synth` its E5a
+//! recording, F/NAV records and observation truth, the observation level its observables.
 
 mod support;
 
 use skyforge_formats::truth::TruthFile;
 
-/// The bundled static ground site with `[gnss.galileo]`, `duration_s` long.
-fn scenario(dir: &std::path::Path, duration_s: f64, signal: bool) -> String {
+/// The bundled static ground site with `[gnss.galileo]`, `duration_s` long, `extra`
+/// appended.
+fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../scenarios/bundled/ground-static.toml"),
@@ -23,9 +24,7 @@ fn scenario(dir: &std::path::Path, duration_s: f64, signal: bool) -> String {
             &format!("duration_s = {duration_s}"),
             1,
         );
-    if signal {
-        text.push_str("\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n");
-    }
+    text.push_str(extra);
     let path = dir.join("galileo.toml");
     std::fs::write(&path, text).expect("write scenario");
     path.to_string_lossy().into_owned()
@@ -34,7 +33,7 @@ fn scenario(dir: &std::path::Path, duration_s: f64, signal: bool) -> String {
 #[test]
 fn run_writes_galileo_truth() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let path = scenario(dir.path(), 600.0, false);
+    let path = scenario(dir.path(), 600.0, "");
     let out = dir.path().join("out");
     support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
     let truth = TruthFile::open(&out.join("truth.h5")).expect("truth.h5");
@@ -62,19 +61,79 @@ fn run_writes_galileo_truth() {
 }
 
 #[test]
-fn synth_refuses_galileo_until_its_signals_exist() {
+fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let path = scenario(dir.path(), 2.0, true);
+    let path = scenario(dir.path(), 1.0, "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n");
     let out = dir.path().join("out");
-    let o = support::skyforge(
-        &["synth", &path, "--out", out.to_str().unwrap()],
-        dir.path(),
-    );
+    support::skyforge_ok(&["synth", &path, "--out", out.to_str().unwrap()], dir.path());
+    let data = std::fs::metadata(out.join("ant1.gal-e5a.sigmf-data")).expect("E5a recording");
+    // 1 s of complex 8-bit samples at 20.46 MHz.
+    assert_eq!(data.len(), 2 * 20_460_000);
+    let meta = std::fs::read_to_string(out.join("ant1.gal-e5a.sigmf-meta")).expect("meta");
+    assert!(meta.contains("1176450000"), "{meta}");
+    let conf = std::fs::read_to_string(out.join("ant1.gal-e5a.gnss-sdr.conf")).expect("conf");
+    for key in [
+        "Acquisition_5X.implementation=Galileo_E5a_Pcps_Acquisition",
+        "Tracking_5X.track_pilot=true",
+        "TelemetryDecoder_5X.implementation=Galileo_E5a_Telemetry_Decoder",
+    ] {
+        assert!(conf.contains(key), "{key}");
+    }
+    // F/NAV records (data sources 258) for every satellite, and E5a-Q observation types.
+    let nav = std::fs::read_to_string(out.join("nav.rnx")).expect("nav");
+    assert_eq!(nav.lines().filter(|l| l.starts_with('E')).count(), 24);
+    assert_eq!(nav.matches(" 2.580000000000E+02").count(), 24);
+    let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
+    assert!(obs.contains("E    4 C5Q L5Q D5Q S5Q"), "{obs}");
+}
+
+/// The observation level draws Galileo E5a observables with the configured noise; the
+/// calibrated model, measured on GPS and BeiDou only, refuses them by name.
+#[test]
+fn observation_level_galileo_has_the_configured_noise() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let signal = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n\n[observation]\nlevel = \"observation\"\n";
+    let path = scenario(dir.path(), 120.0, signal);
+    let out = dir.path().join("out");
+    let o = support::skyforge(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
     assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
     let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("gnss.galileo") && err.contains("not synthesised yet"),
-        "{err}"
+    assert!(err.contains("no calibration for gal-e5a"), "{err}");
+    // assumed: 0.3 m code and 3 mm phase, the thesis table 1.2-2 kind of constant setting.
+    let constant = format!("{signal}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n");
+    let path = scenario(dir.path(), 120.0, &constant);
+    support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    let json = dir.path().join("obs.json");
+    support::skyforge_ok(
+        &[
+            "validate",
+            "obs",
+            "--truth",
+            out.join("ant1.obs.rnx").to_str().unwrap(),
+            "--estimate",
+            out.join("observations/ant1.obs.rnx").to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ],
+        dir.path(),
     );
-    assert!(!out.exists(), "synth left {}", out.display());
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parse");
+    let galileo = |what: &str| {
+        v[what]["per_system"]
+            .as_array()
+            .and_then(|a| a.iter().find(|s| s["system"] == "Galileo"))
+            .cloned()
+            .unwrap_or_else(|| panic!("no Galileo row in {what}"))
+    };
+    let code = galileo("pseudorange_m");
+    let phase = galileo("carrier_phase_m");
+    let n = code["count"].as_f64().unwrap_or(0.0);
+    assert!(n > 400.0, "{n} Galileo pseudoranges");
+    // The sample standard deviation of n white draws is within 15 % of sigma (over 7
+    // standard errors of 1/sqrt(2 n) for n > 400).
+    let std_code = code["std"].as_f64().unwrap_or(f64::NAN);
+    let std_phase = phase["std"].as_f64().unwrap_or(f64::NAN);
+    assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
+    assert!((std_phase / 0.003 - 1.0).abs() < 0.15, "phase std {std_phase}");
 }

@@ -42,11 +42,12 @@ fn classify(system: System, code: &str, major: u8, minor: u8) -> Option<(Signal,
     Some((signal, kind, rank))
 }
 
-/// A GPS or BeiDou observation of the file: its satellite and code.
+/// A GPS, BeiDou or Galileo observation of the file: its satellite and code.
 fn gnss_observation(o: &rinex::observation::SignalObservation) -> Option<(SatId, &str)> {
     let system = match o.sv.constellation {
         Constellation::GPS => System::Gps,
         Constellation::BeiDou => System::Beidou,
+        Constellation::Galileo => System::Galileo,
         _ => return None,
     };
     let code = match &o.observable {

@@ -50,9 +50,10 @@ pub struct ObsWriter<W: Write> {
     columns: Vec<(System, Vec<Signal>)>,
 }
 
-/// The header's systems (GPS first) with their signals, in the order given.
+/// The header's systems (GPS, Galileo, BeiDou, RINEX's order of system letters G, E, C)
+/// with their signals, in the order given.
 fn columns(signals: &[Signal]) -> Vec<(System, Vec<Signal>)> {
-    [System::Gps, System::Beidou]
+    [System::Gps, System::Galileo, System::Beidou]
         .into_iter()
         .map(|system| {
             let mut of_system: Vec<Signal> = Vec::new();

@@ -9,6 +9,7 @@
 
 use super::sat_id::{SatId, System, SystemConstants, system_constants};
 use crate::Vec3;
+use crate::angles::wrap_pi;
 use crate::time::TimeOrigin;
 use hifitime::{Epoch, TimeScale};
 use std::f64::consts::{PI, TAU};
@@ -219,6 +220,47 @@ impl BroadcastEphemeris {
             health: 0,
             fit_interval_s,
         }
+    }
+
+    /// The same clock with toc moved to `toc` (any class): the polynomial re-centred,
+    /// af0' = af0 + af1 dc + af2 dc^2, af1' = af1 + 2 af2 dc with dc = toc' - toc (exact).
+    pub fn reexpressed_clock(&self, toc: Epoch) -> Self {
+        let mut out = self.clone();
+        let dc = (toc - self.toc).to_seconds();
+        if dc != 0.0 {
+            out.toc = toc;
+            out.clock.af0 = self.clock.af0 + self.clock.af1 * dc + self.clock.af2 * dc * dc;
+            out.clock.af1 = self.clock.af1 + 2.0 * self.clock.af2 * dc;
+        }
+        out
+    }
+
+    /// The same orbit and clock with toe moved to `toe` and toc to `toc`, for a message
+    /// whose reference times lie on a grid (BeiDou 8 s, Galileo 60 s); `None` for a BeiDou
+    /// GEO set, whose computation frame is tied to the Earth at toe. The clock as
+    /// [`Self::reexpressed_clock`]; with d = toe' - toe, exact for any set of the standard
+    /// algorithm: M0' = M0 + n d, i0' = i0 + IDOT d,
+    /// Omega0' = Omega0 + Omega_dot d + OMEGA_E (toe'_sow - toe_sow - d), so that mean
+    /// anomaly, node and inclination (IS-GPS-200 table 20-IV) are the same functions of
+    /// time, across a week boundary too.
+    pub fn reexpressed(&self, toe: Epoch, toc: Epoch) -> Option<Self> {
+        if self.class != OrbitClass::Standard {
+            return None;
+        }
+        let k = system_constants(self.sat.system);
+        let mut out = self.reexpressed_clock(toc);
+        let d = (toe - self.toe).to_seconds();
+        if d == 0.0 {
+            // Nothing moves: the orbit as it was, bit for bit.
+            return Some(out);
+        }
+        let sow_shift = seconds_of_week(toe, k.scale) - seconds_of_week(self.toe, k.scale) - d;
+        out.toe = toe;
+        out.orbit.m0 = wrap_pi(self.orbit.m0 + self.orbit.mean_motion_rad_s(k.gm) * d);
+        out.orbit.i0 = self.orbit.i0 + self.orbit.idot * d;
+        out.orbit.omega0 =
+            wrap_pi(self.orbit.omega0 + self.orbit.omega_dot * d + k.omega_e * sow_shift);
+        Some(out)
     }
 
     /// Bind to a scenario origin.
@@ -509,6 +551,31 @@ mod tests {
 
     fn toe() -> Epoch {
         origin().start() + 2.0 * Unit::Hour
+    }
+
+    #[test]
+    fn a_reexpressed_set_is_the_same_orbit_and_clock() {
+        let base = gps_eph(toe());
+        let o = origin();
+        for shift_s in [-37.0, 8.0, 29.5, 3.0 * 86_400.0 + 123.0] {
+            // The last shift crosses into the next GPS week (toe Thursday 2020-06-25
+            // 02:00, moved to Sunday), where the seconds of week wrap.
+            let toe2 = base.toe + shift_s * Unit::Second;
+            let toc2 = base.toc - 0.5 * shift_s * Unit::Second;
+            let moved = base.reexpressed(toe2, toc2).expect("standard class");
+            let (a, b) = (base.bind(&o), moved.bind(&o));
+            for t in [0.0, 1800.0, 7200.0, 4.0 * 86_400.0] {
+                let d = (a.position_ecef(t) - b.position_ecef(t)).norm();
+                assert!(d < 1e-5, "shift {shift_s}: {d} m at {t} s");
+                let dc = (a.clock_offset_s(t) - b.clock_offset_s(t)).abs();
+                assert!(dc < 1e-15, "shift {shift_s}: clock {dc:e} s");
+            }
+        }
+        let geo = BroadcastEphemeris {
+            class: OrbitClass::BeidouGeo,
+            ..base.clone()
+        };
+        assert!(geo.reexpressed(base.toe, base.toc).is_none());
     }
 
     #[test]

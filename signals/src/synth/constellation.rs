@@ -6,6 +6,7 @@ use super::transmitter::Transmitter;
 use crate::errors::ionosphere::KlobucharCoeffs;
 use hifitime::Epoch;
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
+use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 
@@ -16,6 +17,8 @@ pub enum TransmitterError {
     Lnav(#[from] LnavError),
     #[error("BeiDou D1/D2: {0}")]
     Bds(#[from] BdsNavError),
+    #[error("Galileo F/NAV: {0}")]
+    Fnav(#[from] FnavError),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
     NoSignal(SatId),
 }
@@ -67,6 +70,55 @@ pub fn bds_b1i(
         .map(|eph| {
             let nav = BdsNavEncoder::new(eph, &iono, &bds, week)?;
             Transmitter::bds_b1i(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+        })
+        .collect()
+}
+
+/// Grid of Galileo toe and toc (s): their scale factor is 60 s (Galileo OS SIS ICD §5.1.1,
+/// §5.1.3).
+const GAL_TIME_GRID_S: f64 = 60.0;
+
+/// `t` moved to the nearest multiple of 60 s of GST seconds of week (GST's seconds of
+/// week are GPST's).
+fn on_galileo_grid(t: Epoch) -> Epoch {
+    let (week, sow) = skyforge_orbits::time::gpst_week_sow(t);
+    let sow = GAL_TIME_GRID_S * (sow / GAL_TIME_GRID_S).round();
+    skyforge_orbits::time::epoch_from_gpst(week, sow)
+}
+
+/// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
+/// among `ephs`. Sets off the 60 s grid (the embedded constellation at any start) are
+/// re-expressed on it without moving the orbit or the clock. GST is GPST here: the
+/// broadcast GST-GPS offset is zero, and GST-UTC carries the leap seconds at `start`.
+pub fn gal_e5a(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let gal: Vec<BroadcastEphemeris> = ephs
+        .iter()
+        .filter(|e| e.sat.system == System::Galileo)
+        .map(|e| {
+            e.reexpressed(on_galileo_grid(e.toe), on_galileo_grid(e.toc))
+                .unwrap_or_else(|| e.clone())
+        })
+        .collect();
+    // GPST - UTC = TAI - UTC - 19 s (GST is aligned with GPST).
+    let leap_s = (start.leap_seconds(true).unwrap_or(19.0) - 19.0).round() as i32;
+    let params = FnavParams {
+        dt_ls_s: leap_s,
+        dt_lsf_s: leap_s,
+        ..FnavParams::default()
+    };
+    // GST week 0 is GPS week 1024 (Galileo OS SIS ICD §5.1.2). Symbols count from the
+    // week before the start's, so that satellite times a light time before a start on a
+    // week boundary still lie after symbol 0.
+    let week = skyforge_orbits::time::gpst_week_sow(start)
+        .0
+        .saturating_sub(1024 + 1);
+    gal.iter()
+        .map(|eph| {
+            let nav = FnavEncoder::new(eph, &gal, &params, week)?;
+            Transmitter::gal_e5a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
         })
         .collect()
 }

@@ -17,12 +17,15 @@ pub const GNSS_SDR_0017_BDS_PRN_MAX: u8 = 33;
 
 /// B1I channels: enough for every BDS-2 satellite in view over Asia (up to 15).
 const BDS_CHANNELS: usize = 16;
+/// E5a channels: Galileo satellites in view (up to about 12 of 24-30).
+const GAL_CHANNELS: usize = 12;
 
 /// Signals present in a recording.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct SignalsPresent {
     pub gps_l1ca: bool,
     pub bds_b1i: bool,
+    pub gal_e5a: bool,
 }
 
 /// The corrections GNSS-SDR's PVT applies: those of the errors in the signal.
@@ -53,6 +56,7 @@ pub fn recording_config(
     let present = SignalsPresent {
         gps_l1ca: signal == skyforge_gnss::signal::Signal::GpsL1Ca,
         bds_b1i: signal == skyforge_gnss::signal::Signal::BdsB1I,
+        gal_e5a: signal == skyforge_gnss::signal::Signal::GalE5a,
     };
     let doppler = if leo {
         DOPPLER_MAX_LEO_HZ
@@ -196,6 +200,9 @@ pub fn config(
         line("Tracking_B1.dll_bw_hz=2.0");
         line("TelemetryDecoder_B1.implementation=BEIDOU_B1I_Telemetry_Decoder");
     }
+    if present.gal_e5a {
+        galileo_e5a_lines(&mut line, doppler_max_hz);
+    }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
@@ -221,6 +228,30 @@ pub fn config(
     s
 }
 
+/// Galileo E5a (GNSS-SDR channel code 5X): acquisition and tracking on the E5a-Q pilot,
+/// whose 100-chip secondary code the tracking synchronises to; F/NAV decoded from E5a-I.
+fn galileo_e5a_lines(line: &mut impl FnMut(&str), doppler_max_hz: f64) {
+    line(&format!("Channels_5X.count={GAL_CHANNELS}"));
+    line("Acquisition_5X.implementation=Galileo_E5a_Pcps_Acquisition");
+    line("Acquisition_5X.item_type=gr_complex");
+    line("Acquisition_5X.coherent_integration_time_ms=1");
+    line("Acquisition_5X.acquire_pilot=true");
+    line("Acquisition_5X.pfa=0.01");
+    line(&format!(
+        "Acquisition_5X.doppler_max={}",
+        doppler_max_hz.round()
+    ));
+    line("Acquisition_5X.doppler_step=250");
+    line("Acquisition_5X.max_dwells=2");
+    line("Tracking_5X.implementation=Galileo_E5a_DLL_PLL_Tracking");
+    line("Tracking_5X.item_type=gr_complex");
+    line("Tracking_5X.track_pilot=true");
+    line("Tracking_5X.pll_bw_hz=20.0");
+    line("Tracking_5X.dll_bw_hz=2.0");
+    line("Tracking_5X.early_late_space_chips=0.5");
+    line("TelemetryDecoder_5X.implementation=Galileo_E5a_Telemetry_Decoder");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -238,6 +269,7 @@ mod tests {
         let present = SignalsPresent {
             gps_l1ca: false,
             bds_b1i: true,
+            gal_e5a: false,
         };
         let corrections = PvtCorrections {
             broadcast_iono: true,

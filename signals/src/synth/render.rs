@@ -63,6 +63,8 @@ struct Scratch {
     fi: Vec<f32>,
     fq: Vec<f32>,
     chips: Vec<i8>,
+    /// The pilot's chips, for signals with one.
+    pilot: Vec<i8>,
     /// Per transmitter, the last data bit looked up (`Transmitter::chip_signs_after`).
     bits: Vec<Option<(u64, u8)>>,
     mix: MixScratch,
@@ -573,7 +575,9 @@ impl<'a> Synthesiser<'a> {
     }
 }
 
-/// Mix one path over a span of `m` samples into the scratch block.
+/// Mix one path over a span of `m` samples into the scratch block. A signal with a pilot
+/// puts half its power in each component, the pilot in quadrature (+90 deg, a quarter
+/// cycle ahead of the data component), as `(d + j p) / sqrt(2)`.
 fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut Scratch) {
     let (k0, code_phase) = tx.chip_at(p.t_sv.0);
     let code_per_sample = tx.chip_rate_hz * (p.t_sv.1 - p.t_sv.0) / m as f64;
@@ -583,8 +587,13 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
         s.bits.resize(index + 1, None);
     }
     tx.chip_signs_after(k0, needed, &mut s.chips, &mut s.bits[index]);
-    let ch = ChannelBlock {
-        amplitude: p.amplitude,
+    let amplitude = if tx.has_pilot() {
+        p.amplitude * std::f32::consts::FRAC_1_SQRT_2
+    } else {
+        p.amplitude
+    };
+    let mut ch = ChannelBlock {
+        amplitude,
         carrier_phase_cycles: p.phase.0,
         carrier_cycles_per_sample: (p.phase.1 - p.phase.0) / m as f64,
         code_phase_chips: code_phase,
@@ -592,6 +601,13 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
         chip_signs: &s.chips,
     };
     mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+    if tx.has_pilot() {
+        s.pilot.clear();
+        tx.pilot_chip_signs(k0, needed, &mut s.pilot);
+        ch.carrier_phase_cycles += 0.25;
+        ch.chip_signs = &s.pilot;
+        mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+    }
 }
 
 /// Carrier-phase error (m, RINEX sign) of a composite signal whose prompt correlator sits
@@ -606,4 +622,59 @@ fn multipath_carrier_m(paths: &[Path], chip_m: f64, lambda_m: f64) -> f64 {
         im += p.relative_amplitude * r * p.phase_rad.sin();
     }
     -im.atan2(re) * lambda_m / TAU
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hifitime::{Epoch, TimeScale};
+    use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavParams};
+    use skyforge_orbits::ephemeris::nominal;
+    use std::f64::consts::FRAC_1_SQRT_2;
+
+    /// A Galileo E5a path mixed alone and noise-free at a fixed carrier phase: after the
+    /// carrier is removed, the data chips sit on the real axis and the pilot chips on the
+    /// imaginary one (a quarter cycle ahead), each with amplitude 1/sqrt(2).
+    #[test]
+    fn a_pilot_signal_puts_half_its_power_in_quadrature() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST);
+        let eph = nominal::galileo(start).remove(0);
+        let week = skyforge_orbits::time::gpst_week_sow(start).0 - 1024 - 1;
+        let nav = FnavEncoder::new(&eph, std::slice::from_ref(&eph), &FnavParams::default(), week)
+            .expect("encoder");
+        let tx = Transmitter::gal_e5a(eph.sat, nav, start).expect("E5a");
+        assert!(tx.has_pilot());
+        let (m, t0, phase) = (20_460, 0.0123, 0.3);
+        let p = PathBlock {
+            amplitude: 1.0,
+            t_sv: (t0, t0 + 1e-3),
+            phase: (phase, phase),
+        };
+        let mut s = Scratch {
+            i: vec![0.0; m],
+            q: vec![0.0; m],
+            ..Scratch::default()
+        };
+        mix_path((0, &tx), &p, m, &mut s);
+        let (k0, code_phase) = tx.chip_at(t0);
+        let per_sample = tx.chip_rate_hz * 1e-3 / m as f64;
+        let needed = ChannelBlock::chips_needed(code_phase, per_sample, m);
+        let (mut data, mut pilot) = (Vec::new(), Vec::new());
+        tx.chip_signs_after(k0, needed, &mut data, &mut None);
+        tx.pilot_chip_signs(k0, needed, &mut pilot);
+        let (c, sn) = ((TAU * phase).cos(), (TAU * phase).sin());
+        let (mut on_data, mut on_pilot, mut cross) = (0.0, 0.0, 0.0);
+        for k in 0..m {
+            let chip = (code_phase + k as f64 * per_sample).floor() as usize;
+            let (i, q) = (f64::from(s.i[k]), f64::from(s.q[k]));
+            let (re, im) = (i * c + q * sn, q * c - i * sn);
+            on_data += re * f64::from(data[chip]);
+            on_pilot += im * f64::from(pilot[chip]);
+            cross += re * f64::from(pilot[chip]);
+        }
+        let n = m as f64;
+        assert!((on_data / n - FRAC_1_SQRT_2).abs() < 0.01, "{}", on_data / n);
+        assert!((on_pilot / n - FRAC_1_SQRT_2).abs() < 0.01, "{}", on_pilot / n);
+        assert!((cross / n).abs() < 0.05, "{}", cross / n);
+    }
 }

@@ -136,6 +136,8 @@ pub enum SynthError {
     GpsTransmitters(TransmitterError),
     #[error("BeiDou transmitters: {0}")]
     BdsTransmitters(TransmitterError),
+    #[error("Galileo transmitters: {0}")]
+    GalTransmitters(TransmitterError),
     #[error("receiver clock: {0}")]
     Clock(Invalid),
     #[error("signal configuration: {0}")]
@@ -259,16 +261,6 @@ impl<'a> SynthSession<'a> {
         errors: &'a ErrorsConfig,
         seed: u64,
     ) -> Result<Self, SynthError> {
-        if world.satellites.iter().any(|s| s.system == System::Galileo) {
-            // Until the Galileo transmitters exist (E5a with F/NAV), say so rather than
-            // leave Galileo out silently.
-            return Err(SynthError::Invalid(Invalid::new(
-                "gnss.galileo",
-                "enabled",
-                "Galileo signals are not synthesised yet (neither samples nor the observation \
-                 level); `skyforge run` at the truth level includes Galileo",
-            )));
-        }
         let ephs = ephemerides_at_start(&world);
         let start = world.origin.start();
         let mut iono = errors.ionosphere.clone();
@@ -276,6 +268,7 @@ impl<'a> SynthSession<'a> {
             .map_err(SynthError::GpsTransmitters)?;
         let bds =
             constellation::bds_b1i(&ephs, start, &iono.bds).map_err(SynthError::BdsTransmitters)?;
+        let gal = constellation::gal_e5a(&ephs, start).map_err(SynthError::GalTransmitters)?;
         // The signal follows the coefficients as broadcast (quantised in the message).
         if let Some((alpha, beta)) = gps.first().and_then(Transmitter::broadcast_iono) {
             iono.gps = KlobucharCoeffs { alpha, beta };
@@ -283,6 +276,7 @@ impl<'a> SynthSession<'a> {
         let bands = [
             (Signal::GpsL1Ca, 0, gps.len()),
             (Signal::BdsB1I, gps.len(), bds.len()),
+            (Signal::GalE5a, gps.len() + bds.len(), gal.len()),
         ]
         .into_iter()
         .filter(|b| b.2 > 0)
@@ -292,7 +286,7 @@ impl<'a> SynthSession<'a> {
             count,
         })
         .collect();
-        let transmitters: Vec<Transmitter> = gps.into_iter().chain(bds).collect();
+        let transmitters: Vec<Transmitter> = gps.into_iter().chain(bds).chain(gal).collect();
         let broadcast = transmitters
             .iter()
             .map(Transmitter::broadcast_ephemeris)
@@ -378,6 +372,18 @@ impl<'a> SynthSession<'a> {
                     "the calibrated noise model has no calibration for it (set [observation.noise] model = \"elevation\" or \"constant\")",
                 )));
             }
+        }
+        // The transmitted signals need noise too: the calibrated model holds only the
+        // signals the bundled receiver tracks (not yet Galileo E5a).
+        if let Some(band) = self.bands.iter().find(|b| !model.has_noise_for(b.signal)) {
+            return Err(SynthError::Invalid(Invalid::new(
+                "observation.noise.model",
+                "\"calibrated\"",
+                format!(
+                    "the calibrated noise model has no calibration for {} (set [observation.noise] model = \"elevation\" or \"constant\")",
+                    band.signal.tag()
+                ),
+            )));
         }
         self.observation_model = Some(model);
         self.observed = observed.to_vec();

@@ -1,10 +1,15 @@
-//! A transmitting satellite as the synthesiser sees it: ranging code, data bits and the
-//! time scale its code and data are counted in.
+//! A transmitting satellite as the synthesiser sees it: ranging code, data bits, an
+//! optional pilot component, and the time scale its code and data are counted in.
 
 use hifitime::Epoch;
 use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
+use skyforge_gnss::codes::{
+    GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_I_SECONDARY, galileo_e5a_i, galileo_e5a_q,
+    galileo_e5a_q_secondary,
+};
+use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
 use skyforge_gnss::signal::Signal;
@@ -18,13 +23,17 @@ pub enum DataBits {
     /// BeiDou D1 (50 bps, 20 B1I periods per bit, NH20 per period) or D2 (500 bps, 2
     /// periods per bit, no NH), bit 0 at the encoder's BDT week start.
     Bds(Box<BdsNavEncoder>),
+    /// Galileo F/NAV on E5a-I: 50 symbols/s after its FEC, 20 E5a periods per symbol,
+    /// CS20_1 per period (Galileo OS SIS ICD §3.4), symbol 0 at the encoder's GST week
+    /// start.
+    GalileoFnav(Box<FnavEncoder>),
 }
 
 impl DataBits {
     /// Code periods per data bit.
     fn periods_per_bit(&self) -> u64 {
         match self {
-            DataBits::GpsLnav(_) => 20,
+            DataBits::GpsLnav(_) | DataBits::GalileoFnav(_) => 20,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => 20,
                 BdsNavFormat::D2 => 2,
@@ -36,15 +45,26 @@ impl DataBits {
         match self {
             DataBits::GpsLnav(lnav) => lnav.bit(b),
             DataBits::Bds(e) => e.bits(b, 1).first().copied().unwrap_or(0),
+            DataBits::GalileoFnav(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1).
     fn secondary(&self, p: u64) -> i8 {
         match self {
             DataBits::Bds(e) if e.format() == BdsNavFormat::D1 => NH20[(p % 20) as usize],
+            DataBits::GalileoFnav(_) => GALILEO_E5A_I_SECONDARY[(p % 20) as usize],
             _ => 1,
         }
     }
+}
+
+/// A dataless pilot component, in quadrature with the data component (+90 deg) and with
+/// half the signal's power; its primary code's chips align with the data code's.
+#[derive(Debug, Clone)]
+pub struct Pilot {
+    code: Vec<i8>,
+    /// One chip per primary period, period 0 at the time scale's epoch.
+    secondary: Vec<i8>,
 }
 
 /// One satellite's signal.
@@ -55,6 +75,7 @@ pub struct Transmitter {
     pub chip_rate_hz: f64,
     code: Vec<i8>,
     data: DataBits,
+    pilot: Option<Pilot>,
     /// Scenario start in the signal's time scale: whole seconds since its epoch.
     start_whole_s: u64,
     /// ... and the fraction (s).
@@ -78,6 +99,7 @@ impl Transmitter {
             chip_rate_hz: GPS_CA_CHIP_RATE_HZ,
             code,
             data: DataBits::GpsLnav(Box::new(lnav)),
+            pilot: None,
             start_whole_s: whole,
             start_frac_s: frac,
         })
@@ -97,9 +119,38 @@ impl Transmitter {
             chip_rate_hz: BDS_B1I_CHIP_RATE_HZ,
             code,
             data: DataBits::Bds(Box::new(nav)),
+            pilot: None,
             start_whole_s: (ns / 1_000_000_000) as u64,
             start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
         })
+    }
+
+    /// Galileo E5a: E5a-I with F/NAV and CS20_1, E5a-Q pilot with CS100_prn (Galileo OS
+    /// SIS ICD §2.3, §3.4); chips and symbols count from the encoder's GST week start,
+    /// which must not be after `start`.
+    pub fn gal_e5a(sat: SatId, nav: FnavEncoder, start: Epoch) -> Option<Self> {
+        let ns = (start - nav.week_start()).total_nanoseconds();
+        if ns < 0 {
+            return None;
+        }
+        Some(Self {
+            sat,
+            signal: Signal::GalE5a,
+            chip_rate_hz: GALILEO_E5A_CHIP_RATE_HZ,
+            code: galileo_e5a_i(sat.prn)?,
+            data: DataBits::GalileoFnav(Box::new(nav)),
+            pilot: Some(Pilot {
+                code: galileo_e5a_q(sat.prn)?,
+                secondary: galileo_e5a_q_secondary(sat.prn)?,
+            }),
+            start_whole_s: (ns / 1_000_000_000) as u64,
+            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+        })
+    }
+
+    /// Whether the signal has a pilot component ([`Self::pilot_chip_signs`]).
+    pub fn has_pilot(&self) -> bool {
+        self.pilot.is_some()
     }
 
     /// The ephemeris the data broadcast (quantised as the message carries it): the orbit
@@ -108,6 +159,7 @@ impl Transmitter {
         match &self.data {
             DataBits::GpsLnav(lnav) => lnav.broadcast_ephemeris(),
             DataBits::Bds(nav) => nav.broadcast_ephemeris(),
+            DataBits::GalileoFnav(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -119,7 +171,7 @@ impl Transmitter {
                 let p = lnav.iono();
                 Some((p.alpha, p.beta))
             }
-            DataBits::Bds(_) => None,
+            DataBits::Bds(_) | DataBits::GalileoFnav(_) => None,
         }
     }
 
@@ -168,6 +220,22 @@ impl Transmitter {
             let stop = ((period + 1) * len).min(end);
             let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
             out.extend(self.code[from..to].iter().map(|&c| sign * c));
+            k = stop;
+        }
+    }
+
+    /// Append the pilot's signed chips `k0 .. k0 + count` (secondary code applied) to
+    /// `out`; nothing when the signal has no pilot.
+    pub fn pilot_chip_signs(&self, k0: u64, count: usize, out: &mut Vec<i8>) {
+        let Some(pilot) = &self.pilot else { return };
+        let len = pilot.code.len() as u64;
+        let (mut k, end) = (k0, k0 + count as u64);
+        while k < end {
+            let period = k / len;
+            let sign = pilot.secondary[(period % pilot.secondary.len() as u64) as usize];
+            let stop = ((period + 1) * len).min(end);
+            let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
+            out.extend(pilot.code[from..to].iter().map(|&c| sign * c));
             k = stop;
         }
     }

@@ -6,10 +6,8 @@
 //! |d| <= 4 s:
 //! - clock: the polynomial is re-centred on toc': a0' = a0 + a1 d + a2 d^2,
 //!   a1' = a1 + 2 a2 d (exact);
-//! - MEO/IGSO (standard algorithm): M0' = M0 + n d, i0' = i0 + IDOT d,
-//!   Omega0' = Omega0 + Omega_dot d + OMEGA_E (toe'_sow - toe_sow - d). Every quantity of
-//!   the user algorithm (mean anomaly, argument of latitude and its harmonic corrections,
-//!   node, inclination) is then the same function of time: exact for any set;
+//! - MEO/IGSO (standard algorithm): `BroadcastEphemeris::reexpressed` (M0, i0 and Omega0
+//!   moved with the time; exact for any set);
 //! - GEO: the computation frame is tied to the Earth at toe (r_ECEF = Rz(-OMEGA_E tk)
 //!   Rx(5 deg) r_GEO), so moving toe rotates that frame by
 //!   Q = Rx(-5 deg) Rz(-OMEGA_E d) Rx(5 deg); the orbit's orientation is rotated by Q and
@@ -23,7 +21,7 @@ use super::quant::wrap_pi;
 use hifitime::Epoch;
 use nalgebra::Matrix3;
 use skyforge_orbits::constants::{GM_BDS, OMEGA_E_BDS};
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass};
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::time::{bdt_week_sow, epoch_from_bdt};
 
 /// Tilt of the GEO computation frame (BDS-SIS-ICD-B1I-3.0 §5.2.4, GEO user algorithm): in active rotations,
@@ -78,14 +76,13 @@ fn to_grid(t: Epoch) -> (Epoch, f64) {
 /// `eph` with toe and toc moved to the 8 s grid, describing the same orbit and clock (see
 /// the module notes for what is exact).
 pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, BdsNavError> {
-    let mut out = eph.clone();
-    let (toc, dc) = to_grid(eph.toc);
-    if dc != 0.0 {
-        out.toc = toc;
-        out.clock.af0 = eph.clock.af0 + eph.clock.af1 * dc + eph.clock.af2 * dc * dc;
-        out.clock.af1 = eph.clock.af1 + 2.0 * eph.clock.af2 * dc;
-    }
+    let (toc, _) = to_grid(eph.toc);
     let (toe, d) = to_grid(eph.toe);
+    if let Some(moved) = eph.reexpressed(toe, toc) {
+        return Ok(moved);
+    }
+    // GEO: the clock as for every set, then the orbit's orientation rotated with the frame.
+    let mut out = eph.reexpressed_clock(toc);
     if d == 0.0 {
         return Ok(out);
     }
@@ -94,44 +91,32 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
     out.orbit.m0 = wrap_pi(eph.orbit.m0 + n_rad_s * d);
     let toe_sow = bdt_week_sow(eph.toe).1;
     let new_toe_sow = bdt_week_sow(toe).1;
-    match eph.class {
-        OrbitClass::Standard => {
-            out.orbit.i0 = eph.orbit.i0 + eph.orbit.idot * d;
-            out.orbit.omega0 = wrap_pi(
-                eph.orbit.omega0
-                    + eph.orbit.omega_dot * d
-                    + OMEGA_E_BDS * (new_toe_sow - toe_sow - d),
-            );
-        }
-        OrbitClass::BeidouGeo => {
-            let corrections = [
-                eph.harmonics.cuc,
-                eph.harmonics.cus,
-                eph.harmonics.crc,
-                eph.harmonics.crs,
-                eph.harmonics.cic,
-                eph.harmonics.cis,
-                eph.orbit.idot,
-                eph.orbit.omega_dot,
-            ];
-            if corrections.iter().any(|&c| c != 0.0) {
-                return Err(BdsNavError::ToeOffGrid {
-                    sat: eph.sat.to_string(),
-                    toe_sow,
-                });
-            }
-            let r_geo = orientation(
-                eph.orbit.omega0 - OMEGA_E_BDS * toe_sow,
-                eph.orbit.i0,
-                eph.orbit.omega,
-            );
-            let q = rot_x(-GEO_TILT_RAD) * rot_z(-OMEGA_E_BDS * d) * rot_x(GEO_TILT_RAD);
-            let (node, incl, argp) = euler_313(&(q * r_geo));
-            out.orbit.omega0 = wrap_pi(node + OMEGA_E_BDS * new_toe_sow);
-            out.orbit.i0 = incl;
-            out.orbit.omega = argp;
-        }
+    let corrections = [
+        eph.harmonics.cuc,
+        eph.harmonics.cus,
+        eph.harmonics.crc,
+        eph.harmonics.crs,
+        eph.harmonics.cic,
+        eph.harmonics.cis,
+        eph.orbit.idot,
+        eph.orbit.omega_dot,
+    ];
+    if corrections.iter().any(|&c| c != 0.0) {
+        return Err(BdsNavError::ToeOffGrid {
+            sat: eph.sat.to_string(),
+            toe_sow,
+        });
     }
+    let r_geo = orientation(
+        eph.orbit.omega0 - OMEGA_E_BDS * toe_sow,
+        eph.orbit.i0,
+        eph.orbit.omega,
+    );
+    let q = rot_x(-GEO_TILT_RAD) * rot_z(-OMEGA_E_BDS * d) * rot_x(GEO_TILT_RAD);
+    let (node, incl, argp) = euler_313(&(q * r_geo));
+    out.orbit.omega0 = wrap_pi(node + OMEGA_E_BDS * new_toe_sow);
+    out.orbit.i0 = incl;
+    out.orbit.omega = argp;
     Ok(out)
 }
 
@@ -140,6 +125,7 @@ mod tests {
     use super::*;
     use skyforge_orbits::ephemeris::BeidouSet;
     use skyforge_orbits::ephemeris::nominal;
+    use skyforge_orbits::ephemeris::OrbitClass;
     use skyforge_orbits::time::TimeOrigin;
 
     fn odd_epoch() -> Epoch {
