@@ -63,9 +63,16 @@ fn run_writes_galileo_truth() {
 #[test]
 fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let path = scenario(dir.path(), 1.0, "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n");
+    let path = scenario(
+        dir.path(),
+        1.0,
+        "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n",
+    );
     let out = dir.path().join("out");
-    support::skyforge_ok(&["synth", &path, "--out", out.to_str().unwrap()], dir.path());
+    support::skyforge_ok(
+        &["synth", &path, "--out", out.to_str().unwrap()],
+        dir.path(),
+    );
     let data = std::fs::metadata(out.join("ant1.gal-e5a.sigmf-data")).expect("E5a recording");
     // 1 s of complex 8-bit samples at 20.46 MHz.
     assert_eq!(data.len(), 2 * 20_460_000);
@@ -100,7 +107,9 @@ fn observation_level_galileo_has_the_configured_noise() {
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(err.contains("no calibration for gal-e5a"), "{err}");
     // assumed: 0.3 m code and 3 mm phase, the thesis table 1.2-2 kind of constant setting.
-    let constant = format!("{signal}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n");
+    let constant = format!(
+        "{signal}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
+    );
     let path = scenario(dir.path(), 120.0, &constant);
     support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
     let json = dir.path().join("obs.json");
@@ -135,5 +144,8 @@ fn observation_level_galileo_has_the_configured_noise() {
     let std_code = code["std"].as_f64().unwrap_or(f64::NAN);
     let std_phase = phase["std"].as_f64().unwrap_or(f64::NAN);
     assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
-    assert!((std_phase / 0.003 - 1.0).abs() < 0.15, "phase std {std_phase}");
+    assert!(
+        (std_phase / 0.003 - 1.0).abs() < 0.15,
+        "phase std {std_phase}"
+    );
 }

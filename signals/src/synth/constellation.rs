@@ -5,8 +5,8 @@
 use super::transmitter::Transmitter;
 use crate::errors::ionosphere::KlobucharCoeffs;
 use hifitime::Epoch;
-use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
+use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 

@@ -640,8 +640,13 @@ mod tests {
         let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST);
         let eph = nominal::galileo(start).remove(0);
         let week = skyforge_orbits::time::gpst_week_sow(start).0 - 1024 - 1;
-        let nav = FnavEncoder::new(&eph, std::slice::from_ref(&eph), &FnavParams::default(), week)
-            .expect("encoder");
+        let nav = FnavEncoder::new(
+            &eph,
+            std::slice::from_ref(&eph),
+            &FnavParams::default(),
+            week,
+        )
+        .expect("encoder");
         let tx = Transmitter::gal_e5a(eph.sat, nav, start).expect("E5a");
         assert!(tx.has_pilot());
         let (m, t0, phase) = (20_460, 0.0123, 0.3);
@@ -673,8 +678,16 @@ mod tests {
             cross += re * f64::from(pilot[chip]);
         }
         let n = m as f64;
-        assert!((on_data / n - FRAC_1_SQRT_2).abs() < 0.01, "{}", on_data / n);
-        assert!((on_pilot / n - FRAC_1_SQRT_2).abs() < 0.01, "{}", on_pilot / n);
+        assert!(
+            (on_data / n - FRAC_1_SQRT_2).abs() < 0.01,
+            "{}",
+            on_data / n
+        );
+        assert!(
+            (on_pilot / n - FRAC_1_SQRT_2).abs() < 0.01,
+            "{}",
+            on_pilot / n
+        );
         assert!((cross / n).abs() < 0.05, "{}", cross / n);
     }
 }

@@ -4,11 +4,11 @@
 use hifitime::Epoch;
 use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
-use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::{
     GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_I_SECONDARY, galileo_e5a_i, galileo_e5a_q,
     galileo_e5a_q_secondary,
 };
+use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};

@@ -124,8 +124,8 @@ pub(super) fn onto_grid(eph: &BroadcastEphemeris) -> Result<BroadcastEphemeris, 
 mod tests {
     use super::*;
     use skyforge_orbits::ephemeris::BeidouSet;
-    use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::ephemeris::OrbitClass;
+    use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::time::TimeOrigin;
 
     fn odd_epoch() -> Epoch {
