@@ -84,6 +84,11 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/interop-bds-static.toml"),
     },
     Bundled {
+        name: "interop-gal-static",
+        summary: "120 s static Galileo E5a (F/NAV data, pilot) at 20.46 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        text: include_str!("../bundled/interop-gal-static.toml"),
+    },
+    Bundled {
         name: "interop-leo-gps",
         summary: "90 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for GNSS-SDR with a widened Doppler search",
         text: include_str!("../bundled/interop-leo-gps.toml"),

@@ -24,6 +24,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "ground-static",
             "interop-gps-static",
             "interop-bds-static",
+            "interop-gal-static",
             "interop-leo-gps",
             "receiver-leo-gps",
             "attitude-leo-gps",

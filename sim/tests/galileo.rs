@@ -149,3 +149,34 @@ fn observation_level_galileo_has_the_configured_noise() {
         "phase std {std_phase}"
     );
 }
+
+/// Galileo E1 as an observed-only signal beside the transmitted E5a: one RINEX line per
+/// satellite with both, and the ionosphere (1/f^2) making E1's pseudorange shorter than
+/// E5a's by (1 - (f5/f1)^2) of E5a's delay: between 0 and 10 m at the Klobuchar defaults.
+#[test]
+fn galileo_e1_observed_beside_e5a_carries_less_ionosphere() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let extra = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e1\"]\n\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.0\ncode_m = 0.0\n";
+    let path = scenario(dir.path(), 10.0, extra);
+    let out = dir.path().join("out");
+    support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    let obs = std::fs::read_to_string(out.join("observations/ant1.obs.rnx")).expect("obs");
+    assert!(
+        obs.contains("E    8 C5Q L5Q D5Q S5Q C1C L1C D1C S1C"),
+        "{obs}"
+    );
+    let body = obs.split("END OF HEADER").nth(1).unwrap_or("");
+    let mut lines = 0;
+    for line in body.lines().filter(|l| l.starts_with('E')) {
+        let value = |k: usize| -> f64 {
+            line.get(3 + 16 * k..3 + 16 * k + 14)
+                .and_then(|v| v.trim().parse().ok())
+                .unwrap_or(f64::NAN)
+        };
+        let (c5, c1) = (value(0), value(4));
+        let d = c5 - c1;
+        assert!(d > 0.0 && d < 10.0, "{line}: C5Q - C1C = {d} m");
+        lines += 1;
+    }
+    assert!(lines > 20, "{lines} Galileo lines");
+}

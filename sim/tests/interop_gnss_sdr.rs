@@ -109,14 +109,14 @@ fn satellites_above(truth: &Path, system: char, mask_deg: f64) -> Vec<u8> {
         .collect()
 }
 
-/// Satellites (`C01`, `G05`) with an ephemeris record in the RINEX 3 navigation files
-/// GNSS-SDR wrote into `dir` (`GSDR*.yyN`).
+/// Satellites (`C01`, `G05`, `E11`) with an ephemeris record in the RINEX 3 navigation files
+/// GNSS-SDR wrote into `dir` (`GSDR*.yyN`; Galileo's alone `GSDR*.yyL`).
 fn rinex_nav_satellites(dir: &Path) -> std::collections::BTreeSet<String> {
     let mut sats = std::collections::BTreeSet::new();
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        if !(name.starts_with("GSDR") && name.ends_with('N')) {
+        if !(name.starts_with("GSDR") && (name.ends_with('N') || name.ends_with('L'))) {
             continue;
         }
         let text = std::fs::read_to_string(&path).unwrap();
@@ -125,7 +125,7 @@ fn rinex_nav_satellites(dir: &Path) -> std::collections::BTreeSet<String> {
             // A record starts with the satellite and the epoch's year: "C06 2023 ...".
             let b = line.as_bytes();
             if b.len() > 8
-                && (b[0] == b'C' || b[0] == b'G')
+                && (b[0] == b'C' || b[0] == b'G' || b[0] == b'E')
                 && b[1..3].iter().all(u8::is_ascii_digit)
                 && b[3] == b' '
                 && b[4..8].iter().all(u8::is_ascii_digit)
@@ -266,7 +266,12 @@ struct StaticFixes {
 
 impl StaticFixes {
     fn of(nmea: &str) -> Self {
-        let truth = ecef(SITE.0, SITE.1, SITE.2);
+        Self::at(nmea, SITE)
+    }
+
+    /// The fixes of `nmea` against the site `(lat deg, lon deg, h m)`.
+    fn at(nmea: &str, site: (f64, f64, f64)) -> Self {
+        let truth = ecef(site.0, site.1, site.2);
         let points: Vec<Vec3> = fixes(nmea)
             .iter()
             .map(|&(lat, lon, h)| ecef(lat, lon, h))
@@ -413,6 +418,37 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
 }
 
 /// Issue #4's side-by-side bar on GPS L1 C/A (`interop_observables::side_by_side`).
+/// Acceptance (issue #34): GNSS-SDR 0.0.17 acquires and tracks SkyForge's Galileo E5a on
+/// its pilot, decodes F/NAV from E5a-I and fixes; the median 3D error of its fixes is
+/// under 5 m at the site of `interop-gal-static`, from at least 20 fixes (F/NAV needs a
+/// subframe of 50 s before the first ephemeris, so the fixes come in the last minute).
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_decodes_fnav_and_fixes_on_interop_gal_static() {
+    let _turn = one_at_a_time();
+    let tmp = tempfile::tempdir().unwrap();
+    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gal-static", "gal-e5a");
+    let site = (52.0, 13.0, 100.0);
+    let truth = ecef(site.0, site.1, site.2);
+    let mut errors: Vec<f64> = fixes(&nmea)
+        .iter()
+        .map(|&(lat, lon, h)| (ecef(lat, lon, h) - truth).norm())
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let median = errors
+        .get(errors.len() / 2)
+        .copied()
+        .unwrap_or(f64::INFINITY);
+    println!(
+        "GNSS-SDR Galileo E5a: {}; median 3D error {median:.2} m",
+        StaticFixes::at(&nmea, site)
+    );
+    let decoded = rinex_nav_satellites(&out);
+    println!("F/NAV ephemerides GNSS-SDR decoded: {decoded:?}");
+    assert!(errors.len() >= 20, "{} fixes\n{log}", errors.len());
+    assert!(median < 5.0, "median 3D error {median} m\n{log}");
+}
+
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn side_by_side_with_gnss_sdr_at_equal_loops_on_gps_l1ca() {
