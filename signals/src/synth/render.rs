@@ -15,7 +15,7 @@
 
 use super::config::{BLOCK_S, SignalConfig};
 use super::filter::BandFilter;
-use super::mix::{ChannelBlock, MixScratch, mix_into};
+use super::mix::{ChannelBlock, MixScratch, mix_into, mix_pair_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
 use super::transmitter::Transmitter;
@@ -592,7 +592,7 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
     } else {
         p.amplitude
     };
-    let mut ch = ChannelBlock {
+    let ch = ChannelBlock {
         amplitude,
         carrier_phase_cycles: p.phase.0,
         carrier_cycles_per_sample: (p.phase.1 - p.phase.0) / m as f64,
@@ -600,12 +600,11 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
         code_chips_per_sample: code_per_sample,
         chip_signs: &s.chips,
     };
-    mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
     if tx.has_pilot() {
         s.pilot.clear();
         tx.pilot_chip_signs(k0, needed, &mut s.pilot);
-        ch.carrier_phase_cycles += 0.25;
-        ch.chip_signs = &s.pilot;
+        mix_pair_into(&mut s.i, &mut s.q, &ch, &s.pilot, &mut s.mix);
+    } else {
         mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
     }
 }

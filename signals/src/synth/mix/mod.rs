@@ -11,13 +11,16 @@
 //! from exact values; over a 4096-sample block the f32 recurrence drifts by about 1e-4
 //! rad (1e-5 m at L1), measured in this module's tests.
 
+mod pair;
 mod spread;
+
+pub use pair::mix_pair_into;
 
 use skyforge_gnss::nco::LanePhasors;
 
 /// Phasor recurrences run side by side: two AVX-512 registers of f32 (four AVX2 ones),
 /// so that two independent multiply-add chains hide each other's latency.
-const LANES: usize = 32;
+pub(super) const LANES: usize = 32;
 
 /// One channel over one block.
 #[derive(Debug, Clone, Copy)]
@@ -49,6 +52,8 @@ impl ChannelBlock<'_> {
 pub struct MixScratch {
     /// The code amplitude under each sample.
     code: Vec<f32>,
+    /// The second component's code amplitude under each sample ([`mix_pair_into`]).
+    code_q: Vec<f32>,
     /// Each chip's amplitude, then [`spread::PAD`] copies of the last.
     amps: Vec<f32>,
 }
@@ -77,14 +82,25 @@ pub fn mix_into(
 
 /// `scratch.code[..n]`: the amplitude of the chip under each of `n` samples.
 fn spread_code(n: usize, ch: &ChannelBlock<'_>, scratch: &mut MixScratch) {
-    let amps = &mut scratch.amps;
+    spread_signs(n, ch, ch.chip_signs, &mut scratch.amps, &mut scratch.code);
+}
+
+/// `code[..n]`: the amplitude `ch.amplitude * sign` of the chip of `signs` under each of
+/// `n` samples at `ch`'s code phase and rate (`amps` is a buffer).
+fn spread_signs(
+    n: usize,
+    ch: &ChannelBlock<'_>,
+    signs: &[i8],
+    amps: &mut Vec<f32>,
+    code: &mut Vec<f32>,
+) {
     amps.clear();
-    amps.extend(ch.chip_signs.iter().map(|&s| ch.amplitude * f32::from(s)));
+    amps.extend(signs.iter().map(|&s| ch.amplitude * f32::from(s)));
     let last = amps.last().copied().unwrap_or(0.0);
     amps.extend([last; spread::PAD]);
-    scratch.code.resize(n, 0.0);
+    code.resize(n, 0.0);
     spread::spread(
-        &mut scratch.code[..n],
+        &mut code[..n],
         amps,
         ch.code_phase_chips,
         ch.code_chips_per_sample,
@@ -154,7 +170,12 @@ fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &[f32]
 
 /// One step of the lane recurrence: every lane turned by `w`.
 #[inline(always)]
-fn step(zr: &[f32; LANES], zi: &[f32; LANES], wr: f32, wi: f32) -> ([f32; LANES], [f32; LANES]) {
+pub(super) fn step(
+    zr: &[f32; LANES],
+    zi: &[f32; LANES],
+    wr: f32,
+    wi: f32,
+) -> ([f32; LANES], [f32; LANES]) {
     let (mut nr, mut ni) = ([0f32; LANES], [0f32; LANES]);
     for l in 0..LANES {
         nr[l] = zr[l] * wr - zi[l] * wi;
