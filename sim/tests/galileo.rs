@@ -92,6 +92,24 @@ fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     assert_eq!(nav.matches(" 2.580000000000E+02").count(), 24);
     let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("E    4 C5Q L5Q D5Q S5Q"), "{obs}");
+    // The bundled receiver says plainly that it does not track E5a yet.
+    let meta = out.join("ant1.gal-e5a.sigmf-meta");
+    let rx = dir.path().join("rx");
+    let o = support::skyforge(
+        &[
+            "receive",
+            meta.to_str().unwrap(),
+            "--out",
+            rx.to_str().unwrap(),
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("GAL E5a, which the bundled receiver does not track yet"),
+        "{err}"
+    );
 }
 
 /// The observation level draws Galileo E5a observables with the configured noise; the

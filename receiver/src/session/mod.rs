@@ -143,6 +143,27 @@ impl Samples {
     }
 }
 
+/// Why `r`'s signal is not known: a signal the receiver does not track yet (named in the
+/// file name, as SkyForge names Galileo E5a recordings), or nothing that names one.
+fn unknown_signal(r: &Recording) -> String {
+    let path = r.source_path();
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
+    let untracked = Signal::ALL.into_iter().find(|s| {
+        name.as_deref()
+            .is_some_and(|n| n.split('.').any(|p| p == s.tag()))
+    });
+    match untracked {
+        Some(s) => format!(
+            "{}: holds {s}, which the bundled receiver does not track yet (it tracks gps-l1ca and bds-b1i)",
+            path.display()
+        ),
+        None => format!(
+            "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca or bds-b1i",
+            path.display()
+        ),
+    }
+}
+
 fn open_bands(
     recordings: Vec<Recording>,
     params: &InputParams,
@@ -151,10 +172,7 @@ fn open_bands(
     let mut groups: Vec<(Signal, Vec<usize>, Vec<Recording>)> = Vec::new();
     for (i, r) in recordings.into_iter().enumerate() {
         let Some(signal) = r.signal.or(params.signal) else {
-            return Err(SessionError::Input(format!(
-                "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca or bds-b1i",
-                r.source_path().display()
-            )));
+            return Err(SessionError::Input(unknown_signal(&r)));
         };
         match groups.iter_mut().find(|g| g.0 == signal) {
             Some(g) => {
