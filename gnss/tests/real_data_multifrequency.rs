@@ -163,7 +163,8 @@ fn the_ionosphere_scales_between_the_carriers_of_a_real_receiver() {
         println!("{s}: {} phase observations", count(s));
         assert!(count(s) > 1000, "{s}");
     }
-    // The codes read: P(Y) for L2 (the file also has L2C), the L5 pilot, BeiDou's I.
+    // The codes read: P(Y) for L2 (the file also has L2C), the L5 pilot, BeiDou's I,
+    // Galileo's E1 and E5a pilots.
     let codes: Vec<(Signal, &str)> = file.codes.iter().map(|(s, c)| (*s, *c)).collect();
     assert_eq!(
         codes,
@@ -174,6 +175,8 @@ fn the_ionosphere_scales_between_the_carriers_of_a_real_receiver() {
             (Signal::GpsL5, "5Q"),
             (Signal::BdsB2I, "7I"),
             (Signal::BdsB3I, "6I"),
+            (Signal::GalE1, "1C"),
+            (Signal::GalE5a, "5Q"),
         ]
     );
     check_changes(&file, Signal::GpsL1Ca, [Signal::GpsL2, Signal::GpsL5]);
