@@ -202,9 +202,10 @@ mod tests {
             .unzip()
     }
 
-    fn signs(n: usize) -> Vec<i8> {
-        // A fixed pseudo-random +-1 sequence (LCG), independent of the code generators.
-        let mut x: u32 = 12345;
+    /// A fixed pseudo-random +-1 sequence (LCG from `seed`), independent of the code
+    /// generators.
+    pub(super) fn signs(n: usize, seed: u32) -> Vec<i8> {
+        let mut x = seed;
         (0..n)
             .map(|_| {
                 x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
@@ -216,7 +217,7 @@ mod tests {
     #[test]
     fn matches_direct_evaluation_over_a_block() {
         let n = 4092;
-        let chips = signs(1100);
+        let chips = signs(1100, 12345);
         for (carrier, code0, f_over_fs) in [
             (0.3, 0.0, 0.2443),
             (12345.678, 0.71, -0.0107),
@@ -257,7 +258,7 @@ mod tests {
     fn every_instruction_set_gives_the_same_bits() {
         // The dispatched kernel (AVX-512 / AVX2 where the CPU has them) against the same
         // code compiled for baseline x86-64.
-        let chips = signs(1100);
+        let chips = signs(1100, 12345);
         let ch = ChannelBlock {
             amplitude: 0.37,
             carrier_phase_cycles: 7.3,
@@ -280,7 +281,7 @@ mod tests {
 
     #[test]
     fn adds_to_what_is_already_there() {
-        let chips = signs(40);
+        let chips = signs(40, 12345);
         let ch = ChannelBlock {
             amplitude: 1.0,
             carrier_phase_cycles: 0.0,

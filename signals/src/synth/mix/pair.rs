@@ -86,17 +86,9 @@ fn mix_pair(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, d: &[f3
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::signs;
     use super::*;
     use crate::synth::mix::mix_into;
-
-    fn signs(n: usize, mut x: u32) -> Vec<i8> {
-        (0..n)
-            .map(|_| {
-                x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
-                if x >> 31 == 0 { 1 } else { -1 }
-            })
-            .collect()
-    }
 
     /// One pass of the pair kernel against two passes of the one-component kernel, the
     /// second a quarter cycle ahead: the same signal within f32 rounding.
