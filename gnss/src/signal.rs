@@ -281,7 +281,18 @@ impl Signal {
     /// The synthesised signal named by a `.<tag>` component of a recording's file name
     /// (`ant1.gps-l1ca.sigmf-meta`).
     pub fn from_file_name(name: &str) -> Option<Self> {
-        Self::SYNTHESISED
+        Self::named_in(name, Self::SYNTHESISED)
+    }
+
+    /// Any signal of [`Signal::ALL`] named by a `.<tag>` component of `name`, tracked or
+    /// not (to say which signal a recording holds that the receiver cannot take).
+    pub fn any_from_file_name(name: &str) -> Option<Self> {
+        Self::named_in(name, Self::ALL)
+    }
+
+    /// The first of `signals` whose tag is a `.`-separated component of `name`.
+    fn named_in(name: &str, signals: impl IntoIterator<Item = Self>) -> Option<Self> {
+        signals
             .into_iter()
             .find(|s| name.split('.').any(|part| part == s.tag()))
     }

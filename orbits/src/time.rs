@@ -125,6 +125,10 @@ fn duration_from_week_sow(week: u32, sow: f64) -> Duration {
         + seconds_to_duration(sow)
 }
 
+/// GST week 0 (1999-08-22 00:00:00 GST, GST = GPST) in GPS weeks (Galileo OS SIS ICD
+/// §5.1.2): Galileo's WN is the GPS week less this.
+pub const GST_WEEK0_IN_GPS_WEEKS: u32 = 1024;
+
 /// GPS week number (continuous, no roll-over) and seconds of week.
 pub fn gpst_week_sow(epoch: Epoch) -> (u32, f64) {
     week_sow(epoch.to_gpst_duration())

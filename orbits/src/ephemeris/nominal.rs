@@ -149,8 +149,10 @@ pub fn gps(epoch: Epoch) -> Vec<BroadcastEphemeris> {
 /// argument of latitude of slot 1 of plane 1 (deg). Values rounded from the broadcast
 /// ephemerides of BRD400DLR_S_20230710000 at 2023-03-12 00:00 BDT (planes at -66.6, 53.4
 /// and 173.4 deg; slot phases 28 + 45 j + 15 k deg).
-const BDS_MEO_PLANE1_NODE_DEG: f64 = -66.6;
-const BDS_MEO_SLOT1_ARG_LAT_DEG: f64 = 28.0;
+const BDS_MEO_WALKER: Walker = Walker {
+    plane1_node_deg: -66.6,
+    slot1_arg_lat_deg: 28.0,
+};
 
 /// BDS-3 MEO PRNs per plane (k = 0, 1, 2), in slot order (increasing argument of
 /// latitude), as measured in the 2023-03-12 broadcast ephemerides (see the test tier).
@@ -160,12 +162,29 @@ pub const BDS3_MEO_PLANES: [[u8; 8]; 3] = [
     [44, 35, 29, 30, 27, 28, 43, 34],
 ];
 
-/// Walker 24/3/1 slot: plane k (120 deg apart), slot j (45 deg apart), inter-plane phase
-/// 360 F / T = 15 deg.
-fn walker_slot(k: usize, j: usize) -> Slot {
-    Slot {
-        node_lon_deg: BDS_MEO_PLANE1_NODE_DEG + 120.0 * k as f64,
-        arg_lat_deg: BDS_MEO_SLOT1_ARG_LAT_DEG + 45.0 * j as f64 + 15.0 * k as f64,
+/// A Walker 24/3/1 constellation placed at toe: the Earth-fixed node longitude of its
+/// first plane and the argument of latitude of that plane's first slot (deg).
+struct Walker {
+    plane1_node_deg: f64,
+    slot1_arg_lat_deg: f64,
+}
+
+impl Walker {
+    /// Slot j (45 deg apart) of plane k (120 deg apart), inter-plane phase 360 F / T =
+    /// 15 deg.
+    fn slot(&self, k: usize, j: usize) -> Slot {
+        self.in_plane(
+            k,
+            self.slot1_arg_lat_deg + 45.0 * j as f64 + 15.0 * k as f64,
+        )
+    }
+
+    /// Plane k at argument of latitude `arg_lat_deg` (a satellite off the slots).
+    fn in_plane(&self, k: usize, arg_lat_deg: f64) -> Slot {
+        Slot {
+            node_lon_deg: self.plane1_node_deg + 120.0 * k as f64,
+            arg_lat_deg,
+        }
     }
 }
 
@@ -219,7 +238,7 @@ pub fn beidou(set: BeidouSet, epoch: Epoch) -> Vec<BroadcastEphemeris> {
         BeidouSet::Bds3 => {
             for (k, plane) in BDS3_MEO_PLANES.iter().enumerate() {
                 for (j, &prn) in plane.iter().enumerate() {
-                    out.push(meo(prn, walker_slot(k, j)));
+                    out.push(meo(prn, BDS_MEO_WALKER.slot(k, j)));
                 }
             }
             out.push(igso(38, 118.0, 240.0));
@@ -244,13 +263,9 @@ pub fn beidou(set: BeidouSet, epoch: Epoch) -> Vec<BroadcastEphemeris> {
             ] {
                 out.push(igso(prn, cross, u));
             }
-            let plane = |k: usize, u: f64| Slot {
-                node_lon_deg: walker_slot(k, 0).node_lon_deg,
-                arg_lat_deg: u,
-            };
-            out.push(meo(11, plane(2, 308.0)));
-            out.push(meo(12, plane(2, 353.0)));
-            out.push(meo(14, plane(0, 188.0)));
+            out.push(meo(11, BDS_MEO_WALKER.in_plane(2, 308.0)));
+            out.push(meo(12, BDS_MEO_WALKER.in_plane(2, 353.0)));
+            out.push(meo(14, BDS_MEO_WALKER.in_plane(0, 188.0)));
         }
     }
     out.sort_by_key(|e| e.sat);
@@ -267,8 +282,10 @@ pub const GAL_I_DEG: f64 = 56.0;
 /// (deg) and the argument of latitude of its first slot (deg). Rounded from the I/NAV
 /// ephemerides of BRD400DLR_S_20230710000 at 2023-03-12 00:00 GST (planes at -155.3,
 /// -35.2 and 85.1 deg; slot phases 30 + 45 j + 15 k deg; see the test tier).
-const GAL_PLANE1_NODE_DEG: f64 = -155.2;
-const GAL_SLOT1_ARG_LAT_DEG: f64 = 30.0;
+const GAL_WALKER: Walker = Walker {
+    plane1_node_deg: -155.2,
+    slot1_arg_lat_deg: 30.0,
+};
 
 /// Galileo PRNs per plane (k = 0, 1, 2, planes 120 deg apart eastward) in slot order
 /// (j = 0..8, increasing argument of latitude), as broadcast on 2023-03-12; 0 marks the
@@ -289,20 +306,15 @@ pub const GAL_AUXILIARY: (u8, f64) = (10, 187.5);
 /// transmits). E14 and E18 (eccentric orbits) and the
 /// satellites not healthy on 2023-03-12 are left out.
 pub fn galileo(epoch: Epoch) -> Vec<BroadcastEphemeris> {
-    let slot = |k: usize, u: f64| Slot {
-        node_lon_deg: GAL_PLANE1_NODE_DEG + 120.0 * k as f64,
-        arg_lat_deg: u,
-    };
     let meo = |prn, slot| circular(SatId::galileo(prn), epoch, GAL_A_M, GAL_I_DEG, slot);
     let mut out = Vec::new();
     for (k, plane) in GAL_PLANES.iter().enumerate() {
         for (j, &prn) in plane.iter().enumerate().filter(|(_, p)| **p != 0) {
-            let u = GAL_SLOT1_ARG_LAT_DEG + 45.0 * j as f64 + 15.0 * k as f64;
-            out.push(meo(prn, slot(k, u)));
+            out.push(meo(prn, GAL_WALKER.slot(k, j)));
         }
     }
     let (prn, u) = GAL_AUXILIARY;
-    out.push(meo(prn, slot(0, u)));
+    out.push(meo(prn, GAL_WALKER.in_plane(0, u)));
     out.sort_by_key(|e| e.sat);
     out
 }

@@ -5,7 +5,6 @@
 
 use super::broadcast::{BroadcastEphemeris, NavMessage};
 use super::sat_id::System;
-use hifitime::Epoch;
 use std::io::{self, Write};
 
 /// `x` in Fortran `Dw.d` style: mantissa in [1, 10) with `decimals` digits, a two-digit
@@ -22,16 +21,6 @@ fn fortran(x: f64, decimals: usize, width: usize) -> String {
 /// A record value, `D19.12`.
 fn d19(x: f64) -> String {
     fortran(x, 12, 19)
-}
-
-/// Week number and seconds of week of `epoch` in `system`'s time scale; Galileo's RINEX
-/// week is the continuous GPS week (RINEX 3.05 §6.12), its seconds of week GST's, which
-/// equal GPST's.
-fn week_sow(system: System, epoch: Epoch) -> (u32, f64) {
-    match system {
-        System::Gps | System::Galileo => crate::time::gpst_week_sow(epoch),
-        System::Beidou => crate::time::bdt_week_sow(epoch),
-    }
 }
 
 /// Galileo data sources (RINEX 3.05 Table A8): I/NAV E1-B and E5b-I with the E5b,E1 clock
@@ -102,7 +91,7 @@ pub fn write_nav(
     }
     writeln!(out, "{:60}END OF HEADER", "")?;
     for e in ephemerides {
-        let (week, toe_sow) = week_sow(e.sat.system, e.toe);
+        let (week, toe_sow) = e.sat.system.week_sow(e.toe);
         let (y, mo, d, h, mi, s, _) = e.toc.to_gregorian(e.sat.system.time_scale());
         writeln!(
             out,
@@ -119,7 +108,7 @@ pub fn write_nav(
         orbit_line(out, [toe_sow, h.cic, o.omega0, h.cis])?;
         orbit_line(out, [o.i0, h.crc, o.omega, o.omega_dot])?;
         // Transmission time: taken as toc (the set is broadcast from then on in SkyForge).
-        let (_, toc_sow) = week_sow(e.sat.system, e.toc);
+        let (_, toc_sow) = e.sat.system.week_sow(e.toc);
         match e.sat.system {
             System::Gps => {
                 orbit_line(out, [o.idot, 1.0, f64::from(week), 0.0])?;
@@ -167,6 +156,7 @@ mod tests {
     use crate::ephemeris::config::BeidouSet;
     use crate::ephemeris::nominal;
     use crate::ephemeris::rinex_nav::parse_nav;
+    use hifitime::Epoch;
     use hifitime::TimeScale;
 
     fn text_has_iono(buf: &[u8]) -> bool {

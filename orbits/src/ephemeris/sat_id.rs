@@ -30,6 +30,31 @@ impl System {
         system_constants(self).omega_e
     }
 
+    /// Week and seconds of week of `epoch` as the system's navigation files count them:
+    /// GPS and Galileo in continuous GPS weeks (GST's seconds of week are GPST's; RINEX
+    /// 3.05 §6.12), BeiDou in BDT weeks.
+    pub fn week_sow(self, epoch: hifitime::Epoch) -> (u32, f64) {
+        match self {
+            System::Gps | System::Galileo => crate::time::gpst_week_sow(epoch),
+            System::Beidou => crate::time::bdt_week_sow(epoch),
+        }
+    }
+
+    /// The epoch at `week`, `sow` counted as [`Self::week_sow`] counts them.
+    pub fn epoch_at(self, week: u32, sow: f64) -> hifitime::Epoch {
+        match self {
+            System::Gps | System::Galileo => crate::time::epoch_from_gpst(week, sow),
+            System::Beidou => crate::time::epoch_from_bdt(week, sow),
+        }
+    }
+
+    /// `t` moved to the nearest multiple of `grid_s` seconds of the system's week: where a
+    /// message's reference times (toe, toc) may lie (BeiDou 8 s, Galileo 60 s).
+    pub fn on_grid(self, t: hifitime::Epoch, grid_s: f64) -> hifitime::Epoch {
+        let (week, sow) = self.week_sow(t);
+        self.epoch_at(week, grid_s * (sow / grid_s).round())
+    }
+
     /// The name users know the system by: `GPS`, `BeiDou`, `Galileo`.
     pub fn name(self) -> &'static str {
         match self {

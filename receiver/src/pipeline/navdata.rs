@@ -6,7 +6,7 @@ use crate::navdecode::NavEvent;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
-use skyforge_orbits::time::{TimeOrigin, epoch_from_gpst, gpst_week_sow};
+use skyforge_orbits::time::{GST_WEEK0_IN_GPS_WEEKS, TimeOrigin, epoch_from_gpst, gpst_week_sow};
 
 /// Seconds per week.
 const WEEK_S: f64 = skyforge_orbits::time::SECONDS_PER_WEEK as f64;
@@ -15,8 +15,6 @@ const WEEK_S: f64 = skyforge_orbits::time::SECONDS_PER_WEEK as f64;
 const BDT_BEHIND_GPST_S: f64 = 14.0;
 /// BDT week 0 began at GPS week 1356.
 const BDT_WEEK0_IN_GPS_WEEKS: u32 = 1356;
-/// GST week 0 (1999-08-22 00:00 GST, GST = GPST) in GPS weeks (Galileo OS SIS ICD §5.1.2).
-const GST_WEEK0_IN_GPS_WEEKS: u32 = 1024;
 
 /// Ephemerides, ionosphere and the time origin.
 #[derive(Debug, Clone, Default)]

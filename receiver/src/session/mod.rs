@@ -147,11 +147,9 @@ impl Samples {
 /// file name, as SkyForge names Galileo E5a recordings), or nothing that names one.
 fn unknown_signal(r: &Recording) -> String {
     let path = r.source_path();
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned());
-    let untracked = Signal::ALL.into_iter().find(|s| {
-        name.as_deref()
-            .is_some_and(|n| n.split('.').any(|p| p == s.tag()))
-    });
+    let untracked = path
+        .file_name()
+        .and_then(|n| Signal::any_from_file_name(&n.to_string_lossy()));
     match untracked {
         Some(s) => format!(
             "{}: holds {s}, which the bundled receiver does not track yet (it tracks gps-l1ca and bds-b1i)",

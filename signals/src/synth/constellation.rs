@@ -9,6 +9,7 @@ use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+use skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS;
 
 /// Why a constellation's transmitters could not be built.
 #[derive(Debug, thiserror::Error)]
@@ -78,14 +79,6 @@ pub fn bds_b1i(
 /// §5.1.3).
 const GAL_TIME_GRID_S: f64 = 60.0;
 
-/// `t` moved to the nearest multiple of 60 s of GST seconds of week (GST's seconds of
-/// week are GPST's).
-fn on_galileo_grid(t: Epoch) -> Epoch {
-    let (week, sow) = skyforge_orbits::time::gpst_week_sow(t);
-    let sow = GAL_TIME_GRID_S * (sow / GAL_TIME_GRID_S).round();
-    skyforge_orbits::time::epoch_from_gpst(week, sow)
-}
-
 /// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
 /// among `ephs`. Sets off the 60 s grid (the embedded constellation at any start) are
 /// re-expressed on it without moving the orbit or the clock. GST is GPST here: the
@@ -98,7 +91,8 @@ pub fn gal_e5a(
         .iter()
         .filter(|e| e.sat.system == System::Galileo)
         .map(|e| {
-            e.reexpressed(on_galileo_grid(e.toe), on_galileo_grid(e.toc))
+            let on_grid = |t| System::Galileo.on_grid(t, GAL_TIME_GRID_S);
+            e.reexpressed(on_grid(e.toe), on_grid(e.toc))
                 .unwrap_or_else(|| e.clone())
         })
         .collect();
@@ -109,12 +103,11 @@ pub fn gal_e5a(
         dt_lsf_s: leap_s,
         ..FnavParams::default()
     };
-    // GST week 0 is GPS week 1024 (Galileo OS SIS ICD §5.1.2). Symbols count from the
-    // week before the start's, so that satellite times a light time before a start on a
-    // week boundary still lie after symbol 0.
+    // Symbols count from the GST week before the start's, so that satellite times a light
+    // time before a start on a week boundary still lie after symbol 0.
     let week = skyforge_orbits::time::gpst_week_sow(start)
         .0
-        .saturating_sub(1024 + 1);
+        .saturating_sub(GST_WEEK0_IN_GPS_WEEKS + 1);
     gal.iter()
         .map(|eph| {
             let nav = FnavEncoder::new(eph, &gal, &params, week)?;

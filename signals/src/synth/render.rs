@@ -638,7 +638,9 @@ mod tests {
     fn a_pilot_signal_puts_half_its_power_in_quadrature() {
         let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GST);
         let eph = nominal::galileo(start).remove(0);
-        let week = skyforge_orbits::time::gpst_week_sow(start).0 - 1024 - 1;
+        let week = skyforge_orbits::time::gpst_week_sow(start).0
+            - skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS
+            - 1;
         let nav = FnavEncoder::new(
             &eph,
             std::slice::from_ref(&eph),

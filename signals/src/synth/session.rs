@@ -32,7 +32,7 @@ use skyforge_orbits::Vec3;
 use skyforge_orbits::check::Invalid;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_orbits::platform::{Platform, PlatformError};
-use skyforge_orbits::time::{TimeOrigin, bdt_week_sow, gpst_week_sow};
+use skyforge_orbits::time::TimeOrigin;
 
 /// Geometry epochs the renderer interpolates between (s).
 pub const GEOMETRY_STEP_S: f64 = 1.0;
@@ -614,11 +614,7 @@ impl Running<'_, '_, '_> {
             .map(|a| AntennaEpoch::new(st, a))
             .collect();
         let at = self.origin.epoch_at(chunk.t_s[k]);
-        let sow = |system: System| match system {
-            // GST's seconds of week are GPST's.
-            System::Gps | System::Galileo => gpst_week_sow(at).1,
-            System::Beidou => bdt_week_sow(at).1,
-        };
+        let sow = |system: System| system.week_sow(at).1;
         let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
         let mut measured: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
         let n_sats = self.sats.len();

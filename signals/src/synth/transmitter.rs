@@ -201,11 +201,8 @@ impl Transmitter {
         out: &mut Vec<i8>,
         cached: &mut Option<(u64, u8)>,
     ) {
-        let len = self.code.len() as u64;
         let per_bit = self.data.periods_per_bit();
-        let (mut k, end) = (k0, k0 + count as u64);
-        while k < end {
-            let period = k / len;
+        spread_periods(&self.code, k0, count, out, |period| {
             let b = period / per_bit;
             let bit = match *cached {
                 Some((cb, v)) if cb == b => v,
@@ -216,27 +213,38 @@ impl Transmitter {
                 }
             };
             let data_sign: i8 = if bit == 1 { -1 } else { 1 };
-            let sign = data_sign * self.data.secondary(period);
-            let stop = ((period + 1) * len).min(end);
-            let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
-            out.extend(self.code[from..to].iter().map(|&c| sign * c));
-            k = stop;
-        }
+            data_sign * self.data.secondary(period)
+        });
     }
 
     /// Append the pilot's signed chips `k0 .. k0 + count` (secondary code applied) to
     /// `out`; nothing when the signal has no pilot.
     pub fn pilot_chip_signs(&self, k0: u64, count: usize, out: &mut Vec<i8>) {
         let Some(pilot) = &self.pilot else { return };
-        let len = pilot.code.len() as u64;
-        let (mut k, end) = (k0, k0 + count as u64);
-        while k < end {
-            let period = k / len;
-            let sign = pilot.secondary[(period % pilot.secondary.len() as u64) as usize];
-            let stop = ((period + 1) * len).min(end);
-            let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
-            out.extend(pilot.code[from..to].iter().map(|&c| sign * c));
-            k = stop;
-        }
+        let secondary = &pilot.secondary;
+        spread_periods(&pilot.code, k0, count, out, |period| {
+            secondary[(period % secondary.len() as u64) as usize]
+        });
+    }
+}
+
+/// Append chips `k0 .. k0 + count` (absolute indices) of the repeating primary `code` to
+/// `out`, each code period `p` multiplied by `sign_of(p)`, looked up once per period.
+fn spread_periods(
+    code: &[i8],
+    k0: u64,
+    count: usize,
+    out: &mut Vec<i8>,
+    mut sign_of: impl FnMut(u64) -> i8,
+) {
+    let len = code.len() as u64;
+    let (mut k, end) = (k0, k0 + count as u64);
+    while k < end {
+        let period = k / len;
+        let sign = sign_of(period);
+        let stop = ((period + 1) * len).min(end);
+        let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
+        out.extend(code[from..to].iter().map(|&c| sign * c));
+        k = stop;
     }
 }

@@ -21,8 +21,8 @@ use super::quant::wrap_pi;
 use hifitime::Epoch;
 use nalgebra::Matrix3;
 use skyforge_orbits::constants::{GM_BDS, OMEGA_E_BDS};
-use skyforge_orbits::ephemeris::BroadcastEphemeris;
-use skyforge_orbits::time::{bdt_week_sow, epoch_from_bdt};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, System};
+use skyforge_orbits::time::bdt_week_sow;
 
 /// Tilt of the GEO computation frame (BDS-SIS-ICD-B1I-3.0 §5.2.4, GEO user algorithm): in active rotations,
 /// r_ECEF = Rz(-OMEGA_E tk) Rx(+5 deg) r_GEO.
@@ -68,8 +68,7 @@ pub(super) fn euler_313(m: &Matrix3<f64>) -> (f64, f64, f64) {
 
 /// The nearest multiple of 8 s of BDT seconds of week, and the shift to it (s).
 fn to_grid(t: Epoch) -> (Epoch, f64) {
-    let (week, sow) = bdt_week_sow(t);
-    let grid = epoch_from_bdt(week, GRID_S * (sow / GRID_S).round());
+    let grid = System::Beidou.on_grid(t, GRID_S);
     (grid, (grid - t).to_seconds())
 }
 
@@ -127,6 +126,7 @@ mod tests {
     use skyforge_orbits::ephemeris::OrbitClass;
     use skyforge_orbits::ephemeris::nominal;
     use skyforge_orbits::time::TimeOrigin;
+    use skyforge_orbits::time::epoch_from_bdt;
 
     fn odd_epoch() -> Epoch {
         epoch_from_bdt(1000, 302_403.25)
