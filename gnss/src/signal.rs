@@ -119,6 +119,21 @@ impl Signal {
         Self::SYNTHESISED.contains(&self)
     }
 
+    /// The signals SkyForge can transmit at the sample level: the tracked ones
+    /// ([`Signal::SYNTHESISED`]) and those only outside receivers track so far (Galileo
+    /// E5a, GPS L5). A scenario's `[signal] signals` chooses among them.
+    pub const TRANSMITTED: [Signal; 4] = [
+        Signal::GpsL1Ca,
+        Signal::BdsB1I,
+        Signal::GalE5a,
+        Signal::GpsL5,
+    ];
+
+    /// Whether SkyForge can transmit the signal ([`Signal::TRANSMITTED`]).
+    pub fn is_transmitted(self) -> bool {
+        Self::TRANSMITTED.contains(&self)
+    }
+
     /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
     pub fn name(self) -> &'static str {
         match self {

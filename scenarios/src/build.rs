@@ -87,12 +87,7 @@ impl Scenario {
         let origin = TimeOrigin::new(self.time.start);
         let earth = EarthRotation::at_origin(self.time.start);
         let mut ephemerides = EphemerisStore::default();
-        let constellations = [
-            (System::Gps, "gnss.gps", &self.gnss.gps),
-            (System::Beidou, "gnss.beidou", &self.gnss.beidou),
-            (System::Galileo, "gnss.galileo", &self.gnss.galileo),
-        ];
-        for (system, table, config) in constellations {
+        for (system, table, config) in self.gnss.tables() {
             if config.enabled {
                 ephemerides.extend(self.constellation(system, table, config, &origin)?);
             }

@@ -89,6 +89,11 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/interop-gal-static.toml"),
     },
     Bundled {
+        name: "interop-l5-static",
+        summary: "120 s static GPS L5 (CNAV data, pilot) at 20.46 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        text: include_str!("../bundled/interop-l5-static.toml"),
+    },
+    Bundled {
         name: "interop-leo-gps",
         summary: "90 s GPS L1 C/A on the thesis LEO (one zenith antenna), 4 Msps ci8, for GNSS-SDR with a widened Doppler search",
         text: include_str!("../bundled/interop-leo-gps.toml"),

@@ -3,21 +3,14 @@
 
 use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
-use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, GPS_CA_CHIP_RATE_HZ};
 use skyforge_gnss::observation::NOISE_SIGMA0_M;
-use skyforge_gnss::signal::Signal;
 use skyforge_orbits::check::{Allowed, GROUND_RADIUS_M, Invalid, check_position, check_table};
-use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
-/// Highest GPS PRN (IS-GPS-200: PRNs 1..32 for the operational constellation).
-pub(crate) const GPS_MAX_PRN: u8 = 32;
-/// Highest BeiDou PRN (BDS-SIS-ICD B1I: PRNs 1..63).
-pub(crate) const BEIDOU_MAX_PRN: u8 = 63;
 /// Longest scenario (s): 366 days. Longer spans are outside what the embedded
 /// constellations (no station keeping) and broadcast ephemerides describe.
 pub(crate) const MAX_DURATION_S: f64 = 366.0 * 86_400.0;
@@ -51,22 +44,13 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_observation(scenario)?;
     if let Some(signal) = &scenario.signal {
         signal.check().map_err(|e| e.within("signal"))?;
-        let bands = [
-            (scenario.gnss.gps.enabled, "GPS L1 C/A", GPS_CA_CHIP_RATE_HZ),
-            (
-                scenario.gnss.beidou.enabled,
-                "BeiDou B1I",
-                BDS_B1I_CHIP_RATE_HZ,
-            ),
-            (
-                scenario.gnss.galileo.enabled,
-                "Galileo E5a",
-                Signal::GalE5a.chip_rate_hz(),
-            ),
-        ];
-        for (_, name, chip_rate) in bands.into_iter().filter(|b| b.0) {
+        let enabled = scenario.gnss.enabled_systems();
+        signal
+            .check_signals(&enabled)
+            .map_err(|e| e.within("signal"))?;
+        for s in enabled.into_iter().filter_map(|sys| signal.signal_of(sys)) {
             signal
-                .check_band(name, chip_rate)
+                .check_band(s.name(), s.chip_rate_hz())
                 .map_err(|e| e.within("signal"))?;
         }
     }
@@ -248,16 +232,12 @@ fn check_truth(truth: &TruthConfig, duration_s: f64) -> Result<(), Invalid> {
 }
 
 fn check_gnss(gnss: &GnssConfig) -> Result<(), Invalid> {
-    gnss.gps
-        .check(GPS_MAX_PRN)
-        .map_err(|e| e.within("gnss.gps"))?;
-    gnss.beidou
-        .check(BEIDOU_MAX_PRN)
-        .map_err(|e| e.within("gnss.beidou"))?;
-    gnss.galileo
-        .check(System::Galileo.max_prn())
-        .map_err(|e| e.within("gnss.galileo"))?;
-    if !gnss.gps.enabled && !gnss.beidou.enabled && !gnss.galileo.enabled {
+    for (system, table, config) in gnss.tables() {
+        config
+            .check(system.max_prn())
+            .map_err(|e| e.within(table))?;
+    }
+    if gnss.enabled_systems().is_empty() {
         return Err(Invalid::new(
             "gnss",
             "gps, beidou and galileo disabled",

@@ -4,7 +4,7 @@
 
 use hifitime::Epoch;
 use serde::Deserialize;
-use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSource};
+use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSource, System};
 use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::ErrorsConfig;
@@ -88,6 +88,26 @@ pub struct GnssConfig {
     pub beidou: ConstellationConfig,
     /// `[gnss.galileo]`.
     pub galileo: ConstellationConfig,
+}
+
+impl GnssConfig {
+    /// Each constellation with its table's name and settings, GPS, BeiDou, Galileo.
+    pub fn tables(&self) -> [(System, &'static str, &ConstellationConfig); 3] {
+        [
+            (System::Gps, "gnss.gps", &self.gps),
+            (System::Beidou, "gnss.beidou", &self.beidou),
+            (System::Galileo, "gnss.galileo", &self.galileo),
+        ]
+    }
+
+    /// The enabled constellations, in the order of [`Self::tables`].
+    pub fn enabled_systems(&self) -> Vec<System> {
+        self.tables()
+            .into_iter()
+            .filter(|t| t.2.enabled)
+            .map(|t| t.0)
+            .collect()
+    }
 }
 
 /// A constellation table left out of the file: the embedded constellation, enabled.

@@ -25,6 +25,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "interop-gps-static",
             "interop-bds-static",
             "interop-gal-static",
+            "interop-l5-static",
             "interop-leo-gps",
             "receiver-leo-gps",
             "attitude-leo-gps",

@@ -3,8 +3,9 @@
 use super::filter::FilterConfig;
 use crate::errors::link_budget::LinkBudgetConfig;
 use skyforge_gnss::sample_format::SampleFormat;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::ephemeris::SatId;
+use skyforge_orbits::ephemeris::{SatId, System};
 use std::collections::BTreeMap;
 
 /// Synthesis block length (s): blocks are 1 ms, the C/A code period.
@@ -50,6 +51,11 @@ pub struct SignalConfig {
     /// for none.
     #[serde(default = "default_truth_rate")]
     pub truth_rate_hz: u32,
+    /// The signals synthesised, one per enabled constellation, each recorded on its own
+    /// (`["gps-l5", "bds-b1i"]`); empty (the default): each constellation's first signal
+    /// ([`Signal::of_system`]: GPS L1 C/A, BeiDou B1I, Galileo E5a).
+    #[serde(default)]
+    pub signals: Vec<Signal>,
 }
 
 /// Checks a C/N0 value.
@@ -73,6 +79,7 @@ impl Default for SignalConfig {
             link_budget: None,
             filter: None,
             truth_rate_hz: default_truth_rate(),
+            signals: Vec::new(),
         }
     }
 }
@@ -192,6 +199,79 @@ impl SignalConfig {
                     "puts the {name} main lobe (+-{chip_rate_hz:e} Hz, {}% margin) outside 0..{nyquist} Hz for real samples at {fs:e}/s: the IF must lie in {half:e}..{:e} Hz",
                     MAIN_LOBE_MARGIN * 100.0,
                     nyquist - half
+                ),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The signal `system`'s satellites transmit: the one `signals` lists for it, or the
+    /// system's first when `signals` is empty ([`Self::check_signals`] makes sure every
+    /// enabled system has one).
+    pub fn signal_of(&self, system: System) -> Option<Signal> {
+        if self.signals.is_empty() {
+            return Some(Signal::of_system(system));
+        }
+        self.signals.iter().copied().find(|s| s.system() == system)
+    }
+
+    /// Checks `signals` against the enabled constellations `enabled`: each listed signal
+    /// is one SkyForge transmits ([`Signal::TRANSMITTED`]), of an enabled constellation,
+    /// listed once, one per constellation (a constellation on two signals at once is not
+    /// built yet), and every enabled constellation has one.
+    pub fn check_signals(&self, enabled: &[System]) -> Result<(), Invalid> {
+        let transmitted = || {
+            Signal::TRANSMITTED
+                .iter()
+                .map(|s| s.tag())
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        for (i, s) in self.signals.iter().enumerate() {
+            let field = format!("signals[{i}]");
+            if !s.is_transmitted() {
+                return Err(Invalid::new(
+                    field,
+                    s.tag(),
+                    format!("is not a signal SkyForge transmits ({})", transmitted()),
+                ));
+            }
+            if !enabled.contains(&s.system()) {
+                return Err(Invalid::new(
+                    field,
+                    s.tag(),
+                    format!(
+                        "{} is not enabled under [gnss] in this scenario",
+                        s.system().name()
+                    ),
+                ));
+            }
+            if let Some(other) = self.signals[..i].iter().find(|o| o.system() == s.system()) {
+                return Err(Invalid::new(
+                    field,
+                    s.tag(),
+                    format!(
+                        "{} already transmits {}: one signal per constellation (several at once are not built yet)",
+                        s.system().name(),
+                        other.tag()
+                    ),
+                ));
+            }
+        }
+        if let Some(missing) = enabled.iter().find(|&&sys| self.signal_of(sys).is_none()) {
+            return Err(Invalid::new(
+                "signals",
+                format!(
+                    "[{}]",
+                    self.signals
+                        .iter()
+                        .map(|s| format!("{:?}", s.tag()))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                format!(
+                    "lists no signal of {}, which is enabled (add one, or disable it under [gnss])",
+                    missing.name()
                 ),
             ));
         }

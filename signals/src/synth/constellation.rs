@@ -3,11 +3,12 @@
 //! parameters), and its ranging code.
 
 use super::transmitter::Transmitter;
-use crate::errors::ionosphere::KlobucharCoeffs;
+use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 use skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS;
 
@@ -22,6 +23,24 @@ pub enum TransmitterError {
     Fnav(#[from] FnavError),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
     NoSignal(SatId),
+    #[error("{0} is not transmitted by SkyForge")]
+    NotTransmitted(Signal),
+}
+
+/// The transmitters of `signal` for its constellation's ephemerides among `ephs`,
+/// broadcasting the Klobuchar coefficients of `iono` where the message carries them.
+pub fn transmitters(
+    signal: Signal,
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+    iono: &IonoConfig,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    match signal {
+        Signal::GpsL1Ca => gps_l1ca(ephs, start, &iono.gps),
+        Signal::BdsB1I => bds_b1i(ephs, start, &iono.bds),
+        Signal::GalE5a => gal_e5a(ephs, start),
+        other => Err(TransmitterError::NotTransmitted(other)),
+    }
 }
 
 /// GPS L1 C/A transmitters for the GPS ephemerides among `ephs`, broadcasting the

@@ -9,6 +9,7 @@
 
 use super::config::SignalConfig;
 use skyforge_gnss::sample_format::SampleFormat;
+use skyforge_gnss::signal::Signal;
 use std::fmt::Write;
 
 /// Highest BeiDou PRN for which GNSS-SDR 0.0.17 generates a B1I replica (read from the
@@ -19,14 +20,8 @@ pub const GNSS_SDR_0017_BDS_PRN_MAX: u8 = 33;
 const BDS_CHANNELS: usize = 16;
 /// E5a channels: Galileo satellites in view (up to about 12 of 24-30).
 const GAL_CHANNELS: usize = 12;
-
-/// Signals present in a recording.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct SignalsPresent {
-    pub gps_l1ca: bool,
-    pub bds_b1i: bool,
-    pub gal_e5a: bool,
-}
+/// L5 channels: GPS satellites in view (up to about 12 of 31).
+const GPS_L5_CHANNELS: usize = 12;
 
 /// The corrections GNSS-SDR's PVT applies: those of the errors in the signal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -48,16 +43,11 @@ const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
 pub fn recording_config(
     cfg: &SignalConfig,
     name: &str,
-    signal: skyforge_gnss::signal::Signal,
+    signal: Signal,
     leo: bool,
     iono_on: bool,
     tropo_on: bool,
 ) -> String {
-    let present = SignalsPresent {
-        gps_l1ca: signal == skyforge_gnss::signal::Signal::GpsL1Ca,
-        bds_b1i: signal == skyforge_gnss::signal::Signal::BdsB1I,
-        gal_e5a: signal == skyforge_gnss::signal::Signal::GalE5a,
-    };
     let doppler = if leo {
         DOPPLER_MAX_LEO_HZ
     } else {
@@ -70,7 +60,7 @@ pub fn recording_config(
     config(
         cfg,
         &format!("{name}.sigmf-data"),
-        present,
+        &[signal],
         doppler,
         corrections,
         name,
@@ -78,12 +68,13 @@ pub fn recording_config(
 }
 
 /// The `.conf` text for `data_file` (a path GNSS-SDR opens relative to its working
-/// directory); `doppler_max_hz` widens acquisition for high dynamics; `corrections` are
+/// directory) holding `signals` (those GNSS-SDR has no block for are left out);
+/// `doppler_max_hz` widens acquisition for high dynamics; `corrections` are
 /// turned on in the PVT; PVT outputs go to `output_prefix.*`.
 pub fn config(
     cfg: &SignalConfig,
     data_file: &str,
-    present: SignalsPresent,
+    signals: &[Signal],
     doppler_max_hz: f64,
     corrections: PvtCorrections,
     output_prefix: &str,
@@ -149,7 +140,7 @@ pub fn config(
     line("Resampler.implementation=Pass_Through");
     line("Resampler.item_type=gr_complex");
     line("Channels.in_acquisition=1");
-    if present.gps_l1ca {
+    if signals.contains(&Signal::GpsL1Ca) {
         line("Channels_1C.count=12");
         line("Acquisition_1C.implementation=GPS_L1_CA_PCPS_Acquisition");
         line("Acquisition_1C.item_type=gr_complex");
@@ -168,7 +159,7 @@ pub fn config(
         line("Tracking_1C.early_late_space_chips=0.5");
         line("TelemetryDecoder_1C.implementation=GPS_L1_CA_Telemetry_Decoder");
     }
-    if present.bds_b1i {
+    if signals.contains(&Signal::BdsB1I) {
         line(&format!(
             "; GNSS-SDR 0.0.17 has B1I replicas for PRN 1-{GNSS_SDR_0017_BDS_PRN_MAX} only: C{:02}-C63 are not acquired.",
             GNSS_SDR_0017_BDS_PRN_MAX + 1
@@ -200,8 +191,11 @@ pub fn config(
         line("Tracking_B1.dll_bw_hz=2.0");
         line("TelemetryDecoder_B1.implementation=BEIDOU_B1I_Telemetry_Decoder");
     }
-    if present.gal_e5a {
+    if signals.contains(&Signal::GalE5a) {
         galileo_e5a_lines(&mut line, doppler_max_hz);
+    }
+    if signals.contains(&Signal::GpsL5) {
+        gps_l5_lines(&mut line, doppler_max_hz);
     }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
@@ -252,6 +246,29 @@ fn galileo_e5a_lines(line: &mut impl FnMut(&str), doppler_max_hz: f64) {
     line("TelemetryDecoder_5X.implementation=Galileo_E5a_Telemetry_Decoder");
 }
 
+/// GPS L5 (GNSS-SDR channel code L5): acquisition on I5 and tracking on the Q5 pilot,
+/// whose 20-chip Neumann-Hoffman code the tracking synchronises to; CNAV decoded from I5.
+fn gps_l5_lines(line: &mut impl FnMut(&str), doppler_max_hz: f64) {
+    line(&format!("Channels_L5.count={GPS_L5_CHANNELS}"));
+    line("Acquisition_L5.implementation=GPS_L5i_PCPS_Acquisition");
+    line("Acquisition_L5.item_type=gr_complex");
+    line("Acquisition_L5.coherent_integration_time_ms=1");
+    line("Acquisition_L5.pfa=0.01");
+    line(&format!(
+        "Acquisition_L5.doppler_max={}",
+        doppler_max_hz.round()
+    ));
+    line("Acquisition_L5.doppler_step=250");
+    line("Acquisition_L5.max_dwells=2");
+    line("Tracking_L5.implementation=GPS_L5_DLL_PLL_Tracking");
+    line("Tracking_L5.item_type=gr_complex");
+    line("Tracking_L5.track_pilot=true");
+    line("Tracking_L5.pll_bw_hz=20.0");
+    line("Tracking_L5.dll_bw_hz=2.0");
+    line("Tracking_L5.early_late_space_chips=0.5");
+    line("TelemetryDecoder_L5.implementation=GPS_L5_Telemetry_Decoder");
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -266,16 +283,18 @@ mod tests {
             truth_rate_hz: 1000,
             ..SignalConfig::default()
         };
-        let present = SignalsPresent {
-            gps_l1ca: false,
-            bds_b1i: true,
-            gal_e5a: false,
-        };
         let corrections = PvtCorrections {
             broadcast_iono: true,
             troposphere: true,
         };
-        config(&cfg, "a.sigmf-data", present, 5000.0, corrections, "a")
+        config(
+            &cfg,
+            "a.sigmf-data",
+            &[Signal::BdsB1I],
+            5000.0,
+            corrections,
+            "a",
+        )
     }
 
     /// GNSS-SDR's INI reader takes `;` comments, `[section]` headers and `key=value`.

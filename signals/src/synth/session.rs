@@ -132,12 +132,8 @@ pub enum SynthError {
     /// A setting of the scenario is invalid; the field path is in the error.
     #[error("{0}")]
     Invalid(Invalid),
-    #[error("GPS transmitters: {0}")]
-    GpsTransmitters(TransmitterError),
-    #[error("BeiDou transmitters: {0}")]
-    BdsTransmitters(TransmitterError),
-    #[error("Galileo transmitters: {0}")]
-    GalTransmitters(TransmitterError),
+    #[error("{0} transmitters: {1}")]
+    Transmitters(Signal, TransmitterError),
     #[error("receiver clock: {0}")]
     Clock(Invalid),
     #[error("signal configuration: {0}")]
@@ -264,29 +260,31 @@ impl<'a> SynthSession<'a> {
         let ephs = ephemerides_at_start(&world);
         let start = world.origin.start();
         let mut iono = errors.ionosphere.clone();
-        let gps = constellation::gps_l1ca(&ephs, start, &iono.gps)
-            .map_err(SynthError::GpsTransmitters)?;
-        let bds =
-            constellation::bds_b1i(&ephs, start, &iono.bds).map_err(SynthError::BdsTransmitters)?;
-        let gal = constellation::gal_e5a(&ephs, start).map_err(SynthError::GalTransmitters)?;
+        let mut bands = Vec::new();
+        let mut transmitters: Vec<Transmitter> = Vec::new();
+        for system in [System::Gps, System::Beidou, System::Galileo] {
+            let Some(sig) = signal.signal_of(system) else {
+                continue;
+            };
+            let txs = constellation::transmitters(sig, &ephs, start, &iono)
+                .map_err(|e| SynthError::Transmitters(sig, e))?;
+            if !txs.is_empty() {
+                bands.push(Band {
+                    signal: sig,
+                    first: transmitters.len(),
+                    count: txs.len(),
+                });
+                transmitters.extend(txs);
+            }
+        }
         // The signal follows the coefficients as broadcast (quantised in the message).
-        if let Some((alpha, beta)) = gps.first().and_then(Transmitter::broadcast_iono) {
+        if let Some((alpha, beta)) = transmitters
+            .iter()
+            .filter(|t| t.sat.system == System::Gps)
+            .find_map(Transmitter::broadcast_iono)
+        {
             iono.gps = KlobucharCoeffs { alpha, beta };
         }
-        let bands = [
-            (Signal::GpsL1Ca, 0, gps.len()),
-            (Signal::BdsB1I, gps.len(), bds.len()),
-            (Signal::GalE5a, gps.len() + bds.len(), gal.len()),
-        ]
-        .into_iter()
-        .filter(|b| b.2 > 0)
-        .map(|(signal, first, count)| Band {
-            signal,
-            first,
-            count,
-        })
-        .collect();
-        let transmitters: Vec<Transmitter> = gps.into_iter().chain(bds).chain(gal).collect();
         let broadcast = transmitters
             .iter()
             .map(Transmitter::broadcast_ephemeris)
@@ -358,11 +356,11 @@ impl<'a> SynthSession<'a> {
                     "its system has no satellites in this scenario (enable it under [gnss])",
                 )));
             }
-            if s.is_synthesised() {
+            if s.is_synthesised() || self.bands.iter().any(|b| b.signal == *s) {
                 return Err(SynthError::Invalid(Invalid::new(
                     field,
                     s.tag(),
-                    "is synthesised (every scenario has it); list observed-only signals: gps-l2, gps-l5, bds-b2i, bds-b3i",
+                    "is tracked by the bundled receiver or transmitted in this scenario ([signal] signals); list observed-only signals: gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, other than the transmitted ones",
                 )));
             }
             if !model.has_noise_for(*s) {
