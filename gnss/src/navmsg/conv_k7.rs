@@ -41,10 +41,18 @@ impl ConvK7 {
     /// Encode `bits` (0/1) from the all-zero state: two symbols per bit, G1 first. The
     /// caller appends the K - 1 zero tail bits where the message is terminated.
     pub fn encode(self, bits: &[u8]) -> Vec<u8> {
-        let mut state = 0usize;
+        self.encode_after(&[], bits)
+    }
+
+    /// Encode `bits` as the continuation of a stream whose earlier bits were `history`:
+    /// the encoder starts in the state those bits left (only the last K - 1 matter; a
+    /// shorter history is preceded by zeros), as a continuous, never-reset code such as
+    /// GPS L5 CNAV's does at every message boundary.
+    pub fn encode_after(self, history: &[u8], bits: &[u8]) -> Vec<u8> {
+        let mut state = history.iter().fold(0usize, |s, &b| push_bit(s, b) >> 1);
         let mut out = Vec::with_capacity(2 * bits.len());
         for &bit in bits {
-            let w = (usize::from(bit & 1) << (K - 1)) | state;
+            let w = push_bit(state, bit);
             let (a, b) = self.outputs(w);
             out.extend([a, b]);
             state = w >> 1;
@@ -57,9 +65,23 @@ impl ConvK7 {
     /// path must end in the zero state; otherwise the best final state is taken. Returns
     /// one bit per symbol pair (tail bits included). An odd last symbol is ignored.
     pub fn decode_soft(self, soft: &[f32], terminated: bool) -> Vec<u8> {
+        let mut start = [f32::NEG_INFINITY; STATES];
+        start[0] = 0.0;
+        self.decode_from(start, soft, terminated)
+    }
+
+    /// Maximum-likelihood decoding of a window cut out of a continuous stream (soft pairs
+    /// G1, G2 as in [`Self::decode_soft`]): every start state is equally likely and the
+    /// best final state is taken. The first and last few bits of the window rest on fewer
+    /// symbols than the others; a caller that needs them as well protected decodes a
+    /// window reaching some constraint lengths beyond them on both sides.
+    pub fn decode_soft_window(self, soft: &[f32]) -> Vec<u8> {
+        self.decode_from([0.0; STATES], soft, false)
+    }
+
+    fn decode_from(self, start: [f32; STATES], soft: &[f32], terminated: bool) -> Vec<u8> {
         let steps = soft.len() / 2;
-        let mut metric = [f32::NEG_INFINITY; STATES];
-        metric[0] = 0.0;
+        let mut metric = start;
         let mut decisions = Vec::with_capacity(steps);
         let branches = self.branch_table();
         for pair in soft.chunks_exact(2) {
@@ -91,6 +113,11 @@ impl ConvK7 {
             })
         })
     }
+}
+
+/// The 7-bit window of the next input `bit` (bit 6) after the state `state`.
+fn push_bit(state: usize, bit: u8) -> usize {
+    (usize::from(bit & 1) << (K - 1)) | state
 }
 
 /// One add-compare-select step over all states: new metrics and, per next state, which
@@ -203,6 +230,59 @@ mod tests {
             }
             prop_assert_eq!(code.decode_soft(&soft, true), msg);
         }
+    }
+
+    /// A random-looking but fixed bit sequence (a 16-bit LFSR, x^16 + x^14 + x^13 + x^11 + 1).
+    fn lfsr_bits(n: usize) -> Vec<u8> {
+        let mut r: u16 = 0xACE1;
+        (0..n)
+            .map(|_| {
+                let b = (r ^ (r >> 2) ^ (r >> 3) ^ (r >> 5)) & 1;
+                r = (r >> 1) | (b << 15);
+                b as u8
+            })
+            .collect()
+    }
+
+    #[test]
+    fn encoding_after_a_history_continues_the_stream() {
+        let bits = lfsr_bits(400);
+        let whole = ConvK7::GPS_L5.encode(&bits);
+        for cut in [0, 1, 5, 6, 7, 123, 399] {
+            let tail = ConvK7::GPS_L5.encode_after(&bits[..cut], &bits[cut..]);
+            assert_eq!(tail, whole[2 * cut..], "cut at bit {cut}");
+        }
+        // Only the last six bits of the history matter.
+        let mut other = bits[..100].to_vec();
+        other[..94].iter_mut().for_each(|b| *b ^= 1);
+        assert_eq!(
+            ConvK7::GPS_L5.encode_after(&other, &bits[100..]),
+            whole[200..]
+        );
+        // By hand: after history 1 (state 100000), input 0 gives G1 = b_t-1 = 1 and
+        // G2 = 0 (G2 has no b_t-1 tap).
+        assert_eq!(ConvK7::GPS_L5.encode_after(&[1], &[0]), [1, 0]);
+    }
+
+    #[test]
+    fn a_window_of_a_continuous_stream_decodes_without_its_start_state() {
+        let code = ConvK7::GPS_L5;
+        let bits = lfsr_bits(1000);
+        let soft: Vec<f32> = code
+            .encode(&bits)
+            .iter()
+            .map(|&s| if s == 0 { 1.0 } else { -1.0 })
+            .collect();
+        // Error-free: every bit of the window, its edges included.
+        let window = &soft[2 * 300..2 * 700];
+        assert_eq!(code.decode_soft_window(window), bits[300..700]);
+        // One error in 15 symbols: the bits 35 or more from either edge come back.
+        let mut noisy = window.to_vec();
+        for s in noisy.iter_mut().skip(3).step_by(15) {
+            *s = -*s;
+        }
+        let got = code.decode_soft_window(&noisy);
+        assert_eq!(got[35..365], bits[335..665]);
     }
 
     #[test]

@@ -4,6 +4,7 @@ pub(crate) mod bds;
 pub mod conv_k7;
 pub mod crc24q;
 pub mod galileo_fnav;
+pub mod gps_cnav;
 pub mod gps_lnav;
 
 pub use bds::{BdsExtraFields, BdsNavEncoder, BdsNavError, BdsNavFormat, Klobuchar};
