@@ -23,8 +23,9 @@ pub enum Signal {
     /// synthesises nor tracks it ([`Signal::SYNTHESISED`]); it is read from other
     /// receivers' RINEX files and used by the relative-positioning chain.
     GpsL2,
-    /// GPS L5 on 1176.45 MHz, 10230 chips at 10.23 Mchip/s (IS-GPS-705 §3.3): observed
-    /// only (read from files, drawn at the observation level).
+    /// GPS L5 on 1176.45 MHz, 10230 chips at 10.23 Mchip/s (IS-GPS-705 §3.3): I5 with
+    /// CNAV and Q5 pilot, transmitted when a scenario chooses it
+    /// ([`Signal::TRANSMITTED`]); the bundled receiver does not track it yet.
     GpsL5,
     /// BeiDou B2I on 1207.14 MHz, 2046 chips at 2.046 Mchip/s (BDS-SIS-ICD-B2I-1.0 §4):
     /// observed only.
@@ -36,7 +37,8 @@ pub enum Signal {
     /// 1.023 Mchip/s, CBOC(6,1,1/11) (Galileo OS SIS ICD §2.3, §3.4): observed only.
     GalE1,
     /// Galileo E5a (E5a-I data with F/NAV, E5a-Q pilot) on 1176.45 MHz, 10230 chips at
-    /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): observed only.
+    /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): Galileo's transmitted signal
+    /// ([`Signal::TRANSMITTED`]); the bundled receiver does not track it yet.
     GalE5a,
 }
 
@@ -259,8 +261,8 @@ impl Signal {
 
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
-    /// L2 P(Y) carry LNAV. None for L5, whose CNAV (with its FEC and the 10-bit
-    /// Neumann-Hoffman code) SkyForge does not model, and for Galileo's I/NAV and F/NAV.
+    /// L2 P(Y) carry LNAV. None for the FEC-coded messages with pilots (L5 CNAV, Galileo
+    /// I/NAV and F/NAV), which the bundled receiver does not decode yet.
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),

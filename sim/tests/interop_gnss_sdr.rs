@@ -417,7 +417,6 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
     );
 }
 
-/// Issue #4's side-by-side bar on GPS L1 C/A (`interop_observables::side_by_side`).
 /// Acceptance (issue #34): GNSS-SDR 0.0.17 acquires and tracks SkyForge's Galileo E5a on
 /// its pilot, decodes F/NAV from E5a-I and fixes; the median 3D error of its fixes is
 /// under 5 m at the site of `interop-gal-static`, from at least 20 fixes (F/NAV needs a
@@ -425,9 +424,25 @@ fn gnss_sdr_tracks_decodes_d1_d2_and_fixes_on_interop_bds_static() {
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn gnss_sdr_decodes_fnav_and_fixes_on_interop_gal_static() {
+    pilot_signal_fixes("interop-gal-static", "gal-e5a", "F/NAV");
+}
+
+/// Acceptance (issue #34): GNSS-SDR 0.0.17 acquires SkyForge's GPS L5 on I5, tracks the
+/// Q5 pilot, decodes CNAV from I5 and fixes; the median 3D error of its fixes is under
+/// 5 m at the site of `interop-l5-static`, from at least 20 fixes.
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_decodes_cnav_and_fixes_on_interop_l5_static() {
+    pilot_signal_fixes("interop-l5-static", "gps-l5", "CNAV");
+}
+
+/// GNSS-SDR on the bundled static `scenario` (at 52 N 13 E, 100 m) recorded on `band`:
+/// at least 20 fixes, their median 3D error under 5 m; prints the satellites whose
+/// `message` ephemeris GNSS-SDR decoded.
+fn pilot_signal_fixes(scenario: &str, band: &str, message: &str) {
     let _turn = one_at_a_time();
     let tmp = tempfile::tempdir().unwrap();
-    let (out, log, nmea) = synth_and_receive(tmp.path(), "interop-gal-static", "gal-e5a");
+    let (out, log, nmea) = synth_and_receive(tmp.path(), scenario, band);
     let site = (52.0, 13.0, 100.0);
     let truth = ecef(site.0, site.1, site.2);
     let mut errors: Vec<f64> = fixes(&nmea)
@@ -440,15 +455,16 @@ fn gnss_sdr_decodes_fnav_and_fixes_on_interop_gal_static() {
         .copied()
         .unwrap_or(f64::INFINITY);
     println!(
-        "GNSS-SDR Galileo E5a: {}; median 3D error {median:.2} m",
+        "GNSS-SDR {band}: {}; median 3D error {median:.2} m",
         StaticFixes::at(&nmea, site)
     );
     let decoded = rinex_nav_satellites(&out);
-    println!("F/NAV ephemerides GNSS-SDR decoded: {decoded:?}");
+    println!("{message} ephemerides GNSS-SDR decoded: {decoded:?}");
     assert!(errors.len() >= 20, "{} fixes\n{log}", errors.len());
     assert!(median < 5.0, "median 3D error {median} m\n{log}");
 }
 
+/// Issue #4's side-by-side bar on GPS L1 C/A (`interop_observables::side_by_side`).
 #[test]
 #[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
 fn side_by_side_with_gnss_sdr_at_equal_loops_on_gps_l1ca() {

@@ -6,6 +6,7 @@ use super::transmitter::Transmitter;
 use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
+use skyforge_gnss::navmsg::gps_cnav::{CnavEncoder, CnavError, CnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_gnss::signal::Signal;
@@ -21,6 +22,8 @@ pub enum TransmitterError {
     Bds(#[from] BdsNavError),
     #[error("Galileo F/NAV: {0}")]
     Fnav(#[from] FnavError),
+    #[error("GPS CNAV: {0}")]
+    Cnav(#[from] CnavError),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
     NoSignal(SatId),
     #[error("{0} is not transmitted by SkyForge")]
@@ -39,6 +42,7 @@ pub fn transmitters(
         Signal::GpsL1Ca => gps_l1ca(ephs, start, &iono.gps),
         Signal::BdsB1I => bds_b1i(ephs, start, &iono.bds),
         Signal::GalE5a => gal_e5a(ephs, start),
+        Signal::GpsL5 => gps_l5(ephs, start, &iono.gps),
         other => Err(TransmitterError::NotTransmitted(other)),
     }
 }
@@ -98,6 +102,63 @@ pub fn bds_b1i(
 /// §5.1.3).
 const GAL_TIME_GRID_S: f64 = 60.0;
 
+/// Grid of CNAV toe and toc (s): their scale factor is 300 s (IS-GPS-705 Tables 20-I,
+/// 20-III).
+const CNAV_TIME_GRID_S: f64 = 300.0;
+
+/// The `system` ephemerides among `ephs` with toe and toc on the `grid_s` grid of their
+/// message: sets off it (the embedded constellations at any start) are re-expressed on it
+/// without moving the orbit or the clock.
+fn on_message_grid(
+    ephs: &[BroadcastEphemeris],
+    system: System,
+    grid_s: f64,
+) -> Vec<BroadcastEphemeris> {
+    ephs.iter()
+        .filter(|e| e.sat.system == system)
+        .map(|e| {
+            let on_grid = |t| system.on_grid(t, grid_s);
+            e.reexpressed(on_grid(e.toe), on_grid(e.toc))
+                .unwrap_or_else(|| e.clone())
+        })
+        .collect()
+}
+
+/// Leap seconds at `start`: GPST - UTC = TAI - UTC - 19 s (GST is aligned with GPST).
+fn gps_utc_leap_s(start: Epoch) -> i32 {
+    (start.leap_seconds(true).unwrap_or(19.0) - 19.0).round() as i32
+}
+
+/// GPS L5 transmitters (CNAV on I5, pilot on Q5) for the GPS ephemerides among `ephs`,
+/// broadcasting the Klobuchar coefficients `coeffs` in message type 30 and zero
+/// inter-signal corrections. Sets off the 300 s grid are re-expressed on it.
+pub fn gps_l5(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+    coeffs: &KlobucharCoeffs,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let gps = on_message_grid(ephs, System::Gps, CNAV_TIME_GRID_S);
+    let params = CnavParams {
+        iono: IonoParams {
+            alpha: coeffs.alpha,
+            beta: coeffs.beta,
+        },
+        utc: UtcParams::from_leap_seconds(start)?,
+        ..CnavParams::with_leap_seconds(gps_utc_leap_s(start))
+    };
+    // Symbols count from the GPS week before the start's, so that satellite times a light
+    // time before a start on a week boundary still lie after symbol 0.
+    let week = skyforge_orbits::time::gpst_week_sow(start)
+        .0
+        .saturating_sub(1);
+    gps.iter()
+        .map(|eph| {
+            let nav = CnavEncoder::new(eph, &params, week)?;
+            Transmitter::gps_l5(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+        })
+        .collect()
+}
+
 /// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
 /// among `ephs`. Sets off the 60 s grid (the embedded constellation at any start) are
 /// re-expressed on it without moving the orbit or the clock. GST is GPST here: the
@@ -106,17 +167,8 @@ pub fn gal_e5a(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
-    let gal: Vec<BroadcastEphemeris> = ephs
-        .iter()
-        .filter(|e| e.sat.system == System::Galileo)
-        .map(|e| {
-            let on_grid = |t| System::Galileo.on_grid(t, GAL_TIME_GRID_S);
-            e.reexpressed(on_grid(e.toe), on_grid(e.toc))
-                .unwrap_or_else(|| e.clone())
-        })
-        .collect();
-    // GPST - UTC = TAI - UTC - 19 s (GST is aligned with GPST).
-    let leap_s = (start.leap_seconds(true).unwrap_or(19.0) - 19.0).round() as i32;
+    let gal = on_message_grid(ephs, System::Galileo, GAL_TIME_GRID_S);
+    let leap_s = gps_utc_leap_s(start);
     let params = FnavParams {
         dt_ls_s: leap_s,
         dt_lsf_s: leap_s,

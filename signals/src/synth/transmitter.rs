@@ -9,7 +9,9 @@ use skyforge_gnss::codes::{
     galileo_e5a_q_secondary,
 };
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
+use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, GPS_L5_I_NH10, GPS_L5_Q_NH20, gps_l5_i, gps_l5_q};
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
+use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
 use skyforge_gnss::signal::Signal;
@@ -27,6 +29,10 @@ pub enum DataBits {
     /// CS20_1 per period (Galileo OS SIS ICD §3.4), symbol 0 at the encoder's GST week
     /// start.
     GalileoFnav(Box<FnavEncoder>),
+    /// GPS CNAV on L5 I5: 100 symbols/s after its FEC, 10 L5 periods per symbol, the
+    /// 10-chip Neumann-Hoffman code per period (IS-GPS-705 §3.3.2.2, §3.3.3.1.1), symbol 0
+    /// at the encoder's GPS week start.
+    GpsCnav(Box<CnavEncoder>),
 }
 
 impl DataBits {
@@ -34,6 +40,7 @@ impl DataBits {
     fn periods_per_bit(&self) -> u64 {
         match self {
             DataBits::GpsLnav(_) | DataBits::GalileoFnav(_) => 20,
+            DataBits::GpsCnav(_) => 10,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => 20,
                 BdsNavFormat::D2 => 2,
@@ -46,6 +53,7 @@ impl DataBits {
             DataBits::GpsLnav(lnav) => lnav.bit(b),
             DataBits::Bds(e) => e.bits(b, 1).first().copied().unwrap_or(0),
             DataBits::GalileoFnav(e) => e.symbol(b),
+            DataBits::GpsCnav(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1).
@@ -53,6 +61,7 @@ impl DataBits {
         match self {
             DataBits::Bds(e) if e.format() == BdsNavFormat::D1 => NH20[(p % 20) as usize],
             DataBits::GalileoFnav(_) => GALILEO_E5A_I_SECONDARY[(p % 20) as usize],
+            DataBits::GpsCnav(_) => GPS_L5_I_NH10[(p % 10) as usize],
             _ => 1,
         }
     }
@@ -148,6 +157,30 @@ impl Transmitter {
         })
     }
 
+    /// GPS L5: I5 with CNAV and the 10-chip NH code, Q5 pilot with the 20-chip NH code
+    /// (IS-GPS-705 §3.2.2, §3.3.2); chips and symbols count from the encoder's GPS week
+    /// start, which must not be after `start`. Both NH codes restart at every week start
+    /// (a whole number of their 10 and 20 ms cycles).
+    pub fn gps_l5(sat: SatId, nav: CnavEncoder, start: Epoch) -> Option<Self> {
+        let ns = (start - nav.week_start()).total_nanoseconds();
+        if ns < 0 {
+            return None;
+        }
+        Some(Self {
+            sat,
+            signal: Signal::GpsL5,
+            chip_rate_hz: GPS_L5_CHIP_RATE_HZ,
+            code: gps_l5_i(sat.prn)?,
+            data: DataBits::GpsCnav(Box::new(nav)),
+            pilot: Some(Pilot {
+                code: gps_l5_q(sat.prn)?,
+                secondary: GPS_L5_Q_NH20.to_vec(),
+            }),
+            start_whole_s: (ns / 1_000_000_000) as u64,
+            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+        })
+    }
+
     /// Whether the signal has a pilot component ([`Self::pilot_chip_signs`]).
     pub fn has_pilot(&self) -> bool {
         self.pilot.is_some()
@@ -160,15 +193,20 @@ impl Transmitter {
             DataBits::GpsLnav(lnav) => lnav.broadcast_ephemeris(),
             DataBits::Bds(nav) => nav.broadcast_ephemeris(),
             DataBits::GalileoFnav(nav) => nav.broadcast_ephemeris(),
+            DataBits::GpsCnav(nav) => nav.broadcast_ephemeris(),
         }
     }
 
     /// The Klobuchar coefficients the data broadcast (as quantised in the message), when
-    /// the message carries them (GPS LNAV).
+    /// the message carries them (GPS LNAV, CNAV).
     pub fn broadcast_iono(&self) -> Option<([f64; 4], [f64; 4])> {
         match &self.data {
             DataBits::GpsLnav(lnav) => {
                 let p = lnav.iono();
+                Some((p.alpha, p.beta))
+            }
+            DataBits::GpsCnav(cnav) => {
+                let p = cnav.iono();
                 Some((p.alpha, p.beta))
             }
             DataBits::Bds(_) | DataBits::GalileoFnav(_) => None,
@@ -246,5 +284,71 @@ fn spread_periods(
         let (from, to) = ((k - period * len) as usize, (stop - period * len) as usize);
         out.extend(code[from..to].iter().map(|&c| sign * c));
         k = stop;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hifitime::{Epoch, TimeScale};
+    use skyforge_gnss::navmsg::gps_cnav::CnavParams;
+    use skyforge_orbits::ephemeris::{System, nominal};
+
+    /// GPS L5 chips against a direct evaluation of IS-GPS-705 §3.3.2: I5 chip k of the
+    /// week is I5[k mod 10230] x NH10[period mod 10] x the CNAV symbol of its 10 ms, Q5
+    /// chip k is Q5[k mod 10230] x NH20[period mod 20]; the first symbol of a message is
+    /// the encoder's first symbol of that message.
+    #[test]
+    fn gps_l5_chips_follow_the_codes_the_nh_codes_and_the_cnav_symbols() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let eph = nominal::gps(start)
+            .into_iter()
+            .map(|e| {
+                let grid = |t| System::Gps.on_grid(t, 300.0);
+                e.reexpressed(grid(e.toe), grid(e.toc)).expect("on grid")
+            })
+            .next()
+            .expect("a GPS set");
+        let week = skyforge_orbits::time::gpst_week_sow(start).0 - 1;
+        let nav = CnavEncoder::new(&eph, &CnavParams::default(), week).expect("encoder");
+        let symbols = nav.clone();
+        let tx = Transmitter::gps_l5(eph.sat, nav, start).expect("L5");
+        assert!(tx.has_pilot());
+        let (i5, q5) = (
+            gps_l5_i(eph.sat.prn).unwrap(),
+            gps_l5_q(eph.sat.prn).unwrap(),
+        );
+        let len = i5.len() as u64;
+        // The scenario start is one week (604800 s) after symbol 0.
+        let (k_start, phase) = tx.chip_at(0.0);
+        assert_eq!((k_start, phase), (604_800 * 10_230_000, 0.0));
+        // Spans across symbol, NH and message edges (a message is 6 s, 600 symbols).
+        for k0 in [
+            k_start,
+            k_start + 6 * 10_230_000 - 5_000,
+            k_start + 123_456_789,
+        ] {
+            let count = 3 * len as usize;
+            let (mut data, mut pilot) = (Vec::new(), Vec::new());
+            tx.chip_signs(k0, count, &mut data);
+            tx.pilot_chip_signs(k0, count, &mut pilot);
+            for (j, (&d, &p)) in data.iter().zip(&pilot).enumerate() {
+                let k = k0 + j as u64;
+                let period = k / len;
+                let symbol = symbols.symbol(period / 10);
+                let expect_d = i5[(k % len) as usize]
+                    * GPS_L5_I_NH10[(period % 10) as usize]
+                    * (1 - 2 * symbol as i8);
+                let expect_p = q5[(k % len) as usize] * GPS_L5_Q_NH20[(period % 20) as usize];
+                assert_eq!((d, p), (expect_d, expect_p), "chip {k}");
+            }
+        }
+        let n = 604_800 / 6 + 1;
+        assert_eq!(symbols.symbol(600 * n), symbols.message_symbols(n)[0]);
+        assert_eq!(tx.broadcast_ephemeris(), symbols.broadcast_ephemeris());
+        assert_eq!(
+            tx.broadcast_iono(),
+            Some((symbols.iono().alpha, symbols.iono().beta))
+        );
     }
 }

@@ -41,6 +41,7 @@ pub use layout::{MESSAGE_SYMBOLS as CNAV_MESSAGE_SYMBOLS, layout as message_layo
 pub use params::CnavParams;
 pub use quant::Field;
 
+use super::gps_lnav::IonoParams;
 use eph::Fields;
 use hifitime::Epoch;
 use quant::{self as q};
@@ -146,6 +147,26 @@ impl CnavEncoder {
     /// = the three health bits, 3 h fit). The orbit and clock the signal must follow.
     pub fn broadcast_ephemeris(&self) -> BroadcastEphemeris {
         eph::to_ephemeris(&self.fields, self.sat, self.toe, self.toc)
+    }
+
+    /// The Klobuchar coefficients type 30 carries (quantised), the ones the signal must
+    /// follow for a receiver's broadcast correction to match.
+    pub fn iono(&self) -> IonoParams {
+        let si = |f: &Field| f.si_value(self.fields.get(f));
+        IonoParams {
+            alpha: [
+                si(&q::ALPHA[0]),
+                si(&q::ALPHA[1]),
+                si(&q::ALPHA[2]),
+                si(&q::ALPHA[3]),
+            ],
+            beta: [
+                si(&q::BETA[0]),
+                si(&q::BETA[1]),
+                si(&q::BETA[2]),
+                si(&q::BETA[3]),
+            ],
+        }
     }
 
     /// Message type of message `n` (message 0 starts at [`Self::week_start`]).

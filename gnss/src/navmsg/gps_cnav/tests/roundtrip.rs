@@ -214,4 +214,10 @@ fn type_30_and_33_parameters_come_back_from_the_messages() {
     assert_eq!((get("WNot"), get("WNLSF")), (i64::from(WEEK), 1929));
     assert_eq!((get("Delta tLS"), get("Delta tLSF")), (18, 18));
     assert_eq!(get("toe"), get("top"));
+    // iono() is what type 30 carries: the decoded coefficients exactly.
+    let sent = enc.iono();
+    for (k, (a, b)) in q::ALPHA.iter().zip(&q::BETA).enumerate() {
+        assert_eq!(sent.alpha[k], a.si_value(get(a.name)), "{}", a.name);
+        assert_eq!(sent.beta[k], b.si_value(get(b.name)), "{}", b.name);
+    }
 }
