@@ -1,0 +1,85 @@
+//! GPS L5 through the CLI: `synth` writes its recording, a GNSS-SDR configuration for it,
+//! the ephemerides as broadcast and L5 observation truth; the bundled receiver names the
+//! signal it does not track yet.
+
+mod support;
+
+/// The bundled static ground site with GPS alone on L5, 1 s long.
+fn scenario(dir: &std::path::Path) -> String {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../scenarios/bundled/ground-static.toml"),
+    )
+    .expect("bundled scenario");
+    let mut text = text
+        .replacen(
+            "[gnss.beidou]\nsource = \"embedded\"",
+            "[gnss.beidou]\nenabled = false",
+            1,
+        )
+        .replacen("duration_s = 3600.0", "duration_s = 1.0", 1);
+    text.push_str(
+        "\n[signal]\nsignals = [\"gps-l5\"]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n",
+    );
+    let path = dir.join("l5.toml");
+    std::fs::write(&path, text).expect("write scenario");
+    path.to_string_lossy().into_owned()
+}
+
+#[test]
+fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = scenario(dir.path());
+    let out = dir.path().join("out");
+    support::skyforge_ok(
+        &["synth", &path, "--out", out.to_str().unwrap()],
+        dir.path(),
+    );
+    assert!(!out.join("ant1.gps-l1ca.sigmf-data").exists());
+    let data = std::fs::metadata(out.join("ant1.gps-l5.sigmf-data")).expect("L5 recording");
+    // 1 s of complex 8-bit samples at 20.46 MHz.
+    assert_eq!(data.len(), 2 * 20_460_000);
+    let meta = std::fs::read_to_string(out.join("ant1.gps-l5.sigmf-meta")).expect("meta");
+    assert!(meta.contains("1176450000"), "{meta}");
+    let conf = std::fs::read_to_string(out.join("ant1.gps-l5.gnss-sdr.conf")).expect("conf");
+    for key in [
+        "Channels_L5.count=",
+        "Acquisition_L5.implementation=GPS_L5i_PCPS_Acquisition",
+        "Tracking_L5.implementation=GPS_L5_DLL_PLL_Tracking",
+        "Tracking_L5.track_pilot=true",
+        "TelemetryDecoder_L5.implementation=GPS_L5_Telemetry_Decoder",
+    ] {
+        assert!(conf.contains(key), "{key}");
+    }
+    assert!(!conf.contains("Channels_1C"), "{conf}");
+    // Every GPS satellite's ephemeris as CNAV carries it (toe on the 300 s grid), and L5
+    // observation truth under the reference code 5I.
+    let nav = std::fs::read_to_string(out.join("nav.rnx")).expect("nav");
+    let body = nav.split("END OF HEADER").nth(1).unwrap_or("");
+    let gps: Vec<&str> = body.lines().filter(|l| l.starts_with('G')).collect();
+    assert!(gps.len() >= 24, "{} GPS records", gps.len());
+    for l in gps {
+        let minute: u32 = l[17..19].trim().parse().expect("minute");
+        let second: u32 = l[20..22].trim().parse().expect("second");
+        assert!(minute % 5 == 0 && second == 0, "toc off the 300 s grid: {l}");
+    }
+    let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
+    assert!(obs.contains("G    4 C5I L5I D5I S5I"), "{obs}");
+    let meta = out.join("ant1.gps-l5.sigmf-meta");
+    let rx = dir.path().join("rx");
+    let o = support::skyforge(
+        &[
+            "receive",
+            meta.to_str().unwrap(),
+            "--out",
+            rx.to_str().unwrap(),
+        ],
+        dir.path(),
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("GPS L5, which the bundled receiver does not track yet"),
+        "{err}"
+    );
+}
