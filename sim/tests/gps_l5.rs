@@ -61,7 +61,10 @@ fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
     for l in gps {
         let minute: u32 = l[17..19].trim().parse().expect("minute");
         let second: u32 = l[20..22].trim().parse().expect("second");
-        assert!(minute % 5 == 0 && second == 0, "toc off the 300 s grid: {l}");
+        assert!(
+            minute % 5 == 0 && second == 0,
+            "toc off the 300 s grid: {l}"
+        );
     }
     let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("G    4 C5I L5I D5I S5I"), "{obs}");

@@ -22,6 +22,10 @@
 //!   received power on ground), from the nominal 29 600.318 km orbit: slant range
 //!   27 819 km, `L_fs` 185.28 dB, EIRP 28.28 dBW. The same EIRP serves E5a, whose minimum
 //!   (-155 dBW) it exceeds at its lower frequency.
+//! - GPS L5: -157.9 dBW on each of I5 and Q5, -154.9 dBW together (IS-GPS-705, minimum
+//!   received power, 0 dBic, >= 5 deg), 3.6 dB above L1 C/A: its own EIRP, 27.00 dBW
+//!   (`L_fs` 181.90 dB at 1176.45 MHz over the L1 C/A slant range). With L1 C/A's EIRP
+//!   it would arrive 1.1 dB below its minimum.
 //!
 //! Real satellites usually exceed the minimum by a few dB; raise the EIRP to model that.
 //!
@@ -32,8 +36,11 @@
 //! 170 K) make ~270 K. A 4 dB noise figure (438 K) gives ~540 K, 2.7 dB less C/N0; set
 //! `system_noise_temperature_k` to model a given receiver.
 
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GAL_E1_HZ, F_GPS_L1_HZ, WGS84_A_M};
+use skyforge_orbits::constants::{
+    C_MPS, F_BDS_B1I_HZ, F_GAL_E1_HZ, F_GPS_L1_HZ, F_GPS_L5_HZ, WGS84_A_M,
+};
 use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::nominal::{BDS_GSO_A_M, GAL_A_M, GPS_A_M};
 
@@ -46,6 +53,8 @@ pub const BDS_B1I_MIN_POWER_DBW: f64 = -163.0;
 /// Galileo OS SIS ICD §2.3.3 minimum received E1 power, E1-B and E1-C together (dBW),
 /// 0 dBi RHCP user antenna, >= 10 deg.
 pub const GAL_E1_MIN_POWER_DBW: f64 = -157.0;
+/// IS-GPS-705 minimum received L5 power, I5 and Q5 together (dBW), 0 dBic, >= 5 deg.
+pub const GPS_L5_MIN_POWER_DBW: f64 = -154.9;
 /// Elevation at which the GPS and BeiDou ICD minimum powers are specified (deg).
 pub const ICD_MIN_POWER_ELEVATION_DEG: f64 = 5.0;
 /// Elevation at which the Galileo ICD minimum powers are specified (deg).
@@ -60,6 +69,10 @@ pub struct LinkBudgetConfig {
     /// GPS L1 C/A EIRP towards the user (dBW); default [`default_gps_eirp_dbw`].
     #[serde(default = "default_gps_eirp_dbw")]
     pub gps_eirp_dbw: f64,
+    /// GPS L5 EIRP towards the user (dBW), I5 and Q5 together; default
+    /// [`default_gps_l5_eirp_dbw`].
+    #[serde(default = "default_gps_l5_eirp_dbw")]
+    pub gps_l5_eirp_dbw: f64,
     /// BeiDou B1I EIRP towards the user (dBW); default [`default_bds_eirp_dbw`].
     #[serde(default = "default_bds_eirp_dbw")]
     pub bds_eirp_dbw: f64,
@@ -80,6 +93,7 @@ impl Default for LinkBudgetConfig {
     fn default() -> Self {
         Self {
             gps_eirp_dbw: default_gps_eirp_dbw(),
+            gps_l5_eirp_dbw: default_gps_l5_eirp_dbw(),
             bds_eirp_dbw: default_bds_eirp_dbw(),
             gal_eirp_dbw: default_gal_eirp_dbw(),
             system_noise_temperature_k: default_system_noise_temperature_k(),
@@ -95,6 +109,17 @@ pub fn default_gps_eirp_dbw() -> f64 {
         GPS_L1CA_MIN_POWER_DBW,
         GPS_A_M,
         F_GPS_L1_HZ,
+        ICD_MIN_POWER_ELEVATION_DEG,
+    )
+}
+
+/// GPS L5 EIRP (dBW) that delivers [`GPS_L5_MIN_POWER_DBW`] to a 0 dBic ground antenna at
+/// 5 deg elevation from the nominal GPS orbit radius (about 27.0 dBW).
+pub fn default_gps_l5_eirp_dbw() -> f64 {
+    eirp_for_min_power_dbw(
+        GPS_L5_MIN_POWER_DBW,
+        GPS_A_M,
+        F_GPS_L5_HZ,
         ICD_MIN_POWER_ELEVATION_DEG,
     )
 }
@@ -155,6 +180,7 @@ impl LinkBudgetConfig {
     pub fn check(&self) -> Result<(), Invalid> {
         for (field, value) in [
             ("gps_eirp_dbw", self.gps_eirp_dbw),
+            ("gps_l5_eirp_dbw", self.gps_l5_eirp_dbw),
             ("bds_eirp_dbw", self.bds_eirp_dbw),
             ("gal_eirp_dbw", self.gal_eirp_dbw),
         ] {
@@ -181,14 +207,17 @@ impl LinkBudgetConfig {
         Ok(())
     }
 
-    /// C/N0 (dB-Hz) of a `system` signal over `range_m` at `carrier_hz` received with gain
-    /// `rx_gain_dbi`: `EIRP - L_fs(range, carrier) + G_rx - losses - 10 log10(k T_sys)`.
-    pub fn cn0_dbhz(&self, system: System, range_m: f64, carrier_hz: f64, rx_gain_dbi: f64) -> f64 {
-        let eirp_dbw = match system {
-            System::Gps => self.gps_eirp_dbw,
-            System::Beidou => self.bds_eirp_dbw,
-            System::Galileo => self.gal_eirp_dbw,
+    /// C/N0 (dB-Hz) of `signal` over `range_m` received with gain `rx_gain_dbi`:
+    /// `EIRP - L_fs(range, carrier) + G_rx - losses - 10 log10(k T_sys)`, with GPS L5's own
+    /// EIRP and each other signal its constellation's.
+    pub fn cn0_dbhz(&self, signal: Signal, range_m: f64, rx_gain_dbi: f64) -> f64 {
+        let eirp_dbw = match (signal, signal.system()) {
+            (Signal::GpsL5, _) => self.gps_l5_eirp_dbw,
+            (_, System::Gps) => self.gps_eirp_dbw,
+            (_, System::Beidou) => self.bds_eirp_dbw,
+            (_, System::Galileo) => self.gal_eirp_dbw,
         };
+        let carrier_hz = signal.carrier_hz();
         let n0_dbw_per_hz = 10.0 * (BOLTZMANN_J_PER_K * self.system_noise_temperature_k).log10();
         eirp_dbw - free_space_loss_db(range_m, carrier_hz) + rx_gain_dbi
             - self.losses_db
@@ -238,23 +267,31 @@ mod tests {
         // a^2 = r^2 + d^2 - 2 r d cos(95 deg): d^2 - 2 r cos d + r^2 - a^2 = 0.
         let d = r * cos_user + ((r * cos_user).powi(2) + a * a - r * r).sqrt();
         // -158.5 dBW received into N0 = -203.98 dBW/Hz: 45.5 dB-Hz.
-        let cn0 = lb.cn0_dbhz(System::Gps, d, F_GPS_L1_HZ, 0.0);
+        let cn0 = lb.cn0_dbhz(Signal::GpsL1Ca, d, 0.0);
         assert!((cn0 - 45.48).abs() < 0.02, "{cn0}");
         // Published GPS L1 C/A EIRP figures are around 26-27 dBW.
         assert!((25.0..28.0).contains(&lb.gps_eirp_dbw));
+        // L5 over the same range: -154.9 dBW -> 49.1 dB-Hz, 3.6 dB above L1 C/A.
+        let l5 = lb.cn0_dbhz(Signal::GpsL5, d, 0.0);
+        assert!((l5 - cn0 - 3.6).abs() < 1e-9, "{l5} vs {cn0}");
+        assert!(
+            (lb.gps_l5_eirp_dbw - 27.00).abs() < 0.005,
+            "{}",
+            lb.gps_l5_eirp_dbw
+        );
         // BDS GEO at 5 deg: -163 dBW -> 41.0 dB-Hz; gain and losses add linearly in dB.
         let d_geo = {
             let a = BDS_GSO_A_M;
             r * cos_user + ((r * cos_user).powi(2) + a * a - r * r).sqrt()
         };
-        let geo = lb.cn0_dbhz(System::Beidou, d_geo, F_BDS_B1I_HZ, 0.0);
+        let geo = lb.cn0_dbhz(Signal::BdsB1I, d_geo, 0.0);
         assert!((geo - 40.98).abs() < 0.02, "{geo}");
         let lossy = LinkBudgetConfig {
             losses_db: 2.0,
             system_noise_temperature_k: 580.0,
             ..lb
         };
-        let worse = lossy.cn0_dbhz(System::Beidou, d_geo, F_BDS_B1I_HZ, 3.0);
+        let worse = lossy.cn0_dbhz(Signal::BdsB1I, d_geo, 3.0);
         assert!((worse - (geo + 3.0 - 2.0 - 10.0 * 2f64.log10())).abs() < 1e-9);
     }
 

@@ -81,12 +81,7 @@ impl LinkTerms<'_> {
                 .link_budget
                 .as_ref()
                 .map_or(self.signal.cn0_dbhz, |b| {
-                    b.cn0_dbhz(
-                        sat.system,
-                        g.range_m,
-                        carrier_hz,
-                        antenna.gain_dbi_at(az_ant, el_ant),
-                    )
+                    b.cn0_dbhz(signal, g.range_m, antenna.gain_dbi_at(az_ant, el_ant))
                 })
         });
         let end = LinkEnd::from_geometry(g, cn0_dbhz)?;
