@@ -3,6 +3,7 @@
 pub(crate) mod bds;
 pub mod conv_k7;
 pub mod crc24q;
+pub mod field;
 pub mod galileo_fnav;
 pub mod gps_cnav;
 pub mod gps_lnav;

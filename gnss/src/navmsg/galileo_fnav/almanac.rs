@@ -110,9 +110,9 @@ fn satellite(e: &BroadcastEphemeris, t0a: Epoch) -> Option<[i64; 11]> {
 fn quantise(f: &Field, v: f64) -> Option<i64> {
     let angle = [q::ALM_OMEGA.name, q::ALM_OMEGA0.name, q::ALM_M0.name].contains(&f.name);
     if angle {
-        f.quantise_angle("", v)
+        f.quantise_angle(v)
     } else {
-        f.quantise("", v)
+        f.quantise(v)
     }
     .ok()
 }

@@ -4,6 +4,7 @@
 use super::quant::{self as q, Field};
 use super::time::{GstTime, gst_time};
 use super::{FnavError, FnavParams};
+pub(super) use crate::navmsg::field::Fields;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, NavMessage, OrbitClass,
@@ -15,38 +16,6 @@ use skyforge_orbits::ephemeris::{
 const FIT_INTERVAL_S: f64 = 4.0 * 3600.0;
 /// toe and toc grid (s): the LSB of t0e and t0c.
 pub(super) const T_REF_GRID_S: u64 = 60;
-
-/// Raw values by field (the field names of page types 1-4 are unique).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub(super) struct Fields(Vec<(&'static str, i64)>);
-
-impl Fields {
-    pub(super) fn get(&self, f: &Field) -> i64 {
-        self.0
-            .iter()
-            .find(|(n, _)| *n == f.name)
-            .map_or(0, |&(_, v)| v)
-    }
-
-    pub(super) fn set(&mut self, f: &Field, v: i64) {
-        match self.0.iter_mut().find(|(n, _)| *n == f.name) {
-            Some(slot) => slot.1 = v,
-            None => self.0.push((f.name, v)),
-        }
-    }
-
-    /// The values of `layout`'s fields, spare fields 0.
-    pub(super) fn values_for(&self, layout: &[Field]) -> Vec<i64> {
-        layout.iter().map(|f| self.get(f)).collect()
-    }
-
-    /// Store the raw values `values` of `layout` (a received page).
-    pub(super) fn absorb(&mut self, layout: &[Field], values: &[i64]) {
-        for (f, &v) in layout.iter().zip(values) {
-            self.set(f, v);
-        }
-    }
-}
 
 /// E5a health bits in [`BroadcastEphemeris::health`]: the RINEX 3 Galileo SV health
 /// layout (E5a DVS bit 3, E5a HS bits 4-5).
@@ -114,13 +83,28 @@ pub(super) fn quantise(
         (&q::CIS, h.cis),
     ];
     for (field, v) in plain {
-        f.set(field, field.quantise(sat, v)?);
+        f.set(
+            field,
+            field
+                .quantise(v)
+                .map_err(|e| FnavError::out_of_range(sat, e))?,
+        );
     }
     for (field, v) in [(&q::M0, o.m0), (&q::OMEGA0, o.omega0), (&q::OMEGA, o.omega)] {
-        f.set(field, field.quantise_angle(sat, v)?);
+        f.set(
+            field,
+            field
+                .quantise_angle(v)
+                .map_err(|e| FnavError::out_of_range(sat, e))?,
+        );
     }
     for (field, v) in params.values() {
-        f.set(field, field.quantise(sat, v)?);
+        f.set(
+            field,
+            field
+                .quantise(v)
+                .map_err(|e| FnavError::out_of_range(sat, e))?,
+        );
     }
     Ok(f)
 }

@@ -143,6 +143,19 @@ pub enum FnavError {
     },
 }
 
+impl FnavError {
+    /// `sat`'s value that did not fit its field.
+    fn out_of_range(sat: &str, e: crate::navmsg::field::OutOfRange) -> Self {
+        Self::FieldOutOfRange {
+            sat: sat.to_string(),
+            field: e.field,
+            value: e.value,
+            min: e.min,
+            max: e.max,
+        }
+    }
+}
+
 /// The channel symbols of one satellite's F/NAV message, counted from the start of GST
 /// week [`Self::week`] (symbol 0 is the first sync symbol of a frame's first page).
 #[derive(Debug, Clone, PartialEq)]

@@ -8,95 +8,9 @@
 //! below is already in radians: 1 semicircle = pi rad); a value outside its field is an
 //! error naming the field, never a silent saturation.
 
-use super::FnavError;
+pub use super::super::field::Field;
+pub(crate) use super::super::field::{Lsb, field};
 use std::f64::consts::PI;
-
-/// How a raw field value converts to SI units.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Lsb {
-    /// An integer (counts, flags, indices): LSB 1.
-    Count,
-    /// LSB = the given value (s, or s for time fields).
-    Value(f64),
-    /// LSB = 2^n (s, s/s, m, m^1/2, rad for harmonic terms, dimensionless).
-    Pow2(i32),
-    /// LSB = 2^n semicircles (or semicircles/s), converted to rad.
-    Semi(i32),
-}
-
-/// One field of a page: name as in the ICD, width and signedness, scale.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Field {
-    pub name: &'static str,
-    pub bits: u32,
-    pub signed: bool,
-    pub(super) lsb: Lsb,
-}
-
-impl Field {
-    /// The LSB in SI units (rad for angles).
-    pub fn lsb_si(&self) -> f64 {
-        match self.lsb {
-            Lsb::Count => 1.0,
-            Lsb::Value(v) => v,
-            Lsb::Pow2(n) => 2f64.powi(n),
-            Lsb::Semi(n) => PI * 2f64.powi(n),
-        }
-    }
-
-    /// Smallest and largest raw value.
-    pub fn raw_range(&self) -> (i64, i64) {
-        if self.signed {
-            (-(1i64 << (self.bits - 1)), (1i64 << (self.bits - 1)) - 1)
-        } else {
-            (0, (1i64 << self.bits) - 1)
-        }
-    }
-
-    /// The raw value in SI units.
-    pub fn si_value(&self, raw: i64) -> f64 {
-        raw as f64 * self.lsb_si()
-    }
-
-    /// round(value / LSB), refused outside the field's range.
-    pub(super) fn quantise(&self, sat: &str, value: f64) -> Result<i64, FnavError> {
-        let lsb = self.lsb_si();
-        let (min, max) = self.raw_range();
-        let n = (value / lsb).round();
-        if n.is_finite() && n >= min as f64 && n <= max as f64 {
-            Ok(n as i64)
-        } else {
-            Err(FnavError::FieldOutOfRange {
-                sat: sat.to_string(),
-                field: self.name,
-                value,
-                min: min as f64 * lsb,
-                max: max as f64 * lsb,
-            })
-        }
-    }
-
-    /// An angle (rad) wrapped to [-pi, pi) first, on a field spanning the full circle.
-    pub(super) fn quantise_angle(&self, sat: &str, rad: f64) -> Result<i64, FnavError> {
-        if !rad.is_finite() {
-            return self.quantise(sat, rad);
-        }
-        let half = 1i64 << (self.bits - 1);
-        let wrapped = rad - 2.0 * PI * (rad / (2.0 * PI)).round();
-        let n = (wrapped / self.lsb_si()).round() as i64;
-        // +pi rounds to +2^(bits-1), the same angle as -2^(bits-1).
-        Ok(if n >= half { n - 2 * half } else { n })
-    }
-}
-
-const fn field(name: &'static str, bits: u32, signed: bool, lsb: Lsb) -> Field {
-    Field {
-        name,
-        bits,
-        signed,
-        lsb,
-    }
-}
 
 /// Page type (6 bits).
 pub const PAGE_TYPE: Field = field("Type", 6, false, Lsb::Count);

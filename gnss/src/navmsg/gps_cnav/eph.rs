@@ -10,6 +10,7 @@
 
 use super::quant::{self as q, Field, OutOfRange};
 use super::{CnavError, CnavParams};
+pub(super) use crate::navmsg::field::Fields;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements, NavMessage, OrbitClass,
@@ -27,39 +28,6 @@ pub const T_REF_GRID_S: u64 = 300;
 const FIT_INTERVAL_S: f64 = 3.0 * 3600.0;
 /// Nanoseconds per second.
 const NS: i128 = 1_000_000_000;
-
-/// Raw values by field (the field names of types 10, 11, 30 and 33 are unique, toe and
-/// the clock block shared where they repeat).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub(super) struct Fields(Vec<(&'static str, i64)>);
-
-impl Fields {
-    pub(super) fn get(&self, f: &Field) -> i64 {
-        self.0
-            .iter()
-            .find(|(n, _)| *n == f.name)
-            .map_or(0, |&(_, v)| v)
-    }
-
-    pub(super) fn set(&mut self, f: &Field, v: i64) {
-        match self.0.iter_mut().find(|(n, _)| *n == f.name) {
-            Some(slot) => slot.1 = v,
-            None => self.0.push((f.name, v)),
-        }
-    }
-
-    /// The values of `fields`, reserved and unset fields 0.
-    pub(super) fn values_for<'a>(&self, fields: impl Iterator<Item = &'a Field>) -> Vec<i64> {
-        fields.map(|f| self.get(f)).collect()
-    }
-
-    /// Store the raw values `values` of `fields` (a received message's payload).
-    pub(super) fn absorb(&mut self, fields: &[Field], values: &[i64]) {
-        for (f, &v) in fields.iter().zip(values) {
-            self.set(f, v);
-        }
-    }
-}
 
 /// A reference time on the 300 s grid: its GPS week and seconds of week, or the error.
 pub(super) fn on_grid(sat: &str, field: &Field, t: Epoch) -> Result<(u32, u64), CnavError> {
