@@ -20,7 +20,7 @@ pub enum Signal {
     BdsB1I,
     /// GPS L2 on 1227.60 MHz, as real geodetic receivers record it (phase `L2`, P(Y) code
     /// `P2` tracked semi-codelessly or L2C code `C2`): observed only. SkyForge neither
-    /// synthesises nor tracks it ([`Signal::SYNTHESISED`]); it is read from other
+    /// synthesises nor tracks it ([`Signal::TRACKED`]); it is read from other
     /// receivers' RINEX files and used by the relative-positioning chain.
     GpsL2,
     /// GPS L5 on 1176.45 MHz, 10230 chips at 10.23 Mchip/s (IS-GPS-705 §3.3): I5 with
@@ -113,16 +113,17 @@ impl Signal {
         Signal::GalE5a,
     ];
 
-    /// The signals SkyForge synthesises, records (SigMF) and tracks: one per constellation.
-    pub const SYNTHESISED: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
+    /// The signals the bundled receiver tracks (SkyForge transmits them too): one per
+    /// constellation.
+    pub const TRACKED: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
 
-    /// Whether SkyForge synthesises and tracks the signal ([`Signal::SYNTHESISED`]).
-    pub fn is_synthesised(self) -> bool {
-        Self::SYNTHESISED.contains(&self)
+    /// Whether the bundled receiver tracks the signal ([`Signal::TRACKED`]).
+    pub fn is_tracked(self) -> bool {
+        Self::TRACKED.contains(&self)
     }
 
     /// The signals SkyForge can transmit at the sample level: the tracked ones
-    /// ([`Signal::SYNTHESISED`]) and those only outside receivers track so far (Galileo
+    /// ([`Signal::TRACKED`]) and those only outside receivers track so far (Galileo
     /// E5a, GPS L5). A scenario's `[signal] signals` chooses among them.
     pub const TRANSMITTED: [Signal; 4] = [
         Signal::GpsL1Ca,
@@ -274,19 +275,19 @@ impl Signal {
         }
     }
 
-    /// The synthesised signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of
+    /// The tracked signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of
     /// `carrier_hz` (a recording's signal).
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
-        Self::SYNTHESISED
+        Self::TRACKED
             .into_iter()
             .find(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ)
     }
 
-    /// The only synthesised signal whose carrier lies inside the band recorded about
+    /// The only tracked signal whose carrier lies inside the band recorded about
     /// `centre_hz` (complex: `|carrier - centre| < fs / 2`), or `None` when none or several
     /// do.
     pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
-        let mut inside = Self::SYNTHESISED
+        let mut inside = Self::TRACKED
             .into_iter()
             .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0);
         match (inside.next(), inside.next()) {
@@ -295,10 +296,10 @@ impl Signal {
         }
     }
 
-    /// The synthesised signal named by a `.<tag>` component of a recording's file name
+    /// The tracked signal named by a `.<tag>` component of a recording's file name
     /// (`ant1.gps-l1ca.sigmf-meta`).
     pub fn from_file_name(name: &str) -> Option<Self> {
-        Self::named_in(name, Self::SYNTHESISED)
+        Self::named_in(name, Self::TRACKED)
     }
 
     /// Any signal of [`Signal::ALL`] named by a `.<tag>` component of `name`, tracked or
@@ -348,7 +349,7 @@ mod tests {
     fn codes_carriers_and_periods_follow_the_icds() {
         assert_eq!(Signal::GpsL1Ca.code(1).unwrap().len(), 1023);
         assert_eq!(Signal::BdsB1I.code(1).unwrap().len(), 2046);
-        for s in Signal::SYNTHESISED {
+        for s in Signal::TRACKED {
             assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
         }
         assert!(Signal::GpsL2.code(1).is_err());
@@ -409,7 +410,7 @@ mod tests {
         assert!((Signal::BdsB3I.carrier_hz() - 1240.0 * 1.023e6).abs() < 1e-3);
         assert!((Signal::GpsL5.wavelength_m() - 0.254_828).abs() < 1e-6);
         for s in [Signal::GpsL5, Signal::BdsB2I, Signal::BdsB3I] {
-            assert!(!s.is_synthesised());
+            assert!(!s.is_tracked());
             assert!(s.code(6).is_err());
             assert!((s.code_period_s() - 1e-3).abs() < 1e-15, "{s}");
             assert_eq!(Signal::from_carrier_hz(s.carrier_hz()), None);
@@ -428,8 +429,8 @@ mod tests {
     /// L2 is read from files, never synthesised: no recording is identified as L2.
     #[test]
     fn gps_l2_is_observed_only() {
-        assert!(!Signal::GpsL2.is_synthesised());
-        assert!(Signal::SYNTHESISED.iter().all(|s| s.is_synthesised()));
+        assert!(!Signal::GpsL2.is_tracked());
+        assert!(Signal::TRACKED.iter().all(|s| s.is_tracked()));
         assert_eq!(Signal::GpsL2.carrier_hz(), 120.0 * 10.23e6);
         assert!((Signal::GpsL2.wavelength_m() - 0.244_210).abs() < 1e-6);
         assert_eq!(

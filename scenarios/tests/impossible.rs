@@ -310,7 +310,7 @@ fn sample_rate_below_the_signal_bandwidth() {
         "sample_rate_hz = 3.0e6",
         "3.0e6",
     );
-    assert!(err.to_string().contains("BeiDou B1I"), "{err}");
+    assert!(err.to_string().contains("BDS B1I"), "{err}");
     // GPS alone is fine at 3 Msps; below the C/A main lobe it is not.
     let gps_only = replace(
         &text,

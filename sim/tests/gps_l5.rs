@@ -62,7 +62,7 @@ fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
         let minute: u32 = l[17..19].trim().parse().expect("minute");
         let second: u32 = l[20..22].trim().parse().expect("second");
         assert!(
-            minute % 5 == 0 && second == 0,
+            minute.is_multiple_of(5) && second == 0,
             "toc off the 300 s grid: {l}"
         );
     }

@@ -273,7 +273,7 @@ fn observed_only_signals_outside_the_observation_level_are_refused() {
         (
             "synthesised",
             "\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gps-l1ca\"]\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.002\ncode_m = 0.4\n",
-            "is synthesised",
+            "is tracked by the bundled receiver or transmitted",
         ),
         (
             "unknown",

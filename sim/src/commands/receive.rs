@@ -29,7 +29,7 @@ fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
         .map(str::parse::<Signal>)
         .transpose()
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
-    if let Some(s) = signal.filter(|s| !s.is_synthesised()) {
+    if let Some(s) = signal.filter(|s| !s.is_tracked()) {
         return Err(BadInput(format!(
             "--signal {}: read from observation files only, not tracked (allowed: gps-l1ca, bds-b1i)",
             s.tag()
