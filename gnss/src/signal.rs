@@ -137,6 +137,12 @@ impl Signal {
         Self::TRANSMITTED.contains(&self)
     }
 
+    /// Whether the signal has a dataless pilot component beside its data component (GPS
+    /// L5's Q5, Galileo E1-C and E5a-Q).
+    pub fn has_pilot(self) -> bool {
+        matches!(self, Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a)
+    }
+
     /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
     pub fn name(self) -> &'static str {
         match self {

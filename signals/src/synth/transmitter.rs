@@ -313,7 +313,7 @@ mod tests {
         let nav = CnavEncoder::new(&eph, &CnavParams::default(), week).expect("encoder");
         let symbols = nav.clone();
         let tx = Transmitter::gps_l5(eph.sat, nav, start).expect("L5");
-        assert!(tx.has_pilot());
+        assert!(tx.has_pilot() && Signal::GpsL5.has_pilot());
         let (i5, q5) = (
             gps_l5_i(eph.sat.prn).unwrap(),
             gps_l5_q(eph.sat.prn).unwrap(),

@@ -2,6 +2,7 @@
 //! without writing anything.
 
 use skyforge_formats::truth::size_bound;
+use skyforge_gnss::signal::Signal;
 use skyforge_scenarios::Scenario;
 use skyforge_signals::synth::Budget;
 use skyforge_signals::synth::SynthSession;
@@ -12,6 +13,12 @@ use skyforge_signals::synth::recording_name;
 // assumed: issue #14's end-to-end figure on this project's 2-core VM writing ci16 to disk
 // (5.7e8-5.9e8 per CPU-second, BENCHMARKS.md); other machines differ, hence "about".
 const CHANNEL_SAMPLES_PER_CPU_S: f64 = 5.7e8;
+/// Output samples (one complex sample of one recording: noise, filter, quantisation,
+/// disk) per CPU-second, the cost beside the channel-samples.
+// assumed: session 27's GPS L1 C/A run of 10 s at 20.46 Msps (BENCHMARKS.md, "GPS L5
+// beside GPS L1 C/A"): 12.7 CPU-s for 2.46e9 channel-samples and 2.05e8 output samples;
+// less 4.3 s for the channel-samples at 5.7e8 per CPU-second, 8.4 s: 2.4e7 per CPU-second.
+const OUTPUT_SAMPLES_PER_CPU_S: f64 = 2.4e7;
 
 /// RINEX observation bytes per satellite and epoch, at most (one record line).
 const RINEX_BYTES_PER_RECORD: u64 = 80;
@@ -61,38 +68,55 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
         human(b.memory_bytes)
     );
     if session.renders_samples() {
-        let work = channel_samples(scenario, session);
-        let seconds = work / CHANNEL_SAMPLES_PER_CPU_S / threads as f64;
+        let work = channel_samples(scenario, session, |_| 1.0);
+        // A signal with a pilot mixes two components per path.
+        let components =
+            channel_samples(scenario, session, |s| if s.has_pilot() { 2.0 } else { 1.0 });
+        let outputs = (b.recordings as f64)
+            * session.world().duration_s
+            * session.signal_config().sample_rate_hz;
+        let cpu_s = components / CHANNEL_SAMPLES_PER_CPU_S + outputs / OUTPUT_SAMPLES_PER_CPU_S;
         println!(
             "time       at most about {} to render ({work:.3e} channel-samples: every \
-             satellite at every antenna as if always visible, each reflected path one more; \
-             at {CHANNEL_SAMPLES_PER_CPU_S:.1e} per CPU-second, measured on a 2-core VM, \
+             satellite at every antenna as if always visible, each reflected path one more, \
+             a pilot's component one more; at {CHANNEL_SAMPLES_PER_CPU_S:.1e} per \
+             CPU-second, plus {outputs:.3e} output samples at \
+             {OUTPUT_SAMPLES_PER_CPU_S:.1e} per CPU-second; measured on a 2-core VM, \
              BENCHMARKS.md)",
-            duration(seconds)
+            duration(cpu_s / threads as f64)
         );
     }
 }
 
-/// Paths mixed over the run, times samples: per band, its sample rate x the duration x,
-/// for every antenna and satellite of the band, the direct path and the reflected paths
-/// that apply to the link.
-fn channel_samples(scenario: &Scenario, session: &SynthSession<'_>) -> f64 {
+/// Paths mixed over the run, times samples, each band's weighted by `weight` of its
+/// signal: per band, its sample rate x the duration x, for every antenna and satellite of
+/// the band, the direct path and the reflected paths that apply to the link.
+fn channel_samples(
+    scenario: &Scenario,
+    session: &SynthSession<'_>,
+    weight: impl Fn(Signal) -> f64,
+) -> f64 {
     let sats = session.satellites();
     let multipath = &scenario.errors.multipath;
     let samples = session.world().duration_s * session.signal_config().sample_rate_hz;
-    let paths: usize = session
+    let paths: f64 = session
         .bands()
         .iter()
-        .flat_map(|band| &sats[band.first..band.first + band.count])
-        .flat_map(|&sat| {
-            session
-                .world()
-                .antennas
+        .map(|band| {
+            let paths: usize = sats[band.first..band.first + band.count]
                 .iter()
-                .map(move |ant| 1 + multipath.paths_of(&ant.name, sat))
+                .flat_map(|&sat| {
+                    session
+                        .world()
+                        .antennas
+                        .iter()
+                        .map(move |ant| 1 + multipath.paths_of(&ant.name, sat))
+                })
+                .sum();
+            weight(band.signal) * paths as f64
         })
         .sum();
-    samples * paths as f64
+    samples * paths
 }
 
 /// Seconds as a human reads them: seconds, minutes, hours or days.
