@@ -9,6 +9,7 @@ use skyforge_orbits::constants::{
     F_BDS_B1I_HZ, F_BDS_B2I_HZ, F_BDS_B3I_HZ, F_GAL_E1_HZ, F_GAL_E5A_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ,
     F_GPS_L5_HZ,
 };
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, NavMessage};
 use std::str::FromStr;
 
 /// A GNSS signal.
@@ -135,6 +136,34 @@ impl Signal {
     /// Whether SkyForge can transmit the signal ([`Signal::TRANSMITTED`]).
     pub fn is_transmitted(self) -> bool {
         Self::TRANSMITTED.contains(&self)
+    }
+
+    /// The group delay (s) the navigation message `eph` broadcasts for this signal: the
+    /// signal's own clock is the broadcast polynomial minus it.
+    /// - GPS L1 C/A: TGD (IS-GPS-200 20.3.3.3.3.2: (dt_SV)L1 = dt_SV - TGD).
+    /// - GPS L5 I5: TGD - ISC_L5I5 (IS-GPS-705, the inter-signal corrections of message
+    ///   type 30); SkyForge's CNAV broadcasts ISC_L5I5 = 0, so TGD.
+    /// - BeiDou B1I: TGD1 (BDS-SIS-ICD-B1I-3.0 5.2.4.10).
+    /// - Galileo E5a: (f_E1 / f_E5a)^2 BGD(E1,E5a) (Galileo OS SIS ICD §5.1.5), from F/NAV's
+    ///   `tgd_s` or I/NAV's `tgd2_s`.
+    ///
+    /// 0 for a signal of another system than `eph`'s, and for the observed-only signals.
+    pub fn broadcast_group_delay_s(self, eph: &BroadcastEphemeris) -> f64 {
+        if eph.sat.system != self.system() {
+            return 0.0;
+        }
+        let c = &eph.clock;
+        match self {
+            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I => c.tgd_s,
+            Signal::GalE5a => {
+                let bgd = match eph.message {
+                    NavMessage::GalileoInav => c.tgd2_s,
+                    _ => c.tgd_s,
+                };
+                (F_GAL_E1_HZ / F_GAL_E5A_HZ).powi(2) * bgd
+            }
+            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I | Signal::GalE1 => 0.0,
+        }
     }
 
     /// Whether the signal has a dataless pilot component beside its data component (GPS
@@ -446,5 +475,29 @@ mod tests {
         assert_eq!(Signal::from_carrier_hz(1227.60e6), None);
         assert_eq!(Signal::in_band(1227.60e6, 4e6), None);
         assert_eq!(Signal::from_file_name("ant1.gps-l2.sigmf-meta"), None);
+    }
+    /// Each signal's group delay from its message's fields: GPS and BeiDou take TGD / TGD1
+    /// as broadcast; Galileo E5a scales BGD(E1,E5a) by (1575.42 / 1176.45)^2 = 1.79327,
+    /// from F/NAV's first group delay or I/NAV's second; another system's set gives 0.
+    #[test]
+    fn group_delays_follow_each_message() {
+        use skyforge_orbits::ephemeris::nominal;
+        let start = hifitime::Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);
+        let mut gps = nominal::gps(start).remove(0);
+        gps.clock.tgd_s = -4.0e-9;
+        assert_eq!(Signal::GpsL1Ca.broadcast_group_delay_s(&gps), -4.0e-9);
+        assert_eq!(Signal::GpsL5.broadcast_group_delay_s(&gps), -4.0e-9);
+        assert_eq!(Signal::BdsB1I.broadcast_group_delay_s(&gps), 0.0);
+        let mut gal = nominal::galileo(start).remove(0);
+        gal.clock.tgd_s = 2.0e-9;
+        gal.clock.tgd2_s = 3.0e-9;
+        let ratio = (154.0f64 / 115.0).powi(2);
+        gal.message = NavMessage::GalileoFnav;
+        let fnav = Signal::GalE5a.broadcast_group_delay_s(&gal);
+        assert!((fnav - ratio * 2.0e-9).abs() < 1e-20, "{fnav}");
+        gal.message = NavMessage::GalileoInav;
+        let inav = Signal::GalE5a.broadcast_group_delay_s(&gal);
+        assert!((inav - ratio * 3.0e-9).abs() < 1e-20, "{inav}");
+        assert_eq!(Signal::GalE1.broadcast_group_delay_s(&gal), 0.0);
     }
 }

@@ -42,6 +42,16 @@ pub struct LinkEnd {
 }
 
 impl LinkEnd {
+    /// The link end with the satellite clock of a signal whose broadcast group delay is
+    /// `group_delay_s`: the signal's clock is the broadcast polynomial minus it
+    /// ([`skyforge_gnss::signal::Signal::broadcast_group_delay_s`]), for code and carrier.
+    pub fn with_group_delay(self, group_delay_s: f64) -> Self {
+        Self {
+            sat_clock_s: self.sat_clock_s - group_delay_s,
+            ..self
+        }
+    }
+
     /// The link end of a geometry-truth link at `cn0_dbhz` with no error terms yet, `None`
     /// when not visible.
     pub fn from_geometry(g: &LinkGeometry, cn0_dbhz: f64) -> Option<Self> {

@@ -544,6 +544,10 @@ impl<'a> SynthSession<'a> {
             multipath: &self.errors.multipath,
             antennas: world.antennas,
         };
+        let group_delays: Vec<f64> = (self.transmitters.iter())
+            .zip(&self.broadcast)
+            .map(|(t, eph)| t.signal.broadcast_group_delay_s(eph))
+            .collect();
         let store = EphemerisStore::new(self.broadcast, world.origin);
         let sats: Vec<SatId> = self.transmitters.iter().map(|t| t.sat).collect();
         let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
@@ -552,6 +556,7 @@ impl<'a> SynthSession<'a> {
             antennas: world.antennas,
             bands: &self.bands,
             sats: &sats,
+            group_delays: &group_delays,
             terms,
             synths: &mut synths,
             start_state: None,
@@ -580,6 +585,8 @@ struct Running<'r, 't, 's> {
     antennas: &'r [Antenna],
     bands: &'r [Band],
     sats: &'r [SatId],
+    /// Each transmitter's broadcast group delay (s), [`Band::first`]-indexed like `sats`.
+    group_delays: &'r [f64],
     terms: LinkTerms<'r>,
     synths: &'r mut [Synthesiser<'t>],
     start_state: Option<(Vec3, Vec3)>,
@@ -622,15 +629,17 @@ impl Running<'_, '_, '_> {
                 .map(|l| {
                     let (a, s) = (l / band.count, band.first + l % band.count);
                     let sat = self.sats[s];
-                    self.terms.link_end(
-                        chunk.t_s[k],
-                        sow(sat.system),
-                        a,
-                        &at_antenna[a],
-                        sat,
-                        band.signal,
-                        chunk.link(k, a, s),
-                    )
+                    self.terms
+                        .link_end(
+                            chunk.t_s[k],
+                            sow(sat.system),
+                            a,
+                            &at_antenna[a],
+                            sat,
+                            band.signal,
+                            chunk.link(k, a, s),
+                        )
+                        .map(|end| end.with_group_delay(self.group_delays[s]))
                 })
                 .collect();
             let samples = &mut *self.sinks.samples;

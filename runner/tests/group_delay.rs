@@ -1,0 +1,97 @@
+//! The signal follows each satellite's clock as the user of that signal sees it: the
+//! broadcast polynomial minus the broadcast group delay (GPS L1 C/A: TGD, IS-GPS-200
+//! 20.3.3.3.3.2). The same scenario from two navigation files that differ only in TGD must
+//! give observation truths that differ by exactly c TGD on every pseudorange and every
+//! carrier phase (in metres), and by nothing else.
+
+use hifitime::{Epoch, TimeScale};
+use skyforge_orbits::constants::C_MPS;
+use skyforge_orbits::ephemeris::{nominal, write_nav};
+use skyforge_runner::observation_run;
+
+/// A 3 s static GPS site at the observation level, noiseless, its constellation from
+/// `nav.rnx` in `dir`: the nominal GPS sets with TGD `tgd_s`.
+fn truth_with_tgd(dir: &std::path::Path, tgd_s: f64) -> Vec<(String, f64, f64)> {
+    let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+    let mut ephs = nominal::gps(start);
+    for e in &mut ephs {
+        e.clock.tgd_s = tgd_s;
+    }
+    let mut nav = Vec::new();
+    write_nav(&ephs, "test", &[], &mut nav).expect("nav text");
+    std::fs::write(dir.join("nav.rnx"), nav).expect("write nav");
+    let text = r#"name = "tgd"
+seed = 1
+
+[time]
+start = "2023-03-12T00:00:00 GPST"
+duration_s = 3.0
+
+[gnss.gps]
+source = "rinex"
+nav_file = "nav.rnx"
+
+[gnss.beidou]
+enabled = false
+
+[platform.ground]
+latitude_deg = 52.0
+longitude_deg = 13.0
+height_m = 100.0
+
+[[antennas]]
+name = "ant1"
+position_body_m = [0.0, 0.0, 0.0]
+boresight_body = [0.0, 0.0, -1.0]
+fov_half_angle_deg = 90.0
+
+[signal]
+cn0_dbhz = 45.0
+
+[observation]
+level = "observation"
+
+[observation.noise]
+model = "constant"
+phase_m = 0.0
+code_m = 0.0
+"#;
+    let scenario = skyforge_scenarios::parse(text, "tgd.toml", dir).expect("scenario");
+    let run = observation_run(&scenario).expect("run");
+    run.truth[0]
+        .epochs
+        .iter()
+        .flat_map(|e| {
+            e.sats.iter().map(move |r| {
+                let lambda = r.signal.wavelength_m();
+                (
+                    format!("{} {}", e.time, r.sat),
+                    r.pseudorange_m.expect("code"),
+                    r.carrier_phase_cycles.expect("phase") * lambda,
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn every_observable_moves_by_c_tgd() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let without = truth_with_tgd(dir.path(), 0.0);
+    // assumed: about 10 ns, a TGD of the size GPS broadcasts, on the LNAV field's 2^-31 s
+    // grid (the message quantises TGD, and the signal follows the quantised value).
+    let tgd_s = 21.0 * 2f64.powi(-31);
+    let with = truth_with_tgd(dir.path(), tgd_s);
+    assert_eq!(without.len(), with.len());
+    assert!(without.len() >= 4 * 3, "{} records", without.len());
+    let expect_m = C_MPS * tgd_s;
+    for ((key, p0, l0), (key1, p1, l1)) in without.iter().zip(&with) {
+        assert_eq!(key, key1);
+        assert!((p1 - p0 - expect_m).abs() < 1e-6, "{key}: code {}", p1 - p0);
+        assert!(
+            (l1 - l0 - expect_m).abs() < 1e-6,
+            "{key}: phase {}",
+            l1 - l0
+        );
+    }
+}
