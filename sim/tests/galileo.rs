@@ -129,38 +129,10 @@ fn observation_level_galileo_has_the_configured_noise() {
         "{signal}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
     );
     let path = scenario(dir.path(), 120.0, &constant);
-    support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
-    let json = dir.path().join("obs.json");
-    support::skyforge_ok(
-        &[
-            "validate",
-            "obs",
-            "--truth",
-            out.join("ant1.obs.rnx").to_str().unwrap(),
-            "--estimate",
-            out.join("observations/ant1.obs.rnx").to_str().unwrap(),
-            "--json",
-            json.to_str().unwrap(),
-        ],
-        dir.path(),
-    );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).expect("json")).expect("parse");
-    let galileo = |what: &str| {
-        v[what]["per_system"]
-            .as_array()
-            .and_then(|a| a.iter().find(|s| s["system"] == "Galileo"))
-            .cloned()
-            .unwrap_or_else(|| panic!("no Galileo row in {what}"))
-    };
-    let code = galileo("pseudorange_m");
-    let phase = galileo("carrier_phase_m");
-    let n = code["count"].as_f64().unwrap_or(0.0);
+    let (n, std_code, std_phase) = support::observation_level_noise(dir.path(), &path, "Galileo");
     assert!(n > 400.0, "{n} Galileo pseudoranges");
     // The sample standard deviation of n white draws is within 15 % of sigma (over 7
     // standard errors of 1/sqrt(2 n) for n > 400).
-    let std_code = code["std"].as_f64().unwrap_or(f64::NAN);
-    let std_phase = phase["std"].as_f64().unwrap_or(f64::NAN);
     assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
     assert!(
         (std_phase / 0.003 - 1.0).abs() < 0.15,

@@ -4,8 +4,9 @@
 
 mod support;
 
-/// The bundled static ground site with GPS alone on L5, 1 s long.
-fn scenario(dir: &std::path::Path) -> String {
+/// The bundled static ground site with GPS alone on L5, `duration_s` long, `extra`
+/// appended after its `[signal]` table.
+fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../scenarios/bundled/ground-static.toml"),
@@ -17,10 +18,15 @@ fn scenario(dir: &std::path::Path) -> String {
             "[gnss.beidou]\nenabled = false",
             1,
         )
-        .replacen("duration_s = 3600.0", "duration_s = 1.0", 1);
+        .replacen(
+            "duration_s = 3600.0",
+            &format!("duration_s = {duration_s}"),
+            1,
+        );
     text.push_str(
         "\n[signal]\nsignals = [\"gps-l5\"]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n",
     );
+    text.push_str(extra);
     let path = dir.join("l5.toml");
     std::fs::write(&path, text).expect("write scenario");
     path.to_string_lossy().into_owned()
@@ -29,7 +35,7 @@ fn scenario(dir: &std::path::Path) -> String {
 #[test]
 fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let path = scenario(dir.path());
+    let path = scenario(dir.path(), 1.0, "");
     let out = dir.path().join("out");
     support::skyforge_ok(
         &["synth", &path, "--out", out.to_str().unwrap()],
@@ -85,4 +91,33 @@ fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
         err.contains("GPS L5, which the bundled receiver does not track yet"),
         "{err}"
     );
+}
+
+/// The observation level draws GPS L5 observables (code 5I) with the configured noise;
+/// the calibrated model, measured on what the bundled receiver tracks, refuses them.
+#[test]
+fn observation_level_l5_has_the_configured_noise() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let level = "\n[observation]\nlevel = \"observation\"\n";
+    let path = scenario(dir.path(), 120.0, level);
+    let out = dir.path().join("out");
+    let o = support::skyforge(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains("no calibration for gps-l5"), "{err}");
+    // assumed: 0.3 m code and 3 mm phase, the constant setting of the Galileo test.
+    let constant = format!(
+        "{level}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
+    );
+    let path = scenario(dir.path(), 120.0, &constant);
+    let (n, std_code, std_phase) = support::observation_level_noise(dir.path(), &path, "GPS");
+    assert!(n > 400.0, "{n} GPS pseudoranges");
+    // Within 15 % of sigma: over 7 standard errors of 1/sqrt(2 n) for n > 400.
+    assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
+    assert!(
+        (std_phase / 0.003 - 1.0).abs() < 0.15,
+        "phase std {std_phase}"
+    );
+    let obs = std::fs::read_to_string(out.join("observations/ant1.obs.rnx")).expect("obs");
+    assert!(obs.contains("G    4 C5I L5I D5I S5I"), "{obs}");
 }

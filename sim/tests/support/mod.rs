@@ -452,3 +452,39 @@ pub fn h5_contents(path: &Path) -> Vec<(String, Vec<u8>)> {
     out.sort();
     out
 }
+
+/// `skyforge run` of the observation-level scenario `path` into `dir/out`, then `validate
+/// obs` of its observables against its truth: the `system` row's (count, pseudorange std,
+/// carrier-phase std in m).
+pub fn observation_level_noise(dir: &Path, path: &str, system: &str) -> (f64, f64, f64) {
+    let out = dir.join("out");
+    skyforge_ok(&["run", path, "--out", out.to_str().unwrap()], dir);
+    let json = dir.join("obs.json");
+    skyforge_ok(
+        &[
+            "validate",
+            "obs",
+            "--truth",
+            out.join("ant1.obs.rnx").to_str().unwrap(),
+            "--estimate",
+            out.join("observations/ant1.obs.rnx").to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ],
+        dir,
+    );
+    let v = json_file(&json);
+    let row = |what: &str| {
+        v[what]["per_system"]
+            .as_array()
+            .and_then(|a| a.iter().find(|s| s["system"] == system))
+            .cloned()
+            .unwrap_or_else(|| panic!("no {system} row in {what}"))
+    };
+    let (code, phase) = (row("pseudorange_m"), row("carrier_phase_m"));
+    (
+        code["count"].as_f64().unwrap_or(0.0),
+        code["std"].as_f64().unwrap_or(f64::NAN),
+        phase["std"].as_f64().unwrap_or(f64::NAN),
+    )
+}
