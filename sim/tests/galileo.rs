@@ -25,9 +25,7 @@ fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
             1,
         );
     text.push_str(extra);
-    let path = dir.join("galileo.toml");
-    std::fs::write(&path, text).expect("write scenario");
-    path.to_string_lossy().into_owned()
+    support::write_scenario(dir, "galileo.toml", &text)
 }
 
 #[test]
@@ -93,23 +91,7 @@ fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("E    4 C5Q L5Q D5Q S5Q"), "{obs}");
     // The bundled receiver says plainly that it does not track E5a yet.
-    let meta = out.join("ant1.gal-e5a.sigmf-meta");
-    let rx = dir.path().join("rx");
-    let o = support::skyforge(
-        &[
-            "receive",
-            meta.to_str().unwrap(),
-            "--out",
-            rx.to_str().unwrap(),
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("GAL E5a, which the bundled receiver does not track yet"),
-        "{err}"
-    );
+    support::receive_refuses_untracked(dir.path(), &out.join("ant1.gal-e5a.sigmf-meta"), "GAL E5a");
 }
 
 /// The observation level draws Galileo E5a observables with the configured noise; the
@@ -117,27 +99,9 @@ fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
 #[test]
 fn observation_level_galileo_has_the_configured_noise() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let signal = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n\n[observation]\nlevel = \"observation\"\n";
-    let path = scenario(dir.path(), 120.0, signal);
-    let out = dir.path().join("out");
-    let o = support::skyforge(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
-    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("no calibration for gal-e5a"), "{err}");
-    // assumed: 0.3 m code and 3 mm phase, the thesis table 1.2-2 kind of constant setting.
-    let constant = format!(
-        "{signal}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
-    );
-    let path = scenario(dir.path(), 120.0, &constant);
-    let (n, std_code, std_phase) = support::observation_level_noise(dir.path(), &path, "Galileo");
-    assert!(n > 400.0, "{n} Galileo pseudoranges");
-    // The sample standard deviation of n white draws is within 15 % of sigma (over 7
-    // standard errors of 1/sqrt(2 n) for n > 400).
-    assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
-    assert!(
-        (std_phase / 0.003 - 1.0).abs() < 0.15,
-        "phase std {std_phase}"
-    );
+    let signal = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n";
+    let at = |extra: &str| scenario(dir.path(), 120.0, &format!("{signal}{extra}"));
+    support::assert_constant_observation_noise(dir.path(), at, "Galileo", "gal-e5a");
 }
 
 /// Galileo E1 as an observed-only signal beside the transmitted E5a: one RINEX line per

@@ -27,9 +27,7 @@ fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
         "\n[signal]\nsignals = [\"gps-l5\"]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n",
     );
     text.push_str(extra);
-    let path = dir.join("l5.toml");
-    std::fs::write(&path, text).expect("write scenario");
-    path.to_string_lossy().into_owned()
+    support::write_scenario(dir, "l5.toml", &text)
 }
 
 #[test]
@@ -74,23 +72,7 @@ fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
     }
     let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("G    4 C5I L5I D5I S5I"), "{obs}");
-    let meta = out.join("ant1.gps-l5.sigmf-meta");
-    let rx = dir.path().join("rx");
-    let o = support::skyforge(
-        &[
-            "receive",
-            meta.to_str().unwrap(),
-            "--out",
-            rx.to_str().unwrap(),
-        ],
-        dir.path(),
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains("GPS L5, which the bundled receiver does not track yet"),
-        "{err}"
-    );
+    support::receive_refuses_untracked(dir.path(), &out.join("ant1.gps-l5.sigmf-meta"), "GPS L5");
 }
 
 /// The observation level draws GPS L5 observables (code 5I) with the configured noise;
@@ -98,26 +80,9 @@ fn synth_writes_an_l5_recording_its_configuration_and_observation_truth() {
 #[test]
 fn observation_level_l5_has_the_configured_noise() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let level = "\n[observation]\nlevel = \"observation\"\n";
-    let path = scenario(dir.path(), 120.0, level);
-    let out = dir.path().join("out");
-    let o = support::skyforge(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
-    assert_eq!(o.status.code(), Some(2), "{}", support::text(&o));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(err.contains("no calibration for gps-l5"), "{err}");
-    // assumed: 0.3 m code and 3 mm phase, the constant setting of the Galileo test.
-    let constant = format!(
-        "{level}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
-    );
-    let path = scenario(dir.path(), 120.0, &constant);
-    let (n, std_code, std_phase) = support::observation_level_noise(dir.path(), &path, "GPS");
-    assert!(n > 400.0, "{n} GPS pseudoranges");
-    // Within 15 % of sigma: over 7 standard errors of 1/sqrt(2 n) for n > 400.
-    assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
-    assert!(
-        (std_phase / 0.003 - 1.0).abs() < 0.15,
-        "phase std {std_phase}"
-    );
-    let obs = std::fs::read_to_string(out.join("observations/ant1.obs.rnx")).expect("obs");
+    let at = |extra: &str| scenario(dir.path(), 120.0, extra);
+    support::assert_constant_observation_noise(dir.path(), at, "GPS", "gps-l5");
+    let obs =
+        std::fs::read_to_string(dir.path().join("out/observations/ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("G    4 C5I L5I D5I S5I"), "{obs}");
 }

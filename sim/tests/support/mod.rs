@@ -488,3 +488,66 @@ pub fn observation_level_noise(dir: &Path, path: &str, system: &str) -> (f64, f6
         phase["std"].as_f64().unwrap_or(f64::NAN),
     )
 }
+
+/// `receive` of the recording `meta` (a signal the bundled receiver does not track, named
+/// `name` as `Signal::name` writes it) exits with code 2 and says so.
+pub fn receive_refuses_untracked(dir: &Path, meta: &Path, name: &str) {
+    let rx = dir.join("rx");
+    let o = skyforge(
+        &[
+            "receive",
+            meta.to_str().unwrap(),
+            "--out",
+            rx.to_str().unwrap(),
+        ],
+        dir,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains(&format!(
+            "{name}, which the bundled receiver does not track yet"
+        )),
+        "{err}"
+    );
+}
+
+/// The observation level of the scenario `scenario(extra)` writes (120 s, one antenna, a
+/// transmitted signal tagged `tag` of `system` that the calibrated noise model has no
+/// factors for): refused under the calibrated model, naming `tag`; with a constant 0.3 m
+/// code and 3 mm phase noise, `system`'s observables scatter about the truth by those
+/// within 15 % (over 7 standard errors of 1/sqrt(2 n) for n > 400).
+pub fn assert_constant_observation_noise(
+    dir: &Path,
+    scenario: impl Fn(&str) -> String,
+    system: &str,
+    tag: &str,
+) {
+    let level = "\n[observation]\nlevel = \"observation\"\n";
+    let out = dir.join("out");
+    let o = skyforge(
+        &["run", &scenario(level), "--out", out.to_str().unwrap()],
+        dir,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(err.contains(&format!("no calibration for {tag}")), "{err}");
+    // assumed: 0.3 m code and 3 mm phase, the thesis table 1.2-2 kind of constant setting.
+    let constant = format!(
+        "{level}\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\ncode_m = 0.3\n"
+    );
+    let (n, std_code, std_phase) = observation_level_noise(dir, &scenario(&constant), system);
+    assert!(n > 400.0, "{n} {system} pseudoranges");
+    assert!((std_code / 0.3 - 1.0).abs() < 0.15, "code std {std_code}");
+    assert!(
+        (std_phase / 0.003 - 1.0).abs() < 0.15,
+        "phase std {std_phase}"
+    );
+}
+
+/// `text` written to `dir/name`; its path as the CLI takes it.
+pub fn write_scenario(dir: &Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write scenario");
+    path.to_string_lossy().into_owned()
+}
