@@ -38,7 +38,7 @@ pub enum AcquisitionError {
     #[error("the search needs {needed} samples but only {got} were given")]
     TooFewSamples { needed: usize, got: usize },
     /// A signal SkyForge reads from files but does not track (GPS L2).
-    #[error("{0} is read from observation files only; SkyForge does not acquire or track it")]
+    #[error("{0} is not tracked by the bundled receiver; it does not acquire it")]
     NotTracked(skyforge_gnss::signal::Signal),
 }
 

@@ -31,7 +31,7 @@ fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
     if let Some(s) = signal.filter(|s| !s.is_tracked()) {
         return Err(BadInput(format!(
-            "--signal {}: read from observation files only, not tracked (allowed: gps-l1ca, bds-b1i)",
+            "--signal {}: not tracked by the bundled receiver (allowed: gps-l1ca, bds-b1i)",
             s.tag()
         ))
         .into());
