@@ -106,6 +106,36 @@ impl Field {
     }
 }
 
+/// Append the `width` low bits of `value` to `bits`, most significant first (two's
+/// complement for a negative value).
+pub(crate) fn push_bits(bits: &mut Vec<u8>, value: i64, width: u32) {
+    bits.extend((0..width).rev().map(|k| ((value >> k) & 1) as u8));
+}
+
+/// The raw values of `fields` read in order from `bits` (bit 0 first, most significant
+/// bit first; signed fields sign-extended).
+pub(crate) fn read_fields<'a>(
+    bits: &[u8],
+    fields: impl IntoIterator<Item = &'a Field>,
+) -> Vec<i64> {
+    let mut pos = 0;
+    fields
+        .into_iter()
+        .map(|f| {
+            let w = f.bits as usize;
+            let u = bits[pos..pos + w]
+                .iter()
+                .fold(0i64, |acc, &b| (acc << 1) | i64::from(b));
+            pos += w;
+            if f.signed && w > 0 && (u >> (w - 1)) & 1 == 1 {
+                u - (1i64 << w)
+            } else {
+                u
+            }
+        })
+        .collect()
+}
+
 /// Raw values by field name (the field names of one message family are unique; a field
 /// repeated in several messages, such as a reference time, holds one value).
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -165,6 +195,22 @@ mod tests {
         assert_eq!(f.quantise_angle(3.0 * PI / 2.0), Ok(-64));
         assert_eq!(f.quantise_angle(-PI / 2.0), Ok(-64));
         assert!((f.si_value(64) - PI / 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bits_read_back_as_written() {
+        let fields = [
+            field("s", 5, true, Lsb::Count),
+            field("u", 3, false, Lsb::Count),
+            field("n", 4, true, Lsb::Count),
+        ];
+        let mut bits = Vec::new();
+        for (f, v) in fields.iter().zip([-7i64, 5, 7]) {
+            push_bits(&mut bits, v, f.bits);
+        }
+        // -7 in 5 bits is 11001; 5 in 3 bits 101; 7 in 4 bits 0111.
+        assert_eq!(bits, [1, 1, 0, 0, 1, 1, 0, 1, 0, 1, 1, 1]);
+        assert_eq!(read_fields(&bits, &fields), [-7, 5, 7]);
     }
 
     #[test]

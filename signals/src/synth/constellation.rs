@@ -144,7 +144,7 @@ pub fn gps_l5(
             beta: coeffs.beta,
         },
         utc: UtcParams::from_leap_seconds(start)?,
-        ..CnavParams::with_leap_seconds(gps_utc_leap_s(start))
+        ..CnavParams::default()
     };
     // Symbols count from the GPS week before the start's, so that satellite times a light
     // time before a start on a week boundary still lie after symbol 0.

@@ -141,23 +141,7 @@ pub fn config(
     line("Resampler.item_type=gr_complex");
     line("Channels.in_acquisition=1");
     if signals.contains(&Signal::GpsL1Ca) {
-        line("Channels_1C.count=12");
-        line("Acquisition_1C.implementation=GPS_L1_CA_PCPS_Acquisition");
-        line("Acquisition_1C.item_type=gr_complex");
-        line("Acquisition_1C.coherent_integration_time_ms=1");
-        line("Acquisition_1C.pfa=0.01");
-        line(&format!(
-            "Acquisition_1C.doppler_max={}",
-            doppler_max_hz.round()
-        ));
-        line("Acquisition_1C.doppler_step=250");
-        line("Acquisition_1C.max_dwells=2");
-        line("Tracking_1C.implementation=GPS_L1_CA_DLL_PLL_Tracking");
-        line("Tracking_1C.item_type=gr_complex");
-        line("Tracking_1C.pll_bw_hz=25.0");
-        line("Tracking_1C.dll_bw_hz=2.0");
-        line("Tracking_1C.early_late_space_chips=0.5");
-        line("TelemetryDecoder_1C.implementation=GPS_L1_CA_Telemetry_Decoder");
+        channel_lines(&mut line, &GPS_L1CA_BLOCKS, doppler_max_hz);
     }
     if signals.contains(&Signal::BdsB1I) {
         line(&format!(
@@ -192,10 +176,10 @@ pub fn config(
         line("TelemetryDecoder_B1.implementation=BEIDOU_B1I_Telemetry_Decoder");
     }
     if signals.contains(&Signal::GalE5a) {
-        galileo_e5a_lines(&mut line, doppler_max_hz);
+        channel_lines(&mut line, &GAL_E5A_BLOCKS, doppler_max_hz);
     }
     if signals.contains(&Signal::GpsL5) {
-        gps_l5_lines(&mut line, doppler_max_hz);
+        channel_lines(&mut line, &GPS_L5_BLOCKS, doppler_max_hz);
     }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
@@ -222,51 +206,90 @@ pub fn config(
     s
 }
 
-/// Galileo E5a (GNSS-SDR channel code 5X): acquisition and tracking on the E5a-Q pilot,
-/// whose 100-chip secondary code the tracking synchronises to; F/NAV decoded from E5a-I.
-fn galileo_e5a_lines(line: &mut impl FnMut(&str), doppler_max_hz: f64) {
-    line(&format!("Channels_5X.count={GAL_CHANNELS}"));
-    line("Acquisition_5X.implementation=Galileo_E5a_Pcps_Acquisition");
-    line("Acquisition_5X.item_type=gr_complex");
-    line("Acquisition_5X.coherent_integration_time_ms=1");
-    line("Acquisition_5X.acquire_pilot=true");
-    line("Acquisition_5X.pfa=0.01");
-    line(&format!(
-        "Acquisition_5X.doppler_max={}",
-        doppler_max_hz.round()
-    ));
-    line("Acquisition_5X.doppler_step=250");
-    line("Acquisition_5X.max_dwells=2");
-    line("Tracking_5X.implementation=Galileo_E5a_DLL_PLL_Tracking");
-    line("Tracking_5X.item_type=gr_complex");
-    line("Tracking_5X.track_pilot=true");
-    line("Tracking_5X.pll_bw_hz=20.0");
-    line("Tracking_5X.dll_bw_hz=2.0");
-    line("Tracking_5X.early_late_space_chips=0.5");
-    line("TelemetryDecoder_5X.implementation=Galileo_E5a_Telemetry_Decoder");
+/// One signal's GNSS-SDR channel blocks: PCPS acquisition over 1 ms with a 250 Hz step and
+/// two dwells, DLL/PLL tracking (2 Hz DLL, 0.5-chip early-late spacing), the telemetry
+/// decoder.
+struct ChannelBlocks {
+    /// GNSS-SDR's channel code (`1C`, `5X`, `L5`).
+    code: &'static str,
+    channels: usize,
+    acquisition: &'static str,
+    /// Acquire on the pilot component (GNSS-SDR's `acquire_pilot`, where it has one).
+    acquire_pilot: bool,
+    tracking: &'static str,
+    /// Track the pilot (its secondary code synchronised), data from the other component.
+    track_pilot: bool,
+    pll_bw_hz: &'static str,
+    telemetry: &'static str,
 }
 
-/// GPS L5 (GNSS-SDR channel code L5): acquisition on I5 and tracking on the Q5 pilot,
-/// whose 20-chip Neumann-Hoffman code the tracking synchronises to; CNAV decoded from I5.
-fn gps_l5_lines(line: &mut impl FnMut(&str), doppler_max_hz: f64) {
-    line(&format!("Channels_L5.count={GPS_L5_CHANNELS}"));
-    line("Acquisition_L5.implementation=GPS_L5i_PCPS_Acquisition");
-    line("Acquisition_L5.item_type=gr_complex");
-    line("Acquisition_L5.coherent_integration_time_ms=1");
-    line("Acquisition_L5.pfa=0.01");
+/// GPS L1 C/A (channel code 1C).
+const GPS_L1CA_BLOCKS: ChannelBlocks = ChannelBlocks {
+    code: "1C",
+    channels: 12,
+    acquisition: "GPS_L1_CA_PCPS_Acquisition",
+    acquire_pilot: false,
+    tracking: "GPS_L1_CA_DLL_PLL_Tracking",
+    track_pilot: false,
+    pll_bw_hz: "25.0",
+    telemetry: "GPS_L1_CA_Telemetry_Decoder",
+};
+
+/// Galileo E5a (channel code 5X): acquisition and tracking on the E5a-Q pilot, whose
+/// 100-chip secondary code the tracking synchronises to; F/NAV decoded from E5a-I.
+const GAL_E5A_BLOCKS: ChannelBlocks = ChannelBlocks {
+    code: "5X",
+    channels: GAL_CHANNELS,
+    acquisition: "Galileo_E5a_Pcps_Acquisition",
+    acquire_pilot: true,
+    tracking: "Galileo_E5a_DLL_PLL_Tracking",
+    track_pilot: true,
+    pll_bw_hz: "20.0",
+    telemetry: "Galileo_E5a_Telemetry_Decoder",
+};
+
+/// GPS L5 (channel code L5): acquisition on I5 and tracking on the Q5 pilot, whose
+/// 20-chip Neumann-Hoffman code the tracking synchronises to; CNAV decoded from I5.
+const GPS_L5_BLOCKS: ChannelBlocks = ChannelBlocks {
+    code: "L5",
+    channels: GPS_L5_CHANNELS,
+    acquisition: "GPS_L5i_PCPS_Acquisition",
+    acquire_pilot: false,
+    tracking: "GPS_L5_DLL_PLL_Tracking",
+    track_pilot: true,
+    pll_bw_hz: "20.0",
+    telemetry: "GPS_L5_Telemetry_Decoder",
+};
+
+/// The `.conf` lines of `b`, searching Doppler to +-`doppler_max_hz`.
+fn channel_lines(line: &mut impl FnMut(&str), b: &ChannelBlocks, doppler_max_hz: f64) {
+    let c = b.code;
+    line(&format!("Channels_{c}.count={}", b.channels));
+    line(&format!("Acquisition_{c}.implementation={}", b.acquisition));
+    line(&format!("Acquisition_{c}.item_type=gr_complex"));
+    line(&format!("Acquisition_{c}.coherent_integration_time_ms=1"));
+    if b.acquire_pilot {
+        line(&format!("Acquisition_{c}.acquire_pilot=true"));
+    }
+    line(&format!("Acquisition_{c}.pfa=0.01"));
     line(&format!(
-        "Acquisition_L5.doppler_max={}",
+        "Acquisition_{c}.doppler_max={}",
         doppler_max_hz.round()
     ));
-    line("Acquisition_L5.doppler_step=250");
-    line("Acquisition_L5.max_dwells=2");
-    line("Tracking_L5.implementation=GPS_L5_DLL_PLL_Tracking");
-    line("Tracking_L5.item_type=gr_complex");
-    line("Tracking_L5.track_pilot=true");
-    line("Tracking_L5.pll_bw_hz=20.0");
-    line("Tracking_L5.dll_bw_hz=2.0");
-    line("Tracking_L5.early_late_space_chips=0.5");
-    line("TelemetryDecoder_L5.implementation=GPS_L5_Telemetry_Decoder");
+    line(&format!("Acquisition_{c}.doppler_step=250"));
+    line(&format!("Acquisition_{c}.max_dwells=2"));
+    line(&format!("Tracking_{c}.implementation={}", b.tracking));
+    line(&format!("Tracking_{c}.item_type=gr_complex"));
+    if b.track_pilot {
+        line(&format!("Tracking_{c}.track_pilot=true"));
+    }
+    line(&format!("Tracking_{c}.pll_bw_hz={}", b.pll_bw_hz));
+    line(&format!("Tracking_{c}.dll_bw_hz=2.0"));
+    line(&format!("Tracking_{c}.early_late_space_chips=0.5"));
+    line(&format!(
+        "TelemetryDecoder_{c}.implementation={}",
+        b.telemetry
+    ));
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! A transmitting satellite as the synthesiser sees it: ranging code, data bits, an
 //! optional pilot component, and the time scale its code and data are counted in.
 
-use hifitime::Epoch;
+use hifitime::{Duration, Epoch};
 use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 use skyforge_gnss::codes::{
@@ -95,13 +95,7 @@ impl Transmitter {
     /// GPS L1 C/A with LNAV; `start` is the scenario start epoch.
     pub fn gps_l1ca(sat: SatId, lnav: LnavEncoder, start: Epoch) -> Option<Self> {
         let code = gps_ca(sat.prn)?.to_vec();
-        let since = start.to_gpst_duration();
-        let ns = since.total_nanoseconds();
-        if ns < 0 {
-            return None;
-        }
-        let whole = (ns / 1_000_000_000) as u64;
-        let frac = (ns % 1_000_000_000) as f64 * 1e-9;
+        let (start_whole_s, start_frac_s) = seconds_since(start.to_gpst_duration())?;
         Some(Self {
             sat,
             signal: Signal::GpsL1Ca,
@@ -109,8 +103,8 @@ impl Transmitter {
             code,
             data: DataBits::GpsLnav(Box::new(lnav)),
             pilot: None,
-            start_whole_s: whole,
-            start_frac_s: frac,
+            start_whole_s,
+            start_frac_s,
         })
     }
 
@@ -118,10 +112,7 @@ impl Transmitter {
     /// start, which must not be after `start`.
     pub fn bds_b1i(sat: SatId, nav: BdsNavEncoder, start: Epoch) -> Option<Self> {
         let code = bds_b1i(sat.prn)?;
-        let ns = (start - nav.week_start()).total_nanoseconds();
-        if ns < 0 {
-            return None;
-        }
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
         Some(Self {
             sat,
             signal: Signal::BdsB1I,
@@ -129,8 +120,8 @@ impl Transmitter {
             code,
             data: DataBits::Bds(Box::new(nav)),
             pilot: None,
-            start_whole_s: (ns / 1_000_000_000) as u64,
-            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+            start_whole_s,
+            start_frac_s,
         })
     }
 
@@ -138,10 +129,7 @@ impl Transmitter {
     /// SIS ICD §2.3, §3.4); chips and symbols count from the encoder's GST week start,
     /// which must not be after `start`.
     pub fn gal_e5a(sat: SatId, nav: FnavEncoder, start: Epoch) -> Option<Self> {
-        let ns = (start - nav.week_start()).total_nanoseconds();
-        if ns < 0 {
-            return None;
-        }
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
         Some(Self {
             sat,
             signal: Signal::GalE5a,
@@ -152,8 +140,8 @@ impl Transmitter {
                 code: galileo_e5a_q(sat.prn)?,
                 secondary: galileo_e5a_q_secondary(sat.prn)?,
             }),
-            start_whole_s: (ns / 1_000_000_000) as u64,
-            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+            start_whole_s,
+            start_frac_s,
         })
     }
 
@@ -162,10 +150,7 @@ impl Transmitter {
     /// start, which must not be after `start`. Both NH codes restart at every week start
     /// (a whole number of their 10 and 20 ms cycles).
     pub fn gps_l5(sat: SatId, nav: CnavEncoder, start: Epoch) -> Option<Self> {
-        let ns = (start - nav.week_start()).total_nanoseconds();
-        if ns < 0 {
-            return None;
-        }
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
         Some(Self {
             sat,
             signal: Signal::GpsL5,
@@ -176,8 +161,8 @@ impl Transmitter {
                 code: gps_l5_q(sat.prn)?,
                 secondary: GPS_L5_Q_NH20.to_vec(),
             }),
-            start_whole_s: (ns / 1_000_000_000) as u64,
-            start_frac_s: (ns % 1_000_000_000) as f64 * 1e-9,
+            start_whole_s,
+            start_frac_s,
         })
     }
 
@@ -264,6 +249,16 @@ impl Transmitter {
             secondary[(period % secondary.len() as u64) as usize]
         });
     }
+}
+
+/// A non-negative span as whole seconds and the fraction of a second; `None` before
+/// the time scale's epoch or the encoder's week start.
+fn seconds_since(span: Duration) -> Option<(u64, f64)> {
+    let ns = span.total_nanoseconds();
+    (ns >= 0).then_some((
+        (ns / 1_000_000_000) as u64,
+        (ns % 1_000_000_000) as f64 * 1e-9,
+    ))
 }
 
 /// Append chips `k0 .. k0 + count` (absolute indices) of the repeating primary `code` to

@@ -19,6 +19,7 @@
 use super::quant::{self as q, Field};
 use crate::navmsg::conv_k7::ConvK7;
 use crate::navmsg::crc24q::crc24q_bits;
+use crate::navmsg::field::{push_bits, read_fields};
 
 /// Page type and navigation data bits (the CRC's input).
 pub const DATA_BITS: usize = 214;
@@ -174,45 +175,26 @@ pub fn layout(page_type: u8) -> Option<&'static [Field]> {
 /// complement for signed fields), zero padded.
 pub(super) fn pack(page_type: u8, values: &[i64]) -> Vec<u8> {
     let mut bits = Vec::with_capacity(PAGE_BITS);
-    push(&mut bits, i64::from(page_type), q::PAGE_TYPE.bits);
+    push_bits(&mut bits, i64::from(page_type), q::PAGE_TYPE.bits);
     if let Some(fields) = layout(page_type) {
         for (f, &v) in fields.iter().zip(values) {
-            push(&mut bits, v, f.bits);
+            push_bits(&mut bits, v, f.bits);
         }
     }
     bits.resize(DATA_BITS, 0);
     bits
 }
 
-fn push(bits: &mut Vec<u8>, value: i64, width: u32) {
-    bits.extend((0..width).rev().map(|k| ((value >> k) & 1) as u8));
-}
-
 /// Reads the raw values of `fields` from `bits` starting after the page type.
 pub(super) fn unpack(bits: &[u8], fields: &[Field]) -> Vec<i64> {
-    let mut pos = q::PAGE_TYPE.bits as usize;
-    fields
-        .iter()
-        .map(|f| {
-            let w = f.bits as usize;
-            let u = bits[pos..pos + w]
-                .iter()
-                .fold(0i64, |acc, &b| (acc << 1) | i64::from(b));
-            pos += w;
-            if f.signed && w > 0 && (u >> (w - 1)) & 1 == 1 {
-                u - (1i64 << w)
-            } else {
-                u
-            }
-        })
-        .collect()
+    read_fields(&bits[q::PAGE_TYPE.bits as usize..], fields)
 }
 
 /// The 500 channel symbols of a page from its 214 data bits.
 pub(super) fn encode_page(data: &[u8]) -> [u8; PAGE_SYMBOLS] {
     let mut bits = data.to_vec();
     let crc = crc24q_bits(data);
-    push(&mut bits, i64::from(crc), 24);
+    push_bits(&mut bits, i64::from(crc), 24);
     bits.resize(PAGE_BITS, 0);
     let encoded = ConvK7::GALILEO.encode(&bits);
     let mut out = [0u8; PAGE_SYMBOLS];

@@ -10,6 +10,7 @@ use super::layout::{self, CNAV_PREAMBLE, HEADER, MESSAGE_BITS, MESSAGE_SYMBOLS};
 use super::quant::{self as q, Field};
 use crate::navmsg::conv_k7::ConvK7;
 use crate::navmsg::crc24q::crc24q_bits;
+use crate::navmsg::field::read_fields;
 use hifitime::Epoch;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 use skyforge_orbits::time::epoch_from_gpst;
@@ -89,10 +90,10 @@ pub fn decode_message(soft: &[f32]) -> Result<CnavMessage, CnavDecodeError> {
     let start = CNAV_LEAD_IN_SYMBOLS / 2;
     let bits = &decoded[start..start + MESSAGE_BITS];
     check(bits)?;
-    let header = layout::unpack(bits, HEADER.iter());
+    let header = read_fields(bits, &HEADER);
     let msg_type = header[2] as u8;
     let payload = layout::layout(msg_type).unwrap_or(&[]);
-    let values = layout::unpack(&bits[38..], payload.iter());
+    let values = read_fields(&bits[38..], payload);
     Ok(CnavMessage {
         prn: header[1] as u8,
         msg_type,

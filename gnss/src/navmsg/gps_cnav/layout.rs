@@ -21,6 +21,7 @@
 use super::quant::{self as q, Field, reserved};
 use crate::navmsg::conv_k7::ConvK7;
 use crate::navmsg::crc24q::crc24q_bits;
+use crate::navmsg::field::push_bits;
 
 /// Bits per message.
 pub const MESSAGE_BITS: usize = 300;
@@ -135,33 +136,14 @@ pub(super) fn all_fields(msg_type: u8) -> impl Iterator<Item = &'static Field> {
 pub(super) fn pack(msg_type: u8, values: &[i64]) -> [u8; MESSAGE_BITS] {
     let mut bits = Vec::with_capacity(MESSAGE_BITS);
     for (f, &v) in all_fields(msg_type).zip(values) {
-        bits.extend((0..f.bits).rev().map(|k| ((v >> k) & 1) as u8));
+        push_bits(&mut bits, v, f.bits);
     }
     bits.resize(DATA_BITS, 0);
     let crc = crc24q_bits(&bits);
-    bits.extend((0..24).rev().map(|k| ((crc >> k) & 1) as u8));
+    push_bits(&mut bits, i64::from(crc), 24);
     let mut out = [0u8; MESSAGE_BITS];
     out.copy_from_slice(&bits);
     out
-}
-
-/// Reads the raw values of `fields` from `bits`, from bit 0 on.
-pub(super) fn unpack<'a>(bits: &[u8], fields: impl Iterator<Item = &'a Field>) -> Vec<i64> {
-    let mut pos = 0;
-    fields
-        .map(|f| {
-            let w = f.bits as usize;
-            let u = bits[pos..pos + w]
-                .iter()
-                .fold(0i64, |acc, &b| (acc << 1) | i64::from(b));
-            pos += w;
-            if f.signed && (u >> (w - 1)) & 1 == 1 {
-                u - (1i64 << w)
-            } else {
-                u
-            }
-        })
-        .collect()
 }
 
 /// The 600 channel symbols of `message`, sent after `previous` (the encoder continues
