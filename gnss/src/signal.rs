@@ -5,6 +5,7 @@
 use crate::codes::bds_b1i;
 use crate::codes::galileo_e5a;
 use crate::codes::gps_ca;
+use crate::codes::gps_l5;
 use skyforge_orbits::constants::{
     F_BDS_B1I_HZ, F_BDS_B2I_HZ, F_BDS_B3I_HZ, F_GAL_E1_HZ, F_GAL_E5A_HZ, F_GPS_L1_HZ, F_GPS_L2_HZ,
     F_GPS_L5_HZ,
@@ -21,12 +22,12 @@ pub enum Signal {
     BdsB1I,
     /// GPS L2 on 1227.60 MHz, as real geodetic receivers record it (phase `L2`, P(Y) code
     /// `P2` tracked semi-codelessly or L2C code `C2`): observed only. SkyForge neither
-    /// synthesises nor tracks it ([`Signal::TRACKED`]); it is read from other
+    /// synthesises nor receives it ([`Signal::RECEIVED`]); it is read from other
     /// receivers' RINEX files and used by the relative-positioning chain.
     GpsL2,
     /// GPS L5 on 1176.45 MHz, 10230 chips at 10.23 Mchip/s (IS-GPS-705 §3.3): I5 with
     /// CNAV and Q5 pilot, transmitted when a scenario chooses it
-    /// ([`Signal::TRANSMITTED`]); the bundled receiver does not track it yet.
+    /// ([`Signal::TRANSMITTED`]) and received by the bundled receiver.
     GpsL5,
     /// BeiDou B2I on 1207.14 MHz, 2046 chips at 2.046 Mchip/s (BDS-SIS-ICD-B2I-1.0 §4):
     /// observed only.
@@ -39,7 +40,7 @@ pub enum Signal {
     GalE1,
     /// Galileo E5a (E5a-I data with F/NAV, E5a-Q pilot) on 1176.45 MHz, 10230 chips at
     /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): Galileo's transmitted signal
-    /// ([`Signal::TRANSMITTED`]); the bundled receiver does not track it yet.
+    /// ([`Signal::TRANSMITTED`]) and received by the bundled receiver.
     GalE5a,
 }
 
@@ -55,16 +56,44 @@ pub enum DataModulation {
     /// BeiDou D2 (GEO, PRN 1-5 and 59-63): 500 bit/s, 2 code periods per bit, no secondary
     /// code (BDS-SIS-ICD-B1I-3.0 §5.3).
     BdsD2,
+    /// GPS L5 I5: CNAV at 100 symbol/s, each symbol spread by the 10-chip Neuman-Hofman
+    /// code; the Q5 pilot carries the 20-chip one (IS-GPS-705 §3.3.2.2, §3.3.3.1).
+    GpsCnav,
+    /// Galileo E5a-I: F/NAV at 50 symbol/s, each symbol spread by the 20-chip secondary
+    /// code CS20; the E5a-Q pilot carries the satellite's 100-chip CS100 (Galileo OS SIS ICD
+    /// §3.4.2, Table 19).
+    GalFnav,
 }
 
 impl DataModulation {
     /// Code periods per data bit.
     pub fn periods_per_bit(self) -> u32 {
         match self {
-            DataModulation::GpsLnav | DataModulation::BdsD1 => 20,
+            DataModulation::GpsLnav | DataModulation::BdsD1 | DataModulation::GalFnav => 20,
+            DataModulation::GpsCnav => 10,
             DataModulation::BdsD2 => 2,
         }
     }
+
+    /// The secondary code on the data component, one chip per code period, restarting
+    /// with every bit or symbol; `None` where there is none.
+    pub fn data_secondary_code(self) -> Option<&'static [i8]> {
+        match self {
+            DataModulation::BdsD1 => Some(&crate::codes::neumann_hoffman::NH20),
+            DataModulation::GpsCnav => Some(&gps_l5::GPS_L5_I_NH10),
+            DataModulation::GalFnav => Some(&galileo_e5a::GALILEO_E5A_I_SECONDARY),
+            DataModulation::GpsLnav | DataModulation::BdsD2 => None,
+        }
+    }
+}
+
+/// A pilot component's codes ([`Signal::pilot`]), as signal levels (+1/-1).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct PilotCodes {
+    /// One period of the primary code, chip 0 first.
+    pub primary: Vec<i8>,
+    /// The secondary code, one chip per primary period.
+    pub secondary: Vec<i8>,
 }
 
 /// A PRN without a ranging code for the signal.
@@ -114,18 +143,33 @@ impl Signal {
         Signal::GalE5a,
     ];
 
-    /// The signals the bundled receiver tracks (SkyForge transmits them too): one per
-    /// constellation.
-    pub const TRACKED: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
+    /// Each constellation's legacy civil signal, what single-frequency fixes and the
+    /// observation level use unless a scenario or configuration says otherwise.
+    pub const DEFAULT_FIX: [Signal; 2] = [Signal::GpsL1Ca, Signal::BdsB1I];
 
-    /// Whether the bundled receiver tracks the signal ([`Signal::TRACKED`]).
-    pub fn is_tracked(self) -> bool {
-        Self::TRACKED.contains(&self)
+    /// Whether the signal is one of [`Signal::DEFAULT_FIX`].
+    pub fn is_default_fix(self) -> bool {
+        Self::DEFAULT_FIX.contains(&self)
     }
 
-    /// The signals SkyForge can transmit at the sample level: the tracked ones
-    /// ([`Signal::TRACKED`]) and those only outside receivers track so far (Galileo
-    /// E5a, GPS L5). A scenario's `[signal] signals` chooses among them.
+    /// The signals the bundled receiver acquires, tracks and decodes from samples: the
+    /// legacy ones and the pilot signals GPS L5 and Galileo E5a (tracked on the pilot,
+    /// the message read from the data component).
+    pub const RECEIVED: [Signal; 4] = [
+        Signal::GpsL1Ca,
+        Signal::BdsB1I,
+        Signal::GpsL5,
+        Signal::GalE5a,
+    ];
+
+    /// Whether the bundled receiver takes recordings of the signal ([`Signal::RECEIVED`]).
+    pub fn is_received(self) -> bool {
+        Self::RECEIVED.contains(&self)
+    }
+
+    /// The signals SkyForge can transmit at the sample level (all of them the bundled
+    /// receiver takes, [`Signal::RECEIVED`]). A scenario's `[signal] signals` chooses
+    /// among them.
     pub const TRANSMITTED: [Signal; 4] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
@@ -281,12 +325,12 @@ impl Signal {
         let (code, max) = match self {
             Signal::GpsL1Ca => (gps_ca::gps_ca(prn).map(Vec::from), gps_ca::GPS_CA_PRN_MAX),
             Signal::BdsB1I => (bds_b1i::bds_b1i(prn), bds_b1i::BDS_B1I_PRN_MAX),
-            Signal::GpsL2
-            | Signal::GpsL5
-            | Signal::BdsB2I
-            | Signal::BdsB3I
-            | Signal::GalE1
-            | Signal::GalE5a => (None, 0),
+            Signal::GpsL5 => (gps_l5::gps_l5_i(prn), gps_l5::GPS_L5_PRN_MAX),
+            Signal::GalE5a => (
+                galileo_e5a::galileo_e5a_i(prn),
+                galileo_e5a::GALILEO_E5A_PRN_MAX,
+            ),
+            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I | Signal::GalE1 => (None, 0),
         };
         code.ok_or(UnknownPrn {
             signal: self,
@@ -295,14 +339,42 @@ impl Signal {
         })
     }
 
+    /// The pilot of `prn` ([`Signal::has_pilot`]): one period of its primary code and its
+    /// secondary code (one chip per primary period, restarting every secondary period),
+    /// as signal levels; an error for a signal without a pilot SkyForge generates.
+    pub fn pilot(self, prn: u8) -> Result<PilotCodes, UnknownPrn> {
+        let (codes, max) = match self {
+            Signal::GpsL5 => (
+                gps_l5::gps_l5_q(prn).map(|primary| PilotCodes {
+                    primary,
+                    secondary: gps_l5::GPS_L5_Q_NH20.to_vec(),
+                }),
+                gps_l5::GPS_L5_PRN_MAX,
+            ),
+            Signal::GalE5a => (
+                galileo_e5a::galileo_e5a_q(prn)
+                    .zip(galileo_e5a::galileo_e5a_q_secondary(prn))
+                    .map(|(primary, secondary)| PilotCodes { primary, secondary }),
+                galileo_e5a::GALILEO_E5A_PRN_MAX,
+            ),
+            _ => (None, 0),
+        };
+        codes.ok_or(UnknownPrn {
+            signal: self,
+            prn,
+            max,
+        })
+    }
+
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
-    /// L2 P(Y) carry LNAV. None for the FEC-coded messages with pilots (L5 CNAV, Galileo
-    /// I/NAV and F/NAV), which the bundled receiver does not decode yet.
+    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV. None for Galileo E1 (I/NAV, not built).
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
-            Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a => None,
+            Signal::GpsL5 => Some(DataModulation::GpsCnav),
+            Signal::GalE5a => Some(DataModulation::GalFnav),
+            Signal::GalE1 => None,
             Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
                 Some(DataModulation::BdsD2)
             }
@@ -310,34 +382,35 @@ impl Signal {
         }
     }
 
-    /// The tracked signal whose carrier is within [`CARRIER_MATCH_TOLERANCE_HZ`] of
-    /// `carrier_hz` (a recording's signal).
+    /// The only received signal ([`Signal::RECEIVED`]) whose carrier is within
+    /// [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz` (a recording's signal); `None` when
+    /// none or several are (GPS L5 and Galileo E5a share 1176.45 MHz).
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
-        Self::TRACKED
-            .into_iter()
-            .find(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ)
+        only(
+            Self::RECEIVED
+                .into_iter()
+                .filter(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ),
+        )
     }
 
-    /// The only tracked signal whose carrier lies inside the band recorded about
+    /// The only received signal whose carrier lies inside the band recorded about
     /// `centre_hz` (complex: `|carrier - centre| < fs / 2`), or `None` when none or several
     /// do.
     pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
-        let mut inside = Self::TRACKED
-            .into_iter()
-            .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0);
-        match (inside.next(), inside.next()) {
-            (Some(s), None) => Some(s),
-            _ => None,
-        }
+        only(
+            Self::RECEIVED
+                .into_iter()
+                .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0),
+        )
     }
 
-    /// The tracked signal named by a `.<tag>` component of a recording's file name
+    /// The received signal named by a `.<tag>` component of a recording's file name
     /// (`ant1.gps-l1ca.sigmf-meta`).
     pub fn from_file_name(name: &str) -> Option<Self> {
-        Self::named_in(name, Self::TRACKED)
+        Self::named_in(name, Self::RECEIVED)
     }
 
-    /// Any signal of [`Signal::ALL`] named by a `.<tag>` component of `name`, tracked or
+    /// Any signal of [`Signal::ALL`] named by a `.<tag>` component of `name`, received or
     /// not (to say which signal a recording holds that the receiver cannot take).
     pub fn any_from_file_name(name: &str) -> Option<Self> {
         Self::named_in(name, Self::ALL)
@@ -348,6 +421,14 @@ impl Signal {
         signals
             .into_iter()
             .find(|s| name.split('.').any(|part| part == s.tag()))
+    }
+}
+
+/// The only item of `items`, `None` for none or several.
+fn only(mut items: impl Iterator<Item = Signal>) -> Option<Signal> {
+    match (items.next(), items.next()) {
+        (Some(s), None) => Some(s),
+        _ => None,
     }
 }
 
@@ -384,7 +465,7 @@ mod tests {
     fn codes_carriers_and_periods_follow_the_icds() {
         assert_eq!(Signal::GpsL1Ca.code(1).unwrap().len(), 1023);
         assert_eq!(Signal::BdsB1I.code(1).unwrap().len(), 2046);
-        for s in Signal::TRACKED {
+        for s in Signal::DEFAULT_FIX {
             assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
         }
         assert!(Signal::GpsL2.code(1).is_err());
@@ -445,27 +526,65 @@ mod tests {
         assert!((Signal::BdsB3I.carrier_hz() - 1240.0 * 1.023e6).abs() < 1e-3);
         assert!((Signal::GpsL5.wavelength_m() - 0.254_828).abs() < 1e-6);
         for s in [Signal::GpsL5, Signal::BdsB2I, Signal::BdsB3I] {
-            assert!(!s.is_tracked());
-            assert!(s.code(6).is_err());
+            assert!(!s.is_default_fix());
             assert!((s.code_period_s() - 1e-3).abs() < 1e-15, "{s}");
             assert_eq!(Signal::from_carrier_hz(s.carrier_hz()), None);
+        }
+        for s in [Signal::BdsB2I, Signal::BdsB3I] {
+            assert!(s.code(6).is_err() && !s.is_received());
         }
         assert_eq!(
             Signal::BdsB3I.system(),
             skyforge_orbits::ephemeris::System::Beidou
         );
-        assert_eq!(Signal::GpsL5.data_modulation(1), None);
+        assert_eq!(Signal::GalE1.data_modulation(1), None);
         assert_eq!(
             Signal::BdsB2I.data_modulation(3),
             Some(DataModulation::BdsD2)
         );
     }
 
+    /// The pilot signals: data codes, pilot codes and secondary codes from the gnss code
+    /// tables; L5 and E5a share a carrier, so only a file name tells them apart.
+    #[test]
+    fn pilot_signals_have_their_codes_and_share_a_carrier() {
+        for s in [Signal::GpsL5, Signal::GalE5a] {
+            assert!(s.has_pilot() && s.is_received());
+            assert_eq!(s.code(1).unwrap().len(), 10_230);
+            let pilot = s.pilot(1).unwrap();
+            assert_eq!(pilot.primary.len(), 10_230);
+            assert_ne!(pilot.primary, s.code(1).unwrap());
+            let m = s.data_modulation(1).unwrap();
+            let data_secondary = m.data_secondary_code().unwrap();
+            assert_eq!(data_secondary.len() as u32, m.periods_per_bit());
+            assert_eq!(pilot.secondary.len() % data_secondary.len(), 0);
+        }
+        assert_eq!(Signal::GpsL5.pilot(1).unwrap().secondary.len(), 20);
+        assert_eq!(Signal::GalE5a.pilot(1).unwrap().secondary.len(), 100);
+        assert_ne!(
+            Signal::GalE5a.pilot(1).unwrap().secondary,
+            Signal::GalE5a.pilot(2).unwrap().secondary
+        );
+        assert!(Signal::GalE5a.pilot(51).is_err() && Signal::GpsL1Ca.pilot(1).is_err());
+        assert_eq!(Signal::from_carrier_hz(1176.45e6), None);
+        assert_eq!(Signal::in_band(1176.45e6, 20.46e6), None);
+        assert_eq!(
+            Signal::from_file_name("ant1.gal-e5a.sigmf-meta"),
+            Some(Signal::GalE5a)
+        );
+        assert_eq!(DataModulation::GpsLnav.data_secondary_code(), None);
+    }
+
     /// L2 is read from files, never synthesised: no recording is identified as L2.
     #[test]
     fn gps_l2_is_observed_only() {
-        assert!(!Signal::GpsL2.is_tracked());
-        assert!(Signal::TRACKED.iter().all(|s| s.is_tracked()));
+        assert!(!Signal::GpsL2.is_default_fix());
+        assert!(Signal::DEFAULT_FIX.iter().all(|s| s.is_default_fix()));
+        assert!(
+            Signal::RECEIVED
+                .iter()
+                .all(|s| s.is_received() && s.is_transmitted())
+        );
         assert_eq!(Signal::GpsL2.carrier_hz(), 120.0 * 10.23e6);
         assert!((Signal::GpsL2.wavelength_m() - 0.244_210).abs() < 1e-6);
         assert_eq!(

@@ -160,7 +160,7 @@ impl ObservationRun {
             iono_bds: self.iono.bds,
             ..ReceiverConfig::default().pvt
         };
-        single_point_fixes(file, &store, &origin, &Signal::TRACKED, &config)
+        single_point_fixes(file, &store, &origin, &Signal::DEFAULT_FIX, &config)
             .iter()
             .zip(&file.epochs)
             .filter_map(|(fix, e)| Some(PositionFix::new(e.time, fix.as_ref().ok()?)))

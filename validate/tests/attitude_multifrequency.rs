@@ -67,7 +67,7 @@ fn observed_signals_follow_the_ionosphere_of_their_carrier() {
                 .iter()
                 .find(|r: &&ObsRecord| r.sat == sat && r.signal == signal)
         };
-        for r in epoch.sats.iter().filter(|r| r.signal.is_tracked()) {
+        for r in epoch.sats.iter().filter(|r| r.signal.is_default_fix()) {
             let [first, second] = if r.signal == Signal::GpsL1Ca {
                 [Signal::GpsL2, Signal::GpsL5]
             } else {
@@ -140,7 +140,7 @@ fn more_frequencies_raise_the_single_epoch_success_rate() {
             "BDS B1I+B2I+B3I",
             vec![Signal::BdsB1I, Signal::BdsB2I, Signal::BdsB3I],
         ),
-        ("GPS+BDS 1f", Signal::TRACKED.to_vec()),
+        ("GPS+BDS 1f", Signal::DEFAULT_FIX.to_vec()),
         ("GPS+BDS 3f", Signal::ALL.to_vec()),
     ];
     let mut rates = Vec::new();

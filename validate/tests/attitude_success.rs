@@ -64,7 +64,7 @@ fn geometry_and_more_satellites_never_lower_the_single_epoch_success_rate() {
     let sets: [(&str, Vec<Signal>); 3] = [
         ("GPS", vec![Signal::GpsL1Ca]),
         ("BDS", vec![Signal::BdsB1I]),
-        ("GPS+BDS", Signal::TRACKED.to_vec()),
+        ("GPS+BDS", Signal::DEFAULT_FIX.to_vec()),
     ];
     let mut table = Vec::new();
     for (name, signals) in &sets {

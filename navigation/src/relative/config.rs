@@ -84,7 +84,7 @@ impl Default for RelativeConfig {
             elev0_deg: 10.0,
         };
         Self {
-            signals: Signal::TRACKED.to_vec(),
+            signals: Signal::DEFAULT_FIX.to_vec(),
             phase: elevation(0.002),
             code: elevation(0.3),
             ratio_threshold: 3.0,

@@ -224,7 +224,7 @@ fn bad(name: &'static str, value: f64, allowed: &'static str) -> AcquisitionErro
 impl Pcps {
     /// Check `config` and plan its FFTs and Doppler bins.
     pub fn new(config: PcpsConfig) -> Result<Self, AcquisitionError> {
-        if !config.signal.is_tracked() {
+        if !config.signal.is_received() {
             return Err(AcquisitionError::NotTracked(config.signal));
         }
         let fs = config.sample_rate_hz;

@@ -8,6 +8,11 @@
 //!   with it over `nh_bits` consecutive 20 ms windows at each of the 20 offsets; the NH
 //!   code starts together with each data bit (BDS-SIS-ICD-B1I-3.0 §5.2.1), so the offset
 //!   is also the bit edge.
+//! - Pilot signals (GPS L5 Q5, Galileo E5a-Q): the same correlation with the pilot's
+//!   secondary code (20 or 100 chips); the secondary code and the data symbols both start
+//!   at the week start (a whole number of their periods), so the code's start gives the
+//!   symbol edge, and the sign of the correlation the polarity of the carrier loop
+//!   (the pilot carries no data).
 
 use std::collections::VecDeque;
 
@@ -46,15 +51,39 @@ pub struct BitSynchroniser {
     config: BitSyncConfig,
     histogram: [u32; 20],
     last: Option<(u64, bool)>,
-    /// NH search: signs of consecutive periods, the first at `first_index`.
+    /// The code the correlation search looks for: BeiDou D1's NH code, or a pilot's
+    /// secondary code (empty for the histogram method).
+    secondary: Vec<i8>,
+    /// Correlation search: signs of consecutive periods, the first at `first_index`.
     signs: VecDeque<i8>,
     first_index: u64,
     edge: Option<u32>,
+    /// Correlation search: period index modulo the code length where the code starts,
+    /// and whether the prompts carried it inverted.
+    found: Option<(u32, bool)>,
 }
 
 impl BitSynchroniser {
     /// A synchroniser for `modulation`.
     pub fn new(modulation: DataModulation, config: BitSyncConfig) -> Self {
+        let secondary = match modulation {
+            DataModulation::BdsD1 => neumann_hoffman::NH20.to_vec(),
+            _ => Vec::new(),
+        };
+        Self::searching(modulation, secondary, config)
+    }
+
+    /// A synchroniser for a signal with a pilot, on the pilot's prompts: it searches the
+    /// pilot's secondary code `pilot_secondary` (a whole number of data symbols long).
+    pub fn for_pilot(
+        modulation: DataModulation,
+        pilot_secondary: Vec<i8>,
+        config: BitSyncConfig,
+    ) -> Self {
+        Self::searching(modulation, pilot_secondary, config)
+    }
+
+    fn searching(modulation: DataModulation, secondary: Vec<i8>, config: BitSyncConfig) -> Self {
         Self {
             modulation,
             config: BitSyncConfig {
@@ -63,9 +92,11 @@ impl BitSynchroniser {
             },
             histogram: [0; 20],
             last: None,
+            secondary,
             signs: VecDeque::new(),
             first_index: 0,
             edge: None,
+            found: None,
         }
     }
 
@@ -73,6 +104,12 @@ impl BitSynchroniser {
     /// `k % periods_per_bit == edge`.
     pub fn edge_phase(&self) -> Option<u32> {
         self.edge
+    }
+
+    /// After a correlation search: the period index modulo the searched code's length at
+    /// which the code starts, and whether the prompts carried it inverted.
+    pub fn secondary_start(&self) -> Option<(u32, bool)> {
+        self.found
     }
 
     /// Add the in-phase prompt of code period `period_index`; returns the edge phase when
@@ -84,6 +121,16 @@ impl BitSynchroniser {
         let positive = prompt_i >= 0.0;
         let contiguous = self.last.is_some_and(|(k, _)| k + 1 == period_index);
         match self.modulation {
+            _ if !self.secondary.is_empty() => {
+                if !contiguous {
+                    self.signs.clear();
+                    self.first_index = period_index;
+                }
+                self.signs.push_back(if positive { 1 } else { -1 });
+                self.found = self.correlation_decision();
+                let ppb = self.modulation.periods_per_bit();
+                self.edge = self.found.map(|(start, _)| start % ppb);
+            }
             DataModulation::GpsLnav | DataModulation::BdsD2 => {
                 let ppb = u64::from(self.modulation.periods_per_bit());
                 if let Some((_, was)) = self.last.filter(|_| contiguous)
@@ -93,14 +140,8 @@ impl BitSynchroniser {
                 }
                 self.edge = self.histogram_decision(ppb as usize);
             }
-            DataModulation::BdsD1 => {
-                if !contiguous {
-                    self.signs.clear();
-                    self.first_index = period_index;
-                }
-                self.signs.push_back(if positive { 1 } else { -1 });
-                self.edge = self.nh_decision();
-            }
+            // Correlation search without a code: nothing to find.
+            DataModulation::BdsD1 | DataModulation::GpsCnav | DataModulation::GalFnav => {}
         }
         self.last = Some((period_index, positive));
         self.edge
@@ -114,31 +155,37 @@ impl BitSynchroniser {
         .then_some(best as u32)
     }
 
-    fn nh_decision(&mut self) -> Option<u32> {
-        const L: usize = neumann_hoffman::NH20_LENGTH;
-        let bits = self.config.nh_bits;
-        if self.signs.len() < L * bits + L - 1 {
+    /// The code's start (period index modulo its length) and polarity once the signs of
+    /// `windows` code lengths correlate with it clearly at one offset: `nh_bits` 20 ms
+    /// windows' worth, and at least one code length.
+    fn correlation_decision(&mut self) -> Option<(u32, bool)> {
+        let code = &self.secondary;
+        let l = code.len();
+        let windows = (self.config.nh_bits * neumann_hoffman::NH20_LENGTH).div_ceil(l);
+        if self.signs.len() < l * windows + l - 1 {
             return None;
         }
-        let mut scores = [0i32; L];
-        for (r, score) in scores.iter_mut().enumerate() {
-            for b in 0..bits {
-                let corr: i32 = (0..L)
-                    .map(|m| {
-                        i32::from(self.signs[r + L * b + m]) * i32::from(neumann_hoffman::NH20[m])
-                    })
+        // Per offset: the sum of each window's |correlation|, and of the signed ones.
+        let mut scores = vec![0i32; l];
+        let mut signed = vec![0i32; l];
+        for r in 0..l {
+            for w in 0..windows {
+                let corr: i32 = (0..l)
+                    .map(|m| i32::from(self.signs[r + l * w + m]) * i32::from(code[m]))
                     .sum();
-                *score += corr.abs();
+                scores[r] += corr.abs();
+                signed[r] += corr;
             }
         }
         let (best, top, runner_up) = best_and_runner_up(&scores)?;
-        let full = (L * bits) as i32;
+        let full = (l * windows) as i32;
         if 10 * top >= 7 * full && 10 * (top - runner_up) >= 3 * full {
-            return Some(((self.first_index + best as u64) % L as u64) as u32);
+            let start = ((self.first_index + best as u64) % l as u64) as u32;
+            return Some((start, signed[best] < 0));
         }
         // Slide the search on by one window.
-        self.signs.drain(..L);
-        self.first_index += L as u64;
+        self.signs.drain(..l);
+        self.first_index += l as u64;
         None
     }
 }
@@ -222,5 +269,41 @@ mod tests {
     fn nh_signs_without_the_code_do_not_sync() {
         let mut sync = BitSynchroniser::new(DataModulation::BdsD1, BitSyncConfig::default());
         assert!(feed_bits(&mut sync, 20, 3, 2000, false).is_none());
+    }
+
+    /// A pilot's secondary code (E5a-Q's 100 chips of PRN 7, L5 Q5's NH20) found at its
+    /// start with the prompts' polarity; the symbol edge follows from the start.
+    #[test]
+    fn pilot_secondary_code_gives_start_edge_and_polarity() {
+        use skyforge_gnss::signal::Signal;
+        for (signal, start, inverted) in [
+            (Signal::GalE5a, 0u64, false),
+            (Signal::GalE5a, 63, true),
+            (Signal::GpsL5, 17, true),
+            (Signal::GpsL5, 4, false),
+        ] {
+            let code = signal.pilot(7).unwrap().secondary;
+            let l = code.len() as u64;
+            let m = signal.data_modulation(7).unwrap();
+            let mut sync = BitSynchroniser::for_pilot(m, code.clone(), BitSyncConfig::default());
+            let sign = if inverted { -2.0 } else { 2.0 };
+            let decided = (0..1000u64).find_map(|k| {
+                let chip = f64::from(code[((k + l - start % l) % l) as usize]);
+                sync.feed(1000 + k, sign * chip)
+            });
+            let expected_start = ((1000 + start) % l) as u32;
+            assert_eq!(
+                sync.secondary_start(),
+                Some((expected_start, inverted)),
+                "{signal} {start}"
+            );
+            assert_eq!(decided, Some(expected_start % m.periods_per_bit()));
+        }
+        // Another satellite's E5a-Q code does not sync.
+        let other = Signal::GalE5a.pilot(8).unwrap().secondary;
+        let code = Signal::GalE5a.pilot(7).unwrap().secondary;
+        let mut sync =
+            BitSynchroniser::for_pilot(DataModulation::GalFnav, code, BitSyncConfig::default());
+        assert!((0..1000u64).all(|k| sync.feed(k, f64::from(other[(k % 100) as usize])).is_none()));
     }
 }

@@ -7,6 +7,14 @@
 //! A period that straddles two input blocks is gathered in a buffer first, so how the
 //! caller cuts its samples into blocks does not change any result.
 //!
+//! A signal with a pilot (GPS L5, Galileo E5a) is tracked on its pilot: the loops close
+//! on the pilot code's early, prompt and late taps (turned back a quarter cycle, the
+//! pilot's lead on the data component, so the carrier phase is the data component's), a
+//! fourth tap reads the data code's prompt, and "bit synchronisation" is the search for
+//! the pilot's secondary code, which also gives the symbol edge and the carrier loop's
+//! polarity; after it the pilot's secondary code is wiped off the loop taps, the data
+//! secondary code and the polarity off the symbols.
+//!
 //! Loops: FLL-assisted PLL of 2nd or 3rd order (Costas by default) and a 1st-order
 //! normalised early-minus-late envelope DLL with carrier aiding, updated at the end of
 //! every coherent integration. After bit synchronisation (and Neumann-Hoffman wipe-off on
@@ -109,7 +117,9 @@ pub struct TrackingRecord {
     pub phase_error_cycles: f64,
     /// DLL discriminator output (chips).
     pub code_error_chips: f64,
-    /// C/N0 estimate (dB-Hz), once the estimator window has filled.
+    /// C/N0 estimate (dB-Hz) of the whole signal, once the estimator window has filled;
+    /// for a signal with a pilot, the pilot's estimate plus 3.01 dB (the ICDs split the
+    /// power equally between the two components).
     pub cn0_dbhz: Option<f64>,
     /// PLL lock indicator: the smoothed `cos 2 phi` estimate, corrected for the noise bias
     /// `SNR / (1 + SNR)` of one prompt with the C/N0 estimate.
@@ -147,12 +157,17 @@ struct BitAccumulator {
     count: usize,
 }
 
+/// Power of a pilot signal over its pilot alone: the two components carry half each.
+const PILOT_SHARE_DB: f64 = 3.010_299_956_639_812;
+
 /// One satellite's tracking channel.
 #[derive(Debug)]
 pub struct ChannelTracker {
     signal: Signal,
     prn: u8,
     modulation: DataModulation,
+    /// The pilot's secondary code, for a signal tracked on its pilot (else empty).
+    pilot_secondary: Vec<i8>,
     front_end: FrontEnd,
     config: TrackingConfig,
     correlator: Correlator,
@@ -208,7 +223,6 @@ impl ChannelTracker {
             )));
         }
         let signal = handover.signal;
-        let code = signal.code(handover.prn)?;
         let fs = front_end.sample_rate_hz;
         if fs < signal.chip_rate_hz() {
             return Err(TrackingError::InvalidConfig(format!(
@@ -216,12 +230,12 @@ impl ChannelTracker {
                 signal.name()
             )));
         }
-        let correlator = Correlator::new(
-            &code,
-            TapSet::Three {
-                early_late_spacing_chips: config.early_late_spacing_chips,
-            },
-        )?;
+        let correlator = correlator(signal, handover.prn, config.early_late_spacing_chips)?;
+        let pilot_secondary = if signal.has_pilot() {
+            signal.pilot(handover.prn)?.secondary
+        } else {
+            Vec::new()
+        };
         let carrier = carrier::build(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
         let code_rate = aided_code_rate(
             signal.chip_rate_hz(),
@@ -243,10 +257,16 @@ impl ChannelTracker {
         let modulation = signal.data_modulation(handover.prn).ok_or_else(|| {
             TrackingError::InvalidConfig(format!("{} is not tracked", signal.name()))
         })?;
+        let sync = if pilot_secondary.is_empty() {
+            BitSynchroniser::new(modulation, config.bit_sync)
+        } else {
+            BitSynchroniser::for_pilot(modulation, pilot_secondary.clone(), config.bit_sync)
+        };
         Ok(Self {
             signal,
             prn: handover.prn,
             modulation,
+            pilot_secondary,
             front_end,
             config,
             correlator,
@@ -279,7 +299,7 @@ impl ChannelTracker {
             lock_time_s: 0.0,
             slip_pending: false,
             lost: false,
-            sync: BitSynchroniser::new(modulation, config.bit_sync),
+            sync,
             synced_at_s: None,
             bit: None,
             last_cn0_dbhz: None,
@@ -310,6 +330,17 @@ impl ChannelTracker {
     /// since hand-over modulo the bit length equals it.
     pub fn bit_edge_phase(&self) -> Option<u32> {
         self.sync.edge_phase()
+    }
+
+    /// For a signal tracked on its pilot, once its secondary code is found: whether the
+    /// carrier loop holds the carrier half a cycle off (the code arrived inverted). The
+    /// data bits are handed on corrected; the carrier phase is not.
+    pub fn pilot_inverted(&self) -> bool {
+        self.tracks_pilot() && self.sync.secondary_start().is_some_and(|(_, inv)| inv)
+    }
+
+    fn tracks_pilot(&self) -> bool {
+        !self.pilot_secondary.is_empty()
     }
 
     /// Track over one block of samples whose first sample has index `first_sample_index`.
@@ -353,9 +384,13 @@ impl ChannelTracker {
                 self.pending.extend_from_slice(&samples[from..to]);
                 self.correlator.correlate(&self.pending, &nco)
             };
-            let corr = [corr[0], corr[1], corr[2]];
+            // A pilot leads the data component by a quarter cycle: turn its taps back.
+            let (corr, data) = match corr {
+                [e, p, l, d] => ([e, p, l].map(|c| Complex::new(c.im, -c.re)), *d),
+                _ => ([corr[0], corr[1], corr[2]], corr[1]),
+            };
             self.pending.clear();
-            if let Some(record) = self.finish_period(corr, n) {
+            if let Some(record) = self.finish_period(corr, data, n) {
                 records.push(record);
             }
         }
@@ -401,19 +436,37 @@ impl ChannelTracker {
         }
     }
 
-    /// Fold one code period's correlations into the integration; returns the record when
-    /// the integration completes.
-    fn finish_period(&mut self, corr: [Complex<f64>; 3], n: usize) -> Option<TrackingRecord> {
+    /// Fold one code period's correlations (early, prompt, late of the tracked code, and
+    /// the data code's prompt, the same as the prompt without a pilot) into the
+    /// integration; returns the record when the integration completes.
+    fn finish_period(
+        &mut self,
+        corr: [Complex<f64>; 3],
+        data: Complex<f64>,
+        n: usize,
+    ) -> Option<TrackingRecord> {
         let k = self.period_index;
         let ppb = u64::from(self.modulation.periods_per_bit());
         let edge = self.sync.edge_phase().map(u64::from);
         // Position in the bit (after sync) and secondary-code wipe-off.
         let position = edge.map(|e| (k + ppb - e % ppb) % ppb);
-        let nh = match (self.modulation, position) {
-            (DataModulation::BdsD1, Some(pos)) => f64::from(neumann_hoffman::nh20_level(pos)),
+        let data_chip = match (self.modulation.data_secondary_code(), position) {
+            (Some(code), Some(pos)) => f64::from(code[pos as usize % code.len()]),
             _ => 1.0,
         };
-        let corr = corr.map(|c| c * nh);
+        let (corr, data) = match self.sync.secondary_start().filter(|_| self.tracks_pilot()) {
+            Some((start, inverted)) => {
+                let l = self.pilot_secondary.len() as u64;
+                let polarity = if inverted { -1.0 } else { 1.0 };
+                let chip =
+                    f64::from(self.pilot_secondary[((k + l - u64::from(start) % l) % l) as usize]);
+                (
+                    corr.map(|c| c * chip * polarity),
+                    data * data_chip * polarity,
+                )
+            }
+            None => (corr.map(|c| c * data_chip), data * data_chip),
+        };
         if self.start.is_none() {
             self.start = Some(IntegrationStart {
                 sample_index: self.next_index,
@@ -442,7 +495,7 @@ impl ChannelTracker {
                     self.synced_at_s = Some(self.time_s);
                 }
             }
-            Some(pos) => bit = self.accumulate_bit(pos, ppb, corr[1].re, period_start),
+            Some(pos) => bit = self.accumulate_bit(pos, ppb, data.re, period_start),
         }
         let complete = match position {
             None => true,
@@ -481,15 +534,8 @@ impl ChannelTracker {
             .map(|d| d.max(chips_per_sample))
             && d != self.early_late_spacing_chips
         {
-            // The code was valid when the channel was made (same signal and PRN).
-            if let Ok(code) = self.signal.code(self.prn)
-                && let Ok(c) = Correlator::new(
-                    &code,
-                    TapSet::Three {
-                        early_late_spacing_chips: d,
-                    },
-                )
-            {
+            // The codes were valid when the channel was made (same signal and PRN).
+            if let Ok(c) = correlator(self.signal, self.prn, d) {
                 self.correlator = c;
                 self.early_late_spacing_chips = d;
             }
@@ -603,7 +649,7 @@ impl ChannelTracker {
         // After this integration's discriminator used the spacing it was correlated with.
         self.narrow_dll();
 
-        // Lock detectors.
+        // Lock detectors (on the tracked component).
         let cn0 = self.cn0.cn0_dbhz().or(self.last_cn0_dbhz);
         self.last_cn0_dbhz = cn0;
         // Noise pulls the `cos 2 phi` estimate down to `SNR / (1 + SNR)` of a prompt in
@@ -645,7 +691,13 @@ impl ChannelTracker {
             late,
             phase_error_cycles: phase_error,
             code_error_chips: code_error,
-            cn0_dbhz: cn0,
+            cn0_dbhz: cn0.map(|c| {
+                if self.tracks_pilot() {
+                    c + PILOT_SHARE_DB
+                } else {
+                    c
+                }
+            }),
             pll_lock_indicator: indicator,
             locked,
             bit_synced: self.sync.edge_phase().is_some(),
@@ -654,6 +706,22 @@ impl ChannelTracker {
             lock_time_s: self.lock_time_s,
             bit,
         }
+    }
+}
+
+/// The correlator of `signal`'s `prn`: early, prompt and late of its code, or, for a
+/// signal with a pilot, of the pilot code with the data code's prompt beside them.
+fn correlator(signal: Signal, prn: u8, spacing_chips: f64) -> Result<Correlator, TrackingError> {
+    let code = signal.code(prn)?;
+    if signal.has_pilot() {
+        Correlator::pilot_and_data(&signal.pilot(prn)?.primary, &code, spacing_chips)
+    } else {
+        Correlator::new(
+            &code,
+            TapSet::Three {
+                early_late_spacing_chips: spacing_chips,
+            },
+        )
     }
 }
 

@@ -42,6 +42,9 @@ pub enum TapSet {
         early_late_spacing_chips: f64,
         very_spacing_chips: f64,
     },
+    /// A signal with a pilot ([`Correlator::pilot_and_data`]): early, prompt and late of
+    /// the pilot code, then the prompt of the data code.
+    PilotAndData { early_late_spacing_chips: f64 },
 }
 
 impl TapSet {
@@ -50,6 +53,7 @@ impl TapSet {
         match self {
             TapSet::Three { .. } => 3,
             TapSet::Five { .. } => 5,
+            TapSet::PilotAndData { .. } => 4,
         }
     }
 
@@ -61,16 +65,20 @@ impl TapSet {
     /// Index of the prompt tap in the correlator output.
     pub fn prompt_index(self) -> usize {
         match self {
-            TapSet::Three { .. } => 1,
+            TapSet::Three { .. } | TapSet::PilotAndData { .. } => 1,
             TapSet::Five { .. } => 2,
         }
     }
 
     /// Offsets (chips) of the taps in output order: very early, early, prompt, late, very
-    /// late (the first and last only for [`TapSet::Five`]). Positive is early.
+    /// late (the first and last only for [`TapSet::Five`]); early, prompt, late, data
+    /// prompt for [`TapSet::PilotAndData`]. Positive is early.
     pub fn offsets_chips(self) -> [f64; MAX_TAPS] {
         match self {
             TapSet::Three {
+                early_late_spacing_chips: d,
+            }
+            | TapSet::PilotAndData {
                 early_late_spacing_chips: d,
             } => [d / 2.0, 0.0, -d / 2.0, 0.0, 0.0],
             TapSet::Five {
@@ -80,13 +88,18 @@ impl TapSet {
         }
     }
 
+    /// Taps of the tracked code (the data prompt of [`TapSet::PilotAndData`] aside).
+    fn tracked_len(self) -> usize {
+        match self {
+            TapSet::PilotAndData { .. } => 3,
+            _ => self.len(),
+        }
+    }
+
     fn check(self) -> Result<Self, TrackingError> {
-        let offsets = self.offsets_chips();
-        let ok = offsets[..self.len()]
-            .iter()
-            .all(|o| o.is_finite() && o.abs() < 1.5)
-            && offsets[0] > 0.0;
-        let ordered = offsets[..self.len()].windows(2).all(|w| w[0] > w[1]);
+        let offsets = &self.offsets_chips()[..self.tracked_len()];
+        let ok = offsets.iter().all(|o| o.is_finite() && o.abs() < 1.5) && offsets[0] > 0.0;
+        let ordered = offsets.windows(2).all(|w| w[0] > w[1]);
         if ok && ordered {
             Ok(self)
         } else {
@@ -123,11 +136,14 @@ impl NcoState {
     }
 }
 
-/// A correlator for one ranging code: the code, the taps and reusable buffers.
+/// A correlator for one ranging code (and the data code of a signal with a pilot): the
+/// codes, the taps and reusable buffers.
 #[derive(Debug, Clone)]
 pub struct Correlator {
     /// One code period as signal levels (+1.0 / -1.0).
     code: Vec<f32>,
+    /// The data code of [`TapSet::PilotAndData`] (empty otherwise).
+    data_code: Vec<f32>,
     taps: TapSet,
     /// Per-tap replica buffers, `taps.len()` slices of the block length plus `RUN`.
     replicas: Vec<f32>,
@@ -136,12 +152,47 @@ pub struct Correlator {
 
 impl Correlator {
     /// A correlator for `code` (signal levels +1/-1, one period) with the given taps.
+    /// [`TapSet::PilotAndData`] needs [`Self::pilot_and_data`].
     pub fn new(code: &[i8], taps: TapSet) -> Result<Self, TrackingError> {
+        if matches!(taps, TapSet::PilotAndData { .. }) {
+            return Err(TrackingError::InvalidConfig(
+                "a pilot-and-data correlator needs both codes".into(),
+            ));
+        }
+        Self::with_codes(code, &[], taps)
+    }
+
+    /// A correlator for a signal with a pilot: early, prompt and late of `pilot` and the
+    /// prompt of `data` (codes of one length, chips aligned).
+    pub fn pilot_and_data(
+        pilot: &[i8],
+        data: &[i8],
+        early_late_spacing_chips: f64,
+    ) -> Result<Self, TrackingError> {
+        if pilot.len() != data.len() {
+            return Err(TrackingError::InvalidConfig(format!(
+                "pilot and data codes differ in length: {} and {}",
+                pilot.len(),
+                data.len()
+            )));
+        }
+        Self::with_codes(
+            pilot,
+            data,
+            TapSet::PilotAndData {
+                early_late_spacing_chips,
+            },
+        )
+    }
+
+    fn with_codes(code: &[i8], data: &[i8], taps: TapSet) -> Result<Self, TrackingError> {
         if code.is_empty() {
             return Err(TrackingError::InvalidConfig("empty ranging code".into()));
         }
+        let levels = |c: &[i8]| c.iter().map(|&c| f32::from(c)).collect();
         Ok(Self {
-            code: code.iter().map(|&c| f32::from(c)).collect(),
+            code: levels(code),
+            data_code: levels(data),
             taps: taps.check()?,
             replicas: Vec::new(),
             out: [Complex::new(0.0, 0.0); MAX_TAPS],
@@ -166,6 +217,7 @@ impl Correlator {
         self.replicas.resize(n_taps * (n + RUN), 0.0);
         let replica = Replica {
             code: &self.code,
+            data_code: &self.data_code,
             p0_chips: nco.code_phase_chips,
             dp: nco.code_chips_per_sample,
             offsets: self.taps.offsets_chips(),
@@ -179,6 +231,12 @@ impl Correlator {
                 carrier,
             }),
             TapSet::Five { .. } => pulp::Arch::new().dispatch(Kernel::<5> {
+                samples,
+                replicas: &mut self.replicas,
+                replica,
+                carrier,
+            }),
+            TapSet::PilotAndData { .. } => pulp::Arch::new().dispatch(Kernel::<4> {
                 samples,
                 replicas: &mut self.replicas,
                 replica,
@@ -295,6 +353,8 @@ impl CarrierStart {
 #[derive(Debug, Clone, Copy)]
 struct Replica<'a> {
     code: &'a [f32],
+    /// The data code: the fourth tap's (empty unless pilot and data).
+    data_code: &'a [f32],
     p0_chips: f64,
     dp: f64,
     offsets: [f64; MAX_TAPS],
@@ -315,12 +375,18 @@ impl<const T: usize> pulp::WithSimd for Kernel<'_, T> {
         let n = self.samples.len();
         let Replica {
             code,
+            data_code,
             p0_chips,
             dp,
             offsets,
         } = self.replica;
         let short = dp > 0.0 && 1.0 / dp <= (RUN - 1) as f64;
         for (t, buf) in self.replicas.chunks_exact_mut(n + RUN).enumerate() {
+            let code = if t == 3 && !data_code.is_empty() {
+                data_code
+            } else {
+                code
+            };
             if short {
                 fill_replica_short(buf, n, code, p0_chips + offsets[t], dp);
             } else {
@@ -474,6 +540,47 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The pilot-and-data taps against the direct evaluation: three taps of the pilot
+    /// code, the fourth of the data code at the prompt, over short-chip (10.23 Mchip/s at
+    /// 20.46 Msps) and long-chip blocks.
+    #[test]
+    fn pilot_and_data_taps_match_direct_evaluation() {
+        let (pilot, data) = (signs(10_230, 11), signs(10_230, 12));
+        let noise = signs(2 * 20_500, 5);
+        let samples: Vec<Complex<f32>> = noise
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
+            .collect();
+        for (n, dp) in [(20_460, 0.5 * (1.0 - 3e-6)), (20_001, 0.1)] {
+            let nco = NcoState {
+                carrier_phase_cycles: 0.37,
+                carrier_cycles_per_sample: 0.0413,
+                code_phase_chips: 10_229.6,
+                code_chips_per_sample: dp,
+            };
+            let mut corr = Correlator::pilot_and_data(&pilot, &data, 0.5).unwrap();
+            let out = corr.correlate(&samples[..n], &nco).to_vec();
+            assert_eq!(out.len(), 4);
+            for (t, (code, offset)) in
+                [(&pilot, 0.25), (&pilot, 0.0), (&pilot, -0.25), (&data, 0.0)]
+                    .into_iter()
+                    .enumerate()
+            {
+                let r = reference(&samples[..n], code, &nco, offset);
+                assert!(
+                    (out[t] - r).norm() < 1e-4 * n as f64,
+                    "tap {t}: {} vs {r}",
+                    out[t]
+                );
+            }
+        }
+        assert!(Correlator::pilot_and_data(&pilot, &data[1..], 0.5).is_err());
+        let taps = TapSet::PilotAndData {
+            early_late_spacing_chips: 0.5,
+        };
+        assert!(Correlator::new(&pilot, taps).is_err());
     }
 
     #[test]

@@ -1,14 +1,16 @@
 //! Test signals for the tracking tests: one satellite's complex baseband (or IF) signal
-//! with a polynomial Doppler, data bits (and the NH code on BeiDou D1), optional phase
-//! jump and outage, in complex white Gaussian noise; plus its exact truth.
+//! with a polynomial Doppler, data bits (and the data secondary code: BeiDou D1's NH, L5's
+//! NH10, E5a-I's CS20), for GPS L5 and Galileo E5a the pilot in quadrature (+90 deg, half
+//! the power, its secondary code), optional phase jump and outage, in complex white
+//! Gaussian noise; plus its exact truth. Code periods count from a bit edge that is also
+//! a start of the pilot's secondary code.
 //! Shared by several test binaries, each using part of it.
 #![allow(dead_code)]
 
 use num_complex::Complex;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
-use skyforge_gnss::codes::neumann_hoffman::NH20;
-use skyforge_gnss::signal::{DataModulation, Signal};
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::tracking::Handover;
 
 /// One satellite signal and its truth.
@@ -126,7 +128,18 @@ impl TestSignal {
         let len = code.len() as f64;
         let amplitude = (10f64.powf(self.cn0_dbhz / 10.0) * 2.0 / self.fs_hz).sqrt();
         let ppb = self.periods_per_bit();
-        let d1 = self.signal.data_modulation(self.prn) == Some(DataModulation::BdsD1);
+        let data_secondary = self
+            .signal
+            .data_modulation(self.prn)
+            .and_then(|m| m.data_secondary_code())
+            .unwrap_or(&[1]);
+        let pilot = self.signal.pilot(self.prn).ok();
+        // With a pilot, each component carries half the power.
+        let amplitude = if pilot.is_some() {
+            amplitude * std::f64::consts::FRAC_1_SQRT_2
+        } else {
+            amplitude
+        };
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(self.seed ^ first.rotate_left(17));
         let mut out = Vec::with_capacity(n);
         const CHUNK: usize = 1024;
@@ -156,12 +169,21 @@ impl TestSignal {
                 let s = start + i as u64;
                 let p = p0 + i as f64 * dp;
                 let period = (p / len).floor();
-                let chip = code[(p - period * len) as usize % code.len()];
+                let chip_index = (p - period * len) as usize % code.len();
+                let chip = code[chip_index];
                 let period = period as u64;
-                let mut sign = self.data_bit(period / ppb) * chip;
-                if d1 {
-                    sign *= f64::from(NH20[(period % 20) as usize]);
-                }
+                let sign = self.data_bit(period / ppb)
+                    * chip
+                    * f64::from(data_secondary[(period % data_secondary.len() as u64) as usize]);
+                let baseband = match &pilot {
+                    Some(pc) => {
+                        let l = pc.secondary.len() as u64;
+                        let q = f64::from(pc.primary[chip_index])
+                            * f64::from(pc.secondary[(period % l) as usize]);
+                        Complex::new(sign, q)
+                    }
+                    None => Complex::new(sign, 0.0),
+                };
                 let jump = match self.phase_jump {
                     Some((at, cycles)) if s == at => {
                         Complex::from_polar(1.0, std::f64::consts::TAU * cycles)
@@ -171,7 +193,7 @@ impl TestSignal {
                 z *= jump;
                 let on = !matches!(self.outage, Some((a, b)) if s >= a && s < b);
                 let x = if on {
-                    z * (amplitude * sign)
+                    z * baseband * amplitude
                 } else {
                     Complex::new(0.0, 0.0)
                 };

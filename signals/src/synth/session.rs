@@ -356,7 +356,7 @@ impl<'a> SynthSession<'a> {
                     "its system has no satellites in this scenario (enable it under [gnss])",
                 )));
             }
-            if s.is_tracked() || self.bands.iter().any(|b| b.signal == *s) {
+            if s.is_default_fix() || self.bands.iter().any(|b| b.signal == *s) {
                 return Err(SynthError::Invalid(Invalid::new(
                     field,
                     s.tag(),

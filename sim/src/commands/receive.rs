@@ -29,9 +29,9 @@ fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
         .map(str::parse::<Signal>)
         .transpose()
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
-    if let Some(s) = signal.filter(|s| !s.is_tracked()) {
+    if let Some(s) = signal.filter(|s| !s.is_received()) {
         return Err(BadInput(format!(
-            "--signal {}: not tracked by the bundled receiver (allowed: gps-l1ca, bds-b1i)",
+            "--signal {}: not received by the bundled receiver (allowed: gps-l1ca, bds-b1i, gps-l5, gal-e5a)",
             s.tag()
         ))
         .into());

@@ -51,7 +51,7 @@ fn unit_sigma() -> Sigmas {
         carrier_cycles: ones.clone(),
         divergence_mps: ones,
     };
-    Signal::TRACKED
+    Signal::DEFAULT_FIX
         .iter()
         .map(|s| (s.tag().to_string(), table.clone()))
         .collect()
