@@ -65,16 +65,17 @@ fn clear_of_earth(a: &Vec3, b: &Vec3) -> bool {
     !segment_blocked(a, b, EARTH_POLAR_RADIUS_M, EARTH_POLAR_RADIUS_M)
 }
 
-/// Hints for every satellite of `store` that is in view of the assisted receiver, sorted
-/// by elevation (highest first).
-pub fn search_hints(store: &EphemerisStore, a: &Assistance) -> Vec<SearchHint> {
+/// Hints for `signal` of every satellite of its system in `store` that is in view of the
+/// assisted receiver, sorted by elevation (highest first).
+pub fn search_hints(store: &EphemerisStore, a: &Assistance, signal: Signal) -> Vec<SearchHint> {
     let h_m = ecef_to_geodetic(&a.r_ecef_m).h_m;
+    let f = signal.carrier_hz();
     let mut hints: Vec<SearchHint> = store
         .satellites()
         .into_iter()
+        .filter(|sat| sat.system == signal.system())
         .filter_map(|sat| {
             let eph = store.select(sat, a.t_s)?;
-            let f = Signal::of_system(sat.system).carrier_hz();
             // The receiver dt seconds later: coasting in orbit, or moving steadily on the
             // ground.
             let receiver_at = |dt: f64| {

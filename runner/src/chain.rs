@@ -185,7 +185,7 @@ pub fn synth_and_receive(
     let mut sink = RinexObsFiles::new(
         &rx_dir,
         &antennas,
-        &receiver.systems(),
+        &receiver.signals(),
         approximate.map(|a| a.r_ecef_m),
         1.0 / receiver.config().observation_rate_hz,
     );

@@ -17,6 +17,7 @@ use rinex::prelude::{Constellation, Observable};
 use skyforge_navigation::pvt::PvtError;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_receiver::observables::Observation;
 use skyforge_receiver::pipeline::fixtures::{fix, report};
@@ -80,7 +81,7 @@ fn rtklib_convbin_reads_back_epochs_flags_and_values() {
     let tmp = tempfile::tempdir().unwrap();
     let dir = tmp.path();
     let names = vec!["ant1".to_string()];
-    let mut out = RinexObsFiles::new(dir, &names, &[System::Gps, System::Beidou], None, 0.1);
+    let mut out = RinexObsFiles::new(dir, &names, &[Signal::GpsL1Ca, Signal::BdsB1I], None, 0.1);
     for k in 0..5 {
         let mut r = report(k);
         r.observations.retain(|o| o.antenna == 0);
@@ -188,7 +189,7 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
     });
     let recv_dir = dir.join("receive");
     std::fs::create_dir(&recv_dir).unwrap();
-    let mut out = RinexObsFiles::new(&recv_dir, &["ant1".to_string()], &[System::Gps], None, 1.0);
+    let mut out = RinexObsFiles::new(&recv_dir, &["ant1".to_string()], &[Signal::GpsL1Ca], None, 1.0);
     // Receiver clock ahead by 0.1234567 s + k x 1.0001 ms (whole 100 ns, so the tags
     // keep it exactly): tags and pseudoranges both carry it.
     let offset_s = |k: usize| 0.123_456_7 + 0.001_000_1 * k as f64;

@@ -23,7 +23,7 @@ use pvt_csv::PvtCsv;
 use receiver_h5::ReceiverH5;
 use skyforge_gnss::antenna_name::check_antenna_name;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::System;
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::pipeline::EpochReport;
 use skyforge_receiver::session::{EpochSink, RinexObsFiles, SinkError};
 use std::path::{Path, PathBuf};
@@ -75,18 +75,18 @@ fn check_name(name: &str, seen: &[String]) -> anyhow::Result<()> {
 
 impl ReceiverOutputs {
     /// Create the files in `dir` (an existing directory) for antennas `antenna_names`
-    /// (index = `AntennaFix::antenna`), receiving `systems`. `approx_ecef_m` is the
+    /// (index = `AntennaFix::antenna`), receiving `signals`. `approx_ecef_m` is the
     /// RINEX header position (m, ECEF); when `None`, each antenna's first fix gives it.
     /// `interval_s` is the observation interval (RINEX `INTERVAL`).
     pub fn create(
         dir: &Path,
         antenna_names: &[String],
-        systems: &[System],
+        signals: &[Signal],
         approx_ecef_m: Option<Vec3>,
         interval_s: f64,
     ) -> anyhow::Result<Self> {
-        if systems.is_empty() {
-            bail!("no satellite system to write observations of");
+        if signals.is_empty() {
+            bail!("no signal to write observations of");
         }
         let mut names: Vec<String> = Vec::with_capacity(antenna_names.len());
         for name in antenna_names {
@@ -101,7 +101,7 @@ impl ReceiverOutputs {
         let h5 = ReceiverH5::create(&h5_path, &names)
             .with_context(|| format!("cannot create {}", h5_path.display()))?;
         Ok(Self {
-            rinex: RinexObsFiles::new(dir, &names, systems, approx_ecef_m, interval_s),
+            rinex: RinexObsFiles::new(dir, &names, signals, approx_ecef_m, interval_s),
             csv: PvtCsv::create(&dir.join(PVT_CSV))?,
             nmea,
             h5,
@@ -190,7 +190,7 @@ mod tests {
         let mut out = ReceiverOutputs::create(
             dir.path(),
             &names,
-            &[System::Gps, System::Beidou],
+            &[Signal::GpsL1Ca, Signal::BdsB1I],
             None,
             0.1,
         )
@@ -233,7 +233,7 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let create = |names: &[&str]| {
             let names: Vec<String> = names.iter().map(|s| s.to_string()).collect();
-            ReceiverOutputs::create(dir.path(), &names, &[System::Gps], None, 1.0)
+            ReceiverOutputs::create(dir.path(), &names, &[Signal::GpsL1Ca], None, 1.0)
         };
         assert!(create(&["a/b"]).is_err());
         assert!(create(&["x", "x"]).is_err());

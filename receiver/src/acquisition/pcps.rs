@@ -98,11 +98,13 @@ impl PcpsConfig {
     }
 }
 
-/// The conjugated spectrum of one PRN's replica, computed once and reused by searches.
+/// The conjugated spectra of one PRN's replicas, computed once and reused by searches:
+/// the code, and for a signal with a pilot the pilot's code beside the data code (the
+/// search adds both components' powers: twice the signal power for twice the noise).
 #[derive(Debug, Clone)]
 pub struct PreparedCode {
     pub prn: u8,
-    spectrum_conj: Vec<Complex32>,
+    spectra_conj: Vec<Vec<Complex32>>,
 }
 
 /// The search statistic over (Doppler bin, code lag): `sum_N |sum_K R|^2` (raw, not yet
@@ -312,9 +314,21 @@ impl Pcps {
     /// zero-padded to the FFT length, transformed, conjugated and scaled by `1/len`.
     pub fn prepare(&self, prn: u8) -> Result<PreparedCode, AcquisitionError> {
         let signal = self.config.signal;
-        let chips = signal.code(prn)?;
+        let mut codes = vec![signal.code(prn)?];
+        if signal.has_pilot() {
+            codes.push(signal.pilot(prn)?.primary);
+        }
+        Ok(PreparedCode {
+            prn,
+            spectra_conj: codes.iter().map(|c| self.spectrum_conj(c)).collect(),
+        })
+    }
+
+    /// One code period of `chips` sampled, zero-padded, transformed, conjugated, scaled.
+    fn spectrum_conj(&self, chips: &[i8]) -> Vec<Complex32> {
+        let signal = self.config.signal;
         let code = sample_code(
-            &chips,
+            chips,
             signal.chip_rate_hz(),
             self.config.sample_rate_hz,
             self.period_samples,
@@ -328,10 +342,7 @@ impl Pcps {
         for b in &mut buf {
             *b = b.conj() * scale;
         }
-        Ok(PreparedCode {
-            prn,
-            spectrum_conj: buf,
-        })
+        buf
     }
 
     /// The search surface of `code` over the configured window.
@@ -358,6 +369,7 @@ impl Pcps {
         }
         let lags = self.period_samples;
         let (k, n) = (self.config.coherent_periods, self.config.noncoherent);
+        let components = code.spectra_conj.len();
         let fs = self.config.sample_rate_hz;
         let mut power = vec![0f32; doppler_hz.len() * lags];
         let scratch_len = self
@@ -371,29 +383,34 @@ impl Pcps {
                 || {
                     (
                         vec![Complex32::default(); self.fft_len],
+                        vec![Complex32::default(); self.fft_len],
                         vec![Complex32::default(); scratch_len],
-                        vec![Complex32::default(); lags],
+                        vec![Complex32::default(); lags * components],
                     )
                 },
-                |(buf, scratch, coh), (row, &doppler)| {
+                |(wiped, buf, scratch, coh), (row, &doppler)| {
                     let freq = self.config.carrier_offset_hz + doppler;
                     for q in 0..n {
                         coh.fill(Complex32::default());
                         for m in 0..k {
                             let start = (q * k + m) * lags;
                             let block = &samples[start..start + self.fft_len];
-                            wipe_carrier(block, start as u64, fs, freq, buf);
-                            self.forward.process_with_scratch(buf, scratch);
-                            for (x, c) in buf.iter_mut().zip(&code.spectrum_conj) {
-                                *x *= c;
-                            }
-                            self.inverse.process_with_scratch(buf, scratch);
-                            for (a, b) in coh.iter_mut().zip(buf.iter()) {
-                                *a += b;
+                            wipe_carrier(block, start as u64, fs, freq, wiped);
+                            self.forward.process_with_scratch(wiped, scratch);
+                            for (spectrum, coh) in code.spectra_conj.iter().zip(coh.chunks_mut(lags)) {
+                                for ((x, w), c) in buf.iter_mut().zip(wiped.iter()).zip(spectrum) {
+                                    *x = w * c;
+                                }
+                                self.inverse.process_with_scratch(buf, scratch);
+                                for (a, b) in coh.iter_mut().zip(buf.iter()) {
+                                    *a += b;
+                                }
                             }
                         }
-                        for (r, c) in row.iter_mut().zip(coh.iter()) {
-                            *r += c.norm_sqr();
+                        for coh in coh.chunks(lags) {
+                            for (r, c) in row.iter_mut().zip(coh.iter()) {
+                                *r += c.norm_sqr();
+                            }
                         }
                     }
                 },
@@ -402,7 +419,7 @@ impl Pcps {
             doppler_hz: doppler_hz.to_vec(),
             lags,
             power,
-            noncoherent: n,
+            noncoherent: n * components,
         })
     }
 

@@ -40,6 +40,7 @@ pub struct ChannelSample {
 pub struct Observation {
     pub antenna: usize,
     pub sat: SatId,
+    pub signal: Signal,
     pub pseudorange_m: f64,
     /// RINEX-signed carrier phase (cycles).
     pub carrier_phase_cycles: f64,
@@ -57,7 +58,7 @@ impl Observation {
     pub fn record(&self) -> ObsRecord {
         ObsRecord {
             sat: self.sat,
-            signal: Signal::of_system(self.sat.system),
+            signal: self.signal,
             pseudorange_m: Some(self.pseudorange_m),
             carrier_phase_cycles: Some(self.carrier_phase_cycles),
             doppler_hz: self.doppler_hz.is_finite().then_some(self.doppler_hz),
@@ -75,7 +76,7 @@ impl Observation {
 #[derive(Debug, Clone)]
 pub struct ObservablesBuilder {
     sample_rate_hz: f64,
-    channels: BTreeMap<(usize, SatId), Track>,
+    channels: BTreeMap<(usize, SatId, Signal), Track>,
 }
 
 #[derive(Debug, Clone)]
@@ -96,9 +97,9 @@ impl ObservablesBuilder {
         }
     }
 
-    /// Record a code-period boundary of `sat` at `antenna`.
-    pub fn push(&mut self, antenna: usize, sat: SatId, s: ChannelSample) {
-        let track = self.channels.entry((antenna, sat)).or_insert(Track {
+    /// Record a code-period boundary of `sat`'s `signal` at `antenna`.
+    pub fn push(&mut self, antenna: usize, sat: SatId, signal: Signal, s: ChannelSample) {
+        let track = self.channels.entry((antenna, sat, signal)).or_insert(Track {
             last: [None, None],
             locked_since: s.sample_index,
             slip_pending: true,
@@ -115,15 +116,15 @@ impl ObservablesBuilder {
     /// for the next epoch.
     pub fn keep_pending(&mut self, observations: &[Observation]) {
         for o in observations.iter().filter(|o| o.loss_of_lock) {
-            if let Some(track) = self.channels.get_mut(&(o.antenna, o.sat)) {
+            if let Some(track) = self.channels.get_mut(&(o.antenna, o.sat, o.signal)) {
                 track.slip_pending = true;
             }
         }
     }
 
     /// Forget a channel (it stopped tracking).
-    pub fn drop_channel(&mut self, antenna: usize, sat: SatId) {
-        self.channels.remove(&(antenna, sat));
+    pub fn drop_channel(&mut self, antenna: usize, sat: SatId, signal: Signal) {
+        self.channels.remove(&(antenna, sat, signal));
     }
 
     /// Observations at sample `epoch_sample` with receiver time `t_rx_s` there: every
@@ -135,7 +136,7 @@ impl ObservablesBuilder {
     pub fn at(&mut self, epoch_sample: f64, t_rx_s: f64, clock_steps_s: f64) -> Vec<Observation> {
         let fs = self.sample_rate_hz;
         let mut out = Vec::new();
-        for (&(antenna, sat), track) in &mut self.channels {
+        for (&(antenna, sat, signal), track) in &mut self.channels {
             let [Some(a), Some(b)] = track.last else {
                 continue;
             };
@@ -152,10 +153,11 @@ impl ObservablesBuilder {
             out.push(Observation {
                 antenna,
                 sat,
+                signal,
                 pseudorange_m: C_MPS * (t_rx_s - t_tx),
                 carrier_phase_cycles: -nco
                     + half
-                    + clock_steps_s * Signal::of_system(sat.system).carrier_hz(),
+                    + clock_steps_s * signal.carrier_hz(),
                 doppler_hz: lerp(a.doppler_hz, b.doppler_hz),
                 cn0_dbhz: b.cn0_dbhz,
                 lock_time_s: (epoch_sample - track.locked_since).max(0.0) / fs,

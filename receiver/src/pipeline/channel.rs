@@ -23,7 +23,8 @@ pub(crate) struct Channel {
     decoder: Box<dyn NavDecoder>,
     clock: CodeClock,
     sample_rate_hz: f64,
-    /// The last subframe arrived with inverted polarity (Costas lock at 180 deg).
+    /// The carrier loop holds the carrier half a cycle off (Costas lock at 180 deg): the
+    /// last subframe arrived inverted, or the pilot's secondary code did.
     inverted: bool,
     /// A slip or unlocked stretch happened since the last sample handed on.
     slip: bool,
@@ -75,6 +76,11 @@ impl Channel {
         Ok(())
     }
 
+    /// The tracked signal.
+    pub(crate) fn signal(&self) -> skyforge_gnss::signal::Signal {
+        self.tracker.signal()
+    }
+
     /// The channel declared loss of lock.
     pub(crate) fn is_lost(&self) -> bool {
         self.tracker.is_lost()
@@ -109,7 +115,8 @@ impl Channel {
                         let approx = approx_time(bit.first_sample_index as f64);
                         match nav.time_of_week(self.sat.system, info.week, info.tow_s, approx) {
                             Some(t) if self.clock.subframe(info.start_bit, t) => {
-                                self.inverted = info.inverted;
+                                // A pilot's polarity was corrected before the decoder.
+                                self.inverted = info.inverted != self.tracker.pilot_inverted();
                             }
                             _ => {}
                         }

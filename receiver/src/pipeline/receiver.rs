@@ -315,7 +315,7 @@ impl Receiver {
             }
         }
         for c in self.channels.iter().filter(|c| c.is_lost()) {
-            self.observables.drop_channel(c.antenna, c.sat);
+            self.observables.drop_channel(c.antenna, c.sat, c.signal());
             if c.ever_locked() {
                 self.summary.losses_of_lock += 1;
             } else {
@@ -352,7 +352,7 @@ impl Receiver {
                 let tracked = |prn: u8| {
                     self.channels
                         .iter()
-                        .any(|c| c.antenna == antenna && c.sat.system == system && c.sat.prn == prn)
+                        .any(|c| c.group == b && c.antenna == antenna && c.sat.prn == prn)
                 };
                 let elsewhere = |prn: u8| {
                     self.channels
@@ -435,14 +435,14 @@ impl Receiver {
     /// PRN over the cold window.
     fn candidates(&self, band: usize, antenna: usize, t_s: Option<f64>) -> Vec<Candidate> {
         let search = &self.searches[band];
-        let system = self.setup.bands[band].signal.system();
+        let signal = self.setup.bands[band].signal;
+        let system = signal.system();
         if let Some(a) = t_s.and_then(|t| self.assistance(antenna, t)) {
             let store = self.nav.store();
             if store.satellites().iter().any(|s| s.system == system) {
                 let floor = 2.0 * search.doppler_step_hz();
-                return search_hints(store, &a)
+                return search_hints(store, &a, signal)
                     .into_iter()
-                    .filter(|h| h.sat.system == system)
                     .map(|h| Candidate {
                         prn: h.sat.prn,
                         window: DopplerWindow {
@@ -534,7 +534,7 @@ impl Receiver {
     fn epoch(&mut self, n_k: f64, mut t_k: f64) -> Option<EpochReport> {
         for ch in &mut self.channels {
             while let Some(s) = ch.queue.pop_front() {
-                self.observables.push(ch.antenna, ch.sat, s);
+                self.observables.push(ch.antenna, ch.sat, ch.signal(), s);
                 if s.sample_index > n_k {
                     break;
                 }

@@ -16,7 +16,6 @@ use crate::pipeline::{
 };
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::bounded_read::read_text;
-use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::ephemeris::rinex_nav::{parse_nav, read_nav_file};
 use skyforge_orbits::ephemeris::rinex_nav_iono::{BroadcastIono, parse_iono, read_iono_file};
 use std::path::{Path, PathBuf};
@@ -358,13 +357,9 @@ impl ReceiveSession {
         &self.bands.antenna_names
     }
 
-    /// The systems received, one per band.
-    pub fn systems(&self) -> Vec<System> {
-        self.bands
-            .inputs
-            .iter()
-            .map(|b| b.signal.system())
-            .collect()
+    /// The signals received, one per band.
+    pub fn signals(&self) -> Vec<Signal> {
+        self.bands.inputs.iter().map(|b| b.signal).collect()
     }
 
     /// The configuration the receiver runs with.

@@ -10,7 +10,6 @@ use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::observation::{Calendar, ObsHeader, ObsWriter, RECEIVER_TYPE, calendar_gpst};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::System;
 use std::fs::File;
 use std::io::{self, BufWriter};
 use std::path::{Path, PathBuf};
@@ -41,7 +40,7 @@ fn writing(path: &Path, e: io::Error) -> io::Error {
 pub struct RinexObsFiles {
     paths: Vec<PathBuf>,
     names: Vec<String>,
-    /// The signal the receiver tracks of each system.
+    /// The signals the receiver tracks.
     signals: Vec<Signal>,
     approx_ecef_m: Option<Vec3>,
     interval_s: f64,
@@ -55,7 +54,7 @@ impl RinexObsFiles {
     pub fn new(
         dir: &Path,
         names: &[String],
-        systems: &[System],
+        signals: &[Signal],
         approx_ecef_m: Option<Vec3>,
         interval_s: f64,
     ) -> Self {
@@ -65,7 +64,7 @@ impl RinexObsFiles {
                 .map(|n| dir.join(format!("{n}.obs.rnx")))
                 .collect(),
             names: names.to_vec(),
-            signals: systems.iter().map(|s| Signal::of_system(*s)).collect(),
+            signals: signals.to_vec(),
             approx_ecef_m,
             interval_s,
             states: names.iter().map(|_| State::Waiting(Vec::new())).collect(),
@@ -166,7 +165,7 @@ mod tests {
         let mut files = RinexObsFiles::new(
             dir.path(),
             &names,
-            &[System::Gps, System::Beidou],
+            &[Signal::GpsL1Ca, Signal::BdsB1I],
             approx,
             0.1,
         );

@@ -67,7 +67,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     let mut outputs = ReceiverOutputs::create(
         &staged.file(""),
         session.antenna_names(),
-        &session.systems(),
+        &session.signals(),
         approximate.map(|a| a.r_ecef_m),
         1.0 / session.config().observation_rate_hz,
     )?;

@@ -328,7 +328,7 @@ fn receive_alongside(
     let mut outputs = ReceiverOutputs::create(
         &rx_dir,
         &names,
-        &receiver.systems(),
+        &receiver.signals(),
         approximate.map(|a| a.r_ecef_m),
         1.0 / receiver.config().observation_rate_hz,
     )?;

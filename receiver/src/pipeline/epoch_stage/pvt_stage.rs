@@ -2,7 +2,6 @@
 
 use super::{EpochInput, EpochStage, LastFix};
 use crate::pipeline::AntennaFix;
-use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
 
@@ -32,7 +31,7 @@ impl PvtStage {
                 sat: o.sat,
                 pseudorange_m: o.pseudorange_m,
                 doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
-                carrier_hz: Signal::of_system(o.sat.system).carrier_hz(),
+                carrier_hz: o.signal.carrier_hz(),
             })
             .collect();
         let (Some(origin), store) = (nav.origin(), nav.store()) else {
