@@ -25,12 +25,17 @@ mod bds_fields;
 mod decoder;
 mod framer;
 mod gps;
+mod gps_cnav;
 mod gps_fields;
 mod gps_parity;
+mod symbol_sync;
+#[cfg(test)]
+mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
+pub use gps_cnav::CnavDecoder;
 
 use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;
