@@ -24,6 +24,7 @@ mod bds_bch;
 mod bds_fields;
 mod decoder;
 mod framer;
+mod galileo_fnav;
 mod gps;
 mod gps_cnav;
 mod gps_fields;
@@ -34,6 +35,7 @@ mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
+pub use galileo_fnav::FnavDecoder;
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
 pub use gps_cnav::CnavDecoder;
 
