@@ -62,6 +62,9 @@ pub struct DecodedEphemeris {
     /// Orbit and clock in SI units (angles in rad); toe and toc in the system time scale.
     /// GPS: `health` is the 6-bit SV health, `tgd_s` is TGD, `iode`/`iodc` are IODE/IODC.
     /// BeiDou: `health` is SatH1, `tgd_s` is TGD1 (B1I), `iode`/`iodc` are AODE/AODC.
+    /// GPS CNAV and Galileo F/NAV: as the gnss crate's encoders' `broadcast_ephemeris`
+    /// (CNAV: the three health bits, TGD, no IODE/IODC; F/NAV: E5aHS and E5aDVS, BGD(E1,E5a),
+    /// IODnav).
     pub eph: BroadcastEphemeris,
     /// URA index (GPS LNAV, IS-GPS-200 20.3.3.3.1.3), URA_ED index clamped to 0-15 (GPS
     /// CNAV, message type 10, IS-GPS-705J 20.3.3.1) or URAI (BeiDou), 0-15; 0 for Galileo
