@@ -1,40 +1,55 @@
-//! Navigation-message decoding: GPS LNAV and BeiDou D1/D2 bits to ephemeris, clock, ionosphere and time.
+//! Navigation-message decoding: GPS LNAV, BeiDou D1/D2, GPS L5 CNAV and Galileo E5a
+//! F/NAV to ephemeris, clock, ionosphere and time.
 //!
-//! Input: the data-bit stream a tracking channel produces after bit synchronisation (and,
-//! for BeiDou D1, after the NH code is wiped), one soft value per bit. The sign carries the
-//! bit with the BPSK mapping of the encoders (`+` is logic 0, `-` is logic 1); the magnitude
-//! (confidence) is not used by these hard-decision decoders. The polarity of the whole
-//! stream is unknown (the 180 deg ambiguity of a Costas loop) and may flip after a
-//! half-cycle slip: each subframe's polarity is taken from its preamble.
+//! Input, LNAV and D1/D2: the data-bit stream a tracking channel produces after bit
+//! synchronisation (and, for BeiDou D1, after the NH code is wiped), one soft value per
+//! bit. CNAV and F/NAV: the channel symbols (before FEC decoding), one soft value per
+//! symbol. The sign carries the bit or symbol with the BPSK mapping of the encoders (`+`
+//! is logic 0, `-` is logic 1); the magnitude (confidence) is used by the Viterbi decoding
+//! of CNAV and F/NAV only. The polarity of the whole stream is unknown (the 180 deg
+//! ambiguity of a Costas loop) and may flip after a half-cycle slip: each subframe's,
+//! message's or page's polarity is taken from its preamble or sync pattern.
 //!
 //! Decoders are state machines fed bits one by one or in slices ([`NavDecoder::feed`]);
 //! they return [`NavEvent`]s: synchronisation gained or lost, each decoded subframe with
 //! the time of week of its first bit, parity failures, and, when complete, the ephemeris
 //! as the orbits crate's [`BroadcastEphemeris`], the Klobuchar coefficients and (GPS) the
-//! UTC parameters.
+//! UTC parameters. [`decoder_for`] picks the decoder of a satellite and signal.
 //!
 //! - [`GpsLnavDecoder`]: IS-GPS-200 20.3.2-20.3.5 (preamble 10001011, word parity of table
 //!   20-XIV, subframes 1-3, subframe 4 page 18).
 //! - [`BdsDecoder`]: BDS-SIS-ICD-B1I-3.0 §5.2 (D1) and §5.3 (D2): preamble 11100010010,
 //!   BCH(15,11) single-error correction, de-interleaving of words 2-10, D1 subframes 1-3,
 //!   D2 subframe 1 pages 1-10.
+//! - [`CnavDecoder`]: IS-GPS-705J §3.3.3.1.1, §20.3 (continuous rate 1/2 K = 7 code,
+//!   preamble 10001011, CRC-24Q, message types 10, 11, 30).
+//! - [`FnavDecoder`]: Galileo OS SIS ICD §4.2 (sync pattern, de-interleaving, Viterbi,
+//!   CRC-24Q, page types 1-4).
 
 mod bds;
 mod bds_bch;
 mod bds_fields;
 mod decoder;
 mod framer;
+mod galileo_fnav;
 mod gps;
+mod gps_cnav;
 mod gps_fields;
 mod gps_parity;
+mod symbol_sync;
+#[cfg(test)]
+mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
+pub use galileo_fnav::FnavDecoder;
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
+pub use gps_cnav::CnavDecoder;
 
 use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;
 use skyforge_gnss::navmsg::gps_lnav::UtcParams;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 
 /// Bits per subframe, GPS LNAV and BeiDou D1/D2 alike.
@@ -47,32 +62,45 @@ pub struct DecodedEphemeris {
     /// Orbit and clock in SI units (angles in rad); toe and toc in the system time scale.
     /// GPS: `health` is the 6-bit SV health, `tgd_s` is TGD, `iode`/`iodc` are IODE/IODC.
     /// BeiDou: `health` is SatH1, `tgd_s` is TGD1 (B1I), `iode`/`iodc` are AODE/AODC.
+    /// GPS CNAV and Galileo F/NAV: as the gnss crate's encoders' `broadcast_ephemeris`
+    /// (CNAV: the three health bits, TGD, no IODE/IODC; F/NAV: E5aHS and E5aDVS, BGD(E1,E5a),
+    /// IODnav).
     pub eph: BroadcastEphemeris,
-    /// URA index (GPS, IS-GPS-200 20.3.3.3.1.3) or URAI (BeiDou), 0-15.
+    /// URA index (GPS LNAV, IS-GPS-200 20.3.3.3.1.3), URA_ED index clamped to 0-15 (GPS
+    /// CNAV, message type 10, IS-GPS-705J 20.3.3.1) or URAI (BeiDou), 0-15; 0 for Galileo
+    /// F/NAV.
     pub ura_index: u8,
-    /// BeiDou TGD2 (B2I group delay, s); `None` for GPS.
+    /// BeiDou TGD2 (B2I group delay, s); `None` for GPS and Galileo.
     pub tgd2_s: Option<f64>,
 }
 
-/// One decoded subframe: where it starts in the bit stream and what time it carries.
+/// One decoded subframe (CNAV: message; F/NAV: page): where it starts in the stream and
+/// what time it carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SubframeInfo {
-    /// Index (counted from the first bit fed, from 0) of the subframe's first bit.
+    /// Index (counted from the first bit or symbol fed, from 0, on across restarts) of the
+    /// subframe's first bit (CNAV: the message's first symbol; F/NAV: the first sync
+    /// symbol).
     pub start_bit: u64,
-    /// Subframe ID (GPS, from the HOW) or FraID (BeiDou), 1-5.
+    /// Subframe ID (GPS, from the HOW), FraID (BeiDou), 1-5; message type (CNAV); page
+    /// type (F/NAV).
     pub id: u8,
     /// Page number when the subframe is paged: GPS subframes 4/5 SV ID (data ID
     /// stripped, e.g. 56 for page 18), BeiDou D1 subframes 4/5 and D2 subframes 1, 2, 5
     /// Pnum; `None` otherwise.
     pub page: Option<u8>,
     /// Full week number if known (GPS: from subframe 1, resolved with the reference week;
-    /// BeiDou: BDT week from D1 subframe 1 or D2 subframe 1 page 1).
+    /// BeiDou: BDT week from D1 subframe 1 or D2 subframe 1 page 1; CNAV: GPS week from
+    /// a type 10; F/NAV: GST week from a page type 1-3, moved on where TOW wraps).
     pub week: Option<u32>,
     /// Time of week (s, system time) of the leading edge of the subframe's first bit.
     /// GPS: HOW TOW count x 6 s - 6 s (the count refers to the next subframe,
     /// IS-GPS-200 20.3.3.2). BeiDou D1: SOW; D2: SOW of the frame + 0.6 s x (FraID - 1).
+    /// CNAV: message TOW count x 6 s - 6 s (IS-GPS-705J 20.3.3). F/NAV: the page's TOW
+    /// (Galileo OS SIS ICD §5.1.2), or for pages without one the last TOW plus 10 s a page.
     pub tow_s: f64,
-    /// Whether the stream was inverted in this subframe (preamble received complemented).
+    /// Whether the stream was inverted in this subframe (preamble or sync pattern
+    /// received complemented).
     pub inverted: bool,
     /// Bits corrected by the BCH decoder (BeiDou; 0 for GPS).
     pub corrected_bits: u32,
@@ -122,11 +150,11 @@ pub enum NavEvent {
 /// Running counters of a decoder.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct DecodeStats {
-    /// Bits fed so far.
+    /// Bits (CNAV, F/NAV: symbols) fed so far.
     pub bits: u64,
-    /// Subframes decoded.
+    /// Subframes (CNAV messages, F/NAV pages) decoded.
     pub subframes: u64,
-    /// Subframes dropped (parity, header or missing preamble).
+    /// Subframes dropped (parity, header, missing preamble; CNAV, F/NAV: CRC).
     pub dropped_subframes: u64,
     /// GPS words that failed parity.
     pub parity_failed_words: u64,
@@ -151,8 +179,8 @@ pub enum NavDecodeError {
 
 /// A navigation-message decoder fed with soft bits.
 pub trait NavDecoder: Send {
-    /// Feed the next bits (soft values, sign = bit, see the module notes); returns what
-    /// was decoded on the way, in stream order.
+    /// Feed the next bits or symbols (soft values, sign = bit, see the module notes);
+    /// returns what was decoded on the way, in stream order.
     fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent>;
     /// The bit stream was interrupted (e.g. the tracking loop lost lock): forget the
     /// buffered bits and the synchronisation, keep what was decoded. Bit indices keep
@@ -164,17 +192,26 @@ pub trait NavDecoder: Send {
     fn satellite(&self) -> SatId;
 }
 
-/// The decoder for `sat`'s message: GPS LNAV, or BeiDou D1/D2 (by PRN: D2 for the GEO
-/// PRNs 1-5 and 59-63). GPS weeks are resolved near [`DEFAULT_GPS_REFERENCE_WEEK`].
-pub fn decoder_for(sat: SatId) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
-    Ok(match sat.system {
-        System::Gps => Box::new(GpsLnavDecoder::new(sat)?),
-        System::Beidou => Box::new(BdsDecoder::new(sat)?),
-        System::Galileo => {
-            return Err(NavDecodeError::WrongSatellite {
-                sat: sat.to_string(),
-                what: "a GPS or BeiDou satellite (no Galileo message is decoded yet)",
-            });
+/// The decoder for `sat`'s message on `signal`: GPS L5 CNAV for GPS L5, GPS LNAV for the
+/// other GPS signals, Galileo F/NAV for E5a, BeiDou D1/D2 (by PRN: D2 for the GEO PRNs
+/// 1-5 and 59-63). GPS LNAV weeks are resolved near [`DEFAULT_GPS_REFERENCE_WEEK`].
+pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
+    let wrong = |what| {
+        Err(NavDecodeError::WrongSatellite {
+            sat: sat.to_string(),
+            what,
+        })
+    };
+    if signal.system() != sat.system {
+        return wrong("a satellite of the system that transmits the signal");
+    }
+    Ok(match (sat.system, signal) {
+        (System::Gps, Signal::GpsL5) => Box::new(CnavDecoder::new(sat)?),
+        (System::Gps, _) => Box::new(GpsLnavDecoder::new(sat)?),
+        (System::Beidou, _) => Box::new(BdsDecoder::new(sat)?),
+        (System::Galileo, Signal::GalE5a) => Box::new(FnavDecoder::new(sat)?),
+        (System::Galileo, _) => {
+            return wrong("Galileo E5a (F/NAV); no other Galileo message is decoded");
         }
     })
 }
@@ -231,12 +268,23 @@ mod tests {
     }
 
     #[test]
-    fn decoder_for_picks_the_message_of_the_system() {
-        for sat in [SatId::gps(5), SatId::beidou(1), SatId::beidou(19)] {
-            let dec = decoder_for(sat).map(|d| d.satellite());
-            assert_eq!(dec, Ok(sat));
+    fn decoder_for_picks_the_message_of_the_system_and_signal() {
+        let cases = [
+            (SatId::gps(5), Signal::GpsL1Ca),
+            (SatId::gps(5), Signal::GpsL5),
+            (SatId::beidou(1), Signal::BdsB1I),
+            (SatId::beidou(19), Signal::BdsB1I),
+            (SatId::galileo(11), Signal::GalE5a),
+        ];
+        for (sat, signal) in cases {
+            let dec = decoder_for(sat, signal).map(|d| d.satellite());
+            assert_eq!(dec, Ok(sat), "{signal:?}");
         }
-        assert!(decoder_for(SatId::gps(40)).is_err());
+        assert!(decoder_for(SatId::gps(40), Signal::GpsL1Ca).is_err());
+        assert!(decoder_for(SatId::gps(40), Signal::GpsL5).is_err());
+        assert!(decoder_for(SatId::galileo(11), Signal::GalE1).is_err());
+        assert!(decoder_for(SatId::galileo(11), Signal::GpsL5).is_err());
+        assert!(decoder_for(SatId::gps(5), Signal::GalE5a).is_err());
     }
 
     #[test]

@@ -48,13 +48,14 @@ impl Channel {
         sample_rate_hz: f64,
     ) -> Result<Self, crate::navdecode::NavDecodeError> {
         let code_period_s = tracker.signal().code_period_s();
+        let decoder = decoder_for(sat, tracker.signal())?;
         Ok(Self {
             group,
             local,
             antenna,
             sat,
             tracker,
-            decoder: decoder_for(sat)?,
+            decoder,
             clock: CodeClock::new(code_period_s),
             sample_rate_hz,
             inverted: false,
