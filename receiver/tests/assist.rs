@@ -2,6 +2,7 @@
 //! receiver matches the Doppler of the light-time range computed here, and a window built
 //! from deliberately wrong assistance still contains the true Doppler.
 
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{System, nominal};
@@ -67,7 +68,7 @@ fn predicted_doppler_and_windows_for_a_leo() {
         oscillator_uncertainty: 0.0,
         elevation_mask_rad: 0.0,
     };
-    let hints = search_hints(&store, &exact);
+    let hints = search_hints(&store, &exact, Signal::GpsL1Ca);
     assert!(hints.len() >= 8, "{} satellites in view", hints.len());
     let mut largest: f64 = 0.0;
     for h in &hints {
@@ -105,7 +106,7 @@ fn predicted_doppler_and_windows_for_a_leo() {
         oscillator_uncertainty: 0.5e-6,
         elevation_mask_rad: 0.0,
     };
-    for h in search_hints(&store, &rough) {
+    for h in search_hints(&store, &rough, Signal::GpsL1Ca) {
         let truth = true_doppler(store.select(h.sat, t).unwrap(), t);
         assert!(
             (h.doppler_hz - truth).abs() <= h.doppler_window_hz,
@@ -142,7 +143,7 @@ fn ground_receiver_sees_what_is_above_its_mask() {
         oscillator_uncertainty: 1e-6,
         elevation_mask_rad: 10f64.to_radians(),
     };
-    let hints = search_hints(&store, &a);
+    let hints = search_hints(&store, &a, Signal::GpsL1Ca);
     assert!((5..=14).contains(&hints.len()), "{}", hints.len());
     assert!(
         hints

@@ -627,10 +627,7 @@ fn pilot_signals_track_on_the_pilot_with_known_polarity() {
                 (b.value, truth)
             })
             .collect();
-        let wrong = symbols
-            .iter()
-            .filter(|(v, t)| f64::from(*v) != *t)
-            .count();
+        let wrong = symbols.iter().filter(|(v, t)| f64::from(*v) != *t).count();
         println!("{signal}: {} symbols, {wrong} wrong", symbols.len());
         assert!(symbols.len() > 100 && wrong == 0, "{signal}: {wrong} wrong");
         // The carrier phase, half a cycle added when the pilot came inverted, follows the

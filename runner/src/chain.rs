@@ -260,11 +260,13 @@ impl<'a> StreamedChain<'a> {
             .map(|(b, a)| {
                 let meta = info.meta(b, &a.name, a.nominal_body_m.into());
                 let label = format!("{} (streamed)", recording_name(&a.name, b));
-                Recording::from_sigmf_json(
-                    std::path::Path::new(&label),
-                    &meta.to_json(),
-                    &InputParams::default(),
-                )
+                // The band's signal is known here; its carrier alone does not tell GPS
+                // L5 from Galileo E5a.
+                let params = InputParams {
+                    signal: Some(b.signal),
+                    ..InputParams::default()
+                };
+                Recording::from_sigmf_json(std::path::Path::new(&label), &meta.to_json(), &params)
             })
             .collect::<Result<Vec<_>, _>>()?;
         let bytes_per_sample = info.format.bytes_per_sample() as u64;

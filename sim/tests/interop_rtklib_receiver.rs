@@ -14,10 +14,10 @@ mod support;
 
 use hifitime::{Duration, Epoch, TimeScale};
 use rinex::prelude::{Constellation, Observable};
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::PvtError;
 use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::{SatId, System};
-use skyforge_gnss::signal::Signal;
 use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_receiver::observables::Observation;
 use skyforge_receiver::pipeline::fixtures::{fix, report};
@@ -189,7 +189,13 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
     });
     let recv_dir = dir.join("receive");
     std::fs::create_dir(&recv_dir).unwrap();
-    let mut out = RinexObsFiles::new(&recv_dir, &["ant1".to_string()], &[Signal::GpsL1Ca], None, 1.0);
+    let mut out = RinexObsFiles::new(
+        &recv_dir,
+        &["ant1".to_string()],
+        &[Signal::GpsL1Ca],
+        None,
+        1.0,
+    );
     // Receiver clock ahead by 0.1234567 s + k x 1.0001 ms (whole 100 ns, so the tags
     // keep it exactly): tags and pseudoranges both carry it.
     let offset_s = |k: usize| 0.123_456_7 + 0.001_000_1 * k as f64;
@@ -201,6 +207,7 @@ fn rtklib_single_point_from_fractional_second_epochs_recovers_time_and_site() {
             .map(|(&sat, v)| Observation {
                 antenna: 0,
                 sat,
+                signal: Signal::GpsL1Ca,
                 pseudorange_m: v[0] + C_MPS * dt_s,
                 carrier_phase_cycles: v[1] + F_GPS_L1_HZ * dt_s,
                 doppler_hz: v[2],

@@ -173,10 +173,11 @@ pub struct Fix {
     /// the receiver clock: `t_rx - clock_bias_m / c`.
     pub t_s: f64,
     pub r_ecef_m: Vec3,
-    /// c x receiver clock offset against GPST (m); for a BeiDou-only fix, against BDT+14 s
-    /// i.e. the same GPST-aligned scale the ephemerides use.
+    /// c x receiver clock offset against GPST (m); for a fix without GPS, against the
+    /// first system's time (BDT+14 s, GST) on the GPST-aligned scale the ephemerides use.
     pub clock_bias_m: f64,
-    /// c x (BeiDou clock - GPS clock) (m) when both systems are in the fix.
+    /// c x (BeiDou clock - GPS clock) (m) when GPS and BeiDou alone are in the fix (a
+    /// Galileo clock is estimated, not reported yet).
     pub inter_system_bias_m: Option<f64>,
     pub dop: Dop,
     /// Satellites in the fix, with their post-fit residuals (m) and elevations (rad).

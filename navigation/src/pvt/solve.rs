@@ -25,7 +25,8 @@ const CONVERGED_M: f64 = 1e-4;
 /// Relative humidity at sea level of the receiver's standard troposphere.
 pub(crate) const STANDARD_RH0: f64 = 0.5;
 
-/// Solve the position, receiver clock(s) and, with both systems, the inter-system bias
+/// Solve the position, receiver clock(s) (one per system: GPS, BeiDou, Galileo) and, with
+/// GPS and BeiDou, the inter-system bias
 /// from `meas` received at `t_rx_s` (receiver time tag, s since `origin`, GPST), with the
 /// ephemerides of `store` (bound to `origin`). `a_priori` starts the iteration (the
 /// geocentre otherwise). Applies the residual test of [`super::raim`] and, when it fails,
@@ -180,24 +181,34 @@ impl ReceiverPlace {
     }
 }
 
-/// Ionospheric delay (m) of a satellite's signal for a receiver at `place`, or 0 when the
-/// receiver is above the ground model's reach or no coefficients are known.
-fn iono_m(cfg: &PvtConfig, place: &ReceiverPlace, sat: SatId, az: f64, el: f64) -> f64 {
+/// Ionospheric delay (m) of a satellite's signal on `carrier_hz` for a receiver at
+/// `place`, or 0 when the receiver is above the ground model's reach or no coefficients
+/// are known. Each model gives the delay on its own frequency (GPS L1, BeiDou B1I), scaled
+/// by `1/f^2` to the signal's.
+fn iono_m(
+    cfg: &PvtConfig,
+    place: &ReceiverPlace,
+    sat: SatId,
+    carrier_hz: f64,
+    (az, el): (f64, f64),
+) -> f64 {
     let g = &place.g;
     if g.h_m > IONOSPHERE_USER_CEILING_M {
         return 0.0;
     }
-    let gps = |c| gps_klobuchar_l1_s(c, g.lat_rad, g.lon_rad, az, el, place.gps_sow);
-    let bds = |c| bds_klobuchar_b1i_s(c, g.lat_rad, g.lon_rad, az, el, place.bdt_sow);
+    let on = |seconds: f64, f_model: f64| seconds * (f_model / carrier_hz).powi(2);
+    let gps = |c| {
+        let s = gps_klobuchar_l1_s(c, g.lat_rad, g.lon_rad, az, el, place.gps_sow);
+        on(s, F_GPS_L1_HZ)
+    };
+    let bds = |c| {
+        let s = bds_klobuchar_b1i_s(c, g.lat_rad, g.lon_rad, az, el, place.bdt_sow);
+        on(s, F_BDS_B1I_HZ)
+    };
     let seconds = match (sat.system, &cfg.iono_gps, &cfg.iono_bds) {
-        (System::Gps, Some(c), _) => gps(c),
-        (System::Gps, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
-        (System::Beidou, _, Some(c)) => bds(c),
-        (System::Beidou, Some(c), None) => gps(c) * (F_GPS_L1_HZ / F_BDS_B1I_HZ).powi(2),
-        // Galileo's measurements are E1's, on the L1 frequency (NeQuick-G, Galileo's own
-        // model, is not applied: the GPS or BeiDou coefficients stand in).
-        (System::Galileo, Some(c), _) => gps(c),
-        (System::Galileo, None, Some(c)) => bds(c) * (F_BDS_B1I_HZ / F_GPS_L1_HZ).powi(2),
+        // Galileo: NeQuick-G, its own model, is not applied; GPS's or BeiDou's stands in.
+        (System::Gps | System::Galileo, Some(c), _) | (System::Beidou, Some(c), None) => gps(c),
+        (System::Beidou, _, Some(c)) | (System::Gps | System::Galileo, None, Some(c)) => bds(c),
         (_, None, None) => 0.0,
     };
     seconds * C_MPS
@@ -232,7 +243,7 @@ impl Epoch<'_> {
             })
             .collect::<Result<Vec<_>, _>>()?;
         // Receiver clock columns: one per system present.
-        let systems: Vec<System> = [System::Gps, System::Beidou]
+        let systems: Vec<System> = [System::Gps, System::Beidou, System::Galileo]
             .into_iter()
             .filter(|s| meas.iter().any(|m| m.sat.system == *s))
             .collect();
@@ -316,7 +327,7 @@ fn linearise(
         let clock_col = systems.iter().position(|s| *s == m.sat.system).unwrap_or(0);
         let mut predicted = view.range_m + clocks[clock_col] - C_MPS * view.clock_s;
         if let Some((az, el)) = view.az_el_rad {
-            predicted += iono_m(cfg, &place, m.sat, az, el);
+            predicted += iono_m(cfg, &place, m.sat, m.carrier_hz, (az, el));
             if cfg.troposphere {
                 let g = &place.g;
                 predicted += standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0);
@@ -378,13 +389,13 @@ fn finish(
     };
     let chi2 = v.iter().zip(w.iter()).map(|(r, w)| r * r * w).sum();
     let dof = rows.len() - n_x;
-    let gps_first = systems.first() == Some(&System::Gps);
+    let gps_and_bds = systems == [System::Gps, System::Beidou];
     let normalised = normalised_residuals(&h, &w, &v).unwrap_or_default();
     let fix = Fix {
         t_s: t_rx_s - clocks[0] / C_MPS,
         r_ecef_m: r,
         clock_bias_m: clocks[0],
-        inter_system_bias_m: (systems.len() == 2 && gps_first).then(|| clocks[1] - clocks[0]),
+        inter_system_bias_m: gps_and_bds.then(|| clocks[1] - clocks[0]),
         dop,
         used: rows
             .iter()

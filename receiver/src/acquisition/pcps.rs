@@ -397,7 +397,9 @@ impl Pcps {
                             let block = &samples[start..start + self.fft_len];
                             wipe_carrier(block, start as u64, fs, freq, wiped);
                             self.forward.process_with_scratch(wiped, scratch);
-                            for (spectrum, coh) in code.spectra_conj.iter().zip(coh.chunks_mut(lags)) {
+                            for (spectrum, coh) in
+                                code.spectra_conj.iter().zip(coh.chunks_mut(lags))
+                            {
                                 for ((x, w), c) in buf.iter_mut().zip(wiped.iter()).zip(spectrum) {
                                     *x = w * c;
                                 }

@@ -99,11 +99,14 @@ impl ObservablesBuilder {
 
     /// Record a code-period boundary of `sat`'s `signal` at `antenna`.
     pub fn push(&mut self, antenna: usize, sat: SatId, signal: Signal, s: ChannelSample) {
-        let track = self.channels.entry((antenna, sat, signal)).or_insert(Track {
-            last: [None, None],
-            locked_since: s.sample_index,
-            slip_pending: true,
-        });
+        let track = self
+            .channels
+            .entry((antenna, sat, signal))
+            .or_insert(Track {
+                last: [None, None],
+                locked_since: s.sample_index,
+                slip_pending: true,
+            });
         if s.slip {
             track.locked_since = s.sample_index;
             track.slip_pending = true;
@@ -155,9 +158,7 @@ impl ObservablesBuilder {
                 sat,
                 signal,
                 pseudorange_m: C_MPS * (t_rx_s - t_tx),
-                carrier_phase_cycles: -nco
-                    + half
-                    + clock_steps_s * signal.carrier_hz(),
+                carrier_phase_cycles: -nco + half + clock_steps_s * signal.carrier_hz(),
                 doppler_hz: lerp(a.doppler_hz, b.doppler_hz),
                 cn0_dbhz: b.cn0_dbhz,
                 lock_time_s: (epoch_sample - track.locked_since).max(0.0) / fs,
@@ -212,7 +213,7 @@ mod tests {
         for k in 0..3000 {
             let s = boundary(k, fs, t0_rx, range0);
             if s.sample_index > epoch_t * fs {
-                b.push(0, sat, s);
+                b.push(0, sat, Signal::GpsL1Ca, s);
                 let obs = b.at(epoch_t * fs, t0_rx + epoch_t, 0.0);
                 assert_eq!(obs.len(), 1);
                 let o = obs[0];
@@ -233,7 +234,7 @@ mod tests {
                 checked += 1;
                 break;
             }
-            b.push(0, sat, s);
+            b.push(0, sat, Signal::GpsL1Ca, s);
         }
         assert_eq!(checked, 1);
     }
@@ -251,7 +252,7 @@ mod tests {
         let epoch = 1.5 * fs;
         for k in 0..1600 {
             let s = boundary(k, fs, t0_rx, range0);
-            b.push(0, sat, s);
+            b.push(0, sat, Signal::GpsL1Ca, s);
             if s.sample_index > epoch {
                 break;
             }
@@ -281,7 +282,7 @@ mod tests {
         for k in 0..2000u32 {
             let mut s = boundary(k, fs, t0_rx, range0);
             s.slip = k == 1200;
-            b.push(1, sat, s);
+            b.push(1, sat, Signal::GpsL1Ca, s);
             if k % 100 == 50 && k > 0 {
                 let o = b.at(s.sample_index, t0_rx + s.sample_index / fs, 0.0);
                 flags.push((k, o[0].loss_of_lock, o[0].lock_time_s));

@@ -26,6 +26,7 @@ pub fn observation(antenna: usize, sat: SatId, k: usize, loss_of_lock: bool) -> 
     Observation {
         antenna,
         sat,
+        signal: skyforge_gnss::signal::Signal::of_system(sat.system),
         pseudorange_m: 2.0e7 + 1000.0 * f64::from(sat.prn) + 100.0 * k as f64,
         carrier_phase_cycles: 1.05e8 + 1.25 * k as f64,
         doppler_hz: -1500.0 + f64::from(sat.prn),
