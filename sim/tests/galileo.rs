@@ -90,8 +90,6 @@ fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     assert_eq!(nav.matches(" 2.580000000000E+02").count(), 24);
     let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
     assert!(obs.contains("E    4 C5Q L5Q D5Q S5Q"), "{obs}");
-    // The bundled receiver says plainly that it does not track E5a yet.
-    support::receive_refuses_untracked(dir.path(), &out.join("ant1.gal-e5a.sigmf-meta"), "GAL E5a");
 }
 
 /// The observation level draws Galileo E5a observables with the configured noise; the

@@ -489,29 +489,6 @@ pub fn observation_level_noise(dir: &Path, path: &str, system: &str) -> (f64, f6
     )
 }
 
-/// `receive` of the recording `meta` (a signal the bundled receiver does not track, named
-/// `name` as `Signal::name` writes it) exits with code 2 and says so.
-pub fn receive_refuses_untracked(dir: &Path, meta: &Path, name: &str) {
-    let rx = dir.join("rx");
-    let o = skyforge(
-        &[
-            "receive",
-            meta.to_str().unwrap(),
-            "--out",
-            rx.to_str().unwrap(),
-        ],
-        dir,
-    );
-    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert!(
-        err.contains(&format!(
-            "{name}, which the bundled receiver does not track yet"
-        )),
-        "{err}"
-    );
-}
-
 /// The observation level of the scenario `scenario(extra)` writes (120 s, one antenna, a
 /// transmitted signal tagged `tag` of `system` that the calibrated noise model has no
 /// factors for): refused under the calibrated model, naming `tag`; with a constant 0.3 m
