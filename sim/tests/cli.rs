@@ -698,7 +698,7 @@ fn receive_refuses_bad_input_with_one_message_and_writes_nothing() {
     receive_refuses(
         dir,
         &args,
-        &["--signal gps-l2", "not tracked", "gps-l1ca, bds-b1i"],
+        &["--signal gps-l2", "not received", "gps-l1ca, bds-b1i"],
     );
     std::fs::write(dir.join("rx.toml"), "[observables]\nrate_hz = 500.0\n").unwrap();
     let mut args = vec!["noise.bin", "--config", "rx.toml"];
