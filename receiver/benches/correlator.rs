@@ -1,7 +1,9 @@
 //! Correlator throughput (issue #4 speed bar: at least 5e8 channel-samples/s on the
 //! 2-core machine with 3 correlators and complex input). One 1 ms block at 4.092 Msps is
 //! correlated by 24 channels (12 GPS + 12 BeiDou PRNs, distinct Doppler and code phase),
-//! single-threaded and with rayon over the channels. A second group runs whole channel
+//! single-threaded and with rayon over the channels. A second group correlates 1 ms at
+//! 20.46 Msps for 24 pilot signals (12 GPS L5 + 12 Galileo E5a PRNs) with the
+//! pilot-and-data taps the receiver tracks them with. A third runs whole channel
 //! trackers (correlator, loops, lock detectors, bit sync) over 0.2 s of a GPS signal.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
@@ -31,9 +33,36 @@ fn channels(taps: TapSet) -> Vec<(Correlator, NcoState)> {
         .collect()
 }
 
+/// Sample rate and 1 ms block of the pilot-signal group.
+const WIDE_FS_HZ: f64 = 20.46e6;
+const WIDE_BLOCK: usize = 20_460;
+
+/// 12 GPS L5 and 12 Galileo E5a channels with pilot-and-data taps at 20.46 Msps.
+fn pilot_channels() -> Vec<(Correlator, NcoState)> {
+    (1..=12u8)
+        .flat_map(|prn| [(Signal::GpsL5, prn), (Signal::GalE5a, prn + 2)])
+        .map(|(signal, prn)| {
+            let data = signal.code(prn).unwrap_or_default();
+            let pilot = signal.pilot(prn).map(|p| p.primary).unwrap_or_default();
+            let nco = NcoState {
+                carrier_phase_cycles: 0.1 * f64::from(prn),
+                carrier_cycles_per_sample: (250.0 * f64::from(prn) - 1500.0) / WIDE_FS_HZ,
+                code_phase_chips: 37.7 * f64::from(prn),
+                code_chips_per_sample: signal.chip_rate_hz() / WIDE_FS_HZ,
+            };
+            let corr = Correlator::pilot_and_data(&pilot, &data, 0.5).expect("valid codes");
+            (corr, nco)
+        })
+        .collect()
+}
+
 fn samples() -> Vec<Complex<f32>> {
+    noise_block(BLOCK)
+}
+
+fn noise_block(len: usize) -> Vec<Complex<f32>> {
     let mut x: u32 = 1;
-    (0..BLOCK)
+    (0..len)
         .map(|_| {
             x = x.wrapping_mul(1_664_525).wrapping_add(1_013_904_223);
             let re = (x >> 16) as f32 / 32768.0 - 1.0;
@@ -81,6 +110,27 @@ fn correlators(c: &mut Criterion) {
             })
         });
     }
+    group.finish();
+    let wide = noise_block(WIDE_BLOCK);
+    let mut group = c.benchmark_group("correlator_1ms_20460ksps");
+    let mut chans = pilot_channels();
+    group.throughput(Throughput::Elements((chans.len() * WIDE_BLOCK) as u64));
+    group.bench_function("pilot_and_data_24ch_1thread", |b| {
+        b.iter(|| {
+            chans
+                .iter_mut()
+                .map(|(corr, nco)| corr.correlate(&wide, nco)[0].re)
+                .sum::<f64>()
+        })
+    });
+    group.bench_function("pilot_and_data_24ch_rayon", |b| {
+        b.iter(|| {
+            chans
+                .par_iter_mut()
+                .map(|(corr, nco)| corr.correlate(&wide, nco)[0].re)
+                .sum::<f64>()
+        })
+    });
     group.finish();
 }
 

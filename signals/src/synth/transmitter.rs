@@ -2,19 +2,15 @@
 //! optional pilot component, and the time scale its code and data are counted in.
 
 use hifitime::{Duration, Epoch};
-use skyforge_gnss::codes::neumann_hoffman::NH20;
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
-use skyforge_gnss::codes::{
-    GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_I_SECONDARY, galileo_e5a_i, galileo_e5a_q,
-    galileo_e5a_q_secondary,
-};
+use skyforge_gnss::codes::{GALILEO_E5A_CHIP_RATE_HZ, galileo_e5a_i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
-use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, GPS_L5_I_NH10, GPS_L5_Q_NH20, gps_l5_i, gps_l5_q};
+use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, gps_l5_i};
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
-use skyforge_gnss::signal::Signal;
+use skyforge_gnss::signal::{DataModulation, Signal};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Data modulating a signal.
@@ -36,16 +32,22 @@ pub enum DataBits {
 }
 
 impl DataBits {
-    /// Code periods per data bit.
-    fn periods_per_bit(&self) -> u64 {
+    /// How the data modulate the code ([`DataModulation`]: bit length, secondary code).
+    fn modulation(&self) -> DataModulation {
         match self {
-            DataBits::GpsLnav(_) | DataBits::GalileoFnav(_) => 20,
-            DataBits::GpsCnav(_) => 10,
+            DataBits::GpsLnav(_) => DataModulation::GpsLnav,
+            DataBits::GalileoFnav(_) => DataModulation::GalFnav,
+            DataBits::GpsCnav(_) => DataModulation::GpsCnav,
             DataBits::Bds(e) => match e.format() {
-                BdsNavFormat::D1 => 20,
-                BdsNavFormat::D2 => 2,
+                BdsNavFormat::D1 => DataModulation::BdsD1,
+                BdsNavFormat::D2 => DataModulation::BdsD2,
             },
         }
+    }
+
+    /// Code periods per data bit.
+    fn periods_per_bit(&self) -> u64 {
+        u64::from(self.modulation().periods_per_bit())
     }
     /// Data bit `b` (0 or 1).
     fn bit(&self, b: u64) -> u8 {
@@ -56,14 +58,11 @@ impl DataBits {
             DataBits::GpsCnav(e) => e.symbol(b),
         }
     }
-    /// Secondary-code sign of code period `p` (+1/-1).
+    /// Secondary-code sign of code period `p` (+1/-1): the code restarts with every bit.
     fn secondary(&self, p: u64) -> i8 {
-        match self {
-            DataBits::Bds(e) if e.format() == BdsNavFormat::D1 => NH20[(p % 20) as usize],
-            DataBits::GalileoFnav(_) => GALILEO_E5A_I_SECONDARY[(p % 20) as usize],
-            DataBits::GpsCnav(_) => GPS_L5_I_NH10[(p % 10) as usize],
-            _ => 1,
-        }
+        self.modulation()
+            .data_secondary_code()
+            .map_or(1, |code| code[(p % code.len() as u64) as usize])
     }
 }
 
@@ -74,6 +73,17 @@ pub struct Pilot {
     code: Vec<i8>,
     /// One chip per primary period, period 0 at the time scale's epoch.
     secondary: Vec<i8>,
+}
+
+impl Pilot {
+    /// The pilot of `signal`'s `prn` ([`Signal::pilot`]).
+    fn of(signal: Signal, prn: u8) -> Option<Self> {
+        let codes = signal.pilot(prn).ok()?;
+        Some(Self {
+            code: codes.primary,
+            secondary: codes.secondary,
+        })
+    }
 }
 
 /// One satellite's signal.
@@ -136,10 +146,7 @@ impl Transmitter {
             chip_rate_hz: GALILEO_E5A_CHIP_RATE_HZ,
             code: galileo_e5a_i(sat.prn)?,
             data: DataBits::GalileoFnav(Box::new(nav)),
-            pilot: Some(Pilot {
-                code: galileo_e5a_q(sat.prn)?,
-                secondary: galileo_e5a_q_secondary(sat.prn)?,
-            }),
+            pilot: Some(Pilot::of(Signal::GalE5a, sat.prn)?),
             start_whole_s,
             start_frac_s,
         })
@@ -157,10 +164,7 @@ impl Transmitter {
             chip_rate_hz: GPS_L5_CHIP_RATE_HZ,
             code: gps_l5_i(sat.prn)?,
             data: DataBits::GpsCnav(Box::new(nav)),
-            pilot: Some(Pilot {
-                code: gps_l5_q(sat.prn)?,
-                secondary: GPS_L5_Q_NH20.to_vec(),
-            }),
+            pilot: Some(Pilot::of(Signal::GpsL5, sat.prn)?),
             start_whole_s,
             start_frac_s,
         })
@@ -286,6 +290,7 @@ fn spread_periods(
 mod tests {
     use super::*;
     use hifitime::{Epoch, TimeScale};
+    use skyforge_gnss::codes::{GPS_L5_I_NH10, GPS_L5_Q_NH20, gps_l5_q};
     use skyforge_gnss::navmsg::gps_cnav::CnavParams;
     use skyforge_orbits::ephemeris::{System, nominal};
 
