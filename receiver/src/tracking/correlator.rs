@@ -147,6 +147,8 @@ pub struct Correlator {
     taps: TapSet,
     /// Per-tap replica buffers, `taps.len()` slices of the block length plus `RUN`.
     replicas: Vec<f32>,
+    /// The carrier-wiped block of [`accumulate_wiped`] (real parts, then imaginary).
+    wiped: Vec<f32>,
     out: [Complex<f64>; MAX_TAPS],
 }
 
@@ -195,6 +197,7 @@ impl Correlator {
             data_code: levels(data),
             taps: taps.check()?,
             replicas: Vec::new(),
+            wiped: Vec::new(),
             out: [Complex::new(0.0, 0.0); MAX_TAPS],
         })
     }
@@ -227,18 +230,21 @@ impl Correlator {
             TapSet::Three { .. } => pulp::Arch::new().dispatch(Kernel::<3> {
                 samples,
                 replicas: &mut self.replicas,
+                wiped: &mut self.wiped,
                 replica,
                 carrier,
             }),
             TapSet::Five { .. } => pulp::Arch::new().dispatch(Kernel::<5> {
                 samples,
                 replicas: &mut self.replicas,
+                wiped: &mut self.wiped,
                 replica,
                 carrier,
             }),
             TapSet::PilotAndData { .. } => pulp::Arch::new().dispatch(Kernel::<4> {
                 samples,
                 replicas: &mut self.replicas,
+                wiped: &mut self.wiped,
                 replica,
                 carrier,
             }),
@@ -364,6 +370,7 @@ struct Replica<'a> {
 struct Kernel<'a, const T: usize> {
     samples: &'a [Complex<f32>],
     replicas: &'a mut [f32],
+    wiped: &'a mut Vec<f32>,
     replica: Replica<'a>,
     carrier: CarrierStart,
 }
@@ -393,8 +400,79 @@ impl<const T: usize> pulp::WithSimd for Kernel<'_, T> {
                 fill_replica(buf, n, code, p0_chips + offsets[t], dp);
             }
         }
-        accumulate::<T>(self.samples, self.replicas, self.carrier)
+        if T > 3 {
+            self.wiped.resize(2 * n, 0.0);
+            accumulate_wiped::<T>(self.samples, self.replicas, self.carrier, self.wiped)
+        } else {
+            accumulate::<T>(self.samples, self.replicas, self.carrier)
+        }
     }
+}
+
+/// [`accumulate`] in two passes, for more than three taps (whose single loop the compiler
+/// keeps from vectorising well: a quarter of the three-tap speed, measured): the carrier
+/// is wiped into `wiped` first, then each tap is one dot product. Every lane's sums take
+/// the same products in the same order, so the result is [`accumulate`]'s, bit for bit.
+#[inline(always)]
+fn accumulate_wiped<const T: usize>(
+    samples: &[Complex<f32>],
+    replicas: &[f32],
+    carrier: CarrierStart,
+    wiped: &mut [f32],
+) -> [Complex<f64>; MAX_TAPS] {
+    let n = samples.len();
+    let (re, im) = wiped.split_at_mut(n);
+    let CarrierStart {
+        mut zr,
+        mut zi,
+        wr,
+        wi,
+    } = carrier;
+    let full = n / LANES * LANES;
+    for ((x, br), bi) in samples[..full]
+        .chunks_exact(LANES)
+        .zip(re.chunks_exact_mut(LANES))
+        .zip(im.chunks_exact_mut(LANES))
+    {
+        for l in 0..LANES {
+            br[l] = x[l].re * zr[l] + x[l].im * zi[l];
+            bi[l] = x[l].im * zr[l] - x[l].re * zi[l];
+            let r = zr[l] * wr - zi[l] * wi;
+            zi[l] = zr[l] * wi + zi[l] * wr;
+            zr[l] = r;
+        }
+    }
+    for l in 0..n - full {
+        let x = samples[full + l];
+        re[full + l] = x.re * zr[l] + x.im * zi[l];
+        im[full + l] = x.im * zr[l] - x.re * zi[l];
+    }
+    let stride = n + RUN;
+    let mut out = [Complex::new(0.0, 0.0); MAX_TAPS];
+    for (t, o) in out.iter_mut().enumerate().take(T) {
+        let code = &replicas[t * stride..t * stride + n];
+        let mut acc_r = [0f32; LANES];
+        let mut acc_i = [0f32; LANES];
+        for ((c, br), bi) in code[..full]
+            .chunks_exact(LANES)
+            .zip(re.chunks_exact(LANES))
+            .zip(im.chunks_exact(LANES))
+        {
+            for l in 0..LANES {
+                acc_r[l] += c[l] * br[l];
+                acc_i[l] += c[l] * bi[l];
+            }
+        }
+        for l in 0..n - full {
+            acc_r[l] += code[full + l] * re[full + l];
+            acc_i[l] += code[full + l] * im[full + l];
+        }
+        *o = Complex::new(
+            acc_r.iter().map(|&v| f64::from(v)).sum(),
+            acc_i.iter().map(|&v| f64::from(v)).sum(),
+        );
+    }
+    out
 }
 
 /// The per-sample loop, compiled once per instruction set.
@@ -581,6 +659,35 @@ mod tests {
             early_late_spacing_chips: 0.5,
         };
         assert!(Correlator::new(&pilot, taps).is_err());
+    }
+
+    /// The two-pass loop of four and five taps gives the single loop's sums bit for bit.
+    #[test]
+    fn the_two_pass_loop_equals_the_single_loop_exactly() {
+        let noise = signs(2 * 5003, 21);
+        let samples: Vec<Complex<f32>> = noise
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]) * 0.7, f32::from(c[1]) * 1.3))
+            .collect();
+        let n = samples.len();
+        let replicas: Vec<f32> = signs(5 * (n + RUN), 22)
+            .iter()
+            .map(|&c| f32::from(c))
+            .collect();
+        let nco = NcoState {
+            carrier_phase_cycles: 0.37,
+            carrier_cycles_per_sample: 0.0413,
+            code_phase_chips: 0.0,
+            code_chips_per_sample: 0.5,
+        };
+        let mut wiped = vec![0f32; 2 * n];
+        let carrier = CarrierStart::new(&nco);
+        let one = accumulate::<4>(&samples, &replicas, carrier);
+        let two = accumulate_wiped::<4>(&samples, &replicas, carrier, &mut wiped);
+        assert_eq!(one, two);
+        let one = accumulate::<5>(&samples, &replicas, carrier);
+        let two = accumulate_wiped::<5>(&samples, &replicas, carrier, &mut wiped);
+        assert_eq!(one, two);
     }
 
     #[test]
