@@ -67,3 +67,48 @@ fn l5_and_e5a_are_received_and_fixed_together() {
     assert!(pr_std < 0.5, "pseudorange error std {pr_std} m");
     assert!(phase_std < 2e-3, "carrier-phase error std {phase_std} m");
 }
+
+/// `synth --receive` of the bundled `name` scenario (120 s, one signal with a pilot):
+/// the bar for each new signal alone (median 3D error under 5 m), from at least 60
+/// fixes (# assumed: the first fix after at most a minute), with the bundled receiver's
+/// observable bars.
+fn bundled_receiver_fixes_alone(name: &str) {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let out = dir.path().join("out");
+    let log = support::skyforge_ok(
+        &["synth", name, "--receive", "--out", out.to_str().unwrap()],
+        dir.path(),
+    );
+    println!("{log}");
+    let rx = out.join("receive");
+    let site = support::truth_site(&out);
+    let mut errors: Vec<f64> = support::fixes(&rx)
+        .iter()
+        .map(|(_, r, _)| (r - site).norm())
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
+    println!(
+        "{name}: {} fixes, median 3D error {median:.2} m, RMS {:.2} m",
+        errors.len(),
+        support::rms(&errors)
+    );
+    assert!(errors.len() >= 60, "{} fixes", errors.len());
+    assert!(median < 5.0, "median {median} m");
+    let (pr_std, phase_std, matched) = support::observable_errors(&out, &rx);
+    assert!(matched >= 60, "{matched} epochs matched");
+    assert!(pr_std < 0.5, "pseudorange error std {pr_std} m");
+    assert!(phase_std < 2e-3, "carrier-phase error std {phase_std} m");
+}
+
+#[test]
+#[ignore = "long tier (scripts/long-tests.txt): 120 s at 20.46 Msps"]
+fn bundled_receiver_fixes_on_interop_l5_static() {
+    bundled_receiver_fixes_alone("interop-l5-static");
+}
+
+#[test]
+#[ignore = "long tier (scripts/long-tests.txt): 120 s at 20.46 Msps"]
+fn bundled_receiver_fixes_on_interop_gal_static() {
+    bundled_receiver_fixes_alone("interop-gal-static");
+}
