@@ -49,12 +49,7 @@ fn l5_and_e5a_are_received_and_fixed_together() {
     }
     // Fixes against the surveyed site: the interoperability bar (median under
     // 5 m), and the observables against the truth with the bundled receiver's bars.
-    let site = support::truth_site(&out);
-    let mut errors: Vec<f64> = support::fixes(&rx)
-        .iter()
-        .map(|(_, r, _)| (r - site).norm())
-        .collect();
-    errors.sort_by(f64::total_cmp);
+    let errors = sorted_errors(&out, &rx);
     println!("{} fixes, 3D errors {errors:.2?} m", errors.len());
     assert!(errors.len() >= 10, "{} fixes", errors.len());
     assert!(
@@ -66,6 +61,18 @@ fn l5_and_e5a_are_received_and_fixed_together() {
     assert!(matched >= 10, "{matched} epochs matched");
     assert!(pr_std < 0.5, "pseudorange error std {pr_std} m");
     assert!(phase_std < 2e-3, "carrier-phase error std {phase_std} m");
+}
+
+/// The 3D errors (m) of the receiver's fixes in `rx` against the site of the synthesis in
+/// `out`, smallest first.
+fn sorted_errors(out: &std::path::Path, rx: &std::path::Path) -> Vec<f64> {
+    let site = support::truth_site(out);
+    let mut errors: Vec<f64> = support::fixes(rx)
+        .iter()
+        .map(|(_, r, _)| (r - site).norm())
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    errors
 }
 
 /// `synth --receive` of the bundled `name` scenario (120 s, one signal with a pilot):
@@ -81,12 +88,7 @@ fn bundled_receiver_fixes_alone(name: &str) {
     );
     println!("{log}");
     let rx = out.join("receive");
-    let site = support::truth_site(&out);
-    let mut errors: Vec<f64> = support::fixes(&rx)
-        .iter()
-        .map(|(_, r, _)| (r - site).norm())
-        .collect();
-    errors.sort_by(f64::total_cmp);
+    let errors = sorted_errors(&out, &rx);
     let median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
     println!(
         "{name}: {} fixes, median 3D error {median:.2} m, RMS {:.2} m",

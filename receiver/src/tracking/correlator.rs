@@ -226,28 +226,13 @@ impl Correlator {
             offsets: self.taps.offsets_chips(),
         };
         let carrier = CarrierStart::new(nco);
+        let (replicas, wiped) = (&mut self.replicas, &mut self.wiped);
         self.out = match self.taps {
-            TapSet::Three { .. } => pulp::Arch::new().dispatch(Kernel::<3> {
-                samples,
-                replicas: &mut self.replicas,
-                wiped: &mut self.wiped,
-                replica,
-                carrier,
-            }),
-            TapSet::Five { .. } => pulp::Arch::new().dispatch(Kernel::<5> {
-                samples,
-                replicas: &mut self.replicas,
-                wiped: &mut self.wiped,
-                replica,
-                carrier,
-            }),
-            TapSet::PilotAndData { .. } => pulp::Arch::new().dispatch(Kernel::<4> {
-                samples,
-                replicas: &mut self.replicas,
-                wiped: &mut self.wiped,
-                replica,
-                carrier,
-            }),
+            TapSet::Three { .. } => dispatch::<3>(samples, replicas, wiped, replica, carrier),
+            TapSet::Five { .. } => dispatch::<5>(samples, replicas, wiped, replica, carrier),
+            TapSet::PilotAndData { .. } => {
+                dispatch::<4>(samples, replicas, wiped, replica, carrier)
+            }
         };
         &self.out[..n_taps]
     }
@@ -364,6 +349,23 @@ struct Replica<'a> {
     p0_chips: f64,
     dp: f64,
     offsets: [f64; MAX_TAPS],
+}
+
+/// Run the `T`-tap kernel with the widest vector instructions the CPU has.
+fn dispatch<const T: usize>(
+    samples: &[Complex<f32>],
+    replicas: &mut [f32],
+    wiped: &mut Vec<f32>,
+    replica: Replica<'_>,
+    carrier: CarrierStart,
+) -> [Complex<f64>; MAX_TAPS] {
+    pulp::Arch::new().dispatch(Kernel::<T> {
+        samples,
+        replicas,
+        wiped,
+        replica,
+        carrier,
+    })
 }
 
 /// [`Correlator::correlate`]'s arguments, for the CPU-feature dispatch.
