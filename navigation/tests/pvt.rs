@@ -6,6 +6,7 @@ mod pvt_support;
 
 use pvt_support::{World, world};
 
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Measurement, PvtConfig, PvtError, solve, solve_velocity};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ, OMEGA_E_BDS, OMEGA_E_GPS};
@@ -110,11 +111,7 @@ fn measurements(
                 sat,
                 pseudorange_m: pr,
                 doppler_hz: Some(doppler),
-                carrier_hz: if sat.system == System::Gps {
-                    F_GPS_L1_HZ
-                } else {
-                    F_BDS_B1I_HZ
-                },
+                signal: Signal::of_system(sat.system),
             })
         })
         .collect()

@@ -10,10 +10,11 @@ use pvt_support::{World, world};
 use rand::SeedableRng;
 use rand_chacha::ChaCha20Rng;
 use rand_distr::{Distribution, StandardNormal};
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Fix, IntegrityStatus, Measurement, PvtConfig, PvtError, solve};
 use skyforge_navigation::pvt::{chi2_survival, detection_parameters};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::constants::{C_MPS, F_GPS_L1_HZ, OMEGA_E_GPS};
+use skyforge_orbits::constants::{C_MPS, OMEGA_E_GPS};
 use skyforge_orbits::ephemeris::{SatId, System};
 use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::frames::{az_el, c_ecef_ned};
@@ -84,7 +85,7 @@ fn measurements(
                 sat,
                 pseudorange_m: pr + bias + noise.get(i).copied().unwrap_or(0.0),
                 doppler_hz: None,
-                carrier_hz: F_GPS_L1_HZ,
+                signal: Signal::GpsL1Ca,
             }
         })
         .collect()

@@ -5,9 +5,9 @@
 
 use hifitime::TimeScale;
 use rinex::prelude::{Constellation, Observable};
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{Measurement, PvtConfig, solve};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::constants::{F_BDS_B1I_HZ, F_GPS_L1_HZ};
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
@@ -43,12 +43,12 @@ fn single_point_fixes_on_real_observations_are_within_metres_of_the_station() {
         if t.rem_euclid(EVERY_S) != 0.0 {
             continue;
         }
-        let (system, carrier_hz) = match (o.sv.constellation, &o.observable) {
+        let (system, signal) = match (o.sv.constellation, &o.observable) {
             (Constellation::GPS, Observable::PseudoRange(c)) if c == "C1C" => {
-                (System::Gps, F_GPS_L1_HZ)
+                (System::Gps, Signal::GpsL1Ca)
             }
             (Constellation::BeiDou, Observable::PseudoRange(c)) if c == "C2I" => {
-                (System::Beidou, F_BDS_B1I_HZ)
+                (System::Beidou, Signal::BdsB1I)
             }
             _ => continue,
         };
@@ -59,7 +59,7 @@ fn single_point_fixes_on_real_observations_are_within_metres_of_the_station() {
             },
             pseudorange_m: o.value,
             doppler_hz: None,
-            carrier_hz,
+            signal,
         });
     }
     assert!(epochs.len() >= 40, "{} epochs", epochs.len());

@@ -92,6 +92,14 @@ impl Transmitted {
         }
     }
 
+    /// The same satellite with its clock `dt_s` later (another signal's group delay).
+    pub fn clock_shifted(self, dt_s: f64) -> Self {
+        Self {
+            clock_s: self.clock_s + dt_s,
+            ..self
+        }
+    }
+
     /// The same satellite `dt_s` seconds later, moved along its velocity: what a receiver
     /// a baseline away sees when its flight time differs by `-dt_s`. The acceleration of a
     /// GNSS orbit (0.6 m/s^2) leaves 0.3 dt^2 m: 3e-11 m at the 10 us of a 3 km baseline.

@@ -28,6 +28,7 @@ pub use raim::{chi2_survival, detection_parameters};
 pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::KlobucharCoeffs;
 use skyforge_orbits::ephemeris::SatId;
@@ -100,8 +101,9 @@ pub struct Measurement {
     pub pseudorange_m: f64,
     /// Doppler (Hz, RINEX sign: positive when approaching), if measured.
     pub doppler_hz: Option<f64>,
-    /// Carrier frequency of the signal (Hz), for the Doppler.
-    pub carrier_hz: f64,
+    /// The signal measured: its carrier for the Doppler and the ionosphere, its broadcast
+    /// group delay for the satellite clock.
+    pub signal: Signal,
 }
 
 /// What the solver applies.

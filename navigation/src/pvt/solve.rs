@@ -9,9 +9,10 @@ use super::{
     PvtError,
 };
 use nalgebra::{DMatrix, DVector};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::{C_MPS, F_BDS_B1I_HZ, F_GPS_L1_HZ};
-use skyforge_orbits::ephemeris::{EphemerisStore, SatId, System};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
 use skyforge_orbits::ephemeris::{bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 use skyforge_orbits::frames::c_ecef_ned;
 use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
@@ -214,6 +215,19 @@ fn iono_m(
     seconds * C_MPS
 }
 
+/// How much later (s) `signal`'s clock runs than the clock with TGD removed that
+/// [`Transmitted`] holds: `tgd_s` minus the signal's broadcast group delay
+/// ([`Signal::broadcast_group_delay_s`]). 0 for GPS L1 C/A and L5 and for BeiDou B1I; for
+/// Galileo E5a `tgd_s - (f_E1 / f_E5a)^2 BGD(E1,E5a)`. Signals SkyForge does not transmit
+/// keep TGD (Galileo E1's BGD(E1,E5b) as I/NAV carries it).
+fn group_delay_beyond_tgd_s(signal: Signal, eph: &BroadcastEphemeris) -> f64 {
+    if signal.is_transmitted() {
+        eph.clock.tgd_s - signal.broadcast_group_delay_s(eph)
+    } else {
+        0.0
+    }
+}
+
 /// The inputs of [`solve`] that every least-squares pass of one epoch shares.
 struct Epoch<'a> {
     meas: &'a [Measurement],
@@ -248,11 +262,15 @@ impl Epoch<'_> {
             .filter(|s| meas.iter().any(|m| m.sat.system == *s))
             .collect();
         let n_x = 3 + systems.len();
-        // The satellites at transmit time do not move with the receiver estimate.
+        // The satellites at transmit time do not move with the receiver estimate; each
+        // clock is the one its signal's users apply.
         let sats: Vec<Transmitted> = meas
             .iter()
             .zip(&ephs)
-            .map(|(m, eph)| self.satellites.transmitted(eph, t_rx_s, m.pseudorange_m))
+            .map(|(m, eph)| {
+                let tx = self.satellites.transmitted(eph, t_rx_s, m.pseudorange_m);
+                tx.clock_shifted(group_delay_beyond_tgd_s(m.signal, &eph.eph))
+            })
             .collect();
         let mut r = a_priori.unwrap_or_else(Vec3::zeros);
         let mut clocks = vec![0.0; systems.len()];
@@ -327,7 +345,7 @@ fn linearise(
         let clock_col = systems.iter().position(|s| *s == m.sat.system).unwrap_or(0);
         let mut predicted = view.range_m + clocks[clock_col] - C_MPS * view.clock_s;
         if let Some((az, el)) = view.az_el_rad {
-            predicted += iono_m(cfg, &place, m.sat, m.carrier_hz, (az, el));
+            predicted += iono_m(cfg, &place, m.sat, m.signal.carrier_hz(), (az, el));
             if cfg.troposphere {
                 let g = &place.g;
                 predicted += standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0);
@@ -407,4 +425,30 @@ fn finish(
         protection: protection_of(&h, &w, dof, &c, cfg, chi2, r),
     };
     Ok(Solution { fix, normalised })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hifitime::{Epoch, TimeScale};
+    use skyforge_orbits::ephemeris::nominal;
+
+    /// The satellite clock follows each signal's group delay: none beyond TGD for GPS L1
+    /// C/A and L5 (ISC 0) and BeiDou B1I; Galileo E5a's (f_E1/f_E5a)^2 BGD(E1,E5a) instead
+    /// of the BGD itself; signals SkyForge does not transmit keep TGD.
+    #[test]
+    fn the_clock_is_each_signals_own() {
+        let t = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let mut gal = nominal::galileo(t)[0].clone();
+        gal.clock.tgd_s = 2e-9;
+        let scale = (1575.42f64 / 1176.45).powi(2);
+        let d = group_delay_beyond_tgd_s(Signal::GalE5a, &gal);
+        assert!((d - (2e-9 - scale * 2e-9)).abs() < 1e-20, "{d}");
+        assert_eq!(group_delay_beyond_tgd_s(Signal::GalE1, &gal), 0.0);
+        let mut gps = nominal::gps(t)[0].clone();
+        gps.clock.tgd_s = -5e-9;
+        for s in [Signal::GpsL1Ca, Signal::GpsL5, Signal::GpsL2] {
+            assert_eq!(group_delay_beyond_tgd_s(s, &gps), 0.0, "{s}");
+        }
+    }
 }

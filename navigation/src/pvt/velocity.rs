@@ -26,7 +26,7 @@ pub fn solve_velocity(
             .select(m.sat, t_rx_s)
             .ok_or(PvtError::NoEphemeris(m.sat))?;
         let view = sat_view(eph, t_rx_s, m.pseudorange_m, &fix.r_ecef_m);
-        let range_rate = -doppler * C_MPS / m.carrier_hz;
+        let range_rate = -doppler * C_MPS / m.signal.carrier_hz();
         let omc = range_rate - view.los.dot(&view.v_ecef_mps) + C_MPS * view.clock_drift;
         rows.push(([-view.los.x, -view.los.y, -view.los.z, 1.0], omc));
     }

@@ -130,7 +130,7 @@ fn single_point(
                 sat: r.sat,
                 pseudorange_m: r.pseudorange_m?,
                 doppler_hz: None,
-                carrier_hz: r.signal.carrier_hz(),
+                signal: r.signal,
             })
         })
         .collect();

@@ -33,10 +33,10 @@ use crate::thesis::ValidateError;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha20Rng;
 use rayon::prelude::*;
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::chi2_survival;
 use skyforge_navigation::pvt::{Measurement, PvtConfig, solve};
 use skyforge_orbits::Vec3;
-use skyforge_orbits::constants::F_GPS_L1_HZ;
 use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::c_ecef_ned;
 use skyforge_orbits::frames::ecef_to_geodetic;
@@ -410,7 +410,7 @@ pub fn run(setting: &Setting, geometry: &Geometry, draw: &Draw) -> Vec<EpochResu
                     sat,
                     pseudorange_m: pr + ramp + SIGMA_M * normal(&mut rng),
                     doppler_hz: None,
-                    carrier_hz: F_GPS_L1_HZ,
+                    signal: Signal::GpsL1Ca,
                 }
             })
             .collect();

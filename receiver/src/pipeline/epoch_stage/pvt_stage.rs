@@ -31,7 +31,7 @@ impl PvtStage {
                 sat: o.sat,
                 pseudorange_m: o.pseudorange_m,
                 doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
-                carrier_hz: o.signal.carrier_hz(),
+                signal: o.signal,
             })
             .collect();
         let (Some(origin), store) = (nav.origin(), nav.store()) else {
