@@ -78,3 +78,18 @@ pub fn sync_counts(events: &[(u64, NavEvent)]) -> (usize, usize) {
         count(|e| matches!(e, NavEvent::SyncLost { .. })),
     )
 }
+
+/// Stream starts of the messages (`period` symbols apart on the encoder's count) that
+/// begin at or after stream symbol `from` and are reported within `len` symbols (`span`
+/// symbols from their start), stream symbol 0 being encoder symbol `k0`.
+pub fn expected_starts(k0: u64, from: u64, len: u64, period: u64, span: u64) -> Vec<u64> {
+    ((k0 + from).div_ceil(period)..)
+        .map(|n| n * period - k0)
+        .take_while(|s| s + span <= len)
+        .collect()
+}
+
+/// The first symbols of the reported subframes.
+pub fn starts(subs: &[(u64, SubframeInfo)]) -> Vec<u64> {
+    subs.iter().map(|(_, s)| s.start_bit).collect()
+}

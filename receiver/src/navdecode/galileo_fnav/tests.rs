@@ -2,7 +2,7 @@
 //! the ephemeris, inversion, a lost symbol, a polarity flip, pages without TOW, noise.
 
 use super::super::symbol_test_support::{
-    UNEVEN, ephemerides, feed, noise, noisy, subframes, sync_counts,
+    self, UNEVEN, ephemerides, feed, noise, noisy, starts, subframes, sync_counts,
 };
 use super::super::{NavDecoder, NavEvent, SubframeInfo};
 use super::FnavDecoder;
@@ -49,14 +49,7 @@ fn check(enc: &FnavEncoder, subs: &[(u64, SubframeInfo)], k0: u64, inverted: boo
 /// Stream starts of the pages that begin at or after stream symbol `from` and end within
 /// `len` symbols, stream symbol 0 being encoder symbol `k0`.
 fn expected_starts(k0: u64, from: u64, len: u64) -> Vec<u64> {
-    ((k0 + from).div_ceil(P)..)
-        .map(|n| n * P - k0)
-        .take_while(|s| s + P <= len)
-        .collect()
-}
-
-fn starts(subs: &[(u64, SubframeInfo)]) -> Vec<u64> {
-    subs.iter().map(|(_, s)| s.start_bit).collect()
+    symbol_test_support::expected_starts(k0, from, len, P, P)
 }
 
 #[test]
