@@ -230,9 +230,9 @@ impl Signal {
         }
     }
 
-    /// The system's first signal, the one SkyForge transmits and tracks: GPS L1 C/A,
-    /// BeiDou B1I, Galileo E5a (whose codes SkyForge generates; E1's memory codes it does
-    /// not ship, docs/signals.md).
+    /// The system's first signal, the one a scenario transmits unless `[signal] signals`
+    /// says otherwise: GPS L1 C/A, BeiDou B1I, Galileo E5a (whose codes SkyForge
+    /// generates; E1's memory codes it does not ship, docs/signals.md).
     pub fn of_system(system: skyforge_orbits::ephemeris::System) -> Self {
         match system {
             skyforge_orbits::ephemeris::System::Gps => Self::GpsL1Ca,
