@@ -61,6 +61,8 @@ pub struct BitSynchroniser {
     /// Correlation search: period index modulo the code length where the code starts,
     /// and whether the prompts carried it inverted.
     found: Option<(u32, bool)>,
+    /// The search is on a pilot's prompts ([`Self::for_pilot`]).
+    pilot: bool,
 }
 
 impl BitSynchroniser {
@@ -70,7 +72,7 @@ impl BitSynchroniser {
             DataModulation::BdsD1 => neumann_hoffman::NH20.to_vec(),
             _ => Vec::new(),
         };
-        Self::searching(modulation, secondary, config)
+        Self::searching(modulation, secondary, config, false)
     }
 
     /// A synchroniser for a signal with a pilot, on the pilot's prompts: it searches the
@@ -80,10 +82,15 @@ impl BitSynchroniser {
         pilot_secondary: Vec<i8>,
         config: BitSyncConfig,
     ) -> Self {
-        Self::searching(modulation, pilot_secondary, config)
+        Self::searching(modulation, pilot_secondary, config, true)
     }
 
-    fn searching(modulation: DataModulation, secondary: Vec<i8>, config: BitSyncConfig) -> Self {
+    fn searching(
+        modulation: DataModulation,
+        secondary: Vec<i8>,
+        config: BitSyncConfig,
+        pilot: bool,
+    ) -> Self {
         Self {
             modulation,
             config: BitSyncConfig {
@@ -97,6 +104,7 @@ impl BitSynchroniser {
             first_index: 0,
             edge: None,
             found: None,
+            pilot,
         }
     }
 
@@ -112,6 +120,25 @@ impl BitSynchroniser {
         self.found
     }
 
+    /// A pilot synchroniser's wipe-off once the code is found: the secondary chip of code
+    /// period `period_index` times the polarity (-1 when the prompts carried it inverted).
+    pub fn pilot_wipe(&self, period_index: u64) -> Option<f64> {
+        let (start, inverted) = self.secondary_start().filter(|_| self.pilot)?;
+        let l = self.secondary.len() as u64;
+        let chip = self.secondary[((period_index + l - u64::from(start) % l) % l) as usize];
+        Some(if inverted {
+            -f64::from(chip)
+        } else {
+            f64::from(chip)
+        })
+    }
+
+    /// Whether a pilot synchroniser found the pilot inverted (the carrier loop half a
+    /// cycle off).
+    pub fn pilot_inverted(&self) -> bool {
+        self.pilot && self.secondary_start().is_some_and(|(_, inverted)| inverted)
+    }
+
     /// Add the in-phase prompt of code period `period_index`; returns the edge phase when
     /// (or once) decided. A gap in the period indices restarts the evidence chain.
     pub fn feed(&mut self, period_index: u64, prompt_i: f64) -> Option<u32> {
@@ -120,28 +147,23 @@ impl BitSynchroniser {
         }
         let positive = prompt_i >= 0.0;
         let contiguous = self.last.is_some_and(|(k, _)| k + 1 == period_index);
-        match self.modulation {
-            _ if !self.secondary.is_empty() => {
-                if !contiguous {
-                    self.signs.clear();
-                    self.first_index = period_index;
-                }
-                self.signs.push_back(if positive { 1 } else { -1 });
-                self.found = self.correlation_decision();
-                let ppb = self.modulation.periods_per_bit();
-                self.edge = self.found.map(|(start, _)| start % ppb);
+        let ppb = self.modulation.periods_per_bit();
+        if self.secondary.is_empty() {
+            // GPS LNAV, BeiDou D2: the histogram.
+            if let Some((_, was)) = self.last.filter(|_| contiguous)
+                && was != positive
+            {
+                self.histogram[(period_index % u64::from(ppb)) as usize] += 1;
             }
-            DataModulation::GpsLnav | DataModulation::BdsD2 => {
-                let ppb = u64::from(self.modulation.periods_per_bit());
-                if let Some((_, was)) = self.last.filter(|_| contiguous)
-                    && was != positive
-                {
-                    self.histogram[(period_index % ppb) as usize] += 1;
-                }
-                self.edge = self.histogram_decision(ppb as usize);
+            self.edge = self.histogram_decision(ppb as usize);
+        } else {
+            if !contiguous {
+                self.signs.clear();
+                self.first_index = period_index;
             }
-            // Correlation search without a code: nothing to find.
-            DataModulation::BdsD1 | DataModulation::GpsCnav | DataModulation::GalFnav => {}
+            self.signs.push_back(if positive { 1 } else { -1 });
+            self.found = self.correlation_decision();
+            self.edge = self.found.map(|(start, _)| start % ppb);
         }
         self.last = Some((period_index, positive));
         self.edge

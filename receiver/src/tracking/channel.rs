@@ -166,8 +166,6 @@ pub struct ChannelTracker {
     signal: Signal,
     prn: u8,
     modulation: DataModulation,
-    /// The pilot's secondary code, for a signal tracked on its pilot (else empty).
-    pilot_secondary: Vec<i8>,
     front_end: FrontEnd,
     config: TrackingConfig,
     correlator: Correlator,
@@ -231,11 +229,6 @@ impl ChannelTracker {
             )));
         }
         let correlator = correlator(signal, handover.prn, config.early_late_spacing_chips)?;
-        let pilot_secondary = if signal.has_pilot() {
-            signal.pilot(handover.prn)?.secondary
-        } else {
-            Vec::new()
-        };
         let carrier = carrier::build(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
         let code_rate = aided_code_rate(
             signal.chip_rate_hz(),
@@ -257,16 +250,16 @@ impl ChannelTracker {
         let modulation = signal.data_modulation(handover.prn).ok_or_else(|| {
             TrackingError::InvalidConfig(format!("{} is not tracked", signal.name()))
         })?;
-        let sync = if pilot_secondary.is_empty() {
-            BitSynchroniser::new(modulation, config.bit_sync)
+        let sync = if signal.has_pilot() {
+            let secondary = signal.pilot(handover.prn)?.secondary;
+            BitSynchroniser::for_pilot(modulation, secondary, config.bit_sync)
         } else {
-            BitSynchroniser::for_pilot(modulation, pilot_secondary.clone(), config.bit_sync)
+            BitSynchroniser::new(modulation, config.bit_sync)
         };
         Ok(Self {
             signal,
             prn: handover.prn,
             modulation,
-            pilot_secondary,
             front_end,
             config,
             correlator,
@@ -336,11 +329,7 @@ impl ChannelTracker {
     /// carrier loop holds the carrier half a cycle off (the code arrived inverted). The
     /// data bits are handed on corrected; the carrier phase is not.
     pub fn pilot_inverted(&self) -> bool {
-        self.tracks_pilot() && self.sync.secondary_start().is_some_and(|(_, inv)| inv)
-    }
-
-    fn tracks_pilot(&self) -> bool {
-        !self.pilot_secondary.is_empty()
+        self.sync.pilot_inverted()
     }
 
     /// Track over one block of samples whose first sample has index `first_sample_index`.
@@ -454,16 +443,14 @@ impl ChannelTracker {
             (Some(code), Some(pos)) => f64::from(code[pos as usize % code.len()]),
             _ => 1.0,
         };
-        let (corr, data) = match self.sync.secondary_start().filter(|_| self.tracks_pilot()) {
-            Some((start, inverted)) => {
-                let l = self.pilot_secondary.len() as u64;
-                let polarity = if inverted { -1.0 } else { 1.0 };
-                let chip =
-                    f64::from(self.pilot_secondary[((k + l - u64::from(start) % l) % l) as usize]);
-                (
-                    corr.map(|c| c * chip * polarity),
-                    data * data_chip * polarity,
-                )
+        let (corr, data) = match self.sync.pilot_wipe(k) {
+            Some(wipe) => {
+                let polarity = if self.sync.pilot_inverted() {
+                    -1.0
+                } else {
+                    1.0
+                };
+                (corr.map(|c| c * wipe), data * data_chip * polarity)
             }
             None => (corr.map(|c| c * data_chip), data * data_chip),
         };
@@ -692,7 +679,7 @@ impl ChannelTracker {
             phase_error_cycles: phase_error,
             code_error_chips: code_error,
             cn0_dbhz: cn0.map(|c| {
-                if self.tracks_pilot() {
+                if self.signal.has_pilot() {
                     c + PILOT_SHARE_DB
                 } else {
                     c

@@ -469,10 +469,7 @@ fn accumulate_wiped<const T: usize>(
             acc_r[l] += code[full + l] * re[full + l];
             acc_i[l] += code[full + l] * im[full + l];
         }
-        *o = Complex::new(
-            acc_r.iter().map(|&v| f64::from(v)).sum(),
-            acc_i.iter().map(|&v| f64::from(v)).sum(),
-        );
+        *o = lane_sums(&acc_r, &acc_i);
     }
     out
 }
@@ -527,12 +524,18 @@ fn accumulate<const T: usize>(
     }
     let mut out = [Complex::new(0.0, 0.0); MAX_TAPS];
     for t in 0..T {
-        out[t] = Complex::new(
-            acc_r[t].iter().map(|&v| f64::from(v)).sum(),
-            acc_i[t].iter().map(|&v| f64::from(v)).sum(),
-        );
+        out[t] = lane_sums(&acc_r[t], &acc_i[t]);
     }
     out
+}
+
+/// The lanes' partial sums added up in f64.
+#[inline(always)]
+fn lane_sums(re: &[f32; LANES], im: &[f32; LANES]) -> Complex<f64> {
+    Complex::new(
+        re.iter().map(|&v| f64::from(v)).sum(),
+        im.iter().map(|&v| f64::from(v)).sum(),
+    )
 }
 
 #[cfg(test)]
