@@ -146,6 +146,17 @@ impl ObservationRun {
         if let Some(fixes) = &self.receiver_fixes {
             return fixes.clone();
         }
+        self.first_antenna_fixes_with(&ReceiverConfig::default().pvt, &Signal::DEFAULT_FIX)
+    }
+
+    /// The first antenna's single-point fixes from its observations on `signals` with the
+    /// PVT settings `pvt` (the broadcast ionosphere coefficients added), epoch by epoch
+    /// from the last position found.
+    pub fn first_antenna_fixes_with(
+        &self,
+        pvt: &PvtConfig,
+        signals: &[Signal],
+    ) -> Vec<PositionFix> {
         let Some((file, first)) = self
             .measured
             .first()
@@ -158,9 +169,9 @@ impl ObservationRun {
         let config = PvtConfig {
             iono_gps: self.iono.gps,
             iono_bds: self.iono.bds,
-            ..ReceiverConfig::default().pvt
+            ..pvt.clone()
         };
-        single_point_fixes(file, &store, &origin, &Signal::DEFAULT_FIX, &config)
+        single_point_fixes(file, &store, &origin, signals, &config)
             .iter()
             .zip(&file.epochs)
             .filter_map(|(fix, e)| Some(PositionFix::new(e.time, fix.as_ref().ok()?)))

@@ -189,6 +189,15 @@ fn height_reduction_follows_the_book_and_the_override() {
     let d0 = IonoConfig::default().delay(System::Gps, &ground, 0.3, 0.6, 50_000.0, F_GPS_L1_HZ);
     let d1 = IonoConfig::default().delay(System::Gps, &leo, 0.3, 0.6, 50_000.0, F_GPS_L1_HZ);
     assert!((d1.code_m / d0.code_m - 0.2).abs() < 1e-12);
+    // A storm scales the delay whatever the height, code and carrier alike.
+    let storm = IonoConfig {
+        scale: 3.0,
+        ..IonoConfig::default()
+    };
+    for (rx, d) in [(&ground, d0), (&leo, d1)] {
+        let s = storm.delay(System::Gps, rx, 0.3, 0.6, 50_000.0, F_GPS_L1_HZ);
+        assert!((s.code_m - 3.0 * d.code_m).abs() < 1e-12 && s.carrier_m == -s.code_m);
+    }
 }
 
 #[test]
@@ -201,6 +210,14 @@ fn config_check_rejects_bad_values() {
     assert_eq!(
         bad_scale.check().err().map(|e| e.field),
         Some("leo_scale".to_string())
+    );
+    let storm = IonoConfig {
+        scale: 11.0,
+        ..IonoConfig::default()
+    };
+    assert_eq!(
+        storm.check().err().map(|e| e.field),
+        Some("scale".to_string())
     );
     let mut bad_beta = IonoConfig::default();
     bad_beta.bds.beta[2] = f64::INFINITY;

@@ -16,6 +16,7 @@ mod geometry;
 pub(crate) mod nmea;
 pub(crate) mod protection;
 pub(crate) mod raim;
+mod ranging;
 pub(crate) mod solve;
 #[cfg(test)]
 mod test_geometry;
@@ -25,6 +26,7 @@ pub use nmea::{gga, gsa, rmc};
 
 pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
 pub use raim::{chi2_survival, detection_parameters};
+pub use ranging::IonosphereCorrection;
 pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 
@@ -93,7 +95,9 @@ impl ViewPoint {
     }
 }
 
-/// One pseudorange (and optionally Doppler) of one satellite at the receive epoch.
+/// One pseudorange (and optionally Doppler) of one satellite on one signal at the receive
+/// epoch; a satellite may have one per signal ([`IonosphereCorrection`] says how the solver
+/// uses them).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Measurement {
     pub sat: SatId,
@@ -116,6 +120,9 @@ pub struct PvtConfig {
     /// coefficients uses the GPS model scaled to its frequency, and vice versa.
     pub iono_gps: Option<KlobucharCoeffs>,
     pub iono_bds: Option<KlobucharCoeffs>,
+    /// The broadcast model on one signal per satellite, or the ionosphere-free combination
+    /// of two.
+    pub ionosphere: IonosphereCorrection,
     /// Apply the standard troposphere (for receivers inside it).
     pub troposphere: bool,
     /// Elevation weighting sigma^2 = a^2 + b^2 / sin^2(el) (m): a, b.
@@ -143,6 +150,7 @@ impl Default for PvtConfig {
             elevation_mask_rad: 10f64.to_radians(),
             iono_gps: None,
             iono_bds: None,
+            ionosphere: IonosphereCorrection::Broadcast,
             troposphere: true,
             sigma_a_m: 0.3,
             sigma_b_m: 0.3,

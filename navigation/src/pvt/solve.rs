@@ -4,6 +4,7 @@ use super::exclusion::{most_suspect, normalised_residuals};
 use super::geometry::{FromEphemeris, SatView, Satellites, Transmitted, local_frame_at};
 use super::protection::{protection_levels, slopes};
 use super::raim::{detection_parameters, test_threshold};
+use super::ranging::{Ranging, per_satellite};
 use super::{
     Dop, Fix, IONOSPHERE_USER_CEILING_M, IntegrityStatus, Measurement, Protection, PvtConfig,
     PvtError,
@@ -63,8 +64,9 @@ pub fn solve_with(
     a_priori: Option<Vec3>,
     satellites: &mut dyn Satellites,
 ) -> Result<Fix, PvtError> {
+    let meas = per_satellite(meas, cfg.ionosphere);
     let mut epoch = Epoch {
-        meas,
+        meas: &meas,
         t_rx_s,
         store,
         origin,
@@ -228,9 +230,15 @@ fn group_delay_beyond_tgd_s(signal: Signal, eph: &BroadcastEphemeris) -> f64 {
     }
 }
 
+/// [`group_delay_beyond_tgd_s`] of a ranging: an ionosphere-free combination's group delays
+/// combine as its pseudoranges (IS-GPS-705's ISC terms in the L1/L5 correction).
+fn ranging_delay_beyond_tgd_s(ranging: &Ranging, eph: &BroadcastEphemeris) -> f64 {
+    ranging.combined(|s| group_delay_beyond_tgd_s(s, eph))
+}
+
 /// The inputs of [`solve`] that every least-squares pass of one epoch shares.
 struct Epoch<'a> {
-    meas: &'a [Measurement],
+    meas: &'a [Ranging],
     t_rx_s: f64,
     store: &'a EphemerisStore,
     origin: &'a TimeOrigin,
@@ -247,7 +255,7 @@ impl Epoch<'_> {
     ) -> Result<Solution, PvtError> {
         let (meas, t_rx_s, store, origin, cfg) =
             (self.meas, self.t_rx_s, self.store, self.origin, self.cfg);
-        let meas: Vec<&Measurement> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
+        let meas: Vec<&Ranging> = meas.iter().filter(|m| !skip.contains(&m.sat)).collect();
         let ephs = meas
             .iter()
             .map(|m| {
@@ -269,7 +277,7 @@ impl Epoch<'_> {
             .zip(&ephs)
             .map(|(m, eph)| {
                 let tx = self.satellites.transmitted(eph, t_rx_s, m.pseudorange_m);
-                tx.clock_shifted(group_delay_beyond_tgd_s(m.signal, &eph.eph))
+                tx.clock_shifted(ranging_delay_beyond_tgd_s(m, &eph.eph))
             })
             .collect();
         let mut r = a_priori.unwrap_or_else(Vec3::zeros);
@@ -324,7 +332,7 @@ struct Row {
 
 #[allow(clippy::too_many_arguments)]
 fn linearise(
-    meas: &[&Measurement],
+    meas: &[&Ranging],
     sats: &[Transmitted],
     t_rx_s: f64,
     origin: &TimeOrigin,
@@ -345,7 +353,9 @@ fn linearise(
         let clock_col = systems.iter().position(|s| *s == m.sat.system).unwrap_or(0);
         let mut predicted = view.range_m + clocks[clock_col] - C_MPS * view.clock_s;
         if let Some((az, el)) = view.az_el_rad {
-            predicted += iono_m(cfg, &place, m.sat, m.signal.carrier_hz(), (az, el));
+            if m.second.is_none() {
+                predicted += iono_m(cfg, &place, m.sat, m.signal.carrier_hz(), (az, el));
+            }
             if cfg.troposphere {
                 let g = &place.g;
                 predicted += standard_slant_delay_m(g.lat_rad, g.h_m, el, STANDARD_RH0);
@@ -356,7 +366,7 @@ fn linearise(
             view,
             omc_m: m.pseudorange_m - predicted,
             clock_col: 3 + clock_col,
-            weight: sigma_m(cfg, el).powi(-2),
+            weight: (sigma_m(cfg, el) * m.noise_factor()).powi(-2),
             el_rad: el,
         });
     }

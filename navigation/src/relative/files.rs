@@ -7,8 +7,8 @@ use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
 use crate::geometry_file::BodyGeometryFile;
 use crate::pvt::{
-    Fix, FromEphemeris, Measurement, NearAntenna, Predicted, PvtConfig, Recorded, Satellites,
-    ViewPoint, solve_with,
+    Fix, FromEphemeris, IonosphereCorrection, Measurement, NearAntenna, Predicted, PvtConfig,
+    Recorded, Satellites, ViewPoint, solve_with,
 };
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
@@ -109,8 +109,9 @@ fn first_per_satellite<'r>(
         .filter(move |r| seen.insert(r.sat))
 }
 
-/// The single-point solution of one antenna's `records` (one pseudorange per satellite,
-/// of the first of `signals` that has one) at `t_s` (s since `origin`) with `config`,
+/// The single-point solution of one antenna's `records` (with the broadcast ionosphere one
+/// pseudorange per satellite, of the first of `signals` that has one; dual-frequency, every
+/// one of `signals` for the solver to combine) at `t_s` (s since `origin`) with `config`,
 /// the satellites taken from `satellites`.
 #[allow(clippy::too_many_arguments)]
 fn single_point(
@@ -123,7 +124,15 @@ fn single_point(
     prior: Option<Vec3>,
     satellites: &mut dyn Satellites,
 ) -> Result<Fix, String> {
-    let meas: Vec<Measurement> = first_per_satellite(records, signals)
+    let chosen: Vec<&ObsRecord> = match config.ionosphere {
+        IonosphereCorrection::Broadcast => first_per_satellite(records, signals).collect(),
+        IonosphereCorrection::DualFrequency => records
+            .iter()
+            .filter(|r| signals.contains(&r.signal))
+            .collect(),
+    };
+    let meas: Vec<Measurement> = chosen
+        .into_iter()
         .filter(|r| store.select(r.sat, t_s).is_some())
         .filter_map(|r| {
             Some(Measurement {

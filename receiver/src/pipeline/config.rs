@@ -4,7 +4,7 @@
 pub use crate::acquisition::config::{AcquisitionMethod, AcquisitionSettings};
 use crate::tracking::config::CarrierMethod;
 use crate::tracking::config::TrackingConfig;
-use skyforge_navigation::pvt::PvtConfig;
+use skyforge_navigation::pvt::{IonosphereCorrection, PvtConfig};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::check::{Invalid, NEAR_EARTH_RADIUS_M, check_position, check_table};
 
@@ -121,6 +121,9 @@ impl Default for ObservablesFile {
 #[serde(default, deny_unknown_fields)]
 pub struct PvtFile {
     pub elevation_mask_deg: f64,
+    /// `"broadcast"` (one signal per satellite, Klobuchar) or `"dual-frequency"` (the
+    /// ionosphere-free combination of two signals per satellite).
+    pub ionosphere: IonosphereCorrection,
     pub troposphere: bool,
     pub raim_pfa: f64,
     /// Missed-detection probability of the protection levels (docs/raim.md).
@@ -136,6 +139,7 @@ impl Default for PvtFile {
         let d = PvtConfig::default();
         Self {
             elevation_mask_deg: d.elevation_mask_rad.to_degrees(),
+            ionosphere: d.ionosphere,
             troposphere: d.troposphere,
             raim_pfa: d.raim_pfa,
             raim_pmd: d.raim_pmd,
@@ -272,6 +276,7 @@ impl ReceiverFile {
             epoch_stage: self.stages.epoch,
             pvt: PvtConfig {
                 elevation_mask_rad: p.elevation_mask_deg.to_radians(),
+                ionosphere: p.ionosphere,
                 troposphere: p.troposphere,
                 raim_pfa: p.raim_pfa,
                 raim_pmd: p.raim_pmd,

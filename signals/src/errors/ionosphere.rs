@@ -101,6 +101,11 @@ pub struct IonoConfig {
     /// height profile (in [0, 1]).
     #[serde(default)]
     pub leo_scale: Option<f64>,
+    /// Factor on the delay the model gives (a storm: 3 triples it), while the broadcast
+    /// coefficients stay those of `gps` and `bds`, so a single-frequency user's model
+    /// misses the difference and a dual-frequency user removes it (default 1).
+    #[serde(default = "unit_scale")]
+    pub scale: f64,
     /// GPS coefficients (default [`GPS_DEFAULT_COEFFS`]).
     #[serde(default = "gps_default")]
     pub gps: KlobucharCoeffs,
@@ -109,6 +114,9 @@ pub struct IonoConfig {
     pub bds: KlobucharCoeffs,
 }
 
+fn unit_scale() -> f64 {
+    1.0
+}
 fn gps_default() -> KlobucharCoeffs {
     GPS_DEFAULT_COEFFS
 }
@@ -122,11 +130,16 @@ impl Default for IonoConfig {
         Self {
             model: IonoModel::Klobuchar,
             leo_scale: None,
+            scale: 1.0,
             gps: GPS_DEFAULT_COEFFS,
             bds: BDS_DEFAULT_COEFFS,
         }
     }
 }
+
+/// assumed: ten times the model's delay is beyond the strongest storms' (a Klobuchar day
+/// peaks near 30 m on L1; storms have reached about 100 m).
+const STORM_SCALE: Allowed = Allowed::closed(0.0, 10.0, "");
 
 /// The largest magnitudes of the Klobuchar coefficients (alpha_0..3 in s, s/semicircle^n;
 /// beta_0..3 in s, s/semicircle^n): 8-bit two's complement fields, 128 times their scale
@@ -149,7 +162,7 @@ pub const COEFFICIENT_RANGE: ([f64; 4], [f64; 4]) = (
 );
 
 impl IonoConfig {
-    /// Checks: `leo_scale` in [0, 1]; every coefficient within what the navigation
+    /// Checks: `leo_scale` in [0, 1]; `scale` in [0, 10]; every coefficient within what the navigation
     /// message can broadcast ([`COEFFICIENT_RANGE`]: SkyForge writes them into its
     /// navigation files and messages).
     pub fn check(&self) -> Result<(), Invalid> {
@@ -158,6 +171,7 @@ impl IonoConfig {
         {
             return Err(Invalid::new("leo_scale", s, "must be in [0, 1]"));
         }
+        STORM_SCALE.check("scale", self.scale)?;
         for (name, set) in [("gps", &self.gps), ("bds", &self.bds)] {
             for (part, values, ranges) in [
                 ("alpha", &set.alpha, &COEFFICIENT_RANGE.0),
@@ -213,6 +227,7 @@ impl IonoConfig {
                 };
                 scale_to_frequency(delay_s * C_MPS, f_ref_hz, carrier_hz)
                     * self.height_factor(rx.h_m)
+                    * self.scale
             }
         };
         IonoDelay {
