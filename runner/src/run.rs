@@ -254,7 +254,7 @@ impl EpochSink for Received {
 struct PlatformTruth(Vec<PlatformState>);
 
 impl TruthSink for PlatformTruth {
-    fn signal(&mut self, _: usize, _: &[LinkTruth], _: usize) -> Result<(), SinkError> {
+    fn signal(&mut self, _: usize, _: &[LinkTruth], _: &[usize]) -> Result<(), SinkError> {
         Ok(())
     }
     fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {

@@ -48,7 +48,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         signal
             .check_signals(&enabled)
             .map_err(|e| e.within("signal"))?;
-        for s in enabled.into_iter().filter_map(|sys| signal.signal_of(sys)) {
+        for s in enabled.into_iter().flat_map(|sys| signal.signals_of(sys)) {
             signal
                 .check_band(s.name(), s.chip_rate_hz())
                 .map_err(|e| e.within("signal"))?;

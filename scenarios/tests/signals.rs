@@ -16,9 +16,9 @@ fn with_signal(keys: &str) -> String {
 fn the_default_is_each_constellations_first_signal() {
     let s = parse_in(&with_signal(""), std::path::Path::new(".")).expect("parses");
     let signal = s.signal.as_ref().expect("[signal]");
-    assert_eq!(signal.signal_of(System::Gps), Some(Signal::GpsL1Ca));
-    assert_eq!(signal.signal_of(System::Beidou), Some(Signal::BdsB1I));
-    assert_eq!(signal.signal_of(System::Galileo), Some(Signal::GalE5a));
+    assert_eq!(signal.signals_of(System::Gps), [Signal::GpsL1Ca]);
+    assert_eq!(signal.signals_of(System::Beidou), [Signal::BdsB1I]);
+    assert_eq!(signal.signals_of(System::Galileo), [Signal::GalE5a]);
 }
 
 #[test]
@@ -26,8 +26,8 @@ fn gps_may_transmit_l5_in_a_band_that_holds_it() {
     let text = with_signal("signals = [\"gps-l5\", \"bds-b1i\"]\nsample_rate_hz = 20.46e6");
     let s = parse_in(&text, std::path::Path::new(".")).expect("parses");
     let signal = s.signal.as_ref().expect("[signal]");
-    assert_eq!(signal.signal_of(System::Gps), Some(Signal::GpsL5));
-    assert_eq!(signal.signal_of(System::Beidou), Some(Signal::BdsB1I));
+    assert_eq!(signal.signals_of(System::Gps), [Signal::GpsL5]);
+    assert_eq!(signal.signals_of(System::Beidou), [Signal::BdsB1I]);
     s.build().unwrap_or_else(|e| panic!("{e}"));
     // At the default 4.092 Msps the L5 main lobe (+-10.23 MHz) does not fit.
     let err = parse_error(&with_signal("signals = [\"gps-l5\", \"bds-b1i\"]"));
@@ -56,11 +56,24 @@ fn every_enabled_constellation_needs_one_signal_and_no_other() {
         "{err}"
     );
     let err = parse_error(&with_signal(
-        "signals = [\"gps-l1ca\", \"gps-l5\", \"bds-b1i\"]\nsample_rate_hz = 20.46e6",
+        "signals = [\"gps-l1ca\", \"bds-b1i\", \"gps-l1ca\"]",
     ));
     assert!(
-        err.field == "signal.signals[1]" && err.allowed.contains("one signal per constellation"),
+        err.field == "signal.signals[2]" && err.allowed.contains("listed twice"),
         "{err}"
+    );
+}
+
+/// A constellation may transmit several signals, one recording each.
+#[test]
+fn gps_may_transmit_l1_and_l5_together() {
+    let text =
+        with_signal("signals = [\"gps-l1ca\", \"gps-l5\", \"bds-b1i\"]\nsample_rate_hz = 20.46e6");
+    let s = parse_in(&text, std::path::Path::new(".")).expect("parses");
+    let signal = s.signal.as_ref().expect("[signal]");
+    assert_eq!(
+        signal.signals_of(System::Gps),
+        [Signal::GpsL1Ca, Signal::GpsL5]
     );
 }
 

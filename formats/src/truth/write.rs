@@ -147,6 +147,8 @@ pub struct TruthWriter {
 struct SignalSets {
     t_s: Dataset,
     sat_index: Dataset,
+    /// Row of the group's `signals` attribute, when a satellite transmits several.
+    signal_index: Option<(Dataset, Vec<Signal>)>,
     /// One dataset per entry of [`SIGNAL_FIELDS`].
     fields: Vec<Dataset>,
     rows: usize,
@@ -405,12 +407,27 @@ impl TruthWriter {
     }
 
     /// Create the signal-truth datasets `antennas/<name>/signal/*` (one row per visible
-    /// link and truth epoch).
-    pub fn create_signal(&mut self, antennas: &[Antenna]) -> hdf5::Result<()> {
+    /// link, signal and truth epoch) for the transmitted `signals`; when a satellite
+    /// transmits several, each row says which (`signal_index`, a row of the group's
+    /// `signals` attribute).
+    pub fn create_signal(&mut self, antennas: &[Antenna], signals: &[Signal]) -> hdf5::Result<()> {
+        let several = signals
+            .iter()
+            .enumerate()
+            .any(|(i, s)| signals[..i].iter().any(|o| o.system() == s.system()));
         for ant in antennas {
             let antenna = self.file.group(&format!("{ANTENNAS_GROUP}/{}", ant.name))?;
             let g = create_group(&antenna, "signal")?;
+            let signal_index = if several {
+                let tags: Vec<&str> = signals.iter().map(|s| s.tag()).collect();
+                text_attr(&g, "signals", &tags.join(" "))?;
+                let ds = series::<u8>(&g, "signal_index", 0, "1", "row of the signals attribute")?;
+                Some((ds, signals.to_vec()))
+            } else {
+                None
+            };
             self.signal.push(SignalSets {
+                signal_index,
                 t_s: series::<f64>(
                     &g,
                     T_S,
@@ -430,12 +447,12 @@ impl TruthWriter {
     }
 
     /// Append signal-truth records of antenna `a`; a record's transmitter `tx` is
-    /// satellite `first_sat + tx` of `satellites/id`.
+    /// satellite `sat_index[tx]` of `satellites/id`.
     pub fn append_signal(
         &mut self,
         a: usize,
         records: &[LinkTruth],
-        first_sat: usize,
+        sat_index: &[usize],
     ) -> hdf5::Result<()> {
         let Some(sets) = self.signal.get_mut(a) else {
             return Ok(());
@@ -443,8 +460,15 @@ impl TruthWriter {
         let rows = sets.rows;
         let col = |f: fn(&LinkTruth) -> f64| records.iter().map(f).collect::<Vec<f64>>();
         append_rows(&sets.t_s, rows, &col(|r| r.t_s), 0)?;
-        let sats: Vec<u16> = records.iter().map(|r| (first_sat + r.tx) as u16).collect();
+        let sats: Vec<u16> = records.iter().map(|r| sat_index[r.tx] as u16).collect();
         append_rows(&sets.sat_index, rows, &sats, 0)?;
+        if let Some((ds, signals)) = &sets.signal_index {
+            let index: Vec<u8> = records
+                .iter()
+                .map(|r| signals.iter().position(|&s| s == r.signal).unwrap_or(0) as u8)
+                .collect();
+            append_rows(ds, rows, &index, 0)?;
+        }
         for (ds, (_, _, _, get)) in sets.fields.iter().zip(SIGNAL_FIELDS) {
             append_rows(ds, rows, &col(*get), 0)?;
         }
@@ -530,9 +554,9 @@ impl TruthSink for TruthWriter {
         &mut self,
         antenna: usize,
         records: &[LinkTruth],
-        first_sat: usize,
+        sat_index: &[usize],
     ) -> Result<(), SinkError> {
-        self.append_signal(antenna, records, first_sat)
+        self.append_signal(antenna, records, sat_index)
             .map_err(|e| self.writing(e))
     }
 

@@ -205,20 +205,24 @@ impl SignalConfig {
         Ok(())
     }
 
-    /// The signal `system`'s satellites transmit: the one `signals` lists for it, or the
+    /// The signals `system`'s satellites transmit: those `signals` lists for it, or the
     /// system's first when `signals` is empty ([`Self::check_signals`] makes sure every
     /// enabled system has one).
-    pub fn signal_of(&self, system: System) -> Option<Signal> {
+    pub fn signals_of(&self, system: System) -> Vec<Signal> {
         if self.signals.is_empty() {
-            return Some(Signal::of_system(system));
+            return vec![Signal::of_system(system)];
         }
-        self.signals.iter().copied().find(|s| s.system() == system)
+        self.signals
+            .iter()
+            .copied()
+            .filter(|s| s.system() == system)
+            .collect()
     }
 
     /// Checks `signals` against the enabled constellations `enabled`: each listed signal
     /// is one SkyForge transmits ([`Signal::TRANSMITTED`]), of an enabled constellation,
-    /// listed once, one per constellation (a constellation on two signals at once is not
-    /// built yet), and every enabled constellation has one.
+    /// listed once, and every enabled constellation has one (a constellation may transmit
+    /// several: GPS L1 C/A and L5, one recording each).
     pub fn check_signals(&self, enabled: &[System]) -> Result<(), Invalid> {
         let transmitted = || {
             Signal::TRANSMITTED
@@ -246,19 +250,11 @@ impl SignalConfig {
                     ),
                 ));
             }
-            if let Some(other) = self.signals[..i].iter().find(|o| o.system() == s.system()) {
-                return Err(Invalid::new(
-                    field,
-                    s.tag(),
-                    format!(
-                        "{} already transmits {}: one signal per constellation (several at once are not built yet)",
-                        s.system().name(),
-                        other.tag()
-                    ),
-                ));
+            if self.signals[..i].contains(s) {
+                return Err(Invalid::new(field, s.tag(), "is listed twice"));
             }
         }
-        if let Some(missing) = enabled.iter().find(|&&sys| self.signal_of(sys).is_none()) {
+        if let Some(missing) = enabled.iter().find(|&&sys| self.signals_of(sys).is_empty()) {
             return Err(Invalid::new(
                 "signals",
                 format!(

@@ -57,13 +57,14 @@ pub trait SampleSink {
 
 /// Receives the truth of the transmitted signals.
 pub trait TruthSink {
-    /// Link truth of antenna `antenna` recorded by band `band` since the last call; a
-    /// record's transmitter `tx` is satellite `first_sat + tx` of the session's list.
+    /// Link truth of antenna `antenna` recorded by one band since the last call; a
+    /// record's transmitter `tx` is satellite `sat_index[tx]` of the session's
+    /// [`SynthSession::satellites`].
     fn signal(
         &mut self,
         antenna: usize,
         records: &[LinkTruth],
-        first_sat: usize,
+        sat_index: &[usize],
     ) -> Result<(), SinkError>;
     /// One chunk of geometry epochs, after its samples.
     fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError>;
@@ -95,7 +96,7 @@ impl SampleSink for Discard {
 }
 
 impl TruthSink for Discard {
-    fn signal(&mut self, _: usize, _: &[LinkTruth], _: usize) -> Result<(), SinkError> {
+    fn signal(&mut self, _: usize, _: &[LinkTruth], _: &[usize]) -> Result<(), SinkError> {
         Ok(())
     }
     fn geometry(&mut self, _: &GeometryChunk) -> Result<(), SinkError> {
@@ -161,9 +162,9 @@ pub struct SynthWorld<'a> {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Band {
     pub signal: Signal,
-    /// Index of the band's first satellite in [`SynthSession::satellites`].
+    /// Index of the band's first transmitter among the session's, band by band.
     pub first: usize,
-    /// Its satellites.
+    /// Its transmitters (one per satellite).
     pub count: usize,
 }
 
@@ -186,9 +187,14 @@ pub struct SynthSession<'a> {
     /// The ionosphere the signals follow (GPS coefficients as broadcast).
     iono: IonoConfig,
     bands: Vec<Band>,
+    /// Every band's transmitters, band by band ([`Band::first`] counts in them).
     transmitters: Vec<Transmitter>,
-    /// The ephemerides as broadcast (quantised in the messages): the orbits the signals
-    /// follow.
+    /// The transmitting satellites, each once, in the order they first transmit.
+    sats: Vec<SatId>,
+    /// Each transmitter's satellite: its index in `sats`.
+    sat_of: Vec<usize>,
+    /// The ephemerides as broadcast (quantised in the messages), one per satellite of
+    /// `sats`: the orbits the signals follow.
     broadcast: Vec<BroadcastEphemeris>,
     clocks: Vec<ClockModel>,
     events: EventSchedule,
@@ -197,6 +203,22 @@ pub struct SynthSession<'a> {
     observation_model: Option<ObservationModel>,
     /// Observed-only signals drawn besides the synthesised ones (observation level).
     observed: Vec<Signal>,
+}
+
+/// The satellites of `transmitters`, each once in the order they first appear, and each
+/// transmitter's index among them.
+fn satellites_of(transmitters: &[Transmitter]) -> (Vec<SatId>, Vec<usize>) {
+    let mut sats: Vec<SatId> = Vec::new();
+    let sat_of = transmitters
+        .iter()
+        .map(|t| {
+            sats.iter().position(|&s| s == t.sat).unwrap_or_else(|| {
+                sats.push(t.sat);
+                sats.len() - 1
+            })
+        })
+        .collect();
+    (sats, sat_of)
 }
 
 /// Every satellite's ephemeris at the start (the set its message will carry).
@@ -263,18 +285,17 @@ impl<'a> SynthSession<'a> {
         let mut bands = Vec::new();
         let mut transmitters: Vec<Transmitter> = Vec::new();
         for system in [System::Gps, System::Beidou, System::Galileo] {
-            let Some(sig) = signal.signal_of(system) else {
-                continue;
-            };
-            let txs = constellation::transmitters(sig, &ephs, start, &iono)
-                .map_err(|e| SynthError::Transmitters(sig, e))?;
-            if !txs.is_empty() {
-                bands.push(Band {
-                    signal: sig,
-                    first: transmitters.len(),
-                    count: txs.len(),
-                });
-                transmitters.extend(txs);
+            for sig in signal.signals_of(system) {
+                let txs = constellation::transmitters(sig, &ephs, start, &iono)
+                    .map_err(|e| SynthError::Transmitters(sig, e))?;
+                if !txs.is_empty() {
+                    bands.push(Band {
+                        signal: sig,
+                        first: transmitters.len(),
+                        count: txs.len(),
+                    });
+                    transmitters.extend(txs);
+                }
             }
         }
         // The signal follows the coefficients as broadcast (quantised in the message).
@@ -285,9 +306,15 @@ impl<'a> SynthSession<'a> {
         {
             iono.gps = KlobucharCoeffs { alpha, beta };
         }
-        let broadcast = transmitters
+        let (sats, sat_of) = satellites_of(&transmitters);
+        // A satellite on several signals follows its first signal's message (the others
+        // quantise the same ephemeris their own way).
+        let broadcast = sats
             .iter()
-            .map(Transmitter::broadcast_ephemeris)
+            .map(|&sat| {
+                let first = sat_of.iter().position(|&i| sats[i] == sat).unwrap_or(0);
+                transmitters[first].broadcast_ephemeris()
+            })
             .collect();
         let clocks = receiver_clocks(
             errors.receiver_clock.as_ref(),
@@ -296,7 +323,6 @@ impl<'a> SynthSession<'a> {
             1,
         )?;
         let antenna_names: Vec<&str> = world.antennas.iter().map(|a| a.name.as_str()).collect();
-        let sats: Vec<SatId> = transmitters.iter().map(|t| t.sat).collect();
         let events = EventSchedule::new(&errors.events, &antenna_names, &sats)
             .map_err(|e| SynthError::Invalid(e.within("errors.events")))?;
         let filter = signal
@@ -320,6 +346,8 @@ impl<'a> SynthSession<'a> {
             iono,
             bands,
             transmitters,
+            sats,
+            sat_of,
             broadcast,
             clocks,
             events,
@@ -417,9 +445,18 @@ impl<'a> SynthSession<'a> {
         bands.chain(self.observed.iter().copied()).collect()
     }
 
-    /// The transmitting satellites, band by band (the index [`Band::first`] counts in).
-    pub fn satellites(&self) -> Vec<SatId> {
-        self.transmitters.iter().map(|t| t.sat).collect()
+    /// The transmitting satellites, each once, in the order they first transmit (band by
+    /// band): the satellites of the geometry truth.
+    pub fn satellites(&self) -> &[SatId] {
+        &self.sats
+    }
+
+    /// The satellites of `band`'s transmitters.
+    pub fn band_satellites(&self, band: &Band) -> Vec<SatId> {
+        self.transmitters[band.first..band.first + band.count]
+            .iter()
+            .map(|t| t.sat)
+            .collect()
     }
 
     /// The ephemerides as broadcast, one per satellite in [`Self::satellites`] order.
@@ -516,7 +553,8 @@ impl<'a> SynthSession<'a> {
         let mut synths = self
             .bands
             .iter()
-            .map(|b| {
+            .enumerate()
+            .map(|(i, b)| {
                 let s = Synthesiser::new(
                     signal,
                     &self.transmitters[b.first..b.first + b.count],
@@ -526,8 +564,14 @@ impl<'a> SynthSession<'a> {
                 .with_truth_every(truth_every)
                 .with_clocks(clocks.clone())
                 .with_events(self.events.clone());
-                let s = if observation_level {
+                // Observed-only signals come from their system's first band alone.
+                let first_of_system = !self.bands[..i]
+                    .iter()
+                    .any(|o| o.signal.system() == b.signal.system());
+                let s = if observation_level && first_of_system {
                     s.without_samples().with_observed(self.observed.clone())
+                } else if observation_level {
+                    s.without_samples()
                 } else {
                     s
                 };
@@ -545,17 +589,17 @@ impl<'a> SynthSession<'a> {
             antennas: world.antennas,
         };
         let group_delays: Vec<f64> = (self.transmitters.iter())
-            .zip(&self.broadcast)
-            .map(|(t, eph)| t.signal.broadcast_group_delay_s(eph))
+            .map(|t| t.signal.broadcast_group_delay_s(&t.broadcast_ephemeris()))
             .collect();
         let store = EphemerisStore::new(self.broadcast, world.origin);
-        let sats: Vec<SatId> = self.transmitters.iter().map(|t| t.sat).collect();
+        let sats = self.sats;
         let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
         let mut running = Running {
             origin: world.origin,
             antennas: world.antennas,
             bands: &self.bands,
             sats: &sats,
+            sat_of: &self.sat_of,
             group_delays: &group_delays,
             terms,
             synths: &mut synths,
@@ -584,8 +628,11 @@ struct Running<'r, 't, 's> {
     origin: &'r TimeOrigin,
     antennas: &'r [Antenna],
     bands: &'r [Band],
+    /// The satellites of the geometry truth.
     sats: &'r [SatId],
-    /// Each transmitter's broadcast group delay (s), [`Band::first`]-indexed like `sats`.
+    /// Each transmitter's satellite (index into `sats`), [`Band::first`]-indexed.
+    sat_of: &'r [usize],
+    /// Each transmitter's broadcast group delay (s), [`Band::first`]-indexed.
     group_delays: &'r [f64],
     terms: LinkTerms<'r>,
     synths: &'r mut [Synthesiser<'t>],
@@ -627,7 +674,8 @@ impl Running<'_, '_, '_> {
         for (b, (band, synth)) in self.bands.iter().zip(self.synths.iter_mut()).enumerate() {
             let links = (0..n_ant * band.count)
                 .map(|l| {
-                    let (a, s) = (l / band.count, band.first + l % band.count);
+                    let (a, tx) = (l / band.count, band.first + l % band.count);
+                    let s = self.sat_of[tx];
                     let sat = self.sats[s];
                     self.terms
                         .link_end(
@@ -639,7 +687,7 @@ impl Running<'_, '_, '_> {
                             band.signal,
                             chunk.link(k, a, s),
                         )
-                        .map(|end| end.with_group_delay(self.group_delays[s]))
+                        .map(|end| end.with_group_delay(self.group_delays[tx]))
                 })
                 .collect();
             let samples = &mut *self.sinks.samples;
@@ -649,7 +697,7 @@ impl Running<'_, '_, '_> {
             let truth = synth.take_truth();
             for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
                 whole_t = Some(r.t_s);
-                let s = band.first + r.tx;
+                let s = self.sat_of[band.first + r.tx];
                 let sat = self.sats[s];
                 whole_second[r.antenna].push(ObsRecord::complete(
                     sat,
@@ -671,7 +719,8 @@ impl Running<'_, '_, '_> {
                     .filter(|r| r.antenna == a && r.signal == band.signal)
                     .copied()
                     .collect();
-                self.sinks.truth.signal(a, &records, band.first)?;
+                let sat_index = &self.sat_of[band.first..band.first + band.count];
+                self.sinks.truth.signal(a, &records, sat_index)?;
             }
         }
         if let Some(t) = whole_t {

@@ -96,14 +96,14 @@ fn channel_samples(
     session: &SynthSession<'_>,
     weight: impl Fn(Signal) -> f64,
 ) -> f64 {
-    let sats = session.satellites();
     let multipath = &scenario.errors.multipath;
     let samples = session.world().duration_s * session.signal_config().sample_rate_hz;
     let paths: f64 = session
         .bands()
         .iter()
         .map(|band| {
-            let paths: usize = sats[band.first..band.first + band.count]
+            let paths: usize = session
+                .band_satellites(band)
                 .iter()
                 .flat_map(|&sat| {
                     session

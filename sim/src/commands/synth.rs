@@ -10,6 +10,7 @@ use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::receiver::ReceiverOutputs;
 use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
+use skyforge_gnss::signal::Signal;
 use skyforge_navigation::geometry_file::BodyGeometryFile;
 use skyforge_orbits::Vec3;
 use skyforge_receiver::pipeline::assistance_toml;
@@ -132,7 +133,7 @@ pub fn synthesise(
     let bands = session.bands().to_vec();
     let signals = session.signals();
     let info = session.recording_info(&scenario.name);
-    let sats = session.satellites();
+    let sats = session.satellites().to_vec();
     let n_ant = antennas.len();
     let staged = StagedDir::create(out, force)?;
     let nav_path = staged.file("nav.rnx");
@@ -165,7 +166,8 @@ pub fn synthesise(
     let mut truth = TruthWriter::create(&truth_path, &meta, &sats, antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
     if signal.truth_rate_hz > 0 {
-        truth.create_signal(antennas)?;
+        let transmitted: Vec<Signal> = bands.iter().map(|b| b.signal).collect();
+        truth.create_signal(antennas, &transmitted)?;
     }
     let mut obs = ObsFiles::new(&staged.file(""), antennas, &signals);
     let measured_dir = staged.file(OBSERVATIONS_DIR);

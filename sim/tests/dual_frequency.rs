@@ -1,0 +1,130 @@
+//! One constellation on two signals at the signal level: GPS L1 C/A and L5 recorded side
+//! by side (two recordings of one antenna, one receiver clock), received by the bundled
+//! receiver and fixed with the ionosphere-free combination (`[pvt] ionosphere =
+//! "dual-frequency"`).
+
+mod support;
+
+/// The bundled L5 site (52 N 13 E, 20.46 Msps ci8) with GPS on L1 C/A and L5, 45 dB-Hz on
+/// each (# assumed: the L1 C/A interop scenarios' C/N0), `duration_s` long, the ionosphere
+/// as `ionosphere` sets it.
+fn scenario(dir: &std::path::Path, name: &str, duration_s: u32, ionosphere: &str) -> String {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../scenarios/bundled/interop-l5-static.toml"),
+    )
+    .expect("bundled scenario")
+    .replacen(
+        "name = \"interop-l5-static\"",
+        &format!("name = \"{name}\""),
+        1,
+    )
+    .replacen(
+        "duration_s = 120.0",
+        &format!("duration_s = {duration_s}.0"),
+        1,
+    )
+    .replacen(
+        "signals = [\"gps-l5\"]",
+        "signals = [\"gps-l1ca\", \"gps-l5\"]",
+        1,
+    )
+    .replacen("cn0_dbhz = 48.6", "cn0_dbhz = 45.0", 1)
+        + &format!("\n[errors.ionosphere]\n{ionosphere}\n");
+    support::write_scenario(dir, &format!("{name}.toml"), &text)
+}
+
+/// `synth --receive` of `scenario` with the dual-frequency receiver; the 3D errors (m) of
+/// its fixes against the site, in time order, and the receiver's RINEX text.
+fn receive_dual_frequency(dir: &std::path::Path, scenario: &str, out: &str) -> (Vec<f64>, String) {
+    let config = dir.join("receiver.toml");
+    std::fs::write(&config, "[pvt]\nionosphere = \"dual-frequency\"\n").expect("config");
+    let out = dir.join(out);
+    let log = support::skyforge_ok(
+        &[
+            "synth",
+            scenario,
+            "--receive",
+            "--receiver-config",
+            config.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        dir,
+    );
+    println!("{log}");
+    let rx = out.join("receive");
+    let site = support::truth_site(&out);
+    let errors = support::fixes(&rx)
+        .iter()
+        .map(|(_, r, _)| (r - site).norm())
+        .collect();
+    let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
+    (errors, obs)
+}
+
+fn median(errors: &[f64]) -> f64 {
+    let mut e = errors.to_vec();
+    e.sort_by(f64::total_cmp);
+    e.get(e.len() / 2).copied().unwrap_or(f64::NAN)
+}
+
+/// With a threefold ionosphere (the broadcast coefficients unchanged) the dual-frequency
+/// fix meets the issue's interoperability bar, median 3D error under 5 m, on both signals
+/// of every satellite.
+#[test]
+fn l1_and_l5_are_received_together_and_fixed_free_of_the_ionosphere() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    // assumed: 30 s, the first CNAV ephemeris decoded after about 14 s.
+    let path = scenario(
+        dir.path(),
+        "l1-l5",
+        30,
+        "model = \"klobuchar\"\nscale = 3.0",
+    );
+    let (errors, obs) = receive_dual_frequency(dir.path(), &path, "out");
+    assert!(
+        obs.contains("G    8 C1C L1C D1C S1C C5I L5I D5I S5I"),
+        "{obs}"
+    );
+    // Satellite (3 characters) and four 16-character observations of L1 C/A before L5's.
+    let body = obs.split("END OF HEADER").nth(1).unwrap_or("");
+    let both = body
+        .lines()
+        .filter(|l| l.starts_with('G') && l.len() > 67 && !l[67..].trim().is_empty())
+        .count();
+    assert!(both >= 4 * 10, "{both} lines with L5 beside L1 C/A");
+    println!("{} fixes, 3D errors {errors:.2?} m", errors.len());
+    assert!(errors.len() >= 10, "{} fixes", errors.len());
+    assert!(median(&errors) < 5.0, "median {} m", median(&errors));
+}
+
+/// Issue #34's acceptance at the signal level: with the ionosphere scaled up threefold the
+/// ionosphere-free fix stays within 1.5 times the RMS error of the same run without
+/// ionosphere (same seed), over the fixes of a minute.
+#[test]
+#[ignore = "long tier (scripts/long-tests.txt): two 60 s runs of two bands at 20.46 Msps"]
+fn the_ionosphere_free_fix_removes_a_threefold_ionosphere_from_samples() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let calm = scenario(dir.path(), "calm", 60, "model = \"off\"");
+    let storm = scenario(
+        dir.path(),
+        "storm",
+        60,
+        "model = \"klobuchar\"\nscale = 3.0",
+    );
+    // The first fix of each run is left out: four satellites and a PDOP in the hundreds.
+    let (calm, _) = receive_dual_frequency(dir.path(), &calm, "calm");
+    let (storm, _) = receive_dual_frequency(dir.path(), &storm, "storm");
+    let (calm_rms, storm_rms) = (support::rms(&calm[1..]), support::rms(&storm[1..]));
+    println!(
+        "RMS 3D error: {calm_rms:.2} m without ionosphere ({} fixes), {storm_rms:.2} m with a threefold one ({} fixes)",
+        calm.len(),
+        storm.len()
+    );
+    assert!(calm.len() >= 40 && storm.len() >= 40);
+    assert!(
+        storm_rms <= 1.5 * calm_rms,
+        "{storm_rms} m against {calm_rms} m"
+    );
+}
