@@ -94,9 +94,40 @@ fn l1_and_l5_are_received_together_and_fixed_free_of_the_ionosphere() {
         .filter(|l| l.starts_with('G') && l.len() > 67 && !l[67..].trim().is_empty())
         .count();
     assert!(both >= 4 * 10, "{both} lines with L5 beside L1 C/A");
+    assert_signal_truth_names_each_rows_signal(&dir.path().join("out").join("truth.h5"));
     println!("{} fixes, 3D errors {errors:.2?} m", errors.len());
     assert!(errors.len() >= 10, "{} fixes", errors.len());
     assert!(median(&errors) < 5.0, "median {} m", median(&errors));
+}
+
+/// truth.h5 lists each satellite once and says which signal a signal-truth row is: each
+/// (time, satellite, signal) once, both signals present.
+fn assert_signal_truth_names_each_rows_signal(path: &std::path::Path) {
+    let file = hdf5::File::open(path).expect("truth.h5");
+    let ids: Vec<hdf5::types::VarLenUnicode> = support::dataset(&file, "satellites/id");
+    let mut unique: Vec<String> = ids.iter().map(|s| s.to_string()).collect();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(
+        unique.len(),
+        ids.len(),
+        "satellites/id lists a satellite twice"
+    );
+    let g = file.group("antennas/ant1/signal").expect("signal truth");
+    let tags: hdf5::types::VarLenUnicode = g.attr("signals").unwrap().read_scalar().unwrap();
+    assert_eq!(tags.as_str(), "gps-l1ca gps-l5");
+    let t: Vec<f64> = support::dataset(&g, "t_s");
+    let sat: Vec<u16> = support::dataset(&g, "sat_index");
+    let signal: Vec<u8> = support::dataset(&g, "signal_index");
+    assert!(t.len() == signal.len() && sat.len() == signal.len());
+    let mut keys: Vec<(u64, u16, u8)> = (0..t.len())
+        .map(|k| ((t[k] * 1e3).round() as u64, sat[k], signal[k]))
+        .collect();
+    keys.sort_unstable();
+    let rows = keys.len();
+    keys.dedup();
+    assert_eq!(keys.len(), rows, "a (time, satellite, signal) row twice");
+    assert!(signal.contains(&0) && signal.contains(&1));
 }
 
 /// Issue #34's acceptance at the signal level: with the ionosphere scaled up threefold the
