@@ -1,7 +1,7 @@
 //! Mixing kernel throughput: one GPS L1 C/A channel, 4.092 Msps complex, 1 ms blocks.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use skyforge_signals::synth::{ChannelBlock, MixScratch, mix_into};
+use skyforge_signals::synth::{ChannelBlock, Chips, MixScratch, mix_into};
 
 fn mix(c: &mut Criterion) {
     let n = 4092;
@@ -14,7 +14,7 @@ fn mix(c: &mut Criterion) {
         carrier_cycles_per_sample: 0.0110,
         code_phase_chips: 0.4,
         code_chips_per_sample: 0.25 * (1.0 + 2e-6),
-        chip_signs: &chips,
+        chips: Chips::Signs(&chips),
     };
     let (mut oi, mut oq) = (vec![0f32; n], vec![0f32; n]);
     let mut scratch = MixScratch::default();

@@ -20,7 +20,7 @@ pub(crate) mod transmitter;
 pub use config::{BLOCK_S, SignalConfig};
 pub use filter::{BandFilter, FilterConfig};
 pub use link_terms::{AntennaEpoch, LinkTerms};
-pub use mix::{ChannelBlock, MixScratch, mix_into};
+pub use mix::{ChannelBlock, Chips, MixScratch, mix_into};
 pub use session::{
     Discard, GEOMETRY_STEP_S, ObservationSink, RunInfo, SampleSink, SinkError, Sinks, SynthError,
     SynthReport, SynthSession, SynthWorld, TruthSink,

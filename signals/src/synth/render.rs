@@ -15,7 +15,7 @@
 
 use super::config::{BLOCK_S, SignalConfig};
 use super::filter::BandFilter;
-use super::mix::{ChannelBlock, MixScratch, mix_into, mix_pair_into};
+use super::mix::{ChannelBlock, Chips, MixScratch, mix_into, mix_pair_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
 use super::transmitter::Transmitter;
@@ -598,7 +598,7 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
         carrier_cycles_per_sample: (p.phase.1 - p.phase.0) / m as f64,
         code_phase_chips: code_phase,
         code_chips_per_sample: code_per_sample,
-        chip_signs: &s.chips,
+        chips: Chips::Signs(&s.chips),
     };
     if tx.has_pilot() {
         s.pilot.clear();

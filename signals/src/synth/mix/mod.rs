@@ -35,9 +35,19 @@ pub struct ChannelBlock<'a> {
     pub code_phase_chips: f64,
     /// Code phase increment per sample (chips): code rate / fs.
     pub code_chips_per_sample: f64,
-    /// Sign (+1/-1) of each chip from the block's first chip on, with data bits and any
-    /// secondary code already applied; must cover the whole block.
-    pub chip_signs: &'a [i8],
+    /// Each chip from the block's first chip on, with data bits and any secondary code
+    /// already applied; must cover the whole block.
+    pub chips: Chips<'a>,
+}
+
+/// The chips of a block: signs of a binary code, or levels of a multi-level waveform
+/// (Galileo E1's CBOC sub-chips, several components summed).
+#[derive(Debug, Clone, Copy)]
+pub enum Chips<'a> {
+    /// +1/-1 per chip.
+    Signs(&'a [i8]),
+    /// Any amplitude per chip, relative to the channel's.
+    Levels(&'a [f32]),
 }
 
 impl ChannelBlock<'_> {
@@ -82,20 +92,23 @@ pub fn mix_into(
 
 /// `scratch.code[..n]`: the amplitude of the chip under each of `n` samples.
 fn spread_code(n: usize, ch: &ChannelBlock<'_>, scratch: &mut MixScratch) {
-    spread_signs(n, ch, ch.chip_signs, &mut scratch.amps, &mut scratch.code);
+    spread_chips(n, ch, ch.chips, &mut scratch.amps, &mut scratch.code);
 }
 
-/// `code[..n]`: the amplitude `ch.amplitude * sign` of the chip of `signs` under each of
-/// `n` samples at `ch`'s code phase and rate (`amps` is a buffer).
-fn spread_signs(
+/// `code[..n]`: the amplitude `ch.amplitude * sign` (or `* level`) of the chip of `chips`
+/// under each of `n` samples at `ch`'s code phase and rate (`amps` is a buffer).
+fn spread_chips(
     n: usize,
     ch: &ChannelBlock<'_>,
-    signs: &[i8],
+    chips: Chips<'_>,
     amps: &mut Vec<f32>,
     code: &mut Vec<f32>,
 ) {
     amps.clear();
-    amps.extend(signs.iter().map(|&s| ch.amplitude * f32::from(s)));
+    match chips {
+        Chips::Signs(signs) => amps.extend(signs.iter().map(|&s| ch.amplitude * f32::from(s))),
+        Chips::Levels(levels) => amps.extend(levels.iter().map(|&l| ch.amplitude * l)),
+    }
     let last = amps.last().copied().unwrap_or(0.0);
     amps.extend([last; spread::PAD]);
     code.resize(n, 0.0);
@@ -194,7 +207,10 @@ mod tests {
             .map(|i| {
                 let chip =
                     (ch.code_phase_chips + i as f64 * ch.code_chips_per_sample).floor() as usize;
-                let a = f64::from(ch.amplitude) * f64::from(ch.chip_signs[chip]);
+                let Chips::Signs(signs) = ch.chips else {
+                    unreachable!("the tests mix signs")
+                };
+                let a = f64::from(ch.amplitude) * f64::from(signs[chip]);
                 let p = std::f64::consts::TAU
                     * (ch.carrier_phase_cycles + i as f64 * ch.carrier_cycles_per_sample);
                 (a * p.cos(), a * p.sin())
@@ -229,7 +245,7 @@ mod tests {
                 carrier_cycles_per_sample: f_over_fs,
                 code_phase_chips: code0,
                 code_chips_per_sample: 1.023e6 / 4.092e6 * (1.0 + 3e-6),
-                chip_signs: &chips,
+                chips: Chips::Signs(&chips),
             };
             assert!(ChannelBlock::chips_needed(code0, ch.code_chips_per_sample, n) <= chips.len());
             let (mut oi, mut oq) = (vec![0f32; n], vec![0f32; n]);
@@ -265,7 +281,7 @@ mod tests {
             carrier_cycles_per_sample: 0.0123,
             code_phase_chips: 0.42,
             code_chips_per_sample: 0.25 * (1.0 - 1e-6),
-            chip_signs: &chips,
+            chips: Chips::Signs(&chips),
         };
         let n = 4093;
         let (mut ai, mut aq) = (vec![0.5f32; n], vec![-0.25f32; n]);
@@ -279,6 +295,35 @@ mod tests {
         assert_eq!(bits(&aq), bits(&bq));
     }
 
+    /// Multi-level chips: each sample is the channel's amplitude times its chip's level
+    /// times the carrier, as directly evaluated.
+    #[test]
+    fn levels_weight_each_chip() {
+        let levels: Vec<f32> = signs(400, 99)
+            .iter()
+            .enumerate()
+            .map(|(k, &s)| f32::from(s) * [0.25, 1.5, 0.8][k % 3])
+            .collect();
+        let ch = ChannelBlock {
+            amplitude: 0.5,
+            carrier_phase_cycles: 0.1,
+            carrier_cycles_per_sample: 0.013,
+            code_phase_chips: 0.3,
+            code_chips_per_sample: 0.6,
+            chips: Chips::Levels(&levels),
+        };
+        let n = 600;
+        let (mut oi, mut oq) = (vec![0f32; n], vec![0f32; n]);
+        mix_into(&mut oi, &mut oq, &ch, &mut MixScratch::default());
+        for i in 0..n {
+            let chip = (0.3 + 0.6 * i as f64).floor() as usize;
+            let a = 0.5 * f64::from(levels[chip]);
+            let p = std::f64::consts::TAU * (0.1 + 0.013 * i as f64);
+            assert!((f64::from(oi[i]) - a * p.cos()).abs() < 1e-4, "{i}");
+            assert!((f64::from(oq[i]) - a * p.sin()).abs() < 1e-4, "{i}");
+        }
+    }
+
     #[test]
     fn adds_to_what_is_already_there() {
         let chips = signs(40, 12345);
@@ -288,7 +333,7 @@ mod tests {
             carrier_cycles_per_sample: 0.0,
             code_phase_chips: 0.0,
             code_chips_per_sample: 0.25,
-            chip_signs: &chips,
+            chips: Chips::Signs(&chips),
         };
         let (mut oi, mut oq) = (vec![2f32; 100], vec![0f32; 100]);
         mix_into(&mut oi, &mut oq, &ch, &mut MixScratch::default());

@@ -3,10 +3,10 @@
 //! E5a-Q is of E5a-I), added to a block in one pass with one phasor recurrence for both,
 //! where two calls of [`super::mix_into`] would turn the phasors twice.
 
-use super::{ChannelBlock, LANES, MixScratch, spread_signs, step};
+use super::{ChannelBlock, Chips, LANES, MixScratch, spread_chips, step};
 use skyforge_gnss::nco::LanePhasors;
 
-/// Add the channel `ch` (its `chip_signs` the data component's) and its pilot
+/// Add the channel `ch` (its `chips` the data component's) and its pilot
 /// `pilot_signs` (same code phase and rate, chips aligned) to the block
 /// `(out_i, out_q)`. Like [`super::mix_into`], the same IEEE operations on every CPU.
 pub fn mix_pair_into(
@@ -17,8 +17,14 @@ pub fn mix_pair_into(
     scratch: &mut MixScratch,
 ) {
     let n = out_i.len().min(out_q.len());
-    spread_signs(n, ch, ch.chip_signs, &mut scratch.amps, &mut scratch.code);
-    spread_signs(n, ch, pilot_signs, &mut scratch.amps, &mut scratch.code_q);
+    spread_chips(n, ch, ch.chips, &mut scratch.amps, &mut scratch.code);
+    spread_chips(
+        n,
+        ch,
+        Chips::Signs(pilot_signs),
+        &mut scratch.amps,
+        &mut scratch.code_q,
+    );
     pulp::Arch::new().dispatch(Kernel {
         out_i: &mut out_i[..n],
         out_q: &mut out_q[..n],
@@ -102,7 +108,7 @@ mod tests {
             carrier_cycles_per_sample: -0.0371,
             code_phase_chips: 0.37,
             code_chips_per_sample: 0.5 * (1.0 + 2e-6),
-            chip_signs: &data,
+            chips: Chips::Signs(&data),
         };
         let (mut ai, mut aq) = (vec![0.25f32; n], vec![-0.5f32; n]);
         mix_pair_into(&mut ai, &mut aq, &ch, &pilot, &mut MixScratch::default());
@@ -111,7 +117,7 @@ mod tests {
         mix_into(&mut bi, &mut bq, &ch, &mut scratch);
         let quarter = ChannelBlock {
             carrier_phase_cycles: ch.carrier_phase_cycles + 0.25,
-            chip_signs: &pilot,
+            chips: Chips::Signs(&pilot),
             ..ch
         };
         mix_into(&mut bi, &mut bq, &quarter, &mut scratch);
@@ -132,7 +138,7 @@ mod tests {
             carrier_cycles_per_sample: 0.0123,
             code_phase_chips: 0.42,
             code_chips_per_sample: 0.25 * (1.0 - 1e-6),
-            chip_signs: &data,
+            chips: Chips::Signs(&data),
         };
         let n = 4093;
         let (mut ai, mut aq) = (vec![0.5f32; n], vec![-0.25f32; n]);
