@@ -15,3 +15,4 @@ pub mod observation;
 pub mod sample_format;
 pub mod sigmf;
 pub mod signal;
+pub mod subcarrier;
