@@ -107,9 +107,10 @@ impl Field {
 }
 
 /// Append the `width` low bits of `value` to `bits`, most significant first (two's
-/// complement for a negative value).
+/// complement for a negative value; a width above 64, such as I/NAV's 88 spare bits,
+/// repeats the sign bit).
 pub(crate) fn push_bits(bits: &mut Vec<u8>, value: i64, width: u32) {
-    bits.extend((0..width).rev().map(|k| ((value >> k) & 1) as u8));
+    bits.extend((0..width).rev().map(|k| ((value >> k.min(63)) & 1) as u8));
 }
 
 /// The raw values of `fields` read in order from `bits` (bit 0 first, most significant

@@ -5,6 +5,7 @@ pub mod conv_k7;
 pub mod crc24q;
 pub mod field;
 pub mod galileo_fnav;
+pub mod galileo_inav;
 pub mod gps_cnav;
 pub mod gps_lnav;
 

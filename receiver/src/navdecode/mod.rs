@@ -1,12 +1,12 @@
-//! Navigation-message decoding: GPS LNAV, BeiDou D1/D2, GPS L5 CNAV and Galileo E5a
-//! F/NAV to ephemeris, clock, ionosphere and time.
+//! Navigation-message decoding: GPS LNAV, BeiDou D1/D2, GPS L5 CNAV, Galileo E5a F/NAV
+//! and Galileo E1-B I/NAV to ephemeris, clock, ionosphere and time.
 //!
 //! Input, LNAV and D1/D2: the data-bit stream a tracking channel produces after bit
 //! synchronisation (and, for BeiDou D1, after the NH code is wiped), one soft value per
-//! bit. CNAV and F/NAV: the channel symbols (before FEC decoding), one soft value per
-//! symbol. The sign carries the bit or symbol with the BPSK mapping of the encoders (`+`
+//! bit. CNAV, F/NAV and I/NAV: the channel symbols (before FEC decoding), one soft value
+//! per symbol. The sign carries the bit or symbol with the BPSK mapping of the encoders (`+`
 //! is logic 0, `-` is logic 1); the magnitude (confidence) is used by the Viterbi decoding
-//! of CNAV and F/NAV only. The polarity of the whole stream is unknown (the 180 deg
+//! of CNAV, F/NAV and I/NAV only. The polarity of the whole stream is unknown (the 180 deg
 //! ambiguity of a Costas loop) and may flip after a half-cycle slip: each subframe's,
 //! message's or page's polarity is taken from its preamble or sync pattern.
 //!
@@ -25,6 +25,8 @@
 //!   preamble 10001011, CRC-24Q, message types 10, 11, 30).
 //! - [`FnavDecoder`]: Galileo OS SIS ICD §4.2 (sync pattern, de-interleaving, Viterbi,
 //!   CRC-24Q, page types 1-4).
+//! - [`InavDecoder`]: Galileo OS SIS ICD §4.3 (even and odd page parts, sync pattern,
+//!   de-interleaving, Viterbi, CRC-24Q over both parts, word types 1-5).
 
 mod bds;
 mod bds_bch;
@@ -32,6 +34,7 @@ mod bds_fields;
 mod decoder;
 mod framer;
 mod galileo_fnav;
+mod galileo_inav;
 mod gps;
 mod gps_cnav;
 mod gps_fields;
@@ -43,6 +46,7 @@ mod symbol_test_support;
 pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
 pub use galileo_fnav::FnavDecoder;
+pub use galileo_inav::InavDecoder;
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
 pub use gps_cnav::CnavDecoder;
 
@@ -62,28 +66,28 @@ pub struct DecodedEphemeris {
     /// Orbit and clock in SI units (angles in rad); toe and toc in the system time scale.
     /// GPS: `health` is the 6-bit SV health, `tgd_s` is TGD, `iode`/`iodc` are IODE/IODC.
     /// BeiDou: `health` is SatH1, `tgd_s` is TGD1 (B1I), `iode`/`iodc` are AODE/AODC.
-    /// GPS CNAV and Galileo F/NAV: as the gnss crate's encoders' `broadcast_ephemeris`
-    /// (CNAV: the three health bits, TGD, no IODE/IODC; F/NAV: E5aHS and E5aDVS, BGD(E1,E5a),
-    /// IODnav).
+    /// GPS CNAV and Galileo F/NAV and I/NAV: as the gnss crate's encoders'
+    /// `broadcast_ephemeris` (CNAV: the three health bits, TGD, no IODE/IODC; F/NAV: E5aHS
+    /// and E5aDVS, BGD(E1,E5a), IODnav; I/NAV: the E1-B and E5b health and validity bits,
+    /// BGD(E1,E5b) and BGD(E1,E5a), IODnav).
     pub eph: BroadcastEphemeris,
     /// URA index (GPS LNAV, IS-GPS-200 20.3.3.3.1.3), URA_ED index clamped to 0-15 (GPS
-    /// CNAV, message type 10, IS-GPS-705J 20.3.3.1) or URAI (BeiDou), 0-15; 0 for Galileo
-    /// F/NAV.
+    /// CNAV, message type 10, IS-GPS-705J 20.3.3.1) or URAI (BeiDou), 0-15; 0 for Galileo.
     pub ura_index: u8,
     /// BeiDou TGD2 (B2I group delay, s); `None` for GPS and Galileo.
     pub tgd2_s: Option<f64>,
 }
 
-/// One decoded subframe (CNAV: message; F/NAV: page): where it starts in the stream and
-/// what time it carries.
+/// One decoded subframe (CNAV: message; F/NAV, I/NAV: page): where it starts in the stream
+/// and what time it carries.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SubframeInfo {
     /// Index (counted from the first bit or symbol fed, from 0, on across restarts) of the
     /// subframe's first bit (CNAV: the message's first symbol; F/NAV: the first sync
-    /// symbol).
+    /// symbol; I/NAV: the first sync symbol of the even part).
     pub start_bit: u64,
     /// Subframe ID (GPS, from the HOW), FraID (BeiDou), 1-5; message type (CNAV); page
-    /// type (F/NAV).
+    /// type (F/NAV); word type (I/NAV).
     pub id: u8,
     /// Page number when the subframe is paged: GPS subframes 4/5 SV ID (data ID
     /// stripped, e.g. 56 for page 18), BeiDou D1 subframes 4/5 and D2 subframes 1, 2, 5
@@ -91,13 +95,15 @@ pub struct SubframeInfo {
     pub page: Option<u8>,
     /// Full week number if known (GPS: from subframe 1, resolved with the reference week;
     /// BeiDou: BDT week from D1 subframe 1 or D2 subframe 1 page 1; CNAV: GPS week from
-    /// a type 10; F/NAV: GST week from a page type 1-3, moved on where TOW wraps).
+    /// a type 10; F/NAV: GST week from a page type 1-3, I/NAV: from a word type 0 or 5,
+    /// moved on where TOW wraps).
     pub week: Option<u32>,
     /// Time of week (s, system time) of the leading edge of the subframe's first bit.
     /// GPS: HOW TOW count x 6 s - 6 s (the count refers to the next subframe,
     /// IS-GPS-200 20.3.3.2). BeiDou D1: SOW; D2: SOW of the frame + 0.6 s x (FraID - 1).
     /// CNAV: message TOW count x 6 s - 6 s (IS-GPS-705J 20.3.3). F/NAV: the page's TOW
-    /// (Galileo OS SIS ICD §5.1.2), or for pages without one the last TOW plus 10 s a page.
+    /// (Galileo OS SIS ICD §5.1.2), or for pages without one the last TOW plus 10 s a page;
+    /// I/NAV likewise, 2 s a page.
     pub tow_s: f64,
     /// Whether the stream was inverted in this subframe (preamble or sync pattern
     /// received complemented).
@@ -150,11 +156,11 @@ pub enum NavEvent {
 /// Running counters of a decoder.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct DecodeStats {
-    /// Bits (CNAV, F/NAV: symbols) fed so far.
+    /// Bits (CNAV, F/NAV, I/NAV: symbols) fed so far.
     pub bits: u64,
-    /// Subframes (CNAV messages, F/NAV pages) decoded.
+    /// Subframes (CNAV messages, F/NAV and I/NAV pages) decoded.
     pub subframes: u64,
-    /// Subframes dropped (parity, header, missing preamble; CNAV, F/NAV: CRC).
+    /// Subframes dropped (parity, header, missing preamble; CNAV, F/NAV, I/NAV: CRC).
     pub dropped_subframes: u64,
     /// GPS words that failed parity.
     pub parity_failed_words: u64,
@@ -193,8 +199,9 @@ pub trait NavDecoder: Send {
 }
 
 /// The decoder for `sat`'s message on `signal`: GPS L5 CNAV for GPS L5, GPS LNAV for the
-/// other GPS signals, Galileo F/NAV for E5a, BeiDou D1/D2 (by PRN: D2 for the GEO PRNs
-/// 1-5 and 59-63). GPS LNAV weeks are resolved near [`DEFAULT_GPS_REFERENCE_WEEK`].
+/// other GPS signals, Galileo F/NAV for E5a and I/NAV for E1, BeiDou D1/D2 (by PRN: D2 for
+/// the GEO PRNs 1-5 and 59-63). GPS LNAV weeks are resolved near
+/// [`DEFAULT_GPS_REFERENCE_WEEK`].
 pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
     let wrong = |what| {
         Err(NavDecodeError::WrongSatellite {
@@ -210,8 +217,9 @@ pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, Na
         (System::Gps, _) => Box::new(GpsLnavDecoder::new(sat)?),
         (System::Beidou, _) => Box::new(BdsDecoder::new(sat)?),
         (System::Galileo, Signal::GalE5a) => Box::new(FnavDecoder::new(sat)?),
+        (System::Galileo, Signal::GalE1) => Box::new(InavDecoder::new(sat)?),
         (System::Galileo, _) => {
-            return wrong("Galileo E5a (F/NAV); no other Galileo message is decoded");
+            return wrong("Galileo E5a (F/NAV) or E1 (I/NAV); no other Galileo message is decoded");
         }
     })
 }
@@ -275,6 +283,7 @@ mod tests {
             (SatId::beidou(1), Signal::BdsB1I),
             (SatId::beidou(19), Signal::BdsB1I),
             (SatId::galileo(11), Signal::GalE5a),
+            (SatId::galileo(11), Signal::GalE1),
         ];
         for (sat, signal) in cases {
             let dec = decoder_for(sat, signal).map(|d| d.satellite());
@@ -282,7 +291,7 @@ mod tests {
         }
         assert!(decoder_for(SatId::gps(40), Signal::GpsL1Ca).is_err());
         assert!(decoder_for(SatId::gps(40), Signal::GpsL5).is_err());
-        assert!(decoder_for(SatId::galileo(11), Signal::GalE1).is_err());
+        assert!(decoder_for(SatId::galileo(37), Signal::GalE1).is_err());
         assert!(decoder_for(SatId::galileo(11), Signal::GpsL5).is_err());
         assert!(decoder_for(SatId::gps(5), Signal::GalE5a).is_err());
     }

@@ -1,5 +1,5 @@
-//! Test helpers of the CNAV and F/NAV decoders: noisy soft symbols, uneven feeding and
-//! the events of one kind.
+//! Test helpers of the CNAV, F/NAV and I/NAV decoders: noisy soft symbols, uneven feeding
+//! and the events of one kind.
 
 use super::{DecodedEphemeris, NavDecoder, NavEvent, SubframeInfo};
 use rand::SeedableRng;

@@ -29,17 +29,28 @@ const T0A_GRID_S: u64 = 600;
 /// How long a decoded almanac set is used around t0a (s): a week, a choice.
 const ALMANAC_FIT_S: f64 = WEEK_S as f64;
 
-/// The almanac reference time of an encoder whose toe is `toe`: GST week and t0a (s).
-fn reference(toe: Epoch) -> (u32, u64) {
+/// The almanac reference of an encoder whose toe is `toe` (t0a is toe rounded down to the
+/// 600 s grid): the raw IODa, WNa and t0a, and t0a as an epoch. Shared with I/NAV.
+pub(crate) fn reference(toe: Epoch) -> ([i64; 3], Epoch) {
     let g = gst_time(toe);
     let sow = g.ns_of_week / 1_000_000_000;
-    (g.week, sow - sow % T0A_GRID_S)
+    let t0a_s = sow - sow % T0A_GRID_S;
+    let head = [
+        (t0a_s / T0A_GRID_S % 16) as i64,
+        i64::from(g.week % 4),
+        (t0a_s / T0A_GRID_S) as i64,
+    ];
+    (head, gst_epoch(g.week, t0a_s))
 }
 
-/// The raw values of each page-5/6 pair, in the layouts' order; at least one pair.
-pub(super) fn pages(set: &[BroadcastEphemeris], toe: Epoch) -> Vec<[Vec<i64>; 2]> {
-    let (week, t0a_s) = reference(toe);
-    let t0a = gst_epoch(week, t0a_s);
+/// The Galileo sets of `set`, one per PRN (the set whose toe is nearest `t0a`), in PRN
+/// order, each with its raw almanac at `t0a` from SVID to af1 ([`ALMANAC_SAT`] order, the
+/// health left to the message); sets whose values do not fit are left out. Shared with
+/// I/NAV, whose almanac carries the same parameters (§5.1.10).
+pub(crate) fn satellites(
+    set: &[BroadcastEphemeris],
+    t0a: Epoch,
+) -> Vec<([i64; 10], &BroadcastEphemeris)> {
     let mut nearest: BTreeMap<u8, &BroadcastEphemeris> = BTreeMap::new();
     for e in set.iter().filter(|e| e.sat.system == System::Galileo) {
         let closer = |o: &&BroadcastEphemeris| (o.toe - t0a).abs() <= (e.toe - t0a).abs();
@@ -47,12 +58,24 @@ pub(super) fn pages(set: &[BroadcastEphemeris], toe: Epoch) -> Vec<[Vec<i64>; 2]
             nearest.insert(e.sat.prn, e);
         }
     }
-    let sats: Vec<[i64; 11]> = nearest.values().filter_map(|e| satellite(e, t0a)).collect();
-    let head = [
-        (t0a_s / T0A_GRID_S % 16) as i64,
-        i64::from(week % 4),
-        (t0a_s / T0A_GRID_S) as i64,
-    ];
+    nearest
+        .into_values()
+        .filter_map(|e| Some((satellite(e, t0a)?, e)))
+        .collect()
+}
+
+/// The raw values of each page-5/6 pair, in the layouts' order; at least one pair.
+pub(super) fn pages(set: &[BroadcastEphemeris], toe: Epoch) -> Vec<[Vec<i64>; 2]> {
+    let (head, t0a) = reference(toe);
+    let sats: Vec<[i64; 11]> = satellites(set, t0a)
+        .into_iter()
+        .map(|(raw, e)| {
+            let mut sat = [0; 11];
+            sat[..10].copy_from_slice(&raw);
+            sat[10] = i64::from((e.health >> 4) & 3);
+            sat
+        })
+        .collect();
     let mut triples: Vec<[[i64; 11]; 3]> = sats
         .chunks(3)
         .map(|c| std::array::from_fn(|i| c.get(i).copied().unwrap_or([0; 11])))
@@ -78,15 +101,15 @@ fn pair(head: [i64; 3], [s1, s2, s3]: &[[i64; 11]; 3]) -> [Vec<i64>; 2] {
     [p5, p6]
 }
 
-/// One satellite's raw almanac at `t0a` ([`ALMANAC_SAT`] order), if every value fits.
-fn satellite(e: &BroadcastEphemeris, t0a: Epoch) -> Option<[i64; 11]> {
+/// One satellite's raw almanac at `t0a` from SVID to af1, if every value fits.
+fn satellite(e: &BroadcastEphemeris, t0a: Epoch) -> Option<[i64; 10]> {
     let o = &e.orbit;
     let dt = (t0a - e.toe).to_seconds();
     let dtc = (t0a - e.toc).to_seconds();
     let weeks = f64::from(gst_time(t0a).week) - f64::from(gst_time(e.toe).week);
     let a = o.sqrt_a * o.sqrt_a;
     let n = (GM_GAL / (a * a * a)).sqrt() + o.delta_n;
-    let values: [f64; 11] = [
+    let values: [f64; 10] = [
         f64::from(e.sat.prn),
         o.sqrt_a - q::ALM_A_NOMINAL_M.sqrt(),
         o.e,
@@ -97,9 +120,8 @@ fn satellite(e: &BroadcastEphemeris, t0a: Epoch) -> Option<[i64; 11]> {
         o.m0 + n * dt,
         e.clock.af0 + dtc * (e.clock.af1 + dtc * e.clock.af2),
         e.clock.af1 + 2.0 * dtc * e.clock.af2,
-        f64::from((e.health >> 4) & 3),
     ];
-    let mut raw = [0i64; 11];
+    let mut raw = [0i64; 10];
     for ((slot, f), v) in raw.iter_mut().zip(&ALMANAC_SAT).zip(values) {
         *slot = quantise(f, v)?;
     }
@@ -124,8 +146,7 @@ pub(super) fn decode(pt5: &[i64], pt6: &[i64], now: Epoch) -> Vec<BroadcastEphem
     if pt5.len() != 20 || pt6.len() != 19 || pt5[0] != pt6[0] {
         return Vec::new();
     }
-    let t0a_s = pt5[2] as u64 * T0A_GRID_S;
-    let t0a = gst_epoch(nearest_week(now, t0a_s, pt5[1] as u32, 4), t0a_s);
+    let t0a = t0a_epoch(pt5[1], pt5[2], now);
     let omega0_2 = ((pt5[19] << 12) | pt6[1]) as i16;
     let mut s2 = [0i64; 11];
     s2[..5].copy_from_slice(&pt5[14..19]);
@@ -133,12 +154,29 @@ pub(super) fn decode(pt5: &[i64], pt6: &[i64], now: Epoch) -> Vec<BroadcastEphem
     s2[6..].copy_from_slice(&pt6[2..7]);
     [&pt5[3..14], &s2[..], &pt6[7..18]]
         .into_iter()
-        .filter_map(|raw| to_ephemeris(raw, t0a))
+        .filter_map(|raw| {
+            let health = super::eph::e5a_health_bits(raw[10], 0);
+            to_ephemeris(&raw[..10], t0a, NavMessage::GalileoFnav, health)
+        })
         .collect()
 }
 
-/// One satellite's almanac as an ephemeris (no harmonics, no Delta n, toe = toc = t0a).
-fn to_ephemeris(raw: &[i64], t0a: Epoch) -> Option<BroadcastEphemeris> {
+/// The epoch of a received almanac's raw WNa (2 bits) and t0a, the week resolved to the
+/// one nearest `now`. Shared with I/NAV.
+pub(crate) fn t0a_epoch(wna: i64, t0a: i64, now: Epoch) -> Epoch {
+    let t0a_s = t0a as u64 * T0A_GRID_S;
+    gst_epoch(nearest_week(now, t0a_s, wna as u32, 4), t0a_s)
+}
+
+/// One satellite's almanac (`raw`: SVID to af1 in [`ALMANAC_SAT`] order) as an ephemeris
+/// of `message` with health bits `health` (no harmonics, no Delta n, toe = toc = t0a);
+/// `None` for an empty slot (SVID 0) or an SVID above 36. Shared with I/NAV.
+pub(crate) fn to_ephemeris(
+    raw: &[i64],
+    t0a: Epoch,
+    message: NavMessage,
+    health: u32,
+) -> Option<BroadcastEphemeris> {
     let svid = u8::try_from(raw[0])
         .ok()
         .filter(|&p| p >= 1 && p <= System::Galileo.max_prn())?;
@@ -160,8 +198,8 @@ fn to_ephemeris(raw: &[i64], t0a: Epoch) -> Option<BroadcastEphemeris> {
         ..ClockParams::default()
     };
     Some(BroadcastEphemeris {
-        message: NavMessage::GalileoFnav,
-        health: super::eph::e5a_health_bits(raw[10], 0),
+        message,
+        health,
         ..BroadcastEphemeris::from_elements(
             SatId::galileo(svid),
             OrbitClass::Standard,

@@ -15,7 +15,7 @@ use skyforge_orbits::ephemeris::{
 /// as for the sets it reads from RINEX.
 const FIT_INTERVAL_S: f64 = 4.0 * 3600.0;
 /// toe and toc grid (s): the LSB of t0e and t0c.
-pub(super) const T_REF_GRID_S: u64 = 60;
+pub(crate) const T_REF_GRID_S: u64 = 60;
 
 /// E5a health bits in [`BroadcastEphemeris::health`]: the RINEX 3 Galileo SV health
 /// layout (E5a DVS bit 3, E5a HS bits 4-5).
@@ -111,7 +111,7 @@ pub(super) fn quantise(
 
 /// The ephemeris the raw fields describe, with toe and toc at the given epochs (on the
 /// grid, in the weeks the caller resolved).
-pub(super) fn to_ephemeris(f: &Fields, sat: SatId, toe: Epoch, toc: Epoch) -> BroadcastEphemeris {
+pub(crate) fn to_ephemeris(f: &Fields, sat: SatId, toe: Epoch, toc: Epoch) -> BroadcastEphemeris {
     let si = |field: &Field| field.si_value(f.get(field));
     let orbit = KeplerElements {
         sqrt_a: si(&q::SQRT_A),

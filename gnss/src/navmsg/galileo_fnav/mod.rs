@@ -15,14 +15,15 @@
 //! soft symbols back into pages and an ephemeris. [`FnavEncoder::broadcast_ephemeris`] is
 //! the quantised ephemeris, the one the signal must follow and a decoder recovers.
 
-mod almanac;
+// The fields, GST time helpers, almanac propagation and ephemeris conversion I/NAV shares.
+pub(crate) mod almanac;
 mod decode;
-mod eph;
+pub(crate) mod eph;
 mod pages;
-mod quant;
+pub(crate) mod quant;
 #[cfg(test)]
 mod tests;
-mod time;
+pub(crate) mod time;
 
 pub use decode::{FnavAssembler, FnavDecodeError, FnavEphemeris, FnavPage, decode_page};
 pub use pages::{DUMMY_PAGE_TYPE, FNAV_SYNC, PAGE_SYMBOLS as FNAV_PAGE_SYMBOLS};

@@ -10,24 +10,24 @@ use hifitime::{Duration, Epoch};
 /// Nanoseconds per week.
 pub(super) const WEEK_NS: u64 = 604_800 * 1_000_000_000;
 /// Seconds per week.
-pub(super) const WEEK_S: u64 = 604_800;
+pub(crate) const WEEK_S: u64 = 604_800;
 
 /// A GST instant as week number and nanoseconds of week.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(super) struct GstTime {
+pub(crate) struct GstTime {
     pub week: u32,
     pub ns_of_week: u64,
 }
 
 impl GstTime {
     /// Seconds of week.
-    pub(super) fn sow_s(self) -> f64 {
+    pub(crate) fn sow_s(self) -> f64 {
         self.ns_of_week as f64 * 1e-9
     }
 }
 
 /// The GST week and time of week of `t` (before the GST epoch: week 0, clamped).
-pub(super) fn gst_time(t: Epoch) -> GstTime {
+pub(crate) fn gst_time(t: Epoch) -> GstTime {
     let ns = t.to_gst_duration().total_nanoseconds().max(0) as u128;
     GstTime {
         week: (ns / u128::from(WEEK_NS)) as u32,
@@ -37,7 +37,7 @@ pub(super) fn gst_time(t: Epoch) -> GstTime {
 
 /// The epoch at GST week `week`, `sow_s` whole seconds of week (a later week where
 /// `sow_s` exceeds a week).
-pub(super) fn gst_epoch(week: u32, sow_s: u64) -> Epoch {
+pub(crate) fn gst_epoch(week: u32, sow_s: u64) -> Epoch {
     let s = u64::from(week) * WEEK_S + sow_s;
     Epoch::from_gst_duration(Duration::from_total_nanoseconds(
         i128::from(s) * 1_000_000_000,
@@ -47,7 +47,7 @@ pub(super) fn gst_epoch(week: u32, sow_s: u64) -> Epoch {
 /// Of the weeks next to `near`, the one in which `sow_s` is nearest to `near` (for
 /// reference times that carry no week: t0e, t0c), among weeks congruent to `week_mod`
 /// modulo `modulus` (1 for no constraint; 4 for WNa).
-pub(super) fn nearest_week(near: Epoch, sow_s: u64, week_mod: u32, modulus: u32) -> u32 {
+pub(crate) fn nearest_week(near: Epoch, sow_s: u64, week_mod: u32, modulus: u32) -> u32 {
     let w = gst_time(near).week;
     (w.saturating_sub(modulus)..=w + modulus)
         .filter(|c| c % modulus == week_mod % modulus)
