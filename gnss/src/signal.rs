@@ -3,6 +3,7 @@
 //! names users and files give them.
 
 use crate::codes::bds_b1i;
+use crate::codes::galileo_e1;
 use crate::codes::galileo_e5a;
 use crate::codes::gps_ca;
 use crate::codes::gps_l5;
@@ -35,8 +36,9 @@ pub enum Signal {
     /// BeiDou B3I on 1268.52 MHz, 10230 chips at 10.23 Mchip/s (BDS-SIS-ICD-B3I-1.0 §4):
     /// observed only.
     BdsB3I,
-    /// Galileo E1 (E1-B data with I/NAV, E1-C pilot) on 1575.42 MHz, 4092 chips at
-    /// 1.023 Mchip/s, CBOC(6,1,1/11) (Galileo OS SIS ICD §2.3, §3.4): observed only.
+    /// Galileo E1 (E1-B data with I/NAV, E1-C pilot with CS25, in phase) on 1575.42 MHz,
+    /// 4092 chips at 1.023 Mchip/s, CBOC(6,1,1/11) (Galileo OS SIS ICD §2.3, §3.4):
+    /// transmitted when a scenario chooses it ([`Signal::TRANSMITTED`]).
     GalE1,
     /// Galileo E5a (E5a-I data with F/NAV, E5a-Q pilot) on 1176.45 MHz, 10230 chips at
     /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): Galileo's transmitted signal
@@ -63,6 +65,9 @@ pub enum DataModulation {
     /// code CS20; the E5a-Q pilot carries the satellite's 100-chip CS100 (Galileo OS SIS ICD
     /// §3.4.2, Table 19).
     GalFnav,
+    /// Galileo E1-B: I/NAV at 250 symbol/s, one symbol per 4 ms code period, no secondary
+    /// code; the E1-C pilot carries CS25 (Galileo OS SIS ICD §2.3.3, §3.4.2).
+    GalInav,
 }
 
 impl DataModulation {
@@ -72,6 +77,7 @@ impl DataModulation {
             DataModulation::GpsLnav | DataModulation::BdsD1 | DataModulation::GalFnav => 20,
             DataModulation::GpsCnav => 10,
             DataModulation::BdsD2 => 2,
+            DataModulation::GalInav => 1,
         }
     }
 
@@ -82,7 +88,7 @@ impl DataModulation {
             DataModulation::BdsD1 => Some(&crate::codes::neumann_hoffman::NH20),
             DataModulation::GpsCnav => Some(&gps_l5::GPS_L5_I_NH10),
             DataModulation::GalFnav => Some(&galileo_e5a::GALILEO_E5A_I_SECONDARY),
-            DataModulation::GpsLnav | DataModulation::BdsD2 => None,
+            DataModulation::GpsLnav | DataModulation::BdsD2 | DataModulation::GalInav => None,
         }
     }
 }
@@ -167,14 +173,15 @@ impl Signal {
         Self::RECEIVED.contains(&self)
     }
 
-    /// The signals SkyForge can transmit at the sample level (all of them the bundled
-    /// receiver takes, [`Signal::RECEIVED`]). A scenario's `[signal] signals` chooses
-    /// among them.
-    pub const TRANSMITTED: [Signal; 4] = [
+    /// The signals SkyForge can transmit at the sample level: those the bundled receiver
+    /// takes ([`Signal::RECEIVED`]) and Galileo E1 (received by GNSS-SDR). A scenario's
+    /// `[signal] signals` chooses among them.
+    pub const TRANSMITTED: [Signal; 5] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GalE5a,
         Signal::GpsL5,
+        Signal::GalE1,
     ];
 
     /// Whether SkyForge can transmit the signal ([`Signal::TRANSMITTED`]).
@@ -190,6 +197,7 @@ impl Signal {
     /// - BeiDou B1I: TGD1 (BDS-SIS-ICD-B1I-3.0 5.2.4.10).
     /// - Galileo E5a: (f_E1 / f_E5a)^2 BGD(E1,E5a) (Galileo OS SIS ICD §5.1.5), from F/NAV's
     ///   `tgd_s` or I/NAV's `tgd2_s`.
+    /// - Galileo E1: `tgd_s`, I/NAV's BGD(E1,E5b) or F/NAV's BGD(E1,E5a).
     ///
     /// 0 for a signal of another system than `eph`'s, and for the observed-only signals.
     pub fn broadcast_group_delay_s(self, eph: &BroadcastEphemeris) -> f64 {
@@ -198,7 +206,9 @@ impl Signal {
         }
         let c = &eph.clock;
         match self {
-            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I => c.tgd_s,
+            // Galileo E1: BGD(E1,E5b) of an I/NAV ephemeris, BGD(E1,E5a) of an F/NAV one,
+            // each the E1 user's delay against its message's clock (Galileo OS SIS ICD §5.1.5).
+            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I | Signal::GalE1 => c.tgd_s,
             Signal::GalE5a => {
                 let bgd = match eph.message {
                     NavMessage::GalileoInav => c.tgd2_s,
@@ -206,7 +216,7 @@ impl Signal {
                 };
                 (F_GAL_E1_HZ / F_GAL_E5A_HZ).powi(2) * bgd
             }
-            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I | Signal::GalE1 => 0.0,
+            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => 0.0,
         }
     }
 
@@ -301,6 +311,17 @@ impl Signal {
         }
     }
 
+    /// The outermost null of the signal's main lobes about its carrier (Hz), what a
+    /// recording must hold: the chip rate for BPSK; for Galileo E1's CBOC(6,1,1/11) the
+    /// BOC(6,1) lobe's, 6.138 + 1.023 MHz (Galileo OS SIS ICD §2.3.3; that lobe carries
+    /// 1/11 of the power).
+    pub fn main_lobe_half_width_hz(self) -> f64 {
+        match self {
+            Signal::GalE1 => 6.0 * GAL_E1_CHIP_RATE_HZ + GAL_E1_CHIP_RATE_HZ,
+            _ => self.chip_rate_hz(),
+        }
+    }
+
     /// Chips per code period; for GPS L2 the P code's week (IS-GPS-200 §3.3.2.2).
     pub fn code_length(self) -> usize {
         match self {
@@ -330,7 +351,8 @@ impl Signal {
                 galileo_e5a::galileo_e5a_i(prn),
                 galileo_e5a::GALILEO_E5A_PRN_MAX,
             ),
-            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I | Signal::GalE1 => (None, 0),
+            Signal::GalE1 => (galileo_e1::galileo_e1b(prn), galileo_e1::GALILEO_E1_PRN_MAX),
+            Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => (None, 0),
         };
         code.ok_or(UnknownPrn {
             signal: self,
@@ -357,6 +379,13 @@ impl Signal {
                     .map(|(primary, secondary)| PilotCodes { primary, secondary }),
                 galileo_e5a::GALILEO_E5A_PRN_MAX,
             ),
+            Signal::GalE1 => (
+                galileo_e1::galileo_e1c(prn).map(|primary| PilotCodes {
+                    primary,
+                    secondary: galileo_e1::GALILEO_E1_C_SECONDARY.to_vec(),
+                }),
+                galileo_e1::GALILEO_E1_PRN_MAX,
+            ),
             _ => (None, 0),
         };
         codes.ok_or(UnknownPrn {
@@ -368,13 +397,13 @@ impl Signal {
 
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
-    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV. None for Galileo E1 (I/NAV, not built).
+    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV, E1 I/NAV.
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
             Signal::GpsL5 => Some(DataModulation::GpsCnav),
             Signal::GalE5a => Some(DataModulation::GalFnav),
-            Signal::GalE1 => None,
+            Signal::GalE1 => Some(DataModulation::GalInav),
             Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
                 Some(DataModulation::BdsD2)
             }
@@ -537,7 +566,10 @@ mod tests {
             Signal::BdsB3I.system(),
             skyforge_orbits::ephemeris::System::Beidou
         );
-        assert_eq!(Signal::GalE1.data_modulation(1), None);
+        assert_eq!(
+            Signal::GalE1.data_modulation(1),
+            Some(DataModulation::GalInav)
+        );
         assert_eq!(
             Signal::BdsB2I.data_modulation(3),
             Some(DataModulation::BdsD2)
@@ -617,6 +649,7 @@ mod tests {
         gal.message = NavMessage::GalileoInav;
         let inav = Signal::GalE5a.broadcast_group_delay_s(&gal);
         assert!((inav - ratio * 3.0e-9).abs() < 1e-20, "{inav}");
-        assert_eq!(Signal::GalE1.broadcast_group_delay_s(&gal), 0.0);
+        // E1: the I/NAV BGD(E1,E5b) in tgd_s.
+        assert_eq!(Signal::GalE1.broadcast_group_delay_s(&gal), 2.0e-9);
     }
 }

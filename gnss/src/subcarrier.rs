@@ -29,7 +29,7 @@ pub const fn boc11(k: usize) -> i8 {
 
 /// The BOC(6,1) sub-carrier on sub-chip `k` (0..12): +1 on even sub-chips.
 pub const fn boc61(k: usize) -> i8 {
-    if k % 2 == 0 { 1 } else { -1 }
+    if k.is_multiple_of(2) { 1 } else { -1 }
 }
 
 /// The E1 CBOC waveform over one chip, sub-chip by sub-chip, for a data chip `data` (E1-B

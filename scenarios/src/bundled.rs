@@ -89,6 +89,11 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/interop-gal-static.toml"),
     },
     Bundled {
+        name: "interop-e1-static",
+        summary: "120 s static Galileo E1 (I/NAV data, pilot, CBOC) at 15 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
+        text: include_str!("../bundled/interop-e1-static.toml"),
+    },
+    Bundled {
         name: "interop-l5-static",
         summary: "120 s static GPS L5 (CNAV data, pilot) at 20.46 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
         text: include_str!("../bundled/interop-l5-static.toml"),

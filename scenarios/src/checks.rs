@@ -50,7 +50,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
             .map_err(|e| e.within("signal"))?;
         for s in enabled.into_iter().flat_map(|sys| signal.signals_of(sys)) {
             signal
-                .check_band(s.name(), s.chip_rate_hz())
+                .check_band(s.name(), s.main_lobe_half_width_hz())
                 .map_err(|e| e.within("signal"))?;
         }
     }

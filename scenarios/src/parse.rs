@@ -94,8 +94,8 @@ pub fn resolve(arg: &str) -> Result<Scenario, ScenarioError> {
     if path.exists() {
         return load(path);
     }
-    named(arg).map_err(|_| {
-        ScenarioError::unlocated(
+    if !bundled().iter().any(|b| b.name == arg) {
+        return Err(ScenarioError::unlocated(
             arg,
             "",
             "",
@@ -103,8 +103,11 @@ pub fn resolve(arg: &str) -> Result<Scenario, ScenarioError> {
                 "no such scenario file, and no bundled scenario of that name (bundled: {})",
                 bundled_names()
             ),
-        )
-    })
+        ));
+    }
+    // A bundled scenario that fails its checks here (Galileo E1 without the user's code
+    // tables) says why.
+    named(arg)
 }
 
 /// The bundled scenario `name`, never a file (a file of the same name in the working

@@ -92,6 +92,81 @@ fn synth_writes_an_e5a_recording_its_nav_records_and_observation_truth() {
     assert!(obs.contains("E    4 C5Q L5Q D5Q S5Q"), "{obs}");
 }
 
+/// Galileo E1 at the signal level, with made-up code tables (SkyForge does not ship the
+/// ICD's, docs/signals.md): refused without tables, with tables that are not the ICD's
+/// (unless the check is off) and below the CBOC bandwidth (13.6 Msps), each by name; then
+/// its recording, the GNSS-SDR blocks for E1 with the 4 ms code and VEML spacings, I/NAV
+/// records in nav.rnx, E1 observation truth on the pilot's code.
+#[test]
+fn synth_writes_an_e1_recording_its_inav_records_and_observation_truth() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let tables = dir.path().join("e1");
+    std::fs::create_dir(&tables).expect("tables dir");
+    support::made_up_e1_tables(&tables);
+    let signal = |rate: &str| {
+        format!(
+            "\n[signal]\nsignals = [\"gps-l1ca\", \"bds-b1i\", \"gal-e1\"]\nsample_rate_hz = {rate}\nformat = \"ci8\"\ncn0_dbhz = 46.5\n"
+        )
+    };
+    let (codes, check) = (
+        "SKYFORGE_GALILEO_E1_CODES",
+        "SKYFORGE_GALILEO_E1_CODES_CHECK",
+    );
+    let tables = tables.to_str().unwrap();
+    for (rate, env, expect) in [
+        ("15e6", [(codes, None), (check, None)], "does not ship"),
+        (
+            "15e6",
+            [(codes, Some(tables)), (check, None)],
+            "not the ICD's codes",
+        ),
+        (
+            "4.092e6",
+            [(codes, Some(tables)), (check, Some("off"))],
+            "GAL E1",
+        ),
+    ] {
+        let path = scenario(dir.path(), 1.0, &signal(rate));
+        let refused = support::skyforge_with_env(&["synth", &path, "--out", "x"], dir.path(), &env);
+        let text = support::text(&refused);
+        assert!(
+            !refused.status.success() && text.contains("signal.") && text.contains(expect),
+            "{text}"
+        );
+    }
+    let path = scenario(dir.path(), 1.0, &signal("15e6"));
+    let out = dir.path().join("out");
+    let made = support::skyforge_with_env(
+        &["synth", &path, "--out", out.to_str().unwrap()],
+        dir.path(),
+        &[(codes, Some(tables)), (check, Some("off"))],
+    );
+    assert!(made.status.success(), "{}", support::text(&made));
+    let data = std::fs::metadata(out.join("ant1.gal-e1.sigmf-data")).expect("E1 recording");
+    // 1 s of complex 8-bit samples at 15 MHz.
+    assert_eq!(data.len(), 2 * 15_000_000);
+    let meta = std::fs::read_to_string(out.join("ant1.gal-e1.sigmf-meta")).expect("meta");
+    assert!(meta.contains("1575420000"), "{meta}");
+    let conf = std::fs::read_to_string(out.join("ant1.gal-e1.gnss-sdr.conf")).expect("conf");
+    for key in [
+        "Acquisition_1B.implementation=Galileo_E1_PCPS_Ambiguous_Acquisition",
+        "Acquisition_1B.coherent_integration_time_ms=4",
+        "Tracking_1B.implementation=Galileo_E1_DLL_PLL_VEML_Tracking",
+        "Tracking_1B.very_early_late_space_chips=0.6",
+        "Tracking_1B.track_pilot=true",
+        "TelemetryDecoder_1B.implementation=Galileo_E1B_Telemetry_Decoder",
+    ] {
+        assert!(conf.contains(key), "{key}");
+    }
+    // I/NAV records (data sources 517, as SkyForge writes I/NAV: E1-B and E5b-I, clock
+    // for E5b/E1) for every satellite.
+    let nav = std::fs::read_to_string(out.join("nav.rnx")).expect("nav");
+    assert_eq!(nav.lines().filter(|l| l.starts_with('E')).count(), 24);
+    assert_eq!(nav.matches(" 5.170000000000E+02").count(), 24);
+    let obs = std::fs::read_to_string(out.join("ant1.obs.rnx")).expect("obs");
+    assert!(obs.contains("E    4 C1C L1C D1C S1C"), "{obs}");
+}
+
 /// The observation level draws Galileo E5a observables with the configured noise; the
 /// calibrated model, measured on GPS and BeiDou only, refuses them by name.
 #[test]

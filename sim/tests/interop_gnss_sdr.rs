@@ -436,6 +436,16 @@ fn gnss_sdr_decodes_cnav_and_fixes_on_interop_l5_static() {
     pilot_signal_fixes("interop-l5-static", "gps-l5", "CNAV");
 }
 
+/// Acceptance (issue #34): GNSS-SDR 0.0.17 acquires SkyForge's Galileo E1 (CBOC) on the
+/// E1-C pilot with a BOC(1,1) replica, tracks it with its very-early-minus-late loop,
+/// decodes I/NAV from E1-B and fixes; the median 3D error of its fixes is under 5 m at the
+/// site of `interop-e1-static`, from at least 20 fixes.
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_decodes_inav_and_fixes_on_interop_e1_static() {
+    pilot_signal_fixes("interop-e1-static", "gal-e1", "I/NAV");
+}
+
 /// GNSS-SDR on the bundled static `scenario` (at 52 N 13 E, 100 m) recorded on `band`:
 /// at least 20 fixes, their median 3D error under 5 m; prints the satellites whose
 /// `message` ephemeris GNSS-SDR decoded.

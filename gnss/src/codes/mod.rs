@@ -1,5 +1,5 @@
-//! Ranging codes: GPS L1 C/A and L5, Galileo E5a, BeiDou B1I, B1C and B2a, with their
-//! secondary codes.
+//! Ranging codes: GPS L1 C/A and L5, Galileo E5a (and E1 from the user's tables), BeiDou
+//! B1I, B1C and B2a, with their secondary codes.
 //!
 //! Chips are given in two forms:
 //! - logic level, `u8` in {0, 1}, as printed in the ICD tables;
@@ -12,6 +12,7 @@
 pub(crate) mod bds_b1c;
 pub(crate) mod bds_b1i;
 pub(crate) mod bds_b2a;
+pub(crate) mod galileo_e1;
 pub(crate) mod galileo_e5a;
 pub(crate) mod gps_ca;
 pub(crate) mod gps_l5;
@@ -31,6 +32,11 @@ pub use bds_b2a::{
     BDS_B2A_CHIP_RATE_HZ, BDS_B2A_CODE_LENGTH, BDS_B2A_DATA_SECONDARY,
     BDS_B2A_PILOT_SECONDARY_LENGTH, BDS_B2A_PRN_MAX, bds_b2a_data, bds_b2a_pilot,
     bds_b2a_pilot_secondary,
+};
+pub use galileo_e1::{
+    E1_CODES_CHECK_ENV, E1_CODES_ENV, E1Codes, E1CodesError, GALILEO_E1_C_SECONDARY,
+    GALILEO_E1_CHIP_RATE_HZ, GALILEO_E1_CODE_LENGTH, GALILEO_E1_PRN_MAX, e1_codes, galileo_e1b,
+    galileo_e1c,
 };
 pub use galileo_e5a::{
     GALILEO_E5A_CHIP_RATE_HZ, GALILEO_E5A_CODE_LENGTH, GALILEO_E5A_I_SECONDARY,

@@ -170,13 +170,14 @@ impl SignalConfig {
         Ok(())
     }
 
-    /// The recorded band must hold the main lobe of signal `name` (chip rate `chip_rate_hz`,
-    /// BPSK: nulls at +-chip rate about the carrier) to within [`MAIN_LOBE_MARGIN`] of its
-    /// width: complex samples need `|IF| + (1 - margin) x chip rate <= fs/2`, real samples
-    /// `(1 - margin) x chip rate < IF < fs/2 - (1 - margin) x chip rate`. (The margin lets
-    /// the common 4 Msps B1I recordings through: they keep 97.8 % of the main lobe.)
-    pub fn check_band(&self, name: &str, chip_rate_hz: f64) -> Result<(), Invalid> {
-        let half = (1.0 - MAIN_LOBE_MARGIN) * chip_rate_hz;
+    /// The recorded band must hold the main lobes of signal `name` (outermost null
+    /// `lobe_hz` about the carrier, [`Signal::main_lobe_half_width_hz`]: the chip rate for
+    /// BPSK) to within [`MAIN_LOBE_MARGIN`]: complex samples need `|IF| + (1 - margin) x
+    /// lobe <= fs/2`, real samples `(1 - margin) x lobe < IF < fs/2 - (1 - margin) x lobe`.
+    /// (The margin lets the common 4 Msps B1I recordings through: they keep 97.8 % of the
+    /// main lobe.)
+    pub fn check_band(&self, name: &str, lobe_hz: f64) -> Result<(), Invalid> {
+        let half = (1.0 - MAIN_LOBE_MARGIN) * lobe_hz;
         let (fs, f_if) = (self.sample_rate_hz, self.if_hz);
         let nyquist = fs / 2.0;
         if self.format.is_complex() {
@@ -186,7 +187,7 @@ impl SignalConfig {
                     "sample_rate_hz",
                     fs,
                     format!(
-                        "is below the {name} signal bandwidth: its main lobe (+-{chip_rate_hz:e} Hz about IF {f_if} Hz, {}% margin) needs at least {need:e} complex samples/s",
+                        "is below the {name} signal bandwidth: its main lobe (+-{lobe_hz:e} Hz about IF {f_if} Hz, {}% margin) needs at least {need:e} complex samples/s",
                         MAIN_LOBE_MARGIN * 100.0
                     ),
                 ));
@@ -196,7 +197,7 @@ impl SignalConfig {
                 "if_hz",
                 f_if,
                 format!(
-                    "puts the {name} main lobe (+-{chip_rate_hz:e} Hz, {}% margin) outside 0..{nyquist} Hz for real samples at {fs:e}/s: the IF must lie in {half:e}..{:e} Hz",
+                    "puts the {name} main lobe (+-{lobe_hz:e} Hz, {}% margin) outside 0..{nyquist} Hz for real samples at {fs:e}/s: the IF must lie in {half:e}..{:e} Hz",
                     MAIN_LOBE_MARGIN * 100.0,
                     nyquist - half
                 ),
@@ -220,8 +221,9 @@ impl SignalConfig {
     }
 
     /// Checks `signals` against the enabled constellations `enabled`: each listed signal
-    /// is one SkyForge transmits ([`Signal::TRANSMITTED`]), of an enabled constellation,
-    /// listed once, and every enabled constellation has one (a constellation may transmit
+    /// is one SkyForge transmits ([`Signal::TRANSMITTED`]; Galileo E1 with the user's code
+    /// tables, `skyforge_gnss::codes::e1_codes`), of an enabled constellation, listed once,
+    /// and every enabled constellation has one (a constellation may transmit
     /// several: GPS L1 C/A and L5, one recording each).
     pub fn check_signals(&self, enabled: &[System]) -> Result<(), Invalid> {
         let transmitted = || {
@@ -252,6 +254,11 @@ impl SignalConfig {
             }
             if self.signals[..i].contains(s) {
                 return Err(Invalid::new(field, s.tag(), "is listed twice"));
+            }
+            if *s == Signal::GalE1
+                && let Err(e) = skyforge_gnss::codes::e1_codes()
+            {
+                return Err(Invalid::new(field, s.tag(), e.to_string()));
             }
         }
         if let Some(missing) = enabled.iter().find(|&&sys| self.signals_of(sys).is_empty()) {

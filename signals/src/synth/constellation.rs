@@ -6,6 +6,7 @@ use super::transmitter::Transmitter;
 use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
+use skyforge_gnss::navmsg::galileo_inav::{InavEncoder, InavError, InavParams};
 use skyforge_gnss::navmsg::gps_cnav::{CnavEncoder, CnavError, CnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
@@ -22,6 +23,10 @@ pub enum TransmitterError {
     Bds(#[from] BdsNavError),
     #[error("Galileo F/NAV: {0}")]
     Fnav(#[from] FnavError),
+    #[error("Galileo I/NAV: {0}")]
+    Inav(#[from] InavError),
+    #[error("{0}")]
+    E1Codes(#[from] skyforge_gnss::codes::E1CodesError),
     #[error("GPS CNAV: {0}")]
     Cnav(#[from] CnavError),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
@@ -42,6 +47,7 @@ pub fn transmitters(
         Signal::GpsL1Ca => gps_l1ca(ephs, start, &iono.gps),
         Signal::BdsB1I => bds_b1i(ephs, start, &iono.bds),
         Signal::GalE5a => gal_e5a(ephs, start),
+        Signal::GalE1 => gal_e1(ephs, start),
         Signal::GpsL5 => gps_l5(ephs, start, &iono.gps),
         other => Err(TransmitterError::NotTransmitted(other)),
     }
@@ -160,29 +166,64 @@ pub fn gps_l5(
 }
 
 /// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
-/// among `ephs`. Sets off the 60 s grid (the embedded constellation at any start) are
-/// re-expressed on it without moving the orbit or the clock. GST is GPST here: the
-/// broadcast GST-GPS offset is zero, and GST-UTC carries the leap seconds at `start`.
+/// among `ephs` ([`galileo`]).
 pub fn gal_e5a(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
+    galileo(ephs, start, |eph, gal, leap_s, week| {
+        let params = FnavParams {
+            dt_ls_s: leap_s,
+            dt_lsf_s: leap_s,
+            ..FnavParams::default()
+        };
+        let nav = FnavEncoder::new(eph, gal, &params, week)?;
+        Transmitter::gal_e5a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+    })
+}
+
+/// Galileo E1 transmitters (I/NAV on E1-B, pilot on E1-C, CBOC) for the Galileo
+/// ephemerides among `ephs` ([`galileo`]); the codes come from the user's tables
+/// (`skyforge_gnss::codes::e1_codes`).
+pub fn gal_e1(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let codes = skyforge_gnss::codes::e1_codes()?;
+    galileo(ephs, start, |eph, gal, leap_s, week| {
+        let params = InavParams {
+            dt_ls_s: leap_s,
+            dt_lsf_s: leap_s,
+            ..InavParams::default()
+        };
+        let nav = InavEncoder::new(eph, gal, &params, week)?;
+        Transmitter::gal_e1(eph.sat, nav, codes, start).ok_or(TransmitterError::NoSignal(eph.sat))
+    })
+}
+
+/// The transmitters `build` makes of each Galileo ephemeris among `ephs` (with the
+/// constellation for the almanac, the leap seconds at `start` and the GST week the
+/// symbols count from). Sets off the 60 s grid (the embedded constellation at any start)
+/// are re-expressed on it without moving the orbit or the clock. GST is GPST here: the
+/// broadcast GST-GPS offset is zero, and GST-UTC carries the leap seconds at `start`.
+fn galileo(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+    build: impl Fn(
+        &BroadcastEphemeris,
+        &[BroadcastEphemeris],
+        i32,
+        u32,
+    ) -> Result<Transmitter, TransmitterError>,
+) -> Result<Vec<Transmitter>, TransmitterError> {
     let gal = on_message_grid(ephs, System::Galileo, GAL_TIME_GRID_S);
     let leap_s = gps_utc_leap_s(start);
-    let params = FnavParams {
-        dt_ls_s: leap_s,
-        dt_lsf_s: leap_s,
-        ..FnavParams::default()
-    };
     // Symbols count from the GST week before the start's, so that satellite times a light
     // time before a start on a week boundary still lie after symbol 0.
     let week = skyforge_orbits::time::gpst_week_sow(start)
         .0
         .saturating_sub(GST_WEEK0_IN_GPS_WEEKS + 1);
     gal.iter()
-        .map(|eph| {
-            let nav = FnavEncoder::new(eph, &gal, &params, week)?;
-            Transmitter::gal_e5a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
-        })
+        .map(|eph| build(eph, &gal, leap_s, week))
         .collect()
 }

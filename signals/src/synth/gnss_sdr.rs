@@ -22,6 +22,8 @@ const BDS_CHANNELS: usize = 16;
 const GAL_CHANNELS: usize = 12;
 /// L5 channels: GPS satellites in view (up to about 12 of 31).
 const GPS_L5_CHANNELS: usize = 12;
+/// E1 channels: as E5a's.
+const GAL_E1_CHANNELS: usize = GAL_CHANNELS;
 
 /// The corrections GNSS-SDR's PVT applies: those of the errors in the signal.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -181,6 +183,9 @@ pub fn config(
     if signals.contains(&Signal::GpsL5) {
         channel_lines(&mut line, &GPS_L5_BLOCKS, doppler_max_hz);
     }
+    if signals.contains(&Signal::GalE1) {
+        channel_lines(&mut line, &GAL_E1_BLOCKS, doppler_max_hz);
+    }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
@@ -206,20 +211,24 @@ pub fn config(
     s
 }
 
-/// One signal's GNSS-SDR channel blocks: PCPS acquisition over 1 ms with a 250 Hz step and
-/// two dwells, DLL/PLL tracking (2 Hz DLL, 0.5-chip early-late spacing), the telemetry
-/// decoder.
+/// One signal's GNSS-SDR channel blocks: PCPS acquisition over one code period with a 250
+/// Hz step and two dwells, DLL/PLL tracking (2 Hz DLL), the telemetry decoder.
 struct ChannelBlocks {
-    /// GNSS-SDR's channel code (`1C`, `5X`, `L5`).
+    /// GNSS-SDR's channel code (`1C`, `5X`, `L5`, `1B`).
     code: &'static str,
     channels: usize,
     acquisition: &'static str,
+    /// Coherent integration of acquisition (ms): one code period.
+    coherent_ms: u32,
     /// Acquire on the pilot component (GNSS-SDR's `acquire_pilot`, where it has one).
     acquire_pilot: bool,
     tracking: &'static str,
     /// Track the pilot (its secondary code synchronised), data from the other component.
     track_pilot: bool,
     pll_bw_hz: &'static str,
+    /// Early-late spacing (chips), and the very-early-late one of a VEML tracking (BOC).
+    early_late_chips: &'static str,
+    very_early_late_chips: Option<&'static str>,
     telemetry: &'static str,
 }
 
@@ -228,10 +237,13 @@ const GPS_L1CA_BLOCKS: ChannelBlocks = ChannelBlocks {
     code: "1C",
     channels: 12,
     acquisition: "GPS_L1_CA_PCPS_Acquisition",
+    coherent_ms: 1,
     acquire_pilot: false,
     tracking: "GPS_L1_CA_DLL_PLL_Tracking",
     track_pilot: false,
     pll_bw_hz: "25.0",
+    early_late_chips: "0.5",
+    very_early_late_chips: None,
     telemetry: "GPS_L1_CA_Telemetry_Decoder",
 };
 
@@ -241,10 +253,13 @@ const GAL_E5A_BLOCKS: ChannelBlocks = ChannelBlocks {
     code: "5X",
     channels: GAL_CHANNELS,
     acquisition: "Galileo_E5a_Pcps_Acquisition",
+    coherent_ms: 1,
     acquire_pilot: true,
     tracking: "Galileo_E5a_DLL_PLL_Tracking",
     track_pilot: true,
     pll_bw_hz: "20.0",
+    early_late_chips: "0.5",
+    very_early_late_chips: None,
     telemetry: "Galileo_E5a_Telemetry_Decoder",
 };
 
@@ -254,11 +269,32 @@ const GPS_L5_BLOCKS: ChannelBlocks = ChannelBlocks {
     code: "L5",
     channels: GPS_L5_CHANNELS,
     acquisition: "GPS_L5i_PCPS_Acquisition",
+    coherent_ms: 1,
     acquire_pilot: false,
     tracking: "GPS_L5_DLL_PLL_Tracking",
     track_pilot: true,
     pll_bw_hz: "20.0",
+    early_late_chips: "0.5",
+    very_early_late_chips: None,
     telemetry: "GPS_L5_Telemetry_Decoder",
+};
+
+/// Galileo E1 (channel code 1B): acquisition over the 4 ms code on the E1-C pilot with a
+/// BOC(1,1) replica, very-early-minus-late tracking on the pilot (0.15-chip early-late
+/// spacing inside the BOC correlation's central peak, 0.6-chip very-early-late to watch
+/// its side peaks), its 25-chip secondary code synchronised; I/NAV decoded from E1-B.
+const GAL_E1_BLOCKS: ChannelBlocks = ChannelBlocks {
+    code: "1B",
+    channels: GAL_E1_CHANNELS,
+    acquisition: "Galileo_E1_PCPS_Ambiguous_Acquisition",
+    coherent_ms: 4,
+    acquire_pilot: true,
+    tracking: "Galileo_E1_DLL_PLL_VEML_Tracking",
+    track_pilot: true,
+    pll_bw_hz: "15.0",
+    early_late_chips: "0.15",
+    very_early_late_chips: Some("0.6"),
+    telemetry: "Galileo_E1B_Telemetry_Decoder",
 };
 
 /// The `.conf` lines of `b`, searching Doppler to +-`doppler_max_hz`.
@@ -267,7 +303,10 @@ fn channel_lines(line: &mut impl FnMut(&str), b: &ChannelBlocks, doppler_max_hz:
     line(&format!("Channels_{c}.count={}", b.channels));
     line(&format!("Acquisition_{c}.implementation={}", b.acquisition));
     line(&format!("Acquisition_{c}.item_type=gr_complex"));
-    line(&format!("Acquisition_{c}.coherent_integration_time_ms=1"));
+    line(&format!(
+        "Acquisition_{c}.coherent_integration_time_ms={}",
+        b.coherent_ms
+    ));
     if b.acquire_pilot {
         line(&format!("Acquisition_{c}.acquire_pilot=true"));
     }
@@ -285,7 +324,15 @@ fn channel_lines(line: &mut impl FnMut(&str), b: &ChannelBlocks, doppler_max_hz:
     }
     line(&format!("Tracking_{c}.pll_bw_hz={}", b.pll_bw_hz));
     line(&format!("Tracking_{c}.dll_bw_hz=2.0"));
-    line(&format!("Tracking_{c}.early_late_space_chips=0.5"));
+    line(&format!(
+        "Tracking_{c}.early_late_space_chips={}",
+        b.early_late_chips
+    ));
+    if let Some(spacing) = b.very_early_late_chips {
+        line(&format!(
+            "Tracking_{c}.very_early_late_space_chips={spacing}"
+        ));
+    }
     line(&format!(
         "TelemetryDecoder_{c}.implementation={}",
         b.telemetry

@@ -65,6 +65,8 @@ struct Scratch {
     chips: Vec<i8>,
     /// The pilot's chips, for signals with one.
     pilot: Vec<i8>,
+    /// Sub-chip levels of a multi-level waveform (Galileo E1).
+    levels: Vec<f32>,
     /// Per transmitter, the last data bit looked up (`Transmitter::chip_signs_after`).
     bits: Vec<Option<(u64, u8)>>,
     mix: MixScratch,
@@ -579,13 +581,16 @@ impl<'a> Synthesiser<'a> {
 /// puts half its power in each component, the pilot in quadrature (+90 deg, a quarter
 /// cycle ahead of the data component), as `(d + j p) / sqrt(2)`.
 fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut Scratch) {
+    if s.bits.len() <= index {
+        s.bits.resize(index + 1, None);
+    }
+    if tx.subchips_per_chip() > 1 {
+        return mix_subchips((index, tx), p, m, s);
+    }
     let (k0, code_phase) = tx.chip_at(p.t_sv.0);
     let code_per_sample = tx.chip_rate_hz * (p.t_sv.1 - p.t_sv.0) / m as f64;
     let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, m);
     s.chips.clear();
-    if s.bits.len() <= index {
-        s.bits.resize(index + 1, None);
-    }
     tx.chip_signs_after(k0, needed, &mut s.chips, &mut s.bits[index]);
     let amplitude = if tx.has_pilot() {
         p.amplitude * std::f32::consts::FRAC_1_SQRT_2
@@ -607,6 +612,26 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
     } else {
         mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
     }
+}
+
+/// [`mix_path`] of a multi-level waveform (Galileo E1's CBOC): its sub-chips' levels
+/// through the one-component kernel, data and pilot summed in phase.
+fn mix_subchips((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut Scratch) {
+    let (k0, code_phase) = tx.subchip_at(p.t_sv.0);
+    let rate = tx.chip_rate_hz * tx.subchips_per_chip() as f64;
+    let code_per_sample = rate * (p.t_sv.1 - p.t_sv.0) / m as f64;
+    let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, m);
+    s.levels.clear();
+    tx.cboc_levels_after(k0, needed, &mut s.levels, &mut s.bits[index]);
+    let ch = ChannelBlock {
+        amplitude: p.amplitude,
+        carrier_phase_cycles: p.phase.0,
+        carrier_cycles_per_sample: (p.phase.1 - p.phase.0) / m as f64,
+        code_phase_chips: code_phase,
+        code_chips_per_sample: code_per_sample,
+        chips: Chips::Levels(&s.levels),
+    };
+    mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
 }
 
 /// Carrier-phase error (m, RINEX sign) of a composite signal whose prompt correlator sits

@@ -3,14 +3,17 @@
 
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+use skyforge_gnss::codes::{E1Codes, GALILEO_E1_C_SECONDARY, GALILEO_E1_CHIP_RATE_HZ};
 use skyforge_gnss::codes::{GALILEO_E5A_CHIP_RATE_HZ, galileo_e5a_i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, gps_l5_i};
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
+use skyforge_gnss::navmsg::galileo_inav::InavEncoder;
 use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
 use skyforge_gnss::signal::{DataModulation, Signal};
+use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, e1_cboc};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Data modulating a signal.
@@ -29,6 +32,10 @@ pub enum DataBits {
     /// 10-chip Neumann-Hoffman code per period (IS-GPS-705 §3.3.2.2, §3.3.3.1.1), symbol 0
     /// at the encoder's GPS week start.
     GpsCnav(Box<CnavEncoder>),
+    /// Galileo I/NAV on E1-B: 250 symbols/s after its FEC, one E1 period (4 ms) per
+    /// symbol, no secondary code (Galileo OS SIS ICD §2.3.3, §4.3), symbol 0 at the
+    /// encoder's GST week start.
+    GalileoInav(Box<InavEncoder>),
 }
 
 impl DataBits {
@@ -38,6 +45,7 @@ impl DataBits {
             DataBits::GpsLnav(_) => DataModulation::GpsLnav,
             DataBits::GalileoFnav(_) => DataModulation::GalFnav,
             DataBits::GpsCnav(_) => DataModulation::GpsCnav,
+            DataBits::GalileoInav(_) => DataModulation::GalInav,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => DataModulation::BdsD1,
                 BdsNavFormat::D2 => DataModulation::BdsD2,
@@ -56,6 +64,7 @@ impl DataBits {
             DataBits::Bds(e) => e.bits(b, 1).first().copied().unwrap_or(0),
             DataBits::GalileoFnav(e) => e.symbol(b),
             DataBits::GpsCnav(e) => e.symbol(b),
+            DataBits::GalileoInav(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1): the code restarts with every bit.
@@ -170,6 +179,37 @@ impl Transmitter {
         })
     }
 
+    /// Galileo E1: E1-B with I/NAV and E1-C pilot with CS25, in phase, each on its CBOC
+    /// sub-carriers (Galileo OS SIS ICD §2.3.3, §3.4), the primary codes from `codes`;
+    /// chips and symbols count from the encoder's GST week start, which must not be after
+    /// `start`.
+    pub fn gal_e1(sat: SatId, nav: InavEncoder, codes: &E1Codes, start: Epoch) -> Option<Self> {
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
+        Some(Self {
+            sat,
+            signal: Signal::GalE1,
+            chip_rate_hz: GALILEO_E1_CHIP_RATE_HZ,
+            code: codes.data(sat.prn)?.to_vec(),
+            data: DataBits::GalileoInav(Box::new(nav)),
+            pilot: Some(Pilot {
+                code: codes.pilot(sat.prn)?.to_vec(),
+                secondary: GALILEO_E1_C_SECONDARY.to_vec(),
+            }),
+            start_whole_s,
+            start_frac_s,
+        })
+    }
+
+    /// Sub-chips per chip of the waveform: 12 for E1's CBOC ([`Self::cboc_levels_after`]),
+    /// 1 for the binary codes.
+    pub fn subchips_per_chip(&self) -> usize {
+        if self.signal == Signal::GalE1 {
+            CBOC_SUBCHIPS
+        } else {
+            1
+        }
+    }
+
     /// Whether the signal has a pilot component ([`Self::pilot_chip_signs`]).
     pub fn has_pilot(&self) -> bool {
         self.pilot.is_some()
@@ -183,6 +223,7 @@ impl Transmitter {
             DataBits::Bds(nav) => nav.broadcast_ephemeris(),
             DataBits::GalileoFnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GpsCnav(nav) => nav.broadcast_ephemeris(),
+            DataBits::GalileoInav(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -198,17 +239,61 @@ impl Transmitter {
                 let p = cnav.iono();
                 Some((p.alpha, p.beta))
             }
-            DataBits::Bds(_) | DataBits::GalileoFnav(_) => None,
+            DataBits::Bds(_) | DataBits::GalileoFnav(_) | DataBits::GalileoInav(_) => None,
         }
     }
 
     /// Absolute chip index (since the time-scale epoch) and code phase within it (chips) of
     /// satellite time `t_sv_s` (seconds since the scenario start).
     pub fn chip_at(&self, t_sv_s: f64) -> (u64, f64) {
-        let chips = self.chip_rate_hz * (self.start_frac_s + t_sv_s);
-        let whole = chips.floor();
-        let base = self.start_whole_s * self.chip_rate_hz as u64;
-        (base.wrapping_add_signed(whole as i64), chips - whole)
+        self.count_at(self.chip_rate_hz, t_sv_s)
+    }
+
+    /// [`Self::chip_at`] in sub-chips ([`Self::subchips_per_chip`]).
+    pub fn subchip_at(&self, t_sv_s: f64) -> (u64, f64) {
+        self.count_at(self.chip_rate_hz * self.subchips_per_chip() as f64, t_sv_s)
+    }
+
+    /// Whole and fractional counts at `rate` (an integer number per second) since the time
+    /// scale's epoch of satellite time `t_sv_s`.
+    fn count_at(&self, rate: f64, t_sv_s: f64) -> (u64, f64) {
+        let counts = rate * (self.start_frac_s + t_sv_s);
+        let whole = counts.floor();
+        let base = self.start_whole_s * rate as u64;
+        (base.wrapping_add_signed(whole as i64), counts - whole)
+    }
+
+    /// Append the E1 CBOC waveform over sub-chips `s0 .. s0 + count` (absolute indices,
+    /// [`Self::subchip_at`]) to `out`: per chip the data chip (E1-B code x I/NAV symbol)
+    /// and the pilot chip (E1-C code x CS25) weight the sub-carriers
+    /// ([`skyforge_gnss::subcarrier::e1_cboc`]); `cached` as in [`Self::chip_signs_after`].
+    pub fn cboc_levels_after(
+        &self,
+        s0: u64,
+        count: usize,
+        out: &mut Vec<f32>,
+        cached: &mut Option<(u64, u8)>,
+    ) {
+        if count == 0 {
+            return;
+        }
+        let sub = CBOC_SUBCHIPS as u64;
+        let (c0, c1) = (s0 / sub, (s0 + count as u64 - 1) / sub + 1);
+        let (mut data, mut pilot) = (Vec::new(), Vec::new());
+        self.chip_signs_after(c0, (c1 - c0) as usize, &mut data, cached);
+        self.pilot_chip_signs(c0, (c1 - c0) as usize, &mut pilot);
+        // The four waveforms of a chip, by (data, pilot) sign.
+        let table = [
+            e1_cboc(1, 1),
+            e1_cboc(1, -1),
+            e1_cboc(-1, 1),
+            e1_cboc(-1, -1),
+        ];
+        out.extend((s0..s0 + count as u64).map(|s| {
+            let j = (s / sub - c0) as usize;
+            let row = 2 * usize::from(data[j] < 0) + usize::from(pilot[j] < 0);
+            table[row][(s % sub) as usize]
+        }));
     }
 
     /// Append the signed chips `k0 .. k0 + count` (absolute indices, data bits and any
@@ -350,5 +435,83 @@ mod tests {
             tx.broadcast_iono(),
             Some((symbols.iono().alpha, symbols.iono().beta))
         );
+    }
+
+    /// Made-up E1 code tables (pseudo-random, not the ICD's) read back unchecked.
+    fn made_up_e1_codes() -> E1Codes {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let mut x: u32 = 7;
+        for name in ["galileo_e1b.txt", "galileo_e1c.txt"] {
+            let mut text = String::new();
+            for n in 1..=50 {
+                let digits: String = (0..1023)
+                    .map(|_| {
+                        x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                        char::from_digit((x >> 16) & 15, 16).unwrap()
+                    })
+                    .collect();
+                text.push_str(&format!("{n} {digits}\n"));
+            }
+            std::fs::write(dir.path().join(name), text).expect("table");
+        }
+        E1Codes::from_dir(dir.path(), false).expect("made-up tables")
+    }
+
+    /// Galileo E1 sub-chips against a direct evaluation of the ICD's E1 signal (§2.3.3):
+    /// sub-chip s of the week lies in chip j = s / 12 of period p = j / 4092, and is
+    /// (1/sqrt 2) [d (alpha a + beta b) - c (alpha a - beta b)] with d = E1-B[j mod 4092] x
+    /// the I/NAV symbol of period p, c = E1-C[j mod 4092] x CS25[p mod 25], a and b the
+    /// signs of sin(2 pi f t) at the sub-chip's middle for f = 1.023 and 6.138 MHz.
+    #[test]
+    fn galileo_e1_sub_chips_follow_the_cboc_definition() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let codes = made_up_e1_codes();
+        let eph = nominal::galileo(start)
+            .into_iter()
+            .map(|e| {
+                let grid = |t| System::Galileo.on_grid(t, 60.0);
+                e.reexpressed(grid(e.toe), grid(e.toc)).expect("on grid")
+            })
+            .next()
+            .expect("a Galileo set");
+        let week = skyforge_orbits::time::gpst_week_sow(start).0
+            - skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS
+            - 1;
+        let nav = InavEncoder::new(
+            &eph,
+            std::slice::from_ref(&eph),
+            &skyforge_gnss::navmsg::galileo_inav::InavParams::default(),
+            week,
+        )
+        .expect("encoder");
+        let tx = Transmitter::gal_e1(eph.sat, nav.clone(), &codes, start).expect("E1");
+        assert_eq!(tx.subchips_per_chip(), 12);
+        let (b, c) = (
+            codes.data(eph.sat.prn).unwrap(),
+            codes.pilot(eph.sat.prn).unwrap(),
+        );
+        let (alpha, beta) = ((10.0f64 / 11.0).sqrt(), (1.0f64 / 11.0).sqrt());
+        let sign = |x: f64| if x > 0.0 { 1.0 } else { -1.0 };
+        let (s_start, phase) = tx.subchip_at(0.0);
+        assert_eq!((s_start, phase), (604_800 * 12_276_000, 0.0));
+        // Spans across symbol (4 ms) and CS25 (100 ms) edges.
+        for s0 in [s_start, s_start + 100 * 49_104 - 777, s_start + 1_234_567] {
+            let mut levels = Vec::new();
+            tx.cboc_levels_after(s0, 3 * 49_104, &mut levels, &mut None);
+            for (n, &level) in levels.iter().enumerate() {
+                let s = s0 + n as u64;
+                let (j, k) = (s / 12, (s % 12) as f64);
+                let (p, i) = (j / 4092, (j % 4092) as usize);
+                let d = f64::from(b[i]) * (1.0 - 2.0 * f64::from(nav.symbol(p)));
+                let pl = f64::from(c[i]) * f64::from(GALILEO_E1_C_SECONDARY[(p % 25) as usize]);
+                let t = (k + 0.5) / 12.0;
+                let a = sign((std::f64::consts::TAU * t).sin());
+                let bb = sign((std::f64::consts::TAU * 6.0 * t).sin());
+                let expect = (d * (alpha * a + beta * bb) - pl * (alpha * a - beta * bb))
+                    / std::f64::consts::SQRT_2;
+                assert!((f64::from(level) - expect).abs() < 1e-6, "sub-chip {s}");
+            }
+        }
+        assert_eq!(tx.broadcast_ephemeris(), nav.broadcast_ephemeris());
     }
 }

@@ -26,6 +26,39 @@ pub fn skyforge(args: &[&str], cwd: &Path) -> Output {
         .expect("run skyforge")
 }
 
+/// Run `skyforge args` in `cwd` with the environment variables `env` set (a value of
+/// `None` removes the variable).
+pub fn skyforge_with_env(args: &[&str], cwd: &Path, env: &[(&str, Option<&str>)]) -> Output {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_skyforge"));
+    command.args(args).current_dir(cwd);
+    for (key, value) in env {
+        match value {
+            Some(v) => command.env(key, v),
+            None => command.env_remove(key),
+        };
+    }
+    command.output().expect("run skyforge")
+}
+
+/// Made-up Galileo E1 code tables (pseudo-random chips, not the ICD's) in `dir`, in the
+/// format `SKYFORGE_GALILEO_E1_CODES` names (docs/signals.md).
+pub fn made_up_e1_tables(dir: &Path) {
+    let mut x: u32 = 12345;
+    for name in ["galileo_e1b.txt", "galileo_e1c.txt"] {
+        let mut text = String::from("# made-up codes for tests, not the ICD's\n");
+        for n in 1..=50 {
+            let digits: String = (0..1023)
+                .map(|_| {
+                    x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                    char::from_digit((x >> 16) & 15, 16).unwrap()
+                })
+                .collect();
+            text.push_str(&format!("{n} {digits}\n"));
+        }
+        std::fs::write(dir.join(name), text).expect("write a made-up E1 table");
+    }
+}
+
 /// What tells `receive` how to read a raw recording of 4 Msps ci8 GPS L1 C/A samples (the
 /// options after its file name).
 pub const RAW_CI8_4MSPS_GPS: [&str; 6] = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
