@@ -151,6 +151,8 @@ fn synth_writes_an_e1_recording_its_inav_records_and_observation_truth() {
     for key in [
         "Acquisition_1B.implementation=Galileo_E1_PCPS_Ambiguous_Acquisition",
         "Acquisition_1B.coherent_integration_time_ms=4",
+        "Acquisition_1B.doppler_step=125",
+        "Tracking_1B.enable_fll_pull_in=true",
         "Tracking_1B.implementation=Galileo_E1_DLL_PLL_VEML_Tracking",
         "Tracking_1B.very_early_late_space_chips=0.6",
         "Tracking_1B.track_pilot=true",

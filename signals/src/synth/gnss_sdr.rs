@@ -220,6 +220,8 @@ struct ChannelBlocks {
     acquisition: &'static str,
     /// Coherent integration of acquisition (ms): one code period.
     coherent_ms: u32,
+    /// Acquisition Doppler step (Hz).
+    doppler_step_hz: u32,
     /// Acquire on the pilot component (GNSS-SDR's `acquire_pilot`, where it has one).
     acquire_pilot: bool,
     tracking: &'static str,
@@ -229,6 +231,9 @@ struct ChannelBlocks {
     /// Early-late spacing (chips), and the very-early-late one of a VEML tracking (BOC).
     early_late_chips: &'static str,
     very_early_late_chips: Option<&'static str>,
+    /// Bandwidth (Hz) of a frequency-locked loop that pulls the carrier in before the PLL
+    /// takes over, where the tracking needs one.
+    fll_pull_in_hz: Option<&'static str>,
     telemetry: &'static str,
 }
 
@@ -238,12 +243,14 @@ const GPS_L1CA_BLOCKS: ChannelBlocks = ChannelBlocks {
     channels: 12,
     acquisition: "GPS_L1_CA_PCPS_Acquisition",
     coherent_ms: 1,
+    doppler_step_hz: 250,
     acquire_pilot: false,
     tracking: "GPS_L1_CA_DLL_PLL_Tracking",
     track_pilot: false,
     pll_bw_hz: "25.0",
     early_late_chips: "0.5",
     very_early_late_chips: None,
+    fll_pull_in_hz: None,
     telemetry: "GPS_L1_CA_Telemetry_Decoder",
 };
 
@@ -254,12 +261,14 @@ const GAL_E5A_BLOCKS: ChannelBlocks = ChannelBlocks {
     channels: GAL_CHANNELS,
     acquisition: "Galileo_E5a_Pcps_Acquisition",
     coherent_ms: 1,
+    doppler_step_hz: 250,
     acquire_pilot: true,
     tracking: "Galileo_E5a_DLL_PLL_Tracking",
     track_pilot: true,
     pll_bw_hz: "20.0",
     early_late_chips: "0.5",
     very_early_late_chips: None,
+    fll_pull_in_hz: None,
     telemetry: "Galileo_E5a_Telemetry_Decoder",
 };
 
@@ -270,12 +279,14 @@ const GPS_L5_BLOCKS: ChannelBlocks = ChannelBlocks {
     channels: GPS_L5_CHANNELS,
     acquisition: "GPS_L5i_PCPS_Acquisition",
     coherent_ms: 1,
+    doppler_step_hz: 250,
     acquire_pilot: false,
     tracking: "GPS_L5_DLL_PLL_Tracking",
     track_pilot: true,
     pll_bw_hz: "20.0",
     early_late_chips: "0.5",
     very_early_late_chips: None,
+    fll_pull_in_hz: None,
     telemetry: "GPS_L5_Telemetry_Decoder",
 };
 
@@ -283,17 +294,24 @@ const GPS_L5_BLOCKS: ChannelBlocks = ChannelBlocks {
 /// BOC(1,1) replica, very-early-minus-late tracking on the pilot (0.15-chip early-late
 /// spacing inside the BOC correlation's central peak, 0.6-chip very-early-late to watch
 /// its side peaks), its 25-chip secondary code synchronised; I/NAV decoded from E1-B.
+/// The 4 ms acquisition's Doppler bins are 1/(2 x 4 ms) = 125 Hz wide, and a 10 Hz FLL
+/// pulls the carrier in before the 15 Hz PLL: measured with 0.0.17 on 50 s of
+/// `interop-e1-static` (by hand, 2026-11-30), 250 Hz steps without the FLL left 8 of 9
+/// satellites unsynchronised to CS25 (GNSS-SDR drops them after 20 s), 125 Hz steps 4 of
+/// 9, 125 Hz with the FLL 1 of 9.
 const GAL_E1_BLOCKS: ChannelBlocks = ChannelBlocks {
     code: "1B",
     channels: GAL_E1_CHANNELS,
     acquisition: "Galileo_E1_PCPS_Ambiguous_Acquisition",
     coherent_ms: 4,
+    doppler_step_hz: 125,
     acquire_pilot: true,
     tracking: "Galileo_E1_DLL_PLL_VEML_Tracking",
     track_pilot: true,
     pll_bw_hz: "15.0",
     early_late_chips: "0.15",
     very_early_late_chips: Some("0.6"),
+    fll_pull_in_hz: Some("10.0"),
     telemetry: "Galileo_E1B_Telemetry_Decoder",
 };
 
@@ -315,7 +333,10 @@ fn channel_lines(line: &mut impl FnMut(&str), b: &ChannelBlocks, doppler_max_hz:
         "Acquisition_{c}.doppler_max={}",
         doppler_max_hz.round()
     ));
-    line(&format!("Acquisition_{c}.doppler_step=250"));
+    line(&format!(
+        "Acquisition_{c}.doppler_step={}",
+        b.doppler_step_hz
+    ));
     line(&format!("Acquisition_{c}.max_dwells=2"));
     line(&format!("Tracking_{c}.implementation={}", b.tracking));
     line(&format!("Tracking_{c}.item_type=gr_complex"));
@@ -324,6 +345,10 @@ fn channel_lines(line: &mut impl FnMut(&str), b: &ChannelBlocks, doppler_max_hz:
     }
     line(&format!("Tracking_{c}.pll_bw_hz={}", b.pll_bw_hz));
     line(&format!("Tracking_{c}.dll_bw_hz=2.0"));
+    if let Some(fll) = b.fll_pull_in_hz {
+        line(&format!("Tracking_{c}.enable_fll_pull_in=true"));
+        line(&format!("Tracking_{c}.fll_bw_hz={fll}"));
+    }
     line(&format!(
         "Tracking_{c}.early_late_space_chips={}",
         b.early_late_chips
