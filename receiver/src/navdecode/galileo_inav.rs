@@ -8,138 +8,56 @@
 //! there and 250 symbols later as a candidate page start, which [`decode_page`] confirms
 //! (even part first, CRC). Locked, a page follows every 500 symbols.
 
-use super::symbol_sync::{SymbolFormat, SymbolSync, with_polarity};
-use super::{DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo};
+use super::galileo_pages::{GalileoDecoder, GalileoMessage, WEEK_S, sync_errors};
+use super::symbol_sync::{SymbolFormat, with_polarity};
 use skyforge_gnss::navmsg::galileo_inav::{
     INAV_PAGE_S, INAV_PAGE_SYMBOLS, INAV_PART_SYMBOLS, INAV_SYNC, InavAssembler, InavPage,
     decode_page,
 };
-use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use std::cmp::Ordering;
 
-/// Seconds per week.
-const WEEK_S: u32 = 604_800;
 /// Wrong hard decisions allowed in each of a search candidate's two sync patterns (as
 /// many as [`decode_page`] allows).
 const SEARCH_SYNC_ERRORS: usize = 2;
 
-/// Decoder of one Galileo satellite's E1-B I/NAV symbol stream.
-///
-/// Each decoded page with a known time is a [`NavEvent::Subframe`]: `start_bit` is the
-/// index of the first sync symbol of its even part, `id` the word type, `tow_s` the GST
-/// TOW of that symbol (§5.1.2; for words without one, all but 0, 5 and 6, the last TOW of
-/// the lock plus 2 s a page), `week` the GST week once a word type 0 or 5 gave it. Word
-/// types 1-4 of one IODnav and a word type 5 make a [`NavEvent::Ephemeris`] (`ura_index`
-/// 0: SISA is no URA).
-#[derive(Debug, Clone)]
-pub struct InavDecoder {
-    sat: SatId,
-    format: Inav,
-    sync: SymbolSync,
-    assembler: InavAssembler,
-    /// Start symbol and TOW of the last page that carried a TOW.
-    anchor: Option<(u64, u32)>,
-    /// GST week and TOW of the last page reported.
-    time: Option<(Option<u32>, u32)>,
-}
+/// Decoder of one Galileo satellite's I/NAV symbol stream ([`GalileoDecoder`]).
+pub(crate) type InavDecoder = GalileoDecoder<Inav>;
 
-impl InavDecoder {
-    /// A decoder for Galileo satellite `sat` (SVID 1-36).
-    pub fn new(sat: SatId) -> Result<Self, NavDecodeError> {
-        if sat.system != System::Galileo || !(1..=System::Galileo.max_prn()).contains(&sat.prn) {
-            return Err(NavDecodeError::WrongSatellite {
-                sat: sat.to_string(),
-                what: "I/NAV is broadcast by Galileo SVID 1-36",
-            });
-        }
-        Ok(Self {
-            sat,
-            format: Inav { svid: sat.prn },
-            sync: SymbolSync::new(),
-            assembler: InavAssembler::new(),
-            anchor: None,
-            time: None,
-        })
+impl GalileoMessage for Inav {
+    type Assembler = InavAssembler;
+    const BROADCAST_BY: &'static str = "I/NAV is broadcast by Galileo SVID 1-36";
+    const PAGE_S: u32 = INAV_PAGE_S as u32;
+
+    fn for_svid(svid: u8) -> Self {
+        Self { svid }
     }
 
-    /// Whether page synchronisation is held.
-    pub fn is_synchronised(&self) -> bool {
-        self.sync.locked_since().is_some()
+    fn assembler() -> InavAssembler {
+        InavAssembler::new()
     }
 
-    /// The GST TOW of the page at `start`: its own, or the anchor's moved on by the pages
-    /// since, if the anchor lies in the current lock.
-    fn tow_of(&self, start: u64, page: &InavPage) -> Option<u32> {
-        if let Some(tow) = page.tow() {
-            return Some(tow);
-        }
-        let since = self.sync.locked_since()?;
-        let (at, tow) = self.anchor.filter(|&(at, _)| at >= since)?;
-        let pages = (start.checked_sub(at)? / INAV_PAGE_SYMBOLS as u64) as u32;
-        Some((tow + pages * INAV_PAGE_S as u32) % WEEK_S)
+    fn push(assembler: &mut InavAssembler, page: &InavPage) -> Option<BroadcastEphemeris> {
+        assembler.push(page).map(|e| e.eph)
     }
 
-    /// Report a decoded page starting at symbol `start`.
-    fn take(&mut self, start: u64, inverted: bool, page: &InavPage, out: &mut Vec<NavEvent>) {
-        let eph = self.assembler.push(page);
-        let tow = self.tow_of(start, page);
-        if let Some(t) = page.tow() {
-            self.anchor = Some((start, t));
-        }
-        if let Some(tow) = tow {
-            let week = match (page.wn(), self.time) {
-                (Some(wn), _) => Some(wn),
-                (None, Some((Some(week), last))) if tow < last => Some(week + 1),
-                (None, last) => last.and_then(|(week, _)| week),
-            };
-            self.time = Some((week, tow));
-            out.push(NavEvent::Subframe(SubframeInfo {
-                start_bit: start,
-                id: page.word_type,
-                page: None,
-                week,
-                tow_s: f64::from(tow),
-                inverted,
-                corrected_bits: 0,
-            }));
-        }
-        if let Some(e) = eph.filter(|e| e.eph.sat == self.sat) {
-            out.push(NavEvent::Ephemeris(Box::new(DecodedEphemeris {
-                eph: e.eph,
-                ura_index: 0,
-                tgd2_s: None,
-            })));
-        }
-    }
-}
-
-impl NavDecoder for InavDecoder {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.sync.push(soft_bits);
-        let mut out = Vec::new();
-        while let Some((start, inverted, page)) = self.sync.next(&self.format, &mut out) {
-            self.take(start, inverted, &page, &mut out);
-        }
-        out
+    fn id(page: &InavPage) -> u8 {
+        page.word_type
     }
 
-    fn restart(&mut self) {
-        self.sync.restart();
+    fn tow(page: &InavPage) -> Option<u32> {
+        page.tow()
     }
 
-    fn stats(&self) -> DecodeStats {
-        self.sync.stats
-    }
-
-    fn satellite(&self) -> SatId {
-        self.sat
+    fn wn(page: &InavPage) -> Option<u32> {
+        page.wn()
     }
 }
 
 /// I/NAV framing: a page whose SVID (word type 4) is the expected one and whose TOW is
 /// below one week.
 #[derive(Debug, Clone, Copy)]
-struct Inav {
+pub(crate) struct Inav {
     svid: u8,
 }
 
@@ -153,7 +71,7 @@ impl SymbolFormat for Inav {
         let n = INAV_SYNC.len();
         (0..Self::PERIOD as usize)
             .filter_map(|offset| {
-                let at = |k: usize| window.get(k..k + n).map(sync_errors);
+                let at = |k: usize| window.get(k..k + n).map(|w| sync_errors(&INAV_SYNC, w));
                 let errors = [at(offset)?, at(offset + INAV_PART_SYMBOLS)?];
                 let inverted = if errors.iter().all(|&e| e <= SEARCH_SYNC_ERRORS) {
                     false
@@ -175,7 +93,7 @@ impl SymbolFormat for Inav {
         let parts = [0, INAV_PART_SYMBOLS];
         let errors: usize = parts
             .iter()
-            .map(|&at| window.get(at..at + n).map(sync_errors))
+            .map(|&at| window.get(at..at + n).map(|w| sync_errors(&INAV_SYNC, w)))
             .sum::<Option<usize>>()?;
         let inv = match errors.cmp(&(2 * n - errors)) {
             Ordering::Less => false,
@@ -193,15 +111,6 @@ impl SymbolFormat for Inav {
         let tow_ok = page.tow().is_none_or(|t| t < WEEK_S);
         (svid_ok && tow_ok).then_some((page, inv))
     }
-}
-
-/// Hard decisions of `symbols` that differ from the sync pattern.
-fn sync_errors(symbols: &[f32]) -> usize {
-    INAV_SYNC
-        .iter()
-        .zip(symbols)
-        .filter(|&(&s, &x)| (x < 0.0) != (s == 1))
-        .count()
 }
 
 #[cfg(test)]

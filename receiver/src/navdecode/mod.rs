@@ -35,6 +35,7 @@ mod decoder;
 mod framer;
 mod galileo_fnav;
 mod galileo_inav;
+mod galileo_pages;
 mod gps;
 mod gps_cnav;
 mod gps_fields;
@@ -45,8 +46,8 @@ mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
 pub use decoder::{Decoder, MessageFormat};
-pub use galileo_fnav::FnavDecoder;
-pub use galileo_inav::InavDecoder;
+pub(crate) use galileo_fnav::FnavDecoder;
+pub(crate) use galileo_inav::InavDecoder;
 pub use gps::{DEFAULT_GPS_REFERENCE_WEEK, GpsLnavDecoder, Lnav};
 pub use gps_cnav::CnavDecoder;
 
