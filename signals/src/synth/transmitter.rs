@@ -282,18 +282,22 @@ impl Transmitter {
         let (mut data, mut pilot) = (Vec::new(), Vec::new());
         self.chip_signs_after(c0, (c1 - c0) as usize, &mut data, cached);
         self.pilot_chip_signs(c0, (c1 - c0) as usize, &mut pilot);
-        // The four waveforms of a chip, by (data, pilot) sign.
+        // The four waveforms of a chip, by (data, pilot) sign; each chip appends the part
+        // of its waveform inside the span.
         let table = [
             e1_cboc(1, 1),
             e1_cboc(1, -1),
             e1_cboc(-1, 1),
             e1_cboc(-1, -1),
         ];
-        out.extend((s0..s0 + count as u64).map(|s| {
-            let j = (s / sub - c0) as usize;
-            let row = 2 * usize::from(data[j] < 0) + usize::from(pilot[j] < 0);
-            table[row][(s % sub) as usize]
-        }));
+        let end = s0 + count as u64;
+        out.reserve(count);
+        for (j, (&d, &p)) in data.iter().zip(&pilot).enumerate() {
+            let first = (c0 + j as u64) * sub;
+            let (from, to) = (s0.max(first) - first, end.min(first + sub) - first);
+            let row = 2 * usize::from(d < 0) + usize::from(p < 0);
+            out.extend_from_slice(&table[row][from as usize..to as usize]);
+        }
     }
 
     /// Append the signed chips `k0 .. k0 + count` (absolute indices, data bits and any
