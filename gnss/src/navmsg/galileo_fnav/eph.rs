@@ -98,7 +98,7 @@ pub(super) fn quantise(
                 .map_err(|e| FnavError::out_of_range(sat, e))?,
         );
     }
-    for (field, v) in params.values() {
+    for (field, v) in params.values(&q::SISA) {
         f.set(
             field,
             field

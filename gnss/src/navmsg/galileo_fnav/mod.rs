@@ -44,11 +44,13 @@ const SUBFRAMES_PER_FRAME: u64 = 12;
 /// Frame duration (s).
 const FRAME_S: u64 = FNAV_PAGE_S * PAGES_PER_SUBFRAME * SUBFRAMES_PER_FRAME;
 
-/// What page types 1 and 4 carry besides the clock and ephemeris, in SI units and the
-/// integers the ICD defines. Default: all zero, leap seconds 18 s (GST - UTC since 2017).
+/// What the Galileo messages carry besides the clock, ephemeris and almanac (F/NAV page
+/// types 1 and 4, I/NAV word types 3, 5, 6 and 10), in SI units and the integers the ICD
+/// defines once for both. Default: all zero, leap seconds 18 s (GST - UTC since 2017).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FnavParams {
-    /// SISA(E1,E5a) index (0-255), sent as given.
+pub struct GalileoParams {
+    /// SISA index (0-255) of the message's signal pair (F/NAV: E1,E5a; I/NAV: E1,E5b),
+    /// sent as given.
     pub sisa_index: u8,
     /// NeQuick effective ionisation level coefficients (§5.1.6): ai0 (sfu), ai1
     /// (sfu/deg), ai2 (sfu/deg^2).
@@ -72,7 +74,7 @@ pub struct FnavParams {
     pub wn0g: u32,
 }
 
-impl Default for FnavParams {
+impl Default for GalileoParams {
     fn default() -> Self {
         Self {
             sisa_index: 0,
@@ -95,11 +97,15 @@ impl Default for FnavParams {
     }
 }
 
-impl FnavParams {
-    /// Each field with its value in the field's SI unit.
-    fn values(&self) -> [(&'static Field, f64); 16] {
+/// F/NAV's parameters ([`GalileoParams`]).
+pub type FnavParams = GalileoParams;
+
+impl GalileoParams {
+    /// Each field with its value in the field's SI unit, the SISA index in the message's
+    /// field `sisa`.
+    pub(crate) fn values(&self, sisa: &'static Field) -> [(&'static Field, f64); 16] {
         [
-            (&q::SISA, f64::from(self.sisa_index)),
+            (sisa, f64::from(self.sisa_index)),
             (&q::AI0, self.ai0),
             (&q::AI1, self.ai1),
             (&q::AI2, self.ai2),

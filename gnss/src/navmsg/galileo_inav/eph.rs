@@ -80,7 +80,7 @@ pub(super) fn quantise(
     ];
     let mut f = Fields::default();
     let range = |e| InavError::out_of_range(sat, e);
-    for (field, v) in plain.into_iter().chain(params.values()) {
+    for (field, v) in plain.into_iter().chain(params.values(&q::SISA)) {
         f.set(field, field.quantise(v).map_err(range)?);
     }
     for (field, v) in [(&q::M0, o.m0), (&q::OMEGA0, o.omega0), (&q::OMEGA, o.omega)] {

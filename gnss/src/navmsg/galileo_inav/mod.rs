@@ -48,7 +48,7 @@ pub use pages::{INAV_SYNC, PAGE_SYMBOLS as INAV_PAGE_SYMBOLS, PART_SYMBOLS as IN
 use crate::navmsg::field::{Fields, OutOfRange};
 use crate::navmsg::galileo_fnav::time::{WEEK_S, gst_epoch};
 use hifitime::Epoch;
-use quant::{self as q, Field};
+use quant as q;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 
 /// Channel symbol rate of E1-B (symbols/s).
@@ -80,81 +80,9 @@ const SUBFRAME_WORDS: [[u8; 2]; PAGES_PER_SUBFRAME as usize] = [
     [0, 0],
 ];
 
-/// What word types 3, 5, 6 and 10 carry besides the clock, ephemeris and almanac, in SI
-/// units and the integers the ICD defines. Default: all zero, leap seconds 18 s (GST - UTC
-/// since 2017).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct InavParams {
-    /// SISA(E1,E5b) index (0-255), sent as given.
-    pub sisa_index: u8,
-    /// NeQuick effective ionisation level coefficients (§5.1.6): ai0 (sfu), ai1
-    /// (sfu/deg), ai2 (sfu/deg^2).
-    pub ai0: f64,
-    pub ai1: f64,
-    pub ai2: f64,
-    /// GST-UTC (§5.1.7): A0 (s), A1 (s/s), Delta tLS (s), t0t (s of week), WN0t (week,
-    /// 8 bits), WNLSF (week, 8 bits), DN (day of week, 3 bits), Delta tLSF (s).
-    pub a0_s: f64,
-    pub a1_s_s: f64,
-    pub dt_ls_s: i32,
-    pub t0t_s: u32,
-    pub wn0t: u32,
-    pub wn_lsf: u32,
-    pub dn: u32,
-    pub dt_lsf_s: i32,
-    /// GST-GPS (§5.1.8): A0G (s), A1G (s/s), t0G (s of week), WN0G (week, 6 bits).
-    pub a0g_s: f64,
-    pub a1g_s_s: f64,
-    pub t0g_s: u32,
-    pub wn0g: u32,
-}
-
-impl Default for InavParams {
-    fn default() -> Self {
-        Self {
-            sisa_index: 0,
-            ai0: 0.0,
-            ai1: 0.0,
-            ai2: 0.0,
-            a0_s: 0.0,
-            a1_s_s: 0.0,
-            dt_ls_s: 18,
-            t0t_s: 0,
-            wn0t: 0,
-            wn_lsf: 0,
-            dn: 0,
-            dt_lsf_s: 18,
-            a0g_s: 0.0,
-            a1g_s_s: 0.0,
-            t0g_s: 0,
-            wn0g: 0,
-        }
-    }
-}
-
-impl InavParams {
-    /// Each field with its value in the field's SI unit.
-    fn values(&self) -> [(&'static Field, f64); 16] {
-        [
-            (&q::SISA, f64::from(self.sisa_index)),
-            (&q::AI0, self.ai0),
-            (&q::AI1, self.ai1),
-            (&q::AI2, self.ai2),
-            (&q::A0, self.a0_s),
-            (&q::A1, self.a1_s_s),
-            (&q::DT_LS, f64::from(self.dt_ls_s)),
-            (&q::T0T, f64::from(self.t0t_s)),
-            (&q::WN0T, f64::from(self.wn0t)),
-            (&q::WN_LSF, f64::from(self.wn_lsf)),
-            (&q::DN, f64::from(self.dn)),
-            (&q::DT_LSF, f64::from(self.dt_lsf_s)),
-            (&q::A0G, self.a0g_s),
-            (&q::A1G, self.a1g_s_s),
-            (&q::T0G, f64::from(self.t0g_s)),
-            (&q::WN0G, f64::from(self.wn0g)),
-        ]
-    }
-}
+/// I/NAV's parameters (word types 3, 5, 6 and 10 besides the clock, ephemeris and
+/// almanac): the Galileo messages' one set, SISA being SISA(E1,E5b) here.
+pub use crate::navmsg::galileo_fnav::GalileoParams as InavParams;
 
 /// Why an I/NAV message cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -168,7 +168,7 @@ fn page_1_and_4_parameters_come_back_from_the_pages() {
     let enc = FnavEncoder::new(&e, &[], &params, WEEK).unwrap();
     let pages = decode_pages(&enc, frame_page_at(&enc, e.toe), 5);
     let get = |name: &str| pages.iter().find_map(|p| p.field(name)).unwrap();
-    for (f, v) in params.values() {
+    for (f, v) in params.values(&super::super::quant::SISA) {
         within_half_lsb(f, v, f.si_value(get(f.name)));
     }
     assert_eq!(get("SISA(E1,E5a)"), 107);

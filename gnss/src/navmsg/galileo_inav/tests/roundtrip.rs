@@ -168,7 +168,7 @@ fn word_3_5_6_and_10_parameters_come_back_from_the_pages() {
     // Two subframes: word 10 is in the second.
     let pages = decode_pages(&enc, frame_page_at(&enc, e.toe), 30);
     let get = |name: &str| pages.iter().find_map(|p| p.field(name)).unwrap();
-    for (f, v) in params.values() {
+    for (f, v) in params.values(&super::super::quant::SISA) {
         within_half_lsb(f, v, f.si_value(get(f.name)));
     }
     assert_eq!(get("SISA(E1,E5b)"), 107);
