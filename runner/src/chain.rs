@@ -9,6 +9,7 @@
 //! synth --receive`), for runs whose I/Q would not fit on disk.
 
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsReadError, ObsRecord, read_obs_file};
+use skyforge_gnss::signal::Signal;
 use skyforge_receiver::input::{InputError, InputParams, Recording, SampleFeed, sample_stream};
 use skyforge_receiver::pipeline::{ReceiverConfig, ReceiverSummary, assistance_toml};
 use skyforge_receiver::session::{
@@ -205,13 +206,21 @@ pub fn synth_and_receive(
     })
 }
 
-/// The receiver's sample feed as the synthesis session's sample sink.
+/// The receiver's sample feed as the synthesis session's sample sink: a band's samples go
+/// to the receiver's input of each signal it receives in the band.
 #[derive(Debug)]
-struct Feed(SampleFeed);
+struct Feed {
+    feed: SampleFeed,
+    /// The receiver inputs of each synthesis band.
+    inputs_of: Vec<Vec<usize>>,
+}
 
 impl SampleSink for Feed {
     fn samples(&mut self, band: usize, antenna: usize, bytes: &[u8]) -> Result<(), SinkError> {
-        Ok(self.0.send(band, antenna, bytes)?)
+        for &input in self.inputs_of.get(band).into_iter().flatten() {
+            self.feed.send(input, antenna, bytes)?;
+        }
+        Ok(())
     }
 }
 
@@ -252,18 +261,33 @@ impl<'a> StreamedChain<'a> {
     ) -> Result<Self, ChainError> {
         let bands = session.bands().to_vec();
         let antennas = session.world().antennas;
-        let (feed, streams) = sample_stream(bands.len(), antennas.len(), FRAMES_IN_FLIGHT);
-        // Band-major, as the feed numbers its sources.
-        let recordings = bands
+        // One receiver input per band and signal received in it (a recording of several
+        // signals is read once per signal, as from files).
+        let inputs: Vec<(usize, Signal)> = (bands.iter().enumerate())
+            .flat_map(|(k, b)| {
+                let received = b.signals().iter().filter(|s| s.is_received());
+                received.map(move |&s| (k, s))
+            })
+            .collect();
+        let mut inputs_of = vec![Vec::new(); bands.len()];
+        for (i, &(k, _)) in inputs.iter().enumerate() {
+            inputs_of[k].push(i);
+        }
+        let (feed, streams) = sample_stream(inputs.len(), antennas.len(), FRAMES_IN_FLIGHT);
+        // Input-major, as the feed numbers its sources.
+        let recordings = inputs
             .iter()
-            .flat_map(|b| antennas.iter().map(move |a| (b, a)))
-            .map(|(b, a)| {
+            .flat_map(|&(k, s)| {
+                let b = &bands[k];
+                antennas.iter().map(move |a| (b, s, a))
+            })
+            .map(|(b, signal, a)| {
                 let meta = info.meta(b, &a.name, a.nominal_body_m.into());
                 let label = format!("{} (streamed)", recording_name(&a.name, b));
-                // The band's signal is known here; its carrier alone does not tell GPS
-                // L5 from Galileo E5a.
+                // The signal is known here; its carrier alone does not tell GPS L5 from
+                // Galileo E5a.
                 let params = InputParams {
-                    signal: Some(b.signal),
+                    signal: Some(signal),
                     ..InputParams::default()
                 };
                 Recording::from_sigmf_json(std::path::Path::new(&label), &meta.to_json(), &params)
@@ -275,7 +299,7 @@ impl<'a> StreamedChain<'a> {
             ReceiveSession::open_streams(recordings, streams, samples, assistance, config)?;
         Ok(Self {
             session,
-            feed: Feed(feed),
+            feed: Feed { feed, inputs_of },
             receiver,
         })
     }

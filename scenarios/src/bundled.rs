@@ -94,6 +94,11 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/interop-e1-static.toml"),
     },
     Bundled {
+        name: "interop-l1-e1-static",
+        summary: "120 s static GPS L1 C/A + Galileo E1 in one recording of the 1575.42 MHz band at 15 Msps ci8, with SigMF and a GNSS-SDR configuration for both (skyforge synth)",
+        text: include_str!("../bundled/interop-l1-e1-static.toml"),
+    },
+    Bundled {
         name: "interop-l5-static",
         summary: "120 s static GPS L5 (CNAV data, pilot) at 20.46 Msps ci8 with SigMF and a GNSS-SDR configuration (skyforge synth)",
         text: include_str!("../bundled/interop-l5-static.toml"),

@@ -26,6 +26,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "interop-bds-static",
             "interop-gal-static",
             "interop-e1-static",
+            "interop-l1-e1-static",
             "interop-l5-static",
             "interop-leo-gps",
             "receiver-leo-gps",
@@ -36,8 +37,8 @@ fn every_bundled_scenario_parses_and_builds() {
     for b in bundled() {
         // Galileo E1 needs the ICD's code tables, which SkyForge does not ship: without them
         // the scenario is refused, naming what to set (docs/signals.md).
-        if b.name == "interop-e1-static" && std::env::var_os("SKYFORGE_GALILEO_E1_CODES").is_none()
-        {
+        let e1 = ["interop-e1-static", "interop-l1-e1-static"].contains(&b.name);
+        if e1 && std::env::var_os("SKYFORGE_GALILEO_E1_CODES").is_none() {
             let e = resolve(b.name)
                 .expect_err("E1 without its code tables")
                 .to_string();

@@ -43,6 +43,7 @@ fn meta(format: WriterFormat, fs: f64, if_hz: f64, antenna: &str) -> RecordingMe
         scenario: "input-test".into(),
         seed: 7,
         description: "reader test".into(),
+        signals: Vec::new(),
     }
 }
 

@@ -55,3 +55,7 @@ pub const ANTENNA: &str = "skyforge:antenna";
 pub const ANTENNA_POSITION_BODY_M: &str = "skyforge:antenna_position_body_m";
 /// Global: the intermediate frequency of the signal within the recording (Hz).
 pub const IF_HZ: &str = "skyforge:if_hz";
+/// Global: the signals a recording of one band carries, by tag (`["gps-l1ca",
+/// "gal-e1"]`); written where it carries several (a recording of one signal names it by
+/// its carrier).
+pub const SIGNALS: &str = "skyforge:signals";

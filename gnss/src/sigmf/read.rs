@@ -6,6 +6,7 @@ use super::datetime::parse_utc;
 use super::keys;
 use crate::antenna_name::check_antenna_name;
 use crate::sample_format::SampleFormat;
+use crate::signal::Signal;
 use hifitime::Epoch;
 use serde_json::{Map, Value};
 use skyforge_orbits::time::{SUPPORTED_RANGE, in_supported_range};
@@ -72,6 +73,8 @@ pub struct ParsedMeta {
     pub antenna_position_body_m: Option<[f64; 3]>,
     /// Intermediate frequency of the signal within the recording (Hz; `skyforge:if_hz`).
     pub if_hz: Option<f64>,
+    /// The signals of a recording that carries several (`skyforge:signals`).
+    pub signals: Option<Vec<Signal>>,
     /// The first capture segment (all fields absent when there is none).
     pub first_capture: Capture,
     /// Number of capture segments.
@@ -102,6 +105,7 @@ impl ParsedMeta {
         let first_capture = c0.capture(frequency_hz)?;
         let trailing_bytes = g.u64(keys::TRAILING_BYTES)?;
         let antenna_position_body_m = g.vec3(keys::ANTENNA_POSITION_BODY_M)?;
+        let signals = g.signals()?;
         Ok(Self {
             format,
             sample_rate_hz,
@@ -109,6 +113,7 @@ impl ParsedMeta {
             antenna,
             antenna_position_body_m,
             if_hz,
+            signals,
             first_capture,
             capture_count: captures.len(),
         })
@@ -277,6 +282,29 @@ impl Fields<'_> {
             self.bad(keys::ANTENNA, v, &format!("an antenna name, which {rule}"))
         })?;
         Ok(Some(name.to_owned()))
+    }
+
+    /// The signals `skyforge:signals` names, if present: a non-empty array of distinct
+    /// signal tags.
+    fn signals(&self) -> Result<Option<Vec<Signal>>, MetaError> {
+        let Some(v) = self.obj.get(keys::SIGNALS) else {
+            return Ok(None);
+        };
+        let expected = "a non-empty array of distinct signal tags (\"gps-l1ca\", \"gal-e1\", ...)";
+        let tags = v
+            .as_array()
+            .filter(|a| !a.is_empty())
+            .ok_or_else(|| self.bad(keys::SIGNALS, v, expected))?;
+        let mut signals = Vec::with_capacity(tags.len().min(Signal::ALL.len()));
+        for t in tags {
+            let signal = t
+                .as_str()
+                .and_then(|t| t.parse::<Signal>().ok())
+                .filter(|s| !signals.contains(s))
+                .ok_or_else(|| self.bad(keys::SIGNALS, v, expected))?;
+            signals.push(signal);
+        }
+        Ok(Some(signals))
     }
 
     /// The container named by `core:datatype`.

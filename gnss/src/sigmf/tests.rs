@@ -3,6 +3,7 @@
 use super::datetime::{format_utc, parse_utc};
 use super::{Capture, MetaError, ParsedMeta, RecordingMeta};
 use crate::sample_format::SampleFormat;
+use crate::signal::Signal;
 use hifitime::Epoch;
 use proptest::prelude::*;
 
@@ -19,6 +20,7 @@ fn plain() -> RecordingMeta {
         scenario: "thesis-leo".into(),
         seed: 3,
         description: "test".into(),
+        signals: Vec::new(),
     }
 }
 
@@ -35,6 +37,7 @@ fn odd() -> RecordingMeta {
         scenario: "odd/scénario".into(),
         seed: u64::MAX,
         description: "two\nlines\t\\".into(),
+        signals: Vec::new(),
     }
 }
 
@@ -160,6 +163,7 @@ fn expected(meta: &RecordingMeta) -> ParsedMeta {
         antenna: Some(meta.antenna_name.clone()),
         antenna_position_body_m: Some(meta.antenna_position_body_m),
         if_hz: Some(meta.if_hz),
+        signals: (meta.signals.len() > 1).then(|| meta.signals.clone()),
         first_capture: Capture {
             frequency_hz: Some(meta.centre_frequency_hz),
             datetime: parse_utc(&meta.datetime_utc),
@@ -180,6 +184,25 @@ fn reads_back_what_it_writes() {
         read_back(PLAIN_TEXT).first_capture.datetime,
         Some(Epoch::from_gregorian_utc_at_midnight(2023, 3, 12))
     );
+}
+
+/// A recording of one band carrying several signals names them; one of a single signal
+/// names none (its carrier does), so the files written before stay as they were.
+#[test]
+fn a_recording_of_several_signals_names_them() {
+    let two = RecordingMeta {
+        signals: vec![Signal::GpsL1Ca, Signal::GalE1],
+        ..plain()
+    };
+    let text = two.to_text();
+    assert!(text.contains("\"skyforge:signals\": [\n      \"gps-l1ca\",\n      \"gal-e1\"\n    ]"));
+    assert_eq!(read_back(&text), expected(&two));
+    let one = RecordingMeta {
+        signals: vec![Signal::GpsL1Ca],
+        ..plain()
+    };
+    assert_eq!(one.to_text(), plain().to_text());
+    assert_eq!(read_back(&one.to_text()).signals, None);
 }
 
 #[test]
@@ -234,6 +257,24 @@ fn refuses_what_it_cannot_read_naming_the_field() {
             &format!("a time {}", skyforge_orbits::time::SUPPORTED_RANGE)
         )
     );
+    let signals = "a non-empty array of distinct signal tags (\"gps-l1ca\", \"gal-e1\", ...)";
+    for (value, found) in [
+        (serde_json::json!([]), "[]"),
+        (serde_json::json!("gps-l1ca"), "\"gps-l1ca\""),
+        (
+            serde_json::json!(["gps-l1ca", "gps-l9"]),
+            "[\"gps-l1ca\",\"gps-l9\"]",
+        ),
+        (
+            serde_json::json!(["gal-e1", "gal-e1"]),
+            "[\"gal-e1\",\"gal-e1\"]",
+        ),
+    ] {
+        assert_eq!(
+            read(&|j| j["global"]["skyforge:signals"] = value.clone()),
+            bad("global skyforge:signals", found, signals)
+        );
+    }
 }
 
 /// A finite number of any magnitude and sign.
@@ -289,6 +330,7 @@ fn any_meta(number: impl Strategy<Value = f64> + Clone) -> impl Strategy<Value =
                 scenario,
                 seed,
                 description,
+                signals: Vec::new(),
             }
         },
     )

@@ -2,6 +2,7 @@
 
 use super::keys;
 use crate::sample_format::SampleFormat;
+use crate::signal::Signal;
 use serde_json::{Value, json};
 
 /// What SkyForge writes as `core:recorder`: its name and this build's version.
@@ -35,12 +36,14 @@ pub struct RecordingMeta {
     pub seed: u64,
     /// What the recording is, for people (`core:description`).
     pub description: String,
+    /// The signals the recording carries; `skyforge:signals` where there are several.
+    pub signals: Vec<Signal>,
 }
 
 impl RecordingMeta {
     /// The `.sigmf-meta` JSON document (`core` namespace plus a `skyforge` extension).
     pub fn to_json(&self) -> Value {
-        json!({
+        let mut doc = json!({
             (keys::GLOBAL): {
                 (keys::DATATYPE): self.format.sigmf_datatype(),
                 (keys::SAMPLE_RATE): self.sample_rate_hz,
@@ -65,7 +68,14 @@ impl RecordingMeta {
                 (keys::DATETIME): self.datetime_utc,
             }],
             (keys::ANNOTATIONS): [],
-        })
+        });
+        if self.signals.len() > 1
+            && let Some(global) = doc.get_mut(keys::GLOBAL).and_then(Value::as_object_mut)
+        {
+            let tags: Vec<&str> = self.signals.iter().map(|s| s.tag()).collect();
+            global.insert(keys::SIGNALS.to_owned(), json!(tags));
+        }
+        doc
     }
 
     /// The `.sigmf-meta` file's text: the document pretty-printed, with a final newline.

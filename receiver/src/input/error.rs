@@ -226,6 +226,12 @@ pub enum Finding {
         .path.display()
     )]
     SeveralCaptures { path: PathBuf, count: usize },
+    /// A recording of several signals holds one the bundled receiver does not receive.
+    #[error(
+        "{} also holds {signal}, which the bundled receiver does not receive: it is read for the other signals",
+        .path.display()
+    )]
+    SignalNotReceived { path: PathBuf, signal: String },
     /// A command-line value replaced a different metadata value.
     #[error("{}: {field} {given} from the command line replaces {metadata} of the metadata", .path.display())]
     Overridden {

@@ -47,8 +47,12 @@ pub struct Recording {
     pub if_hz: f64,
     /// Centre frequency of the recorded band (Hz; SigMF capture `core:frequency`).
     pub centre_frequency_hz: Option<f64>,
-    /// The signal recorded, when the metadata or the command line tells.
+    /// The signal recorded, when the metadata or the command line tells; `None` for a
+    /// recording of several signals read for all of them ([`Self::carried`]).
     pub signal: Option<Signal>,
+    /// Every signal of a recording that carries several (`skyforge:signals`); empty for
+    /// one of a single signal.
+    pub carried: Vec<Signal>,
     /// UTC time of the first sample (`core:datetime` of the first capture).
     pub start_utc: Option<Epoch>,
     /// Index of the first sample in the recorder's sample stream (`core:global_index`).
@@ -115,13 +119,24 @@ impl Merge<'_> {
 
     /// The signal recorded: the command line's, else the metadata's (the one whose carrier
     /// is the centre frequency plus `skyforge:if_hz`, else the one in the band recorded,
-    /// else the one the file name names).
+    /// else the one the file name names). A recording of several signals has none unless
+    /// the command line picks one of them.
     fn signal(
         &mut self,
         meta: &ParsedMeta,
         sample_rate_hz: f64,
         given: Option<Signal>,
     ) -> Option<Signal> {
+        if let Some(carried) = &meta.signals {
+            return match given {
+                Some(g) if !carried.contains(&g) => {
+                    let tags: Vec<&str> = carried.iter().map(|s| s.tag()).collect();
+                    self.pick("the signal", Some(tags.join("+")), Some(g.tag().to_owned()));
+                    Some(g)
+                }
+                given => given,
+            };
+        }
         let centre = meta.first_capture.frequency_hz;
         let by_carrier = centre
             .zip(meta.if_hz)
@@ -170,6 +185,7 @@ impl Recording {
             if_hz,
             centre_frequency_hz: params.signal.map(|s| s.carrier_hz() - if_hz),
             signal: params.signal,
+            carried: Vec::new(),
             start_utc: None,
             global_index: None,
             first_sample: 0,
@@ -250,6 +266,7 @@ impl Recording {
             if_hz,
             centre_frequency_hz: c0.frequency_hz,
             signal,
+            carried: meta.signals.clone().unwrap_or_default(),
             start_utc: c0.datetime,
             global_index: c0.global_index,
             first_sample: c0.sample_start.unwrap_or(0),

@@ -9,7 +9,7 @@ mod rinex_files;
 
 pub use rinex_files::RinexObsFiles;
 
-use crate::input::{BlockReader, InputParams, InputReport, Recording, StreamReader};
+use crate::input::{BlockReader, Finding, InputParams, InputReport, Recording, StreamReader};
 use crate::pipeline::{
     ApproximateState, BandInput, EpochReport, Receiver, ReceiverConfig, ReceiverFile,
     ReceiverSetup, ReceiverSummary,
@@ -146,6 +146,14 @@ impl Samples {
 /// file name, as SkyForge names Galileo E5a recordings), or nothing that names one.
 fn unknown_signal(r: &Recording) -> String {
     let path = r.source_path();
+    if !r.carried.is_empty() {
+        let tags: Vec<&str> = r.carried.iter().map(|s| s.tag()).collect();
+        return format!(
+            "{}: holds {}, none of which the bundled receiver receives",
+            path.display(),
+            tags.join(", ")
+        );
+    }
     let untracked = path
         .file_name()
         .and_then(|n| Signal::any_from_file_name(&n.to_string_lossy()));
@@ -161,6 +169,41 @@ fn unknown_signal(r: &Recording) -> String {
     }
 }
 
+/// The signals recording `r` is read for, each with its copy of `r`: its one signal, or
+/// every received signal of a recording that carries several (read once per signal; the
+/// others noted).
+fn read_for(r: Recording, params: &InputParams) -> Result<Vec<(Signal, Recording)>, SessionError> {
+    if let Some(signal) = r.signal.or(params.signal) {
+        return Ok(vec![(signal, r)]);
+    }
+    let (received, other): (Vec<Signal>, Vec<Signal>) =
+        r.carried.iter().partition(|s| s.is_received());
+    if received.is_empty() {
+        return Err(SessionError::Input(unknown_signal(&r)));
+    }
+    let mut noted = r.clone();
+    noted
+        .findings
+        .extend(other.iter().map(|s| Finding::SignalNotReceived {
+            path: r.source_path().to_owned(),
+            signal: s.tag().to_owned(),
+        }));
+    Ok(received
+        .into_iter()
+        .enumerate()
+        .map(|(k, s)| {
+            let copy = if k == 0 { noted.clone() } else { r.clone() };
+            (
+                s,
+                Recording {
+                    signal: Some(s),
+                    ..copy
+                },
+            )
+        })
+        .collect())
+}
+
 fn open_bands(
     recordings: Vec<Recording>,
     params: &InputParams,
@@ -168,15 +211,14 @@ fn open_bands(
 ) -> Result<Bands, SessionError> {
     let mut groups: Vec<(Signal, Vec<usize>, Vec<Recording>)> = Vec::new();
     for (i, r) in recordings.into_iter().enumerate() {
-        let Some(signal) = r.signal.or(params.signal) else {
-            return Err(SessionError::Input(unknown_signal(&r)));
-        };
-        match groups.iter_mut().find(|g| g.0 == signal) {
-            Some(g) => {
-                g.1.push(i);
-                g.2.push(r);
+        for (signal, r) in read_for(r, params)? {
+            match groups.iter_mut().find(|g| g.0 == signal) {
+                Some(g) => {
+                    g.1.push(i);
+                    g.2.push(r);
+                }
+                None => groups.push((signal, vec![i], vec![r])),
             }
-            None => groups.push((signal, vec![i], vec![r])),
         }
     }
     let mut bands = Bands {

@@ -56,6 +56,31 @@ pub struct SignalConfig {
     /// ([`Signal::of_system`]: GPS L1 C/A, BeiDou B1I, Galileo E5a).
     #[serde(default)]
     pub signals: Vec<Signal>,
+    /// How the signals are recorded: one recording per signal (the default) or one per
+    /// band, the signals that share a carrier in one.
+    #[serde(default)]
+    pub recordings: RecordingLayout,
+}
+
+/// `[signal] recordings`: which signals share a recording.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum RecordingLayout {
+    /// One recording per signal (`"per-signal"`).
+    #[default]
+    PerSignal,
+    /// One recording per band (`"per-band"`): the signals on one carrier (GPS L1 C/A and
+    /// Galileo E1 at 1575.42 MHz, GPS L5 and Galileo E5a at 1176.45 MHz) summed in one
+    /// recording, as a receiver's front end takes them; signals on other carriers get
+    /// recordings of their own.
+    PerBand,
+}
+
+impl RecordingLayout {
+    /// Whether signals `a` and `b` go into one recording.
+    pub fn together(self, a: Signal, b: Signal) -> bool {
+        self == Self::PerBand && (a.carrier_hz() - b.carrier_hz()).abs() < 1.0
+    }
 }
 
 /// Checks a C/N0 value.
@@ -80,6 +105,7 @@ impl Default for SignalConfig {
             filter: None,
             truth_rate_hz: default_truth_rate(),
             signals: Vec::new(),
+            recordings: RecordingLayout::default(),
         }
     }
 }

@@ -39,13 +39,14 @@ const DOPPLER_MAX_GROUND_HZ: f64 = 5_000.0;
 const DOPPLER_MAX_LEO_HZ: f64 = 50_000.0;
 
 /// The `.conf` text of the recording `name` (`<name>.sigmf-data`, PVT outputs
-/// `<name>.*`) of one `signal`: a LEO gets a widened Doppler search and no atmospheric
+/// `<name>.*`) of `signals` (one, or the signals of one band: GNSS-SDR's channels of
+/// each on one signal source): a LEO gets a widened Doppler search and no atmospheric
 /// corrections (it flies above the troposphere and mostly above the ionosphere); a ground
 /// receiver corrects the errors the signal carries (`iono_on`, `tropo_on`).
 pub fn recording_config(
     cfg: &SignalConfig,
     name: &str,
-    signal: Signal,
+    signals: &[Signal],
     leo: bool,
     iono_on: bool,
     tropo_on: bool,
@@ -62,7 +63,7 @@ pub fn recording_config(
     config(
         cfg,
         &format!("{name}.sigmf-data"),
-        &[signal],
+        signals,
         doppler,
         corrections,
         name,

@@ -17,7 +17,7 @@ pub(crate) mod session;
 pub(crate) mod sigmf;
 pub(crate) mod transmitter;
 
-pub use config::{BLOCK_S, SignalConfig};
+pub use config::{BLOCK_S, RecordingLayout, SignalConfig};
 pub use filter::{BandFilter, FilterConfig};
 pub use link_terms::{AntennaEpoch, LinkTerms};
 pub use mix::{ChannelBlock, Chips, MixScratch, mix_into};

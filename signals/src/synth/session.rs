@@ -9,7 +9,7 @@
 //! ([`super::render::SLICE_BYTES`]), whatever the duration and the sample rate
 //! ([`super::budget`] gives the bound).
 
-use super::config::{BLOCK_S, SignalConfig};
+use super::config::{BLOCK_S, RecordingLayout, SignalConfig};
 use super::constellation::{self, TransmitterError};
 use super::filter::BandFilter;
 use super::link_terms::{AntennaEpoch, LinkTerms};
@@ -158,14 +158,62 @@ pub struct SynthWorld<'a> {
     pub duration_s: f64,
 }
 
-/// The transmitters of one band, written to one recording per antenna.
+/// The transmitters of one band, written to one recording per antenna: one signal's, or
+/// (`[signal] recordings = "per-band"`) those of every signal on one carrier.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Band {
-    pub signal: Signal,
+    /// The signals recorded, in the order their transmitters come; never empty.
+    signals: Vec<Signal>,
     /// Index of the band's first transmitter among the session's, band by band.
     pub first: usize,
-    /// Its transmitters (one per satellite).
+    /// Its transmitters (one per satellite and signal).
     pub count: usize,
+}
+
+impl Band {
+    /// The band of one signal, its `count` transmitters from the session's `first`.
+    pub fn new(signal: Signal, first: usize, count: usize) -> Self {
+        Self {
+            signals: vec![signal],
+            first,
+            count,
+        }
+    }
+
+    /// The band with `signal`'s `count` transmitters added after its own.
+    fn with(mut self, signal: Signal, count: usize) -> Self {
+        self.signals.push(signal);
+        self.count += count;
+        self
+    }
+
+    /// The signals recorded.
+    pub fn signals(&self) -> &[Signal] {
+        &self.signals
+    }
+
+    /// The band's first signal: its carrier is the band's.
+    pub fn signal(&self) -> Signal {
+        self.signals[0]
+    }
+
+    /// The recording's tag: the signal's (`gps-l1ca`), or the signals' joined by `+`
+    /// (`gps-l1ca+gal-e1`).
+    pub fn tag(&self) -> String {
+        let tags: Vec<&str> = self.signals.iter().map(|s| s.tag()).collect();
+        tags.join("+")
+    }
+
+    /// The signals' names, for people (`GPS L1 C/A + GAL E1`).
+    pub fn name(&self) -> String {
+        let names: Vec<&str> = self.signals.iter().map(|s| s.name()).collect();
+        names.join(" + ")
+    }
+
+    /// Whether the band records `signal`.
+    pub fn records(&self, signal: Signal) -> bool {
+        self.signals.contains(&signal)
+    }
 }
 
 /// What a finished session reports.
@@ -219,6 +267,37 @@ fn satellites_of(transmitters: &[Transmitter]) -> (Vec<SatId>, Vec<usize>) {
         })
         .collect();
     (sats, sat_of)
+}
+
+/// The bands of `per_signal` (each signal's transmitters, in order) laid out by `layout`,
+/// and their transmitters band by band; a signal without transmitters gets no band.
+fn group_bands<T>(
+    layout: RecordingLayout,
+    per_signal: Vec<(Signal, Vec<T>)>,
+) -> (Vec<Band>, Vec<T>) {
+    let mut groups: Vec<(Band, Vec<T>)> = Vec::new();
+    for (sig, txs) in per_signal.into_iter().filter(|(_, t)| !t.is_empty()) {
+        match groups
+            .iter_mut()
+            .find(|(b, _)| layout.together(b.signal(), sig))
+        {
+            Some((band, list)) => {
+                *band = band.clone().with(sig, txs.len());
+                list.extend(txs);
+            }
+            None => groups.push((Band::new(sig, 0, txs.len()), txs)),
+        }
+    }
+    let mut bands = Vec::new();
+    let mut transmitters = Vec::new();
+    for (band, txs) in groups {
+        bands.push(Band {
+            first: transmitters.len(),
+            ..band
+        });
+        transmitters.extend(txs);
+    }
+    (bands, transmitters)
 }
 
 /// Every satellite's ephemeris at the start (the set its message will carry).
@@ -282,22 +361,15 @@ impl<'a> SynthSession<'a> {
         let ephs = ephemerides_at_start(&world);
         let start = world.origin.start();
         let mut iono = errors.ionosphere.clone();
-        let mut bands = Vec::new();
-        let mut transmitters: Vec<Transmitter> = Vec::new();
+        let mut per_signal = Vec::new();
         for system in [System::Gps, System::Beidou, System::Galileo] {
             for sig in signal.signals_of(system) {
                 let txs = constellation::transmitters(sig, &ephs, start, &iono)
                     .map_err(|e| SynthError::Transmitters(sig, e))?;
-                if !txs.is_empty() {
-                    bands.push(Band {
-                        signal: sig,
-                        first: transmitters.len(),
-                        count: txs.len(),
-                    });
-                    transmitters.extend(txs);
-                }
+                per_signal.push((sig, txs));
             }
         }
+        let (bands, transmitters) = group_bands(signal.recordings, per_signal);
         // The signal follows the coefficients as broadcast (quantised in the message).
         if let Some((alpha, beta)) = transmitters
             .iter()
@@ -377,14 +449,14 @@ impl<'a> SynthSession<'a> {
                     "is listed twice",
                 )));
             }
-            if !self.bands.iter().any(|b| b.signal.system() == s.system()) {
+            if !self.signals().iter().any(|b| b.system() == s.system()) {
                 return Err(SynthError::Invalid(Invalid::new(
                     field,
                     s.tag(),
                     "its system has no satellites in this scenario (enable it under [gnss])",
                 )));
             }
-            if s.is_default_fix() || self.bands.iter().any(|b| b.signal == *s) {
+            if s.is_default_fix() || self.bands.iter().any(|b| b.records(*s)) {
                 return Err(SynthError::Invalid(Invalid::new(
                     field,
                     s.tag(),
@@ -401,13 +473,17 @@ impl<'a> SynthSession<'a> {
         }
         // The transmitted signals need noise too: the calibrated model holds only the
         // signals the bundled receiver tracks (not yet Galileo E5a).
-        if let Some(band) = self.bands.iter().find(|b| !model.has_noise_for(b.signal)) {
+        if let Some(signal) = self
+            .signals()
+            .into_iter()
+            .find(|&s| !model.has_noise_for(s))
+        {
             return Err(SynthError::Invalid(Invalid::new(
                 "observation.noise.model",
                 "\"calibrated\"",
                 format!(
                     "the calibrated noise model has no calibration for {} (set [observation.noise] model = \"elevation\" or \"constant\")",
-                    band.signal.tag()
+                    signal.tag()
                 ),
             )));
         }
@@ -441,7 +517,7 @@ impl<'a> SynthSession<'a> {
     /// Every signal observed: each band's, then the observed-only signals
     /// ([`Self::observation_level`]).
     pub fn signals(&self) -> Vec<Signal> {
-        let bands = self.bands.iter().map(|b| b.signal);
+        let bands = self.bands.iter().flat_map(|b| b.signals.iter().copied());
         bands.chain(self.observed.iter().copied()).collect()
     }
 
@@ -451,11 +527,11 @@ impl<'a> SynthSession<'a> {
         &self.sats
     }
 
-    /// The satellites of `band`'s transmitters.
-    pub fn band_satellites(&self, band: &Band) -> Vec<SatId> {
+    /// The satellite and signal of each of `band`'s transmitters.
+    pub fn band_transmitters(&self, band: &Band) -> Vec<(SatId, Signal)> {
         self.transmitters[band.first..band.first + band.count]
             .iter()
-            .map(|t| t.sat)
+            .map(|t| (t.sat, t.signal))
             .collect()
     }
 
@@ -565,13 +641,16 @@ impl<'a> SynthSession<'a> {
                 .with_clocks(clocks.clone())
                 .with_events(self.events.clone());
                 // Observed-only signals come from their system's first band alone.
-                let first_of_system = !self.bands[..i]
-                    .iter()
-                    .any(|o| o.signal.system() == b.signal.system());
-                let s = if observation_level && first_of_system {
-                    s.without_samples().with_observed(self.observed.clone())
-                } else if observation_level {
-                    s.without_samples()
+                let first_band_of = |system: System| {
+                    self.bands
+                        .iter()
+                        .position(|o| o.signals.iter().any(|s| s.system() == system))
+                };
+                let observed: Vec<Signal> = (self.observed.iter().copied())
+                    .filter(|o| first_band_of(o.system()) == Some(i))
+                    .collect();
+                let s = if observation_level {
+                    s.without_samples().with_observed(observed)
                 } else {
                     s
                 };
@@ -591,6 +670,7 @@ impl<'a> SynthSession<'a> {
         let group_delays: Vec<f64> = (self.transmitters.iter())
             .map(|t| t.signal.broadcast_group_delay_s(&t.broadcast_ephemeris()))
             .collect();
+        let tx_signals: Vec<Signal> = self.transmitters.iter().map(|t| t.signal).collect();
         let store = EphemerisStore::new(self.broadcast, world.origin);
         let sats = self.sats;
         let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
@@ -601,6 +681,7 @@ impl<'a> SynthSession<'a> {
             sats: &sats,
             sat_of: &self.sat_of,
             group_delays: &group_delays,
+            tx_signals: &tx_signals,
             terms,
             synths: &mut synths,
             start_state: None,
@@ -634,6 +715,8 @@ struct Running<'r, 't, 's> {
     sat_of: &'r [usize],
     /// Each transmitter's broadcast group delay (s), [`Band::first`]-indexed.
     group_delays: &'r [f64],
+    /// Each transmitter's signal, [`Band::first`]-indexed.
+    tx_signals: &'r [Signal],
     terms: LinkTerms<'r>,
     synths: &'r mut [Synthesiser<'t>],
     start_state: Option<(Vec3, Vec3)>,
@@ -684,7 +767,7 @@ impl Running<'_, '_, '_> {
                             a,
                             &at_antenna[a],
                             sat,
-                            band.signal,
+                            self.tx_signals[tx],
                             chunk.link(k, a, s),
                         )
                         .map(|end| end.with_group_delay(self.group_delays[tx]))
@@ -716,7 +799,7 @@ impl Running<'_, '_, '_> {
             for a in 0..n_ant {
                 let records: Vec<_> = truth
                     .iter()
-                    .filter(|r| r.antenna == a && r.signal == band.signal)
+                    .filter(|r| r.antenna == a && band.records(r.signal))
                     .copied()
                     .collect();
                 let sat_index = &self.sat_of[band.first..band.first + band.count];
@@ -761,6 +844,38 @@ pub struct RunInfo {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Per band, the signals on one carrier share a recording, their transmitters one
+    /// after the other; per signal (the default), each has its own as before.
+    #[test]
+    fn signals_on_one_carrier_share_a_band_when_recorded_per_band() {
+        let per_signal = || {
+            vec![
+                (Signal::GpsL1Ca, vec!["G1", "G2"]),
+                (Signal::GpsL5, vec!["G1"]),
+                (Signal::BdsB1I, vec![]),
+                (Signal::GalE5a, vec!["E1", "E2", "E3"]),
+                (Signal::GalE1, vec!["E1"]),
+            ]
+        };
+        let (bands, txs) = group_bands(RecordingLayout::PerBand, per_signal());
+        assert_eq!(txs, ["G1", "G2", "E1", "G1", "E1", "E2", "E3"]);
+        let l1 = Band::new(Signal::GpsL1Ca, 0, 2).with(Signal::GalE1, 1);
+        let l5 = Band::new(Signal::GpsL5, 3, 1).with(Signal::GalE5a, 3);
+        assert_eq!(bands, [l1, l5]);
+        assert_eq!(bands[0].tag(), "gps-l1ca+gal-e1");
+        assert_eq!(bands[1].name(), "GPS L5 + GAL E5a");
+        let (bands, txs) = group_bands(RecordingLayout::PerSignal, per_signal());
+        assert_eq!(txs, ["G1", "G2", "G1", "E1", "E2", "E3", "E1"]);
+        let expected = [
+            Band::new(Signal::GpsL1Ca, 0, 2),
+            Band::new(Signal::GpsL5, 2, 1),
+            Band::new(Signal::GalE5a, 3, 3),
+            Band::new(Signal::GalE1, 6, 1),
+        ];
+        assert_eq!(bands, expected);
+        assert_eq!(bands[0].tag(), "gps-l1ca");
+    }
 
     #[test]
     fn the_observation_level_clock_steps_on_every_truth_record() {

@@ -17,7 +17,7 @@ const WRITE_BUFFER_BYTES: usize = 1 << 20;
 
 /// The file-name stem of antenna `antenna`'s recording of `band`: `<antenna>.<tag>`.
 pub fn recording_name(antenna: &str, band: &Band) -> String {
-    format!("{antenna}.{}", band.signal.tag())
+    format!("{antenna}.{}", band.tag())
 }
 
 impl RunInfo {
@@ -27,7 +27,7 @@ impl RunInfo {
         RecordingMeta {
             format: self.format,
             sample_rate_hz: self.sample_rate_hz,
-            centre_frequency_hz: band.signal.carrier_hz() - self.if_hz,
+            centre_frequency_hz: band.signal().carrier_hz() - self.if_hz,
             if_hz: self.if_hz,
             datetime_utc: format_utc(self.start),
             antenna_name: antenna.to_owned(),
@@ -37,8 +37,9 @@ impl RunInfo {
             description: format!(
                 "SkyForge synthesis of {} for antenna {antenna}: {}",
                 self.scenario,
-                band.signal.name()
+                band.name()
             ),
+            signals: band.signals().to_vec(),
         }
     }
 }
@@ -165,11 +166,7 @@ mod tests {
             scenario: "static-bds".into(),
             seed: 42,
         };
-        let band = Band {
-            signal: Signal::BdsB1I,
-            first: 0,
-            count: 3,
-        };
+        let band = Band::new(Signal::BdsB1I, 0, 3);
         assert_eq!(recording_name("ant2", &band), "ant2.bds-b1i");
         let meta = run.meta(&band, "ant2", [0.5, -0.25, 0.1]);
         // Captured at version 0.1.0; the recorder is this build's.

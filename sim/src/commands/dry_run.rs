@@ -108,18 +108,17 @@ fn channel_samples(
         .bands()
         .iter()
         .map(|band| {
-            let paths: usize = session
-                .band_satellites(band)
+            let weighted: f64 = session
+                .band_transmitters(band)
                 .iter()
-                .flat_map(|&sat| {
-                    session
-                        .world()
-                        .antennas
-                        .iter()
-                        .map(move |ant| 1 + multipath.paths_of(&ant.name, sat))
+                .map(|&(sat, signal)| {
+                    let paths: usize = (session.world().antennas.iter())
+                        .map(|ant| 1 + multipath.paths_of(&ant.name, sat))
+                        .sum();
+                    weight(signal) * paths as f64
                 })
                 .sum();
-            weight(band.signal) * paths as f64
+            weighted
         })
         .sum();
     samples * paths

@@ -166,7 +166,9 @@ pub fn synthesise(
     let mut truth = TruthWriter::create(&truth_path, &meta, &sats, antennas)
         .with_context(|| format!("cannot create {}", truth_path.display()))?;
     if signal.truth_rate_hz > 0 {
-        let transmitted: Vec<Signal> = bands.iter().map(|b| b.signal).collect();
+        let transmitted: Vec<Signal> = (bands.iter())
+            .flat_map(|b| b.signals().iter().copied())
+            .collect();
         truth.create_signal(antennas, &transmitted)?;
     }
     let mut obs = ObsFiles::new(&staged.file(""), antennas, &signals);
@@ -222,7 +224,7 @@ pub fn synthesise(
         for ant in antennas {
             let name = recording_name(&ant.name, band);
             let conf =
-                gnss_sdr::recording_config(signal, &name, band.signal, leo, iono_on, tropo_on);
+                gnss_sdr::recording_config(signal, &name, band.signals(), leo, iono_on, tropo_on);
             let conf_path = staged.file(&format!("{name}.gnss-sdr.conf"));
             std::fs::write(&conf_path, conf).with_context(|| writing(&conf_path))?;
         }
@@ -237,7 +239,7 @@ pub fn synthesise(
     for band in &bands {
         println!(
             "signals    {} from {} satellites, {} antennas",
-            band.signal.name(),
+            band.name(),
             band.count,
             n_ant
         );
