@@ -446,10 +446,28 @@ fn gnss_sdr_decodes_inav_and_fixes_on_interop_e1_static() {
     pilot_signal_fixes("interop-e1-static", "gal-e1", "I/NAV");
 }
 
+/// Acceptance (issue #34): GNSS-SDR 0.0.17 fixes on GPS L1 C/A and Galileo E1 recorded
+/// together (`interop-l1-e1-static`, one recording of the 1575.42 MHz band) with the one
+/// configuration SkyForge writes for it: at least 20 fixes, median 3D error under 5 m, and
+/// satellites of both systems in its solution (its last GSV sentences of each).
+#[test]
+#[ignore = "interop tier: needs gnss-sdr (scripts/test.sh installs it)"]
+fn gnss_sdr_fixes_on_gps_l1ca_and_galileo_e1_in_one_recording() {
+    let (log, nmea) =
+        pilot_signal_fixes("interop-l1-e1-static", "gps-l1ca+gal-e1", "LNAV and I/NAV");
+    let (gps, galileo) = (last_gsv(&nmea, "GP"), last_gsv(&nmea, "GA"));
+    println!(
+        "GNSS-SDR's last GSV: {} GPS, {} Galileo satellites",
+        gps.len(),
+        galileo.len()
+    );
+    assert!(gps.len() >= 4 && galileo.len() >= 4, "{log}");
+}
+
 /// GNSS-SDR on the bundled static `scenario` (at 52 N 13 E, 100 m) recorded on `band`:
 /// at least 20 fixes, their median 3D error under 5 m; prints the satellites whose
-/// `message` ephemeris GNSS-SDR decoded.
-fn pilot_signal_fixes(scenario: &str, band: &str, message: &str) {
+/// `message` ephemeris GNSS-SDR decoded; returns GNSS-SDR's console log and NMEA output.
+fn pilot_signal_fixes(scenario: &str, band: &str, message: &str) -> (String, String) {
     let _turn = one_at_a_time();
     let tmp = tempfile::tempdir().unwrap();
     let (out, log, nmea) = synth_and_receive(tmp.path(), scenario, band);
@@ -472,6 +490,7 @@ fn pilot_signal_fixes(scenario: &str, band: &str, message: &str) {
     println!("{message} ephemerides GNSS-SDR decoded: {decoded:?}");
     assert!(errors.len() >= 20, "{} fixes\n{log}", errors.len());
     assert!(median < 5.0, "median 3D error {median} m\n{log}");
+    (log, nmea)
 }
 
 /// Issue #4's side-by-side bar on GPS L1 C/A (`interop_observables::side_by_side`).

@@ -522,3 +522,69 @@ fn no_epoch_message(s: &ReceiverSummary, input: &str) -> String {
         s.detections
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use skyforge_gnss::sample_format::SampleFormat as WriterFormat;
+    use skyforge_gnss::sigmf::RecordingMeta;
+
+    /// A recording's description as SkyForge writes it for `signals` on one carrier.
+    fn recording(signals: &[Signal], params: &InputParams) -> Recording {
+        let meta = RecordingMeta {
+            format: WriterFormat::Ci8,
+            sample_rate_hz: 20.46e6,
+            centre_frequency_hz: signals[0].carrier_hz(),
+            if_hz: 0.0,
+            datetime_utc: "2023-03-12T00:00:00.000000000Z".into(),
+            antenna_name: "ant1".into(),
+            antenna_position_body_m: [0.0; 3],
+            scenario: "test".into(),
+            seed: 1,
+            description: "test".into(),
+            signals: signals.to_vec(),
+        };
+        let path = Path::new("ant1.band.sigmf-meta");
+        Recording::from_sigmf_json(path, &meta.to_json(), params).unwrap()
+    }
+
+    /// A recording of several signals is read once per signal the receiver receives, the
+    /// others noted; a signal given on the command line picks one.
+    #[test]
+    fn a_recording_of_several_signals_is_read_for_each_received_one() {
+        let none = InputParams::default();
+        let both = recording(&[Signal::GpsL5, Signal::GalE5a], &none);
+        assert_eq!(both.signal, None);
+        let read = read_for(both, &none).unwrap();
+        let signals: Vec<Signal> = read.iter().map(|(s, _)| *s).collect();
+        assert_eq!(signals, [Signal::GpsL5, Signal::GalE5a]);
+        assert!(read.iter().all(|(s, r)| r.signal == Some(*s)));
+        assert!(read.iter().all(|(_, r)| r.findings.is_empty()));
+
+        // GPS L2 is a signal the bundled receiver does not receive.
+        let read = read_for(recording(&[Signal::GpsL1Ca, Signal::GpsL2], &none), &none).unwrap();
+        assert_eq!(read.len(), 1);
+        assert_eq!(read[0].0, Signal::GpsL1Ca);
+        let noted: Vec<String> = read[0].1.findings.iter().map(|f| f.to_string()).collect();
+        assert_eq!(
+            noted,
+            [
+                "ant1.band.sigmf-meta also holds gps-l2, which the bundled receiver does not receive: it is read for the other signals"
+            ]
+        );
+        let e = read_for(recording(&[Signal::GpsL2, Signal::BdsB3I], &none), &none).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "ant1.band.sigmf-meta: holds gps-l2, bds-b3i, none of which the bundled receiver receives"
+        );
+
+        let l5 = InputParams {
+            signal: Some(Signal::GpsL5),
+            ..InputParams::default()
+        };
+        let read = read_for(recording(&[Signal::GpsL5, Signal::GalE5a], &l5), &l5).unwrap();
+        assert_eq!(read.len(), 1);
+        assert_eq!(read[0].0, Signal::GpsL5);
+        assert!(read[0].1.findings.is_empty());
+    }
+}
