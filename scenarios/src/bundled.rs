@@ -120,6 +120,12 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/attitude-leo-gps.toml"),
     },
     Bundled {
+        name: "attitude-leo-l1-l5",
+        summary: "60 s GPS L1 C/A on the thesis LEO, three antennas on two 1 m baselines, 4 Msps \
+                  ci8, 45 dB-Hz: the attitude chain at the signal level (scripts/demo.sh)",
+        text: include_str!("../bundled/attitude-leo-l1-l5.toml"),
+    },
+    Bundled {
         name: "integrity-lab",
         summary: "Paper 002 lab: two station positions (30 N 104 E, 500 and 600 m), four \
                   receivers on one rubidium clock, 1800 s, BDS-2 + GPS, observation level",

@@ -31,6 +31,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "interop-leo-gps",
             "receiver-leo-gps",
             "attitude-leo-gps",
+            "attitude-leo-l1-l5",
             "integrity-lab"
         ]
     );
@@ -93,6 +94,7 @@ fn every_unstated_value_says_it_is_assumed() {
         "thesis/v-1.2.1",
         "thesis/t-3.2",
         "attitude-leo-gps",
+        "attitude-leo-l1-l5",
     ] {
         let text = bundled().iter().find(|b| b.name == name).expect(name).text;
         for key in [
