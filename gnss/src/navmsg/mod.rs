@@ -8,5 +8,6 @@ pub mod galileo_fnav;
 pub mod galileo_inav;
 pub mod gps_cnav;
 pub mod gps_lnav;
+pub mod ldpc_gf64;
 
 pub use bds::{BdsExtraFields, BdsNavEncoder, BdsNavError, BdsNavFormat, Klobuchar};
