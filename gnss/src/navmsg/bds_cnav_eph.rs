@@ -93,6 +93,7 @@ pub(crate) const ISC_B2AD: Field = field("ISC_B2ad", 12, true, Lsb::Pow2(-34));
 // §7.14-7.17: health, integrity flags, accuracy indices.
 pub(crate) const HS: Field = field("HS", 2, false, Lsb::Count);
 pub(crate) const SISMAI: Field = field("SISMAI", 4, false, Lsb::Count);
+pub(crate) const SISAI_OE: Field = field("SISAIoe", 5, false, Lsb::Count);
 /// Figure 6-14 (B2a) / 6-15 (B1C): t_op, SISAIocb, SISAIoc1, SISAIoc2 (22 bits, zeros).
 pub(crate) const SISAI_OC: Field = field("SISAIoc", 22, false, Lsb::Count);
 /// Table 7-23: DIF, SIF, AIF of B1C.

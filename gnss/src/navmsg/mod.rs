@@ -1,6 +1,7 @@
 //! Navigation messages a real receiver decodes: GPS LNAV and BeiDou D1/D2.
 
 pub(crate) mod bds;
+pub mod bds_cnav1;
 pub mod bds_cnav2;
 mod bds_cnav_eph;
 pub mod conv_k7;
