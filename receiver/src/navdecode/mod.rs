@@ -30,6 +30,7 @@
 
 mod bds;
 mod bds_bch;
+mod bds_cnav2;
 mod bds_fields;
 mod decoder;
 mod framer;
@@ -45,6 +46,7 @@ mod symbol_sync;
 mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
+pub use bds_cnav2::BdsCnav2Decoder;
 pub use decoder::{Decoder, MessageFormat};
 pub(crate) use galileo_fnav::FnavDecoder;
 pub(crate) use galileo_inav::InavDecoder;
