@@ -29,6 +29,7 @@ fn antenna(name: &str, x: f64) -> Antenna {
         pco_m: Vec3::new(0.0, 0.0, 0.05),
         pcv_m: None,
         gain_dbi: None,
+        phase_centres: Vec::new(),
     }
 }
 

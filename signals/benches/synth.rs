@@ -31,6 +31,7 @@ fn synth(c: &mut Criterion) {
                 iono_m: 5.0,
                 tropo_m: 2.5,
                 antenna_m: 0.0,
+                antenna_by_signal_m: Vec::new(),
                 cn0_dbhz: 45.0,
                 reflections: Vec::new(),
             })

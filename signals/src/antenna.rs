@@ -3,6 +3,7 @@
 //! as data for the signal stage).
 
 use skyforge_gnss::antenna_name::check_antenna_name;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::check::{Allowed, Invalid};
 
@@ -47,6 +48,30 @@ pub struct AntennaConfig {
     /// Gain pattern (dBi) over the antenna frame.
     #[serde(default)]
     pub gain_dbi: Option<AntennaGrid>,
+    /// `[[antennas.phase_centres]]`: the phase centre of named signals (ANTEX gives one per
+    /// frequency), replacing `pco_m` and `pcv_m` for them.
+    #[serde(default)]
+    pub phase_centres: Vec<SignalPhaseCentreConfig>,
+}
+
+/// `[[antennas.phase_centres]]`: one signal's phase-centre offset and variation.
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SignalPhaseCentreConfig {
+    pub signal: Signal,
+    /// Phase-centre offset in the antenna frame (m).
+    #[serde(default)]
+    pub pco_m: [f64; 3],
+    /// Phase-centre variation (m) over the antenna frame.
+    #[serde(default)]
+    pub pcv_m: Option<AntennaGrid>,
+}
+
+/// A phase centre: offset and variation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PhaseCentre {
+    pub pco_m: Vec3,
+    pub pcv_m: Option<AntennaGrid>,
 }
 
 fn default_boresight() -> [f64; 3] {
@@ -74,6 +99,8 @@ pub struct Antenna {
     pub pco_m: Vec3,
     pub pcv_m: Option<AntennaGrid>,
     pub gain_dbi: Option<AntennaGrid>,
+    /// The phase centres of signals whose own differs from `pco_m` and `pcv_m`.
+    pub phase_centres: Vec<(Signal, PhaseCentre)>,
 }
 
 impl AntennaConfig {
@@ -120,6 +147,23 @@ impl AntennaConfig {
         if let Some(grid) = &self.gain_dbi {
             grid.check(GAIN_DBI).map_err(|e| e.within("gain_dbi"))?;
         }
+        for (i, pc) in self.phase_centres.iter().enumerate() {
+            let within = |e: Invalid| e.within(&format!("phase_centres[{i}]"));
+            if self.phase_centres[..i]
+                .iter()
+                .any(|o| o.signal == pc.signal)
+            {
+                return Err(within(Invalid::new(
+                    "signal",
+                    pc.signal.tag(),
+                    "is given twice (one phase centre per signal)",
+                )));
+            }
+            check_vec3("pco_m", &pc.pco_m, PCO_M).map_err(within)?;
+            if let Some(grid) = &pc.pcv_m {
+                grid.check(PCV_M).map_err(|e| within(e.within("pcv_m")))?;
+            }
+        }
         Ok(())
     }
 
@@ -137,6 +181,15 @@ impl AntennaConfig {
             pco_m: Vec3::from(self.pco_m),
             pcv_m: self.pcv_m.clone(),
             gain_dbi: self.gain_dbi.clone(),
+            phase_centres: (self.phase_centres.iter())
+                .map(|pc| {
+                    let centre = PhaseCentre {
+                        pco_m: Vec3::from(pc.pco_m),
+                        pcv_m: pc.pcv_m.clone(),
+                    };
+                    (pc.signal, centre)
+                })
+                .collect(),
         }
     }
 }
@@ -217,6 +270,17 @@ impl AntennaGrid {
     }
 }
 
+/// The delay of [`Antenna::phase_centre_delay_m`] for offset `pco_m` and variation `pcv_m`.
+fn centre_delay_m(pco_m: &Vec3, pcv_m: Option<&AntennaGrid>, az_rad: f64, el_rad: f64) -> f64 {
+    let (sin_el, cos_el) = el_rad.sin_cos();
+    let (sin_az, cos_az) = az_rad.sin_cos();
+    let u = Vec3::new(cos_el * cos_az, cos_el * sin_az, sin_el);
+    let pcv_m = pcv_m.map_or(0.0, |grid| {
+        grid.value_at(90.0 - el_rad.to_degrees(), az_rad.to_degrees())
+    });
+    -pco_m.dot(&u) + pcv_m
+}
+
 /// Indices `(k0, k1)` of the axis entries around `x` and the weight of `k1`; `x` outside the
 /// axis is clamped to its ends.
 fn clamped_bracket(axis: &[f64], x: f64) -> (usize, usize, f64) {
@@ -236,9 +300,10 @@ fn clamped_bracket(axis: &[f64], x: f64) -> (usize, usize, f64) {
 }
 
 impl Antenna {
-    /// Carrier and code delay (m) caused by the phase-centre offset and variation for a
-    /// line of sight at antenna-frame azimuth `az_rad` (from X towards Y) and elevation
-    /// `el_rad` (above the XY plane, Z = boresight): `-pco . u + pcv(90 deg - el, az)` with
+    /// Carrier and code delay (m) of `signal` caused by its phase-centre offset and
+    /// variation ([`Self::phase_centres`], else `pco_m` and `pcv_m`) for a line of sight at
+    /// antenna-frame azimuth `az_rad` (from X towards Y) and elevation `el_rad` (above the XY
+    /// plane, Z = boresight): `-pco . u + pcv(90 deg - el, az)` with
     /// `u = (cos el cos az, cos el sin az, sin el)`.
     ///
     /// ANTEX 1.4 convention (with X, Y, Z read as North, East, Up): the offset is the vector
@@ -246,14 +311,13 @@ impl Antenna {
     /// shortens the path; the variation is added to the range measured to the mean phase
     /// centre. Positive result = longer apparent range. The same value applies to code and
     /// carrier (no separate group-delay pattern is modelled).
-    pub fn phase_centre_delay_m(&self, az_rad: f64, el_rad: f64) -> f64 {
-        let (sin_el, cos_el) = el_rad.sin_cos();
-        let (sin_az, cos_az) = az_rad.sin_cos();
-        let u = Vec3::new(cos_el * cos_az, cos_el * sin_az, sin_el);
-        let pcv_m = self.pcv_m.as_ref().map_or(0.0, |grid| {
-            grid.value_at(90.0 - el_rad.to_degrees(), az_rad.to_degrees())
-        });
-        -self.pco_m.dot(&u) + pcv_m
+    pub fn phase_centre_delay_m(&self, signal: Signal, az_rad: f64, el_rad: f64) -> f64 {
+        match self.phase_centres.iter().find(|(s, _)| *s == signal) {
+            Some((_, centre)) => {
+                centre_delay_m(&centre.pco_m, centre.pcv_m.as_ref(), az_rad, el_rad)
+            }
+            None => centre_delay_m(&self.pco_m, self.pcv_m.as_ref(), az_rad, el_rad),
+        }
     }
 
     /// Gain (dBi) towards antenna-frame azimuth `az_rad` and elevation `el_rad` (angles as
@@ -333,6 +397,7 @@ mod tests {
             pco_m: [0.0, 0.0, 0.1],
             pcv_m: None,
             gain_dbi: None,
+            phase_centres: Vec::new(),
         }
     }
 
@@ -588,15 +653,15 @@ mod tests {
         let mut a = antenna().resolve();
         a.pco_m = Vec3::new(0.02, -0.01, 0.1);
         // Boresight: u = Z, delay = -pco_z.
-        let zenith = a.phase_centre_delay_m(0.0, std::f64::consts::FRAC_PI_2);
+        let zenith = a.phase_centre_delay_m(L1, 0.0, std::f64::consts::FRAC_PI_2);
         assert!((zenith + 0.1).abs() < 1e-15);
         // Horizon towards +Y (az 90 deg): u = Y, delay = -pco_y = +0.01.
-        let east = a.phase_centre_delay_m(std::f64::consts::FRAC_PI_2, 0.0);
+        let east = a.phase_centre_delay_m(L1, std::f64::consts::FRAC_PI_2, 0.0);
         assert!((east - 0.01).abs() < 1e-15);
         // 30 deg elevation at az 0: u = (cos 30, 0, sin 30): -(0.02 * 0.866.. + 0.05).
         let el = 30f64.to_radians();
         let expected = -(0.02 * 3f64.sqrt() / 2.0 + 0.1 * 0.5);
-        assert!((a.phase_centre_delay_m(0.0, el) - expected).abs() < 1e-15);
+        assert!((a.phase_centre_delay_m(L1, 0.0, el) - expected).abs() < 1e-15);
         assert_eq!(a.gain_dbi_at(0.0, el), 0.0);
         // With a PCV grid (zenith 60 deg = elevation 30 deg) and a gain pattern.
         a.pcv_m = Some(AntennaGrid {
@@ -609,8 +674,48 @@ mod tests {
             azimuth_deg: vec![0.0],
             values: vec![3.0, -3.0],
         });
-        assert!((a.phase_centre_delay_m(0.0, el) - (expected + 0.006)).abs() < 1e-15);
+        assert!((a.phase_centre_delay_m(L1, 0.0, el) - (expected + 0.006)).abs() < 1e-15);
         assert!((a.gain_dbi_at(1.0, el) - (-1.0)).abs() < 1e-12);
+    }
+
+    const L1: Signal = Signal::GpsL1Ca;
+
+    /// A signal with a phase centre of its own ranges to it; the others to the antenna's.
+    #[test]
+    fn a_signal_with_its_own_phase_centre_ranges_to_it() {
+        let mut config = antenna();
+        config.phase_centres = vec![SignalPhaseCentreConfig {
+            signal: Signal::GpsL5,
+            pco_m: [0.0, 0.0, 0.12],
+            pcv_m: Some(AntennaGrid {
+                zenith_deg: vec![0.0, 90.0],
+                azimuth_deg: vec![0.0],
+                values: vec![0.0, 0.003],
+            }),
+        }];
+        config.check().unwrap();
+        let a = config.resolve();
+        let zenith = std::f64::consts::FRAC_PI_2;
+        assert!((a.phase_centre_delay_m(L1, 0.0, zenith) + 0.1).abs() < 1e-15);
+        assert!((a.phase_centre_delay_m(Signal::GpsL5, 0.0, zenith) + 0.12).abs() < 1e-15);
+        // 30 deg elevation: -0.12 x sin 30 deg, plus the grid's 0.002 at zenith 60 deg.
+        let el = 30f64.to_radians();
+        let l5 = a.phase_centre_delay_m(Signal::GpsL5, 0.0, el);
+        assert!((l5 - (-0.06 + 0.002)).abs() < 1e-15, "{l5}");
+
+        let twice = AntennaConfig {
+            phase_centres: vec![config.phase_centres[0].clone(); 2],
+            ..antenna()
+        };
+        let e = twice.check().unwrap_err().to_string();
+        assert!(
+            e.contains("phase_centres[1].signal") && e.contains("given twice"),
+            "{e}"
+        );
+        let mut far = config.clone();
+        far.phase_centres[0].pco_m = [0.0, 0.0, f64::NAN];
+        let e = far.check().unwrap_err().to_string();
+        assert!(e.contains("phase_centres[0].pco_m"), "{e}");
     }
 
     proptest::proptest! {

@@ -209,3 +209,54 @@ fn galileo_e1_observed_beside_e5a_carries_less_ionosphere() {
     }
     assert!(lines > 20, "{lines} Galileo lines");
 }
+
+/// An observed-only signal follows its own phase centre (`[[antennas.phase_centres]]`):
+/// with E1's 10 cm above the reference point and E5a's there, E5a's observables stay as
+/// they were and E1's code and carrier both shorten by 0.1 m x sin(elevation), between 0
+/// and 0.1 m (to the RINEX file's millimetres), the same in both.
+#[test]
+fn an_observed_signal_follows_its_own_phase_centre() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let extra = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n\n[observation]\nlevel = \"observation\"\nobserved_signals = [\"gal-e1\"]\n\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.0\ncode_m = 0.0\n";
+    let centre = "\n[[antennas.phase_centres]]\nsignal = \"gal-e1\"\npco_m = [0.0, 0.0, 0.1]\n";
+    let mut bodies = Vec::new();
+    for (name, text) in [
+        ("plain", extra.to_owned()),
+        ("centre", format!("{extra}{centre}")),
+    ] {
+        let path = scenario(dir.path(), 10.0, &text);
+        let renamed = dir.path().join(format!("{name}.toml"));
+        std::fs::rename(&path, &renamed).expect("rename");
+        let out = dir.path().join(name);
+        let args = [
+            "run",
+            renamed.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        support::skyforge_ok(&args, dir.path());
+        let obs = std::fs::read_to_string(out.join("observations/ant1.obs.rnx")).expect("obs");
+        bodies.push(obs.split("END OF HEADER").nth(1).unwrap_or("").to_owned());
+    }
+    let value = |line: &str, k: usize| -> f64 {
+        line.get(3 + 16 * k..3 + 16 * k + 14)
+            .and_then(|v| v.trim().parse().ok())
+            .unwrap_or(f64::NAN)
+    };
+    let lambda_e1 = skyforge_gnss::signal::Signal::GalE1.wavelength_m();
+    let pairs: Vec<(&str, &str)> = (bodies[0].lines().zip(bodies[1].lines()))
+        .filter(|(a, _)| a.starts_with('E'))
+        .collect();
+    assert!(pairs.len() > 20, "{} Galileo lines", pairs.len());
+    for (plain, centre) in pairs {
+        assert_eq!(plain[..3 + 16 * 4], centre[..3 + 16 * 4], "E5a changed");
+        let code = value(centre, 4) - value(plain, 4);
+        let phase = (value(centre, 5) - value(plain, 5)) * lambda_e1;
+        // F14.3 values: each rounded to a millimetre.
+        assert!(code < 0.0 && code >= -0.101, "{centre}: C1C moved {code} m");
+        assert!(
+            (phase - code).abs() < 2e-3,
+            "{centre}: L1C moved {phase} m, C1C {code} m"
+        );
+    }
+}

@@ -58,6 +58,7 @@ fn link(range_m: f64, cn0_dbhz: f64) -> Option<LinkEnd> {
         iono_m: 0.0,
         tropo_m: 0.0,
         antenna_m: 0.0,
+        antenna_by_signal_m: Vec::new(),
         cn0_dbhz,
         reflections: Vec::new(),
     })

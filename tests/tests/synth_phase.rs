@@ -8,8 +8,9 @@ mod common;
 
 use skyforge_gnss::codes::gps_ca;
 use skyforge_gnss::sample_format::SampleFormat;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_signals::antenna::AntennaGrid;
+use skyforge_signals::antenna::{AntennaGrid, PhaseCentre};
 use skyforge_signals::errors::{IonoConfig, IonoModel};
 use skyforge_signals::errors::{MultipathConfig, TapConfig};
 use skyforge_signals::errors::{TropoConfig, TropoModel};
@@ -38,9 +39,11 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     let mut world = scenario.build().unwrap();
     assert_eq!(world.antennas[0].pco_m, skyforge_orbits::Vec3::zeros());
     let (txs, store, sats) = common::gps_transmitters(&world);
-    // The second antenna gets a phase-centre offset, a phase-centre variation grid
-    // (5 mm x sin(zenith) cos(azimuth)) and a reflected path.
-    world.antennas[1].pco_m = skyforge_orbits::Vec3::new(0.002, -0.003, 0.06);
+    // The second antenna gets, for GPS L1 C/A, a phase-centre offset and a phase-centre
+    // variation grid (5 mm x sin(zenith) cos(azimuth)) of its own, a different offset for
+    // the other signals (which L1 C/A must not follow), and a reflected path.
+    world.antennas[1].pco_m = skyforge_orbits::Vec3::new(0.0, 0.01, 0.1);
+    let l1_pco_m = skyforge_orbits::Vec3::new(0.002, -0.003, 0.06);
     let (zen, az): (Vec<f64>, Vec<f64>) = (
         (0..=18).map(|i| f64::from(i) * 5.0).collect(),
         (0..=36).map(|j| f64::from(j) * 10.0).collect(),
@@ -52,11 +55,15 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
                 .map(move |a| 0.005 * z.to_radians().sin() * a.to_radians().cos())
         })
         .collect();
-    world.antennas[1].pcv_m = Some(AntennaGrid {
-        zenith_deg: zen,
-        azimuth_deg: az,
-        values,
-    });
+    let l1_centre = PhaseCentre {
+        pco_m: l1_pco_m,
+        pcv_m: Some(AntennaGrid {
+            zenith_deg: zen,
+            azimuth_deg: az,
+            values,
+        }),
+    };
+    world.antennas[1].phase_centres = vec![(Signal::GpsL1Ca, l1_centre)];
     let tap = TapConfig {
         antenna: Some(world.antennas[1].name.clone()),
         satellite: None,
@@ -125,7 +132,7 @@ fn two_antennas_one_metre_apart_carry_the_true_phase_difference() {
     // Phase-centre delay of each antenna at the two epochs (linear in between).
     let centre = |a: usize, k: usize| {
         let g = chunk.link(k, a, s);
-        antennas[a].phase_centre_delay_m(g.antenna_azimuth_rad, g.antenna_elevation_rad)
+        antennas[a].phase_centre_delay_m(tx.signal, g.antenna_azimuth_rad, g.antenna_elevation_rad)
     };
     let centre_at = |a: usize, t: f64| {
         let (c1, c2) = (centre(a, 1), centre(a, 2));

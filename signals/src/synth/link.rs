@@ -34,6 +34,10 @@ pub struct LinkEnd {
     pub tropo_m: f64,
     /// Phase-centre offset and variation delay (m), code and carrier alike.
     pub antenna_m: f64,
+    /// The phase-centre delay (m) of every signal ([`Signal::ALL`]) where the antenna has
+    /// a phase centre per signal, for a link's observed-only signals; empty when every
+    /// signal has `antenna_m`.
+    pub antenna_by_signal_m: Vec<(Signal, f64)>,
     /// C/N0 of the direct path (dB-Hz).
     pub cn0_dbhz: f64,
     /// Reflected paths in a fixed order per link (a path absent at this epoch has
@@ -64,6 +68,7 @@ impl LinkEnd {
             iono_m: 0.0,
             tropo_m: 0.0,
             antenna_m: 0.0,
+            antenna_by_signal_m: Vec::new(),
             cn0_dbhz,
             reflections: Vec::new(),
         })
@@ -170,6 +175,9 @@ pub(crate) struct Segment {
     iono_m: Linear,
     tropo_m: Linear,
     antenna_m: Linear,
+    /// Each signal's phase-centre delay where the antenna has one per signal (else every
+    /// signal's is `antenna_m`).
+    antenna_by_signal_m: Vec<(Signal, Linear)>,
     cn0_dbhz: Linear,
     reflections: Vec<ReflectionSegment>,
 }
@@ -192,6 +200,10 @@ impl Segment {
             iono_m: lin(s.iono_m, e.iono_m),
             tropo_m: lin(s.tropo_m, e.tropo_m),
             antenna_m: lin(s.antenna_m, e.antenna_m),
+            antenna_by_signal_m: (s.antenna_by_signal_m.iter())
+                .zip(&e.antenna_by_signal_m)
+                .map(|(&(signal, a), &(_, b))| (signal, lin(a, b)))
+                .collect(),
             cn0_dbhz: lin(s.cn0_dbhz, e.cn0_dbhz),
             reflections: s
                 .reflections
@@ -208,19 +220,25 @@ impl Segment {
 
     /// The direct path at true receive time `t`.
     pub fn at(&self, t: f64) -> LinkState {
-        self.at_scaled(t, 1.0)
+        self.state(t, 1.0, &self.antenna_m)
     }
 
-    /// The direct path at `t` on a carrier whose ionospheric delay is `iono_scale` times
-    /// the link's (`(f_link / f)^2`, the first-order ionosphere): another signal of the
-    /// same satellite.
-    pub fn at_scaled(&self, t: f64, iono_scale: f64) -> LinkState {
+    /// The direct path at `t` of `signal`, another signal of the same satellite whose
+    /// ionospheric delay is `iono_scale` times the link's (`(f_link / f)^2`, the first-order
+    /// ionosphere), with its own phase-centre delay where the antenna has one per signal.
+    pub fn at_scaled(&self, t: f64, iono_scale: f64, signal: Signal) -> LinkState {
+        self.state(t, iono_scale, self.antenna_of(signal))
+    }
+
+    /// The direct path at `t`, the ionosphere scaled by `iono_scale`, the phase-centre
+    /// delay `antenna`.
+    fn state(&self, t: f64, iono_scale: f64, antenna: &Linear) -> LinkState {
         let tau = self.range.value(t) / C_MPS;
         let sat_clock_s = self.clock_s + self.drift * (t - tau - self.clock_t0_s);
         let (iono_m, tropo_m, antenna_m) = (
             iono_scale * self.iono_m.at(t),
             self.tropo_m.at(t),
-            self.antenna_m.at(t),
+            antenna.at(t),
         );
         LinkState {
             code_delay_s: tau + (iono_m + tropo_m + antenna_m) / C_MPS - sat_clock_s,
@@ -233,10 +251,19 @@ impl Segment {
         }
     }
 
-    /// d D_carr / dt at `t` (s/s), the ionosphere scaled by `iono_scale` ([`Self::at_scaled`]).
-    pub fn carrier_delay_rate(&self, t: f64, iono_scale: f64) -> f64 {
+    /// d D_carr / dt at `t` (s/s) of `signal`, the ionosphere scaled by `iono_scale`
+    /// ([`Self::at_scaled`]).
+    pub fn carrier_delay_rate(&self, t: f64, iono_scale: f64, signal: Signal) -> f64 {
         self.range.rate(t) / C_MPS - self.drift
-            + (-iono_scale * self.iono_m.rate + self.tropo_m.rate + self.antenna_m.rate) / C_MPS
+            + (-iono_scale * self.iono_m.rate + self.tropo_m.rate + self.antenna_of(signal).rate)
+                / C_MPS
+    }
+
+    /// The phase-centre delay of `signal` over the interval.
+    fn antenna_of(&self, signal: Signal) -> &Linear {
+        (self.antenna_by_signal_m.iter())
+            .find(|(s, _)| *s == signal)
+            .map_or(&self.antenna_m, |(_, l)| l)
     }
 
     /// The reflected paths at `t` (in the link's fixed order).

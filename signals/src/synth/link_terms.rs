@@ -102,7 +102,14 @@ impl LinkTerms<'_> {
                 at.geodetic.h_m,
                 g.elevation_rad,
             ),
-            antenna_m: antenna.phase_centre_delay_m(az_ant, el_ant),
+            antenna_m: antenna.phase_centre_delay_m(signal, az_ant, el_ant),
+            antenna_by_signal_m: if antenna.phase_centres.is_empty() {
+                Vec::new()
+            } else {
+                (Signal::ALL.iter())
+                    .map(|&s| (s, antenna.phase_centre_delay_m(s, az_ant, el_ant)))
+                    .collect()
+            },
             reflections: self.reflections(t_s, a, at, sat, g),
             ..end
         })

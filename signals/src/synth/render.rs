@@ -454,7 +454,7 @@ impl<'a> Synthesiser<'a> {
         let iono_scale = (self.transmitters[seg.tx].signal.carrier_hz() / fc).powi(2);
         let ev = ev.with_iono_scale(iono_scale);
         let chip_rate_hz = signal.chip_rate_hz();
-        let s = seg.at_scaled(t, iono_scale);
+        let s = seg.at_scaled(t, iono_scale, signal);
         let (multipath_code_m, multipath_carrier_m) = if seg.has_reflections() {
             let chip_m = C_MPS / chip_rate_hz;
             let lambda = C_MPS / fc;
@@ -479,7 +479,7 @@ impl<'a> Synthesiser<'a> {
             pseudorange_m: C_MPS * (s.code_delay_s + dt_rx) + ev.code_m,
             carrier_phase_cycles: fc * (s.carrier_delay_s + dt_rx + ev.carrier_m / C_MPS)
                 + ev.carrier_cycles,
-            doppler_hz: -fc * (seg.carrier_delay_rate(t, iono_scale) * (1.0 - freq) + freq),
+            doppler_hz: -fc * (seg.carrier_delay_rate(t, iono_scale, signal) * (1.0 - freq) + freq),
             cn0_dbhz: s.cn0_dbhz + 20.0 * ev.amplitude_factor.log10(),
             iono_m: s.iono_m,
             tropo_m: s.tropo_m,
