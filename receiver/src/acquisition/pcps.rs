@@ -15,6 +15,7 @@
 use super::AcquisitionError;
 use super::cfar;
 use super::replica::{mean_edge_delay_samples, sample_code, wipe_carrier};
+use crate::replica::{replica_chips, subchips};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
@@ -237,6 +238,15 @@ impl Pcps {
                 "finite and at least the chip rate",
             ));
         }
+        // BOC(1,1)'s main peak is 2/3 chip wide: at two samples per half-chip the nearest
+        // lag is within 1/8 chip of its apex (at most 4.1 dB down, 1 - 3/8 in amplitude).
+        if config.signal.replica_boc11() && fs < 4.0 * config.signal.chip_rate_hz() {
+            return Err(bad(
+                "sample rate (Hz)",
+                fs,
+                "at least two samples per BOC(1,1) half-chip (4.092 Msps)",
+            ));
+        }
         if config.coherent_periods == 0 {
             return Err(bad("coherent periods", 0.0, ">= 1"));
         }
@@ -272,7 +282,7 @@ impl Pcps {
             inverse: planner.plan_fft_inverse(fft_len),
             doppler_hz,
             apex_offset_samples: 0.5
-                - mean_edge_delay_samples(config.signal.chip_rate_hz(), fs, period_samples),
+                - mean_edge_delay_samples(replica_rate_hz(config.signal), fs, period_samples),
         })
     }
 
@@ -320,16 +330,19 @@ impl Pcps {
         }
         Ok(PreparedCode {
             prn,
-            spectra_conj: codes.iter().map(|c| self.spectrum_conj(c)).collect(),
+            spectra_conj: codes
+                .iter()
+                .map(|c| self.spectrum_conj(&replica_chips(signal, c)))
+                .collect(),
         })
     }
 
-    /// One code period of `chips` sampled, zero-padded, transformed, conjugated, scaled.
+    /// One code period of replica `chips` ([`replica_chips`]) sampled, zero-padded,
+    /// transformed, conjugated, scaled.
     fn spectrum_conj(&self, chips: &[i8]) -> Vec<Complex32> {
-        let signal = self.config.signal;
         let code = sample_code(
             chips,
-            signal.chip_rate_hz(),
+            replica_rate_hz(self.config.signal),
             self.config.sample_rate_hz,
             self.period_samples,
         );
@@ -466,6 +479,11 @@ impl Pcps {
         let samples_per_chip = fs / signal.chip_rate_hz();
         let guard = (1.5 * samples_per_chip).ceil() as usize + 1;
         let (bin, lag, peak) = surface.peak();
+        let lag = if signal.replica_boc11() {
+            main_peak_lag(surface, bin, lag, samples_per_chip / 2.0)
+        } else {
+            lag
+        };
         let noise = surface.noise_power(lag, guard);
         let cells = surface.power.len();
         let threshold = cfar::search_threshold(surface.noncoherent, cells, self.config.pfa)?;
@@ -506,6 +524,35 @@ impl Pcps {
             cells,
         })
     }
+}
+
+/// Replica chips per second: the chip rate, twice it for BOC(1,1) half-chips.
+fn replica_rate_hz(signal: Signal) -> f64 {
+    signal.chip_rate_hz() * subchips(signal) as f64
+}
+
+/// BOC(1,1) side-peak check: the correlation has side peaks of half the main peak's
+/// amplitude half a chip either side of it, so noise can lift one above the main peak.
+/// Of the peak `lag` and the lags `half_chip` samples either side, the one whose amplitude
+/// stands out most above the mean of its own two half-chip neighbours is the main peak
+/// (on the ideal peak: 1 - (1/2 + 1/2)/2 = 1/2 at the main peak, 1/2 - (1 + 0)/2 = 0 at
+/// a side peak).
+fn main_peak_lag(surface: &Surface, bin: usize, lag: usize, half_chip: f64) -> usize {
+    let lags = surface.lags;
+    let h = (half_chip.round() as usize).clamp(1, lags / 4);
+    let amp = |l: usize| {
+        f64::from(surface.power[bin * lags + l % lags])
+            .max(0.0)
+            .sqrt()
+    };
+    let score = |c: usize| amp(c) - 0.5 * (amp(c + lags - h) + amp(c + h));
+    [lag, (lag + lags - h) % lags, (lag + h) % lags]
+        .into_iter()
+        .map(|c| (c, score(c)))
+        .fold((lag, f64::NEG_INFINITY), |best, (c, s)| {
+            if s > best.1 { (c, s) } else { best }
+        })
+        .0
 }
 
 /// Bin centres `centre + j step`, `|j| <= ceil(half_width / step)`.

@@ -5,6 +5,7 @@ use super::pcps::{Acquisition, DopplerWindow};
 use super::pcps_stage::PcpsStage;
 use super::pmf_fft::{ChipTiming, PmfFft, despread_to_chips};
 use super::{AcquisitionError, AcquisitionStage, Candidate};
+use crate::replica::{replica_chips, subchips};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
@@ -35,8 +36,9 @@ impl PmfFftStage {
         sample_rate_hz: f64,
         if_hz: f64,
     ) -> Result<Self, AcquisitionError> {
-        // M: the code padded with zero chips to a power of two (1023 -> 1024, 2046 -> 2048).
-        let m = signal.code_length().next_power_of_two();
+        // M: the code padded with zero chips to a power of two (1023 -> 1024, 2046 -> 2048;
+        // Galileo E1's 8184 BOC(1,1) half-chips -> 8192).
+        let m = (signal.code_length() * subchips(signal)).next_power_of_two();
         Ok(Self {
             pcps,
             pmf: PmfFft::new(m, PMF_FILTER_CHIPS)?,
@@ -55,10 +57,12 @@ impl PmfFftStage {
     /// The PCPS Doppler refined by the mean PMF-FFT fine offset over the whole code
     /// periods after the code phase.
     fn refine(&self, samples: &[Complex32], acq: &Acquisition) -> Result<f64, AcquisitionError> {
-        let code = self.signal.code(acq.prn)?;
+        let code = replica_chips(self.signal, &self.signal.code(acq.prn)?);
         let period = self.period_samples(acq.doppler_hz);
-        let chip_rate =
-            self.signal.chip_rate_hz() * (1.0 + acq.doppler_hz / self.signal.carrier_hz());
+        // Replica chips per second (BOC(1,1) half-chips for Galileo E1).
+        let chip_rate = self.signal.chip_rate_hz()
+            * subchips(self.signal) as f64
+            * (1.0 + acq.doppler_hz / self.signal.carrier_hz());
         let mut scratch = self.pmf.scratch();
         let mut sum = 0.0;
         let mut count = 0;
