@@ -533,10 +533,11 @@ fn replica_rate_hz(signal: Signal) -> f64 {
 
 /// BOC(1,1) side-peak check: the correlation has side peaks of half the main peak's
 /// amplitude half a chip either side of it, so noise can lift one above the main peak.
-/// Of the peak `lag` and the lags `half_chip` samples either side, the one whose amplitude
-/// stands out most above the mean of its own two half-chip neighbours is the main peak
-/// (on the ideal peak: 1 - (1/2 + 1/2)/2 = 1/2 at the main peak, 1/2 - (1 + 0)/2 = 0 at
-/// a side peak).
+/// Of the peak `lag` and the lags `half_chip` samples either side, the main peak is the
+/// one that best matches the peak's magnitudes `1/2, 1, 1/2` at half-chip steps: the
+/// largest `|R(c)| + (|R(c - h)| + |R(c + h)|) / 2` (ideally 3/2 at the main peak, 1 at
+/// a side peak; a side peak wins only above 3/2 of the main peak with the other side
+/// peak at half of it).
 fn main_peak_lag(surface: &Surface, bin: usize, lag: usize, half_chip: f64) -> usize {
     let lags = surface.lags;
     let h = (half_chip.round() as usize).clamp(1, lags / 4);
@@ -545,7 +546,7 @@ fn main_peak_lag(surface: &Surface, bin: usize, lag: usize, half_chip: f64) -> u
             .max(0.0)
             .sqrt()
     };
-    let score = |c: usize| amp(c) - 0.5 * (amp(c + lags - h) + amp(c + h));
+    let score = |c: usize| amp(c) + 0.5 * (amp(c + lags - h) + amp(c + h));
     [lag, (lag + lags - h) % lags, (lag + h) % lags]
         .into_iter()
         .map(|c| (c, score(c)))
@@ -623,6 +624,50 @@ mod tests {
             let t = |x: f64| 5.0 - 2.0 * (x - d).abs();
             assert!((triangle_vertex(t(-1.0), t(0.0), t(1.0)) - d).abs() < 1e-12);
         }
+    }
+
+    /// Galileo E1 (BOC(1,1)): a side peak half a chip from the main peak, lifted above it
+    /// by noise, is not taken; the main peak's lag is. Below two samples per half-chip the
+    /// search is refused.
+    #[test]
+    fn a_boc11_side_peak_above_the_main_peak_is_not_taken() {
+        // 8 samples per chip: half a chip is 4 lags.
+        let fs = 8.184e6;
+        let pcps = Pcps::new(PcpsConfig::cold(Signal::GalE1, fs)).unwrap();
+        let lags = pcps.period_samples();
+        assert_eq!(lags, 32_736);
+        let boc = |x: f64| {
+            let x = x.abs();
+            if x <= 0.5 {
+                1.0 - 3.0 * x
+            } else {
+                (x - 1.0).min(0.0)
+            }
+        };
+        let main = 1000;
+        for (side, lifted) in [(4usize, 1.05), (lags - 4, 1.02)] {
+            let power: Vec<f32> = (0..lags)
+                .map(|l| {
+                    let d = (l as f64 - main as f64) / 8.0;
+                    let a = if l == (main + side) % lags {
+                        lifted
+                    } else {
+                        boc(d)
+                    };
+                    (a * a + 1e-4) as f32
+                })
+                .collect();
+            let surface = Surface {
+                doppler_hz: vec![0.0],
+                lags,
+                power,
+                noncoherent: 2,
+            };
+            let acq = pcps.decide(&surface, 11).unwrap();
+            assert_eq!(acq.peak_lag, main, "side peak at {side}");
+            assert!((acq.code_phase_samples - main as f64).abs() < 1.0);
+        }
+        assert!(Pcps::new(PcpsConfig::cold(Signal::GalE1, 4.0e6)).is_err());
     }
 
     #[test]

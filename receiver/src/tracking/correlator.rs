@@ -707,6 +707,48 @@ mod tests {
         assert!(Correlator::new(&pilot, taps).is_err());
     }
 
+    /// BOC(1,1) taps (Galileo E1) against the direct evaluation with the half-chip codes
+    /// at twice the phase, rate and offsets, at 15 Msps (7.3 samples per half-chip) and
+    /// 4.092 Msps (2).
+    #[test]
+    fn boc11_taps_match_direct_evaluation_on_half_chips() {
+        let (pilot, data) = (signs(4092, 31), signs(4092, 32));
+        let noise = signs(2 * 60_000, 6);
+        let samples: Vec<Complex<f32>> = noise
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
+            .collect();
+        let half = |c: &[i8]| c.iter().flat_map(|&c| [c, -c]).collect::<Vec<i8>>();
+        let (hp, hd) = (half(&pilot), half(&data));
+        for (n, fs) in [(60_000, 15e6), (16_368, 4.092e6)] {
+            let nco = NcoState {
+                carrier_phase_cycles: 0.12,
+                carrier_cycles_per_sample: 0.0213,
+                code_phase_chips: 4091.3,
+                code_chips_per_sample: 1.023e6 * (1.0 + 1e-6) / fs,
+            };
+            let mut corr = Correlator::pilot_and_data_boc11(&pilot, &data, 0.15).unwrap();
+            assert_eq!(corr.code_length(), 4092);
+            let out = corr.correlate(&samples[..n], &nco).to_vec();
+            let doubled = NcoState {
+                code_phase_chips: 2.0 * nco.code_phase_chips,
+                code_chips_per_sample: 2.0 * nco.code_chips_per_sample,
+                ..nco
+            };
+            for (t, (code, offset)) in [(&hp, 0.075), (&hp, 0.0), (&hp, -0.075), (&hd, 0.0)]
+                .into_iter()
+                .enumerate()
+            {
+                let r = reference(&samples[..n], code, &doubled, 2.0 * offset);
+                assert!(
+                    (out[t] - r).norm() < 1e-4 * n as f64,
+                    "tap {t} at {fs}: {} vs {r}",
+                    out[t]
+                );
+            }
+        }
+    }
+
     /// The two-pass loop of four and five taps gives the single loop's sums bit for bit.
     #[test]
     fn the_two_pass_loop_equals_the_single_loop_exactly() {
