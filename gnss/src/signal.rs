@@ -628,6 +628,27 @@ mod tests {
         assert_eq!(DataModulation::GpsLnav.data_secondary_code(), None);
     }
 
+    /// Galileo E1 is received, its pilot in phase, its replica BOC(1,1); its carrier is
+    /// L1's, so a recording's carrier or band names L1 C/A and only its file name E1.
+    #[test]
+    fn galileo_e1_is_received_beside_l1_ca_on_one_carrier() {
+        assert!(Signal::GalE1.is_received() && Signal::GalE1.has_pilot());
+        assert!(!Signal::GalE1.pilot_in_quadrature() && Signal::GalE1.replica_boc11());
+        for s in [Signal::GpsL5, Signal::GalE5a] {
+            assert!(s.pilot_in_quadrature() && !s.replica_boc11());
+        }
+        assert!(!Signal::GpsL1Ca.pilot_in_quadrature() && !Signal::GpsL1Ca.replica_boc11());
+        assert_eq!(
+            Signal::from_carrier_hz(Signal::GalE1.carrier_hz()),
+            Some(Signal::GpsL1Ca)
+        );
+        assert_eq!(Signal::in_band(1575.42e6, 15e6), Some(Signal::GpsL1Ca));
+        assert_eq!(
+            Signal::from_file_name("ant1.gal-e1.sigmf-meta"),
+            Some(Signal::GalE1)
+        );
+    }
+
     /// L2 is read from files, never synthesised: no recording is identified as L2.
     #[test]
     fn gps_l2_is_observed_only() {
