@@ -125,7 +125,8 @@ pub struct TrackingRecord {
     pub code_error_chips: f64,
     /// C/N0 estimate (dB-Hz) of the whole signal, once the estimator window has filled;
     /// for a signal with a pilot, the pilot's estimate plus 3.01 dB (the ICDs split the
-    /// power equally between the two components).
+    /// power equally between the two components), for Galileo E1 plus 0.41 dB more (the
+    /// BOC(6,1) part its BOC(1,1) replica does not see, [`BOC61_SHARE_DB`]).
     pub cn0_dbhz: Option<f64>,
     /// PLL lock indicator: the smoothed `cos 2 phi` estimate, corrected for the noise bias
     /// `SNR / (1 + SNR)` of one prompt with the C/N0 estimate.
