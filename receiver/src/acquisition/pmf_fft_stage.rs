@@ -16,6 +16,18 @@ pub(super) const PMF_FILTER_CHIPS: usize = 64;
 /// one search block; the estimates of separate periods are independent, so the average
 /// has a third of one period's standard deviation).
 pub(super) const PMF_PERIODS: usize = 10;
+/// Galileo E1's 4 ms periods averaged: 4 (16 ms of 8184 half-chips each), so that a search
+/// (one period more) fits the receiver's 20 ms blocks.
+const PMF_E1_PERIODS: usize = 4;
+
+/// Code periods averaged for `signal`.
+fn pmf_periods(signal: Signal) -> usize {
+    if signal == Signal::GalE1 {
+        PMF_E1_PERIODS
+    } else {
+        PMF_PERIODS
+    }
+}
 
 /// PCPS for detection and code phase, then the Doppler from the PMF-FFT fine estimator
 /// (thesis eqs. 3.3-13, 3.3-14) on the despread chips of [`PMF_PERIODS`] code periods,
@@ -66,7 +78,7 @@ impl PmfFftStage {
         let mut scratch = self.pmf.scratch();
         let mut sum = 0.0;
         let mut count = 0;
-        for k in 0..PMF_PERIODS {
+        for k in 0..pmf_periods(self.signal) {
             let timing = ChipTiming {
                 sample_rate_hz: self.sample_rate_hz,
                 carrier_hz: self.if_hz + acq.doppler_hz,
@@ -92,7 +104,7 @@ impl PmfFftStage {
 
 impl AcquisitionStage for PmfFftStage {
     fn samples_needed(&self) -> usize {
-        let periods = (PMF_PERIODS + 1) as f64 * self.period_samples(0.0);
+        let periods = (pmf_periods(self.signal) + 1) as f64 * self.period_samples(0.0);
         self.pcps.samples_needed().max(periods.ceil() as usize)
     }
 
