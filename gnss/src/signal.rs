@@ -38,7 +38,8 @@ pub enum Signal {
     BdsB3I,
     /// Galileo E1 (E1-B data with I/NAV, E1-C pilot with CS25, in phase) on 1575.42 MHz,
     /// 4092 chips at 1.023 Mchip/s, CBOC(6,1,1/11) (Galileo OS SIS ICD §2.3, §3.4):
-    /// transmitted when a scenario chooses it ([`Signal::TRANSMITTED`]).
+    /// transmitted when a scenario chooses it ([`Signal::TRANSMITTED`]) and received by the
+    /// bundled receiver (on its BOC(1,1) part, [`Signal::replica_boc11`]).
     GalE1,
     /// Galileo E5a (E5a-I data with F/NAV, E5a-Q pilot) on 1176.45 MHz, 10230 chips at
     /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): Galileo's transmitted signal
@@ -159,13 +160,14 @@ impl Signal {
     }
 
     /// The signals the bundled receiver acquires, tracks and decodes from samples: the
-    /// legacy ones and the pilot signals GPS L5 and Galileo E5a (tracked on the pilot,
+    /// legacy ones and the pilot signals GPS L5, Galileo E5a and E1 (tracked on the pilot,
     /// the message read from the data component).
-    pub const RECEIVED: [Signal; 4] = [
+    pub const RECEIVED: [Signal; 5] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL5,
         Signal::GalE5a,
+        Signal::GalE1,
     ];
 
     /// Whether the bundled receiver takes recordings of the signal ([`Signal::RECEIVED`]).
@@ -173,9 +175,8 @@ impl Signal {
         Self::RECEIVED.contains(&self)
     }
 
-    /// The signals SkyForge can transmit at the sample level: those the bundled receiver
-    /// takes ([`Signal::RECEIVED`]) and Galileo E1 (received by GNSS-SDR). A scenario's
-    /// `[signal] signals` chooses among them.
+    /// The signals SkyForge can transmit at the sample level, those the bundled receiver
+    /// takes ([`Signal::RECEIVED`]). A scenario's `[signal] signals` chooses among them.
     pub const TRANSMITTED: [Signal; 5] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
@@ -224,6 +225,28 @@ impl Signal {
     /// L5's Q5, Galileo E1-C and E5a-Q).
     pub fn has_pilot(self) -> bool {
         matches!(self, Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a)
+    }
+
+    /// Whether the pilot is in quadrature with the data component, 90 degrees ahead of it
+    /// (L5's Q5, IS-GPS-705 §3.3.1.1; E5a-Q, Galileo OS SIS ICD §2.3.3); Galileo E1's
+    /// E1-C is in phase with E1-B, with the opposite sign: `e_B - e_C` (ICD §2.3.3, as
+    /// `subcarrier::e1_cboc` sums them).
+    pub fn pilot_in_quadrature(self) -> bool {
+        matches!(self, Signal::GpsL5 | Signal::GalE5a)
+    }
+
+    /// Whether a receiver correlates with a BOC(1,1) replica: each chip as its two
+    /// half-chips `+c, -c` (Galileo E1's CBOC(6,1,1/11) without the BOC(6,1) part, which
+    /// carries 1/11 of the power: 0.41 dB lost, Galileo OS SIS ICD §2.3.3).
+    pub fn replica_boc11(self) -> bool {
+        self == Signal::GalE1
+    }
+
+    /// Whether a recording's carrier (or band) alone names the signal: not for Galileo E1,
+    /// whose carrier is GPS L1's (a recording at 1575.42 MHz is L1 C/A unless its file name
+    /// or the command line says `gal-e1`).
+    fn named_by_carrier(self) -> bool {
+        self != Signal::GalE1
     }
 
     /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
@@ -413,24 +436,22 @@ impl Signal {
 
     /// The only received signal ([`Signal::RECEIVED`]) whose carrier is within
     /// [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz` (a recording's signal); `None` when
-    /// none or several are (GPS L5 and Galileo E5a share 1176.45 MHz).
+    /// none or several are (GPS L5 and Galileo E5a share 1176.45 MHz). Galileo E1 is never
+    /// named by its carrier, GPS L1 C/A's.
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
-        only(
-            Self::RECEIVED
-                .into_iter()
-                .filter(|s| (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ),
-        )
+        only(Self::RECEIVED.into_iter().filter(|s| {
+            s.named_by_carrier()
+                && (s.carrier_hz() - carrier_hz).abs() <= CARRIER_MATCH_TOLERANCE_HZ
+        }))
     }
 
     /// The only received signal whose carrier lies inside the band recorded about
     /// `centre_hz` (complex: `|carrier - centre| < fs / 2`), or `None` when none or several
-    /// do.
+    /// do (Galileo E1 aside, as for [`Signal::from_carrier_hz`]).
     pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
-        only(
-            Self::RECEIVED
-                .into_iter()
-                .filter(|s| (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0),
-        )
+        only(Self::RECEIVED.into_iter().filter(|s| {
+            s.named_by_carrier() && (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0
+        }))
     }
 
     /// The received signal named by a `.<tag>` component of a recording's file name
@@ -605,6 +626,27 @@ mod tests {
             Some(Signal::GalE5a)
         );
         assert_eq!(DataModulation::GpsLnav.data_secondary_code(), None);
+    }
+
+    /// Galileo E1 is received, its pilot in phase, its replica BOC(1,1); its carrier is
+    /// L1's, so a recording's carrier or band names L1 C/A and only its file name E1.
+    #[test]
+    fn galileo_e1_is_received_beside_l1_ca_on_one_carrier() {
+        assert!(Signal::GalE1.is_received() && Signal::GalE1.has_pilot());
+        assert!(!Signal::GalE1.pilot_in_quadrature() && Signal::GalE1.replica_boc11());
+        for s in [Signal::GpsL5, Signal::GalE5a] {
+            assert!(s.pilot_in_quadrature() && !s.replica_boc11());
+        }
+        assert!(!Signal::GpsL1Ca.pilot_in_quadrature() && !Signal::GpsL1Ca.replica_boc11());
+        assert_eq!(
+            Signal::from_carrier_hz(Signal::GalE1.carrier_hz()),
+            Some(Signal::GpsL1Ca)
+        );
+        assert_eq!(Signal::in_band(1575.42e6, 15e6), Some(Signal::GpsL1Ca));
+        assert_eq!(
+            Signal::from_file_name("ant1.gal-e1.sigmf-meta"),
+            Some(Signal::GalE1)
+        );
     }
 
     /// L2 is read from files, never synthesised: no recording is identified as L2.

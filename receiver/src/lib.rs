@@ -12,5 +12,6 @@ pub mod input;
 pub mod navdecode;
 pub mod observables;
 pub mod pipeline;
+pub mod replica;
 pub mod session;
 pub mod tracking;

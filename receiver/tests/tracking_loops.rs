@@ -5,11 +5,12 @@
 mod tracking_support;
 
 use skyforge_gnss::signal::Signal;
+use skyforge_receiver::replica::{BOC61_SHARE_DB, SignalCodes};
 use skyforge_receiver::tracking::TrackingConfig;
 use skyforge_receiver::tracking::error_budget::{LoopOrder, thermal_jitter_deg};
 use skyforge_receiver::tracking::{ChannelTracker, FrontEnd, Handover, TrackingRecord};
 use std::ops::Range;
-use tracking_support::{TestSignal, mean_std, phase_errors};
+use tracking_support::{TestSignal, made_up_e1_codes, mean_std, phase_errors};
 
 /// Track `seconds` of `sig` from `handover`, generating 0.1 s at a time.
 fn track(
@@ -22,7 +23,11 @@ fn track(
         sample_rate_hz: sig.fs_hz,
         if_hz: sig.if_hz,
     };
-    let mut channel = ChannelTracker::new(handover, front_end, config).expect("valid channel");
+    let mut channel = match &sig.codes {
+        Some(codes) => ChannelTracker::with_codes(handover, front_end, config, codes.clone()),
+        None => ChannelTracker::new(handover, front_end, config),
+    }
+    .expect("valid channel");
     let total = (seconds * sig.fs_hz) as u64;
     let block = (0.1 * sig.fs_hz) as u64;
     let mut records = Vec::new();
@@ -652,4 +657,118 @@ fn pilot_signals_track_on_the_pilot_with_known_polarity() {
         println!("{signal}: inverted {half}, phase offset mod 1 {mean:.4} +- {std:.4} cycles");
         assert!(mean.abs() < 0.05 && std < 0.05, "{mean} {std}");
     }
+}
+
+/// Galileo E1 (CBOC(6,1,1/11), made-up code tables) of PRN 11 at 45 dB-Hz (both
+/// components) tracked on BOC(1,1) replicas of its pilot at 15 Msps (incommensurate with
+/// the chip rate), 7 periods into CS25 and 1000.25 chips into the period: CS25 found, the
+/// symbols exactly as sent, the carrier phase the data component's modulo one cycle, C/N0
+/// of the whole signal within 1 dB, and code and carrier noise within 20 % of the
+/// formulas at the C/N0 the replica sees: the pilot's half less the BOC(6,1) part's
+/// 1/11 (45 - 3.01 - 0.41 dB).
+///
+/// Code: a non-coherent early-minus-late envelope DLL of spacing `d` on BOC(1,1), whose
+/// correlation is `1 - 3|x|` near its peak. Betz & Kolodziejski ("Generalized Theory of
+/// Code Tracking with an Early-Late Discriminator", IEEE TAES 45(4), 2009, eq. 13) give
+/// for an infinite band `sigma^2 = B_L (1 - R(d)) / (2 C/N0 R'(d/2)^2)`: BPSK's
+/// `1 - R(d) = d`, `R' = 1` gives Kaplan & Hegarty's `B_L d / (2 C/N0)`; BOC(1,1)'s
+/// `1 - R(d) = 3d`, `R' = 3` gives `B_L d / (6 C/N0)`, a third of BPSK's. Non-coherent
+/// squaring loss as for BPSK with the early-plus-late amplitude `2 - 3d` in place of
+/// `2 - d`: `sigma^2 = B_L d / (6 C/N0) (1 + 2 / (T C/N0 (2 - 3d)))` chips^2.
+#[test]
+fn galileo_e1_tracks_on_boc11_replicas_at_the_noise_formulas() {
+    let tables = made_up_e1_codes();
+    let sig = TestSignal {
+        signal: Signal::GalE1,
+        prn: 11,
+        fs_hz: 15e6,
+        code0_chips: 4092.0 * (25.0 * 1000.0 + 7.0) + 1000.25,
+        seed: 5,
+        codes: Some(SignalCodes::galileo_e1(&tables, 11).expect("PRN 11")),
+        ..TestSignal::gps_static()
+    };
+    let (bn, d) = (5.0, 0.15);
+    let config = TrackingConfig {
+        dll_narrow_bandwidth_hz: None,
+        narrow_early_late_spacing_chips: None,
+        dll_bandwidth_hz: bn,
+        early_late_spacing_chips: d,
+        ..TrackingConfig::default()
+    };
+    let handover = sig.handover(0.4, 20.0);
+    let records = track(&sig, config, handover, 5.0);
+    assert!(records.iter().all(|r| !r.loss_of_lock));
+    let settled = after(&records, &sig, 1.5);
+    assert!(
+        settled
+            .iter()
+            .all(|r| r.locked && !r.cycle_slip && r.bit_synced && r.integration_s > 3.9e-3)
+    );
+    let replica_cn0_dbhz = sig.cn0_dbhz - 10.0 * 2f64.log10() - BOC61_SHARE_DB;
+    let seen = TestSignal {
+        cn0_dbhz: replica_cn0_dbhz,
+        ..sig.clone()
+    };
+    let t = 4e-3;
+    assert_phase_noise(
+        "E1 pilot",
+        &settled,
+        &seen,
+        config.pll_bandwidth_hz,
+        t,
+        0.8..1.2,
+    );
+
+    let code: Vec<f64> = settled
+        .iter()
+        .map(|r| sig.code_error(r.sample_index, r.code_phase_chips))
+        .collect();
+    let (code_mean, code_std) = mean_std(&code);
+    let cn0 = 10f64.powf(replica_cn0_dbhz / 10.0);
+    let dll = (bn * d / (6.0 * cn0) * (1.0 + 2.0 / (t * cn0 * (2.0 - 3.0 * d)))).sqrt();
+    println!(
+        "E1 pilot, {bn} Hz, {d} chip: code error mean {code_mean:.5} chips, std {code_std:.5} \
+         chips (BOC(1,1) formula {dll:.5})"
+    );
+    assert!(code_mean.abs() < 0.003, "{code_mean}");
+    assert!(
+        (0.8..1.2).contains(&(code_std / dll)),
+        "{code_std} vs {dll}"
+    );
+    assert_mean_cn0_near_truth(&settled, &sig);
+
+    // Symbols exactly as sent.
+    let symbols: Vec<(i8, f64)> = records
+        .iter()
+        .filter_map(|r| r.bit)
+        .map(|b| {
+            let truth = sig.data_bit(sig.bit_index(b.first_sample_index + 30_000));
+            (b.value, truth)
+        })
+        .collect();
+    let wrong = symbols.iter().filter(|(v, t)| f64::from(*v) != *t).count();
+    println!("E1: {} symbols, {wrong} wrong", symbols.len());
+    assert!(symbols.len() > 500 && wrong == 0, "{wrong} wrong");
+    // The carrier phase, half a cycle added when the pilot came inverted, follows the
+    // data component's modulo one cycle.
+    let front_end = FrontEnd {
+        sample_rate_hz: sig.fs_hz,
+        if_hz: 0.0,
+    };
+    let codes = sig.codes.clone().expect("E1 codes");
+    let mut channel =
+        ChannelTracker::with_codes(handover, front_end, config, codes).expect("valid channel");
+    let n = (2.0 * sig.fs_hz) as usize;
+    let records = channel.process(&sig.generate(0, n), 0).expect("contiguous");
+    let half = if channel.pilot_inverted() { 0.5 } else { 0.0 };
+    let offsets: Vec<f64> = after(&records, &sig, 1.5)
+        .iter()
+        .map(|r| {
+            let d = r.carrier_phase_cycles + half - sig.carrier_phase(r.sample_index);
+            (d + 0.5).rem_euclid(1.0) - 0.5
+        })
+        .collect();
+    let (mean, std) = mean_std(&offsets);
+    println!("E1: inverted {half}, phase offset mod 1 {mean:.4} +- {std:.4} cycles");
+    assert!(mean.abs() < 0.05 && std < 0.05, "{mean} {std}");
 }

@@ -15,6 +15,7 @@
 use super::AcquisitionError;
 use super::cfar;
 use super::replica::{mean_edge_delay_samples, sample_code, wipe_carrier};
+use crate::replica::{replica_chips, subchips};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use rustfft::{Fft, FftPlanner};
@@ -237,6 +238,15 @@ impl Pcps {
                 "finite and at least the chip rate",
             ));
         }
+        // BOC(1,1)'s main peak is 2/3 chip wide: at two samples per half-chip the nearest
+        // lag is within 1/8 chip of its apex (at most 4.1 dB down, 1 - 3/8 in amplitude).
+        if config.signal.replica_boc11() && fs < 4.0 * config.signal.chip_rate_hz() {
+            return Err(bad(
+                "sample rate (Hz)",
+                fs,
+                "at least two samples per BOC(1,1) half-chip (4.092 Msps)",
+            ));
+        }
         if config.coherent_periods == 0 {
             return Err(bad("coherent periods", 0.0, ">= 1"));
         }
@@ -272,7 +282,7 @@ impl Pcps {
             inverse: planner.plan_fft_inverse(fft_len),
             doppler_hz,
             apex_offset_samples: 0.5
-                - mean_edge_delay_samples(config.signal.chip_rate_hz(), fs, period_samples),
+                - mean_edge_delay_samples(replica_rate_hz(config.signal), fs, period_samples),
         })
     }
 
@@ -320,16 +330,19 @@ impl Pcps {
         }
         Ok(PreparedCode {
             prn,
-            spectra_conj: codes.iter().map(|c| self.spectrum_conj(c)).collect(),
+            spectra_conj: codes
+                .iter()
+                .map(|c| self.spectrum_conj(&replica_chips(signal, c)))
+                .collect(),
         })
     }
 
-    /// One code period of `chips` sampled, zero-padded, transformed, conjugated, scaled.
+    /// One code period of replica `chips` ([`replica_chips`]) sampled, zero-padded,
+    /// transformed, conjugated, scaled.
     fn spectrum_conj(&self, chips: &[i8]) -> Vec<Complex32> {
-        let signal = self.config.signal;
         let code = sample_code(
             chips,
-            signal.chip_rate_hz(),
+            replica_rate_hz(self.config.signal),
             self.config.sample_rate_hz,
             self.period_samples,
         );
@@ -466,6 +479,11 @@ impl Pcps {
         let samples_per_chip = fs / signal.chip_rate_hz();
         let guard = (1.5 * samples_per_chip).ceil() as usize + 1;
         let (bin, lag, peak) = surface.peak();
+        let lag = if signal.replica_boc11() {
+            main_peak_lag(surface, bin, lag, samples_per_chip / 2.0)
+        } else {
+            lag
+        };
         let noise = surface.noise_power(lag, guard);
         let cells = surface.power.len();
         let threshold = cfar::search_threshold(surface.noncoherent, cells, self.config.pfa)?;
@@ -506,6 +524,36 @@ impl Pcps {
             cells,
         })
     }
+}
+
+/// Replica chips per second: the chip rate, twice it for BOC(1,1) half-chips.
+fn replica_rate_hz(signal: Signal) -> f64 {
+    signal.chip_rate_hz() * subchips(signal) as f64
+}
+
+/// BOC(1,1) side-peak check: the correlation has side peaks of half the main peak's
+/// amplitude half a chip either side of it, so noise can lift one above the main peak.
+/// Of the peak `lag` and the lags `half_chip` samples either side, the main peak is the
+/// one that best matches the peak's magnitudes `1/2, 1, 1/2` at half-chip steps: the
+/// largest `|R(c)| + (|R(c - h)| + |R(c + h)|) / 2` (ideally 3/2 at the main peak, 1 at
+/// a side peak; a side peak wins only above 3/2 of the main peak with the other side
+/// peak at half of it).
+fn main_peak_lag(surface: &Surface, bin: usize, lag: usize, half_chip: f64) -> usize {
+    let lags = surface.lags;
+    let h = (half_chip.round() as usize).clamp(1, lags / 4);
+    let amp = |l: usize| {
+        f64::from(surface.power[bin * lags + l % lags])
+            .max(0.0)
+            .sqrt()
+    };
+    let score = |c: usize| amp(c) + 0.5 * (amp(c + lags - h) + amp(c + h));
+    [lag, (lag + lags - h) % lags, (lag + h) % lags]
+        .into_iter()
+        .map(|c| (c, score(c)))
+        .fold((lag, f64::NEG_INFINITY), |best, (c, s)| {
+            if s > best.1 { (c, s) } else { best }
+        })
+        .0
 }
 
 /// Bin centres `centre + j step`, `|j| <= ceil(half_width / step)`.
@@ -576,6 +624,50 @@ mod tests {
             let t = |x: f64| 5.0 - 2.0 * (x - d).abs();
             assert!((triangle_vertex(t(-1.0), t(0.0), t(1.0)) - d).abs() < 1e-12);
         }
+    }
+
+    /// Galileo E1 (BOC(1,1)): a side peak half a chip from the main peak, lifted above it
+    /// by noise, is not taken; the main peak's lag is. Below two samples per half-chip the
+    /// search is refused.
+    #[test]
+    fn a_boc11_side_peak_above_the_main_peak_is_not_taken() {
+        // 8 samples per chip: half a chip is 4 lags.
+        let fs = 8.184e6;
+        let pcps = Pcps::new(PcpsConfig::cold(Signal::GalE1, fs)).unwrap();
+        let lags = pcps.period_samples();
+        assert_eq!(lags, 32_736);
+        let boc = |x: f64| {
+            let x = x.abs();
+            if x <= 0.5 {
+                1.0 - 3.0 * x
+            } else {
+                (x - 1.0).min(0.0)
+            }
+        };
+        let main = 1000;
+        for (side, lifted) in [(4usize, 1.05), (lags - 4, 1.02)] {
+            let power: Vec<f32> = (0..lags)
+                .map(|l| {
+                    let d = (l as f64 - main as f64) / 8.0;
+                    let a = if l == (main + side) % lags {
+                        lifted
+                    } else {
+                        boc(d)
+                    };
+                    (a * a + 1e-4) as f32
+                })
+                .collect();
+            let surface = Surface {
+                doppler_hz: vec![0.0],
+                lags,
+                power,
+                noncoherent: 2,
+            };
+            let acq = pcps.decide(&surface, 11).unwrap();
+            assert_eq!(acq.peak_lag, main, "side peak at {side}");
+            assert!((acq.code_phase_samples - main as f64).abs() < 1.0);
+        }
+        assert!(Pcps::new(PcpsConfig::cold(Signal::GalE1, 4.0e6)).is_err());
     }
 
     #[test]

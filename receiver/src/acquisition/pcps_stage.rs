@@ -34,13 +34,21 @@ impl PcpsStage {
         // interop-l5-static, 7 of 20 detections from one-period blocks never locked, none
         // of 12 from aligned windows; the loops do not pull in from 300 Hz off). GPS L1
         // C/A bits change only every 20 ms.
+        // Galileo E1's I/NAV symbols and E1-C's CS25 change sign every 4 ms period.
         config.bit_transition = match signal {
-            Signal::BdsB1I | Signal::GpsL5 | Signal::GalE5a => BitTransition::AlignedWindows,
+            Signal::BdsB1I | Signal::GpsL5 | Signal::GalE5a | Signal::GalE1 => {
+                BitTransition::AlignedWindows
+            }
             // The observed-only signals are refused by `Pcps::new` (no code).
-            Signal::GpsL1Ca | Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I | Signal::GalE1 => {
+            Signal::GpsL1Ca | Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => {
                 BitTransition::Ignore
             }
         };
+        // E1's 4 ms periods: bins 1 / (2 T) apart (125 Hz at one period) lose at most
+        // sinc(1/4) = 0.91 dB between bins, where the default 2 / (3 T) would lose 1.65 dB.
+        if signal == Signal::GalE1 {
+            config.doppler_step_hz = Some(1.0 / (2.0 * config.coherent_s()));
+        }
         Ok(Self {
             pcps: Pcps::new(config)?,
         })

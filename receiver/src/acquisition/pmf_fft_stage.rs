@@ -5,6 +5,7 @@ use super::pcps::{Acquisition, DopplerWindow};
 use super::pcps_stage::PcpsStage;
 use super::pmf_fft::{ChipTiming, PmfFft, despread_to_chips};
 use super::{AcquisitionError, AcquisitionStage, Candidate};
+use crate::replica::{replica_chips, subchips};
 use num_complex::Complex32;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
@@ -15,6 +16,18 @@ pub(super) const PMF_FILTER_CHIPS: usize = 64;
 /// one search block; the estimates of separate periods are independent, so the average
 /// has a third of one period's standard deviation).
 pub(super) const PMF_PERIODS: usize = 10;
+/// Galileo E1's 4 ms periods averaged: 4 (16 ms of 8184 half-chips each), so that a search
+/// (one period more) fits the receiver's 20 ms blocks.
+const PMF_E1_PERIODS: usize = 4;
+
+/// Code periods averaged for `signal`.
+fn pmf_periods(signal: Signal) -> usize {
+    if signal == Signal::GalE1 {
+        PMF_E1_PERIODS
+    } else {
+        PMF_PERIODS
+    }
+}
 
 /// PCPS for detection and code phase, then the Doppler from the PMF-FFT fine estimator
 /// (thesis eqs. 3.3-13, 3.3-14) on the despread chips of [`PMF_PERIODS`] code periods,
@@ -35,8 +48,9 @@ impl PmfFftStage {
         sample_rate_hz: f64,
         if_hz: f64,
     ) -> Result<Self, AcquisitionError> {
-        // M: the code padded with zero chips to a power of two (1023 -> 1024, 2046 -> 2048).
-        let m = signal.code_length().next_power_of_two();
+        // M: the code padded with zero chips to a power of two (1023 -> 1024, 2046 -> 2048;
+        // Galileo E1's 8184 BOC(1,1) half-chips -> 8192).
+        let m = (signal.code_length() * subchips(signal)).next_power_of_two();
         Ok(Self {
             pcps,
             pmf: PmfFft::new(m, PMF_FILTER_CHIPS)?,
@@ -55,14 +69,16 @@ impl PmfFftStage {
     /// The PCPS Doppler refined by the mean PMF-FFT fine offset over the whole code
     /// periods after the code phase.
     fn refine(&self, samples: &[Complex32], acq: &Acquisition) -> Result<f64, AcquisitionError> {
-        let code = self.signal.code(acq.prn)?;
+        let code = replica_chips(self.signal, &self.signal.code(acq.prn)?);
         let period = self.period_samples(acq.doppler_hz);
-        let chip_rate =
-            self.signal.chip_rate_hz() * (1.0 + acq.doppler_hz / self.signal.carrier_hz());
+        // Replica chips per second (BOC(1,1) half-chips for Galileo E1).
+        let chip_rate = self.signal.chip_rate_hz()
+            * subchips(self.signal) as f64
+            * (1.0 + acq.doppler_hz / self.signal.carrier_hz());
         let mut scratch = self.pmf.scratch();
         let mut sum = 0.0;
         let mut count = 0;
-        for k in 0..PMF_PERIODS {
+        for k in 0..pmf_periods(self.signal) {
             let timing = ChipTiming {
                 sample_rate_hz: self.sample_rate_hz,
                 carrier_hz: self.if_hz + acq.doppler_hz,
@@ -88,7 +104,7 @@ impl PmfFftStage {
 
 impl AcquisitionStage for PmfFftStage {
     fn samples_needed(&self) -> usize {
-        let periods = (PMF_PERIODS + 1) as f64 * self.period_samples(0.0);
+        let periods = (pmf_periods(self.signal) + 1) as f64 * self.period_samples(0.0);
         self.pcps.samples_needed().max(periods.ceil() as usize)
     }
 

@@ -119,7 +119,8 @@ impl Merge<'_> {
 
     /// The signal recorded: the command line's, else the metadata's (the one whose carrier
     /// is the centre frequency plus `skyforge:if_hz`, else the one in the band recorded,
-    /// else the one the file name names). A recording of several signals has none unless
+    /// else the one the file name names; a file name naming another signal of that carrier,
+    /// Galileo E1 beside GPS L1 C/A, wins). A recording of several signals has none unless
     /// the command line picks one of them.
     fn signal(
         &mut self,
@@ -141,9 +142,16 @@ impl Merge<'_> {
         let by_carrier = centre
             .zip(meta.if_hz)
             .and_then(|(c, f_if)| Signal::from_carrier_hz(c + f_if));
+        let named = Signal::from_file_name(&file_name(self.meta_path));
         let meta_signal = by_carrier
             .or_else(|| centre.and_then(|c| Signal::in_band(c, sample_rate_hz)))
-            .or_else(|| Signal::from_file_name(&file_name(self.meta_path)));
+            // Galileo E1 shares GPS L1 C/A's carrier: the file name tells them apart.
+            .map(|s| {
+                named
+                    .filter(|n| n.carrier_hz() == s.carrier_hz())
+                    .unwrap_or(s)
+            })
+            .or(named);
         self.pick("the signal", meta_signal, given)
     }
 }

@@ -159,11 +159,11 @@ fn unknown_signal(r: &Recording) -> String {
         .and_then(|n| Signal::any_from_file_name(&n.to_string_lossy()));
     match untracked {
         Some(s) => format!(
-            "{}: holds {s}, which the bundled receiver does not receive yet (it receives gps-l1ca, bds-b1i, gps-l5 and gal-e5a)",
+            "{}: holds {s}, which the bundled receiver does not receive yet (it receives gps-l1ca, bds-b1i, gps-l5, gal-e5a and gal-e1)",
             path.display()
         ),
         None => format!(
-            "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca, bds-b1i, gps-l5 or gal-e5a",
+            "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca, bds-b1i, gps-l5, gal-e5a or gal-e1",
             path.display()
         ),
     }

@@ -7,9 +7,10 @@
 //! A period that straddles two input blocks is gathered in a buffer first, so how the
 //! caller cuts its samples into blocks does not change any result.
 //!
-//! A signal with a pilot (GPS L5, Galileo E5a) is tracked on its pilot: the loops close
-//! on the pilot code's early, prompt and late taps (turned back a quarter cycle, the
-//! pilot's lead on the data component, so the carrier phase is the data component's), a
+//! A signal with a pilot (GPS L5, Galileo E5a and E1) is tracked on its pilot: the loops
+//! close on the pilot code's early, prompt and late taps (turned back a quarter cycle, the
+//! pilot's lead on the data component, or for E1, whose pilot is sent in phase with the
+//! opposite sign, negated; so the carrier phase is the data component's), a
 //! fourth tap reads the data code's prompt, and "bit synchronisation" is the search for
 //! the pilot's secondary code, which also gives the symbol edge and the carrier loop's
 //! polarity; after it the pilot's secondary code is wiped off the loop taps, the data
@@ -20,6 +21,10 @@
 //! every coherent integration. After bit synchronisation (and Neumann-Hoffman wipe-off on
 //! BeiDou D1) integrations grow to `coherent_ms` periods, never crossing a bit edge, as
 //! far as the PLL bandwidth in use allows (`Bn T <= 0.1`).
+//!
+//! Galileo E1 is correlated with BOC(1,1) replicas ([`crate::replica`]), 4 ms per code
+//! period and symbol, its DLL with the BOC(1,1) discriminator and early-late spacings
+//! capped for BOC(1,1)'s narrow peak ([`BOC11_MAX_SPACING_CHIPS`]).
 
 use num_complex::Complex;
 use skyforge_gnss::codes::neumann_hoffman;
@@ -29,9 +34,10 @@ use super::bit_sync::BitSynchroniser;
 use super::carrier::{self, CarrierTracker, IntegrationEnd};
 use super::config::TrackingConfig;
 use super::correlator::{Correlator, NcoState, TapSet};
-use super::discriminators::dll_envelope_chips;
+use super::discriminators::{dll_envelope_boc11_chips, dll_envelope_chips};
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{aided_code_rate, dll_rate_correction};
+use crate::replica::{BOC61_SHARE_DB, SignalCodes, subchips};
 use skyforge_gnss::signal::{DataModulation, Signal};
 
 /// Largest PLL `Bn T` (noise bandwidth x coherent integration) an integration may reach.
@@ -119,7 +125,8 @@ pub struct TrackingRecord {
     pub code_error_chips: f64,
     /// C/N0 estimate (dB-Hz) of the whole signal, once the estimator window has filled;
     /// for a signal with a pilot, the pilot's estimate plus 3.01 dB (the ICDs split the
-    /// power equally between the two components).
+    /// power equally between the two components), for Galileo E1 plus 0.41 dB more (the
+    /// BOC(6,1) part its BOC(1,1) replica does not see, [`BOC61_SHARE_DB`]).
     pub cn0_dbhz: Option<f64>,
     /// PLL lock indicator: the smoothed `cos 2 phi` estimate, corrected for the noise bias
     /// `SNR / (1 + SNR)` of one prompt with the C/N0 estimate.
@@ -160,6 +167,24 @@ struct BitAccumulator {
 /// Power of a pilot signal over its pilot alone: the two components carry half each.
 const PILOT_SHARE_DB: f64 = 3.010_299_956_639_812;
 
+/// The widest early-late spacing (chips) of a BOC(1,1) replica's DLL: its envelope
+/// discriminator is right while early and late stay on the main peak, within its zeros
+/// at +-1/3 chip; 0.3 leaves the hand-over +-0.18 chip to pull in from.
+pub const BOC11_MAX_SPACING_CHIPS: f64 = 0.3;
+/// The widest narrow (after bit sync) spacing of a BOC(1,1) DLL (chips): GNSS-SDR's E1
+/// early-late spacing, 0.15 chip (`Galileo_E1_DLL_PLL_VEML_Tracking`).
+pub const BOC11_MAX_NARROW_SPACING_CHIPS: f64 = 0.15;
+
+/// The spacing `d` (chips) a channel of `signal` uses: at most `boc_cap` for a BOC(1,1)
+/// replica.
+fn spacing_for(signal: Signal, d: f64, boc_cap: f64) -> f64 {
+    if signal.replica_boc11() {
+        d.min(boc_cap)
+    } else {
+        d
+    }
+}
+
 /// One satellite's tracking channel.
 #[derive(Debug)]
 pub struct ChannelTracker {
@@ -168,6 +193,7 @@ pub struct ChannelTracker {
     modulation: DataModulation,
     front_end: FrontEnd,
     config: TrackingConfig,
+    codes: SignalCodes,
     correlator: Correlator,
     /// DLL bandwidth and early-late spacing in use (wide until bit sync).
     dll_bandwidth_hz: f64,
@@ -212,6 +238,19 @@ impl ChannelTracker {
         config: TrackingConfig,
     ) -> Result<Self, TrackingError> {
         config.check()?;
+        let codes = SignalCodes::of(handover.signal, handover.prn)?;
+        Self::with_codes(handover, front_end, config, codes)
+    }
+
+    /// [`Self::new`] with the PRN's codes given (Galileo E1's from tables the caller read,
+    /// [`SignalCodes::galileo_e1`]).
+    pub fn with_codes(
+        handover: Handover,
+        front_end: FrontEnd,
+        config: TrackingConfig,
+        codes: SignalCodes,
+    ) -> Result<Self, TrackingError> {
+        config.check()?;
         if !(front_end.sample_rate_hz.is_finite()
             && front_end.sample_rate_hz > 0.0
             && front_end.if_hz.is_finite())
@@ -222,13 +261,26 @@ impl ChannelTracker {
         }
         let signal = handover.signal;
         let fs = front_end.sample_rate_hz;
-        if fs < signal.chip_rate_hz() {
+        if codes.data.len() != signal.code_length() {
+            return Err(TrackingError::InvalidConfig(format!(
+                "{} chips of code, {} has {}",
+                codes.data.len(),
+                signal.name(),
+                signal.code_length()
+            )));
+        }
+        if fs < signal.chip_rate_hz() * subchips(signal) as f64 {
             return Err(TrackingError::InvalidConfig(format!(
                 "sample rate {fs} Hz is too low for {}",
                 signal.name()
             )));
         }
-        let correlator = correlator(signal, handover.prn, config.early_late_spacing_chips)?;
+        let spacing = spacing_for(
+            signal,
+            config.early_late_spacing_chips,
+            BOC11_MAX_SPACING_CHIPS,
+        );
+        let correlator = correlator(signal, &codes, spacing)?;
         let carrier = carrier::build(&config, handover.doppler_hz, handover.doppler_rate_hzps)?;
         let code_rate = aided_code_rate(
             signal.chip_rate_hz(),
@@ -250,11 +302,11 @@ impl ChannelTracker {
         let modulation = signal.data_modulation(handover.prn).ok_or_else(|| {
             TrackingError::InvalidConfig(format!("{} is not tracked", signal.name()))
         })?;
-        let sync = if signal.has_pilot() {
-            let secondary = signal.pilot(handover.prn)?.secondary;
-            BitSynchroniser::for_pilot(modulation, secondary, config.bit_sync)
-        } else {
-            BitSynchroniser::new(modulation, config.bit_sync)
+        let sync = match &codes.pilot {
+            Some(pilot) if signal.has_pilot() => {
+                BitSynchroniser::for_pilot(modulation, pilot.secondary.clone(), config.bit_sync)
+            }
+            _ => BitSynchroniser::new(modulation, config.bit_sync),
         };
         Ok(Self {
             signal,
@@ -262,9 +314,10 @@ impl ChannelTracker {
             modulation,
             front_end,
             config,
+            codes,
             correlator,
             dll_bandwidth_hz: config.dll_bandwidth_hz,
-            early_late_spacing_chips: config.early_late_spacing_chips,
+            early_late_spacing_chips: spacing,
             carrier,
             next_index: handover.sample_index + lead as u64,
             code_phase_chips: (lead - handover.code_phase_samples) * dp,
@@ -373,9 +426,13 @@ impl ChannelTracker {
                 self.pending.extend_from_slice(&samples[from..to]);
                 self.correlator.correlate(&self.pending, &nco)
             };
-            // A pilot leads the data component by a quarter cycle: turn its taps back.
+            // A pilot in quadrature leads the data component by a quarter cycle: turn its
+            // taps back. E1-C is sent as -e_C beside e_B: negate its taps.
             let (corr, data) = match corr {
-                [e, p, l, d] => ([e, p, l].map(|c| Complex::new(c.im, -c.re)), *d),
+                [e, p, l, d] if self.signal.pilot_in_quadrature() => {
+                    ([e, p, l].map(|c| Complex::new(c.im, -c.re)), *d)
+                }
+                [e, p, l, d] => ([e, p, l].map(|c| -c), *d),
                 _ => ([corr[0], corr[1], corr[2]], corr[1]),
             };
             self.pending.clear();
@@ -518,11 +575,12 @@ impl ChannelTracker {
         if let Some(d) = self
             .config
             .narrow_early_late_spacing_chips
+            .map(|d| spacing_for(self.signal, d, BOC11_MAX_NARROW_SPACING_CHIPS))
             .map(|d| d.max(chips_per_sample))
             && d != self.early_late_spacing_chips
         {
-            // The codes were valid when the channel was made (same signal and PRN).
-            if let Ok(c) = correlator(self.signal, self.prn, d) {
+            // The codes were valid when the channel was made.
+            if let Ok(c) = correlator(self.signal, &self.codes, d) {
                 self.correlator = c;
                 self.early_late_spacing_chips = d;
             }
@@ -627,7 +685,11 @@ impl ChannelTracker {
         self.carrier_phase_cycles += step.phase_step_cycles;
 
         // Code loop, carrier aided.
-        let code_error = dll_envelope_chips(early, late, self.early_late_spacing_chips);
+        let code_error = if self.signal.replica_boc11() {
+            dll_envelope_boc11_chips(early, late, self.early_late_spacing_chips)
+        } else {
+            dll_envelope_chips(early, late, self.early_late_spacing_chips)
+        };
         self.code_rate = aided_code_rate(
             self.signal.chip_rate_hz(),
             self.doppler_hz,
@@ -679,7 +741,9 @@ impl ChannelTracker {
             phase_error_cycles: phase_error,
             code_error_chips: code_error,
             cn0_dbhz: cn0.map(|c| {
-                if self.signal.has_pilot() {
+                if self.signal.replica_boc11() {
+                    c + PILOT_SHARE_DB + BOC61_SHARE_DB
+                } else if self.signal.has_pilot() {
                     c + PILOT_SHARE_DB
                 } else {
                     c
@@ -696,19 +760,25 @@ impl ChannelTracker {
     }
 }
 
-/// The correlator of `signal`'s `prn`: early, prompt and late of its code, or, for a
-/// signal with a pilot, of the pilot code with the data code's prompt beside them.
-fn correlator(signal: Signal, prn: u8, spacing_chips: f64) -> Result<Correlator, TrackingError> {
-    let code = signal.code(prn)?;
-    if signal.has_pilot() {
-        Correlator::pilot_and_data(&signal.pilot(prn)?.primary, &code, spacing_chips)
-    } else {
-        Correlator::new(
-            &code,
+/// The correlator of `signal` with `codes`: early, prompt and late of its code, or, for a
+/// signal with a pilot, of the pilot code with the data code's prompt beside them
+/// (BOC(1,1) replicas for Galileo E1).
+fn correlator(
+    signal: Signal,
+    codes: &SignalCodes,
+    spacing_chips: f64,
+) -> Result<Correlator, TrackingError> {
+    match &codes.pilot {
+        Some(pilot) if signal.replica_boc11() => {
+            Correlator::pilot_and_data_boc11(&pilot.primary, &codes.data, spacing_chips)
+        }
+        Some(pilot) => Correlator::pilot_and_data(&pilot.primary, &codes.data, spacing_chips),
+        None => Correlator::new(
+            &codes.data,
             TapSet::Three {
                 early_late_spacing_chips: spacing_chips,
             },
-        )
+        ),
     }
 }
 

@@ -12,7 +12,9 @@
 //! `floor(p0 + delta + i dp) mod L` at sample `i`; the kernel walks the chips (integer
 //! chip boundaries, one fixed-width store per chip) and fills a per-tap buffer, so the
 //! per-sample loop is a plain multiply-accumulate the compiler vectorises. A positive offset is an
-//! early replica (ahead of the prompt), a negative offset a late one.
+//! early replica (ahead of the prompt), a negative offset a late one. A BOC(1,1) replica
+//! ([`Correlator::pilot_and_data_boc11`]) walks half-chips at twice the rate; phases,
+//! rates and offsets stay in chips outside the kernel.
 //!
 //! The kernel runs with the widest vector instructions the CPU has (AVX-512, AVX2 or
 //! SSE2, detected at run time through `pulp`, no unsafe code). Within one machine the
@@ -21,8 +23,10 @@
 
 use num_complex::Complex;
 use skyforge_gnss::nco::LanePhasors;
+use skyforge_gnss::signal::Signal;
 
 use super::TrackingError;
+use crate::replica::replica_chips;
 
 /// Independent carrier phasor recurrences run side by side (one AVX-512 register of f32).
 const LANES: usize = 16;
@@ -144,6 +148,8 @@ pub struct Correlator {
     code: Vec<f32>,
     /// The data code of [`TapSet::PilotAndData`] (empty otherwise).
     data_code: Vec<f32>,
+    /// Replica chips per code chip: 2 for BOC(1,1) half-chips, else 1.
+    subchips: f64,
     taps: TapSet,
     /// Per-tap replica buffers, `taps.len()` slices of the block length plus `RUN`.
     replicas: Vec<f32>,
@@ -161,7 +167,7 @@ impl Correlator {
                 "a pilot-and-data correlator needs both codes".into(),
             ));
         }
-        Self::with_codes(code, &[], taps)
+        Self::with_codes(code, &[], taps, 1)
     }
 
     /// A correlator for a signal with a pilot: early, prompt and late of `pilot` and the
@@ -184,10 +190,42 @@ impl Correlator {
             TapSet::PilotAndData {
                 early_late_spacing_chips,
             },
+            1,
         )
     }
 
-    fn with_codes(code: &[i8], data: &[i8], taps: TapSet) -> Result<Self, TrackingError> {
+    /// [`Self::pilot_and_data`] with BOC(1,1) replicas (Galileo E1): each chip `c` of the
+    /// codes as the half-chips `+c, -c`; the NCO's phase and rate and the spacing stay in
+    /// chips.
+    pub fn pilot_and_data_boc11(
+        pilot: &[i8],
+        data: &[i8],
+        early_late_spacing_chips: f64,
+    ) -> Result<Self, TrackingError> {
+        if pilot.len() != data.len() {
+            return Err(TrackingError::InvalidConfig(format!(
+                "pilot and data codes differ in length: {} and {}",
+                pilot.len(),
+                data.len()
+            )));
+        }
+        let half_chips = |c: &[i8]| replica_chips(Signal::GalE1, c);
+        Self::with_codes(
+            &half_chips(pilot),
+            &half_chips(data),
+            TapSet::PilotAndData {
+                early_late_spacing_chips,
+            },
+            2,
+        )
+    }
+
+    fn with_codes(
+        code: &[i8],
+        data: &[i8],
+        taps: TapSet,
+        subchips: u8,
+    ) -> Result<Self, TrackingError> {
         if code.is_empty() {
             return Err(TrackingError::InvalidConfig("empty ranging code".into()));
         }
@@ -195,6 +233,7 @@ impl Correlator {
         Ok(Self {
             code: levels(code),
             data_code: levels(data),
+            subchips: f64::from(subchips),
             taps: taps.check()?,
             replicas: Vec::new(),
             wiped: Vec::new(),
@@ -209,7 +248,7 @@ impl Correlator {
 
     /// Code length in chips.
     pub fn code_length(&self) -> usize {
-        self.code.len()
+        self.code.len() / self.subchips as usize
     }
 
     /// Correlate `samples` with the replicas of `nco`: returns one complex sum per tap in
@@ -218,12 +257,14 @@ impl Correlator {
         let n = samples.len();
         let n_taps = self.taps.len();
         self.replicas.resize(n_taps * (n + RUN), 0.0);
+        // In replica chips (x 1.0, exact, for BPSK).
+        let s = self.subchips;
         let replica = Replica {
             code: &self.code,
             data_code: &self.data_code,
-            p0_chips: nco.code_phase_chips,
-            dp: nco.code_chips_per_sample,
-            offsets: self.taps.offsets_chips(),
+            p0_chips: nco.code_phase_chips * s,
+            dp: nco.code_chips_per_sample * s,
+            offsets: self.taps.offsets_chips().map(|o| o * s),
         };
         let carrier = CarrierStart::new(nco);
         let (replicas, wiped) = (&mut self.replicas, &mut self.wiped);
@@ -664,6 +705,48 @@ mod tests {
             early_late_spacing_chips: 0.5,
         };
         assert!(Correlator::new(&pilot, taps).is_err());
+    }
+
+    /// BOC(1,1) taps (Galileo E1) against the direct evaluation with the half-chip codes
+    /// at twice the phase, rate and offsets, at 15 Msps (7.3 samples per half-chip) and
+    /// 4.092 Msps (2).
+    #[test]
+    fn boc11_taps_match_direct_evaluation_on_half_chips() {
+        let (pilot, data) = (signs(4092, 31), signs(4092, 32));
+        let noise = signs(2 * 60_000, 6);
+        let samples: Vec<Complex<f32>> = noise
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
+            .collect();
+        let half = |c: &[i8]| c.iter().flat_map(|&c| [c, -c]).collect::<Vec<i8>>();
+        let (hp, hd) = (half(&pilot), half(&data));
+        for (n, fs) in [(60_000, 15e6), (16_368, 4.092e6)] {
+            let nco = NcoState {
+                carrier_phase_cycles: 0.12,
+                carrier_cycles_per_sample: 0.0213,
+                code_phase_chips: 4091.3,
+                code_chips_per_sample: 1.023e6 * (1.0 + 1e-6) / fs,
+            };
+            let mut corr = Correlator::pilot_and_data_boc11(&pilot, &data, 0.15).unwrap();
+            assert_eq!(corr.code_length(), 4092);
+            let out = corr.correlate(&samples[..n], &nco).to_vec();
+            let doubled = NcoState {
+                code_phase_chips: 2.0 * nco.code_phase_chips,
+                code_chips_per_sample: 2.0 * nco.code_chips_per_sample,
+                ..nco
+            };
+            for (t, (code, offset)) in [(&hp, 0.075), (&hp, 0.0), (&hp, -0.075), (&hd, 0.0)]
+                .into_iter()
+                .enumerate()
+            {
+                let r = reference(&samples[..n], code, &doubled, 2.0 * offset);
+                assert!(
+                    (out[t] - r).norm() < 1e-4 * n as f64,
+                    "tap {t} at {fs}: {} vs {r}",
+                    out[t]
+                );
+            }
+        }
     }
 
     /// The two-pass loop of four and five taps gives the single loop's sums bit for bit.

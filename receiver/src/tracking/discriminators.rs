@@ -95,6 +95,23 @@ pub fn dll_envelope_chips(early: Complex<f64>, late: Complex<f64>, spacing_chips
     (1.0 - spacing_chips / 2.0) * (e - l) / (e + l)
 }
 
+/// [`dll_envelope_chips`] for a BOC(1,1) replica, whose correlation main peak is
+/// `R(x) = 1 - 3|x|` for `|x| <= 1/2` chip (Betz, "Binary Offset Carrier Modulations for
+/// Radionavigation", Navigation 48(4), 2001): `(1/3 - d/2) (|E| - |L|) / (|E| + |L|)`,
+/// exact while early and late stay on the main peak's two slopes, `|error| <= d/2` and
+/// `|error| + d/2 <= 1/3`.
+pub fn dll_envelope_boc11_chips(
+    early: Complex<f64>,
+    late: Complex<f64>,
+    spacing_chips: f64,
+) -> f64 {
+    let (e, l) = (early.norm(), late.norm());
+    if e + l == 0.0 {
+        return 0.0;
+    }
+    (1.0 / 3.0 - spacing_chips / 2.0) * (e - l) / (e + l)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,6 +158,15 @@ mod tests {
             let e = phasor(a * r(d / 2.0 - err), 0.3);
             let l = phasor(a * r(-d / 2.0 - err), 0.3);
             prop_assert!((dll_envelope_chips(e, l, d) - err).abs() < 1e-9);
+        }
+
+        #[test]
+        fn boc11_dll_is_exact_on_its_main_peak(err in -0.15f64..0.15, d in 0.05f64..0.6, a in 0.1f64..1e3) {
+            prop_assume!(err.abs() <= d / 2.0 && err.abs() + d / 2.0 <= 1.0 / 3.0);
+            let r = |x: f64| 1.0 - 3.0 * x.abs();
+            let e = phasor(a * r(d / 2.0 - err), 0.3);
+            let l = phasor(a * r(-d / 2.0 - err), 0.3);
+            prop_assert!((dll_envelope_boc11_chips(e, l, d) - err).abs() < 1e-9);
         }
     }
 

@@ -1,7 +1,8 @@
 //! Test signals for the tracking tests: one satellite's complex baseband (or IF) signal
 //! with a polynomial Doppler, data bits (and the data secondary code: BeiDou D1's NH, L5's
 //! NH10, E5a-I's CS20), for GPS L5 and Galileo E5a the pilot in quadrature (+90 deg, half
-//! the power, its secondary code), optional phase jump and outage, in complex white
+//! the power, its secondary code), for Galileo E1 the CBOC(6,1,1/11) sum of E1-B and
+//! E1-C in phase (codes from made-up tables), optional phase jump and outage, in complex white
 //! Gaussian noise; plus its exact truth. Code periods count from a bit edge that is also
 //! a start of the pilot's secondary code.
 //! Shared by several test binaries, each using part of it.
@@ -10,7 +11,10 @@
 use num_complex::Complex;
 use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
-use skyforge_gnss::signal::Signal;
+use skyforge_gnss::codes::E1Codes;
+use skyforge_gnss::signal::{PilotCodes, Signal};
+use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, e1_cboc};
+use skyforge_receiver::replica::SignalCodes;
 use skyforge_receiver::tracking::Handover;
 
 /// One satellite signal and its truth.
@@ -34,6 +38,29 @@ pub struct TestSignal {
     /// No signal in [start, end) samples.
     pub outage: Option<(u64, u64)>,
     pub seed: u64,
+    /// The PRN's codes when not the signal's own (Galileo E1's from made-up tables).
+    pub codes: Option<SignalCodes>,
+}
+
+/// Made-up Galileo E1 tables (pseudo-random chips, not the ICD's) written to a temporary
+/// directory and read back unchecked.
+pub fn made_up_e1_codes() -> E1Codes {
+    let dir = tempfile::tempdir().expect("a temporary directory");
+    let mut x: u32 = 12345;
+    for name in ["galileo_e1b.txt", "galileo_e1c.txt"] {
+        let mut text = String::new();
+        for n in 1..=50 {
+            let digits: String = (0..1023)
+                .map(|_| {
+                    x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+                    char::from_digit((x >> 16) & 15, 16).expect("a hexadecimal digit")
+                })
+                .collect();
+            text.push_str(&format!("{n} {digits}\n"));
+        }
+        std::fs::write(dir.path().join(name), text).expect("write a made-up E1 table");
+    }
+    E1Codes::from_dir(dir.path(), false).expect("made-up tables")
 }
 
 impl TestSignal {
@@ -53,6 +80,18 @@ impl TestSignal {
             phase_jump: None,
             outage: None,
             seed: 1,
+            codes: None,
+        }
+    }
+
+    /// The data code and the pilot's codes (if any) of this signal's PRN.
+    pub fn signal_codes(&self) -> (Vec<i8>, Option<PilotCodes>) {
+        match &self.codes {
+            Some(c) => (c.data.clone(), c.pilot.clone()),
+            None => (
+                self.signal.code(self.prn).expect("valid PRN"),
+                self.signal.pilot(self.prn).ok(),
+            ),
         }
     }
 
@@ -118,13 +157,9 @@ impl TestSignal {
 
     /// Samples `[first, first + n)` of signal plus noise (noise sigma 1 per component).
     pub fn generate(&self, first: u64, n: usize) -> Vec<Complex<f32>> {
-        let code: Vec<f64> = self
-            .signal
-            .code(self.prn)
-            .expect("valid PRN")
-            .iter()
-            .map(|&c| f64::from(c))
-            .collect();
+        let (code, pilot) = self.signal_codes();
+        let code: Vec<f64> = code.iter().map(|&c| f64::from(c)).collect();
+        let cboc = self.signal == Signal::GalE1;
         let len = code.len() as f64;
         let amplitude = (10f64.powf(self.cn0_dbhz / 10.0) * 2.0 / self.fs_hz).sqrt();
         let ppb = self.periods_per_bit();
@@ -133,9 +168,8 @@ impl TestSignal {
             .data_modulation(self.prn)
             .and_then(|m| m.data_secondary_code())
             .unwrap_or(&[1]);
-        let pilot = self.signal.pilot(self.prn).ok();
-        // With a pilot, each component carries half the power.
-        let amplitude = if pilot.is_some() {
+        // With a pilot, each component carries half the power (E1's CBOC levels carry it).
+        let amplitude = if pilot.is_some() && !cboc {
             amplitude * std::f64::consts::FRAC_1_SQRT_2
         } else {
             amplitude
@@ -180,7 +214,15 @@ impl TestSignal {
                         let l = pc.secondary.len() as u64;
                         let q = f64::from(pc.primary[chip_index])
                             * f64::from(pc.secondary[(period % l) as usize]);
-                        Complex::new(sign, q)
+                        if cboc {
+                            // E1-B and E1-C in phase on the CBOC sub-chip of the chip.
+                            let sub = ((p.fract() * CBOC_SUBCHIPS as f64) as usize)
+                                .min(CBOC_SUBCHIPS - 1);
+                            let level = e1_cboc(sign as i8, q as i8)[sub];
+                            Complex::new(f64::from(level), 0.0)
+                        } else {
+                            Complex::new(sign, q)
+                        }
                     }
                     None => Complex::new(sign, 0.0),
                 };

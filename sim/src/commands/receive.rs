@@ -31,7 +31,7 @@ fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
     if let Some(s) = signal.filter(|s| !s.is_received()) {
         return Err(BadInput(format!(
-            "--signal {}: not received by the bundled receiver (allowed: gps-l1ca, bds-b1i, gps-l5, gal-e5a)",
+            "--signal {}: not received by the bundled receiver (allowed: gps-l1ca, bds-b1i, gps-l5, gal-e5a, gal-e1)",
             s.tag()
         ))
         .into());
