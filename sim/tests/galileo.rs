@@ -253,7 +253,10 @@ fn an_observed_signal_follows_its_own_phase_centre() {
         let code = value(centre, 4) - value(plain, 4);
         let phase = (value(centre, 5) - value(plain, 5)) * lambda_e1;
         // F14.3 values: each rounded to a millimetre.
-        assert!((-0.101..0.0).contains(&code), "{centre}: C1C moved {code} m");
+        assert!(
+            (-0.101..0.0).contains(&code),
+            "{centre}: C1C moved {code} m"
+        );
         assert!(
             (phase - code).abs() < 2e-3,
             "{centre}: L1C moved {phase} m, C1C {code} m"

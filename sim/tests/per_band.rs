@@ -53,6 +53,30 @@ fn scenario(
     support::write_scenario(dir, &format!("{name}.toml"), &text)
 }
 
+/// The satellites of `system` a RINEX observation body has lines of (a line starts with
+/// the satellite: `G05`, `E11`).
+fn observed(body: &str, system: char) -> usize {
+    let mut sats: Vec<&str> = (body.lines())
+        .filter(|l| l.starts_with(system) && l.len() > 3)
+        .map(|l| &l[..3])
+        .collect();
+    sats.sort_unstable();
+    sats.dedup();
+    sats.len()
+}
+
+/// The median of the 3D errors (m) of the fixes in `rx` against the site of `out`, and
+/// their number.
+fn median_error(out: &std::path::Path, rx: &std::path::Path) -> (f64, usize) {
+    let site = support::truth_site(out);
+    let mut errors: Vec<f64> = (support::fixes(rx).iter())
+        .map(|(_, r, _)| (r - site).norm())
+        .collect();
+    errors.sort_by(f64::total_cmp);
+    let median = errors.get(errors.len() / 2).copied().unwrap_or(f64::NAN);
+    (median, errors.len())
+}
+
 /// The first `n` complex samples of a cf32 recording.
 fn cf32(path: &std::path::Path, n: usize) -> Vec<(f32, f32)> {
     let bytes = std::fs::read(path).expect("recording");
@@ -132,32 +156,58 @@ fn the_bundled_receiver_fixes_on_both_signals_of_a_band_recording() {
     let rx = out.join("receive");
     let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
     let body = obs.split("END OF HEADER").nth(1).unwrap_or("");
-    // Each system's satellites observed (a line starts with the satellite: `G05`, `E11`).
-    let observed = |system: char| {
-        let mut sats: Vec<&str> = (body.lines())
-            .filter(|l| l.starts_with(system) && l.len() > 3)
-            .map(|l| &l[..3])
-            .collect();
-        sats.sort_unstable();
-        sats.dedup();
-        sats.len()
-    };
-    let (gps, galileo) = (observed('G'), observed('E'));
+    let (gps, galileo) = (observed(body, 'G'), observed(body, 'E'));
     println!("observed: {gps} GPS satellites on L5, {galileo} Galileo satellites on E5a");
     assert!(
         gps >= 4 && galileo >= 4,
         "{gps} GPS, {galileo} Galileo satellites"
     );
-    let site = support::truth_site(&out);
-    let errors: Vec<f64> = support::fixes(&rx)
-        .iter()
-        .map(|(_, r, _)| (r - site).norm())
-        .collect();
-    let mut sorted = errors.clone();
-    sorted.sort_by(f64::total_cmp);
-    let median = sorted.get(sorted.len() / 2).copied().unwrap_or(f64::NAN);
-    println!("{} fixes, median 3D error {median:.2} m", errors.len());
+    let (median, fixes) = median_error(&out, &rx);
+    println!("{fixes} fixes, median 3D error {median:.2} m");
     // As the dual-frequency test: 10 fixes in 30 s at least.
-    assert!(errors.len() >= 10, "{} fixes", errors.len());
+    assert!(fixes >= 10, "{fixes} fixes");
+    assert!(median < 5.0, "median {median} m");
+}
+
+/// GPS L1 C/A and Galileo E1 in one recording (the bundled `interop-l1-e1-static` cut to
+/// 25 s, made-up E1 code tables, as `pilot_signals`' E1 test): `synth --receive` reads it
+/// for both signals and fixes on both constellations together; the bars of that test.
+#[test]
+fn gps_l1ca_and_galileo_e1_from_one_recording_are_fixed_together() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let tables = dir.path().join("e1");
+    std::fs::create_dir(&tables).expect("tables dir");
+    support::made_up_e1_tables(&tables);
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../scenarios/bundled/interop-l1-e1-static.toml"),
+    )
+    .expect("bundled scenario")
+    .replacen("duration_s = 120.0", "duration_s = 25.0", 1);
+    let path = support::write_scenario(dir.path(), "l1-e1.toml", &text);
+    let out = dir.path().join("out");
+    let made = support::skyforge_with_env(
+        &["synth", &path, "--receive", "--out", out.to_str().unwrap()],
+        dir.path(),
+        &[
+            ("SKYFORGE_GALILEO_E1_CODES", Some(tables.to_str().unwrap())),
+            ("SKYFORGE_GALILEO_E1_CODES_CHECK", Some("off")),
+        ],
+    );
+    let log = support::text(&made);
+    println!("{log}");
+    assert!(made.status.success(), "{log}");
+    let rx = out.join("receive");
+    let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
+    let body = obs.split("END OF HEADER").nth(1).unwrap_or("");
+    let (gps, galileo) = (observed(body, 'G'), observed(body, 'E'));
+    println!("observed: {gps} GPS satellites on L1 C/A, {galileo} Galileo satellites on E1");
+    assert!(
+        gps >= 4 && galileo >= 4,
+        "{gps} GPS, {galileo} Galileo satellites"
+    );
+    let (median, fixes) = median_error(&out, &rx);
+    println!("{fixes} fixes, median 3D error {median:.2} m");
+    assert!(fixes >= 5, "{fixes} fixes");
     assert!(median < 5.0, "median {median} m");
 }
