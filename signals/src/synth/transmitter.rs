@@ -3,10 +3,12 @@
 
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+use skyforge_gnss::codes::{BDS_B2A_CHIP_RATE_HZ, bds_b2a_data};
 use skyforge_gnss::codes::{E1Codes, GALILEO_E1_C_SECONDARY, GALILEO_E1_CHIP_RATE_HZ};
 use skyforge_gnss::codes::{GALILEO_E5A_CHIP_RATE_HZ, galileo_e5a_i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, gps_l5_i};
+use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::galileo_inav::InavEncoder;
 use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
@@ -36,6 +38,10 @@ pub enum DataBits {
     /// symbol, no secondary code (Galileo OS SIS ICD §2.3.3, §4.3), symbol 0 at the
     /// encoder's GST week start.
     GalileoInav(Box<InavEncoder>),
+    /// BeiDou B-CNAV2 on B2a_d: 200 symbols/s after its LDPC code, 5 B2a periods per
+    /// symbol, the secondary code 00010 per period (BDS-SIS-ICD-B2a-1.0 §5.2.2, §6.2.1),
+    /// symbol 0 at the encoder's BDT week start (frames on BDT multiples of 3 s).
+    BdsCnav2(Box<BdsCnav2Encoder>),
 }
 
 impl DataBits {
@@ -46,6 +52,7 @@ impl DataBits {
             DataBits::GalileoFnav(_) => DataModulation::GalFnav,
             DataBits::GpsCnav(_) => DataModulation::GpsCnav,
             DataBits::GalileoInav(_) => DataModulation::GalInav,
+            DataBits::BdsCnav2(_) => DataModulation::BdsCnav2,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => DataModulation::BdsD1,
                 BdsNavFormat::D2 => DataModulation::BdsD2,
@@ -65,6 +72,7 @@ impl DataBits {
             DataBits::GalileoFnav(e) => e.symbol(b),
             DataBits::GpsCnav(e) => e.symbol(b),
             DataBits::GalileoInav(e) => e.symbol(b),
+            DataBits::BdsCnav2(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1): the code restarts with every bit.
@@ -179,6 +187,25 @@ impl Transmitter {
         })
     }
 
+    /// BeiDou B2a: B2a_d with B-CNAV2 and the 5-chip secondary code, B2a_p pilot (+90 deg,
+    /// BDS-SIS-ICD-B2a-1.0 §4.2.3) with the PRN's 100-chip secondary code (§5.2); chips
+    /// and symbols count from the encoder's BDT week start, which must not be after
+    /// `start`. The secondary codes (5 and 100 ms) and the 3 s frames all restart at
+    /// every BDT week start, so each is aligned with BDT as the ICD requires.
+    pub fn bds_b2a(sat: SatId, nav: BdsCnav2Encoder, start: Epoch) -> Option<Self> {
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
+        Some(Self {
+            sat,
+            signal: Signal::BdsB2a,
+            chip_rate_hz: BDS_B2A_CHIP_RATE_HZ,
+            code: bds_b2a_data(sat.prn)?,
+            data: DataBits::BdsCnav2(Box::new(nav)),
+            pilot: Some(Pilot::of(Signal::BdsB2a, sat.prn)?),
+            start_whole_s,
+            start_frac_s,
+        })
+    }
+
     /// Galileo E1: E1-B with I/NAV and E1-C pilot with CS25, in phase, each on its CBOC
     /// sub-carriers (Galileo OS SIS ICD §2.3.3, §3.4), the primary codes from `codes`;
     /// chips and symbols count from the encoder's GST week start, which must not be after
@@ -224,6 +251,7 @@ impl Transmitter {
             DataBits::GalileoFnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GpsCnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GalileoInav(nav) => nav.broadcast_ephemeris(),
+            DataBits::BdsCnav2(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -239,7 +267,10 @@ impl Transmitter {
                 let p = cnav.iono();
                 Some((p.alpha, p.beta))
             }
-            DataBits::Bds(_) | DataBits::GalileoFnav(_) | DataBits::GalileoInav(_) => None,
+            DataBits::Bds(_)
+            | DataBits::GalileoFnav(_)
+            | DataBits::GalileoInav(_)
+            | DataBits::BdsCnav2(_) => None,
         }
     }
 
