@@ -230,11 +230,9 @@ impl Signal {
         match self {
             // Galileo E1: BGD(E1,E5b) of an I/NAV ephemeris, BGD(E1,E5a) of an F/NAV one,
             // each the E1 user's delay against its message's clock (Galileo OS SIS ICD §5.1.5).
-            Signal::GpsL1Ca
-            | Signal::GpsL5
-            | Signal::BdsB1I
-            | Signal::GalE1
-            | Signal::BdsB2a => c.tgd_s,
+            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I | Signal::GalE1 | Signal::BdsB2a => {
+                c.tgd_s
+            }
             Signal::GalE5a => {
                 let bgd = match eph.message {
                     NavMessage::GalileoInav => c.tgd2_s,
@@ -623,8 +621,8 @@ mod tests {
     /// tables; L5 and E5a share a carrier, so only a file name tells them apart.
     #[test]
     fn pilot_signals_have_their_codes_and_share_a_carrier() {
-        for s in [Signal::GpsL5, Signal::GalE5a] {
-            assert!(s.has_pilot() && s.is_received());
+        for s in [Signal::GpsL5, Signal::GalE5a, Signal::BdsB2a] {
+            assert!(s.has_pilot() && s.is_received() && s.is_transmitted());
             assert_eq!(s.code(1).unwrap().len(), 10_230);
             let pilot = s.pilot(1).unwrap();
             assert_eq!(pilot.primary.len(), 10_230);
@@ -648,6 +646,36 @@ mod tests {
             Some(Signal::GalE5a)
         );
         assert_eq!(DataModulation::GpsLnav.data_secondary_code(), None);
+    }
+
+    /// BeiDou B2a (BDS-SIS-ICD-B2a-1.0 §4, §5): 1176.45 MHz, 10230 chips in 1 ms, 200
+    /// symbol/s B-CNAV2 with 00010 on the data, a 100-chip secondary code per PRN on the
+    /// pilot, PRN 1-63; named and tagged as the other signals.
+    #[test]
+    fn bds_b2a_follows_the_icd() {
+        let s = Signal::BdsB2a;
+        assert_eq!(s.carrier_hz(), 115.0 * 10.23e6);
+        assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
+        assert_eq!(s.system(), skyforge_orbits::ephemeris::System::Beidou);
+        let m = s.data_modulation(19).unwrap();
+        assert_eq!(m, DataModulation::BdsCnav2);
+        assert_eq!(m.data_secondary_code(), Some(&[1i8, 1, 1, -1, 1][..]));
+        assert_eq!(
+            f64::from(m.periods_per_bit()) * s.code_period_s(),
+            1.0 / 200.0
+        );
+        assert_eq!(s.pilot(19).unwrap().secondary.len(), 100);
+        assert_ne!(
+            s.pilot(19).unwrap().secondary,
+            s.pilot(20).unwrap().secondary
+        );
+        assert!(s.code(64).is_err() && s.pilot(0).is_err());
+        assert_eq!("BDS-B2A".parse::<Signal>(), Ok(s));
+        assert_eq!((s.tag(), s.name()), ("bds-b2a", "BDS B2a"));
+        assert_eq!(
+            Signal::from_file_name("ant1.bds-b2a.sigmf-meta"),
+            Some(Signal::BdsB2a)
+        );
     }
 
     /// L2 is read from files, never synthesised: no recording is identified as L2.
@@ -694,5 +722,10 @@ mod tests {
         assert!((inav - ratio * 3.0e-9).abs() < 1e-20, "{inav}");
         // E1: the I/NAV BGD(E1,E5b) in tgd_s.
         assert_eq!(Signal::GalE1.broadcast_group_delay_s(&gal), 2.0e-9);
+        // B2a: TGD_B2ap in tgd_s; nothing for another system's set.
+        let mut bds = nominal::beidou(skyforge_orbits::ephemeris::BeidouSet::Bds3, start).remove(0);
+        bds.clock.tgd_s = -1.5e-9;
+        assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&bds), -1.5e-9);
+        assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&gal), 0.0);
     }
 }

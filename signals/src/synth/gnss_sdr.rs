@@ -410,7 +410,14 @@ mod tests {
             broadcast_iono: true,
             troposphere: true,
         };
-        let conf = config(&cfg, "a.sigmf-data", &[Signal::BdsB2a], 5000.0, corrections, "a");
+        let conf = config(
+            &cfg,
+            "a.sigmf-data",
+            &[Signal::BdsB2a],
+            5000.0,
+            corrections,
+            "a",
+        );
         assert!(!conf.contains("Channels_"), "{conf}");
         assert!(conf.contains("no BeiDou B2a blocks"), "{conf}");
     }

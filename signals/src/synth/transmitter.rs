@@ -479,7 +479,9 @@ mod tests {
     /// (its SOW) and despreads from the data chips there.
     #[test]
     fn bds_b2a_chips_follow_the_codes_the_secondary_codes_and_the_cnav2_symbols() {
-        use skyforge_gnss::codes::{BDS_B2A_DATA_SECONDARY, bds_b2a_pilot, bds_b2a_pilot_secondary};
+        use skyforge_gnss::codes::{
+            BDS_B2A_DATA_SECONDARY, bds_b2a_pilot, bds_b2a_pilot_secondary,
+        };
         use skyforge_gnss::navmsg::BdsCnavParams;
         use skyforge_gnss::navmsg::bds_cnav2::CNAV2_PREAMBLE;
         use skyforge_orbits::ephemeris::BeidouSet;
