@@ -143,7 +143,7 @@ const GAL_E1_CODE_LENGTH: usize = 4092;
 /// Galileo E1 chip rate (chip/s), Galileo OS SIS ICD Table 18.
 const GAL_E1_CHIP_RATE_HZ: f64 = 1.023e6;
 
-/// BeiDou B2a carrier frequency (Hz): 1150 x 1.023 MHz (BDS-SIS-ICD-B2a-1.0 §4.2.1).
+/// BeiDou B2a carrier frequency (Hz): 1150 x 1.023 MHz (BDS-SIS-ICD-B2a-1.0 §4.1).
 const F_BDS_B2A_HZ: f64 = 1_176.45e6;
 
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
