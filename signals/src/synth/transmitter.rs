@@ -188,10 +188,10 @@ impl Transmitter {
     }
 
     /// BeiDou B2a: B2a_d with B-CNAV2 and the 5-chip secondary code, B2a_p pilot (+90 deg,
-    /// BDS-SIS-ICD-B2a-1.0 §4.2, Table 4-1) with the PRN's 100-chip secondary code (§5.2); chips
-    /// and symbols count from the encoder's BDT week start, which must not be after
-    /// `start`. The secondary codes (5 and 100 ms) and the 3 s frames all restart at
-    /// every BDT week start, so each is aligned with BDT as the ICD requires.
+    /// BDS-SIS-ICD-B2a-1.0 §4.1 Table 4-1, §4.2) with the PRN's 100-chip secondary code
+    /// (§5.2); chips and symbols count from the encoder's BDT week start, which must not
+    /// be after `start`. The secondary codes (5 and 100 ms) and the 3 s frames all
+    /// restart at every BDT week start, so each is aligned with BDT as the ICD requires.
     pub fn bds_b2a(sat: SatId, nav: BdsCnav2Encoder, start: Epoch) -> Option<Self> {
         let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
         Some(Self {
