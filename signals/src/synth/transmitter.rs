@@ -520,10 +520,15 @@ mod tests {
             let (mut d, mut p) = (Vec::new(), Vec::new());
             tx.chip_signs(k0, count, &mut d);
             tx.pilot_chip_signs(k0, count, &mut p);
+            // One symbol looked up per period (each look-up encodes its frame).
+            let mut symbol_of = (u64::MAX, 0u8);
             for (j, (&d, &p)) in d.iter().zip(&p).enumerate() {
                 let k = k0 + j as u64;
                 let period = k / len;
-                let symbol = symbols.symbol(period / 5);
+                if symbol_of.0 != period / 5 {
+                    symbol_of = (period / 5, symbols.symbol(period / 5));
+                }
+                let symbol = symbol_of.1;
                 let expect_d = data[(k % len) as usize]
                     * BDS_B2A_DATA_SECONDARY[(period % 5) as usize]
                     * (1 - 2 * symbol as i8);
