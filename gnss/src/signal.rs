@@ -216,7 +216,7 @@ impl Signal {
     /// - Galileo E5a: (f_E1 / f_E5a)^2 BGD(E1,E5a) (Galileo OS SIS ICD §5.1.5), from F/NAV's
     ///   `tgd_s` or I/NAV's `tgd2_s`.
     /// - Galileo E1: `tgd_s`, I/NAV's BGD(E1,E5b) or F/NAV's BGD(E1,E5a).
-    /// - BeiDou B2a (pilot): `tgd_s`, B-CNAV2's TGD_B2ap (BDS-SIS-ICD-B2a-1.0 §7.6.2:
+    /// - BeiDou B2a (pilot): `tgd_s`, B-CNAV2's TGD_B2ap (BDS-SIS-ICD-B2a-1.0 §7.6:
     ///   the B2a pilot's clock is the B3I-referenced polynomial minus TGD_B2ap). SkyForge
     ///   keeps one BeiDou group delay per satellite, so its B-CNAV2 broadcasts the set's
     ///   `tgd_s` as TGD_B2ap and a D1 set read for B2a gives the same delay.
