@@ -283,3 +283,32 @@ fn galileo(
         .map(|eph| build(eph, &gal, leap_s, week))
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hifitime::TimeScale;
+    use skyforge_orbits::ephemeris::{BeidouSet, nominal};
+
+    /// B2a from the BDS-3 MEO and IGSO satellites only: the BDS-3 set's GEOs are left out,
+    /// and the BDS-2 set (PRN 1-16) has none to send it.
+    #[test]
+    fn b2a_is_transmitted_by_bds3_meo_and_igso_only() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let bds3 = nominal::beidou(BeidouSet::Bds3, start);
+        let txs = bds_b2a(&bds3, start).expect("BDS-3 transmitters");
+        let meo_igso = bds3
+            .iter()
+            .filter(|e| e.class == OrbitClass::Standard)
+            .count();
+        assert!(meo_igso > 20 && txs.len() == meo_igso, "{}", txs.len());
+        assert!(
+            txs.iter()
+                .all(|t| t.signal == Signal::BdsB2a && (BDS3_FIRST_PRN..59).contains(&t.sat.prn))
+        );
+        let bds2 = nominal::beidou(BeidouSet::Bds2, start);
+        let err = bds_b2a(&bds2, start).err().expect("refused");
+        assert!(matches!(err, TransmitterError::NoB2a(15)), "{err}");
+        assert!(err.to_string().contains("bds3"), "{err}");
+    }
+}
