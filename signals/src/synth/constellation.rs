@@ -307,7 +307,7 @@ mod tests {
                 .all(|t| t.signal == Signal::BdsB2a && (BDS3_FIRST_PRN..59).contains(&t.sat.prn))
         );
         let bds2 = nominal::beidou(BeidouSet::Bds2, start);
-        let err = bds_b2a(&bds2, start).err().expect("refused");
+        let err = bds_b2a(&bds2, start).expect_err("refused");
         assert!(matches!(err, TransmitterError::NoB2a(15)), "{err}");
         assert!(err.to_string().contains("bds3"), "{err}");
     }
