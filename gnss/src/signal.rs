@@ -3,6 +3,7 @@
 //! names users and files give them.
 
 use crate::codes::bds_b1i;
+use crate::codes::bds_b2a;
 use crate::codes::galileo_e1;
 use crate::codes::galileo_e5a;
 use crate::codes::gps_ca;
@@ -45,6 +46,11 @@ pub enum Signal {
     /// 10.23 Mchip/s (Galileo OS SIS ICD §2.3, §3.4): Galileo's transmitted signal
     /// ([`Signal::TRANSMITTED`]) and received by the bundled receiver.
     GalE5a,
+    /// BeiDou B2a (B2a_d data with B-CNAV2, B2a_p pilot) on 1176.45 MHz, 10230 chips at
+    /// 10.23 Mchip/s, QPSK(10) (BDS-SIS-ICD-B2a-1.0 §4, §5): broadcast by the BDS-3 MEO
+    /// and IGSO satellites, transmitted when a scenario chooses it
+    /// ([`Signal::TRANSMITTED`]) and received by the bundled receiver.
+    BdsB2a,
 }
 
 /// How navigation data (and any secondary code) modulate the ranging code.
@@ -69,6 +75,10 @@ pub enum DataModulation {
     /// Galileo E1-B: I/NAV at 250 symbol/s, one symbol per 4 ms code period, no secondary
     /// code; the E1-C pilot carries CS25 (Galileo OS SIS ICD §2.3.3, §3.4.2).
     GalInav,
+    /// BeiDou B2a_d: B-CNAV2 at 200 symbol/s, 5 primary periods per symbol, each symbol
+    /// spread by the 5-chip secondary code 00010; the B2a_p pilot carries the satellite's
+    /// 100-chip Weil secondary code (BDS-SIS-ICD-B2a-1.0 §5.2.2, §6.2.1).
+    BdsCnav2,
 }
 
 impl DataModulation {
@@ -77,6 +87,7 @@ impl DataModulation {
         match self {
             DataModulation::GpsLnav | DataModulation::BdsD1 | DataModulation::GalFnav => 20,
             DataModulation::GpsCnav => 10,
+            DataModulation::BdsCnav2 => 5,
             DataModulation::BdsD2 => 2,
             DataModulation::GalInav => 1,
         }
@@ -89,6 +100,7 @@ impl DataModulation {
             DataModulation::BdsD1 => Some(&crate::codes::neumann_hoffman::NH20),
             DataModulation::GpsCnav => Some(&gps_l5::GPS_L5_I_NH10),
             DataModulation::GalFnav => Some(&galileo_e5a::GALILEO_E5A_I_SECONDARY),
+            DataModulation::BdsCnav2 => Some(&bds_b2a::BDS_B2A_DATA_SECONDARY),
             DataModulation::GpsLnav | DataModulation::BdsD2 | DataModulation::GalInav => None,
         }
     }
@@ -115,7 +127,7 @@ pub struct UnknownPrn {
 /// A signal name that is not one of [`Signal::ALL`]'s tags.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, gal-e5a"
+    "unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, gal-e5a, bds-b2a"
 )]
 pub struct UnknownSignal(pub String);
 
@@ -132,6 +144,9 @@ const GAL_E1_CODE_LENGTH: usize = 4092;
 /// Galileo E1 chip rate (chip/s), Galileo OS SIS ICD Table 18.
 const GAL_E1_CHIP_RATE_HZ: f64 = 1.023e6;
 
+/// BeiDou B2a carrier frequency (Hz): 1150 x 1.023 MHz (BDS-SIS-ICD-B2a-1.0 §4.1).
+const F_BDS_B2A_HZ: f64 = 1_176.45e6;
+
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
 /// signal's nominal carrier for the two to be taken as the same.
 pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
@@ -139,7 +154,7 @@ pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
 impl Signal {
     /// Every signal: those SkyForge synthesises and tracks, and those it only reads from
     /// other receivers' observation files.
-    pub const ALL: [Signal; 8] = [
+    pub const ALL: [Signal; 9] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL2,
@@ -148,6 +163,7 @@ impl Signal {
         Signal::BdsB3I,
         Signal::GalE1,
         Signal::GalE5a,
+        Signal::BdsB2a,
     ];
 
     /// Each constellation's legacy civil signal, what single-frequency fixes and the
@@ -160,14 +176,15 @@ impl Signal {
     }
 
     /// The signals the bundled receiver acquires, tracks and decodes from samples: the
-    /// legacy ones and the pilot signals GPS L5, Galileo E5a and E1 (tracked on the pilot,
-    /// the message read from the data component).
-    pub const RECEIVED: [Signal; 5] = [
+    /// legacy ones and the pilot signals GPS L5, Galileo E5a and E1, and BeiDou B2a (tracked
+    /// on the pilot, the message read from the data component).
+    pub const RECEIVED: [Signal; 6] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL5,
         Signal::GalE5a,
         Signal::GalE1,
+        Signal::BdsB2a,
     ];
 
     /// Whether the bundled receiver takes recordings of the signal ([`Signal::RECEIVED`]).
@@ -177,12 +194,13 @@ impl Signal {
 
     /// The signals SkyForge can transmit at the sample level, those the bundled receiver
     /// takes ([`Signal::RECEIVED`]). A scenario's `[signal] signals` chooses among them.
-    pub const TRANSMITTED: [Signal; 5] = [
+    pub const TRANSMITTED: [Signal; 6] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GalE5a,
         Signal::GpsL5,
         Signal::GalE1,
+        Signal::BdsB2a,
     ];
 
     /// Whether SkyForge can transmit the signal ([`Signal::TRANSMITTED`]).
@@ -199,6 +217,10 @@ impl Signal {
     /// - Galileo E5a: (f_E1 / f_E5a)^2 BGD(E1,E5a) (Galileo OS SIS ICD §5.1.5), from F/NAV's
     ///   `tgd_s` or I/NAV's `tgd2_s`.
     /// - Galileo E1: `tgd_s`, I/NAV's BGD(E1,E5b) or F/NAV's BGD(E1,E5a).
+    /// - BeiDou B2a (pilot): `tgd_s`, B-CNAV2's TGD_B2ap (BDS-SIS-ICD-B2a-1.0 §7.6:
+    ///   the B2a pilot's clock is the B3I-referenced polynomial minus TGD_B2ap). SkyForge
+    ///   keeps one BeiDou group delay per satellite, so its B-CNAV2 broadcasts the set's
+    ///   `tgd_s` as TGD_B2ap and a D1 set read for B2a gives the same delay.
     ///
     /// 0 for a signal of another system than `eph`'s, and for the observed-only signals.
     pub fn broadcast_group_delay_s(self, eph: &BroadcastEphemeris) -> f64 {
@@ -209,7 +231,9 @@ impl Signal {
         match self {
             // Galileo E1: BGD(E1,E5b) of an I/NAV ephemeris, BGD(E1,E5a) of an F/NAV one,
             // each the E1 user's delay against its message's clock (Galileo OS SIS ICD §5.1.5).
-            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I | Signal::GalE1 => c.tgd_s,
+            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I | Signal::GalE1 | Signal::BdsB2a => {
+                c.tgd_s
+            }
             Signal::GalE5a => {
                 let bgd = match eph.message {
                     NavMessage::GalileoInav => c.tgd2_s,
@@ -222,9 +246,12 @@ impl Signal {
     }
 
     /// Whether the signal has a dataless pilot component beside its data component (GPS
-    /// L5's Q5, Galileo E1-C and E5a-Q).
+    /// L5's Q5, Galileo E1-C and E5a-Q, BeiDou B2a_p).
     pub fn has_pilot(self) -> bool {
-        matches!(self, Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a)
+        matches!(
+            self,
+            Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a | Signal::BdsB2a
+        )
     }
 
     /// Whether the pilot is in quadrature with the data component, 90 degrees ahead of it
@@ -260,6 +287,7 @@ impl Signal {
             Signal::BdsB3I => "BDS B3I",
             Signal::GalE1 => "GAL E1",
             Signal::GalE5a => "GAL E5a",
+            Signal::BdsB2a => "BDS B2a",
         }
     }
 
@@ -278,7 +306,7 @@ impl Signal {
     pub fn system(self) -> skyforge_orbits::ephemeris::System {
         match self {
             Self::GpsL1Ca | Self::GpsL2 | Self::GpsL5 => skyforge_orbits::ephemeris::System::Gps,
-            Self::BdsB1I | Self::BdsB2I | Self::BdsB3I => {
+            Self::BdsB1I | Self::BdsB2I | Self::BdsB3I | Self::BdsB2a => {
                 skyforge_orbits::ephemeris::System::Beidou
             }
             Self::GalE1 | Self::GalE5a => skyforge_orbits::ephemeris::System::Galileo,
@@ -297,13 +325,14 @@ impl Signal {
             Signal::BdsB3I => "bds-b3i",
             Signal::GalE1 => "gal-e1",
             Signal::GalE5a => "gal-e5a",
+            Signal::BdsB2a => "bds-b2a",
         }
     }
 
     /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz,
     /// L2 = 120 x 10.23 MHz), IS-GPS-705 (L5 = 115 x 10.23 MHz); the BeiDou ICDs
     /// (B1I 1561.098, B2I 1207.14, B3I 1268.52 MHz), the Galileo OS SIS ICD (E1 = 154 x
-    /// 10.23 MHz, E5a = 115 x 10.23 MHz).
+    /// 10.23 MHz, E5a = 115 x 10.23 MHz), BDS-SIS-ICD-B2a-1.0 §4.2 (B2a 1176.45 MHz).
     pub fn carrier_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => F_GPS_L1_HZ,
@@ -314,6 +343,7 @@ impl Signal {
             Signal::BdsB3I => F_BDS_B3I_HZ,
             Signal::GalE1 => F_GAL_E1_HZ,
             Signal::GalE5a => F_GAL_E5A_HZ,
+            Signal::BdsB2a => F_BDS_B2A_HZ,
         }
     }
 
@@ -331,6 +361,7 @@ impl Signal {
             Signal::BdsB1I | Signal::BdsB2I => bds_b1i::BDS_B1I_CHIP_RATE_HZ,
             Signal::GalE1 => GAL_E1_CHIP_RATE_HZ,
             Signal::GalE5a => galileo_e5a::GALILEO_E5A_CHIP_RATE_HZ,
+            Signal::BdsB2a => bds_b2a::BDS_B2A_CHIP_RATE_HZ,
         }
     }
 
@@ -354,6 +385,7 @@ impl Signal {
             Signal::GpsL5 | Signal::BdsB3I => CODE_10230,
             Signal::GalE1 => GAL_E1_CODE_LENGTH,
             Signal::GalE5a => galileo_e5a::GALILEO_E5A_CODE_LENGTH,
+            Signal::BdsB2a => bds_b2a::BDS_B2A_CODE_LENGTH,
         }
     }
 
@@ -375,6 +407,7 @@ impl Signal {
                 galileo_e5a::GALILEO_E5A_PRN_MAX,
             ),
             Signal::GalE1 => (galileo_e1::galileo_e1b(prn), galileo_e1::GALILEO_E1_PRN_MAX),
+            Signal::BdsB2a => (bds_b2a::bds_b2a_data(prn), bds_b2a::BDS_B2A_PRN_MAX),
             Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => (None, 0),
         };
         code.ok_or(UnknownPrn {
@@ -409,6 +442,12 @@ impl Signal {
                 }),
                 galileo_e1::GALILEO_E1_PRN_MAX,
             ),
+            Signal::BdsB2a => (
+                bds_b2a::bds_b2a_pilot(prn)
+                    .zip(bds_b2a::bds_b2a_pilot_secondary(prn))
+                    .map(|(primary, secondary)| PilotCodes { primary, secondary }),
+                bds_b2a::BDS_B2A_PRN_MAX,
+            ),
             _ => (None, 0),
         };
         codes.ok_or(UnknownPrn {
@@ -420,13 +459,15 @@ impl Signal {
 
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
-    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV, E1 I/NAV.
+    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV, E1 I/NAV, B2a B-CNAV2 (which only the
+    /// BDS-3 MEO and IGSO satellites broadcast, BDS-SIS-ICD-B2a-1.0 §1).
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
             Signal::GpsL5 => Some(DataModulation::GpsCnav),
             Signal::GalE5a => Some(DataModulation::GalFnav),
             Signal::GalE1 => Some(DataModulation::GalInav),
+            Signal::BdsB2a => Some(DataModulation::BdsCnav2),
             Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
                 Some(DataModulation::BdsD2)
             }
@@ -436,8 +477,8 @@ impl Signal {
 
     /// The only received signal ([`Signal::RECEIVED`]) whose carrier is within
     /// [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz` (a recording's signal); `None` when
-    /// none or several are (GPS L5 and Galileo E5a share 1176.45 MHz). Galileo E1 is never
-    /// named by its carrier, GPS L1 C/A's.
+    /// none or several are (GPS L5, Galileo E5a and BeiDou B2a share 1176.45 MHz). Galileo E1
+    /// is never named by its carrier, GPS L1 C/A's.
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
         only(Self::RECEIVED.into_iter().filter(|s| {
             s.named_by_carrier()
@@ -601,8 +642,8 @@ mod tests {
     /// tables; L5 and E5a share a carrier, so only a file name tells them apart.
     #[test]
     fn pilot_signals_have_their_codes_and_share_a_carrier() {
-        for s in [Signal::GpsL5, Signal::GalE5a] {
-            assert!(s.has_pilot() && s.is_received());
+        for s in [Signal::GpsL5, Signal::GalE5a, Signal::BdsB2a] {
+            assert!(s.has_pilot() && s.is_received() && s.is_transmitted());
             assert_eq!(s.code(1).unwrap().len(), 10_230);
             let pilot = s.pilot(1).unwrap();
             assert_eq!(pilot.primary.len(), 10_230);
@@ -646,6 +687,36 @@ mod tests {
         assert_eq!(
             Signal::from_file_name("ant1.gal-e1.sigmf-meta"),
             Some(Signal::GalE1)
+        );
+    }
+
+    /// BeiDou B2a (BDS-SIS-ICD-B2a-1.0 §4, §5): 1176.45 MHz, 10230 chips in 1 ms, 200
+    /// symbol/s B-CNAV2 with 00010 on the data, a 100-chip secondary code per PRN on the
+    /// pilot, PRN 1-63; named and tagged as the other signals.
+    #[test]
+    fn bds_b2a_follows_the_icd() {
+        let s = Signal::BdsB2a;
+        assert_eq!(s.carrier_hz(), 115.0 * 10.23e6);
+        assert!((s.code_period_s() - 1e-3).abs() < 1e-15);
+        assert_eq!(s.system(), skyforge_orbits::ephemeris::System::Beidou);
+        let m = s.data_modulation(19).unwrap();
+        assert_eq!(m, DataModulation::BdsCnav2);
+        assert_eq!(m.data_secondary_code(), Some(&[1i8, 1, 1, -1, 1][..]));
+        assert_eq!(
+            f64::from(m.periods_per_bit()) * s.code_period_s(),
+            1.0 / 200.0
+        );
+        assert_eq!(s.pilot(19).unwrap().secondary.len(), 100);
+        assert_ne!(
+            s.pilot(19).unwrap().secondary,
+            s.pilot(20).unwrap().secondary
+        );
+        assert!(s.code(64).is_err() && s.pilot(0).is_err());
+        assert_eq!("BDS-B2A".parse::<Signal>(), Ok(s));
+        assert_eq!((s.tag(), s.name()), ("bds-b2a", "BDS B2a"));
+        assert_eq!(
+            Signal::from_file_name("ant1.bds-b2a.sigmf-meta"),
+            Some(Signal::BdsB2a)
         );
     }
 
@@ -693,5 +764,10 @@ mod tests {
         assert!((inav - ratio * 3.0e-9).abs() < 1e-20, "{inav}");
         // E1: the I/NAV BGD(E1,E5b) in tgd_s.
         assert_eq!(Signal::GalE1.broadcast_group_delay_s(&gal), 2.0e-9);
+        // B2a: TGD_B2ap in tgd_s; nothing for another system's set.
+        let mut bds = nominal::beidou(skyforge_orbits::ephemeris::BeidouSet::Bds3, start).remove(0);
+        bds.clock.tgd_s = -1.5e-9;
+        assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&bds), -1.5e-9);
+        assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&gal), 0.0);
     }
 }

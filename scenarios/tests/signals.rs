@@ -89,3 +89,18 @@ fn only_transmitted_signals_may_be_chosen() {
     let err = parse_error(&with_signal("signals = [\"gps-l9\"]"));
     assert!(err.field.starts_with("signal.signals"), "{err}");
 }
+
+/// BeiDou may transmit B2a (BDS-3 MEO/IGSO) in a band that holds its +-10.23 MHz lobe.
+#[test]
+fn beidou_may_transmit_b2a_in_a_band_that_holds_it() {
+    let text = with_signal("signals = [\"gps-l1ca\", \"bds-b2a\"]\nsample_rate_hz = 20.46e6");
+    let s = parse_in(&text, std::path::Path::new(".")).expect("parses");
+    let signal = s.signal.as_ref().expect("[signal]");
+    assert_eq!(signal.signals_of(System::Beidou), [Signal::BdsB2a]);
+    s.build().unwrap_or_else(|e| panic!("{e}"));
+    let err = parse_error(&with_signal("signals = [\"gps-l1ca\", \"bds-b2a\"]"));
+    assert!(
+        err.field == "signal.sample_rate_hz" && err.allowed.contains("BDS B2a"),
+        "{err}"
+    );
+}

@@ -9,7 +9,7 @@ use crate::signal::Signal;
 
 /// The codes of `signal`, preferred first; the first is what SkyForge writes (for GPS and
 /// BeiDou each system's reference signal for the phase, RINEX 3.04 table A23, so no phase
-/// shift applies; for Galileo the pilot, 1C and 5Q, as pilot-tracking receivers write). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]).
+/// shift applies; for Galileo the pilot, 1C and 5Q, as pilot-tracking receivers write; BeiDou B2a likewise its pilot, 5P). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]).
 pub fn codes(signal: Signal) -> &'static [&'static str] {
     match signal {
         Signal::GpsL1Ca => &["1C"],
@@ -22,6 +22,8 @@ pub fn codes(signal: Signal) -> &'static [&'static str] {
         // Pilot tracking (E1-C, E5a-Q), then data + pilot, then data alone.
         Signal::GalE1 => &["1C", "1X", "1B"],
         Signal::GalE5a => &["5Q", "5X", "5I"],
+        // B2a pilot (B2a_p), then data + pilot, then data (RINEX 3.04 table 9 band 5).
+        Signal::BdsB2a => &["5P", "5X", "5D"],
     }
 }
 

@@ -219,9 +219,9 @@ fn iono_m(
 
 /// How much later (s) `signal`'s clock runs than the clock with TGD removed that
 /// [`Transmitted`] holds: `tgd_s` minus the signal's broadcast group delay
-/// ([`Signal::broadcast_group_delay_s`]). 0 for GPS L1 C/A and L5 and for BeiDou B1I; for
-/// Galileo E5a `tgd_s - (f_E1 / f_E5a)^2 BGD(E1,E5a)`. Signals SkyForge does not transmit
-/// keep TGD (Galileo E1's BGD(E1,E5b) as I/NAV carries it).
+/// ([`Signal::broadcast_group_delay_s`]). 0 for GPS L1 C/A and L5 and for BeiDou B1I and
+/// B2a; for Galileo E5a `tgd_s - (f_E1 / f_E5a)^2 BGD(E1,E5a)`. Signals SkyForge does not
+/// transmit keep TGD (Galileo E1's BGD(E1,E5b) as I/NAV carries it).
 fn group_delay_beyond_tgd_s(signal: Signal, eph: &BroadcastEphemeris) -> f64 {
     if signal.is_transmitted() {
         eph.clock.tgd_s - signal.broadcast_group_delay_s(eph)
@@ -459,6 +459,11 @@ mod tests {
         gps.clock.tgd_s = -5e-9;
         for s in [Signal::GpsL1Ca, Signal::GpsL5, Signal::GpsL2] {
             assert_eq!(group_delay_beyond_tgd_s(s, &gps), 0.0, "{s}");
+        }
+        let mut bds = nominal::beidou(skyforge_orbits::ephemeris::BeidouSet::Bds3, t)[0].clone();
+        bds.clock.tgd_s = 3e-9;
+        for s in [Signal::BdsB1I, Signal::BdsB2a] {
+            assert_eq!(group_delay_beyond_tgd_s(s, &bds), 0.0, "{s}");
         }
     }
 }

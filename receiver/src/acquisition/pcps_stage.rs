@@ -39,6 +39,9 @@ impl PcpsStage {
             Signal::BdsB1I | Signal::GpsL5 | Signal::GalE5a | Signal::GalE1 => {
                 BitTransition::AlignedWindows
             }
+            // B2a: the 5-chip data and 100-chip pilot secondary codes (BDS-SIS-ICD-B2a-1.0
+            // §5.2.2) flip signs between 1 ms periods, as E5a's.
+            Signal::BdsB2a => BitTransition::AlignedWindows,
             // The observed-only signals are refused by `Pcps::new` (no code).
             Signal::GpsL1Ca | Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => {
                 BitTransition::Ignore

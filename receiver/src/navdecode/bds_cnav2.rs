@@ -7,9 +7,7 @@
 //! [`decode_frame`]: soft LDPC(96, 48) decoding over GF(64) (min-sum, see
 //! `skyforge_gnss::navmsg::ldpc_gf64`) and CRC-24Q (6.1.2). Locked, a frame follows every
 //! 600 symbols. Types 10, 11 and 30 of one issue make a [`NavEvent::Ephemeris`].
-//!
-//! `skyforge_gnss::signal::Signal` has no B2a variant yet, so [`decoder_for`] does not
-//! return this decoder; it is built with [`BdsCnav2Decoder::new`].
+//! [`decoder_for`] returns it for `Signal::BdsB2a`.
 //!
 //! [`decoder_for`]: super::decoder_for
 

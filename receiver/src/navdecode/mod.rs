@@ -202,8 +202,8 @@ pub trait NavDecoder: Send {
 }
 
 /// The decoder for `sat`'s message on `signal`: GPS L5 CNAV for GPS L5, GPS LNAV for the
-/// other GPS signals, Galileo F/NAV for E5a and I/NAV for E1, BeiDou D1/D2 (by PRN: D2 for
-/// the GEO PRNs 1-5 and 59-63). GPS LNAV weeks are resolved near
+/// other GPS signals, Galileo F/NAV for E5a and I/NAV for E1, BeiDou B-CNAV2 for B2a and
+/// D1/D2 for the other BeiDou signals (by PRN: D2 for the GEO PRNs 1-5 and 59-63). GPS LNAV weeks are resolved near
 /// [`DEFAULT_GPS_REFERENCE_WEEK`].
 pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
     let wrong = |what| {
@@ -218,6 +218,7 @@ pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, Na
     Ok(match (sat.system, signal) {
         (System::Gps, Signal::GpsL5) => Box::new(CnavDecoder::new(sat)?),
         (System::Gps, _) => Box::new(GpsLnavDecoder::new(sat)?),
+        (System::Beidou, Signal::BdsB2a) => Box::new(BdsCnav2Decoder::new(sat)?),
         (System::Beidou, _) => Box::new(BdsDecoder::new(sat)?),
         (System::Galileo, Signal::GalE5a) => Box::new(FnavDecoder::new(sat)?),
         (System::Galileo, Signal::GalE1) => Box::new(InavDecoder::new(sat)?),
@@ -287,6 +288,7 @@ mod tests {
             (SatId::beidou(19), Signal::BdsB1I),
             (SatId::galileo(11), Signal::GalE5a),
             (SatId::galileo(11), Signal::GalE1),
+            (SatId::beidou(19), Signal::BdsB2a),
         ];
         for (sat, signal) in cases {
             let dec = decoder_for(sat, signal).map(|d| d.satellite());

@@ -157,13 +157,15 @@ fn unknown_signal(r: &Recording) -> String {
     let untracked = path
         .file_name()
         .and_then(|n| Signal::any_from_file_name(&n.to_string_lossy()));
+    let received: Vec<&str> = Signal::RECEIVED.iter().map(|s| s.tag()).collect();
+    let received = received.join(", ");
     match untracked {
         Some(s) => format!(
-            "{}: holds {s}, which the bundled receiver does not receive yet (it receives gps-l1ca, bds-b1i, gps-l5, gal-e5a and gal-e1)",
+            "{}: holds {s}, which the bundled receiver does not receive yet (it receives {received})",
             path.display()
         ),
         None => format!(
-            "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal gps-l1ca, bds-b1i, gps-l5, gal-e5a or gal-e1",
+            "{}: which signal it holds is unknown (no SigMF centre frequency in a GNSS band, no band in the file name): give --signal one of {received}",
             path.display()
         ),
     }

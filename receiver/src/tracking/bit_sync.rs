@@ -293,8 +293,9 @@ mod tests {
         assert!(feed_bits(&mut sync, 20, 3, 2000, false).is_none());
     }
 
-    /// A pilot's secondary code (E5a-Q's 100 chips of PRN 7, L5 Q5's NH20) found at its
-    /// start with the prompts' polarity; the symbol edge follows from the start.
+    /// A pilot's secondary code (E5a-Q's and B2a_p's 100 chips of PRN 7, L5 Q5's NH20)
+    /// found at its start with the prompts' polarity; the symbol edge follows from the
+    /// start.
     #[test]
     fn pilot_secondary_code_gives_start_edge_and_polarity() {
         use skyforge_gnss::signal::Signal;
@@ -303,6 +304,8 @@ mod tests {
             (Signal::GalE5a, 63, true),
             (Signal::GpsL5, 17, true),
             (Signal::GpsL5, 4, false),
+            (Signal::BdsB2a, 37, true),
+            (Signal::BdsB2a, 2, false),
         ] {
             let code = signal.pilot(7).unwrap().secondary;
             let l = code.len() as u64;

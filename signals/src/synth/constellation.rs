@@ -5,13 +5,14 @@
 use super::transmitter::Transmitter;
 use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
+use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
 use skyforge_gnss::navmsg::galileo_inav::{InavEncoder, InavError, InavParams};
 use skyforge_gnss::navmsg::gps_cnav::{CnavEncoder, CnavError, CnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
-use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavError, Klobuchar};
+use skyforge_gnss::navmsg::{BdsCnavError, BdsCnavParams, BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
 use skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS;
 
 /// Why a constellation's transmitters could not be built.
@@ -29,6 +30,13 @@ pub enum TransmitterError {
     E1Codes(#[from] skyforge_gnss::codes::E1CodesError),
     #[error("GPS CNAV: {0}")]
     Cnav(#[from] CnavError),
+    #[error("BeiDou B-CNAV2: {0}")]
+    BdsCnav2(#[from] BdsCnavError),
+    #[error(
+        "BeiDou B2a: none of the {0} BeiDou satellites is a BDS-3 MEO or IGSO one (PRN 19 and up, not GEO); \
+         BDS-2 satellites and GEOs broadcast no B2a (choose embedded_set = \"bds3\")"
+    )]
+    NoB2a(usize),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
     NoSignal(SatId),
     #[error("{0} is not transmitted by SkyForge")]
@@ -49,6 +57,7 @@ pub fn transmitters(
         Signal::GalE5a => gal_e5a(ephs, start),
         Signal::GalE1 => gal_e1(ephs, start),
         Signal::GpsL5 => gps_l5(ephs, start, &iono.gps),
+        Signal::BdsB2a => bds_b2a(ephs, start),
         other => Err(TransmitterError::NotTransmitted(other)),
     }
 }
@@ -165,6 +174,53 @@ pub fn gps_l5(
         .collect()
 }
 
+/// Grid of B-CNAV2 toe and toc (s): their scale factor is 300 s (BDS-SIS-ICD-B2a-1.0
+/// Tables 7-8 and 7-9).
+const BDS_CNAV_TIME_GRID_S: f64 = 300.0;
+
+/// The first PRN of BeiDou-3: C19-C46 are the BDS-3 MEO and IGSO satellites, C01-C18
+/// BDS-2, C59-C63 GEO (BDS-3 C59-C61 and BDS-2 GEOs transmit no B2a).
+const BDS3_FIRST_PRN: u8 = 19;
+
+/// Whether BeiDou satellite `eph` broadcasts B2a: BDS-3 MEO and IGSO only
+/// (BDS-SIS-ICD-B2a-1.0 §1: B2a is an open service of the BDS-3 MEO and IGSO satellites;
+/// BDS-2 satellites and the GEOs do not transmit it).
+fn transmits_b2a(eph: &BroadcastEphemeris) -> bool {
+    eph.class == OrbitClass::Standard && eph.sat.prn >= BDS3_FIRST_PRN
+}
+
+/// BeiDou B2a transmitters (B-CNAV2 on B2a_d, pilot on B2a_p) for the BDS-3 MEO and IGSO
+/// ephemerides among `ephs`; the BDS-2 satellites (PRN 1-18) and every GEO are left out,
+/// as they broadcast no B2a ([`transmits_b2a`]). Sets off the 300 s grid are
+/// re-expressed on it. TGD_B2ap is the set's `tgd_s`, the one BeiDou group delay
+/// SkyForge keeps (so a receiver using the D1 set of a B1I recording applies the same
+/// delay), ISC_B2ad zero.
+pub fn bds_b2a(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    let bds = on_message_grid(ephs, System::Beidou, BDS_CNAV_TIME_GRID_S);
+    // Symbols count from the BDT week before the start's, so that satellite times a light
+    // time before a start on a week boundary still lie after symbol 0.
+    let week = skyforge_orbits::time::bdt_week_sow(start)
+        .0
+        .saturating_sub(1);
+    if !bds.is_empty() && !bds.iter().any(transmits_b2a) {
+        return Err(TransmitterError::NoB2a(bds.len()));
+    }
+    bds.iter()
+        .filter(|eph| transmits_b2a(eph))
+        .map(|eph| {
+            let params = BdsCnavParams {
+                tgd_b2ap_s: eph.clock.tgd_s,
+                ..BdsCnavParams::default()
+            };
+            let nav = BdsCnav2Encoder::new(eph, &params, week)?;
+            Transmitter::bds_b2a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+        })
+        .collect()
+}
+
 /// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
 /// among `ephs` ([`galileo`]).
 pub fn gal_e5a(
@@ -226,4 +282,33 @@ fn galileo(
     gal.iter()
         .map(|eph| build(eph, &gal, leap_s, week))
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hifitime::TimeScale;
+    use skyforge_orbits::ephemeris::{BeidouSet, nominal};
+
+    /// B2a from the BDS-3 MEO and IGSO satellites only: the BDS-3 set's GEOs are left out,
+    /// and the BDS-2 set (PRN 1-16) has none to send it.
+    #[test]
+    fn b2a_is_transmitted_by_bds3_meo_and_igso_only() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let bds3 = nominal::beidou(BeidouSet::Bds3, start);
+        let txs = bds_b2a(&bds3, start).expect("BDS-3 transmitters");
+        let meo_igso = bds3
+            .iter()
+            .filter(|e| e.class == OrbitClass::Standard)
+            .count();
+        assert!(meo_igso > 20 && txs.len() == meo_igso, "{}", txs.len());
+        assert!(
+            txs.iter()
+                .all(|t| t.signal == Signal::BdsB2a && (BDS3_FIRST_PRN..59).contains(&t.sat.prn))
+        );
+        let bds2 = nominal::beidou(BeidouSet::Bds2, start);
+        let err = bds_b2a(&bds2, start).expect_err("refused");
+        assert!(matches!(err, TransmitterError::NoB2a(15)), "{err}");
+        assert!(err.to_string().contains("bds3"), "{err}");
+    }
 }

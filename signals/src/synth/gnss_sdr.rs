@@ -6,6 +6,8 @@
 //! 1-33 only (for a higher PRN it returns without writing a code, so acquisition
 //! correlates against zeros); BeiDou satellites C34-C63 in a recording are never acquired.
 //! It decodes D2 (GEO) navigation data for C01-C05. The `.conf` says so in a comment.
+//! GNSS-SDR 0.0.17 has no BeiDou B2a blocks (acquisition, tracking or B-CNAV2 telemetry):
+//! B2a is left out of the `.conf`, which says so in a comment.
 
 use super::config::SignalConfig;
 use skyforge_gnss::sample_format::SampleFormat;
@@ -186,6 +188,9 @@ pub fn config(
     }
     if signals.contains(&Signal::GalE1) {
         channel_lines(&mut line, &GAL_E1_BLOCKS, doppler_max_hz);
+    }
+    if signals.contains(&Signal::BdsB2a) {
+        line("; GNSS-SDR 0.0.17 has no BeiDou B2a blocks: B2a is left out of this configuration.");
     }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
@@ -391,6 +396,30 @@ mod tests {
             corrections,
             "a",
         )
+    }
+
+    /// A B2a recording: GNSS-SDR 0.0.17 has no block for it, so no channel, and the
+    /// `.conf` says why.
+    #[test]
+    fn b2a_is_left_out_and_the_conf_says_so() {
+        let cfg = SignalConfig {
+            sample_rate_hz: 20.46e6,
+            ..SignalConfig::default()
+        };
+        let corrections = PvtCorrections {
+            broadcast_iono: true,
+            troposphere: true,
+        };
+        let conf = config(
+            &cfg,
+            "a.sigmf-data",
+            &[Signal::BdsB2a],
+            5000.0,
+            corrections,
+            "a",
+        );
+        assert!(!conf.contains("Channels_"), "{conf}");
+        assert!(conf.contains("no BeiDou B2a blocks"), "{conf}");
     }
 
     /// GNSS-SDR's INI reader takes `;` comments, `[section]` headers and `key=value`.

@@ -3,10 +3,12 @@
 
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
+use skyforge_gnss::codes::{BDS_B2A_CHIP_RATE_HZ, bds_b2a_data};
 use skyforge_gnss::codes::{E1Codes, GALILEO_E1_C_SECONDARY, GALILEO_E1_CHIP_RATE_HZ};
 use skyforge_gnss::codes::{GALILEO_E5A_CHIP_RATE_HZ, galileo_e5a_i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, gps_l5_i};
+use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::galileo_inav::InavEncoder;
 use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
@@ -36,6 +38,10 @@ pub enum DataBits {
     /// symbol, no secondary code (Galileo OS SIS ICD §2.3.3, §4.3), symbol 0 at the
     /// encoder's GST week start.
     GalileoInav(Box<InavEncoder>),
+    /// BeiDou B-CNAV2 on B2a_d: 200 symbols/s after its LDPC code, 5 B2a periods per
+    /// symbol, the secondary code 00010 per period (BDS-SIS-ICD-B2a-1.0 §5.2.2, §6.2.1),
+    /// symbol 0 at the encoder's BDT week start (frames on BDT multiples of 3 s).
+    BdsCnav2(Box<BdsCnav2Encoder>),
 }
 
 impl DataBits {
@@ -46,6 +52,7 @@ impl DataBits {
             DataBits::GalileoFnav(_) => DataModulation::GalFnav,
             DataBits::GpsCnav(_) => DataModulation::GpsCnav,
             DataBits::GalileoInav(_) => DataModulation::GalInav,
+            DataBits::BdsCnav2(_) => DataModulation::BdsCnav2,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => DataModulation::BdsD1,
                 BdsNavFormat::D2 => DataModulation::BdsD2,
@@ -65,6 +72,7 @@ impl DataBits {
             DataBits::GalileoFnav(e) => e.symbol(b),
             DataBits::GpsCnav(e) => e.symbol(b),
             DataBits::GalileoInav(e) => e.symbol(b),
+            DataBits::BdsCnav2(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1): the code restarts with every bit.
@@ -179,6 +187,25 @@ impl Transmitter {
         })
     }
 
+    /// BeiDou B2a: B2a_d with B-CNAV2 and the 5-chip secondary code, B2a_p pilot (+90 deg,
+    /// BDS-SIS-ICD-B2a-1.0 §4.1 Table 4-1, §4.2) with the PRN's 100-chip secondary code
+    /// (§5.2); chips and symbols count from the encoder's BDT week start, which must not
+    /// be after `start`. The secondary codes (5 and 100 ms) and the 3 s frames all
+    /// restart at every BDT week start, so each is aligned with BDT as the ICD requires.
+    pub fn bds_b2a(sat: SatId, nav: BdsCnav2Encoder, start: Epoch) -> Option<Self> {
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
+        Some(Self {
+            sat,
+            signal: Signal::BdsB2a,
+            chip_rate_hz: BDS_B2A_CHIP_RATE_HZ,
+            code: bds_b2a_data(sat.prn)?,
+            data: DataBits::BdsCnav2(Box::new(nav)),
+            pilot: Some(Pilot::of(Signal::BdsB2a, sat.prn)?),
+            start_whole_s,
+            start_frac_s,
+        })
+    }
+
     /// Galileo E1: E1-B with I/NAV and E1-C pilot with CS25, in phase, each on its CBOC
     /// sub-carriers (Galileo OS SIS ICD §2.3.3, §3.4), the primary codes from `codes`;
     /// chips and symbols count from the encoder's GST week start, which must not be after
@@ -224,6 +251,7 @@ impl Transmitter {
             DataBits::GalileoFnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GpsCnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GalileoInav(nav) => nav.broadcast_ephemeris(),
+            DataBits::BdsCnav2(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -239,7 +267,10 @@ impl Transmitter {
                 let p = cnav.iono();
                 Some((p.alpha, p.beta))
             }
-            DataBits::Bds(_) | DataBits::GalileoFnav(_) | DataBits::GalileoInav(_) => None,
+            DataBits::Bds(_)
+            | DataBits::GalileoFnav(_)
+            | DataBits::GalileoInav(_)
+            | DataBits::BdsCnav2(_) => None,
         }
     }
 
@@ -439,6 +470,96 @@ mod tests {
             tx.broadcast_iono(),
             Some((symbols.iono().alpha, symbols.iono().beta))
         );
+    }
+
+    /// BeiDou B2a chips against a direct evaluation of BDS-SIS-ICD-B2a-1.0 §5.2 and §6.2.1:
+    /// B2a_d chip k of the BDT week is data[k mod 10230] x 00010[period mod 5] x the
+    /// B-CNAV2 symbol of its 5 ms, B2a_p chip k is pilot[k mod 10230] x the PRN's 100-chip
+    /// secondary code[period mod 100]; a frame's preamble starts on a BDT multiple of 3 s
+    /// (its SOW) and despreads from the data chips there.
+    #[test]
+    fn bds_b2a_chips_follow_the_codes_the_secondary_codes_and_the_cnav2_symbols() {
+        use skyforge_gnss::codes::{
+            BDS_B2A_DATA_SECONDARY, bds_b2a_pilot, bds_b2a_pilot_secondary,
+        };
+        use skyforge_gnss::navmsg::BdsCnavParams;
+        use skyforge_gnss::navmsg::bds_cnav2::CNAV2_PREAMBLE;
+        use skyforge_orbits::ephemeris::BeidouSet;
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let eph = nominal::beidou(BeidouSet::Bds3, start)
+            .into_iter()
+            .find(|e| e.sat.prn == 19)
+            .map(|e| {
+                let grid = |t| System::Beidou.on_grid(t, 300.0);
+                e.reexpressed(grid(e.toe), grid(e.toc)).expect("on grid")
+            })
+            .expect("C19");
+        let week = skyforge_orbits::time::bdt_week_sow(start).0 - 1;
+        let nav = BdsCnav2Encoder::new(&eph, &BdsCnavParams::default(), week).expect("encoder");
+        let symbols = nav.clone();
+        let tx = Transmitter::bds_b2a(eph.sat, nav, start).expect("B2a");
+        assert!(tx.has_pilot() && tx.signal == Signal::BdsB2a);
+        let (data, pilot) = (
+            bds_b2a_data(eph.sat.prn).unwrap(),
+            bds_b2a_pilot(eph.sat.prn).unwrap(),
+        );
+        let secondary = bds_b2a_pilot_secondary(eph.sat.prn).unwrap();
+        let len = data.len() as u64;
+        // 2023-03-12 00:00 GPST is 23:59:46 BDT on the 11th, 14 s before a BDT week's
+        // end; symbol 0 is one BDT week earlier still.
+        let start_s = 2 * 604_800 - 14;
+        let (k_start, phase) = tx.chip_at(0.0);
+        assert_eq!((k_start, phase), (start_s * 10_230_000, 0.0));
+        // Spans across symbol (5 ms), pilot secondary (100 ms) and frame (3 s) edges.
+        for k0 in [
+            k_start,
+            k_start + 3 * 10_230_000 - 5_000,
+            k_start + 123_456_789,
+        ] {
+            let count = 3 * len as usize;
+            let (mut d, mut p) = (Vec::new(), Vec::new());
+            tx.chip_signs(k0, count, &mut d);
+            tx.pilot_chip_signs(k0, count, &mut p);
+            // One symbol looked up per period (each look-up encodes its frame).
+            let mut symbol_of = (u64::MAX, 0u8);
+            for (j, (&d, &p)) in d.iter().zip(&p).enumerate() {
+                let k = k0 + j as u64;
+                let period = k / len;
+                if symbol_of.0 != period / 5 {
+                    symbol_of = (period / 5, symbols.symbol(period / 5));
+                }
+                let symbol = symbol_of.1;
+                let expect_d = data[(k % len) as usize]
+                    * BDS_B2A_DATA_SECONDARY[(period % 5) as usize]
+                    * (1 - 2 * symbol as i8);
+                let expect_p = pilot[(k % len) as usize] * secondary[(period % 100) as usize];
+                assert_eq!((d, p), (expect_d, expect_p), "chip {k}");
+            }
+        }
+        // The first frame after the start: at BDT SOW 604788 (2 s after the start's
+        // 604786, the next multiple of 3), its 24 preamble symbols despread from the data
+        // chips.
+        let n = start_s.div_ceil(3);
+        assert_eq!(symbols.frame_time(n), (week + 1, 604_788));
+        let first_chip = n * 3 * 10_230_000;
+        let mut chips = Vec::new();
+        tx.chip_signs(first_chip, 24 * 5 * len as usize, &mut chips);
+        let despread: u32 = chips
+            .chunks(len as usize)
+            .enumerate()
+            .map(|(period, c)| {
+                let sum: i64 = c.iter().zip(&data).map(|(&a, &b)| i64::from(a * b)).sum();
+                sum * i64::from(BDS_B2A_DATA_SECONDARY[period % 5])
+            })
+            .collect::<Vec<_>>()
+            .chunks(5)
+            .fold(0, |acc, s| {
+                assert!(s.iter().all(|&x| x == s[0] && x.abs() == len as i64));
+                (acc << 1) | u32::from(s[0] < 0)
+            });
+        assert_eq!(despread, CNAV2_PREAMBLE);
+        assert_eq!(tx.broadcast_ephemeris(), symbols.broadcast_ephemeris());
+        assert_eq!(tx.broadcast_iono(), None);
     }
 
     /// Made-up E1 code tables (pseudo-random, not the ICD's) read back unchecked.

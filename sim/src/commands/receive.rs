@@ -30,9 +30,11 @@ fn input_params(args: &ReceiveArgs) -> anyhow::Result<InputParams> {
         .transpose()
         .map_err(|e| BadInput(format!("--signal: {e}")))?;
     if let Some(s) = signal.filter(|s| !s.is_received()) {
+        let allowed: Vec<&str> = Signal::RECEIVED.iter().map(|s| s.tag()).collect();
         return Err(BadInput(format!(
-            "--signal {}: not received by the bundled receiver (allowed: gps-l1ca, bds-b1i, gps-l5, gal-e5a, gal-e1)",
-            s.tag()
+            "--signal {}: not received by the bundled receiver (allowed: {})",
+            s.tag(),
+            allowed.join(", ")
         ))
         .into());
     }

@@ -72,6 +72,11 @@ impl BdsCnav2Encoder {
         self.week
     }
 
+    /// Start of BDT week [`Self::week`], where symbol 0 starts.
+    pub fn week_start(&self) -> Epoch {
+        skyforge_orbits::time::epoch_from_bdt(self.week, 0.0)
+    }
+
     /// The ephemeris the messages describe, in SI units (every field quantised and
     /// converted back; `tgd_s` = TGD_B2ap, IODE, IODC, health = HS, 3 h fit).
     pub fn broadcast_ephemeris(&self) -> BroadcastEphemeris {
@@ -117,6 +122,12 @@ impl BdsCnav2Encoder {
         push_bits(&mut out, i64::from(CNAV2_PREAMBLE), 24);
         out.extend(B2A_FRAME.encode_bits(&self.frame_bits(n)));
         out
+    }
+
+    /// Channel symbol `k` (0/1), symbol 0 the first of the week's first frame.
+    pub fn symbol(&self, k: u64) -> u8 {
+        let n = CNAV2_FRAME_SYMBOLS as u64;
+        self.frame_symbols(k / n)[(k % n) as usize]
     }
 
     /// `count` channel symbols from symbol `first` on.

@@ -56,6 +56,15 @@ fn a_frame_is_preamble_then_an_ldpc_codeword_of_bits_with_a_crc() {
         assert_eq!(symbols[24..24 + 288], bits[..]);
     }
     assert_eq!(enc.symbols(590, 20), enc.symbols(0, 1200)[590..610]);
+    for k in [0, 23, 599, 600, 1234] {
+        assert_eq!(enc.symbol(k), enc.symbols(k, 1)[0], "symbol {k}");
+    }
+    // Symbol 0 at the start of the encoder's BDT week.
+    assert_eq!(
+        enc.week_start(),
+        skyforge_orbits::time::epoch_from_bdt(enc.week(), 0.0)
+    );
+    assert_eq!(bdt_week_sow(enc.week_start()), (enc.week(), 0.0));
 }
 
 #[test]
