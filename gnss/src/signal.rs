@@ -255,11 +255,12 @@ impl Signal {
     }
 
     /// Whether the pilot is in quadrature with the data component, 90 degrees ahead of it
-    /// (L5's Q5, IS-GPS-705 §3.3.1.1; E5a-Q, Galileo OS SIS ICD §2.3.3); Galileo E1's
+    /// (L5's Q5, IS-GPS-705 §3.3.1.1; E5a-Q, Galileo OS SIS ICD §2.3.3; B2a's pilot,
+    /// BDS-SIS-ICD-B2a Table 4-1); Galileo E1's
     /// E1-C is in phase with E1-B, with the opposite sign: `e_B - e_C` (ICD §2.3.3, as
     /// `subcarrier::e1_cboc` sums them).
     pub fn pilot_in_quadrature(self) -> bool {
-        matches!(self, Signal::GpsL5 | Signal::GalE5a)
+        matches!(self, Signal::GpsL5 | Signal::GalE5a | Signal::BdsB2a)
     }
 
     /// Whether a receiver correlates with a BOC(1,1) replica: each chip as its two
@@ -675,7 +676,7 @@ mod tests {
     fn galileo_e1_is_received_beside_l1_ca_on_one_carrier() {
         assert!(Signal::GalE1.is_received() && Signal::GalE1.has_pilot());
         assert!(!Signal::GalE1.pilot_in_quadrature() && Signal::GalE1.replica_boc11());
-        for s in [Signal::GpsL5, Signal::GalE5a] {
+        for s in [Signal::GpsL5, Signal::GalE5a, Signal::BdsB2a] {
             assert!(s.pilot_in_quadrature() && !s.replica_boc11());
         }
         assert!(!Signal::GpsL1Ca.pilot_in_quadrature() && !Signal::GpsL1Ca.replica_boc11());

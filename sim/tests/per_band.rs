@@ -175,9 +175,6 @@ fn the_bundled_receiver_fixes_on_both_signals_of_a_band_recording() {
 #[test]
 fn gps_l1ca_and_galileo_e1_from_one_recording_are_fixed_together() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let tables = dir.path().join("e1");
-    std::fs::create_dir(&tables).expect("tables dir");
-    support::made_up_e1_tables(&tables);
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../scenarios/bundled/interop-l1-e1-static.toml"),
@@ -185,18 +182,7 @@ fn gps_l1ca_and_galileo_e1_from_one_recording_are_fixed_together() {
     .expect("bundled scenario")
     .replacen("duration_s = 120.0", "duration_s = 25.0", 1);
     let path = support::write_scenario(dir.path(), "l1-e1.toml", &text);
-    let out = dir.path().join("out");
-    let made = support::skyforge_with_env(
-        &["synth", &path, "--receive", "--out", out.to_str().unwrap()],
-        dir.path(),
-        &[
-            ("SKYFORGE_GALILEO_E1_CODES", Some(tables.to_str().unwrap())),
-            ("SKYFORGE_GALILEO_E1_CODES_CHECK", Some("off")),
-        ],
-    );
-    let log = support::text(&made);
-    println!("{log}");
-    assert!(made.status.success(), "{log}");
+    let out = support::synth_receive_with_made_up_e1(dir.path(), &path);
     let rx = out.join("receive");
     let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
     let body = obs.split("END OF HEADER").nth(1).unwrap_or("");

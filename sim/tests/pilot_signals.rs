@@ -124,9 +124,6 @@ fn bundled_receiver_fixes_on_interop_gal_static() {
 #[test]
 fn e1_is_received_decoded_and_fixed_with_made_up_tables() {
     let dir = tempfile::tempdir().expect("tempdir");
-    let tables = dir.path().join("e1");
-    std::fs::create_dir(&tables).expect("tables dir");
-    support::made_up_e1_tables(&tables);
     let text = std::fs::read_to_string(
         std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../scenarios/bundled/interop-e1-static.toml"),
@@ -134,18 +131,7 @@ fn e1_is_received_decoded_and_fixed_with_made_up_tables() {
     .expect("bundled scenario")
     .replacen("duration_s = 120.0", "duration_s = 25.0", 1);
     let path = support::write_scenario(dir.path(), "e1.toml", &text);
-    let out = dir.path().join("out");
-    let made = support::skyforge_with_env(
-        &["synth", &path, "--receive", "--out", out.to_str().unwrap()],
-        dir.path(),
-        &[
-            ("SKYFORGE_GALILEO_E1_CODES", Some(tables.to_str().unwrap())),
-            ("SKYFORGE_GALILEO_E1_CODES_CHECK", Some("off")),
-        ],
-    );
-    let log = support::text(&made);
-    println!("{log}");
-    assert!(made.status.success(), "{log}");
+    let out = support::synth_receive_with_made_up_e1(dir.path(), &path);
     let rx = out.join("receive");
     let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
     assert!(obs.contains("E    4 C1C L1C D1C S1C"), "{obs}");

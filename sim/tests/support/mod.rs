@@ -59,6 +59,28 @@ pub fn made_up_e1_tables(dir: &Path) {
     }
 }
 
+/// `synth SCENARIO --receive --out DIR/out` in `dir` with made-up Galileo E1 code tables
+/// ([`made_up_e1_tables`], the check off); returns the output folder after checking that
+/// the run succeeded (its log printed).
+pub fn synth_receive_with_made_up_e1(dir: &Path, scenario: &str) -> PathBuf {
+    let tables = dir.join("e1");
+    std::fs::create_dir(&tables).expect("tables dir");
+    made_up_e1_tables(&tables);
+    let out = dir.join("out");
+    let made = skyforge_with_env(
+        &["synth", scenario, "--receive", "--out", out.to_str().unwrap()],
+        dir,
+        &[
+            ("SKYFORGE_GALILEO_E1_CODES", Some(tables.to_str().unwrap())),
+            ("SKYFORGE_GALILEO_E1_CODES_CHECK", Some("off")),
+        ],
+    );
+    let log = text(&made);
+    println!("{log}");
+    assert!(made.status.success(), "{log}");
+    out
+}
+
 /// What tells `receive` how to read a raw recording of 4 Msps ci8 GPS L1 C/A samples (the
 /// options after its file name).
 pub const RAW_CI8_4MSPS_GPS: [&str; 6] = ["--format", "ci8", "--fs", "4e6", "--signal", "gps-l1ca"];
