@@ -68,7 +68,13 @@ pub fn synth_receive_with_made_up_e1(dir: &Path, scenario: &str) -> PathBuf {
     made_up_e1_tables(&tables);
     let out = dir.join("out");
     let made = skyforge_with_env(
-        &["synth", scenario, "--receive", "--out", out.to_str().unwrap()],
+        &[
+            "synth",
+            scenario,
+            "--receive",
+            "--out",
+            out.to_str().unwrap(),
+        ],
         dir,
         &[
             ("SKYFORGE_GALILEO_E1_CODES", Some(tables.to_str().unwrap())),
