@@ -146,6 +146,7 @@ fn a_band_recording_is_the_sum_of_its_signals_recordings() {
 /// `synth --receive` of a band recording: the receiver takes it once per signal (GPS L5 and
 /// Galileo E5a from one stream of samples) and fixes on both constellations together.
 #[test]
+#[ignore = "acceptance tier: 30 s of 20.46 Msps received on 20 channels (minutes); the L1 C/A + E1 test below covers the same path in CI"]
 fn the_bundled_receiver_fixes_on_both_signals_of_a_band_recording() {
     let dir = tempfile::tempdir().expect("tempdir");
     // assumed: 30 s, as the dual-frequency test (the ephemerides come from nav.rnx).
