@@ -72,11 +72,7 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
         // A signal with a pilot in quadrature mixes two components per path (Galileo E1's
         // pilot is in phase, summed into its sub-chip levels: one).
         let components = channel_samples(scenario, session, |s| {
-            if s.has_pilot() && s != Signal::GalE1 {
-                2.0
-            } else {
-                1.0
-            }
+            if s.pilot_in_quadrature() { 2.0 } else { 1.0 }
         });
         let outputs = (b.recordings as f64)
             * session.world().duration_s
