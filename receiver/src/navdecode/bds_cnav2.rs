@@ -11,8 +11,8 @@
 //!
 //! [`decoder_for`]: super::decoder_for
 
-use super::symbol_sync::{SymbolFormat, SymbolSync, with_polarity};
-use super::{DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo};
+use super::symbol_sync::{SymbolFormat, SymbolSync, SyncedDecoder, with_polarity};
+use super::{DecodedEphemeris, NavDecodeError, NavEvent, SubframeInfo};
 use skyforge_gnss::navmsg::bds_cnav2::{
     CNAV2_FRAME_SYMBOLS, CNAV2_PREAMBLE, Cnav2Assembler, Cnav2DecodeError, Cnav2Message,
     decode_frame,
@@ -88,32 +88,29 @@ impl BdsCnav2Decoder {
     }
 }
 
-impl NavDecoder for BdsCnav2Decoder {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.sync.push(soft_bits);
-        let mut out = Vec::new();
-        while let Some((start, inverted, msg)) = self.sync.next(&self.format, &mut out) {
-            self.take(start, inverted, &msg, &mut out);
-        }
-        out
+impl SyncedDecoder for BdsCnav2Decoder {
+    type Format = Cnav2;
+
+    fn parts(&mut self) -> (&mut SymbolSync, &Self::Format) {
+        (&mut self.sync, &self.format)
     }
 
-    fn restart(&mut self) {
-        self.sync.restart();
+    fn symbol_sync(&self) -> &SymbolSync {
+        &self.sync
     }
 
-    fn stats(&self) -> DecodeStats {
-        self.sync.stats
-    }
-
-    fn satellite(&self) -> SatId {
+    fn sat(&self) -> SatId {
         self.sat
+    }
+
+    fn message(&mut self, start: u64, inverted: bool, msg: &Cnav2Message, out: &mut Vec<NavEvent>) {
+        self.take(start, inverted, msg, out);
     }
 }
 
 /// B-CNAV2 framing: a frame of the expected PRN with a SOW below one week.
 #[derive(Debug, Clone, Copy)]
-struct Cnav2 {
+pub(crate) struct Cnav2 {
     prn: u8,
 }
 

@@ -4,8 +4,8 @@
 //! week ends, and the ephemeris the message's assembler completes. The message itself (its
 //! page length, sync search, decoding and assembler) is a [`GalileoMessage`].
 
-use super::symbol_sync::{SymbolFormat, SymbolSync};
-use super::{DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo};
+use super::symbol_sync::{SymbolFormat, SymbolSync, SyncedDecoder};
+use super::{DecodedEphemeris, NavDecodeError, NavEvent, SubframeInfo};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
 
 /// Seconds per week.
@@ -121,29 +121,26 @@ impl<M: GalileoMessage> GalileoDecoder<M> {
     }
 }
 
-impl<M: GalileoMessage + Send> NavDecoder for GalileoDecoder<M>
+impl<M: GalileoMessage + Send> SyncedDecoder for GalileoDecoder<M>
 where
     M::Assembler: Send,
 {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.sync.push(soft_bits);
-        let mut out = Vec::new();
-        while let Some((start, inverted, page)) = self.sync.next(&self.format, &mut out) {
-            self.take(start, inverted, &page, &mut out);
-        }
-        out
+    type Format = M;
+
+    fn parts(&mut self) -> (&mut SymbolSync, &Self::Format) {
+        (&mut self.sync, &self.format)
     }
 
-    fn restart(&mut self) {
-        self.sync.restart();
+    fn symbol_sync(&self) -> &SymbolSync {
+        &self.sync
     }
 
-    fn stats(&self) -> DecodeStats {
-        self.sync.stats
-    }
-
-    fn satellite(&self) -> SatId {
+    fn sat(&self) -> SatId {
         self.sat
+    }
+
+    fn message(&mut self, start: u64, inverted: bool, msg: &M::Message, out: &mut Vec<NavEvent>) {
+        self.take(start, inverted, msg, out);
     }
 }
 

@@ -8,8 +8,8 @@
 //! the lead-in, the 600 message symbols and as many after them. Locked, a message follows
 //! every 600 symbols.
 
-use super::symbol_sync::{SymbolFormat, SymbolSync, with_polarity};
-use super::{DecodeStats, DecodedEphemeris, NavDecodeError, NavDecoder, NavEvent, SubframeInfo};
+use super::symbol_sync::{SymbolFormat, SymbolSync, SyncedDecoder, with_polarity};
+use super::{DecodedEphemeris, NavDecodeError, NavEvent, SubframeInfo};
 use skyforge_gnss::navmsg::conv_k7::ConvK7;
 use skyforge_gnss::navmsg::gps_cnav::{
     CNAV_LEAD_IN_SYMBOLS, CNAV_MESSAGE_S, CNAV_MESSAGE_SYMBOLS, CNAV_PREAMBLE, CnavAssembler,
@@ -98,32 +98,29 @@ impl CnavDecoder {
     }
 }
 
-impl NavDecoder for CnavDecoder {
-    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
-        self.sync.push(soft_bits);
-        let mut out = Vec::new();
-        while let Some((start, inverted, msg)) = self.sync.next(&self.format, &mut out) {
-            self.take(start, inverted, &msg, &mut out);
-        }
-        out
+impl SyncedDecoder for CnavDecoder {
+    type Format = Cnav;
+
+    fn parts(&mut self) -> (&mut SymbolSync, &Self::Format) {
+        (&mut self.sync, &self.format)
     }
 
-    fn restart(&mut self) {
-        self.sync.restart();
+    fn symbol_sync(&self) -> &SymbolSync {
+        &self.sync
     }
 
-    fn stats(&self) -> DecodeStats {
-        self.sync.stats
-    }
-
-    fn satellite(&self) -> SatId {
+    fn sat(&self) -> SatId {
         self.sat
+    }
+
+    fn message(&mut self, start: u64, inverted: bool, msg: &CnavMessage, out: &mut Vec<NavEvent>) {
+        self.take(start, inverted, msg, out);
     }
 }
 
 /// CNAV framing: a message of the expected PRN with a TOW count below one week.
 #[derive(Debug, Clone, Copy)]
-struct Cnav {
+pub(crate) struct Cnav {
     prn: u8,
 }
 

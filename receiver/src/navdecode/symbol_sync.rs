@@ -4,7 +4,8 @@
 //! one message every period, giving up after repeated failures as [`super::framer`]
 //! does for the 300-bit subframes.
 
-use super::{DecodeStats, NavEvent};
+use super::{DecodeStats, NavDecoder, NavEvent};
+use skyforge_orbits::ephemeris::SatId;
 
 /// Consecutive failed messages that end the lock.
 const MAX_FAILURES: u8 = 3;
@@ -47,6 +48,53 @@ enum State {
         inverted: bool,
         failures: u8,
     },
+}
+
+/// A decoder built on a [`SymbolSync`] (GPS CNAV, Galileo F/NAV and I/NAV, BeiDou
+/// B-CNAV2): its synchroniser and format, its satellite and what it makes of a message;
+/// the [`NavDecoder`] around them is written once, below.
+pub(crate) trait SyncedDecoder: Send {
+    type Format: SymbolFormat;
+    /// The synchroniser and the format it frames.
+    fn parts(&mut self) -> (&mut SymbolSync, &Self::Format);
+    /// The synchroniser.
+    fn symbol_sync(&self) -> &SymbolSync;
+    /// The satellite whose message this is.
+    fn sat(&self) -> SatId;
+    /// Use the message decoded at stream symbol `start` (`inverted`: its polarity).
+    fn message(
+        &mut self,
+        start: u64,
+        inverted: bool,
+        msg: &<Self::Format as SymbolFormat>::Message,
+        out: &mut Vec<NavEvent>,
+    );
+}
+
+impl<D: SyncedDecoder> NavDecoder for D {
+    fn feed(&mut self, soft_bits: &[f32]) -> Vec<NavEvent> {
+        let mut out = Vec::new();
+        self.parts().0.push(soft_bits);
+        loop {
+            let (sync, format) = self.parts();
+            let Some((start, inverted, msg)) = sync.next(format, &mut out) else {
+                return out;
+            };
+            self.message(start, inverted, &msg, &mut out);
+        }
+    }
+
+    fn restart(&mut self) {
+        self.parts().0.restart();
+    }
+
+    fn stats(&self) -> DecodeStats {
+        self.symbol_sync().stats
+    }
+
+    fn satellite(&self) -> SatId {
+        self.sat()
+    }
 }
 
 /// Soft-symbol buffer, synchronisation state and counters.
