@@ -337,3 +337,24 @@ pub(crate) fn reference_epoch(week: u32, tx_sow: i64, ref_sow: i64) -> Epoch {
     };
     skyforge_orbits::time::epoch_from_bdt(week, ref_sow as f64)
 }
+
+/// `count` channel symbols from stream symbol `first` on, frames of `frame_len` symbols
+/// made by `frame(n)` (B-CNAV1's and B-CNAV2's symbol streams).
+pub(crate) fn symbols_of_frames(
+    frame_len: usize,
+    first: u64,
+    count: usize,
+    frame: impl Fn(u64) -> Vec<u8>,
+) -> Vec<u8> {
+    let n_sym = frame_len as u64;
+    let mut out = Vec::with_capacity(count);
+    let mut k = first;
+    while out.len() < count {
+        let symbols = frame(k / n_sym);
+        let from = (k % n_sym) as usize;
+        let take = (frame_len - from).min(count - out.len());
+        out.extend_from_slice(&symbols[from..from + take]);
+        k += take as u64;
+    }
+    out
+}

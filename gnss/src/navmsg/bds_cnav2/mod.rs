@@ -132,16 +132,6 @@ impl BdsCnav2Encoder {
 
     /// `count` channel symbols from symbol `first` on.
     pub fn symbols(&self, first: u64, count: usize) -> Vec<u8> {
-        let n_sym = CNAV2_FRAME_SYMBOLS as u64;
-        let mut out = Vec::with_capacity(count);
-        let mut k = first;
-        while out.len() < count {
-            let frame = self.frame_symbols(k / n_sym);
-            let from = (k % n_sym) as usize;
-            let take = (CNAV2_FRAME_SYMBOLS - from).min(count - out.len());
-            out.extend_from_slice(&frame[from..from + take]);
-            k += take as u64;
-        }
-        out
+        e::symbols_of_frames(CNAV2_FRAME_SYMBOLS, first, count, |n| self.frame_symbols(n))
     }
 }
