@@ -177,13 +177,7 @@ impl Correlator {
         data: &[i8],
         early_late_spacing_chips: f64,
     ) -> Result<Self, TrackingError> {
-        if pilot.len() != data.len() {
-            return Err(TrackingError::InvalidConfig(format!(
-                "pilot and data codes differ in length: {} and {}",
-                pilot.len(),
-                data.len()
-            )));
-        }
+        same_length(pilot, data)?;
         Self::with_codes(
             pilot,
             data,
@@ -202,13 +196,7 @@ impl Correlator {
         data: &[i8],
         early_late_spacing_chips: f64,
     ) -> Result<Self, TrackingError> {
-        if pilot.len() != data.len() {
-            return Err(TrackingError::InvalidConfig(format!(
-                "pilot and data codes differ in length: {} and {}",
-                pilot.len(),
-                data.len()
-            )));
-        }
+        same_length(pilot, data)?;
         let half_chips = |c: &[i8]| replica_chips(Signal::GalE1, c);
         Self::with_codes(
             &half_chips(pilot),
@@ -577,6 +565,18 @@ fn lane_sums(re: &[f32; LANES], im: &[f32; LANES]) -> Complex<f64> {
         re.iter().map(|&v| f64::from(v)).sum(),
         im.iter().map(|&v| f64::from(v)).sum(),
     )
+}
+
+/// Pilot and data codes must be of one length, their chips aligned.
+fn same_length(pilot: &[i8], data: &[i8]) -> Result<(), TrackingError> {
+    if pilot.len() != data.len() {
+        return Err(TrackingError::InvalidConfig(format!(
+            "pilot and data codes differ in length: {} and {}",
+            pilot.len(),
+            data.len()
+        )));
+    }
+    Ok(())
 }
 
 #[cfg(test)]
