@@ -1,5 +1,5 @@
-//! Message synchronisation on channel symbols, shared by the GPS L5 CNAV and Galileo F/NAV
-//! decoders: a buffer of soft symbols, a search for a message start (the format proposes
+//! Message synchronisation on channel symbols, shared by the GPS L5 CNAV, Galileo F/NAV and
+//! I/NAV and BeiDou B-CNAV2 decoders: a buffer of soft symbols, a search for a message start (the format proposes
 //! candidates, its own decoding with CRC confirms one), and the locked state that decodes
 //! one message every period, giving up after repeated failures as [`super::framer`]
 //! does for the 300-bit subframes.
