@@ -2,6 +2,7 @@
 //! and observables: carrier, ranging code, chip rate, data modulation per PRN, and the
 //! names users and files give them.
 
+use crate::codes::bds_b1c;
 use crate::codes::bds_b1i;
 use crate::codes::bds_b2a;
 use crate::codes::galileo_e1;
@@ -51,6 +52,12 @@ pub enum Signal {
     /// and IGSO satellites, transmitted when a scenario chooses it
     /// ([`Signal::TRANSMITTED`]) and received by the bundled receiver.
     BdsB2a,
+    /// BeiDou B1C (B1C_data with B-CNAV1, BOC(1,1), 1/4 of the power; B1C_pilot with the
+    /// 1800-chip secondary code, QMBOC(6,1,4/33), 3/4) on 1575.42 MHz, 10230 chips at
+    /// 1.023 Mchip/s (BDS-SIS-ICD-B1C-1.0 §4, §5): broadcast by the BDS-3 MEO and IGSO
+    /// satellites, transmitted when a scenario chooses it ([`Signal::TRANSMITTED`]) and
+    /// received by the bundled receiver (on the pilot's BOC(1,1) part).
+    BdsB1C,
 }
 
 /// How navigation data (and any secondary code) modulate the ranging code.
@@ -79,6 +86,10 @@ pub enum DataModulation {
     /// spread by the 5-chip secondary code 00010; the B2a_p pilot carries the satellite's
     /// 100-chip Weil secondary code (BDS-SIS-ICD-B2a-1.0 §5.2.2, §6.2.1).
     BdsCnav2,
+    /// BeiDou B1C_data: B-CNAV1 at 100 symbol/s, one symbol per 10 ms primary period, no
+    /// secondary code on the data; the pilot carries the satellite's 1800-chip secondary
+    /// code, one 18 s frame long (BDS-SIS-ICD-B1C-1.0 §5.2.2, §6.2.1).
+    BdsCnav1,
 }
 
 impl DataModulation {
@@ -89,8 +100,15 @@ impl DataModulation {
             DataModulation::GpsCnav => 10,
             DataModulation::BdsCnav2 => 5,
             DataModulation::BdsD2 => 2,
-            DataModulation::GalInav => 1,
+            DataModulation::GalInav | DataModulation::BdsCnav1 => 1,
         }
+    }
+
+    /// Whether every message frame starts with the pilot's secondary code, which lasts one
+    /// frame: B-CNAV1's 18 s frames and B1C's 1800-chip code (BDS-SIS-ICD-B1C-1.0 §5.2.2,
+    /// §6.2.1), so a receiver that found the code's start knows the frame's.
+    pub fn frame_is_pilot_secondary(self) -> bool {
+        self == DataModulation::BdsCnav1
     }
 
     /// The secondary code on the data component, one chip per code period, restarting
@@ -101,7 +119,10 @@ impl DataModulation {
             DataModulation::GpsCnav => Some(&gps_l5::GPS_L5_I_NH10),
             DataModulation::GalFnav => Some(&galileo_e5a::GALILEO_E5A_I_SECONDARY),
             DataModulation::BdsCnav2 => Some(&bds_b2a::BDS_B2A_DATA_SECONDARY),
-            DataModulation::GpsLnav | DataModulation::BdsD2 | DataModulation::GalInav => None,
+            DataModulation::GpsLnav
+            | DataModulation::BdsD2
+            | DataModulation::GalInav
+            | DataModulation::BdsCnav1 => None,
         }
     }
 }
@@ -127,7 +148,7 @@ pub struct UnknownPrn {
 /// A signal name that is not one of [`Signal::ALL`]'s tags.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, gal-e5a, bds-b2a"
+    "unknown signal {0:?}: allowed gps-l1ca, bds-b1i, gps-l2, gps-l5, bds-b2i, bds-b3i, gal-e1, gal-e5a, bds-b2a, bds-b1c"
 )]
 pub struct UnknownSignal(pub String);
 
@@ -146,6 +167,12 @@ const GAL_E1_CHIP_RATE_HZ: f64 = 1.023e6;
 
 /// BeiDou B2a carrier frequency (Hz): 1150 x 1.023 MHz (BDS-SIS-ICD-B2a-1.0 §4.1).
 const F_BDS_B2A_HZ: f64 = 1_176.45e6;
+/// BeiDou B1C carrier frequency (Hz): 1540 x 1.023 MHz (BDS-SIS-ICD-B1C-1.0 §4.1), GPS
+/// L1's and Galileo E1's.
+const F_BDS_B1C_HZ: f64 = 1_575.42e6;
+/// The BOC(6,1) sub-carrier rate of Galileo E1's CBOC and BeiDou B1C's QMBOC, in chips
+/// of 1.023 Mchip/s (Galileo OS SIS ICD §2.3.3, BDS-SIS-ICD-B1C-1.0 §4.2.2).
+const BOC61_RATE_CHIPS: f64 = 6.0;
 
 /// Largest difference (Hz) between a recording's stated carrier (centre + IF) and a
 /// signal's nominal carrier for the two to be taken as the same.
@@ -154,7 +181,7 @@ pub const CARRIER_MATCH_TOLERANCE_HZ: f64 = 1e3;
 impl Signal {
     /// Every signal: those SkyForge synthesises and tracks, and those it only reads from
     /// other receivers' observation files.
-    pub const ALL: [Signal; 9] = [
+    pub const ALL: [Signal; 10] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL2,
@@ -164,6 +191,7 @@ impl Signal {
         Signal::GalE1,
         Signal::GalE5a,
         Signal::BdsB2a,
+        Signal::BdsB1C,
     ];
 
     /// Each constellation's legacy civil signal, what single-frequency fixes and the
@@ -176,15 +204,16 @@ impl Signal {
     }
 
     /// The signals the bundled receiver acquires, tracks and decodes from samples: the
-    /// legacy ones and the pilot signals GPS L5, Galileo E5a and E1, and BeiDou B2a (tracked
-    /// on the pilot, the message read from the data component).
-    pub const RECEIVED: [Signal; 6] = [
+    /// legacy ones and the pilot signals GPS L5, Galileo E5a and E1, and BeiDou B2a and B1C
+    /// (tracked on the pilot, the message read from the data component).
+    pub const RECEIVED: [Signal; 7] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GpsL5,
         Signal::GalE5a,
         Signal::GalE1,
         Signal::BdsB2a,
+        Signal::BdsB1C,
     ];
 
     /// Whether the bundled receiver takes recordings of the signal ([`Signal::RECEIVED`]).
@@ -194,13 +223,14 @@ impl Signal {
 
     /// The signals SkyForge can transmit at the sample level, those the bundled receiver
     /// takes ([`Signal::RECEIVED`]). A scenario's `[signal] signals` chooses among them.
-    pub const TRANSMITTED: [Signal; 6] = [
+    pub const TRANSMITTED: [Signal; 7] = [
         Signal::GpsL1Ca,
         Signal::BdsB1I,
         Signal::GalE5a,
         Signal::GpsL5,
         Signal::GalE1,
         Signal::BdsB2a,
+        Signal::BdsB1C,
     ];
 
     /// Whether SkyForge can transmit the signal ([`Signal::TRANSMITTED`]).
@@ -221,6 +251,10 @@ impl Signal {
     ///   the B2a pilot's clock is the B3I-referenced polynomial minus TGD_B2ap). SkyForge
     ///   keeps one BeiDou group delay per satellite, so its B-CNAV2 broadcasts the set's
     ///   `tgd_s` as TGD_B2ap and a D1 set read for B2a gives the same delay.
+    /// - BeiDou B1C (pilot): `tgd_s`, B-CNAV1's TGD_B1Cp (BDS-SIS-ICD-B1C-1.0 §7.6.2: the
+    ///   B1C pilot's clock is the B3I-referenced polynomial minus TGD_B1Cp; the data
+    ///   component's also minus ISC_B1Cd, which SkyForge broadcasts as 0), likewise the
+    ///   set's one group delay.
     ///
     /// 0 for a signal of another system than `eph`'s, and for the observed-only signals.
     pub fn broadcast_group_delay_s(self, eph: &BroadcastEphemeris) -> f64 {
@@ -231,9 +265,12 @@ impl Signal {
         match self {
             // Galileo E1: BGD(E1,E5b) of an I/NAV ephemeris, BGD(E1,E5a) of an F/NAV one,
             // each the E1 user's delay against its message's clock (Galileo OS SIS ICD §5.1.5).
-            Signal::GpsL1Ca | Signal::GpsL5 | Signal::BdsB1I | Signal::GalE1 | Signal::BdsB2a => {
-                c.tgd_s
-            }
+            Signal::GpsL1Ca
+            | Signal::GpsL5
+            | Signal::BdsB1I
+            | Signal::GalE1
+            | Signal::BdsB2a
+            | Signal::BdsB1C => c.tgd_s,
             Signal::GalE5a => {
                 let bgd = match eph.message {
                     NavMessage::GalileoInav => c.tgd2_s,
@@ -246,35 +283,41 @@ impl Signal {
     }
 
     /// Whether the signal has a dataless pilot component beside its data component (GPS
-    /// L5's Q5, Galileo E1-C and E5a-Q, BeiDou B2a_p).
+    /// L5's Q5, Galileo E1-C and E5a-Q, BeiDou B2a_p and B1C_pilot).
     pub fn has_pilot(self) -> bool {
         matches!(
             self,
-            Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a | Signal::BdsB2a
+            Signal::GpsL5 | Signal::GalE1 | Signal::GalE5a | Signal::BdsB2a | Signal::BdsB1C
         )
     }
 
     /// Whether the pilot is in quadrature with the data component, 90 degrees ahead of it
     /// (L5's Q5, IS-GPS-705 §3.3.1.1; E5a-Q, Galileo OS SIS ICD §2.3.3; B2a's pilot,
-    /// BDS-SIS-ICD-B2a Table 4-1); Galileo E1's
+    /// BDS-SIS-ICD-B2a Table 4-1; B1C's pilot BOC(1,1) part, the one a receiver tracks,
+    /// BDS-SIS-ICD-B1C-1.0 §4.2.1: `s = s_data + j s_pilot`); Galileo E1's
     /// E1-C is in phase with E1-B, with the opposite sign: `e_B - e_C` (ICD §2.3.3, as
     /// `subcarrier::e1_cboc` sums them).
     pub fn pilot_in_quadrature(self) -> bool {
-        matches!(self, Signal::GpsL5 | Signal::GalE5a | Signal::BdsB2a)
+        matches!(
+            self,
+            Signal::GpsL5 | Signal::GalE5a | Signal::BdsB2a | Signal::BdsB1C
+        )
     }
 
     /// Whether a receiver correlates with a BOC(1,1) replica: each chip as its two
     /// half-chips `+c, -c` (Galileo E1's CBOC(6,1,1/11) without the BOC(6,1) part, which
-    /// carries 1/11 of the power: 0.41 dB lost, Galileo OS SIS ICD §2.3.3).
+    /// carries 1/11 of the power: 0.41 dB lost, Galileo OS SIS ICD §2.3.3), and BeiDou
+    /// B1C, whose data component is BOC(1,1) and whose pilot's BOC(1,1) part carries 29/33
+    /// of the pilot's power (the BOC(6,1) part 4/33, BDS-SIS-ICD-B1C-1.0 §4.2.2).
     pub fn replica_boc11(self) -> bool {
-        self == Signal::GalE1
+        matches!(self, Signal::GalE1 | Signal::BdsB1C)
     }
 
-    /// Whether a recording's carrier (or band) alone names the signal: not for Galileo E1,
-    /// whose carrier is GPS L1's (a recording at 1575.42 MHz is L1 C/A unless its file name
-    /// or the command line says `gal-e1`).
+    /// Whether a recording's carrier (or band) alone names the signal: not for Galileo E1
+    /// and BeiDou B1C, whose carrier is GPS L1's (a recording at 1575.42 MHz is L1 C/A
+    /// unless its file name or the command line says `gal-e1` or `bds-b1c`).
     fn named_by_carrier(self) -> bool {
-        self != Signal::GalE1
+        !matches!(self, Signal::GalE1 | Signal::BdsB1C)
     }
 
     /// Name for people, as in SigMF descriptions and messages: `GPS L1 C/A`, `BDS B1I`.
@@ -289,6 +332,7 @@ impl Signal {
             Signal::GalE1 => "GAL E1",
             Signal::GalE5a => "GAL E5a",
             Signal::BdsB2a => "BDS B2a",
+            Signal::BdsB1C => "BDS B1C",
         }
     }
 
@@ -307,7 +351,7 @@ impl Signal {
     pub fn system(self) -> skyforge_orbits::ephemeris::System {
         match self {
             Self::GpsL1Ca | Self::GpsL2 | Self::GpsL5 => skyforge_orbits::ephemeris::System::Gps,
-            Self::BdsB1I | Self::BdsB2I | Self::BdsB3I | Self::BdsB2a => {
+            Self::BdsB1I | Self::BdsB2I | Self::BdsB3I | Self::BdsB2a | Self::BdsB1C => {
                 skyforge_orbits::ephemeris::System::Beidou
             }
             Self::GalE1 | Self::GalE5a => skyforge_orbits::ephemeris::System::Galileo,
@@ -327,13 +371,15 @@ impl Signal {
             Signal::GalE1 => "gal-e1",
             Signal::GalE5a => "gal-e5a",
             Signal::BdsB2a => "bds-b2a",
+            Signal::BdsB1C => "bds-b1c",
         }
     }
 
     /// Nominal carrier frequency (Hz): IS-GPS-200 §3.3.1.1 (L1 = 154 x 10.23 MHz,
     /// L2 = 120 x 10.23 MHz), IS-GPS-705 (L5 = 115 x 10.23 MHz); the BeiDou ICDs
     /// (B1I 1561.098, B2I 1207.14, B3I 1268.52 MHz), the Galileo OS SIS ICD (E1 = 154 x
-    /// 10.23 MHz, E5a = 115 x 10.23 MHz), BDS-SIS-ICD-B2a-1.0 §4.2 (B2a 1176.45 MHz).
+    /// 10.23 MHz, E5a = 115 x 10.23 MHz), BDS-SIS-ICD-B2a-1.0 §4.2 (B2a 1176.45 MHz),
+    /// BDS-SIS-ICD-B1C-1.0 §4.1 (B1C 1575.42 MHz).
     pub fn carrier_hz(self) -> f64 {
         match self {
             Signal::GpsL1Ca => F_GPS_L1_HZ,
@@ -345,6 +391,7 @@ impl Signal {
             Signal::GalE1 => F_GAL_E1_HZ,
             Signal::GalE5a => F_GAL_E5A_HZ,
             Signal::BdsB2a => F_BDS_B2A_HZ,
+            Signal::BdsB1C => F_BDS_B1C_HZ,
         }
     }
 
@@ -363,16 +410,18 @@ impl Signal {
             Signal::GalE1 => GAL_E1_CHIP_RATE_HZ,
             Signal::GalE5a => galileo_e5a::GALILEO_E5A_CHIP_RATE_HZ,
             Signal::BdsB2a => bds_b2a::BDS_B2A_CHIP_RATE_HZ,
+            Signal::BdsB1C => bds_b1c::BDS_B1C_CHIP_RATE_HZ,
         }
     }
 
     /// The outermost null of the signal's main lobes about its carrier (Hz), what a
     /// recording must hold: the chip rate for BPSK; for Galileo E1's CBOC(6,1,1/11) the
     /// BOC(6,1) lobe's, 6.138 + 1.023 MHz (Galileo OS SIS ICD §2.3.3; that lobe carries
-    /// 1/11 of the power).
+    /// 1/11 of the power), and likewise for BeiDou B1C's QMBOC(6,1,4/33), whose pilot's
+    /// BOC(6,1) part also carries 1/11 of the signal's power (BDS-SIS-ICD-B1C-1.0 §4.2.2).
     pub fn main_lobe_half_width_hz(self) -> f64 {
         match self {
-            Signal::GalE1 => 6.0 * GAL_E1_CHIP_RATE_HZ + GAL_E1_CHIP_RATE_HZ,
+            Signal::GalE1 | Signal::BdsB1C => (BOC61_RATE_CHIPS + 1.0) * self.chip_rate_hz(),
             _ => self.chip_rate_hz(),
         }
     }
@@ -387,11 +436,12 @@ impl Signal {
             Signal::GalE1 => GAL_E1_CODE_LENGTH,
             Signal::GalE5a => galileo_e5a::GALILEO_E5A_CODE_LENGTH,
             Signal::BdsB2a => bds_b2a::BDS_B2A_CODE_LENGTH,
+            Signal::BdsB1C => bds_b1c::BDS_B1C_CODE_LENGTH,
         }
     }
 
-    /// Code period (s): 1 ms for the synthesised signals, 4 ms for Galileo E1 (a week for
-    /// the P code of L2).
+    /// Code period (s): 1 ms for the synthesised signals, 4 ms for Galileo E1, 10 ms for
+    /// BeiDou B1C (a week for the P code of L2).
     pub fn code_period_s(self) -> f64 {
         self.code_length() as f64 / self.chip_rate_hz()
     }
@@ -409,6 +459,7 @@ impl Signal {
             ),
             Signal::GalE1 => (galileo_e1::galileo_e1b(prn), galileo_e1::GALILEO_E1_PRN_MAX),
             Signal::BdsB2a => (bds_b2a::bds_b2a_data(prn), bds_b2a::BDS_B2A_PRN_MAX),
+            Signal::BdsB1C => (bds_b1c::bds_b1c_data(prn), bds_b1c::BDS_B1C_PRN_MAX),
             Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => (None, 0),
         };
         code.ok_or(UnknownPrn {
@@ -449,6 +500,12 @@ impl Signal {
                     .map(|(primary, secondary)| PilotCodes { primary, secondary }),
                 bds_b2a::BDS_B2A_PRN_MAX,
             ),
+            Signal::BdsB1C => (
+                bds_b1c::bds_b1c_pilot(prn)
+                    .zip(bds_b1c::bds_b1c_pilot_secondary(prn))
+                    .map(|(primary, secondary)| PilotCodes { primary, secondary }),
+                bds_b1c::BDS_B1C_PRN_MAX,
+            ),
             _ => (None, 0),
         };
         codes.ok_or(UnknownPrn {
@@ -460,8 +517,9 @@ impl Signal {
 
     /// The data modulation of `prn`: BeiDou GEO satellites (PRN 1-5 and 59-63) broadcast
     /// D2, the others D1, on B1I, B2I and B3I alike (BDS-SIS-ICD-B1I-3.0 §5.1); L1 C/A and
-    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV, E1 I/NAV, B2a B-CNAV2 (which only the
-    /// BDS-3 MEO and IGSO satellites broadcast, BDS-SIS-ICD-B2a-1.0 §1).
+    /// L2 P(Y) carry LNAV, L5 CNAV, E5a F/NAV, E1 I/NAV, B2a B-CNAV2 and B1C B-CNAV1 (which
+    /// only the BDS-3 MEO and IGSO satellites broadcast, BDS-SIS-ICD-B2a-1.0 §1,
+    /// BDS-SIS-ICD-B1C-1.0 §1).
     pub fn data_modulation(self, prn: u8) -> Option<DataModulation> {
         match self {
             Signal::GpsL1Ca | Signal::GpsL2 => Some(DataModulation::GpsLnav),
@@ -469,6 +527,7 @@ impl Signal {
             Signal::GalE5a => Some(DataModulation::GalFnav),
             Signal::GalE1 => Some(DataModulation::GalInav),
             Signal::BdsB2a => Some(DataModulation::BdsCnav2),
+            Signal::BdsB1C => Some(DataModulation::BdsCnav1),
             Signal::BdsB1I | Signal::BdsB2I | Signal::BdsB3I if prn <= 5 || prn >= 59 => {
                 Some(DataModulation::BdsD2)
             }
@@ -479,7 +538,7 @@ impl Signal {
     /// The only received signal ([`Signal::RECEIVED`]) whose carrier is within
     /// [`CARRIER_MATCH_TOLERANCE_HZ`] of `carrier_hz` (a recording's signal); `None` when
     /// none or several are (GPS L5, Galileo E5a and BeiDou B2a share 1176.45 MHz). Galileo E1
-    /// is never named by its carrier, GPS L1 C/A's.
+    /// and BeiDou B1C are never named by their carrier, GPS L1 C/A's.
     pub fn from_carrier_hz(carrier_hz: f64) -> Option<Self> {
         only(Self::RECEIVED.into_iter().filter(|s| {
             s.named_by_carrier()
@@ -489,7 +548,7 @@ impl Signal {
 
     /// The only received signal whose carrier lies inside the band recorded about
     /// `centre_hz` (complex: `|carrier - centre| < fs / 2`), or `None` when none or several
-    /// do (Galileo E1 aside, as for [`Signal::from_carrier_hz`]).
+    /// do (Galileo E1 and BeiDou B1C aside, as for [`Signal::from_carrier_hz`]).
     pub fn in_band(centre_hz: f64, sample_rate_hz: f64) -> Option<Self> {
         only(Self::RECEIVED.into_iter().filter(|s| {
             s.named_by_carrier() && (s.carrier_hz() - centre_hz).abs() < sample_rate_hz / 2.0
@@ -721,6 +780,38 @@ mod tests {
         );
     }
 
+    /// BeiDou B1C (BDS-SIS-ICD-B1C-1.0 §4, §5): 1575.42 MHz (L1's, so only a file name
+    /// names it), 10230 chips in 10 ms, 100 symbol/s B-CNAV1 without a data secondary code,
+    /// an 1800-chip (18 s) secondary code per PRN on the pilot, BOC(1,1) replicas on a
+    /// pilot in quadrature, the QMBOC's BOC(6,1) lobe in the band, PRN 1-63.
+    #[test]
+    fn bds_b1c_follows_the_icd() {
+        let s = Signal::BdsB1C;
+        assert_eq!(s.carrier_hz(), 1540.0 * 1.023e6);
+        assert!((s.code_period_s() - 10e-3).abs() < 1e-15);
+        assert_eq!(s.system(), skyforge_orbits::ephemeris::System::Beidou);
+        let m = s.data_modulation(30).unwrap();
+        assert_eq!((m, m.periods_per_bit()), (DataModulation::BdsCnav1, 1));
+        assert!(
+            m.frame_is_pilot_secondary() && !DataModulation::BdsCnav2.frame_is_pilot_secondary()
+        );
+        assert_eq!(m.data_secondary_code(), None);
+        let pilot = s.pilot(30).unwrap();
+        assert_eq!((pilot.primary.len(), pilot.secondary.len()), (10_230, 1800));
+        assert_ne!(pilot.primary, s.code(30).unwrap());
+        assert!(s.has_pilot() && s.pilot_in_quadrature() && s.replica_boc11());
+        assert!(s.is_received() && s.is_transmitted() && !s.is_default_fix());
+        assert_eq!(s.main_lobe_half_width_hz(), 7.161e6);
+        assert!(s.code(64).is_err() && s.pilot(0).is_err());
+        assert_eq!(("BDS-B1C".parse::<Signal>(), s.name()), (Ok(s), "BDS B1C"));
+        assert_eq!(Signal::from_carrier_hz(1575.42e6), Some(Signal::GpsL1Ca));
+        assert_eq!(Signal::in_band(1575.42e6, 15e6), Some(Signal::GpsL1Ca));
+        assert_eq!(
+            Signal::from_file_name("ant1.bds-b1c.sigmf-meta"),
+            Some(Signal::BdsB1C)
+        );
+    }
+
     /// L2 is read from files, never synthesised: no recording is identified as L2.
     #[test]
     fn gps_l2_is_observed_only() {
@@ -769,6 +860,9 @@ mod tests {
         let mut bds = nominal::beidou(skyforge_orbits::ephemeris::BeidouSet::Bds3, start).remove(0);
         bds.clock.tgd_s = -1.5e-9;
         assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&bds), -1.5e-9);
+        // B1C: TGD_B1Cp in tgd_s.
+        assert_eq!(Signal::BdsB1C.broadcast_group_delay_s(&bds), -1.5e-9);
+        assert_eq!(Signal::BdsB1C.broadcast_group_delay_s(&gps), 0.0);
         assert_eq!(Signal::BdsB2a.broadcast_group_delay_s(&gal), 0.0);
     }
 }

@@ -9,6 +9,12 @@
 //! `s(t) = (1/sqrt 2) [e_B(t) (alpha sc_a + beta sc_b) - e_C(t) (alpha sc_a - beta sc_b)]`,
 //! alpha = sqrt(10/11), beta = sqrt(1/11): the data component E1-B and the pilot E1-C in
 //! phase, each with half the power.
+//!
+//! BeiDou B1C (BDS-SIS-ICD-B1C-1.0 §4.2.2) is `s = s_data + j s_pilot` with
+//! `s_data = (1/2) D C_d sc_a` and `s_pilot = (sqrt 3 / 2) C_p (sqrt(29/33) sc_a - j
+//! sqrt(4/33) sc_b)`, `sc_a` BOC(1,1) and `sc_b` BOC(6,1): the data in phase with 1/4 of
+//! the power, the pilot's BOC(1,1) part in quadrature (+j) with 29/44, and its BOC(6,1)
+//! part, turned by `j (-j) = +1`, in phase with the data with 1/11 ([`b1c_qmboc`]).
 
 /// Sub-chips per chip on which BOC(1,1) and BOC(6,1) are both constant.
 pub const CBOC_SUBCHIPS: usize = 12;
@@ -44,6 +50,26 @@ pub fn e1_cboc(data: i8, pilot: i8) -> [f32; CBOC_SUBCHIPS] {
     })
 }
 
+/// B1C's data amplitude, 1/2 (1/4 of the power).
+const B1C_DATA: f64 = 0.5;
+/// B1C's pilot BOC(1,1) amplitude, sqrt(3/4 x 29/33) = sqrt(29/44).
+const B1C_PILOT_A: f64 = 0.811_844_140_885_988_7;
+/// B1C's pilot BOC(6,1) amplitude, sqrt(3/4 x 4/33) = sqrt(1/11).
+const B1C_PILOT_B: f64 = BETA;
+
+/// The B1C QMBOC waveform over one chip, sub-chip by sub-chip, as in-phase and quadrature
+/// levels, for a data chip `data` (B1C_data code chip times the B-CNAV1 symbol) and a
+/// pilot chip `pilot` (B1C_pilot code chip times its secondary chip), each +1 or -1:
+/// `I = (1/2) d sc_a + sqrt(1/11) p sc_b`, `Q = sqrt(29/44) p sc_a`, unit power.
+pub fn b1c_qmboc(data: i8, pilot: i8) -> ([f32; CBOC_SUBCHIPS], [f32; CBOC_SUBCHIPS]) {
+    let (d, p) = (f64::from(data), f64::from(pilot));
+    let i = std::array::from_fn(|k| {
+        (B1C_DATA * d * f64::from(boc11(k)) + B1C_PILOT_B * p * f64::from(boc61(k))) as f32
+    });
+    let q = std::array::from_fn(|k| (B1C_PILOT_A * p * f64::from(boc11(k))) as f32);
+    (i, q)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -52,6 +78,36 @@ mod tests {
     fn the_weights_are_the_icds() {
         assert!((ALPHA * ALPHA - 10.0 / 11.0).abs() < 1e-15);
         assert!((BETA * BETA - 1.0 / 11.0).abs() < 1e-15);
+        // BDS-SIS-ICD-B1C-1.0 §4.2.2: (sqrt 3 / 2)^2 x 29/33 and x 4/33.
+        assert!((B1C_PILOT_A * B1C_PILOT_A - 0.75 * 29.0 / 33.0).abs() < 1e-15);
+        assert!((B1C_PILOT_B * B1C_PILOT_B - 0.75 * 4.0 / 33.0).abs() < 1e-15);
+    }
+
+    /// B1C's QMBOC from the ICD's complex definition evaluated at each sub-chip's middle:
+    /// data 1/4 of the power on I, pilot BOC(1,1) 29/44 on Q, pilot BOC(6,1) 1/11 on I.
+    #[test]
+    fn b1c_qmboc_is_the_icds_complex_sum() {
+        let sgn = |x: f64| if x > 0.0 { 1.0 } else { -1.0 };
+        for (d, p) in [(1, 1), (1, -1), (-1, 1), (-1, -1)] {
+            let (i, q) = b1c_qmboc(d, p);
+            let mut power = 0.0;
+            for k in 0..CBOC_SUBCHIPS {
+                let t = (k as f64 + 0.5) / CBOC_SUBCHIPS as f64;
+                let (a, b) = (
+                    sgn((std::f64::consts::TAU * t).sin()),
+                    sgn((std::f64::consts::TAU * 6.0 * t).sin()),
+                );
+                // s_data + j s_pilot, s_pilot = sqrt(3)/2 p (sqrt(29/33) a - j sqrt(4/33) b):
+                // re = s_data - Im(s_pilot), im = Re(s_pilot).
+                let (dr, pa) = (0.5 * f64::from(d), 0.75f64.sqrt() * f64::from(p));
+                let re = dr * a - pa * (-(4.0f64 / 33.0).sqrt() * b);
+                let im = pa * (29.0f64 / 33.0).sqrt() * a;
+                assert!((f64::from(i[k]) - re).abs() < 1e-6, "I {k}");
+                assert!((f64::from(q[k]) - im).abs() < 1e-6, "Q {k}");
+                power += re * re + im * im;
+            }
+            assert!((power / 12.0 - 1.0).abs() < 1e-9, "{power}");
+        }
     }
 
     /// sgn(sin(2 pi R t)) sampled at the middle of each sub-chip, against the tables.

@@ -9,7 +9,7 @@ use crate::signal::Signal;
 
 /// The codes of `signal`, preferred first; the first is what SkyForge writes (for GPS and
 /// BeiDou each system's reference signal for the phase, RINEX 3.04 table A23, so no phase
-/// shift applies; for Galileo the pilot, 1C and 5Q, as pilot-tracking receivers write; BeiDou B2a likewise its pilot, 5P). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]).
+/// shift applies; for Galileo the pilot, 1C and 5Q, as pilot-tracking receivers write; BeiDou B2a and B1C likewise their pilots, 5P and 1P). BeiDou B1I is also `1I` in files before RINEX 3.03 ([`codes_in_version`]), where band 1 is never B1C.
 pub fn codes(signal: Signal) -> &'static [&'static str] {
     match signal {
         Signal::GpsL1Ca => &["1C"],
@@ -24,6 +24,8 @@ pub fn codes(signal: Signal) -> &'static [&'static str] {
         Signal::GalE5a => &["5Q", "5X", "5I"],
         // B2a pilot (B2a_p), then data + pilot, then data (RINEX 3.04 table 9 band 5).
         Signal::BdsB2a => &["5P", "5X", "5D"],
+        // B1C pilot, then data + pilot, then data (RINEX 3.04 table 9 band 1, from 3.03 on).
+        Signal::BdsB1C => &["1P", "1X", "1D"],
     }
 }
 
@@ -42,10 +44,11 @@ pub fn classify(
     minor: u8,
 ) -> Option<(Signal, usize)> {
     if system == skyforge_orbits::ephemeris::System::Beidou
-        && band_attribute == "1I"
+        && band_attribute.starts_with('1')
         && (major, minor) < (3, 3)
     {
-        return Some((Signal::BdsB1I, 0));
+        // Before 3.03 band 1 is B1I (1I, 1Q, 1X): never B1C.
+        return (band_attribute == "1I").then_some((Signal::BdsB1I, 0));
     }
     Signal::ALL
         .into_iter()
@@ -87,5 +90,11 @@ mod tests {
         );
         assert_eq!(classify(System::Beidou, "1I", 3, 4), None);
         assert_eq!(classify(System::Gps, "7I", 3, 4), None);
+        // B1C's band 1 from RINEX 3.03 on; before it band 1 was B1I's.
+        assert_eq!(
+            classify(System::Beidou, "1D", 3, 4),
+            Some((Signal::BdsB1C, 2))
+        );
+        assert_eq!(classify(System::Beidou, "1X", 3, 2), None);
     }
 }

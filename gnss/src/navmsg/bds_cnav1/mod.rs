@@ -100,6 +100,23 @@ impl BdsCnav1Encoder {
         })
     }
 
+    /// BDT week of symbol 0.
+    pub fn week(&self) -> u32 {
+        self.week
+    }
+
+    /// Start of BDT week [`Self::week`], where symbol 0 (the first symbol of a frame)
+    /// starts.
+    pub fn week_start(&self) -> Epoch {
+        skyforge_orbits::time::epoch_from_bdt(self.week, 0.0)
+    }
+
+    /// Channel symbol `k` (0/1), symbol 0 the first of the week's first frame.
+    pub fn symbol(&self, k: u64) -> u8 {
+        let n = CNAV1_FRAME_SYMBOLS as u64;
+        self.frame_symbols(k / n)[(k % n) as usize]
+    }
+
     /// The ephemeris the messages describe, in SI units (every field quantised and
     /// converted back; `tgd_s` = TGD_B1Cp, IODE, IODC, health = HS, 3 h fit).
     pub fn broadcast_ephemeris(&self) -> BroadcastEphemeris {

@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use skyforge_orbits::ephemeris::BeidouSet;
 use skyforge_orbits::ephemeris::nominal;
-use skyforge_orbits::time::bdt_week_sow;
+use skyforge_orbits::time::{bdt_week_sow, epoch_from_bdt};
 
 fn encoder(prn: u8) -> BdsCnav1Encoder {
     let toe = Epoch::from_gregorian_hms(2023, 3, 12, 10, 0, 0, TimeScale::BDT);
@@ -55,6 +55,8 @@ fn a_frame_is_the_bch_words_and_the_interleaved_codewords() {
     assert_eq!(coded[1200..1464], sf3[..]);
     assert_eq!(read_fields(&sf2[13..21], &[HOW]), [10]);
     assert_eq!(enc.symbols(1790, 20), enc.symbols(0, 3600)[1790..1810]);
+    assert_eq!(enc.symbol(n * 1800 + 21), soh_word(5)[0]);
+    assert_eq!(enc.week_start(), epoch_from_bdt(enc.week(), 0.0));
 }
 
 #[test]
