@@ -5,6 +5,7 @@
 use super::transmitter::Transmitter;
 use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
+use skyforge_gnss::navmsg::bds_cnav1::BdsCnav1Encoder;
 use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
 use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
 use skyforge_gnss::navmsg::galileo_inav::{InavEncoder, InavError, InavParams};
@@ -30,13 +31,13 @@ pub enum TransmitterError {
     E1Codes(#[from] skyforge_gnss::codes::E1CodesError),
     #[error("GPS CNAV: {0}")]
     Cnav(#[from] CnavError),
-    #[error("BeiDou B-CNAV2: {0}")]
+    #[error("BeiDou B-CNAV1/B-CNAV2: {0}")]
     BdsCnav2(#[from] BdsCnavError),
     #[error(
-        "BeiDou B2a: none of the {0} BeiDou satellites is a BDS-3 MEO or IGSO one (PRN 19 and up, not GEO); \
-         BDS-2 satellites and GEOs broadcast no B2a (choose embedded_set = \"bds3\")"
+        "{0}: none of the {1} BeiDou satellites is a BDS-3 MEO or IGSO one (PRN 19 and up, not GEO); \
+         BDS-2 satellites and GEOs broadcast no {0} (choose embedded_set = \"bds3\")"
     )]
-    NoB2a(usize),
+    NoBds3(Signal, usize),
     #[error("no ranging code, or a start before the time scale's epoch, for {0}")]
     NoSignal(SatId),
     #[error("{0} is not transmitted by SkyForge")]
@@ -58,6 +59,7 @@ pub fn transmitters(
         Signal::GalE1 => gal_e1(ephs, start),
         Signal::GpsL5 => gps_l5(ephs, start, &iono.gps),
         Signal::BdsB2a => bds_b2a(ephs, start),
+        Signal::BdsB1C => bds_b1c(ephs, start),
         other => Err(TransmitterError::NotTransmitted(other)),
     }
 }
@@ -174,30 +176,66 @@ pub fn gps_l5(
         .collect()
 }
 
-/// Grid of B-CNAV2 toe and toc (s): their scale factor is 300 s (BDS-SIS-ICD-B2a-1.0
-/// Tables 7-8 and 7-9).
+/// Grid of B-CNAV1 and B-CNAV2 toe and toc (s): their scale factor is 300 s
+/// (BDS-SIS-ICD-B2a-1.0 and BDS-SIS-ICD-B1C-1.0, Tables 7-8 and 7-9).
 const BDS_CNAV_TIME_GRID_S: f64 = 300.0;
 
 /// The first PRN of BeiDou-3: C19-C46 are the BDS-3 MEO and IGSO satellites, C01-C18
-/// BDS-2, C59-C63 GEO (BDS-3 C59-C61 and BDS-2 GEOs transmit no B2a).
+/// BDS-2, C59-C63 GEO (BDS-3 C59-C61 and BDS-2 GEOs transmit no B2a or B1C).
 const BDS3_FIRST_PRN: u8 = 19;
 
-/// Whether BeiDou satellite `eph` broadcasts B2a: BDS-3 MEO and IGSO only
-/// (BDS-SIS-ICD-B2a-1.0 §1: B2a is an open service of the BDS-3 MEO and IGSO satellites;
-/// BDS-2 satellites and the GEOs do not transmit it).
-fn transmits_b2a(eph: &BroadcastEphemeris) -> bool {
+/// Whether BeiDou satellite `eph` broadcasts B2a and B1C: BDS-3 MEO and IGSO only
+/// (BDS-SIS-ICD-B2a-1.0 §1 and BDS-SIS-ICD-B1C-1.0 §1: open service signals of the BDS-3
+/// MEO and IGSO satellites; BDS-2 satellites and the GEOs do not transmit them).
+fn transmits_bds3_signals(eph: &BroadcastEphemeris) -> bool {
     eph.class == OrbitClass::Standard && eph.sat.prn >= BDS3_FIRST_PRN
 }
 
 /// BeiDou B2a transmitters (B-CNAV2 on B2a_d, pilot on B2a_p) for the BDS-3 MEO and IGSO
-/// ephemerides among `ephs`; the BDS-2 satellites (PRN 1-18) and every GEO are left out,
-/// as they broadcast no B2a ([`transmits_b2a`]). Sets off the 300 s grid are
-/// re-expressed on it. TGD_B2ap is the set's `tgd_s`, the one BeiDou group delay
-/// SkyForge keeps (so a receiver using the D1 set of a B1I recording applies the same
-/// delay), ISC_B2ad zero.
+/// ephemerides among `ephs` ([`bds3`]). TGD_B2ap is the set's `tgd_s`, the one BeiDou
+/// group delay SkyForge keeps (so a receiver using the D1 set of a B1I recording applies
+/// the same delay), ISC_B2ad zero.
 pub fn bds_b2a(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    bds3(ephs, start, Signal::BdsB2a, |eph, week| {
+        let params = BdsCnavParams {
+            tgd_b2ap_s: eph.clock.tgd_s,
+            ..BdsCnavParams::default()
+        };
+        let nav = BdsCnav2Encoder::new(eph, &params, week)?;
+        Transmitter::bds_b2a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+    })
+}
+
+/// BeiDou B1C transmitters (B-CNAV1 on B1C_data, pilot on B1C_pilot) for the BDS-3 MEO
+/// and IGSO ephemerides among `ephs` ([`bds3`]). TGD_B1Cp is the set's `tgd_s`, as
+/// TGD_B2ap is B2a's; ISC_B1Cd zero (data and pilot leave together).
+pub fn bds_b1c(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+) -> Result<Vec<Transmitter>, TransmitterError> {
+    bds3(ephs, start, Signal::BdsB1C, |eph, week| {
+        let params = BdsCnavParams {
+            tgd_b1cp_s: eph.clock.tgd_s,
+            ..BdsCnavParams::default()
+        };
+        let nav = BdsCnav1Encoder::new(eph, &params, week)?;
+        Transmitter::bds_b1c(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
+    })
+}
+
+/// The transmitters `build` makes of each BDS-3 MEO and IGSO ephemeris among `ephs` (with
+/// the BDT week the symbols count from); the BDS-2 satellites (PRN 1-18) and every GEO are
+/// left out, as they broadcast neither B2a nor B1C ([`transmits_bds3_signals`]); a set
+/// with BeiDou satellites but none of these is refused for `signal`. Sets off the 300 s
+/// grid are re-expressed on it.
+fn bds3(
+    ephs: &[BroadcastEphemeris],
+    start: Epoch,
+    signal: Signal,
+    build: impl Fn(&BroadcastEphemeris, u32) -> Result<Transmitter, TransmitterError>,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     let bds = on_message_grid(ephs, System::Beidou, BDS_CNAV_TIME_GRID_S);
     // Symbols count from the BDT week before the start's, so that satellite times a light
@@ -205,19 +243,12 @@ pub fn bds_b2a(
     let week = skyforge_orbits::time::bdt_week_sow(start)
         .0
         .saturating_sub(1);
-    if !bds.is_empty() && !bds.iter().any(transmits_b2a) {
-        return Err(TransmitterError::NoB2a(bds.len()));
+    if !bds.is_empty() && !bds.iter().any(transmits_bds3_signals) {
+        return Err(TransmitterError::NoBds3(signal, bds.len()));
     }
     bds.iter()
-        .filter(|eph| transmits_b2a(eph))
-        .map(|eph| {
-            let params = BdsCnavParams {
-                tgd_b2ap_s: eph.clock.tgd_s,
-                ..BdsCnavParams::default()
-            };
-            let nav = BdsCnav2Encoder::new(eph, &params, week)?;
-            Transmitter::bds_b2a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
-        })
+        .filter(|eph| transmits_bds3_signals(eph))
+        .map(|eph| build(eph, week))
         .collect()
 }
 
@@ -308,7 +339,30 @@ mod tests {
         );
         let bds2 = nominal::beidou(BeidouSet::Bds2, start);
         let err = bds_b2a(&bds2, start).expect_err("refused");
-        assert!(matches!(err, TransmitterError::NoB2a(15)), "{err}");
+        assert!(
+            matches!(err, TransmitterError::NoBds3(Signal::BdsB2a, 15)),
+            "{err}"
+        );
         assert!(err.to_string().contains("bds3"), "{err}");
+    }
+
+    /// B1C likewise (BDS-SIS-ICD-B1C-1.0 §1): the same BDS-3 MEO and IGSO satellites as
+    /// B2a, each with its B-CNAV1 ephemeris; the BDS-2 set is refused.
+    #[test]
+    fn b1c_is_transmitted_by_bds3_meo_and_igso_only() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let bds3 = nominal::beidou(BeidouSet::Bds3, start);
+        let b1c = bds_b1c(&bds3, start).expect("BDS-3 transmitters");
+        let b2a = bds_b2a(&bds3, start).expect("BDS-3 transmitters");
+        assert_eq!(
+            b1c.iter().map(|t| t.sat).collect::<Vec<_>>(),
+            b2a.iter().map(|t| t.sat).collect::<Vec<_>>()
+        );
+        assert!(b1c.iter().all(|t| t.signal == Signal::BdsB1C));
+        let err = bds_b1c(&nominal::beidou(BeidouSet::Bds2, start), start).expect_err("refused");
+        assert!(
+            matches!(err, TransmitterError::NoBds3(Signal::BdsB1C, 15)),
+            "{err}"
+        );
     }
 }

@@ -192,6 +192,9 @@ pub fn config(
     if signals.contains(&Signal::BdsB2a) {
         line("; GNSS-SDR 0.0.17 has no BeiDou B2a blocks: B2a is left out of this configuration.");
     }
+    if signals.contains(&Signal::BdsB1C) {
+        line("; GNSS-SDR 0.0.17 has no BeiDou B1C blocks: B1C is left out of this configuration.");
+    }
     line("Observables.implementation=Hybrid_Observables");
     line("PVT.implementation=RTKLIB_PVT");
     line("PVT.positioning_mode=Single");
@@ -420,6 +423,19 @@ mod tests {
         );
         assert!(!conf.contains("Channels_"), "{conf}");
         assert!(conf.contains("no BeiDou B2a blocks"), "{conf}");
+        let conf = config(
+            &SignalConfig {
+                sample_rate_hz: 15e6,
+                ..SignalConfig::default()
+            },
+            "b.sigmf-data",
+            &[Signal::BdsB1C],
+            5000.0,
+            corrections,
+            "b",
+        );
+        assert!(!conf.contains("Channels_"), "{conf}");
+        assert!(conf.contains("no BeiDou B1C blocks"), "{conf}");
     }
 
     /// GNSS-SDR's INI reader takes `;` comments, `[section]` headers and `key=value`.

@@ -65,8 +65,10 @@ struct Scratch {
     chips: Vec<i8>,
     /// The pilot's chips, for signals with one.
     pilot: Vec<i8>,
-    /// Sub-chip levels of a multi-level waveform (Galileo E1).
+    /// Sub-chip levels of a multi-level waveform (Galileo E1; BeiDou B1C's in-phase part).
     levels: Vec<f32>,
+    /// BeiDou B1C's quadrature sub-chip levels.
+    levels_q: Vec<f32>,
     /// Per transmitter, the last data bit looked up (`Transmitter::chip_signs_after`).
     bits: Vec<Option<(u64, u8)>>,
     mix: MixScratch,
@@ -608,21 +610,29 @@ fn mix_path((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut
     if tx.has_pilot() {
         s.pilot.clear();
         tx.pilot_chip_signs(k0, needed, &mut s.pilot);
-        mix_pair_into(&mut s.i, &mut s.q, &ch, &s.pilot, &mut s.mix);
+        mix_pair_into(&mut s.i, &mut s.q, &ch, Chips::Signs(&s.pilot), &mut s.mix);
     } else {
         mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
     }
 }
 
-/// [`mix_path`] of a multi-level waveform (Galileo E1's CBOC): its sub-chips' levels
-/// through the one-component kernel, data and pilot summed in phase.
+/// [`mix_path`] of a multi-level waveform: Galileo E1's CBOC, its sub-chips' levels
+/// through the one-component kernel, data and pilot summed in phase; BeiDou B1C's QMBOC,
+/// its in-phase and quadrature levels through the two-component kernel.
 fn mix_subchips((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: &mut Scratch) {
     let (k0, code_phase) = tx.subchip_at(p.t_sv.0);
     let rate = tx.chip_rate_hz * tx.subchips_per_chip() as f64;
     let code_per_sample = rate * (p.t_sv.1 - p.t_sv.0) / m as f64;
     let needed = ChannelBlock::chips_needed(code_phase, code_per_sample, m);
     s.levels.clear();
-    tx.cboc_levels_after(k0, needed, &mut s.levels, &mut s.bits[index]);
+    let quadrature = tx.signal == Signal::BdsB1C;
+    if quadrature {
+        s.levels_q.clear();
+        let out = (&mut s.levels, &mut s.levels_q);
+        tx.qmboc_levels_after(k0, needed, out, &mut s.bits[index]);
+    } else {
+        tx.cboc_levels_after(k0, needed, &mut s.levels, &mut s.bits[index]);
+    }
     let ch = ChannelBlock {
         amplitude: p.amplitude,
         carrier_phase_cycles: p.phase.0,
@@ -631,7 +641,12 @@ fn mix_subchips((index, tx): (usize, &Transmitter), p: &PathBlock, m: usize, s: 
         code_chips_per_sample: code_per_sample,
         chips: Chips::Levels(&s.levels),
     };
-    mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+    if quadrature {
+        let q = Chips::Levels(&s.levels_q);
+        mix_pair_into(&mut s.i, &mut s.q, &ch, q, &mut s.mix);
+    } else {
+        mix_into(&mut s.i, &mut s.q, &ch, &mut s.mix);
+    }
 }
 
 /// Carrier-phase error (m, RINEX sign) of a composite signal whose prompt correlator sits
@@ -715,5 +730,86 @@ mod tests {
             on_pilot / n
         );
         assert!((cross / n).abs() < 0.05, "{}", cross / n);
+    }
+
+    /// A BeiDou B1C path mixed alone and noise-free at a fixed carrier phase, 4 samples
+    /// per sub-chip: after the carrier is removed, the real axis correlates with the data
+    /// chips' BOC(1,1) by 1/2 (1/4 of the power) and with the pilot chips' BOC(6,1) by
+    /// sqrt(1/11), the imaginary axis (a quarter cycle ahead) with the pilot chips' BOC(1,1)
+    /// by sqrt(29/44) (BDS-SIS-ICD-B1C-1.0 §4.2.2: together the pilot's 3/4), and neither
+    /// with the other component's BOC(1,1) beyond the cross-correlation of two codes over
+    /// 1023 chips (4 / sqrt(1023) of the amplitude: four standard deviations of random
+    /// codes).
+    #[test]
+    fn b1c_puts_a_quarter_of_its_power_in_phase_and_the_pilot_in_quadrature() {
+        use skyforge_gnss::navmsg::BdsCnavParams;
+        use skyforge_gnss::navmsg::bds_cnav1::BdsCnav1Encoder;
+        use skyforge_gnss::subcarrier::{boc11, boc61};
+        use skyforge_orbits::ephemeris::BeidouSet;
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::BDT);
+        let eph = nominal::beidou(BeidouSet::Bds3, start)
+            .into_iter()
+            .find(|e| e.sat.prn == 30)
+            .expect("C30");
+        let week = skyforge_orbits::time::bdt_week_sow(start).0 - 1;
+        let nav = BdsCnav1Encoder::new(&eph, &BdsCnavParams::default(), week).expect("encoder");
+        let tx = Transmitter::bds_b1c(eph.sat, nav, start).expect("B1C");
+        let (m, t0, phase) = (49_104, 0.0123, 0.3);
+        let p = PathBlock {
+            amplitude: 1.0,
+            t_sv: (t0, t0 + 1e-3),
+            phase: (phase, phase),
+        };
+        let mut s = Scratch {
+            i: vec![0.0; m],
+            q: vec![0.0; m],
+            ..Scratch::default()
+        };
+        mix_path((0, &tx), &p, m, &mut s);
+        let (s0, sub_phase) = tx.subchip_at(t0);
+        let per_sample = 12.0 * tx.chip_rate_hz * 1e-3 / m as f64;
+        let c0 = s0 / 12;
+        let (mut data, mut pilot) = (Vec::new(), Vec::new());
+        tx.chip_signs(c0, 1100, &mut data);
+        tx.pilot_chip_signs(c0, 1100, &mut pilot);
+        let (c, sn) = ((TAU * phase).cos(), (TAU * phase).sin());
+        let mut sums = [0.0f64; 5];
+        for k in 0..m {
+            let sub = s0 + (sub_phase + k as f64 * per_sample).floor() as u64;
+            let (j, within) = ((sub / 12 - c0) as usize, (sub % 12) as usize);
+            let (a, b) = (f64::from(boc11(within)), f64::from(boc61(within)));
+            let (d, pl) = (f64::from(data[j]), f64::from(pilot[j]));
+            let (i, q) = (f64::from(s.i[k]), f64::from(s.q[k]));
+            let (re, im) = (i * c + q * sn, q * c - i * sn);
+            for (sum, x) in sums.iter_mut().zip([
+                re * d * a,
+                re * pl * b,
+                im * pl * a,
+                re * pl * a,
+                im * d * a,
+            ]) {
+                *sum += x;
+            }
+        }
+        let [on_data, on_pilot_b, on_pilot_a, cross_re, cross_im] = sums.map(|x| x / m as f64);
+        println!(
+            "B1C: data {on_data:.4}, pilot BOC(6,1) {on_pilot_b:.4}, pilot BOC(1,1) \
+             {on_pilot_a:.4}, cross {cross_re:.4} {cross_im:.4}"
+        );
+        assert!((on_data - 0.5).abs() < 0.01, "{on_data}");
+        assert!(
+            (on_pilot_b - (1.0f64 / 11.0).sqrt()).abs() < 0.01,
+            "{on_pilot_b}"
+        );
+        assert!(
+            (on_pilot_a - (29.0f64 / 44.0).sqrt()).abs() < 0.01,
+            "{on_pilot_a}"
+        );
+        let bound = 4.0 / 1023f64.sqrt();
+        assert!(cross_re.abs() < 0.5 * bound, "{cross_re}");
+        assert!(
+            cross_im.abs() < (29.0f64 / 44.0).sqrt() * bound,
+            "{cross_im}"
+        );
     }
 }

@@ -2,12 +2,14 @@
 //! optional pilot component, and the time scale its code and data are counted in.
 
 use hifitime::{Duration, Epoch};
+use skyforge_gnss::codes::{BDS_B1C_CHIP_RATE_HZ, bds_b1c_data};
 use skyforge_gnss::codes::{BDS_B1I_CHIP_RATE_HZ, bds_b1i};
 use skyforge_gnss::codes::{BDS_B2A_CHIP_RATE_HZ, bds_b2a_data};
 use skyforge_gnss::codes::{E1Codes, GALILEO_E1_C_SECONDARY, GALILEO_E1_CHIP_RATE_HZ};
 use skyforge_gnss::codes::{GALILEO_E5A_CHIP_RATE_HZ, galileo_e5a_i};
 use skyforge_gnss::codes::{GPS_CA_CHIP_RATE_HZ, gps_ca};
 use skyforge_gnss::codes::{GPS_L5_CHIP_RATE_HZ, gps_l5_i};
+use skyforge_gnss::navmsg::bds_cnav1::BdsCnav1Encoder;
 use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
 use skyforge_gnss::navmsg::galileo_fnav::FnavEncoder;
 use skyforge_gnss::navmsg::galileo_inav::InavEncoder;
@@ -15,7 +17,7 @@ use skyforge_gnss::navmsg::gps_cnav::CnavEncoder;
 use skyforge_gnss::navmsg::gps_lnav::LnavEncoder;
 use skyforge_gnss::navmsg::{BdsNavEncoder, BdsNavFormat};
 use skyforge_gnss::signal::{DataModulation, Signal};
-use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, e1_cboc};
+use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, b1c_qmboc, e1_cboc};
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId};
 
 /// Data modulating a signal.
@@ -42,6 +44,10 @@ pub enum DataBits {
     /// symbol, the secondary code 00010 per period (BDS-SIS-ICD-B2a-1.0 §5.2.2, §6.2.1),
     /// symbol 0 at the encoder's BDT week start (frames on BDT multiples of 3 s).
     BdsCnav2(Box<BdsCnav2Encoder>),
+    /// BeiDou B-CNAV1 on B1C_data: 100 symbols/s after its BCH and LDPC codes, one B1C
+    /// period (10 ms) per symbol, no secondary code (BDS-SIS-ICD-B1C-1.0 §6.2.1), symbol 0
+    /// at the encoder's BDT week start (18 s frames on BDT multiples of 18 s).
+    BdsCnav1(Box<BdsCnav1Encoder>),
 }
 
 impl DataBits {
@@ -53,6 +59,7 @@ impl DataBits {
             DataBits::GpsCnav(_) => DataModulation::GpsCnav,
             DataBits::GalileoInav(_) => DataModulation::GalInav,
             DataBits::BdsCnav2(_) => DataModulation::BdsCnav2,
+            DataBits::BdsCnav1(_) => DataModulation::BdsCnav1,
             DataBits::Bds(e) => match e.format() {
                 BdsNavFormat::D1 => DataModulation::BdsD1,
                 BdsNavFormat::D2 => DataModulation::BdsD2,
@@ -73,6 +80,7 @@ impl DataBits {
             DataBits::GpsCnav(e) => e.symbol(b),
             DataBits::GalileoInav(e) => e.symbol(b),
             DataBits::BdsCnav2(e) => e.symbol(b),
+            DataBits::BdsCnav1(e) => e.symbol(b),
         }
     }
     /// Secondary-code sign of code period `p` (+1/-1): the code restarts with every bit.
@@ -206,6 +214,25 @@ impl Transmitter {
         })
     }
 
+    /// BeiDou B1C: B1C_data with B-CNAV1 (BOC(1,1), 1/4 of the power), B1C_pilot with the
+    /// PRN's 1800-chip secondary code (QMBOC(6,1,4/33), 3/4), BDS-SIS-ICD-B1C-1.0 §4.2.2,
+    /// §5.2; chips and symbols count from the encoder's BDT week start, which must not be
+    /// after `start`. The 18 s secondary code and the 18 s frames both restart at every
+    /// BDT week start (33600 of each a week), so the secondary code starts with each frame.
+    pub fn bds_b1c(sat: SatId, nav: BdsCnav1Encoder, start: Epoch) -> Option<Self> {
+        let (start_whole_s, start_frac_s) = seconds_since(start - nav.week_start())?;
+        Some(Self {
+            sat,
+            signal: Signal::BdsB1C,
+            chip_rate_hz: BDS_B1C_CHIP_RATE_HZ,
+            code: bds_b1c_data(sat.prn)?,
+            data: DataBits::BdsCnav1(Box::new(nav)),
+            pilot: Some(Pilot::of(Signal::BdsB1C, sat.prn)?),
+            start_whole_s,
+            start_frac_s,
+        })
+    }
+
     /// Galileo E1: E1-B with I/NAV and E1-C pilot with CS25, in phase, each on its CBOC
     /// sub-carriers (Galileo OS SIS ICD §2.3.3, §3.4), the primary codes from `codes`;
     /// chips and symbols count from the encoder's GST week start, which must not be after
@@ -227,10 +254,10 @@ impl Transmitter {
         })
     }
 
-    /// Sub-chips per chip of the waveform: 12 for E1's CBOC ([`Self::cboc_levels_after`]),
-    /// 1 for the binary codes.
+    /// Sub-chips per chip of the waveform: 12 for E1's CBOC ([`Self::cboc_levels_after`])
+    /// and B1C's QMBOC ([`Self::qmboc_levels_after`]), 1 for the binary codes.
     pub fn subchips_per_chip(&self) -> usize {
-        if self.signal == Signal::GalE1 {
+        if matches!(self.signal, Signal::GalE1 | Signal::BdsB1C) {
             CBOC_SUBCHIPS
         } else {
             1
@@ -252,6 +279,7 @@ impl Transmitter {
             DataBits::GpsCnav(nav) => nav.broadcast_ephemeris(),
             DataBits::GalileoInav(nav) => nav.broadcast_ephemeris(),
             DataBits::BdsCnav2(nav) => nav.broadcast_ephemeris(),
+            DataBits::BdsCnav1(nav) => nav.broadcast_ephemeris(),
         }
     }
 
@@ -270,7 +298,8 @@ impl Transmitter {
             DataBits::Bds(_)
             | DataBits::GalileoFnav(_)
             | DataBits::GalileoInav(_)
-            | DataBits::BdsCnav2(_) => None,
+            | DataBits::BdsCnav2(_)
+            | DataBits::BdsCnav1(_) => None,
         }
     }
 
@@ -305,6 +334,54 @@ impl Transmitter {
         out: &mut Vec<f32>,
         cached: &mut Option<(u64, u8)>,
     ) {
+        // The four waveforms of a chip, by (data, pilot) sign.
+        let table = [
+            e1_cboc(1, 1),
+            e1_cboc(1, -1),
+            e1_cboc(-1, 1),
+            e1_cboc(-1, -1),
+        ];
+        out.reserve(count);
+        self.subchip_spans(s0, count, cached, |row, span| {
+            out.extend_from_slice(&table[row][span]);
+        });
+    }
+
+    /// Append the B1C QMBOC waveform over sub-chips `s0 .. s0 + count` to `out_i` (data
+    /// and the pilot's BOC(6,1) part) and `out_q` (the pilot's BOC(1,1) part), per chip
+    /// from the data chip (B1C_data code x B-CNAV1 symbol) and the pilot chip (B1C_pilot
+    /// code x secondary chip) ([`skyforge_gnss::subcarrier::b1c_qmboc`]); `cached` as in
+    /// [`Self::chip_signs_after`].
+    pub fn qmboc_levels_after(
+        &self,
+        s0: u64,
+        count: usize,
+        (out_i, out_q): (&mut Vec<f32>, &mut Vec<f32>),
+        cached: &mut Option<(u64, u8)>,
+    ) {
+        let table = [
+            b1c_qmboc(1, 1),
+            b1c_qmboc(1, -1),
+            b1c_qmboc(-1, 1),
+            b1c_qmboc(-1, -1),
+        ];
+        out_i.reserve(count);
+        out_q.reserve(count);
+        self.subchip_spans(s0, count, cached, |row, span| {
+            out_i.extend_from_slice(&table[row].0[span.clone()]);
+            out_q.extend_from_slice(&table[row].1[span]);
+        });
+    }
+
+    /// For each chip touched by sub-chips `s0 .. s0 + count`, in order: `emit(row, span)`
+    /// with `row` = 2 (data < 0) + (pilot < 0) and the chip's sub-chips inside the span.
+    fn subchip_spans(
+        &self,
+        s0: u64,
+        count: usize,
+        cached: &mut Option<(u64, u8)>,
+        mut emit: impl FnMut(usize, std::ops::Range<usize>),
+    ) {
         if count == 0 {
             return;
         }
@@ -313,21 +390,14 @@ impl Transmitter {
         let (mut data, mut pilot) = (Vec::new(), Vec::new());
         self.chip_signs_after(c0, (c1 - c0) as usize, &mut data, cached);
         self.pilot_chip_signs(c0, (c1 - c0) as usize, &mut pilot);
-        // The four waveforms of a chip, by (data, pilot) sign; each chip appends the part
-        // of its waveform inside the span.
-        let table = [
-            e1_cboc(1, 1),
-            e1_cboc(1, -1),
-            e1_cboc(-1, 1),
-            e1_cboc(-1, -1),
-        ];
         let end = s0 + count as u64;
-        out.reserve(count);
         for (j, (&d, &p)) in data.iter().zip(&pilot).enumerate() {
             let first = (c0 + j as u64) * sub;
             let (from, to) = (s0.max(first) - first, end.min(first + sub) - first);
-            let row = 2 * usize::from(d < 0) + usize::from(p < 0);
-            out.extend_from_slice(&table[row][from as usize..to as usize]);
+            emit(
+                2 * usize::from(d < 0) + usize::from(p < 0),
+                from as usize..to as usize,
+            );
         }
     }
 
@@ -560,6 +630,104 @@ mod tests {
         assert_eq!(despread, CNAV2_PREAMBLE);
         assert_eq!(tx.broadcast_ephemeris(), symbols.broadcast_ephemeris());
         assert_eq!(tx.broadcast_iono(), None);
+    }
+
+    /// A B1C transmitter for C30 of the BDS-3 set at 2023-03-12 00:00 GPST, its encoder.
+    fn b1c_c30() -> (Transmitter, BdsCnav1Encoder) {
+        use skyforge_gnss::navmsg::BdsCnavParams;
+        use skyforge_orbits::ephemeris::BeidouSet;
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        let eph = nominal::beidou(BeidouSet::Bds3, start)
+            .into_iter()
+            .find(|e| e.sat.prn == 30)
+            .map(|e| {
+                let grid = |t| System::Beidou.on_grid(t, 300.0);
+                e.reexpressed(grid(e.toe), grid(e.toc)).expect("on grid")
+            })
+            .expect("C30");
+        let week = skyforge_orbits::time::bdt_week_sow(start).0 - 1;
+        let nav = BdsCnav1Encoder::new(&eph, &BdsCnavParams::default(), week).expect("encoder");
+        let tx = Transmitter::bds_b1c(eph.sat, nav.clone(), start).expect("B1C");
+        (tx, nav)
+    }
+
+    /// BeiDou B1C chips against BDS-SIS-ICD-B1C-1.0 §5.2 and §6.2.1: B1C_data chip k of
+    /// the BDT week is data[k mod 10230] x the B-CNAV1 symbol of its 10 ms period, B1C_pilot
+    /// chip k is pilot[k mod 10230] x secondary[period mod 1800]; the frame starting at the
+    /// first BDT multiple of 18 s after the start, despread from the data chips, decodes
+    /// (BCH, LDPC, CRC) to the transmitter's ephemeris and that SOW.
+    #[test]
+    fn bds_b1c_chips_follow_the_codes_the_secondary_code_and_the_cnav1_frames() {
+        use skyforge_gnss::codes::{bds_b1c_pilot, bds_b1c_pilot_secondary};
+        use skyforge_gnss::navmsg::bds_cnav1::decode_frame;
+        let (tx, nav) = b1c_c30();
+        assert!(tx.has_pilot() && tx.subchips_per_chip() == 12);
+        let prn = tx.sat.prn;
+        let (data, pilot) = (bds_b1c_data(prn).unwrap(), bds_b1c_pilot(prn).unwrap());
+        let secondary = bds_b1c_pilot_secondary(prn).unwrap();
+        let len = data.len() as u64;
+        // The start, 23:59:46 BDT on the 11th, is 14 s before a BDT week's end, and symbol
+        // 0 one BDT week earlier still.
+        let start_s = 2 * 604_800 - 14;
+        assert_eq!(tx.chip_at(0.0), (start_s * 1_023_000, 0.0));
+        for k0 in [start_s * 1_023_000, 604_800 * 1_023_000 - 7_000] {
+            let count = 3 * len as usize;
+            let (mut d, mut p) = (Vec::new(), Vec::new());
+            tx.chip_signs(k0, count, &mut d);
+            tx.pilot_chip_signs(k0, count, &mut p);
+            for (j, (&d, &p)) in d.iter().zip(&p).enumerate() {
+                let k = k0 + j as u64;
+                let period = k / len;
+                let symbol = nav.symbol(period);
+                let expect_d = data[(k % len) as usize] * (1 - 2 * symbol as i8);
+                let expect_p = pilot[(k % len) as usize] * secondary[(period % 1800) as usize];
+                assert_eq!((d, p), (expect_d, expect_p), "chip {k}");
+            }
+        }
+        // The frame at BDT SOW 0 of the next week (its first symbol 14 s after the start).
+        let n = start_s.div_ceil(18);
+        assert_eq!(nav.frame_time(n), (nav.week() + 2, 0));
+        let mut chips = Vec::new();
+        tx.chip_signs(n * 18 * 1_023_000, 1800 * len as usize, &mut chips);
+        let soft: Vec<f32> = chips
+            .chunks(len as usize)
+            .map(|c| c.iter().zip(&data).map(|(&a, &b)| f32::from(a * b)).sum())
+            .collect();
+        let frame = decode_frame(&soft, prn).expect("a frame");
+        assert_eq!(frame.time(), Some(nav.frame_time(n)));
+        assert_eq!(frame.ephemeris(tx.sat), Some(tx.broadcast_ephemeris()));
+    }
+
+    /// B1C's QMBOC sub-chips: for each sub-chip, the ICD's `I = d sc_a / 2 + sqrt(1/11) p
+    /// sc_b` and `Q = sqrt(29/44) p sc_a` from the transmitter's own data and pilot chips
+    /// (BDS-SIS-ICD-B1C-1.0 §4.2.2), sub-carriers from the sub-chip's middle.
+    #[test]
+    fn bds_b1c_sub_chips_follow_the_qmboc_definition() {
+        let (tx, _) = b1c_c30();
+        let (s_start, _) = tx.subchip_at(0.0);
+        let s0 = s_start + 7;
+        let count = 2 * 122_760 + 5;
+        let (mut i, mut q) = (Vec::new(), Vec::new());
+        tx.qmboc_levels_after(s0, count, (&mut i, &mut q), &mut None);
+        assert_eq!((i.len(), q.len()), (count, count));
+        let c0 = s0 / 12;
+        let chips = (s0 + count as u64).div_ceil(12) - c0;
+        let (mut d, mut p) = (Vec::new(), Vec::new());
+        tx.chip_signs(c0, chips as usize, &mut d);
+        tx.pilot_chip_signs(c0, chips as usize, &mut p);
+        let sign = |x: f64| if x > 0.0 { 1.0 } else { -1.0 };
+        for (n, (&li, &lq)) in i.iter().zip(&q).enumerate() {
+            let s = s0 + n as u64;
+            let j = (s / 12 - c0) as usize;
+            let t = ((s % 12) as f64 + 0.5) / 12.0;
+            let a = sign((std::f64::consts::TAU * t).sin());
+            let b = sign((std::f64::consts::TAU * 6.0 * t).sin());
+            let (dj, pj) = (f64::from(d[j]), f64::from(p[j]));
+            let ei = 0.5 * dj * a + (1.0f64 / 11.0).sqrt() * pj * b;
+            let eq = (29.0f64 / 44.0).sqrt() * pj * a;
+            assert!((f64::from(li) - ei).abs() < 1e-6, "I sub-chip {s}");
+            assert!((f64::from(lq) - eq).abs() < 1e-6, "Q sub-chip {s}");
+        }
     }
 
     /// Made-up E1 code tables (pseudo-random, not the ICD's) read back unchecked.

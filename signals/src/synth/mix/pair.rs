@@ -6,25 +6,20 @@
 use super::{ChannelBlock, Chips, LANES, MixScratch, spread_chips, step};
 use skyforge_gnss::nco::LanePhasors;
 
-/// Add the channel `ch` (its `chips` the data component's) and its pilot
-/// `pilot_signs` (same code phase and rate, chips aligned) to the block
+/// Add the channel `ch` (its `chips` the in-phase component's, the data's) and the
+/// quadrature component `quadrature` (the pilot's signs, or BeiDou B1C's quadrature
+/// sub-chip levels; same code phase and rate, chips aligned) to the block
 /// `(out_i, out_q)`. Like [`super::mix_into`], the same IEEE operations on every CPU.
 pub fn mix_pair_into(
     out_i: &mut [f32],
     out_q: &mut [f32],
     ch: &ChannelBlock<'_>,
-    pilot_signs: &[i8],
+    quadrature: Chips<'_>,
     scratch: &mut MixScratch,
 ) {
     let n = out_i.len().min(out_q.len());
     spread_chips(n, ch, ch.chips, &mut scratch.amps, &mut scratch.code);
-    spread_chips(
-        n,
-        ch,
-        Chips::Signs(pilot_signs),
-        &mut scratch.amps,
-        &mut scratch.code_q,
-    );
+    spread_chips(n, ch, quadrature, &mut scratch.amps, &mut scratch.code_q);
     pulp::Arch::new().dispatch(Kernel {
         out_i: &mut out_i[..n],
         out_q: &mut out_q[..n],
@@ -111,7 +106,13 @@ mod tests {
             chips: Chips::Signs(&data),
         };
         let (mut ai, mut aq) = (vec![0.25f32; n], vec![-0.5f32; n]);
-        mix_pair_into(&mut ai, &mut aq, &ch, &pilot, &mut MixScratch::default());
+        mix_pair_into(
+            &mut ai,
+            &mut aq,
+            &ch,
+            Chips::Signs(&pilot),
+            &mut MixScratch::default(),
+        );
         let (mut bi, mut bq) = (vec![0.25f32; n], vec![-0.5f32; n]);
         let mut scratch = MixScratch::default();
         mix_into(&mut bi, &mut bq, &ch, &mut scratch);
@@ -144,7 +145,7 @@ mod tests {
         let (mut ai, mut aq) = (vec![0.5f32; n], vec![-0.25f32; n]);
         let (mut bi, mut bq) = (ai.clone(), aq.clone());
         let mut scratch = MixScratch::default();
-        mix_pair_into(&mut ai, &mut aq, &ch, &pilot, &mut scratch);
+        mix_pair_into(&mut ai, &mut aq, &ch, Chips::Signs(&pilot), &mut scratch);
         mix_pair(&mut bi, &mut bq, &ch, &scratch.code, &scratch.code_q);
         let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&ai), bits(&bi));
