@@ -1,6 +1,8 @@
 //! The ranging codes a channel correlates with, and the chips of their replicas.
 //!
-//! A BPSK signal's replica is its code. Galileo E1 is CBOC(6,1,1/11); the receiver
+//! A BPSK signal's replica is its code. BeiDou B1C's data is BOC(1,1) and its pilot
+//! QMBOC(6,1,4/33), whose BOC(1,1) part (29/33 of the pilot) the receiver tracks with the
+//! same half-chip replicas as E1's. Galileo E1 is CBOC(6,1,1/11); the receiver
 //! correlates with its BOC(1,1) part only ([`Signal::replica_boc11`]): each chip `c` as two
 //! half-chips `+c, -c` at twice the chip rate (the BOC(1,1) sub-carrier starts a chip
 //! positive, `gnss::subcarrier::boc11`). The BOC(6,1) part carries 1/11 of the power and is
@@ -14,6 +16,9 @@ use skyforge_gnss::signal::{PilotCodes, Signal, UnknownPrn};
 
 /// 10 log10(11/10): the CBOC power a BOC(1,1) replica does not see (dB).
 pub const BOC61_SHARE_DB: f64 = 0.413_926_851_582_250_4;
+/// 10 log10(44/29): the B1C power outside its pilot's BOC(1,1) part, the part tracked (the
+/// data's 1/4 and the pilot's BOC(6,1) 1/11, BDS-SIS-ICD-B1C-1.0 §4.2.2) (dB).
+pub const B1C_PILOT_BOC11_SHARE_DB: f64 = 1.810_546_785_872_313;
 
 /// One PRN's codes: the data component's primary code and, for a signal with a pilot,
 /// the pilot's primary and secondary codes (signal levels, one period each).
@@ -106,6 +111,13 @@ mod tests {
     /// chip on; in between `1 - 3|x|` then `|x| - 1` (Betz, "Binary Offset Carrier
     /// Modulations for Radionavigation", Navigation 48(4), 2001), within the code's
     /// random cross terms (about 1/sqrt(4092)).
+    #[test]
+    fn the_b1c_share_is_the_icds() {
+        assert!((B1C_PILOT_BOC11_SHARE_DB - 10.0 * (44.0f64 / 29.0).log10()).abs() < 1e-12);
+        assert!((BOC61_SHARE_DB - 10.0 * (11.0f64 / 10.0).log10()).abs() < 1e-12);
+        assert_eq!(subchips(Signal::BdsB1C), 2);
+    }
+
     #[test]
     fn the_boc11_replica_has_its_autocorrelation() {
         let chips = code(4092, 7);

@@ -219,8 +219,8 @@ fn iono_m(
 
 /// How much later (s) `signal`'s clock runs than the clock with TGD removed that
 /// [`Transmitted`] holds: `tgd_s` minus the signal's broadcast group delay
-/// ([`Signal::broadcast_group_delay_s`]). 0 for GPS L1 C/A and L5 and for BeiDou B1I and
-/// B2a; for Galileo E5a `tgd_s - (f_E1 / f_E5a)^2 BGD(E1,E5a)`. Signals SkyForge does not
+/// ([`Signal::broadcast_group_delay_s`]). 0 for GPS L1 C/A and L5 and for BeiDou B1I,
+/// B2a and B1C (TGD_B1Cp); for Galileo E5a `tgd_s - (f_E1 / f_E5a)^2 BGD(E1,E5a)`. Signals SkyForge does not
 /// transmit keep TGD (Galileo E1's BGD(E1,E5b) as I/NAV carries it).
 fn group_delay_beyond_tgd_s(signal: Signal, eph: &BroadcastEphemeris) -> f64 {
     if signal.is_transmitted() {
@@ -462,7 +462,7 @@ mod tests {
         }
         let mut bds = nominal::beidou(skyforge_orbits::ephemeris::BeidouSet::Bds3, t)[0].clone();
         bds.clock.tgd_s = 3e-9;
-        for s in [Signal::BdsB1I, Signal::BdsB2a] {
+        for s in [Signal::BdsB1I, Signal::BdsB2a, Signal::BdsB1C] {
             assert_eq!(group_delay_beyond_tgd_s(s, &bds), 0.0, "{s}");
         }
     }

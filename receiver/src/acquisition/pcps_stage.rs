@@ -42,14 +42,19 @@ impl PcpsStage {
             // B2a: the 5-chip data and 100-chip pilot secondary codes (BDS-SIS-ICD-B2a-1.0
             // §5.2.2) flip signs between 1 ms periods, as E5a's.
             Signal::BdsB2a => BitTransition::AlignedWindows,
+            // B1C: the B-CNAV1 symbols on the data and the 1800-chip secondary code on the
+            // pilot may each change sign between 10 ms periods (BDS-SIS-ICD-B1C-1.0 §5.2.2,
+            // §6.2.1).
+            Signal::BdsB1C => BitTransition::AlignedWindows,
             // The observed-only signals are refused by `Pcps::new` (no code).
             Signal::GpsL1Ca | Signal::GpsL2 | Signal::BdsB2I | Signal::BdsB3I => {
                 BitTransition::Ignore
             }
         };
         // E1's 4 ms periods: bins 1 / (2 T) apart (125 Hz at one period) lose at most
-        // sinc(1/4) = 0.91 dB between bins, where the default 2 / (3 T) would lose 1.65 dB.
-        if signal == Signal::GalE1 {
+        // sinc(1/4) = 0.91 dB between bins, where the default 2 / (3 T) would lose 1.65 dB;
+        // likewise B1C's 10 ms periods (50 Hz bins).
+        if matches!(signal, Signal::GalE1 | Signal::BdsB1C) {
             config.doppler_step_hz = Some(1.0 / (2.0 * config.coherent_s()));
         }
         Ok(Self {

@@ -20,12 +20,16 @@ pub(super) const PMF_PERIODS: usize = 10;
 /// (one period more) fits the receiver's 20 ms blocks.
 const PMF_E1_PERIODS: usize = 4;
 
+/// BeiDou B1C's 10 ms periods averaged: 2 (20 ms of 20460 half-chips each), so that a
+/// search (one period more) fits the 30 ms a B1C block holds.
+const PMF_B1C_PERIODS: usize = 2;
+
 /// Code periods averaged for `signal`.
 fn pmf_periods(signal: Signal) -> usize {
-    if signal == Signal::GalE1 {
-        PMF_E1_PERIODS
-    } else {
-        PMF_PERIODS
+    match signal {
+        Signal::GalE1 => PMF_E1_PERIODS,
+        Signal::BdsB1C => PMF_B1C_PERIODS,
+        _ => PMF_PERIODS,
     }
 }
 

@@ -30,6 +30,7 @@
 
 mod bds;
 mod bds_bch;
+mod bds_cnav1;
 mod bds_cnav2;
 mod bds_fields;
 mod decoder;
@@ -46,6 +47,7 @@ mod symbol_sync;
 mod symbol_test_support;
 
 pub use bds::{BdsDecoder, D1D2};
+pub use bds_cnav1::BdsCnav1Decoder;
 pub use bds_cnav2::BdsCnav2Decoder;
 pub use decoder::{Decoder, MessageFormat};
 pub(crate) use galileo_fnav::FnavDecoder;
@@ -202,7 +204,8 @@ pub trait NavDecoder: Send {
 }
 
 /// The decoder for `sat`'s message on `signal`: GPS L5 CNAV for GPS L5, GPS LNAV for the
-/// other GPS signals, Galileo F/NAV for E5a and I/NAV for E1, BeiDou B-CNAV2 for B2a and
+/// other GPS signals, Galileo F/NAV for E5a and I/NAV for E1, BeiDou B-CNAV2 for B2a,
+/// B-CNAV1 for B1C (locked on the stream's first symbol, a frame start) and
 /// D1/D2 for the other BeiDou signals (by PRN: D2 for the GEO PRNs 1-5 and 59-63). GPS LNAV weeks are resolved near
 /// [`DEFAULT_GPS_REFERENCE_WEEK`].
 pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, NavDecodeError> {
@@ -219,6 +222,8 @@ pub fn decoder_for(sat: SatId, signal: Signal) -> Result<Box<dyn NavDecoder>, Na
         (System::Gps, Signal::GpsL5) => Box::new(CnavDecoder::new(sat)?),
         (System::Gps, _) => Box::new(GpsLnavDecoder::new(sat)?),
         (System::Beidou, Signal::BdsB2a) => Box::new(BdsCnav2Decoder::new(sat)?),
+        // The channel hands on B1C symbols from a frame start (the pilot's secondary code).
+        (System::Beidou, Signal::BdsB1C) => Box::new(BdsCnav1Decoder::aligned(sat)?),
         (System::Beidou, _) => Box::new(BdsDecoder::new(sat)?),
         (System::Galileo, Signal::GalE5a) => Box::new(FnavDecoder::new(sat)?),
         (System::Galileo, Signal::GalE1) => Box::new(InavDecoder::new(sat)?),
@@ -289,6 +294,7 @@ mod tests {
             (SatId::galileo(11), Signal::GalE5a),
             (SatId::galileo(11), Signal::GalE1),
             (SatId::beidou(19), Signal::BdsB2a),
+            (SatId::beidou(30), Signal::BdsB1C),
         ];
         for (sat, signal) in cases {
             let dec = decoder_for(sat, signal).map(|d| d.satellite());

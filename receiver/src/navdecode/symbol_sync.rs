@@ -1,5 +1,5 @@
 //! Message synchronisation on channel symbols, shared by the GPS L5 CNAV, Galileo F/NAV and
-//! I/NAV and BeiDou B-CNAV2 decoders: a buffer of soft symbols, a search for a message start (the format proposes
+//! I/NAV and BeiDou B-CNAV2 and B-CNAV1 decoders: a buffer of soft symbols, a search for a message start (the format proposes
 //! candidates, its own decoding with CRC confirms one), and the locked state that decodes
 //! one message every period, giving up after repeated failures as [`super::framer`]
 //! does for the 300-bit subframes.
@@ -114,6 +114,21 @@ impl SymbolSync {
             base: 0,
             state: State::Search { next: 0 },
             stats: DecodeStats::default(),
+        }
+    }
+
+    /// A synchroniser whose stream has a message start at symbol `start` (known from
+    /// elsewhere, as B1C's secondary code gives B-CNAV1's frames): locked from there on,
+    /// in normal polarity.
+    pub fn locked_at(start: u64) -> Self {
+        Self {
+            state: State::Locked {
+                since: start,
+                next: start,
+                inverted: false,
+                failures: 0,
+            },
+            ..Self::new()
         }
     }
 

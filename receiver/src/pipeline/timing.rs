@@ -8,8 +8,8 @@ use std::collections::VecDeque;
 /// Records kept to find the code period a data bit began in (a bit spans at most 20).
 const RECENT_RECORDS: usize = 64;
 /// Bits kept to find the start of a decoded subframe: the decoder reports a subframe after
-/// its 300 bits, possibly a few more later.
-const RECENT_BITS: usize = 1024;
+/// its 300 bits, a B-CNAV1 frame after its 1800 symbols, possibly a few more later.
+const RECENT_BITS: usize = 2048;
 
 /// Code-period bookkeeping of one channel.
 #[derive(Debug, Clone)]

@@ -26,6 +26,9 @@ const CONFIG_MAX_BYTES: u64 = 1 << 20;
 /// Samples per block: 20 ms at the sample rate (covers every search of the default
 /// settings; longer searches get longer blocks).
 const BLOCK_S: f64 = 0.02;
+/// Code periods a block holds at least: a search with aligned windows and the default two
+/// non-coherent sums reads three.
+const SEARCH_PERIODS: f64 = 3.0;
 
 /// Highest sample rate the receiver takes (Hz): its acquisition FFTs and buffers grow
 /// with the rate (about 1.5 GB of memory at this rate).
@@ -244,7 +247,13 @@ fn open_bands(
             )));
         }
     }
-    let block_len = (BLOCK_S * fs).round() as usize;
+    // Three code periods of B1C (10 ms) are what an aligned-window search with two
+    // non-coherent sums reads: its blocks are 30 ms, the others' 20 ms.
+    let block_s = groups
+        .iter()
+        .map(|(signal, _, _)| SEARCH_PERIODS * signal.code_period_s())
+        .fold(BLOCK_S, f64::max);
+    let block_len = (block_s * fs).round() as usize;
     for (signal, indices, recs) in groups {
         let (reader, report) = samples.open(&recs, &indices, block_len)?;
         if (reader.sample_rate_hz() - fs).abs() > 1e-6 * fs {

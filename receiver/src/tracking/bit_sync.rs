@@ -13,12 +13,24 @@
 //!   at the week start (a whole number of their periods), so the code's start gives the
 //!   symbol edge, and the sign of the correlation the polarity of the carrier loop
 //!   (the pilot carries no data).
+//! - A long secondary code (BeiDou B1C's 1800 chips, 18 s): the signs of
+//!   [`LONG_CODE_WINDOW`] consecutive periods are correlated with the code at each of its
+//!   cyclic offsets, a window being far shorter than the code.
 
 use std::collections::VecDeque;
 
 use skyforge_gnss::codes::neumann_hoffman;
 
 use skyforge_gnss::signal::DataModulation;
+
+/// Secondary codes longer than this (chips) are searched by partial correlation over
+/// [`LONG_CODE_WINDOW`] periods at every cyclic offset, not over whole code periods.
+const LONG_CODE_CHIPS: usize = 200;
+/// Periods (chips) correlated per offset in the search for a long code. # assumed: 200: a
+/// wrong offset of a random code correlates with standard deviation sqrt(200) = 14 chips,
+/// the largest of B1C's 1799 wrong offsets about 4 of them (57 chips), well inside the
+/// decision's margins (at least 140 for the best, 60 above the runner-up).
+const LONG_CODE_WINDOW: usize = 200;
 
 /// Decision thresholds of the synchroniser.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Deserialize, serde::Serialize)]
@@ -162,7 +174,11 @@ impl BitSynchroniser {
                 self.first_index = period_index;
             }
             self.signs.push_back(if positive { 1 } else { -1 });
-            self.found = self.correlation_decision();
+            self.found = if self.secondary.len() > LONG_CODE_CHIPS {
+                self.cyclic_decision()
+            } else {
+                self.correlation_decision()
+            };
             self.edge = self.found.map(|(start, _)| start % ppb);
         }
         self.last = Some((period_index, positive));
@@ -209,6 +225,47 @@ impl BitSynchroniser {
         self.signs.drain(..l);
         self.first_index += l as u64;
         None
+    }
+}
+
+impl BitSynchroniser {
+    /// A long code's start and polarity once the signs of [`LONG_CODE_WINDOW`] periods
+    /// correlate clearly with it at one cyclic offset (the same margins as
+    /// [`Self::correlation_decision`]); otherwise the window moves on by its length.
+    fn cyclic_decision(&mut self) -> Option<(u32, bool)> {
+        let (code, n) = (&self.secondary, LONG_CODE_WINDOW);
+        let l = code.len();
+        if self.signs.len() < n {
+            return None;
+        }
+        // signed[r]: the window's correlation with the code from chip r on.
+        let signed: Vec<i32> = (0..l)
+            .map(|r| {
+                (0..n)
+                    .map(|m| i32::from(self.signs[m]) * i32::from(code[(r + m) % l]))
+                    .sum()
+            })
+            .collect();
+        let scores: Vec<i32> = signed.iter().map(|c| c.abs()).collect();
+        let (best, top, runner_up) = best_and_runner_up(&scores)?;
+        let full = n as i32;
+        if 10 * top >= 7 * full && 10 * (top - runner_up) >= 3 * full {
+            // The window's first period carries chip `best`: the code started `best`
+            // periods before it.
+            let start = (self.first_index + (l - best) as u64) % l as u64;
+            return Some((start as u32, signed[best] < 0));
+        }
+        self.signs.drain(..n);
+        self.first_index += n as u64;
+        None
+    }
+
+    /// Once a pilot's secondary code is found: the chip of it that code period
+    /// `period_index` carries (0: the code, and for B1C the frame, starts there).
+    pub fn secondary_chip(&self, period_index: u64) -> Option<u64> {
+        let (start, _) = self.secondary_start().filter(|_| self.pilot)?;
+        let l = self.secondary.len() as u64;
+        Some((period_index + l - u64::from(start) % l) % l)
     }
 }
 
@@ -325,10 +382,42 @@ mod tests {
             assert_eq!(decided, Some(expected_start % m.periods_per_bit()));
         }
         // Another satellite's E5a-Q code does not sync.
+        assert_eq!(
+            BitSynchroniser::new(DataModulation::GpsLnav, BitSyncConfig::default())
+                .secondary_chip(5),
+            None
+        );
         let other = Signal::GalE5a.pilot(8).unwrap().secondary;
         let code = Signal::GalE5a.pilot(7).unwrap().secondary;
         let mut sync =
             BitSynchroniser::for_pilot(DataModulation::GalFnav, code, BitSyncConfig::default());
         assert!((0..1000u64).all(|k| sync.feed(k, f64::from(other[(k % 100) as usize])).is_none()));
+    }
+
+    /// B1C's 1800-chip secondary code (PRN 30), fed from chip 1234 on, inverted: found
+    /// from one window of 200 periods, with the chip each later period carries; another
+    /// PRN's code never syncs.
+    #[test]
+    fn b1c_long_secondary_code_is_found_from_a_window() {
+        use skyforge_gnss::signal::Signal;
+        let code = Signal::BdsB1C.pilot(30).unwrap().secondary;
+        let m = DataModulation::BdsCnav1;
+        let mut sync = BitSynchroniser::for_pilot(m, code.clone(), BitSyncConfig::default());
+        let decided = (0..1000u64).find_map(|k| {
+            let chip = f64::from(code[((1234 + k) % 1800) as usize]);
+            sync.feed(500 + k, -chip).map(|e| (k, e))
+        });
+        assert_eq!(decided, Some((199, 0)));
+        // Period 500 carried chip 1234: the code started at period 500 - 1234 (mod 1800).
+        let start = (500 + 1800 - 1234) % 1800;
+        assert_eq!(sync.secondary_start(), Some((start, true)));
+        assert_eq!(sync.secondary_chip(500 + 566), Some(0));
+        assert_eq!(sync.pilot_wipe(501), Some(-f64::from(code[1235])));
+        let other = Signal::BdsB1C.pilot(31).unwrap().secondary;
+        let mut sync = BitSynchroniser::for_pilot(m, code, BitSyncConfig::default());
+        assert!((0..3600u64).all(|k| {
+            sync.feed(k, f64::from(other[(k % 1800) as usize]))
+                .is_none()
+        }));
     }
 }

@@ -24,7 +24,10 @@
 //!
 //! Galileo E1 is correlated with BOC(1,1) replicas ([`crate::replica`]), 4 ms per code
 //! period and symbol, its DLL with the BOC(1,1) discriminator and early-late spacings
-//! capped for BOC(1,1)'s narrow peak ([`BOC11_MAX_SPACING_CHIPS`]).
+//! capped for BOC(1,1)'s narrow peak ([`BOC11_MAX_SPACING_CHIPS`]). BeiDou B1C likewise,
+//! 10 ms per period and symbol, on its pilot's BOC(1,1) part in quadrature; its 1800-chip
+//! secondary code lasts one B-CNAV1 frame, so its symbols are handed on from a code start
+//! (a frame start) on ([`DataModulation::frame_is_pilot_secondary`]).
 
 use num_complex::Complex;
 use skyforge_gnss::codes::neumann_hoffman;
@@ -37,7 +40,7 @@ use super::correlator::{Correlator, NcoState, TapSet};
 use super::discriminators::{dll_envelope_boc11_chips, dll_envelope_chips};
 use super::lock::{Cn0Estimator, LossOfLockTimer, PllLockIndicator};
 use super::loop_filter::{aided_code_rate, dll_rate_correction};
-use crate::replica::{BOC61_SHARE_DB, SignalCodes, subchips};
+use crate::replica::{B1C_PILOT_BOC11_SHARE_DB, BOC61_SHARE_DB, SignalCodes, subchips};
 use skyforge_gnss::signal::{DataModulation, Signal};
 
 /// Largest PLL `Bn T` (noise bandwidth x coherent integration) an integration may reach.
@@ -126,7 +129,9 @@ pub struct TrackingRecord {
     /// C/N0 estimate (dB-Hz) of the whole signal, once the estimator window has filled;
     /// for a signal with a pilot, the pilot's estimate plus 3.01 dB (the ICDs split the
     /// power equally between the two components), for Galileo E1 plus 0.41 dB more (the
-    /// BOC(6,1) part its BOC(1,1) replica does not see, [`BOC61_SHARE_DB`]).
+    /// BOC(6,1) part its BOC(1,1) replica does not see, [`BOC61_SHARE_DB`]); for BeiDou
+    /// B1C, whose pilot's BOC(1,1) part carries 29/44 of the power, plus 1.81 dB
+    /// ([`B1C_PILOT_BOC11_SHARE_DB`]).
     pub cn0_dbhz: Option<f64>,
     /// PLL lock indicator: the smoothed `cos 2 phi` estimate, corrected for the noise bias
     /// `SNR / (1 + SNR)` of one prompt with the C/N0 estimate.
@@ -226,6 +231,8 @@ pub struct ChannelTracker {
     lost: bool,
     sync: BitSynchroniser,
     synced_at_s: Option<f64>,
+    /// Data bits are handed on: from bit sync, or for B1C from the first frame start.
+    framed: bool,
     bit: Option<BitAccumulator>,
     last_cn0_dbhz: Option<f64>,
 }
@@ -347,6 +354,7 @@ impl ChannelTracker {
             lost: false,
             sync,
             synced_at_s: None,
+            framed: false,
             bit: None,
             last_cn0_dbhz: None,
         })
@@ -539,7 +547,13 @@ impl ChannelTracker {
                     self.synced_at_s = Some(self.time_s);
                 }
             }
-            Some(pos) => bit = self.accumulate_bit(pos, ppb, data.re, period_start),
+            Some(pos) => {
+                self.framed |= !self.modulation.frame_is_pilot_secondary()
+                    || self.sync.secondary_chip(k) == Some(0);
+                if self.framed {
+                    bit = self.accumulate_bit(pos, ppb, data.re, period_start);
+                }
+            }
         }
         let complete = match position {
             None => true,
@@ -741,7 +755,9 @@ impl ChannelTracker {
             phase_error_cycles: phase_error,
             code_error_chips: code_error,
             cn0_dbhz: cn0.map(|c| {
-                if self.signal.replica_boc11() {
+                if self.signal == Signal::BdsB1C {
+                    c + B1C_PILOT_BOC11_SHARE_DB
+                } else if self.signal.replica_boc11() {
                     c + PILOT_SHARE_DB + BOC61_SHARE_DB
                 } else if self.signal.has_pilot() {
                     c + PILOT_SHARE_DB

@@ -2,7 +2,8 @@
 //! with a polynomial Doppler, data bits (and the data secondary code: BeiDou D1's NH, L5's
 //! NH10, E5a-I's CS20), for GPS L5 and Galileo E5a the pilot in quadrature (+90 deg, half
 //! the power, its secondary code), for Galileo E1 the CBOC(6,1,1/11) sum of E1-B and
-//! E1-C in phase (codes from made-up tables), optional phase jump and outage, in complex white
+//! E1-C in phase (codes from made-up tables), for BeiDou B1C the QMBOC(6,1,4/33) of data
+//! and pilot (BDS-SIS-ICD-B1C-1.0 §4.2.2), optional phase jump and outage, in complex white
 //! Gaussian noise; plus its exact truth. Code periods count from a bit edge that is also
 //! a start of the pilot's secondary code.
 //! Shared by several test binaries, each using part of it.
@@ -13,7 +14,7 @@ use rand::SeedableRng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_gnss::codes::E1Codes;
 use skyforge_gnss::signal::{PilotCodes, Signal};
-use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, e1_cboc};
+use skyforge_gnss::subcarrier::{CBOC_SUBCHIPS, b1c_qmboc, e1_cboc};
 use skyforge_receiver::replica::SignalCodes;
 use skyforge_receiver::tracking::Handover;
 
@@ -160,6 +161,7 @@ impl TestSignal {
         let (code, pilot) = self.signal_codes();
         let code: Vec<f64> = code.iter().map(|&c| f64::from(c)).collect();
         let cboc = self.signal == Signal::GalE1;
+        let qmboc = self.signal == Signal::BdsB1C;
         let len = code.len() as f64;
         let amplitude = (10f64.powf(self.cn0_dbhz / 10.0) * 2.0 / self.fs_hz).sqrt();
         let ppb = self.periods_per_bit();
@@ -168,8 +170,9 @@ impl TestSignal {
             .data_modulation(self.prn)
             .and_then(|m| m.data_secondary_code())
             .unwrap_or(&[1]);
-        // With a pilot, each component carries half the power (E1's CBOC levels carry it).
-        let amplitude = if pilot.is_some() && !cboc {
+        // With a pilot, each component carries half the power (E1's CBOC and B1C's QMBOC
+        // levels carry theirs).
+        let amplitude = if pilot.is_some() && !cboc && !qmboc {
             amplitude * std::f64::consts::FRAC_1_SQRT_2
         } else {
             amplitude
@@ -214,12 +217,15 @@ impl TestSignal {
                         let l = pc.secondary.len() as u64;
                         let q = f64::from(pc.primary[chip_index])
                             * f64::from(pc.secondary[(period % l) as usize]);
+                        let sub =
+                            ((p.fract() * CBOC_SUBCHIPS as f64) as usize).min(CBOC_SUBCHIPS - 1);
                         if cboc {
                             // E1-B and E1-C in phase on the CBOC sub-chip of the chip.
-                            let sub = ((p.fract() * CBOC_SUBCHIPS as f64) as usize)
-                                .min(CBOC_SUBCHIPS - 1);
                             let level = e1_cboc(sign as i8, q as i8)[sub];
                             Complex::new(f64::from(level), 0.0)
+                        } else if qmboc {
+                            let (i, q) = b1c_qmboc(sign as i8, q as i8);
+                            Complex::new(f64::from(i[sub]), f64::from(q[sub]))
                         } else {
                             Complex::new(sign, q)
                         }
