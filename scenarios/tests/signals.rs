@@ -104,3 +104,19 @@ fn beidou_may_transmit_b2a_in_a_band_that_holds_it() {
         "{err}"
     );
 }
+
+/// BeiDou may transmit B1C in a band that holds its QMBOC's BOC(6,1) lobes (+-7.161 MHz,
+/// as Galileo E1's): 15 Msps, not the default 4.092 Msps.
+#[test]
+fn beidou_may_transmit_b1c_in_a_band_that_holds_its_boc61_lobes() {
+    let text = with_signal("signals = [\"gps-l1ca\", \"bds-b1c\"]\nsample_rate_hz = 15e6");
+    let s = parse_in(&text, std::path::Path::new(".")).expect("parses");
+    let signal = s.signal.as_ref().expect("[signal]");
+    assert_eq!(signal.signals_of(System::Beidou), [Signal::BdsB1C]);
+    s.build().unwrap_or_else(|e| panic!("{e}"));
+    let err = parse_error(&with_signal("signals = [\"gps-l1ca\", \"bds-b1c\"]"));
+    assert!(
+        err.field == "signal.sample_rate_hz" && err.allowed.contains("BDS B1C"),
+        "{err}"
+    );
+}

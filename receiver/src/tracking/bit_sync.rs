@@ -408,9 +408,9 @@ mod tests {
             sync.feed(500 + k, -chip).map(|e| (k, e))
         });
         assert_eq!(decided, Some((199, 0)));
-        // Period 500 carried chip 1234: the code started at period 500 - 1234 (mod 1800).
-        let start = (500 + 1800 - 1234) % 1800;
-        assert_eq!(sync.secondary_start(), Some((start, true)));
+        // Period 500 carried chip 1234: the code started at period 500 - 1234 (mod 1800),
+        // 1066.
+        assert_eq!(sync.secondary_start(), Some((1066, true)));
         assert_eq!(sync.secondary_chip(500 + 566), Some(0));
         assert_eq!(sync.pilot_wipe(501), Some(-f64::from(code[1235])));
         let other = Signal::BdsB1C.pilot(31).unwrap().secondary;
