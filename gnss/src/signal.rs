@@ -294,7 +294,7 @@ impl Signal {
     /// Whether the pilot is in quadrature with the data component, 90 degrees ahead of it
     /// (L5's Q5, IS-GPS-705 §3.3.1.1; E5a-Q, Galileo OS SIS ICD §2.3.3; B2a's pilot,
     /// BDS-SIS-ICD-B2a Table 4-1; B1C's pilot BOC(1,1) part, the one a receiver tracks,
-    /// BDS-SIS-ICD-B1C-1.0 §4.2.1: `s = s_data + j s_pilot`); Galileo E1's
+    /// BDS-SIS-ICD-B1C-1.0 §4.2.2: `s = s_data + j s_pilot`); Galileo E1's
     /// E1-C is in phase with E1-B, with the opposite sign: `e_B - e_C` (ICD §2.3.3, as
     /// `subcarrier::e1_cboc` sums them).
     pub fn pilot_in_quadrature(self) -> bool {
