@@ -1,5 +1,6 @@
-//! Independent runs of one observation-level scenario: the scenario's seed and the next
-//! ones, each run through the attitude chain and compared with its own truth. Runs are
+//! Independent runs of one scenario at its level (the observation level's model, or
+//! samples synthesised and received): the scenario's seed and the next ones, each run
+//! through the attitude chain and compared with its own truth. Runs are
 //! independent where epochs within a run are not (loop noise correlated over seconds,
 //! double differences sharing a reference), so statistics are taken per run and their
 //! spread over runs gives the standard error.
@@ -8,12 +9,12 @@ use super::{ChainComparison, compare, nominal_geometry};
 use crate::draw::Draw;
 use rayon::prelude::*;
 use skyforge_navigation::relative::RelativeConfig;
-use skyforge_runner::observation_run;
+use skyforge_runner::run_at_level;
 use skyforge_scenarios::Scenario;
 
 /// Independent runs per setting: the scenario's seed and the next seven.
 // assumed: eight runs, chosen before the first run: enough for a standard error of the
-// mean over runs, cheap at the observation level.
+// mean over runs, cheap at the observation level (minutes each at the signal level).
 pub const SEEDS: u64 = 8;
 
 /// The chain with each of `configs` over `scenario` on the seeds of `draw` (registered:
@@ -33,7 +34,7 @@ pub fn seed_runs(
             s.seed = seed;
             let fail =
                 |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, s.seed);
-            let run = observation_run(&s).map_err(|e| fail(&e))?;
+            let run = run_at_level(&s).map_err(|e| fail(&e))?;
             let geometry = nominal_geometry(&run);
             configs
                 .iter()
