@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use skyforge_navigation::relative::RelativeConfig;
 use skyforge_runner::run_at_level;
 use skyforge_scenarios::Scenario;
+use skyforge_signals::obs_model::Level;
 
 /// Independent runs per setting: the scenario's seed and the next seven.
 // assumed: eight runs, chosen before the first run: enough for a standard error of the
@@ -26,22 +27,29 @@ pub fn seed_runs(
     configs: &[RelativeConfig],
     draw: Draw,
 ) -> Result<Vec<Vec<ChainComparison>>, String> {
-    let per_seed: Vec<Vec<ChainComparison>> = draw
-        .seeds(scenario.seed, SEEDS)
-        .into_par_iter()
-        .map(|seed| {
-            let mut s = scenario.clone();
-            s.seed = seed;
-            let fail =
-                |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, s.seed);
-            let run = run_at_level(&s).map_err(|e| fail(&e))?;
-            let geometry = nominal_geometry(&run);
-            configs
-                .iter()
-                .map(|c| compare(&run, &geometry, c.clone()).map_err(|e| fail(&e)))
-                .collect()
-        })
-        .collect::<Result<_, String>>()?;
+    let run_seed = |seed: u64| -> Result<Vec<ChainComparison>, String> {
+        let mut s = scenario.clone();
+        s.seed = seed;
+        let fail = |e: &dyn std::fmt::Display| format!("{} seed {}: {e}", scenario.name, s.seed);
+        let run = run_at_level(&s).map_err(|e| fail(&e))?;
+        let geometry = nominal_geometry(&run);
+        configs
+            .iter()
+            .map(|c| compare(&run, &geometry, c.clone()).map_err(|e| fail(&e)))
+            .collect()
+    };
+    let seeds = draw.seeds(scenario.seed, SEEDS);
+    // A signal-level run keeps every core busy itself (synthesis and reception side by
+    // side, each parallel inside, waiting on each other): such runs go one at a time,
+    // outside the pool. Observation-level runs go side by side on every core.
+    let per_seed: Vec<Vec<ChainComparison>> = if scenario.observation.level == Level::Signal {
+        seeds.map(run_seed).collect::<Result<_, String>>()?
+    } else {
+        seeds
+            .into_par_iter()
+            .map(run_seed)
+            .collect::<Result<_, String>>()?
+    };
     let mut out: Vec<Vec<ChainComparison>> = configs.iter().map(|_| Vec::new()).collect();
     for runs in per_seed {
         for (all, run) in out.iter_mut().zip(runs) {
