@@ -55,8 +55,8 @@ fn galileo(level: Level) -> Scenario {
             "[gnss.gps]\nenabled = false\n\n[gnss.galileo]\nsource = \"embedded\"",
         ),
         (
-            "signals = [\"gps-l1ca\", \"gps-l5\"]",
-            "signals = [\"gal-e1\", \"gal-e5a\"]",
+            "\nsignals = [\"gps-l1ca\", \"gps-l5\"]  # every GPS satellite",
+            "\nsignals = [\"gal-e1\", \"gal-e5a\"]  # every Galileo satellite",
         ),
     ] {
         assert!(text.contains(from), "no {from:?} in {path}");
