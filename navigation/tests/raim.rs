@@ -5,7 +5,7 @@
 
 mod pvt_support;
 
-use pvt_support::{World, world};
+use pvt_support::{World, world, world_of};
 
 use rand::SeedableRng;
 use rand_chacha::ChaCha20Rng;
@@ -45,12 +45,25 @@ fn config() -> PvtConfig {
 /// receiver at `r` with a perfect clock at `t_s`: light time in the rotating frame, the
 /// satellite clock with its group delay.
 fn pseudoranges(w: &World, t_s: f64, r: &Vec3) -> Vec<(SatId, f64, f64)> {
+    pseudoranges_of(w, t_s, r, &[System::Gps])
+}
+
+/// The signal measured on a satellite of `system`: GPS L1 C/A, Galileo E1.
+fn signal_of(system: System) -> Signal {
+    match system {
+        System::Galileo => Signal::GalE1,
+        _ => Signal::GpsL1Ca,
+    }
+}
+
+/// [`pseudoranges`] of the satellites of `systems`, each on [`signal_of`] its system.
+fn pseudoranges_of(w: &World, t_s: f64, r: &Vec3, systems: &[System]) -> Vec<(SatId, f64, f64)> {
     let g = ecef_to_geodetic(r);
     let c = c_ecef_ned(g.lat_rad, g.lon_rad);
     w.store
         .satellites()
         .into_iter()
-        .filter(|s| s.system == System::Gps)
+        .filter(|s| systems.contains(&s.system))
         .filter_map(|sat| {
             let eph = w.store.select(sat, t_s)?;
             let at = |tau: f64| {
@@ -64,7 +77,8 @@ fn pseudoranges(w: &World, t_s: f64, r: &Vec3) -> Vec<(SatId, f64, f64)> {
             }
             let los = (at(tau) - r).normalize();
             let (_, el) = az_el(&(c * los));
-            let sat_clock_m = C_MPS * (eph.clock_offset_s(t_s - tau) - eph.eph.clock.tgd_s);
+            let delay_s = signal_of(sat.system).broadcast_group_delay_s(&eph.eph);
+            let sat_clock_m = C_MPS * (eph.clock_offset_s(t_s - tau) - delay_s);
             (el > 12f64.to_radians()).then_some((sat, C_MPS * tau - sat_clock_m, el))
         })
         .collect()
@@ -85,7 +99,7 @@ fn measurements(
                 sat,
                 pseudorange_m: pr + bias + noise.get(i).copied().unwrap_or(0.0),
                 doppler_hz: None,
-                signal: Signal::GpsL1Ca,
+                signal: signal_of(sat.system),
             }
         })
         .collect()
@@ -311,4 +325,45 @@ fn exclusion_by_the_normalised_residual_finds_faults_the_weighted_residual_misse
         "no case where the weighted residual picks another satellite in {cases}"
     );
     println!("{weighted_wrong} of {cases} cases: the weighted residual picks another satellite");
+}
+
+/// RAIM across systems: GPS L1 C/A with Galileo E1 on the nominal constellations, the
+/// Galileo pseudoranges 30 m longer (a receiver whose Galileo channels run late: the
+/// solver's second clock takes it), noise-free. Without a fault the fix is exact with no
+/// alarm; a 300 m bias on any satellite of either system raises the alarm and excludes
+/// that satellite, and the fix is exact again.
+#[test]
+fn raim_detects_and_excludes_a_fault_on_either_system_of_a_gps_galileo_fix() {
+    let (w, r, t) = (world_of(false, true), site(), 5400.0);
+    let cfg = config();
+    let clean: Vec<(SatId, f64, f64)> = pseudoranges_of(&w, t, &r, &[System::Gps, System::Galileo])
+        .into_iter()
+        .map(|(sat, pr, el)| {
+            let isb = if sat.system == System::Galileo {
+                30.0
+            } else {
+                0.0
+            };
+            (sat, pr + isb, el)
+        })
+        .collect();
+    let count = |system| clean.iter().filter(|c| c.0.system == system).count();
+    assert!(
+        count(System::Gps) >= 5 && count(System::Galileo) >= 4,
+        "{clean:?}"
+    );
+    let fix = fix_at(&w, t, &measurements(&clean, None, &[]), &cfg).unwrap();
+    assert!(errors(&fix, &r).0 < 1e-3 && errors(&fix, &r).1 < 1e-3);
+    let p = fix.protection.clone().unwrap();
+    assert!(!p.alarm && fix.excluded.is_empty());
+    assert_eq!(p.status, IntegrityStatus::Available);
+    for i in 0..clean.len() {
+        let fix = fix_at(&w, t, &measurements(&clean, Some((i, 300.0)), &[]), &cfg).unwrap();
+        let p = fix.protection.clone().unwrap();
+        assert!(p.alarm, "{}", clean[i].0);
+        assert_eq!(fix.excluded, vec![clean[i].0]);
+        assert_eq!(p.status, IntegrityStatus::Excluded);
+        let (h, v) = errors(&fix, &r);
+        assert!(h < 1e-3 && v < 1e-3, "{}: {h} {v}", clean[i].0);
+    }
 }

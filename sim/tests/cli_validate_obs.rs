@@ -12,7 +12,28 @@ use support::{skyforge, text};
 /// pseudoranges `base_i + rate_i (tag - offset_m / c) + offset_m + bump(i, k)` (m), phases
 /// the ranges without bump in L1 cycles.
 fn rinex(t0_s: f64, n: usize, offset_m: f64, bump: impl Fn(usize, usize) -> f64) -> String {
+    rinex_with_l5(t0_s, n, offset_m, bump, None)
+}
+
+/// A code error (m) of satellite `i` at epoch `k`.
+type Bump<'a> = &'a dyn Fn(usize, usize) -> f64;
+
+/// [`rinex`], with L5 observations beside L1 C/A's when `l5_bump` is given: pseudoranges
+/// 3 m longer plus `l5_bump(i, k)`, phases the ranges in L5 cycles.
+fn rinex_with_l5(
+    t0_s: f64,
+    n: usize,
+    offset_m: f64,
+    bump: impl Fn(usize, usize) -> f64,
+    l5_bump: Option<Bump<'_>>,
+) -> String {
     let lambda = 299_792_458.0 / 1_575.42e6;
+    let lambda5 = 299_792_458.0 / 1_176.45e6;
+    let types = if l5_bump.is_some() {
+        "G    8 C1C L1C D1C S1C C5Q L5Q D5Q S5Q"
+    } else {
+        "G    4 C1C L1C D1C S1C"
+    };
     let mut t = String::new();
     for (body, label) in [
         (
@@ -22,7 +43,7 @@ fn rinex(t0_s: f64, n: usize, offset_m: f64, bump: impl Fn(usize, usize) -> f64)
             ),
             "RINEX VERSION / TYPE",
         ),
-        ("G    4 C1C L1C D1C S1C".to_string(), "SYS / # / OBS TYPES"),
+        (types.to_string(), "SYS / # / OBS TYPES"),
         (
             "  2023    03    12    00    00    0.0000000     GPS".to_string(),
             "TIME OF FIRST OBS",
@@ -40,12 +61,23 @@ fn rinex(t0_s: f64, n: usize, offset_m: f64, bump: impl Fn(usize, usize) -> f64)
             let pr = 2.0e7 + 1e6 * i as f64 + rate * sample_time + offset_m;
             let pr_bumped = pr + bump(i, k);
             t += &format!(
-                "{sat}{:14.3}  {:14.3}  {:14.3}  {:14.3}  \n",
+                "{sat}{:14.3}  {:14.3}  {:14.3}  {:14.3}  ",
                 pr_bumped,
                 pr / lambda,
                 -rate / lambda,
                 45.0
             );
+            if let Some(b5) = l5_bump {
+                let pr5 = pr + 3.0;
+                t += &format!(
+                    "{:14.3}  {:14.3}  {:14.3}  {:14.3}  ",
+                    pr5 + b5(i, k),
+                    pr5 / lambda5,
+                    -rate / lambda5,
+                    48.0
+                );
+            }
+            t += "\n";
         }
     }
     t
@@ -202,5 +234,53 @@ fn validate_obs_restricts_the_comparison_to_a_sample_time_span() {
         String::from_utf8_lossy(&o.stderr).contains("no estimate epoch was measured between"),
         "{}",
         text(&o)
+    );
+}
+
+/// Observations of GPS L1 C/A and L5: each signal compared with its own truth, a table
+/// each; the L5 code error (+/-1 m alternating on G09) found on L5 alone.
+#[test]
+fn validate_obs_compares_two_signals_of_a_system_one_at_a_time() {
+    let dir = tempfile::tempdir().unwrap();
+    let none = |_: usize, _: usize| 0.0;
+    let l5 = |i: usize, k: usize| if i == 2 { [1.0, -1.0][k % 2] } else { 0.0 };
+    let truth = rinex_with_l5(0.0, 22, 0.0, none, Some(&none));
+    std::fs::write(dir.path().join("truth.rnx"), truth).unwrap();
+    let est = rinex_with_l5(1.25, 20, 300.0, none, Some(&l5));
+    std::fs::write(dir.path().join("est.rnx"), est).unwrap();
+    let args = [
+        "validate",
+        "obs",
+        "--truth",
+        "truth.rnx",
+        "--estimate",
+        "est.rnx",
+        "--json",
+        "c.json",
+    ];
+    let o = skyforge(&args, dir.path());
+    assert!(o.status.success(), "{}", text(&o));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for needle in ["== gps-l1ca ==", "== gps-l5 =="] {
+        assert!(stdout.contains(needle), "{needle}:\n{stdout}");
+    }
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("c.json")).unwrap()).unwrap();
+    let layers = v["signals"].as_array().unwrap();
+    assert_eq!(layers.len(), 2);
+    assert_eq!(layers[0]["signals"][0], "gps-l1ca");
+    assert_eq!(layers[1]["signals"][0], "gps-l5");
+    let std = |k: usize| {
+        layers[k]["pseudorange_m"]["overall"]["std"]
+            .as_f64()
+            .unwrap()
+    };
+    // As in validate_obs_prints_per_satellite_errors_and_writes_json, on L5 alone.
+    let expected = (20.0 * (4.0 / 9.0 + 2.0 / 9.0) / 38.0f64).sqrt();
+    assert!(std(0) < 1e-3, "L1 C/A: {}", std(0));
+    assert!(
+        (std(1) - expected).abs() < 1e-3,
+        "L5: {} vs {expected}",
+        std(1)
     );
 }

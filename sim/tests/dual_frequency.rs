@@ -9,28 +9,24 @@ mod support;
 /// each (# assumed: the L1 C/A interop scenarios' C/N0), `duration_s` long, the ionosphere
 /// as `ionosphere` sets it.
 fn scenario(dir: &std::path::Path, name: &str, duration_s: u32, ionosphere: &str) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/interop-l5-static.toml"),
-    )
-    .expect("bundled scenario")
-    .replacen(
-        "name = \"interop-l5-static\"",
-        &format!("name = \"{name}\""),
-        1,
-    )
-    .replacen(
-        "duration_s = 120.0",
-        &format!("duration_s = {duration_s}.0"),
-        1,
-    )
-    .replacen(
-        "signals = [\"gps-l5\"]",
-        "signals = [\"gps-l1ca\", \"gps-l5\"]",
-        1,
-    )
-    .replacen("cn0_dbhz = 48.6", "cn0_dbhz = 45.0", 1)
-        + &format!("\n[errors.ionosphere]\n{ionosphere}\n");
+    let text = support::bundled_edited(
+        "interop-l5-static",
+        &[
+            (
+                "name = \"interop-l5-static\"",
+                &format!("name = \"{name}\""),
+            ),
+            (
+                "duration_s = 120.0",
+                &format!("duration_s = {duration_s}.0"),
+            ),
+            (
+                "signals = [\"gps-l5\"]",
+                "signals = [\"gps-l1ca\", \"gps-l5\"]",
+            ),
+            ("cn0_dbhz = 48.6", "cn0_dbhz = 45.0"),
+        ],
+    ) + &format!("\n[errors.ionosphere]\n{ionosphere}\n");
     support::write_scenario(dir, &format!("{name}.toml"), &text)
 }
 

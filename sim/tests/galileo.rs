@@ -8,22 +8,13 @@ use skyforge_formats::truth::TruthFile;
 /// The bundled static ground site with `[gnss.galileo]`, `duration_s` long, `extra`
 /// appended.
 fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/ground-static.toml"),
-    )
-    .expect("bundled scenario");
-    let mut text = text
-        .replacen(
-            "[platform.ground]",
-            "[gnss.galileo]\n\n[platform.ground]",
-            1,
-        )
-        .replacen(
-            "duration_s = 3600.0",
-            &format!("duration_s = {duration_s}"),
-            1,
-        );
+    let mut text = support::bundled_edited(
+        "ground-static",
+        &[
+            ("[platform.ground]", "[gnss.galileo]\n\n[platform.ground]"),
+            ("duration_s = 3600.0", &format!("duration_s = {duration_s}")),
+        ],
+    );
     text.push_str(extra);
     support::write_scenario(dir, "galileo.toml", &text)
 }

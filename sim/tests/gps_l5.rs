@@ -7,22 +7,16 @@ mod support;
 /// The bundled static ground site with GPS alone on L5, `duration_s` long, `extra`
 /// appended after its `[signal]` table.
 fn scenario(dir: &std::path::Path, duration_s: f64, extra: &str) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/ground-static.toml"),
-    )
-    .expect("bundled scenario");
-    let mut text = text
-        .replacen(
-            "[gnss.beidou]\nsource = \"embedded\"",
-            "[gnss.beidou]\nenabled = false",
-            1,
-        )
-        .replacen(
-            "duration_s = 3600.0",
-            &format!("duration_s = {duration_s}"),
-            1,
-        );
+    let mut text = support::bundled_edited(
+        "ground-static",
+        &[
+            (
+                "[gnss.beidou]\nsource = \"embedded\"",
+                "[gnss.beidou]\nenabled = false",
+            ),
+            ("duration_s = 3600.0", &format!("duration_s = {duration_s}")),
+        ],
+    );
     text.push_str(
         "\n[signal]\nsignals = [\"gps-l5\"]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n",
     );

@@ -16,39 +16,32 @@ fn scenario(
     duration_s: u32,
     cf32: bool,
 ) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/interop-l5-static.toml"),
-    )
-    .expect("bundled scenario")
-    .replacen(
-        "name = \"interop-l5-static\"",
-        &format!("name = \"{name}\""),
-        1,
-    )
-    .replacen(
-        "duration_s = 120.0",
-        &format!("duration_s = {duration_s}.0"),
-        1,
-    )
-    .replacen(
-        "signals = [\"gps-l5\"]",
-        &format!("signals = [\"gps-l5\", \"gal-e5a\"]\nrecordings = \"{recordings}\""),
-        1,
-    )
-    .replacen(
-        "format = \"ci8\"\nbits = 8",
-        if cf32 {
-            "format = \"cf32\""
-        } else {
-            "format = \"ci8\"\nbits = 8"
-        },
-        1,
-    )
-    .replacen(
-        "[platform.ground]",
-        "[gnss.galileo]\nsource = \"embedded\"\n\n[platform.ground]",
-        1,
+    let format = if cf32 {
+        "format = \"cf32\""
+    } else {
+        "format = \"ci8\"\nbits = 8"
+    };
+    let text = support::bundled_edited(
+        "interop-l5-static",
+        &[
+            (
+                "name = \"interop-l5-static\"",
+                &format!("name = \"{name}\""),
+            ),
+            (
+                "duration_s = 120.0",
+                &format!("duration_s = {duration_s}.0"),
+            ),
+            (
+                "signals = [\"gps-l5\"]",
+                &format!("signals = [\"gps-l5\", \"gal-e5a\"]\nrecordings = \"{recordings}\""),
+            ),
+            ("format = \"ci8\"\nbits = 8", format),
+            (
+                "[platform.ground]",
+                "[gnss.galileo]\nsource = \"embedded\"\n\n[platform.ground]",
+            ),
+        ],
     );
     support::write_scenario(dir, &format!("{name}.toml"), &text)
 }

@@ -15,7 +15,9 @@ use skyforge_receiver::tracking::TrackingConfig;
 use skyforge_runner::{ChainError, synth_and_receive};
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};
-use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
+use skyforge_validate::observables::compare::{
+    CompareOptions, SampleSpan, SignalComparison, compare_signals,
+};
 use skyforge_validate::observables::{ObsError, ObsFile};
 use std::path::Path;
 
@@ -65,18 +67,18 @@ struct Sums {
     cn0_max: f64,
 }
 
-/// Mean formula variances (code, phase) of `sat` over the truth epochs, and its C/N0 range.
+/// Mean formula variances (code, phase) of `sat` on `signal` over the truth epochs, and its C/N0 range.
 fn formula_variances(
     truth: &ObsFile,
     sat: SatId,
+    signal: Signal,
     loops: &LoopNoise,
 ) -> Option<(f64, f64, f64, f64)> {
-    let signal = Signal::of_system(sat.system);
     let cn0: Vec<f64> = truth
         .epochs
         .iter()
         .flat_map(|e| e.sats.iter())
-        .filter(|r| r.sat == sat)
+        .filter(|r| r.sat == sat && r.signal == signal)
         .filter_map(|r| r.cn0_dbhz)
         .collect();
     if cn0.is_empty() {
@@ -99,6 +101,62 @@ fn formula_variances(
             (a.min(*c), b.max(*c))
         });
     Some((code, phase, lo, hi))
+}
+
+/// Add the satellites of one antenna's comparison `layer` (against `truth`) to `sums`.
+fn add_layer(
+    sums: &mut Vec<(Signal, Sums)>,
+    layer: &SignalComparison,
+    truth: &ObsFile,
+    tracking: &TrackingConfig,
+) {
+    let cmp = &layer.comparison;
+    let phase_of = |sat: SatId| {
+        cmp.carrier_phase_m
+            .per_satellite
+            .iter()
+            .find(|s| s.sat == sat)
+            .and_then(|s| Some((s.stats.count, s.stats.std?)))
+    };
+    for code in &cmp.pseudorange_m.per_satellite {
+        let (Some(code_std), Some((phase_n, phase_std))) = (code.stats.std, phase_of(code.sat))
+        else {
+            continue;
+        };
+        let Some(signal) = layer.signal_of(code.sat.system) else {
+            continue;
+        };
+        let loops = settled_loops(tracking, signal);
+        let Some((code_var, phase_var, lo, hi)) =
+            formula_variances(truth, code.sat, signal, &loops)
+        else {
+            continue;
+        };
+        let at = match sums.iter().position(|(s, _)| *s == signal) {
+            Some(i) => i,
+            None => {
+                sums.push((
+                    signal,
+                    Sums {
+                        cn0_min: f64::INFINITY,
+                        cn0_max: f64::NEG_INFINITY,
+                        ..Sums::default()
+                    },
+                ));
+                sums.len() - 1
+            }
+        };
+        let s = &mut sums[at].1;
+        let n = code.stats.count as f64;
+        let m = phase_n as f64;
+        s.code_measured += n * code_std * code_std;
+        s.code_formula += n * code_var;
+        s.phase_measured += m * phase_std * phase_std;
+        s.phase_formula += m * phase_var;
+        s.samples += code.stats.count;
+        s.cn0_min = s.cn0_min.min(lo);
+        s.cn0_max = s.cn0_max.max(hi);
+    }
 }
 
 /// Calibrate on `scenario`, synthesising into `work` (an existing directory; recordings
@@ -125,53 +183,14 @@ pub fn calibrate(scenario: &Scenario, work: &Path) -> Result<Calibration, Calibr
         .zip(&chain.observations)
         .zip(&chain.truth)
     {
-        let cmp =
-            compare_with(estimate, truth, &options).map_err(|error| CalibrateError::Compare {
+        let comparisons = compare_signals(estimate, truth, &options).map_err(|error| {
+            CalibrateError::Compare {
                 antenna: name.clone(),
                 error,
-            })?;
-        let phase_of = |sat: SatId| {
-            cmp.carrier_phase_m
-                .per_satellite
-                .iter()
-                .find(|s| s.sat == sat)
-                .and_then(|s| Some((s.stats.count, s.stats.std?)))
-        };
-        for code in &cmp.pseudorange_m.per_satellite {
-            let (Some(code_std), Some((phase_n, phase_std))) = (code.stats.std, phase_of(code.sat))
-            else {
-                continue;
-            };
-            let signal = Signal::of_system(code.sat.system);
-            let loops = settled_loops(&chain.config.tracking, signal);
-            let Some((code_var, phase_var, lo, hi)) = formula_variances(truth, code.sat, &loops)
-            else {
-                continue;
-            };
-            let at = match sums.iter().position(|(s, _)| *s == signal) {
-                Some(i) => i,
-                None => {
-                    sums.push((
-                        signal,
-                        Sums {
-                            cn0_min: f64::INFINITY,
-                            cn0_max: f64::NEG_INFINITY,
-                            ..Sums::default()
-                        },
-                    ));
-                    sums.len() - 1
-                }
-            };
-            let s = &mut sums[at].1;
-            let n = code.stats.count as f64;
-            let m = phase_n as f64;
-            s.code_measured += n * code_std * code_std;
-            s.code_formula += n * code_var;
-            s.phase_measured += m * phase_std * phase_std;
-            s.phase_formula += m * phase_var;
-            s.samples += code.stats.count;
-            s.cn0_min = s.cn0_min.min(lo);
-            s.cn0_max = s.cn0_max.max(hi);
+            }
+        })?;
+        for c in &comparisons {
+            add_layer(&mut sums, c, truth, &chain.config.tracking);
         }
     }
     sums.sort_by_key(|(s, _)| *s);

@@ -6,10 +6,13 @@ use hifitime::Duration;
 use observables_support::{Rec, normal, obs_file, range, wavelength};
 use rand::SeedableRng;
 use rand_chacha::ChaCha8Rng;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::System;
-use skyforge_validate::observables::compare::{CompareOptions, PhaseArc, SampleSpan, compare_with};
-use skyforge_validate::observables::{ObsError, ObsFile, compare};
+use skyforge_validate::observables::compare::{
+    CompareOptions, PhaseArc, SampleSpan, compare_signals, compare_with,
+};
+use skyforge_validate::observables::{ObsComparison, ObsError, ObsFile, ObsRecord, compare};
 
 const SATS: [(&str, f64, f64); 6] = [
     // name, zenith time (s), pseudorange bias (m)
@@ -243,4 +246,69 @@ fn no_overlap_is_an_error() {
         compare(&late, &truth()),
         Err(ObsError::NoOverlap { .. })
     ));
+}
+
+/// `f` with a GPS L5 observation beside each GPS one: the same values, the pseudorange
+/// `offset_m` longer.
+fn with_l5(mut f: ObsFile, offset_m: f64) -> ObsFile {
+    for e in &mut f.epochs {
+        let l5: Vec<_> = e
+            .sats
+            .iter()
+            .filter(|r| r.sat.system == System::Gps)
+            .map(|r| ObsRecord {
+                signal: Signal::GpsL5,
+                pseudorange_m: r.pseudorange_m.map(|p| p + offset_m),
+                ..*r
+            })
+            .collect();
+        e.sats.extend(l5);
+    }
+    f
+}
+
+#[test]
+fn a_truth_of_two_signals_is_compared_on_the_estimates_signal_alone() {
+    let alone = compare(&estimate(7, 0.0), &truth()).unwrap();
+    let beside_l5 = compare(&estimate(7, 0.0), &with_l5(truth(), 5.0)).unwrap();
+    assert_eq!(alone, beside_l5);
+}
+
+#[test]
+fn an_estimate_of_two_signals_is_compared_signal_by_signal() {
+    let (est, tru) = (with_l5(estimate(7, 0.0), 5.0), with_l5(truth(), 5.0));
+    assert!(matches!(
+        compare(&est, &tru),
+        Err(ObsError::SeveralSignals(s)) if s == "GPS gps-l1ca, gps-l5"
+    ));
+    let each = compare_signals(&est, &tru, &CompareOptions::default()).unwrap();
+    let layers: Vec<&[Signal]> = each.iter().map(|c| c.signals.as_slice()).collect();
+    assert_eq!(
+        layers,
+        [&[Signal::GpsL1Ca, Signal::BdsB1I][..], &[Signal::GpsL5][..]]
+    );
+    let l1 = compare(&estimate(7, 0.0), &truth()).unwrap();
+    assert_eq!(each[0].comparison, l1);
+    // L5's errors are L1's: the same values 5 m longer in both files.
+    let gps = |c: &ObsComparison| -> Vec<(String, Option<f64>, Option<f64>)> {
+        c.pseudorange_m
+            .per_satellite
+            .iter()
+            .filter(|s| s.sat.system == System::Gps)
+            .map(|s| (s.sat.to_string(), s.stats.mean, s.stats.std))
+            .collect()
+    };
+    let (a, b) = (gps(&each[1].comparison), gps(&l1));
+    assert_eq!(a.len(), 4);
+    for ((sa, ma, da), (sb, mb, db)) in a.iter().zip(&b) {
+        assert_eq!(sa, sb);
+        assert!(
+            (ma.unwrap() - mb.unwrap()).abs() < 1e-6,
+            "{sa}: {ma:?} vs {mb:?}"
+        );
+        assert!(
+            (da.unwrap() - db.unwrap()).abs() < 1e-6,
+            "{sa}: {da:?} vs {db:?}"
+        );
+    }
 }

@@ -123,6 +123,47 @@ pub(crate) fn list_dropped(dropped: &[Dropped]) -> String {
 }
 
 impl ObsFile {
+    /// The signals observed in the file, in [`Signal`] order.
+    pub fn signals(&self) -> Vec<Signal> {
+        let set: std::collections::BTreeSet<Signal> = self
+            .epochs
+            .iter()
+            .flat_map(|e| e.sats.iter().map(|r| r.signal))
+            .collect();
+        set.into_iter().collect()
+    }
+
+    /// The observations of `signals` alone (epochs left without any dropped).
+    pub fn of_signals(&self, signals: &[Signal]) -> ObsFile {
+        let epochs = self
+            .epochs
+            .iter()
+            .map(|e| ObsEpoch {
+                time: e.time,
+                sats: e
+                    .sats
+                    .iter()
+                    .filter(|r| signals.contains(&r.signal))
+                    .copied()
+                    .collect(),
+            })
+            .filter(|e| !e.sats.is_empty())
+            .collect();
+        ObsFile {
+            source: self.source.clone(),
+            approx_ecef_m: self.approx_ecef_m,
+            codes: self
+                .codes
+                .iter()
+                .filter(|(s, _)| signals.contains(s))
+                .map(|(s, c)| (*s, *c))
+                .collect(),
+            epochs,
+            marker: self.marker.clone(),
+            dropped: self.dropped.clone(),
+        }
+    }
+
     /// What the reader left out, as a warning naming the file and the lines; `None` when
     /// it left nothing out.
     pub fn dropped_warning(&self) -> Option<String> {

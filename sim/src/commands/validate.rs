@@ -11,7 +11,9 @@ use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
 use skyforge_validate::integrity::{check_same_run, print_score, run_scenario, score};
-use skyforge_validate::observables::compare::{CompareOptions, SampleSpan, compare_with};
+use skyforge_validate::observables::compare::{
+    CompareOptions, SampleSpan, SignalComparison, compare_signals,
+};
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
 use skyforge_validate::thesis::curves::{CURVES_FILE, CurvesFile};
@@ -138,8 +140,9 @@ pub fn agree(first: &Path, second: &Path) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Compare a receiver's RINEX observations with the truth, print the table and optionally
-/// write the comparison as JSON (via a temporary file, renamed when complete).
+/// Compare a receiver's RINEX observations with the truth (one signal per system at a
+/// time), print the
+/// table and optionally write the comparison as JSON (via a temporary file, renamed when complete).
 pub fn obs(
     truth: &Path,
     estimate: &Path,
@@ -171,9 +174,31 @@ pub fn obs(
         tag_offset_s,
         window,
     };
-    let comparison = compare_with(&estimate, &truth, &opts).map_err(|e| bad(&e))?;
-    print_comparison(&comparison, &mut std::io::stdout().lock())?;
-    json.write(&comparison)
+    use std::io::Write;
+    let comparisons = compare_signals(&estimate, &truth, &opts).map_err(|e| bad(&e))?;
+    let mut out = std::io::stdout().lock();
+    match comparisons.as_slice() {
+        [one] => {
+            print_comparison(&one.comparison, &mut out)?;
+            json.write(&one.comparison)
+        }
+        several => {
+            for c in several {
+                let tags: Vec<&str> = c.signals.iter().map(|s| s.tag()).collect();
+                writeln!(out, "== {} ==", tags.join(" + "))?;
+                print_comparison(&c.comparison, &mut out)?;
+            }
+            drop(out);
+            json.write(&BySignal { signals: several })
+        }
+    }
+}
+
+/// The JSON of `validate obs` on observations of several signals of a system: one
+/// comparison per layer of one signal per system.
+#[derive(serde::Serialize)]
+struct BySignal<'a> {
+    signals: &'a [SignalComparison],
 }
 
 /// What the JSON files `validate` writes are called in messages.

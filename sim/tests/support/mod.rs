@@ -584,6 +584,21 @@ pub fn assert_constant_observation_noise(
 }
 
 /// `text` written to `dir/name`; its path as the CLI takes it.
+/// The bundled scenario `name` (`scenarios/bundled/NAME.toml`) with each `(from, to)` of
+/// `edits` applied once, in order; panics when a `from` is not in the text (an edit that
+/// silently changed nothing would test another scenario than the one described).
+pub fn bundled_edited(name: &str, edits: &[(&str, &str)]) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../scenarios/bundled")
+        .join(format!("{name}.toml"));
+    let mut text = std::fs::read_to_string(&path).expect("bundled scenario");
+    for (from, to) in edits {
+        assert!(text.contains(from), "{name}: no {from:?} to replace");
+        text = text.replacen(from, to, 1);
+    }
+    text
+}
+
 pub fn write_scenario(dir: &Path, name: &str, text: &str) -> String {
     let path = dir.join(name);
     std::fs::write(&path, text).expect("write scenario");

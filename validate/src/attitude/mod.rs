@@ -11,7 +11,7 @@ pub(crate) mod seeds;
 pub(crate) mod success;
 
 pub use epochs::{FixedEpoch, fixed_baselines, true_attitudes};
-pub use success::{SuccessRate, single_epoch};
+pub use success::{SuccessRate, single_epoch, single_epoch_each};
 
 pub use compare::{ChainComparison, EpochErrors, compare, nominal_geometry};
 pub use outputs::{

@@ -76,21 +76,53 @@ pub fn single_epoch(
     signals: &[Signal],
     constraint: Constraint,
 ) -> Result<SuccessRate, String> {
-    let configs = [
-        config(signals, constraint, true),
-        config(signals, constraint, false),
-    ];
-    let [best, tested]: [Vec<ChainComparison>; 2] =
-        seed_runs(scenario, &configs, crate::draw::Draw::REGISTERED)?
-            .try_into()
-            .map_err(|_| format!("{}: one set of runs per configuration", scenario.name))?;
-    let none = || format!("{}: no runs", scenario.name);
-    Ok(SuccessRate {
+    let mut rates = single_epoch_each(
+        scenario,
+        &[signals],
         constraint,
-        signals: signals.to_vec(),
-        success: rate(&best, |r| r.fixed_epochs - r.fixed_epochs_wrong).ok_or_else(none)?,
-        accepted: rate(&tested, |r| r.fixed_epochs).ok_or_else(none)?,
-        accepted_wrong: tested.iter().map(|r| r.fixed_epochs_wrong).sum(),
-        epochs: best.iter().map(|r| r.epochs).sum(),
-    })
+        crate::draw::Draw::REGISTERED,
+    )?;
+    rates
+        .pop()
+        .ok_or_else(|| format!("{}: no runs", scenario.name))
+}
+
+/// [`single_epoch`] for each of `sets` of signals on the seeds of `draw`, all on the same
+/// runs (made once per seed: what a signal-level scenario needs).
+pub fn single_epoch_each(
+    scenario: &Scenario,
+    sets: &[&[Signal]],
+    constraint: Constraint,
+    draw: crate::draw::Draw,
+) -> Result<Vec<SuccessRate>, String> {
+    let configs: Vec<RelativeConfig> = sets
+        .iter()
+        .flat_map(|signals| {
+            [
+                config(signals, constraint, true),
+                config(signals, constraint, false),
+            ]
+        })
+        .collect();
+    let runs = seed_runs(scenario, &configs, draw)?;
+    let none = || format!("{}: no runs", scenario.name);
+    sets.iter()
+        .zip(runs.chunks(2))
+        .map(|(signals, pair)| {
+            let [best, tested] = pair else {
+                return Err(format!(
+                    "{}: one set of runs per configuration",
+                    scenario.name
+                ));
+            };
+            Ok(SuccessRate {
+                constraint,
+                signals: signals.to_vec(),
+                success: rate(best, |r| r.fixed_epochs - r.fixed_epochs_wrong).ok_or_else(none)?,
+                accepted: rate(tested, |r| r.fixed_epochs).ok_or_else(none)?,
+                accepted_wrong: tested.iter().map(|r| r.fixed_epochs_wrong).sum(),
+                epochs: best.iter().map(|r| r.epochs).sum(),
+            })
+        })
+        .collect()
 }

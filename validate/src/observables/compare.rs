@@ -28,6 +28,9 @@
 //!   distance to the nearest multiple of half a cycle.
 //! - Doppler error (Hz): as the pseudorange (epoch term: clock-drift difference).
 //! - C/N0 error (dB): no common term; `mean` is the bias.
+//!
+//! Signals. One comparison covers one signal: the truth's observations of others are left
+//! out; an estimate of several signals is compared signal by signal ([`compare_signals`]).
 
 use super::ObsError;
 use super::error_stats::{ErrorStats, SatErrors, display};
@@ -36,6 +39,7 @@ use super::interpolate::Series;
 use hifitime::{Duration, Epoch};
 use serde::{Serialize, Serializer};
 use skyforge_gnss::observation::{LLI_HALF_CYCLE, LLI_LOSS_OF_LOCK, ObsFile, ObsRecord};
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{SatId, System};
 use std::collections::BTreeMap;
@@ -192,11 +196,28 @@ pub fn compare(estimate: &ObsFile, truth: &ObsFile) -> Result<ObsComparison, Obs
 
 /// Compare `estimate` (a receiver's observations) with `truth` (SkyForge's observation
 /// truth of the same recording); see the module documentation for the method.
+///
+/// The estimate holds one signal per system (split a file of more with
+/// [`compare_signals`]); the truth's observations of other signals are left out.
 pub fn compare_with(
     estimate: &ObsFile,
     truth: &ObsFile,
     opts: &CompareOptions,
 ) -> Result<ObsComparison, ObsError> {
+    let signals = estimate.signals();
+    if let Some(system) = several_of_one_system(&signals) {
+        return Err(ObsError::SeveralSignals(format!(
+            "{} {}",
+            system.name(),
+            tags(signals.iter().filter(|s| s.system() == system))
+        )));
+    }
+    let truth = if signals.is_empty() {
+        truth.clone()
+    } else {
+        truth.of_signals(&signals)
+    };
+    let truth = &truth;
     let no_overlap = || ObsError::NoOverlap {
         estimate: span(estimate),
         truth: span(truth),
@@ -323,6 +344,73 @@ pub fn compare_with(
         arcs,
         satellites_without_truth,
     })
+}
+
+/// One comparison of [`compare_signals`]: one signal per system.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SignalComparison {
+    #[serde(serialize_with = "signal_tags")]
+    pub signals: Vec<Signal>,
+    #[serde(flatten)]
+    pub comparison: ObsComparison,
+}
+
+impl SignalComparison {
+    /// The compared signal of `system`, if it has one here.
+    pub fn signal_of(&self, system: System) -> Option<Signal> {
+        self.signals.iter().copied().find(|s| s.system() == system)
+    }
+}
+
+fn signal_tags<S: Serializer>(s: &[Signal], ser: S) -> Result<S::Ok, S::Error> {
+    ser.collect_seq(s.iter().map(|s| s.tag()))
+}
+
+/// `signals`' tags joined by `", "`.
+fn tags<'a>(signals: impl Iterator<Item = &'a Signal>) -> String {
+    signals.map(|s| s.tag()).collect::<Vec<_>>().join(", ")
+}
+
+/// A system with more than one of `signals`.
+fn several_of_one_system(signals: &[Signal]) -> Option<System> {
+    signals
+        .iter()
+        .map(|s| s.system())
+        .find(|&sys| signals.iter().filter(|s| s.system() == sys).count() > 1)
+}
+
+/// `estimate` compared with [`compare_with`] in layers of one signal per system: the
+/// first signal of each system (in [`Signal`] order) together, then the second, and so
+/// on; one comparison when every system has one signal.
+pub fn compare_signals(
+    estimate: &ObsFile,
+    truth: &ObsFile,
+    opts: &CompareOptions,
+) -> Result<Vec<SignalComparison>, ObsError> {
+    let signals = estimate.signals();
+    let mut layers: Vec<Vec<Signal>> = Vec::new();
+    for signal in signals {
+        match layers
+            .iter_mut()
+            .find(|l| l.iter().all(|s| s.system() != signal.system()))
+        {
+            Some(layer) => layer.push(signal),
+            None => layers.push(vec![signal]),
+        }
+    }
+    if layers.is_empty() {
+        return compare_with(estimate, truth, opts).map(|_| Vec::new());
+    }
+    layers
+        .into_iter()
+        .map(|signals| {
+            let comparison = compare_with(&estimate.of_signals(&signals), truth, opts)?;
+            Ok(SignalComparison {
+                signals,
+                comparison,
+            })
+        })
+        .collect()
 }
 
 /// `first .. last` time tags of `f`, for messages.

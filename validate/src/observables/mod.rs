@@ -13,7 +13,7 @@ mod fixed_effects;
 mod interpolate;
 pub mod table;
 
-pub use compare::{ObsComparison, compare};
+pub use compare::{ObsComparison, SignalComparison, compare, compare_signals};
 pub use error_stats::{ErrorStats, SatErrors};
 pub use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord, read_obs_file};
 
@@ -36,4 +36,7 @@ pub enum ObsError {
     /// The two receivers of a double difference share no epoch.
     #[error("the two receivers share no epoch within {tolerance_s} s")]
     NoCommonEpoch { tolerance_s: f64 },
+    /// One comparison covers one signal per system; the estimate holds several of one.
+    #[error("the estimate holds several signals of one system ({0}): compare them one at a time")]
+    SeveralSignals(String),
 }
