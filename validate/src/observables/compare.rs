@@ -502,7 +502,7 @@ fn tag_error(matched: &[Matched], code: &ObservableErrors) -> Option<TagError> {
     }
     let systems: Vec<System> = points.iter().map(|p| p.0).collect();
     let mut centred: Vec<(f64, f64)> = Vec::new();
-    for sys in [System::Gps, System::Beidou] {
+    for sys in [System::Gps, System::Beidou, System::Galileo] {
         let of: Vec<(f64, f64)> = points
             .iter()
             .filter(|p| p.0 == sys)
@@ -514,7 +514,7 @@ fn tag_error(matched: &[Matched], code: &ObservableErrors) -> Option<TagError> {
             .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
         centred.extend(of.iter().map(|p| (p.0 - mx, p.1 - my)));
     }
-    let n_systems = [System::Gps, System::Beidou]
+    let n_systems = [System::Gps, System::Beidou, System::Galileo]
         .iter()
         .filter(|s| systems.contains(s))
         .count();
