@@ -19,6 +19,16 @@ fn track(
     handover: Handover,
     seconds: f64,
 ) -> Vec<TrackingRecord> {
+    track_channel(sig, config, handover, seconds).0
+}
+
+/// [`track`], with the channel as it ended.
+fn track_channel(
+    sig: &TestSignal,
+    config: TrackingConfig,
+    handover: Handover,
+    seconds: f64,
+) -> (Vec<TrackingRecord>, ChannelTracker) {
     let front_end = FrontEnd {
         sample_rate_hz: sig.fs_hz,
         if_hz: sig.if_hz,
@@ -38,7 +48,7 @@ fn track(
         records.extend(channel.process(&samples, first).expect("contiguous"));
         first += n as u64;
     }
-    records
+    (records, channel)
 }
 
 fn after(records: &[TrackingRecord], sig: &TestSignal, t_s: f64) -> Vec<TrackingRecord> {
@@ -654,33 +664,15 @@ fn pilot_signals_track_on_the_pilot_with_known_polarity() {
     }
 }
 
-/// `seconds` of the pilot signal `sig` tracked with `config` from `handover`: the records and whether the
-/// pilot came inverted.
+/// `seconds` of the pilot signal `sig` tracked with `config` from `handover` without loss
+/// of lock: the records and whether the pilot came inverted.
 fn track_pilot(
     sig: &TestSignal,
     config: TrackingConfig,
     handover: Handover,
     seconds: f64,
 ) -> (Vec<TrackingRecord>, bool) {
-    let front_end = FrontEnd {
-        sample_rate_hz: sig.fs_hz,
-        if_hz: sig.if_hz,
-    };
-    let mut channel = match &sig.codes {
-        Some(codes) => ChannelTracker::with_codes(handover, front_end, config, codes.clone()),
-        None => ChannelTracker::new(handover, front_end, config),
-    }
-    .expect("valid channel");
-    let total = (seconds * sig.fs_hz) as u64;
-    let block = (0.1 * sig.fs_hz) as u64;
-    let mut records = Vec::new();
-    let mut first = 0;
-    while first < total {
-        let n = block.min(total - first) as usize;
-        let samples = sig.generate(first, n);
-        records.extend(channel.process(&samples, first).expect("contiguous"));
-        first += n as u64;
-    }
+    let (records, channel) = track_channel(sig, config, handover, seconds);
     assert!(records.iter().all(|r| !r.loss_of_lock), "{}", sig.signal);
     (records, channel.pilot_inverted())
 }

@@ -67,6 +67,33 @@ fn galileo(level: Level) -> Scenario {
     at_level(s, level, "gal-e1-e5a.toml")
 }
 
+/// The single-epoch success of `sets` (one frequency, then two) on `make`'s scenario at
+/// the observation level ([`Draw::REGISTERED`]) and at the signal level ([`SIGNAL_RUNS`]),
+/// printed, then [`assert_two_frequencies_help_and_levels_agree`].
+fn compare_levels(make: fn(Level) -> Scenario, sets: [&[Signal]; 2]) {
+    let rates =
+        |level, draw| single_epoch_each(&make(level), &sets, Constraint::None, draw).unwrap();
+    let observation = rates(Level::Observation, Draw::REGISTERED);
+    for r in &observation {
+        println!(
+            "SINGLE_EPOCH {:?} observation level: {}",
+            r.signals,
+            r.summary()
+        );
+    }
+    let signal = rates(
+        Level::Signal,
+        Draw {
+            offset: 0,
+            runs: Some(SIGNAL_RUNS),
+        },
+    );
+    for r in &signal {
+        println!("SINGLE_EPOCH {:?} signal level: {}", r.signals, r.summary());
+    }
+    assert_two_frequencies_help_and_levels_agree(&signal, &observation);
+}
+
 /// The second set of `signal` (two frequencies) at least as successful as the first (one),
 /// within two standard errors; each set's signal level within two standard errors of its
 /// observation level.
@@ -108,28 +135,7 @@ const SIGNAL_RUNS: u64 = 4;
 #[test]
 #[ignore = "long: four signal-level runs of three antennas on L1 C/A and L5 (tens of minutes)"]
 fn two_frequencies_fix_single_epochs_at_least_as_often_and_as_the_observation_level_says() {
-    let rates = |level, draw| {
-        single_epoch_each(&scenario(level), &[L1, L1_L5], Constraint::None, draw).unwrap()
-    };
-    let observation = rates(Level::Observation, Draw::REGISTERED);
-    for r in &observation {
-        println!(
-            "SINGLE_EPOCH {:?} observation level: {}",
-            r.signals,
-            r.summary()
-        );
-    }
-    let signal = rates(
-        Level::Signal,
-        Draw {
-            offset: 0,
-            runs: Some(SIGNAL_RUNS),
-        },
-    );
-    for r in &signal {
-        println!("SINGLE_EPOCH {:?} signal level: {}", r.signals, r.summary());
-    }
-    assert_two_frequencies_help_and_levels_agree(&signal, &observation);
+    compare_levels(scenario, [L1, L1_L5]);
 }
 
 /// Galileo E1 + E5a as the GPS test above runs L1 C/A + L5: the two-frequency success at
@@ -139,26 +145,5 @@ fn two_frequencies_fix_single_epochs_at_least_as_often_and_as_the_observation_le
 #[test]
 #[ignore = "long: four signal-level runs of three antennas on E1 and E5a (tens of minutes); needs the E1 code tables"]
 fn galileo_two_frequencies_fix_single_epochs_at_least_as_often_and_as_the_observation_level_says() {
-    let rates = |level, draw| {
-        single_epoch_each(&galileo(level), &[E1, E1_E5A], Constraint::None, draw).unwrap()
-    };
-    let observation = rates(Level::Observation, Draw::REGISTERED);
-    for r in &observation {
-        println!(
-            "SINGLE_EPOCH {:?} observation level: {}",
-            r.signals,
-            r.summary()
-        );
-    }
-    let signal = rates(
-        Level::Signal,
-        Draw {
-            offset: 0,
-            runs: Some(SIGNAL_RUNS),
-        },
-    );
-    for r in &signal {
-        println!("SINGLE_EPOCH {:?} signal level: {}", r.signals, r.summary());
-    }
-    assert_two_frequencies_help_and_levels_agree(&signal, &observation);
+    compare_levels(galileo, [E1, E1_E5A]);
 }

@@ -19,7 +19,7 @@ use super::{DecodedEphemeris, NavDecodeError, NavEvent, SubframeInfo};
 use skyforge_gnss::navmsg::bds_cnav1::{
     CNAV1_FRAME_SYMBOLS, Cnav1Frame, decode_frame, prn_correlation,
 };
-use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
+use skyforge_orbits::ephemeris::{SatId, System};
 
 /// Normalised PRN-word correlation (sum of s_k p_k over sum of |s_k|) that makes a
 /// candidate frame start: a noiseless word gives 1.
@@ -87,20 +87,7 @@ impl BdsCnav1Decoder {
             inverted,
             corrected_bits: 0,
         }));
-        let eph = frame
-            .ephemeris(self.sat)
-            .filter(|e| e.class == OrbitClass::Standard);
-        if let Some(eph) = eph {
-            let decoded = DecodedEphemeris {
-                eph,
-                ura_index: 0,
-                tgd2_s: None,
-            };
-            if self.last.as_ref() != Some(&decoded) {
-                self.last = Some(decoded.clone());
-                out.push(NavEvent::Ephemeris(Box::new(decoded)));
-            }
-        }
+        DecodedEphemeris::push_bds3(&mut self.last, frame.ephemeris(self.sat), out);
     }
 }
 

@@ -17,7 +17,7 @@ use skyforge_gnss::navmsg::bds_cnav2::{
     CNAV2_FRAME_SYMBOLS, CNAV2_PREAMBLE, Cnav2Assembler, Cnav2DecodeError, Cnav2Message,
     decode_frame,
 };
-use skyforge_orbits::ephemeris::{OrbitClass, SatId, System};
+use skyforge_orbits::ephemeris::{SatId, System};
 
 /// Normalised preamble correlation (sum of s_k p_k over sum of |s_k|) that makes a
 /// candidate frame start: a noiseless preamble gives 1.
@@ -74,17 +74,7 @@ impl BdsCnav2Decoder {
             inverted,
             corrected_bits: 0,
         }));
-        if let Some(eph) = eph.filter(|e| e.class == OrbitClass::Standard) {
-            let decoded = DecodedEphemeris {
-                eph,
-                ura_index: 0,
-                tgd2_s: None,
-            };
-            if self.last.as_ref() != Some(&decoded) {
-                self.last = Some(decoded.clone());
-                out.push(NavEvent::Ephemeris(Box::new(decoded)));
-            }
-        }
+        DecodedEphemeris::push_bds3(&mut self.last, eph, out);
     }
 }
 

@@ -59,7 +59,7 @@ use skyforge_gnss::navmsg::Klobuchar;
 use skyforge_gnss::navmsg::gps_lnav::IonoParams;
 use skyforge_gnss::navmsg::gps_lnav::UtcParams;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, SatId, System};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
 
 /// Bits per subframe, GPS LNAV and BeiDou D1/D2 alike.
 pub const SUBFRAME_BITS: usize = 300;
@@ -81,6 +81,29 @@ pub struct DecodedEphemeris {
     pub ura_index: u8,
     /// BeiDou TGD2 (B2I group delay, s); `None` for GPS and Galileo.
     pub tgd2_s: Option<f64>,
+}
+
+impl DecodedEphemeris {
+    /// Push a BDS-3 ephemeris of B-CNAV1 or B-CNAV2 (`eph` when the frames completed one)
+    /// as an event when it is of the standard orbit class and differs from `last`.
+    pub(crate) fn push_bds3(
+        last: &mut Option<DecodedEphemeris>,
+        eph: Option<BroadcastEphemeris>,
+        out: &mut Vec<NavEvent>,
+    ) {
+        let Some(eph) = eph.filter(|e| e.class == OrbitClass::Standard) else {
+            return;
+        };
+        let decoded = DecodedEphemeris {
+            eph,
+            ura_index: 0,
+            tgd2_s: None,
+        };
+        if last.as_ref() != Some(&decoded) {
+            *last = Some(decoded.clone());
+            out.push(NavEvent::Ephemeris(Box::new(decoded)));
+        }
+    }
 }
 
 /// One decoded subframe (CNAV: message; F/NAV, I/NAV: page): where it starts in the stream
