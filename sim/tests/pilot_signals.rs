@@ -155,36 +155,34 @@ fn e1_is_received_decoded_and_fixed_with_made_up_tables() {
 /// 10, 11 and 30 arrive within one 12 s cycle after frame sync, so a satellite's
 /// ephemeris is decoded about 15-20 s in, leaving some 20 fixes).
 fn b2a_scenario(dir: &std::path::Path) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/interop-bds-static.toml"),
-    )
-    .expect("bundled scenario");
-    let replace = |text: String, from: &str, to: &str| {
-        assert!(text.contains(from), "{from}");
-        text.replacen(from, to, 1)
-    };
-    let text = replace(
-        text,
-        "name = \"interop-bds-static\"",
-        "name = \"b2a-static\"",
-    );
-    let text = replace(
-        text,
-        "duration_s = 90.0",
-        "duration_s = 40.0  # assumed: about 20 fixes after the first B-CNAV2 ephemerides",
-    );
-    let text = replace(
-        text,
-        "embedded_set = \"bds2\"",
-        "embedded_set = \"bds3\"  # assumed: B2a is a BDS-3 MEO/IGSO signal",
-    );
-    let text = replace(
-        text,
-        "sample_rate_hz = 4.0e6",
-        "signals = [\"bds-b2a\"]\nsample_rate_hz = 20.46e6  # assumed: B2a's +-10.23 MHz main lobe, as E5a's\n#",
+    let text = support::bundled_edited(
+        "interop-bds-static",
+        &[
+            ("name = \"interop-bds-static\"", "name = \"b2a-static\""),
+            (
+                "duration_s = 90.0",
+                "duration_s = 40.0  # assumed: about 20 fixes after the first B-CNAV2 ephemerides",
+            ),
+            (
+                "embedded_set = \"bds2\"",
+                "embedded_set = \"bds3\"  # assumed: B2a is a BDS-3 MEO/IGSO signal",
+            ),
+            (
+                "sample_rate_hz = 4.0e6",
+                "signals = [\"bds-b2a\"]\nsample_rate_hz = 20.46e6  # assumed: B2a's +-10.23 MHz main lobe, as E5a's\n#",
+            ),
+        ],
     );
     support::write_scenario(dir, "b2a.toml", &text)
+}
+
+/// The channels the receiver's summary in `log` says were timed by their message.
+fn timed_channels(log: &str) -> usize {
+    log.split("timed ")
+        .nth(1)
+        .and_then(|t| t.split(',').next())
+        .and_then(|n| n.trim().parse().ok())
+        .expect("receiver summary")
 }
 
 /// BeiDou B2a alone through the bundled receiver: tracked on the B2a_p pilot, B-CNAV2
@@ -203,12 +201,7 @@ fn bds_b2a_is_received_decoded_and_fixed() {
     println!("{log}");
     // Timed channels: a B-CNAV2 frame decoded (preamble, LDPC, CRC, PRN and SOW) ties the
     // channel's code epochs to BDT.
-    let timed: usize = log
-        .split("timed ")
-        .nth(1)
-        .and_then(|t| t.split(',').next())
-        .and_then(|n| n.trim().parse().ok())
-        .expect("receiver summary");
+    let timed = timed_channels(&log);
     assert!(timed >= 4, "{timed} channels timed by B-CNAV2");
     let rx = out.join("receive");
     let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
@@ -239,30 +232,20 @@ fn bds_b2a_is_received_decoded_and_fixed() {
 /// first 18 s B-CNAV1 frame after the secondary-code sync starts 14 s in and is decoded
 /// 32 s in, leaving some 17 fixes).
 fn b1c_scenario(dir: &std::path::Path) -> String {
-    let text = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("../scenarios/bundled/interop-bds-static.toml"),
-    )
-    .expect("bundled scenario");
-    let replace = |text: String, from: &str, to: &str| {
-        assert!(text.contains(from), "{from}");
-        text.replacen(from, to, 1)
-    };
-    let text = replace(
-        text,
-        "name = \"interop-bds-static\"",
-        "name = \"b1c-static\"",
-    );
-    let text = replace(text, "duration_s = 90.0", "duration_s = 50.0");
-    let text = replace(
-        text,
-        "embedded_set = \"bds2\"",
-        "embedded_set = \"bds3\"  # B1C is a BDS-3 MEO/IGSO signal",
-    );
-    let text = replace(
-        text,
-        "sample_rate_hz = 4.0e6",
-        "signals = [\"bds-b1c\"]\nsample_rate_hz = 15e6\n#",
+    let text = support::bundled_edited(
+        "interop-bds-static",
+        &[
+            ("name = \"interop-bds-static\"", "name = \"b1c-static\""),
+            ("duration_s = 90.0", "duration_s = 50.0"),
+            (
+                "embedded_set = \"bds2\"",
+                "embedded_set = \"bds3\"  # B1C is a BDS-3 MEO/IGSO signal",
+            ),
+            (
+                "sample_rate_hz = 4.0e6",
+                "signals = [\"bds-b1c\"]\nsample_rate_hz = 15e6\n#",
+            ),
+        ],
     );
     support::write_scenario(dir, "b1c.toml", &text)
 }
@@ -281,12 +264,7 @@ fn bds_b1c_is_received_decoded_and_fixed() {
         dir.path(),
     );
     println!("{log}");
-    let timed: usize = log
-        .split("timed ")
-        .nth(1)
-        .and_then(|t| t.split(',').next())
-        .and_then(|n| n.trim().parse().ok())
-        .expect("receiver summary");
+    let timed = timed_channels(&log);
     let rx = out.join("receive");
     let obs = std::fs::read_to_string(rx.join("ant1.obs.rnx")).expect("receiver RINEX");
     assert!(obs.contains("C    4 C1P L1P D1P S1P"), "{obs}");
