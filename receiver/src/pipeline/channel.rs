@@ -3,7 +3,7 @@
 //! [`ChannelSample`]s for the observables.
 
 use super::navdata::NavData;
-use super::timing::CodeClock;
+use super::timing::{CodeClock, whole_periods_near};
 use crate::navdecode::{NavDecoder, NavEvent, decoder_for};
 use crate::observables::ChannelSample;
 use crate::tracking::TrackingError;
@@ -36,7 +36,16 @@ pub(crate) struct Channel {
     records: Vec<TrackingRecord>,
     /// Timed code epochs not yet handed to the observables, oldest first.
     pub(crate) queue: VecDeque<ChannelSample>,
+    /// Code period and (fractional) sample index of the last locked record's code epoch.
+    last_epoch: Option<(u64, f64)>,
 }
+
+/// Farthest a code epoch's transmit time predicted from another signal of the satellite
+/// may lie from a whole number of code periods for the hand-over (s). # assumed: 10 us
+/// (3 km): the signals' group delays and ionospheric delays differ by well under a
+/// microsecond, the prediction's Doppler neglect over a few milliseconds by nanoseconds;
+/// a misfit beyond it (a false lock, a sibling timed wrongly) refuses the hand-over.
+const HANDOVER_TOLERANCE_S: f64 = 10e-6;
 
 impl Channel {
     pub(crate) fn new(
@@ -64,6 +73,7 @@ impl Channel {
             doppler_hz: None,
             records: Vec::new(),
             queue: VecDeque::new(),
+            last_epoch: None,
         })
     }
 
@@ -130,16 +140,19 @@ impl Channel {
             if r.cycle_slip || r.loss_of_lock || !r.locked {
                 self.slip = true;
             }
-            let Some(t_tx_s) = self.clock.transmit_time(k) else {
-                continue;
-            };
             if !r.locked {
+                self.last_epoch = None;
                 continue;
             }
             // The code epoch lies code_phase / code_rate before the record's first sample.
             let lead_s = r.code_phase_chips / r.code_rate_chips_per_s;
+            let epoch_sample = r.sample_index as f64 - lead_s * fs;
+            self.last_epoch = Some((k, epoch_sample));
+            let Some(t_tx_s) = self.clock.transmit_time(k) else {
+                continue;
+            };
             self.queue.push_back(ChannelSample {
-                sample_index: r.sample_index as f64 - lead_s * fs,
+                sample_index: epoch_sample,
                 t_tx_s,
                 nco_phase_cycles: r.carrier_phase_cycles - r.doppler_hz * lead_s,
                 doppler_hz: r.doppler_hz,
@@ -148,5 +161,38 @@ impl Channel {
                 inverted: self.inverted,
             });
         }
+    }
+
+    /// Time this channel from `sibling`, the code epochs another signal of the same
+    /// satellite at the same antenna has timed (a hand-over, as a multi-frequency receiver
+    /// times its second signal from its first instead of waiting for that signal's own
+    /// message): only a signal tracked on its pilot with the secondary code found, whose
+    /// carrier polarity is then known without the data. The sibling's epoch nearest this
+    /// channel's last code epoch gives that epoch's transmit time to within the signals'
+    /// delay differences; every signal's code periods start at whole multiples of the
+    /// period in system time, so the nearest multiple is taken, and the hand-over is
+    /// refused where that lies beyond [`HANDOVER_TOLERANCE_S`]. Returns whether it took.
+    pub(crate) fn time_from(&mut self, sibling: &VecDeque<ChannelSample>) -> bool {
+        let Some((k, sample)) = self.last_epoch else {
+            return false;
+        };
+        if self.is_timed() || !self.tracker.pilot_synchronised() {
+            return false;
+        }
+        let nearest = sibling.iter().min_by(|a, b| {
+            let (da, db) = (a.sample_index - sample, b.sample_index - sample);
+            da.abs().total_cmp(&db.abs())
+        });
+        let Some(s) = nearest else {
+            return false;
+        };
+        let predicted = s.t_tx_s + (sample - s.sample_index) / self.sample_rate_hz;
+        let period = self.signal().code_period_s();
+        let Some(t_tx_s) = whole_periods_near(predicted, period, HANDOVER_TOLERANCE_S) else {
+            return false;
+        };
+        self.clock.hand_over(k, t_tx_s);
+        self.inverted = self.tracker.pilot_inverted();
+        true
     }
 }

@@ -110,7 +110,7 @@ pub struct ReceiverSummary {
     /// Detections whose channel never locked (false alarms or too weak), dropped.
     pub unconfirmed_detections: usize,
     /// Per antenna: satellites tracked (carrier lock reached), satellites timed (a
-    /// subframe decoded).
+    /// message decoded, or a hand-over from another signal of the satellite).
     pub tracked: Vec<Vec<SatId>>,
     pub timed: Vec<Vec<SatId>>,
     /// Epochs formed and fixes per antenna (of the epochs reported).
@@ -298,6 +298,9 @@ impl Receiver {
         let approx_time = move |sample: f64| approx.map(|t0| t0 + sample / fs);
         for ch in &mut self.channels {
             ch.digest(&mut self.nav, &approx_time);
+        }
+        self.hand_over_timing();
+        for ch in &self.channels {
             if ch.ever_locked() && !self.summary.tracked[ch.antenna].contains(&ch.sat) {
                 self.summary.tracked[ch.antenna].push(ch.sat);
             }
@@ -324,6 +327,23 @@ impl Receiver {
         }
         self.channels.retain(|c| !c.is_lost());
         self.epochs(first_sample + len as u64)
+    }
+
+    /// Channels not yet timed take their time from a timed signal of the same satellite
+    /// at the same antenna where they can ([`Channel::time_from`]).
+    fn hand_over_timing(&mut self) {
+        for i in 0..self.channels.len() {
+            let ch = &self.channels[i];
+            if ch.is_timed() {
+                continue;
+            }
+            let sibling = self.channels.iter().find(|s| {
+                s.antenna == ch.antenna && s.sat == ch.sat && s.is_timed() && !s.queue.is_empty()
+            });
+            if let Some(queue) = sibling.map(|s| s.queue.clone()) {
+                self.channels[i].time_from(&queue);
+            }
+        }
     }
 
     /// Search every antenna of every band for the satellites it does not track.

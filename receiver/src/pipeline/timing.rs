@@ -1,7 +1,8 @@
 //! Transmit time of a channel's code epochs: the code periods are counted from the
 //! hand-over, each data bit remembers the period it began in, and a decoded subframe ties
 //! the period of its first bit to the time of week it carries. From then on every code
-//! epoch has a transmit time `t_anchor + (period - period_anchor) T_code`.
+//! epoch has a transmit time `t_anchor + (period - period_anchor) T_code`. A signal with a
+//! pilot may instead be anchored by another signal of its satellite (a hand-over).
 
 use std::collections::VecDeque;
 
@@ -77,6 +78,12 @@ impl CodeClock {
         }
     }
 
+    /// Code period `k` was sent at `t_tx_s`, as another signal of the same satellite says
+    /// ([`super::channel::Channel::time_from`]): anchor the code periods to it.
+    pub(crate) fn hand_over(&mut self, k: u64, t_tx_s: f64) {
+        self.anchor = Some((k, t_tx_s));
+    }
+
     /// Transmit time of the start of code period `k`, once anchored.
     pub(crate) fn transmit_time(&self, k: u64) -> Option<f64> {
         self.anchor
@@ -84,9 +91,31 @@ impl CodeClock {
     }
 }
 
+/// The whole multiple of `period_s` nearest `t_s`, if within `tolerance_s` of it: a code
+/// epoch's transmit time from a prediction (code periods start at whole multiples of the
+/// period in system time).
+pub(crate) fn whole_periods_near(t_s: f64, period_s: f64, tolerance_s: f64) -> Option<f64> {
+    let t = (t_s / period_s).round() * period_s;
+    ((t - t_s).abs() <= tolerance_s).then_some(t)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_prediction_snaps_to_the_nearest_code_epoch_or_is_refused() {
+        // 1 ms periods a day into the week: 0.2 us late, 3 us early, 0.4 ms off.
+        let t = 86_400.123;
+        assert!((whole_periods_near(t + 0.2e-6, 1e-3, 10e-6).unwrap() - t).abs() < 1e-9);
+        assert!((whole_periods_near(t - 3e-6, 1e-3, 10e-6).unwrap() - t).abs() < 1e-9);
+        assert_eq!(whole_periods_near(t + 0.4e-3, 1e-3, 10e-6), None);
+        // 4 ms periods (E1): 86 400.124 is one, 86 400.123 is not.
+        assert!(
+            (whole_periods_near(86_400.124 - 1e-6, 4e-3, 10e-6).unwrap() - 86_400.124).abs() < 1e-9
+        );
+        assert_eq!(whole_periods_near(t, 4e-3, 10e-6), None);
+    }
 
     #[test]
     fn code_epochs_get_the_time_of_the_subframe_that_contains_them() {

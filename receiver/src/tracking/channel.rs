@@ -386,6 +386,12 @@ impl ChannelTracker {
         self.sync.edge_phase()
     }
 
+    /// A signal tracked on its pilot whose secondary code is found: the carrier loop's
+    /// polarity is known ([`Self::pilot_inverted`]) without the data.
+    pub fn pilot_synchronised(&self) -> bool {
+        self.sync.pilot_wipe(0).is_some()
+    }
+
     /// For a signal tracked on its pilot, once its secondary code is found: whether the
     /// carrier loop holds the carrier half a cycle off (the code arrived inverted). The
     /// data bits are handed on corrected; the carrier phase is not.
