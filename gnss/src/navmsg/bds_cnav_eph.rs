@@ -109,7 +109,9 @@ pub(crate) const FLAGS_B2A: [Field; 3] = [
     field("AIF(B2a)", 1, false, Lsb::Count),
 ];
 
-/// Table 7-10: BDGIM alpha1..alpha9 (74 bits, TECu, sent as zeros).
+/// Table 7-10: BDGIM alpha1..alpha9 (74 bits, TECu, sent as zeros). The B2b ICD (Table
+/// 7-8) gives alpha5 a negative scale, -2^-3, on its unsigned field (unchecked against
+/// B1C's and B2a's own tables): to mind before sending coefficients.
 pub(crate) const IONO: [Field; 9] = [
     field("alpha1", 10, false, Lsb::Pow2(-3)),
     field("alpha2", 8, true, Lsb::Pow2(-3)),

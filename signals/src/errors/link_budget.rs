@@ -26,6 +26,12 @@
 //!   received power, 0 dBic, >= 5 deg), 3.6 dB above L1 C/A: its own EIRP, 27.00 dBW
 //!   (`L_fs` 181.90 dB at 1176.45 MHz over the L1 C/A slant range). With L1 C/A's EIRP
 //!   it would arrive 1.1 dB below its minimum.
+//! - BDS B1C and B2a (BDS-3 MEO and IGSO only): -161 and -158 dBW from IGSO, -159 and
+//!   -156 dBW from MEO, data and pilot together (BDS-SIS-ICD-B1C-1.0 and -B2a-1.0 §4.10,
+//!   received power levels on ground; the figures as secondary summaries of those tables
+//!   give them, the ICD tables themselves not read). As for B1I the EIRP is set from the
+//!   longer, geosynchronous range and the IGSO minimum: B1C 27.68 dBW, B2a 28.14 dBW;
+//!   MEO satellites then arrive 3.8 dB above the IGSO minimum, 1.8 dB above their own.
 //!
 //! Real satellites usually exceed the minimum by a few dB; raise the EIRP to model that.
 //!
@@ -55,6 +61,12 @@ pub const BDS_B1I_MIN_POWER_DBW: f64 = -163.0;
 pub const GAL_E1_MIN_POWER_DBW: f64 = -157.0;
 /// IS-GPS-705 minimum received L5 power, I5 and Q5 together (dBW), 0 dBic, >= 5 deg.
 pub const GPS_L5_MIN_POWER_DBW: f64 = -154.9;
+/// BDS-SIS-ICD-B1C-1.0 §4.10 minimum received B1C power from IGSO, data and pilot (dBW), 0
+/// dBi RHCP, >= 5 deg (secondary summaries of the table; MEO: -159 dBW).
+pub const BDS_B1C_MIN_POWER_DBW: f64 = -161.0;
+/// BDS-SIS-ICD-B2a-1.0 §4.10 minimum received B2a power from IGSO, data and pilot (dBW), 0
+/// dBi RHCP, >= 5 deg (secondary summaries of the table; MEO: -156 dBW).
+pub const BDS_B2A_MIN_POWER_DBW: f64 = -158.0;
 /// Elevation at which the GPS and BeiDou ICD minimum powers are specified (deg).
 pub const ICD_MIN_POWER_ELEVATION_DEG: f64 = 5.0;
 /// Elevation at which the Galileo ICD minimum powers are specified (deg).
@@ -76,6 +88,14 @@ pub struct LinkBudgetConfig {
     /// BeiDou B1I EIRP towards the user (dBW); default [`default_bds_eirp_dbw`].
     #[serde(default = "default_bds_eirp_dbw")]
     pub bds_eirp_dbw: f64,
+    /// BeiDou B1C EIRP towards the user (dBW), data and pilot together; default
+    /// [`default_bds_b1c_eirp_dbw`].
+    #[serde(default = "default_bds_b1c_eirp_dbw")]
+    pub bds_b1c_eirp_dbw: f64,
+    /// BeiDou B2a EIRP towards the user (dBW), data and pilot together; default
+    /// [`default_bds_b2a_eirp_dbw`].
+    #[serde(default = "default_bds_b2a_eirp_dbw")]
+    pub bds_b2a_eirp_dbw: f64,
     /// Galileo EIRP towards the user (dBW), every Galileo signal; default
     /// [`default_gal_eirp_dbw`].
     #[serde(default = "default_gal_eirp_dbw")]
@@ -95,6 +115,8 @@ impl Default for LinkBudgetConfig {
             gps_eirp_dbw: default_gps_eirp_dbw(),
             gps_l5_eirp_dbw: default_gps_l5_eirp_dbw(),
             bds_eirp_dbw: default_bds_eirp_dbw(),
+            bds_b1c_eirp_dbw: default_bds_b1c_eirp_dbw(),
+            bds_b2a_eirp_dbw: default_bds_b2a_eirp_dbw(),
             gal_eirp_dbw: default_gal_eirp_dbw(),
             system_noise_temperature_k: default_system_noise_temperature_k(),
             losses_db: 0.0,
@@ -146,6 +168,28 @@ pub fn default_bds_eirp_dbw() -> f64 {
     )
 }
 
+/// BeiDou B1C EIRP (dBW) that delivers [`BDS_B1C_MIN_POWER_DBW`] to a 0 dBi ground antenna
+/// at 5 deg elevation from the geosynchronous (IGSO) radius (about 27.7 dBW).
+pub fn default_bds_b1c_eirp_dbw() -> f64 {
+    eirp_for_min_power_dbw(
+        BDS_B1C_MIN_POWER_DBW,
+        BDS_GSO_A_M,
+        Signal::BdsB1C.carrier_hz(),
+        ICD_MIN_POWER_ELEVATION_DEG,
+    )
+}
+
+/// BeiDou B2a EIRP (dBW) that delivers [`BDS_B2A_MIN_POWER_DBW`] to a 0 dBi ground antenna
+/// at 5 deg elevation from the geosynchronous (IGSO) radius (about 28.1 dBW).
+pub fn default_bds_b2a_eirp_dbw() -> f64 {
+    eirp_for_min_power_dbw(
+        BDS_B2A_MIN_POWER_DBW,
+        BDS_GSO_A_M,
+        Signal::BdsB2a.carrier_hz(),
+        ICD_MIN_POWER_ELEVATION_DEG,
+    )
+}
+
 fn default_system_noise_temperature_k() -> f64 {
     DEFAULT_SYSTEM_NOISE_TEMPERATURE_K
 }
@@ -182,6 +226,8 @@ impl LinkBudgetConfig {
             ("gps_eirp_dbw", self.gps_eirp_dbw),
             ("gps_l5_eirp_dbw", self.gps_l5_eirp_dbw),
             ("bds_eirp_dbw", self.bds_eirp_dbw),
+            ("bds_b1c_eirp_dbw", self.bds_b1c_eirp_dbw),
+            ("bds_b2a_eirp_dbw", self.bds_b2a_eirp_dbw),
             ("gal_eirp_dbw", self.gal_eirp_dbw),
         ] {
             if !value.is_finite() {
@@ -208,11 +254,13 @@ impl LinkBudgetConfig {
     }
 
     /// C/N0 (dB-Hz) of `signal` over `range_m` received with gain `rx_gain_dbi`:
-    /// `EIRP - L_fs(range, carrier) + G_rx - losses - 10 log10(k T_sys)`, with GPS L5's own
-    /// EIRP and each other signal its constellation's.
+    /// `EIRP - L_fs(range, carrier) + G_rx - losses - 10 log10(k T_sys)`, with GPS L5's,
+    /// BeiDou B1C's and B2a's own EIRPs and each other signal its constellation's.
     pub fn cn0_dbhz(&self, signal: Signal, range_m: f64, rx_gain_dbi: f64) -> f64 {
         let eirp_dbw = match (signal, signal.system()) {
             (Signal::GpsL5, _) => self.gps_l5_eirp_dbw,
+            (Signal::BdsB1C, _) => self.bds_b1c_eirp_dbw,
+            (Signal::BdsB2a, _) => self.bds_b2a_eirp_dbw,
             (_, System::Gps) => self.gps_eirp_dbw,
             (_, System::Beidou) => self.bds_eirp_dbw,
             (_, System::Galileo) => self.gal_eirp_dbw,
@@ -293,6 +341,20 @@ mod tests {
         };
         let worse = lossy.cn0_dbhz(Signal::BdsB1I, d_geo, 3.0);
         assert!((worse - (geo + 3.0 - 2.0 - 10.0 * 2f64.log10())).abs() < 1e-9);
+        // B1C and B2a from IGSO at 5 deg: -161 and -158 dBW into N0 = -203.98 dBW/Hz.
+        let b1c = lb.cn0_dbhz(Signal::BdsB1C, d_geo, 0.0);
+        let b2a = lb.cn0_dbhz(Signal::BdsB2a, d_geo, 0.0);
+        assert!((b1c - 42.98).abs() < 0.02, "{b1c}");
+        assert!((b2a - 45.98).abs() < 0.02, "{b2a}");
+        // From MEO (27 906.1 km, the B-CNAV reference radius) at 5 deg: at least their
+        // MEO minimums, -159 and -156 dBW.
+        let d_meo = {
+            let a = 27_906_100.0;
+            r * cos_user + ((r * cos_user).powi(2) + a * a - r * r).sqrt()
+        };
+        let n0 = 10.0 * (BOLTZMANN_J_PER_K * 290.0).log10();
+        assert!(lb.cn0_dbhz(Signal::BdsB1C, d_meo, 0.0) + n0 >= -159.0);
+        assert!(lb.cn0_dbhz(Signal::BdsB2a, d_meo, 0.0) + n0 >= -156.0);
     }
 
     #[test]

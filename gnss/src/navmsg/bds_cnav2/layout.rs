@@ -36,17 +36,18 @@ pub(super) fn data_fields(t: u8) -> Option<Vec<Field>> {
     let flags = FLAGS;
     let mut v = Vec::new();
     match t {
-        // Figure 6-3: WN, IODE, ephemeris I, flags.
+        // Figure 6-3: WN, flags, IODE, ephemeris I.
         10 => {
-            v.extend([e::WN, e::IODE]);
-            v.extend(e::EPHEMERIS_1);
+            v.push(e::WN);
             v.extend(flags);
+            v.push(e::IODE);
+            v.extend(e::EPHEMERIS_1);
         }
-        // Figure 6-4: HS, ephemeris II, flags.
+        // Figure 6-4: HS, flags, ephemeris II.
         11 => {
             v.push(e::HS);
-            v.extend(e::EPHEMERIS_2);
             v.extend(flags);
+            v.extend(e::EPHEMERIS_2);
         }
         // Figure 6-5: HS, flags, clock, IODC, TGD_B2ap, ISC_B2ad, ionosphere, TGD_B1Cp.
         30 => {
@@ -85,5 +86,28 @@ mod tests {
         let header: u32 = HEADER.iter().map(|f| f.bits).sum();
         assert_eq!(header as usize + 234 + 24, FRAME_BITS);
         assert!(data_fields(31).is_none());
+    }
+
+    /// Offset (bits, 0-based from the PRN's first bit) of field `name` in message type `t`.
+    fn offset(t: u8, name: &str) -> u32 {
+        let fields: Vec<Field> = HEADER.into_iter().chain(data_fields(t).unwrap()).collect();
+        let at = fields.iter().position(|f| f.name == name).unwrap();
+        fields[..at].iter().map(|f| f.bits).sum()
+    }
+
+    /// Absolute positions, which round trips through the shared layout cannot check: an
+    /// independent reading of Figures 6-3/6-4 (the bit positions GNSS-SDR's B2a decoder
+    /// reads real frames with, and cssrlib's unpacking: WN, the ten flag bits, IODE, then
+    /// ephemeris I; HS, the flags, then ephemeris II).
+    #[test]
+    fn ephemeris_messages_put_their_fields_where_receivers_read_them() {
+        assert_eq!(offset(10, "WN"), 30);
+        assert_eq!(offset(10, "DIF(B2a)"), 43);
+        assert_eq!(offset(10, "IODE"), 53);
+        assert_eq!(offset(10, "toe"), 61);
+        assert_eq!(offset(11, "HS"), 30);
+        assert_eq!(offset(11, "Omega0"), 42);
+        assert_eq!(offset(30, "HS"), 30);
+        assert_eq!(offset(30, "toc"), 42);
     }
 }
