@@ -149,10 +149,59 @@ pub fn epoch_from_bdt(week: u32, sow: f64) -> Epoch {
     Epoch::from_bdt_duration(duration_from_week_sow(week, sow))
 }
 
+/// GST - GPST, as Galileo's satellites keep it and broadcast it (Galileo OS SIS ICD Issue
+/// 2.1 §5.1.8, the GST-GPS conversion: `dt = A0G + A1G (TOW - t0G + 604800 (WN - WN0G))`):
+/// an offset at a reference time and its rate. Zero by default: GST is GPST.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct GstGpsOffset {
+    /// A0G (s).
+    pub a0_s: f64,
+    /// A1G (s/s).
+    pub a1: f64,
+    /// t0G (s since the time origin, GPST): the whole GST hour at or before the origin,
+    /// as the broadcast's 3600 s LSB can carry it.
+    pub t0_s: f64,
+}
+
+impl GstGpsOffset {
+    /// `a0_s` and `a1` referred to the whole hour at or before `origin`'s start.
+    pub fn at_origin(a0_s: f64, a1: f64, origin: &TimeOrigin) -> Self {
+        let (_, sow) = gpst_week_sow(origin.start());
+        Self {
+            a0_s,
+            a1,
+            t0_s: -(sow % 3600.0),
+        }
+    }
+
+    /// GST - GPST (s) at `t_s` (s since the origin).
+    pub fn at(&self, t_s: f64) -> f64 {
+        self.a0_s + self.a1 * (t_s - self.t0_s)
+    }
+
+    /// The reference time t0G for the origin `origin`: (seconds of week, continuous GPS
+    /// week; GST's week is aligned with it, `GST_WEEK0_IN_GPS_WEEKS` apart).
+    pub fn reference(&self, origin: &TimeOrigin) -> (u32, u32) {
+        let (week, sow) = gpst_week_sow(origin.start());
+        ((sow + self.t0_s).round().max(0.0) as u32, week)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    #[test]
+    fn the_gst_gps_offset_refers_to_the_hour_before_the_origin() {
+        // 2023-03-12T00:40:00 GPST: Sunday, GPS week 2253, 2400 s into it.
+        let origin = TimeOrigin::new(parse_epoch("2023-03-12T00:40:00 GPST").unwrap());
+        let g = GstGpsOffset::at_origin(20e-9, 1e-14, &origin);
+        assert_eq!(g.t0_s, -2400.0);
+        assert_eq!(g.reference(&origin), (0, 2253));
+        assert!((g.at(0.0) - (20e-9 + 2400.0 * 1e-14)).abs() < 1e-20);
+        assert_eq!(GstGpsOffset::default().at(1234.5), 0.0);
+    }
 
     #[test]
     fn the_supported_range_is_read_in_the_epochs_own_scale() {

@@ -18,7 +18,12 @@ fn truth_with_tgd(dir: &std::path::Path, tgd_s: f64) -> Vec<(String, f64, f64)> 
         e.clock.tgd_s = tgd_s;
     }
     let mut nav = Vec::new();
-    write_nav(&ephs, "test", &[], &mut nav).expect("nav text");
+    write_nav(
+        &ephs,
+        &skyforge_orbits::ephemeris::NavHeader::new("test"),
+        &mut nav,
+    )
+    .expect("nav text");
     std::fs::write(dir.join("nav.rnx"), nav).expect("write nav");
     let text = r#"name = "tgd"
 seed = 1

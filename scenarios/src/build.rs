@@ -15,7 +15,7 @@ use skyforge_orbits::ephemeris::{ConstellationConfig, ConstellationSource};
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, PlatformKind};
 use skyforge_orbits::propagate::PropagateError;
-use skyforge_orbits::time::TimeOrigin;
+use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
 use skyforge_signals::synth::SynthWorld;
 use skyforge_signals::truth::{GeometryChunk, GeometryTruth, StreamError};
@@ -40,6 +40,8 @@ pub struct World {
     pub duration_s: f64,
     /// Truth geometry step (s) = 1 / `truth.geometry_rate_hz`.
     pub step_s: f64,
+    /// GST - GPST (`[gnss.galileo] gst_gps_ns`, zero by default).
+    pub gst_gps: GstGpsOffset,
 }
 
 impl World {
@@ -56,7 +58,8 @@ impl World {
             &self.satellites,
             &self.antennas,
             self.step_s,
-        );
+        )
+        .with_gst_gps(self.gst_gps);
         truth.stream(&mut self.platform, self.duration_s, chunk_epochs, sink)
     }
 
@@ -69,6 +72,7 @@ impl World {
             platform: &mut self.platform,
             antennas: &self.antennas,
             duration_s: self.duration_s,
+            gst_gps: self.gst_gps,
         }
     }
 }
@@ -104,6 +108,7 @@ impl Scenario {
             antennas,
             duration_s: self.time.duration_s,
             step_s: 1.0 / self.truth.geometry_rate_hz,
+            gst_gps: self.gnss.galileo.gst_gps(&origin),
         })
     }
 

@@ -5,6 +5,7 @@ use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
 use hifitime::Epoch;
 use skyforge_gnss::observation::NOISE_SIGMA0_M;
 use skyforge_orbits::check::{Allowed, GROUND_RADIUS_M, Invalid, check_position, check_table};
+use skyforge_orbits::ephemeris::System;
 use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
@@ -235,6 +236,7 @@ fn check_gnss(gnss: &GnssConfig) -> Result<(), Invalid> {
     for (system, table, config) in gnss.tables() {
         config
             .check(system.max_prn())
+            .and_then(|()| config.check_gst_gps(system == System::Galileo))
             .map_err(|e| e.within(table))?;
     }
     if gnss.enabled_systems().is_empty() {

@@ -118,6 +118,8 @@ pub(crate) fn default_constellation() -> ConstellationConfig {
         nav_file: None,
         embedded_set: BeidouSet::default(),
         prns: None,
+        gst_gps_ns: 0.0,
+        gst_gps_drift_ns_per_day: 0.0,
     }
 }
 

@@ -104,7 +104,12 @@ fn a_rinex_file_of_inav_and_fnav_sets_gives_the_fnav_sets() {
     // F/NAV first: were both kept, the I/NAV set read last would win.
     let ephs: Vec<_> = fnav.into_iter().chain(ephs).collect();
     let mut text = Vec::new();
-    write_nav(&ephs, "test", &[], &mut text).expect("write");
+    write_nav(
+        &ephs,
+        &skyforge_orbits::ephemeris::NavHeader::new("test"),
+        &mut text,
+    )
+    .expect("write");
     std::fs::write(dir.path().join("gal.rnx"), text).expect("write nav file");
     let scenario = replace(
         BASE,

@@ -462,3 +462,22 @@ fn more_than_64_antennas() {
     let line = text.lines().position(|l| l == "name = \"ant65\"").unwrap();
     assert!(err.line.is_some_and(|l| l.abs_diff(line + 1) <= 1), "{err}");
 }
+
+/// GST - GPST is Galileo's: set on GPS it is refused, and on Galileo beyond what A0G
+/// carries, each at its line.
+#[test]
+fn a_gst_gps_offset_off_galileo_or_beyond_the_broadcast() {
+    let text = replace(BASE, "source = \"embedded\"", "gst_gps_ns = 20.0");
+    let err = parse_error_at(&text, "gnss.gps.gst_gps_ns", "gst_gps_ns = 20.0", "20.0");
+    assert!(err.allowed.contains("only [gnss.galileo]"), "{err}");
+    let text = format!("{BASE}\n[gnss.galileo]\ngst_gps_ns = 2000.0\n");
+    let err = parse_error_at(
+        &text,
+        "gnss.galileo.gst_gps_ns",
+        "gst_gps_ns = 2000.0",
+        "2000.0",
+    );
+    assert!(err.allowed.contains("953.645 ns"), "{err}");
+    let text = format!("{BASE}\n[gnss.galileo]\ngst_gps_ns = -20.0\n");
+    assert!(parse_in(&text, Path::new(".")).is_ok());
+}

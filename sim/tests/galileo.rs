@@ -254,3 +254,69 @@ fn an_observed_signal_follows_its_own_phase_centre() {
         );
     }
 }
+
+/// GST - GPST (`[gnss.galileo] gst_gps_ns`): Galileo's satellite clocks run that far ahead
+/// of GPST, so every Galileo pseudorange and carrier phase shortens by c x 100 ns =
+/// 29.979 m against the same run without it, GPS's stay as they were, and the navigation
+/// file broadcasts the offset (`GAGP`, A0G = 1e-7 s) as the messages do.
+#[test]
+fn gst_runs_ahead_of_gpst_by_the_offset_galileo_broadcasts() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let extra = "\n[signal]\nsample_rate_hz = 20.46e6\nformat = \"ci8\"\ncn0_dbhz = 45.0\n\n[observation]\nlevel = \"observation\"\n\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.0\ncode_m = 0.0\n";
+    let run = |name: &str, galileo: &str| {
+        let mut text = support::bundled_edited(
+            "ground-static",
+            &[
+                (
+                    "[platform.ground]",
+                    &format!("{galileo}\n\n[platform.ground]"),
+                ),
+                ("duration_s = 3600.0", "duration_s = 10.0"),
+            ],
+        );
+        text.push_str(extra);
+        let path = support::write_scenario(dir.path(), &format!("{name}.toml"), &text);
+        let out = dir.path().join(name);
+        support::skyforge_ok(&["run", &path, "--out", out.to_str().unwrap()], dir.path());
+        let obs = std::fs::read_to_string(out.join("observations/ant1.obs.rnx")).expect("obs");
+        let nav = std::fs::read_to_string(out.join("nav.rnx")).expect("nav");
+        (obs, nav)
+    };
+    let (base, base_nav) = run("base", "[gnss.galileo]");
+    let (ahead, nav) = run("ahead", "[gnss.galileo]\ngst_gps_ns = 100.0");
+    let gagp = nav.lines().find(|l| l.ends_with("TIME SYSTEM CORR"));
+    assert!(
+        gagp.is_some_and(|l| l.starts_with("GAGP  1.0000000000E-07 0.000000000E+00")),
+        "{gagp:?}"
+    );
+    assert!(base_nav.contains("GAGP  0.0000000000E+00"), "{base_nav}");
+    let shift_m = -299_792_458.0 * 100e-9;
+    let lambda_m = 299_792_458.0 / 1_176.45e6;
+    let (mut galileo, mut gps) = (0, 0);
+    let body = |obs: &str| obs.split("END OF HEADER").nth(1).unwrap_or("").to_string();
+    let (base, ahead) = (body(&base), body(&ahead));
+    for (a, b) in base.lines().zip(ahead.lines()) {
+        let value = |line: &str, k: usize| -> f64 {
+            line.get(3 + 16 * k..3 + 16 * k + 14)
+                .and_then(|v| v.trim().parse().ok())
+                .unwrap_or(f64::NAN)
+        };
+        if a.starts_with('E') {
+            let code = value(b, 0) - value(a, 0);
+            let phase_m = (value(b, 1) - value(a, 1)) * lambda_m;
+            assert!((code - shift_m).abs() < 2e-3, "{a}\n{b}: code {code} m");
+            assert!(
+                (phase_m - shift_m).abs() < 2e-3,
+                "{a}\n{b}: phase {phase_m} m"
+            );
+            galileo += 1;
+        } else if a.starts_with('G') {
+            assert_eq!(a, b);
+            gps += 1;
+        }
+    }
+    assert!(
+        galileo > 20 && gps > 20,
+        "{galileo} Galileo, {gps} GPS lines"
+    );
+}

@@ -43,13 +43,67 @@ pub struct ConstellationConfig {
     /// Only these PRNs (default: all available).
     #[serde(default)]
     pub prns: Option<Vec<u8>>,
+    /// Galileo only: GST - GPST (ns) at the start's whole hour, which the satellites keep
+    /// and broadcast (A0G); default 0.
+    #[serde(default)]
+    pub gst_gps_ns: f64,
+    /// Galileo only: GST - GPST's rate (ns per day, A1G); default 0.
+    #[serde(default)]
+    pub gst_gps_drift_ns_per_day: f64,
 }
+
+/// Largest |GST - GPST| the broadcast carries either way: A0G's 16 bits at 2^-35 s,
+/// 2^15 - 1 LSBs (ns).
+pub const GST_GPS_MAX_NS: f64 = 32_767.0 * 1e9 / 34_359_738_368.0;
+/// Largest |rate| A1G's 12 bits at 2^-51 s/s carry either way, 2^11 - 1 LSBs (ns per day).
+pub const GST_GPS_DRIFT_MAX_NS_PER_DAY: f64 = 2_047.0 * 86_400.0 * 1e9 / 2_251_799_813_685_248.0;
 
 fn yes() -> bool {
     true
 }
 
 impl ConstellationConfig {
+    /// The GST - GPST offset this table sets, referred to `origin` (zero unless set).
+    pub fn gst_gps(&self, origin: &crate::time::TimeOrigin) -> crate::time::GstGpsOffset {
+        crate::time::GstGpsOffset::at_origin(
+            self.gst_gps_ns * 1e-9,
+            self.gst_gps_drift_ns_per_day * 1e-9 / 86_400.0,
+            origin,
+        )
+    }
+
+    /// The GST - GPST fields: finite and within what the broadcast carries; set only on
+    /// Galileo's table (`galileo`).
+    pub fn check_gst_gps(&self, galileo: bool) -> Result<(), Invalid> {
+        for (field, value, max, unit) in [
+            ("gst_gps_ns", self.gst_gps_ns, GST_GPS_MAX_NS, "ns"),
+            (
+                "gst_gps_drift_ns_per_day",
+                self.gst_gps_drift_ns_per_day,
+                GST_GPS_DRIFT_MAX_NS_PER_DAY,
+                "ns per day",
+            ),
+        ] {
+            if !galileo && value != 0.0 {
+                return Err(Invalid::new(
+                    field,
+                    value,
+                    "only [gnss.galileo] has a GST - GPST offset",
+                ));
+            }
+            if !(value.is_finite() && value.abs() < max) {
+                return Err(Invalid::new(
+                    field,
+                    value,
+                    format!(
+                        "must be finite and within +-{max:.3} {unit} (what the broadcast carries)"
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Cross-field checks that need no file access (PRN range, at least one PRN when the
     /// constellation is enabled, nav_file iff rinex).
     pub fn check(&self, max_prn: u8) -> Result<(), Invalid> {
@@ -109,7 +163,39 @@ mod tests {
             nav_file: nav.map(PathBuf::from),
             embedded_set: BeidouSet::Bds3,
             prns,
+            gst_gps_ns: 0.0,
+            gst_gps_drift_ns_per_day: 0.0,
         }
+    }
+
+    #[test]
+    fn gst_gps_is_galileos_and_within_what_the_broadcast_carries() {
+        let base = cfg(ConstellationSource::Embedded, None, None);
+        let with = |ns: f64, drift: f64| ConstellationConfig {
+            gst_gps_ns: ns,
+            gst_gps_drift_ns_per_day: drift,
+            ..base.clone()
+        };
+        assert_eq!(with(100.0, -5.0).check_gst_gps(true), Ok(()));
+        assert_eq!(base.check_gst_gps(false), Ok(()));
+        assert_eq!(
+            with(100.0, 0.0).check_gst_gps(false).unwrap_err().field,
+            "gst_gps_ns"
+        );
+        assert_eq!(with(-953.6, 78.5).check_gst_gps(true), Ok(()));
+        assert_eq!(
+            with(953.7, 0.0).check_gst_gps(true).unwrap_err().field,
+            "gst_gps_ns"
+        );
+        assert_eq!(
+            with(f64::NAN, 0.0).check_gst_gps(true).unwrap_err().field,
+            "gst_gps_ns"
+        );
+        let e = with(0.0, 78.6).check_gst_gps(true).unwrap_err();
+        assert_eq!(e.field, "gst_gps_drift_ns_per_day");
+        // (2^15 - 1) x 2^-35 s = 953.645 ns; (2^11 - 1) x 2^-51 s/s x 86 400 s = 78.542 ns.
+        assert!((GST_GPS_MAX_NS - 953.645).abs() < 1e-3);
+        assert!((GST_GPS_DRIFT_MAX_NS_PER_DAY - 78.542).abs() < 1e-3);
     }
 
     #[test]

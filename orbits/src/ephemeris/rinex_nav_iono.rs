@@ -204,13 +204,12 @@ mod tests {
             [1.1176e-8, 2.9802e-8, -4.1723e-7, 6.5565e-7],
             [1.4131e5, -5.2429e5, 1.6384e6, -4.5875e5],
         );
-        crate::ephemeris::rinex_nav_write::write_nav(
-            &[],
-            "t",
-            &[(crate::ephemeris::System::Beidou, a, b)],
-            &mut out,
-        )
-        .unwrap();
+        let iono = [(crate::ephemeris::System::Beidou, a, b)];
+        let header = crate::ephemeris::NavHeader {
+            iono: &iono,
+            ..crate::ephemeris::NavHeader::new("t")
+        };
+        crate::ephemeris::rinex_nav_write::write_nav(&[], &header, &mut out).unwrap();
         let i = parse_iono(&String::from_utf8(out).unwrap(), "w").unwrap();
         assert_eq!(i.bds, Some(KlobucharCoeffs { alpha: a, beta: b }));
         assert_eq!(i.gps, None);

@@ -42,14 +42,46 @@ fn orbit_line(out: &mut impl Write, v: [f64; 4]) -> io::Result<()> {
     )
 }
 
-/// Write `ephemerides` as a RINEX 3.04 navigation file, `program` naming the writer, with
-/// `IONOSPHERIC CORR` header lines for each (system, alpha, beta) in `iono`.
+/// A `TIME SYSTEM CORR` header line's polynomial: `a0 + a1 (t - t_ref)`, the reference
+/// `t_ref` given as seconds of week and a continuous GPS week (RINEX 3.04 Table A5).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeSystemCorr {
+    pub a0_s: f64,
+    pub a1: f64,
+    pub t_ref_sow: u32,
+    pub week: u32,
+}
+
+/// What a navigation file's header carries besides its version line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NavHeader<'a> {
+    /// The writer, in `PGM / RUN BY / DATE`.
+    pub program: &'a str,
+    /// `IONOSPHERIC CORR` lines: (system, alpha, beta).
+    pub iono: &'a [(System, [f64; 4], [f64; 4])],
+    /// `TIME SYSTEM CORR` `GAGP`: GST - GPST as Galileo broadcasts it (A0G, A1G).
+    pub gst_gps: Option<TimeSystemCorr>,
+}
+
+impl<'a> NavHeader<'a> {
+    /// A header naming `program`, nothing else.
+    pub fn new(program: &'a str) -> Self {
+        Self {
+            program,
+            iono: &[],
+            gst_gps: None,
+        }
+    }
+}
+
+/// Write `ephemerides` as a RINEX 3.04 navigation file with `header`'s program,
+/// `IONOSPHERIC CORR` and `TIME SYSTEM CORR` lines.
 pub fn write_nav(
     ephemerides: &[BroadcastEphemeris],
-    program: &str,
-    iono: &[(System, [f64; 4], [f64; 4])],
+    header: &NavHeader<'_>,
     out: &mut impl Write,
 ) -> io::Result<()> {
+    let (program, iono) = (header.program, header.iono);
     let systems: Vec<System> = ephemerides.iter().map(|e| e.sat.system).collect();
     let letter = match systems.first() {
         Some(&first) if systems.iter().all(|&s| s == first) => first.letter(),
@@ -88,6 +120,17 @@ pub fn write_nav(
                 fortran(v[3], 4, 12)
             )?;
         }
+    }
+    if let Some(c) = header.gst_gps {
+        // A4, 1X, D17.10, D16.9, 1X, I6, 1X, I4 (RINEX 3.04 Table A5, as a PolaRx5 writes).
+        let line = format!(
+            "GAGP {}{} {:>6} {:>4}",
+            fortran(c.a0_s, 10, 17),
+            fortran(c.a1, 9, 16),
+            c.t_ref_sow,
+            c.week
+        );
+        writeln!(out, "{line:<60}TIME SYSTEM CORR")?;
     }
     writeln!(out, "{:60}END OF HEADER", "")?;
     for e in ephemerides {
@@ -152,6 +195,7 @@ fn fit_hours(fit_s: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
     use crate::ephemeris::NavMessage;
     use crate::ephemeris::config::BeidouSet;
     use crate::ephemeris::nominal;
@@ -172,7 +216,7 @@ mod tests {
         let mut e = nominal::galileo(start).remove(0);
         e.message = message;
         let mut buf = Vec::new();
-        write_nav(&[e], "skyforge", &[], &mut buf).unwrap();
+        write_nav(&[e], &NavHeader::new("skyforge"), &mut buf).unwrap();
         String::from_utf8(buf).unwrap()
     }
 
@@ -216,7 +260,7 @@ mod tests {
         let mut ephs = nominal::gps(start);
         ephs[1].fit_interval_s = 6.0 * 3600.0;
         let mut buf = Vec::new();
-        write_nav(&ephs, "skyforge", &[], &mut buf).unwrap();
+        write_nav(&ephs, &NavHeader::new("skyforge"), &mut buf).unwrap();
         let back = parse_nav(&String::from_utf8(buf).unwrap(), "fit.rnx").unwrap();
         assert!(back[0].fit_interval_s >= 0.999_999 * nominal::NOMINAL_FIT_S);
         assert!((back[1].fit_interval_s - 6.0 * 3600.0).abs() < 1e-6);
@@ -255,17 +299,16 @@ mod tests {
             };
         }
         let mut buf = Vec::new();
-        write_nav(
-            &ephs,
-            "skyforge",
-            &[(
-                System::Gps,
-                [1.1176e-8, 0.0, -5.9605e-8, 1.1921e-7],
-                [1.0e5, 0.0, -1.9661e5, 0.0],
-            )],
-            &mut buf,
-        )
-        .unwrap();
+        let iono = [(
+            System::Gps,
+            [1.1176e-8, 0.0, -5.9605e-8, 1.1921e-7],
+            [1.0e5, 0.0, -1.9661e5, 0.0],
+        )];
+        let header = NavHeader {
+            iono: &iono,
+            ..NavHeader::new("skyforge")
+        };
+        write_nav(&ephs, &header, &mut buf).unwrap();
         assert!(text_has_iono(&buf));
         let text = String::from_utf8(buf).unwrap();
         assert!(
@@ -307,5 +350,30 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The GAGP line in the layout of a real receiver's file (ESBC00DNK, 2020 day 177,
+    /// Septentrio PolaRx5: `GAGP  2.3574102670E-09 3.996802889E-15 345600 2111`).
+    #[test]
+    fn the_gst_gps_line_has_a_real_files_layout() {
+        let mut buf = Vec::new();
+        let header = NavHeader {
+            gst_gps: Some(TimeSystemCorr {
+                a0_s: 2.3574102670e-9,
+                a1: 3.996802889e-15,
+                t_ref_sow: 345_600,
+                week: 2111,
+            }),
+            ..NavHeader::new("t")
+        };
+        write_nav(&[], &header, &mut buf).unwrap();
+        let text = String::from_utf8(buf).unwrap();
+        let expected = format!(
+            "{:<60}TIME SYSTEM CORR",
+            "GAGP  2.3574102670E-09 3.996802889E-15 345600 2111"
+        );
+        assert!(text.lines().any(|l| l == expected), "{text}");
+        // The reader takes the file (the line is a header line it passes over).
+        assert!(parse_nav(&text, "t.rnx").unwrap().is_empty());
     }
 }

@@ -7,14 +7,14 @@ use crate::errors::ionosphere::{IonoConfig, KlobucharCoeffs};
 use hifitime::Epoch;
 use skyforge_gnss::navmsg::bds_cnav1::BdsCnav1Encoder;
 use skyforge_gnss::navmsg::bds_cnav2::BdsCnav2Encoder;
-use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, FnavParams};
-use skyforge_gnss::navmsg::galileo_inav::{InavEncoder, InavError, InavParams};
+use skyforge_gnss::navmsg::galileo_fnav::{FnavEncoder, FnavError, GalileoParams};
+use skyforge_gnss::navmsg::galileo_inav::{InavEncoder, InavError};
 use skyforge_gnss::navmsg::gps_cnav::{CnavEncoder, CnavError, CnavParams};
 use skyforge_gnss::navmsg::gps_lnav::{Almanac, IonoParams, LnavEncoder, LnavError, UtcParams};
 use skyforge_gnss::navmsg::{BdsCnavError, BdsCnavParams, BdsNavEncoder, BdsNavError, Klobuchar};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, OrbitClass, SatId, System};
-use skyforge_orbits::time::GST_WEEK0_IN_GPS_WEEKS;
+use skyforge_orbits::time::{GST_WEEK0_IN_GPS_WEEKS, GstGpsOffset, TimeOrigin};
 
 /// Why a constellation's transmitters could not be built.
 #[derive(Debug, thiserror::Error)]
@@ -45,18 +45,20 @@ pub enum TransmitterError {
 }
 
 /// The transmitters of `signal` for its constellation's ephemerides among `ephs`,
-/// broadcasting the Klobuchar coefficients of `iono` where the message carries them.
+/// broadcasting the Klobuchar coefficients of `iono` where the message carries them and
+/// Galileo's GST - GPST offset `gst_gps`.
 pub fn transmitters(
     signal: Signal,
     ephs: &[BroadcastEphemeris],
     start: Epoch,
     iono: &IonoConfig,
+    gst_gps: &GstGpsOffset,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     match signal {
         Signal::GpsL1Ca => gps_l1ca(ephs, start, &iono.gps),
         Signal::BdsB1I => bds_b1i(ephs, start, &iono.bds),
-        Signal::GalE5a => gal_e5a(ephs, start),
-        Signal::GalE1 => gal_e1(ephs, start),
+        Signal::GalE5a => gal_e5a(ephs, start, gst_gps),
+        Signal::GalE1 => gal_e1(ephs, start, gst_gps),
         Signal::GpsL5 => gps_l5(ephs, start, &iono.gps),
         Signal::BdsB2a => bds_b2a(ephs, start),
         Signal::BdsB1C => bds_b1c(ephs, start),
@@ -253,17 +255,14 @@ fn bds3(
 }
 
 /// Galileo E5a transmitters (F/NAV on E5a-I, pilot on E5a-Q) for the Galileo ephemerides
-/// among `ephs` ([`galileo`]).
+/// among `ephs` ([`galileo`]), broadcasting `gst_gps`.
 pub fn gal_e5a(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
+    gst_gps: &GstGpsOffset,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     galileo(ephs, start, |eph, gal, leap_s, week| {
-        let params = FnavParams {
-            dt_ls_s: leap_s,
-            dt_lsf_s: leap_s,
-            ..FnavParams::default()
-        };
+        let params = galileo_params(leap_s, start, gst_gps);
         let nav = FnavEncoder::new(eph, gal, &params, week)?;
         Transmitter::gal_e5a(eph.sat, nav, start).ok_or(TransmitterError::NoSignal(eph.sat))
     })
@@ -271,28 +270,42 @@ pub fn gal_e5a(
 
 /// Galileo E1 transmitters (I/NAV on E1-B, pilot on E1-C, CBOC) for the Galileo
 /// ephemerides among `ephs` ([`galileo`]); the codes come from the user's tables
-/// (`skyforge_gnss::codes::e1_codes`).
+/// (`skyforge_gnss::codes::e1_codes`), broadcasting `gst_gps`.
 pub fn gal_e1(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
+    gst_gps: &GstGpsOffset,
 ) -> Result<Vec<Transmitter>, TransmitterError> {
     let codes = skyforge_gnss::codes::e1_codes()?;
     galileo(ephs, start, |eph, gal, leap_s, week| {
-        let params = InavParams {
-            dt_ls_s: leap_s,
-            dt_lsf_s: leap_s,
-            ..InavParams::default()
-        };
+        let params = galileo_params(leap_s, start, gst_gps);
         let nav = InavEncoder::new(eph, gal, &params, week)?;
         Transmitter::gal_e1(eph.sat, nav, codes, start).ok_or(TransmitterError::NoSignal(eph.sat))
     })
 }
 
+/// I/NAV's and F/NAV's parameters: GST - UTC the leap seconds `leap_s` at `start`, GST - GPS
+/// `gst_gps` with its reference time (§5.1.8), the rest zero.
+fn galileo_params(leap_s: i32, start: Epoch, gst_gps: &GstGpsOffset) -> GalileoParams {
+    let (t0g_s, week) = gst_gps.reference(&TimeOrigin::new(start));
+    let wn0g = week.saturating_sub(GST_WEEK0_IN_GPS_WEEKS) % 64;
+    GalileoParams {
+        dt_ls_s: leap_s,
+        dt_lsf_s: leap_s,
+        a0g_s: gst_gps.a0_s,
+        a1g_s_s: gst_gps.a1,
+        t0g_s,
+        wn0g,
+        ..GalileoParams::default()
+    }
+}
+
 /// The transmitters `build` makes of each Galileo ephemeris among `ephs` (with the
 /// constellation for the almanac, the leap seconds at `start` and the GST week the
 /// symbols count from). Sets off the 60 s grid (the embedded constellation at any start)
-/// are re-expressed on it without moving the orbit or the clock. GST is GPST here: the
-/// broadcast GST-GPS offset is zero, and GST-UTC carries the leap seconds at `start`.
+/// are re-expressed on it without moving the orbit or the clock. The symbols count in GST
+/// as the satellite clock keeps it (GST - GPST, `[gnss.galileo] gst_gps_ns`, lies in the
+/// clock truth: `truth::GeometryTruth::with_gst_gps`).
 fn galileo(
     ephs: &[BroadcastEphemeris],
     start: Epoch,
@@ -320,6 +333,18 @@ mod tests {
     use super::*;
     use hifitime::TimeScale;
     use skyforge_orbits::ephemeris::{BeidouSet, nominal};
+
+    /// I/NAV and F/NAV carry GST - GPST with the reference of the hour at or before the
+    /// start: 2023-03-12T00:40:00 GPST is 2400 s into GPS week 2253, GST week 1229.
+    #[test]
+    fn galileo_messages_carry_the_gst_gps_offset() {
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 40, 0, 0, TimeScale::GPST);
+        let g = GstGpsOffset::at_origin(50e-9, 2e-14, &TimeOrigin::new(start));
+        let p = galileo_params(18, start, &g);
+        assert_eq!((p.a0g_s, p.a1g_s_s), (50e-9, 2e-14));
+        assert_eq!((p.t0g_s, p.wn0g), (0, 1229 % 64));
+        assert_eq!((p.dt_ls_s, p.dt_lsf_s), (18, 18));
+    }
 
     /// B2a from the BDS-3 MEO and IGSO satellites only: the BDS-3 set's GEOs are left out,
     /// and the BDS-2 set (PRN 1-16) has none to send it.

@@ -30,9 +30,11 @@ use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::check::Invalid;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId, System};
+use skyforge_orbits::ephemeris::{
+    BroadcastEphemeris, EphemerisStore, NavHeader, SatId, System, TimeSystemCorr,
+};
 use skyforge_orbits::platform::{Platform, PlatformError};
-use skyforge_orbits::time::TimeOrigin;
+use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 
 /// Geometry epochs the renderer interpolates between (s).
 pub const GEOMETRY_STEP_S: f64 = 1.0;
@@ -156,6 +158,8 @@ pub struct SynthWorld<'a> {
     pub platform: &'a mut Platform,
     pub antennas: &'a [Antenna],
     pub duration_s: f64,
+    /// GST - GPST: Galileo's satellite clocks keep it, its messages broadcast it.
+    pub gst_gps: GstGpsOffset,
 }
 
 /// The transmitters of one band, written to one recording per antenna: one signal's, or
@@ -364,7 +368,7 @@ impl<'a> SynthSession<'a> {
         let mut per_signal = Vec::new();
         for system in [System::Gps, System::Beidou, System::Galileo] {
             for sig in signal.signals_of(system) {
-                let txs = constellation::transmitters(sig, &ephs, start, &iono)
+                let txs = constellation::transmitters(sig, &ephs, start, &iono, &world.gst_gps)
                     .map_err(|e| SynthError::Transmitters(sig, e))?;
                 per_signal.push((sig, txs));
             }
@@ -553,14 +557,28 @@ impl<'a> SynthSession<'a> {
     }
 
     /// The navigation file a receiver of this session's signals needs: its broadcast
-    /// ephemerides and ionosphere as RINEX 3.04 navigation, written by `skyforge`.
+    /// ephemerides, ionosphere and (with Galileo) GST - GPST as RINEX 3.04 navigation,
+    /// written by `skyforge`.
     pub fn write_navigation(&self, out: &mut impl std::io::Write) -> std::io::Result<()> {
-        skyforge_orbits::ephemeris::write_nav(
-            self.broadcast_ephemerides(),
-            "skyforge",
-            &self.broadcast_iono(),
-            out,
-        )
+        let ephs = self.broadcast_ephemerides();
+        let iono = self.broadcast_iono();
+        let galileo = ephs.iter().any(|e| e.sat.system == System::Galileo);
+        let gst_gps = galileo.then(|| {
+            let g = &self.world.gst_gps;
+            let (t_ref_sow, week) = g.reference(self.world.origin);
+            TimeSystemCorr {
+                a0_s: g.a0_s,
+                a1: g.a1,
+                t_ref_sow,
+                week,
+            }
+        });
+        let header = NavHeader {
+            program: "skyforge",
+            iono: &iono,
+            gst_gps,
+        };
+        skyforge_orbits::ephemeris::write_nav(ephs, &header, out)
     }
 
     /// Whether the signals carry an ionospheric delay.
@@ -673,7 +691,8 @@ impl<'a> SynthSession<'a> {
         let tx_signals: Vec<Signal> = self.transmitters.iter().map(|t| t.signal).collect();
         let store = EphemerisStore::new(self.broadcast, world.origin);
         let sats = self.sats;
-        let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S);
+        let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S)
+            .with_gst_gps(world.gst_gps);
         let mut running = Running {
             origin: world.origin,
             antennas: world.antennas,

@@ -14,10 +14,11 @@ use crate::antenna::Antenna;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::{BoundEphemeris, EphemerisStore, SatId};
+use skyforge_orbits::ephemeris::{BoundEphemeris, EphemerisStore, SatId, System};
 use skyforge_orbits::frames::ecef_to_geodetic;
 use skyforge_orbits::frames::{az_el, c_ecef_ned};
 use skyforge_orbits::platform::{Platform, PlatformError, PlatformState, PlatformWindow};
+use skyforge_orbits::time::GstGpsOffset;
 use skyforge_orbits::visibility::{earth_blocked, within_fov};
 use skyforge_orbits::{Mat3, Vec3};
 
@@ -211,6 +212,8 @@ pub struct GeometryTruth<'a> {
     carriers_hz: Vec<f64>,
     step_s: f64,
     stencil: Stencil,
+    /// GST - GPST, in Galileo's satellite clocks.
+    gst_gps: GstGpsOffset,
 }
 
 /// Error streaming geometry.
@@ -244,7 +247,14 @@ impl<'a> GeometryTruth<'a> {
                 .collect(),
             step_s,
             stencil: Stencil::new(step_s),
+            gst_gps: GstGpsOffset::default(),
         }
+    }
+
+    /// Galileo's satellite clocks keep GST, `gst_gps` ahead of GPST: each one's offset from
+    /// GPST is its broadcast clock (against GST) plus `gst_gps` (Galileo OS SIS ICD §5.1.8).
+    pub fn with_gst_gps(self, gst_gps: GstGpsOffset) -> Self {
+        Self { gst_gps, ..self }
     }
 
     /// Extra time a platform window needs on each side of a chunk's epochs.
@@ -444,7 +454,12 @@ impl<'a> GeometryTruth<'a> {
         let (azimuth_rad, elevation_rad) = az_el(&(at.c_ecef_ned * los));
         let los_antenna = self.frames[a].c_body_antenna * (st.c_body_ecef.transpose() * los);
         let (antenna_azimuth_rad, antenna_elevation_rad) = az_el_xyz(&los_antenna);
-        let (sat_clock_s, sat_clock_drift) = eph.clock_offset_and_drift(t_s - lt.tau_s);
+        let t_tx_s = t_s - lt.tau_s;
+        let (mut sat_clock_s, mut sat_clock_drift) = eph.clock_offset_and_drift(t_tx_s);
+        if eph.eph.sat.system == System::Galileo {
+            sat_clock_s += self.gst_gps.at(t_tx_s);
+            sat_clock_drift += self.gst_gps.a1;
+        }
         LinkGeometry {
             visible: true,
             range_m: lt.range_m(),
