@@ -163,36 +163,35 @@ impl Channel {
         }
     }
 
-    /// Time this channel from `sibling`, the code epochs another signal of the same
-    /// satellite at the same antenna has timed (a hand-over, as a multi-frequency receiver
-    /// times its second signal from its first instead of waiting for that signal's own
-    /// message): only a signal tracked on its pilot with the secondary code found, whose
-    /// carrier polarity is then known without the data. The sibling's epoch nearest this
-    /// channel's last code epoch gives that epoch's transmit time to within the signals'
-    /// delay differences; every signal's code periods start at whole multiples of the
-    /// period in system time, so the nearest multiple is taken, and the hand-over is
-    /// refused where that lies beyond [`HANDOVER_TOLERANCE_S`]. Returns whether it took.
-    pub(crate) fn time_from(&mut self, sibling: &VecDeque<ChannelSample>) -> bool {
+    /// The sample index of the last code epoch of a channel that can take its time from
+    /// another signal ([`Self::time_from`]): not yet timed, tracked on its pilot with the
+    /// secondary code found (its carrier polarity then known without the data), locked.
+    pub(crate) fn awaiting_time(&self) -> Option<f64> {
+        let (_, sample) = self.last_epoch?;
+        (!self.is_timed() && self.tracker.pilot_synchronised()).then_some(sample)
+    }
+
+    /// Time this channel from `sibling`, the timed code epoch of another signal of the
+    /// same satellite at the same antenna nearest its own last one (a hand-over, as a
+    /// multi-frequency receiver times its second signal from its first instead of waiting
+    /// for that signal's own message; only where [`Self::awaiting_time`]). It gives this
+    /// channel's epoch its transmit time to within the signals' delay differences; every
+    /// signal's code periods start at whole multiples of the period in system time, so the
+    /// nearest multiple is taken, and the hand-over is refused where that lies beyond
+    /// [`HANDOVER_TOLERANCE_S`].
+    pub(crate) fn time_from(&mut self, s: &ChannelSample) {
         let Some((k, sample)) = self.last_epoch else {
-            return false;
+            return;
         };
-        if self.is_timed() || !self.tracker.pilot_synchronised() {
-            return false;
+        if self.awaiting_time().is_none() {
+            return;
         }
-        let nearest = sibling.iter().min_by(|a, b| {
-            let (da, db) = (a.sample_index - sample, b.sample_index - sample);
-            da.abs().total_cmp(&db.abs())
-        });
-        let Some(s) = nearest else {
-            return false;
-        };
         let predicted = s.t_tx_s + (sample - s.sample_index) / self.sample_rate_hz;
         let period = self.signal().code_period_s();
         let Some(t_tx_s) = whole_periods_near(predicted, period, HANDOVER_TOLERANCE_S) else {
-            return false;
+            return;
         };
         self.clock.hand_over(k, t_tx_s);
         self.inverted = self.tracker.pilot_inverted();
-        true
     }
 }

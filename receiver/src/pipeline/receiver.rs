@@ -329,19 +329,27 @@ impl Receiver {
         self.epochs(first_sample + len as u64)
     }
 
-    /// Channels not yet timed take their time from a timed signal of the same satellite
-    /// at the same antenna where they can ([`Channel::time_from`]).
+    /// Channels not yet timed take their time from the nearest timed code epoch of another
+    /// signal of the same satellite at the same antenna where they can
+    /// ([`Channel::time_from`]).
     fn hand_over_timing(&mut self) {
         for i in 0..self.channels.len() {
             let ch = &self.channels[i];
-            if ch.is_timed() {
+            let Some(sample) = ch.awaiting_time() else {
                 continue;
-            }
-            let sibling = self.channels.iter().find(|s| {
-                s.antenna == ch.antenna && s.sat == ch.sat && s.is_timed() && !s.queue.is_empty()
-            });
-            if let Some(queue) = sibling.map(|s| s.queue.clone()) {
-                self.channels[i].time_from(&queue);
+            };
+            let nearest = self
+                .channels
+                .iter()
+                .filter(|s| s.antenna == ch.antenna && s.sat == ch.sat && s.is_timed())
+                .flat_map(|s| s.queue.iter())
+                .min_by(|a, b| {
+                    let (da, db) = (a.sample_index - sample, b.sample_index - sample);
+                    da.abs().total_cmp(&db.abs())
+                })
+                .copied();
+            if let Some(s) = nearest {
+                self.channels[i].time_from(&s);
             }
         }
     }
