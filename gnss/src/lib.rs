@@ -15,4 +15,5 @@ pub mod observation;
 pub mod sample_format;
 pub mod sigmf;
 pub mod signal;
+pub mod spread;
 pub mod subcarrier;

@@ -2,9 +2,9 @@
 //! 2-core machine with 3 correlators and complex input). One 1 ms block at 4.092 Msps is
 //! correlated by 24 channels (12 GPS + 12 BeiDou PRNs, distinct Doppler and code phase),
 //! single-threaded and with rayon over the channels. A second group correlates 1 ms at
-//! 20.46 Msps for 24 pilot signals (12 GPS L5 + 12 Galileo E5a PRNs) with the
-//! pilot-and-data taps the receiver tracks them with. A third runs whole channel
-//! trackers (correlator, loops, lock detectors, bit sync) over 0.2 s of a GPS signal.
+//! 20.46 Msps for 12 PRNs of each signal, one thread, with the taps the receiver tracks
+//! the signal with. A third runs whole channel trackers (correlator, loops, lock
+//! detectors, bit sync) over 0.2 s of a GPS signal.
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use num_complex::Complex;
@@ -33,25 +33,38 @@ fn channels(taps: TapSet) -> Vec<(Correlator, NcoState)> {
         .collect()
 }
 
-/// Sample rate and 1 ms block of the pilot-signal group.
+/// Sample rate and 1 ms block of the per-signal groups.
 const WIDE_FS_HZ: f64 = 20.46e6;
 const WIDE_BLOCK: usize = 20_460;
 
-/// 12 GPS L5 and 12 Galileo E5a channels with pilot-and-data taps at 20.46 Msps.
-fn pilot_channels() -> Vec<(Correlator, NcoState)> {
+/// 12 channels of `signal` at 20.46 Msps with the taps the receiver tracks it with
+/// (`tracking::channel`'s choice): early, prompt and late of a signal without a pilot;
+/// of the pilot code with the data code's prompt beside them otherwise, on BOC(1,1)
+/// half-chips for Galileo E1 and BeiDou B1C. Empty where the codes are not at hand (E1
+/// without the ICD's tables).
+fn signal_channels(signal: Signal) -> Vec<(Correlator, NcoState)> {
     (1..=12u8)
-        .flat_map(|prn| [(Signal::GpsL5, prn), (Signal::GalE5a, prn + 2)])
-        .map(|(signal, prn)| {
-            let data = signal.code(prn).unwrap_or_default();
-            let pilot = signal.pilot(prn).map(|p| p.primary).unwrap_or_default();
+        .filter_map(|prn| {
+            let data = signal.code(prn).ok()?;
             let nco = NcoState {
                 carrier_phase_cycles: 0.1 * f64::from(prn),
                 carrier_cycles_per_sample: (250.0 * f64::from(prn) - 1500.0) / WIDE_FS_HZ,
                 code_phase_chips: 37.7 * f64::from(prn),
                 code_chips_per_sample: signal.chip_rate_hz() / WIDE_FS_HZ,
             };
-            let corr = Correlator::pilot_and_data(&pilot, &data, 0.5).expect("valid codes");
-            (corr, nco)
+            let corr = match signal.pilot(prn).ok() {
+                Some(p) if signal.replica_boc11() => {
+                    Correlator::pilot_and_data_boc11(&p.primary, &data, 0.15)
+                }
+                Some(p) => Correlator::pilot_and_data(&p.primary, &data, 0.5),
+                None => Correlator::new(
+                    &data,
+                    TapSet::Three {
+                        early_late_spacing_chips: 0.5,
+                    },
+                ),
+            };
+            Some((corr.ok()?, nco))
         })
         .collect()
 }
@@ -113,24 +126,29 @@ fn correlators(c: &mut Criterion) {
     group.finish();
     let wide = noise_block(WIDE_BLOCK);
     let mut group = c.benchmark_group("correlator_1ms_20460ksps");
-    let mut chans = pilot_channels();
-    group.throughput(Throughput::Elements((chans.len() * WIDE_BLOCK) as u64));
-    group.bench_function("pilot_and_data_24ch_1thread", |b| {
-        b.iter(|| {
-            chans
-                .iter_mut()
-                .map(|(corr, nco)| corr.correlate(&wide, nco)[0].re)
-                .sum::<f64>()
-        })
-    });
-    group.bench_function("pilot_and_data_24ch_rayon", |b| {
-        b.iter(|| {
-            chans
-                .par_iter_mut()
-                .map(|(corr, nco)| corr.correlate(&wide, nco)[0].re)
-                .sum::<f64>()
-        })
-    });
+    for signal in [
+        Signal::GpsL1Ca,
+        Signal::GpsL5,
+        Signal::GalE5a,
+        Signal::GalE1,
+        Signal::BdsB1C,
+        Signal::BdsB2a,
+    ] {
+        let mut chans = signal_channels(signal);
+        if chans.is_empty() {
+            eprintln!("{}: no codes at hand, skipped", signal.name());
+            continue;
+        }
+        group.throughput(Throughput::Elements((chans.len() * WIDE_BLOCK) as u64));
+        group.bench_function(format!("{}_12ch_1thread", signal.tag()), |b| {
+            b.iter(|| {
+                chans
+                    .iter_mut()
+                    .map(|(corr, nco)| corr.correlate(&wide, nco)[0].re)
+                    .sum::<f64>()
+            })
+        });
+    }
     group.finish();
 }
 

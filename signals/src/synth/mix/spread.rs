@@ -9,50 +9,17 @@
 //! - the definition, sample by sample;
 //! - with AVX-512, 16 samples at a time: their chips lie within a window of 16 chips from
 //!   the first one's whenever a sample advances the code by at most one chip, so one
-//!   permutation of the window's amplitudes spreads them (no chip-by-chip loop, no
-//!   gather).
+//!   permutation of the window's amplitudes spreads them (`skyforge_gnss::spread`, which
+//!   the receiver's correlators share).
 
-/// Samples per step of the vector path.
-const LANES: usize = 16;
-
-/// `2^32`, the fixed-point scale.
-const SCALE: f64 = 4_294_967_296.0;
-
-/// A block's code phase in fixed point.
-#[derive(Debug, Clone, Copy)]
-struct Phase {
-    /// Phase of the first sample (chips from the first given chip, 32.32).
-    x0: u64,
-    /// Phase step per sample (chips, 32.32).
-    d: u64,
-}
-
-impl Phase {
-    /// From the first sample's phase (in [0, 1)) and the step per sample (chips); `None`
-    /// when the `n` samples' phases do not fit the fixed point.
-    fn new(code_phase_chips: f64, chips_per_sample: f64, n: usize) -> Option<Self> {
-        let x0 = (code_phase_chips.clamp(0.0, 1.0) * SCALE).floor();
-        let d = (chips_per_sample.max(0.0) * SCALE).round();
-        let last = x0 + d * n as f64;
-        (last < 2f64.powi(62)).then_some(Self {
-            x0: x0 as u64,
-            d: d as u64,
-        })
-    }
-
-    /// The chip under sample `i`.
-    #[inline(always)]
-    fn chip(self, i: usize) -> u64 {
-        (self.x0 + i as u64 * self.d) >> 32
-    }
-}
+use skyforge_gnss::spread::{CodePhase, LANES};
 
 /// Fill `code[..n]` with the amplitude of the chip under each sample; `amps` holds each
 /// chip's amplitude (`amplitude * sign`) followed by [`PAD`] copies of the last.
 pub(super) fn spread(code: &mut [f32], amps: &[f32], code_phase_chips: f64, chips_per_sample: f64) {
     let n = code.len();
     let chips = amps.len().saturating_sub(PAD);
-    let Some(phase) = Phase::new(code_phase_chips, chips_per_sample, n) else {
+    let Some(phase) = CodePhase::new(code_phase_chips, chips_per_sample, n) else {
         code.fill(amps.first().copied().unwrap_or(0.0));
         return;
     };
@@ -61,7 +28,7 @@ pub(super) fn spread(code: &mut [f32], amps: &[f32], code_phase_chips: f64, chip
     if let Some(simd) = pulp::x86::V4::try_new() {
         // The window may not reach past the padding: every sample within the given chips.
         let covered = n == 0 || phase.chip(n - 1) < chips as u64;
-        if covered && phase.d <= 1 << 32 {
+        if covered && phase.windowed() {
             done = simd.vectorize(
                 #[inline(always)]
                 || v4::spread(simd, code, amps, phase),
@@ -79,25 +46,17 @@ pub(super) const PAD: usize = LANES;
 
 #[cfg(target_arch = "x86_64")]
 mod v4 {
-    use super::{LANES, Phase};
-    use core::arch::x86_64::{__m512, __m512i};
+    use super::{CodePhase, LANES};
+    use core::arch::x86_64::__m512;
     use pulp::cast;
     use pulp::x86::V4;
-
-    /// Dword indices of the low halves of two vectors of 8 qwords (`permutex2var`).
-    const LOW_DWORDS: [u32; 16] = [0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30];
+    use skyforge_gnss::spread::v4::Window;
 
     /// The whole chunks of `code`; returns the samples done. Needs `phase.d <= 2^32` and
     /// `amps` covering every sample's chip plus [`super::PAD`].
     #[inline(always)]
-    pub(super) fn spread(simd: V4, code: &mut [f32], amps: &[f32], phase: Phase) -> usize {
-        let f = simd.avx512f;
-        // Lane l's offset from the chunk's first sample: l d.
-        let lo: __m512i = cast(core::array::from_fn::<u64, 8, _>(|l| l as u64 * phase.d));
-        let hi: __m512i = cast(core::array::from_fn::<u64, 8, _>(|l| {
-            (l + 8) as u64 * phase.d
-        }));
-        let pick: __m512i = cast(LOW_DWORDS);
+    pub(super) fn spread(simd: V4, code: &mut [f32], amps: &[f32], phase: CodePhase) -> usize {
+        let spreader = Window::new(phase.d);
         let (chunks, _) = code.as_chunks_mut::<LANES>();
         for (j, out) in chunks.iter_mut().enumerate() {
             let base = phase.x0 + (j * LANES) as u64 * phase.d;
@@ -106,13 +65,8 @@ mod v4 {
                 return j * LANES;
             };
             let window: [f32; LANES] = core::array::from_fn(|l| window[l]);
-            // (frac(base) + l d) >> 32: the lane's chip counted from the first's (< 16).
-            let frac = f._mm512_set1_epi64((base & 0xffff_ffff) as i64);
-            let a = f._mm512_srli_epi64::<32>(f._mm512_add_epi64(frac, lo));
-            let b = f._mm512_srli_epi64::<32>(f._mm512_add_epi64(frac, hi));
-            let index = f._mm512_permutex2var_epi32(a, pick, b);
             let w: __m512 = cast(window);
-            *out = cast(f._mm512_permutexvar_ps(index, w));
+            *out = cast(spreader.spread(simd, base & 0xffff_ffff, w));
         }
         chunks.len() * LANES
     }
@@ -124,7 +78,7 @@ mod tests {
 
     /// The definition, with no vector path.
     fn definition(n: usize, amps: &[f32], p0: f64, dp: f64) -> Vec<f32> {
-        let phase = Phase::new(p0, dp, n).unwrap();
+        let phase = CodePhase::new(p0, dp, n).unwrap();
         let last = (amps.len() - PAD - 1) as u64;
         (0..n)
             .map(|i| amps[phase.chip(i).min(last) as usize])

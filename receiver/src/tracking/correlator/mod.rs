@@ -16,20 +16,23 @@
 //! ([`Correlator::pilot_and_data_boc11`]) walks half-chips at twice the rate; phases,
 //! rates and offsets stay in chips outside the kernel.
 //!
-//! The kernel runs with the widest vector instructions the CPU has (AVX-512, AVX2 or
-//! SSE2, detected at run time through `pulp`, no unsafe code). Within one machine the
-//! result depends only on the samples and the NCO state, never on how the caller split
-//! its data into blocks around that call.
+//! Two kernels compute these sums, chosen at run time: with AVX-512 and at most one chip
+//! per sample, [`v4`] spreads each tap's chips by a window permutation inside the
+//! accumulation loop (no replica buffers); otherwise the portable kernel above runs with
+//! the widest vector instructions the CPU has (AVX2 or SSE2, through `pulp`). Both use no
+//! unsafe code. Within one machine the result depends only on the samples and the NCO
+//! state, never on how the caller split its data into blocks around that call.
 
 use num_complex::Complex;
 use skyforge_gnss::nco::LanePhasors;
 use skyforge_gnss::signal::Signal;
+use skyforge_gnss::spread::LANES;
 
 use super::TrackingError;
 use crate::replica::replica_chips;
 
-/// Independent carrier phasor recurrences run side by side (one AVX-512 register of f32).
-const LANES: usize = 16;
+#[cfg(target_arch = "x86_64")]
+mod v4;
 
 /// Largest number of taps a [`Correlator`] computes.
 pub const MAX_TAPS: usize = 5;
@@ -148,6 +151,10 @@ pub struct Correlator {
     code: Vec<f32>,
     /// The data code of [`TapSet::PilotAndData`] (empty otherwise).
     data_code: Vec<f32>,
+    /// `code` and `data_code` each followed by their first [`LANES`] chips again (the
+    /// windows of [`v4`]).
+    code_table: Vec<f32>,
+    data_table: Vec<f32>,
     /// Replica chips per code chip: 2 for BOC(1,1) half-chips, else 1.
     subchips: f64,
     taps: TapSet,
@@ -218,9 +225,15 @@ impl Correlator {
             return Err(TrackingError::InvalidConfig("empty ranging code".into()));
         }
         let levels = |c: &[i8]| c.iter().map(|&c| f32::from(c)).collect();
+        let table = |c: &[i8]| {
+            let n = if c.is_empty() { 0 } else { c.len() + LANES };
+            c.iter().cycle().take(n).map(|&c| f32::from(c)).collect()
+        };
         Ok(Self {
             code: levels(code),
             data_code: levels(data),
+            code_table: table(code),
+            data_table: table(data),
             subchips: f64::from(subchips),
             taps: taps.check()?,
             replicas: Vec::new(),
@@ -242,6 +255,15 @@ impl Correlator {
     /// Correlate `samples` with the replicas of `nco`: returns one complex sum per tap in
     /// [`TapSet::offsets_chips`] order, `sum_i x[i] conj(carrier(i)) code_tap(i)`.
     pub fn correlate(&mut self, samples: &[Complex<f32>], nco: &NcoState) -> &[Complex<f64>] {
+        self.correlate_on(samples, nco, Kernels::Fastest)
+    }
+
+    fn correlate_on(
+        &mut self,
+        samples: &[Complex<f32>],
+        nco: &NcoState,
+        kernels: Kernels,
+    ) -> &[Complex<f64>] {
         let n = samples.len();
         let n_taps = self.taps.len();
         self.replicas.resize(n_taps * (n + RUN), 0.0);
@@ -254,16 +276,58 @@ impl Correlator {
             dp: nco.code_chips_per_sample * s,
             offsets: self.taps.offsets_chips().map(|o| o * s),
         };
-        let carrier = CarrierStart::new(nco);
+        let job = Job {
+            samples,
+            carrier: CarrierStart::new(nco),
+            replica,
+            kernels,
+        };
         let (replicas, wiped) = (&mut self.replicas, &mut self.wiped);
+        let (code, data) = (&self.code_table[..], &self.data_table[..]);
         self.out = match self.taps {
-            TapSet::Three { .. } => dispatch::<3>(samples, replicas, wiped, replica, carrier),
-            TapSet::Five { .. } => dispatch::<5>(samples, replicas, wiped, replica, carrier),
-            TapSet::PilotAndData { .. } => {
-                dispatch::<4>(samples, replicas, wiped, replica, carrier)
-            }
+            TapSet::Three { .. } => job.run::<3>([code; 3], replicas, wiped),
+            TapSet::Five { .. } => job.run::<5>([code; 5], replicas, wiped),
+            TapSet::PilotAndData { .. } => job.run::<4>([code, code, code, data], replicas, wiped),
         };
         &self.out[..n_taps]
+    }
+}
+
+/// Which kernels [`Correlator::correlate_on`] may use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Kernels {
+    /// [`v4`] where it applies, else the portable kernel.
+    Fastest,
+    /// The portable kernel only (tests compare the two).
+    #[cfg(test)]
+    Portable,
+}
+
+/// One block to correlate.
+struct Job<'a> {
+    samples: &'a [Complex<f32>],
+    carrier: CarrierStart,
+    replica: Replica<'a>,
+    kernels: Kernels,
+}
+
+impl Job<'_> {
+    /// The `T` taps' sums; `tables` are the taps' codes for [`v4`].
+    fn run<const T: usize>(
+        self,
+        tables: [&[f32]; T],
+        replicas: &mut [f32],
+        wiped: &mut Vec<f32>,
+    ) -> [Complex<f64>; MAX_TAPS] {
+        #[cfg(target_arch = "x86_64")]
+        if self.kernels == Kernels::Fastest
+            && let Some(out) = v4::correlate::<T>(self.samples, tables, &self.replica, self.carrier)
+        {
+            return out;
+        }
+        #[cfg(not(target_arch = "x86_64"))]
+        let _ = tables;
+        dispatch::<T>(self.samples, replicas, wiped, self.replica, self.carrier)
     }
 }
 
@@ -616,6 +680,15 @@ mod tests {
             .sum()
     }
 
+    /// The sums of the fastest kernel this CPU has and of the portable one.
+    fn both_kernels(
+        corr: &mut Correlator,
+        samples: &[Complex<f32>],
+        nco: &NcoState,
+    ) -> [Vec<Complex<f64>>; 2] {
+        [Kernels::Fastest, Kernels::Portable].map(|k| corr.correlate_on(samples, nco, k).to_vec())
+    }
+
     #[test]
     fn matches_direct_evaluation_for_three_and_five_taps() {
         let code = signs(1023, 7);
@@ -652,16 +725,53 @@ mod tests {
                 code_chips_per_sample: 1.023e6 / 4.092e6 * (1.0 + 2e-6),
             };
             let mut corr = Correlator::new(&code, taps).unwrap();
-            let out = corr.correlate(&samples[..n], &nco).to_vec();
-            let offsets = taps.offsets_chips();
-            for t in 0..taps.len() {
-                let r = reference(&samples[..n], &code, &nco, offsets[t]);
-                // f32 products of +-1 values: errors from the phasor only (1e-5 relative).
-                assert!(
-                    (out[t] - r).norm() < 1e-4 * n as f64,
-                    "tap {t}: {} vs {r}",
-                    out[t]
-                );
+            for out in both_kernels(&mut corr, &samples[..n], &nco) {
+                let offsets = taps.offsets_chips();
+                for t in 0..taps.len() {
+                    let r = reference(&samples[..n], &code, &nco, offsets[t]);
+                    // f32 products of +-1 values: errors from the phasor only (1e-5
+                    // relative).
+                    assert!(
+                        (out[t] - r).norm() < 1e-4 * n as f64,
+                        "tap {t}: {} vs {r}",
+                        out[t]
+                    );
+                }
+            }
+        }
+    }
+
+    /// A code shorter than a vector's 16 chips (a window wraps more than once) and a
+    /// sample rate below the chip rate (the window path does not apply).
+    #[test]
+    fn short_codes_and_coarse_sampling_match_direct_evaluation() {
+        let noise = signs(2 * 333, 17);
+        let samples: Vec<Complex<f32>> = noise
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
+            .collect();
+        let taps = TapSet::Three {
+            early_late_spacing_chips: 0.5,
+        };
+        // Phases off every chip edge (an edge sample may round either way).
+        for (len, dp) in [(7, 0.931_7), (7, 1.301_3), (1023, 2.503_1)] {
+            let code = signs(len, 23);
+            let nco = NcoState {
+                carrier_phase_cycles: 0.61,
+                carrier_cycles_per_sample: -0.0173,
+                code_phase_chips: 5.937,
+                code_chips_per_sample: dp,
+            };
+            let mut corr = Correlator::new(&code, taps).unwrap();
+            for out in both_kernels(&mut corr, &samples, &nco) {
+                for (t, offset) in taps.offsets_chips()[..3].iter().enumerate() {
+                    let r = reference(&samples, &code, &nco, *offset);
+                    assert!(
+                        (out[t] - r).norm() < 1e-4 * 333.0,
+                        "{len} chips, {dp}: tap {t}: {} vs {r}",
+                        out[t]
+                    );
+                }
             }
         }
     }
@@ -685,19 +795,20 @@ mod tests {
                 code_chips_per_sample: dp,
             };
             let mut corr = Correlator::pilot_and_data(&pilot, &data, 0.5).unwrap();
-            let out = corr.correlate(&samples[..n], &nco).to_vec();
-            assert_eq!(out.len(), 4);
-            for (t, (code, offset)) in
-                [(&pilot, 0.25), (&pilot, 0.0), (&pilot, -0.25), (&data, 0.0)]
-                    .into_iter()
-                    .enumerate()
-            {
-                let r = reference(&samples[..n], code, &nco, offset);
-                assert!(
-                    (out[t] - r).norm() < 1e-4 * n as f64,
-                    "tap {t}: {} vs {r}",
-                    out[t]
-                );
+            for out in both_kernels(&mut corr, &samples[..n], &nco) {
+                assert_eq!(out.len(), 4);
+                for (t, (code, offset)) in
+                    [(&pilot, 0.25), (&pilot, 0.0), (&pilot, -0.25), (&data, 0.0)]
+                        .into_iter()
+                        .enumerate()
+                {
+                    let r = reference(&samples[..n], code, &nco, offset);
+                    assert!(
+                        (out[t] - r).norm() < 1e-4 * n as f64,
+                        "tap {t}: {} vs {r}",
+                        out[t]
+                    );
+                }
             }
         }
         assert!(Correlator::pilot_and_data(&pilot, &data[1..], 0.5).is_err());
@@ -729,22 +840,23 @@ mod tests {
             };
             let mut corr = Correlator::pilot_and_data_boc11(&pilot, &data, 0.15).unwrap();
             assert_eq!(corr.code_length(), 4092);
-            let out = corr.correlate(&samples[..n], &nco).to_vec();
             let doubled = NcoState {
                 code_phase_chips: 2.0 * nco.code_phase_chips,
                 code_chips_per_sample: 2.0 * nco.code_chips_per_sample,
                 ..nco
             };
-            for (t, (code, offset)) in [(&hp, 0.075), (&hp, 0.0), (&hp, -0.075), (&hd, 0.0)]
-                .into_iter()
-                .enumerate()
-            {
-                let r = reference(&samples[..n], code, &doubled, 2.0 * offset);
-                assert!(
-                    (out[t] - r).norm() < 1e-4 * n as f64,
-                    "tap {t} at {fs}: {} vs {r}",
-                    out[t]
-                );
+            for out in both_kernels(&mut corr, &samples[..n], &nco) {
+                for (t, (code, offset)) in [(&hp, 0.075), (&hp, 0.0), (&hp, -0.075), (&hd, 0.0)]
+                    .into_iter()
+                    .enumerate()
+                {
+                    let r = reference(&samples[..n], code, &doubled, 2.0 * offset);
+                    assert!(
+                        (out[t] - r).norm() < 1e-4 * n as f64,
+                        "tap {t} at {fs}: {} vs {r}",
+                        out[t]
+                    );
+                }
             }
         }
     }
