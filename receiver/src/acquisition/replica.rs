@@ -1,7 +1,8 @@
 //! Local replicas for acquisition: a ranging code sampled at any sample rate, and the
 //! carrier wipe-off of a block of samples by a phase-continuous NCO.
 
-use num_complex::{Complex32, Complex64};
+use num_complex::Complex32;
+use skyforge_gnss::nco::LanePhasors;
 
 /// The code `chips` (one period, +1/-1) sampled at `sample_rate_hz` for `n` samples:
 /// sample `i` holds the chip active at `t = i / fs` of a code whose chip 0 starts at
@@ -38,8 +39,10 @@ pub fn mean_edge_delay_samples(chip_rate_hz: f64, sample_rate_hz: f64, n: usize)
 
 /// `out[i] = samples[i] * exp(-j 2 pi freq_hz (first_sample + i) / fs)`: removes a carrier
 /// of `freq_hz` whose phase is zero at absolute sample 0, so blocks cut anywhere from
-/// one recording stay phase-continuous. The NCO is an `f64` phasor recurrence started
-/// from the exact phase of `first_sample`.
+/// one recording stay phase-continuous. The NCO is [`LANES`] interleaved `f32` phasor
+/// recurrences started from the exact (`f64`) phases of the block's first samples
+/// (independent chains the compiler vectorises; over a 20 460-sample block each lane
+/// takes 1279 steps, a drift of about 1e-4 rad).
 pub fn wipe_carrier(
     samples: &[Complex32],
     first_sample: u64,
@@ -49,18 +52,38 @@ pub fn wipe_carrier(
 ) {
     let cycles_per_sample = freq_hz / sample_rate_hz;
     let start_cycles = (cycles_per_sample * first_sample as f64).fract();
-    let mut phasor = Complex64::from_polar(1.0, -std::f64::consts::TAU * start_cycles);
-    let step = Complex64::from_polar(1.0, -std::f64::consts::TAU * cycles_per_sample);
-    for (o, &x) in out.iter_mut().zip(samples) {
-        let p = Complex32::new(phasor.re as f32, phasor.im as f32);
-        *o = x * p;
-        phasor *= step;
+    let LanePhasors {
+        mut re,
+        mut im,
+        step_re,
+        step_im,
+    } = LanePhasors::<LANES>::new(-start_cycles, -cycles_per_sample);
+    let n = samples.len().min(out.len());
+    let (chunks, tail) = samples[..n].as_chunks::<LANES>();
+    let (outs, out_tail) = out[..n].as_chunks_mut::<LANES>();
+    for (o, x) in outs.iter_mut().zip(chunks) {
+        for l in 0..LANES {
+            o[l] = Complex32::new(
+                x[l].re * re[l] - x[l].im * im[l],
+                x[l].re * im[l] + x[l].im * re[l],
+            );
+            let r = re[l] * step_re - im[l] * step_im;
+            im[l] = re[l] * step_im + im[l] * step_re;
+            re[l] = r;
+        }
+    }
+    for (l, (o, x)) in out_tail.iter_mut().zip(tail).enumerate() {
+        *o = x * Complex32::new(re[l], im[l]);
     }
 }
+
+/// Phasor lanes of [`wipe_carrier`].
+const LANES: usize = 16;
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use num_complex::Complex64;
 
     #[test]
     fn code_at_two_samples_per_chip_repeats_each_chip() {
@@ -99,15 +122,18 @@ mod tests {
         wipe_carrier(&x, 1_000_000, fs, f, &mut whole);
         let mut second = vec![Complex32::default(); 3000];
         wipe_carrier(&x[2000..], 1_002_000, fs, f, &mut second);
+        // f32 phasor lanes: rounding grows by about 1e-7 per step (312 steps here).
         for i in 0..3000 {
-            assert!((whole[2000 + i] - second[i]).norm() < 1e-5);
+            let tol = 1e-4 * x[2000 + i].norm();
+            assert!((whole[2000 + i] - second[i]).norm() < tol);
         }
-        for i in [0usize, 1234, 4999] {
+        for i in [0usize, 1234, 4999, 4993] {
             let phase = -std::f64::consts::TAU * f * (1_000_000 + i) as f64 / fs;
             let direct = Complex64::new(f64::from(x[i].re), f64::from(x[i].im))
                 * Complex64::from_polar(1.0, phase);
-            assert!((f64::from(whole[i].re) - direct.re).abs() < 1e-5);
-            assert!((f64::from(whole[i].im) - direct.im).abs() < 1e-5);
+            let tol = 1e-4 * direct.norm();
+            assert!((f64::from(whole[i].re) - direct.re).abs() < tol);
+            assert!((f64::from(whole[i].im) - direct.im).abs() < tol);
         }
     }
 }

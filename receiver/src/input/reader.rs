@@ -187,6 +187,9 @@ pub struct BlockReader {
     output_if_hz: f64,
     common_samples: u64,
     position: u64,
+    /// Read the antennas' blocks on rayon's threads side by side: files and memory, not
+    /// streams, whose producer (the synthesiser) needs those threads to write them.
+    side_by_side: bool,
 }
 
 /// Checks that every recording can share the first one's sample clock and processing.
@@ -337,7 +340,7 @@ impl BlockReader {
         let missing = || std::io::Error::from(std::io::ErrorKind::NotFound);
         let mut streams: Vec<Option<StreamReader>> = streams.into_iter().map(Some).collect();
         let count = streams.len();
-        Self::open_with(
+        let (reader, report) = Self::open_with(
             recordings,
             block_len,
             |i, r| {
@@ -353,7 +356,12 @@ impl BlockReader {
                     .ok_or_else(missing)?;
                 Ok(Box::new(stream) as Box<dyn SampleBytes>)
             },
-        )
+        )?;
+        let reader = Self {
+            side_by_side: false,
+            ..reader
+        };
+        Ok((reader, report))
     }
 
     /// [`Self::open`] with recording `i`'s sample file length and contents given by
@@ -507,6 +515,7 @@ impl BlockReader {
             },
             common_samples: common,
             position: 0,
+            side_by_side: true,
         };
         Ok((reader, report))
     }
@@ -578,15 +587,22 @@ impl BlockReader {
             return Ok(None);
         }
         let n = usize::try_from(left).map_or(self.block_len, |l| l.min(self.block_len));
-        // Antennas side by side: copying and decoding a block is a tenth of a run's work.
         let (at, expected) = (self.position, self.common_samples);
-        self.sources
-            .par_iter_mut()
-            .zip(out.par_iter_mut())
-            .try_for_each(|(src, buf)| {
-                buf.resize(n, Complex32::new(0.0, 0.0));
-                src.read(n, buf, at, expected)
-            })?;
+        let read = |(src, buf): (&mut Source, &mut Vec<Complex32>)| {
+            buf.resize(n, Complex32::new(0.0, 0.0));
+            src.read(n, buf, at, expected)
+        };
+        if self.side_by_side {
+            // Copying and decoding a block is a tenth of a run's work.
+            (self.sources.par_iter_mut())
+                .zip(out.par_iter_mut())
+                .try_for_each(read)?;
+        } else {
+            self.sources
+                .iter_mut()
+                .zip(out.iter_mut())
+                .try_for_each(read)?;
+        }
         let block = Block {
             first_sample: self.position,
             len: n,

@@ -658,6 +658,23 @@ mod tests {
             .collect()
     }
 
+    /// `n` complex samples of +-1 components from [`signs`].
+    fn noise(n: usize, seed: u32) -> Vec<Complex<f32>> {
+        signs(2 * n, seed)
+            .chunks_exact(2)
+            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
+            .collect()
+    }
+
+    /// A tap's sum against the direct evaluation over `n` samples: f32 products of +-1
+    /// values, so errors come from the phasor only (1e-5 relative).
+    fn assert_matches(got: Complex<f64>, direct: Complex<f64>, n: usize, what: &str) {
+        assert!(
+            (got - direct).norm() < 1e-4 * n as f64,
+            "{what}: {got} vs {direct}"
+        );
+    }
+
     /// Direct f64 evaluation of the correlation sum, sample by sample.
     fn reference(
         samples: &[Complex<f32>],
@@ -692,11 +709,7 @@ mod tests {
     #[test]
     fn matches_direct_evaluation_for_three_and_five_taps() {
         let code = signs(1023, 7);
-        let noise = signs(2 * 5000, 99);
-        let samples: Vec<Complex<f32>> = noise
-            .chunks_exact(2)
-            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
-            .collect();
+        let samples = noise(5000, 99);
         for (n, taps) in [
             (
                 4092,
@@ -729,13 +742,7 @@ mod tests {
                 let offsets = taps.offsets_chips();
                 for t in 0..taps.len() {
                     let r = reference(&samples[..n], &code, &nco, offsets[t]);
-                    // f32 products of +-1 values: errors from the phasor only (1e-5
-                    // relative).
-                    assert!(
-                        (out[t] - r).norm() < 1e-4 * n as f64,
-                        "tap {t}: {} vs {r}",
-                        out[t]
-                    );
+                    assert_matches(out[t], r, n, &format!("tap {t}"));
                 }
             }
         }
@@ -745,11 +752,7 @@ mod tests {
     /// sample rate below the chip rate (the window path does not apply).
     #[test]
     fn short_codes_and_coarse_sampling_match_direct_evaluation() {
-        let noise = signs(2 * 333, 17);
-        let samples: Vec<Complex<f32>> = noise
-            .chunks_exact(2)
-            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
-            .collect();
+        let samples = noise(333, 17);
         let taps = TapSet::Three {
             early_late_spacing_chips: 0.5,
         };
@@ -766,11 +769,7 @@ mod tests {
             for out in both_kernels(&mut corr, &samples, &nco) {
                 for (t, offset) in taps.offsets_chips()[..3].iter().enumerate() {
                     let r = reference(&samples, &code, &nco, *offset);
-                    assert!(
-                        (out[t] - r).norm() < 1e-4 * 333.0,
-                        "{len} chips, {dp}: tap {t}: {} vs {r}",
-                        out[t]
-                    );
+                    assert_matches(out[t], r, 333, &format!("{len} chips, {dp}: tap {t}"));
                 }
             }
         }
@@ -782,11 +781,7 @@ mod tests {
     #[test]
     fn pilot_and_data_taps_match_direct_evaluation() {
         let (pilot, data) = (signs(10_230, 11), signs(10_230, 12));
-        let noise = signs(2 * 20_500, 5);
-        let samples: Vec<Complex<f32>> = noise
-            .chunks_exact(2)
-            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
-            .collect();
+        let samples = noise(20_500, 5);
         for (n, dp) in [(20_460, 0.5 * (1.0 - 3e-6)), (20_001, 0.1)] {
             let nco = NcoState {
                 carrier_phase_cycles: 0.37,
@@ -803,11 +798,7 @@ mod tests {
                         .enumerate()
                 {
                     let r = reference(&samples[..n], code, &nco, offset);
-                    assert!(
-                        (out[t] - r).norm() < 1e-4 * n as f64,
-                        "tap {t}: {} vs {r}",
-                        out[t]
-                    );
+                    assert_matches(out[t], r, n, &format!("tap {t}"));
                 }
             }
         }
@@ -824,11 +815,7 @@ mod tests {
     #[test]
     fn boc11_taps_match_direct_evaluation_on_half_chips() {
         let (pilot, data) = (signs(4092, 31), signs(4092, 32));
-        let noise = signs(2 * 60_000, 6);
-        let samples: Vec<Complex<f32>> = noise
-            .chunks_exact(2)
-            .map(|c| Complex::new(f32::from(c[0]), f32::from(c[1])))
-            .collect();
+        let samples = noise(60_000, 6);
         let half = |c: &[i8]| c.iter().flat_map(|&c| [c, -c]).collect::<Vec<i8>>();
         let (hp, hd) = (half(&pilot), half(&data));
         for (n, fs) in [(60_000, 15e6), (16_368, 4.092e6)] {
@@ -851,11 +838,7 @@ mod tests {
                     .enumerate()
                 {
                     let r = reference(&samples[..n], code, &doubled, 2.0 * offset);
-                    assert!(
-                        (out[t] - r).norm() < 1e-4 * n as f64,
-                        "tap {t} at {fs}: {} vs {r}",
-                        out[t]
-                    );
+                    assert_matches(out[t], r, n, &format!("tap {t} at {fs}"));
                 }
             }
         }
