@@ -15,7 +15,8 @@
 # thesis/t-5.4-2 and scenarios/check/leo-three-antennas.toml (multi-antenna LEO), plus
 # `run` of thesis-leo (24 h geometry truth), then (unless BIT_IDENTITY_MORE=0) issue #31's
 # attitude-leo-gps through synth, receive --geometry and attitude, the integrity-lab
-# monitor and a small study. Exits 1 on the first difference, naming
+# monitor and a small study. BIT_IDENTITY_RECEIVER=0 compares the synthesis alone (for a
+# change meant to alter the receiver's numbers). Exits 1 on the first difference, naming
 # the files that differ. Needs about 10 GB of disk under --work (default: a temporary
 # directory, removed at the end).
 set -euo pipefail
@@ -98,7 +99,7 @@ for s in "${scenarios[@]}"; do
     tracked=("$out"/synth/*.gps-l1ca.sigmf-meta "$out"/synth/*.bds-b1i.sigmf-meta)
     metas=()
     for m in "${tracked[@]}"; do if [ -f "$m" ]; then metas+=("$m"); fi; done
-    if [ ${#metas[@]} -eq 0 ]; then continue; fi
+    if [ ${#metas[@]} -eq 0 ] || [ "${BIT_IDENTITY_RECEIVER:-1}" = 0 ]; then continue; fi
     args=("${metas[@]}" --assist "$out/synth/nav.rnx" --out "$out/receive")
     [ -f "$out/synth/receiver.toml" ] && args+=(--config "$out/synth/receiver.toml")
     "$bin" receive "${args[@]}" >/dev/null
