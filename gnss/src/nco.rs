@@ -38,6 +38,23 @@ impl<const N: usize> LanePhasors<N> {
     }
 }
 
+/// One step of every lane of a [`LanePhasors`] recurrence: each turned by the step
+/// `w = step_re + j step_im`, in `f32`, the same operations wherever it is called.
+#[inline(always)]
+pub fn turn<const N: usize>(
+    re: &[f32; N],
+    im: &[f32; N],
+    step_re: f32,
+    step_im: f32,
+) -> ([f32; N], [f32; N]) {
+    let (mut nr, mut ni) = ([0f32; N], [0f32; N]);
+    for l in 0..N {
+        nr[l] = re[l] * step_re - im[l] * step_im;
+        ni[l] = re[l] * step_im + im[l] * step_re;
+    }
+    (nr, ni)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

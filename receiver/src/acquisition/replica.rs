@@ -2,7 +2,7 @@
 //! carrier wipe-off of a block of samples by a phase-continuous NCO.
 
 use num_complex::Complex32;
-use skyforge_gnss::nco::LanePhasors;
+use skyforge_gnss::nco::{LanePhasors, turn};
 
 /// The code `chips` (one period, +1/-1) sampled at `sample_rate_hz` for `n` samples:
 /// sample `i` holds the chip active at `t = i / fs` of a code whose chip 0 starts at
@@ -67,10 +67,8 @@ pub fn wipe_carrier(
                 x[l].re * re[l] - x[l].im * im[l],
                 x[l].re * im[l] + x[l].im * re[l],
             );
-            let r = re[l] * step_re - im[l] * step_im;
-            im[l] = re[l] * step_im + im[l] * step_re;
-            re[l] = r;
         }
+        (re, im) = turn(&re, &im, step_re, step_im);
     }
     for (l, (o, x)) in out_tail.iter_mut().zip(tail).enumerate() {
         *o = x * Complex32::new(re[l], im[l]);

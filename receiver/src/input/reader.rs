@@ -4,14 +4,13 @@
 //! file length.
 
 use super::error::{Finding, InputError};
-use rayon::prelude::*;
-
 use super::format::{SampleFormat, decode_cf32, decode_ci8, decode_ci16, decode_ri8};
 use super::if_mixer::IfMixer;
 use super::recording::{InputParams, Recording};
 use super::stream::StreamReader;
 use hifitime::{Duration, Epoch};
 use num_complex::Complex32;
+use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
 use std::fs::File;
 use std::io::{BufReader, Read, Seek, SeekFrom};

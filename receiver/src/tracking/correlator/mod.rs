@@ -147,18 +147,18 @@ impl NcoState {
 /// codes, the taps and reusable buffers.
 #[derive(Debug, Clone)]
 pub struct Correlator {
-    /// One code period as signal levels (+1.0 / -1.0).
+    /// One code period as signal levels (+1.0 / -1.0), then its first [`LANES`] chips
+    /// again (the windows of [`v4`]).
     code: Vec<f32>,
-    /// The data code of [`TapSet::PilotAndData`] (empty otherwise).
+    /// The data code of [`TapSet::PilotAndData`] likewise (empty otherwise).
     data_code: Vec<f32>,
-    /// `code` and `data_code` each followed by their first [`LANES`] chips again (the
-    /// windows of [`v4`]).
-    code_table: Vec<f32>,
-    data_table: Vec<f32>,
+    /// Replica chips per code period.
+    len: usize,
     /// Replica chips per code chip: 2 for BOC(1,1) half-chips, else 1.
     subchips: f64,
     taps: TapSet,
-    /// Per-tap replica buffers, `taps.len()` slices of the block length plus `RUN`.
+    /// The portable kernel's per-tap replica buffers, `taps.len()` slices of the block
+    /// length plus `RUN`.
     replicas: Vec<f32>,
     /// The carrier-wiped block of [`accumulate_wiped`] (real parts, then imaginary).
     wiped: Vec<f32>,
@@ -224,16 +224,14 @@ impl Correlator {
         if code.is_empty() {
             return Err(TrackingError::InvalidConfig("empty ranging code".into()));
         }
-        let levels = |c: &[i8]| c.iter().map(|&c| f32::from(c)).collect();
         let table = |c: &[i8]| {
             let n = if c.is_empty() { 0 } else { c.len() + LANES };
             c.iter().cycle().take(n).map(|&c| f32::from(c)).collect()
         };
         Ok(Self {
-            code: levels(code),
-            data_code: levels(data),
-            code_table: table(code),
-            data_table: table(data),
+            code: table(code),
+            data_code: table(data),
+            len: code.len(),
             subchips: f64::from(subchips),
             taps: taps.check()?,
             replicas: Vec::new(),
@@ -249,7 +247,7 @@ impl Correlator {
 
     /// Code length in chips.
     pub fn code_length(&self) -> usize {
-        self.code.len() / self.subchips as usize
+        self.len / self.subchips as usize
     }
 
     /// Correlate `samples` with the replicas of `nco`: returns one complex sum per tap in
@@ -264,14 +262,13 @@ impl Correlator {
         nco: &NcoState,
         kernels: Kernels,
     ) -> &[Complex<f64>] {
-        let n = samples.len();
         let n_taps = self.taps.len();
-        self.replicas.resize(n_taps * (n + RUN), 0.0);
         // In replica chips (x 1.0, exact, for BPSK).
         let s = self.subchips;
+        let (code, data) = (&self.code[..], &self.data_code[..]);
         let replica = Replica {
-            code: &self.code,
-            data_code: &self.data_code,
+            code: &code[..self.len],
+            data_code: &data[..self.len.min(data.len())],
             p0_chips: nco.code_phase_chips * s,
             dp: nco.code_chips_per_sample * s,
             offsets: self.taps.offsets_chips().map(|o| o * s),
@@ -283,7 +280,6 @@ impl Correlator {
             kernels,
         };
         let (replicas, wiped) = (&mut self.replicas, &mut self.wiped);
-        let (code, data) = (&self.code_table[..], &self.data_table[..]);
         self.out = match self.taps {
             TapSet::Three { .. } => job.run::<3>([code; 3], replicas, wiped),
             TapSet::Five { .. } => job.run::<5>([code; 5], replicas, wiped),
@@ -316,7 +312,7 @@ impl Job<'_> {
     fn run<const T: usize>(
         self,
         tables: [&[f32]; T],
-        replicas: &mut [f32],
+        replicas: &mut Vec<f32>,
         wiped: &mut Vec<f32>,
     ) -> [Complex<f64>; MAX_TAPS] {
         #[cfg(target_arch = "x86_64")]
@@ -327,6 +323,7 @@ impl Job<'_> {
         }
         #[cfg(not(target_arch = "x86_64"))]
         let _ = tables;
+        replicas.resize(T * (self.samples.len() + RUN), 0.0);
         dispatch::<T>(self.samples, replicas, wiped, self.replica, self.carrier)
     }
 }

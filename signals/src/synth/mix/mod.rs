@@ -16,7 +16,7 @@ mod spread;
 
 pub use pair::mix_pair_into;
 
-use skyforge_gnss::nco::LanePhasors;
+use skyforge_gnss::nco::{LanePhasors, turn};
 
 /// Phasor recurrences run side by side: two AVX-512 registers of f32 (four AVX2 ones),
 /// so that two independent multiply-add chains hide each other's latency.
@@ -162,7 +162,7 @@ fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &[f32]
             sq[l] += c[l] * zi[l];
         }
         (*oi, *oq) = (si, sq);
-        (zr, zi) = step(&zr, &zi, wr, wi);
+        (zr, zi) = turn(&zr, &zi, wr, wi);
     }
     // The tail through fixed-size arrays, so that no lane is indexed with a run-time
     // bound (that would keep the phasor lanes in memory through the loop above).
@@ -179,22 +179,6 @@ fn mix(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, code: &[f32]
     for (o, t) in tail_q.iter_mut().zip(&tq) {
         *o += t;
     }
-}
-
-/// One step of the lane recurrence: every lane turned by `w`.
-#[inline(always)]
-pub(super) fn step(
-    zr: &[f32; LANES],
-    zi: &[f32; LANES],
-    wr: f32,
-    wi: f32,
-) -> ([f32; LANES], [f32; LANES]) {
-    let (mut nr, mut ni) = ([0f32; LANES], [0f32; LANES]);
-    for l in 0..LANES {
-        nr[l] = zr[l] * wr - zi[l] * wi;
-        ni[l] = zr[l] * wi + zi[l] * wr;
-    }
-    (nr, ni)
 }
 
 #[cfg(test)]

@@ -3,8 +3,8 @@
 //! E5a-Q is of E5a-I), added to a block in one pass with one phasor recurrence for both,
 //! where two calls of [`super::mix_into`] would turn the phasors twice.
 
-use super::{ChannelBlock, Chips, LANES, MixScratch, spread_chips, step};
-use skyforge_gnss::nco::LanePhasors;
+use super::{ChannelBlock, Chips, LANES, MixScratch, spread_chips};
+use skyforge_gnss::nco::{LanePhasors, turn};
 
 /// Add the channel `ch` (its `chips` the in-phase component's, the data's) and the
 /// quadrature component `quadrature` (the pilot's signs, or BeiDou B1C's quadrature
@@ -67,7 +67,7 @@ fn mix_pair(out_i: &mut [f32], out_q: &mut [f32], ch: &ChannelBlock<'_>, d: &[f3
             sq[l] += d[l] * zi[l] + p[l] * zr[l];
         }
         (*oi, *oq) = (si, sq);
-        (zr, zi) = step(&zr, &zi, wr, wi);
+        (zr, zi) = turn(&zr, &zi, wr, wi);
     }
     let (mut dt, mut pt) = ([0f32; LANES], [0f32; LANES]);
     dt[..tail_d.len()].copy_from_slice(tail_d);
