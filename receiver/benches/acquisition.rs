@@ -1,6 +1,8 @@
 //! Acquisition speed (issue #4 speed bar): a cold PCPS search of 32 GPS PRNs over
 //! +/-10 kHz at 4.092 Msps with 1 ms coherent integration (replica FFTs included), and
-//! one PMF-FFT fine Doppler estimate (M = 1024, L = 64).
+//! one PMF-FFT fine Doppler estimate (M = 1024, L = 64); and the forward FFT the search
+//! runs per Doppler bin at one code period's length (4092 and 20 460 samples: 1 ms at
+//! 4.092 and 20.46 Msps) beside the nearest lengths without the factor 31 (4096, 20 480).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use num_complex::Complex32;
@@ -55,5 +57,21 @@ fn pcps_cold(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, pcps_cold);
+/// rustfft's forward transform of one code period's length and of the nearest length
+/// without a large prime factor.
+fn fft_lengths(c: &mut Criterion) {
+    let mut planner = rustfft::FftPlanner::<f32>::new();
+    let mut group = c.benchmark_group("fft_forward");
+    for n in [4092, 4096, 20_460, 20_480] {
+        let fft = planner.plan_fft_forward(n);
+        let mut buf = samples(4.092e6, n);
+        let mut scratch = vec![Complex32::default(); fft.get_inplace_scratch_len()];
+        group.bench_function(format!("{n}"), |b| {
+            b.iter(|| fft.process_with_scratch(black_box(&mut buf), &mut scratch))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, pcps_cold, fft_lengths);
 criterion_main!(benches);
