@@ -179,8 +179,11 @@ fn bundled_calibration_matches_the_signal_level_on_another_seed_and_hour() {
     }
 }
 
-/// The bundled calibration is what `skyforge calibrate` measures on its scenario: the run
-/// is deterministic for a seed, so the factors agree to the printed digits.
+/// The bundled calibration is what `skyforge calibrate` measures on its scenario. The run
+/// is deterministic for a seed, but the correlator's AVX-512 and portable kernels round
+/// differently (f32 lanes, fused multiply-add), so the factors agree to a part in a
+/// thousand (the two kernels' factors differed by at most 1.2e-4 on this scenario), and
+/// everything else (signals, counts, C/N0, loops) exactly.
 #[test]
 #[ignore = "acceptance tier: a 130 s signal-level run (about a minute)"]
 fn bundled_calibration_is_reproduced_by_the_calibrate_command() {
@@ -197,7 +200,20 @@ fn bundled_calibration_is_reproduced_by_the_calibrate_command() {
     let measured: toml::Table =
         toml::from_str(&std::fs::read_to_string(out.join("calibration.toml")).unwrap()).unwrap();
     let bundled: toml::Table = toml::from_str(skyforge_scenarios::BUNDLED_CALIBRATION).unwrap();
-    assert_eq!(measured["signals"], bundled["signals"]);
+    let signals = |t: &toml::Table| t["signals"].as_array().unwrap().clone();
+    let (measured, bundled) = (signals(&measured), signals(&bundled));
+    assert_eq!(measured.len(), bundled.len());
+    for (m, b) in measured.iter().zip(&bundled) {
+        let (mut m, mut b) = (m.as_table().unwrap().clone(), b.as_table().unwrap().clone());
+        for factor in ["code_factor", "phase_factor"] {
+            let (fm, fb) = (
+                m.remove(factor).unwrap().as_float().unwrap(),
+                b.remove(factor).unwrap().as_float().unwrap(),
+            );
+            assert!((fm / fb - 1.0).abs() < 1e-3, "{factor}: {fm} vs {fb}");
+        }
+        assert_eq!(m, b);
+    }
     assert!(!out.join("work").exists(), "the recordings are removed");
 }
 
