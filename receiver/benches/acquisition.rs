@@ -1,8 +1,10 @@
 //! Acquisition speed (issue #4 speed bar): a cold PCPS search of 32 GPS PRNs over
 //! +/-10 kHz at 4.092 Msps with 1 ms coherent integration (replica FFTs included), and
-//! one PMF-FFT fine Doppler estimate (M = 1024, L = 64); and the forward FFT the search
-//! runs per Doppler bin at one code period's length (4092 and 20 460 samples: 1 ms at
-//! 4.092 and 20.46 Msps) beside the nearest lengths without the factor 31 (4096, 20 480).
+//! one PMF-FFT fine Doppler estimate (M = 1024, L = 64); a cold search of 8 GPS L5 PRNs
+//! (data and pilot, aligned windows) at 20.46 Msps; and the forward FFT at one code
+//! period's length (4092 and 20 460 samples: 1 ms at 4.092 and 20.46 Msps), twice it, and
+//! the nearest lengths without the factor 31 (4096, 8192, 20 480, 40 960), which the search
+//! now uses (`Pcps::fft_len`).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use num_complex::Complex32;
@@ -11,7 +13,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, StandardNormal};
 use skyforge_gnss::signal::Signal;
 use skyforge_receiver::acquisition::pmf_fft::PmfFft;
-use skyforge_receiver::acquisition::{Pcps, PcpsConfig};
+use skyforge_receiver::acquisition::{BitTransition, Pcps, PcpsConfig};
 use std::hint::black_box;
 
 /// One code period of PRN 7 at 45 dB-Hz, 2.7 kHz Doppler, in unit noise.
@@ -54,6 +56,17 @@ fn pcps_cold(c: &mut Criterion) {
     group.bench_function("pmf_fft_estimate_m1024_l64", |b| {
         b.iter(|| black_box(pmf.estimate(black_box(&chips), &mut scratch)))
     });
+    let fs = 20.46e6;
+    let Ok(l5) = Pcps::new(PcpsConfig {
+        bit_transition: BitTransition::AlignedWindows,
+        ..PcpsConfig::cold(Signal::GpsL5, fs)
+    }) else {
+        panic!("cold L5 PCPS configuration refused");
+    };
+    let x = samples(fs, l5.samples_needed());
+    group.bench_function("pcps_cold_8prn_l5_pm10khz_20460ksps_1ms", |b| {
+        b.iter(|| black_box(l5.search_prns(black_box(&x), &prns[..8])))
+    });
     group.finish();
 }
 
@@ -62,7 +75,7 @@ fn pcps_cold(c: &mut Criterion) {
 fn fft_lengths(c: &mut Criterion) {
     let mut planner = rustfft::FftPlanner::<f32>::new();
     let mut group = c.benchmark_group("fft_forward");
-    for n in [4092, 4096, 20_460, 20_480] {
+    for n in [4092, 4096, 8184, 8192, 20_460, 20_480, 40_920, 40_960] {
         let fft = planner.plan_fft_forward(n);
         let mut buf = samples(4.092e6, n);
         let mut scratch = vec![Complex32::default(); fft.get_inplace_scratch_len()];

@@ -6,6 +6,15 @@
 //! ([`super::cfar`]) against the noise power estimated from the correlation surface
 //! itself.
 //!
+//! The FFT length: a code period (1 ms at a multiple of 1.023 Mchip/s) holds samples in
+//! multiples of 1023 = 3 x 11 x 31, a length whose transforms cost four times those of a
+//! length with only the factors 2, 3 and 5 (`cargo bench -p skyforge-receiver --bench
+//! acquisition -- fft_forward`). Where the period is such a length the circular
+//! correlation is an FFT of it; otherwise the same correlation is computed exactly as a
+//! linear one in the next 5-smooth length of at least twice the period: the samples
+//! zero-padded, the replica periodically extended to negative lags at the buffer's end
+//! ([`fft_length`]).
+//!
 //! Conventions: samples are complex baseband (or complex IF) `x(t) = c(t - tau) exp(j 2 pi
 //! (f_carrier + f_d) t) + noise`, `t = 0` at the first sample given. The search removes
 //! `carrier_offset_hz` (the IF) and reports `f_d`. The code phase is the sample offset,
@@ -198,6 +207,8 @@ pub struct Acquisition {
 pub struct Pcps {
     config: PcpsConfig,
     period_samples: usize,
+    /// Samples one correlation reads: a period, two with aligned windows.
+    window_samples: usize,
     fft_len: usize,
     forward: Arc<dyn Fft<f32>>,
     inverse: Arc<dyn Fft<f32>>,
@@ -269,14 +280,16 @@ impl Pcps {
         }
         let doppler_hz = doppler_bins(config.window, step)?;
         let period_samples = (fs * config.signal.code_period_s()).round() as usize;
-        let fft_len = match config.bit_transition {
+        let window_samples = match config.bit_transition {
             BitTransition::Ignore => period_samples,
             BitTransition::AlignedWindows => 2 * period_samples,
         };
+        let fft_len = fft_length(period_samples, config.bit_transition);
         let mut planner = FftPlanner::new();
         Ok(Self {
             config,
             period_samples,
+            window_samples,
             fft_len,
             forward: planner.plan_fft_forward(fft_len),
             inverse: planner.plan_fft_inverse(fft_len),
@@ -317,7 +330,12 @@ impl Pcps {
     /// `K N` periods, plus one with [`BitTransition::AlignedWindows`].
     pub fn samples_needed(&self) -> usize {
         let blocks = self.config.coherent_periods * self.config.noncoherent;
-        (blocks - 1) * self.period_samples + self.fft_len
+        (blocks - 1) * self.period_samples + self.window_samples
+    }
+
+    /// Length of the FFTs a correlation runs ([`fft_length`]).
+    pub fn fft_len(&self) -> usize {
+        self.fft_len
     }
 
     /// The replica spectrum of `prn`: one code period sampled at the sample rate,
@@ -338,7 +356,8 @@ impl Pcps {
     }
 
     /// One code period of replica `chips` ([`replica_chips`]) sampled, zero-padded,
-    /// transformed, conjugated, scaled.
+    /// transformed, conjugated, scaled. A circular correlation in a buffer longer than the
+    /// period also needs the code at negative lags: chips `1..P` again at its end.
     fn spectrum_conj(&self, chips: &[i8]) -> Vec<Complex32> {
         let code = sample_code(
             chips,
@@ -349,6 +368,13 @@ impl Pcps {
         let mut buf = vec![Complex32::default(); self.fft_len];
         for (b, &c) in buf.iter_mut().zip(&code) {
             *b = Complex32::new(c, 0.0);
+        }
+        let p = self.period_samples;
+        if self.config.bit_transition == BitTransition::Ignore && self.fft_len > p {
+            let tail = self.fft_len - p;
+            for (b, &c) in buf[tail + 1..].iter_mut().zip(&code[1..]) {
+                *b = Complex32::new(c, 0.0);
+            }
         }
         self.forward.process(&mut buf);
         let scale = 1.0 / self.fft_len as f32;
@@ -407,8 +433,10 @@ impl Pcps {
                         coh.fill(Complex32::default());
                         for m in 0..k {
                             let start = (q * k + m) * lags;
-                            let block = &samples[start..start + self.fft_len];
-                            wipe_carrier(block, start as u64, fs, freq, wiped);
+                            let read = self.window_samples.min(self.fft_len);
+                            let block = &samples[start..start + read];
+                            wipe_carrier(block, start as u64, fs, freq, &mut wiped[..read]);
+                            wiped[read..].fill(Complex32::default());
                             self.forward.process_with_scratch(wiped, scratch);
                             for (spectrum, coh) in
                                 code.spectra_conj.iter().zip(coh.chunks_mut(lags))
@@ -524,6 +552,35 @@ impl Pcps {
             cells,
         })
     }
+}
+
+/// The FFT length of a correlation of one code period of `period` samples: the period
+/// itself when a circular correlation ([`BitTransition::Ignore`]) fits a 5-smooth
+/// length, else the least 5-smooth length of at least `2 period - 1`, the least in which
+/// the linear correlation of a period (of samples, or of replica with aligned windows)
+/// at lags `0..period` does not wrap onto itself.
+pub fn fft_length(period: usize, bits: BitTransition) -> usize {
+    if bits == BitTransition::Ignore && is_5_smooth(period) {
+        return period;
+    }
+    let mut n = 2 * period.max(1) - 1;
+    while !is_5_smooth(n) {
+        n += 1;
+    }
+    n
+}
+
+/// Whether `n`'s prime factors are all 2, 3 or 5.
+fn is_5_smooth(mut n: usize) -> bool {
+    if n == 0 {
+        return false;
+    }
+    for p in [2, 3, 5] {
+        while n.is_multiple_of(p) {
+            n /= p;
+        }
+    }
+    n == 1
 }
 
 /// Replica chips per second: the chip rate, twice it for BOC(1,1) half-chips.
@@ -668,6 +725,85 @@ mod tests {
             assert!((acq.code_phase_samples - main as f64).abs() < 1.0);
         }
         assert!(Pcps::new(PcpsConfig::cold(Signal::GalE1, 4.0e6)).is_err());
+    }
+
+    #[test]
+    fn fft_lengths_avoid_the_factor_31() {
+        use BitTransition::{AlignedWindows, Ignore};
+        assert_eq!(fft_length(4096, Ignore), 4096);
+        assert_eq!(fft_length(4092, Ignore), 8192);
+        assert_eq!(fft_length(20_460, Ignore), 40_960);
+        assert_eq!(fft_length(20_460, AlignedWindows), 40_960);
+        assert_eq!(fft_length(4096, AlignedWindows), 8192);
+        for p in [1usize, 7, 1023, 2600, 16_368, 20_460] {
+            for bits in [Ignore, AlignedWindows] {
+                let n = fft_length(p, bits);
+                assert!(is_5_smooth(n), "{p}: {n}");
+                assert!(n == p || n >= 2 * p - 1, "{p}: {n}");
+                assert!(n < 3 * p.max(2), "{p}: {n}");
+            }
+        }
+    }
+
+    /// Oracle: the search surface at one Doppler bin (0 Hz, nothing to wipe) is the
+    /// correlation summed sample by sample, circular over one period
+    /// ([`BitTransition::Ignore`]) or one period of replica sliding over two of samples
+    /// ([`BitTransition::AlignedWindows`]), whether the FFT is the period's length or the
+    /// longer 5-smooth one.
+    #[test]
+    fn surfaces_match_the_correlation_summed_sample_by_sample() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let cases = [
+            (Signal::GpsL1Ca, 1.023e6, BitTransition::Ignore, 2048),
+            (Signal::GpsL1Ca, 1.024e6, BitTransition::Ignore, 1024),
+            (Signal::BdsB1I, 2.046e6, BitTransition::AlignedWindows, 4096),
+            (
+                Signal::GpsL1Ca,
+                1.024e6,
+                BitTransition::AlignedWindows,
+                2048,
+            ),
+        ];
+        for (signal, fs, bits, fft_len) in cases {
+            let mut config = PcpsConfig::cold(signal, fs);
+            config.window.half_width_hz = 0.0;
+            config.bit_transition = bits;
+            let pcps = Pcps::new(config).unwrap();
+            assert_eq!(pcps.fft_len(), fft_len);
+            let p = pcps.period_samples();
+            let x: Vec<Complex32> = (0..pcps.samples_needed())
+                .map(|_| Complex32::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)))
+                .collect();
+            let code = pcps.prepare(9).unwrap();
+            let surface = pcps.surface(&x, &code).unwrap();
+            let chips = replica_chips(signal, &signal.code(9).unwrap());
+            let c = sample_code(&chips, replica_rate_hz(signal), fs, p);
+            let mut largest = 0.0_f64;
+            let direct: Vec<f64> = (0..p)
+                .map(|lag| {
+                    let r: num_complex::Complex64 = (0..p)
+                        .map(|n| {
+                            let xi = match bits {
+                                BitTransition::Ignore => x[(n + lag) % p],
+                                BitTransition::AlignedWindows => x[n + lag],
+                            };
+                            num_complex::Complex64::new(xi.re.into(), xi.im.into())
+                                * f64::from(c[n])
+                        })
+                        .sum();
+                    largest = largest.max(r.norm_sqr());
+                    r.norm_sqr()
+                })
+                .collect();
+            for (lag, (d, s)) in direct.iter().zip(&surface.power).enumerate() {
+                let err = (d - f64::from(*s)).abs();
+                assert!(
+                    err < 1e-4 * largest,
+                    "{signal:?} {bits:?} lag {lag}: {d} vs {s}"
+                );
+            }
+        }
     }
 
     #[test]
