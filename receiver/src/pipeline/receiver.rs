@@ -39,6 +39,10 @@ const WIDEN_BELOW: usize = 6;
 /// Half width of the widened cold window (Hz): a LEO's line-of-sight speed to a GNSS
 /// satellite reaches about 9 km/s, 47 kHz at L1, plus the oscillator's offset.
 const WIDE_COLD_HALF_WIDTH_HZ: f64 = 50e3;
+/// Carriers above this lead their system's lower bands in acquisition (L1 C/A, E1, B1I,
+/// B1C lead L5, E5a, B2a): [`Receiver::lead_band_covers`]. # assumed: between the
+/// L1-family (1559-1610 MHz) and the L2/L5-family bands (1164-1300 MHz).
+const LEAD_ABOVE_HZ: f64 = 1.4e9;
 /// Code periods past an epoch every channel must have tracked before the epoch is formed:
 /// a channel reports an integration when it ends, so the first integration starting after
 /// the epoch is known only up to two of the longest integrations (plus a code period of
@@ -367,8 +371,19 @@ impl Receiver {
         self.search_rounds += 1;
         // (band, satellites found) of each band searched blind in the first round.
         let mut widen = Vec::new();
-        for (b, band) in self.setup.bands.iter().enumerate() {
+        // Lead bands first: their detections aid the lower bands' searches this round.
+        let leads = |b: &usize| self.setup.bands[*b].signal.carrier_hz() > LEAD_ABOVE_HZ;
+        let n_bands = self.setup.bands.len();
+        let order: Vec<usize> = (0..n_bands)
+            .filter(leads)
+            .chain((0..n_bands).filter(|b| !leads(b)))
+            .collect();
+        // (satellite, carrier Hz, Doppler Hz) of every detection this round.
+        let mut found_round: Vec<(SatId, f64, f64)> = Vec::new();
+        for b in order {
+            let band = &self.setup.bands[b];
             let system = band.signal.system();
+            let carrier_hz = band.signal.carrier_hz();
             let n_antennas = band.antennas.len();
             let narrow = 2.0 * self.searches[b].doppler_step_hz();
             // Doppler of each PRN found in this band this round (all antennas share the
@@ -389,8 +404,27 @@ impl Receiver {
                         .find_map(Channel::doppler_hz)
                         .or_else(|| found_here.iter().find(|f| f.0 == prn).map(|f| f.1))
                 };
+                // A lower band beside its system's lead band at this antenna is searched
+                // only around the Doppler a lead signal found, scaled to its carrier
+                // (the motion and the oscillator's offset both scale with frequency): the
+                // hand-over of dual-frequency receivers, no blind search.
+                let follows = self.lead_band_covers(b, antenna);
+                let lead = |prn: u8| {
+                    let sat = SatId { system, prn };
+                    self.channels
+                        .iter()
+                        .filter(|c| c.sat == sat && c.signal().carrier_hz() > LEAD_ABOVE_HZ)
+                        .find_map(|c| Some((c.signal().carrier_hz(), c.doppler_hz()?)))
+                        .or_else(|| {
+                            found_round
+                                .iter()
+                                .find(|f| f.0 == sat && f.1 > LEAD_ABOVE_HZ)
+                                .map(|f| (f.1, f.2))
+                        })
+                        .map(|(f, doppler)| doppler * carrier_hz / f)
+                };
                 let all = self.candidates(b, antenna, t_s);
-                blind |= all.iter().any(|c| c.cold);
+                blind |= !follows && all.iter().any(|c| c.cold);
                 let candidates: Vec<Candidate> = all
                     .into_iter()
                     .filter(|c| !tracked(c.prn))
@@ -398,6 +432,13 @@ impl Receiver {
                         (false, _) => Some(c),
                         // Seen by another antenna: search around its Doppler.
                         (true, Some(doppler)) => Some(Candidate {
+                            window: DopplerWindow {
+                                centre_hz: doppler,
+                                half_width_hz: narrow,
+                            },
+                            ..c
+                        }),
+                        (true, None) if follows => lead(c.prn).map(|doppler| Candidate {
                             window: DopplerWindow {
                                 centre_hz: doppler,
                                 half_width_hz: narrow,
@@ -417,6 +458,8 @@ impl Receiver {
                     if !found_here.iter().any(|f| f.0 == c.prn) {
                         found_here.push((c.prn, acq.doppler_hz));
                     }
+                    let sat = SatId { system, prn: c.prn };
+                    found_round.push((sat, carrier_hz, acq.doppler_hz));
                     let handover = Handover {
                         signal: band.signal,
                         prn: c.prn,
@@ -430,7 +473,6 @@ impl Receiver {
                         if_hz: band.if_hz,
                     };
                     let tracker = ChannelTracker::new(handover, front_end, self.config.tracking)?;
-                    let sat = SatId { system, prn: c.prn };
                     self.channels
                         .push(Channel::new(b, local, antenna, sat, tracker, fs)?);
                     self.summary.detections += 1;
@@ -444,6 +486,18 @@ impl Receiver {
             self.widen_if_too_few(band, found);
         }
         Ok(())
+    }
+
+    /// Whether band `b` lies below [`LEAD_ABOVE_HZ`] and a band of its system above it
+    /// records `antenna`: then `b` is searched only for what the lead band found.
+    fn lead_band_covers(&self, b: usize, antenna: usize) -> bool {
+        let signal = self.setup.bands[b].signal;
+        signal.carrier_hz() <= LEAD_ABOVE_HZ
+            && self.setup.bands.iter().any(|l| {
+                l.signal.system() == signal.system()
+                    && l.signal.carrier_hz() > LEAD_ABOVE_HZ
+                    && l.antennas.contains(&antenna)
+            })
     }
 
     /// After band `band`'s first blind search (every PRN on every antenna over the cold
@@ -644,5 +698,56 @@ impl std::fmt::Debug for Receiver {
             .field("clock_offset_s", &self.clock_offset_s)
             .field("summary", &self.summary)
             .finish_non_exhaustive()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// One block of noise on every band's single antenna: the first search round.
+    fn searches_on_noise(signals: &[Signal]) -> usize {
+        let fs = 20.46e6;
+        let setup = ReceiverSetup {
+            sample_rate_hz: fs,
+            bands: signals
+                .iter()
+                .map(|&signal| BandInput {
+                    signal,
+                    if_hz: 0.0,
+                    antennas: vec![0],
+                })
+                .collect(),
+            antenna_names: vec!["ant1".into()],
+            start_time: None,
+            ephemerides: Vec::new(),
+            iono_gps: None,
+            iono_bds: None,
+            approximate: None,
+        };
+        let mut receiver = Receiver::new(setup, ReceiverConfig::default()).unwrap();
+        let len = receiver.samples_per_search();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(1);
+        let noise: Vec<Complex32> = (0..len)
+            .map(|_| Complex32::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0)))
+            .collect();
+        let bands = vec![vec![noise]; signals.len()];
+        receiver.process(&bands, 0, len).unwrap();
+        receiver.summary().searches
+    }
+
+    /// L5 beside L1 C/A at the same antenna is searched only for what L1 C/A found (here,
+    /// in noise, nothing); recorded alone it is searched blind, every PRN.
+    #[test]
+    fn a_lower_band_follows_its_lead_band_and_is_blind_alone() {
+        assert_eq!(searches_on_noise(&[Signal::GpsL1Ca, Signal::GpsL5]), 32);
+        assert_eq!(searches_on_noise(&[Signal::GpsL5, Signal::GpsL1Ca]), 32);
+        assert_eq!(searches_on_noise(&[Signal::GpsL5]), 32);
+        // Another system's lead band does not lead: E5a is searched blind beside L1 C/A.
+        assert_eq!(
+            searches_on_noise(&[Signal::GpsL1Ca, Signal::GalE5a]),
+            32 + 36
+        );
     }
 }
