@@ -17,6 +17,7 @@ pub(crate) mod nmea;
 pub(crate) mod protection;
 pub(crate) mod raim;
 mod ranging;
+mod smoothing;
 pub(crate) mod solve;
 #[cfg(test)]
 mod test_geometry;
@@ -27,6 +28,7 @@ pub use nmea::{gga, gsa, rmc};
 pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
 pub use raim::{chi2_survival, detection_parameters};
 pub use ranging::IonosphereCorrection;
+pub use smoothing::{CarrierSmoother, CodeAndCarrier, JUMP_SIGMAS, SmoothingConfig};
 pub use solve::{solve, solve_with};
 pub use velocity::solve_velocity;
 
@@ -139,6 +141,9 @@ pub struct PvtConfig {
     pub raim_hal_m: f64,
     /// Vertical alarm limit (m), if the phase of flight has one (table 5-1 has none).
     pub raim_val_m: Option<f64>,
+    /// Carrier-smoothed code before the fix ([`CarrierSmoother`], the book's eqs.
+    /// 5-60..5-64), applied by the receiver's PVT stage; `None`: raw code.
+    pub carrier_smoothing: Option<SmoothingConfig>,
 }
 
 impl Default for PvtConfig {
@@ -158,6 +163,7 @@ impl Default for PvtConfig {
             raim_pmd: 1e-3,
             raim_hal_m: 555.96,
             raim_val_m: None,
+            carrier_smoothing: None,
         }
     }
 }

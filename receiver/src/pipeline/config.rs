@@ -4,7 +4,7 @@
 pub use crate::acquisition::config::{AcquisitionMethod, AcquisitionSettings};
 use crate::tracking::config::CarrierMethod;
 use crate::tracking::config::TrackingConfig;
-use skyforge_navigation::pvt::{IonosphereCorrection, PvtConfig};
+use skyforge_navigation::pvt::{IonosphereCorrection, PvtConfig, SmoothingConfig};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::check::{Invalid, NEAR_EARTH_RADIUS_M, check_position, check_table};
 
@@ -132,6 +132,9 @@ pub struct PvtFile {
     pub raim_hal_m: f64,
     /// Vertical alarm limit (m), none by default.
     pub raim_val_m: Option<f64>,
+    /// `[pvt.carrier_smoothing]`: smooth each signal's code with its carrier before the
+    /// fix (absent: raw code).
+    pub carrier_smoothing: Option<SmoothingConfig>,
 }
 
 impl Default for PvtFile {
@@ -145,6 +148,7 @@ impl Default for PvtFile {
             raim_pmd: d.raim_pmd,
             raim_hal_m: d.raim_hal_m,
             raim_val_m: d.raim_val_m,
+            carrier_smoothing: d.carrier_smoothing,
         }
     }
 }
@@ -210,6 +214,12 @@ mod limits {
     pub(super) const TIME_UNCERTAINTY_S: Allowed = Allowed::closed(0.0, 86_400.0, "s");
     /// assumed: 1000 ppm (0.1 %) is beyond the worst crystal oscillator.
     pub(super) const OSCILLATOR_PPM: Allowed = Allowed::closed(0.0, 1000.0, "ppm");
+    /// Noise sigmas of carrier smoothing: assumed up to 1 km, beyond any code noise.
+    pub(super) const SMOOTHING_SIGMA_M: Allowed = Allowed::above(0.0, 1000.0, "m");
+    /// Restart gap of carrier smoothing: assumed up to an hour.
+    pub(super) const SMOOTHING_GAP_S: Allowed = Allowed::above(0.0, 3600.0, "s");
+    /// Memory cap of carrier smoothing: from 1 (no smoothing) to a day at 1 Hz.
+    pub(super) const SMOOTHING_EPOCHS: Allowed = Allowed::closed(1.0, 86_400.0, "epochs");
 }
 
 impl ReceiverFile {
@@ -257,6 +267,28 @@ impl ReceiverFile {
         if let Some(v) = p.raim_val_m {
             ALARM_LIMIT_M.check("pvt.raim_val_m", v)?;
         }
+        if let Some(c) = &p.carrier_smoothing {
+            check_table(&[
+                (
+                    "pvt.carrier_smoothing.code_sigma_m",
+                    c.code_sigma_m,
+                    SMOOTHING_SIGMA_M,
+                ),
+                (
+                    "pvt.carrier_smoothing.phase_sigma_m",
+                    c.phase_sigma_m,
+                    SMOOTHING_SIGMA_M,
+                ),
+                (
+                    "pvt.carrier_smoothing.max_gap_s",
+                    c.max_gap_s,
+                    SMOOTHING_GAP_S,
+                ),
+            ])?;
+            if let Some(n) = c.max_epochs {
+                SMOOTHING_EPOCHS.check("pvt.carrier_smoothing.max_epochs", f64::from(n))?;
+            }
+        }
         self.tracking.check().map_err(|e| e.within("tracking"))?;
         let approximate = self.assist.as_ref().map(AssistFile::resolve).transpose()?;
         let config = ReceiverConfig {
@@ -282,6 +314,7 @@ impl ReceiverFile {
                 raim_pmd: p.raim_pmd,
                 raim_hal_m: p.raim_hal_m,
                 raim_val_m: p.raim_val_m,
+                carrier_smoothing: p.carrier_smoothing,
                 ..PvtConfig::default()
             },
         };

@@ -2,7 +2,9 @@
 
 use super::{EpochInput, EpochStage, LastFix};
 use crate::pipeline::AntennaFix;
-use skyforge_navigation::pvt::{Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity};
+use skyforge_navigation::pvt::{
+    CarrierSmoother, CodeAndCarrier, Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity,
+};
 use skyforge_orbits::Vec3;
 
 /// Single-point position, velocity and time of each antenna (with RAIM), the previous fix
@@ -10,14 +12,21 @@ use skyforge_orbits::Vec3;
 pub(super) struct PvtStage {
     config: PvtConfig,
     last_fix: Vec<Option<LastFix>>,
+    /// Per antenna, with `[pvt.carrier_smoothing]`.
+    smoothers: Vec<CarrierSmoother>,
 }
 
 impl PvtStage {
     /// The stage for `antennas` antennas, with the PVT settings `config`.
     pub(super) fn new(config: PvtConfig, antennas: usize) -> Self {
+        let smoothers = match config.carrier_smoothing {
+            Some(c) => vec![CarrierSmoother::new(c); antennas],
+            None => Vec::new(),
+        };
         Self {
             config,
             last_fix: vec![None; antennas],
+            smoothers,
         }
     }
 
@@ -29,7 +38,17 @@ impl PvtStage {
             .filter(|o| o.antenna == antenna && nav.has_ephemeris(o.sat, t_k))
             .map(|o| Measurement {
                 sat: o.sat,
-                pseudorange_m: o.pseudorange_m,
+                pseudorange_m: match self.smoothers.get_mut(antenna) {
+                    Some(smoother) => smoother.smooth(&CodeAndCarrier {
+                        sat: o.sat,
+                        signal: o.signal,
+                        t_s: t_k,
+                        pseudorange_m: o.pseudorange_m,
+                        carrier_phase_cycles: o.carrier_phase_cycles,
+                        loss_of_lock: o.loss_of_lock,
+                    }),
+                    None => o.pseudorange_m,
+                },
                 doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
                 signal: o.signal,
             })
