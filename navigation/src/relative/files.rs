@@ -7,11 +7,11 @@ use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
 use crate::geometry_file::BodyGeometryFile;
 use crate::pvt::{
-    Fix, FromEphemeris, IonosphereCorrection, Measurement, NearAntenna, Predicted, PvtConfig,
-    Recorded, Satellites, ViewPoint, solve_with,
+    CarrierSmoother, CodeAndCarrier, Fix, FromEphemeris, IonosphereCorrection, Measurement,
+    NearAntenna, Predicted, PvtConfig, Recorded, Satellites, ViewPoint, solve_with,
 };
 use hifitime::Epoch;
-use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
+use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
@@ -148,7 +148,8 @@ fn single_point(
 
 /// The single-point solution of every epoch of `file` (times in seconds since `origin`)
 /// with `config`, each epoch starting from the last position found: how the chain
-/// positions its master antenna.
+/// positions its master antenna. With `config.carrier_smoothing` the code is smoothed
+/// with the carrier first ([`CarrierSmoother`]), as the receiver's PVT stage does.
 pub fn single_point_fixes(
     file: &ObsFile,
     store: &EphemerisStore,
@@ -157,12 +158,17 @@ pub fn single_point_fixes(
     config: &PvtConfig,
 ) -> Vec<Result<Fix, String>> {
     let mut prior = None;
+    let mut smoother = config.carrier_smoothing.map(CarrierSmoother::new);
     file.epochs
         .iter()
         .map(|e| {
             let t_s = origin.seconds_since_start(e.time);
+            let records = match smoother.as_mut() {
+                Some(s) => std::borrow::Cow::Owned(smoothed(s, &e.sats, t_s)),
+                None => std::borrow::Cow::Borrowed(e.sats.as_slice()),
+            };
             let fix = single_point(
-                &e.sats,
+                &records,
                 signals,
                 t_s,
                 store,
@@ -173,6 +179,27 @@ pub fn single_point_fixes(
             );
             prior = fix.as_ref().ok().map(|f| f.r_ecef_m).or(prior);
             fix
+        })
+        .collect()
+}
+
+/// `records` with each pseudorange that has a carrier beside it smoothed by `smoother`.
+fn smoothed(smoother: &mut CarrierSmoother, records: &[ObsRecord], t_s: f64) -> Vec<ObsRecord> {
+    records
+        .iter()
+        .map(|r| match (r.pseudorange_m, r.carrier_phase_cycles) {
+            (Some(pseudorange_m), Some(carrier_phase_cycles)) => ObsRecord {
+                pseudorange_m: Some(smoother.smooth(&CodeAndCarrier {
+                    sat: r.sat,
+                    signal: r.signal,
+                    t_s,
+                    pseudorange_m,
+                    carrier_phase_cycles,
+                    loss_of_lock: r.phase_lli & LLI_LOSS_OF_LOCK != 0,
+                })),
+                ..*r
+            },
+            _ => *r,
         })
         .collect()
 }
