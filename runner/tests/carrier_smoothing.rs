@@ -6,9 +6,10 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{PvtConfig, SmoothingConfig};
 use skyforge_runner::{ObservationRun, observation_run};
 
-/// A 10 min static site, GPS L1 C/A, 0.3 m white code noise and 3 mm carrier noise, no
-/// ionosphere (on one frequency its code-carrier divergence would bias a growing memory).
-fn run(seed: u64) -> ObservationRun {
+/// A 10 min static site, GPS L1 C/A, 0.3 m white code noise and 3 mm carrier noise, the
+/// ionosphere as `ionosphere` sets it (on one frequency its code-carrier divergence biases
+/// a growing memory).
+fn run(seed: u64, ionosphere: &str) -> ObservationRun {
     let dir = tempfile::tempdir().expect("tempdir");
     let text = format!(
         r#"name = "carrier-smoothing"
@@ -36,7 +37,7 @@ fov_half_angle_deg = 90.0
 cn0_dbhz = 45.0
 
 [errors.ionosphere]
-model = "off"
+{ionosphere}
 
 [observation]
 level = "observation"
@@ -81,12 +82,40 @@ fn smoothed_code_fixes_are_several_times_closer_than_raw_ones() {
         ..PvtConfig::default()
     };
     for seed in 1..=2 {
-        let r = run(seed);
+        let r = run(seed, "model = \"off\"");
         let (raw, smooth) = (
             rms_error_m(&r, &PvtConfig::default()),
             rms_error_m(&r, &smoothed),
         );
         eprintln!("seed {seed}: RMS 3-D error raw {raw:.3} m, smoothed {smooth:.3} m");
         assert!(smooth < raw / 3.0, "seed {seed}: {smooth} vs {raw}");
+    }
+}
+
+/// On one frequency the ionosphere moves code and carrier apart at twice its rate, which a
+/// growing memory turns into a bias and a capped memory (`max_epochs`) bounds: with a
+/// threefold ionosphere at midday (# assumed: large enough to show it in 10 min) the
+/// fixes on code smoothed over at most 60 epochs (# assumed: a minute) are closer than on
+/// code smoothed over the whole run, on two seeds.
+#[test]
+fn a_capped_memory_bounds_the_ionospheric_divergence() {
+    let smoothing = |max_epochs| PvtConfig {
+        carrier_smoothing: Some(SmoothingConfig {
+            code_sigma_m: 0.3,
+            phase_sigma_m: 0.003,
+            max_epochs,
+            ..SmoothingConfig::default()
+        }),
+        ..PvtConfig::default()
+    };
+    for seed in 1..=2 {
+        let r = run(seed, "model = \"klobuchar\"\nscale = 3.0");
+        let raw = rms_error_m(&r, &PvtConfig::default());
+        let growing = rms_error_m(&r, &smoothing(None));
+        let capped = rms_error_m(&r, &smoothing(Some(60)));
+        eprintln!(
+            "seed {seed}: RMS 3-D error raw {raw:.3} m, growing memory {growing:.3} m, 60 epochs {capped:.3} m"
+        );
+        assert!(capped < growing, "seed {seed}: {capped} vs {growing}");
     }
 }
