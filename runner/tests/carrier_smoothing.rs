@@ -2,6 +2,8 @@
 //! book's growing-memory filter, eqs. 5-60..5-64): the same observations fixed with raw
 //! and with smoothed code.
 
+mod support;
+
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{PvtConfig, SmoothingConfig};
 use skyforge_runner::{ObservationRun, observation_run};
@@ -18,35 +20,13 @@ seed = {seed}
 [time]
 start = "2023-03-12T11:00:00 GPST"  # assumed: as the dual-frequency test
 duration_s = 600.0  # assumed: 10 min of 1 s epochs
-
-[gnss.beidou]
-enabled = false
-
-[platform.ground]
-latitude_deg = 52.0
-longitude_deg = 13.0
-height_m = 100.0
-
-[[antennas]]
-name = "ant1"
-position_body_m = [0.0, 0.0, 0.0]
-boresight_body = [0.0, 0.0, -1.0]
-fov_half_angle_deg = 90.0
-
-[signal]
-cn0_dbhz = 45.0
-
+{site}
 [errors.ionosphere]
 {ionosphere}
-
-[observation]
-level = "observation"
-
-[observation.noise]
-model = "constant"
-phase_m = 0.003  # assumed: the book's "a few mm"
-code_m = 0.3  # assumed: the PVT's own sigma_a
-"#
+{observation}"#,
+        site = support::STATIC_SITE,
+        // assumed: 0.3 m code (the PVT's own sigma_a), 3 mm carrier (the book's "a few mm").
+        observation = support::observation_level("", 0.3, 0.003),
     );
     let scenario =
         skyforge_scenarios::parse(&text, "carrier-smoothing.toml", dir.path()).expect("scenario");

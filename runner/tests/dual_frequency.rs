@@ -6,6 +6,8 @@
 //! Observation level: the L5 observables are drawn from the L1 link truth with the
 //! ionosphere scaled to their carrier, each signal with its own noise draws.
 
+mod support;
+
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{IonosphereCorrection, PvtConfig};
 use skyforge_runner::{ObservationRun, observation_run};
@@ -23,37 +25,13 @@ seed = {seed}
 start = "2023-03-12T11:00:00 GPST"
 # assumed: 10 min of 1 s epochs; the constellation hardly changes.
 duration_s = 600.0
-
-[gnss.beidou]
-enabled = false
-
-[platform.ground]
-latitude_deg = 52.0
-longitude_deg = 13.0
-height_m = 100.0
-
-[[antennas]]
-name = "ant1"
-position_body_m = [0.0, 0.0, 0.0]
-boresight_body = [0.0, 0.0, -1.0]
-fov_half_angle_deg = 90.0
-
-[signal]
-cn0_dbhz = 45.0
-
+{site}
 [errors.ionosphere]
 {ionosphere}
-
-[observation]
-level = "observation"
-observed_signals = ["gps-l5"]
-
-[observation.noise]
-# assumed: 0.3 m of code noise on each signal, the PVT's own sigma_a.
-model = "constant"
-phase_m = 0.003
-code_m = 0.3
-"#
+{observation}"#,
+        site = support::STATIC_SITE,
+        // assumed: 0.3 m of code noise on each signal, the PVT's own sigma_a.
+        observation = support::observation_level("observed_signals = [\"gps-l5\"]", 0.3, 0.003),
     );
     let scenario =
         skyforge_scenarios::parse(&text, "dual-frequency.toml", dir.path()).expect("scenario");

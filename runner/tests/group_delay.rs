@@ -4,6 +4,8 @@
 //! give observation truths that differ by exactly c TGD on every pseudorange and every
 //! carrier phase (in metres), and by nothing else.
 
+mod support;
+
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{nominal, write_nav};
@@ -25,7 +27,8 @@ fn truth_with_tgd(dir: &std::path::Path, tgd_s: f64) -> Vec<(String, f64, f64)> 
     )
     .expect("nav text");
     std::fs::write(dir.join("nav.rnx"), nav).expect("write nav");
-    let text = r#"name = "tgd"
+    let text = format!(
+        r#"name = "tgd"
 seed = 1
 
 [time]
@@ -35,33 +38,11 @@ duration_s = 3.0
 [gnss.gps]
 source = "rinex"
 nav_file = "nav.rnx"
-
-[gnss.beidou]
-enabled = false
-
-[platform.ground]
-latitude_deg = 52.0
-longitude_deg = 13.0
-height_m = 100.0
-
-[[antennas]]
-name = "ant1"
-position_body_m = [0.0, 0.0, 0.0]
-boresight_body = [0.0, 0.0, -1.0]
-fov_half_angle_deg = 90.0
-
-[signal]
-cn0_dbhz = 45.0
-
-[observation]
-level = "observation"
-
-[observation.noise]
-model = "constant"
-phase_m = 0.0
-code_m = 0.0
-"#;
-    let scenario = skyforge_scenarios::parse(text, "tgd.toml", dir).expect("scenario");
+{site}{observation}"#,
+        site = support::STATIC_SITE,
+        observation = support::observation_level("", 0.0, 0.0),
+    );
+    let scenario = skyforge_scenarios::parse(&text, "tgd.toml", dir).expect("scenario");
     let run = observation_run(&scenario).expect("run");
     run.truth[0]
         .epochs

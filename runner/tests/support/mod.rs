@@ -1,0 +1,33 @@
+//! The static site the runner's observation-level tests share.
+//! Shared by several test binaries, each using part of it.
+#![allow(dead_code)]
+
+/// GPS alone at a static ground site (52 N 13 E, 100 m) with one antenna looking up over
+/// the whole sky, 45 dB-Hz: the scenario between its `[time]`/`[gnss.gps]` sections and its
+/// error and observation sections.
+pub const STATIC_SITE: &str = r#"
+[gnss.beidou]
+enabled = false
+
+[platform.ground]
+latitude_deg = 52.0
+longitude_deg = 13.0
+height_m = 100.0
+
+[[antennas]]
+name = "ant1"
+position_body_m = [0.0, 0.0, 0.0]
+boresight_body = [0.0, 0.0, -1.0]
+fov_half_angle_deg = 90.0
+
+[signal]
+cn0_dbhz = 45.0
+"#;
+
+/// `[observation]` at the observation level with `extra` lines (observed signals), and
+/// constant noise of `code_m` on the code and `phase_m` on the carrier.
+pub fn observation_level(extra: &str, code_m: f64, phase_m: f64) -> String {
+    format!(
+        "\n[observation]\nlevel = \"observation\"\n{extra}\n[observation.noise]\nmodel = \"constant\"\nphase_m = {phase_m:?}\ncode_m = {code_m:?}\n"
+    )
+}
