@@ -32,32 +32,11 @@ fn smoothing_narrows_the_fixes_without_moving_them() {
     let scenario = support::write_scenario(dir.path(), "smooth.toml", &text);
     support::skyforge_ok(&["synth", &scenario, "--out", "sim"], dir.path());
     let sim = dir.path().join("sim");
-    let mut recordings: Vec<String> = std::fs::read_dir(&sim)
-        .expect("sim")
-        .filter_map(|e| {
-            let p = e.ok()?.path();
-            p.extension()
-                .is_some_and(|x| x == "sigmf-meta")
-                .then(|| p.to_string_lossy().into_owned())
-        })
-        .collect();
-    recordings.sort();
     let receive = |name: &str, config: &str| {
         let path = dir.path().join(format!("{name}.toml"));
         std::fs::write(&path, config).expect("receiver config");
-        let mut args = vec!["receive"];
-        args.extend(recordings.iter().map(String::as_str));
-        let nav = sim.join("nav.rnx");
         let out = dir.path().join(name);
-        args.extend([
-            "--assist",
-            nav.to_str().unwrap(),
-            "--config",
-            path.to_str().unwrap(),
-            "--out",
-            out.to_str().unwrap(),
-        ]);
-        support::skyforge_ok(&args, dir.path());
+        support::receive_all_recordings_with(&sim, &path, &out, &[], dir.path());
         support::fixes(&out)
     };
     let raw = receive("raw", "[pvt]\n");

@@ -21,6 +21,7 @@
 //! `1 / max_epochs`): on one frequency the ionosphere moves code and carrier apart at
 //! twice its rate, which a growing memory turns into a bias.
 
+use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::SatId;
@@ -149,6 +150,23 @@ impl CarrierSmoother {
         track.offset_m -= k2 * innovation;
         track.t_s = m.t_s;
         predicted + k1 * innovation
+    }
+
+    /// The smoothed pseudorange of an observation record at `t_s` ([`Self::smooth`]): its
+    /// raw pseudorange without a carrier, `None` without a pseudorange.
+    pub fn smooth_record(&mut self, r: &ObsRecord, t_s: f64) -> Option<f64> {
+        let pseudorange_m = r.pseudorange_m?;
+        Some(match r.carrier_phase_cycles {
+            Some(carrier_phase_cycles) => self.smooth(&CodeAndCarrier {
+                sat: r.sat,
+                signal: r.signal,
+                t_s,
+                pseudorange_m,
+                carrier_phase_cycles,
+                loss_of_lock: r.phase_lli & LLI_LOSS_OF_LOCK != 0,
+            }),
+            None => pseudorange_m,
+        })
     }
 }
 

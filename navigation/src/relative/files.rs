@@ -7,11 +7,11 @@ use super::{RelativeConfig, RelativeEpoch, RelativeError, RelativeSolver};
 use crate::baseline::LineOfSight;
 use crate::geometry_file::BodyGeometryFile;
 use crate::pvt::{
-    CarrierSmoother, CodeAndCarrier, Fix, FromEphemeris, IonosphereCorrection, Measurement,
-    NearAntenna, Predicted, PvtConfig, Recorded, Satellites, ViewPoint, solve_with,
+    CarrierSmoother, Fix, FromEphemeris, IonosphereCorrection, Measurement, NearAntenna, Predicted,
+    PvtConfig, Recorded, Satellites, ViewPoint, solve_with,
 };
 use hifitime::Epoch;
-use skyforge_gnss::observation::{LLI_LOSS_OF_LOCK, ObsEpoch, ObsFile, ObsRecord};
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
@@ -187,19 +187,9 @@ pub fn single_point_fixes(
 fn smoothed(smoother: &mut CarrierSmoother, records: &[ObsRecord], t_s: f64) -> Vec<ObsRecord> {
     records
         .iter()
-        .map(|r| match (r.pseudorange_m, r.carrier_phase_cycles) {
-            (Some(pseudorange_m), Some(carrier_phase_cycles)) => ObsRecord {
-                pseudorange_m: Some(smoother.smooth(&CodeAndCarrier {
-                    sat: r.sat,
-                    signal: r.signal,
-                    t_s,
-                    pseudorange_m,
-                    carrier_phase_cycles,
-                    loss_of_lock: r.phase_lli & LLI_LOSS_OF_LOCK != 0,
-                })),
-                ..*r
-            },
-            _ => *r,
+        .map(|r| ObsRecord {
+            pseudorange_m: smoother.smooth_record(r, t_s),
+            ..*r
         })
         .collect()
 }

@@ -410,6 +410,8 @@ impl Pcps {
         let (k, n) = (self.config.coherent_periods, self.config.noncoherent);
         let components = code.spectra_conj.len();
         let fs = self.config.sample_rate_hz;
+        // Samples one correlation wipes (the FFT may be one shorter than aligned windows).
+        let read = self.window_samples.min(self.fft_len);
         let mut power = vec![0f32; doppler_hz.len() * lags];
         let scratch_len = self
             .forward
@@ -433,7 +435,6 @@ impl Pcps {
                         coh.fill(Complex32::default());
                         for m in 0..k {
                             let start = (q * k + m) * lags;
-                            let read = self.window_samples.min(self.fft_len);
                             let block = &samples[start..start + read];
                             wipe_carrier(block, start as u64, fs, freq, &mut wiped[..read]);
                             wiped[read..].fill(Complex32::default());

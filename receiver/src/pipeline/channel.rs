@@ -30,8 +30,8 @@ pub(crate) struct Channel {
     slip: bool,
     /// The carrier loop reported lock at least once.
     ever_locked: bool,
-    /// Carrier Doppler of the last record (Hz).
-    doppler_hz: Option<f64>,
+    /// Carrier Doppler of the last record, the acquisition's before the first (Hz).
+    doppler_hz: f64,
     /// Records of the last block, digested after the (parallel) tracking step.
     records: Vec<TrackingRecord>,
     /// Timed code epochs not yet handed to the observables, oldest first.
@@ -55,6 +55,7 @@ impl Channel {
         sat: SatId,
         tracker: ChannelTracker,
         sample_rate_hz: f64,
+        acquired_doppler_hz: f64,
     ) -> Result<Self, crate::navdecode::NavDecodeError> {
         let code_period_s = tracker.signal().code_period_s();
         let decoder = decoder_for(sat, tracker.signal())?;
@@ -70,7 +71,7 @@ impl Channel {
             inverted: false,
             slip: true,
             ever_locked: false,
-            doppler_hz: None,
+            doppler_hz: acquired_doppler_hz,
             records: Vec::new(),
             queue: VecDeque::new(),
             last_epoch: None,
@@ -97,8 +98,8 @@ impl Channel {
         self.tracker.is_lost()
     }
 
-    /// The carrier Doppler the loop tracks (Hz), once it has run a block.
-    pub(crate) fn doppler_hz(&self) -> Option<f64> {
+    /// The carrier Doppler the loop tracks (Hz); before its first block, the acquisition's.
+    pub(crate) fn doppler_hz(&self) -> f64 {
         self.doppler_hz
     }
 
@@ -136,7 +137,7 @@ impl Channel {
                 }
             }
             self.ever_locked |= r.locked;
-            self.doppler_hz = Some(r.doppler_hz);
+            self.doppler_hz = r.doppler_hz;
             if r.cycle_slip || r.loss_of_lock || !r.locked {
                 self.slip = true;
             }

@@ -40,9 +40,15 @@ const WIDEN_BELOW: usize = 6;
 /// satellite reaches about 9 km/s, 47 kHz at L1, plus the oscillator's offset.
 const WIDE_COLD_HALF_WIDTH_HZ: f64 = 50e3;
 /// Carriers above this lead their system's lower bands in acquisition (L1 C/A, E1, B1I,
-/// B1C lead L5, E5a, B2a): [`Receiver::lead_band_covers`]. # assumed: between the
-/// L1-family (1559-1610 MHz) and the L2/L5-family bands (1164-1300 MHz).
+/// B1C lead L5, E5a, B2a): [`leads`]. # assumed: between the L1-family (1559-1610 MHz) and
+/// the L2/L5-family bands (1164-1300 MHz).
 const LEAD_ABOVE_HZ: f64 = 1.4e9;
+
+/// Whether `signal` is of a lead band ([`LEAD_ABOVE_HZ`]): searched first, and the lower
+/// bands of its system at the same antenna searched only for what it found.
+fn leads(signal: Signal) -> bool {
+    signal.carrier_hz() > LEAD_ABOVE_HZ
+}
 /// Code periods past an epoch every channel must have tracked before the epoch is formed:
 /// a channel reports an integration when it ends, so the first integration starting after
 /// the epoch is known only up to two of the longest integrations (plus a code period of
@@ -372,23 +378,20 @@ impl Receiver {
         // (band, satellites found) of each band searched blind in the first round.
         let mut widen = Vec::new();
         // Lead bands first: their detections aid the lower bands' searches this round.
-        let leads = |b: &usize| self.setup.bands[*b].signal.carrier_hz() > LEAD_ABOVE_HZ;
+        let lead_band = |b: &usize| leads(self.setup.bands[*b].signal);
         let n_bands = self.setup.bands.len();
         let order: Vec<usize> = (0..n_bands)
-            .filter(leads)
-            .chain((0..n_bands).filter(|b| !leads(b)))
+            .filter(lead_band)
+            .chain((0..n_bands).filter(|b| !lead_band(b)))
             .collect();
-        // (satellite, carrier Hz, Doppler Hz) of every detection this round.
-        let mut found_round: Vec<(SatId, f64, f64)> = Vec::new();
         for b in order {
             let band = &self.setup.bands[b];
             let system = band.signal.system();
             let carrier_hz = band.signal.carrier_hz();
             let n_antennas = band.antennas.len();
             let narrow = 2.0 * self.searches[b].doppler_step_hz();
-            // Doppler of each PRN found in this band this round (all antennas share the
-            // platform's motion and oscillator: within a few Hz of each other).
-            let mut found_here: Vec<(u8, f64)> = Vec::new();
+            // PRNs found in this band this round.
+            let mut found_here: Vec<u8> = Vec::new();
             // Whether the band was searched blind (over the cold window).
             let mut blind = false;
             for (local, &antenna) in band.antennas.iter().enumerate() {
@@ -397,12 +400,13 @@ impl Receiver {
                         .iter()
                         .any(|c| c.group == b && c.antenna == antenna && c.sat.prn == prn)
                 };
+                // The Doppler of a channel of the PRN on another antenna of the band (all
+                // antennas share the platform's motion and oscillator: within a few Hz).
                 let elsewhere = |prn: u8| {
                     self.channels
                         .iter()
-                        .filter(|c| c.group == b && c.sat.prn == prn)
-                        .find_map(Channel::doppler_hz)
-                        .or_else(|| found_here.iter().find(|f| f.0 == prn).map(|f| f.1))
+                        .find(|c| c.group == b && c.sat.prn == prn)
+                        .map(Channel::doppler_hz)
                 };
                 // A lower band beside its system's lead band at this antenna is searched
                 // only around the Doppler a lead signal found, scaled to its carrier
@@ -413,15 +417,8 @@ impl Receiver {
                     let sat = SatId { system, prn };
                     self.channels
                         .iter()
-                        .filter(|c| c.sat == sat && c.signal().carrier_hz() > LEAD_ABOVE_HZ)
-                        .find_map(|c| Some((c.signal().carrier_hz(), c.doppler_hz()?)))
-                        .or_else(|| {
-                            found_round
-                                .iter()
-                                .find(|f| f.0 == sat && f.1 > LEAD_ABOVE_HZ)
-                                .map(|f| (f.1, f.2))
-                        })
-                        .map(|(f, doppler)| doppler * carrier_hz / f)
+                        .find(|c| c.sat == sat && leads(c.signal()))
+                        .map(|c| c.doppler_hz() * carrier_hz / c.signal().carrier_hz())
                 };
                 let all = self.candidates(b, antenna, t_s);
                 blind |= !follows && all.iter().any(|c| c.cold);
@@ -455,11 +452,10 @@ impl Receiver {
                 self.summary.searches += candidates.len();
                 let found = self.searches[b].run(&bands[b][local][..len], &candidates)?;
                 for (c, acq) in found {
-                    if !found_here.iter().any(|f| f.0 == c.prn) {
-                        found_here.push((c.prn, acq.doppler_hz));
+                    if !found_here.contains(&c.prn) {
+                        found_here.push(c.prn);
                     }
                     let sat = SatId { system, prn: c.prn };
-                    found_round.push((sat, carrier_hz, acq.doppler_hz));
                     let handover = Handover {
                         signal: band.signal,
                         prn: c.prn,
@@ -473,8 +469,15 @@ impl Receiver {
                         if_hz: band.if_hz,
                     };
                     let tracker = ChannelTracker::new(handover, front_end, self.config.tracking)?;
-                    self.channels
-                        .push(Channel::new(b, local, antenna, sat, tracker, fs)?);
+                    self.channels.push(Channel::new(
+                        b,
+                        local,
+                        antenna,
+                        sat,
+                        tracker,
+                        fs,
+                        acq.doppler_hz,
+                    )?);
                     self.summary.detections += 1;
                 }
             }
@@ -492,10 +495,10 @@ impl Receiver {
     /// records `antenna`: then `b` is searched only for what the lead band found.
     fn lead_band_covers(&self, b: usize, antenna: usize) -> bool {
         let signal = self.setup.bands[b].signal;
-        signal.carrier_hz() <= LEAD_ABOVE_HZ
+        !leads(signal)
             && self.setup.bands.iter().any(|l| {
                 l.signal.system() == signal.system()
-                    && l.signal.carrier_hz() > LEAD_ABOVE_HZ
+                    && leads(l.signal)
                     && l.antennas.contains(&antenna)
             })
     }

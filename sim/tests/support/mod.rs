@@ -121,13 +121,24 @@ pub fn skyforge_ok(args: &[&str], cwd: &Path) -> String {
 /// `sim`, with the navigation file and receiver configuration `synth` wrote beside them,
 /// into `rx`, `extra` appended; it must succeed. Returns its standard output.
 pub fn receive_all_recordings(sim: &Path, rx: &Path, extra: &[&str], cwd: &Path) -> String {
+    receive_all_recordings_with(sim, &sim.join("receiver.toml"), rx, extra, cwd)
+}
+
+/// [`receive_all_recordings`] with the receiver configuration `config`.
+pub fn receive_all_recordings_with(
+    sim: &Path,
+    config: &Path,
+    rx: &Path,
+    extra: &[&str],
+    cwd: &Path,
+) -> String {
     let mut meta: Vec<String> = std::fs::read_dir(sim)
         .expect("read the recordings' directory")
         .map(|e| e.expect("dir entry").path().to_string_lossy().into_owned())
         .filter(|p| p.ends_with(".sigmf-meta"))
         .collect();
     meta.sort();
-    let (nav, config) = (sim.join("nav.rnx"), sim.join("receiver.toml"));
+    let nav = sim.join("nav.rnx");
     let mut args: Vec<&str> = vec!["receive"];
     args.extend(meta.iter().map(String::as_str));
     args.extend([

@@ -3,7 +3,7 @@
 use super::{EpochInput, EpochStage, LastFix};
 use crate::pipeline::AntennaFix;
 use skyforge_navigation::pvt::{
-    CarrierSmoother, CodeAndCarrier, Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity,
+    CarrierSmoother, Fix, Measurement, PvtConfig, PvtError, solve, solve_velocity,
 };
 use skyforge_orbits::Vec3;
 
@@ -38,17 +38,11 @@ impl PvtStage {
             .filter(|o| o.antenna == antenna && nav.has_ephemeris(o.sat, t_k))
             .map(|o| Measurement {
                 sat: o.sat,
-                pseudorange_m: match self.smoothers.get_mut(antenna) {
-                    Some(smoother) => smoother.smooth(&CodeAndCarrier {
-                        sat: o.sat,
-                        signal: o.signal,
-                        t_s: t_k,
-                        pseudorange_m: o.pseudorange_m,
-                        carrier_phase_cycles: o.carrier_phase_cycles,
-                        loss_of_lock: o.loss_of_lock,
-                    }),
-                    None => o.pseudorange_m,
-                },
+                pseudorange_m: self
+                    .smoothers
+                    .get_mut(antenna)
+                    .and_then(|s| s.smooth_record(&o.record(), t_k))
+                    .unwrap_or(o.pseudorange_m),
                 doppler_hz: o.doppler_hz.is_finite().then_some(o.doppler_hz),
                 signal: o.signal,
             })
