@@ -88,6 +88,7 @@ fn meta() -> RunMeta {
         start_epoch: "2024-03-01T00:00:00 GPST".into(),
         seed: 7,
         step_s: 0.5,
+        satellite_errors: false,
     }
 }
 

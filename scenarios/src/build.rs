@@ -17,6 +17,7 @@ use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, Platform
 use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
+use skyforge_signals::errors::SatelliteErrors;
 use skyforge_signals::synth::SynthWorld;
 use skyforge_signals::truth::{GeometryChunk, GeometryTruth, StreamError};
 use std::path::Path;
@@ -42,6 +43,9 @@ pub struct World {
     pub step_s: f64,
     /// GST - GPST (`[gnss.galileo] gst_gps_ns`, zero by default).
     pub gst_gps: GstGpsOffset,
+    /// The satellites' orbit and clock errors (`[errors.satellite]`; none: the signals
+    /// follow the broadcast ephemerides).
+    pub satellite_errors: Option<SatelliteErrors>,
 }
 
 impl World {
@@ -60,6 +64,10 @@ impl World {
             self.step_s,
         )
         .with_gst_gps(self.gst_gps);
+        let truth = match &self.satellite_errors {
+            Some(errors) => truth.with_satellite_errors(errors),
+            None => truth,
+        };
         truth.stream(&mut self.platform, self.duration_s, chunk_epochs, sink)
     }
 
@@ -73,6 +81,7 @@ impl World {
             antennas: &self.antennas,
             duration_s: self.duration_s,
             gst_gps: self.gst_gps,
+            satellite_errors: self.satellite_errors.as_ref(),
         }
     }
 }
@@ -99,6 +108,8 @@ impl Scenario {
         let satellites = ephemerides.satellites();
         let platform = self.platform(&origin)?;
         let antennas = self.antennas.iter().map(AntennaConfig::resolve).collect();
+        let satellite_errors = (self.errors.satellite.as_ref())
+            .map(|c| SatelliteErrors::draw(c, self.seed, &satellites, self.time.duration_s));
         Ok(World {
             origin,
             earth,
@@ -109,6 +120,7 @@ impl Scenario {
             duration_s: self.time.duration_s,
             step_s: 1.0 / self.truth.geometry_rate_hz,
             gst_gps: self.gnss.galileo.gst_gps(&origin),
+            satellite_errors,
         })
     }
 

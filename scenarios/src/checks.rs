@@ -117,6 +117,11 @@ fn check_errors(scenario: &Scenario) -> Result<(), Invalid> {
             ));
         }
     }
+    if let Some(satellite) = &errors.satellite {
+        satellite
+            .check(scenario.time.duration_s)
+            .map_err(|e| e.within("errors.satellite"))?;
+    }
     errors
         .multipath
         .check()

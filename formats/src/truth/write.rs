@@ -98,6 +98,33 @@ const LINK_FIELDS: &[Field<LinkGeometry>] = &[
     ),
 ];
 
+/// Per-link datasets written only for runs with `[errors.satellite]` (same layout as
+/// [`LINK_FIELDS`]).
+const SATELLITE_ERROR_FIELDS: &[Field<LinkGeometry>] = &[
+    (
+        "sat_orbit_error_m",
+        "m",
+        "satellite orbit error (true - broadcast APC at transmit time) along the line of sight: added to the range",
+        |l| l.sat_orbit_error_m,
+    ),
+    (
+        "sat_clock_error_m",
+        "m",
+        "c x satellite clock error (true - broadcast, in sat_clock_s): taken off the pseudorange",
+        |l| l.sat_clock_error_m,
+    ),
+];
+
+/// The per-link datasets of a run, with or without the satellite-error ones.
+fn link_fields(satellite_errors: bool) -> impl Iterator<Item = &'static Field<LinkGeometry>> {
+    let extra = if satellite_errors {
+        SATELLITE_ERROR_FIELDS
+    } else {
+        &[]
+    };
+    LINK_FIELDS.iter().chain(extra)
+}
+
 /// Run metadata written as root attributes.
 #[derive(Debug, Clone)]
 pub struct RunMeta {
@@ -108,6 +135,8 @@ pub struct RunMeta {
     pub start_epoch: String,
     pub seed: u64,
     pub step_s: f64,
+    /// The run has satellite-side errors: their per-link truth is written.
+    pub satellite_errors: bool,
 }
 
 impl RunMeta {
@@ -124,6 +153,7 @@ impl RunMeta {
             start_epoch: start.to_string(),
             seed: scenario.seed,
             step_s,
+            satellite_errors: scenario.errors.satellite.is_some(),
         }
     }
 }
@@ -266,14 +296,22 @@ fn series<T: H5Type>(
 
 /// Upper bound of the bytes of a `truth.h5` of `epochs` geometry epochs, `n_ant` antennas,
 /// `n_sats` satellites (every link counted as visible) and `signal_records` signal-truth
-/// records: the raw values (integer masks and indices counted uncompressed), one partly
-/// filled chunk per dataset and 1 MiB of metadata. Saturates at `u64::MAX`.
-pub fn size_bound(epochs: u64, n_ant: u64, n_sats: u64, signal_records: u64) -> u64 {
+/// records, with the satellite-error datasets where `satellite_errors`: the raw values
+/// (integer masks and indices counted uncompressed), one partly filled chunk per dataset
+/// and 1 MiB of metadata. Saturates at `u64::MAX`.
+pub fn size_bound(
+    epochs: u64,
+    n_ant: u64,
+    n_sats: u64,
+    signal_records: u64,
+    satellite_errors: bool,
+) -> u64 {
     let platform = epochs * 8 * (1 + 3 + 3 + 4 + 3);
-    let link = 4 + 2 + 8 * LINK_FIELDS.len() as u64;
+    let n_fields = link_fields(satellite_errors).count() as u64;
+    let link = 4 + 2 + 8 * n_fields;
     let geometry = epochs * n_ant * n_sats * (1 + link);
     let signal = signal_records.saturating_mul(8 + 2 + 8 * SIGNAL_FIELDS.len() as u64);
-    let datasets = 5 + n_ant * (3 + LINK_FIELDS.len() as u64 + 2 + SIGNAL_FIELDS.len() as u64);
+    let datasets = 5 + n_ant * (3 + n_fields + 2 + SIGNAL_FIELDS.len() as u64);
     let partial_chunks = datasets * (LINK_CHUNK.max(TIME_CHUNK * n_sats as usize) as u64 * 8);
     [platform, geometry, partial_chunks, 1 << 20]
         .into_iter()
@@ -364,8 +402,7 @@ impl TruthWriter {
             f64_attr(&g, "fov_half_angle_rad", &[ant.fov_half_angle_rad])?;
             f64_attr(&g, "elevation_mask_rad", &[ant.elevation_mask_rad])?;
             f64_attr(&g, "pco_m", ant.pco_m.as_slice())?;
-            let fields = LINK_FIELDS
-                .iter()
+            let fields = link_fields(meta.satellite_errors)
                 .map(|(name, unit, desc, _)| series::<f64>(&g, name, 0, unit, desc))
                 .collect::<hdf5::Result<Vec<_>>>()?;
             ants.push(AntennaSets {
@@ -521,7 +558,7 @@ impl TruthWriter {
             append_rows(&sets.epoch_index, sets.links, &epochs, 0)?;
             append_rows(&sets.sat_index, sets.links, &sats, 0)?;
             let mut values = Vec::with_capacity(epochs.len());
-            for ((_, _, _, get), ds) in LINK_FIELDS.iter().zip(&sets.fields) {
+            for ((_, _, _, get), ds) in link_fields(true).zip(&sets.fields) {
                 values.clear();
                 values.extend(
                     epochs

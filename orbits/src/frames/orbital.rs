@@ -21,6 +21,16 @@ pub fn c_orbital_eci(r_eci_m: &Vec3, v_eci_mps: &Vec3) -> Mat3 {
     Mat3::from_columns(&[x, y, z])
 }
 
+/// `c_rac_eci` (columns are the radial, along-track and cross-track unit vectors in the
+/// frame of `r` and `v`): radial `r/|r|`, cross-track along the orbit normal `r x v`,
+/// along-track completing the triad (the flight direction for a circular orbit). The
+/// axes the signal-in-space error literature uses (radial, along, cross); in the thesis's
+/// orbital frame they are -Zo, Xo and -Yo.
+pub fn c_rac_eci(r_m: &Vec3, v_mps: &Vec3) -> Mat3 {
+    let c = c_orbital_eci(r_m, v_mps);
+    Mat3::from_columns(&[-c.column(2), c.column(0).into_owned(), -c.column(1)])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -47,6 +57,15 @@ mod tests {
         assert!(x.dot(&r).abs() < 1e-9 && x.dot(&v) > 0.0);
         // The orbital components of v have no Yo part (v lies in the orbit plane).
         assert!((c.transpose() * v).y.abs() < 1e-9);
+    }
+
+    #[test]
+    fn rac_axes_are_radial_flight_and_normal() {
+        let c = c_rac_eci(&Vec3::new(7e6, 0.0, 0.0), &Vec3::new(0.0, 7.5e3, 0.0));
+        assert_eq!(c.column(0).into_owned(), Vec3::new(1.0, 0.0, 0.0));
+        assert_eq!(c.column(1).into_owned(), Vec3::new(0.0, 1.0, 0.0));
+        assert_eq!(c.column(2).into_owned(), Vec3::new(0.0, 0.0, 1.0));
+        assert!((c.determinant() - 1.0).abs() < 1e-15);
     }
 
     proptest! {

@@ -1,11 +1,12 @@
 //! Error models: receiver oscillator, ionosphere, troposphere, link budget, multipath,
-//! fault events.
+//! satellite orbit and clock, fault events.
 
 pub(crate) mod clock;
 pub(crate) mod events;
 pub(crate) mod ionosphere;
 pub(crate) mod link_budget;
 pub(crate) mod multipath;
+pub(crate) mod satellite;
 pub(crate) mod seed;
 pub(crate) mod troposphere;
 
@@ -19,6 +20,10 @@ pub use ionosphere::{
     remaining_fraction, scale_to_frequency,
 };
 pub use multipath::{MultipathConfig, TapConfig};
+pub use satellite::{
+    BOOK_SA, SatelliteErrorConfig, SatelliteErrors, SatelliteProcesses, SatelliteTrack,
+    SmoothGaussMarkov, W_R, modern, sisre_m, w_ac_squared,
+};
 pub use seed::{Stream, stream_rng};
 pub use troposphere::{
     TROPOSPHERE_CEILING_M, TropoConfig, TropoModel, chao_mapping, saastamoinen_zenith_m,
@@ -47,6 +52,10 @@ pub struct ErrorsConfig {
     /// `[errors.multipath]`: reflected paths (absent: none).
     #[serde(default)]
     pub multipath: MultipathConfig,
+    /// `[errors.satellite]`: true orbits and clocks off the broadcast ones (absent: the
+    /// signals follow the broadcast ephemerides exactly).
+    #[serde(default)]
+    pub satellite: Option<SatelliteErrorConfig>,
     /// `[[errors.events]]`: faults for robustness tests.
     #[serde(default)]
     pub events: Vec<EventConfig>,

@@ -33,6 +33,13 @@ pub enum Stream {
     ObservationNoise,
     /// Integer carrier ambiguities of the observation-level model; index 0.
     CarrierAmbiguity,
+    /// A satellite's radial, along-track and cross-track orbit error and its clock error
+    /// (`[errors.satellite]`); index: the satellite (system and PRN), so every antenna
+    /// and platform of a run sees the same error.
+    SatelliteRadial,
+    SatelliteAlong,
+    SatelliteCross,
+    SatelliteClock,
     /// A test's own stream, by name (never used by a scenario).
     Named(&'static str),
 }
@@ -47,6 +54,10 @@ impl Stream {
             Stream::FastSyncData => "t-3.3-s data",
             Stream::ObservationNoise => "observation-noise",
             Stream::CarrierAmbiguity => "carrier-ambiguity",
+            Stream::SatelliteRadial => "satellite-radial",
+            Stream::SatelliteAlong => "satellite-along",
+            Stream::SatelliteCross => "satellite-cross",
+            Stream::SatelliteClock => "satellite-clock",
             Stream::Named(name) => name,
         }
     }

@@ -21,7 +21,7 @@ use crate::errors::clock::ClockModel;
 use crate::errors::events::EventSchedule;
 use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
 use crate::errors::seed::{Stream, stream_rng};
-use crate::errors::{ErrorsConfig, clock::OscillatorConfig};
+use crate::errors::{ErrorsConfig, SatelliteErrors, clock::OscillatorConfig};
 use crate::obs_model::ObservationModel;
 use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
 use hifitime::Epoch;
@@ -160,6 +160,9 @@ pub struct SynthWorld<'a> {
     pub duration_s: f64,
     /// GST - GPST: Galileo's satellite clocks keep it, its messages broadcast it.
     pub gst_gps: GstGpsOffset,
+    /// The satellites' orbit and clock errors, drawn for the run (none: the signals follow
+    /// the broadcast ephemerides).
+    pub satellite_errors: Option<&'a SatelliteErrors>,
 }
 
 /// The transmitters of one band, written to one recording per antenna: one signal's, or
@@ -693,6 +696,10 @@ impl<'a> SynthSession<'a> {
         let sats = self.sats;
         let truth = GeometryTruth::new(&store, &sats, world.antennas, GEOMETRY_STEP_S)
             .with_gst_gps(world.gst_gps);
+        let truth = match world.satellite_errors {
+            Some(errors) => truth.with_satellite_errors(errors),
+            None => truth,
+        };
         let mut running = Running {
             origin: world.origin,
             antennas: world.antennas,

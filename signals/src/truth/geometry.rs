@@ -9,8 +9,10 @@
 //! rounding errors are below 1e-8 m/s, 2e-8 m/s^2 and 3e-8 m/s^3 at h = 1 s; truncation
 //! errors (h^4/30 rho^(5) and h^2/4 rho^(5)) are smaller still at LEO dynamics.
 
+use super::TrueSatellite;
 use super::light_time::{self, LightTime};
 use crate::antenna::Antenna;
+use crate::errors::{SatelliteErrors, SatelliteTrack};
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::constants::C_MPS;
@@ -54,6 +56,13 @@ pub struct LinkGeometry {
     pub sat_clock_s: f64,
     /// Satellite clock drift at transmit time (s/s).
     pub sat_clock_drift: f64,
+    /// The satellite's orbit error (true minus broadcast position at transmit time) along
+    /// the line of sight from the antenna: what it adds to the range (m; zero without
+    /// `[errors.satellite]`).
+    pub sat_orbit_error_m: f64,
+    /// The satellite's clock error (true minus broadcast clock at transmit time) times c:
+    /// what it takes off the pseudorange (m; included in `sat_clock_s`).
+    pub sat_clock_error_m: f64,
 }
 
 impl LinkGeometry {
@@ -74,6 +83,8 @@ impl LinkGeometry {
         antenna_elevation_rad: f64::NAN,
         sat_clock_s: f64::NAN,
         sat_clock_drift: f64::NAN,
+        sat_orbit_error_m: f64::NAN,
+        sat_clock_error_m: f64::NAN,
     };
 }
 
@@ -214,6 +225,8 @@ pub struct GeometryTruth<'a> {
     stencil: Stencil,
     /// GST - GPST, in Galileo's satellite clocks.
     gst_gps: GstGpsOffset,
+    /// Each satellite's error track (none: it follows its broadcast ephemeris).
+    tracks: Vec<Option<&'a SatelliteTrack>>,
 }
 
 /// Error streaming geometry.
@@ -248,6 +261,24 @@ impl<'a> GeometryTruth<'a> {
             step_s,
             stencil: Stencil::new(step_s),
             gst_gps: GstGpsOffset::default(),
+            tracks: vec![None; satellites.len()],
+        }
+    }
+
+    /// The satellites follow their true orbits and clocks: the broadcast ones plus
+    /// `errors` (`[errors.satellite]`).
+    pub fn with_satellite_errors(self, errors: &'a SatelliteErrors) -> Self {
+        Self {
+            tracks: self.satellites.iter().map(|&s| errors.track(s)).collect(),
+            ..self
+        }
+    }
+
+    /// Satellite `s` as its signal leaves it.
+    fn true_satellite(&self, eph: &'a BoundEphemeris, s: usize) -> TrueSatellite<'a> {
+        TrueSatellite {
+            eph,
+            error: self.tracks[s],
         }
     }
 
@@ -335,7 +366,8 @@ impl<'a> GeometryTruth<'a> {
                     let r_rx = &antennas[i * n_ant + l / n_sat].r_ecef_m;
                     let guess =
                         by_sat[s].map_or(screened, |lt| (lt.r_sat_rx_frame_m - r_rx).norm());
-                    let lt = light_time::solve(eph, r_rx, t, guess / C_MPS);
+                    let lt =
+                        light_time::solve(&self.true_satellite(eph, s), r_rx, t, guess / C_MPS);
                     by_sat[s] = Some(lt);
                     Some(lt)
                 })
@@ -360,7 +392,7 @@ impl<'a> GeometryTruth<'a> {
                             let guess = solved[self.stencil.sample(k, 0) * n_links + l]
                                 .map_or(SCREEN_TAU_S, |c| c.tau_s);
                             Some(light_time::solve(
-                                eph,
+                                &self.true_satellite(eph, s),
                                 &antennas[i * n_ant + a].r_ecef_m,
                                 sample_t[i],
                                 guess,
@@ -372,7 +404,7 @@ impl<'a> GeometryTruth<'a> {
                 let rho = paths.map(|p| p.map_or(f64::NAN, |p| p.range_m()));
                 match paths[2] {
                     Some(centre) => self.link(
-                        eph,
+                        &self.true_satellite(eph, s),
                         a,
                         s,
                         &states[i],
@@ -432,7 +464,7 @@ impl<'a> GeometryTruth<'a> {
     #[allow(clippy::too_many_arguments)]
     fn link(
         &self,
-        eph: &BoundEphemeris,
+        sat: &TrueSatellite,
         a: usize,
         s: usize,
         st: &PlatformState,
@@ -455,11 +487,18 @@ impl<'a> GeometryTruth<'a> {
         let los_antenna = self.frames[a].c_body_antenna * (st.c_body_ecef.transpose() * los);
         let (antenna_azimuth_rad, antenna_elevation_rad) = az_el_xyz(&los_antenna);
         let t_tx_s = t_s - lt.tau_s;
-        let (mut sat_clock_s, mut sat_clock_drift) = eph.clock_offset_and_drift(t_tx_s);
-        if eph.eph.sat.system == System::Galileo {
+        let (mut sat_clock_s, mut sat_clock_drift) = sat.eph.clock_offset_and_drift(t_tx_s);
+        if sat.eph.eph.sat.system == System::Galileo {
             sat_clock_s += self.gst_gps.at(t_tx_s);
             sat_clock_drift += self.gst_gps.a1;
         }
+        let (clock_error_s, clock_error_rate) = sat.clock_error(t_tx_s);
+        sat_clock_s += clock_error_s;
+        sat_clock_drift += clock_error_rate;
+        // The orbit error in the receive frame, as the position it displaces.
+        let omega_e = sat.eph.eph.sat.system.earth_rotation_rad_s();
+        let orbit_error =
+            light_time::rotate_to_receive_frame(&sat.orbit_error_ecef(t_tx_s), omega_e, lt.tau_s);
         LinkGeometry {
             visible: true,
             range_m: lt.range_m(),
@@ -476,6 +515,8 @@ impl<'a> GeometryTruth<'a> {
             antenna_elevation_rad,
             sat_clock_s,
             sat_clock_drift,
+            sat_orbit_error_m: orbit_error.dot(&los.normalize()),
+            sat_clock_error_m: clock_error_s * C_MPS,
         }
     }
 

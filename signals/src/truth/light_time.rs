@@ -1,8 +1,8 @@
 //! Light time between a transmitting GNSS satellite and a receiving antenna, solved
 //! iteratively in the inertial frame (Sagnac effect included).
 //!
-//! The broadcast ephemeris gives the satellite in the Earth-fixed frame of the transmit
-//! instant. Rotating that position about Z by `omega_e * tau` expresses it in the
+//! The satellite (its broadcast ephemeris, plus its orbit error where the run has one)
+//! is given in the Earth-fixed frame of the transmit instant. Rotating that position about Z by `omega_e * tau` expresses it in the
 //! Earth-fixed frame of the receive instant; the distance between the two points is then
 //! the inertial (straight-line, constant-speed) signal path. With the Earth-rotation-only
 //! ECI of `skyforge_orbits::frames::earth_rotation` this is exact, not an approximation.
@@ -10,9 +10,9 @@
 //! the floating-point floor (a few 1e-17 s, far below 1 mm), which keeps finite
 //! differences of the range smooth.
 
+use super::TrueSatellite;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::BoundEphemeris;
 
 /// Iteration stops when the light time changes by less than this (s): 3e-9 mm.
 const TAU_CONVERGED_S: f64 = 1e-17;
@@ -48,15 +48,15 @@ pub fn rotate_to_receive_frame(r_ecef_m: &Vec3, omega_e: f64, tau_s: f64) -> Vec
 
 /// Solve the light time for a signal received at `t_rx_s` by an antenna at `r_rx_ecef_m`
 /// (Earth-fixed at the receive instant), starting from `tau_guess_s`.
-pub fn solve(eph: &BoundEphemeris, r_rx_ecef_m: &Vec3, t_rx_s: f64, tau_guess_s: f64) -> LightTime {
-    let omega_e = eph.eph.sat.system.earth_rotation_rad_s();
+pub fn solve(sat: &TrueSatellite, r_rx_ecef_m: &Vec3, t_rx_s: f64, tau_guess_s: f64) -> LightTime {
+    let omega_e = sat.eph.eph.sat.system.earth_rotation_rad_s();
     let mut tau_s = tau_guess_s;
-    let mut r_sat = rotate_to_receive_frame(&eph.position_ecef(t_rx_s - tau_s), omega_e, tau_s);
+    let mut r_sat = rotate_to_receive_frame(&sat.position_ecef(t_rx_s - tau_s), omega_e, tau_s);
     for _ in 0..MAX_ITERATIONS {
         let next = (r_sat - r_rx_ecef_m).norm() / C_MPS;
         let change = (next - tau_s).abs();
         tau_s = next;
-        r_sat = rotate_to_receive_frame(&eph.position_ecef(t_rx_s - tau_s), omega_e, tau_s);
+        r_sat = rotate_to_receive_frame(&sat.position_ecef(t_rx_s - tau_s), omega_e, tau_s);
         if change < TAU_CONVERGED_S {
             break;
         }

@@ -4,7 +4,9 @@
 pub(crate) mod geometry;
 pub(crate) mod interp;
 pub mod light_time;
+pub(crate) mod true_satellite;
 
 pub use geometry::{GeometryChunk, GeometryTruth, LinkGeometry, StreamError, epoch_count};
 
 pub use interp::QuinticHermite;
+pub use true_satellite::TrueSatellite;

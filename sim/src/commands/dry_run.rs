@@ -43,7 +43,13 @@ pub fn print(scenario: &Scenario, session: &SynthSession<'_>, chunk_epochs: usiz
             );
         }
     }
-    let truth = size_bound(b.epochs, n_ant, n_sats, b.truth_records_max);
+    let truth = size_bound(
+        b.epochs,
+        n_ant,
+        n_sats,
+        b.truth_records_max,
+        scenario.errors.satellite.is_some(),
+    );
     println!(
         "truth.h5   at most {} ({} signal-truth records at most)",
         human(truth),
