@@ -206,3 +206,20 @@ fn build_checks_a_scenario_changed_after_parsing() {
     s.antennas.clear();
     assert_eq!(s.build().expect_err("no antennas").field, "antennas");
 }
+
+#[test]
+fn satellite_error_processes_are_checked_and_located() {
+    let table = "[errors.satellite]\nmodel = \"gauss-markov\"\n[errors.satellite.processes]\nradial_m = 1.0\nalong_m = 1.0\n\
+                 cross_m = 1.0\norbit_tau_s = 3600.0\nclock_m = 1.0\nclock_tau_s = -5.0\n\
+                 node_spacing_s = 60.0\n";
+    let text = format!("{BASE}\n{table}");
+    parse_error_at(
+        &text,
+        "errors.satellite.processes.clock_tau_s",
+        "clock_tau_s = -5.0",
+        "-5.0",
+    );
+    let unknown = format!("{BASE}\n[errors.satellite]\nmodel = \"selective-availability\"\n");
+    let err = parse_error(&unknown);
+    assert!(err.to_string().contains("book-sa"), "{err}");
+}

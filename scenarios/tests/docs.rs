@@ -90,6 +90,21 @@ fn every_accepted_key_is_documented() {
             format!("{minimal}\n[{table}]\n{unknown}"),
         ));
     }
+    // Tables with a required key, given first.
+    for (table, required) in [
+        ("errors.satellite", "model = \"book-sa\"\n"),
+        ("errors.satellite.processes", ""),
+    ] {
+        let parent = if required.is_empty() {
+            "[errors.satellite]\nmodel = \"gauss-markov\"\n"
+        } else {
+            ""
+        };
+        texts.push((
+            table.to_string(),
+            format!("{minimal}\n{parent}[{table}]\n{required}{unknown}"),
+        ));
+    }
     // Arrays of tables: the unknown key is reported before the missing required ones.
     for table in [
         "errors.events",

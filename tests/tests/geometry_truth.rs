@@ -145,9 +145,9 @@ fn doppler_is_minus_range_rate_over_wavelength_and_angles_are_consistent() {
 /// parallel) lines of sight within 1 mm.
 #[test]
 fn satellite_errors_move_each_link_by_its_recorded_error() {
-    use skyforge_signals::errors::{SatelliteErrorConfig, SatelliteErrors};
+    use skyforge_signals::errors::{SatelliteErrors, SatelliteModel};
     let (world, window, plain, sats) = thesis_chunk();
-    let errors = SatelliteErrors::draw(&SatelliteErrorConfig::BookSa {}, 11, &sats, 600.0);
+    let errors = SatelliteErrors::draw(&SatelliteModel::BookSa.into(), 11, &sats, 600.0);
     let truth = GeometryTruth::new(&world.ephemerides, &sats, &world.antennas, 1.0)
         .with_satellite_errors(&errors);
     let chunk = truth.chunk(&window, 0.0, 601);

@@ -21,8 +21,8 @@ pub use ionosphere::{
 };
 pub use multipath::{MultipathConfig, TapConfig};
 pub use satellite::{
-    BOOK_SA, SatelliteErrorConfig, SatelliteErrors, SatelliteProcesses, SatelliteTrack,
-    SmoothGaussMarkov, W_R, modern, sisre_m, w_ac_squared,
+    BOOK_SA, SatelliteErrorConfig, SatelliteErrors, SatelliteModel, SatelliteProcesses,
+    SatelliteTrack, SmoothGaussMarkov, W_R, modern, sisre_m, w_ac_squared,
 };
 pub use seed::{Stream, stream_rng};
 pub use troposphere::{
