@@ -7,6 +7,7 @@ use crate::error::ScenarioError;
 use crate::parse::locate_invalid;
 use crate::schema::Scenario;
 use skyforge_orbits::check::Invalid;
+use skyforge_orbits::ephemeris::read_sp3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, EphemerisStore, NavMessage, SatId, System, nominal,
@@ -17,7 +18,9 @@ use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, Platform
 use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
-use skyforge_signals::errors::SatelliteErrors;
+use skyforge_signals::errors::{
+    SatelliteErrorConfig, SatelliteErrors, SatelliteModel, precise_orbits,
+};
 use skyforge_signals::synth::SynthWorld;
 use skyforge_signals::truth::{GeometryChunk, GeometryTruth, StreamError};
 use std::path::Path;
@@ -108,8 +111,18 @@ impl Scenario {
         let satellites = ephemerides.satellites();
         let platform = self.platform(&origin)?;
         let antennas = self.antennas.iter().map(AntennaConfig::resolve).collect();
-        let satellite_errors = (self.errors.satellite.as_ref())
-            .map(|c| SatelliteErrors::draw(c, self.seed, &satellites, self.time.duration_s));
+        let satellite_errors = match &self.errors.satellite {
+            None => None,
+            Some(c) if c.model == SatelliteModel::Precise => {
+                Some(self.precise_errors(c, &origin, &ephemerides, &satellites)?)
+            }
+            Some(c) => Some(SatelliteErrors::draw(
+                c,
+                self.seed,
+                &satellites,
+                self.time.duration_s,
+            )),
+        };
         Ok(World {
             origin,
             earth,
@@ -222,6 +235,45 @@ impl Scenario {
             ));
         }
         read_nav_file(path).map_err(|e| format!("cannot use the navigation file: {e}"))
+    }
+
+    /// The precise orbits and clocks of `[errors.satellite] model = "precise"` for
+    /// `satellites`, against the broadcast `store`. Fails, located at `sp3`, on a missing
+    /// or unreadable file, or one with no satellite of the scenario over the whole span.
+    fn precise_errors(
+        &self,
+        config: &SatelliteErrorConfig,
+        origin: &TimeOrigin,
+        store: &EphemerisStore,
+        satellites: &[SatId],
+    ) -> Result<SatelliteErrors, ScenarioError> {
+        let sp3 = config.sp3.as_deref().unwrap_or(Path::new(""));
+        let path = self.base_dir.join(sp3);
+        let invalid = |message: String| {
+            self.located(Invalid::new(
+                "errors.satellite.sp3",
+                format!("{:?}", sp3.display().to_string()),
+                message,
+            ))
+        };
+        if !path.is_file() {
+            return Err(invalid(format!(
+                "must name a readable SP3 file; {} is not one (relative paths start at {})",
+                path.display(),
+                self.base_dir.display()
+            )));
+        }
+        let records =
+            read_sp3(&path).map_err(|e| invalid(format!("cannot use the SP3 file: {e}")))?;
+        let orbits = precise_orbits(&records, origin, store, satellites, self.time.duration_s);
+        if orbits.is_empty() {
+            return Err(invalid(format!(
+                "holds no satellite of the scenario from 10 min before its start ({}) to 10 \
+                 min after its end; use the SP3 file of the scenario's day",
+                origin.start()
+            )));
+        }
+        Ok(SatelliteErrors::precise(orbits))
     }
 
     /// The platform of `[platform]`, with its CSV tables checked to cover the span.

@@ -223,3 +223,29 @@ fn satellite_error_processes_are_checked_and_located() {
     let err = parse_error(&unknown);
     assert!(err.to_string().contains("book-sa"), "{err}");
 }
+
+#[test]
+fn a_precise_model_needs_a_readable_sp3_file_of_the_day() {
+    let dir = tempfile::tempdir().unwrap();
+    let missing = format!("{BASE}\n[errors.satellite]\nmodel = \"precise\"\nsp3 = \"day.sp3\"\n");
+    let err = build_error_at(
+        &missing,
+        dir.path(),
+        "errors.satellite.sp3",
+        "\"day.sp3\"",
+        ("sp3 = \"day.sp3\"", "\"day.sp3\""),
+    );
+    assert!(err.to_string().contains("readable SP3 file"), "{err}");
+    // A file of another day: no satellite covered over the run.
+    std::fs::write(
+        dir.path().join("day.sp3"),
+        "#cP2020  6 25  0  0  0.00000000\n*  2020  6 25  0  0  0.00000000\n\
+         PG01 -10814.532184  19731.805009 -14065.684961     15.943802\n",
+    )
+    .unwrap();
+    let err = build_error(&missing, dir.path());
+    assert_eq!(err.field, "errors.satellite.sp3");
+    assert!(err.to_string().contains("holds no satellite"), "{err}");
+    let none = format!("{BASE}\n[errors.satellite]\nmodel = \"precise\"\n");
+    assert_eq!(parse_error(&none).field, "errors.satellite.sp3");
+}

@@ -21,8 +21,9 @@ pub use ionosphere::{
 };
 pub use multipath::{MultipathConfig, TapConfig};
 pub use satellite::{
-    BOOK_SA, SatelliteErrorConfig, SatelliteErrors, SatelliteModel, SatelliteProcesses,
-    SatelliteTrack, SmoothGaussMarkov, W_R, modern, sisre_m, w_ac_squared,
+    BOOK_SA, DrawnTrack, PreciseOrbit, SatelliteErrorConfig, SatelliteErrors, SatelliteModel,
+    SatelliteProcesses, SatelliteTrack, SmoothGaussMarkov, W_R, modern, precise_orbits, sisre_m,
+    w_ac_squared,
 };
 pub use seed::{Stream, stream_rng};
 pub use troposphere::{

@@ -1,11 +1,14 @@
 //! A satellite as its signal leaves it: the broadcast orbit and clock, plus the
 //! satellite-side errors of the run where it has them (`errors::SatelliteErrors`).
 
-use crate::errors::SatelliteTrack;
+use crate::errors::{DrawnTrack, SatelliteTrack};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::BoundEphemeris;
 use skyforge_orbits::frames::c_rac_eci;
+
+/// Half the step of the central difference that gives a precise clock error's rate (s).
+const CLOCK_RATE_STEP_S: f64 = 0.5;
 
 /// The broadcast ephemeris of a satellite and, if any, its error track.
 #[derive(Debug, Clone, Copy)]
@@ -20,16 +23,16 @@ impl<'a> TrueSatellite<'a> {
         Self { eph, error: None }
     }
 
-    /// The orbit error at `t_s` in the Earth-fixed frame (m): the track's radial,
-    /// along-track and cross-track components on the axes of the broadcast orbit (the
-    /// along-track axis from the inertial velocity).
+    /// The orbit error at `t_s` in the Earth-fixed frame (m): true minus broadcast
+    /// antenna phase centre.
     pub fn orbit_error_ecef(&self, t_s: f64) -> Vec3 {
         match self.error {
             None => Vec3::zeros(),
-            Some(track) => {
+            Some(SatelliteTrack::Drawn(track)) => {
                 let (r, v) = self.eph.state_ecef(t_s);
-                self.error_on_axes(track, &r, &v, t_s)
+                self.drawn_on_axes(track, &r, &v, t_s)
             }
+            Some(SatelliteTrack::Precise(p)) => p.position_ecef(t_s) - self.eph.position_ecef(t_s),
         }
     }
 
@@ -37,24 +40,36 @@ impl<'a> TrueSatellite<'a> {
     pub fn position_ecef(&self, t_s: f64) -> Vec3 {
         match self.error {
             None => self.eph.position_ecef(t_s),
-            Some(track) => {
+            Some(SatelliteTrack::Drawn(track)) => {
                 let (r, v) = self.eph.state_ecef(t_s);
-                r + self.error_on_axes(track, &r, &v, t_s)
+                r + self.drawn_on_axes(track, &r, &v, t_s)
             }
+            Some(SatelliteTrack::Precise(p)) => p.position_ecef(t_s),
         }
     }
 
-    /// `track`'s orbit error at `t_s` on the axes of the broadcast state `r`, `v`.
-    fn error_on_axes(&self, track: &SatelliteTrack, r: &Vec3, v: &Vec3, t_s: f64) -> Vec3 {
+    /// `track`'s orbit error at `t_s` on the radial, along-track and cross-track axes of
+    /// the broadcast state `r`, `v` (the along-track axis from the inertial velocity).
+    fn drawn_on_axes(&self, track: &DrawnTrack, r: &Vec3, v: &Vec3, t_s: f64) -> Vec3 {
         let omega = Vec3::new(0.0, 0.0, self.eph.eph.sat.system.earth_rotation_rad_s());
         c_rac_eci(r, &(v + omega.cross(r))) * track.orbit_rac_m(t_s)
     }
 
-    /// The clock error at `t_s` (s) and its rate (s/s): zero without a track.
+    /// The clock error at `t_s` (s: true minus broadcast clock) and its rate (s/s): zero
+    /// without a track. A precise clock's rate is its central difference over
+    /// [`CLOCK_RATE_STEP_S`].
     pub fn clock_error(&self, t_s: f64) -> (f64, f64) {
-        self.error.map_or((0.0, 0.0), |track| {
-            let (m, rate) = track.clock_m_and_rate(t_s);
-            (m / C_MPS, rate / C_MPS)
-        })
+        match self.error {
+            None => (0.0, 0.0),
+            Some(SatelliteTrack::Drawn(track)) => {
+                let (m, rate) = track.clock_m_and_rate(t_s);
+                (m / C_MPS, rate / C_MPS)
+            }
+            Some(SatelliteTrack::Precise(p)) => {
+                let h = CLOCK_RATE_STEP_S;
+                let at = |t: f64| p.clock_error_s(self.eph, t);
+                (at(t_s), (at(t_s + h) - at(t_s - h)) / (2.0 * h))
+            }
+        }
     }
 }

@@ -11,9 +11,11 @@
 //! broadcasting the ephemerides as they were.
 
 pub(crate) mod gauss_markov;
+pub(crate) mod precise;
 pub(crate) mod presets;
 
 pub use gauss_markov::SmoothGaussMarkov;
+pub use precise::{PreciseOrbit, precise_orbits};
 pub use presets::{BOOK_SA, W_R, modern, sisre_m, w_ac_squared};
 
 use super::seed::{Stream, stream_rng};
@@ -37,6 +39,10 @@ pub struct SatelliteErrorConfig {
     /// `[errors.satellite.processes]`: the processes of `model = "gauss-markov"`.
     #[serde(default)]
     pub processes: Option<SatelliteProcesses>,
+    /// The SP3 file of `model = "precise"` (relative paths start at the scenario's
+    /// folder).
+    #[serde(default)]
+    pub sp3: Option<std::path::PathBuf>,
 }
 
 /// The satellite-side error models.
@@ -49,6 +55,9 @@ pub enum SatelliteModel {
     Modern,
     /// The user's processes (`[errors.satellite.processes]`), the same for every system.
     GaussMarkov,
+    /// Real precise orbits and clocks of the scenario's day (`sp3`) against its broadcast
+    /// ephemerides ([`precise`]).
+    Precise,
 }
 
 impl From<SatelliteModel> for SatelliteErrorConfig {
@@ -57,6 +66,7 @@ impl From<SatelliteModel> for SatelliteErrorConfig {
         Self {
             model,
             processes: None,
+            sp3: None,
         }
     }
 }
@@ -120,6 +130,7 @@ impl SatelliteErrorConfig {
         Self {
             model: SatelliteModel::GaussMarkov,
             processes: Some(processes),
+            sp3: None,
         }
     }
 
@@ -129,14 +140,31 @@ impl SatelliteErrorConfig {
             (SatelliteModel::BookSa, _) => BOOK_SA,
             (SatelliteModel::Modern, _) => modern(system),
             (SatelliteModel::GaussMarkov, Some(p)) => p,
-            // Refused by `check`.
-            (SatelliteModel::GaussMarkov, None) => SatelliteProcesses::NONE,
+            // Refused by `check`; precise orbits draw nothing.
+            (SatelliteModel::GaussMarkov | SatelliteModel::Precise, _) => SatelliteProcesses::NONE,
         }
     }
 
     /// Processes given exactly for `gauss-markov`, inside their bounds, and a run of
-    /// `duration_s` within [`MAX_NODES`] nodes per path.
+    /// `duration_s` within [`MAX_NODES`] nodes per path; an SP3 file exactly for `precise`.
     pub fn check(&self, duration_s: f64) -> Result<(), Invalid> {
+        match (self.model, &self.sp3) {
+            (SatelliteModel::Precise, None) => {
+                return Err(Invalid::new(
+                    "sp3",
+                    "(missing)",
+                    "model = \"precise\" needs the SP3 file of the scenario's day",
+                ));
+            }
+            (SatelliteModel::Precise, Some(_)) | (_, None) => {}
+            (_, Some(path)) => {
+                return Err(Invalid::new(
+                    "sp3",
+                    format!("{:?}", path.display().to_string()),
+                    "only model = \"precise\" reads an SP3 file",
+                ));
+            }
+        }
         let p = match (self.model, &self.processes) {
             (SatelliteModel::GaussMarkov, Some(p)) => p,
             (SatelliteModel::GaussMarkov, None) => {
@@ -150,7 +178,7 @@ impl SatelliteErrorConfig {
                 return Err(Invalid::new(
                     "processes",
                     "(a table)",
-                    "only model = \"gauss-markov\" takes processes; book-sa and modern bring their own",
+                    "only model = \"gauss-markov\" takes processes; the other models bring their own",
                 ));
             }
             (_, None) => return Ok(()),
@@ -171,16 +199,25 @@ impl SatelliteErrorConfig {
     }
 }
 
-/// One satellite's error paths.
+/// What one satellite's signal follows instead of its broadcast ephemeris.
 #[derive(Debug, Clone, PartialEq)]
-pub struct SatelliteTrack {
+pub enum SatelliteTrack {
+    /// Drawn error paths added to the broadcast orbit and clock.
+    Drawn(DrawnTrack),
+    /// A precise orbit and clock.
+    Precise(PreciseOrbit),
+}
+
+/// One satellite's drawn error paths.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DrawnTrack {
     /// Radial, along-track, cross-track (m).
     orbit: [SmoothGaussMarkov; 3],
     /// Clock error times c (m).
     clock: SmoothGaussMarkov,
 }
 
-impl SatelliteTrack {
+impl DrawnTrack {
     /// The orbit error at `t_s` (s from the start, transmit time) in the radial,
     /// along-track and cross-track axes (m).
     pub fn orbit_rac_m(&self, t_s: f64) -> Vec3 {
@@ -242,18 +279,38 @@ impl SatelliteErrors {
                         )
                     }
                 };
-                let track = SatelliteTrack {
+                let track = SatelliteTrack::Drawn(DrawnTrack {
                     orbit: [
                         path(p.radial_m, p.orbit_tau_s, Stream::SatelliteRadial),
                         path(p.along_m, p.orbit_tau_s, Stream::SatelliteAlong),
                         path(p.cross_m, p.orbit_tau_s, Stream::SatelliteCross),
                     ],
                     clock: path(p.clock_m, p.clock_tau_s, Stream::SatelliteClock),
-                };
+                });
                 (sat, track)
             })
             .collect();
         Self { tracks }
+    }
+
+    /// Satellites following precise orbits and clocks (see [`precise_orbits`]).
+    pub fn precise(orbits: BTreeMap<SatId, PreciseOrbit>) -> Self {
+        Self {
+            tracks: orbits
+                .into_iter()
+                .map(|(sat, o)| (sat, SatelliteTrack::Precise(o)))
+                .collect(),
+        }
+    }
+
+    /// How many satellites have a track.
+    pub fn len(&self) -> usize {
+        self.tracks.len()
+    }
+
+    /// No satellite has a track.
+    pub fn is_empty(&self) -> bool {
+        self.tracks.is_empty()
     }
 
     /// The track of `sat` (none when it was not drawn).
@@ -266,6 +323,13 @@ impl SatelliteErrors {
 mod tests {
     use super::*;
 
+    fn drawn(errors: &SatelliteErrors, sat: SatId) -> &DrawnTrack {
+        match errors.track(sat) {
+            Some(SatelliteTrack::Drawn(d)) => d,
+            other => panic!("{sat}: {other:?}"),
+        }
+    }
+
     #[test]
     fn tracks_are_keyed_by_satellite_and_a_longer_run_extends_a_shorter_one() {
         let sats = [SatId::gps(3), SatId::gps(7), SatId::beidou(3)];
@@ -273,14 +337,14 @@ mod tests {
         let long = SatelliteErrors::draw(&SatelliteModel::BookSa.into(), 5, &sats[..2], 7200.0);
         for t in [-10.0, 0.0, 123.4, 599.0] {
             assert_eq!(
-                short.track(SatId::gps(7)).unwrap().orbit_rac_m(t),
-                long.track(SatId::gps(7)).unwrap().orbit_rac_m(t)
+                drawn(&short, SatId::gps(7)).orbit_rac_m(t),
+                drawn(&long, SatId::gps(7)).orbit_rac_m(t)
             );
         }
         let (a, b, c) = (
-            short.track(SatId::gps(3)).unwrap().clock_m_and_rate(0.0),
-            short.track(SatId::gps(7)).unwrap().clock_m_and_rate(0.0),
-            short.track(SatId::beidou(3)).unwrap().clock_m_and_rate(0.0),
+            drawn(&short, SatId::gps(3)).clock_m_and_rate(0.0),
+            drawn(&short, SatId::gps(7)).clock_m_and_rate(0.0),
+            drawn(&short, SatId::beidou(3)).clock_m_and_rate(0.0),
         );
         assert!(a != b && a != c && b != c);
         assert!(long.track(SatId::beidou(3)).is_none());
@@ -301,7 +365,7 @@ mod tests {
         };
         let config = SatelliteErrorConfig::gauss_markov(p);
         let e = SatelliteErrors::draw(&config, 1, &[SatId::gps(1)], 100.0);
-        let track = e.track(SatId::gps(1)).unwrap();
+        let track = drawn(&e, SatId::gps(1));
         assert_eq!(track.orbit_rac_m(50.0), Vec3::zeros());
         assert_eq!(track.clock_m_and_rate(50.0), (0.0, 0.0));
         assert!(config.check(100.0).is_ok());
@@ -321,8 +385,16 @@ mod tests {
         let extra = SatelliteErrorConfig {
             model: SatelliteModel::Modern,
             processes: Some(p),
+            sp3: None,
         };
         assert_eq!(extra.check(100.0).unwrap_err().field, "processes");
+        let no_file = SatelliteErrorConfig::from(SatelliteModel::Precise);
+        assert_eq!(no_file.check(100.0).unwrap_err().field, "sp3");
+        let stray_file = SatelliteErrorConfig {
+            sp3: Some("day.sp3".into()),
+            ..SatelliteModel::BookSa.into()
+        };
+        assert_eq!(stray_file.check(100.0).unwrap_err().field, "sp3");
     }
 
     #[test]
