@@ -16,5 +16,6 @@ pub mod continued_fraction;
 pub mod geometry_file;
 pub mod geometry_offset;
 pub mod integrity;
+pub mod orbit_determination;
 pub mod pvt;
 pub mod relative;

@@ -13,6 +13,7 @@ pub(crate) mod tle;
 pub use config::{
     DensityModel, ForceModelConfig, IntegratorConfig, KeplerianElementsConfig, LeoConfig,
 };
+pub use forces::ForceModel;
 pub use leo::{DenseTrajectory, LeoPropagator};
 
 pub use elements::KeplerianElements;
