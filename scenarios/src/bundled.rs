@@ -131,6 +131,12 @@ const BUNDLED: &[Bundled] = &[
                   receivers on one rubidium clock, 1800 s, BDS-2 + GPS, observation level",
         text: include_str!("../bundled/integrity-lab.toml"),
     },
+    Bundled {
+        name: "book-od-leo",
+        summary: "Book 5.5.4: LEO a = 7271 km, e = 0.001, 2 h, GPS L1 C/A at the observation \
+                  level with SA-era satellite errors, for the position filter (B-5.5)",
+        text: include_str!("../bundled/book-od-leo.toml"),
+    },
 ];
 
 /// Every bundled scenario.
