@@ -11,6 +11,7 @@ pub(crate) mod fast_sync;
 pub(crate) mod geometry_offsets;
 mod geometry_run;
 pub(crate) mod loop_budget;
+pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
 pub(crate) mod reverse_filter;
 pub(crate) mod visibility;
@@ -29,7 +30,7 @@ use std::path::{Path, PathBuf};
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
-    "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2",
+    "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5",
 ];
 
 /// Why a validation could not run.
@@ -240,6 +241,13 @@ const UNITS: &[Unit] = &[
                 draw.offset,
             )
         },
+        figures: None,
+    },
+    Unit {
+        tables: &[orbit_determination::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(orbit_determination::SCENARIO)],
+        evaluate: |_, _, draw| orbit_determination::rows(draw),
         figures: None,
     },
 ];

@@ -1,5 +1,7 @@
 //! What the thesis-table tests share: run one table alone and print it; check the figures
 //! it computes against its rows.
+//! Shared by several test binaries, each using part of it.
+#![allow(dead_code)]
 
 use skyforge_validate::report::{Row, print_table};
 use skyforge_validate::thesis::curves::{Curve, MAX_POINTS};

@@ -1,0 +1,215 @@
+//! B-5.5: onboard orbit determination of a LEO (book section 5.5.4, Table 5-3, the second
+//! table of that number): single-point fixes every 60 s into the book's position filter
+//! (`navigation::orbit_determination`), on the bundled scenario [`SCENARIO`] (a = 7271
+//! km, e = 0.001, GPS L1 C/A at the observation level, the book's SA-era satellite
+//! errors), against the truth.
+//!
+//! Rows: the standard deviation of each position and velocity axis (the book's X/Y/Z;
+//! its frame is unstated: ECI carries the verdict, ECEF and the orbit frame are in the
+//! note) and the RSS of each triple. Verdicts (`BOOK_PAPER001_TARGETS.md`, OD-5.3): each
+//! standard deviation within a factor 2 of the book's, the RSS within a factor 1.6. The
+//! table's title says 500 km altitude and the text a = 7271 km (893 km): the text's orbit
+//! is the bundled one; the 500 km orbit (a = 6878.137 km) gives two more RSS rows against
+//! the same numbers. Each value is the mean over the registered runs (seeds 1-4) of the
+//! statistic after the first 20 minutes (assumed: the filter's convergence).
+
+use crate::draw::Draw;
+use crate::report::{Row, Verdict};
+use crate::thesis::ValidateError;
+use skyforge_gnss::signal::Signal;
+use skyforge_navigation::orbit_determination::{PositionFilterConfig, position_filter_on_file};
+use skyforge_navigation::pvt::PvtConfig;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::frames::c_orbital_eci;
+use skyforge_orbits::frames::earth_rotation::EarthRotation;
+use skyforge_orbits::propagate::ForceModelConfig;
+use skyforge_orbits::time::TimeOrigin;
+use skyforge_runner::observation_run;
+
+/// Table identifier.
+pub const TABLE: &str = "B-5.5";
+/// The bundled scenario of this table.
+pub const SCENARIO: &str = "book-od-leo";
+/// Registered runs: seeds `FIRST_SEED ..` (assumed: four).
+const FIRST_SEED: u64 = 1;
+const RUNS: u64 = 4;
+/// Book 5.5.4: fixes every 60 s.
+const INTERVAL_S: f64 = 60.0;
+/// assumed: the filter has converged after 20 minutes.
+const SETTLED_S: f64 = 1200.0;
+/// The 500 km orbit of the table's title.
+const A_500_KM: f64 = 6878.137;
+
+/// Book Table 5-3: X, Y, Z (m) and their velocities (m/s), one sigma.
+const BOOK: [f64; 6] = [12.81, 23.58, 13.21, 0.1109, 0.2015, 0.1100];
+
+/// The filter's settings (every one assumed; the book states none): J2 and exponential
+/// drag of the default spacecraft (book: "only drag and J2 are modelled"); a fix
+/// coordinate of 18.6 m at GDOP 1 (the SA-era processes' SISRE, 32.2 m, over sqrt(3)); a
+/// velocity coordinate of 0.1 m/s (the order of the book's SA velocity errors); the input
+/// acceleration uncertain by 1e-5 m/s^2 per axis.
+pub fn filter_config() -> PositionFilterConfig {
+    PositionFilterConfig {
+        forces: ForceModelConfig::default(),
+        position_sigma_m: 18.6,
+        velocity_sigma_mps: 0.1,
+        acceleration_sigma_mps2: 1e-5,
+    }
+}
+
+/// Standard deviations of the six axes in ECEF, ECI and the true orbit frame.
+pub type FrameStds = [[f64; 6]; 3];
+
+/// The filter's error statistics on one run of `SCENARIO` with `seed` and the semi-major
+/// axis `a_km`.
+pub fn run_errors(seed: u64, a_km: f64) -> Result<FrameStds, ValidateError> {
+    let bundled = skyforge_scenarios::bundled()
+        .iter()
+        .find(|b| b.name == SCENARIO)
+        .ok_or_else(|| ValidateError::Pipeline(format!("no bundled scenario {SCENARIO}")))?;
+    let text = bundled.text.replace(
+        "semi_major_axis_km = 7271.0",
+        &format!("semi_major_axis_km = {a_km:?}"),
+    );
+    let here = std::path::Path::new(".");
+    let mut scenario = skyforge_scenarios::parse(&text, SCENARIO, here)?;
+    scenario.seed = seed;
+    let run = observation_run(&scenario).map_err(|e| ValidateError::Pipeline(e.to_string()))?;
+    let origin = TimeOrigin::new(run.start);
+    let store = EphemerisStore::new(run.ephemerides.clone(), &origin);
+    let pvt = PvtConfig {
+        iono_gps: run.iono.gps,
+        iono_bds: run.iono.bds,
+        ..PvtConfig::default()
+    };
+    let measured = run
+        .measured
+        .first()
+        .ok_or_else(|| ValidateError::Pipeline("no observations".into()))?;
+    let estimates = position_filter_on_file(
+        measured,
+        &store,
+        &origin,
+        &[Signal::GpsL1Ca],
+        &pvt,
+        filter_config(),
+        INTERVAL_S,
+    );
+    let earth = EarthRotation::at_origin(run.start);
+    let mut errors: [Vec<[f64; 6]>; 3] = Default::default();
+    for e in estimates.iter().filter(|e| e.t_s >= SETTLED_S) {
+        let t = e.t_s.round();
+        let Some(truth) = run.platform_at(t) else {
+            continue;
+        };
+        let (r_eci, v_eci) = earth.ecef_to_eci(t, &truth.r_ecef_m, &truth.v_ecef_mps);
+        let (r_ecef, v_ecef) = earth.eci_to_ecef(e.t_s, &e.r_eci_m, &e.v_eci_mps);
+        let c = c_orbital_eci(&r_eci, &v_eci);
+        let (dr, dv) = (e.r_eci_m - r_eci, e.v_eci_mps - v_eci);
+        let join = |a: Vec3, b: Vec3| [a.x, a.y, a.z, b.x, b.y, b.z];
+        errors[0].push(join(r_ecef - truth.r_ecef_m, v_ecef - truth.v_ecef_mps));
+        errors[1].push(join(dr, dv));
+        errors[2].push(join(c.transpose() * dr, c.transpose() * dv));
+    }
+    if errors[0].len() < 3 {
+        return Err(ValidateError::Pipeline(format!(
+            "{} filter estimates after {SETTLED_S} s",
+            errors[0].len()
+        )));
+    }
+    Ok(errors.map(|rows| std::array::from_fn(|i| std_dev(rows.iter().map(|r| r[i])))))
+}
+
+/// Sample standard deviation.
+fn std_dev(values: impl Iterator<Item = f64> + Clone) -> f64 {
+    let n = values.clone().count() as f64;
+    let mean = values.clone().sum::<f64>() / n;
+    (values.map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
+}
+
+/// Root sum of squares of three values.
+pub fn rss(v: &[f64]) -> f64 {
+    Vec3::new(v[0], v[1], v[2]).norm()
+}
+
+/// The mean over `seeds` of each frame's six standard deviations.
+fn mean_over(seeds: std::ops::Range<u64>, a_km: f64) -> Result<FrameStds, ValidateError> {
+    let mut sum = [[0.0; 6]; 3];
+    let mut n = 0.0;
+    for seed in seeds {
+        let one = run_errors(seed, a_km)?;
+        for (s, o) in sum.iter_mut().zip(one) {
+            for (a, b) in s.iter_mut().zip(o) {
+                *a += b;
+            }
+        }
+        n += 1.0;
+    }
+    Ok(sum.map(|s| s.map(|v| v / n)))
+}
+
+/// `(tolerance, verdict)` of `ours` within a factor `k` of `book`.
+fn within_factor(ours: f64, book: f64, k: f64) -> (String, Verdict) {
+    let ratio = ours / book;
+    (
+        format!("factor {k}"),
+        Verdict::from_ok((1.0 / k..=k).contains(&ratio)),
+    )
+}
+
+/// The rows of B-5.5 over `draw`'s runs.
+pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    let seeds = draw.seeds(FIRST_SEED, RUNS);
+    let [ecef, eci, tof] = mean_over(seeds.clone(), 7271.0)?;
+    let names = ["X", "Y", "Z", "vX", "vY", "vZ"];
+    let mut rows: Vec<Row> = (0..6)
+        .map(|i| {
+            let (quantity, unit) = if i < 3 {
+                ("position std", "m")
+            } else {
+                ("velocity std", "m/s")
+            };
+            Row::measured(
+                TABLE,
+                format!("{} (ECI)", names[i]),
+                quantity,
+                unit,
+                Some(BOOK[i]),
+                eci[i],
+                within_factor(eci[i], BOOK[i], 2.0),
+            )
+            .with_note(format!(
+                "ECEF {:.4}, orbit frame (along, -normal, nadir) {:.4}; mean of seeds {}..{}",
+                ecef[i],
+                tof[i],
+                seeds.start,
+                seeds.end - 1
+            ))
+        })
+        .collect();
+    let [_, eci_500, _] = mean_over(seeds.clone(), A_500_KM)?;
+    for (label, stds) in [("a = 7271 km", eci), ("500 km altitude", eci_500)] {
+        for (part, range, unit) in [("position", 0..3, "m"), ("velocity", 3..6, "m/s")] {
+            let book = rss(&BOOK[range.clone()]);
+            let ours = rss(&stds[range]);
+            rows.push(
+                Row::measured(
+                    TABLE,
+                    format!("{part} RSS, {label}"),
+                    &format!("{part} RSS"),
+                    unit,
+                    Some(book),
+                    ours,
+                    within_factor(ours, book, 1.6),
+                )
+                .with_note(format!(
+                    "the book's RSS of its three stds; mean of seeds {}..{}",
+                    seeds.start,
+                    seeds.end - 1
+                )),
+            );
+        }
+    }
+    Ok(rows)
+}
