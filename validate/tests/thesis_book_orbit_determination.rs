@@ -27,8 +27,9 @@ fn b_5_5_writes_every_row_and_its_rss_where_measured() {
             r.note
         );
     }
-    // Six axes, and position and velocity RSS at two orbits.
-    assert_eq!(rows.len(), 10, "{rows:#?}");
+    // Six axes, position and velocity RSS at two orbits, two sampling rows, height and
+    // eccentricity.
+    assert_eq!(rows.len(), 14, "{rows:#?}");
     for r in &rows {
         assert_eq!(r.table, "B-5.5");
         let v = r.ours.unwrap();
