@@ -23,7 +23,7 @@ use skyforge_receiver::session::{
     Assistance, EpochSink, NavSource, SessionError, SinkError as EpochSinkError, parse_config,
 };
 use skyforge_scenarios::{Scenario, World};
-use skyforge_signals::obs_model::{Level, ObservationModel};
+use skyforge_signals::obs_model::Level;
 use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::link::LinkTruth;
 use skyforge_signals::synth::{
@@ -328,11 +328,10 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
             "is not an observation-level scenario ([observation] level = \"observation\")",
         ));
     }
-    let noise = scenario.observation_noise()?;
     let mut world = scenario.build()?;
     let mut run = unmade(&world);
     let antennas = &run.antennas;
-    let model = ObservationModel::new(noise, scenario.seed, antennas.len(), GEOMETRY_STEP_S);
+    let model = scenario.observation_model(antennas.len(), GEOMETRY_STEP_S)?;
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?
         .observation_level(model, &scenario.observation.observed_signals)?;
     let mut measured = Collect::new(antennas, "observations");

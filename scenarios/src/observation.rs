@@ -5,7 +5,7 @@ use crate::error::ScenarioError;
 use crate::parse::SCENARIO_MAX_BYTES;
 use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::Invalid;
-use skyforge_signals::obs_model::{Calibration, ObsNoise, ObsNoiseConfig};
+use skyforge_signals::obs_model::{Calibration, ObsNoise, ObsNoiseConfig, ObservationModel};
 
 /// The calibration bundled with SkyForge (`scenarios/calibration/default.toml`), measured by
 /// `skyforge calibrate scenarios/calibration/leo-gps-bds.toml` (see that file).
@@ -17,6 +17,24 @@ pub const BUNDLED_CALIBRATION: &str = include_str!("../calibration/default.toml"
 pub const BUNDLED_MONITOR_CONFIG: &str = include_str!("../calibration/monitor-lab.toml");
 
 impl Scenario {
+    /// The observation-level model of this scenario for `antennas` antennas observed every
+    /// `step_s`: its noise resolved ([`Self::observation_noise`]), with Doppler noise
+    /// where `[observation] doppler_noise` asks for it (located errors for a noise model
+    /// or a calibration that cannot give it).
+    pub fn observation_model(
+        &self,
+        antennas: usize,
+        step_s: f64,
+    ) -> Result<ObservationModel, ScenarioError> {
+        let model = ObservationModel::new(self.observation_noise()?, self.seed, antennas, step_s);
+        if !self.observation.doppler_noise {
+            return Ok(model);
+        }
+        model
+            .with_doppler_noise(self.seed)
+            .map_err(|e| self.located(Invalid::new("observation.doppler_noise", true, e)))
+    }
+
     /// `[observation.noise]` resolved: a calibration file named relative to the scenario
     /// (the bundled one when none is named) read and checked.
     pub fn observation_noise(&self) -> Result<ObsNoise, ScenarioError> {

@@ -249,3 +249,22 @@ fn a_precise_model_needs_a_readable_sp3_file_of_the_day() {
     let none = format!("{BASE}\n[errors.satellite]\nmodel = \"precise\"\n");
     assert_eq!(parse_error(&none).field, "errors.satellite.sp3");
 }
+
+#[test]
+fn doppler_noise_needs_the_calibrated_model() {
+    let text = format!(
+        "{BASE}\n[signal]\ncn0_dbhz = 45.0\n[observation]\nlevel = \"observation\"\n\
+         doppler_noise = true\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\n\
+         code_m = 0.3\n"
+    );
+    let scenario = parse_in(&text, Path::new(".")).expect("parses");
+    let err = scenario.observation_model(1, 1.0).unwrap_err();
+    assert_eq!(err.field, "observation.doppler_noise");
+    assert!(err.to_string().contains("calibrated"), "{err}");
+    let calibrated = format!(
+        "{BASE}\n[signal]\ncn0_dbhz = 45.0\n[observation]\nlevel = \"observation\"\n\
+         doppler_noise = true\n"
+    );
+    let scenario = parse_in(&calibrated, Path::new(".")).expect("parses");
+    assert!(scenario.observation_model(1, 1.0).is_ok());
+}

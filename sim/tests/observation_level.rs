@@ -179,7 +179,8 @@ fn bundled_calibration_matches_the_signal_level_on_another_seed_and_hour() {
     }
 }
 
-/// The bundled calibration is what `skyforge calibrate` measures on its scenario. The run
+/// The bundled calibration is what `skyforge calibrate` measures on its scenario (code,
+/// phase and Doppler factors). The run
 /// is deterministic for a seed and a CPU, but the correlator's kernel depends on the CPU
 /// (AVX-512 or portable, which round differently: f32 lanes, fused multiply-add), so the
 /// factors are held to a part in a thousand (they moved by at most 1.2e-4 when session
@@ -206,7 +207,7 @@ fn bundled_calibration_is_reproduced_by_the_calibrate_command() {
     assert_eq!(measured.len(), bundled.len());
     for (m, b) in measured.iter().zip(&bundled) {
         let (mut m, mut b) = (m.as_table().unwrap().clone(), b.as_table().unwrap().clone());
-        for factor in ["code_factor", "phase_factor"] {
+        for factor in ["code_factor", "phase_factor", "doppler_factor"] {
             let (fm, fb) = (
                 m.remove(factor).unwrap().as_float().unwrap(),
                 b.remove(factor).unwrap().as_float().unwrap(),

@@ -62,18 +62,29 @@ struct Sums {
     code_formula: f64,
     phase_measured: f64,
     phase_formula: f64,
+    doppler_measured: f64,
+    doppler_formula: f64,
     samples: usize,
     cn0_min: f64,
     cn0_max: f64,
 }
 
-/// Mean formula variances (code, phase) of `sat` on `signal` over the truth epochs, and its C/N0 range.
+/// Mean formula variances of one satellite over the truth epochs, and its C/N0 range.
+struct FormulaVariances {
+    code: f64,
+    phase: f64,
+    doppler: f64,
+    cn0_min: f64,
+    cn0_max: f64,
+}
+
+/// [`FormulaVariances`] of `sat` on `signal`.
 fn formula_variances(
     truth: &ObsFile,
     sat: SatId,
     signal: Signal,
     loops: &LoopNoise,
-) -> Option<(f64, f64, f64, f64)> {
+) -> Option<FormulaVariances> {
     let cn0: Vec<f64> = truth
         .epochs
         .iter()
@@ -95,12 +106,23 @@ fn formula_variances(
         .map(|c| loops.phase_sigma_m(signal, *c).powi(2))
         .sum::<f64>()
         / n;
+    let doppler = cn0
+        .iter()
+        .map(|c| loops.doppler_sigma_hz(*c).powi(2))
+        .sum::<f64>()
+        / n;
     let (lo, hi) = cn0
         .iter()
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), c| {
             (a.min(*c), b.max(*c))
         });
-    Some((code, phase, lo, hi))
+    Some(FormulaVariances {
+        code,
+        phase,
+        doppler,
+        cn0_min: lo,
+        cn0_max: hi,
+    })
 }
 
 /// Add the satellites of one antenna's comparison `layer` (against `truth`) to `sums`.
@@ -118,6 +140,13 @@ fn add_layer(
             .find(|s| s.sat == sat)
             .and_then(|s| Some((s.stats.count, s.stats.std?)))
     };
+    let doppler_of = |sat: SatId| {
+        cmp.doppler_hz
+            .per_satellite
+            .iter()
+            .find(|s| s.sat == sat)
+            .and_then(|s| Some((s.stats.count, s.stats.std?)))
+    };
     for code in &cmp.pseudorange_m.per_satellite {
         let (Some(code_std), Some((phase_n, phase_std))) = (code.stats.std, phase_of(code.sat))
         else {
@@ -127,9 +156,7 @@ fn add_layer(
             continue;
         };
         let loops = settled_loops(tracking, signal);
-        let Some((code_var, phase_var, lo, hi)) =
-            formula_variances(truth, code.sat, signal, &loops)
-        else {
+        let Some(formula) = formula_variances(truth, code.sat, signal, &loops) else {
             continue;
         };
         let at = match sums.iter().position(|(s, _)| *s == signal) {
@@ -150,12 +177,17 @@ fn add_layer(
         let n = code.stats.count as f64;
         let m = phase_n as f64;
         s.code_measured += n * code_std * code_std;
-        s.code_formula += n * code_var;
+        s.code_formula += n * formula.code;
         s.phase_measured += m * phase_std * phase_std;
-        s.phase_formula += m * phase_var;
+        s.phase_formula += m * formula.phase;
+        if let Some((count, std)) = doppler_of(code.sat) {
+            let k = count as f64;
+            s.doppler_measured += k * std * std;
+            s.doppler_formula += k * formula.doppler;
+        }
         s.samples += code.stats.count;
-        s.cn0_min = s.cn0_min.min(lo);
-        s.cn0_max = s.cn0_max.max(hi);
+        s.cn0_min = s.cn0_min.min(formula.cn0_min);
+        s.cn0_max = s.cn0_max.max(formula.cn0_max);
     }
 }
 
@@ -202,6 +234,8 @@ pub fn calibrate(scenario: &Scenario, work: &Path) -> Result<Calibration, Calibr
             loops: settled_loops(&chain.config.tracking, signal),
             code_factor: (s.code_measured / s.code_formula).sqrt(),
             phase_factor: (s.phase_measured / s.phase_formula).sqrt(),
+            doppler_factor: (s.doppler_formula > 0.0)
+                .then(|| (s.doppler_measured / s.doppler_formula).sqrt()),
             cn0_dbhz: [s.cn0_min, s.cn0_max],
             samples: s.samples,
         })

@@ -31,6 +31,9 @@ pub enum Stream {
     FastSyncData,
     /// Tracking noise of the observation-level model; index: the antenna.
     ObservationNoise,
+    /// Doppler noise of the observation-level model (`[observation] doppler_noise`);
+    /// index: the antenna.
+    DopplerNoise,
     /// Integer carrier ambiguities of the observation-level model; index 0.
     CarrierAmbiguity,
     /// A satellite's radial, along-track and cross-track orbit error and its clock error
@@ -54,6 +57,7 @@ impl Stream {
             Stream::FastSyncData => "t-3.3-s data",
             Stream::ObservationNoise => "observation-noise",
             Stream::CarrierAmbiguity => "carrier-ambiguity",
+            Stream::DopplerNoise => "doppler-noise",
             Stream::SatelliteRadial => "satellite-radial",
             Stream::SatelliteAlong => "satellite-along",
             Stream::SatelliteCross => "satellite-cross",

@@ -36,6 +36,14 @@ impl LoopNoise {
         chips * skyforge_orbits::constants::C_MPS / signal.chip_rate_hz()
     }
 
+    /// The PLL's Doppler (frequency) jitter (Hz, 1 sigma) of `signal` at `cn0_dbhz`, up to
+    /// the calibrated factor: its phase jitter (cycles, thesis eq. 3.2-3) times its noise
+    /// bandwidth, the rate at which the loop moves its phase. The calibration measures how
+    /// the receiver's Doppler compares (`doppler_factor`).
+    pub fn doppler_sigma_hz(&self, cn0_dbhz: f64) -> f64 {
+        pll_thermal_cycles(self.pll_bandwidth_hz, cn0_dbhz, self.coherent_s) * self.pll_bandwidth_hz
+    }
+
     /// Correlation time of the code noise (s): `1 / (4 Bn)`, the time constant of a
     /// first-order loop of noise bandwidth Bn.
     pub fn code_correlation_s(&self) -> f64 {
@@ -79,6 +87,10 @@ pub struct SignalCalibration {
     pub code_factor: f64,
     /// Measured phase-noise std over the formula's.
     pub phase_factor: f64,
+    /// Measured Doppler-noise std over [`LoopNoise::doppler_sigma_hz`] (absent in
+    /// calibrations written before it was measured).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub doppler_factor: Option<f64>,
     /// C/N0 range the measurement covered (dB-Hz).
     pub cn0_dbhz: [f64; 2],
     /// Observations the factors were measured on.
@@ -117,6 +129,7 @@ impl Calibration {
             for (name, v) in [
                 ("code_factor", s.code_factor),
                 ("phase_factor", s.phase_factor),
+                ("doppler_factor", s.doppler_factor.unwrap_or(1.0)),
             ] {
                 if !(v.is_finite() && v > 0.0) {
                     return Err(format!(

@@ -32,6 +32,10 @@ pub struct ObservationConfig {
     /// multi-frequency baseline models of thesis 2.4.2 and 2.4.4.
     #[serde(default)]
     pub observed_signals: Vec<Signal>,
+    /// Draw Doppler noise at the observation level (calibrated model only; default off:
+    /// the Doppler is the truth's).
+    #[serde(default)]
+    pub doppler_noise: bool,
 }
 
 /// `[observation.noise]` as written in the scenario.

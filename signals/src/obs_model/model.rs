@@ -37,6 +37,8 @@ pub struct ObservationModel {
     tracks: HashMap<(usize, SatId, Signal), Track>,
     /// Epoch spacing (s) beyond which a track counts as lost.
     max_gap_s: f64,
+    /// Per antenna, the Doppler noise stream (none: the Doppler is the truth's).
+    doppler_rngs: Option<Vec<ChaCha20Rng>>,
 }
 
 /// A standard normal draw.
@@ -66,6 +68,43 @@ impl ObservationModel {
             ambiguity_rng: stream_rng(seed, Stream::CarrierAmbiguity, 0),
             tracks: HashMap::new(),
             max_gap_s: 1.5 * step_s,
+            doppler_rngs: None,
+        }
+    }
+
+    /// The Doppler gets white noise of the calibrated model's `doppler_factor` times
+    /// [`LoopNoise::doppler_sigma_hz`](super::LoopNoise::doppler_sigma_hz) at each link's
+    /// C/N0, from streams of its own (the code and phase draws stay as they were). Refused
+    /// for the other noise models and for a calibration without a Doppler factor.
+    pub fn with_doppler_noise(self, seed: u64) -> Result<Self, String> {
+        let ObsNoise::Calibrated(cal) = &self.noise else {
+            return Err("Doppler noise needs the calibrated noise model".into());
+        };
+        if let Some(s) = cal.signals.iter().find(|s| s.doppler_factor.is_none()) {
+            return Err(format!(
+                "the calibration has no doppler_factor for {}: re-run skyforge calibrate",
+                s.signal
+            ));
+        }
+        let n = self.noise_rngs.len();
+        Ok(Self {
+            doppler_rngs: Some(
+                (0..n)
+                    .map(|a| stream_rng(seed, Stream::DopplerNoise, a as u32))
+                    .collect(),
+            ),
+            ..self
+        })
+    }
+
+    /// The Doppler noise (Hz, 1 sigma) of `signal` at `cn0_dbhz`: zero without Doppler
+    /// noise or a calibration of the signal.
+    fn doppler_sigma_hz(&self, signal: Signal, cn0_dbhz: f64) -> f64 {
+        match (&self.noise, &self.doppler_rngs) {
+            (ObsNoise::Calibrated(cal), Some(_)) => cal.of(signal).map_or(0.0, |c| {
+                c.doppler_factor.unwrap_or(0.0) * c.loops.doppler_sigma_hz(cn0_dbhz)
+            }),
+            _ => 0.0,
         }
     }
 
@@ -143,12 +182,17 @@ impl ObservationModel {
         let phase_cycles = truth.carrier_phase_cycles
             + (truth.multipath_carrier_m + sigma[1] * track.phase_state) / lambda
             + track.ambiguity_cycles as f64;
+        let doppler_sigma = self.doppler_sigma_hz(signal, truth.cn0_dbhz);
+        let doppler_hz = match self.doppler_rngs.as_mut() {
+            Some(rngs) => truth.doppler_hz + doppler_sigma * normal(&mut rngs[antenna]),
+            None => truth.doppler_hz,
+        };
         let mut record = ObsRecord::complete(
             sat,
             signal,
             code_m,
             phase_cycles,
-            truth.doppler_hz,
+            doppler_hz,
             truth.cn0_dbhz,
         );
         if relocked {
@@ -251,6 +295,7 @@ mod tests {
                 loops,
                 code_factor: 1.5,
                 phase_factor: 0.8,
+                doppler_factor: None,
                 cn0_dbhz: [45.0, 45.0],
                 samples: 1,
             }],
@@ -275,6 +320,71 @@ mod tests {
             (c1 / c0 - (-1.0f64).exp()).abs() < 0.04,
             "lag-1 {}",
             c1 / c0
+        );
+    }
+
+    /// Doppler noise (opt-in): white, of the calibrated factor times the PLL's frequency
+    /// jitter (N = 20000: 3 % is six standard errors of a std, and the lag-1
+    /// autocorrelation within 0.03 of zero); the code and phase draws are those of the
+    /// model without it; refused without a Doppler factor or for another noise model.
+    #[test]
+    fn doppler_noise_is_white_calibrated_and_leaves_code_and_phase_alone() {
+        let loops = LoopNoise {
+            pll_bandwidth_hz: 15.0,
+            dll_bandwidth_hz: 0.25,
+            spacing_chips: 0.5,
+            coherent_s: 1e-3,
+        };
+        let calibration = |doppler_factor| Calibration {
+            scenario: "test".into(),
+            seed: 0,
+            duration_s: 1.0,
+            signals: vec![SignalCalibration {
+                signal: "gps-l1ca".into(),
+                loops,
+                code_factor: 1.0,
+                phase_factor: 1.0,
+                doppler_factor,
+                cn0_dbhz: [45.0, 45.0],
+                samples: 1,
+            }],
+        };
+        let noise = ObsNoise::Calibrated(calibration(Some(17.0)));
+        let mut with = ObservationModel::new(noise.clone(), 4, 1, 1.0)
+            .with_doppler_noise(4)
+            .unwrap();
+        let mut without = ObservationModel::new(noise, 4, 1, 1.0);
+        let (mut doppler, mut same) = (Vec::new(), true);
+        for t in (0..20_000).map(f64::from) {
+            let tr = truth(t);
+            let a = with.observe(0, SatId::gps(7), Signal::GpsL1Ca, &tr, 0.5);
+            let b = without.observe(0, SatId::gps(7), Signal::GpsL1Ca, &tr, 0.5);
+            same &= a.pseudorange_m == b.pseudorange_m
+                && a.carrier_phase_cycles == b.carrier_phase_cycles
+                && b.doppler_hz == Some(tr.doppler_hz);
+            doppler.push(a.doppler_hz.unwrap() - tr.doppler_hz);
+        }
+        assert!(same);
+        let want = 17.0 * loops.doppler_sigma_hz(45.0);
+        assert!(
+            (std(&doppler) / want - 1.0).abs() < 0.03,
+            "{} vs {want}",
+            std(&doppler)
+        );
+        let m = doppler.iter().sum::<f64>() / doppler.len() as f64;
+        let c0: f64 = doppler.iter().map(|x| (x - m).powi(2)).sum();
+        let c1: f64 = doppler.windows(2).map(|w| (w[0] - m) * (w[1] - m)).sum();
+        assert!((c1 / c0).abs() < 0.03, "lag-1 {}", c1 / c0);
+        let old = ObservationModel::new(ObsNoise::Calibrated(calibration(None)), 4, 1, 1.0);
+        assert!(old.with_doppler_noise(4).is_err());
+        let constant = ObsNoise::Constant {
+            phase_m: 0.0,
+            code_m: 0.0,
+        };
+        assert!(
+            ObservationModel::new(constant, 4, 1, 1.0)
+                .with_doppler_noise(4)
+                .is_err()
         );
     }
 

@@ -31,7 +31,8 @@ pub fn calibrate(args: &ScenarioRun) -> anyhow::Result<()> {
     let header = format!(
         "# Observation-level noise calibration, written by `skyforge calibrate {}`\n\
          # (seed {}; the first {SETTLING_S} s of tracking left out). Factors: the bundled\n\
-         # receiver's code / phase noise std over the loop formulas' at each satellite's C/N0.\n",
+         # receiver's code / phase / Doppler noise std over the loop formulas' at each\n\
+         # satellite's C/N0.\n",
         args.scenario, scenario.seed
     );
     let path = staged.file("calibration.toml");
@@ -40,8 +41,11 @@ pub fn calibrate(args: &ScenarioRun) -> anyhow::Result<()> {
     let dir = staged.commit()?;
     println!("scenario   {} ({})", scenario.name, scenario.source);
     for s in &calibration.signals {
+        let doppler = s
+            .doppler_factor
+            .map_or_else(String::new, |d| format!(", Doppler x{d:.3}"));
         println!(
-            "{:<10} code x{:.3}, phase x{:.3} ({} observations, C/N0 {:.1}..{:.1} dB-Hz)",
+            "{:<10} code x{:.3}, phase x{:.3}{doppler} ({} observations, C/N0 {:.1}..{:.1} dB-Hz)",
             s.signal, s.code_factor, s.phase_factor, s.samples, s.cn0_dbhz[0], s.cn0_dbhz[1]
         );
     }

@@ -18,7 +18,7 @@ use skyforge_receiver::session::{Assistance, NavSource, read_config};
 use skyforge_runner::{ChainError, StreamSinks, StreamedChain};
 use skyforge_scenarios::{Scenario, World};
 use skyforge_signals::errors::TropoModel;
-use skyforge_signals::obs_model::{Level, ObservationModel};
+use skyforge_signals::obs_model::Level;
 use skyforge_signals::synth::RunInfo;
 use skyforge_signals::synth::SignalConfig;
 use skyforge_signals::synth::gnss_sdr;
@@ -86,19 +86,17 @@ fn session<'a>(
     world: &'a mut World,
     signal: &'a SignalConfig,
 ) -> anyhow::Result<SynthSession<'a>> {
-    let noise = match scenario.observation.level {
-        Level::Observation => Some(scenario.observation_noise()?),
+    let model = match scenario.observation.level {
+        Level::Observation => {
+            Some(scenario.observation_model(world.antennas.len(), GEOMETRY_STEP_S)?)
+        }
         Level::Signal => None,
     };
-    let n_antennas = world.antennas.len();
     let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
         .map_err(|e| setup_error(scenario, e))?;
-    Ok(match noise {
-        Some(noise) => session
-            .observation_level(
-                ObservationModel::new(noise, scenario.seed, n_antennas, GEOMETRY_STEP_S),
-                &scenario.observation.observed_signals,
-            )
+    Ok(match model {
+        Some(model) => session
+            .observation_level(model, &scenario.observation.observed_signals)
             .map_err(|e| setup_error(scenario, e))?,
         None => session,
     })
