@@ -175,12 +175,24 @@ pub fn rss(v: &[f64]) -> f64 {
 struct OrbitStats {
     main: FrameStds,
     sweep: Vec<FrameStds>,
+    /// Each seed's ECI position and velocity RSS of the 60 s filter.
+    per_seed_rss: Vec<[f64; 2]>,
+}
+
+impl OrbitStats {
+    /// The standard error (over seeds: independent runs) of the mean of the per-seed
+    /// position (`part` 0) or velocity (1) RSS.
+    fn rss_standard_error(&self, part: usize) -> f64 {
+        let v: Vec<f64> = self.per_seed_rss.iter().map(|r| r[part]).collect();
+        std_dev(v.iter().copied()) / (v.len() as f64).sqrt()
+    }
 }
 
 /// [`OrbitStats`] over `seeds` on the orbit `a_km`, `e`.
 fn mean_over(seeds: std::ops::Range<u64>, a_km: f64, e: f64) -> Result<OrbitStats, ValidateError> {
     let mut main = [[0.0; 6]; 3];
     let mut sweep = vec![[[0.0; 6]; 3]; INTERVALS_S.len()];
+    let mut per_seed_rss = Vec::new();
     let mut n = 0.0;
     let add = |total: &mut FrameStds, one: FrameStds| {
         for (s, o) in total.iter_mut().zip(one) {
@@ -191,7 +203,9 @@ fn mean_over(seeds: std::ops::Range<u64>, a_km: f64, e: f64) -> Result<OrbitStat
     };
     for seed in seeds {
         let run = observe(seed, a_km, e)?;
-        add(&mut main, filter_errors(&run, INTERVAL_S, INTERVAL_S)?);
+        let one = filter_errors(&run, INTERVAL_S, INTERVAL_S)?;
+        per_seed_rss.push([rss(&one[1][..3]), rss(&one[1][3..])]);
+        add(&mut main, one);
         for (total, &interval) in sweep.iter_mut().zip(&INTERVALS_S) {
             add(total, filter_errors(&run, interval, COMMON_GRID_S)?);
         }
@@ -201,6 +215,7 @@ fn mean_over(seeds: std::ops::Range<u64>, a_km: f64, e: f64) -> Result<OrbitStat
     Ok(OrbitStats {
         main: mean(main),
         sweep: sweep.into_iter().map(mean).collect(),
+        per_seed_rss,
     })
 }
 
@@ -250,9 +265,12 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         })
         .collect();
     let low = mean_over(seeds.clone(), A_500_KM, 0.001)?;
-    let [_, eci_500, _] = low.main;
-    for (label, stds) in [("a = 7271 km", eci), ("500 km altitude", eci_500)] {
-        for (part, range, unit) in [("position", 0..3, "m"), ("velocity", 3..6, "m/s")] {
+    for (label, stats) in [("a = 7271 km", &text_orbit), ("500 km altitude", &low)] {
+        let stds = stats.main[1];
+        for (k, (part, range, unit)) in [("position", 0..3, "m"), ("velocity", 3..6, "m/s")]
+            .into_iter()
+            .enumerate()
+        {
             let book = rss(&BOOK[range.clone()]);
             let ours = rss(&stds[range]);
             rows.push(
@@ -266,7 +284,15 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
                     within_factor(ours, book, 1.6),
                 )
                 .with_note(format!(
-                    "the book's RSS of its three stds; mean of seeds {}..{}",
+                    "the book's RSS of its three stds; ours of the seeds' mean stds; the \
+                     seeds' own RSS {} (standard error of their mean {:.3}); seeds {}..{}",
+                    stats
+                        .per_seed_rss
+                        .iter()
+                        .map(|r| format!("{:.3}", r[k]))
+                        .collect::<Vec<_>>()
+                        .join(" / "),
+                    stats.rss_standard_error(k),
                     seeds.start,
                     seeds.end - 1
                 )),
@@ -290,8 +316,14 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
             ("RSS falls with height".into(), Verdict::from_ok(improves)),
         )
         .with_note(format!(
-            "position RSS {:.2} / {:.2} / {:.2} m at 500 / 893 / 1500 km (assumed heights), 60 s; {seeds_note}",
-            by_height[0], by_height[1], by_height[2]
+            "position RSS {:.2} / {:.2} / {:.2} m at 500 / 893 / 1500 km (assumed heights), 60 s \
+             (standard errors of the seeds' RSS {:.2} / {:.2} / {:.2} m); {seeds_note}",
+            by_height[0],
+            by_height[1],
+            by_height[2],
+            low.rss_standard_error(0),
+            text_orbit.rss_standard_error(0),
+            high.rss_standard_error(0)
         )),
     );
     let ratio = position_rss(&eccentric.main) / by_height[1];
