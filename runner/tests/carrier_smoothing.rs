@@ -6,31 +6,22 @@ mod support;
 
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{PvtConfig, SmoothingConfig};
-use skyforge_runner::{ObservationRun, observation_run};
+use skyforge_runner::ObservationRun;
 
 /// A 10 min static site, GPS L1 C/A, 0.3 m white code noise and 3 mm carrier noise, the
 /// ionosphere as `ionosphere` sets it (on one frequency its code-carrier divergence biases
 /// a growing memory).
 fn run(seed: u64, ionosphere: &str) -> ObservationRun {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = format!(
-        r#"name = "carrier-smoothing"
-seed = {seed}
-
-[time]
-start = "2023-03-12T11:00:00 GPST"  # assumed: as the dual-frequency test
-duration_s = 600.0  # assumed: 10 min of 1 s epochs
-{site}
-[errors.ionosphere]
-{ionosphere}
-{observation}"#,
-        site = support::STATIC_SITE,
-        // assumed: 0.3 m code (the PVT's own sigma_a), 3 mm carrier (the book's "a few mm").
-        observation = support::observation_level("", 0.3, 0.003),
+    let time = "[time]\n\
+        start = \"2023-03-12T11:00:00 GPST\"  # assumed: as the dual-frequency test\n\
+        duration_s = 600.0  # assumed: 10 min of 1 s epochs\n";
+    // assumed: 0.3 m code (the PVT's own sigma_a), 3 mm carrier (the book's "a few mm").
+    let tail = format!(
+        "[errors.ionosphere]\n{ionosphere}\n{}",
+        support::observation_level("", 0.3, 0.003)
     );
-    let scenario =
-        skyforge_scenarios::parse(&text, "carrier-smoothing.toml", dir.path()).expect("scenario");
-    observation_run(&scenario).expect("run")
+    support::run_static_site("carrier-smoothing", seed, time, &tail, dir.path())
 }
 
 /// RMS of the 3-D position error (m) of the first antenna's fixes after the first minute.

@@ -4,28 +4,16 @@
 mod support;
 
 use skyforge_gnss::signal::Signal;
-use skyforge_runner::{ObservationRun, observation_run};
+use skyforge_runner::ObservationRun;
 use skyforge_signals::obs_model::LoopNoise;
 
 fn run(doppler_noise: bool) -> ObservationRun {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = format!(
-        r#"name = "doppler-noise"
-seed = 5
-
-[time]
-start = "2023-03-12T11:00:00 GPST"  # assumed: as the other static-site tests
-duration_s = 600.0  # assumed: 10 min of 1 s epochs
-{site}
-[observation]
-level = "observation"
-doppler_noise = {doppler_noise}
-"#,
-        site = support::STATIC_SITE,
-    );
-    let scenario =
-        skyforge_scenarios::parse(&text, "doppler-noise.toml", dir.path()).expect("scenario");
-    observation_run(&scenario).expect("run")
+    let time = "[time]\n\
+        start = \"2023-03-12T11:00:00 GPST\"  # assumed: as the other static-site tests\n\
+        duration_s = 600.0  # assumed: 10 min of 1 s epochs\n";
+    let tail = format!("[observation]\nlevel = \"observation\"\ndoppler_noise = {doppler_noise}\n");
+    support::run_static_site("doppler-noise", 5, time, &tail, dir.path())
 }
 
 /// The Doppler's error against the truth has the std the calibration gives at 45 dB-Hz

@@ -10,32 +10,23 @@ mod support;
 
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::{IonosphereCorrection, PvtConfig};
-use skyforge_runner::{ObservationRun, observation_run};
+use skyforge_runner::ObservationRun;
 
 /// A 10 min static site at midday (local), GPS L1 C/A with L5 observed, 0.3 m code noise
 /// on each signal, the ionosphere as `ionosphere` sets it.
 fn run(seed: u64, ionosphere: &str) -> ObservationRun {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = format!(
-        r#"name = "dual-frequency"
-seed = {seed}
-
-[time]
-# assumed: 11:00 GPST is midday at 13 E, near the Klobuchar model's daily peak.
-start = "2023-03-12T11:00:00 GPST"
-# assumed: 10 min of 1 s epochs; the constellation hardly changes.
-duration_s = 600.0
-{site}
-[errors.ionosphere]
-{ionosphere}
-{observation}"#,
-        site = support::STATIC_SITE,
-        // assumed: 0.3 m of code noise on each signal, the PVT's own sigma_a.
-        observation = support::observation_level("observed_signals = [\"gps-l5\"]", 0.3, 0.003),
+    let time = "[time]\n\
+        # assumed: 11:00 GPST is midday at 13 E, near the Klobuchar model's daily peak.\n\
+        start = \"2023-03-12T11:00:00 GPST\"\n\
+        # assumed: 10 min of 1 s epochs; the constellation hardly changes.\n\
+        duration_s = 600.0\n";
+    // assumed: 0.3 m of code noise on each signal, the PVT's own sigma_a.
+    let tail = format!(
+        "[errors.ionosphere]\n{ionosphere}\n{}",
+        support::observation_level("observed_signals = [\"gps-l5\"]", 0.3, 0.003)
     );
-    let scenario =
-        skyforge_scenarios::parse(&text, "dual-frequency.toml", dir.path()).expect("scenario");
-    observation_run(&scenario).expect("run")
+    support::run_static_site("dual-frequency", seed, time, &tail, dir.path())
 }
 
 /// RMS of the 3-D position error (m) of the first antenna's fixes.

@@ -9,7 +9,6 @@ mod support;
 use hifitime::{Epoch, TimeScale};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::{nominal, write_nav};
-use skyforge_runner::observation_run;
 
 /// A 3 s static GPS site at the observation level, noiseless, its constellation from
 /// `nav.rnx` in `dir`: the nominal GPS sets with TGD `tgd_s`.
@@ -27,23 +26,10 @@ fn truth_with_tgd(dir: &std::path::Path, tgd_s: f64) -> Vec<(String, f64, f64)> 
     )
     .expect("nav text");
     std::fs::write(dir.join("nav.rnx"), nav).expect("write nav");
-    let text = format!(
-        r#"name = "tgd"
-seed = 1
-
-[time]
-start = "2023-03-12T00:00:00 GPST"
-duration_s = 3.0
-
-[gnss.gps]
-source = "rinex"
-nav_file = "nav.rnx"
-{site}{observation}"#,
-        site = support::STATIC_SITE,
-        observation = support::observation_level("", 0.0, 0.0),
-    );
-    let scenario = skyforge_scenarios::parse(&text, "tgd.toml", dir).expect("scenario");
-    let run = observation_run(&scenario).expect("run");
+    let head = "[time]\nstart = \"2023-03-12T00:00:00 GPST\"\nduration_s = 3.0\n\n\
+        [gnss.gps]\nsource = \"rinex\"\nnav_file = \"nav.rnx\"\n";
+    let tail = support::observation_level("", 0.0, 0.0);
+    let run = support::run_static_site("tgd", 1, head, &tail, dir);
     run.truth[0]
         .epochs
         .iter()

@@ -9,7 +9,7 @@ use skyforge_gnss::observation::ObsFile;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_orbits::ephemeris::System;
-use skyforge_runner::{ObservationRun, observation_run};
+use skyforge_runner::ObservationRun;
 use skyforge_signals::errors::{BOOK_SA, modern, sisre_m};
 
 /// A 10 min static site (GPS L1 C/A), with `satellite` as its `[errors.satellite]` table
@@ -22,23 +22,16 @@ fn run(seed: u64, satellite: &str) -> ObservationRun {
 /// [`run`] from `start` with `gnss` lines (the GPS constellation's source).
 fn run_on(seed: u64, start: &str, gnss: &str, satellite: &str) -> ObservationRun {
     let dir = tempfile::tempdir().expect("tempdir");
-    let text = format!(
-        r#"name = "satellite-errors"
-seed = {seed}
-
-[time]
-start = "{start}"
-duration_s = 600.0  # assumed: 10 min of 1 s epochs, three SA clock correlation times
-{gnss}
-{site}
-{satellite}
-{observation}"#,
-        site = support::STATIC_SITE,
-        observation = support::observation_level("", 0.3, 0.003),
+    let head = format!(
+        "[time]\nstart = \"{start}\"\n\
+         duration_s = 600.0  # assumed: 10 min of 1 s epochs, three SA clock correlation times\n\
+         {gnss}"
     );
-    let scenario =
-        skyforge_scenarios::parse(&text, "satellite-errors.toml", dir.path()).expect("scenario");
-    observation_run(&scenario).expect("run")
+    let tail = format!(
+        "{satellite}\n{}",
+        support::observation_level("", 0.3, 0.003)
+    );
+    support::run_static_site("satellite-errors", seed, &head, &tail, dir.path())
 }
 
 /// Per link present in both (same epoch, satellite): the pseudorange, carrier phase (m)

@@ -31,3 +31,19 @@ pub fn observation_level(extra: &str, code_m: f64, phase_m: f64) -> String {
         "\n[observation]\nlevel = \"observation\"\n{extra}\n[observation.noise]\nmodel = \"constant\"\nphase_m = {phase_m:?}\ncode_m = {code_m:?}\n"
     )
 }
+
+/// The static site `name` with `seed`, run at the observation level in `dir`: `head` holds
+/// the `[time]` table and what comes before the site (a constellation's source), `tail`
+/// the tables after it (errors, `[observation]`).
+pub fn run_static_site(
+    name: &str,
+    seed: u64,
+    head: &str,
+    tail: &str,
+    dir: &std::path::Path,
+) -> skyforge_runner::ObservationRun {
+    let text = format!("name = {name:?}\nseed = {seed}\n\n{head}\n{STATIC_SITE}\n{tail}");
+    let scenario =
+        skyforge_scenarios::parse(&text, &format!("{name}.toml"), dir).expect("scenario");
+    skyforge_runner::observation_run(&scenario).expect("run")
+}
