@@ -32,7 +32,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "receiver-leo-gps",
             "attitude-leo-gps",
             "attitude-leo-l1-l5",
-            "integrity-lab"
+            "integrity-lab",
+            "book-od-leo"
         ]
     );
     for b in bundled() {
