@@ -252,6 +252,32 @@ mod tests {
             .collect()
     }
 
+    /// The receiver's default loops after pull-in.
+    const LOOPS: LoopNoise = LoopNoise {
+        pll_bandwidth_hz: 15.0,
+        dll_bandwidth_hz: 0.25,
+        spacing_chips: 0.5,
+        coherent_s: 1e-3,
+    };
+
+    /// A GPS L1 C/A calibration with [`LOOPS`] and these factors.
+    fn calibration(code: f64, phase: f64, doppler: Option<f64>) -> Calibration {
+        Calibration {
+            scenario: "test".into(),
+            seed: 0,
+            duration_s: 1.0,
+            signals: vec![SignalCalibration {
+                signal: "gps-l1ca".into(),
+                loops: LOOPS,
+                code_factor: code,
+                phase_factor: phase,
+                doppler_factor: doppler,
+                cn0_dbhz: [45.0, 45.0],
+                samples: 1,
+            }],
+        }
+    }
+
     fn std(v: &[f64]) -> f64 {
         let m = v.iter().sum::<f64>() / v.len() as f64;
         (v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (v.len() - 1) as f64).sqrt()
@@ -280,26 +306,8 @@ mod tests {
     /// about 1/sqrt(N) = 0.007 at N = 20000; bound 0.04).
     #[test]
     fn calibrated_noise_follows_formula_factor_and_loop_correlation() {
-        let loops = LoopNoise {
-            pll_bandwidth_hz: 15.0,
-            dll_bandwidth_hz: 0.25,
-            spacing_chips: 0.5,
-            coherent_s: 1e-3,
-        };
-        let calibration = Calibration {
-            scenario: "test".into(),
-            seed: 0,
-            duration_s: 1.0,
-            signals: vec![SignalCalibration {
-                signal: "gps-l1ca".into(),
-                loops,
-                code_factor: 1.5,
-                phase_factor: 0.8,
-                doppler_factor: None,
-                cn0_dbhz: [45.0, 45.0],
-                samples: 1,
-            }],
-        };
+        let loops = LOOPS;
+        let calibration = calibration(1.5, 0.8, None);
         let mut model = ObservationModel::new(ObsNoise::Calibrated(calibration), 4, 1, 1.0);
         let out = run(&mut model, (0..20_000).map(f64::from));
         let code: Vec<f64> = out.iter().map(|o| o.0).collect();
@@ -329,27 +337,8 @@ mod tests {
     /// model without it; refused without a Doppler factor or for another noise model.
     #[test]
     fn doppler_noise_is_white_calibrated_and_leaves_code_and_phase_alone() {
-        let loops = LoopNoise {
-            pll_bandwidth_hz: 15.0,
-            dll_bandwidth_hz: 0.25,
-            spacing_chips: 0.5,
-            coherent_s: 1e-3,
-        };
-        let calibration = |doppler_factor| Calibration {
-            scenario: "test".into(),
-            seed: 0,
-            duration_s: 1.0,
-            signals: vec![SignalCalibration {
-                signal: "gps-l1ca".into(),
-                loops,
-                code_factor: 1.0,
-                phase_factor: 1.0,
-                doppler_factor,
-                cn0_dbhz: [45.0, 45.0],
-                samples: 1,
-            }],
-        };
-        let noise = ObsNoise::Calibrated(calibration(Some(17.0)));
+        let loops = LOOPS;
+        let noise = ObsNoise::Calibrated(calibration(1.0, 1.0, Some(17.0)));
         let mut with = ObservationModel::new(noise.clone(), 4, 1, 1.0)
             .with_doppler_noise(4)
             .unwrap();
@@ -375,7 +364,8 @@ mod tests {
         let c0: f64 = doppler.iter().map(|x| (x - m).powi(2)).sum();
         let c1: f64 = doppler.windows(2).map(|w| (w[0] - m) * (w[1] - m)).sum();
         assert!((c1 / c0).abs() < 0.03, "lag-1 {}", c1 / c0);
-        let old = ObservationModel::new(ObsNoise::Calibrated(calibration(None)), 4, 1, 1.0);
+        let old =
+            ObservationModel::new(ObsNoise::Calibrated(calibration(1.0, 1.0, None)), 4, 1, 1.0);
         assert!(old.with_doppler_noise(4).is_err());
         let constant = ObsNoise::Constant {
             phase_m: 0.0,
