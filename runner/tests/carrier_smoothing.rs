@@ -26,17 +26,7 @@ fn run(seed: u64, ionosphere: &str) -> ObservationRun {
 
 /// RMS of the 3-D position error (m) of the first antenna's fixes after the first minute.
 fn rms_error_m(run: &ObservationRun, pvt: &PvtConfig) -> f64 {
-    let fixes = run.first_antenna_fixes_with(pvt, &[Signal::GpsL1Ca]);
-    let squares: Vec<f64> = fixes
-        .iter()
-        .filter_map(|f| {
-            let t = (f.at - run.start).to_seconds();
-            let truth = run.true_position(0, t)?;
-            (t >= 60.0).then(|| (f.r_ecef_m - truth).norm_squared())
-        })
-        .collect();
-    assert!(squares.len() >= 530, "{} fixes", squares.len());
-    (squares.iter().sum::<f64>() / squares.len() as f64).sqrt()
+    support::fix_rms_m(run, pvt, &[Signal::GpsL1Ca], 60.0, 530)
 }
 
 /// After a minute of smoothing (60 epochs: code noise / sqrt(61)) the fix error is well

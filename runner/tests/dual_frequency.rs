@@ -35,17 +35,13 @@ fn rms_error_m(run: &ObservationRun, ionosphere: IonosphereCorrection) -> f64 {
         ionosphere,
         ..PvtConfig::default()
     };
-    let fixes = run.first_antenna_fixes_with(&pvt, &[Signal::GpsL1Ca, Signal::GpsL5]);
-    // Fixes within the simulated span (the clock may put the first or last outside).
-    let squares: Vec<f64> = fixes
-        .iter()
-        .filter_map(|f| {
-            let truth = run.true_position(0, (f.at - run.start).to_seconds())?;
-            Some((f.r_ecef_m - truth).norm_squared())
-        })
-        .collect();
-    assert!(squares.len() >= 590, "{} fixes", squares.len());
-    (squares.iter().sum::<f64>() / squares.len() as f64).sqrt()
+    support::fix_rms_m(
+        run,
+        &pvt,
+        &[Signal::GpsL1Ca, Signal::GpsL5],
+        f64::NEG_INFINITY,
+        590,
+    )
 }
 
 #[test]

@@ -142,16 +142,13 @@ fn modern_gps_range_errors_have_the_published_sisre() {
 #[test]
 fn sa_era_errors_move_the_fixes() {
     let rms = |run: &ObservationRun| {
-        let fixes = run.first_antenna_fixes_with(&PvtConfig::default(), &[Signal::GpsL1Ca]);
-        let squares: Vec<f64> = fixes
-            .iter()
-            .filter_map(|f| {
-                let truth = run.true_position(0, (f.at - run.start).to_seconds())?;
-                Some((f.r_ecef_m - truth).norm_squared())
-            })
-            .collect();
-        assert!(squares.len() > 500);
-        (squares.iter().sum::<f64>() / squares.len() as f64).sqrt()
+        support::fix_rms_m(
+            run,
+            &PvtConfig::default(),
+            &[Signal::GpsL1Ca],
+            f64::NEG_INFINITY,
+            501,
+        )
     };
     let (with, without) = (
         rms(&run(3, "[errors.satellite]\nmodel = \"book-sa\"")),

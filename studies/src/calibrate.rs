@@ -16,7 +16,7 @@ use skyforge_runner::{ChainError, synth_and_receive};
 use skyforge_scenarios::Scenario;
 use skyforge_signals::obs_model::{Calibration, LoopNoise, SignalCalibration};
 use skyforge_validate::observables::compare::{
-    CompareOptions, SampleSpan, SignalComparison, compare_signals,
+    CompareOptions, ObservableErrors, SampleSpan, SignalComparison, compare_signals,
 };
 use skyforge_validate::observables::{ObsError, ObsFile};
 use std::path::Path;
@@ -133,20 +133,16 @@ fn add_layer(
     tracking: &TrackingConfig,
 ) {
     let cmp = &layer.comparison;
-    let phase_of = |sat: SatId| {
-        cmp.carrier_phase_m
+    // A satellite's count and std of one observable's errors.
+    let of = |errors: &ObservableErrors, sat: SatId| {
+        errors
             .per_satellite
             .iter()
             .find(|s| s.sat == sat)
             .and_then(|s| Some((s.stats.count, s.stats.std?)))
     };
-    let doppler_of = |sat: SatId| {
-        cmp.doppler_hz
-            .per_satellite
-            .iter()
-            .find(|s| s.sat == sat)
-            .and_then(|s| Some((s.stats.count, s.stats.std?)))
-    };
+    let phase_of = |sat| of(&cmp.carrier_phase_m, sat);
+    let doppler_of = |sat| of(&cmp.doppler_hz, sat);
     for code in &cmp.pseudorange_m.per_satellite {
         let (Some(code_std), Some((phase_n, phase_std))) = (code.stats.std, phase_of(code.sat))
         else {

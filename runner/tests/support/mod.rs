@@ -47,3 +47,26 @@ pub fn run_static_site(
         skyforge_scenarios::parse(&text, &format!("{name}.toml"), dir).expect("scenario");
     skyforge_runner::observation_run(&scenario).expect("run")
 }
+
+/// RMS of the 3-D position error (m) of the first antenna's fixes with `pvt` on `signals`
+/// from `from_s` seconds on, over at least `at_least` fixes (fixes outside the simulated
+/// span, where the receiver clock put them, are left out).
+pub fn fix_rms_m(
+    run: &skyforge_runner::ObservationRun,
+    pvt: &skyforge_navigation::pvt::PvtConfig,
+    signals: &[skyforge_gnss::signal::Signal],
+    from_s: f64,
+    at_least: usize,
+) -> f64 {
+    let squares: Vec<f64> = run
+        .first_antenna_fixes_with(pvt, signals)
+        .iter()
+        .filter_map(|f| {
+            let t = (f.at - run.start).to_seconds();
+            let truth = run.true_position(0, t)?;
+            (t >= from_s).then(|| (f.r_ecef_m - truth).norm_squared())
+        })
+        .collect();
+    assert!(squares.len() >= at_least, "{} fixes", squares.len());
+    (squares.iter().sum::<f64>() / squares.len() as f64).sqrt()
+}
