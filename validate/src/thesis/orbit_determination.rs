@@ -181,9 +181,13 @@ struct OrbitStats {
 
 impl OrbitStats {
     /// The standard error (over seeds: independent runs) of the mean of the per-seed
-    /// position (`part` 0) or velocity (1) RSS.
+    /// position (`part` 0) or velocity (1) RSS; NaN with one seed (a draw of
+    /// `validate thesis --seeds`, whose combination gives the spread instead).
     fn rss_standard_error(&self, part: usize) -> f64 {
         let v: Vec<f64> = self.per_seed_rss.iter().map(|r| r[part]).collect();
+        if v.len() < 2 {
+            return f64::NAN;
+        }
         std_dev(v.iter().copied()) / (v.len() as f64).sqrt()
     }
 }
