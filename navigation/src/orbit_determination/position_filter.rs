@@ -114,22 +114,21 @@ impl PositionFilter {
         self.forces.gravity_eci(r) - point_mass + self.forces.drag_eci(t_s, r, v)
     }
 
-    /// Measurement `z`, its covariance `R_k` and the rows of the state it measures.
-    fn measurement(&self, fix: &FixInput) -> (Vec<f64>, Vec<f64>, Vec<usize>) {
+    /// The fix in ECI as a state `[r, v]` (a fix without velocity at rest in the
+    /// Earth-fixed frame), the variances `R_k` of what it measures and the rows of the
+    /// state those are.
+    fn measurement(&self, fix: &FixInput) -> (Vector6<f64>, Vec<f64>, Vec<usize>) {
         let v_ecef = fix.v_ecef_mps.unwrap_or_else(Vec3::zeros);
         let (r, v) = self.earth.ecef_to_eci(fix.t_s, &fix.r_ecef_m, &v_ecef);
         let g2 = fix.gdop * fix.gdop;
         let sr = g2 * self.config.position_sigma_m.powi(2);
         let sv = g2 * self.config.velocity_sigma_mps.powi(2);
-        let mut z: Vec<f64> = r.iter().copied().collect();
-        let mut var = vec![sr; 3];
-        let mut rows = vec![0, 1, 2];
+        let state = Vector6::from_iterator(r.iter().chain(v.iter()).copied());
         if fix.v_ecef_mps.is_some() {
-            z.extend(v.iter());
-            var.extend([sv; 3]);
-            rows.extend([3, 4, 5]);
+            (state, vec![sr, sr, sr, sv, sv, sv], (0..6).collect())
+        } else {
+            (state, vec![sr; 3], vec![0, 1, 2])
         }
-        (z, var, rows)
     }
 
     /// Predict the estimate to `t_s` (book eqs. 5-34, 5-39, 5-40d).
@@ -185,17 +184,15 @@ impl PositionFilter {
 
     /// Take one fix (fixes in time order); the estimate after it.
     pub fn update(&mut self, fix: &FixInput) -> OrbitEstimate {
-        let (z, var, rows) = self.measurement(fix);
+        let (measured, var, rows) = self.measurement(fix);
+        let z: Vec<f64> = rows.iter().map(|&i| measured[i]).collect();
         let predicted = match &self.estimate {
             Some(e) => self.predict(e, fix.t_s),
             None => {
-                // The first fix initialises the filter (velocity from the fix or, without
-                // one, the circular velocity along the Earth-fixed frame's motion).
-                let (r, v) = self.earth.ecef_to_eci(
-                    fix.t_s,
-                    &fix.r_ecef_m,
-                    &fix.v_ecef_mps.unwrap_or_else(Vec3::zeros),
-                );
+                // The first fix initialises the filter (without a measured velocity: at
+                // rest in the Earth-fixed frame, with an uninformative variance).
+                let r = Vec3::new(measured[0], measured[1], measured[2]);
+                let v = Vec3::new(measured[3], measured[4], measured[5]);
                 let mut p = Matrix6::zeros();
                 for (i, row) in rows.iter().enumerate() {
                     p[(*row, *row)] = var[i];

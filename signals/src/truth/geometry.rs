@@ -495,10 +495,6 @@ impl<'a> GeometryTruth<'a> {
         let (clock_error_s, clock_error_rate) = sat.clock_error(t_tx_s);
         sat_clock_s += clock_error_s;
         sat_clock_drift += clock_error_rate;
-        // The orbit error in the receive frame, as the position it displaces.
-        let omega_e = sat.eph.eph.sat.system.earth_rotation_rad_s();
-        let orbit_error =
-            light_time::rotate_to_receive_frame(&sat.orbit_error_ecef(t_tx_s), omega_e, lt.tau_s);
         LinkGeometry {
             visible: true,
             range_m: lt.range_m(),
@@ -515,7 +511,7 @@ impl<'a> GeometryTruth<'a> {
             antenna_elevation_rad,
             sat_clock_s,
             sat_clock_drift,
-            sat_orbit_error_m: orbit_error.dot(&los.normalize()),
+            sat_orbit_error_m: sat.orbit_error_along(t_tx_s, lt.tau_s, &los.normalize()),
             sat_clock_error_m: clock_error_s * C_MPS,
         }
     }

@@ -1,6 +1,7 @@
 //! A satellite as its signal leaves it: the broadcast orbit and clock, plus the
 //! satellite-side errors of the run where it has them (`errors::SatelliteErrors`).
 
+use super::light_time::rotate_to_receive_frame;
 use crate::errors::{DrawnTrack, SatelliteTrack};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
@@ -34,6 +35,17 @@ impl<'a> TrueSatellite<'a> {
             }
             Some(SatelliteTrack::Precise(p)) => p.position_ecef(t_s) - self.eph.position_ecef(t_s),
         }
+    }
+
+    /// The orbit error at transmit time `t_tx_s` along the unit line of sight `los` of a
+    /// signal `tau_s` in flight (`los` in the Earth-fixed frame of the receive instant):
+    /// what it adds to the range (m; zero without a track, computed for nothing).
+    pub fn orbit_error_along(&self, t_tx_s: f64, tau_s: f64, los: &Vec3) -> f64 {
+        if self.error.is_none() {
+            return 0.0;
+        }
+        let omega_e = self.eph.eph.sat.system.earth_rotation_rad_s();
+        rotate_to_receive_frame(&self.orbit_error_ecef(t_tx_s), omega_e, tau_s).dot(los)
     }
 
     /// The antenna phase centre at `t_s` (Earth-fixed frame of `t_s`, m).

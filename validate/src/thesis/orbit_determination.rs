@@ -19,7 +19,9 @@
 //! and, assumed, 1500 km); eccentricity 0.01 within +/-20 % of 0.001.
 
 use crate::draw::Draw;
+use crate::observables::ErrorStats;
 use crate::report::{Row, Verdict};
+use crate::stats::AcrossRuns;
 use crate::thesis::ValidateError;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::orbit_determination::{PositionFilterConfig, position_filter_on_file};
@@ -149,19 +151,17 @@ fn filter_errors(
             errors[0].len()
         )));
     }
-    Ok(errors.map(|rows| std::array::from_fn(|i| std_dev(rows.iter().map(|r| r[i])))))
+    Ok(errors.map(|rows| {
+        std::array::from_fn(|i| {
+            let column: Vec<f64> = rows.iter().map(|r| r[i]).collect();
+            ErrorStats::of(&column).std.unwrap_or(f64::NAN)
+        })
+    }))
 }
 
 /// `t_s` is a multiple of `grid_s`.
 fn on_grid(t_s: f64, grid_s: f64) -> bool {
     (t_s / grid_s - (t_s / grid_s).round()).abs() < 1e-6
-}
-
-/// Sample standard deviation.
-fn std_dev(values: impl Iterator<Item = f64> + Clone) -> f64 {
-    let n = values.clone().count() as f64;
-    let mean = values.clone().sum::<f64>() / n;
-    (values.map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt()
 }
 
 /// Root sum of squares of three values.
@@ -185,10 +185,9 @@ impl OrbitStats {
     /// `validate thesis --seeds`, whose combination gives the spread instead).
     fn rss_standard_error(&self, part: usize) -> f64 {
         let v: Vec<f64> = self.per_seed_rss.iter().map(|r| r[part]).collect();
-        if v.len() < 2 {
-            return f64::NAN;
-        }
-        std_dev(v.iter().copied()) / (v.len() as f64).sqrt()
+        AcrossRuns::of(&v)
+            .and_then(|a| a.standard_error)
+            .unwrap_or(f64::NAN)
     }
 }
 

@@ -86,11 +86,6 @@ impl SmoothGaussMarkov {
             / (6.0 * self.dt_s);
         (value, rate)
     }
-
-    /// The last time the path covers with its interior pieces.
-    pub fn end_s(&self) -> f64 {
-        self.t0_s + (self.nodes.len() - 2) as f64 * self.dt_s
-    }
 }
 
 #[cfg(test)]

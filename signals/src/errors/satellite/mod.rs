@@ -99,17 +99,6 @@ const TAU_S: Allowed = Allowed::above(0.0, 3.2e7, "s");
 const NODE_SPACING_S: Allowed = Allowed::closed(1.0, 86_400.0, "s");
 
 impl SatelliteProcesses {
-    /// No error at all.
-    pub const NONE: SatelliteProcesses = SatelliteProcesses {
-        radial_m: 0.0,
-        along_m: 0.0,
-        cross_m: 0.0,
-        orbit_tau_s: 1.0,
-        clock_m: 0.0,
-        clock_tau_s: 1.0,
-        node_spacing_s: 60.0,
-    };
-
     /// Every field inside its bounds.
     pub fn check(&self) -> Result<(), Invalid> {
         check_table(&[
@@ -125,7 +114,7 @@ impl SatelliteProcesses {
 }
 
 impl SatelliteErrorConfig {
-    /// The user's processes, or these where the model has none.
+    /// The `gauss-markov` model with `processes`.
     pub fn gauss_markov(processes: SatelliteProcesses) -> Self {
         Self {
             model: SatelliteModel::GaussMarkov,
@@ -134,14 +123,14 @@ impl SatelliteErrorConfig {
         }
     }
 
-    /// The processes of `system`'s satellites.
-    pub fn processes(&self, system: System) -> SatelliteProcesses {
-        match (self.model, self.processes) {
-            (SatelliteModel::BookSa, _) => BOOK_SA,
-            (SatelliteModel::Modern, _) => modern(system),
-            (SatelliteModel::GaussMarkov, Some(p)) => p,
-            // Refused by `check`; precise orbits draw nothing.
-            (SatelliteModel::GaussMarkov | SatelliteModel::Precise, _) => SatelliteProcesses::NONE,
+    /// The processes of `system`'s satellites (none for precise orbits, and for a
+    /// `gauss-markov` model without processes, which `check` refuses).
+    pub fn processes(&self, system: System) -> Option<SatelliteProcesses> {
+        match self.model {
+            SatelliteModel::BookSa => Some(BOOK_SA),
+            SatelliteModel::Modern => Some(modern(system)),
+            SatelliteModel::GaussMarkov => self.processes,
+            SatelliteModel::Precise => None,
         }
     }
 
@@ -248,7 +237,8 @@ fn stream_index(sat: SatId) -> u32 {
 }
 
 impl SatelliteErrors {
-    /// Draw the tracks of `satellites` over a run of `duration_s` with the scenario seed.
+    /// Draw the tracks of `satellites` over a run of `duration_s` with the scenario seed
+    /// (none for a model without processes: precise orbits come from [`Self::precise`]).
     /// The paths start at a fixed time before the run, so a longer run extends a shorter
     /// one's paths with the same values.
     pub fn draw(
@@ -259,8 +249,8 @@ impl SatelliteErrors {
     ) -> Self {
         let tracks = satellites
             .iter()
-            .map(|&sat| {
-                let p = config.processes(sat.system);
+            .filter_map(|&sat| {
+                let p = config.processes(sat.system)?;
                 let dt = p.node_spacing_s;
                 let t0 = -SPAN_MARGIN_S - 2.0 * dt;
                 let n = ((duration_s + 2.0 * SPAN_MARGIN_S) / dt).ceil() as usize + 5;
@@ -287,7 +277,7 @@ impl SatelliteErrors {
                     ],
                     clock: path(p.clock_m, p.clock_tau_s, Stream::SatelliteClock),
                 });
-                (sat, track)
+                Some((sat, track))
             })
             .collect();
         Self { tracks }
@@ -301,16 +291,6 @@ impl SatelliteErrors {
                 .map(|(sat, o)| (sat, SatelliteTrack::Precise(o)))
                 .collect(),
         }
-    }
-
-    /// How many satellites have a track.
-    pub fn len(&self) -> usize {
-        self.tracks.len()
-    }
-
-    /// No satellite has a track.
-    pub fn is_empty(&self) -> bool {
-        self.tracks.is_empty()
     }
 
     /// The track of `sat` (none when it was not drawn).
@@ -406,7 +386,7 @@ mod tests {
              orbit_tau_s = 3600\nclock_m = 4\nclock_tau_s = 600\nnode_spacing_s = 30",
         )
         .unwrap();
-        assert_eq!(c.processes(System::Beidou).cross_m, 3.0);
+        assert_eq!(c.processes(System::Beidou).unwrap().cross_m, 3.0);
         assert!(toml::from_str::<SatelliteErrorConfig>("model = \"sa\"").is_err());
         assert!(
             toml::from_str::<SatelliteErrorConfig>("model = \"book-sa\"\nclock_m = 1").is_err()
