@@ -110,6 +110,18 @@ pub fn append_rows<T: H5Type>(
     }
 }
 
+/// The text attribute `name` of `file` (at `path`).
+pub fn read_text_attr(
+    file: &hdf5::File,
+    path: &std::path::Path,
+    name: &str,
+) -> Result<String, crate::FormatError> {
+    file.attr(name)
+        .and_then(|a| a.read_scalar::<VarLenUnicode>())
+        .map(|s| s.as_str().to_string())
+        .map_err(|e| crate::FormatError::file(path, format!("attribute {name}: {e}")))
+}
+
 /// Dataset `name` of `file` (at `path`) read whole, refused beyond `max_elements` values.
 pub fn read_column<T: H5Type>(
     file: &hdf5::File,

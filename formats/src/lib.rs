@@ -10,6 +10,8 @@
 //!   geometry-offset estimate (`skyforge attitude --estimate-geometry`);
 //! - [`monitor`]: `monitor.csv`, `monitor.h5` and `summary.json`, what the integrity
 //!   monitor writes (`skyforge monitor run`);
+//! - [`orbit`]: `orbit.csv`, `orbit.h5` and `orbit.sp3`, the estimated orbit of
+//!   `skyforge od`, and `truth.sp3`, the truth's orbit of a LEO beside `truth.h5`;
 //! - [`truth`]: `truth.h5`, the geometry and signal truth of a run (`skyforge run`,
 //!   `skyforge synth`), which validate and the report read;
 //! - [`receiver`]: what `skyforge receive` writes per epoch besides its RINEX files:
@@ -28,6 +30,7 @@ mod csv;
 pub mod geometry_offsets;
 pub mod h5;
 pub mod monitor;
+pub mod orbit;
 pub mod receiver;
 pub mod truth;
 

@@ -25,6 +25,7 @@ const T_S: &str = "t_s";
 /// Group of the platform's state per geometry epoch, and its datasets.
 const PLATFORM_GROUP: &str = "platform";
 const POSITION: &str = "r_ecef_m";
+const VELOCITY: &str = "v_ecef_mps";
 const ROTATION: &str = "q_body_ecef";
 /// Group of the satellites (columns of the visibility masks), and their identifiers.
 const SATELLITES_GROUP: &str = "satellites";

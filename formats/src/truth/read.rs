@@ -4,11 +4,12 @@
 
 use super::{
     ANTENNAS_GROUP, EPOCH_INDEX, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
+    VELOCITY,
     SATELLITES_GROUP, SCENARIO_ATTR, SCENARIO_TOML_ATTR, START_EPOCH_ATTR, T_S, TIME_GROUP,
     VISIBLE, antenna_dataset, dataset,
 };
 use crate::FormatError;
-use crate::h5::read_column;
+use crate::h5::{read_column, read_text_attr};
 use hdf5::H5Type;
 use hdf5::types::VarLenUnicode;
 use hifitime::Epoch;
@@ -31,6 +32,8 @@ pub struct PlatformSeries {
     pub t_s: Vec<f64>,
     /// Centre-of-mass position, ECEF (m).
     pub r_ecef_m: Vec<Vec3>,
+    /// Centre-of-mass velocity, ECEF (m/s).
+    pub v_ecef_mps: Vec<Vec3>,
     /// Body-to-ECEF rotation.
     pub q_body_ecef: Vec<UnitQuaternion<f64>>,
 }
@@ -60,11 +63,7 @@ impl TruthFile {
     }
 
     fn text_attr(&self, name: &str) -> Result<String, FormatError> {
-        self.file
-            .attr(name)
-            .and_then(|a| a.read_scalar::<VarLenUnicode>())
-            .map(|s| s.as_str().to_string())
-            .map_err(|e| self.error(format!("attribute {name}: {e}")))
+        read_text_attr(&self.file, &self.path, name)
     }
 
     /// The scenario file's text the run was made from.
@@ -113,14 +112,17 @@ impl TruthFile {
     pub fn platform(&self, max_rows: usize) -> Result<PlatformSeries, FormatError> {
         let t_s = self.series(&dataset(TIME_GROUP, T_S), 1, max_rows)?;
         let position = dataset(PLATFORM_GROUP, POSITION);
+        let velocity = dataset(PLATFORM_GROUP, VELOCITY);
         let rotation = dataset(PLATFORM_GROUP, ROTATION);
         let r = self.series(&position, 3, max_rows)?;
+        let v = self.series(&velocity, 3, max_rows)?;
         let q = self.series(&rotation, 4, max_rows)?;
-        if r.len() != 3 * t_s.len() || q.len() != 4 * t_s.len() {
+        if r.len() != 3 * t_s.len() || v.len() != r.len() || q.len() != 4 * t_s.len() {
             return Err(self.error(format!(
-                "{TIME_GROUP}/{T_S}, {position} and {rotation} have {}, {} and {} rows",
+                "{TIME_GROUP}/{T_S}, {position}, {velocity} and {rotation} have {}, {}, {} and {} rows",
                 t_s.len(),
                 r.len() / 3,
+                v.len() / 3,
                 q.len() / 4
             )));
         }
@@ -130,6 +132,7 @@ impl TruthFile {
         Ok(PlatformSeries {
             t_s,
             r_ecef_m: r.chunks_exact(3).map(Vec3::from_column_slice).collect(),
+            v_ecef_mps: v.chunks_exact(3).map(Vec3::from_column_slice).collect(),
             q_body_ecef: q
                 .chunks_exact(4)
                 .map(|c| UnitQuaternion::from_quaternion(Quaternion::new(c[0], c[1], c[2], c[3])))

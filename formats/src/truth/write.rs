@@ -3,7 +3,7 @@
 
 use super::{
     ANTENNAS_GROUP, DOPPLER_ACCEL_HZPS2, DOPPLER_HZ, DOPPLER_RATE_HZPS, EPOCH_INDEX,
-    NOMINAL_BODY_ATTR, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
+    NOMINAL_BODY_ATTR, PLATFORM_GROUP, POSITION, ROTATION, VELOCITY, SAT_INDEX, SATELLITE_ID,
     SATELLITES_GROUP, SCENARIO_ATTR, SCENARIO_TOML_ATTR, START_EPOCH_ATTR, T_S, TIME_GROUP,
     TRUE_BODY_ATTR, VISIBLE,
 };
@@ -357,7 +357,7 @@ impl TruthWriter {
                 "m",
                 "centre-of-mass position, ECEF (WGS-84)",
             )?,
-            series::<f64>(&pg, "v_ecef_mps", 3, "m/s", "centre-of-mass velocity, ECEF")?,
+            series::<f64>(&pg, VELOCITY, 3, "m/s", "centre-of-mass velocity, ECEF")?,
             series::<f64>(
                 &pg,
                 ROTATION,

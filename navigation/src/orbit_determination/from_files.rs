@@ -1,41 +1,78 @@
 //! Orbit determination on observation files: the receiver's single-point fixes (velocity
 //! from the Doppler where it was measured) every `interval_s`, into the position filter.
-//! Reads only what a receiver could: observations, broadcast ephemerides, the filter's
-//! own settings.
+//! Reads only what a receiver could: observations, broadcast ephemerides and ionosphere,
+//! the filter's own settings.
 
-use super::{FixInput, OrbitEstimate, PositionFilter, PositionFilterConfig};
+use super::{
+    EcefEstimate, FixInput, OdConfig, OdFilterConfig, OrbitEstimate, PositionFilter,
+    PositionFilterConfig,
+};
 use crate::pvt::{Measurement, PvtConfig, solve_velocity};
 use crate::relative::single_point_fixes;
+use hifitime::Epoch;
 use skyforge_gnss::observation::ObsFile;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
+use std::collections::BTreeSet;
 
 /// Epoch tags within this of a multiple of the interval are sampled (s).
 const ON_GRID_S: f64 = 1e-3;
 
-/// The filter's estimates at every epoch of `file` on the grid `k interval_s` (seconds
-/// since `origin`) that has a fix on `signals`.
-pub fn position_filter_on_file(
+/// Why orbit determination could not run on a file.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum OdError {
+    #[error("{0}: no epochs")]
+    NoEpochs(String),
+    #[error("{file}: none of the signals {wanted} (the file has {has})")]
+    NoSignal {
+        file: String,
+        wanted: String,
+        has: String,
+    },
+    #[error("no ephemeris in the navigation file for the satellites of {0}")]
+    NoEphemeris(String),
+}
+
+/// What [`orbit_from_file`] estimated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OdRun {
+    /// The epoch `t_s` counts from: the file's first.
+    pub start: Epoch,
+    /// The signals the fixes used.
+    pub signals: Vec<Signal>,
+    /// The estimate after every fix taken.
+    pub estimates: Vec<EcefEstimate>,
+    /// Epochs on the grid without a fix (too few satellites, no ephemeris).
+    pub missed: usize,
+}
+
+/// The single-point fixes of `file` on the grid `k interval_s` (seconds since `origin`),
+/// each with the Doppler velocity where one could be solved, in time order; and how
+/// many epochs on the grid had no fix.
+fn fixes_on_grid(
     file: &ObsFile,
     store: &EphemerisStore,
     origin: &TimeOrigin,
     signals: &[Signal],
     pvt: &PvtConfig,
-    filter: PositionFilterConfig,
     interval_s: f64,
-) -> Vec<OrbitEstimate> {
+) -> (Vec<FixInput>, usize) {
     let fixes = single_point_fixes(file, store, origin, signals, pvt);
-    let mut od = PositionFilter::new(filter, origin.start());
     let mut out = Vec::new();
+    let mut missed = 0;
     for (epoch, fix) in file.epochs.iter().zip(fixes) {
         let t_s = origin.seconds_since_start(epoch.time);
         let on_grid =
             (t_s / interval_s - (t_s / interval_s).round()).abs() * interval_s < ON_GRID_S;
-        let Ok(fix) = fix.as_ref() else { continue };
         if !on_grid {
             continue;
         }
+        let Ok(fix) = fix.as_ref() else {
+            missed += 1;
+            continue;
+        };
         let meas: Vec<Measurement> = epoch
             .sats
             .iter()
@@ -50,12 +87,97 @@ pub fn position_filter_on_file(
             })
             .collect();
         let velocity = solve_velocity(&meas, t_s, store, fix).ok();
-        out.push(od.update(&FixInput {
+        out.push(FixInput {
             t_s: fix.t_s,
             r_ecef_m: fix.r_ecef_m,
             v_ecef_mps: velocity.map(|v| v.v_ecef_mps),
             gdop: fix.dop.gdop,
-        }));
+        });
     }
-    out
+    (out, missed)
+}
+
+/// The filter's estimates at every epoch of `file` on the grid `k interval_s` (seconds
+/// since `origin`) that has a fix on `signals`.
+pub fn position_filter_on_file(
+    file: &ObsFile,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    signals: &[Signal],
+    pvt: &PvtConfig,
+    filter: PositionFilterConfig,
+    interval_s: f64,
+) -> Vec<OrbitEstimate> {
+    let (fixes, _) = fixes_on_grid(file, store, origin, signals, pvt, interval_s);
+    let mut od = PositionFilter::new(filter, origin.start());
+    fixes.iter().map(|f| od.update(f)).collect()
+}
+
+/// `skyforge od`: the orbit of the receiver that recorded `file`, from its observations,
+/// the broadcast `ephemerides` and ionosphere, with `config`'s filter.
+pub fn orbit_from_file(
+    file: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    config: &OdConfig,
+) -> Result<OdRun, OdError> {
+    let source = file.source.display().to_string();
+    let start = file
+        .epochs
+        .first()
+        .map(|e| e.time)
+        .ok_or_else(|| OdError::NoEpochs(source.clone()))?;
+    let has: BTreeSet<Signal> = (file.epochs.iter())
+        .flat_map(|e| e.sats.iter().map(|r| r.signal))
+        .collect();
+    let signals: Vec<Signal> = if config.signals.is_empty() {
+        has.iter().copied().collect()
+    } else {
+        (config.signals.iter())
+            .filter(|s| has.contains(s))
+            .copied()
+            .collect()
+    };
+    if signals.is_empty() {
+        let names = |s: &mut dyn Iterator<Item = &Signal>| {
+            s.map(|s| s.to_string()).collect::<Vec<_>>().join(", ")
+        };
+        return Err(OdError::NoSignal {
+            file: source,
+            wanted: names(&mut config.signals.iter()),
+            has: names(&mut has.iter()),
+        });
+    }
+    let tracked: BTreeSet<_> = (file.epochs.iter())
+        .flat_map(|e| e.sats.iter().map(|r| r.sat))
+        .collect();
+    if !ephemerides.iter().any(|e| tracked.contains(&e.sat)) {
+        return Err(OdError::NoEphemeris(source));
+    }
+    let origin = TimeOrigin::new(start);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let pvt = PvtConfig {
+        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        ..PvtConfig::default()
+    };
+    let (fixes, missed) = fixes_on_grid(file, &store, &origin, &signals, &pvt, config.interval_s);
+    let estimates = match &config.filter {
+        OdFilterConfig::PositionFilter(p) => {
+            let mut od = PositionFilter::new(p.clone(), start);
+            (fixes.iter())
+                .map(|f| {
+                    let e = od.update(f);
+                    od.to_ecef_estimate(&e)
+                })
+                .collect()
+        }
+    };
+    Ok(OdRun {
+        start,
+        signals,
+        estimates,
+        missed,
+    })
 }

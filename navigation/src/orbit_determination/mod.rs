@@ -1,12 +1,17 @@
 //! Orbit determination of the receiving spacecraft from its own GNSS measurements.
 //!
 //! Today: the book's position filter (section 5.5.4) on single-point fixes, with
-//! Clohessy-Wiltshire dynamics about a refreshed reference circle.
+//! Clohessy-Wiltshire dynamics about a refreshed reference circle; chosen and set by
+//! [`OdConfig`] (`skyforge od --config`).
 
 pub(crate) mod clohessy_wiltshire;
+mod config;
 pub(crate) mod from_files;
 pub(crate) mod position_filter;
 
 pub use clohessy_wiltshire::{input, transition};
-pub use from_files::position_filter_on_file;
-pub use position_filter::{FixInput, OrbitEstimate, PositionFilter, PositionFilterConfig};
+pub use config::{OdConfig, OdFilterConfig};
+pub use from_files::{OdError, OdRun, orbit_from_file, position_filter_on_file};
+pub use position_filter::{
+    EcefEstimate, FixInput, OrbitEstimate, PositionFilter, PositionFilterConfig,
+};

@@ -30,16 +30,74 @@ use skyforge_orbits::propagate::{ForceModel, ForceModelConfig};
 use skyforge_orbits::{Mat3, Vec3};
 
 /// The filter's settings; every default is an assumption a user can change.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
 pub struct PositionFilterConfig {
     /// The filter's force model beyond the point mass (the book: J2 and drag only).
+    #[serde(default)]
     pub forces: ForceModelConfig,
     /// 1-sigma error of one fix coordinate at GDOP 1 (m): `R_0`'s position part.
+    /// # assumed: 3 m, a single-frequency fix without SA (UERE of a few metres over
+    /// sqrt(3) and more); B-5.5's SA-era value is 18.6 m.
+    #[serde(default = "default_position_sigma_m")]
     pub position_sigma_m: f64,
     /// 1-sigma error of one fix velocity coordinate at GDOP 1 (m/s).
+    /// # assumed: 0.05 m/s, a Doppler velocity without SA.
+    #[serde(default = "default_velocity_sigma_mps")]
     pub velocity_sigma_mps: f64,
     /// 1-sigma error of the input acceleration per axis, held over a step (m/s^2): `Q`.
+    /// # assumed: 1e-5 m/s^2, B-5.5's (the unmodelled forces of a LEO: higher zonals,
+    /// drag's error, are of this order).
+    #[serde(default = "default_acceleration_sigma_mps2")]
     pub acceleration_sigma_mps2: f64,
+}
+
+fn default_position_sigma_m() -> f64 {
+    3.0
+}
+fn default_velocity_sigma_mps() -> f64 {
+    0.05
+}
+fn default_acceleration_sigma_mps2() -> f64 {
+    1e-5
+}
+
+impl Default for PositionFilterConfig {
+    fn default() -> Self {
+        Self {
+            forces: ForceModelConfig::default(),
+            position_sigma_m: default_position_sigma_m(),
+            velocity_sigma_mps: default_velocity_sigma_mps(),
+            acceleration_sigma_mps2: default_acceleration_sigma_mps2(),
+        }
+    }
+}
+
+impl PositionFilterConfig {
+    /// Whether the values are usable: the sigmas positive and finite, the spacecraft's
+    /// drag parameters physical.
+    pub fn check(&self) -> Result<(), String> {
+        for (name, v, max) in [
+            ("position_sigma_m", self.position_sigma_m, 1e6),
+            ("velocity_sigma_mps", self.velocity_sigma_mps, 1e4),
+            ("acceleration_sigma_mps2", self.acceleration_sigma_mps2, 1.0),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v <= max) {
+                return Err(format!("{name} = {v}: must be in (0, {max}]"));
+            }
+        }
+        let f = &self.forces;
+        for (name, v) in [
+            ("forces.drag_coefficient", f.drag_coefficient),
+            ("forces.area_m2", f.area_m2),
+            ("forces.mass_kg", f.mass_kg),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v <= 1e6) {
+                return Err(format!("{name} = {v}: must be in (0, 1e6]"));
+            }
+        }
+        Ok(())
+    }
 }
 
 /// One single-point fix as the filter takes it.
@@ -253,4 +311,33 @@ impl PositionFilter {
     pub fn to_ecef(&self, e: &OrbitEstimate) -> (Vec3, Vec3) {
         self.earth.eci_to_ecef(e.t_s, &e.r_eci_m, &e.v_eci_mps)
     }
+
+    /// An estimate in the Earth-fixed frame with its covariance: `P_ecef = J P J^T`,
+    /// `J = [[C, 0], [-[w]x C, C]]` the Jacobian of `r_e = C r`, `v_e = C v - w x C r`.
+    pub fn to_ecef_estimate(&self, e: &OrbitEstimate) -> EcefEstimate {
+        let (r_ecef_m, v_ecef_mps) = self.to_ecef(e);
+        let c = self.earth.c_eci_ecef(e.t_s);
+        let mut j = Matrix6::zeros();
+        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&c);
+        j.fixed_view_mut::<3, 3>(3, 0)
+            .copy_from(&(-cross_matrix(&self.earth.omega_rad_s()) * c));
+        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&c);
+        EcefEstimate {
+            t_s: e.t_s,
+            r_ecef_m,
+            v_ecef_mps,
+            covariance: j * e.covariance * j.transpose(),
+        }
+    }
+}
+
+/// An estimate in the Earth-fixed frame (what `skyforge od` writes).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EcefEstimate {
+    /// Seconds since the start of the run (GPST).
+    pub t_s: f64,
+    pub r_ecef_m: Vec3,
+    pub v_ecef_mps: Vec3,
+    /// Covariance of `[r_ecef, v_ecef]` (m, m/s).
+    pub covariance: Matrix6<f64>,
 }

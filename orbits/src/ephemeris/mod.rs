@@ -18,7 +18,10 @@ pub use config::{BeidouSet, ConstellationConfig, ConstellationSource};
 pub use klobuchar::{KlobucharCoeffs, bds_klobuchar_b1i_s, gps_klobuchar_l1_s};
 
 pub use rinex_nav_write::{NavHeader, TimeSystemCorr, write_nav};
-pub use sp3::{Sp3Record, read_sp3};
+pub use sp3::{
+    Sp3Header, Sp3Record, Sp3Series, Sp3State, parse_sp3_vehicle, read_sp3, read_sp3_vehicle,
+    write_sp3,
+};
 
 pub use broadcast::{
     BoundEphemeris, BroadcastEphemeris, ClockParams, HarmonicCorrections, KeplerElements,

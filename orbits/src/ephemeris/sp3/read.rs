@@ -1,41 +1,79 @@
-//! SP3-c/d precise orbit files (positions only), plain or gzip-compressed; used as an
-//! external oracle for broadcast orbits.
-//!
-//! Format facts (SP3-c and SP3-d specifications): line 1 starts `#c` or `#d`; the first
-//! `%c` line gives the time system in columns 10-12 (`GPS`, `GLO`, `GAL`, `BDT`, `TAI`,
-//! `UTC`; GPS when absent); epoch lines start with `*` followed by year, month, day, hour,
-//! minute, second; position lines are `P` + satellite id (3 characters, e.g. `G01` or
-//! `G 1`) + x, y, z in km (F14.6, columns 5-46) + clock in microseconds (F14.6, columns
-//! 47-60). A position of 0.000000 in all three axes is "bad or absent"; a clock of
-//! 999999.999999 (or more) is "missing". Velocity (`V`) and correlation (`EP`/`EV`) lines
-//! are ignored.
+//! The SP3 reader.
 
-use super::{NavError, nav_text::read_text_maybe_gz, sat_id::SatId};
+use super::{CLOCK_MISSING_US, Sp3Record, Sp3State};
 use crate::Vec3;
+use crate::ephemeris::{NavError, nav_text::read_text_maybe_gz, sat_id::SatId};
 use hifitime::{Epoch, TimeScale};
 use std::path::Path;
 
-/// SP3 clock values at or above this are "missing" (the format's 999999.999999 sentinel).
-const CLOCK_MISSING_US: f64 = 999_999.0;
-
-/// One SP3 position record (ECEF, metres; centre of mass).
-#[derive(Debug, Clone, PartialEq)]
-pub struct Sp3Record {
-    pub epoch: Epoch,
-    pub sat: SatId,
-    pub r_ecef_m: Vec3,
-    /// Clock offset (s), when given.
-    pub clock_s: Option<f64>,
-}
-
-/// Read the GPS and BeiDou position records of an SP3 file.
+/// Read the GPS, BeiDou and Galileo position records of an SP3 file.
 pub fn read_sp3(path: &Path) -> Result<Vec<Sp3Record>, NavError> {
     let text = read_text_maybe_gz(path)?;
     parse_sp3(&text, &path.display().to_string())
 }
 
-/// Parse the text of an SP3-c/d file. `source` names the file in errors.
+/// Parse the text of an SP3-c/d file: the position records of the GNSS satellites
+/// SkyForge knows. `source` names the file in errors.
 pub fn parse_sp3(text: &str, source: &str) -> Result<Vec<Sp3Record>, NavError> {
+    let mut out = Vec::new();
+    parse_lines(text, source, |line| {
+        if let Sp3Line::Position { epoch, id, state } = line
+            && let Ok(sat) = id.parse::<SatId>()
+        {
+            out.push(Sp3Record {
+                epoch,
+                sat,
+                r_ecef_m: state.r_ecef_m,
+                clock_s: state.clock_s,
+            });
+        }
+    })?;
+    Ok(out)
+}
+
+/// Read the states (positions, and velocities where the file has them) of the vehicle
+/// `id` (3 characters as the file writes them, e.g. `L01` for a LEO) in an SP3 file.
+pub fn read_sp3_vehicle(path: &Path, id: &str) -> Result<Vec<Sp3State>, NavError> {
+    let text = read_text_maybe_gz(path)?;
+    parse_sp3_vehicle(&text, &path.display().to_string(), id)
+}
+
+/// [`read_sp3_vehicle`] on a file's text.
+pub fn parse_sp3_vehicle(text: &str, source: &str, id: &str) -> Result<Vec<Sp3State>, NavError> {
+    let mut out: Vec<Sp3State> = Vec::new();
+    parse_lines(text, source, |line| match line {
+        Sp3Line::Position { id: i, state, .. } if i == id => out.push(state),
+        Sp3Line::Velocity { epoch, id: i, v_ecef_mps } if i == id => {
+            if let Some(last) = out.last_mut().filter(|s| s.epoch == epoch) {
+                last.v_ecef_mps = Some(v_ecef_mps);
+            }
+        }
+        _ => {}
+    })?;
+    Ok(out)
+}
+
+/// One data line of an SP3 file, with the epoch it belongs to.
+enum Sp3Line<'a> {
+    Position {
+        epoch: Epoch,
+        id: &'a str,
+        state: Sp3State,
+    },
+    Velocity {
+        epoch: Epoch,
+        id: &'a str,
+        v_ecef_mps: Vec3,
+    },
+}
+
+/// Every position (`P`) and velocity (`V`) line of an SP3-c/d file, in file order; bad
+/// or absent positions (all zero) left out.
+fn parse_lines<'a>(
+    text: &'a str,
+    source: &str,
+    mut each: impl FnMut(Sp3Line<'a>),
+) -> Result<(), NavError> {
     let err = |line: usize, message: &str| NavError::Format {
         path: source.to_string(),
         line,
@@ -51,7 +89,6 @@ pub fn parse_sp3(text: &str, source: &str) -> Result<Vec<Sp3Record>, NavError> {
     }
     let mut scale = None;
     let mut epoch = None;
-    let mut out = Vec::new();
     for (i, line) in lines {
         let n = i + 1;
         if line.starts_with("%c") && scale.is_none() {
@@ -67,11 +104,11 @@ pub fn parse_sp3(text: &str, source: &str) -> Result<Vec<Sp3Record>, NavError> {
         } else if let Some(rest) = line.strip_prefix('*') {
             let ts = scale.unwrap_or(TimeScale::GPST);
             epoch = Some(parse_epoch(rest, ts).ok_or_else(|| err(n, "bad epoch line"))?);
-        } else if line.starts_with('P') {
-            let Some(sat) = line.get(1..4).and_then(|s| s.parse::<SatId>().ok()) else {
-                continue; // another system (R, E, J, ...)
+        } else if line.starts_with('P') || line.starts_with('V') {
+            let Some(id) = line.get(1..4) else {
+                return Err(err(n, "a data line without a vehicle identifier"));
             };
-            let t = epoch.ok_or_else(|| err(n, "position before the first epoch line"))?;
+            let t = epoch.ok_or_else(|| err(n, "data before the first epoch line"))?;
             let num = |a: usize, b: usize| -> Result<Option<f64>, NavError> {
                 match line.get(a..b.min(line.len())).map(str::trim) {
                     None => Err(err(n, "non-ASCII text in a numeric field")),
@@ -84,27 +121,40 @@ pub fn parse_sp3(text: &str, source: &str) -> Result<Vec<Sp3Record>, NavError> {
             };
             let xyz = [num(4, 18)?, num(18, 32)?, num(32, 46)?];
             let [Some(x), Some(y), Some(z)] = xyz else {
-                return Err(err(n, "position line without x, y, z"));
+                return Err(err(n, "data line without x, y, z"));
             };
+            if line.starts_with('V') {
+                // Velocities in dm/s.
+                each(Sp3Line::Velocity {
+                    epoch: t,
+                    id,
+                    v_ecef_mps: Vec3::new(x, y, z) * 0.1,
+                });
+                continue;
+            }
             if x == 0.0 && y == 0.0 && z == 0.0 {
                 continue; // bad or absent position
             }
             let clock_s = num(46, 60)?
                 .filter(|c| c.abs() < CLOCK_MISSING_US)
                 .map(|c| c * 1e-6);
-            out.push(Sp3Record {
+            each(Sp3Line::Position {
                 epoch: t,
-                sat,
-                r_ecef_m: Vec3::new(x, y, z) * 1e3,
-                clock_s,
+                id,
+                state: Sp3State {
+                    epoch: t,
+                    r_ecef_m: Vec3::new(x, y, z) * 1e3,
+                    v_ecef_mps: None,
+                    clock_s,
+                },
             });
         }
     }
-    Ok(out)
+    Ok(())
 }
 
 /// `  2020  6 25  0  0  0.00000000` in `scale`.
-fn parse_epoch(rest: &str, scale: TimeScale) -> Option<Epoch> {
+pub(super) fn parse_epoch(rest: &str, scale: TimeScale) -> Option<Epoch> {
     let t: Vec<&str> = rest.split_whitespace().collect();
     if t.len() != 6 {
         return None;
