@@ -135,7 +135,8 @@ pub fn read_h5(path: &Path) -> Result<OrbitH5, FormatError> {
     let err = |m: String| FormatError::file(path, m);
     let file = hdf5::File::open(path).map_err(|e| err(format!("not readable as HDF5: {e}")))?;
     let start_text = read_text_attr(&file, path, START_ATTR)?;
-    let start = parse_epoch(&start_text).map_err(|e| err(format!("attribute {START_ATTR}: {e}")))?;
+    let start =
+        parse_epoch(&start_text).map_err(|e| err(format!("attribute {START_ATTR}: {e}")))?;
     let filter = read_text_attr(&file, path, "filter")?;
     let t_s: Vec<f64> = read_column(&file, path, "t_s", MAX_ROWS)?;
     let r: Vec<f64> = read_column(&file, path, "r_ecef_m", 3 * MAX_ROWS)?;
@@ -150,7 +151,10 @@ pub fn read_h5(path: &Path) -> Result<OrbitH5, FormatError> {
             p.len() / 36
         )));
     }
-    if [&t_s, &r, &v, &p].iter().any(|c| c.iter().any(|x| !x.is_finite())) {
+    if [&t_s, &r, &v, &p]
+        .iter()
+        .any(|c| c.iter().any(|x| !x.is_finite()))
+    {
         return Err(err("a value is not finite".into()));
     }
     if t_s.windows(2).any(|w| w[1] <= w[0]) {

@@ -137,6 +137,12 @@ const BUNDLED: &[Bundled] = &[
                   level with SA-era satellite errors, for the position filter (B-5.5)",
         text: include_str!("../bundled/book-od-leo.toml"),
     },
+    Bundled {
+        name: "od-leo",
+        summary: "LEO a = 7271 km, e = 0.001, 1 h, GPS L1 C/A at the observation level with \
+                  today's satellite errors and Doppler noise, for `skyforge od`",
+        text: include_str!("../bundled/od-leo.toml"),
+    },
 ];
 
 /// Every bundled scenario.

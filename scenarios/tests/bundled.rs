@@ -33,7 +33,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "attitude-leo-gps",
             "attitude-leo-l1-l5",
             "integrity-lab",
-            "book-od-leo"
+            "book-od-leo",
+            "od-leo"
         ]
     );
     for b in bundled() {

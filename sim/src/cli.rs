@@ -129,6 +129,15 @@ pub enum Command {
         #[command(flatten)]
         args: AttitudeArgs,
     },
+    /// Orbit determination of the receiving spacecraft from its own observations: the
+    /// single-point fixes of one RINEX observation file (with the navigation file's
+    /// ephemerides and ionosphere) into a dynamic filter with J2 and drag (the book's
+    /// position filter, section 5.5.4). Writes DIR/orbit.csv, DIR/orbit.h5 (with the
+    /// 6 x 6 covariance) and DIR/orbit.sp3 (docs/orbit-determination.md).
+    Od {
+        #[command(flatten)]
+        args: OdArgs,
+    },
     /// Integrity monitoring with several reference receivers (paper 002's B values):
     /// `run` monitors RINEX observation files, `calibrate` derives the thresholds from
     /// fault-free runs of a scenario (docs/integrity.md).
@@ -176,6 +185,26 @@ pub enum Command {
         #[command(subcommand)]
         suite: ValidateSuite,
     },
+}
+
+/// What `od` is given.
+#[derive(Debug, Args)]
+pub struct OdArgs {
+    /// The spacecraft's observation file (RINEX 3): `skyforge receive` output, the
+    /// observation level's, or another receiver's.
+    pub file: PathBuf,
+    /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+    #[arg(long, value_name = "NAV")]
+    pub nav: PathBuf,
+    /// Filter settings (TOML; docs/orbit-determination.md); default: the documented ones.
+    #[arg(long, value_name = "TOML")]
+    pub config: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory (only one skyforge wrote).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// What `attitude` is given.
@@ -371,6 +400,27 @@ pub enum ValidateSuite {
         /// `skyforge attitude`'s output directory (attitude.csv, ambiguities.csv).
         #[arg(long, value_name = "ATTDIR")]
         attitude: PathBuf,
+        /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
+    },
+    /// Compare `skyforge od`'s estimated orbit with the truth of the run: position and
+    /// velocity errors per axis in the orbit frame (radial, along-track, cross-track) and
+    /// ECEF, 3-D RMS, after a settling time; and how often the truth lies inside the
+    /// filter's own 3-sigma (docs/orbit-determination.md).
+    Od {
+        /// The run's directory (`skyforge run`/`synth --out`): its truth.h5.
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// `skyforge od`'s output directory (orbit.h5).
+        #[arg(long, value_name = "ODDIR")]
+        orbit: PathBuf,
+        /// Leave out the estimates of the first S seconds (the filter's convergence).
+        #[arg(long, value_name = "S", default_value_t = 600.0)]
+        settle_s: f64,
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,

@@ -18,6 +18,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         | cli::Command::Calibrate { run } => Some(run.out.clone()),
         cli::Command::Receive { args } => Some(args.out.clone()),
         cli::Command::Attitude { args } => Some(args.out.clone()),
+        cli::Command::Od { args } => Some(args.out.clone()),
         cli::Command::Monitor {
             action:
                 cli::MonitorAction::Run { args } | cli::MonitorAction::CalibrateFiles { args, .. },
@@ -33,6 +34,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
                 cli::ValidateSuite::Obs { .. }
                 | cli::ValidateSuite::Attitude { .. }
                 | cli::ValidateSuite::Monitor { .. }
+                | cli::ValidateSuite::Od { .. }
                 | cli::ValidateSuite::Agree { .. },
         }
         | cli::Command::Scenarios { .. }

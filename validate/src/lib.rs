@@ -7,6 +7,7 @@ pub mod attitude;
 pub mod draw;
 pub mod integrity;
 pub mod observables;
+pub mod orbit;
 pub mod report;
 pub mod stats;
 pub mod thesis;

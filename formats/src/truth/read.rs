@@ -4,9 +4,8 @@
 
 use super::{
     ANTENNAS_GROUP, EPOCH_INDEX, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
-    VELOCITY,
     SATELLITES_GROUP, SCENARIO_ATTR, SCENARIO_TOML_ATTR, START_EPOCH_ATTR, T_S, TIME_GROUP,
-    VISIBLE, antenna_dataset, dataset,
+    VELOCITY, VISIBLE, antenna_dataset, dataset,
 };
 use crate::FormatError;
 use crate::h5::{read_column, read_text_attr};

@@ -130,7 +130,10 @@ mod tests {
             ("interval_s = 0", "interval_s = 0"),
             ("elevation_mask_deg = 95", "elevation_mask_deg = 95"),
             ("[filter]\nkind = \"ekf\"", "ekf"),
-            ("[filter]\nkind = \"position-filter\"\nposition_sigma_m = -1", "position_sigma_m = -1"),
+            (
+                "[filter]\nkind = \"position-filter\"\nposition_sigma_m = -1",
+                "position_sigma_m = -1",
+            ),
             ("intervl_s = 10", "intervl_s"),
         ] {
             let e = OdConfig::parse(text).unwrap_err();

@@ -34,7 +34,10 @@ use skyforge_orbits::{Mat3, Vec3};
 #[serde(deny_unknown_fields)]
 pub struct PositionFilterConfig {
     /// The filter's force model beyond the point mass (the book: J2 and drag only).
-    #[serde(default)]
+    /// # assumed: J2..J6 and the exponential drag of the default spacecraft: without
+    /// J3..J6 a LEO's filter is off by about 1e-4 m/s^2 at times, metres over its memory
+    /// (docs/orbit-determination.md).
+    #[serde(default = "default_forces")]
     pub forces: ForceModelConfig,
     /// 1-sigma error of one fix coordinate at GDOP 1 (m): `R_0`'s position part.
     /// # assumed: 3 m, a single-frequency fix without SA (UERE of a few metres over
@@ -52,6 +55,12 @@ pub struct PositionFilterConfig {
     pub acceleration_sigma_mps2: f64,
 }
 
+fn default_forces() -> ForceModelConfig {
+    ForceModelConfig {
+        higher_zonals: true,
+        ..ForceModelConfig::default()
+    }
+}
 fn default_position_sigma_m() -> f64 {
     3.0
 }
@@ -65,7 +74,7 @@ fn default_acceleration_sigma_mps2() -> f64 {
 impl Default for PositionFilterConfig {
     fn default() -> Self {
         Self {
-            forces: ForceModelConfig::default(),
+            forces: default_forces(),
             position_sigma_m: default_position_sigma_m(),
             velocity_sigma_mps: default_velocity_sigma_mps(),
             acceleration_sigma_mps2: default_acceleration_sigma_mps2(),

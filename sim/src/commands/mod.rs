@@ -5,6 +5,7 @@ mod attitude;
 mod calibrate;
 mod dry_run;
 mod monitor;
+mod od;
 mod receive;
 mod report;
 mod run;
@@ -63,6 +64,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             } => study::slurm(&study, &out, shards, skyforge.as_deref(), &sbatch, force),
         },
         Command::Attitude { args } => attitude::attitude(&args),
+        Command::Od { args } => od::od(&args),
         Command::Receive { args } => receive::receive(&args),
         Command::Ambiguity {
             file,
@@ -166,9 +168,39 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             validate::JsonOut::new(json.as_deref(), force)?,
         ),
         Command::Validate {
+            suite:
+                ValidateSuite::Od {
+                    truth,
+                    orbit,
+                    settle_s,
+                    json,
+                    force,
+                },
+        } => validate::od(
+            &truth,
+            &orbit,
+            settle_s,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
+        Command::Validate {
             suite: ValidateSuite::Agree { first, second },
         } => validate::agree(&first, &second),
     }
+}
+
+/// Beside the finished `truth.h5` in `staged`, a LEO platform's orbit as `truth.sp3`
+/// (what `skyforge od`'s `orbit.sp3` is compared with by anyone's SP3 tools).
+fn write_truth_sp3(
+    scenario: &skyforge_scenarios::Scenario,
+    staged: &crate::output::staged_dir::StagedDir,
+) -> anyhow::Result<()> {
+    use skyforge_formats::orbit::{TRUTH_SP3, write_truth_sp3};
+    use skyforge_formats::truth::TRUTH_H5;
+    if scenario.platform.leo.is_none() {
+        return Ok(());
+    }
+    write_truth_sp3(&staged.file(TRUTH_H5), &staged.file(TRUTH_SP3))?;
+    Ok(())
 }
 
 /// The RINEX observation file at `path` (`attitude`, `monitor`, `validate obs`); what the

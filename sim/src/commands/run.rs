@@ -76,6 +76,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
         Ok(())
     })?;
     bar.finish_and_clear();
+    super::write_truth_sp3(&scenario, &staged)?;
     let dir = staged.commit()?;
 
     println!("scenario   {} ({})", scenario.name, scenario.source);

@@ -1,4 +1,4 @@
-//! `skyforge validate thesis`, `obs`, `attitude` and `monitor`.
+//! `skyforge validate thesis`, `obs`, `attitude`, `monitor` and `od`.
 
 use crate::bad_input::BadInput;
 use crate::output::staged_dir::StagedDir;
@@ -6,6 +6,8 @@ use crate::output::whole_file;
 use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
+use skyforge_formats::orbit::ORBIT_H5;
+use skyforge_formats::truth::TRUTH_H5;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
@@ -15,6 +17,7 @@ use skyforge_validate::observables::compare::{
     CompareOptions, SampleSpan, SignalComparison, compare_signals,
 };
 use skyforge_validate::observables::table::print_comparison;
+use skyforge_validate::orbit::{compare_orbit, print_orbit};
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
 use skyforge_validate::thesis::curves::{CURVES_FILE, CurvesFile};
 use skyforge_validate::thesis::{self, Options};
@@ -273,4 +276,19 @@ pub fn monitor(truth: &Path, monitor: &Path, json: JsonOut<'_>) -> anyhow::Resul
     let score = score(&scenario.errors.events, &record);
     print_score(&score, &mut std::io::stdout().lock())?;
     json.write(&score)
+}
+
+/// Compare `skyforge od`'s orbit in `orbit` with the truth of the run in `truth`, print
+/// the table and optionally write the JSON.
+pub fn od(truth: &Path, orbit: &Path, settle_s: f64, json: JsonOut<'_>) -> anyhow::Result<()> {
+    if !(settle_s.is_finite() && settle_s >= 0.0) {
+        return Err(BadInput(format!(
+            "--settle-s {settle_s}: must be a finite number of seconds >= 0"
+        ))
+        .into());
+    }
+    let comparison = compare_orbit(&truth.join(TRUTH_H5), &orbit.join(ORBIT_H5), settle_s)
+        .map_err(|e| BadInput(e.to_string()))?;
+    print_orbit(&comparison, &mut std::io::stdout().lock())?;
+    json.write(&comparison)
 }

@@ -47,4 +47,3 @@ pub struct Sp3State {
     /// Clock offset (s), when given.
     pub clock_s: Option<f64>,
 }
-

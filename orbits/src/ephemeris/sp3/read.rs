@@ -43,7 +43,11 @@ pub fn parse_sp3_vehicle(text: &str, source: &str, id: &str) -> Result<Vec<Sp3St
     let mut out: Vec<Sp3State> = Vec::new();
     parse_lines(text, source, |line| match line {
         Sp3Line::Position { id: i, state, .. } if i == id => out.push(state),
-        Sp3Line::Velocity { epoch, id: i, v_ecef_mps } if i == id => {
+        Sp3Line::Velocity {
+            epoch,
+            id: i,
+            v_ecef_mps,
+        } if i == id => {
             if let Some(last) = out.last_mut().filter(|s| s.epoch == epoch) {
                 last.v_ecef_mps = Some(v_ecef_mps);
             }

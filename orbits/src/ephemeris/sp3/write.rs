@@ -10,7 +10,7 @@
 
 use super::{CLOCK_MISSING_US, Sp3State};
 use crate::time::gpst_week_sow;
-use hifitime::{Epoch, TimeScale};
+use hifitime::{Epoch, TimeScale, Unit};
 use std::collections::BTreeSet;
 use std::io::{self, Write};
 
@@ -108,9 +108,10 @@ pub fn write_sp3(w: &mut impl Write, header: &Sp3Header, series: &[Sp3Series]) -
     writeln!(w, "EOF")
 }
 
-/// `2020  6 25  0  0  0.00000000` (GPS time).
+/// `2020  6 25  0  0  0.00000000` (GPS time), rounded to the 10 ns the seconds field
+/// holds first (so 59.999999996 s is the next minute, not `60.00000000`).
 fn calendar(t: Epoch) -> String {
-    let (y, mo, d, h, mi, s, ns) = t.to_gregorian(TimeScale::GPST);
+    let (y, mo, d, h, mi, s, ns) = t.round(Unit::Nanosecond * 10).to_gregorian(TimeScale::GPST);
     let sec = f64::from(s) + f64::from(ns) * 1e-9;
     format!("{y:4} {mo:2} {d:2} {h:2} {mi:2} {sec:11.8}")
 }
@@ -162,14 +163,27 @@ fn write_header(
         "%c {}  cc GPS ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc",
         h.file_type
     )?;
-    writeln!(w, "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc")?;
+    writeln!(
+        w,
+        "%c cc cc ccc ccc cccc cccc cccc cccc ccccc ccccc ccccc ccccc"
+    )?;
     for _ in 0..2 {
-        writeln!(w, "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000")?;
+        writeln!(
+            w,
+            "%f  0.0000000  0.000000000  0.00000000000  0.000000000000000"
+        )?;
     }
     for _ in 0..2 {
-        writeln!(w, "%i    0    0    0    0      0      0      0      0         0")?;
+        writeln!(
+            w,
+            "%i    0    0    0    0      0      0      0      0         0"
+        )?;
     }
-    let text: Vec<char> = h.comment.chars().filter(|c| c.is_ascii() && !c.is_control()).collect();
+    let text: Vec<char> = h
+        .comment
+        .chars()
+        .filter(|c| c.is_ascii() && !c.is_control())
+        .collect();
     let mut comments: Vec<String> = text
         .chunks(COMMENT_CHARS)
         .map(|c| c.iter().collect())
@@ -214,7 +228,6 @@ mod tests {
     use super::super::read::parse_sp3_vehicle;
     use super::*;
     use crate::Vec3;
-    use hifitime::Unit;
 
     fn states(n: usize, velocity: bool) -> Vec<Sp3State> {
         let t0 = Epoch::from_gregorian(2020, 6, 25, 0, 0, 0, 0, TimeScale::GPST);
@@ -222,7 +235,7 @@ mod tests {
             .map(|k| Sp3State {
                 epoch: t0 + Unit::Second * (10 * k) as i64,
                 r_ecef_m: Vec3::new(6_871_000.123 + k as f64, -12_345.678, 1_000.0),
-                v_ecef_mps: velocity.then(|| Vec3::new(1.2345, 7_600.1234 - k as f64, -3.5)),
+                v_ecef_mps: velocity.then(|| Vec3::new(1.2345, 7600.1234 - k as f64, -3.5)),
                 clock_s: (k == 1).then_some(1.5e-6),
             })
             .collect()
@@ -269,6 +282,20 @@ mod tests {
         assert_eq!(lines.iter().filter(|l| l.starts_with("/*")).count(), 4);
         assert!(lines.contains(&"*  2020  6 25  0  0 10.00000000"));
         assert_eq!(lines.last(), Some(&"EOF"));
+    }
+
+    /// An epoch a few nanoseconds before a whole minute is written as that minute.
+    #[test]
+    fn epochs_round_to_the_seconds_field() {
+        let t = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, TimeScale::GPST);
+        assert_eq!(
+            calendar(t - Unit::Nanosecond * 4),
+            "2023  3 12  0  0  0.00000000"
+        );
+        assert_eq!(
+            calendar(t + Unit::Millisecond * 1500),
+            "2023  3 12  0  0  1.50000000"
+        );
     }
 
     /// What the writer writes, the reader reads back: positions to the format's 1 mm,

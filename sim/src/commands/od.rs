@@ -1,0 +1,93 @@
+//! `skyforge od`: one spacecraft's RINEX observation file + navigation file -> its
+//! orbit, estimated by the filter the configuration chooses
+//! (`navigation::orbit_determination`), written to `DIR/orbit.csv`, `DIR/orbit.h5` and
+//! `DIR/orbit.sp3` (`formats::orbit`).
+
+use crate::bad_input::BadInput;
+use crate::cli::OdArgs;
+use crate::output::staged_dir::StagedDir;
+use anyhow::Context;
+use skyforge_formats::orbit::{
+    ORBIT_CSV, ORBIT_H5, ORBIT_SP3, write_csv, write_h5, write_orbit_sp3,
+};
+use skyforge_navigation::orbit_determination::{OdConfig, OdFilterConfig, OdRun, orbit_from_file};
+use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
+use std::path::Path;
+
+/// The configuration's filter as `orbit.h5` names it.
+fn filter_name(config: &OdConfig) -> &'static str {
+    match config.filter {
+        OdFilterConfig::PositionFilter(_) => "position-filter",
+    }
+}
+
+/// Run `skyforge od`.
+pub fn od(args: &OdArgs) -> anyhow::Result<()> {
+    let config = match &args.config {
+        Some(path) => OdConfig::read(path).map_err(BadInput)?,
+        None => OdConfig::default(),
+    };
+    let file = super::read_observations(&args.file)?;
+    let ephemerides = super::attitude::read_nav(&args.nav)?;
+    let iono =
+        read_iono_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    let run =
+        orbit_from_file(&file, ephemerides, &iono, &config).map_err(|e| BadInput(e.to_string()))?;
+    if run.estimates.is_empty() {
+        return Err(BadInput(format!(
+            "{}: no single-point fix on the {} s grid ({} epochs tried); nothing to filter",
+            args.file.display(),
+            config.interval_s,
+            run.missed
+        ))
+        .into());
+    }
+    let staged = StagedDir::create(&args.out, args.force)?;
+    write_outputs(&staged, &run, filter_name(&config))?;
+    let dir = staged.commit()?;
+    print_summary(&dir, &run, &config);
+    Ok(())
+}
+
+/// The three files of `run` into `staged`.
+fn write_outputs(staged: &StagedDir, run: &OdRun, filter: &str) -> anyhow::Result<()> {
+    let writing = |p: &Path| format!("writing {}", p.display());
+    let csv = staged.file(ORBIT_CSV);
+    write_csv(&csv, run.start, &run.estimates).with_context(|| writing(&csv))?;
+    let h5 = staged.file(ORBIT_H5);
+    write_h5(&h5, run.start, filter, &run.estimates).with_context(|| writing(&h5))?;
+    let sp3 = staged.file(ORBIT_SP3);
+    write_orbit_sp3(&sp3, run.start, filter, &run.estimates).with_context(|| writing(&sp3))
+}
+
+fn print_summary(dir: &Path, run: &OdRun, config: &OdConfig) {
+    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
+    let (first, last) = (&run.estimates[0], &run.estimates[run.estimates.len() - 1]);
+    let sigma = |from: usize| {
+        (from..from + 3)
+            .map(|i| last.covariance[(i, i)])
+            .sum::<f64>()
+            .sqrt()
+    };
+    println!(
+        "filter     {} ({})",
+        filter_name(config),
+        signals.join(", ")
+    );
+    println!(
+        "fixes      {} every {} s from {:.1} s to {:.1} s; {} epochs on the grid without a fix",
+        run.estimates.len(),
+        config.interval_s,
+        first.t_s,
+        last.t_s,
+        run.missed
+    );
+    println!(
+        "last       3-D sigma {:.2} m, {:.4} m/s (the filter's own)",
+        sigma(0),
+        sigma(3)
+    );
+    for name in [ORBIT_CSV, ORBIT_H5, ORBIT_SP3] {
+        println!("wrote      {}", dir.join(name).display());
+    }
+}

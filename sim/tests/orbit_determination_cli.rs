@@ -1,0 +1,127 @@
+//! `skyforge od` and `skyforge validate od` end to end on the bundled `od-leo` scenario:
+//! the observation level's RINEX and navigation files in, the orbit out as CSV, HDF5 and
+//! SP3, compared with the truth (`truth.h5`, and `truth.sp3` written beside it).
+
+mod support;
+
+use skyforge_formats::orbit::{LEO_SP3_ID, read_h5};
+use skyforge_orbits::ephemeris::read_sp3_vehicle;
+use std::path::Path;
+
+/// `synth od-leo --seed seed`, `od` on its observations with the default filter, and
+/// `validate od` with JSON, in `dir`; the comparison.
+fn od_run(dir: &Path, seed: u64) -> serde_json::Value {
+    let seed = seed.to_string();
+    support::skyforge_ok(&["synth", "od-leo", "--out", "sim", "--seed", &seed], dir);
+    support::skyforge_ok(
+        &[
+            "od",
+            "sim/observations/ant1.obs.rnx",
+            "--nav",
+            "sim/nav.rnx",
+            "--out",
+            "od",
+        ],
+        dir,
+    );
+    support::skyforge_ok(
+        &[
+            "validate", "od", "--truth", "sim", "--orbit", "od", "--json", "od.json",
+        ],
+        dir,
+    );
+    support::json_file(&dir.join("od.json"))
+}
+
+/// Today's satellite errors, single-frequency code and Doppler, fixes every 10 s into
+/// the position filter (J2..J6 and drag), on four seeds (# assumed: 1..4), after 600 s:
+/// velocity 3-D RMS under 1 cm/s (issue #35's own bar), position 3-D RMS under 2 m
+/// (# assumed guard: the issue's 1 m bar is for a filter on the raw observations; this
+/// one takes single-point fixes, whose correlated errors it cannot average out,
+/// docs/orbit-determination.md), and the filter's covariance not overconfident (mean
+/// position NEES under 6, twice its expected 3; # assumed bar).
+#[test]
+fn od_leo_orbit_meets_the_velocity_bar_on_four_seeds() {
+    for seed in 1..=4u64 {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let v = od_run(dir.path(), seed);
+        let pos = v["position_m"]["rms_3d"].as_f64().unwrap();
+        let vel = v["velocity_mps"]["rms_3d"].as_f64().unwrap();
+        let nees = v["position_nees_mean"].as_f64().unwrap();
+        let compared = v["compared"].as_u64().unwrap();
+        eprintln!("seed {seed}: {pos:.3} m, {vel:.5} m/s, NEES {nees:.2}, {compared} compared");
+        // (3600 - 600) / 10 estimates; the fix at 600 s is tagged a receiver clock's
+        // nanoseconds either side of it.
+        assert!((299..=300).contains(&compared), "seed {seed}: {compared}");
+        assert!(vel < 0.01, "seed {seed}: velocity {vel} m/s");
+        assert!(pos < 2.0, "seed {seed}: position {pos} m");
+        assert!(nees < 6.0, "seed {seed}: NEES {nees}");
+    }
+}
+
+/// The SP3 files: `orbit.sp3` holds `orbit.h5`'s estimates and `truth.sp3` the truth's
+/// platform, at their epochs, to the format's millimetre; read by SkyForge's SP3 reader,
+/// the one that reads IGS files.
+#[test]
+fn sp3_files_carry_the_estimate_and_the_truth() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    od_run(d, 1);
+    let h5 = read_h5(&d.join("od/orbit.h5")).unwrap();
+    let sp3 = read_sp3_vehicle(&d.join("od/orbit.sp3"), LEO_SP3_ID).unwrap();
+    assert_eq!(sp3.len(), h5.t_s.len());
+    for (k, s) in sp3.iter().enumerate() {
+        let dt = (s.epoch - h5.start).to_seconds() - h5.t_s[k];
+        assert!(dt.abs() < 1e-8, "epoch {k}: {dt} s");
+        assert!((s.r_ecef_m - h5.r_ecef_m[k]).norm() < 1e-3, "epoch {k}");
+        assert!((s.v_ecef_mps.unwrap() - h5.v_ecef_mps[k]).norm() < 1e-6);
+    }
+    let truth = read_sp3_vehicle(&d.join("sim/truth.sp3"), LEO_SP3_ID).unwrap();
+    assert_eq!(truth.len(), 3601, "1 Hz over 3600 s");
+    // The truth's orbit is a LEO's: radius about a = 7271 km, speed about 7.4 km/s in the
+    // inertial frame (the Earth-fixed velocity differs by w x r, under 0.5 km/s).
+    for s in &truth {
+        let r = s.r_ecef_m.norm();
+        let v = s.v_ecef_mps.unwrap().norm();
+        assert!((r - 7.271e6).abs() < 20e3, "radius {r}");
+        assert!((v - 7.4e3).abs() < 600.0, "speed {v}");
+    }
+}
+
+/// Bad input: a configuration with an unknown key or a bad value, a signal the file does
+/// not have, a missing orbit: one error each, naming the file and what is wrong, exit
+/// code 2, nothing written.
+#[test]
+fn bad_od_input_is_named_and_nothing_is_written() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    support::skyforge_ok(&["synth", "od-leo", "--out", "sim"], d);
+    for (text, names) in [
+        ("intervl_s = 10\n", "intervl_s"),
+        ("interval_s = -5\n", "interval_s = -5"),
+        ("signals = [\"bds-b1i\"]\n", "none of the signals BDS B1I"),
+    ] {
+        std::fs::write(d.join("od.toml"), text).unwrap();
+        let o = support::skyforge(
+            &[
+                "od",
+                "sim/observations/ant1.obs.rnx",
+                "--nav",
+                "sim/nav.rnx",
+                "--config",
+                "od.toml",
+                "--out",
+                "od",
+            ],
+            d,
+        );
+        let err = support::text(&o);
+        assert_eq!(o.status.code(), Some(2), "{text}: {err}");
+        assert!(err.contains(names), "{text}: {err}");
+        assert!(!d.join("od").exists(), "{text}: nothing written");
+    }
+    let o = support::skyforge(&["validate", "od", "--truth", "sim", "--orbit", "none"], d);
+    let err = support::text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("none/orbit.h5"), "{err}");
+}
