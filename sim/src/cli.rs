@@ -549,6 +549,13 @@ pub struct ReceiveArgs {
     /// The attitude chain's settings (TOML with a [relative] table; docs/attitude.md).
     #[arg(long, value_name = "TOML", requires = "geometry")]
     pub attitude_config: Option<PathBuf>,
+    /// Also determine the orbit from the first recording's fixes as the receiver makes
+    /// them (an epoch stage; `skyforge od`'s filter, its settings in TOML when given):
+    /// writes DIR/orbit.csv, DIR/orbit.h5 and DIR/orbit.sp3
+    /// (docs/orbit-determination.md).
+    #[arg(long, value_name = "TOML", num_args = 0..=1)]
+    #[allow(clippy::option_option)]
+    pub od: Option<Option<PathBuf>>,
     /// Output directory; created, must not exist unless --force is given.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,

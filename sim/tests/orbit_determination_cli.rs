@@ -125,3 +125,73 @@ fn bad_od_input_is_named_and_nothing_is_written() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("none/orbit.h5"), "{err}");
 }
+
+/// `receive --od`: orbit determination as an epoch stage of the receiver, on the fixes it
+/// makes from `interop-leo-gps`'s 90 s of samples (every epoch, `interval_s = 1`); and
+/// `od` on the RINEX file the same receiver wrote. Both orbits lie within 5 m and
+/// 0.1 m/s (3-D RMS) of the truth after 60 s (# assumed bars: single-point fixes of a
+/// few metres, half a minute of filtering).
+#[test]
+fn receive_determines_the_orbit_as_it_fixes() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let d = dir.path();
+    support::skyforge_ok(&["synth", "interop-leo-gps", "--out", "sim"], d);
+    std::fs::write(d.join("od.toml"), "interval_s = 1\n").unwrap();
+    let out = support::skyforge_ok(
+        &[
+            "receive",
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "--assist",
+            "sim/nav.rnx",
+            "--config",
+            "sim/receiver.toml",
+            "--od",
+            "od.toml",
+            "--out",
+            "rx",
+        ],
+        d,
+    );
+    assert!(out.contains("rx/orbit.sp3"), "{out}");
+    support::skyforge_ok(
+        &[
+            "od",
+            "rx/ant1.obs.rnx",
+            "--nav",
+            "sim/nav.rnx",
+            "--config",
+            "od.toml",
+            "--out",
+            "od",
+        ],
+        d,
+    );
+    for orbit in ["rx", "od"] {
+        let json = format!("{orbit}.json");
+        support::skyforge_ok(
+            &[
+                "validate",
+                "od",
+                "--truth",
+                "sim",
+                "--orbit",
+                orbit,
+                "--settle-s",
+                "60",
+                "--json",
+                &json,
+            ],
+            d,
+        );
+        let v = support::json_file(&d.join(&json));
+        let pos = v["position_m"]["rms_3d"].as_f64().unwrap();
+        let vel = v["velocity_mps"]["rms_3d"].as_f64().unwrap();
+        let compared = v["compared"].as_u64().unwrap();
+        eprintln!("{orbit}: {pos:.3} m, {vel:.4} m/s, {compared} compared");
+        // --settle-s counts from each orbit's start: the receiver's first epoch (0 s) for
+        // rx, the RINEX file's first epoch, its first fix (about 13 s), for od.
+        assert!(compared >= 15, "{orbit}: {compared} compared");
+        assert!(pos < 5.0, "{orbit}: {pos} m");
+        assert!(vel < 0.1, "{orbit}: {vel} m/s");
+    }
+}

@@ -4,14 +4,15 @@
 //! the filter's own settings.
 
 use super::{
-    EcefEstimate, FixInput, OdConfig, OdFilterConfig, OrbitEstimate, PositionFilter,
+    EcefEstimate, EpochFix, FixInput, OdConfig, OrbitDetermination, OrbitEstimate, PositionFilter,
     PositionFilterConfig,
 };
-use crate::pvt::{Measurement, PvtConfig, solve_velocity};
+use crate::pvt::{Fix, Measurement, PvtConfig, solve_velocity};
 use crate::relative::single_point_fixes;
-use hifitime::Epoch;
-use skyforge_gnss::observation::ObsFile;
+use hifitime::{Epoch, Unit};
+use skyforge_gnss::observation::{ObsEpoch, ObsFile};
 use skyforge_gnss::signal::Signal;
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
@@ -73,28 +74,40 @@ fn fixes_on_grid(
             missed += 1;
             continue;
         };
-        let meas: Vec<Measurement> = epoch
-            .sats
-            .iter()
-            .filter(|r| signals.contains(&r.signal))
-            .filter_map(|r| {
-                Some(Measurement {
-                    sat: r.sat,
-                    pseudorange_m: r.pseudorange_m?,
-                    doppler_hz: r.doppler_hz,
-                    signal: r.signal,
-                })
-            })
-            .collect();
-        let velocity = solve_velocity(&meas, t_s, store, fix).ok();
+        let velocity = doppler_velocity(epoch, signals, store, origin, fix);
         out.push(FixInput {
             t_s: fix.t_s,
             r_ecef_m: fix.r_ecef_m,
-            v_ecef_mps: velocity.map(|v| v.v_ecef_mps),
+            v_ecef_mps: velocity,
             gdop: fix.dop.gdop,
         });
     }
     (out, missed)
+}
+
+/// The velocity the Doppler of `epoch` on `signals` gives beside `fix`, where it solves.
+fn doppler_velocity(
+    epoch: &ObsEpoch,
+    signals: &[Signal],
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    fix: &Fix,
+) -> Option<Vec3> {
+    let meas: Vec<Measurement> = (epoch.sats.iter())
+        .filter(|r| signals.contains(&r.signal))
+        .filter_map(|r| {
+            Some(Measurement {
+                sat: r.sat,
+                pseudorange_m: r.pseudorange_m?,
+                doppler_hz: r.doppler_hz,
+                signal: r.signal,
+            })
+        })
+        .collect();
+    let t_s = origin.seconds_since_start(epoch.time);
+    solve_velocity(&meas, t_s, store, fix)
+        .ok()
+        .map(|v| v.v_ecef_mps)
 }
 
 /// The filter's estimates at every epoch of `file` on the grid `k interval_s` (seconds
@@ -162,18 +175,18 @@ pub fn orbit_from_file(
         iono_bds: iono.bds,
         ..PvtConfig::default()
     };
-    let (fixes, missed) = fixes_on_grid(file, &store, &origin, &signals, &pvt, config.interval_s);
-    let estimates = match &config.filter {
-        OdFilterConfig::PositionFilter(p) => {
-            let mut od = PositionFilter::new(p.clone(), start);
-            (fixes.iter())
-                .map(|f| {
-                    let e = od.update(f);
-                    od.to_ecef_estimate(&e)
-                })
-                .collect()
-        }
-    };
+    let fixes = single_point_fixes(file, &store, &origin, &signals, &pvt);
+    let mut od = OrbitDetermination::new(config.clone());
+    for (epoch, fix) in file.epochs.iter().zip(fixes) {
+        let fix = fix.ok().map(|fix| EpochFix {
+            time: origin.start() + Unit::Second * fix.t_s,
+            r_ecef_m: fix.r_ecef_m,
+            v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
+            gdop: fix.dop.gdop,
+        });
+        od.epoch(epoch.time, fix.as_ref());
+    }
+    let (estimates, missed) = (od.estimates().to_vec(), od.missed());
     Ok(OdRun {
         start,
         signals,

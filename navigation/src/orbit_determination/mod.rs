@@ -8,6 +8,7 @@ pub(crate) mod clohessy_wiltshire;
 mod config;
 pub(crate) mod from_files;
 pub(crate) mod position_filter;
+mod stage;
 
 pub use clohessy_wiltshire::{input, transition};
 pub use config::{OdConfig, OdFilterConfig};
@@ -15,3 +16,4 @@ pub use from_files::{OdError, OdRun, orbit_from_file, position_filter_on_file};
 pub use position_filter::{
     EcefEstimate, FixInput, OrbitEstimate, PositionFilter, PositionFilterConfig,
 };
+pub use stage::{EpochFix, OrbitDetermination};

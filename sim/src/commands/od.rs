@@ -7,10 +7,13 @@ use crate::bad_input::BadInput;
 use crate::cli::OdArgs;
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use hifitime::Epoch;
 use skyforge_formats::orbit::{
     ORBIT_CSV, ORBIT_H5, ORBIT_SP3, write_csv, write_h5, write_orbit_sp3,
 };
-use skyforge_navigation::orbit_determination::{OdConfig, OdFilterConfig, OdRun, orbit_from_file};
+use skyforge_navigation::orbit_determination::{
+    EcefEstimate, OdConfig, OdFilterConfig, orbit_from_file,
+};
 use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 use std::path::Path;
 
@@ -23,10 +26,7 @@ fn filter_name(config: &OdConfig) -> &'static str {
 
 /// Run `skyforge od`.
 pub fn od(args: &OdArgs) -> anyhow::Result<()> {
-    let config = match &args.config {
-        Some(path) => OdConfig::read(path).map_err(BadInput)?,
-        None => OdConfig::default(),
-    };
+    let config = read_config(args.config.as_deref())?;
     let file = super::read_observations(&args.file)?;
     let ephemerides = super::attitude::read_nav(&args.nav)?;
     let iono =
@@ -43,26 +43,51 @@ pub fn od(args: &OdArgs) -> anyhow::Result<()> {
         .into());
     }
     let staged = StagedDir::create(&args.out, args.force)?;
-    write_outputs(&staged, &run, filter_name(&config))?;
+    write_outputs(&staged, run.start, &run.estimates, &config)?;
     let dir = staged.commit()?;
-    print_summary(&dir, &run, &config);
+    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
+    println!(
+        "filter     {} ({})",
+        filter_name(&config),
+        signals.join(", ")
+    );
+    print_summary(&dir, &run.estimates, run.missed, &config);
     Ok(())
 }
 
-/// The three files of `run` into `staged`.
-fn write_outputs(staged: &StagedDir, run: &OdRun, filter: &str) -> anyhow::Result<()> {
-    let writing = |p: &Path| format!("writing {}", p.display());
-    let csv = staged.file(ORBIT_CSV);
-    write_csv(&csv, run.start, &run.estimates).with_context(|| writing(&csv))?;
-    let h5 = staged.file(ORBIT_H5);
-    write_h5(&h5, run.start, filter, &run.estimates).with_context(|| writing(&h5))?;
-    let sp3 = staged.file(ORBIT_SP3);
-    write_orbit_sp3(&sp3, run.start, filter, &run.estimates).with_context(|| writing(&sp3))
+/// The configuration `--config` or `receive --od` names, or the documented defaults.
+pub(crate) fn read_config(path: Option<&Path>) -> anyhow::Result<OdConfig> {
+    Ok(match path {
+        Some(path) => OdConfig::read(path).map_err(BadInput)?,
+        None => OdConfig::default(),
+    })
 }
 
-fn print_summary(dir: &Path, run: &OdRun, config: &OdConfig) {
-    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
-    let (first, last) = (&run.estimates[0], &run.estimates[run.estimates.len() - 1]);
+/// The three files of the estimates (`t_s` since `start`) into `staged`.
+pub(crate) fn write_outputs(
+    staged: &StagedDir,
+    start: Epoch,
+    estimates: &[EcefEstimate],
+    config: &OdConfig,
+) -> anyhow::Result<()> {
+    let filter = filter_name(config);
+    let writing = |p: &Path| format!("writing {}", p.display());
+    let csv = staged.file(ORBIT_CSV);
+    write_csv(&csv, start, estimates).with_context(|| writing(&csv))?;
+    let h5 = staged.file(ORBIT_H5);
+    write_h5(&h5, start, filter, estimates).with_context(|| writing(&h5))?;
+    let sp3 = staged.file(ORBIT_SP3);
+    write_orbit_sp3(&sp3, start, filter, estimates).with_context(|| writing(&sp3))
+}
+
+/// The summary lines of a run with at least one estimate.
+pub(crate) fn print_summary(
+    dir: &Path,
+    estimates: &[EcefEstimate],
+    missed: usize,
+    config: &OdConfig,
+) {
+    let (first, last) = (&estimates[0], &estimates[estimates.len() - 1]);
     let sigma = |from: usize| {
         (from..from + 3)
             .map(|i| last.covariance[(i, i)])
@@ -70,17 +95,12 @@ fn print_summary(dir: &Path, run: &OdRun, config: &OdConfig) {
             .sqrt()
     };
     println!(
-        "filter     {} ({})",
-        filter_name(config),
-        signals.join(", ")
-    );
-    println!(
         "fixes      {} every {} s from {:.1} s to {:.1} s; {} epochs on the grid without a fix",
-        run.estimates.len(),
+        estimates.len(),
         config.interval_s,
         first.t_s,
         last.t_s,
-        run.missed
+        missed
     );
     println!(
         "last       3-D sigma {:.2} m, {:.4} m/s (the filter's own)",

@@ -5,9 +5,12 @@ use crate::cli::ReceiveArgs;
 use crate::commands::attitude::{AttitudeStage, Chain, read_nav};
 use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
+use hifitime::Unit;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::receiver::{ReceiverOutputs, Summary as OutputSummary};
 use skyforge_gnss::signal::Signal;
+use skyforge_navigation::orbit_determination::{EpochFix, OrbitDetermination};
+use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::parse_format;
 use skyforge_receiver::pipeline::{EpochReport, ReceiverSummary};
@@ -79,6 +82,11 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
         }
         _ => None,
     };
+    let od_config = args
+        .od
+        .as_ref()
+        .map(|p| super::od::read_config(p.as_deref()));
+    let mut od = od_config.transpose()?.map(OrbitDetermination::new);
     let bar = ProgressBar::new(session.common_samples()).with_style(
         ProgressStyle::with_template("receive {bar:40} {percent}% {msg} eta {eta}")
             .context("progress style")?,
@@ -86,6 +94,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     let mut sink = Stages {
         outputs: &mut outputs,
         attitude: attitude.as_mut(),
+        od: od.as_mut(),
     };
     let summary = session
         .run(&mut sink, |sample, s| {
@@ -101,19 +110,30 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     let written = outputs.finish()?;
     print_summary(&summary, session.antenna_names(), &written);
     let chain_summary = attitude.map(|a| a.finish(&staged)).transpose()?;
+    let od = od.filter(|od| !od.estimates().is_empty());
+    if let Some((od, start)) = od.as_ref().and_then(|od| Some((od, od.start()?))) {
+        super::od::write_outputs(&staged, start, od.estimates(), od.config())?;
+    } else if args.od.is_some() {
+        println!("receive: od: no fix on the orbit-determination grid; no orbit written");
+    }
     let dir = staged.commit()?;
     println!("receive: wrote {}", dir.display());
     if let Some(s) = chain_summary {
         s.print(&dir);
     }
+    if let Some(od) = &od {
+        super::od::print_summary(&dir, od.estimates(), od.missed(), od.config());
+    }
     Ok(())
 }
 
 /// What runs at every epoch the receiver forms: its output files, then with `--geometry`
-/// the attitude chain on the same observations.
+/// the attitude chain on the same observations, and with `--od` the orbit determination
+/// on the first recording's fix.
 struct Stages<'a> {
     outputs: &'a mut ReceiverOutputs,
     attitude: Option<&'a mut AttitudeStage>,
+    od: Option<&'a mut OrbitDetermination>,
 }
 
 impl EpochSink for Stages<'_> {
@@ -122,8 +142,24 @@ impl EpochSink for Stages<'_> {
         if let Some(a) = self.attitude.as_mut() {
             a.epoch(report)?;
         }
+        if let Some(od) = self.od.as_mut() {
+            od.epoch(report.t_rx, od_fix(report).as_ref());
+        }
         Ok(())
     }
+}
+
+/// The first recording's fix at `report`, as orbit determination takes it: at the epoch
+/// tag less the receiver clock's offset.
+fn od_fix(report: &EpochReport) -> Option<EpochFix> {
+    let first = report.fixes.first()?;
+    let fix = first.fix.as_ref().ok()?;
+    Some(EpochFix {
+        time: report.t_rx - Unit::Second * (fix.clock_bias_m / C_MPS),
+        r_ecef_m: fix.r_ecef_m,
+        v_ecef_mps: first.velocity.as_ref().map(|v| v.v_ecef_mps),
+        gdop: fix.dop.gdop,
+    })
 }
 
 /// With `--geometry`, the attitude chain to run on the receiver's observations; its
