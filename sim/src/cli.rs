@@ -554,7 +554,6 @@ pub struct ReceiveArgs {
     /// writes DIR/orbit.csv, DIR/orbit.h5 and DIR/orbit.sp3
     /// (docs/orbit-determination.md).
     #[arg(long, value_name = "TOML", num_args = 0..=1)]
-    #[allow(clippy::option_option)]
     pub od: Option<Option<PathBuf>>,
     /// Output directory; created, must not exist unless --force is given.
     #[arg(long, value_name = "DIR")]
