@@ -12,6 +12,8 @@
 //!   monitor writes (`skyforge monitor run`);
 //! - [`orbit`]: `orbit.csv`, `orbit.h5` and `orbit.sp3`, the estimated orbit of
 //!   `skyforge od`, and `truth.sp3`, the truth's orbit of a LEO beside `truth.h5`;
+//! - [`relative`]: `relative.csv`, the relative truth of a scenario with several
+//!   vehicles (each relative to the first, in its orbit frame);
 //! - [`truth`]: `truth.h5`, the geometry and signal truth of a run (`skyforge run`,
 //!   `skyforge synth`), which validate and the report read;
 //! - [`receiver`]: what `skyforge receive` writes per epoch besides its RINEX files:
@@ -32,6 +34,7 @@ pub mod h5;
 pub mod monitor;
 pub mod orbit;
 pub mod receiver;
+pub mod relative;
 pub mod truth;
 
 pub use csv::FormatError;

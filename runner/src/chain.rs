@@ -122,7 +122,12 @@ pub fn synth_and_receive(
     let mut world = scenario
         .build()
         .map_err(|e| ChainError::Scenario(Box::new(e)))?;
-    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?;
+    let session = SynthSession::new(
+        world.synth_world(),
+        signal,
+        &scenario.errors,
+        scenario.receiver_seed(),
+    )?;
     let bands = session.bands().to_vec();
     let info = session.recording_info(&scenario.name);
     let antennas = session.world().antennas;

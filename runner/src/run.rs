@@ -332,8 +332,13 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
     let mut run = unmade(&world);
     let antennas = &run.antennas;
     let model = scenario.observation_model(antennas.len(), GEOMETRY_STEP_S)?;
-    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?
-        .observation_level(model, &scenario.observation.observed_signals)?;
+    let session = SynthSession::new(
+        world.synth_world(),
+        signal,
+        &scenario.errors,
+        scenario.receiver_seed(),
+    )?
+    .observation_level(model, &scenario.observation.observed_signals)?;
     let mut measured = Collect::new(antennas, "observations");
     let mut truth = Collect::new(antennas, "observation truth");
     let mut platform = PlatformTruth::default();
@@ -364,8 +369,12 @@ pub fn signal_run(scenario: &Scenario) -> Result<ObservationRun, RunError> {
     let signal = &whole_second_truth(scenario)?;
     let mut world = scenario.build()?;
     let mut run = unmade(&world);
-    let mut session =
-        SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)?;
+    let mut session = SynthSession::new(
+        world.synth_world(),
+        signal,
+        &scenario.errors,
+        scenario.receiver_seed(),
+    )?;
     run.ephemerides = session.broadcast_ephemerides().to_vec();
     run.iono = broadcast_iono(&session);
     let mut nav = Vec::new();

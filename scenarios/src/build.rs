@@ -100,6 +100,13 @@ impl Scenario {
     /// (a field set by the caller) cannot build an impossible world.
     pub fn build(&self) -> Result<World, ScenarioError> {
         checks::check(self).map_err(|e| self.located(e))?;
+        if !self.vehicles.is_empty() {
+            return Err(self.located(Invalid::new(
+                "vehicles",
+                format!("{} vehicles", self.vehicles.len()),
+                "a scenario with several vehicles runs one vehicle at a time (`skyforge run` and `synth` do; other commands take one platform)",
+            )));
+        }
         let origin = TimeOrigin::new(self.time.start);
         let earth = EarthRotation::at_origin(self.time.start);
         let mut ephemerides = EphemerisStore::default();

@@ -1,7 +1,7 @@
 //! Checks that need no file access: each domain table's own check, prefixed with its
 //! table path, plus the cross-field and whole-scenario rules the domain crates cannot see.
 
-use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig};
+use crate::schema::{GnssConfig, Scenario, TimeSpan, TruthConfig, VehicleConfig};
 use hifitime::Epoch;
 use skyforge_gnss::observation::NOISE_SIGMA0_M;
 use skyforge_orbits::check::{Allowed, GROUND_RADIUS_M, Invalid, check_position, check_table};
@@ -27,6 +27,73 @@ const GROUND_HEIGHT_M: Allowed = Allowed::closed(-1_000.0, 100_000.0, "m above t
 const LATITUDE_DEG: Allowed = Allowed::closed(-90.0, 90.0, "deg");
 const LONGITUDE_DEG: Allowed = Allowed::closed(-360.0, 360.0, "deg (east positive)");
 
+/// Most vehicles in one scenario: a chaser and a target, a base and rovers, a formation.
+pub(crate) const MAX_VEHICLES: usize = 16;
+
+/// The platform and antennas a scenario runs (or its first vehicle's): exactly one of
+/// `[platform]` (with `[[antennas]]`) and `[[vehicles]]` (each with its own).
+pub(crate) fn platform_or_vehicles(
+    platform: Option<PlatformConfig>,
+    antennas: Vec<AntennaConfig>,
+    vehicles: &[VehicleConfig],
+) -> Result<(PlatformConfig, Vec<AntennaConfig>), Invalid> {
+    match (platform, vehicles.first()) {
+        (Some(p), None) => Ok((p, antennas)),
+        (None, Some(v)) if antennas.is_empty() => Ok((v.platform.clone(), v.antennas.clone())),
+        (None, Some(_)) => Err(Invalid::new(
+            "antennas",
+            format!("{} antennas", antennas.len()),
+            "with [[vehicles]], every antenna belongs to one: [[vehicles.antennas]]",
+        )),
+        (Some(_), Some(_)) => Err(Invalid::new(
+            "vehicles",
+            format!("{} vehicles beside [platform]", vehicles.len()),
+            "either one [platform] with its [[antennas]], or [[vehicles]] each with its platform and antennas",
+        )),
+        (None, None) => Err(Invalid::new(
+            "platform",
+            "none",
+            "a [platform] table is required (or [[vehicles]] for several platforms)",
+        )),
+    }
+}
+
+/// `[[vehicles]]`: at most [`MAX_VEHICLES`], unique names usable as directory names,
+/// each platform, antenna list and oscillator valid.
+fn check_vehicles(vehicles: &[VehicleConfig]) -> Result<(), Invalid> {
+    if vehicles.len() > MAX_VEHICLES {
+        return Err(Invalid::new(
+            format!("vehicles[{MAX_VEHICLES}]"),
+            format!("{} vehicles", vehicles.len()),
+            format!("at most {MAX_VEHICLES} vehicles"),
+        ));
+    }
+    for (i, v) in vehicles.iter().enumerate() {
+        let at = |field: &str| format!("vehicles[{i}].{field}");
+        let usable = |c: char| c.is_ascii_alphanumeric() || c == '-' || c == '_';
+        if v.name.is_empty() || v.name.len() > 32 || !v.name.chars().all(usable) {
+            return Err(Invalid::new(
+                at("name"),
+                format!("{:?}", v.name),
+                "1 to 32 letters, digits, '-' or '_' (it names the vehicle's output directory)",
+            ));
+        }
+        if let Some(j) = vehicles[..i].iter().position(|w| w.name == v.name) {
+            return Err(Invalid::new(
+                at("name"),
+                format!("{:?}", v.name),
+                format!("must be unique; vehicles[{j}] already has this name"),
+            ));
+        }
+        check_platform(&v.platform).map_err(|e| e.within(&format!("vehicles[{i}]")))?;
+        check_antennas(&v.antennas).map_err(|e| e.within(&format!("vehicles[{i}]")))?;
+        if let Some(clock) = &v.receiver_clock {
+            clock.check().map_err(|e| e.within(&at("receiver_clock")))?;
+        }
+    }
+    Ok(())
+}
+
 /// Every check that needs no file, in file order. [`crate::parse`] runs it on the parsed
 /// scenario, [`Scenario::build`] again on whatever the caller may have changed since.
 pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
@@ -34,6 +101,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_time(&scenario.time, &scenario.gnss)?;
     check_truth(&scenario.truth, scenario.time.duration_s)?;
     check_gnss(&scenario.gnss)?;
+    check_vehicles(&scenario.vehicles)?;
     check_platform(&scenario.platform)?;
     check_antennas(&scenario.antennas)?;
     scenario

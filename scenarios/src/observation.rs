@@ -26,12 +26,17 @@ impl Scenario {
         antennas: usize,
         step_s: f64,
     ) -> Result<ObservationModel, ScenarioError> {
-        let model = ObservationModel::new(self.observation_noise()?, self.seed, antennas, step_s);
+        let model = ObservationModel::new(
+            self.observation_noise()?,
+            self.receiver_seed(),
+            antennas,
+            step_s,
+        );
         if !self.observation.doppler_noise {
             return Ok(model);
         }
         model
-            .with_doppler_noise(self.seed)
+            .with_doppler_noise(self.receiver_seed())
             .map_err(|e| self.located(Invalid::new("observation.doppler_noise", true, e)))
     }
 

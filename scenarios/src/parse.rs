@@ -32,6 +32,9 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
     };
     let start =
         checks::parse_start(&file.time.start).map_err(|e| locate_invalid(text, source, e))?;
+    let (platform, antennas) =
+        checks::platform_or_vehicles(file.platform, file.antennas, &file.vehicles)
+            .map_err(|e| locate_invalid(text, source, e))?;
     let mut scenario = Scenario {
         name: file.name,
         description: file.description,
@@ -42,11 +45,13 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         },
         truth: file.truth,
         gnss,
-        platform: file.platform,
-        antennas: file.antennas,
+        platform,
+        antennas,
         signal: file.signal,
         errors: file.errors,
         observation: file.observation,
+        vehicles: file.vehicles,
+        vehicle: None,
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),
         text: text.to_string(),

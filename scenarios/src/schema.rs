@@ -7,7 +7,7 @@ use serde::Deserialize;
 use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSource, System};
 use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
-use skyforge_signals::errors::ErrorsConfig;
+use skyforge_signals::errors::{ErrorsConfig, OscillatorConfig, vehicle_seed};
 use skyforge_signals::obs_model::ObservationConfig;
 use skyforge_signals::synth::SignalConfig;
 use std::path::PathBuf;
@@ -38,6 +38,14 @@ pub struct Scenario {
     pub errors: ErrorsConfig,
     /// `[observation]`: signal-level or observation-level observables.
     pub observation: ObservationConfig,
+    /// `[[vehicles]]`: the platforms of a scenario with several (empty: the one
+    /// `[platform]` with its `[[antennas]]`). `platform` and `antennas` are the first
+    /// vehicle's; such a scenario runs per vehicle ([`Scenario::vehicle_views`]).
+    pub vehicles: Vec<VehicleConfig>,
+    /// The vehicle this scenario is the view of ([`Scenario::vehicle_views`]): its
+    /// receiver-side random streams are keyed by its name ([`Scenario::receiver_seed`]).
+    /// `None` for a single-platform scenario, whose streams keep the scenario seed.
+    pub vehicle: Option<String>,
     /// Where the scenario came from: the file path as given, or `bundled:NAME`.
     pub source: String,
     /// Directory relative paths in the scenario are resolved from (the scenario file's
@@ -46,6 +54,62 @@ pub struct Scenario {
     /// The TOML text the scenario was parsed from (for provenance in outputs, and to
     /// locate errors found by [`Scenario::build`]).
     pub text: String,
+}
+
+/// One `[[vehicles]]` entry: a platform with its antennas and, optionally, its own
+/// oscillator.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleConfig {
+    /// Its name: the subdirectory of its outputs and the key of its receiver-side random
+    /// streams.
+    pub name: String,
+    /// `[vehicles.platform]`, as a single-platform scenario's `[platform]`.
+    pub platform: PlatformConfig,
+    /// `[[vehicles.antennas]]`, as a single-platform scenario's `[[antennas]]`.
+    #[serde(default)]
+    pub antennas: Vec<AntennaConfig>,
+    /// `[vehicles.receiver_clock]`: its oscillator (absent: the scenario's
+    /// `[errors.receiver_clock]`, drawn from its own stream all the same).
+    #[serde(default)]
+    pub receiver_clock: Option<OscillatorConfig>,
+}
+
+impl Scenario {
+    /// The single-platform scenarios this one runs as: itself when it has one platform;
+    /// one per `[[vehicles]]` entry otherwise, each with that vehicle's platform,
+    /// antennas and oscillator, the scenario's everything else (satellites, their
+    /// errors, the atmosphere, the signal), and `vehicle` set.
+    pub fn vehicle_views(&self) -> Vec<Scenario> {
+        if self.vehicles.is_empty() {
+            return vec![self.clone()];
+        }
+        (self.vehicles.iter())
+            .map(|v| {
+                let mut view = self.clone();
+                view.platform = v.platform.clone();
+                view.antennas = v.antennas.clone();
+                if let Some(clock) = &v.receiver_clock {
+                    view.errors.receiver_clock = Some(clock.clone());
+                }
+                view.vehicles = Vec::new();
+                view.vehicle = Some(v.name.clone());
+                view
+            })
+            .collect()
+    }
+
+    /// The seed of the receiver-side random streams (oscillator, thermal noise, tracking
+    /// and Doppler noise, carrier ambiguities): the scenario seed for a single-platform
+    /// scenario (its outputs unchanged), keyed by the vehicle's name for a vehicle's view,
+    /// so two vehicles never share receiver noise. Satellite-side streams always use the
+    /// scenario seed: every vehicle sees the same satellite errors.
+    pub fn receiver_seed(&self) -> u64 {
+        match &self.vehicle {
+            None => self.seed,
+            Some(name) => vehicle_seed(self.seed, name),
+        }
+    }
 }
 
 /// `[time]`: the simulated span.
@@ -146,7 +210,9 @@ pub(crate) struct ScenarioFile {
     pub truth: TruthConfig,
     #[serde(default)]
     pub gnss: GnssFile,
-    pub platform: PlatformConfig,
+    /// Required unless `[[vehicles]]` is given (checked with a located message).
+    #[serde(default)]
+    pub platform: Option<PlatformConfig>,
     /// Defaulted so that a file without antennas gets the "at least one" message rather
     /// than a bare "missing field".
     #[serde(default)]
@@ -157,6 +223,8 @@ pub(crate) struct ScenarioFile {
     pub errors: ErrorsConfig,
     #[serde(default)]
     pub observation: ObservationConfig,
+    #[serde(default)]
+    pub vehicles: Vec<VehicleConfig>,
 }
 
 /// `[time]` as written.

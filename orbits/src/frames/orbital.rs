@@ -31,10 +31,62 @@ pub fn c_rac_eci(r_m: &Vec3, v_mps: &Vec3) -> Mat3 {
     Mat3::from_columns(&[-c.column(2), c.column(0).into_owned(), -c.column(1)])
 }
 
+/// A chaser's position and velocity relative to a target, in the target's orbit frame
+/// (the book's TOF: x along-track, y the negative orbit normal, z nadir; Yuan 2000 eqs.
+/// 5-54 and 5-55, whose matrix `M` is `c_orbital_eci^T` of the target's state), from
+/// both ECI states: `rho = M (r - r_t)` and its rate seen in the rotating frame,
+/// `rho' = M (v - v_t) - w x rho` with `w = (r_t x v_t) / |r_t|^2` the frame's angular
+/// velocity (the Hill equations' state, eq. 5-53).
+pub fn relative_in_target_frame(
+    target_r_eci_m: &Vec3,
+    target_v_eci_mps: &Vec3,
+    r_eci_m: &Vec3,
+    v_eci_mps: &Vec3,
+) -> (Vec3, Vec3) {
+    let m = c_orbital_eci(target_r_eci_m, target_v_eci_mps).transpose();
+    let rho = m * (r_eci_m - target_r_eci_m);
+    let w_eci = target_r_eci_m.cross(target_v_eci_mps) / target_r_eci_m.norm_squared();
+    let rho_dot = m * (v_eci_mps - target_v_eci_mps) - (m * w_eci).cross(&rho);
+    (rho, rho_dot)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use proptest::prelude::*;
+
+    /// Two satellites on one circular orbit, the chaser 1 km behind: the relative state is
+    /// 1 km along -x and at rest in the rotating frame (to first order in 1 km / r; the
+    /// chord's radial part is (1 km)^2 / 2r, 0.07 m at 7000 km).
+    #[test]
+    fn a_trailing_satellite_on_the_same_circle_is_behind_and_at_rest() {
+        let (r, mu) = (7.0e6_f64, 3.986_004_418e14_f64);
+        let v = (mu / r).sqrt();
+        let n = v / r;
+        let at = |u: f64| {
+            (
+                Vec3::new(r * u.cos(), r * u.sin(), 0.0),
+                Vec3::new(-v * u.sin(), v * u.cos(), 0.0),
+            )
+        };
+        let (rt, vt) = at(0.3);
+        let (rc, vc) = at(0.3 - 1000.0 / r);
+        let (rho, rho_dot) = relative_in_target_frame(&rt, &vt, &rc, &vc);
+        assert!((rho.x + 1000.0).abs() < 1e-3, "{rho:?}");
+        assert!(rho.y.abs() < 1e-9);
+        assert!(
+            (rho.z - 1000.0 * 1000.0 / (2.0 * r)).abs() < 1e-3,
+            "{rho:?}"
+        );
+        assert!(rho_dot.norm() < 1e-9 * v + n * 1e-3, "{rho_dot:?}");
+        // A radial offset upwards is -z (z is nadir); a cross-track offset along the
+        // orbit normal is -y.
+        let (rho, _) = relative_in_target_frame(&rt, &vt, &(rt * 1.0001), &(vt * 1.0001));
+        assert!((rho.z + 700.0).abs() < 1e-6, "{rho:?}");
+        let normal = rt.cross(&vt).normalize();
+        let (rho, _) = relative_in_target_frame(&rt, &vt, &(rt + normal * 50.0), &vt);
+        assert!((rho.y + 50.0).abs() < 1e-9, "{rho:?}");
+    }
 
     #[test]
     fn circular_equatorial_orbit() {

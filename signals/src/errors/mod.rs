@@ -11,8 +11,8 @@ pub(crate) mod seed;
 pub(crate) mod troposphere;
 
 pub use clock::{
-    ClockModel, ClockSample, OscillatorPreset, PowerLaw, overlapping_adev, overlapping_avar,
-    predicted_adev, predicted_avar,
+    ClockModel, ClockSample, OscillatorConfig, OscillatorPreset, PowerLaw, overlapping_adev,
+    overlapping_avar, predicted_adev, predicted_avar,
 };
 pub use events::{EventConfig, EventKind, EventSchedule};
 pub use ionosphere::{
@@ -25,7 +25,7 @@ pub use satellite::{
     SatelliteProcesses, SatelliteTrack, SmoothGaussMarkov, W_R, modern, precise_orbits, sisre_m,
     w_ac_squared,
 };
-pub use seed::{Stream, stream_rng};
+pub use seed::{Stream, stream_rng, vehicle_seed};
 pub use troposphere::{
     TROPOSPHERE_CEILING_M, TropoConfig, TropoModel, chao_mapping, saastamoinen_zenith_m,
     standard_atmosphere,
@@ -33,7 +33,6 @@ pub use troposphere::{
 
 pub use link_budget::default_gps_eirp_dbw;
 
-use clock::OscillatorConfig;
 use serde::Deserialize;
 
 /// `[errors]`: error sources applied to the synthesised signal.

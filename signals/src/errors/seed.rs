@@ -95,6 +95,14 @@ pub fn stream_seed(seed: u64, source: Stream, index: u32) -> [u8; 32] {
     key
 }
 
+/// The seed of a vehicle's receiver-side streams in a scenario with several:
+/// `splitmix(seed) ^ fnv1a("vehicle " + name)`, so each vehicle's oscillator and noise
+/// differ from every other's and from a single-platform run's under the same seed.
+pub fn vehicle_seed(seed: u64, name: &str) -> u64 {
+    let mut state = seed;
+    splitmix64(&mut state) ^ fnv1a64(format!("vehicle {name}").as_bytes())
+}
+
 /// The random stream `(seed, source, index)`.
 pub fn stream_rng(seed: u64, source: Stream, index: u32) -> ChaCha20Rng {
     ChaCha20Rng::from_seed(stream_seed(seed, source, index))
@@ -128,5 +136,14 @@ mod tests {
         assert_ne!(base, stream_seed(8, Stream::ReceiverClock, 0));
         assert_ne!(base, stream_seed(7, Stream::ReceiverClock, 1));
         assert_ne!(base, stream_seed(7, Stream::Thermal, 0));
+    }
+
+    #[test]
+    fn vehicles_get_seeds_of_their_own() {
+        let (a, b) = (vehicle_seed(7, "chaser"), vehicle_seed(7, "target"));
+        assert_ne!(a, b);
+        assert_ne!(a, 7);
+        assert_eq!(a, vehicle_seed(7, "chaser"));
+        assert_ne!(a, vehicle_seed(8, "chaser"));
     }
 }

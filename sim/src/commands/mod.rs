@@ -13,6 +13,7 @@ mod scenarios;
 mod study;
 pub(crate) mod synth;
 mod validate;
+mod vehicles;
 
 use crate::bad_input::BadInput;
 use crate::cli::{

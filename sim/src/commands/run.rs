@@ -5,31 +5,43 @@ use crate::output::staged_dir::StagedDir;
 use anyhow::Context;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::truth::{RunMeta, TRUTH_H5, TruthWriter};
+use skyforge_scenarios::Scenario;
 use skyforge_signals::truth::{GeometryChunk, StreamError, epoch_count};
+use std::path::Path;
 use std::sync::mpsc::sync_channel;
 use std::time::Instant;
 
 /// Epochs per streamed chunk (10 min at 1 Hz): bounds memory whatever the duration.
 const CHUNK_EPOCHS: usize = 600;
 
-/// Run `scenario` and write `out/truth.h5`.
+/// Run the scenario `args` names and write `out/truth.h5` (with a `[signal]` table, its
+/// synthesis); a scenario with several vehicles runs each into its own directory.
 pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
-    let started = Instant::now();
-    let (out, force) = (args.out.as_path(), args.force);
     let scenario = super::resolve(args)?;
-    if let Some(signal) = scenario.signal.clone() {
-        return super::synth::synthesise(
-            &scenario,
-            &signal,
-            out,
-            force,
-            crate::cli::DEFAULT_CHUNK_EPOCHS as usize,
-            None,
-        );
-    }
+    super::vehicles::each_vehicle(
+        &scenario,
+        &args.out,
+        args.force,
+        |view, out, force| match view.signal.clone() {
+            Some(signal) => super::synth::synthesise(
+                view,
+                &signal,
+                out,
+                force,
+                crate::cli::DEFAULT_CHUNK_EPOCHS as usize,
+                None,
+            ),
+            None => run_geometry(view, out, force),
+        },
+    )
+}
+
+/// The geometry truth of a single-platform `scenario` into `out/truth.h5`.
+fn run_geometry(scenario: &Scenario, out: &Path, force: bool) -> anyhow::Result<()> {
+    let started = Instant::now();
     let mut world = scenario.build()?;
     let staged = StagedDir::create(out, force)?;
-    let meta = RunMeta::new(&scenario, world.origin.start(), world.step_s);
+    let meta = RunMeta::new(scenario, world.origin.start(), world.step_s);
     let path = staged.file(TRUTH_H5);
     let mut writer = TruthWriter::create(&path, &meta, &world.satellites, &world.antennas)
         .with_context(|| format!("cannot create {}", path.display()))?;
@@ -76,7 +88,7 @@ pub fn run(args: &ScenarioRun) -> anyhow::Result<()> {
         Ok(())
     })?;
     bar.finish_and_clear();
-    super::write_truth_sp3(&scenario, &staged)?;
+    super::write_truth_sp3(scenario, &staged)?;
     let dir = staged.commit()?;
 
     println!("scenario   {} ({})", scenario.name, scenario.source);

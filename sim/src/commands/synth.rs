@@ -65,19 +65,19 @@ pub fn synth(
         .into());
     };
     if dry_run {
-        let mut world = scenario.build()?;
-        let session = session(&scenario, &mut world, &signal)?;
-        super::dry_run::print(&scenario, &session, chunk_epochs);
+        for view in scenario.vehicle_views() {
+            if let Some(name) = &view.vehicle {
+                println!("vehicle {name}");
+            }
+            let mut world = view.build()?;
+            let session = session(&view, &mut world, &signal)?;
+            super::dry_run::print(&view, &session, chunk_epochs);
+        }
         return Ok(());
     }
-    synthesise(
-        &scenario,
-        &signal,
-        &args.out,
-        args.force,
-        chunk_epochs,
-        receive,
-    )
+    super::vehicles::each_vehicle(&scenario, &args.out, args.force, |view, out, force| {
+        synthesise(view, &signal, out, force, chunk_epochs, receive)
+    })
 }
 
 /// The synthesis session of `scenario` (observation level when it asks for it).
@@ -92,8 +92,13 @@ fn session<'a>(
         }
         Level::Signal => None,
     };
-    let session = SynthSession::new(world.synth_world(), signal, &scenario.errors, scenario.seed)
-        .map_err(|e| setup_error(scenario, e))?;
+    let session = SynthSession::new(
+        world.synth_world(),
+        signal,
+        &scenario.errors,
+        scenario.receiver_seed(),
+    )
+    .map_err(|e| setup_error(scenario, e))?;
     Ok(match model {
         Some(model) => session
             .observation_level(model, &scenario.observation.observed_signals)
