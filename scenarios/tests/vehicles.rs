@@ -51,8 +51,7 @@ fn each_vehicle_runs_as_a_single_platform_view_with_its_own_receiver_seed() {
     assert_eq!(s.platform, s.vehicles[0].platform);
     let err = s
         .build()
-        .err()
-        .expect("several vehicles are run per vehicle");
+        .expect_err("several vehicles are run per vehicle");
     assert_eq!(err.field, "vehicles");
     let views = s.vehicle_views();
     assert_eq!(views.len(), 2);
@@ -70,7 +69,7 @@ fn each_vehicle_runs_as_a_single_platform_view_with_its_own_receiver_seed() {
     }
     // A single-platform scenario is its own view, with the scenario seed.
     let single = parse_in(&ground(SITE), std::path::Path::new(".")).unwrap();
-    assert_eq!(single.vehicle_views(), [single.clone()]);
+    assert_eq!(single.vehicle_views(), std::slice::from_ref(&single));
     assert_eq!(single.receiver_seed(), single.seed);
 }
 
