@@ -2,8 +2,9 @@
 //! after the first relative to the first (the target), in the target's orbit frame (book
 //! eqs. 5-54/5-55, `orbits::frames::relative_in_target_frame`), at every geometry epoch
 //! of their `truth.h5` files. [`write_relative_truth`] writes it beside the vehicles'
-//! directories; [`read_relative_csv`] reads it back (for relative navigation's
-//! validation). Columns in docs/scenario.md.
+//! directories; `skyforge relnav` writes its estimates in the same layout
+//! ([`write_relative_csv`], `relnav.csv`); [`read_relative_csv`] reads either back.
+//! Columns in docs/scenario.md.
 
 use crate::FormatError;
 use crate::csv::{Fields, read_csv, require_columns};
@@ -17,6 +18,8 @@ use std::path::Path;
 
 /// The file's name in a multi-vehicle run's directory.
 pub const RELATIVE_CSV: &str = "relative.csv";
+/// What `skyforge relnav` writes, in the same layout.
+pub const RELNAV_CSV: &str = "relnav.csv";
 /// Most geometry epochs read from a truth file (48 days at 1 Hz).
 const MAX_ROWS: usize = 1 << 22;
 
@@ -37,7 +40,8 @@ const COLUMNS: [&str; 11] = [
 /// One row: a vehicle relative to the target at one epoch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RelativeRow {
-    pub t_s: f64,
+    /// The epoch (GPST); the file's `t_s` counts from the writer's start.
+    pub time: Epoch,
     pub vehicle: String,
     pub target: String,
     /// Position in the target's orbit frame (x along-track, y negative orbit normal, z
@@ -49,6 +53,38 @@ pub struct RelativeRow {
 
 /// A vehicle's name and its `truth.h5`.
 pub type VehicleTruth<'a> = (&'a str, &'a Path);
+
+/// Write `rows` (their `t_s` since `start`) as a `relative.csv` at `path`: the truth's
+/// layout, also what `skyforge relnav` writes its estimates in.
+pub fn write_relative_csv(
+    path: &Path,
+    start: Epoch,
+    rows: &[RelativeRow],
+) -> Result<(), FormatError> {
+    let write_err = |e: std::io::Error| FormatError::file(path, format!("cannot write: {e}"));
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(write_err)?);
+    writeln!(w, "{}", COLUMNS.join(",")).map_err(write_err)?;
+    for r in rows {
+        let (p, v) = (r.position_m, r.velocity_mps);
+        writeln!(
+            w,
+            "{},{:.3},{},{},{:.4},{:.4},{:.4},{:.6},{:.6},{:.6},{:.4}",
+            r.time,
+            (r.time - start).to_seconds(),
+            r.vehicle,
+            r.target,
+            p.x,
+            p.y,
+            p.z,
+            v.x,
+            v.y,
+            v.z,
+            p.norm()
+        )
+        .map_err(write_err)?;
+    }
+    w.flush().map_err(write_err)
+}
 
 /// Write `relative.csv` at `path`: each of `others` relative to `target`, at every epoch
 /// of the target's truth (all runs of one scenario share the epochs; a mismatch is an
@@ -67,9 +103,7 @@ pub fn write_relative_truth(
     let eci = |s: &PlatformSeries, k: usize| {
         earth.ecef_to_eci(s.t_s[k], &s.r_ecef_m[k], &s.v_ecef_mps[k])
     };
-    let write_err = |e: std::io::Error| FormatError::file(path, format!("cannot write: {e}"));
-    let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(write_err)?);
-    writeln!(w, "{}", COLUMNS.join(",")).map_err(write_err)?;
+    let mut rows = Vec::new();
     for (name, truth) in others {
         let (other_start, o) = open(truth)?;
         if other_start != start || o.t_s != t.t_s {
@@ -84,25 +118,17 @@ pub fn write_relative_truth(
         for k in 0..t.t_s.len() {
             let (rt, vt) = eci(&t, k);
             let (r, v) = eci(&o, k);
-            let (rho, rho_dot) = relative_in_target_frame(&rt, &vt, &r, &v);
-            writeln!(
-                w,
-                "{},{:.3},{name},{},{:.4},{:.4},{:.4},{:.6},{:.6},{:.6},{:.4}",
-                start + Unit::Second * t.t_s[k],
-                t.t_s[k],
-                target.0,
-                rho.x,
-                rho.y,
-                rho.z,
-                rho_dot.x,
-                rho_dot.y,
-                rho_dot.z,
-                rho.norm()
-            )
-            .map_err(write_err)?;
+            let (position_m, velocity_mps) = relative_in_target_frame(&rt, &vt, &r, &v);
+            rows.push(RelativeRow {
+                time: start + Unit::Second * t.t_s[k],
+                vehicle: name.to_string(),
+                target: target.0.to_string(),
+                position_m,
+                velocity_mps,
+            });
         }
     }
-    w.flush().map_err(write_err)
+    write_relative_csv(path, start, &rows)
 }
 
 /// Read `relative.csv` at `path`: every row, in file order.
@@ -113,7 +139,7 @@ pub fn read_relative_csv(path: &Path) -> Result<Vec<RelativeRow>, FormatError> {
         let f = Fields::new(path, line, header, text)?;
         let num = |c: &str| f.number(c)?.ok_or_else(|| f.error(format!("{c} is empty")));
         rows.push(RelativeRow {
-            t_s: num("t_s")?,
+            time: f.epoch("time_gpst")?,
             vehicle: f.text("vehicle")?.to_string(),
             target: f.text("target")?.to_string(),
             position_m: Vec3::new(num("x_m")?, num("y_m")?, num("z_m")?),
@@ -123,4 +149,40 @@ pub fn read_relative_csv(path: &Path) -> Result<Vec<RelativeRow>, FormatError> {
     };
     read_csv(path, |names| require_columns(path, names, &required), each)?;
     Ok(rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Rows written read back to the file's resolution (0.1 mm, 1 um/s).
+    #[test]
+    fn rows_read_back_as_written() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join(RELNAV_CSV);
+        let start = Epoch::from_gregorian(2023, 3, 12, 0, 0, 0, 0, hifitime::TimeScale::GPST);
+        let rows: Vec<RelativeRow> = (0..3_i32)
+            .map(|k| RelativeRow {
+                time: start + Unit::Second * f64::from(k),
+                vehicle: "chaser".into(),
+                target: "target".into(),
+                position_m: Vec3::new(-32_000.123_4 + f64::from(k), 0.5, 76.25),
+                velocity_mps: Vec3::new(0.001_234, -0.000_5, 0.361_5),
+            })
+            .collect();
+        write_relative_csv(&path, start, &rows).unwrap();
+        let read = read_relative_csv(&path).unwrap();
+        assert_eq!(read.len(), 3);
+        for (r, w) in read.iter().zip(&rows) {
+            assert_eq!(
+                (r.time, &r.vehicle, &r.target),
+                (w.time, &w.vehicle, &w.target)
+            );
+            assert!((r.position_m - w.position_m).norm() < 1e-4);
+            assert!((r.velocity_mps - w.velocity_mps).norm() < 1e-6);
+        }
+        std::fs::write(&path, "time_gpst,t_s\n").unwrap();
+        let e = read_relative_csv(&path).unwrap_err().to_string();
+        assert!(e.contains("no column vehicle"), "{e}");
+    }
 }

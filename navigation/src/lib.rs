@@ -19,3 +19,4 @@ pub mod integrity;
 pub mod orbit_determination;
 pub mod pvt;
 pub mod relative;
+pub mod relnav;

@@ -49,9 +49,7 @@ fn each_vehicle_runs_as_a_single_platform_view_with_its_own_receiver_seed() {
     assert_eq!(s.vehicles.len(), 2);
     // The scenario's own platform is the first vehicle's; it is not built as such.
     assert_eq!(s.platform, s.vehicles[0].platform);
-    let err = s
-        .build()
-        .expect_err("several vehicles are run per vehicle");
+    let err = s.build().expect_err("several vehicles are run per vehicle");
     assert_eq!(err.field, "vehicles");
     let views = s.vehicle_views();
     assert_eq!(views.len(), 2);

@@ -138,6 +138,15 @@ pub enum Command {
         #[command(flatten)]
         args: OdArgs,
     },
+    /// Relative navigation of two spacecraft (book section 5.6): the chaser relative to
+    /// the target in the target's orbit frame, from their two RINEX observation files and
+    /// a navigation file, as the difference of standalone fixes, of fixes on the common
+    /// satellites, or of carrier-smoothed fixes on them (--config). Writes DIR/relnav.csv
+    /// (the layout of a multi-vehicle run's relative.csv; docs/orbit-determination.md).
+    Relnav {
+        #[command(flatten)]
+        args: RelnavArgs,
+    },
     /// Integrity monitoring with several reference receivers (paper 002's B values):
     /// `run` monitors RINEX observation files, `calibrate` derives the thresholds from
     /// fault-free runs of a scenario (docs/integrity.md).
@@ -199,6 +208,34 @@ pub struct OdArgs {
     /// Filter settings (TOML; docs/orbit-determination.md); default: the documented ones.
     #[arg(long, value_name = "TOML")]
     pub config: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory (only one skyforge wrote).
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// What `relnav` is given.
+#[derive(Debug, Args)]
+pub struct RelnavArgs {
+    /// The target's observation file (RINEX 3).
+    pub target: PathBuf,
+    /// The chaser's observation file (RINEX 3).
+    pub chaser: PathBuf,
+    /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+    #[arg(long, value_name = "NAV")]
+    pub nav: PathBuf,
+    /// Settings (TOML: mode = "standalone" | "position-difference" | "carrier-smoothed",
+    /// signals, elevation_mask_deg, [smoothing]); default: position-difference.
+    #[arg(long, value_name = "TOML")]
+    pub config: Option<PathBuf>,
+    /// The vehicles' names in relnav.csv (those of the scenario's [[vehicles]], so that
+    /// `validate relnav` finds their truth).
+    #[arg(long, value_name = "NAME", default_value = "target")]
+    pub target_name: String,
+    #[arg(long, value_name = "NAME", default_value = "chaser")]
+    pub chaser_name: String,
     /// Output directory.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -420,6 +457,27 @@ pub enum ValidateSuite {
         orbit: PathBuf,
         /// Leave out the estimates of the first S seconds (the filter's convergence).
         #[arg(long, value_name = "S", default_value_t = 600.0)]
+        settle_s: f64,
+        /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
+    },
+    /// Compare `skyforge relnav`'s estimates with the relative truth of a multi-vehicle
+    /// run: per axis of the target's orbit frame the RMS and largest error of position
+    /// and velocity, and the 3-D RMS (docs/orbit-determination.md).
+    Relnav {
+        /// The run's directory (`skyforge run`/`synth --out` of a scenario with
+        /// [[vehicles]]): its relative.csv.
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// `skyforge relnav`'s output directory (relnav.csv).
+        #[arg(long, value_name = "RELDIR")]
+        relnav: PathBuf,
+        /// Leave out the estimates of the first S seconds (smoothing's transient).
+        #[arg(long, value_name = "S", default_value_t = 0.0)]
         settle_s: f64,
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]

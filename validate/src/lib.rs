@@ -8,6 +8,7 @@ pub mod draw;
 pub mod integrity;
 pub mod observables;
 pub mod orbit;
+pub mod relnav;
 pub mod report;
 pub mod stats;
 pub mod thesis;

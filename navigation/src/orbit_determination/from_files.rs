@@ -7,7 +7,7 @@ use super::{
     EcefEstimate, EpochFix, FixInput, OdConfig, OrbitDetermination, OrbitEstimate, PositionFilter,
     PositionFilterConfig,
 };
-use crate::pvt::{Fix, Measurement, PvtConfig, solve_velocity};
+use crate::pvt::{Fix, PvtConfig, records_velocity};
 use crate::relative::single_point_fixes;
 use hifitime::{Epoch, Unit};
 use skyforge_gnss::observation::{ObsEpoch, ObsFile};
@@ -93,21 +93,8 @@ fn doppler_velocity(
     origin: &TimeOrigin,
     fix: &Fix,
 ) -> Option<Vec3> {
-    let meas: Vec<Measurement> = (epoch.sats.iter())
-        .filter(|r| signals.contains(&r.signal))
-        .filter_map(|r| {
-            Some(Measurement {
-                sat: r.sat,
-                pseudorange_m: r.pseudorange_m?,
-                doppler_hz: r.doppler_hz,
-                signal: r.signal,
-            })
-        })
-        .collect();
     let t_s = origin.seconds_since_start(epoch.time);
-    solve_velocity(&meas, t_s, store, fix)
-        .ok()
-        .map(|v| v.v_ecef_mps)
+    records_velocity(&epoch.sats, signals, t_s, store, fix)
 }
 
 /// The filter's estimates at every epoch of `file` on the grid `k interval_s` (seconds

@@ -30,7 +30,7 @@ pub use raim::{chi2_survival, detection_parameters};
 pub use ranging::IonosphereCorrection;
 pub use smoothing::{CarrierSmoother, CodeAndCarrier, JUMP_SIGMAS, SmoothingConfig};
 pub use solve::{solve, solve_with};
-pub use velocity::solve_velocity;
+pub use velocity::{records_velocity, solve_velocity};
 
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;

@@ -3,9 +3,36 @@
 use super::geometry::sat_view;
 use super::{Fix, Measurement, PvtError, VelocityFix};
 use nalgebra::{DMatrix, DVector};
+use skyforge_gnss::observation::ObsRecord;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
 use skyforge_orbits::ephemeris::EphemerisStore;
+
+/// The Doppler velocity (ECEF) beside `fix` from an epoch's `records` on `signals`,
+/// received at `t_rx_s`, where it solves.
+pub fn records_velocity(
+    records: &[ObsRecord],
+    signals: &[Signal],
+    t_rx_s: f64,
+    store: &EphemerisStore,
+    fix: &Fix,
+) -> Option<Vec3> {
+    let meas: Vec<Measurement> = (records.iter())
+        .filter(|r| signals.contains(&r.signal))
+        .filter_map(|r| {
+            Some(Measurement {
+                sat: r.sat,
+                pseudorange_m: r.pseudorange_m?,
+                doppler_hz: r.doppler_hz,
+                signal: r.signal,
+            })
+        })
+        .collect();
+    solve_velocity(&meas, t_rx_s, store, fix)
+        .ok()
+        .map(|v| v.v_ecef_mps)
+}
 
 /// Least-squares velocity and receiver clock drift from the Doppler of `meas` (those that
 /// have one and are in `fix`), received at `t_rx_s`: the range rate `-lambda D` equals

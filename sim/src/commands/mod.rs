@@ -7,6 +7,7 @@ mod dry_run;
 mod monitor;
 mod od;
 mod receive;
+mod relnav;
 mod report;
 mod run;
 mod scenarios;
@@ -66,6 +67,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         },
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Od { args } => od::od(&args),
+        Command::Relnav { args } => relnav::relnav(&args),
         Command::Receive { args } => receive::receive(&args),
         Command::Ambiguity {
             file,
@@ -180,6 +182,21 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         } => validate::od(
             &truth,
             &orbit,
+            settle_s,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
+        Command::Validate {
+            suite:
+                ValidateSuite::Relnav {
+                    truth,
+                    relnav,
+                    settle_s,
+                    json,
+                    force,
+                },
+        } => validate::relnav(
+            &truth,
+            &relnav,
             settle_s,
             validate::JsonOut::new(json.as_deref(), force)?,
         ),

@@ -1,4 +1,4 @@
-//! `skyforge validate thesis`, `obs`, `attitude`, `monitor` and `od`.
+//! `skyforge validate thesis`, `obs`, `attitude`, `monitor`, `od` and `relnav`.
 
 use crate::bad_input::BadInput;
 use crate::output::staged_dir::StagedDir;
@@ -7,6 +7,7 @@ use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
 use skyforge_formats::orbit::ORBIT_H5;
+use skyforge_formats::relative::{RELATIVE_CSV, RELNAV_CSV};
 use skyforge_formats::truth::TRUTH_H5;
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
@@ -18,6 +19,7 @@ use skyforge_validate::observables::compare::{
 };
 use skyforge_validate::observables::table::print_comparison;
 use skyforge_validate::orbit::{compare_orbit, print_orbit};
+use skyforge_validate::relnav::{compare_relnav, print_relnav};
 use skyforge_validate::report::{Verdict, parse_results, print_table, write_json};
 use skyforge_validate::thesis::curves::{CURVES_FILE, CurvesFile};
 use skyforge_validate::thesis::{self, Options};
@@ -278,15 +280,35 @@ pub fn monitor(truth: &Path, monitor: &Path, json: JsonOut<'_>) -> anyhow::Resul
     json.write(&score)
 }
 
+/// A `--settle-s` value: finite and not negative.
+fn check_settle(settle_s: f64) -> Result<(), BadInput> {
+    if settle_s.is_finite() && settle_s >= 0.0 {
+        Ok(())
+    } else {
+        Err(BadInput(format!(
+            "--settle-s {settle_s}: must be a finite number of seconds >= 0"
+        )))
+    }
+}
+
+/// Compare `skyforge relnav`'s estimates in `relnav` with the relative truth of the run
+/// in `truth`, print the table and optionally write the JSON.
+pub fn relnav(truth: &Path, relnav: &Path, settle_s: f64, json: JsonOut<'_>) -> anyhow::Result<()> {
+    check_settle(settle_s)?;
+    let comparison = compare_relnav(
+        &truth.join(RELATIVE_CSV),
+        &relnav.join(RELNAV_CSV),
+        settle_s,
+    )
+    .map_err(|e| BadInput(e.to_string()))?;
+    print_relnav(&comparison, &mut std::io::stdout().lock())?;
+    json.write(&comparison)
+}
+
 /// Compare `skyforge od`'s orbit in `orbit` with the truth of the run in `truth`, print
 /// the table and optionally write the JSON.
 pub fn od(truth: &Path, orbit: &Path, settle_s: f64, json: JsonOut<'_>) -> anyhow::Result<()> {
-    if !(settle_s.is_finite() && settle_s >= 0.0) {
-        return Err(BadInput(format!(
-            "--settle-s {settle_s}: must be a finite number of seconds >= 0"
-        ))
-        .into());
-    }
+    check_settle(settle_s)?;
     let comparison = compare_orbit(&truth.join(TRUTH_H5), &orbit.join(ORBIT_H5), settle_s)
         .map_err(|e| BadInput(e.to_string()))?;
     print_orbit(&comparison, &mut std::io::stdout().lock())?;

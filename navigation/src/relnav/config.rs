@@ -1,0 +1,124 @@
+//! The settings of `skyforge relnav` (TOML, docs/orbit-determination.md).
+
+use crate::pvt::SmoothingConfig;
+use serde::Deserialize;
+use skyforge_gnss::signal::Signal;
+use skyforge_orbits::bounded_read::read_text;
+use std::path::Path;
+
+/// Largest configuration read (bytes).
+const MAX_CONFIG_BYTES: u64 = 1 << 20;
+
+/// How the relative state is formed (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum RelnavMode {
+    /// Book eq. 5-56: each vehicle's own fix, differenced.
+    Standalone,
+    /// Book eq. 5-57's measurement: fixes on the common satellites, differenced.
+    #[default]
+    PositionDifference,
+    /// Book eqs. 5-60..5-64 then as `PositionDifference`.
+    CarrierSmoothed,
+}
+
+impl RelnavMode {
+    /// The name the configuration and the outputs use.
+    pub fn name(self) -> &'static str {
+        match self {
+            RelnavMode::Standalone => "standalone",
+            RelnavMode::PositionDifference => "position-difference",
+            RelnavMode::CarrierSmoothed => "carrier-smoothed",
+        }
+    }
+}
+
+/// What relative navigation runs with.
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RelnavConfig {
+    #[serde(default)]
+    pub mode: RelnavMode,
+    /// The signals the fixes use; empty: every signal both files have.
+    #[serde(default)]
+    pub signals: Vec<Signal>,
+    /// Satellites below this elevation are not used (deg), as the receiver's PVT.
+    #[serde(default = "default_mask_deg")]
+    pub elevation_mask_deg: f64,
+    /// The carrier smoother's noise figures (mode `carrier-smoothed`).
+    #[serde(default)]
+    pub smoothing: SmoothingConfig,
+}
+
+fn default_mask_deg() -> f64 {
+    10.0
+}
+
+impl Default for RelnavConfig {
+    fn default() -> Self {
+        Self {
+            mode: RelnavMode::default(),
+            signals: Vec::new(),
+            elevation_mask_deg: default_mask_deg(),
+            smoothing: SmoothingConfig::default(),
+        }
+    }
+}
+
+impl RelnavConfig {
+    /// Parse and check a configuration's text.
+    pub fn parse(text: &str) -> Result<Self, String> {
+        let config: Self = toml::from_str(text).map_err(|e| e.to_string())?;
+        if !(0.0..90.0).contains(&config.elevation_mask_deg) {
+            return Err(format!(
+                "elevation_mask_deg = {}: must be in [0, 90)",
+                config.elevation_mask_deg
+            ));
+        }
+        let s = &config.smoothing;
+        for (name, v) in [
+            ("smoothing.code_sigma_m", s.code_sigma_m),
+            ("smoothing.phase_sigma_m", s.phase_sigma_m),
+            ("smoothing.max_gap_s", s.max_gap_s),
+        ] {
+            if !(v.is_finite() && v > 0.0 && v <= 1e4) {
+                return Err(format!("{name} = {v}: must be in (0, 1e4]"));
+            }
+        }
+        Ok(config)
+    }
+
+    /// Read and check the configuration at `path`; errors name the file.
+    pub fn read(path: &Path) -> Result<Self, String> {
+        let text = read_text(path, MAX_CONFIG_BYTES, "relative-navigation configuration")
+            .map_err(|e| e.to_string())?;
+        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn modes_and_checks() {
+        assert_eq!(RelnavConfig::parse("").unwrap(), RelnavConfig::default());
+        let c =
+            RelnavConfig::parse("mode = \"carrier-smoothed\"\n[smoothing]\ncode_sigma_m = 2.0\n")
+                .unwrap();
+        assert_eq!(c.mode, RelnavMode::CarrierSmoothed);
+        assert_eq!(c.smoothing.code_sigma_m, 2.0);
+        for (text, names) in [
+            ("mode = \"kalman\"", "kalman"),
+            ("elevation_mask_deg = 90", "elevation_mask_deg = 90"),
+            (
+                "[smoothing]\ncode_sigma_m = 0",
+                "smoothing.code_sigma_m = 0",
+            ),
+            ("mod = \"standalone\"", "mod"),
+        ] {
+            let e = RelnavConfig::parse(text).unwrap_err();
+            assert!(e.contains(names), "{text}: {e}");
+        }
+    }
+}

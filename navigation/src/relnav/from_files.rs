@@ -1,0 +1,209 @@
+//! Relative navigation on two observation files (module docs of [`super`]).
+
+use super::{RelnavConfig, RelnavMode};
+use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::relative::files::records_at;
+use crate::relative::single_point_fixes;
+use hifitime::Epoch;
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
+use skyforge_gnss::signal::Signal;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
+use skyforge_orbits::frames::earth_rotation::EarthRotation;
+use skyforge_orbits::frames::relative_in_target_frame;
+use skyforge_orbits::time::TimeOrigin;
+use std::collections::BTreeSet;
+
+/// Why relative navigation could not run on two files.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RelnavError {
+    #[error("{0}: no epochs")]
+    NoEpochs(String),
+    #[error("{target} and {chaser} share no epoch (within a millisecond)")]
+    NoCommonEpoch { target: String, chaser: String },
+    #[error("{target} and {chaser} share none of the signals {wanted}")]
+    NoSignal {
+        target: String,
+        chaser: String,
+        wanted: String,
+    },
+}
+
+/// The chaser relative to the target at one epoch (target orbit frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RelativeEstimate {
+    /// The target fix's time, seconds since the target file's first epoch (GPST).
+    pub t_s: f64,
+    pub position_m: Vec3,
+    /// The rate in the rotating frame.
+    pub velocity_mps: Vec3,
+    /// Satellites in the target's fix and in the chaser's.
+    pub satellites: (usize, usize),
+}
+
+/// What [`relative_from_files`] estimated.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RelnavRun {
+    /// The epoch `t_s` counts from: the target file's first.
+    pub start: Epoch,
+    pub mode: RelnavMode,
+    pub signals: Vec<Signal>,
+    pub estimates: Vec<RelativeEstimate>,
+    /// Common epochs without both fixes and velocities.
+    pub missed: usize,
+}
+
+/// The epochs the two files share, each vehicle's records of `signals` at them: all of
+/// them with `common == false`, those of satellite and signal pairs both have a
+/// pseudorange for otherwise.
+fn paired_files(
+    target: &ObsFile,
+    chaser: &ObsFile,
+    signals: &[Signal],
+    common: bool,
+) -> (ObsFile, ObsFile) {
+    let keep = |r: &ObsRecord| signals.contains(&r.signal) && r.pseudorange_m.is_some();
+    let empty = |f: &ObsFile| ObsFile {
+        source: f.source.clone(),
+        approx_ecef_m: f.approx_ecef_m,
+        codes: f.codes.clone(),
+        epochs: Vec::new(),
+        marker: f.marker.clone(),
+        dropped: Vec::new(),
+    };
+    let (mut t_out, mut c_out) = (empty(target), empty(chaser));
+    let mut cursor = 0;
+    for epoch in &target.epochs {
+        let Some((time, records)) = records_at(chaser, &mut cursor, epoch.time) else {
+            continue;
+        };
+        let t_keys: BTreeSet<_> = (epoch.sats.iter().filter(|r| keep(r)))
+            .map(|r| (r.sat, r.signal))
+            .collect();
+        let c_keys: BTreeSet<_> = (records.iter().filter(|r| keep(r)))
+            .map(|r| (r.sat, r.signal))
+            .collect();
+        let both = |r: &&ObsRecord| {
+            keep(r)
+                && (!common
+                    || (t_keys.contains(&(r.sat, r.signal)) && c_keys.contains(&(r.sat, r.signal))))
+        };
+        t_out.epochs.push(ObsEpoch {
+            time: epoch.time,
+            sats: epoch.sats.iter().filter(both).cloned().collect(),
+        });
+        c_out.epochs.push(ObsEpoch {
+            time,
+            sats: records.iter().filter(both).cloned().collect(),
+        });
+    }
+    (t_out, c_out)
+}
+
+/// The signals both files have among `wanted` (all of them when empty).
+fn shared_signals(target: &ObsFile, chaser: &ObsFile, wanted: &[Signal]) -> Vec<Signal> {
+    let has = |f: &ObsFile| -> BTreeSet<Signal> {
+        (f.epochs.iter())
+            .flat_map(|e| e.sats.iter().map(|r| r.signal))
+            .collect()
+    };
+    let both: Vec<Signal> = has(target).intersection(&has(chaser)).copied().collect();
+    if wanted.is_empty() {
+        both
+    } else {
+        wanted
+            .iter()
+            .filter(|s| both.contains(s))
+            .copied()
+            .collect()
+    }
+}
+
+/// `skyforge relnav`: the chaser (that recorded `chaser`) relative to the target (that
+/// recorded `target`), from their observations, the broadcast `ephemerides` and
+/// ionosphere, in `config`'s mode.
+pub fn relative_from_files(
+    target: &ObsFile,
+    chaser: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    config: &RelnavConfig,
+) -> Result<RelnavRun, RelnavError> {
+    let name = |f: &ObsFile| f.source.display().to_string();
+    for f in [target, chaser] {
+        if f.epochs.is_empty() {
+            return Err(RelnavError::NoEpochs(name(f)));
+        }
+    }
+    let start = target.epochs[0].time;
+    let signals = shared_signals(target, chaser, &config.signals);
+    if signals.is_empty() {
+        let wanted: Vec<String> = config.signals.iter().map(|s| s.to_string()).collect();
+        return Err(RelnavError::NoSignal {
+            target: name(target),
+            chaser: name(chaser),
+            wanted: if wanted.is_empty() {
+                "of either file".into()
+            } else {
+                wanted.join(", ")
+            },
+        });
+    }
+    let common = config.mode != RelnavMode::Standalone;
+    let (t_file, c_file) = paired_files(target, chaser, &signals, common);
+    if t_file.epochs.is_empty() {
+        return Err(RelnavError::NoCommonEpoch {
+            target: name(target),
+            chaser: name(chaser),
+        });
+    }
+    let origin = TimeOrigin::new(start);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let earth = EarthRotation::at_origin(start);
+    let pvt = PvtConfig {
+        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed).then_some(config.smoothing),
+        ..PvtConfig::default()
+    };
+    let t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &pvt);
+    let c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &pvt);
+    let state = |epoch: &ObsEpoch, fix: &Fix| {
+        let t_rx = origin.seconds_since_start(epoch.time);
+        let v = records_velocity(&epoch.sats, &signals, t_rx, &store, fix)?;
+        Some((fix.t_s, fix.r_ecef_m, v, fix.used.len()))
+    };
+    let mut estimates = Vec::new();
+    let mut missed = 0;
+    for k in 0..t_file.epochs.len() {
+        let (Ok(tf), Ok(cf)) = (&t_fixes[k], &c_fixes[k]) else {
+            missed += 1;
+            continue;
+        };
+        let (Some(t), Some(c)) = (state(&t_file.epochs[k], tf), state(&c_file.epochs[k], cf))
+        else {
+            missed += 1;
+            continue;
+        };
+        // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
+        let r_c = c.1 + c.2 * (t.0 - c.0);
+        let (rt, vt) = earth.ecef_to_eci(t.0, &t.1, &t.2);
+        let (rc, vc) = earth.ecef_to_eci(t.0, &r_c, &c.2);
+        let (position_m, velocity_mps) = relative_in_target_frame(&rt, &vt, &rc, &vc);
+        estimates.push(RelativeEstimate {
+            t_s: t.0,
+            position_m,
+            velocity_mps,
+            satellites: (t.3, c.3),
+        });
+    }
+    Ok(RelnavRun {
+        start,
+        mode: config.mode,
+        signals,
+        estimates,
+        missed,
+    })
+}

@@ -1,0 +1,68 @@
+//! `skyforge relnav`: two spacecraft's RINEX observation files + navigation file -> the
+//! chaser relative to the target in the target's orbit frame
+//! (`navigation::relnav::relative_from_files`), written to `DIR/relnav.csv`
+//! (`formats::relative`).
+
+use crate::bad_input::BadInput;
+use crate::cli::RelnavArgs;
+use crate::output::staged_dir::StagedDir;
+use hifitime::Unit;
+use skyforge_formats::relative::{RELNAV_CSV, RelativeRow, write_relative_csv};
+use skyforge_navigation::relnav::{RelnavConfig, relative_from_files};
+use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
+
+/// Run `skyforge relnav`.
+pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
+    let config = match &args.config {
+        Some(path) => RelnavConfig::read(path).map_err(BadInput)?,
+        None => RelnavConfig::default(),
+    };
+    for (flag, name) in [
+        ("--target-name", &args.target_name),
+        ("--chaser-name", &args.chaser_name),
+    ] {
+        if name.is_empty() || name.contains(',') || name.chars().any(char::is_control) {
+            return Err(BadInput(format!(
+                "{flag} {name:?}: a non-empty name without commas or control characters"
+            ))
+            .into());
+        }
+    }
+    let target = super::read_observations(&args.target)?;
+    let chaser = super::read_observations(&args.chaser)?;
+    let ephemerides = super::attitude::read_nav(&args.nav)?;
+    let iono =
+        read_iono_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    let run = relative_from_files(&target, &chaser, ephemerides, &iono, &config)
+        .map_err(|e| BadInput(e.to_string()))?;
+    if run.estimates.is_empty() {
+        return Err(BadInput(format!(
+            "{} and {}: no common epoch with both fixes and velocities ({} tried)",
+            args.target.display(),
+            args.chaser.display(),
+            run.missed
+        ))
+        .into());
+    }
+    let rows: Vec<RelativeRow> = (run.estimates.iter())
+        .map(|e| RelativeRow {
+            time: run.start + Unit::Second * e.t_s,
+            vehicle: args.chaser_name.clone(),
+            target: args.target_name.clone(),
+            position_m: e.position_m,
+            velocity_mps: e.velocity_mps,
+        })
+        .collect();
+    let staged = StagedDir::create(&args.out, args.force)?;
+    write_relative_csv(&staged.file(RELNAV_CSV), run.start, &rows)?;
+    let dir = staged.commit()?;
+    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
+    println!("mode       {} ({})", run.mode.name(), signals.join(", "));
+    println!(
+        "epochs     {} estimates, {} common epochs without both fixes",
+        run.estimates.len(),
+        run.missed
+    );
+    println!("wrote      {}", dir.join(RELNAV_CSV).display());
+    Ok(())
+}
