@@ -16,7 +16,8 @@
 # `run` of thesis-leo (24 h geometry truth), then (unless BIT_IDENTITY_MORE=0) issue #31's
 # attitude-leo-gps through synth, receive --geometry and attitude, the integrity-lab
 # monitor and a small study. BIT_IDENTITY_RECEIVER=0 compares the synthesis alone (for a
-# change meant to alter the receiver's numbers). Exits 1 on the first difference, naming
+# change meant to alter the receiver's numbers); BIT_IDENTITY_NEW_FILES names outputs the
+# change adds (below). Exits 1 on the first difference, naming
 # the files that differ. Needs about 10 GB of disk under --work (default: a temporary
 # directory, removed at the end).
 set -euo pipefail
@@ -70,9 +71,22 @@ digest() {
    find . -type f -name '*.runs.jsonl' | sort | while read -r f; do echo "$(sort "$f" | sha256sum | cut -d' ' -f1)  $f (lines sorted)"; done)
 }
 
+# Files the working tree writes that the base did not (an output added by the change,
+# e.g. BIT_IDENTITY_NEW_FILES='truth\.sp3'): an extended regular expression of paths
+# (relative, without ./) left out of the new side only; every file both write must
+# still be identical.
+new_files=${BIT_IDENTITY_NEW_FILES:-}
+digest_new() {
+  if [ -n "$new_files" ]; then
+    digest "$1" | grep -v -E "  \./($new_files)\$" || true
+  else
+    digest "$1"
+  fi
+}
+
 # Compare directories $1/base/$2 and $1/new/$2.
 same() {
-  if ! diff <(digest "$1/base/$2") <(digest "$1/new/$2") >"$1/diff.txt"; then
+  if ! diff <(digest "$1/base/$2") <(digest_new "$1/new/$2") >"$1/diff.txt"; then
     echo "bit-identity: DIFFERENT in $2:" >&2
     cat "$1/diff.txt" >&2
     exit 1

@@ -143,6 +143,13 @@ const BUNDLED: &[Bundled] = &[
                   today's satellite errors and Doppler noise, for `skyforge od`",
         text: include_str!("../bundled/od-leo.toml"),
     },
+    Bundled {
+        name: "book-relnav-leo",
+        summary: "Book 5.6.4: two LEOs (target, chaser) at 500 km, e = 0.01, 32 km apart, \
+                  600 s, GPS L1 C/A at the observation level with SA-era satellite errors \
+                  and Doppler noise, for `skyforge relnav` (B-5.6)",
+        text: include_str!("../bundled/book-relnav-leo.toml"),
+    },
 ];
 
 /// Every bundled scenario.

@@ -1,5 +1,6 @@
 //! The settings of `skyforge relnav` (TOML, docs/orbit-determination.md).
 
+use crate::orbit_determination::PositionFilterConfig;
 use crate::pvt::SmoothingConfig;
 use serde::Deserialize;
 use skyforge_gnss::signal::Signal;
@@ -48,6 +49,12 @@ pub struct RelnavConfig {
     /// The carrier smoother's noise figures (mode `carrier-smoothed`).
     #[serde(default)]
     pub smoothing: SmoothingConfig,
+    /// The target's own orbit filter (`skyforge od`'s position filter on its fixes,
+    /// every epoch): its state orients the target frame (eq. 5-55's `M` and the frame's
+    /// rate). One fix's Doppler velocity would turn the frame by its noise: 0.4 m/s of
+    /// 7.6 km/s is 5e-5 rad, 1.7 m across a 32 km separation.
+    #[serde(default)]
+    pub target_orbit: PositionFilterConfig,
 }
 
 fn default_mask_deg() -> f64 {
@@ -61,6 +68,7 @@ impl Default for RelnavConfig {
             signals: Vec::new(),
             elevation_mask_deg: default_mask_deg(),
             smoothing: SmoothingConfig::default(),
+            target_orbit: PositionFilterConfig::default(),
         }
     }
 }
@@ -75,6 +83,10 @@ impl RelnavConfig {
                 config.elevation_mask_deg
             ));
         }
+        config
+            .target_orbit
+            .check()
+            .map_err(|e| format!("target_orbit.{e}"))?;
         let s = &config.smoothing;
         for (name, v) in [
             ("smoothing.code_sigma_m", s.code_sigma_m),

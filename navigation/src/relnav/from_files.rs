@@ -1,6 +1,7 @@
 //! Relative navigation on two observation files (module docs of [`super`]).
 
 use super::{RelnavConfig, RelnavMode};
+use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{Fix, PvtConfig, records_velocity};
 use crate::relative::files::records_at;
 use crate::relative::single_point_fixes;
@@ -9,9 +10,9 @@ use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::frames::relative_in_target_frame;
+use skyforge_orbits::frames::relative_in_frame_of;
 use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeSet;
 
@@ -40,6 +41,10 @@ pub struct RelativeEstimate {
     pub velocity_mps: Vec3,
     /// Satellites in the target's fix and in the chaser's.
     pub satellites: (usize, usize),
+    /// How long the target's fix has used the same satellites, without a missed epoch
+    /// (s): the book's steady state (5.6.5) needs neither vehicle to have changed
+    /// satellites (in the common modes both use the same) and the smoothing to have run.
+    pub same_satellites_s: f64,
 }
 
 /// What [`relative_from_files`] estimated.
@@ -99,6 +104,29 @@ fn paired_files(
         });
     }
     (t_out, c_out)
+}
+
+/// `file`'s epochs with the records of the satellites both fixes of the epoch used
+/// (none where either has no fix).
+fn restricted(
+    file: &ObsFile,
+    t_fixes: &[Result<Fix, String>],
+    c_fixes: &[Result<Fix, String>],
+) -> ObsFile {
+    let mut out = file.clone();
+    for (k, epoch) in out.epochs.iter_mut().enumerate() {
+        let used = |f: &Result<Fix, String>| -> BTreeSet<SatId> {
+            f.as_ref()
+                .map(|f| f.used.iter().map(|u| u.0).collect())
+                .unwrap_or_default()
+        };
+        let both: BTreeSet<SatId> = used(&t_fixes[k])
+            .intersection(&used(&c_fixes[k]))
+            .copied()
+            .collect();
+        epoch.sats.retain(|r| both.contains(&r.sat));
+    }
+    out
 }
 
 /// The signals both files have among `wanted` (all of them when empty).
@@ -168,35 +196,76 @@ pub fn relative_from_files(
         carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed).then_some(config.smoothing),
         ..PvtConfig::default()
     };
-    let t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &pvt);
-    let c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &pvt);
+    let mut t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &pvt);
+    let mut c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &pvt);
+    if common {
+        // Each receiver's elevation mask and residual test choose among the common
+        // satellites on their own (a satellite at the mask for one vehicle is just below
+        // it for the other, 32 km away): the fixes again on the satellites both fixes
+        // used, with neither (module docs).
+        let (t_file, c_file) = (
+            restricted(&t_file, &t_fixes, &c_fixes),
+            restricted(&c_file, &t_fixes, &c_fixes),
+        );
+        let same = PvtConfig {
+            elevation_mask_rad: -std::f64::consts::FRAC_PI_2,
+            raim_pfa: 0.0,
+            ..pvt
+        };
+        t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &same);
+        c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &same);
+    }
     let state = |epoch: &ObsEpoch, fix: &Fix| {
         let t_rx = origin.seconds_since_start(epoch.time);
         let v = records_velocity(&epoch.sats, &signals, t_rx, &store, fix)?;
         Some((fix.t_s, fix.r_ecef_m, v, fix.used.len()))
     };
+    let mut orbit = PositionFilter::new(config.target_orbit.clone(), start);
     let mut estimates = Vec::new();
     let mut missed = 0;
+    // The target fix's satellites and since when it has used them.
+    let mut set: Option<(BTreeSet<SatId>, f64)> = None;
     for k in 0..t_file.epochs.len() {
         let (Ok(tf), Ok(cf)) = (&t_fixes[k], &c_fixes[k]) else {
             missed += 1;
+            set = None;
             continue;
         };
         let (Some(t), Some(c)) = (state(&t_file.epochs[k], tf), state(&c_file.epochs[k], cf))
         else {
             missed += 1;
+            set = None;
             continue;
         };
+        let used: BTreeSet<SatId> = tf.used.iter().map(|u| u.0).collect();
+        let since = match &set {
+            Some((s, since)) if *s == used => *since,
+            _ => t.0,
+        };
+        set = Some((used, since));
         // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
         let r_c = c.1 + c.2 * (t.0 - c.0);
         let (rt, vt) = earth.ecef_to_eci(t.0, &t.1, &t.2);
         let (rc, vc) = earth.ecef_to_eci(t.0, &r_c, &c.2);
-        let (position_m, velocity_mps) = relative_in_target_frame(&rt, &vt, &rc, &vc);
+        // The frame from the target's filtered orbit (config docs).
+        let filtered = orbit.update(&FixInput {
+            t_s: t.0,
+            r_ecef_m: t.1,
+            v_ecef_mps: Some(t.2),
+            gdop: tf.dop.gdop,
+        });
+        let (position_m, velocity_mps) = relative_in_frame_of(
+            &filtered.r_eci_m,
+            &filtered.v_eci_mps,
+            &(rc - rt),
+            &(vc - vt),
+        );
         estimates.push(RelativeEstimate {
             t_s: t.0,
             position_m,
             velocity_mps,
             satellites: (t.3, c.3),
+            same_satellites_s: t.0 - since,
         });
     }
     Ok(RelnavRun {

@@ -7,16 +7,23 @@
 //! - `standalone`: each vehicle's own single-point fix on the satellites it tracks, then
 //!   the difference (eq. 5-56); errors about sqrt(2) times a fix's where the satellite
 //!   sets differ;
-//! - `position-difference`: both fixes on the satellites both track, then the difference
+//! - `position-difference`: both fixes on the satellites both use, then the difference
 //!   (the measurement of eq. 5-57): the satellites' orbit and clock errors and most of
-//!   the atmosphere cancel (eq. 5-58: what remains is twice a receiver's noise variance);
+//!   the atmosphere cancel (eq. 5-58: what remains is twice a receiver's noise variance).
+//!   "Both use": each receiver's fix first with its own elevation mask and residual test,
+//!   then both again on the satellites both of those fixes used, with neither (a
+//!   satellite at the mask for one vehicle is just below it for the other, and under SA
+//!   one satellite more or less moves a fix by tens of metres);
 //! - `carrier-smoothed`: as `position-difference`, each vehicle's code first smoothed by
 //!   its carrier with the book's growing-memory filter (eqs. 5-60..5-64,
 //!   `pvt::CarrierSmoother`), restarted where a satellite leaves the common set; no
 //!   filter after the smoothing (the book: the smoothed fixes are correlated in time).
 //!
 //! Velocities are the difference of the two Doppler velocities (eq. 5-56b's rotating-frame
-//! rate). Each chaser fix is moved to the target fix's instant with its own velocity (the
+//! rate). The frame (eq. 5-55's `M`, from the target's state) is oriented by the target's
+//! own orbit filter on its fixes (`orbit_determination::PositionFilter`): the book's
+//! target "sends its state", and a single fix's Doppler velocity would turn the frame by
+//! its noise. Each chaser fix is moved to the target fix's instant with its own velocity (the
 //! receivers' clocks tag their epochs differently: a millisecond is 7.5 m along-track).
 //! Reads only what the receivers could: observations, broadcast ephemerides, settings.
 

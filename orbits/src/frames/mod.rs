@@ -9,6 +9,6 @@ pub(crate) mod orbital;
 
 pub use geodetic::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 pub use ned::{az_el, c_ecef_ned};
-pub use orbital::{c_orbital_eci, c_rac_eci, relative_in_target_frame};
+pub use orbital::{c_orbital_eci, c_rac_eci, relative_in_frame_of, relative_in_target_frame};
 
 pub use euler::YawPitchRoll;

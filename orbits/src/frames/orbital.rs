@@ -43,10 +43,28 @@ pub fn relative_in_target_frame(
     r_eci_m: &Vec3,
     v_eci_mps: &Vec3,
 ) -> (Vec3, Vec3) {
-    let m = c_orbital_eci(target_r_eci_m, target_v_eci_mps).transpose();
-    let rho = m * (r_eci_m - target_r_eci_m);
-    let w_eci = target_r_eci_m.cross(target_v_eci_mps) / target_r_eci_m.norm_squared();
-    let rho_dot = m * (v_eci_mps - target_v_eci_mps) - (m * w_eci).cross(&rho);
+    relative_in_frame_of(
+        target_r_eci_m,
+        target_v_eci_mps,
+        &(r_eci_m - target_r_eci_m),
+        &(v_eci_mps - target_v_eci_mps),
+    )
+}
+
+/// [`relative_in_target_frame`] of the ECI differences `dr`, `dv` (chaser less target),
+/// the frame from the target state `frame_r`, `frame_v` (which need not be the one the
+/// differences were taken from: a navigation filter's target state orients the frame
+/// better than one noisy fix).
+pub fn relative_in_frame_of(
+    frame_r_eci_m: &Vec3,
+    frame_v_eci_mps: &Vec3,
+    dr_eci_m: &Vec3,
+    dv_eci_mps: &Vec3,
+) -> (Vec3, Vec3) {
+    let m = c_orbital_eci(frame_r_eci_m, frame_v_eci_mps).transpose();
+    let rho = m * dr_eci_m;
+    let w_eci = frame_r_eci_m.cross(frame_v_eci_mps) / frame_r_eci_m.norm_squared();
+    let rho_dot = m * dv_eci_mps - (m * w_eci).cross(&rho);
     (rho, rho_dot)
 }
 

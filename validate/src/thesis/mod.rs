@@ -13,6 +13,7 @@ mod geometry_run;
 pub(crate) mod loop_budget;
 pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
+pub(crate) mod relative_navigation;
 pub(crate) mod reverse_filter;
 pub(crate) mod visibility;
 pub(crate) mod zero_baseline;
@@ -30,7 +31,7 @@ use std::path::{Path, PathBuf};
 /// Table identifiers `validate thesis --only` accepts, in run order.
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
-    "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5",
+    "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5", "B-5.6",
 ];
 
 /// Why a validation could not run.
@@ -248,6 +249,13 @@ const UNITS: &[Unit] = &[
         kind: Kind::PerRun,
         scenarios: &[Source::Bundled(orbit_determination::SCENARIO)],
         evaluate: |_, _, draw| orbit_determination::rows(draw),
+        figures: None,
+    },
+    Unit {
+        tables: &[relative_navigation::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(relative_navigation::SCENARIO)],
+        evaluate: |_, _, draw| relative_navigation::rows(draw),
         figures: None,
     },
 ];
