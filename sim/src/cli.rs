@@ -355,7 +355,8 @@ pub enum ValidateSuite {
     /// T-3.2, T-3.3-R, T-3.3-S, T-5.4-2, T-5.4-3, T-5.4-4, T-5.4-5, and paper 002's P2-4.2
     /// (its fault cases, 20 seeds) and P2-PD (detection curves, 1000 runs, minutes), and the
     /// RAIM Monte Carlo B-5.2-1 and B-5.2-2 against Yuan 2000 tables 5-1 and 5-2, and
-    /// B-5.5, the book's orbit determination of a LEO (table 5-3, four 2 h runs, seconds).
+    /// B-5.5, the book's orbit determination of a LEO (table 5-3, four 2 h runs, seconds),
+    /// and B-5.6, its relative navigation of two spacecraft (four 600 s runs, seconds).
     /// T-5.4-2 synthesises its
     /// bundled scenario (60 s, four recordings, about 2 GB in the temporary directory) and
     /// runs the receiver on it; the attitude tables run observation-level scenarios on
