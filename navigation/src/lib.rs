@@ -12,6 +12,7 @@
 pub mod ambiguity;
 pub mod attitude;
 pub mod baseline;
+mod config_file;
 pub mod continued_fraction;
 pub mod geometry_file;
 pub mod geometry_offset;

@@ -1,13 +1,10 @@
 //! The monitor's settings (TOML, docs/integrity.md).
 
 use super::thresholds::ThresholdConfig;
+use crate::config_file::read_settings;
 use serde::{Deserialize, Serialize};
-use skyforge_orbits::bounded_read::read_text;
 use skyforge_orbits::check::{GROUND_RADIUS_M, check_position};
 use std::path::Path;
-
-/// Largest monitor configuration read (bytes).
-const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// A station's antenna position, given instead of the RINEX header's approximate one.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -83,9 +80,7 @@ impl MonitorConfig {
 
     /// Read and check the configuration at `path`; errors name the file.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let text = read_text(path, MAX_CONFIG_BYTES, "monitor configuration")
-            .map_err(|e| e.to_string())?;
-        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+        read_settings(path, "monitor configuration", Self::parse)
     }
 
     /// Whether the values are usable.

@@ -2,13 +2,10 @@
 //! filter takes and which filter it is.
 
 use super::PositionFilterConfig;
+use crate::config_file::read_settings;
 use serde::Deserialize;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::bounded_read::read_text;
 use std::path::Path;
-
-/// Largest configuration read (bytes).
-const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// What orbit determination runs on and with.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
@@ -72,9 +69,7 @@ impl OdConfig {
 
     /// Read and check the configuration at `path`; errors name the file.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let text = read_text(path, MAX_CONFIG_BYTES, "orbit-determination configuration")
-            .map_err(|e| e.to_string())?;
-        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+        read_settings(path, "orbit-determination configuration", Self::parse)
     }
 
     /// Whether the values are usable: each names the field, its value and what is allowed.

@@ -1,14 +1,11 @@
 //! The settings of `skyforge relnav` (TOML, docs/orbit-determination.md).
 
+use crate::config_file::read_settings;
 use crate::orbit_determination::PositionFilterConfig;
 use crate::pvt::SmoothingConfig;
 use serde::Deserialize;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::bounded_read::read_text;
 use std::path::Path;
-
-/// Largest configuration read (bytes).
-const MAX_CONFIG_BYTES: u64 = 1 << 20;
 
 /// How the relative state is formed (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
@@ -102,9 +99,7 @@ impl RelnavConfig {
 
     /// Read and check the configuration at `path`; errors name the file.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let text = read_text(path, MAX_CONFIG_BYTES, "relative-navigation configuration")
-            .map_err(|e| e.to_string())?;
-        Self::parse(&text).map_err(|e| format!("{}: {e}", path.display()))
+        read_settings(path, "relative-navigation configuration", Self::parse)
     }
 }
 
