@@ -11,8 +11,8 @@ pub(crate) mod seed;
 pub(crate) mod troposphere;
 
 pub use clock::{
-    ClockModel, ClockSample, OscillatorConfig, OscillatorPreset, PowerLaw, overlapping_adev,
-    overlapping_avar, predicted_adev, predicted_avar,
+    ClockModel, ClockSample, OffsetPoint, OscillatorConfig, OscillatorPreset, PowerLaw,
+    RelativisticOffset, overlapping_adev, overlapping_avar, predicted_adev, predicted_avar,
 };
 pub use events::{EventConfig, EventKind, EventSchedule};
 pub use ionosphere::{

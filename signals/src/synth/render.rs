@@ -19,7 +19,7 @@ use super::mix::{ChannelBlock, Chips, MixScratch, mix_into, mix_pair_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
 use super::transmitter::Transmitter;
-use crate::errors::clock::{ClockModel, ClockSample};
+use crate::errors::clock::{ClockModel, ClockSample, OffsetPoint, interpolate};
 use crate::errors::events::{EventEffect, EventSchedule};
 use crate::errors::multipath::{Path, dll_bias_m};
 use rayon::prelude::*;
@@ -108,6 +108,9 @@ pub struct Synthesiser<'a> {
     clock_every: u64,
     /// Each clock's latest sample.
     clock_last: Vec<Option<ClockSample>>,
+    /// The clocks' relativistic offset at the previous and the next geometry epoch
+    /// ([`Self::set_clock_relativity`]), added to every clock sample between them.
+    relativity: Option<(OffsetPoint, OffsetPoint)>,
     events: Option<EventSchedule>,
     filter: Option<BandFilter>,
     /// Rendered bytes held at once per antenna ([`SLICE_BYTES`] by default).
@@ -155,6 +158,7 @@ impl<'a> Synthesiser<'a> {
             clocks: Vec::new(),
             clock_every: 1,
             clock_last: Vec::new(),
+            relativity: None,
             events: None,
             filter: None,
             slice_bytes: SLICE_BYTES,
@@ -232,6 +236,14 @@ impl<'a> Synthesiser<'a> {
         self.cfg.format
     }
 
+    /// The receiver clock's relativistic offset at the next epoch handed over: the samples
+    /// rendered up to it get the offset interpolated from the previous one's (the first
+    /// point sets both).
+    pub fn set_clock_relativity(&mut self, point: OffsetPoint) {
+        let previous = self.relativity.map_or(point, |(_, next)| next);
+        self.relativity = Some((previous, point));
+    }
+
     /// Hand over the links at the epoch `t_s` (true time; `links[a * n_tx + tx]`, `None`
     /// when not visible). The blocks whose receiver time lies between the previous epoch
     /// and this one are rendered and handed, per antenna and in order, to `out(a, bytes)`,
@@ -275,14 +287,28 @@ impl<'a> Synthesiser<'a> {
             return vec![Vec::new()];
         }
         let every = self.clock_every;
+        let relativity = self.relativity;
         self.clocks
             .iter_mut()
             .zip(&mut self.clock_last)
             .map(|(clock, last)| {
                 (b0..b1)
-                    .map(|b| match last {
-                        Some(s) if b % every != 0 => *s,
-                        _ => *last.insert(clock.step()),
+                    .map(|b| {
+                        let sample = match last {
+                            Some(s) if b % every != 0 => *s,
+                            _ => *last.insert(clock.step()),
+                        };
+                        match &relativity {
+                            Some((a, z)) => {
+                                let (offset, rate) = interpolate(a, z, b as f64 * BLOCK_S);
+                                ClockSample {
+                                    phase_s: sample.phase_s + offset,
+                                    freq: sample.freq + rate,
+                                    ..sample
+                                }
+                            }
+                            None => sample,
+                        }
                     })
                     .collect()
             })

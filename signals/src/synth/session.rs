@@ -17,7 +17,7 @@ use super::quantise::QuantiseError;
 use super::render::{LinkTruth, Synthesiser};
 use super::transmitter::Transmitter;
 use crate::antenna::Antenna;
-use crate::errors::clock::ClockModel;
+use crate::errors::clock::{ClockModel, RelativisticOffset, proper_rate};
 use crate::errors::events::EventSchedule;
 use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
 use crate::errors::seed::{Stream, stream_rng};
@@ -714,6 +714,9 @@ impl<'a> SynthSession<'a> {
             sinks,
             model: self.observation_model,
             elevations: vec![0.0; n_ant * sats.len()],
+            relativity: (self.errors.receiver_clock.as_ref())
+                .filter(|c| c.relativity)
+                .map(|_| RelativisticOffset::new()),
         };
         truth
             .stream(world.platform, world.duration_s, chunk_epochs, |chunk| {
@@ -751,6 +754,9 @@ struct Running<'r, 't, 's> {
     /// Link elevations (rad) at the previous geometry epoch, antenna-major: the epoch the
     /// whole-second truth of the current interval belongs to.
     elevations: Vec<f64>,
+    /// The receiver clocks' relativistic offset along the platform's trajectory
+    /// (`[errors.receiver_clock] relativity`).
+    relativity: Option<RelativisticOffset>,
 }
 
 impl Running<'_, '_, '_> {
@@ -769,6 +775,12 @@ impl Running<'_, '_, '_> {
         let n_ant = self.antennas.len();
         let st = &chunk.platform[k];
         self.start_state.get_or_insert((st.r_ecef_m, st.v_ecef_mps));
+        if let Some(offset) = self.relativity.as_mut() {
+            let point = offset.push(chunk.t_s[k], proper_rate(&st.r_ecef_m, &st.v_ecef_mps));
+            for synth in self.synths.iter_mut() {
+                synth.set_clock_relativity(point);
+            }
+        }
         let at_antenna: Vec<AntennaEpoch> = self
             .antennas
             .iter()

@@ -9,9 +9,11 @@
 
 mod allan;
 mod model;
+mod relativity;
 
 pub use allan::{overlapping_adev, overlapping_avar, predicted_adev, predicted_avar};
 pub use model::{ClockModel, ClockSample};
+pub use relativity::{OffsetPoint, RelativisticOffset, interpolate, proper_rate};
 
 use skyforge_orbits::check::{Allowed, Invalid};
 
@@ -122,6 +124,11 @@ pub struct OscillatorConfig {
     /// `true`: each antenna has its own, independent oscillator (one receiver each).
     #[serde(default)]
     pub per_antenna: bool,
+    /// `true`: the clock keeps its platform's proper time, the relativistic offset of a
+    /// moving clock against GPS time added (book eqs. 5-16/5-17; [`RelativisticOffset`]).
+    /// `false` (default): the oscillator alone, as every scenario before.
+    #[serde(default)]
+    pub relativity: bool,
 }
 
 impl OscillatorConfig {
@@ -235,6 +242,7 @@ mod tests {
             bias_s: 0.0,
             drift: 0.0,
             per_antenna: false,
+            relativity: false,
         };
         assert!(base.check().is_ok());
         let field = |c: OscillatorConfig| c.check().err().map(|e| e.field);
