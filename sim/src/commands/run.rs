@@ -105,7 +105,10 @@ fn run_geometry(scenario: &Scenario, out: &Path, force: bool) -> anyhow::Result<
             *sum as f64 / n_epochs as f64
         );
     }
-    println!("wrote      {}", dir.join(TRUTH_H5).display());
+    println!(
+        "wrote      {}",
+        StagedDir::final_path(&dir.join(TRUTH_H5)).display()
+    );
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
 }

@@ -267,7 +267,7 @@ pub fn synthesise(
             }
         );
     }
-    println!("wrote      {}", dir.display());
+    println!("wrote      {}", StagedDir::final_path(&dir).display());
     println!("elapsed    {:.2} s", started.elapsed().as_secs_f64());
     Ok(())
 }

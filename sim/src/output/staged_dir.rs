@@ -150,6 +150,22 @@ impl StagedDir {
         })
     }
 
+    /// Where `path`, inside this process's staging directories (a vehicle's output
+    /// staged within its run's), will be once they are committed: each
+    /// `.NAME.partial-PID` component named `NAME`. For the lines a command prints.
+    pub fn final_path(path: &Path) -> PathBuf {
+        let suffix = format!(".partial-{}", std::process::id());
+        path.components()
+            .map(|c| {
+                let text = c.as_os_str().to_string_lossy();
+                match text.strip_prefix('.').and_then(|t| t.strip_suffix(&suffix)) {
+                    Some(name) => std::ffi::OsString::from(name),
+                    None => c.as_os_str().to_os_string(),
+                }
+            })
+            .collect()
+    }
+
     /// Path of a file inside the staging directory.
     pub fn file(&self, name: &str) -> PathBuf {
         self.staging.join(name)
@@ -237,5 +253,14 @@ mod tests {
     fn the_aside_name_keeps_the_staging_pid() {
         let aside = aside_name(Path::new("dir/.out.partial-123"));
         assert_eq!(aside, Path::new("dir/.out.partial-123.old"));
+        let nested = Path::new("runs")
+            .join(format!(".pair.partial-{}", std::process::id()))
+            .join("chaser");
+        assert_eq!(
+            StagedDir::final_path(&nested),
+            Path::new("runs/pair/chaser")
+        );
+        let other = Path::new("runs/.pair.partial-1/chaser");
+        assert_eq!(StagedDir::final_path(other), other);
     }
 }
