@@ -6,27 +6,6 @@ mod support;
 
 use std::path::Path;
 
-/// A vehicle of the book's 500 km, e = 0.01 orbit at mean anomaly `anomaly_deg`, one
-/// zenith antenna.
-fn vehicle(name: &str, anomaly_deg: f64) -> String {
-    format!(
-        r#"
-[[vehicles]]
-name = "{name}"
-[vehicles.platform.leo.elements]
-semi_major_axis_km = 6878.137
-eccentricity = 0.01
-inclination_deg = 98.0
-raan_deg = 0.0
-arg_perigee_deg = 0.0
-mean_anomaly_deg = {anomaly_deg:?}
-[[vehicles.antennas]]
-name = "ant1"
-position_body_m = [0.0, 0.0, 0.0]
-"#
-    )
-}
-
 /// 90 s of GPS L1 C/A at 4 Msps (as interop-leo-gps), today's satellite errors, a TCXO
 /// per receiver.
 const HEAD: &str = r#"
@@ -76,8 +55,8 @@ fn two_spacecraft_from_their_samples() {
     let d = dir.path();
     let text = format!(
         "{HEAD}{}{}",
-        vehicle("target", 0.0),
-        vehicle("chaser", -0.2667)
+        support::leo_vehicle("target", 0.0),
+        support::leo_vehicle("chaser", -0.2667)
     );
     std::fs::write(d.join("pair.toml"), text).unwrap();
     support::skyforge_ok(&["synth", "pair.toml", "--out", "pair"], d);

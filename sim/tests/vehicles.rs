@@ -10,27 +10,6 @@ use skyforge_formats::truth::TruthFile;
 use skyforge_orbits::ephemeris::read_sp3_vehicle;
 use std::path::Path;
 
-/// A LEO vehicle `name` at mean anomaly `anomaly_deg` of the book's 500 km, e = 0.01
-/// orbit (book 5.6), one zenith antenna.
-fn vehicle(name: &str, anomaly_deg: f64) -> String {
-    format!(
-        r#"
-[[vehicles]]
-name = "{name}"
-[vehicles.platform.leo.elements]
-semi_major_axis_km = 6878.137
-eccentricity = 0.01
-inclination_deg = 98.0
-raan_deg = 0.0
-arg_perigee_deg = 0.0
-mean_anomaly_deg = {anomaly_deg:?}
-[[vehicles.antennas]]
-name = "ant1"
-position_body_m = [0.0, 0.0, 0.0]
-"#
-    )
-}
-
 /// Ten minutes at the observation level with today's satellite errors and a TCXO.
 const HEAD: &str = r#"
 name = "pair"
@@ -64,7 +43,11 @@ fn vehicles_in_one_place_share_the_satellites_errors_not_their_receiver_noise() 
     let d = dir.path();
     synth(
         d,
-        &format!("{HEAD}{}{}", vehicle("a", 10.0), vehicle("b", 10.0)),
+        &format!(
+            "{HEAD}{}{}",
+            support::leo_vehicle("a", 10.0),
+            support::leo_vehicle("b", 10.0)
+        ),
     );
     let (a, b) = (d.join("sim/a"), d.join("sim/b"));
     let truth = |v: &Path| TruthFile::open(&v.join("truth.h5")).unwrap();
@@ -101,8 +84,8 @@ fn the_relative_truth_is_the_distance_between_the_orbits_in_the_target_frame() {
         d,
         &format!(
             "{HEAD}{}{}",
-            vehicle("target", 0.0),
-            vehicle("chaser", -0.2667)
+            support::leo_vehicle("target", 0.0),
+            support::leo_vehicle("chaser", -0.2667)
         ),
     );
     let sp3 =
@@ -125,8 +108,8 @@ fn run_writes_each_vehicle_and_the_relative_truth() {
     let d = dir.path();
     let text = format!(
         "{HEAD}{}{}",
-        vehicle("target", 0.0),
-        vehicle("chaser", -0.2667)
+        support::leo_vehicle("target", 0.0),
+        support::leo_vehicle("chaser", -0.2667)
     )
     .replace("[observation]\nlevel = \"observation\"\n", "");
     std::fs::write(

@@ -3,6 +3,7 @@
 //! Reads only what a receiver could: observations, broadcast ephemerides and ionosphere,
 //! the filter's own settings.
 
+use super::stage::on_grid;
 use super::{
     EcefEstimate, EpochFix, FixInput, OdConfig, OrbitDetermination, OrbitEstimate, PositionFilter,
     PositionFilterConfig,
@@ -17,9 +18,6 @@ use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeSet;
-
-/// Epoch tags within this of a multiple of the interval are sampled (s).
-const ON_GRID_S: f64 = 1e-3;
 
 /// Why orbit determination could not run on a file.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -64,10 +62,7 @@ fn fixes_on_grid(
     let mut out = Vec::new();
     let mut missed = 0;
     for (epoch, fix) in file.epochs.iter().zip(fixes) {
-        let t_s = origin.seconds_since_start(epoch.time);
-        let on_grid =
-            (t_s / interval_s - (t_s / interval_s).round()).abs() * interval_s < ON_GRID_S;
-        if !on_grid {
+        if !on_grid(origin.seconds_since_start(epoch.time), interval_s) {
             continue;
         }
         let Ok(fix) = fix.as_ref() else {
@@ -165,13 +160,14 @@ pub fn orbit_from_file(
     let fixes = single_point_fixes(file, &store, &origin, &signals, &pvt);
     let mut od = OrbitDetermination::new(config.clone());
     for (epoch, fix) in file.epochs.iter().zip(fixes) {
-        let fix = fix.ok().map(|fix| EpochFix {
-            time: origin.start() + Unit::Second * fix.t_s,
-            r_ecef_m: fix.r_ecef_m,
-            v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
-            gdop: fix.dop.gdop,
+        od.epoch(epoch.time, || {
+            fix.ok().map(|fix| EpochFix {
+                time: origin.start() + Unit::Second * fix.t_s,
+                r_ecef_m: fix.r_ecef_m,
+                v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
+                gdop: fix.dop.gdop,
+            })
         });
-        od.epoch(epoch.time, fix.as_ref());
     }
     let (estimates, missed) = (od.estimates().to_vec(), od.missed());
     Ok(OdRun {

@@ -8,7 +8,7 @@ pub(crate) mod clohessy_wiltshire;
 mod config;
 pub(crate) mod from_files;
 pub(crate) mod position_filter;
-mod stage;
+pub(crate) mod stage;
 
 pub use clohessy_wiltshire::{input, transition};
 pub use config::{OdConfig, OdFilterConfig};

@@ -10,6 +10,12 @@ use skyforge_orbits::Vec3;
 /// Epoch tags within this of a multiple of the interval are on the grid (s).
 const ON_GRID_S: f64 = 1e-3;
 
+/// Whether `t_s` (seconds since the grid's origin) lies on the grid `k interval_s`.
+pub(crate) fn on_grid(t_s: f64, interval_s: f64) -> bool {
+    let k = t_s / interval_s;
+    (k - k.round()).abs() * interval_s < ON_GRID_S
+}
+
 /// One fix as the stage takes it: the receiver's solution at an epoch.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EpochFix {
@@ -40,19 +46,22 @@ impl OrbitDetermination {
         }
     }
 
-    /// The epoch tag `tag`, with the receiver's fix there if it made one: the estimate
-    /// when the tag is on the grid and there is a fix.
-    pub fn epoch(&mut self, tag: Epoch, fix: Option<&EpochFix>) -> Option<EcefEstimate> {
+    /// The epoch tag `tag`, with `fix` giving the receiver's fix there if it made one
+    /// (asked only on the grid): the estimate when the tag is on the grid and there is a
+    /// fix.
+    pub fn epoch(
+        &mut self,
+        tag: Epoch,
+        fix: impl FnOnce() -> Option<EpochFix>,
+    ) -> Option<EcefEstimate> {
         let (start, filter) = self.running.get_or_insert_with(|| {
             let OdFilterConfig::PositionFilter(p) = &self.config.filter;
             (tag, PositionFilter::new(p.clone(), tag))
         });
-        let interval = self.config.interval_s;
-        let k = (tag - *start).to_seconds() / interval;
-        if (k - k.round()).abs() * interval >= ON_GRID_S {
+        if !on_grid((tag - *start).to_seconds(), self.config.interval_s) {
             return None;
         }
-        let Some(fix) = fix else {
+        let Some(fix) = fix() else {
             self.missed += 1;
             return None;
         };

@@ -39,8 +39,6 @@ pub struct RelativeEstimate {
     pub position_m: Vec3,
     /// The rate in the rotating frame.
     pub velocity_mps: Vec3,
-    /// Satellites in the target's fix and in the chaser's.
-    pub satellites: (usize, usize),
     /// How long the target's fix has used the same satellites, without a missed epoch
     /// (s): the book's steady state (5.6.5) needs neither vehicle to have changed
     /// satellites (in the common modes both use the same) and the smoothing to have run.
@@ -106,27 +104,37 @@ fn paired_files(
     (t_out, c_out)
 }
 
-/// `file`'s epochs with the records of the satellites both fixes of the epoch used
-/// (none where either has no fix).
+/// The two files' epochs with the records of the satellites both fixes of the epoch
+/// used (none where either has no fix).
 fn restricted(
-    file: &ObsFile,
+    (target, chaser): (&ObsFile, &ObsFile),
     t_fixes: &[Result<Fix, String>],
     c_fixes: &[Result<Fix, String>],
-) -> ObsFile {
-    let mut out = file.clone();
-    for (k, epoch) in out.epochs.iter_mut().enumerate() {
-        let used = |f: &Result<Fix, String>| -> BTreeSet<SatId> {
-            f.as_ref()
-                .map(|f| f.used.iter().map(|u| u.0).collect())
-                .unwrap_or_default()
-        };
+) -> (ObsFile, ObsFile) {
+    let used = |f: &Result<Fix, String>| -> BTreeSet<SatId> {
+        f.as_ref()
+            .map(|f| f.used.iter().map(|u| u.0).collect())
+            .unwrap_or_default()
+    };
+    let (mut t_out, mut c_out) = (target.clone(), chaser.clone());
+    let epochs = t_out.epochs.iter_mut().zip(c_out.epochs.iter_mut());
+    for (k, (t, c)) in epochs.enumerate() {
         let both: BTreeSet<SatId> = used(&t_fixes[k])
             .intersection(&used(&c_fixes[k]))
             .copied()
             .collect();
-        epoch.sats.retain(|r| both.contains(&r.sat));
+        t.sats.retain(|r| both.contains(&r.sat));
+        c.sats.retain(|r| both.contains(&r.sat));
     }
-    out
+    (t_out, c_out)
+}
+
+/// One vehicle's solution at an epoch: its fix's time (s since the start), position and
+/// Doppler velocity (ECEF).
+struct Solution {
+    t_s: f64,
+    r_ecef_m: Vec3,
+    v_ecef_mps: Vec3,
 }
 
 /// The signals both files have among `wanted` (all of them when empty).
@@ -203,10 +211,7 @@ pub fn relative_from_files(
         // satellites on their own (a satellite at the mask for one vehicle is just below
         // it for the other, 32 km away): the fixes again on the satellites both fixes
         // used, with neither (module docs).
-        let (t_file, c_file) = (
-            restricted(&t_file, &t_fixes, &c_fixes),
-            restricted(&c_file, &t_fixes, &c_fixes),
-        );
+        let (t_file, c_file) = restricted((&t_file, &c_file), &t_fixes, &c_fixes);
         let same = PvtConfig {
             elevation_mask_rad: -std::f64::consts::FRAC_PI_2,
             raim_pfa: 0.0,
@@ -215,10 +220,13 @@ pub fn relative_from_files(
         t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &same);
         c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &same);
     }
-    let state = |epoch: &ObsEpoch, fix: &Fix| {
+    let solution = |epoch: &ObsEpoch, fix: &Fix| {
         let t_rx = origin.seconds_since_start(epoch.time);
-        let v = records_velocity(&epoch.sats, &signals, t_rx, &store, fix)?;
-        Some((fix.t_s, fix.r_ecef_m, v, fix.used.len()))
+        Some(Solution {
+            t_s: fix.t_s,
+            r_ecef_m: fix.r_ecef_m,
+            v_ecef_mps: records_velocity(&epoch.sats, &signals, t_rx, &store, fix)?,
+        })
     };
     let mut orbit = PositionFilter::new(config.target_orbit.clone(), start);
     let mut estimates = Vec::new();
@@ -226,13 +234,13 @@ pub fn relative_from_files(
     // The target fix's satellites and since when it has used them.
     let mut set: Option<(BTreeSet<SatId>, f64)> = None;
     for k in 0..t_file.epochs.len() {
-        let (Ok(tf), Ok(cf)) = (&t_fixes[k], &c_fixes[k]) else {
-            missed += 1;
-            set = None;
-            continue;
+        let both = match (&t_fixes[k], &c_fixes[k]) {
+            (Ok(tf), Ok(cf)) => solution(&t_file.epochs[k], tf)
+                .zip(solution(&c_file.epochs[k], cf))
+                .map(|both| (tf, both)),
+            _ => None,
         };
-        let (Some(t), Some(c)) = (state(&t_file.epochs[k], tf), state(&c_file.epochs[k], cf))
-        else {
+        let Some((tf, (t, c))) = both else {
             missed += 1;
             set = None;
             continue;
@@ -240,18 +248,18 @@ pub fn relative_from_files(
         let used: BTreeSet<SatId> = tf.used.iter().map(|u| u.0).collect();
         let since = match &set {
             Some((s, since)) if *s == used => *since,
-            _ => t.0,
+            _ => t.t_s,
         };
         set = Some((used, since));
         // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
-        let r_c = c.1 + c.2 * (t.0 - c.0);
-        let (rt, vt) = earth.ecef_to_eci(t.0, &t.1, &t.2);
-        let (rc, vc) = earth.ecef_to_eci(t.0, &r_c, &c.2);
+        let r_c = c.r_ecef_m + c.v_ecef_mps * (t.t_s - c.t_s);
+        let (rt, vt) = earth.ecef_to_eci(t.t_s, &t.r_ecef_m, &t.v_ecef_mps);
+        let (rc, vc) = earth.ecef_to_eci(t.t_s, &r_c, &c.v_ecef_mps);
         // The frame from the target's filtered orbit (config docs).
         let filtered = orbit.update(&FixInput {
-            t_s: t.0,
-            r_ecef_m: t.1,
-            v_ecef_mps: Some(t.2),
+            t_s: t.t_s,
+            r_ecef_m: t.r_ecef_m,
+            v_ecef_mps: Some(t.v_ecef_mps),
             gdop: tf.dop.gdop,
         });
         let (position_m, velocity_mps) = relative_in_frame_of(
@@ -261,11 +269,10 @@ pub fn relative_from_files(
             &(vc - vt),
         );
         estimates.push(RelativeEstimate {
-            t_s: t.0,
+            t_s: t.t_s,
             position_m,
             velocity_mps,
-            satellites: (t.3, c.3),
-            same_satellites_s: t.0 - since,
+            same_satellites_s: t.t_s - since,
         });
     }
     Ok(RelnavRun {

@@ -45,7 +45,7 @@
 //!   e outside [0, 1), non-finite values) are format errors.
 
 use super::nav_text::read_text_maybe_gz;
-use super::rinex_nav_iono::parse_iono;
+use super::rinex_nav_iono::{BroadcastIono, parse_iono};
 use super::{
     NavError,
     broadcast::NavMessage,
@@ -75,8 +75,25 @@ pub fn read_nav_file(path: &Path) -> Result<Vec<BroadcastEphemeris>, NavError> {
     parse_nav(&text, &path.display().to_string())
 }
 
+/// Read the ephemerides and the header's Klobuchar coefficients of a navigation file,
+/// the file read once.
+pub fn read_nav_file_with_iono(
+    path: &Path,
+) -> Result<(Vec<BroadcastEphemeris>, BroadcastIono), NavError> {
+    let text = read_text_maybe_gz(path)?;
+    parse_nav_with_iono(&text, &path.display().to_string())
+}
+
 /// Parse the text of a RINEX 2/3/4 navigation file. `source` names the file in errors.
 pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, NavError> {
+    parse_nav_with_iono(text, source).map(|(ephemerides, _)| ephemerides)
+}
+
+/// [`parse_nav`] with the header's Klobuchar coefficients.
+fn parse_nav_with_iono(
+    text: &str,
+    source: &str,
+) -> Result<(Vec<BroadcastEphemeris>, BroadcastIono), NavError> {
     let p = Parser { source };
     let lines: Vec<&str> = text.lines().map(|l| l.trim_end_matches('\r')).collect();
     let first = lines.first().ok_or_else(|| p.err(1, "empty file"))?;
@@ -93,16 +110,17 @@ pub fn parse_nav(text: &str, source: &str) -> Result<Vec<BroadcastEphemeris>, Na
         .ok_or_else(|| p.err(lines.len(), "no END OF HEADER"))?;
     // The header's Klobuchar lines must read as numbers wherever the file is read (they
     // were ignored here and refused by the receiver's reader).
-    parse_iono(text, source)?;
+    let iono = parse_iono(text, source)?;
     let body = Body {
         lines: &lines,
         start: end + 1,
     };
-    match supported_major(version).map_err(|m| p.err(1, m))? {
+    let ephemerides = match supported_major(version).map_err(|m| p.err(1, m))? {
         2 => p.parse_v2(&body),
         3 => p.parse_v3(&body),
         _ => p.parse_v4(&body),
-    }
+    }?;
+    Ok((ephemerides, iono))
 }
 
 /// The data section of the file (0-based index of its first line).

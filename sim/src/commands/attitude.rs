@@ -25,7 +25,8 @@ use skyforge_navigation::relative::Constraint;
 use skyforge_navigation::relative::{AmbiguityStatus, FixMethod, RelativeConfig};
 use skyforge_navigation::relative::{EpochChain, EpochOutcome, FilesError, run_files};
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
-use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
+use skyforge_orbits::ephemeris::rinex_nav::{read_nav_file, read_nav_file_with_iono};
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_receiver::pipeline::EpochReport;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -63,6 +64,14 @@ pub fn attitude(args: &AttitudeArgs) -> anyhow::Result<()> {
 /// The navigation file at `path`, or a located error.
 pub(crate) fn read_nav(path: &Path) -> anyhow::Result<Vec<BroadcastEphemeris>> {
     read_nav_file(path).map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
+}
+
+/// The navigation file at `path` with its header's ionosphere (`od`, `relnav`), or a
+/// located error.
+pub(crate) fn read_nav_with_iono(
+    path: &Path,
+) -> anyhow::Result<(Vec<BroadcastEphemeris>, BroadcastIono)> {
+    read_nav_file_with_iono(path).map_err(|e| BadInput(format!("{}: {e}", path.display())).into())
 }
 
 /// The chain's set-up: the geometry, the settings and, with `--estimate-geometry`, the

@@ -14,7 +14,6 @@ use skyforge_formats::orbit::{
 use skyforge_navigation::orbit_determination::{
     EcefEstimate, OdConfig, OdFilterConfig, orbit_from_file,
 };
-use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 use std::path::Path;
 
 /// The configuration's filter as `orbit.h5` names it.
@@ -28,9 +27,7 @@ fn filter_name(config: &OdConfig) -> &'static str {
 pub fn od(args: &OdArgs) -> anyhow::Result<()> {
     let config = read_config(args.config.as_deref())?;
     let file = super::read_observations(&args.file)?;
-    let ephemerides = super::attitude::read_nav(&args.nav)?;
-    let iono =
-        read_iono_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
     let run =
         orbit_from_file(&file, ephemerides, &iono, &config).map_err(|e| BadInput(e.to_string()))?;
     if run.estimates.is_empty() {

@@ -143,7 +143,7 @@ impl EpochSink for Stages<'_> {
             a.epoch(report)?;
         }
         if let Some(od) = self.od.as_mut() {
-            od.epoch(report.t_rx, od_fix(report).as_ref());
+            od.epoch(report.t_rx, || od_fix(report));
         }
         Ok(())
     }

@@ -9,7 +9,6 @@ use crate::output::staged_dir::StagedDir;
 use hifitime::Unit;
 use skyforge_formats::relative::{RELNAV_CSV, RelativeRow, write_relative_csv};
 use skyforge_navigation::relnav::{RelnavConfig, relative_from_files};
-use skyforge_orbits::ephemeris::rinex_nav_iono::read_iono_file;
 
 /// Run `skyforge relnav`.
 pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
@@ -30,9 +29,7 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
     }
     let target = super::read_observations(&args.target)?;
     let chaser = super::read_observations(&args.chaser)?;
-    let ephemerides = super::attitude::read_nav(&args.nav)?;
-    let iono =
-        read_iono_file(&args.nav).map_err(|e| BadInput(format!("{}: {e}", args.nav.display())))?;
+    let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
     let run = relative_from_files(&target, &chaser, ephemerides, &iono, &config)
         .map_err(|e| BadInput(e.to_string()))?;
     if run.estimates.is_empty() {

@@ -615,3 +615,24 @@ pub fn write_scenario(dir: &Path, name: &str, text: &str) -> String {
     std::fs::write(&path, text).expect("write scenario");
     path.to_string_lossy().into_owned()
 }
+
+/// A `[[vehicles]]` entry: a LEO `name` on the book's 500 km, e = 0.01 orbit (book 5.6) at
+/// mean anomaly `anomaly_deg`, one antenna `ant1` at the centre of mass (zenith).
+pub fn leo_vehicle(name: &str, anomaly_deg: f64) -> String {
+    format!(
+        r#"
+[[vehicles]]
+name = "{name}"
+[vehicles.platform.leo.elements]
+semi_major_axis_km = 6878.137
+eccentricity = 0.01
+inclination_deg = 98.0
+raan_deg = 0.0
+arg_perigee_deg = 0.0
+mean_anomaly_deg = {anomaly_deg:?}
+[[vehicles.antennas]]
+name = "ant1"
+position_body_m = [0.0, 0.0, 0.0]
+"#
+    )
+}
