@@ -8,22 +8,25 @@ use skyforge_formats::orbit::{LEO_SP3_ID, read_h5};
 use skyforge_orbits::ephemeris::read_sp3_vehicle;
 use std::path::Path;
 
-/// `synth od-leo --seed seed`, `od` on its observations with the default filter, and
-/// `validate od` with JSON, in `dir`; the comparison.
-fn od_run(dir: &Path, seed: u64) -> serde_json::Value {
+/// `synth od-leo --seed seed`, `od` on its observations with the filter of `config`
+/// (TOML; the default filter when empty), and `validate od` with JSON, in `dir`; the
+/// comparison.
+fn od_run_with(dir: &Path, seed: u64, config: &str) -> serde_json::Value {
     let seed = seed.to_string();
     support::skyforge_ok(&["synth", "od-leo", "--out", "sim", "--seed", &seed], dir);
-    support::skyforge_ok(
-        &[
-            "od",
-            "sim/observations/ant1.obs.rnx",
-            "--nav",
-            "sim/nav.rnx",
-            "--out",
-            "od",
-        ],
-        dir,
-    );
+    let mut od = vec![
+        "od",
+        "sim/observations/ant1.obs.rnx",
+        "--nav",
+        "sim/nav.rnx",
+        "--out",
+        "od",
+    ];
+    if !config.is_empty() {
+        std::fs::write(dir.join("od.toml"), config).expect("write od.toml");
+        od.extend(["--config", "od.toml"]);
+    }
+    support::skyforge_ok(&od, dir);
     support::skyforge_ok(
         &[
             "validate", "od", "--truth", "sim", "--orbit", "od", "--json", "od.json",
@@ -31,6 +34,37 @@ fn od_run(dir: &Path, seed: u64) -> serde_json::Value {
         dir,
     );
     support::json_file(&dir.join("od.json"))
+}
+
+/// [`od_run_with`] the default filter.
+fn od_run(dir: &Path, seed: u64) -> serde_json::Value {
+    od_run_with(dir, seed, "")
+}
+
+/// Issue #35's own bar for a single-frequency receiver today: the reduced-dynamic filter
+/// on `od-leo`'s raw observations (GPS L1 C/A code and Doppler at 1 Hz, today's `modern`
+/// satellite errors), its defaults, estimates every 10 s, after 600 s, on four seeds (#
+/// assumed: 1..4): position 3-D RMS under 1 m, velocity under 1 cm/s, and the covariance
+/// not overconfident (mean position NEES under 6, twice its expected 3; # assumed bar, as
+/// the position filter's). Set before the first run, which missed the position bar on
+/// three seeds (0.89-1.10 m) and the NEES bar on four (263-529) with white code errors;
+/// the filter then gained a range-error state per satellite (docs/orbit-determination.md).
+#[test]
+fn reduced_dynamic_orbit_meets_the_one_metre_bar_on_four_seeds() {
+    let config = "interval_s = 10\n[filter]\nkind = \"reduced-dynamic\"\n";
+    for seed in 1..=4u64 {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let v = od_run_with(dir.path(), seed, config);
+        let pos = v["position_m"]["rms_3d"].as_f64().unwrap();
+        let vel = v["velocity_mps"]["rms_3d"].as_f64().unwrap();
+        let nees = v["position_nees_mean"].as_f64().unwrap();
+        let compared = v["compared"].as_u64().unwrap();
+        eprintln!("seed {seed}: {pos:.3} m, {vel:.5} m/s, NEES {nees:.2}, {compared} compared");
+        assert!((299..=300).contains(&compared), "seed {seed}: {compared}");
+        assert!(pos < 1.0, "seed {seed}: position {pos} m");
+        assert!(vel < 0.01, "seed {seed}: velocity {vel} m/s");
+        assert!(nees < 6.0, "seed {seed}: NEES {nees}");
+    }
 }
 
 /// Today's satellite errors, single-frequency code and Doppler, fixes every 10 s into

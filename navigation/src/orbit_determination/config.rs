@@ -2,6 +2,7 @@
 //! filter takes and which filter it is.
 
 use super::PositionFilterConfig;
+use super::reduced_dynamic::ReducedDynamicConfig;
 use crate::config_file::read_settings;
 use serde::Deserialize;
 use skyforge_gnss::signal::Signal;
@@ -33,6 +34,8 @@ pub struct OdConfig {
 pub enum OdFilterConfig {
     /// The book's position filter on single-point fixes (section 5.5.4).
     PositionFilter(PositionFilterConfig),
+    /// The reduced-dynamic extended Kalman filter on the raw observations.
+    ReducedDynamic(ReducedDynamicConfig),
 }
 
 impl Default for OdFilterConfig {
@@ -87,8 +90,10 @@ impl OdConfig {
             ));
         }
         match &self.filter {
-            OdFilterConfig::PositionFilter(p) => p.check().map_err(|e| format!("filter.{e}")),
+            OdFilterConfig::PositionFilter(p) => p.check(),
+            OdFilterConfig::ReducedDynamic(r) => r.check(),
         }
+        .map_err(|e| format!("filter.{e}"))
     }
 }
 
@@ -110,13 +115,44 @@ mod tests {
         .unwrap();
         assert_eq!(c.interval_s, 60.0);
         assert_eq!(c.signals, [Signal::GpsL1Ca]);
-        let OdFilterConfig::PositionFilter(p) = c.filter;
+        let OdFilterConfig::PositionFilter(p) = c.filter else {
+            panic!("{:?}", c.filter)
+        };
         assert_eq!(p.position_sigma_m, 18.6);
         assert!(!p.forces.drag && p.forces.j2);
         assert_eq!(
             p.velocity_sigma_mps,
             PositionFilterConfig::default().velocity_sigma_mps
         );
+    }
+
+    #[test]
+    fn reduced_dynamic_settings_are_read_and_checked() {
+        let c = OdConfig::parse(
+            "[filter]\nkind = \"reduced-dynamic\"\nionosphere = \"dual-frequency\"\n\
+             satellite_sigma_m = 0.05\n[filter.observables]\ncarrier = true\n",
+        )
+        .unwrap();
+        let OdFilterConfig::ReducedDynamic(r) = c.filter else {
+            panic!("{:?}", c.filter)
+        };
+        assert!(r.observables.carrier && r.observables.doppler);
+        assert_eq!(
+            r.ionosphere,
+            crate::pvt::IonosphereCorrection::DualFrequency
+        );
+        assert_eq!(r.satellite_sigma_m, 0.05);
+        assert_eq!(r.code_sigma_m, ReducedDynamicConfig::default().code_sigma_m);
+        for (text, names) in [
+            ("phase_sigma_m = 0", "filter.phase_sigma_m = 0"),
+            ("empirical_tau_s = -1", "filter.empirical_tau_s = -1"),
+            ("[filter.forces]\nmass_kg = 0", "filter.forces.mass_kg = 0"),
+            ("code_sigma = 1", "code_sigma"),
+        ] {
+            let text = format!("[filter]\nkind = \"reduced-dynamic\"\n{text}");
+            let e = OdConfig::parse(&text).unwrap_err();
+            assert!(e.contains(names), "{text}: {e}");
+        }
     }
 
     #[test]

@@ -1,12 +1,13 @@
 //! Orbit determination on observation files: the receiver's single-point fixes (velocity
-//! from the Doppler where it was measured) every `interval_s`, into the position filter.
+//! from the Doppler where it was measured) every `interval_s` into the position filter,
+//! or every epoch's observations into the reduced-dynamic filter.
 //! Reads only what a receiver could: observations, broadcast ephemerides and ionosphere,
 //! the filter's own settings.
 
 use super::stage::on_grid;
 use super::{
-    EcefEstimate, EpochFix, FixInput, OdConfig, OrbitDetermination, OrbitEstimate, PositionFilter,
-    PositionFilterConfig,
+    EcefEstimate, EpochFix, FixInput, OdConfig, OdFilterConfig, OrbitDetermination, OrbitEstimate,
+    PositionFilter, PositionFilterConfig,
 };
 use crate::pvt::{Fix, PvtConfig, records_velocity};
 use crate::relative::single_point_fixes;
@@ -150,6 +151,17 @@ pub fn orbit_from_file(
         return Err(OdError::NoEphemeris(source));
     }
     let origin = TimeOrigin::new(start);
+    let stage_config = OdConfig {
+        signals: signals.clone(),
+        ..config.clone()
+    };
+    let mut od = match config.filter {
+        OdFilterConfig::PositionFilter(_) => OrbitDetermination::new(stage_config, Vec::new()),
+        OdFilterConfig::ReducedDynamic(_) => {
+            OrbitDetermination::new(stage_config, ephemerides.clone())
+        }
+    }
+    .map_err(|_| OdError::NoEphemeris(source.clone()))?;
     let store = EphemerisStore::new(ephemerides, &origin);
     let pvt = PvtConfig {
         elevation_mask_rad: config.elevation_mask_deg.to_radians(),
@@ -157,17 +169,27 @@ pub fn orbit_from_file(
         iono_bds: iono.bds,
         ..PvtConfig::default()
     };
-    let fixes = single_point_fixes(file, &store, &origin, &signals, &pvt);
-    let mut od = OrbitDetermination::new(config.clone());
-    for (epoch, fix) in file.epochs.iter().zip(fixes) {
-        od.epoch(epoch.time, || {
-            fix.ok().map(|fix| EpochFix {
-                time: origin.start() + Unit::Second * fix.t_s,
-                r_ecef_m: fix.r_ecef_m,
-                v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
-                gdop: fix.dop.gdop,
-            })
-        });
+    let fixes = match config.filter {
+        OdFilterConfig::PositionFilter(_) => {
+            single_point_fixes(file, &store, &origin, &signals, &pvt)
+        }
+        OdFilterConfig::ReducedDynamic(_) => Vec::new(),
+    };
+    let mut fixes = fixes.into_iter();
+    for epoch in &file.epochs {
+        let fix = fixes.next();
+        od.epoch(
+            epoch.time,
+            || {
+                fix?.ok().map(|fix| EpochFix {
+                    time: origin.start() + Unit::Second * fix.t_s,
+                    r_ecef_m: fix.r_ecef_m,
+                    v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
+                    gdop: fix.dop.gdop,
+                })
+            },
+            || epoch.sats.clone(),
+        );
     }
     let (estimates, missed) = (od.estimates().to_vec(), od.missed());
     Ok(OdRun {

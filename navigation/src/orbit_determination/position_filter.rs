@@ -95,18 +95,22 @@ impl PositionFilterConfig {
                 return Err(format!("{name} = {v}: must be in (0, {max}]"));
             }
         }
-        let f = &self.forces;
-        for (name, v) in [
-            ("forces.drag_coefficient", f.drag_coefficient),
-            ("forces.area_m2", f.area_m2),
-            ("forces.mass_kg", f.mass_kg),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v <= 1e6) {
-                return Err(format!("{name} = {v}: must be in (0, 1e6]"));
-            }
-        }
-        Ok(())
+        check_forces(&self.forces)
     }
+}
+
+/// Whether a filter's spacecraft drag parameters are physical.
+pub(crate) fn check_forces(f: &ForceModelConfig) -> Result<(), String> {
+    for (name, v) in [
+        ("forces.drag_coefficient", f.drag_coefficient),
+        ("forces.area_m2", f.area_m2),
+        ("forces.mass_kg", f.mass_kg),
+    ] {
+        if !(v.is_finite() && v > 0.0 && v <= 1e6) {
+            return Err(format!("{name} = {v}: must be in (0, 1e6]"));
+        }
+    }
+    Ok(())
 }
 
 /// One single-point fix as the filter takes it.
@@ -141,7 +145,7 @@ pub struct PositionFilter {
 }
 
 /// `[a]x`, the cross-product matrix.
-fn cross_matrix(a: &Vec3) -> Mat3 {
+pub(crate) fn cross_matrix(a: &Vec3) -> Mat3 {
     Mat3::new(0.0, -a.z, a.y, a.z, 0.0, -a.x, -a.y, a.x, 0.0)
 }
 
@@ -321,22 +325,34 @@ impl PositionFilter {
         self.earth.eci_to_ecef(e.t_s, &e.r_eci_m, &e.v_eci_mps)
     }
 
-    /// An estimate in the Earth-fixed frame with its covariance: `P_ecef = J P J^T`,
-    /// `J = [[C, 0], [-[w]x C, C]]` the Jacobian of `r_e = C r`, `v_e = C v - w x C r`.
+    /// An estimate in the Earth-fixed frame with its covariance ([`ecef_estimate`]).
     pub fn to_ecef_estimate(&self, e: &OrbitEstimate) -> EcefEstimate {
-        let (r_ecef_m, v_ecef_mps) = self.to_ecef(e);
-        let c = self.earth.c_eci_ecef(e.t_s);
-        let mut j = Matrix6::zeros();
-        j.fixed_view_mut::<3, 3>(0, 0).copy_from(&c);
-        j.fixed_view_mut::<3, 3>(3, 0)
-            .copy_from(&(-cross_matrix(&self.earth.omega_rad_s()) * c));
-        j.fixed_view_mut::<3, 3>(3, 3).copy_from(&c);
-        EcefEstimate {
-            t_s: e.t_s,
-            r_ecef_m,
-            v_ecef_mps,
-            covariance: j * e.covariance * j.transpose(),
-        }
+        ecef_estimate(&self.earth, e.t_s, &e.r_eci_m, &e.v_eci_mps, &e.covariance)
+    }
+}
+
+/// An ECI state `[r, v]` at `t_s` with its covariance in the Earth-fixed frame:
+/// `P_ecef = J P J^T`, `J = [[C, 0], [-[w]x C, C]]` the Jacobian of `r_e = C r`,
+/// `v_e = C v - w x C r`.
+pub(crate) fn ecef_estimate(
+    earth: &EarthRotation,
+    t_s: f64,
+    r_eci_m: &Vec3,
+    v_eci_mps: &Vec3,
+    covariance: &Matrix6<f64>,
+) -> EcefEstimate {
+    let (r_ecef_m, v_ecef_mps) = earth.eci_to_ecef(t_s, r_eci_m, v_eci_mps);
+    let c = earth.c_eci_ecef(t_s);
+    let mut j = Matrix6::zeros();
+    j.fixed_view_mut::<3, 3>(0, 0).copy_from(&c);
+    j.fixed_view_mut::<3, 3>(3, 0)
+        .copy_from(&(-cross_matrix(&earth.omega_rad_s()) * c));
+    j.fixed_view_mut::<3, 3>(3, 3).copy_from(&c);
+    EcefEstimate {
+        t_s,
+        r_ecef_m,
+        v_ecef_mps,
+        covariance: j * covariance * j.transpose(),
     }
 }
 

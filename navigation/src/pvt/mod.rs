@@ -25,10 +25,13 @@ mod velocity;
 
 pub use nmea::{gga, gsa, rmc};
 
+pub(crate) use geometry::local_frame;
 pub use geometry::{FromEphemeris, NearAntenna, Recorded, SatView, Satellites, Transmitted};
 pub use raim::{chi2_survival, detection_parameters};
 pub use ranging::IonosphereCorrection;
+pub(crate) use ranging::{Ranging, per_satellite};
 pub use smoothing::{CarrierSmoother, CodeAndCarrier, JUMP_SIGMAS, SmoothingConfig};
+pub(crate) use solve::ranging_delay_beyond_tgd_s;
 pub use solve::{solve, solve_with};
 pub use velocity::{records_velocity, solve_velocity};
 

@@ -232,7 +232,7 @@ fn group_delay_beyond_tgd_s(signal: Signal, eph: &BroadcastEphemeris) -> f64 {
 
 /// [`group_delay_beyond_tgd_s`] of a ranging: an ionosphere-free combination's group delays
 /// combine as its pseudoranges (IS-GPS-705's ISC terms in the L1/L5 correction).
-fn ranging_delay_beyond_tgd_s(ranging: &Ranging, eph: &BroadcastEphemeris) -> f64 {
+pub(crate) fn ranging_delay_beyond_tgd_s(ranging: &Ranging, eph: &BroadcastEphemeris) -> f64 {
     ranging.combined(|s| group_delay_beyond_tgd_s(s, eph))
 }
 

@@ -20,6 +20,7 @@ use std::path::Path;
 fn filter_name(config: &OdConfig) -> &'static str {
     match config.filter {
         OdFilterConfig::PositionFilter(_) => "position-filter",
+        OdFilterConfig::ReducedDynamic(_) => "reduced-dynamic",
     }
 }
 
@@ -32,7 +33,7 @@ pub fn od(args: &OdArgs) -> anyhow::Result<()> {
         orbit_from_file(&file, ephemerides, &iono, &config).map_err(|e| BadInput(e.to_string()))?;
     if run.estimates.is_empty() {
         return Err(BadInput(format!(
-            "{}: no single-point fix on the {} s grid ({} epochs tried); nothing to filter",
+            "{}: no estimate on the {} s grid ({} epochs without one): no single-point fix to start from",
             args.file.display(),
             config.interval_s,
             run.missed
@@ -92,7 +93,7 @@ pub(crate) fn print_summary(
             .sqrt()
     };
     println!(
-        "fixes      {} every {} s from {:.1} s to {:.1} s; {} epochs on the grid without a fix",
+        "estimates  {} every {} s from {:.1} s to {:.1} s; {} epochs on the grid without one",
         estimates.len(),
         config.interval_s,
         first.t_s,

@@ -9,7 +9,7 @@ use hifitime::Unit;
 use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::receiver::{ReceiverOutputs, Summary as OutputSummary};
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::orbit_determination::{EpochFix, OrbitDetermination};
+use skyforge_navigation::orbit_determination::{EpochFix, OdFilterConfig, OrbitDetermination};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::parse_format;
@@ -86,7 +86,18 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
         .od
         .as_ref()
         .map(|p| super::od::read_config(p.as_deref()));
-    let mut od = od_config.transpose()?.map(OrbitDetermination::new);
+    let mut od = match od_config.transpose()? {
+        Some(config) => {
+            let ephemerides = match (&config.filter, &args.assist) {
+                (OdFilterConfig::ReducedDynamic(_), Some(nav)) => read_nav(nav)?,
+                _ => Vec::new(),
+            };
+            let od = OrbitDetermination::new(config, ephemerides)
+                .map_err(|e| BadInput(format!("--od: {e} with --assist NAV")))?;
+            Some(od)
+        }
+        None => None,
+    };
     let bar = ProgressBar::new(session.common_samples()).with_style(
         ProgressStyle::with_template("receive {bar:40} {percent}% {msg} eta {eta}")
             .context("progress style")?,
@@ -143,7 +154,7 @@ impl EpochSink for Stages<'_> {
             a.epoch(report)?;
         }
         if let Some(od) = self.od.as_mut() {
-            od.epoch(report.t_rx, || od_fix(report));
+            od.epoch(report.t_rx, || od_fix(report), || report.records(0));
         }
         Ok(())
     }
