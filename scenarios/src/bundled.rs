@@ -144,6 +144,13 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/od-leo.toml"),
     },
     Bundled {
+        name: "od-leo-dual",
+        summary: "od-leo with GPS L1 C/A + L2 and carrier phase, a topside ionosphere and \
+                  real-time-precise satellite orbits and clocks, for the reduced-dynamic \
+                  filter of `skyforge od`",
+        text: include_str!("../bundled/od-leo-dual.toml"),
+    },
+    Bundled {
         name: "book-relnav-leo",
         summary: "Book 5.6.4: two LEOs (target, chaser) at 500 km, e = 0.01, 32 km apart, \
                   600 s, GPS L1 C/A at the observation level with SA-era satellite errors \

@@ -35,6 +35,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "integrity-lab",
             "book-od-leo",
             "od-leo",
+            "od-leo-dual",
             "book-relnav-leo"
         ]
     );

