@@ -165,6 +165,10 @@ fn bad_od_input_is_named_and_nothing_is_written() {
         ("intervl_s = 10\n", "intervl_s"),
         ("interval_s = -5\n", "interval_s = -5"),
         ("signals = [\"bds-b1i\"]\n", "none of the signals BDS B1I"),
+        (
+            "[filter]\nkind = \"reduced-dynamic\"\ngate_sigma = 0\n",
+            "filter.gate_sigma = 0",
+        ),
     ] {
         std::fs::write(d.join("od.toml"), text).unwrap();
         let o = support::skyforge(
@@ -192,10 +196,11 @@ fn bad_od_input_is_named_and_nothing_is_written() {
 }
 
 /// `receive --od`: orbit determination as an epoch stage of the receiver, on the fixes it
-/// makes from `interop-leo-gps`'s 90 s of samples (every epoch, `interval_s = 1`); and
-/// `od` on the RINEX file the same receiver wrote. Both orbits lie within 5 m and
-/// 0.1 m/s (3-D RMS) of the truth after 60 s (# assumed bars: single-point fixes of a
-/// few metres, half a minute of filtering).
+/// makes from `interop-leo-gps`'s 90 s of samples (every epoch, `interval_s = 1`), with
+/// the position filter and with the reduced-dynamic filter on its observations; and `od`
+/// on the RINEX file the same receiver wrote. Every orbit lies within 5 m and 0.1 m/s
+/// (3-D RMS) of the truth after 60 s (# assumed bars: single-point fixes of a few metres,
+/// half a minute of filtering).
 #[test]
 fn receive_determines_the_orbit_as_it_fixes() {
     let dir = tempfile::tempdir().expect("tempdir");
@@ -218,6 +223,44 @@ fn receive_determines_the_orbit_as_it_fixes() {
         d,
     );
     assert!(out.contains("rx/orbit.sp3"), "{out}");
+    let rd = "interval_s = 1\n[filter]\nkind = \"reduced-dynamic\"\n";
+    std::fs::write(d.join("rd.toml"), rd).unwrap();
+    let out = support::skyforge_ok(
+        &[
+            "receive",
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "--assist",
+            "sim/nav.rnx",
+            "--config",
+            "sim/receiver.toml",
+            "--od",
+            "rd.toml",
+            "--out",
+            "rx-rd",
+        ],
+        d,
+    );
+    assert!(out.contains("rx-rd/orbit.sp3"), "{out}");
+    // Without the ephemerides the reduced-dynamic stage cannot range: refused, nothing
+    // written.
+    let o = support::skyforge(
+        &[
+            "receive",
+            "sim/ant1.gps-l1ca.sigmf-meta",
+            "--config",
+            "sim/receiver.toml",
+            "--od",
+            "rd.toml",
+            "--out",
+            "rx-none",
+        ],
+        d,
+    );
+    let err = support::text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--assist NAV"), "{err}");
+    assert!(!d.join("rx-none").exists());
+    assert_eq!(read_h5(&d.join("rx-rd/orbit.h5")).unwrap().filter, "reduced-dynamic");
     support::skyforge_ok(
         &[
             "od",
@@ -231,7 +274,7 @@ fn receive_determines_the_orbit_as_it_fixes() {
         ],
         d,
     );
-    for orbit in ["rx", "od"] {
+    for orbit in ["rx", "rx-rd", "od"] {
         let json = format!("{orbit}.json");
         support::skyforge_ok(
             &[
