@@ -10,6 +10,7 @@ use skyforge_orbits::platform::{AttitudeConfig, AxisProfileConfig};
 use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
+use skyforge_signals::errors::EventConfig;
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Longest scenario (s): 366 days. Longer spans are outside what the embedded
@@ -60,7 +61,7 @@ pub(crate) fn platform_or_vehicles(
 
 /// `[[vehicles]]`: at most [`MAX_VEHICLES`], unique names usable as directory names,
 /// each platform, antenna list and oscillator valid.
-fn check_vehicles(vehicles: &[VehicleConfig]) -> Result<(), Invalid> {
+fn check_vehicles(vehicles: &[VehicleConfig], duration_s: f64) -> Result<(), Invalid> {
     if vehicles.len() > MAX_VEHICLES {
         return Err(Invalid::new(
             format!("vehicles[{MAX_VEHICLES}]"),
@@ -90,6 +91,9 @@ fn check_vehicles(vehicles: &[VehicleConfig]) -> Result<(), Invalid> {
         if let Some(clock) = &v.receiver_clock {
             clock.check().map_err(|e| e.within(&at("receiver_clock")))?;
         }
+        let names: Vec<&str> = v.antennas.iter().map(|a| a.name.as_str()).collect();
+        let list = format!("vehicles[{i}].antennas");
+        check_events(&v.events, &format!("vehicles[{i}]"), &list, &names, duration_s)?;
     }
     Ok(())
 }
@@ -101,7 +105,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_time(&scenario.time, &scenario.gnss)?;
     check_truth(&scenario.truth, scenario.time.duration_s)?;
     check_gnss(&scenario.gnss)?;
-    check_vehicles(&scenario.vehicles)?;
+    check_vehicles(&scenario.vehicles, scenario.time.duration_s)?;
     check_platform(&scenario.platform)?;
     check_antennas(&scenario.antennas)?;
     scenario
@@ -199,16 +203,26 @@ fn check_errors(scenario: &Scenario) -> Result<(), Invalid> {
         .multipath
         .check_antennas(&names)
         .map_err(|e| e.within("errors.multipath"))?;
-    for (i, event) in errors.events.iter().enumerate() {
-        let within = format!("errors.events[{i}]");
-        event
-            .check(scenario.time.duration_s)
-            .map_err(|e| e.within(&within))?;
+    check_events(&errors.events, "errors", "[[antennas]]", &names, scenario.time.duration_s)
+}
+
+/// Each of `events` (at `{prefix}.events[i]`) valid over `duration_s` and on an antenna
+/// of `names` (those of `list`) where it names one.
+fn check_events(
+    events: &[EventConfig],
+    prefix: &str,
+    list: &str,
+    names: &[&str],
+    duration_s: f64,
+) -> Result<(), Invalid> {
+    for (i, event) in events.iter().enumerate() {
+        let within = format!("{prefix}.events[{i}]");
+        event.check(duration_s).map_err(|e| e.within(&within))?;
         if let Some(a) = event.antenna.as_deref().filter(|a| !names.contains(a)) {
             return Err(Invalid::new(
                 format!("{within}.antenna"),
                 format!("{a:?}"),
-                format!("must name an antenna of [[antennas]]: {}", names.join(", ")),
+                format!("must name an antenna of {list}: {}", names.join(", ")),
             ));
         }
     }

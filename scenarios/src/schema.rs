@@ -7,7 +7,7 @@ use serde::Deserialize;
 use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSource, System};
 use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
-use skyforge_signals::errors::{ErrorsConfig, OscillatorConfig, vehicle_seed};
+use skyforge_signals::errors::{ErrorsConfig, EventConfig, OscillatorConfig, vehicle_seed};
 use skyforge_signals::obs_model::ObservationConfig;
 use skyforge_signals::synth::SignalConfig;
 use std::path::PathBuf;
@@ -73,13 +73,17 @@ pub struct VehicleConfig {
     /// `[errors.receiver_clock]`, drawn from its own stream all the same).
     #[serde(default)]
     pub receiver_clock: Option<OscillatorConfig>,
+    /// `[[vehicles.events]]`: faults on this vehicle's antennas only (an outage of one
+    /// receiver), as `[[errors.events]]`, which reach every vehicle.
+    #[serde(default)]
+    pub events: Vec<EventConfig>,
 }
 
 impl Scenario {
     /// The single-platform scenarios this one runs as: itself when it has one platform;
     /// one per `[[vehicles]]` entry otherwise, each with that vehicle's platform,
-    /// antennas and oscillator, the scenario's everything else (satellites, their
-    /// errors, the atmosphere, the signal), and `vehicle` set.
+    /// antennas, oscillator and events (after the scenario's), the scenario's everything
+    /// else (satellites, their errors, the atmosphere, the signal), and `vehicle` set.
     pub fn vehicle_views(&self) -> Vec<Scenario> {
         if self.vehicles.is_empty() {
             return vec![self.clone()];
@@ -92,6 +96,7 @@ impl Scenario {
                 if let Some(clock) = &v.receiver_clock {
                     view.errors.receiver_clock = Some(clock.clone());
                 }
+                view.errors.events.extend(v.events.iter().cloned());
                 view.vehicles = Vec::new();
                 view.vehicle = Some(v.name.clone());
                 view
