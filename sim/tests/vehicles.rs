@@ -7,6 +7,7 @@ mod support;
 use skyforge_formats::orbit::LEO_SP3_ID;
 use skyforge_formats::relative::read_relative_csv;
 use skyforge_formats::truth::TruthFile;
+use skyforge_gnss::observation::read_obs_file;
 use skyforge_orbits::ephemeris::read_sp3_vehicle;
 use std::path::Path;
 
@@ -132,4 +133,36 @@ fn run_writes_each_vehicle_and_the_relative_truth() {
     ] {
         assert!(d.join("run").join(f).is_file(), "{f}");
     }
+}
+
+/// `[[vehicles.events]]`: an outage of every satellite on vehicle `b` from 100 to 110 s
+/// empties its epochs there (the observation level drops what its receiver lost), while
+/// `a` keeps observing.
+#[test]
+fn a_vehicle_event_reaches_its_receiver_alone() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let outage = "[[vehicles.events]]\nkind = \"outage\"\nstart_s = 100.0\nend_s = 110.0\n";
+    synth(
+        d,
+        &format!(
+            "{HEAD}{}{}{outage}",
+            support::leo_vehicle("a", 10.0),
+            support::leo_vehicle("b", 10.0)
+        ),
+    );
+    let counts = |v: &str| {
+        let file = read_obs_file(&d.join(format!("sim/{v}/observations/ant1.obs.rnx"))).unwrap();
+        let start = file.epochs[0].time;
+        let sats_at = |t: f64| {
+            (file.epochs.iter())
+                .find(|e| ((e.time - start).to_seconds() - t).abs() < 0.01)
+                .map_or(0, |e| e.sats.len())
+        };
+        [sats_at(99.0), sats_at(105.0), sats_at(111.0)]
+    };
+    let (a, b) = (counts("a"), counts("b"));
+    assert!(a.iter().all(|&n| n >= 4), "a: {a:?}");
+    assert!(b[0] >= 4 && b[2] >= 4, "b before and after: {b:?}");
+    assert_eq!(b[1], 0, "b during its outage: {b:?}");
 }
