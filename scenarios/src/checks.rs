@@ -93,7 +93,13 @@ fn check_vehicles(vehicles: &[VehicleConfig], duration_s: f64) -> Result<(), Inv
         }
         let names: Vec<&str> = v.antennas.iter().map(|a| a.name.as_str()).collect();
         let list = format!("vehicles[{i}].antennas");
-        check_events(&v.events, &format!("vehicles[{i}]"), &list, &names, duration_s)?;
+        check_events(
+            &v.events,
+            &format!("vehicles[{i}]"),
+            &list,
+            &names,
+            duration_s,
+        )?;
     }
     Ok(())
 }
@@ -203,7 +209,13 @@ fn check_errors(scenario: &Scenario) -> Result<(), Invalid> {
         .multipath
         .check_antennas(&names)
         .map_err(|e| e.within("errors.multipath"))?;
-    check_events(&errors.events, "errors", "[[antennas]]", &names, scenario.time.duration_s)
+    check_events(
+        &errors.events,
+        "errors",
+        "[[antennas]]",
+        &names,
+        scenario.time.duration_s,
+    )
 }
 
 /// Each of `events` (at `{prefix}.events[i]`) valid over `duration_s` and on an antenna

@@ -119,16 +119,26 @@ fn vehicle_events_reach_their_vehicle_only() {
     );
     let s = parse_in(&text, std::path::Path::new(".")).expect("vehicle events");
     let views = s.vehicle_views();
-    assert_eq!(views[0].errors.events.len(), 1, "the scenario's event alone");
+    assert_eq!(
+        views[0].errors.events.len(),
+        1,
+        "the scenario's event alone"
+    );
     assert_eq!(views[1].errors.events.len(), 2);
     assert_eq!(views[1].errors.events[1].start_s, 10.0);
     for v in &views {
         v.build().expect("a view builds");
     }
-    let late = text.replace("start_s = 10.0\nend_s = 12.0", "start_s = 70.0\nend_s = 72.0");
+    let late = text.replace(
+        "start_s = 10.0\nend_s = 12.0",
+        "start_s = 70.0\nend_s = 72.0",
+    );
     let err = parse_error(&late);
     assert!(err.field.starts_with("vehicles[1].events[0]"), "{err}");
-    let elsewhere = text.replace("antenna = \"ant1\"\nsatellite", "antenna = \"ant9\"\nsatellite");
+    let elsewhere = text.replace(
+        "antenna = \"ant1\"\nsatellite",
+        "antenna = \"ant9\"\nsatellite",
+    );
     let err = parse_error(&elsewhere);
     assert_eq!(err.field, "vehicles[1].events[0].antenna");
     assert!(err.allowed.contains("vehicles[1].antennas"), "{err}");

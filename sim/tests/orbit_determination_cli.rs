@@ -260,7 +260,10 @@ fn receive_determines_the_orbit_as_it_fixes() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("--assist NAV"), "{err}");
     assert!(!d.join("rx-none").exists());
-    assert_eq!(read_h5(&d.join("rx-rd/orbit.h5")).unwrap().filter, "reduced-dynamic");
+    assert_eq!(
+        read_h5(&d.join("rx-rd/orbit.h5")).unwrap().filter,
+        "reduced-dynamic"
+    );
     support::skyforge_ok(
         &[
             "od",
