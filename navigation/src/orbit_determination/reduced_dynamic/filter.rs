@@ -23,7 +23,7 @@ use super::state::{Slot, State};
 use crate::orbit_determination::EcefEstimate;
 use crate::orbit_determination::position_filter::ecef_estimate;
 use crate::pvt::{
-    Measurement, PvtConfig, Transmitted, local_frame, ranging_delay_beyond_tgd_s, solve,
+    Measurement, PvtConfig, SatView, Transmitted, local_frame, ranging_delay_beyond_tgd_s, solve,
     solve_velocity,
 };
 use hifitime::Epoch;
@@ -46,6 +46,20 @@ const FIRST_ISB: usize = 11;
 /// drift (m/s), clock offset and biases (m).
 /// # assumed: a few times a single-point fix's errors; the filter forgets them in minutes.
 const INITIAL_SIGMA: [f64; 4] = [10.0, 1.0, 1.0, 30.0];
+
+/// The predictions after a clock jump: the first from the jumped offset, a second to
+/// take up the few metres the receive instant's move left (a LEO moves 7.5 m in 1 us).
+const JUMP_PASSES: usize = 3;
+
+/// One observed ranging as the state predicts it.
+struct Ranged<'o> {
+    o: &'o Observed,
+    view: SatView,
+    /// The code's partials by the state.
+    h: DVector<f64>,
+    /// The modelled code (m).
+    code: f64,
+}
 
 /// The reduced-dynamic filter of a receiver's observations.
 #[derive(Debug, Clone)]
@@ -97,7 +111,7 @@ impl ReducedDynamicFilter {
     ) -> Option<EcefEstimate> {
         let observed = observed(records, &self.systems, self.config.ionosphere);
         let mut state = match self.state.take() {
-            Some(state) => self.predict(state, tag_s),
+            Some(state) => self.predict_through_jumps(state, tag_s, &observed, store),
             None => self.initialise(tag_s, &observed, store, origin)?,
         };
         self.follow(&mut state, &observed);
@@ -199,6 +213,28 @@ impl ReducedDynamicFilter {
         }
     }
 
+    /// [`Self::predict`] to the epoch tagged `tag_s`; where the receiver's clock jumped
+    /// ([`Self::clock_jump`]) the jump moves the clock offset, whose spread starts
+    /// again, and the prediction is made again from there (the receive instant follows
+    /// the offset), at most [`JUMP_PASSES`] times.
+    fn predict_through_jumps(
+        &self,
+        mut previous: State,
+        tag_s: f64,
+        observed: &[Observed],
+        store: &EphemerisStore,
+    ) -> State {
+        for _ in 0..JUMP_PASSES {
+            let predicted = self.predict(previous.clone(), tag_s);
+            let Some(jump) = self.clock_jump(&predicted, observed, store) else {
+                return predicted;
+            };
+            let value = previous.x[BIAS] + jump;
+            previous.restart(BIAS, value, self.config.code_sigma_m.powi(2) * 100.0);
+        }
+        self.predict(previous, tag_s)
+    }
+
     /// Drop the slots of satellites no longer observed and of arcs that lost lock; start
     /// a range error for every new satellite and an ambiguity for every new arc.
     fn follow(&self, s: &mut State, observed: &[Observed]) {
@@ -225,10 +261,15 @@ impl ReducedDynamicFilter {
         }
     }
 
-    /// The epoch's measurement rows, linearised at the predicted state, those that pass
-    /// the gate; an arc whose carrier fails it starts again from this epoch's code.
-    fn rows(&self, s: &mut State, observed: &[Observed], store: &EphemerisStore) -> Vec<Row> {
-        let c = &self.config;
+    /// Each observed ranging above the mask with its ephemeris, its satellite as seen from
+    /// the state and its modelled code (the range with the clock, system and satellite
+    /// terms) and partials; and the receiver the rows need.
+    fn ranged<'o>(
+        &self,
+        s: &State,
+        observed: &'o [Observed],
+        store: &EphemerisStore,
+    ) -> (Receiver, Vec<Ranged<'o>>) {
         let n = s.x.len();
         let (r_e, v_e) = self.earth.eci_to_ecef(s.t_s, &s.r_eci(), &s.v_eci());
         let receiver = Receiver {
@@ -237,7 +278,7 @@ impl ReducedDynamicFilter {
             v_e,
         };
         let frame = local_frame(&r_e);
-        let mut rows = Vec::new();
+        let mut out = Vec::new();
         for o in observed {
             let m = &o.ranging;
             let Some(eph) = store.select(m.sat, s.tag_s) else {
@@ -249,22 +290,53 @@ impl ReducedDynamicFilter {
             if frame.is_some_and(|f| az_el(&(f * view.los)).1 < self.mask_rad) {
                 continue;
             }
-            let mut range_h = receiver.range_row(n, &view);
-            range_h[BIAS] = 1.0;
+            let mut h = receiver.range_row(n, &view);
+            h[BIAS] = 1.0;
             if let Some(i) = self.isb_index(m.sat.system) {
-                range_h[i] = 1.0;
+                h[i] = 1.0;
             }
             if let Some(k) = s.index(&Slot::Bias(m.sat)) {
-                range_h[k] = 1.0;
+                h[k] = 1.0;
             }
             // The clock, system and satellite terms: the row's ones beyond the orbit.
-            let offsets: f64 = (BIAS..n).map(|k| range_h[k] * s.x[k]).sum();
-            let range = view.range_m - C_MPS * view.clock_s + offsets;
+            let offsets: f64 = (BIAS..n).map(|k| h[k] * s.x[k]).sum();
+            let code = view.range_m - C_MPS * view.clock_s + offsets;
+            out.push(Ranged { o, view, h, code });
+        }
+        (receiver, out)
+    }
+
+    /// The receiver clock's jump at this epoch (m), when the median code innovation lies
+    /// beyond the gate of the clock offset's predicted spread: a receiver that re-steers
+    /// its clock moves every pseudorange and its epoch tags at once.
+    fn clock_jump(&self, s: &State, observed: &[Observed], store: &EphemerisStore) -> Option<f64> {
+        let (_, ranged) = self.ranged(s, observed, store);
+        let mut innovations: Vec<f64> = (ranged.iter())
+            .map(|r| r.o.ranging.pseudorange_m - r.code)
+            .collect();
+        if innovations.is_empty() {
+            return None;
+        }
+        innovations.sort_by(f64::total_cmp);
+        let median = innovations[innovations.len() / 2];
+        let spread = s.p[(BIAS, BIAS)] + self.config.code_sigma_m.powi(2);
+        (median.powi(2) > self.config.gate_sigma.powi(2) * spread).then_some(median)
+    }
+
+    /// The epoch's measurement rows, linearised at the predicted state, those that pass
+    /// the gate; an arc whose carrier fails it starts again from this epoch's code.
+    fn rows(&self, s: &mut State, observed: &[Observed], store: &EphemerisStore) -> Vec<Row> {
+        let c = &self.config;
+        let n = s.x.len();
+        let (receiver, ranged) = self.ranged(s, observed, store);
+        let mut rows = Vec::new();
+        for Ranged { o, view, h, code } in ranged {
+            let m = &o.ranging;
             let nf = m.noise_factor();
             rows.push(Row {
-                innovation: m.pseudorange_m - range,
+                innovation: m.pseudorange_m - code,
                 variance: (c.code_sigma_m * nf).powi(2),
-                h: range_h.clone(),
+                h: h.clone(),
             });
             if let (true, Some(doppler)) = (c.observables.doppler, o.doppler_hz) {
                 let (rate, mut h) = receiver.rate_row(n, &view);
@@ -277,10 +349,10 @@ impl ReducedDynamicFilter {
             }
             let arc = s.index(&Slot::Ambiguity(o.arc()));
             if let (Some(phase), Some(k)) = (o.phase_m, arc) {
-                let mut h = range_h;
+                let mut h = h;
                 h[k] = 1.0;
                 let row = Row {
-                    innovation: phase - range - s.x[k],
+                    innovation: phase - code - s.x[k],
                     variance: (c.phase_sigma_m * nf).powi(2),
                     h,
                 };
