@@ -4,7 +4,10 @@
 //! of their `truth.h5` files. [`write_relative_truth`] writes it beside the vehicles'
 //! directories; `skyforge relnav` writes its estimates in the same layout
 //! ([`write_relative_csv`], `relnav.csv`); [`read_relative_csv`] reads either back.
-//! Columns in docs/scenario.md.
+//! Columns in docs/scenario.md. Estimates of relnav's `double-difference` mode add
+//! [`EXTRA_COLUMNS`] after them: the baseline in the Earth-fixed frame (free of the
+//! target frame's orientation) and the double-difference ambiguities fixed and float; a
+//! file without them (the truth, the other modes) keeps the eleven columns.
 
 use crate::FormatError;
 use crate::csv::{Fields, read_csv, require_columns};
@@ -37,6 +40,16 @@ const COLUMNS: [&str; 11] = [
     "range_m",
 ];
 
+/// The optional columns of a `double-difference` estimate (module docs).
+pub const EXTRA_COLUMNS: [&str; 5] = ["bx_ecef_m", "by_ecef_m", "bz_ecef_m", "fixed", "float"];
+
+/// The double-difference ambiguities of one estimate after its epoch.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct FixedFloat {
+    pub fixed: usize,
+    pub float: usize,
+}
+
 /// One row: a vehicle relative to the target at one epoch.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RelativeRow {
@@ -49,6 +62,10 @@ pub struct RelativeRow {
     pub position_m: Vec3,
     /// Its rate in that rotating frame (m/s).
     pub velocity_mps: Vec3,
+    /// The vehicle minus the target in the Earth-fixed frame (m), where estimated so.
+    pub baseline_ecef_m: Option<Vec3>,
+    /// The double-difference ambiguities, where resolved.
+    pub ambiguities: Option<FixedFloat>,
 }
 
 /// A vehicle's name and its `truth.h5`.
@@ -63,10 +80,15 @@ pub fn write_relative_csv(
 ) -> Result<(), FormatError> {
     let write_err = |e: std::io::Error| FormatError::file(path, format!("cannot write: {e}"));
     let mut w = std::io::BufWriter::new(std::fs::File::create(path).map_err(write_err)?);
-    writeln!(w, "{}", COLUMNS.join(",")).map_err(write_err)?;
+    let extra = (rows.iter()).any(|r| r.baseline_ecef_m.is_some() || r.ambiguities.is_some());
+    let mut header = COLUMNS.join(",");
+    if extra {
+        header = format!("{header},{}", EXTRA_COLUMNS.join(","));
+    }
+    writeln!(w, "{header}").map_err(write_err)?;
     for r in rows {
         let (p, v) = (r.position_m, r.velocity_mps);
-        writeln!(
+        write!(
             w,
             "{},{:.3},{},{},{:.4},{:.4},{:.4},{:.6},{:.6},{:.6},{:.4}",
             r.time,
@@ -82,6 +104,17 @@ pub fn write_relative_csv(
             p.norm()
         )
         .map_err(write_err)?;
+        if extra {
+            let b = r.baseline_ecef_m.map_or_else(
+                || ",,".to_string(),
+                |b| format!("{:.5},{:.5},{:.5}", b.x, b.y, b.z),
+            );
+            let a = r
+                .ambiguities
+                .map_or_else(|| ",".to_string(), |a| format!("{},{}", a.fixed, a.float));
+            write!(w, ",{b},{a}").map_err(write_err)?;
+        }
+        writeln!(w).map_err(write_err)?;
     }
     w.flush().map_err(write_err)
 }
@@ -125,6 +158,8 @@ pub fn write_relative_truth(
                 target: target.0.to_string(),
                 position_m,
                 velocity_mps,
+                baseline_ecef_m: None,
+                ambiguities: None,
             });
         }
     }
@@ -138,12 +173,36 @@ pub fn read_relative_csv(path: &Path) -> Result<Vec<RelativeRow>, FormatError> {
     let each = |header: &[&str], line: usize, text: &str| {
         let f = Fields::new(path, line, header, text)?;
         let num = |c: &str| f.number(c)?.ok_or_else(|| f.error(format!("{c} is empty")));
+        let optional = |c: &str| -> Result<Option<f64>, FormatError> {
+            if f.has(c) { f.number(c) } else { Ok(None) }
+        };
+        let baseline_ecef_m = match (
+            optional("bx_ecef_m")?,
+            optional("by_ecef_m")?,
+            optional("bz_ecef_m")?,
+        ) {
+            (Some(x), Some(y), Some(z)) => Some(Vec3::new(x, y, z)),
+            _ => None,
+        };
+        let count = |c: &str| -> Result<Option<usize>, FormatError> {
+            match optional(c)? {
+                Some(v) if v >= 0.0 && v.fract() == 0.0 && v <= 1e9 => Ok(Some(v as usize)),
+                Some(v) => Err(f.error(format!("{c} = {v} is not a count"))),
+                None => Ok(None),
+            }
+        };
+        let ambiguities = match (count("fixed")?, count("float")?) {
+            (Some(fixed), Some(float)) => Some(FixedFloat { fixed, float }),
+            _ => None,
+        };
         rows.push(RelativeRow {
             time: f.epoch("time_gpst")?,
             vehicle: f.text("vehicle")?.to_string(),
             target: f.text("target")?.to_string(),
             position_m: Vec3::new(num("x_m")?, num("y_m")?, num("z_m")?),
             velocity_mps: Vec3::new(num("vx_mps")?, num("vy_mps")?, num("vz_mps")?),
+            baseline_ecef_m,
+            ambiguities,
         });
         Ok(())
     };
@@ -168,11 +227,19 @@ mod tests {
                 target: "target".into(),
                 position_m: Vec3::new(-32_000.123_4 + f64::from(k), 0.5, 76.25),
                 velocity_mps: Vec3::new(0.001_234, -0.000_5, 0.361_5),
+                baseline_ecef_m: None,
+                ambiguities: None,
             })
             .collect();
         write_relative_csv(&path, start, &rows).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert!(!text.contains("bx_ecef_m"), "{text}");
         let read = read_relative_csv(&path).unwrap();
         assert_eq!(read.len(), 3);
+        assert!(
+            read.iter()
+                .all(|r| r.baseline_ecef_m.is_none() && r.ambiguities.is_none())
+        );
         for (r, w) in read.iter().zip(&rows) {
             assert_eq!(
                 (r.time, &r.vehicle, &r.target),
@@ -181,6 +248,19 @@ mod tests {
             assert!((r.position_m - w.position_m).norm() < 1e-4);
             assert!((r.velocity_mps - w.velocity_mps).norm() < 1e-6);
         }
+        // The double-difference columns: written when a row has them, read back.
+        let mut extra = rows.clone();
+        extra[1].baseline_ecef_m = Some(Vec3::new(-150_000.123_45, 98_765.432_1, 1.0));
+        extra[1].ambiguities = Some(FixedFloat {
+            fixed: 20,
+            float: 2,
+        });
+        write_relative_csv(&path, start, &extra).unwrap();
+        let read = read_relative_csv(&path).unwrap();
+        assert_eq!(read[0].baseline_ecef_m, None);
+        let b = read[1].baseline_ecef_m.unwrap();
+        assert!((b - extra[1].baseline_ecef_m.unwrap()).norm() < 1e-5);
+        assert_eq!(read[1].ambiguities, extra[1].ambiguities);
         std::fs::write(&path, "time_gpst,t_s\n").unwrap();
         let e = read_relative_csv(&path).unwrap_err().to_string();
         assert!(e.contains("no column vehicle"), "{e}");

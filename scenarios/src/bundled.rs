@@ -157,6 +157,13 @@ const BUNDLED: &[Bundled] = &[
                   and Doppler noise, for `skyforge relnav` (B-5.6)",
         text: include_str!("../bundled/book-relnav-leo.toml"),
     },
+    Bundled {
+        name: "grace-relnav",
+        summary: "GRACE-like formation: two LEOs at 500 km, i = 89 deg, 200 km apart on one \
+                  orbit, 1200 s, GPS L1 C/A + L2 at the observation level, exact satellite \
+                  orbits, for `skyforge relnav` in mode double-difference",
+        text: include_str!("../bundled/grace-relnav.toml"),
+    },
 ];
 
 /// Every bundled scenario.

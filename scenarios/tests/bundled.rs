@@ -36,7 +36,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "book-od-leo",
             "od-leo",
             "od-leo-dual",
-            "book-relnav-leo"
+            "book-relnav-leo",
+            "grace-relnav"
         ]
     );
     for b in bundled() {

@@ -9,6 +9,7 @@ pub mod integrity;
 pub mod observables;
 pub mod orbit;
 pub mod relnav;
+pub mod relnav_baseline;
 pub mod report;
 pub mod stats;
 pub mod thesis;

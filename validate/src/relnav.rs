@@ -1,8 +1,11 @@
 //! `skyforge validate relnav`: `skyforge relnav`'s estimates (`relnav.csv`) against the
 //! run's relative truth (`relative.csv`), both in the target's orbit frame: per axis the
 //! RMS and the largest absolute error, and the 3-D RMS, of position and velocity, from a
-//! settling time on.
+//! settling time on. Estimates with an Earth-fixed baseline (mode `double-difference`)
+//! are also compared as such, free of the frame's orientation, with the fraction of
+//! their ambiguities fixed ([`crate::relnav_baseline`]).
 
+use crate::relnav_baseline::{FixedFraction, compare_baselines};
 use crate::stats::rms;
 use serde::Serialize;
 use skyforge_formats::FormatError;
@@ -29,6 +32,17 @@ impl AxisErrors {
     }
 }
 
+/// The Earth-fixed baselines against the truth (`relnav_baseline`).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct BaselineComparison {
+    /// Estimates with a baseline compared.
+    pub compared: usize,
+    /// Their errors in the target's true orbit frame (m).
+    pub position_m: AxisErrors,
+    /// The double-difference ambiguities fixed over them.
+    pub ambiguities: Option<FixedFraction>,
+}
+
 /// What `validate relnav` measured.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct RelnavComparison {
@@ -40,6 +54,9 @@ pub struct RelnavComparison {
     pub settle_s: f64,
     pub position_m: AxisErrors,
     pub velocity_mps: AxisErrors,
+    /// The Earth-fixed baselines' errors in the target's true frame and the ambiguities
+    /// fixed, where the estimates carry them.
+    pub baseline: Option<BaselineComparison>,
     /// Each compared estimate's time (s since the first estimate) and position and
     /// velocity errors, for plots and the book's transients.
     #[serde(skip)]
@@ -115,6 +132,13 @@ pub fn compare_relnav(
             format!("no estimate from {settle_s} s on inside the truth's span"),
         ));
     }
+    let truth_dir = truth_csv.parent().unwrap_or(Path::new("."));
+    let baseline =
+        compare_baselines(truth_dir, &estimates, settle_s)?.map(|b| BaselineComparison {
+            compared: b.errors.len(),
+            position_m: AxisErrors::of(&b.errors),
+            ambiguities: b.ambiguities,
+        });
     let dp: Vec<Vec3> = series.iter().map(|s| s.1).collect();
     let dv: Vec<Vec3> = series.iter().map(|s| s.2).collect();
     Ok(RelnavComparison {
@@ -125,6 +149,7 @@ pub fn compare_relnav(
         settle_s,
         position_m: AxisErrors::of(&dp),
         velocity_mps: AxisErrors::of(&dv),
+        baseline,
         series,
     })
 }
@@ -156,6 +181,28 @@ pub fn print_relnav(c: &RelnavComparison, out: &mut impl std::io::Write) -> std:
             "{max:<24}{:>12.d$}{:>12.d$}{:>12.d$}",
             a.max_abs[0], a.max_abs[1], a.max_abs[2]
         )?;
+    }
+    if let Some(b) = &c.baseline {
+        let a = &b.position_m;
+        writeln!(
+            out,
+            "{:<24}{:>12.5}{:>12.5}{:>12.5}{:>12.5}",
+            "baseline RMS (m)", a.rms[0], a.rms[1], a.rms[2], a.rms_3d
+        )?;
+        writeln!(
+            out,
+            "{:<24}{:>12.5}{:>12.5}{:>12.5}   ({} estimates; Earth-fixed, in the true frame)",
+            "baseline max |e| (m)", a.max_abs[0], a.max_abs[1], a.max_abs[2], b.compared
+        )?;
+        if let Some(f) = &b.ambiguities {
+            writeln!(
+                out,
+                "integers   {} of {} double-difference ambiguities fixed ({:.1} %)",
+                f.fixed,
+                f.fixed + f.float,
+                100.0 * f.fraction
+            )?;
+        }
     }
     Ok(())
 }

@@ -1,5 +1,7 @@
 //! The settings of `skyforge relnav` (TOML, docs/orbit-determination.md).
 
+use super::double_difference::config::DoubleDifferenceConfig;
+use super::hill_filter::HillFilterConfig;
 use crate::config_file::read_settings;
 use crate::orbit_determination::PositionFilterConfig;
 use crate::pvt::SmoothingConfig;
@@ -18,6 +20,9 @@ pub enum RelnavMode {
     PositionDifference,
     /// Book eqs. 5-60..5-64 then as `PositionDifference`.
     CarrierSmoothed,
+    /// Double-difference carrier phase and code between the spacecraft with integer
+    /// ambiguities (beyond the book; `relnav::double_difference`).
+    DoubleDifference,
 }
 
 impl RelnavMode {
@@ -27,6 +32,7 @@ impl RelnavMode {
             RelnavMode::Standalone => "standalone",
             RelnavMode::PositionDifference => "position-difference",
             RelnavMode::CarrierSmoothed => "carrier-smoothed",
+            RelnavMode::DoubleDifference => "double-difference",
         }
     }
 }
@@ -52,6 +58,15 @@ pub struct RelnavConfig {
     /// 7.6 km/s is 5e-5 rad, 1.7 m across a 32 km separation.
     #[serde(default)]
     pub target_orbit: PositionFilterConfig,
+    /// The double-difference filter (mode `double-difference`).
+    #[serde(default)]
+    pub double_difference: DoubleDifferenceConfig,
+    /// `[filter]`: the book's relative filter (eqs. 5-57/5-58 with the Hill dynamics of
+    /// eq. 5-34 about the target's orbit) on the differenced fixes of modes
+    /// `standalone`, `position-difference` and `carrier-smoothed`; absent: the
+    /// differences as they are.
+    #[serde(default)]
+    pub filter: Option<HillFilterConfig>,
 }
 
 fn default_mask_deg() -> f64 {
@@ -66,6 +81,8 @@ impl Default for RelnavConfig {
             elevation_mask_deg: default_mask_deg(),
             smoothing: SmoothingConfig::default(),
             target_orbit: PositionFilterConfig::default(),
+            double_difference: DoubleDifferenceConfig::default(),
+            filter: None,
         }
     }
 }
@@ -84,6 +101,21 @@ impl RelnavConfig {
             .target_orbit
             .check()
             .map_err(|e| format!("target_orbit.{e}"))?;
+        config
+            .double_difference
+            .check()
+            .map_err(|e| e.to_string())?;
+        if let Some(filter) = &config.filter {
+            if config.mode == RelnavMode::DoubleDifference {
+                return Err(
+                    "filter: the book's relative filter takes the differenced fixes of modes \
+                     standalone, position-difference and carrier-smoothed; mode \
+                     double-difference has its own ([double_difference])"
+                        .into(),
+                );
+            }
+            filter.check().map_err(|e| format!("filter.{e}"))?;
+        }
         let s = &config.smoothing;
         for (name, v) in [
             ("smoothing.code_sigma_m", s.code_sigma_m),
@@ -115,6 +147,15 @@ mod tests {
                 .unwrap();
         assert_eq!(c.mode, RelnavMode::CarrierSmoothed);
         assert_eq!(c.smoothing.code_sigma_m, 2.0);
+        let c = RelnavConfig::parse(
+            "mode = \"double-difference\"\n[double_difference]\nratio_threshold = 2.5\n",
+        )
+        .unwrap();
+        assert_eq!(c.mode, RelnavMode::DoubleDifference);
+        assert_eq!(c.double_difference.ratio_threshold, 2.5);
+        assert_eq!(c.double_difference.min_success_rate, 0.999);
+        let c = RelnavConfig::parse("[filter]\nacceleration_sigma_mps2 = 1e-6\n").unwrap();
+        assert_eq!(c.filter.unwrap().acceleration_sigma_mps2, 1e-6);
         for (text, names) in [
             ("mode = \"kalman\"", "kalman"),
             ("elevation_mask_deg = 90", "elevation_mask_deg = 90"),
@@ -123,6 +164,26 @@ mod tests {
                 "smoothing.code_sigma_m = 0",
             ),
             ("mod = \"standalone\"", "mod"),
+            (
+                "[double_difference]\nratio_threshold = 0.5",
+                "double_difference.ratio_threshold = 0.5: must be in [1, 1000000]",
+            ),
+            (
+                "[double_difference]\nphase = { sigma0_m = 0.0, a0 = 0.0, elev0_deg = 10.0 }",
+                "double_difference.phase.sigma0_m = 0",
+            ),
+            (
+                "[double_difference]\nacceleration_sigma_mps2 = -1",
+                "double_difference.acceleration_sigma_mps2 = -1",
+            ),
+            (
+                "[filter]\nposition_sigma_m = 0",
+                "filter.position_sigma_m = 0",
+            ),
+            (
+                "mode = \"double-difference\"\n[filter]\n",
+                "filter: the book's relative filter",
+            ),
         ] {
             let e = RelnavConfig::parse(text).unwrap_err();
             assert!(e.contains(names), "{text}: {e}");

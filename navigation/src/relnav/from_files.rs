@@ -1,7 +1,10 @@
 //! Relative navigation on two observation files (module docs of [`super`]).
 
-use super::{RelnavConfig, RelnavMode};
+use super::double_difference::{self, Inputs};
+use super::hill_filter::{HillFilter, TargetState};
+use super::{AmbiguityCount, RelnavConfig, RelnavMode};
 use crate::orbit_determination::{FixInput, PositionFilter};
+use crate::pvt::IonosphereCorrection;
 use crate::pvt::{Fix, PvtConfig, records_velocity};
 use crate::relative::files::records_at;
 use crate::relative::single_point_fixes;
@@ -43,6 +46,12 @@ pub struct RelativeEstimate {
     /// (s): the book's steady state (5.6.5) needs neither vehicle to have changed
     /// satellites (in the common modes both use the same) and the smoothing to have run.
     pub same_satellites_s: f64,
+    /// The baseline chaser minus target in the Earth-fixed frame (m), where the mode
+    /// estimates it as such (`double-difference`): free of the frame's orientation.
+    pub baseline_ecef_m: Option<Vec3>,
+    /// The double-difference ambiguities fixed and float after the epoch
+    /// (`double-difference`).
+    pub ambiguities: Option<AmbiguityCount>,
 }
 
 /// What [`relative_from_files`] estimated.
@@ -204,6 +213,36 @@ pub fn relative_from_files(
         carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed).then_some(config.smoothing),
         ..PvtConfig::default()
     };
+    if config.mode == RelnavMode::DoubleDifference {
+        // Dual-frequency fixes where two carriers are measured: the ionosphere-free code
+        // (the receive instants and the target's anchor).
+        let carriers: BTreeSet<u64> = signals.iter().map(|s| s.carrier_hz() as u64).collect();
+        let pvt = PvtConfig {
+            ionosphere: if carriers.len() > 1 {
+                IonosphereCorrection::DualFrequency
+            } else {
+                IonosphereCorrection::Broadcast
+            },
+            carrier_smoothing: None,
+            ..pvt
+        };
+        let inputs = Inputs {
+            store: &store,
+            origin: &origin,
+            start,
+            signals: &signals,
+            config,
+            pvt: &pvt,
+        };
+        let (estimates, missed) = double_difference::run(&t_file, &c_file, &inputs);
+        return Ok(RelnavRun {
+            start,
+            mode: config.mode,
+            signals,
+            estimates,
+            missed,
+        });
+    }
     let mut t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &pvt);
     let mut c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &pvt);
     if common {
@@ -229,6 +268,7 @@ pub fn relative_from_files(
         })
     };
     let mut orbit = PositionFilter::new(config.target_orbit.clone(), start);
+    let mut relative_filter = (config.filter.clone()).map(|f| HillFilter::new(f, start));
     let mut estimates = Vec::new();
     let mut missed = 0;
     // The target fix's satellites and since when it has used them.
@@ -262,17 +302,28 @@ pub fn relative_from_files(
             v_ecef_mps: Some(t.v_ecef_mps),
             gdop: tf.dop.gdop,
         });
-        let (position_m, velocity_mps) = relative_in_frame_of(
+        let (mut position_m, mut velocity_mps) = relative_in_frame_of(
             &filtered.r_eci_m,
             &filtered.v_eci_mps,
             &(rc - rt),
             &(vc - vt),
         );
+        if let Some(f) = relative_filter.as_mut() {
+            let target = TargetState {
+                t_s: t.t_s,
+                r_eci_m: filtered.r_eci_m,
+                v_eci_mps: filtered.v_eci_mps,
+            };
+            let e = f.update(target, position_m, Some(velocity_mps));
+            (position_m, velocity_mps) = (e.position_m, e.velocity_mps);
+        }
         estimates.push(RelativeEstimate {
             t_s: t.t_s,
             position_m,
             velocity_mps,
             same_satellites_s: t.t_s - since,
+            baseline_ecef_m: None,
+            ambiguities: None,
         });
     }
     Ok(RelnavRun {

@@ -17,7 +17,14 @@
 //! - `carrier-smoothed`: as `position-difference`, each vehicle's code first smoothed by
 //!   its carrier with the book's growing-memory filter (eqs. 5-60..5-64,
 //!   `pvt::CarrierSmoother`), restarted where a satellite leaves the common set; no
-//!   filter after the smoothing (the book: the smoothed fixes are correlated in time).
+//!   filter after the smoothing (the book: the smoothed fixes are correlated in time);
+//! - `double-difference` (beyond the book): double-difference carrier phase and code
+//!   between the spacecraft with integer ambiguities, a Kalman filter on the gravity
+//!   difference of the two orbits (the module docs of `relnav::double_difference`).
+//!
+//! With a `[filter]` table the differenced fixes of the first three modes go through the
+//! book's relative filter ([`HillFilter`]: eqs. 5-57/5-58 with the Hill dynamics of eq.
+//! 5-34 about the target's orbit) before they are written.
 //!
 //! Velocities are the difference of the two Doppler velocities (eq. 5-56b's rotating-frame
 //! rate). The frame (eq. 5-55's `M`, from the target's state) is oriented by the target's
@@ -28,7 +35,12 @@
 //! Reads only what the receivers could: observations, broadcast ephemerides, settings.
 
 mod config;
+mod double_difference;
 mod from_files;
+mod hill_filter;
 
 pub use config::{RelnavConfig, RelnavMode};
+pub use double_difference::config::DoubleDifferenceConfig;
+pub use double_difference::fixing::AmbiguityCount;
 pub use from_files::{RelativeEstimate, RelnavError, RelnavRun, relative_from_files};
+pub use hill_filter::{HillEstimate, HillFilter, HillFilterConfig, TargetState};

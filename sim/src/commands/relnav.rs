@@ -7,7 +7,7 @@ use crate::bad_input::BadInput;
 use crate::cli::RelnavArgs;
 use crate::output::staged_dir::StagedDir;
 use hifitime::Unit;
-use skyforge_formats::relative::{RELNAV_CSV, RelativeRow, write_relative_csv};
+use skyforge_formats::relative::{FixedFloat, RELNAV_CSV, RelativeRow, write_relative_csv};
 use skyforge_navigation::relnav::{RelnavConfig, relative_from_files};
 
 /// Run `skyforge relnav`.
@@ -48,6 +48,11 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
             target: args.target_name.clone(),
             position_m: e.position_m,
             velocity_mps: e.velocity_mps,
+            baseline_ecef_m: e.baseline_ecef_m,
+            ambiguities: e.ambiguities.map(|a| FixedFloat {
+                fixed: a.fixed,
+                float: a.float,
+            }),
         })
         .collect();
     let staged = StagedDir::create(&args.out, args.force)?;
@@ -60,6 +65,15 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
         run.estimates.len(),
         run.missed
     );
+    let counts = run.estimates.iter().filter_map(|e| e.ambiguities);
+    let (fixed, float) = counts.fold((0, 0), |(x, y), a| (x + a.fixed, y + a.float));
+    if fixed + float > 0 {
+        println!(
+            "integers   {fixed} of {} double-difference ambiguities fixed over the epochs ({:.1} %)",
+            fixed + float,
+            100.0 * fixed as f64 / (fixed + float) as f64
+        );
+    }
     println!("wrote      {}", dir.join(RELNAV_CSV).display());
     Ok(())
 }

@@ -1,0 +1,84 @@
+//! Integer resolution of the double-difference ambiguities and their hold.
+//!
+//! The double-difference ambiguities `a = D N` of the epoch's pairings (`D`: +1 at the
+//! satellite's single-difference state, -1 at the reference's) have the float values
+//! `a_hat = D x` and covariance `Q = D P D^T`. Those whose variance is already below
+//! [`HELD_VARIANCE`] were fixed before and are held; LAMBDA (`ambiguity::lambda`) searches
+//! the others. They are fixed when the ratio test (second-best over best squared norm at
+//! least `ratio_threshold`) and the bootstrapped success rate (at least
+//! `min_success_rate`) both pass; if not, the least precise one is dropped and the rest
+//! tried again (partial fixing by subsets). Fixed integers enter the filter as
+//! measurements `D x = a` of variance [`HOLD_VARIANCE`]: the baseline is then the fixed
+//! solution, and the integers stay while the satellites are tracked without a slip
+//! (fix and hold). A held constraint needs no re-mapping when the reference changes:
+//! it constrains single-difference states, and any double difference of two satellites
+//! linked through held constraints is as precise.
+
+use super::filter::{DdFilter, Key, Pairing};
+use crate::ambiguity::lambda;
+use nalgebra::{DMatrix, DVector};
+
+/// A double-difference ambiguity with a variance below this (cycles^2) counts as fixed.
+pub(crate) const HELD_VARIANCE: f64 = 1e-6;
+/// The variance of a fixed integer's constraint (cycles^2).
+const HOLD_VARIANCE: f64 = 1e-12;
+
+/// The double-difference ambiguities of one epoch after resolution.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct AmbiguityCount {
+    pub fixed: usize,
+    pub float: usize,
+}
+
+/// The row `D` of one pairing's double-difference ambiguity.
+fn row(filter: &DdFilter, p: &Pairing) -> Option<DVector<f64>> {
+    let s = filter.index(Key::Ambiguity(p.sat, p.signal))?;
+    let r = filter.index(Key::Ambiguity(p.reference, p.signal))?;
+    let mut d = DVector::zeros(filter.x.len());
+    d[s] = 1.0;
+    d[r] = -1.0;
+    Some(d)
+}
+
+/// Resolve the float ambiguities of `pairings` and hold those fixed; the epoch's count.
+pub(crate) fn resolve(filter: &mut DdFilter, pairings: &[Pairing]) -> AmbiguityCount {
+    let rows: Vec<DVector<f64>> = pairings.iter().filter_map(|p| row(filter, p)).collect();
+    let variance = |d: &DVector<f64>| (d.transpose() * &filter.p * d)[(0, 0)];
+    let mut float: Vec<(f64, DVector<f64>)> = (rows.iter())
+        .map(|d| (variance(d), d.clone()))
+        .filter(|(v, _)| *v >= HELD_VARIANCE)
+        .collect();
+    let held = rows.len() - float.len();
+    // Most precise first: a failed test drops the last.
+    float.sort_by(|a, b| a.0.total_cmp(&b.0));
+    while !float.is_empty() {
+        let d = DMatrix::from_fn(float.len(), filter.x.len(), |i, j| float[i].1[j]);
+        let a_hat = &d * &filter.x;
+        let q = &d * &filter.p * d.transpose();
+        let q = (&q + q.transpose()) * 0.5;
+        if let Some(integers) = fixed_integers(filter, &a_hat, &q) {
+            let values = DVector::from_iterator(integers.len(), integers.iter().map(|&k| k as f64));
+            let innovation = values - &a_hat;
+            let r = DMatrix::from_diagonal_element(float.len(), float.len(), HOLD_VARIANCE);
+            filter.measure(&d, &innovation, &r);
+            return AmbiguityCount {
+                fixed: held + float.len(),
+                float: rows.len() - held - float.len(),
+            };
+        }
+        float.pop();
+    }
+    AmbiguityCount {
+        fixed: held,
+        float: rows.len() - held,
+    }
+}
+
+/// The integers of `a_hat` (covariance `q`) when the ratio and success-rate tests pass.
+fn fixed_integers(filter: &DdFilter, a_hat: &DVector<f64>, q: &DMatrix<f64>) -> Option<Vec<i64>> {
+    let solution = lambda(a_hat, q, 2).ok()?;
+    let ratio = solution.ratio().unwrap_or(f64::INFINITY);
+    let config = &filter.config;
+    (ratio >= config.ratio_threshold && solution.success_rate >= config.min_success_rate)
+        .then(|| solution.best().integers.clone())
+}
