@@ -17,3 +17,14 @@ pub(crate) fn read_settings<T>(
     let text = read_text(path, MAX_CONFIG_BYTES, what).map_err(|e| e.to_string())?;
     parse(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
+
+/// Each `(name, value, max)` finite and in `(0, max]`: the first that is not, as `name =
+/// value: must be in (0, max]`.
+pub(crate) fn check_positive(values: &[(&str, f64, f64)]) -> Result<(), String> {
+    for &(name, v, max) in values {
+        if !(v.is_finite() && v > 0.0 && v <= max) {
+            return Err(format!("{name} = {v}: must be in (0, {max}]"));
+        }
+    }
+    Ok(())
+}

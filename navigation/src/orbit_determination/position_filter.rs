@@ -86,31 +86,22 @@ impl PositionFilterConfig {
     /// Whether the values are usable: the sigmas positive and finite, the spacecraft's
     /// drag parameters physical.
     pub fn check(&self) -> Result<(), String> {
-        for (name, v, max) in [
+        crate::config_file::check_positive(&[
             ("position_sigma_m", self.position_sigma_m, 1e6),
             ("velocity_sigma_mps", self.velocity_sigma_mps, 1e4),
             ("acceleration_sigma_mps2", self.acceleration_sigma_mps2, 1.0),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v <= max) {
-                return Err(format!("{name} = {v}: must be in (0, {max}]"));
-            }
-        }
+        ])?;
         check_forces(&self.forces)
     }
 }
 
 /// Whether a filter's spacecraft drag parameters are physical.
 pub(crate) fn check_forces(f: &ForceModelConfig) -> Result<(), String> {
-    for (name, v) in [
-        ("forces.drag_coefficient", f.drag_coefficient),
-        ("forces.area_m2", f.area_m2),
-        ("forces.mass_kg", f.mass_kg),
-    ] {
-        if !(v.is_finite() && v > 0.0 && v <= 1e6) {
-            return Err(format!("{name} = {v}: must be in (0, 1e6]"));
-        }
-    }
-    Ok(())
+    crate::config_file::check_positive(&[
+        ("forces.drag_coefficient", f.drag_coefficient, 1e6),
+        ("forces.area_m2", f.area_m2, 1e6),
+        ("forces.mass_kg", f.mass_kg, 1e6),
+    ])
 }
 
 /// One single-point fix as the filter takes it.

@@ -115,6 +115,18 @@ pub struct Measurement {
     pub signal: Signal,
 }
 
+impl Measurement {
+    /// The measurement of a record that has a pseudorange.
+    pub fn of_record(r: &skyforge_gnss::observation::ObsRecord) -> Option<Self> {
+        Some(Self {
+            sat: r.sat,
+            pseudorange_m: r.pseudorange_m?,
+            doppler_hz: r.doppler_hz,
+            signal: r.signal,
+        })
+    }
+}
+
 /// What the solver applies.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PvtConfig {

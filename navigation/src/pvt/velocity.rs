@@ -20,14 +20,7 @@ pub fn records_velocity(
 ) -> Option<Vec3> {
     let meas: Vec<Measurement> = (records.iter())
         .filter(|r| signals.contains(&r.signal))
-        .filter_map(|r| {
-            Some(Measurement {
-                sat: r.sat,
-                pseudorange_m: r.pseudorange_m?,
-                doppler_hz: r.doppler_hz,
-                signal: r.signal,
-            })
-        })
+        .filter_map(Measurement::of_record)
         .collect();
     solve_velocity(&meas, t_rx_s, store, fix)
         .ok()

@@ -117,15 +117,11 @@ impl RelnavConfig {
             filter.check().map_err(|e| format!("filter.{e}"))?;
         }
         let s = &config.smoothing;
-        for (name, v) in [
-            ("smoothing.code_sigma_m", s.code_sigma_m),
-            ("smoothing.phase_sigma_m", s.phase_sigma_m),
-            ("smoothing.max_gap_s", s.max_gap_s),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v <= 1e4) {
-                return Err(format!("{name} = {v}: must be in (0, 1e4]"));
-            }
-        }
+        crate::config_file::check_positive(&[
+            ("smoothing.code_sigma_m", s.code_sigma_m, 1e4),
+            ("smoothing.phase_sigma_m", s.phase_sigma_m, 1e4),
+            ("smoothing.max_gap_s", s.max_gap_s, 1e4),
+        ])?;
         Ok(config)
     }
 

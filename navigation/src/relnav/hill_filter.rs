@@ -72,15 +72,11 @@ impl HillFilterConfig {
     /// Whether the values are usable: each error names the field, its value and what is
     /// allowed.
     pub fn check(&self) -> Result<(), String> {
-        for (name, v, max) in [
+        crate::config_file::check_positive(&[
             ("position_sigma_m", self.position_sigma_m, 1e6),
             ("velocity_sigma_mps", self.velocity_sigma_mps, 1e4),
             ("acceleration_sigma_mps2", self.acceleration_sigma_mps2, 1.0),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v <= max) {
-                return Err(format!("{name} = {v}: must be in (0, {max}]"));
-            }
-        }
+        ])?;
         crate::orbit_determination::position_filter::check_forces(&self.forces)
     }
 }

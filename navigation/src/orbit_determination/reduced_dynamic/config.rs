@@ -161,7 +161,7 @@ impl ReducedDynamicConfig {
     /// Whether the values are usable: each error names the field, its value and what is
     /// allowed.
     pub fn check(&self) -> Result<(), String> {
-        for (name, v, max) in [
+        crate::config_file::check_positive(&[
             ("code_sigma_m", self.code_sigma_m, 1e4),
             ("satellite_sigma_m", self.satellite_sigma_m, 1e3),
             ("satellite_tau_s", self.satellite_tau_s, 1e7),
@@ -172,11 +172,7 @@ impl ReducedDynamicConfig {
             ("clock_walk_m_sqrt_s", self.clock_walk_m_sqrt_s, 1e6),
             ("drift_walk_mps_sqrt_s", self.drift_walk_mps_sqrt_s, 1e4),
             ("gate_sigma", self.gate_sigma, 1e3),
-        ] {
-            if !(v.is_finite() && v > 0.0 && v <= max) {
-                return Err(format!("{name} = {v}: must be in (0, {max}]"));
-            }
-        }
+        ])?;
         crate::orbit_determination::position_filter::check_forces(&self.forces)
     }
 }

@@ -72,14 +72,7 @@ pub(super) fn observed(
 ) -> Vec<Observed> {
     let meas: Vec<Measurement> = (records.iter())
         .filter(|r| systems.contains(&r.sat.system))
-        .filter_map(|r| {
-            Some(Measurement {
-                sat: r.sat,
-                pseudorange_m: r.pseudorange_m?,
-                doppler_hz: r.doppler_hz,
-                signal: r.signal,
-            })
-        })
+        .filter_map(Measurement::of_record)
         .collect();
     let record = |sat: SatId, s: Signal| records.iter().find(|r| r.sat == sat && r.signal == s);
     let phase_m = |r: &ObsRecord| {
