@@ -192,39 +192,29 @@ fn receive_determines_the_orbit_as_it_fixes() {
     let d = dir.path();
     support::skyforge_ok(&["synth", "interop-leo-gps", "--out", "sim"], d);
     std::fs::write(d.join("od.toml"), "interval_s = 1\n").unwrap();
-    let out = support::skyforge_ok(
-        &[
-            "receive",
-            "sim/ant1.gps-l1ca.sigmf-meta",
-            "--assist",
-            "sim/nav.rnx",
-            "--config",
-            "sim/receiver.toml",
-            "--od",
-            "od.toml",
-            "--out",
-            "rx",
-        ],
-        d,
-    );
-    assert!(out.contains("rx/orbit.sp3"), "{out}");
     let rd = "interval_s = 1\n[filter]\nkind = \"reduced-dynamic\"\n";
     std::fs::write(d.join("rd.toml"), rd).unwrap();
-    let out = support::skyforge_ok(
-        &[
-            "receive",
-            "sim/ant1.gps-l1ca.sigmf-meta",
-            "--assist",
-            "sim/nav.rnx",
-            "--config",
-            "sim/receiver.toml",
-            "--od",
-            "rd.toml",
-            "--out",
-            "rx-rd",
-        ],
-        d,
-    );
+    // `receive` of the recording with `--od config` into `out`.
+    let receive = |config: &str, out: &str| {
+        support::skyforge_ok(
+            &[
+                "receive",
+                "sim/ant1.gps-l1ca.sigmf-meta",
+                "--assist",
+                "sim/nav.rnx",
+                "--config",
+                "sim/receiver.toml",
+                "--od",
+                config,
+                "--out",
+                out,
+            ],
+            d,
+        )
+    };
+    let out = receive("od.toml", "rx");
+    assert!(out.contains("rx/orbit.sp3"), "{out}");
+    let out = receive("rd.toml", "rx-rd");
     assert!(out.contains("rx-rd/orbit.sp3"), "{out}");
     // Without the ephemerides the reduced-dynamic stage cannot range: refused, nothing
     // written.
