@@ -60,6 +60,9 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
     let dir = staged.commit()?;
     let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
     println!("mode       {} ({})", run.mode.name(), signals.join(", "));
+    if config.filter.is_some() {
+        println!("filter     the book's relative filter (Hill dynamics, eqs. 5-57/5-58)");
+    }
     println!(
         "epochs     {} estimates, {} common epochs without both fixes",
         run.estimates.len(),
