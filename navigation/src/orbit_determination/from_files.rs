@@ -109,6 +109,42 @@ pub fn position_filter_on_file(
     fixes.iter().map(|f| od.update(f)).collect()
 }
 
+/// The single-point fixes of every epoch of `file` (first epoch `start`) on `signals` (velocity from the
+/// Doppler, asked for on the stage's grid only) into the position filter's stage `od`.
+fn fixes_into(
+    mut od: OrbitDetermination,
+    file: &ObsFile,
+    start: Epoch,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    signals: &[Signal],
+) -> OrbitDetermination {
+    let origin = TimeOrigin::new(start);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let pvt = PvtConfig {
+        elevation_mask_rad: od.config().elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        ..PvtConfig::default()
+    };
+    let fixes = single_point_fixes(file, &store, &origin, signals, &pvt);
+    for (epoch, fix) in file.epochs.iter().zip(fixes) {
+        od.epoch(
+            epoch.time,
+            || {
+                fix.ok().map(|fix| EpochFix {
+                    time: origin.start() + Unit::Second * fix.t_s,
+                    r_ecef_m: fix.r_ecef_m,
+                    v_ecef_mps: doppler_velocity(epoch, signals, &store, &origin, &fix),
+                    gdop: fix.dop.gdop,
+                })
+            },
+            Vec::new,
+        );
+    }
+    od
+}
+
 /// `skyforge od`: the orbit of the receiver that recorded `file`, from its observations,
 /// the broadcast `ephemerides` and ionosphere, with `config`'s filter.
 pub fn orbit_from_file(
@@ -150,47 +186,25 @@ pub fn orbit_from_file(
     if !ephemerides.iter().any(|e| tracked.contains(&e.sat)) {
         return Err(OdError::NoEphemeris(source));
     }
-    let origin = TimeOrigin::new(start);
     let stage_config = OdConfig {
         signals: signals.clone(),
         ..config.clone()
     };
-    let mut od = match config.filter {
-        OdFilterConfig::PositionFilter(_) => OrbitDetermination::new(stage_config, Vec::new()),
-        OdFilterConfig::ReducedDynamic(_) => {
-            OrbitDetermination::new(stage_config, ephemerides.clone())
-        }
-    }
-    .map_err(|_| OdError::NoEphemeris(source.clone()))?;
-    let store = EphemerisStore::new(ephemerides, &origin);
-    let pvt = PvtConfig {
-        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
-        iono_gps: iono.gps,
-        iono_bds: iono.bds,
-        ..PvtConfig::default()
-    };
-    let fixes = match config.filter {
+    let od = match config.filter {
         OdFilterConfig::PositionFilter(_) => {
-            single_point_fixes(file, &store, &origin, &signals, &pvt)
+            let od = OrbitDetermination::new(stage_config, Vec::new())
+                .map_err(|_| OdError::NoEphemeris(source.clone()))?;
+            fixes_into(od, file, start, ephemerides, iono, &signals)
         }
-        OdFilterConfig::ReducedDynamic(_) => Vec::new(),
+        OdFilterConfig::ReducedDynamic(_) => {
+            let mut od = OrbitDetermination::new(stage_config, ephemerides)
+                .map_err(|_| OdError::NoEphemeris(source.clone()))?;
+            for epoch in &file.epochs {
+                od.epoch(epoch.time, || None, || epoch.sats.clone());
+            }
+            od
+        }
     };
-    let mut fixes = fixes.into_iter();
-    for epoch in &file.epochs {
-        let fix = fixes.next();
-        od.epoch(
-            epoch.time,
-            || {
-                fix?.ok().map(|fix| EpochFix {
-                    time: origin.start() + Unit::Second * fix.t_s,
-                    r_ecef_m: fix.r_ecef_m,
-                    v_ecef_mps: doppler_velocity(epoch, &signals, &store, &origin, &fix),
-                    gdop: fix.dop.gdop,
-                })
-            },
-            || epoch.sats.clone(),
-        );
-    }
     let (estimates, missed) = (od.estimates().to_vec(), od.missed());
     Ok(OdRun {
         start,

@@ -51,14 +51,12 @@ const INITIAL_SIGMA: [f64; 4] = [10.0, 1.0, 1.0, 30.0];
 /// take up the few metres the receive instant's move left (a LEO moves 7.5 m in 1 us).
 const JUMP_PASSES: usize = 3;
 
-/// One observed ranging as the state predicts it.
-struct Ranged<'o> {
+/// One observed ranging above the mask with its satellite as seen from the predicted
+/// orbit (what every row of it needs; the same before and after the slots follow the
+/// epoch's satellites).
+struct Seen<'o> {
     o: &'o Observed,
     view: SatView,
-    /// The code's partials by the state.
-    h: DVector<f64>,
-    /// The modelled code (m).
-    code: f64,
 }
 
 /// The reduced-dynamic filter of a receiver's observations.
@@ -110,12 +108,16 @@ impl ReducedDynamicFilter {
         origin: &TimeOrigin,
     ) -> Option<EcefEstimate> {
         let observed = observed(records, &self.systems, self.config.ionosphere);
-        let mut state = match self.state.take() {
+        let (mut state, (receiver, seen)) = match self.state.take() {
             Some(state) => self.predict_through_jumps(state, tag_s, &observed, store),
-            None => self.initialise(tag_s, &observed, store, origin)?,
+            None => {
+                let state = self.initialise(tag_s, &observed, store, origin)?;
+                let seen = self.seen(&state, &observed, store);
+                (state, seen)
+            }
         };
         self.follow(&mut state, &observed);
-        let rows = self.rows(&mut state, &observed, store);
+        let rows = self.rows(&mut state, &receiver, &seen);
         update(&mut state, &rows);
         let e = self.estimate(&state);
         self.state = Some(state);
@@ -217,22 +219,25 @@ impl ReducedDynamicFilter {
     /// ([`Self::clock_jump`]) the jump moves the clock offset, whose spread starts
     /// again, and the prediction is made again from there (the receive instant follows
     /// the offset), at most [`JUMP_PASSES`] times.
-    fn predict_through_jumps(
+    fn predict_through_jumps<'o>(
         &self,
         mut previous: State,
         tag_s: f64,
-        observed: &[Observed],
+        observed: &'o [Observed],
         store: &EphemerisStore,
-    ) -> State {
+    ) -> (State, (Receiver, Vec<Seen<'o>>)) {
         for _ in 0..JUMP_PASSES {
             let predicted = self.predict(previous.clone(), tag_s);
-            let Some(jump) = self.clock_jump(&predicted, observed, store) else {
-                return predicted;
+            let seen = self.seen(&predicted, observed, store);
+            let Some(jump) = self.clock_jump(&predicted, &seen.1) else {
+                return (predicted, seen);
             };
             let value = previous.x[BIAS] + jump;
             previous.restart(BIAS, value, self.config.code_sigma_m.powi(2) * 100.0);
         }
-        self.predict(previous, tag_s)
+        let predicted = self.predict(previous, tag_s);
+        let seen = self.seen(&predicted, observed, store);
+        (predicted, seen)
     }
 
     /// Drop the slots of satellites no longer observed and of arcs that lost lock; start
@@ -261,16 +266,14 @@ impl ReducedDynamicFilter {
         }
     }
 
-    /// Each observed ranging above the mask with its ephemeris, its satellite as seen from
-    /// the state and its modelled code (the range with the clock, system and satellite
-    /// terms) and partials; and the receiver the rows need.
-    fn ranged<'o>(
+    /// Each observed ranging above the mask with its ephemeris and its satellite as seen
+    /// from the state's orbit; and the receiver the rows need.
+    fn seen<'o>(
         &self,
         s: &State,
         observed: &'o [Observed],
         store: &EphemerisStore,
-    ) -> (Receiver, Vec<Ranged<'o>>) {
-        let n = s.x.len();
+    ) -> (Receiver, Vec<Seen<'o>>) {
         let (r_e, v_e) = self.earth.eci_to_ecef(s.t_s, &s.r_eci(), &s.v_eci());
         let receiver = Receiver {
             rot: self.earth.c_eci_ecef(s.t_s),
@@ -290,29 +293,39 @@ impl ReducedDynamicFilter {
             if frame.is_some_and(|f| az_el(&(f * view.los)).1 < self.mask_rad) {
                 continue;
             }
-            let mut h = receiver.range_row(n, &view);
-            h[BIAS] = 1.0;
-            if let Some(i) = self.isb_index(m.sat.system) {
-                h[i] = 1.0;
-            }
-            if let Some(k) = s.index(&Slot::Bias(m.sat)) {
-                h[k] = 1.0;
-            }
-            // The clock, system and satellite terms: the row's ones beyond the orbit.
-            let offsets: f64 = (BIAS..n).map(|k| h[k] * s.x[k]).sum();
-            let code = view.range_m - C_MPS * view.clock_s + offsets;
-            out.push(Ranged { o, view, h, code });
+            out.push(Seen { o, view });
         }
         (receiver, out)
+    }
+
+    /// The state indices of a code's clock, system and satellite terms (each enters with
+    /// a one).
+    fn offset_indices(&self, s: &State, seen: &Seen) -> [Option<usize>; 3] {
+        let sat = seen.o.ranging.sat;
+        [
+            Some(BIAS),
+            self.isb_index(sat.system),
+            s.index(&Slot::Bias(sat)),
+        ]
+    }
+
+    /// The modelled code (m): the range with the clock, system and satellite terms.
+    fn code(&self, s: &State, seen: &Seen) -> f64 {
+        let offsets: f64 = self
+            .offset_indices(s, seen)
+            .iter()
+            .flatten()
+            .map(|&k| s.x[k])
+            .sum();
+        seen.view.range_m - C_MPS * seen.view.clock_s + offsets
     }
 
     /// The receiver clock's jump at this epoch (m), when the median code innovation lies
     /// beyond the gate of the clock offset's predicted spread: a receiver that re-steers
     /// its clock moves every pseudorange and its epoch tags at once.
-    fn clock_jump(&self, s: &State, observed: &[Observed], store: &EphemerisStore) -> Option<f64> {
-        let (_, ranged) = self.ranged(s, observed, store);
-        let mut innovations: Vec<f64> = (ranged.iter())
-            .map(|r| r.o.ranging.pseudorange_m - r.code)
+    fn clock_jump(&self, s: &State, seen: &[Seen]) -> Option<f64> {
+        let mut innovations: Vec<f64> = (seen.iter())
+            .map(|r| r.o.ranging.pseudorange_m - self.code(s, r))
             .collect();
         if innovations.is_empty() {
             return None;
@@ -325,13 +338,18 @@ impl ReducedDynamicFilter {
 
     /// The epoch's measurement rows, linearised at the predicted state, those that pass
     /// the gate; an arc whose carrier fails it starts again from this epoch's code.
-    fn rows(&self, s: &mut State, observed: &[Observed], store: &EphemerisStore) -> Vec<Row> {
+    fn rows(&self, s: &mut State, receiver: &Receiver, seen: &[Seen]) -> Vec<Row> {
         let c = &self.config;
         let n = s.x.len();
-        let (receiver, ranged) = self.ranged(s, observed, store);
         let mut rows = Vec::new();
-        for Ranged { o, view, h, code } in ranged {
+        for one in seen {
+            let (o, view) = (one.o, &one.view);
             let m = &o.ranging;
+            let code = self.code(s, one);
+            let mut h = receiver.range_row(n, view);
+            for k in self.offset_indices(s, one).into_iter().flatten() {
+                h[k] = 1.0;
+            }
             let nf = m.noise_factor();
             rows.push(Row {
                 innovation: m.pseudorange_m - code,
@@ -339,7 +357,7 @@ impl ReducedDynamicFilter {
                 h: h.clone(),
             });
             if let (true, Some(doppler)) = (c.observables.doppler, o.doppler_hz) {
-                let (rate, mut h) = receiver.rate_row(n, &view);
+                let (rate, mut h) = receiver.rate_row(n, view);
                 h[DRIFT] = 1.0;
                 rows.push(Row {
                     innovation: -doppler * C_MPS / m.signal.carrier_hz() - rate - s.x[DRIFT],
