@@ -123,6 +123,19 @@ pub(crate) fn list_dropped(dropped: &[Dropped]) -> String {
 }
 
 impl ObsFile {
+    /// A file of `epochs` under this one's header (source, position, codes, marker),
+    /// nothing dropped: what a stage makes of a file's epochs.
+    pub fn with_epochs(&self, epochs: Vec<ObsEpoch>) -> ObsFile {
+        ObsFile {
+            source: self.source.clone(),
+            approx_ecef_m: self.approx_ecef_m,
+            codes: self.codes.clone(),
+            epochs,
+            marker: self.marker.clone(),
+            dropped: Vec::new(),
+        }
+    }
+
     /// The signals observed in the file, in [`Signal`] order.
     pub fn signals(&self) -> Vec<Signal> {
         let set: std::collections::BTreeSet<Signal> = self

@@ -8,7 +8,7 @@ use crate::baseline::LineOfSight;
 use crate::geometry_file::BodyGeometryFile;
 use crate::pvt::{
     CarrierSmoother, Fix, FromEphemeris, IonosphereCorrection, Measurement, NearAntenna, Predicted,
-    PvtConfig, Recorded, Satellites, ViewPoint, solve_with,
+    PvtConfig, Recorded, Satellites, SmoothingConfig, ViewPoint, solve_with,
 };
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
@@ -181,6 +181,23 @@ pub fn single_point_fixes(
             fix
         })
         .collect()
+}
+
+/// `file` with each pseudorange that has a carrier beside it smoothed along the file's
+/// own tracks (book eqs. 5-60..5-64, one [`CarrierSmoother`] over every epoch).
+pub(crate) fn carrier_smoothed_file(
+    file: &ObsFile,
+    origin: &TimeOrigin,
+    smoothing: SmoothingConfig,
+) -> ObsFile {
+    let mut smoother = CarrierSmoother::new(smoothing);
+    let epochs = (file.epochs.iter())
+        .map(|e| ObsEpoch {
+            time: e.time,
+            sats: smoothed(&mut smoother, &e.sats, origin.seconds_since_start(e.time)),
+        })
+        .collect();
+    file.with_epochs(epochs)
 }
 
 /// `records` with each pseudorange that has a carrier beside it smoothed by `smoother`.

@@ -37,6 +37,21 @@ impl RelnavMode {
     }
 }
 
+/// Which satellites each vehicle's fix uses in mode `carrier-smoothed`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "kebab-case")]
+pub enum SatelliteSets {
+    /// Both fixes on the satellites both use, each smoother restarted where a satellite
+    /// leaves the common set (the module docs of `relnav`).
+    #[default]
+    Common,
+    /// The book's procedure (5.6.5): each vehicle smooths its own pseudoranges along its
+    /// own tracks and fixes on the satellites it tracks; the target sends its state and
+    /// the chaser differences. The two sets differ where one vehicle has lost a
+    /// satellite the other still uses (the book's figures' events at 39 and 164 s).
+    Own,
+}
+
 /// What relative navigation runs with.
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -52,6 +67,9 @@ pub struct RelnavConfig {
     /// The carrier smoother's noise figures (mode `carrier-smoothed`).
     #[serde(default)]
     pub smoothing: SmoothingConfig,
+    /// Whose satellites the fixes use (mode `carrier-smoothed`).
+    #[serde(default)]
+    pub satellite_sets: SatelliteSets,
     /// The target's own orbit filter (`skyforge od`'s position filter on its fixes,
     /// every epoch): its state orients the target frame (eq. 5-55's `M` and the frame's
     /// rate). One fix's Doppler velocity would turn the frame by its noise: 0.4 m/s of
@@ -80,6 +98,7 @@ impl Default for RelnavConfig {
             signals: Vec::new(),
             elevation_mask_deg: default_mask_deg(),
             smoothing: SmoothingConfig::default(),
+            satellite_sets: SatelliteSets::default(),
             target_orbit: PositionFilterConfig::default(),
             double_difference: DoubleDifferenceConfig::default(),
             filter: None,
@@ -105,6 +124,14 @@ impl RelnavConfig {
             .double_difference
             .check()
             .map_err(|e| e.to_string())?;
+        if config.satellite_sets == SatelliteSets::Own && config.mode != RelnavMode::CarrierSmoothed
+        {
+            return Err(format!(
+                "satellite_sets = \"own\": only with mode \"carrier-smoothed\" (mode \"{}\"; \
+                 mode \"standalone\" is each vehicle's own satellites without smoothing)",
+                config.mode.name()
+            ));
+        }
         if let Some(filter) = &config.filter {
             if config.mode == RelnavMode::DoubleDifference {
                 return Err(
@@ -152,7 +179,18 @@ mod tests {
         assert_eq!(c.double_difference.min_success_rate, 0.999);
         let c = RelnavConfig::parse("[filter]\nacceleration_sigma_mps2 = 1e-6\n").unwrap();
         assert_eq!(c.filter.unwrap().acceleration_sigma_mps2, 1e-6);
+        let c =
+            RelnavConfig::parse("mode = \"carrier-smoothed\"\nsatellite_sets = \"own\"\n").unwrap();
+        assert_eq!(c.satellite_sets, SatelliteSets::Own);
         for (text, names) in [
+            (
+                "satellite_sets = \"own\"",
+                "satellite_sets = \"own\": only with mode \"carrier-smoothed\" (mode \"position-difference\"",
+            ),
+            (
+                "mode = \"carrier-smoothed\"\nsatellite_sets = \"theirs\"",
+                "theirs",
+            ),
             ("mode = \"kalman\"", "kalman"),
             ("elevation_mask_deg = 90", "elevation_mask_deg = 90"),
             (

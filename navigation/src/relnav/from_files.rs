@@ -2,11 +2,11 @@
 
 use super::double_difference::{self, Inputs};
 use super::hill_filter::{HillFilter, TargetState};
-use super::{AmbiguityCount, RelnavConfig, RelnavMode};
+use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::IonosphereCorrection;
 use crate::pvt::{Fix, PvtConfig, records_velocity};
-use crate::relative::files::records_at;
+use crate::relative::files::{carrier_smoothed_file, records_at};
 use crate::relative::single_point_fixes;
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
@@ -42,9 +42,10 @@ pub struct RelativeEstimate {
     pub position_m: Vec3,
     /// The rate in the rotating frame.
     pub velocity_mps: Vec3,
-    /// How long the target's fix has used the same satellites, without a missed epoch
-    /// (s): the book's steady state (5.6.5) needs neither vehicle to have changed
-    /// satellites (in the common modes both use the same) and the smoothing to have run.
+    /// How long both fixes have used the same satellites as each other, neither set
+    /// changed and no epoch missed (s; 0 while the sets differ): the book's steady state
+    /// (5.6.5) needs both vehicles on one set, neither having changed satellites, and the
+    /// smoothing to have run.
     pub same_satellites_s: f64,
     /// The baseline chaser minus target in the Earth-fixed frame (m), where the mode
     /// estimates it as such (`double-difference`): free of the frame's orientation.
@@ -76,15 +77,10 @@ fn paired_files(
     common: bool,
 ) -> (ObsFile, ObsFile) {
     let keep = |r: &ObsRecord| signals.contains(&r.signal) && r.pseudorange_m.is_some();
-    let empty = |f: &ObsFile| ObsFile {
-        source: f.source.clone(),
-        approx_ecef_m: f.approx_ecef_m,
-        codes: f.codes.clone(),
-        epochs: Vec::new(),
-        marker: f.marker.clone(),
-        dropped: Vec::new(),
-    };
-    let (mut t_out, mut c_out) = (empty(target), empty(chaser));
+    let (mut t_out, mut c_out) = (
+        target.with_epochs(Vec::new()),
+        chaser.with_epochs(Vec::new()),
+    );
     let mut cursor = 0;
     for epoch in &target.epochs {
         let Some((time, records)) = records_at(chaser, &mut cursor, epoch.time) else {
@@ -120,22 +116,45 @@ fn restricted(
     t_fixes: &[Result<Fix, String>],
     c_fixes: &[Result<Fix, String>],
 ) -> (ObsFile, ObsFile) {
-    let used = |f: &Result<Fix, String>| -> BTreeSet<SatId> {
-        f.as_ref()
-            .map(|f| f.used.iter().map(|u| u.0).collect())
-            .unwrap_or_default()
-    };
     let (mut t_out, mut c_out) = (target.clone(), chaser.clone());
     let epochs = t_out.epochs.iter_mut().zip(c_out.epochs.iter_mut());
     for (k, (t, c)) in epochs.enumerate() {
-        let both: BTreeSet<SatId> = used(&t_fixes[k])
-            .intersection(&used(&c_fixes[k]))
+        let both: BTreeSet<SatId> = used_satellites(&t_fixes[k])
+            .intersection(&used_satellites(&c_fixes[k]))
             .copied()
             .collect();
         t.sats.retain(|r| both.contains(&r.sat));
         c.sats.retain(|r| both.contains(&r.sat));
     }
     (t_out, c_out)
+}
+
+/// The satellites `fix` used (none without one).
+fn used_satellites(fix: &Result<Fix, String>) -> BTreeSet<SatId> {
+    (fix.as_ref())
+        .map(|f| f.used.iter().map(|u| u.0).collect())
+        .unwrap_or_default()
+}
+
+/// The satellites the target's and the chaser's fix of an epoch used.
+#[derive(Debug, PartialEq)]
+struct SatelliteSetPair {
+    target: BTreeSet<SatId>,
+    chaser: BTreeSet<SatId>,
+}
+
+impl SatelliteSetPair {
+    fn of(target: &Result<Fix, String>, chaser: &Result<Fix, String>) -> Self {
+        Self {
+            target: used_satellites(target),
+            chaser: used_satellites(chaser),
+        }
+    }
+
+    /// Both fixes on the same satellites.
+    fn same(&self) -> bool {
+        self.target == self.chaser
+    }
 }
 
 /// One vehicle's solution at an epoch: its fix's time (s since the start), position and
@@ -195,22 +214,35 @@ pub fn relative_from_files(
             },
         });
     }
-    let common = config.mode != RelnavMode::Standalone;
-    let (t_file, c_file) = paired_files(target, chaser, &signals, common);
+    let origin = TimeOrigin::new(start);
+    // The book's own procedure smooths each vehicle's whole file along its own tracks
+    // first: an epoch only one vehicle missed restarts only that vehicle's smoothers.
+    let own =
+        config.mode == RelnavMode::CarrierSmoothed && config.satellite_sets == SatelliteSets::Own;
+    let smoothed = own.then(|| {
+        let smooth = |f| carrier_smoothed_file(f, &origin, config.smoothing);
+        (smooth(target), smooth(chaser))
+    });
+    let (target_in, chaser_in) = match &smoothed {
+        Some((t, c)) => (t, c),
+        None => (target, chaser),
+    };
+    let common = config.mode != RelnavMode::Standalone && !own;
+    let (t_file, c_file) = paired_files(target_in, chaser_in, &signals, common);
     if t_file.epochs.is_empty() {
         return Err(RelnavError::NoCommonEpoch {
             target: name(target),
             chaser: name(chaser),
         });
     }
-    let origin = TimeOrigin::new(start);
     let store = EphemerisStore::new(ephemerides, &origin);
     let earth = EarthRotation::at_origin(start);
     let pvt = PvtConfig {
         elevation_mask_rad: config.elevation_mask_deg.to_radians(),
         iono_gps: iono.gps,
         iono_bds: iono.bds,
-        carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed).then_some(config.smoothing),
+        carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed && !own)
+            .then_some(config.smoothing),
         ..PvtConfig::default()
     };
     if config.mode == RelnavMode::DoubleDifference {
@@ -271,8 +303,8 @@ pub fn relative_from_files(
     let mut relative_filter = (config.filter.clone()).map(|f| HillFilter::new(f, start));
     let mut estimates = Vec::new();
     let mut missed = 0;
-    // The target fix's satellites and since when it has used them.
-    let mut set: Option<(BTreeSet<SatId>, f64)> = None;
+    // The two fixes' satellites and since when they have used them.
+    let mut sets: Option<(SatelliteSetPair, f64)> = None;
     for k in 0..t_file.epochs.len() {
         let both = match (&t_fixes[k], &c_fixes[k]) {
             (Ok(tf), Ok(cf)) => solution(&t_file.epochs[k], tf)
@@ -282,15 +314,16 @@ pub fn relative_from_files(
         };
         let Some((tf, (t, c))) = both else {
             missed += 1;
-            set = None;
+            sets = None;
             continue;
         };
-        let used: BTreeSet<SatId> = tf.used.iter().map(|u| u.0).collect();
-        let since = match &set {
+        let used = SatelliteSetPair::of(&t_fixes[k], &c_fixes[k]);
+        let since = match &sets {
             Some((s, since)) if *s == used => *since,
             _ => t.t_s,
         };
-        set = Some((used, since));
+        let same_satellites_s = if used.same() { t.t_s - since } else { 0.0 };
+        sets = Some((used, since));
         // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
         let r_c = c.r_ecef_m + c.v_ecef_mps * (t.t_s - c.t_s);
         let (rt, vt) = earth.ecef_to_eci(t.t_s, &t.r_ecef_m, &t.v_ecef_mps);
@@ -321,7 +354,7 @@ pub fn relative_from_files(
             t_s: t.t_s,
             position_m,
             velocity_mps,
-            same_satellites_s: t.t_s - since,
+            same_satellites_s,
             baseline_ecef_m: None,
             ambiguities: None,
         });

@@ -18,6 +18,9 @@
 //!   its carrier with the book's growing-memory filter (eqs. 5-60..5-64,
 //!   `pvt::CarrierSmoother`), restarted where a satellite leaves the common set; no
 //!   filter after the smoothing (the book: the smoothed fixes are correlated in time);
+//!   with `satellite_sets = "own"` the book's own procedure instead: each vehicle smooths
+//!   its whole file along its own tracks and fixes on the satellites it tracks, so the
+//!   sets differ where one vehicle loses a satellite the other keeps (the book's events);
 //! - `double-difference` (beyond the book): double-difference carrier phase and code
 //!   between the spacecraft with integer ambiguities, a Kalman filter on the gravity
 //!   difference of the two orbits (the module docs of `relnav::double_difference`).
@@ -39,7 +42,7 @@ mod double_difference;
 mod from_files;
 mod hill_filter;
 
-pub use config::{RelnavConfig, RelnavMode};
+pub use config::{RelnavConfig, RelnavMode, SatelliteSets};
 pub use double_difference::config::DoubleDifferenceConfig;
 pub use double_difference::fixing::AmbiguityCount;
 pub use from_files::{RelativeEstimate, RelnavError, RelnavRun, relative_from_files};
