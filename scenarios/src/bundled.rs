@@ -158,6 +158,13 @@ const BUNDLED: &[Bundled] = &[
         text: include_str!("../bundled/book-relnav-leo.toml"),
     },
     Bundled {
+        name: "book-relnav-events",
+        summary: "Book 5.6.5 figures 5-36/5-38: book-relnav-leo with the book's events, \
+                  satellite sets that differ at 39 s and 164 s and chaser pseudoranges \
+                  missing at 237 s and 485 s (B-5.6's event rows)",
+        text: include_str!("../bundled/book-relnav-events.toml"),
+    },
+    Bundled {
         name: "grace-relnav",
         summary: "GRACE-like formation: two LEOs at 500 km, i = 89 deg, 200 km apart on one \
                   orbit, 1200 s, GPS L1 C/A + L2 at the observation level, exact satellite \

@@ -37,6 +37,7 @@ fn every_bundled_scenario_parses_and_builds() {
             "od-leo",
             "od-leo-dual",
             "book-relnav-leo",
+            "book-relnav-events",
             "grace-relnav"
         ]
     );

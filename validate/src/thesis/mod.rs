@@ -14,6 +14,7 @@ pub(crate) mod loop_budget;
 pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
 pub(crate) mod relative_navigation;
+pub(crate) mod relnav_events;
 pub(crate) mod reverse_filter;
 pub(crate) mod visibility;
 pub(crate) mod zero_baseline;
@@ -254,7 +255,10 @@ const UNITS: &[Unit] = &[
     Unit {
         tables: &[relative_navigation::TABLE],
         kind: Kind::PerRun,
-        scenarios: &[Source::Bundled(relative_navigation::SCENARIO)],
+        scenarios: &[
+            Source::Bundled(relative_navigation::SCENARIO),
+            Source::Bundled(relnav_events::SCENARIO),
+        ],
         evaluate: |_, _, draw| relative_navigation::rows(draw),
         figures: None,
     },

@@ -14,8 +14,9 @@
 //!   position (book 0.5 m; reproduced in [0.1, 0.8] m) and velocity (book 0.002 m/s,
 //!   printed "m"; reproduced up to 0.0032 m/s).
 //!
-//! Not built: the book's transients and events (re-initialisations at 237 and 485 s,
-//! satellite-set mismatches at 39 and 164 s) need per-vehicle scripted outages.
+//!
+//! Then the events of the book's figures 5-36/5-38 on their own scenario
+//! ([`super::relnav_events`]).
 
 use crate::draw::Draw;
 use crate::report::{Row, Verdict};
@@ -25,7 +26,7 @@ use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_navigation::relative::single_point_fixes;
 use skyforge_navigation::relnav::{
-    HillFilterConfig, RelativeEstimate, RelnavConfig, RelnavMode, relative_from_files,
+    HillFilterConfig, RelativeEstimate, RelnavConfig, RelnavMode, RelnavRun, relative_from_files,
 };
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::EphemerisStore;
@@ -43,9 +44,9 @@ const FIRST_SEED: u64 = 1;
 const RUNS: u64 = 4;
 /// Steady state from here (s): assumed, the book's "smoothing has run 50-100 s", its
 /// upper end.
-const STEADY_S: f64 = 100.0;
+pub(super) const STEADY_S: f64 = 100.0;
 /// Fewest steady-state epochs a run's carrier-smoothed statistics are taken over.
-const MIN_STEADY_EPOCHS: usize = 10;
+pub(super) const MIN_STEADY_EPOCHS: usize = 10;
 
 /// One set-up's statistics of one run: the differences as they are, or through the
 /// book's relative filter.
@@ -71,9 +72,12 @@ struct RunStats {
     filtered: SetupStats,
 }
 
-/// The two vehicles' observation-level runs of `seed`.
-fn observe(seed: u64) -> Result<(ObservationRun, ObservationRun), ValidateError> {
-    let mut scenario = skyforge_scenarios::named(SCENARIO)?;
+/// The two vehicles' observation-level runs of the bundled `name` at `seed`.
+pub(super) fn observe(
+    name: &str,
+    seed: u64,
+) -> Result<(ObservationRun, ObservationRun), ValidateError> {
+    let mut scenario = skyforge_scenarios::named(name)?;
     scenario.seed = seed;
     let mut runs = scenario
         .vehicle_views()
@@ -82,7 +86,7 @@ fn observe(seed: u64) -> Result<(ObservationRun, ObservationRun), ValidateError>
         .collect::<Result<Vec<_>, _>>()?;
     if runs.len() != 2 {
         return Err(ValidateError::Pipeline(format!(
-            "{SCENARIO}: {} vehicles, not a target and a chaser",
+            "{name}: {} vehicles, not a target and a chaser",
             runs.len()
         )));
     }
@@ -90,9 +94,43 @@ fn observe(seed: u64) -> Result<(ObservationRun, ObservationRun), ValidateError>
     Ok((runs.remove(0), chaser))
 }
 
+/// The settings every B-5.6 run shares: GPS L1 C/A, the target's orbit filter for the
+/// frame with B-5.5's settings (SA-era fixes).
+pub(super) fn relnav_config() -> RelnavConfig {
+    RelnavConfig {
+        signals: vec![Signal::GpsL1Ca],
+        target_orbit: super::orbit_determination::filter_config(),
+        ..RelnavConfig::default()
+    }
+}
+
+/// `skyforge relnav` on the two vehicles' observation files with `config`.
+pub(super) fn relnav_run(
+    target: &ObservationRun,
+    chaser: &ObservationRun,
+    config: &RelnavConfig,
+) -> Result<RelnavRun, ValidateError> {
+    let (t_file, c_file) = match (target.measured.first(), chaser.measured.first()) {
+        (Some(t), Some(c)) => (t, c),
+        _ => return Err(ValidateError::Pipeline("no observations".into())),
+    };
+    relative_from_files(
+        t_file,
+        c_file,
+        target.ephemerides.clone(),
+        &target.iono,
+        config,
+    )
+    .map_err(|e| ValidateError::Pipeline(e.to_string()))
+}
+
 /// The truth of the chaser relative to the target at `t_s` (the nearest geometry epoch:
 /// the fixes are tagged within microseconds of it).
-fn truth_at(target: &ObservationRun, chaser: &ObservationRun, t_s: f64) -> Option<(Vec3, Vec3)> {
+pub(super) fn truth_at(
+    target: &ObservationRun,
+    chaser: &ObservationRun,
+    t_s: f64,
+) -> Option<(Vec3, Vec3)> {
     let earth = EarthRotation::at_origin(target.start);
     let t = t_s.round();
     let (a, b) = (target.platform_at(t)?, chaser.platform_at(t)?);
@@ -119,35 +157,23 @@ fn errors(
 }
 
 /// The largest absolute component of `v` over all of them.
-fn max_abs(v: impl Iterator<Item = Vec3>) -> f64 {
+pub(super) fn max_abs(v: impl Iterator<Item = Vec3>) -> f64 {
     v.fold(0.0, |m, e| m.max(e.amax()))
 }
 
 /// One seed's statistics.
 fn run_stats(seed: u64) -> Result<RunStats, ValidateError> {
-    let (target, chaser) = observe(seed)?;
-    let (t_file, c_file) = match (target.measured.first(), chaser.measured.first()) {
-        (Some(t), Some(c)) => (t, c),
-        _ => return Err(ValidateError::Pipeline("no observations".into())),
-    };
+    let (target, chaser) = observe(SCENARIO, seed)?;
     let relnav = |mode: RelnavMode, filter: Option<HillFilterConfig>| {
-        // The target's orbit filter for the frame: B-5.5's settings (SA-era fixes).
         let config = RelnavConfig {
             mode,
-            signals: vec![Signal::GpsL1Ca],
-            target_orbit: super::orbit_determination::filter_config(),
             filter,
-            ..RelnavConfig::default()
+            ..relnav_config()
         };
-        relative_from_files(
-            t_file,
-            c_file,
-            target.ephemerides.clone(),
-            &target.iono,
-            &config,
-        )
-        .map_err(|e| ValidateError::Pipeline(e.to_string()))
+        relnav_run(&target, &chaser, &config)
     };
+    let c_file = (chaser.measured.first())
+        .ok_or_else(|| ValidateError::Pipeline("no observations".into()))?;
     // The chaser's standalone fixes against its truth.
     let origin = TimeOrigin::new(chaser.start);
     let store = EphemerisStore::new(chaser.ephemerides.clone(), &origin);
@@ -205,7 +231,7 @@ fn run_stats(seed: u64) -> Result<RunStats, ValidateError> {
 
 /// The mean of `f` over `runs` (those where it is defined; NaN when none is) and the
 /// per-seed values as a note.
-fn mean_and_note(runs: &[RunStats], f: impl Fn(&RunStats) -> f64, digits: usize) -> (f64, String) {
+pub(super) fn mean_and_note<R>(runs: &[R], f: impl Fn(&R) -> f64, digits: usize) -> (f64, String) {
     let v: Vec<f64> = runs.iter().map(f).collect();
     let defined: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
     let mean = if defined.is_empty() {
@@ -233,6 +259,7 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         " (relative filter)",
         &seeds_note,
     ));
+    rows.extend(super::relnav_events::rows(draw)?);
     Ok(rows)
 }
 
