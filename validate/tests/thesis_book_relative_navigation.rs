@@ -9,8 +9,15 @@
 //! set-up, the same rows through the book's relative filter (registered 2026-12-01
 //! before its first run): relative DGPS reproduced (0.0100), the steady-state position
 //! reproduced (0.714 m), the velocity a miss at 0.0063 m/s against the 0.0032 bar
-//! (seeds 1 and 2 inside it; 150 times the unfiltered velocity's accuracy). The table is
-//! printed (`-- --nocapture`).
+//! (seeds 1 and 2 inside it; 150 times the unfiltered velocity's accuracy). The events
+//! of the book's figures 5-36/5-38 on `book-relnav-events` (registered 2026-12-01 before
+//! their first run; carrier-smoothed, each vehicle on its own satellites): the error
+//! while the sets differ 8.6 times the steady-state largest (bar > 3, reproduced); the
+//! jump after the chaser's missing pseudoranges 0.19 of the mismatch's (bar < 1,
+//! reproduced); the velocity after it 0.70 of its steady-state largest (bar < 2,
+//! reproduced); the transient a miss: 6 of 8 draws never settle within 0.8 m before the
+//! next satellite change (the ionosphere's code-carrier divergence under unequal
+//! smoothing ages, docs/orbit-determination.md). The table is printed (`-- --nocapture`).
 
 mod thesis_support;
 
@@ -30,13 +37,28 @@ fn b_5_6_relative_dgps_and_carrier_smoothing_where_measured() {
             r.note
         );
     }
-    assert_eq!(rows.len(), 6, "{rows:#?}");
+    assert_eq!(rows.len(), 10, "{rows:#?}");
     for r in &rows {
         assert_eq!(r.table, "B-5.6");
         let v = r.ours.unwrap();
         assert!(v.is_finite() && v > 0.0, "{r:?}");
     }
     let filtered = |r: &&skyforge_validate::report::Row| r.row.ends_with("(relative filter)");
+    for name in [
+        "events: satellite-set mismatch",
+        "events: re-initialisation jump",
+        "events: velocity after",
+    ] {
+        let r = rows.iter().find(|r| r.row.starts_with(name)).expect(name);
+        assert_eq!(r.verdict, Verdict::Reproduced, "{r:?}");
+    }
+    let transient = (rows.iter())
+        .find(|r| r.row.starts_with("events: transient"))
+        .unwrap();
+    assert!(
+        transient.verdict == Verdict::Deviates && !transient.note.contains("window's end: 0 of"),
+        "no longer the recorded miss: {transient:?}"
+    );
     let row = |name: &str| {
         (rows.iter())
             .find(|r| r.row.starts_with(name) && !filtered(r))

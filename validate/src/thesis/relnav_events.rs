@@ -14,7 +14,12 @@
 //!   after each missed one, over the mismatches': the book's "small jump", < 1;
 //! - transient: from the first epoch after a missed one until the largest axis position
 //!   error stays within [`SETTLED_M`] up to the next change of either vehicle's
-//!   satellites (or the run's end): the book's 50-100 s, [25, 200] s;
+//!   satellites (or the run's end): the book's 50-100 s, [25, 200] s, and every draw
+//!   settled. The last condition was added after the first run, which registered the
+//!   mean alone with an unsettled draw counted at its window's length: 6 of 8 draws were
+//!   unsettled, so the mean (82 s) was mostly the windows' lengths and "reproduced" said
+//!   nothing (docs/orbit-determination.md: the ionosphere's code-carrier divergence under
+//!   unequal smoothing ages keeps the error near 1 m after a re-initialisation);
 //! - velocity: the largest axis velocity error over the [`AFTER_EPOCHS`] epochs after each
 //!   missed one, over the run's steady-state largest: "almost unaffected", < 2.
 
@@ -137,13 +142,17 @@ fn run_stats(seed: u64) -> Result<RunStats, ValidateError> {
             })
         })
         .collect();
+    // A run without a steady state has no steady-state largest: the ratios to it are
+    // undefined (NaN), left out of the mean and out of tolerance in a draw of its own,
+    // as B-5.6's carrier-smoothed rows.
     let steady: Vec<&Sample> = samples.iter().filter(|s| s.same_s >= STEADY_S).collect();
-    if steady.len() < MIN_STEADY_EPOCHS {
-        return Err(ValidateError::Pipeline(format!(
-            "{SCENARIO} seed {seed}: {} steady-state epochs",
-            steady.len()
-        )));
-    }
+    let steady_max = |f: fn(&&Sample) -> Vec3| {
+        if steady.len() < MIN_STEADY_EPOCHS {
+            f64::NAN
+        } else {
+            max_abs(steady.iter().map(f))
+        }
+    };
     let largest =
         |from: f64, epochs: usize, f: fn(&Sample) -> Vec3| -> Result<f64, ValidateError> {
             let w: Vec<&Sample> = window(&samples, from, epochs).collect();
@@ -158,8 +167,8 @@ fn run_stats(seed: u64) -> Result<RunStats, ValidateError> {
     let velocity = |s: &Sample| s.velocity_mps;
     let after = |&m: &f64| m + 1.0;
     Ok(RunStats {
-        steady_position_m: max_abs(steady.iter().map(|s| s.position_m)),
-        steady_velocity_mps: max_abs(steady.iter().map(|s| s.velocity_mps)),
+        steady_position_m: steady_max(|s| s.position_m),
+        steady_velocity_mps: steady_max(|s| s.velocity_mps),
         steady_epochs: steady.len(),
         mismatch_m: (MISMATCHES.iter())
             .map(|&(t, n)| largest(t, n, position))
@@ -266,8 +275,8 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
             None,
             transient,
             (
-                "[25, 200] s (the book's 50-100 s)".into(),
-                Verdict::from_ok((25.0..=200.0).contains(&transient)),
+                "[25, 200] s (the book's 50-100 s), every draw settled".into(),
+                Verdict::from_ok(unsettled == 0 && (25.0..=200.0).contains(&transient)),
             ),
         )
         .with_note(format!(
