@@ -53,6 +53,9 @@ pub struct DoubleDifferenceConfig {
     /// A satellite missing for longer than this (s) starts afresh.
     /// # assumed: 1.5 s, one missed epoch at 1 Hz.
     pub max_gap_s: f64,
+    /// Check the held integers every epoch against a float filter that never holds
+    /// (`fixing::check_held`); `false`: fix and hold without a check.
+    pub check_held: bool,
 }
 
 impl Default for DoubleDifferenceConfig {
@@ -69,6 +72,7 @@ impl Default for DoubleDifferenceConfig {
             min_success_rate: 0.999,
             slip_threshold_m: 0.05,
             max_gap_s: 1.5,
+            check_held: true,
         }
     }
 }

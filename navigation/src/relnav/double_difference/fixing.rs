@@ -13,6 +13,13 @@
 //! (fix and hold). A held constraint needs no re-mapping when the reference changes:
 //! it constrains single-difference states, and any double difference of two satellites
 //! linked through held constraints is as precise.
+//!
+//! A held integer can be wrong: the tests judge the float solution of the moment, and
+//! errors the model lacks (the satellites' orbit errors through a 200 km baseline bias
+//! the double differences by centimetres) can make a wrong candidate look right. So a
+//! float filter runs beside the holding one on the same epochs, never constrained
+//! ([`check_held`]): once its own float values of the held double differences resolve,
+//! with the same tests, to other integers, the held ones are released.
 
 use super::filter::{DdFilter, Key, Pairing};
 use crate::ambiguity::lambda;
@@ -53,9 +60,7 @@ pub(crate) fn resolve(filter: &mut DdFilter, pairings: &[Pairing]) -> AmbiguityC
     float.sort_by(|a, b| a.0.total_cmp(&b.0));
     while !float.is_empty() {
         let d = DMatrix::from_fn(float.len(), filter.x.len(), |i, j| float[i].1[j]);
-        let a_hat = &d * &filter.x;
-        let q = &d * &filter.p * d.transpose();
-        let q = (&q + q.transpose()) * 0.5;
+        let (a_hat, q) = float_of(filter, &d);
         if let Some(integers) = fixed_integers(filter, &a_hat, &q) {
             let values = DVector::from_iterator(integers.len(), integers.iter().map(|&k| k as f64));
             let innovation = values - &a_hat;
@@ -72,6 +77,41 @@ pub(crate) fn resolve(filter: &mut DdFilter, pairings: &[Pairing]) -> AmbiguityC
         fixed: held,
         float: rows.len() - held,
     }
+}
+
+/// `D x` and `D P D^T` (symmetrised) of `filter` for the rows of `d`.
+fn float_of(filter: &DdFilter, d: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>) {
+    let q = d * &filter.p * d.transpose();
+    (d * &filter.x, (&q + q.transpose()) * 0.5)
+}
+
+/// Fix and hold's check: `twin`, a float filter on the same epochs that never holds,
+/// against the integers `filter` holds on `pairings`. Where LAMBDA on the twin's float
+/// values of the held double differences finds other integers and they pass the ratio
+/// and success-rate tests, the held integers are wrong: `filter` becomes the twin (every
+/// hold released) and resolves afresh. Whether it released.
+pub(crate) fn check_held(filter: &mut DdFilter, twin: &DdFilter, pairings: &[Pairing]) -> bool {
+    if filter.keys != twin.keys {
+        return false;
+    }
+    let held: Vec<DVector<f64>> = (pairings.iter())
+        .filter_map(|p| row(filter, p))
+        .filter(|d| (d.transpose() * &filter.p * d)[(0, 0)] < HELD_VARIANCE)
+        .collect();
+    if held.is_empty() {
+        return false;
+    }
+    let d = DMatrix::from_fn(held.len(), filter.x.len(), |i, j| held[i][j]);
+    let (a_float, q) = float_of(twin, &d);
+    let Some(integers) = fixed_integers(twin, &a_float, &q) else {
+        return false;
+    };
+    let holding = &d * &filter.x;
+    let same = (integers.iter().zip(holding.iter())).all(|(&k, a)| k as f64 == a.round());
+    if !same {
+        *filter = twin.clone();
+    }
+    !same
 }
 
 /// The integers of `a_hat` (covariance `q`) when the ratio and success-rate tests pass.

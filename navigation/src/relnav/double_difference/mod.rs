@@ -81,6 +81,8 @@ pub(crate) fn run(
         dd.clone(),
         dynamics::gravity_field(&config.target_orbit.forces, inputs.start),
     );
+    // The float filter that checks the held integers (`fixing::check_held`).
+    let mut twin: Option<DdFilter> = None;
     let mut slips = SlipDetector::default();
     let settings = Settings {
         signals: inputs.signals,
@@ -126,11 +128,15 @@ pub(crate) fn run(
         let shift_s = cf.t_s - t;
         if filter.started() {
             filter.predict(anchor);
+            if let Some(twin) = twin.as_mut() {
+                twin.predict(anchor);
+            }
         } else {
             let b = cf.r_ecef_m - vc * shift_s - r_t;
             let b_eci = earth.ecef_to_eci(t, &b, &(vc - vt));
             let clock_m = cf.clock_bias_m - tf.clock_bias_m;
             filter.start(anchor, b_eci, (START_SIGMA_M, START_SIGMA_MPS), clock_m);
+            twin = dd.check_held.then(|| filter.clone());
         }
         let (b, b_dot) = filter.baseline();
         let c_eci_ecef = earth.c_eci_ecef(t);
@@ -156,6 +162,10 @@ pub(crate) fn run(
             sats,
         };
         let pairings = filter.update(t, &epoch);
+        if let Some(twin) = twin.as_mut() {
+            twin.update(t, &epoch);
+            fixing::check_held(&mut filter, twin, &pairings);
+        }
         let count = fixing::resolve(&mut filter, &pairings);
         let (b, b_dot) = filter.baseline();
         let (position_m, velocity_mps) = relative_in_frame_of(&o.r_eci_m, &o.v_eci_mps, &b, &b_dot);

@@ -2,92 +2,103 @@
 //! (integrated with the filter's own gravity field), eight satellites, perfect single
 //! differences of range (code) and of range plus integer ambiguities (phase) on two
 //! signals, no ionosphere, no clocks. After 600 s the filter must have the baseline to a
-//! micrometre and the double-difference integers exactly, all 14 fixed.
+//! micrometre and the double-difference integers exactly, all 14 fixed; a wrong integer
+//! forced into the hold must be released by the float twin's check and refixed.
 
 use super::config::DoubleDifferenceConfig;
 use super::dynamics::{gravity_field, propagate_pair};
-use super::filter::{Anchor, DdEpoch, DdFilter, Key, SatPair, SignalSd};
-use super::fixing::resolve;
+use super::filter::{Anchor, DdEpoch, DdFilter, Key, Pairing, SatPair, SignalSd};
+use super::fixing::{AmbiguityCount, check_held, resolve};
 use rand::{Rng, SeedableRng};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::{SatId, System};
+use skyforge_orbits::propagate::ForceModel;
 use skyforge_orbits::{Mat3, Vec3};
 
-#[test]
-fn perfect_ranges_give_the_baseline_and_the_integers() {
-    let start = hifitime::Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);
-    let forces = gravity_field(&Default::default(), start);
-    let mu = forces.gm();
-    let (r, inc) = (6.878e6_f64, 89f64.to_radians());
-    let v = (mu / r).sqrt();
-    let orbit = |u: f64| {
-        let (s, c) = u.sin_cos();
-        (
-            Vec3::new(r * c, r * s * inc.cos(), r * s * inc.sin()),
-            Vec3::new(-v * s, v * c * inc.cos(), v * c * inc.sin()),
-        )
-    };
-    let mut states = [orbit(0.3), orbit(0.3 - 200e3 / r)];
-    let signals = [Signal::GpsL1Ca, Signal::GpsL2];
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
-    // Satellites fixed in space at GPS radius, spread over the sky of the pair.
-    let sats: Vec<(SatId, Vec3, [i64; 2])> = (0..8)
-        .map(|k| {
-            let az = f64::from(k) * 0.8;
-            let tilt = 0.3 + 0.1 * f64::from(k % 3);
-            let up = states[0].0.normalize();
-            let east = Vec3::z().cross(&up).normalize();
-            let north = up.cross(&east);
-            let dir =
-                (up * tilt.cos() + (east * az.cos() + north * az.sin()) * tilt.sin()).normalize();
-            let id = SatId {
-                system: System::Gps,
-                prn: k as u8 + 1,
-            };
-            let n = [
-                rng.random_range(-100_000..100_000),
-                rng.random_range(-100_000..100_000),
-            ];
-            (id, states[0].0 + dir * 2.0e7, n)
-        })
-        .collect();
-    // A loose dynamics model: the float epochs' error is forgotten within the run.
-    let config = DoubleDifferenceConfig {
-        acceleration_sigma_mps2: 1e-4,
-        ..Default::default()
-    };
-    let mut filter = DdFilter::new(config, forces.clone());
-    let mut count = Default::default();
-    for step in 0..600 {
-        let t = f64::from(step);
-        if step > 0 {
-            states = propagate_pair(&forces, states, 1.0);
-        }
-        let anchor = Anchor {
-            t_s: t,
-            r_eci_m: states[0].0,
-            v_eci_mps: states[0].1,
+const SIGNALS: [Signal; 2] = [Signal::GpsL1Ca, Signal::GpsL2];
+
+/// The pair, its satellites (fixed in space at GPS radius, spread over its sky) and their
+/// single-difference integers per signal.
+struct Synthetic {
+    forces: ForceModel,
+    states: [(Vec3, Vec3); 2],
+    sats: Vec<(SatId, Vec3, [i64; 2])>,
+}
+
+impl Synthetic {
+    fn new() -> Self {
+        let start = hifitime::Epoch::from_gregorian_utc_at_midnight(2023, 3, 12);
+        let forces = gravity_field(&Default::default(), start);
+        let mu = forces.gm();
+        let (r, inc) = (6.878e6_f64, 89f64.to_radians());
+        let v = (mu / r).sqrt();
+        let orbit = |u: f64| {
+            let (s, c) = u.sin_cos();
+            (
+                Vec3::new(r * c, r * s * inc.cos(), r * s * inc.sin()),
+                Vec3::new(-v * s, v * c * inc.cos(), v * c * inc.sin()),
+            )
         };
-        let truth = (states[1].0 - states[0].0, states[1].1 - states[0].1);
-        if filter.started() {
-            filter.predict(anchor);
-        } else {
-            let off = Vec3::new(3.0, -2.0, 4.0);
-            filter.start(anchor, (truth.0 + off, truth.1), (10.0, 1.0), 2.0);
+        let states = [orbit(0.3), orbit(0.3 - 200e3 / r)];
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let sats = (0..8)
+            .map(|k| {
+                let az = f64::from(k) * 0.8;
+                let tilt = 0.3 + 0.1 * f64::from(k % 3);
+                let up = states[0].0.normalize();
+                let east = Vec3::z().cross(&up).normalize();
+                let north = up.cross(&east);
+                let dir = (up * tilt.cos() + (east * az.cos() + north * az.sin()) * tilt.sin())
+                    .normalize();
+                let id = SatId {
+                    system: System::Gps,
+                    prn: k as u8 + 1,
+                };
+                let n = [
+                    rng.random_range(-100_000..100_000),
+                    rng.random_range(-100_000..100_000),
+                ];
+                (id, states[0].0 + dir * 2.0e7, n)
+            })
+            .collect();
+        Self {
+            forces,
+            states,
+            sats,
         }
-        let pairs = sats
-            .iter()
+    }
+
+    /// A loose dynamics model: the float epochs' error is forgotten within the run.
+    fn filter(&self) -> DdFilter {
+        let config = DoubleDifferenceConfig {
+            acceleration_sigma_mps2: 1e-4,
+            ..Default::default()
+        };
+        DdFilter::new(config, self.forces.clone())
+    }
+
+    /// The epoch `step` seconds in (the pair moved on from the last call's), its anchor
+    /// and the true baseline.
+    fn epoch(&mut self, step: u32) -> (Anchor, (Vec3, Vec3), DdEpoch) {
+        if step > 0 {
+            self.states = propagate_pair(&self.forces, self.states, 1.0);
+        }
+        let [target, chaser] = self.states;
+        let anchor = Anchor {
+            t_s: f64::from(step),
+            r_eci_m: target.0,
+            v_eci_mps: target.1,
+        };
+        let sats = (self.sats.iter())
             .map(|(sat, at, n)| {
-                let sd = (at - states[1].0).norm() - (at - states[0].0).norm();
+                let sd = (at - chaser.0).norm() - (at - target.0).norm();
                 SatPair {
                     sat: *sat,
                     at_target_m: *at,
                     at_chaser_m: *at,
                     clock_sd_m: 0.0,
                     elevation_rad: [1.0, 1.0],
-                    signals: signals
-                        .iter()
-                        .zip(n)
+                    signals: (SIGNALS.iter().zip(n))
                         .map(|(&signal, &n)| SignalSd {
                             signal,
                             code_m: sd,
@@ -99,30 +110,113 @@ fn perfect_ranges_give_the_baseline_and_the_integers() {
             })
             .collect();
         let epoch = DdEpoch {
-            r_target_ecef_m: states[0].0,
+            r_target_ecef_m: target.0,
             c_eci_ecef: Mat3::identity(),
-            v_chaser_ecef_mps: states[1].1,
+            v_chaser_ecef_mps: chaser.1,
             tag_difference_s: 0.0,
-            sats: pairs,
+            sats,
         };
-        let pairings = filter.update(t, &epoch);
+        (anchor, (chaser.0 - target.0, chaser.1 - target.1), epoch)
+    }
+
+    /// The largest error of `filter`'s double-difference ambiguities on `pairings`
+    /// (cycles).
+    fn integer_error(&self, filter: &DdFilter, pairings: &[Pairing]) -> f64 {
+        let n = |sat: SatId, signal: Signal| {
+            let i = filter.index(Key::Ambiguity(sat, signal)).unwrap();
+            filter.x[i]
+        };
+        let truth_n = |sat: SatId, f: usize| self.sats.iter().find(|s| s.0 == sat).unwrap().2[f];
+        (pairings.iter())
+            .map(|p| {
+                let f = SIGNALS.iter().position(|s| *s == p.signal).unwrap();
+                let dd = n(p.sat, p.signal) - n(p.reference, p.signal);
+                let want = (truth_n(p.sat, f) - truth_n(p.reference, f)) as f64;
+                (dd - want).abs()
+            })
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Move `pairing`'s held double difference one cycle off (a wrong fix: the state moved,
+/// its covariance still that of a held integer).
+fn force_wrong_integer(filter: &mut DdFilter, pairing: &Pairing) {
+    let i = (filter.index(Key::Ambiguity(pairing.sat, pairing.signal))).unwrap();
+    filter.x[i] += 1.0;
+}
+
+#[test]
+fn perfect_ranges_give_the_baseline_and_the_integers() {
+    let mut pair = Synthetic::new();
+    let mut filter = pair.filter();
+    let mut twin: Option<DdFilter> = None;
+    let (mut count, mut releases) = (AmbiguityCount::default(), 0);
+    let mut truth = (Vec3::zeros(), Vec3::zeros());
+    for step in 0..600 {
+        let (anchor, true_baseline, epoch) = pair.epoch(step);
+        truth = true_baseline;
+        match twin.as_mut() {
+            Some(twin) => {
+                filter.predict(anchor);
+                twin.predict(anchor);
+            }
+            None => {
+                let off = Vec3::new(3.0, -2.0, 4.0);
+                filter.start(anchor, (truth.0 + off, truth.1), (10.0, 1.0), 2.0);
+                twin = Some(filter.clone());
+            }
+        }
+        let pairings = filter.update(f64::from(step), &epoch);
+        let twin = twin.as_mut().unwrap();
+        twin.update(f64::from(step), &epoch);
+        releases += usize::from(check_held(&mut filter, twin, &pairings));
         count = resolve(&mut filter, &pairings);
         if step == 599 {
-            for p in &pairings {
-                let n = |sat: SatId| {
-                    let i = filter.index(Key::Ambiguity(sat, p.signal)).unwrap();
-                    filter.x[i]
-                };
-                let f = signals.iter().position(|s| *s == p.signal).unwrap();
-                let truth_n = |sat: SatId| sats.iter().find(|s| s.0 == sat).unwrap().2[f];
-                let dd = n(p.sat) - n(p.reference);
-                let want = (truth_n(p.sat) - truth_n(p.reference)) as f64;
-                assert!((dd - want).abs() < 1e-6, "{p:?}: {dd} against {want}");
-            }
+            assert!(pair.integer_error(&filter, &pairings) < 1e-6);
         }
     }
     let (b, _) = filter.baseline();
-    let truth = states[1].0 - states[0].0;
-    assert!((b - truth).norm() < 1e-6, "{} m", (b - truth).norm());
+    assert!((b - truth.0).norm() < 1e-6, "{} m", (b - truth.0).norm());
     assert_eq!((count.fixed, count.float), (14, 0));
+    assert_eq!(releases, 0, "right integers released");
+}
+
+#[test]
+fn a_wrong_held_integer_is_released_and_refixed() {
+    let mut pair = Synthetic::new();
+    let mut filter = pair.filter();
+    let mut twin: Option<DdFilter> = None;
+    let mut released_at = None;
+    for step in 0..600 {
+        let (anchor, truth, epoch) = pair.epoch(step);
+        match twin.as_mut() {
+            Some(twin) => {
+                filter.predict(anchor);
+                twin.predict(anchor);
+            }
+            None => {
+                filter.start(anchor, truth, (10.0, 1.0), 2.0);
+                twin = Some(filter.clone());
+            }
+        }
+        let pairings = filter.update(f64::from(step), &epoch);
+        let twin = twin.as_mut().unwrap();
+        twin.update(f64::from(step), &epoch);
+        if step == 300 {
+            // Fixed by now; one integer then forced one cycle off.
+            assert!(pair.integer_error(&filter, &pairings) < 1e-6);
+            force_wrong_integer(&mut filter, &pairings[0]);
+            assert!(pair.integer_error(&filter, &pairings) > 0.9);
+        }
+        if check_held(&mut filter, twin, &pairings) && released_at.is_none() {
+            released_at = Some(step);
+        }
+        resolve(&mut filter, &pairings);
+        if step == 599 {
+            assert!(pair.integer_error(&filter, &pairings) < 1e-6);
+        }
+    }
+    // At the check of the very epoch it was forced: the twin's float values are then
+    // precise to millicycles and resolve, with the tests, to the true integers.
+    assert_eq!(released_at, Some(300), "released at {released_at:?}");
 }
