@@ -17,6 +17,12 @@
 //! than 10 s and the best interval between 30 and 120 s (the sweep 10/30/60/120/180 s,
 //! judged at the same instants, every 180 s); accuracy improving with height (500, 893
 //! and, assumed, 1500 km); eccentricity 0.01 within +/-20 % of 0.001.
+//!
+//! A second set-up (registered 2026-12-01 before its first run): the six axes and the two
+//! RSS rows at the text's orbit again with the observation level's Doppler noise
+//! (`[observation] doppler_noise = true`, calibrated at the signal level; the first
+//! set-up's fixes had the truth's Doppler, so their velocities were better than any
+//! receiver's). Same bars, the rows named "(Doppler noise)".
 
 use crate::draw::Draw;
 use crate::observables::ErrorStats;
@@ -79,9 +85,22 @@ pub fn filter_config() -> PositionFilterConfig {
 /// Standard deviations of the six axes in ECEF, ECI and the true orbit frame.
 pub type FrameStds = [[f64; 6]; 3];
 
-/// One observation-level run of `SCENARIO` with `seed`, the semi-major axis `a_km` and
-/// the eccentricity `e`.
-fn observe(seed: u64, a_km: f64, e: f64) -> Result<ObservationRun, ValidateError> {
+/// Which observation level a run has: the scenario's (the truth's Doppler) or with the
+/// calibrated Doppler noise.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Doppler {
+    Truth,
+    Noisy,
+}
+
+/// One observation-level run of `SCENARIO` with `seed`, the semi-major axis `a_km`, the
+/// eccentricity `e` and `doppler`.
+fn observe(
+    seed: u64,
+    a_km: f64,
+    e: f64,
+    doppler: Doppler,
+) -> Result<ObservationRun, ValidateError> {
     let bundled = skyforge_scenarios::bundled()
         .iter()
         .find(|b| b.name == SCENARIO)
@@ -92,7 +111,14 @@ fn observe(seed: u64, a_km: f64, e: f64) -> Result<ObservationRun, ValidateError
             "semi_major_axis_km = 7271.0",
             &format!("semi_major_axis_km = {a_km:?}"),
         )
-        .replace("eccentricity = 0.001", &format!("eccentricity = {e:?}"));
+        .replace("eccentricity = 0.001", &format!("eccentricity = {e:?}"))
+        .replace(
+            "[observation]\n",
+            match doppler {
+                Doppler::Truth => "[observation]\n",
+                Doppler::Noisy => "[observation]\ndoppler_noise = true\n",
+            },
+        );
     let here = std::path::Path::new(".");
     let mut scenario = skyforge_scenarios::parse(&text, SCENARIO, here)?;
     scenario.seed = seed;
@@ -191,8 +217,12 @@ impl OrbitStats {
     }
 }
 
-/// [`OrbitStats`] over `seeds` on the orbit `a_km`, `e`.
-fn mean_over(seeds: std::ops::Range<u64>, a_km: f64, e: f64) -> Result<OrbitStats, ValidateError> {
+/// [`OrbitStats`] over `seeds` on the orbit `a_km`, `e`, with `doppler`.
+fn mean_over(
+    seeds: std::ops::Range<u64>,
+    (a_km, e): (f64, f64),
+    doppler: Doppler,
+) -> Result<OrbitStats, ValidateError> {
     let mut main = [[0.0; 6]; 3];
     let mut sweep = vec![[[0.0; 6]; 3]; INTERVALS_S.len()];
     let mut per_seed_rss = Vec::new();
@@ -205,7 +235,7 @@ fn mean_over(seeds: std::ops::Range<u64>, a_km: f64, e: f64) -> Result<OrbitStat
         }
     };
     for seed in seeds {
-        let run = observe(seed, a_km, e)?;
+        let run = observe(seed, a_km, e, doppler)?;
         let one = filter_errors(&run, INTERVAL_S, INTERVAL_S)?;
         per_seed_rss.push([rss(&one[1][..3]), rss(&one[1][3..])]);
         add(&mut main, one);
@@ -236,13 +266,11 @@ fn within_factor(ours: f64, book: f64, k: f64) -> (String, Verdict) {
     )
 }
 
-/// The rows of B-5.5 over `draw`'s runs.
-pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
-    let seeds = draw.seeds(FIRST_SEED, RUNS);
-    let text_orbit = mean_over(seeds.clone(), A_TEXT_KM, 0.001)?;
-    let [ecef, eci, tof] = text_orbit.main;
+/// The six axes' rows (ECI carries the verdict) of `stats`, named with `suffix`.
+fn axis_rows(stats: &OrbitStats, seeds: &std::ops::Range<u64>, suffix: &str) -> Vec<Row> {
+    let [ecef, eci, tof] = stats.main;
     let names = ["X", "Y", "Z", "vX", "vY", "vZ"];
-    let mut rows: Vec<Row> = (0..6)
+    (0..6)
         .map(|i| {
             let (quantity, unit) = if i < 3 {
                 ("position std", "m")
@@ -251,7 +279,7 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
             };
             Row::measured(
                 TABLE,
-                format!("{} (ECI)", names[i]),
+                format!("{} (ECI){suffix}", names[i]),
                 quantity,
                 unit,
                 Some(BOOK[i]),
@@ -266,46 +294,62 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
                 seeds.end - 1
             ))
         })
-        .collect();
-    let low = mean_over(seeds.clone(), A_500_KM, 0.001)?;
-    for (label, stats) in [("a = 7271 km", &text_orbit), ("500 km altitude", &low)] {
-        let stds = stats.main[1];
-        for (k, (part, range, unit)) in [("position", 0..3, "m"), ("velocity", 3..6, "m/s")]
-            .into_iter()
-            .enumerate()
-        {
+        .collect()
+}
+
+/// The position and velocity RSS rows of `stats` (the orbit `label`, then `suffix`).
+fn rss_rows(
+    stats: &OrbitStats,
+    seeds: &std::ops::Range<u64>,
+    label: &str,
+    suffix: &str,
+) -> Vec<Row> {
+    let stds = stats.main[1];
+    [("position", 0..3, "m"), ("velocity", 3..6, "m/s")]
+        .into_iter()
+        .enumerate()
+        .map(|(k, (part, range, unit))| {
             let book = rss(&BOOK[range.clone()]);
             let ours = rss(&stds[range]);
-            rows.push(
-                Row::measured(
-                    TABLE,
-                    format!("{part} RSS, {label}"),
-                    &format!("{part} RSS"),
-                    unit,
-                    Some(book),
-                    ours,
-                    within_factor(ours, book, 1.6),
-                )
-                .with_note(format!(
-                    "the book's RSS of its three stds; ours of the seeds' mean stds; the \
-                     seeds' own RSS {} (standard error of their mean {:.3}); seeds {}..{}",
-                    stats
-                        .per_seed_rss
-                        .iter()
-                        .map(|r| format!("{:.3}", r[k]))
-                        .collect::<Vec<_>>()
-                        .join(" / "),
-                    stats.rss_standard_error(k),
-                    seeds.start,
-                    seeds.end - 1
-                )),
-            );
-        }
+            Row::measured(
+                TABLE,
+                format!("{part} RSS, {label}{suffix}"),
+                &format!("{part} RSS"),
+                unit,
+                Some(book),
+                ours,
+                within_factor(ours, book, 1.6),
+            )
+            .with_note(format!(
+                "the book's RSS of its three stds; ours of the seeds' mean stds; the \
+                 seeds' own RSS {} (standard error of their mean {:.3}); seeds {}..{}",
+                stats
+                    .per_seed_rss
+                    .iter()
+                    .map(|r| format!("{:.3}", r[k]))
+                    .collect::<Vec<_>>()
+                    .join(" / "),
+                stats.rss_standard_error(k),
+                seeds.start,
+                seeds.end - 1
+            ))
+        })
+        .collect()
+}
+
+/// The rows of B-5.5 over `draw`'s runs.
+pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
+    let seeds = draw.seeds(FIRST_SEED, RUNS);
+    let text_orbit = mean_over(seeds.clone(), (A_TEXT_KM, 0.001), Doppler::Truth)?;
+    let mut rows = axis_rows(&text_orbit, &seeds, "");
+    let low = mean_over(seeds.clone(), (A_500_KM, 0.001), Doppler::Truth)?;
+    for (label, stats) in [("a = 7271 km", &text_orbit), ("500 km altitude", &low)] {
+        rows.extend(rss_rows(stats, &seeds, label, ""));
     }
     let seeds_note = format!("mean of seeds {}..{}", seeds.start, seeds.end - 1);
     rows.extend(sweep_rows(&text_orbit.sweep, &seeds_note));
-    let high = mean_over(seeds.clone(), A_HIGH_KM, 0.001)?;
-    let eccentric = mean_over(seeds.clone(), A_TEXT_KM, E_HIGH)?;
+    let high = mean_over(seeds.clone(), (A_HIGH_KM, 0.001), Doppler::Truth)?;
+    let eccentric = mean_over(seeds.clone(), (A_TEXT_KM, E_HIGH), Doppler::Truth)?;
     let by_height = [low.main, text_orbit.main, high.main].map(|m| position_rss(&m));
     let improves = by_height[0] > by_height[1] && by_height[1] > by_height[2];
     rows.push(
@@ -345,6 +389,11 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         )
         .with_note(format!("a = 7271 km, 60 s; {seeds_note}")),
     );
+    // The second set-up: the text's orbit with the calibrated Doppler noise.
+    let noisy = mean_over(seeds.clone(), (A_TEXT_KM, 0.001), Doppler::Noisy)?;
+    let suffix = " (Doppler noise)";
+    rows.extend(axis_rows(&noisy, &seeds, suffix));
+    rows.extend(rss_rows(&noisy, &seeds, "a = 7271 km", suffix));
     Ok(rows)
 }
 
