@@ -129,7 +129,7 @@ pub fn synth_and_receive(
         scenario.receiver_seed(),
     )?;
     let bands = session.bands().to_vec();
-    let info = session.recording_info(&scenario.name);
+    let info = session.recording_info(&scenario.name, scenario.seed, scenario.vehicle.as_deref());
     let antennas = session.world().antennas;
     let nav_path = work.join("nav.rnx");
     let mut nav = Vec::new();

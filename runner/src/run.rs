@@ -394,7 +394,7 @@ pub fn signal_run(scenario: &Scenario) -> Result<ObservationRun, RunError> {
         }),
         approximate,
     };
-    let info = session.recording_info(&scenario.name);
+    let info = session.recording_info(&scenario.name, scenario.seed, scenario.vehicle.as_deref());
     // The receiver numbers the antennas in the scenario's order (the chain hands it the
     // recordings band by band, each band's antennas in that order).
     let chain = StreamedChain::open(session, &info, &assistance, config)?;

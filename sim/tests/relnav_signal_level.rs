@@ -1,6 +1,7 @@
 //! Relative navigation at the signal level: two spacecraft of one scenario
 //! (`[[vehicles]]`) rendered as I/Q, each recording received by the bundled receiver, and
-//! `skyforge relnav` on the two receivers' RINEX files against the relative truth.
+//! `skyforge relnav` on the two receivers' RINEX files against the relative truth. Each
+//! recording's SigMF metadata names its vehicle.
 
 mod support;
 
@@ -60,6 +61,12 @@ fn two_spacecraft_from_their_samples() {
     );
     std::fs::write(d.join("pair.toml"), text).unwrap();
     support::skyforge_ok(&["synth", "pair.toml", "--out", "pair"], d);
+    // Each recording names its vehicle: with the scenario and its seed, what reproduces it.
+    for vehicle in ["target", "chaser"] {
+        let meta = support::json_file(&d.join(format!("pair/{vehicle}/ant1.gps-l1ca.sigmf-meta")));
+        assert_eq!(meta["global"]["skyforge:vehicle"], vehicle, "{meta}");
+        assert_eq!(meta["global"]["skyforge:seed"], 1, "{meta}");
+    }
     receive(d, "target");
     receive(d, "chaser");
     support::skyforge_ok(

@@ -49,6 +49,10 @@ pub const SKYFORGE: &str = "skyforge";
 pub const SCENARIO: &str = "skyforge:scenario";
 /// Global: the synthesis's random seed.
 pub const SEED: &str = "skyforge:seed";
+/// Global: the vehicle whose antenna it is, in a scenario of several (`[[vehicles]]`):
+/// with [`SCENARIO`] and [`SEED`] what reproduces the recording (the vehicle's receiver
+/// streams are keyed by its name).
+pub const VEHICLE: &str = "skyforge:vehicle";
 /// Global: the antenna recorded.
 pub const ANTENNA: &str = "skyforge:antenna";
 /// Global: the antenna's nominal position in the body frame (m).

@@ -19,6 +19,7 @@ fn plain() -> RecordingMeta {
         antenna_position_body_m: [0.0, 1.0, 0.0],
         scenario: "thesis-leo".into(),
         seed: 3,
+        vehicle: None,
         description: "test".into(),
         signals: Vec::new(),
     }
@@ -36,6 +37,7 @@ fn odd() -> RecordingMeta {
         antenna_position_body_m: [-0.125, 0.3, 1e-9],
         scenario: "odd/scénario".into(),
         seed: u64::MAX,
+        vehicle: None,
         description: "two\nlines\t\\".into(),
         signals: Vec::new(),
     }
@@ -119,6 +121,19 @@ const ODD_TEXT: &str = r#"{
 /// A captured text with the recorder of this build (captured at version 0.1.0).
 fn this_version(text: &str) -> String {
     text.replace("\"skyforge 0.1.0\"", &format!("\"{}\"", super::RECORDER))
+}
+
+#[test]
+fn a_vehicle_is_named_where_there_is_one() {
+    let meta = RecordingMeta {
+        vehicle: Some("chaser".into()),
+        ..plain()
+    };
+    let want = this_version(PLAIN_TEXT).replace(
+        "\"skyforge:seed\": 3\n",
+        "\"skyforge:seed\": 3,\n    \"skyforge:vehicle\": \"chaser\"\n",
+    );
+    assert_eq!(meta.to_text(), want);
 }
 
 #[test]
@@ -329,6 +344,7 @@ fn any_meta(number: impl Strategy<Value = f64> + Clone) -> impl Strategy<Value =
                 antenna_position_body_m: position,
                 scenario,
                 seed,
+                vehicle: None,
                 description,
                 signals: Vec::new(),
             }

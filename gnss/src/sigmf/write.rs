@@ -34,6 +34,9 @@ pub struct RecordingMeta {
     pub scenario: String,
     /// The synthesis's random seed (`skyforge:seed`).
     pub seed: u64,
+    /// The vehicle recorded in a scenario of several (`skyforge:vehicle`; absent for a
+    /// single platform).
+    pub vehicle: Option<String>,
     /// What the recording is, for people (`core:description`).
     pub description: String,
     /// The signals the recording carries; `skyforge:signals` where there are several.
@@ -69,11 +72,14 @@ impl RecordingMeta {
             }],
             (keys::ANNOTATIONS): [],
         });
-        if self.signals.len() > 1
-            && let Some(global) = doc.get_mut(keys::GLOBAL).and_then(Value::as_object_mut)
-        {
-            let tags: Vec<&str> = self.signals.iter().map(|s| s.tag()).collect();
-            global.insert(keys::SIGNALS.to_owned(), json!(tags));
+        if let Some(global) = doc.get_mut(keys::GLOBAL).and_then(Value::as_object_mut) {
+            if self.signals.len() > 1 {
+                let tags: Vec<&str> = self.signals.iter().map(|s| s.tag()).collect();
+                global.insert(keys::SIGNALS.to_owned(), json!(tags));
+            }
+            if let Some(vehicle) = &self.vehicle {
+                global.insert(keys::VEHICLE.to_owned(), json!(vehicle));
+            }
         }
         doc
     }

@@ -504,15 +504,18 @@ impl<'a> SynthSession<'a> {
         &self.world
     }
 
-    /// What every recording of this synthesis shares, for its metadata.
-    pub fn recording_info(&self, scenario: &str) -> RunInfo {
+    /// What every recording of this synthesis shares, for its metadata: the scenario's
+    /// name and seed (the one `--seed` takes: a vehicle's receiver streams are keyed by
+    /// it and the vehicle's name) and, in a scenario of several, the vehicle's name.
+    pub fn recording_info(&self, scenario: &str, seed: u64, vehicle: Option<&str>) -> RunInfo {
         RunInfo {
             format: self.signal.format,
             sample_rate_hz: self.signal.sample_rate_hz,
             if_hz: self.signal.if_hz,
             start: self.world.origin.start(),
             scenario: scenario.to_owned(),
-            seed: self.seed,
+            seed,
+            vehicle: vehicle.map(str::to_owned),
         }
     }
 
@@ -876,7 +879,10 @@ pub struct RunInfo {
     /// Time of the first sample.
     pub start: Epoch,
     pub scenario: String,
+    /// The scenario's seed (what `--seed` takes).
     pub seed: u64,
+    /// The vehicle synthesised, in a scenario of several.
+    pub vehicle: Option<String>,
 }
 
 #[cfg(test)]

@@ -34,6 +34,7 @@ impl RunInfo {
             antenna_position_body_m: position_body_m,
             scenario: self.scenario.clone(),
             seed: self.seed,
+            vehicle: self.vehicle.clone(),
             description: format!(
                 "SkyForge synthesis of {} for antenna {antenna}: {}",
                 self.scenario,
@@ -165,6 +166,7 @@ mod tests {
             start: Epoch::from_gregorian_utc(2024, 2, 29, 23, 59, 59, 123_456_789),
             scenario: "static-bds".into(),
             seed: 42,
+            vehicle: None,
         };
         let band = Band::new(Signal::BdsB1I, 0, 3);
         assert_eq!(recording_name("ant2", &band), "ant2.bds-b1i");

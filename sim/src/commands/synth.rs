@@ -135,7 +135,7 @@ pub fn synthesise(
     };
     let bands = session.bands().to_vec();
     let signals = session.signals();
-    let info = session.recording_info(&scenario.name);
+    let info = session.recording_info(&scenario.name, scenario.seed, scenario.vehicle.as_deref());
     let sats = session.satellites().to_vec();
     let n_ant = antennas.len();
     let staged = StagedDir::create(out, force)?;
