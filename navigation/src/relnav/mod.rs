@@ -40,6 +40,7 @@
 mod config;
 mod double_difference;
 mod from_files;
+mod hill_dynamics;
 mod hill_filter;
 
 pub use config::{RelnavConfig, RelnavMode, SatelliteSets};
