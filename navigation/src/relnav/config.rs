@@ -2,6 +2,7 @@
 
 use super::double_difference::config::DoubleDifferenceConfig;
 use super::hill_filter::HillFilterConfig;
+use super::single_difference::config::SingleDifferenceConfig;
 use crate::config_file::read_settings;
 use crate::orbit_determination::PositionFilterConfig;
 use crate::pvt::SmoothingConfig;
@@ -23,6 +24,9 @@ pub enum RelnavMode {
     /// Double-difference carrier phase and code between the spacecraft with integer
     /// ambiguities (beyond the book; `relnav::double_difference`).
     DoubleDifference,
+    /// Book eq. 5-59: a filter on the single differences of pseudorange and range rate
+    /// (`relnav::single_difference`).
+    SingleDifference,
 }
 
 impl RelnavMode {
@@ -33,6 +37,7 @@ impl RelnavMode {
             RelnavMode::PositionDifference => "position-difference",
             RelnavMode::CarrierSmoothed => "carrier-smoothed",
             RelnavMode::DoubleDifference => "double-difference",
+            RelnavMode::SingleDifference => "single-difference",
         }
     }
 }
@@ -79,6 +84,9 @@ pub struct RelnavConfig {
     /// The double-difference filter (mode `double-difference`).
     #[serde(default)]
     pub double_difference: DoubleDifferenceConfig,
+    /// The single-difference filter (mode `single-difference`, book eq. 5-59).
+    #[serde(default)]
+    pub single_difference: SingleDifferenceConfig,
     /// `[filter]`: the book's relative filter (eqs. 5-57/5-58 with the Hill dynamics of
     /// eq. 5-34 about the target's orbit) on the differenced fixes of modes
     /// `standalone`, `position-difference` and `carrier-smoothed`; absent: the
@@ -101,6 +109,7 @@ impl Default for RelnavConfig {
             satellite_sets: SatelliteSets::default(),
             target_orbit: PositionFilterConfig::default(),
             double_difference: DoubleDifferenceConfig::default(),
+            single_difference: SingleDifferenceConfig::default(),
             filter: None,
         }
     }
@@ -124,6 +133,7 @@ impl RelnavConfig {
             .double_difference
             .check()
             .map_err(|e| e.to_string())?;
+        config.single_difference.check()?;
         if config.satellite_sets == SatelliteSets::Own && config.mode != RelnavMode::CarrierSmoothed
         {
             return Err(format!(
@@ -133,13 +143,18 @@ impl RelnavConfig {
             ));
         }
         if let Some(filter) = &config.filter {
-            if config.mode == RelnavMode::DoubleDifference {
-                return Err(
+            let own = match config.mode {
+                RelnavMode::DoubleDifference => Some("double_difference"),
+                RelnavMode::SingleDifference => Some("single_difference"),
+                _ => None,
+            };
+            if let Some(table) = own {
+                return Err(format!(
                     "filter: the book's relative filter takes the differenced fixes of modes \
-                     standalone, position-difference and carrier-smoothed; mode \
-                     double-difference has its own ([double_difference])"
-                        .into(),
-                );
+                     standalone, position-difference and carrier-smoothed; mode {} is itself \
+                     a filter ([{table}])",
+                    config.mode.name()
+                ));
             }
             filter.check().map_err(|e| format!("filter.{e}"))?;
         }
@@ -177,6 +192,14 @@ mod tests {
         assert_eq!(c.mode, RelnavMode::DoubleDifference);
         assert_eq!(c.double_difference.ratio_threshold, 2.5);
         assert_eq!(c.double_difference.min_success_rate, 0.999);
+        let c = RelnavConfig::parse(
+            "mode = \"single-difference\"\n[single_difference]\ncode_sigma_m = 2.0\n",
+        )
+        .unwrap();
+        assert_eq!(c.mode, RelnavMode::SingleDifference);
+        assert_eq!(c.mode.name(), "single-difference");
+        assert_eq!(c.single_difference.code_sigma_m, 2.0);
+        assert_eq!(c.single_difference.range_rate_sigma_mps, 0.21);
         let c = RelnavConfig::parse("[filter]\nacceleration_sigma_mps2 = 1e-6\n").unwrap();
         assert_eq!(c.filter.unwrap().acceleration_sigma_mps2, 1e-6);
         let c =
@@ -218,6 +241,35 @@ mod tests {
                 "mode = \"double-difference\"\n[filter]\n",
                 "filter: the book's relative filter",
             ),
+            (
+                "mode = \"single-difference\"\n[filter]\n",
+                "mode single-difference is itself a filter ([single_difference])",
+            ),
+            (
+                "[single_difference]\ncode_sigma_m = 0",
+                "single_difference.code_sigma_m = 0: must be in (0, 10000]",
+            ),
+            (
+                "[single_difference]\nrange_rate_sigma_mps = nan",
+                "single_difference.range_rate_sigma_mps = NaN: must be in (0, 1000]",
+            ),
+            (
+                "[single_difference]\nacceleration_sigma_mps2 = 2",
+                "single_difference.acceleration_sigma_mps2 = 2: must be in (0, 1]",
+            ),
+            (
+                "[single_difference]\nclock_sigma_m_per_sqrt_s = -1",
+                "single_difference.clock_sigma_m_per_sqrt_s = -1: must be in (0, 1000000]",
+            ),
+            (
+                "[single_difference]\nclock_drift_sigma_mps_per_sqrt_s = 0",
+                "single_difference.clock_drift_sigma_mps_per_sqrt_s = 0: must be in (0, 10000]",
+            ),
+            (
+                "[single_difference.forces]\narea_m2 = 0",
+                "single_difference.forces.area_m2 = 0",
+            ),
+            ("[single_difference]\ncode_sigma = 1", "code_sigma"),
         ] {
             let e = RelnavConfig::parse(text).unwrap_err();
             assert!(e.contains(names), "{text}: {e}");

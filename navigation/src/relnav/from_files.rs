@@ -2,6 +2,7 @@
 
 use super::double_difference::{self, Inputs};
 use super::hill_filter::{HillFilter, TargetState};
+use super::single_difference;
 use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::IonosphereCorrection;
@@ -245,28 +246,41 @@ pub fn relative_from_files(
             .then_some(config.smoothing),
         ..PvtConfig::default()
     };
-    if config.mode == RelnavMode::DoubleDifference {
-        // Dual-frequency fixes where two carriers are measured: the ionosphere-free code
-        // (the receive instants and the target's anchor).
-        let carriers: BTreeSet<u64> = signals.iter().map(|s| s.carrier_hz() as u64).collect();
-        let pvt = PvtConfig {
-            ionosphere: if carriers.len() > 1 {
-                IonosphereCorrection::DualFrequency
-            } else {
-                IonosphereCorrection::Broadcast
-            },
-            carrier_smoothing: None,
-            ..pvt
-        };
-        let inputs = Inputs {
-            store: &store,
-            origin: &origin,
-            start,
-            signals: &signals,
-            config,
-            pvt: &pvt,
-        };
-        let (estimates, missed) = double_difference::run(&t_file, &c_file, &inputs);
+    let inputs = Inputs {
+        store: &store,
+        origin: &origin,
+        start,
+        signals: &signals,
+        config,
+        pvt: &pvt,
+    };
+    let filtered = match config.mode {
+        RelnavMode::DoubleDifference => {
+            // Dual-frequency fixes where two carriers are measured: the ionosphere-free
+            // code (the receive instants and the target's anchor).
+            let carriers: BTreeSet<u64> = signals.iter().map(|s| s.carrier_hz() as u64).collect();
+            let pvt = PvtConfig {
+                ionosphere: if carriers.len() > 1 {
+                    IonosphereCorrection::DualFrequency
+                } else {
+                    IonosphereCorrection::Broadcast
+                },
+                carrier_smoothing: None,
+                ..pvt.clone()
+            };
+            Some(double_difference::run(
+                &t_file,
+                &c_file,
+                &Inputs {
+                    pvt: &pvt,
+                    ..inputs
+                },
+            ))
+        }
+        RelnavMode::SingleDifference => Some(single_difference::run(&t_file, &c_file, &inputs)),
+        _ => None,
+    };
+    if let Some((estimates, missed)) = filtered {
         return Ok(RelnavRun {
             start,
             mode: config.mode,

@@ -2,7 +2,8 @@
 //! position and rate relative to the target in the target's orbit frame, propagated by
 //! the Hill / Clohessy-Wiltshire equations (eq. 5-34 with the target's orbit as the
 //! reference, eq. 5-53) with the difference of the two vehicles' perturbing accelerations
-//! as the input `U`, as [`super::HillFilter`] (eqs. 5-57/5-58) uses them.
+//! as the input `U`. Shared by [`super::HillFilter`] (eqs. 5-57/5-58) and the
+//! single-difference filter (eq. 5-59).
 //!
 //! The book gives `U` as the difference of the J2 accelerations in a linearised form
 //! (`Jeff (X_c - X_t) / R`) and of drag (`-k rho V dV`). Here `U` is everything the Hill
@@ -56,6 +57,12 @@ impl HillStep {
         let p_own = phi * self.in0 * p * self.in0.transpose() * phi.transpose()
             + gamma * q * gamma.transpose();
         self.out1 * p_own * self.out1.transpose()
+    }
+
+    /// The step's linear map of the relative state (the cross-covariances of other
+    /// states).
+    pub(crate) fn transition(&self) -> Matrix6<f64> {
+        self.out1 * self.phi * self.in0
     }
 }
 

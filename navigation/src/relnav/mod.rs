@@ -21,6 +21,11 @@
 //!   with `satellite_sets = "own"` the book's own procedure instead: each vehicle smooths
 //!   its whole file along its own tracks and fixes on the satellites it tracks, so the
 //!   sets differ where one vehicle loses a satellite the other keeps (the book's events);
+//! - `single-difference`: the book's pseudorange relative DGPS filter (eq. 5-59): a
+//!   Kalman filter of the relative position and velocity and of the receivers' clock
+//!   difference and its drift on the single differences of pseudorange and Doppler range
+//!   rate of every satellite both receivers track, predicted by the Hill dynamics of eq.
+//!   5-34 with `U` as the book's relative filter (`relnav::single_difference`);
 //! - `double-difference` (beyond the book): double-difference carrier phase and code
 //!   between the spacecraft with integer ambiguities, a Kalman filter on the gravity
 //!   difference of the two orbits (the module docs of `relnav::double_difference`).
@@ -42,9 +47,11 @@ mod double_difference;
 mod from_files;
 mod hill_dynamics;
 mod hill_filter;
+mod single_difference;
 
 pub use config::{RelnavConfig, RelnavMode, SatelliteSets};
 pub use double_difference::config::DoubleDifferenceConfig;
 pub use double_difference::fixing::AmbiguityCount;
 pub use from_files::{RelativeEstimate, RelnavError, RelnavRun, relative_from_files};
 pub use hill_filter::{HillEstimate, HillFilter, HillFilterConfig, TargetState};
+pub use single_difference::config::SingleDifferenceConfig;
