@@ -141,7 +141,7 @@ pub enum Command {
     /// Relative navigation of two spacecraft (book section 5.6): the chaser relative to
     /// the target in the target's orbit frame, from their two RINEX observation files and
     /// a navigation file, as the difference of standalone fixes, of fixes on the common
-    /// satellites, or of carrier-smoothed fixes on them, or a double-difference carrier-phase
+    /// satellites or smoothed ones, a single-difference code filter or a double-difference phase
     /// filter with integer ambiguities (--config). Writes DIR/relnav.csv (the layout of a
     /// multi-vehicle run's relative.csv; docs/orbit-determination.md).
     Relnav {
