@@ -2,6 +2,7 @@
 
 use super::double_difference::{self, Inputs};
 use super::hill_filter::{HillFilter, TargetState};
+use super::same_satellites::SameSatellites;
 use super::single_difference;
 use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
 use crate::orbit_determination::{FixInput, PositionFilter};
@@ -317,8 +318,7 @@ pub fn relative_from_files(
     let mut relative_filter = (config.filter.clone()).map(|f| HillFilter::new(f, start));
     let mut estimates = Vec::new();
     let mut missed = 0;
-    // The two fixes' satellites and since when they have used them.
-    let mut sets: Option<(SatelliteSetPair, f64)> = None;
+    let mut sets = SameSatellites::new();
     for k in 0..t_file.epochs.len() {
         let both = match (&t_fixes[k], &c_fixes[k]) {
             (Ok(tf), Ok(cf)) => solution(&t_file.epochs[k], tf)
@@ -328,16 +328,13 @@ pub fn relative_from_files(
         };
         let Some((tf, (t, c))) = both else {
             missed += 1;
-            sets = None;
+            sets.missed();
             continue;
         };
         let used = SatelliteSetPair::of(&t_fixes[k], &c_fixes[k]);
-        let since = match &sets {
-            Some((s, since)) if *s == used => *since,
-            _ => t.t_s,
-        };
-        let same_satellites_s = if used.same() { t.t_s - since } else { 0.0 };
-        sets = Some((used, since));
+        let same = used.same();
+        let unchanged_s = sets.at(used, t.t_s);
+        let same_satellites_s = if same { unchanged_s } else { 0.0 };
         // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
         let r_c = c.r_ecef_m + c.v_ecef_mps * (t.t_s - c.t_s);
         let (rt, vt) = earth.ecef_to_eci(t.t_s, &t.r_ecef_m, &t.v_ecef_mps);

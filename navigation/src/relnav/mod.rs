@@ -47,6 +47,7 @@ mod double_difference;
 mod from_files;
 mod hill_dynamics;
 mod hill_filter;
+mod same_satellites;
 mod single_difference;
 
 pub use config::{RelnavConfig, RelnavMode, SatelliteSets};

@@ -33,6 +33,7 @@ pub(crate) mod observations;
 mod tests;
 
 use super::RelativeEstimate;
+use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{Fix, PvtConfig, records_velocity};
 use crate::relative::single_point_fixes;
@@ -101,14 +102,16 @@ pub(crate) fn run(
         )
     };
     let (mut estimates, mut missed) = (Vec::new(), 0);
-    let mut set: Option<(BTreeSet<_>, f64)> = None;
+    let mut set = SameSatellites::new();
     for k in 0..target.epochs.len() {
         let (Ok(tf), Ok(cf)) = (&t_fixes[k], &c_fixes[k]) else {
             missed += 1;
+            set.missed();
             continue;
         };
         let (Some(vt), Some(vc)) = (velocity(target, k, tf), velocity(chaser, k, cf)) else {
             missed += 1;
+            set.missed();
             continue;
         };
         let t = tf.t_s;
@@ -170,16 +173,12 @@ pub(crate) fn run(
         let (b, b_dot) = filter.baseline();
         let (position_m, velocity_mps) = relative_in_frame_of(&o.r_eci_m, &o.v_eci_mps, &b, &b_dot);
         let used: BTreeSet<_> = epoch.sats.iter().map(|s| s.sat).collect();
-        let since = match &set {
-            Some((s, since)) if *s == used => *since,
-            _ => t,
-        };
-        set = Some((used, since));
+        let same_satellites_s = set.at(used, t);
         estimates.push(RelativeEstimate {
             t_s: t,
             position_m,
             velocity_mps,
-            same_satellites_s: t - since,
+            same_satellites_s,
             baseline_ecef_m: Some(c_eci_ecef * b),
             ambiguities: Some(count),
         });

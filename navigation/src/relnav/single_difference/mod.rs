@@ -36,6 +36,7 @@ mod tests;
 use super::RelativeEstimate;
 use super::double_difference::Inputs;
 use super::hill_filter::TargetState;
+use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{Fix, records_velocity};
 use crate::relative::single_point_fixes;
@@ -43,10 +44,8 @@ use filter::SdFilter;
 use measurement::{CLOCK, EpochFrame, State, satellites};
 use skyforge_gnss::observation::ObsFile;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::frames::relative_in_frame_of;
-use std::collections::BTreeSet;
 
 /// The first state's standard deviations (eq. 5-59's order).
 /// # assumed: 10 m and 1 m/s per axis, beyond two fixes' and Doppler velocities'
@@ -107,7 +106,7 @@ pub(crate) fn run(
     let mut filter: Option<SdFilter> = None;
     let sigma = State::from_row_slice(&START_SIGMA);
     let (mut estimates, mut missed) = (Vec::new(), 0);
-    let mut set: Option<(BTreeSet<SatId>, f64)> = None;
+    let mut set = SameSatellites::new();
     for k in 0..target.epochs.len() {
         let both = match (&t_fixes[k], &c_fixes[k]) {
             (Ok(tf), Ok(cf)) => solution(target, k, tf).zip(solution(chaser, k, cf)),
@@ -115,7 +114,7 @@ pub(crate) fn run(
         };
         let Some((ts, cs)) = both else {
             missed += 1;
-            set = None;
+            set.missed();
             continue;
         };
         let t = ts.fix.t_s;
@@ -160,16 +159,12 @@ pub(crate) fn run(
             f.update(&frame, &sats, mask_rad).unwrap_or_default()
         });
         let (position_m, velocity_mps) = f.estimate();
-        let since = match &set {
-            Some((s, since)) if *s == used => *since,
-            _ => t,
-        };
-        set = Some((used, since));
+        let same_satellites_s = set.at(used, t);
         estimates.push(RelativeEstimate {
             t_s: t,
             position_m,
             velocity_mps,
-            same_satellites_s: t - since,
+            same_satellites_s,
             baseline_ecef_m: None,
             ambiguities: None,
         });
