@@ -42,6 +42,7 @@ fn meta(format: WriterFormat, fs: f64, if_hz: f64, antenna: &str) -> RecordingMe
         antenna_position_body_m: [0.5, -0.25, 0.0],
         scenario: "input-test".into(),
         seed: 7,
+        vehicle: None,
         description: "reader test".into(),
         signals: Vec::new(),
     }

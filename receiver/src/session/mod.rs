@@ -552,6 +552,7 @@ mod tests {
             antenna_position_body_m: [0.0; 3],
             scenario: "test".into(),
             seed: 1,
+            vehicle: None,
             description: "test".into(),
             signals: signals.to_vec(),
         };
