@@ -157,30 +157,57 @@ pub fn single_point_fixes(
     signals: &[Signal],
     config: &PvtConfig,
 ) -> Vec<Result<Fix, String>> {
-    let mut prior = None;
-    let mut smoother = config.carrier_smoothing.map(CarrierSmoother::new);
-    file.epochs
-        .iter()
-        .map(|e| {
-            let t_s = origin.seconds_since_start(e.time);
-            let records = match smoother.as_mut() {
-                Some(s) => std::borrow::Cow::Owned(smoothed(s, &e.sats, t_s)),
-                None => std::borrow::Cow::Borrowed(e.sats.as_slice()),
-            };
-            let fix = single_point(
-                &records,
-                signals,
-                t_s,
-                store,
-                origin,
-                config,
-                prior,
-                &mut FromEphemeris,
-            );
-            prior = fix.as_ref().ok().map(|f| f.r_ecef_m).or(prior);
-            fix
-        })
+    let mut stream = FixStream::new(config);
+    (file.epochs.iter())
+        .map(|e| stream.fix(e, store, origin, signals))
         .collect()
+}
+
+/// The single-point fixes of one receiver's epochs, one after the other: each starts from
+/// the last position found, and with `carrier_smoothing` one smoother runs along them
+/// ([`single_point_fixes`] over a file; a receiver's stage epoch by epoch).
+#[derive(Debug, Clone)]
+pub(crate) struct FixStream {
+    config: PvtConfig,
+    prior: Option<Vec3>,
+    smoother: Option<CarrierSmoother>,
+}
+
+impl FixStream {
+    pub(crate) fn new(config: &PvtConfig) -> Self {
+        Self {
+            config: config.clone(),
+            prior: None,
+            smoother: config.carrier_smoothing.map(CarrierSmoother::new),
+        }
+    }
+
+    /// The fix of the next `epoch`.
+    pub(crate) fn fix(
+        &mut self,
+        epoch: &ObsEpoch,
+        store: &EphemerisStore,
+        origin: &TimeOrigin,
+        signals: &[Signal],
+    ) -> Result<Fix, String> {
+        let t_s = origin.seconds_since_start(epoch.time);
+        let records = match self.smoother.as_mut() {
+            Some(s) => std::borrow::Cow::Owned(smoothed(s, &epoch.sats, t_s)),
+            None => std::borrow::Cow::Borrowed(epoch.sats.as_slice()),
+        };
+        let fix = single_point(
+            &records,
+            signals,
+            t_s,
+            store,
+            origin,
+            &self.config,
+            self.prior,
+            &mut FromEphemeris,
+        );
+        self.prior = fix.as_ref().ok().map(|f| f.r_ecef_m).or(self.prior);
+        fix
+    }
 }
 
 /// `file` with each pseudorange that has a carrier beside it smoothed along the file's

@@ -1,23 +1,18 @@
 //! Relative navigation on two observation files (module docs of [`super`]).
 
+use super::book_modes::BookModes;
 use super::double_difference::{self, Inputs};
-use super::hill_filter::{HillFilter, TargetState};
-use super::same_satellites::SameSatellites;
 use super::single_difference;
 use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
-use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::IonosphereCorrection;
-use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::pvt::PvtConfig;
 use crate::relative::files::{carrier_smoothed_file, records_at};
-use crate::relative::single_point_fixes;
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
-use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore, SatId};
-use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::frames::relative_in_frame_of;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeSet;
 
@@ -69,16 +64,39 @@ pub struct RelnavRun {
     pub missed: usize,
 }
 
-/// The epochs the two files share, each vehicle's records of `signals` at them: all of
-/// them with `common == false`, those of satellite and signal pairs both have a
-/// pseudorange for otherwise.
+/// The records of `signals` with a pseudorange of one epoch of each vehicle: all of them
+/// with `common == false`, those of the satellite and signal pairs both have otherwise.
+pub(crate) fn pair_records(
+    (target, chaser): (&[ObsRecord], &[ObsRecord]),
+    signals: &[Signal],
+    common: bool,
+) -> (Vec<ObsRecord>, Vec<ObsRecord>) {
+    let keep = |r: &ObsRecord| signals.contains(&r.signal) && r.pseudorange_m.is_some();
+    let keys = |records: &[ObsRecord]| -> BTreeSet<_> {
+        (records.iter().filter(|r| keep(r)))
+            .map(|r| (r.sat, r.signal))
+            .collect()
+    };
+    let (t_keys, c_keys) = (keys(target), keys(chaser));
+    let both = |r: &&ObsRecord| {
+        keep(r)
+            && (!common
+                || (t_keys.contains(&(r.sat, r.signal)) && c_keys.contains(&(r.sat, r.signal))))
+    };
+    (
+        target.iter().filter(both).cloned().collect(),
+        chaser.iter().filter(both).cloned().collect(),
+    )
+}
+
+/// The epochs the two files share, each vehicle's records of them as [`pair_records`]
+/// keeps them.
 fn paired_files(
     target: &ObsFile,
     chaser: &ObsFile,
     signals: &[Signal],
     common: bool,
 ) -> (ObsFile, ObsFile) {
-    let keep = |r: &ObsRecord| signals.contains(&r.signal) && r.pseudorange_m.is_some();
     let (mut t_out, mut c_out) = (
         target.with_epochs(Vec::new()),
         chaser.with_epochs(Vec::new()),
@@ -88,83 +106,14 @@ fn paired_files(
         let Some((time, records)) = records_at(chaser, &mut cursor, epoch.time) else {
             continue;
         };
-        let t_keys: BTreeSet<_> = (epoch.sats.iter().filter(|r| keep(r)))
-            .map(|r| (r.sat, r.signal))
-            .collect();
-        let c_keys: BTreeSet<_> = (records.iter().filter(|r| keep(r)))
-            .map(|r| (r.sat, r.signal))
-            .collect();
-        let both = |r: &&ObsRecord| {
-            keep(r)
-                && (!common
-                    || (t_keys.contains(&(r.sat, r.signal)) && c_keys.contains(&(r.sat, r.signal))))
-        };
+        let (t_sats, c_sats) = pair_records((&epoch.sats, records), signals, common);
         t_out.epochs.push(ObsEpoch {
             time: epoch.time,
-            sats: epoch.sats.iter().filter(both).cloned().collect(),
+            sats: t_sats,
         });
-        c_out.epochs.push(ObsEpoch {
-            time,
-            sats: records.iter().filter(both).cloned().collect(),
-        });
+        c_out.epochs.push(ObsEpoch { time, sats: c_sats });
     }
     (t_out, c_out)
-}
-
-/// The two files' epochs with the records of the satellites both fixes of the epoch
-/// used (none where either has no fix).
-fn restricted(
-    (target, chaser): (&ObsFile, &ObsFile),
-    t_fixes: &[Result<Fix, String>],
-    c_fixes: &[Result<Fix, String>],
-) -> (ObsFile, ObsFile) {
-    let (mut t_out, mut c_out) = (target.clone(), chaser.clone());
-    let epochs = t_out.epochs.iter_mut().zip(c_out.epochs.iter_mut());
-    for (k, (t, c)) in epochs.enumerate() {
-        let both: BTreeSet<SatId> = used_satellites(&t_fixes[k])
-            .intersection(&used_satellites(&c_fixes[k]))
-            .copied()
-            .collect();
-        t.sats.retain(|r| both.contains(&r.sat));
-        c.sats.retain(|r| both.contains(&r.sat));
-    }
-    (t_out, c_out)
-}
-
-/// The satellites `fix` used (none without one).
-fn used_satellites(fix: &Result<Fix, String>) -> BTreeSet<SatId> {
-    (fix.as_ref())
-        .map(|f| f.used.iter().map(|u| u.0).collect())
-        .unwrap_or_default()
-}
-
-/// The satellites the target's and the chaser's fix of an epoch used.
-#[derive(Debug, PartialEq)]
-struct SatelliteSetPair {
-    target: BTreeSet<SatId>,
-    chaser: BTreeSet<SatId>,
-}
-
-impl SatelliteSetPair {
-    fn of(target: &Result<Fix, String>, chaser: &Result<Fix, String>) -> Self {
-        Self {
-            target: used_satellites(target),
-            chaser: used_satellites(chaser),
-        }
-    }
-
-    /// Both fixes on the same satellites.
-    fn same(&self) -> bool {
-        self.target == self.chaser
-    }
-}
-
-/// One vehicle's solution at an epoch: its fix's time (s since the start), position and
-/// Doppler velocity (ECEF).
-struct Solution {
-    t_s: f64,
-    r_ecef_m: Vec3,
-    v_ecef_mps: Vec3,
 }
 
 /// The signals both files have among `wanted` (all of them when empty).
@@ -238,7 +187,6 @@ pub fn relative_from_files(
         });
     }
     let store = EphemerisStore::new(ephemerides, &origin);
-    let earth = EarthRotation::at_origin(start);
     let pvt = PvtConfig {
         elevation_mask_rad: config.elevation_mask_deg.to_radians(),
         iono_gps: iono.gps,
@@ -290,86 +238,11 @@ pub fn relative_from_files(
             missed,
         });
     }
-    let mut t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &pvt);
-    let mut c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &pvt);
-    if common {
-        // Each receiver's elevation mask and residual test choose among the common
-        // satellites on their own (a satellite at the mask for one vehicle is just below
-        // it for the other, 32 km away): the fixes again on the satellites both fixes
-        // used, with neither (module docs).
-        let (t_file, c_file) = restricted((&t_file, &c_file), &t_fixes, &c_fixes);
-        let same = PvtConfig {
-            elevation_mask_rad: -std::f64::consts::FRAC_PI_2,
-            raim_pfa: 0.0,
-            ..pvt
-        };
-        t_fixes = single_point_fixes(&t_file, &store, &origin, &signals, &same);
-        c_fixes = single_point_fixes(&c_file, &store, &origin, &signals, &same);
-    }
-    let solution = |epoch: &ObsEpoch, fix: &Fix| {
-        let t_rx = origin.seconds_since_start(epoch.time);
-        Some(Solution {
-            t_s: fix.t_s,
-            r_ecef_m: fix.r_ecef_m,
-            v_ecef_mps: records_velocity(&epoch.sats, &signals, t_rx, &store, fix)?,
-        })
-    };
-    let mut orbit = PositionFilter::new(config.target_orbit.clone(), start);
-    let mut relative_filter = (config.filter.clone()).map(|f| HillFilter::new(f, start));
-    let mut estimates = Vec::new();
-    let mut missed = 0;
-    let mut sets = SameSatellites::new();
-    for k in 0..t_file.epochs.len() {
-        let both = match (&t_fixes[k], &c_fixes[k]) {
-            (Ok(tf), Ok(cf)) => solution(&t_file.epochs[k], tf)
-                .zip(solution(&c_file.epochs[k], cf))
-                .map(|both| (tf, both)),
-            _ => None,
-        };
-        let Some((tf, (t, c))) = both else {
-            missed += 1;
-            sets.missed();
-            continue;
-        };
-        let used = SatelliteSetPair::of(&t_fixes[k], &c_fixes[k]);
-        let same = used.same();
-        let unchanged_s = sets.at(used, t.t_s);
-        let same_satellites_s = if same { unchanged_s } else { 0.0 };
-        // The chaser's fix moved to the target fix's instant (ECEF, its own velocity).
-        let r_c = c.r_ecef_m + c.v_ecef_mps * (t.t_s - c.t_s);
-        let (rt, vt) = earth.ecef_to_eci(t.t_s, &t.r_ecef_m, &t.v_ecef_mps);
-        let (rc, vc) = earth.ecef_to_eci(t.t_s, &r_c, &c.v_ecef_mps);
-        // The frame from the target's filtered orbit (config docs).
-        let filtered = orbit.update(&FixInput {
-            t_s: t.t_s,
-            r_ecef_m: t.r_ecef_m,
-            v_ecef_mps: Some(t.v_ecef_mps),
-            gdop: tf.dop.gdop,
-        });
-        let (mut position_m, mut velocity_mps) = relative_in_frame_of(
-            &filtered.r_eci_m,
-            &filtered.v_eci_mps,
-            &(rc - rt),
-            &(vc - vt),
-        );
-        if let Some(f) = relative_filter.as_mut() {
-            let target = TargetState {
-                t_s: t.t_s,
-                r_eci_m: filtered.r_eci_m,
-                v_eci_mps: filtered.v_eci_mps,
-            };
-            let e = f.update(target, position_m, Some(velocity_mps));
-            (position_m, velocity_mps) = (e.position_m, e.velocity_mps);
-        }
-        estimates.push(RelativeEstimate {
-            t_s: t.t_s,
-            position_m,
-            velocity_mps,
-            same_satellites_s,
-            baseline_ecef_m: None,
-            ambiguities: None,
-        });
-    }
+    let mut engine = BookModes::new(config, &pvt, &signals, start, common);
+    let estimates = (t_file.epochs.iter().zip(&c_file.epochs))
+        .filter_map(|pair| engine.epoch(pair, &store, &origin))
+        .collect();
+    let missed = engine.missed;
     Ok(RelnavRun {
         start,
         mode: config.mode,

@@ -42,6 +42,7 @@
 //! receivers' clocks tag their epochs differently: a millisecond is 7.5 m along-track).
 //! Reads only what the receivers could: observations, broadcast ephemerides, settings.
 
+mod book_modes;
 mod config;
 mod double_difference;
 mod from_files;
