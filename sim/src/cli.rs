@@ -615,6 +615,16 @@ pub struct ReceiveArgs {
     /// (docs/orbit-determination.md).
     #[arg(long, value_name = "TOML", num_args = 0..=1)]
     pub od: Option<Option<PathBuf>>,
+    /// Also navigate relative to a target spacecraft: this receiver is the chaser, OBS
+    /// the target's RINEX observation file (as a link delivers it); at every epoch the
+    /// first recording's observations and the target's of the same epoch go through
+    /// `skyforge relnav`'s modes standalone, position-difference or carrier-smoothed
+    /// (an epoch stage): writes DIR/relnav.csv. Needs --assist.
+    #[arg(long, value_name = "OBS")]
+    pub relnav: Option<PathBuf>,
+    /// The relnav stage's settings (TOML as `skyforge relnav --config`).
+    #[arg(long, value_name = "TOML", requires = "relnav")]
+    pub relnav_config: Option<PathBuf>,
     /// Output directory; created, must not exist unless --force is given.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,

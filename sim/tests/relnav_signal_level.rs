@@ -1,7 +1,8 @@
 //! Relative navigation at the signal level: two spacecraft of one scenario
 //! (`[[vehicles]]`) rendered as I/Q, each recording received by the bundled receiver, and
 //! `skyforge relnav` on the two receivers' RINEX files against the relative truth. Each
-//! recording's SigMF metadata names its vehicle.
+//! recording's SigMF metadata names its vehicle. The chaser's receiver also runs the
+//! relnav stage (`receive --relnav`) against the target's observations.
 
 mod support;
 
@@ -29,21 +30,20 @@ model = "modern"
 preset = "tcxo"
 "#;
 
-fn receive(d: &Path, vehicle: &str) {
+/// The bundled receiver on `vehicle`'s recording, with `extra` arguments; what it printed.
+fn receive(d: &Path, vehicle: &str, extra: &[&str]) -> String {
     let dir = format!("pair/{vehicle}");
-    support::skyforge_ok(
-        &[
-            "receive",
-            &format!("{dir}/ant1.gps-l1ca.sigmf-meta"),
-            "--assist",
-            &format!("{dir}/nav.rnx"),
-            "--config",
-            &format!("{dir}/receiver.toml"),
-            "--out",
-            &format!("rx-{vehicle}"),
-        ],
-        d,
+    let (meta, nav, config, out) = (
+        format!("{dir}/ant1.gps-l1ca.sigmf-meta"),
+        format!("{dir}/nav.rnx"),
+        format!("{dir}/receiver.toml"),
+        format!("rx-{vehicle}"),
     );
+    let mut args = vec![
+        "receive", &meta, "--assist", &nav, "--config", &config, "--out", &out,
+    ];
+    args.extend_from_slice(extra);
+    support::skyforge_ok(&args, d)
 }
 
 /// A chaser 32 km behind the target, each receiver on its own samples: relative DGPS
@@ -67,8 +67,10 @@ fn two_spacecraft_from_their_samples() {
         assert_eq!(meta["global"]["skyforge:vehicle"], vehicle, "{meta}");
         assert_eq!(meta["global"]["skyforge:seed"], 1, "{meta}");
     }
-    receive(d, "target");
-    receive(d, "chaser");
+    receive(d, "target", &[]);
+    // The chaser's receiver with the relnav stage against the target's observations.
+    let printed = receive(d, "chaser", &["--relnav", "rx-target/ant1.obs.rnx"]);
+    assert!(printed.contains("position-difference"), "{printed}");
     support::skyforge_ok(
         &[
             "relnav",
@@ -108,4 +110,46 @@ fn two_spacecraft_from_their_samples() {
     assert!(compared >= 30, "{v}");
     assert!(rms < 5.0, "{v}");
     assert!(worst < 10.0, "{v}");
+    // The stage's estimates are the files' within what the RINEX file's rounding of the
+    // chaser's observations moves them (bar # assumed: 1 cm).
+    let read = |p: &str| skyforge_formats::relative::read_relative_csv(&d.join(p)).unwrap();
+    let (stage, files) = (read("rx-chaser/relnav.csv"), read("rel/relnav.csv"));
+    assert_eq!(stage.len(), files.len());
+    let largest = (stage.iter().zip(&files))
+        .map(|(a, b)| (a.position_m - b.position_m).amax())
+        .fold(0.0, f64::max);
+    eprintln!("relnav stage against the files: {largest:.2e} m at most");
+    assert!(largest < 0.01, "{largest} m");
+    // Bad input to the stage: one clear error, exit code 2, nothing written.
+    std::fs::write(d.join("dd.toml"), "mode = \"double-difference\"\n").unwrap();
+    let meta = "pair/chaser/ant1.gps-l1ca.sigmf-meta";
+    for (extra, expected) in [
+        (
+            vec!["--relnav", "rx-target/ant1.obs.rnx"],
+            "--relnav needs --assist",
+        ),
+        (
+            vec![
+                "--assist",
+                "pair/chaser/nav.rnx",
+                "--relnav",
+                "rx-target/ant1.obs.rnx",
+                "--relnav-config",
+                "dd.toml",
+            ],
+            "runs on files",
+        ),
+        (
+            vec!["--assist", "pair/chaser/nav.rnx", "--relnav", "none.obs"],
+            "none.obs",
+        ),
+    ] {
+        let mut args = vec!["receive", meta, "--out", "bad"];
+        args.extend(extra);
+        let o = support::skyforge(&args, d);
+        let err = support::text(&o);
+        assert_eq!(o.status.code(), Some(2), "{err}");
+        assert!(err.contains(expected), "{err}");
+        assert!(!d.join("bad").exists());
+    }
 }

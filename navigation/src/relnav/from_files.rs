@@ -23,6 +23,10 @@ pub enum RelnavError {
     NoEpochs(String),
     #[error("{target} and {chaser} share no epoch (within a millisecond)")]
     NoCommonEpoch { target: String, chaser: String },
+    #[error(
+        "mode {0} (or satellite_sets = \"own\") runs on files (`skyforge relnav`); a receiver's relnav stage runs modes standalone, position-difference and carrier-smoothed on the common satellites"
+    )]
+    FilesOnly(&'static str),
     #[error("{target} and {chaser} share none of the signals {wanted}")]
     NoSignal {
         target: String,
@@ -116,6 +120,21 @@ fn paired_files(
     (t_out, c_out)
 }
 
+/// The single-point fixes' settings of `config`'s mode: its mask, the broadcast
+/// ionosphere, and the carrier smoother in mode `carrier-smoothed` on the common
+/// satellites (each vehicle's own sets smooth their whole files first).
+pub(crate) fn pvt_settings(config: &RelnavConfig, iono: &BroadcastIono) -> PvtConfig {
+    let smoothed_here = config.mode == RelnavMode::CarrierSmoothed
+        && config.satellite_sets == SatelliteSets::Common;
+    PvtConfig {
+        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        carrier_smoothing: smoothed_here.then_some(config.smoothing),
+        ..PvtConfig::default()
+    }
+}
+
 /// The signals both files have among `wanted` (all of them when empty).
 fn shared_signals(target: &ObsFile, chaser: &ObsFile, wanted: &[Signal]) -> Vec<Signal> {
     let has = |f: &ObsFile| -> BTreeSet<Signal> {
@@ -187,14 +206,7 @@ pub fn relative_from_files(
         });
     }
     let store = EphemerisStore::new(ephemerides, &origin);
-    let pvt = PvtConfig {
-        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
-        iono_gps: iono.gps,
-        iono_bds: iono.bds,
-        carrier_smoothing: (config.mode == RelnavMode::CarrierSmoothed && !own)
-            .then_some(config.smoothing),
-        ..PvtConfig::default()
-    };
+    let pvt = pvt_settings(config, iono);
     let inputs = Inputs {
         store: &store,
         origin: &origin,

@@ -50,6 +50,7 @@ mod hill_dynamics;
 mod hill_filter;
 mod same_satellites;
 mod single_difference;
+mod stage;
 
 pub use config::{RelnavConfig, RelnavMode, SatelliteSets};
 pub use double_difference::config::DoubleDifferenceConfig;
@@ -57,3 +58,4 @@ pub use double_difference::fixing::AmbiguityCount;
 pub use from_files::{RelativeEstimate, RelnavError, RelnavRun, relative_from_files};
 pub use hill_filter::{HillEstimate, HillFilter, HillFilterConfig, TargetState};
 pub use single_difference::config::SingleDifferenceConfig;
+pub use stage::RelnavStage;

@@ -10,6 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use skyforge_formats::receiver::{ReceiverOutputs, Summary as OutputSummary};
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::orbit_determination::{EpochFix, OdFilterConfig, OrbitDetermination};
+use skyforge_navigation::relnav::{RelnavConfig, RelnavStage};
 use skyforge_orbits::constants::C_MPS;
 use skyforge_receiver::input::InputParams;
 use skyforge_receiver::input::parse_format;
@@ -68,6 +69,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     let mut session =
         ReceiveSession::open(&args.files, &params, &assistance, config).map_err(session_error)?;
     let chain = attitude_chain(args, session.antenna_names())?;
+    let mut relnav = relnav_stage(args)?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let mut outputs = ReceiverOutputs::create(
         &staged.file(""),
@@ -106,6 +108,7 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
         outputs: &mut outputs,
         attitude: attitude.as_mut(),
         od: od.as_mut(),
+        relnav: relnav.as_mut().map(|(stage, _)| stage),
     };
     let summary = session
         .run(&mut sink, |sample, s| {
@@ -127,6 +130,14 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     } else if args.od.is_some() {
         println!("receive: od: no fix on the orbit-determination grid; no orbit written");
     }
+    let relnav = relnav.map(|(stage, config)| (stage.run(), config));
+    match &relnav {
+        Some((run, _)) if !run.estimates.is_empty() => {
+            super::relnav::write_relnav_csv(&staged, run, ("target", "chaser"))?;
+        }
+        Some(_) => println!("receive: relnav: no epoch with both fixes; no relnav.csv written"),
+        None => {}
+    }
     let dir = staged.commit()?;
     println!("receive: wrote {}", dir.display());
     if let Some(s) = chain_summary {
@@ -135,16 +146,41 @@ pub fn receive(args: &ReceiveArgs) -> anyhow::Result<()> {
     if let Some(od) = &od {
         super::od::print_summary(&dir, od.estimates(), od.missed(), od.config());
     }
+    if let Some((run, config)) = relnav.filter(|(run, _)| !run.estimates.is_empty()) {
+        super::relnav::print_summary(&run, &config);
+    }
     Ok(())
 }
 
+/// With `--relnav OBS`, the relative-navigation stage against the target's observations
+/// and its settings; the ephemerides and ionosphere come from `--assist`.
+fn relnav_stage(args: &ReceiveArgs) -> anyhow::Result<Option<(RelnavStage, RelnavConfig)>> {
+    let Some(target) = &args.relnav else {
+        return Ok(None);
+    };
+    let Some(nav) = &args.assist else {
+        return Err(BadInput(
+            "--relnav needs --assist NAV: relative navigation reads the ephemerides and the ionosphere from a navigation file".into(),
+        )
+        .into());
+    };
+    let config = super::relnav::read_config(args.relnav_config.as_deref())?;
+    let (ephemerides, iono) = super::attitude::read_nav_with_iono(nav)?;
+    let target = super::read_observations(target)?;
+    let stage = RelnavStage::new(target, ephemerides, &iono, &config)
+        .map_err(|e| BadInput(format!("--relnav: {e}")))?;
+    Ok(Some((stage, config)))
+}
+
 /// What runs at every epoch the receiver forms: its output files, then with `--geometry`
-/// the attitude chain on the same observations, and with `--od` the orbit determination
-/// on the first recording's fix.
+/// the attitude chain on the same observations, with `--od` the orbit determination on
+/// the first recording's fix, and with `--relnav` relative navigation on the first
+/// recording's observations.
 struct Stages<'a> {
     outputs: &'a mut ReceiverOutputs,
     attitude: Option<&'a mut AttitudeStage>,
     od: Option<&'a mut OrbitDetermination>,
+    relnav: Option<&'a mut RelnavStage>,
 }
 
 impl EpochSink for Stages<'_> {
@@ -155,6 +191,9 @@ impl EpochSink for Stages<'_> {
         }
         if let Some(od) = self.od.as_mut() {
             od.epoch(report.t_rx, || od_fix(report), || report.records(0));
+        }
+        if let Some(relnav) = self.relnav.as_mut() {
+            relnav.epoch(report.t_rx, &report.records(0));
         }
         Ok(())
     }

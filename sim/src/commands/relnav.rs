@@ -8,14 +8,11 @@ use crate::cli::RelnavArgs;
 use crate::output::staged_dir::StagedDir;
 use hifitime::Unit;
 use skyforge_formats::relative::{FixedFloat, RELNAV_CSV, RelativeRow, write_relative_csv};
-use skyforge_navigation::relnav::{RelnavConfig, relative_from_files};
+use skyforge_navigation::relnav::{RelnavConfig, RelnavRun, relative_from_files};
 
 /// Run `skyforge relnav`.
 pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
-    let config = match &args.config {
-        Some(path) => RelnavConfig::read(path).map_err(BadInput)?,
-        None => RelnavConfig::default(),
-    };
+    let config = read_config(args.config.as_deref())?;
     for (flag, name) in [
         ("--target-name", &args.target_name),
         ("--chaser-name", &args.chaser_name),
@@ -41,33 +38,10 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
         ))
         .into());
     }
-    let rows: Vec<RelativeRow> = (run.estimates.iter())
-        .map(|e| RelativeRow {
-            time: run.start + Unit::Second * e.t_s,
-            vehicle: args.chaser_name.clone(),
-            target: args.target_name.clone(),
-            position_m: e.position_m,
-            velocity_mps: e.velocity_mps,
-            baseline_ecef_m: e.baseline_ecef_m,
-            ambiguities: e.ambiguities.map(|a| FixedFloat {
-                fixed: a.fixed,
-                float: a.float,
-            }),
-        })
-        .collect();
     let staged = StagedDir::create(&args.out, args.force)?;
-    write_relative_csv(&staged.file(RELNAV_CSV), run.start, &rows)?;
+    write_relnav_csv(&staged, &run, (&args.target_name, &args.chaser_name))?;
     let dir = staged.commit()?;
-    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
-    println!("mode       {} ({})", run.mode.name(), signals.join(", "));
-    if config.filter.is_some() {
-        println!("filter     the book's relative filter (Hill dynamics, eqs. 5-57/5-58)");
-    }
-    println!(
-        "epochs     {} estimates, {} common epochs without both fixes",
-        run.estimates.len(),
-        run.missed
-    );
+    print_summary(&run, &config);
     let counts = run.estimates.iter().filter_map(|e| e.ambiguities);
     let (fixed, float) = counts.fold((0, 0), |(x, y), a| (x + a.fixed, y + a.float));
     if fixed + float > 0 {
@@ -79,4 +53,50 @@ pub fn relnav(args: &RelnavArgs) -> anyhow::Result<()> {
     }
     println!("wrote      {}", dir.join(RELNAV_CSV).display());
     Ok(())
+}
+
+/// The settings at `path`, or the documented defaults.
+pub(crate) fn read_config(path: Option<&std::path::Path>) -> anyhow::Result<RelnavConfig> {
+    Ok(match path {
+        Some(path) => RelnavConfig::read(path).map_err(BadInput)?,
+        None => RelnavConfig::default(),
+    })
+}
+
+/// `run`'s estimates as `relnav.csv` in `staged` (the vehicles' names: target, chaser).
+pub(crate) fn write_relnav_csv(
+    staged: &StagedDir,
+    run: &RelnavRun,
+    (target, chaser): (&str, &str),
+) -> anyhow::Result<()> {
+    let rows: Vec<RelativeRow> = (run.estimates.iter())
+        .map(|e| RelativeRow {
+            time: run.start + Unit::Second * e.t_s,
+            vehicle: chaser.to_owned(),
+            target: target.to_owned(),
+            position_m: e.position_m,
+            velocity_mps: e.velocity_mps,
+            baseline_ecef_m: e.baseline_ecef_m,
+            ambiguities: e.ambiguities.map(|a| FixedFloat {
+                fixed: a.fixed,
+                float: a.float,
+            }),
+        })
+        .collect();
+    write_relative_csv(&staged.file(RELNAV_CSV), run.start, &rows)?;
+    Ok(())
+}
+
+/// The mode, the filter and the counts of `run`.
+pub(crate) fn print_summary(run: &RelnavRun, config: &RelnavConfig) {
+    let signals: Vec<String> = run.signals.iter().map(|s| s.to_string()).collect();
+    println!("mode       {} ({})", run.mode.name(), signals.join(", "));
+    if config.filter.is_some() {
+        println!("filter     the book's relative filter (Hill dynamics, eqs. 5-57/5-58)");
+    }
+    println!(
+        "epochs     {} estimates, {} common epochs without both fixes",
+        run.estimates.len(),
+        run.missed
+    );
 }

@@ -1,0 +1,105 @@
+//! Relative navigation as an epoch stage of the chaser's receiver (`skyforge receive
+//! --relnav`): the chaser's observations as its receiver forms them, epoch by epoch, the
+//! target's from its observation file, as a link would deliver them (the book's target
+//! "sends its state"; the common-satellite modes need its observations). Modes
+//! `standalone`, `position-difference` and `carrier-smoothed` on the common satellites,
+//! through the engine `skyforge relnav` runs on files ([`super::book_modes`]); the
+//! filters of modes `single-difference` and `double-difference`, and each vehicle's own
+//! satellite sets (whose smoothing runs over whole files), run on files.
+
+use super::book_modes::BookModes;
+use super::from_files::{RelativeEstimate, RelnavError, RelnavRun, pair_records, pvt_settings};
+use super::{RelnavConfig, RelnavMode, SatelliteSets};
+use crate::relative::files::records_at;
+use hifitime::Epoch;
+use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
+use skyforge_gnss::signal::Signal;
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
+use skyforge_orbits::time::TimeOrigin;
+
+/// The stage (module docs).
+#[derive(Debug)]
+pub struct RelnavStage {
+    target: ObsFile,
+    /// The target's next epoch to pair.
+    cursor: usize,
+    store: EphemerisStore,
+    origin: TimeOrigin,
+    start: Epoch,
+    mode: RelnavMode,
+    signals: Vec<Signal>,
+    common: bool,
+    engine: BookModes,
+    estimates: Vec<RelativeEstimate>,
+}
+
+impl RelnavStage {
+    /// The stage for `config` against the target's observations `target`, with the
+    /// broadcast `ephemerides` and ionosphere. The signals are `config`'s, or every one
+    /// the target's file has; `t_s` counts from the target's first epoch, as on files.
+    pub fn new(
+        target: ObsFile,
+        ephemerides: Vec<BroadcastEphemeris>,
+        iono: &BroadcastIono,
+        config: &RelnavConfig,
+    ) -> Result<Self, RelnavError> {
+        let on_files = match config.mode {
+            RelnavMode::SingleDifference | RelnavMode::DoubleDifference => true,
+            _ => config.satellite_sets == SatelliteSets::Own,
+        };
+        if on_files {
+            return Err(RelnavError::FilesOnly(config.mode.name()));
+        }
+        let start = (target.epochs.first())
+            .map(|e| e.time)
+            .ok_or_else(|| RelnavError::NoEpochs(target.source.display().to_string()))?;
+        let signals = if config.signals.is_empty() {
+            target.signals()
+        } else {
+            config.signals.clone()
+        };
+        let origin = TimeOrigin::new(start);
+        let common = config.mode != RelnavMode::Standalone;
+        let engine = BookModes::new(config, &pvt_settings(config, iono), &signals, start, common);
+        Ok(Self {
+            target,
+            cursor: 0,
+            store: EphemerisStore::new(ephemerides, &origin),
+            origin,
+            start,
+            mode: config.mode,
+            signals,
+            common,
+            engine,
+            estimates: Vec::new(),
+        })
+    }
+
+    /// The chaser's epoch tagged `time` by its receiver, with its `records`: paired with
+    /// the target's epoch of the same tag (within the files' tolerance), the chaser
+    /// relative to the target. Epochs the target lacks are passed by.
+    pub fn epoch(&mut self, time: Epoch, records: &[ObsRecord]) -> Option<&RelativeEstimate> {
+        let (t_time, t_records) = records_at(&self.target, &mut self.cursor, time)?;
+        let (t_sats, c_sats) = pair_records((t_records, records), &self.signals, self.common);
+        let target = ObsEpoch {
+            time: t_time,
+            sats: t_sats,
+        };
+        let chaser = ObsEpoch { time, sats: c_sats };
+        let estimate = (self.engine).epoch((&target, &chaser), &self.store, &self.origin)?;
+        self.estimates.push(estimate);
+        self.estimates.last()
+    }
+
+    /// What the stage estimated so far.
+    pub fn run(&self) -> RelnavRun {
+        RelnavRun {
+            start: self.start,
+            mode: self.mode,
+            signals: self.signals.clone(),
+            estimates: self.estimates.clone(),
+            missed: self.engine.missed,
+        }
+    }
+}
