@@ -618,8 +618,8 @@ pub struct ReceiveArgs {
     /// Also navigate relative to a target spacecraft: this receiver is the chaser, OBS
     /// the target's RINEX observation file (as a link delivers it); at every epoch the
     /// first recording's observations and the target's of the same epoch go through
-    /// `skyforge relnav`'s modes standalone, position-difference or carrier-smoothed
-    /// (an epoch stage): writes DIR/relnav.csv. Needs --assist.
+    /// `skyforge relnav`'s engine in the configured mode (an epoch stage): writes
+    /// DIR/relnav.csv. Needs --assist.
     #[arg(long, value_name = "OBS")]
     pub relnav: Option<PathBuf>,
     /// The relnav stage's settings (TOML as `skyforge relnav --config`).

@@ -228,7 +228,11 @@ pub(crate) fn carrier_smoothed_file(
 }
 
 /// `records` with each pseudorange that has a carrier beside it smoothed by `smoother`.
-fn smoothed(smoother: &mut CarrierSmoother, records: &[ObsRecord], t_s: f64) -> Vec<ObsRecord> {
+pub(crate) fn smoothed(
+    smoother: &mut CarrierSmoother,
+    records: &[ObsRecord],
+    t_s: f64,
+) -> Vec<ObsRecord> {
     records
         .iter()
         .map(|r| ObsRecord {

@@ -5,6 +5,7 @@
 //! One engine for a pair of files and for a receiver's epoch stage.
 
 use super::RelnavConfig;
+use super::engine::{Context, Engine};
 use super::from_files::RelativeEstimate;
 use super::hill_filter::{HillFilter, TargetState};
 use super::same_satellites::SameSatellites;
@@ -15,10 +16,9 @@ use hifitime::Epoch;
 use skyforge_gnss::observation::ObsEpoch;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::frames::relative_in_frame_of;
-use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeSet;
 
 /// The satellites `fix` used (none without one).
@@ -83,7 +83,7 @@ pub(crate) struct BookModes {
     sets: SameSatellites<SatelliteSetPair>,
     earth: EarthRotation,
     /// Epochs without both fixes and velocities.
-    pub(crate) missed: usize,
+    missed: usize,
 }
 
 impl BookModes {
@@ -112,16 +112,21 @@ impl BookModes {
             missed: 0,
         }
     }
+}
+
+impl Engine for BookModes {
+    fn missed(&self) -> usize {
+        self.missed
+    }
 
     /// One pair of epochs, each vehicle's records of the run's signals (with `common`,
-    /// those of the satellites and signals both measured): the chaser relative to the
-    /// target, or `None` where either has no fix and velocity.
-    pub(crate) fn epoch(
+    /// those of the satellites and signals both measured).
+    fn epoch(
         &mut self,
         (target, chaser): (&ObsEpoch, &ObsEpoch),
-        store: &EphemerisStore,
-        origin: &TimeOrigin,
+        at: &Context,
     ) -> Option<RelativeEstimate> {
+        let (store, origin) = (at.store, at.origin);
         let signals = &self.signals;
         let mut tf = self.first[0].fix(target, store, origin, signals);
         let mut cf = self.first[1].fix(chaser, store, origin, signals);

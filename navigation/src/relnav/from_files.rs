@@ -1,10 +1,7 @@
 //! Relative navigation on two observation files (module docs of [`super`]).
 
-use super::book_modes::BookModes;
-use super::double_difference::{self, Inputs};
-use super::single_difference;
+use super::engine::{Context, engine};
 use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
-use crate::pvt::IonosphereCorrection;
 use crate::pvt::PvtConfig;
 use crate::relative::files::{carrier_smoothed_file, records_at};
 use hifitime::Epoch;
@@ -23,10 +20,6 @@ pub enum RelnavError {
     NoEpochs(String),
     #[error("{target} and {chaser} share no epoch (within a millisecond)")]
     NoCommonEpoch { target: String, chaser: String },
-    #[error(
-        "mode {0} (or satellite_sets = \"own\") runs on files (`skyforge relnav`); a receiver's relnav stage runs modes standalone, position-difference and carrier-smoothed on the common satellites"
-    )]
-    FilesOnly(&'static str),
     #[error("{target} and {chaser} share none of the signals {wanted}")]
     NoSignal {
         target: String,
@@ -207,54 +200,15 @@ pub fn relative_from_files(
     }
     let store = EphemerisStore::new(ephemerides, &origin);
     let pvt = pvt_settings(config, iono);
-    let inputs = Inputs {
+    let mut engine = engine(config, &pvt, &signals, start, common);
+    let at = Context {
         store: &store,
         origin: &origin,
-        start,
-        signals: &signals,
-        config,
-        pvt: &pvt,
     };
-    let filtered = match config.mode {
-        RelnavMode::DoubleDifference => {
-            // Dual-frequency fixes where two carriers are measured: the ionosphere-free
-            // code (the receive instants and the target's anchor).
-            let carriers: BTreeSet<u64> = signals.iter().map(|s| s.carrier_hz() as u64).collect();
-            let pvt = PvtConfig {
-                ionosphere: if carriers.len() > 1 {
-                    IonosphereCorrection::DualFrequency
-                } else {
-                    IonosphereCorrection::Broadcast
-                },
-                carrier_smoothing: None,
-                ..pvt.clone()
-            };
-            Some(double_difference::run(
-                &t_file,
-                &c_file,
-                &Inputs {
-                    pvt: &pvt,
-                    ..inputs
-                },
-            ))
-        }
-        RelnavMode::SingleDifference => Some(single_difference::run(&t_file, &c_file, &inputs)),
-        _ => None,
-    };
-    if let Some((estimates, missed)) = filtered {
-        return Ok(RelnavRun {
-            start,
-            mode: config.mode,
-            signals,
-            estimates,
-            missed,
-        });
-    }
-    let mut engine = BookModes::new(config, &pvt, &signals, start, common);
     let estimates = (t_file.epochs.iter().zip(&c_file.epochs))
-        .filter_map(|pair| engine.epoch(pair, &store, &origin))
+        .filter_map(|pair| engine.epoch(pair, &at))
         .collect();
-    let missed = engine.missed;
+    let missed = engine.missed();
     Ok(RelnavRun {
         start,
         mode: config.mode,

@@ -45,6 +45,7 @@
 mod book_modes;
 mod config;
 mod double_difference;
+mod engine;
 mod from_files;
 mod hill_dynamics;
 mod hill_filter;

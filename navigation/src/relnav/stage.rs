@@ -1,16 +1,16 @@
 //! Relative navigation as an epoch stage of the chaser's receiver (`skyforge receive
 //! --relnav`): the chaser's observations as its receiver forms them, epoch by epoch, the
 //! target's from its observation file, as a link would deliver them (the book's target
-//! "sends its state"; the common-satellite modes need its observations). Modes
-//! `standalone`, `position-difference` and `carrier-smoothed` on the common satellites,
-//! through the engine `skyforge relnav` runs on files ([`super::book_modes`]); the
-//! filters of modes `single-difference` and `double-difference`, and each vehicle's own
-//! satellite sets (whose smoothing runs over whole files), run on files.
+//! "sends its state"; every mode but `standalone` needs its observations). Every mode,
+//! through the engine `skyforge relnav` loops over two files ([`super::engine`]); with
+//! each vehicle's own satellite sets the chaser's smoother runs along every epoch its
+//! receiver forms, the target's along its whole file, as on files.
 
-use super::book_modes::BookModes;
+use super::engine::{Context, Engine, engine};
 use super::from_files::{RelativeEstimate, RelnavError, RelnavRun, pair_records, pvt_settings};
 use super::{RelnavConfig, RelnavMode, SatelliteSets};
-use crate::relative::files::records_at;
+use crate::pvt::CarrierSmoother;
+use crate::relative::files::{carrier_smoothed_file, records_at, smoothed};
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
@@ -30,7 +30,9 @@ pub struct RelnavStage {
     mode: RelnavMode,
     signals: Vec<Signal>,
     common: bool,
-    engine: BookModes,
+    /// With each vehicle's own satellite sets: the chaser's smoother.
+    chaser_smoother: Option<CarrierSmoother>,
+    engine: Box<dyn Engine>,
     estimates: Vec<RelativeEstimate>,
 }
 
@@ -44,13 +46,6 @@ impl RelnavStage {
         iono: &BroadcastIono,
         config: &RelnavConfig,
     ) -> Result<Self, RelnavError> {
-        let on_files = match config.mode {
-            RelnavMode::SingleDifference | RelnavMode::DoubleDifference => true,
-            _ => config.satellite_sets == SatelliteSets::Own,
-        };
-        if on_files {
-            return Err(RelnavError::FilesOnly(config.mode.name()));
-        }
         let start = (target.epochs.first())
             .map(|e| e.time)
             .ok_or_else(|| RelnavError::NoEpochs(target.source.display().to_string()))?;
@@ -60,8 +55,15 @@ impl RelnavStage {
             config.signals.clone()
         };
         let origin = TimeOrigin::new(start);
-        let common = config.mode != RelnavMode::Standalone;
-        let engine = BookModes::new(config, &pvt_settings(config, iono), &signals, start, common);
+        let own = config.mode == RelnavMode::CarrierSmoothed
+            && config.satellite_sets == SatelliteSets::Own;
+        let target = if own {
+            carrier_smoothed_file(&target, &origin, config.smoothing)
+        } else {
+            target
+        };
+        let common = config.mode != RelnavMode::Standalone && !own;
+        let engine = engine(config, &pvt_settings(config, iono), &signals, start, common);
         Ok(Self {
             target,
             cursor: 0,
@@ -71,6 +73,7 @@ impl RelnavStage {
             mode: config.mode,
             signals,
             common,
+            chaser_smoother: own.then(|| CarrierSmoother::new(config.smoothing)),
             engine,
             estimates: Vec::new(),
         })
@@ -80,6 +83,14 @@ impl RelnavStage {
     /// the target's epoch of the same tag (within the files' tolerance), the chaser
     /// relative to the target. Epochs the target lacks are passed by.
     pub fn epoch(&mut self, time: Epoch, records: &[ObsRecord]) -> Option<&RelativeEstimate> {
+        let own_smoothed;
+        let records = match self.chaser_smoother.as_mut() {
+            Some(s) => {
+                own_smoothed = smoothed(s, records, self.origin.seconds_since_start(time));
+                &own_smoothed[..]
+            }
+            None => records,
+        };
         let (t_time, t_records) = records_at(&self.target, &mut self.cursor, time)?;
         let (t_sats, c_sats) = pair_records((t_records, records), &self.signals, self.common);
         let target = ObsEpoch {
@@ -87,7 +98,11 @@ impl RelnavStage {
             sats: t_sats,
         };
         let chaser = ObsEpoch { time, sats: c_sats };
-        let estimate = (self.engine).epoch((&target, &chaser), &self.store, &self.origin)?;
+        let at = Context {
+            store: &self.store,
+            origin: &self.origin,
+        };
+        let estimate = self.engine.epoch((&target, &chaser), &at)?;
         self.estimates.push(estimate);
         self.estimates.last()
     }
@@ -99,7 +114,7 @@ impl RelnavStage {
             mode: self.mode,
             signals: self.signals.clone(),
             estimates: self.estimates.clone(),
-            missed: self.engine.missed,
+            missed: self.engine.missed(),
         }
     }
 }

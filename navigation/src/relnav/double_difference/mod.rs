@@ -33,18 +33,18 @@ pub(crate) mod observations;
 mod tests;
 
 use super::RelativeEstimate;
+use super::engine::{Context, Engine};
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
-use crate::pvt::{Fix, PvtConfig, records_velocity};
-use crate::relative::single_point_fixes;
+use crate::pvt::{Fix, IonosphereCorrection, PvtConfig, records_velocity};
+use crate::relative::files::FixStream;
 use filter::{Anchor, DdEpoch, DdFilter};
 use observations::{Receiver, Settings, SlipDetector, single_differences};
-use skyforge_gnss::observation::ObsFile;
+use skyforge_gnss::observation::ObsEpoch;
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::frames::relative_in_frame_of;
-use skyforge_orbits::time::TimeOrigin;
 use std::collections::BTreeSet;
 
 /// The first baseline's standard deviation per axis (m): two code fixes.
@@ -54,68 +54,96 @@ const START_SIGMA_M: f64 = 10.0;
 /// # assumed: 1 m/s.
 const START_SIGMA_MPS: f64 = 1.0;
 
-/// What the mode needs beside the paired files.
-pub(crate) struct Inputs<'a> {
-    pub store: &'a EphemerisStore,
-    pub origin: &'a TimeOrigin,
-    pub start: hifitime::Epoch,
-    pub signals: &'a [Signal],
-    pub config: &'a super::RelnavConfig,
-    pub pvt: &'a PvtConfig,
+/// Mode `double-difference` epoch by epoch (module docs).
+#[derive(Debug)]
+pub(crate) struct DdEngine {
+    signals: Vec<Signal>,
+    elevation_mask_rad: f64,
+    /// Each receiver's fixes (target, chaser): dual-frequency where two carriers are.
+    fixes: [FixStream; 2],
+    orbit: PositionFilter,
+    filter: DdFilter,
+    /// The float filter that checks the held integers (`fixing::check_held`).
+    twin: Option<DdFilter>,
+    slips: SlipDetector,
+    earth: EarthRotation,
+    set: SameSatellites<BTreeSet<SatId>>,
+    missed: usize,
 }
 
-/// The estimates of the paired files `target`, `chaser` (one epoch each, in step) and
-/// the count of epochs without both fixes and velocities.
-pub(crate) fn run(
-    target: &ObsFile,
-    chaser: &ObsFile,
-    inputs: &Inputs,
-) -> (Vec<RelativeEstimate>, usize) {
-    let config = inputs.config;
-    let dd = &config.double_difference;
-    let origin = inputs.origin;
-    let earth = EarthRotation::at_origin(inputs.start);
-    let t_fixes = single_point_fixes(target, inputs.store, origin, inputs.signals, inputs.pvt);
-    let c_fixes = single_point_fixes(chaser, inputs.store, origin, inputs.signals, inputs.pvt);
-    let mut orbit = PositionFilter::new(config.target_orbit.clone(), inputs.start);
-    let mut filter = DdFilter::new(
-        dd.clone(),
-        dynamics::gravity_field(&config.target_orbit.forces, inputs.start),
-    );
-    // The float filter that checks the held integers (`fixing::check_held`).
-    let mut twin: Option<DdFilter> = None;
-    let mut slips = SlipDetector::default();
-    let settings = Settings {
-        signals: inputs.signals,
-        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
-        slip_threshold_m: dd.slip_threshold_m,
-        max_gap_s: dd.max_gap_s,
-    };
-    let velocity = |file: &ObsFile, k: usize, fix: &Fix| {
-        let t_rx = origin.seconds_since_start(file.epochs[k].time);
-        records_velocity(
-            &file.epochs[k].sats,
-            inputs.signals,
-            t_rx,
-            inputs.store,
-            fix,
-        )
-    };
-    let (mut estimates, mut missed) = (Vec::new(), 0);
-    let mut set = SameSatellites::new();
-    for k in 0..target.epochs.len() {
-        let (Ok(tf), Ok(cf)) = (&t_fixes[k], &c_fixes[k]) else {
-            missed += 1;
-            set.missed();
-            continue;
+impl DdEngine {
+    /// The engine of `config` on `signals` from `start`; the fixes with `pvt`'s settings,
+    /// the ionosphere-free code where two carriers are measured (the receive instants and
+    /// the target's anchor), no smoothing.
+    pub(crate) fn new(
+        config: &super::RelnavConfig,
+        pvt: &PvtConfig,
+        signals: &[Signal],
+        start: hifitime::Epoch,
+    ) -> Self {
+        let carriers: BTreeSet<u64> = signals.iter().map(|s| s.carrier_hz() as u64).collect();
+        let pvt = PvtConfig {
+            ionosphere: if carriers.len() > 1 {
+                IonosphereCorrection::DualFrequency
+            } else {
+                IonosphereCorrection::Broadcast
+            },
+            carrier_smoothing: None,
+            ..pvt.clone()
         };
-        let (Some(vt), Some(vc)) = (velocity(target, k, tf), velocity(chaser, k, cf)) else {
-            missed += 1;
-            set.missed();
-            continue;
+        let dd = &config.double_difference;
+        Self {
+            signals: signals.to_vec(),
+            elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+            fixes: [FixStream::new(&pvt), FixStream::new(&pvt)],
+            orbit: PositionFilter::new(config.target_orbit.clone(), start),
+            filter: DdFilter::new(
+                dd.clone(),
+                dynamics::gravity_field(&config.target_orbit.forces, start),
+            ),
+            twin: None,
+            slips: SlipDetector::default(),
+            earth: EarthRotation::at_origin(start),
+            set: SameSatellites::new(),
+            missed: 0,
+        }
+    }
+
+    /// An epoch without both fixes and velocities.
+    fn miss(&mut self) -> Option<RelativeEstimate> {
+        self.missed += 1;
+        self.set.missed();
+        None
+    }
+}
+
+impl Engine for DdEngine {
+    fn missed(&self) -> usize {
+        self.missed
+    }
+
+    fn epoch(
+        &mut self,
+        (te, ce): (&ObsEpoch, &ObsEpoch),
+        at: &Context,
+    ) -> Option<RelativeEstimate> {
+        let (store, origin) = (at.store, at.origin);
+        let signals = &self.signals;
+        let tf = self.fixes[0].fix(te, store, origin, signals);
+        let cf = self.fixes[1].fix(ce, store, origin, signals);
+        let (Ok(tf), Ok(cf)) = (tf, cf) else {
+            return self.miss();
         };
+        let velocity = |epoch: &ObsEpoch, fix: &Fix| {
+            let t_rx = origin.seconds_since_start(epoch.time);
+            records_velocity(&epoch.sats, signals, t_rx, store, fix)
+        };
+        let (Some(vt), Some(vc)) = (velocity(te, &tf), velocity(ce, &cf)) else {
+            return self.miss();
+        };
+        let earth = &self.earth;
         let t = tf.t_s;
-        let o = orbit.update(&FixInput {
+        let o = self.orbit.update(&FixInput {
             t_s: t,
             r_ecef_m: tf.r_ecef_m,
             v_ecef_mps: Some(vt),
@@ -129,9 +157,10 @@ pub(crate) fn run(
         let (r_t, _) = earth.eci_to_ecef(t, &o.r_eci_m, &o.v_eci_mps);
         // The chaser's receive instant relative to the target's (s).
         let shift_s = cf.t_s - t;
+        let filter = &mut self.filter;
         if filter.started() {
             filter.predict(anchor);
-            if let Some(twin) = twin.as_mut() {
+            if let Some(twin) = self.twin.as_mut() {
                 twin.predict(anchor);
             }
         } else {
@@ -139,13 +168,12 @@ pub(crate) fn run(
             let b_eci = earth.ecef_to_eci(t, &b, &(vc - vt));
             let clock_m = cf.clock_bias_m - tf.clock_bias_m;
             filter.start(anchor, b_eci, (START_SIGMA_M, START_SIGMA_MPS), clock_m);
-            twin = dd.check_held.then(|| filter.clone());
+            self.twin = filter.config.check_held.then(|| filter.clone());
         }
         let (b, b_dot) = filter.baseline();
         let c_eci_ecef = earth.c_eci_ecef(t);
         let (_, v_c) = earth.eci_to_ecef(t, &(o.r_eci_m + b), &(o.v_eci_mps + b_dot));
         let r_c = r_t + c_eci_ecef * b + v_c * shift_s;
-        let (te, ce) = (&target.epochs[k], &chaser.epochs[k]);
         let rt = Receiver {
             records: &te.sats,
             t_tag_s: origin.seconds_since_start(te.time),
@@ -156,7 +184,13 @@ pub(crate) fn run(
             t_tag_s: origin.seconds_since_start(ce.time),
             r_ecef_m: r_c,
         };
-        let sats = single_differences((&rt, &rc), inputs.store, &settings, t, &mut slips);
+        let settings = Settings {
+            signals,
+            elevation_mask_rad: self.elevation_mask_rad,
+            slip_threshold_m: filter.config.slip_threshold_m,
+            max_gap_s: filter.config.max_gap_s,
+        };
+        let sats = single_differences((&rt, &rc), store, &settings, t, &mut self.slips);
         let epoch = DdEpoch {
             r_target_ecef_m: r_t,
             c_eci_ecef,
@@ -165,23 +199,21 @@ pub(crate) fn run(
             sats,
         };
         let pairings = filter.update(t, &epoch);
-        if let Some(twin) = twin.as_mut() {
+        if let Some(twin) = self.twin.as_mut() {
             twin.update(t, &epoch);
-            fixing::check_held(&mut filter, twin, &pairings);
+            fixing::check_held(filter, twin, &pairings);
         }
-        let count = fixing::resolve(&mut filter, &pairings);
+        let count = fixing::resolve(filter, &pairings);
         let (b, b_dot) = filter.baseline();
         let (position_m, velocity_mps) = relative_in_frame_of(&o.r_eci_m, &o.v_eci_mps, &b, &b_dot);
         let used: BTreeSet<_> = epoch.sats.iter().map(|s| s.sat).collect();
-        let same_satellites_s = set.at(used, t);
-        estimates.push(RelativeEstimate {
+        Some(RelativeEstimate {
             t_s: t,
             position_m,
             velocity_mps,
-            same_satellites_s,
+            same_satellites_s: self.set.at(used, t),
             baseline_ecef_m: Some(c_eci_ecef * b),
             ambiguities: Some(count),
-        });
+        })
     }
-    (estimates, missed)
 }

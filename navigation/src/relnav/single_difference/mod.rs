@@ -34,18 +34,21 @@ pub(crate) mod measurement;
 mod tests;
 
 use super::RelativeEstimate;
-use super::double_difference::Inputs;
+use super::engine::{Context, Engine};
 use super::hill_filter::TargetState;
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
-use crate::pvt::{Fix, records_velocity};
-use crate::relative::single_point_fixes;
+use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::relative::files::FixStream;
 use filter::SdFilter;
 use measurement::{CLOCK, EpochFrame, State, satellites};
-use skyforge_gnss::observation::ObsFile;
+use skyforge_gnss::observation::ObsEpoch;
+use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::SatId;
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
 use skyforge_orbits::frames::relative_in_frame_of;
+use std::collections::BTreeSet;
 
 /// The first state's standard deviations (eq. 5-59's order).
 /// # assumed: 10 m and 1 m/s per axis, beyond two fixes' and Doppler velocities'
@@ -79,46 +82,76 @@ fn initial_state(
     x
 }
 
-/// The estimates of the paired files `target`, `chaser` (one epoch each, in step) and
-/// the count of epochs without both fixes and velocities.
-pub(crate) fn run(
-    target: &ObsFile,
-    chaser: &ObsFile,
-    inputs: &Inputs,
-) -> (Vec<RelativeEstimate>, usize) {
-    let (config, origin) = (inputs.config, inputs.origin);
-    let mask_rad = config.elevation_mask_deg.to_radians();
-    let earth = EarthRotation::at_origin(inputs.start);
-    let fixes = |f| single_point_fixes(f, inputs.store, origin, inputs.signals, inputs.pvt);
-    let (t_fixes, c_fixes) = (fixes(target), fixes(chaser));
-    let solution = |file: &ObsFile, k: usize, fix| {
-        let t_rx = origin.seconds_since_start(file.epochs[k].time);
-        let v = records_velocity(
-            &file.epochs[k].sats,
-            inputs.signals,
-            t_rx,
-            inputs.store,
-            fix,
-        )?;
-        Some(Solution { fix, v_ecef_mps: v })
-    };
-    let mut orbit = PositionFilter::new(config.target_orbit.clone(), inputs.start);
-    let mut filter: Option<SdFilter> = None;
-    let sigma = State::from_row_slice(&START_SIGMA);
-    let (mut estimates, mut missed) = (Vec::new(), 0);
-    let mut set = SameSatellites::new();
-    for k in 0..target.epochs.len() {
-        let both = match (&t_fixes[k], &c_fixes[k]) {
-            (Ok(tf), Ok(cf)) => solution(target, k, tf).zip(solution(chaser, k, cf)),
+/// Mode `single-difference` epoch by epoch (module docs).
+#[derive(Debug)]
+pub(crate) struct SdEngine {
+    config: config::SingleDifferenceConfig,
+    signals: Vec<Signal>,
+    elevation_mask_rad: f64,
+    start: hifitime::Epoch,
+    /// Each receiver's fixes (target, chaser).
+    fixes: [FixStream; 2],
+    orbit: PositionFilter,
+    filter: Option<SdFilter>,
+    earth: EarthRotation,
+    set: SameSatellites<BTreeSet<SatId>>,
+    missed: usize,
+}
+
+impl SdEngine {
+    /// The engine of `config` on `signals` from `start`, the fixes with `pvt`.
+    pub(crate) fn new(
+        config: &super::RelnavConfig,
+        pvt: &PvtConfig,
+        signals: &[Signal],
+        start: hifitime::Epoch,
+    ) -> Self {
+        Self {
+            config: config.single_difference.clone(),
+            signals: signals.to_vec(),
+            elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+            start,
+            fixes: [FixStream::new(pvt), FixStream::new(pvt)],
+            orbit: PositionFilter::new(config.target_orbit.clone(), start),
+            filter: None,
+            earth: EarthRotation::at_origin(start),
+            set: SameSatellites::new(),
+            missed: 0,
+        }
+    }
+}
+
+impl Engine for SdEngine {
+    fn missed(&self) -> usize {
+        self.missed
+    }
+
+    fn epoch(
+        &mut self,
+        (target, chaser): (&ObsEpoch, &ObsEpoch),
+        at: &Context,
+    ) -> Option<RelativeEstimate> {
+        let (store, origin) = (at.store, at.origin);
+        let signals = &self.signals;
+        let t_fix = self.fixes[0].fix(target, store, origin, signals);
+        let c_fix = self.fixes[1].fix(chaser, store, origin, signals);
+        let solution = |epoch: &ObsEpoch, fix| {
+            let t_rx = origin.seconds_since_start(epoch.time);
+            let v = records_velocity(&epoch.sats, signals, t_rx, store, fix)?;
+            Some(Solution { fix, v_ecef_mps: v })
+        };
+        let both = match (&t_fix, &c_fix) {
+            (Ok(tf), Ok(cf)) => solution(target, tf).zip(solution(chaser, cf)),
             _ => None,
         };
         let Some((ts, cs)) = both else {
-            missed += 1;
-            set.missed();
-            continue;
+            self.missed += 1;
+            self.set.missed();
+            return None;
         };
+        let earth = &self.earth;
         let t = ts.fix.t_s;
-        let o = orbit.update(&FixInput {
+        let o = self.orbit.update(&FixInput {
             t_s: t,
             r_ecef_m: ts.fix.r_ecef_m,
             v_ecef_mps: Some(ts.v_ecef_mps),
@@ -129,22 +162,18 @@ pub(crate) fn run(
             r_eci_m: o.r_eci_m,
             v_eci_mps: o.v_eci_mps,
         };
-        let first = (state, initial_state((&ts, &cs), &state, &earth));
-        let f = match filter.as_mut() {
+        let sigma = State::from_row_slice(&START_SIGMA);
+        let first = (state, initial_state((&ts, &cs), &state, earth));
+        let f = match self.filter.as_mut() {
             Some(f) => {
                 f.predict(state);
                 f
             }
-            None => filter.insert(SdFilter::new(
-                &config.single_difference,
-                inputs.start,
-                first,
-                &sigma,
-            )),
+            None => (self.filter).insert(SdFilter::new(&self.config, self.start, first, &sigma)),
         };
         let tags = (
-            origin.seconds_since_start(target.epochs[k].time),
-            origin.seconds_since_start(chaser.epochs[k].time),
+            origin.seconds_since_start(target.time),
+            origin.seconds_since_start(chaser.time),
         );
         let frame = EpochFrame {
             target: state,
@@ -152,22 +181,21 @@ pub(crate) fn run(
             omega_earth_rad_s: earth.omega_rad_s(),
             tag_difference_s: tags.1 - tags.0,
         };
-        let records = (&target.epochs[k].sats[..], &chaser.epochs[k].sats[..]);
-        let sats = satellites(records, tags, inputs.signals, inputs.store);
+        let records = (&target.sats[..], &chaser.sats[..]);
+        let sats = satellites(records, tags, signals, store);
+        let mask_rad = self.elevation_mask_rad;
         let used = f.update(&frame, &sats, mask_rad).unwrap_or_else(|_| {
             f.restart(first, &sigma);
             f.update(&frame, &sats, mask_rad).unwrap_or_default()
         });
         let (position_m, velocity_mps) = f.estimate();
-        let same_satellites_s = set.at(used, t);
-        estimates.push(RelativeEstimate {
+        Some(RelativeEstimate {
             t_s: t,
             position_m,
             velocity_mps,
-            same_satellites_s,
+            same_satellites_s: self.set.at(used, t),
             baseline_ecef_m: None,
             ambiguities: None,
-        });
+        })
     }
-    (estimates, missed)
 }

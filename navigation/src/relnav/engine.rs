@@ -1,0 +1,49 @@
+//! Every mode as one engine epoch by epoch, behind one trait chosen by the configuration:
+//! a pair of epochs (each vehicle's records of the run's signals) in, the chaser relative
+//! to the target out. `skyforge relnav` loops it over two files, `receive --relnav` calls
+//! it as the chaser's receiver forms each epoch.
+
+use super::RelativeEstimate;
+use super::book_modes::BookModes;
+use super::double_difference::DdEngine;
+use super::single_difference::SdEngine;
+use super::{RelnavConfig, RelnavMode};
+use crate::pvt::PvtConfig;
+use hifitime::Epoch;
+use skyforge_gnss::observation::ObsEpoch;
+use skyforge_gnss::signal::Signal;
+use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::time::TimeOrigin;
+
+/// What every engine reads beside the epochs: the broadcast ephemerides and the run's
+/// time origin (the target's first epoch).
+pub(crate) struct Context<'a> {
+    pub store: &'a EphemerisStore,
+    pub origin: &'a TimeOrigin,
+}
+
+/// One mode epoch by epoch.
+pub(crate) trait Engine: std::fmt::Debug {
+    /// The pair of epochs (target, chaser): the estimate, or `None` where either vehicle
+    /// has no fix and velocity.
+    fn epoch(&mut self, pair: (&ObsEpoch, &ObsEpoch), at: &Context) -> Option<RelativeEstimate>;
+
+    /// Epochs without both fixes and velocities so far.
+    fn missed(&self) -> usize;
+}
+
+/// The engine of `config`'s mode on `signals` from `start`, the fixes with `pvt`;
+/// `common`: the book modes' fixes on the satellites both use.
+pub(crate) fn engine(
+    config: &RelnavConfig,
+    pvt: &PvtConfig,
+    signals: &[Signal],
+    start: Epoch,
+    common: bool,
+) -> Box<dyn Engine> {
+    match config.mode {
+        RelnavMode::DoubleDifference => Box::new(DdEngine::new(config, pvt, signals, start)),
+        RelnavMode::SingleDifference => Box::new(SdEngine::new(config, pvt, signals, start)),
+        _ => Box::new(BookModes::new(config, pvt, signals, start, common)),
+    }
+}
