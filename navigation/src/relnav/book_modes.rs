@@ -10,7 +10,7 @@ use super::from_files::RelativeEstimate;
 use super::hill_filter::{HillFilter, TargetState};
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
-use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::pvt::{Fix, PvtConfig};
 use crate::relative::files::FixStream;
 use hifitime::Epoch;
 use skyforge_gnss::observation::ObsEpoch;
@@ -126,10 +126,8 @@ impl Engine for BookModes {
         (target, chaser): (&ObsEpoch, &ObsEpoch),
         at: &Context,
     ) -> Option<RelativeEstimate> {
-        let (store, origin) = (at.store, at.origin);
         let signals = &self.signals;
-        let mut tf = self.first[0].fix(target, store, origin, signals);
-        let mut cf = self.first[1].fix(chaser, store, origin, signals);
+        let [mut tf, mut cf] = at.fixes(&mut self.first, (target, chaser), signals);
         let both_used;
         let (target, chaser) = match self.again.as_mut() {
             Some(again) => {
@@ -142,18 +140,16 @@ impl Engine for BookModes {
                     .copied()
                     .collect();
                 both_used = (restricted(target, &keep), restricted(chaser, &keep));
-                tf = again[0].fix(&both_used.0, store, origin, signals);
-                cf = again[1].fix(&both_used.1, store, origin, signals);
+                [tf, cf] = at.fixes(again, (&both_used.0, &both_used.1), signals);
                 (&both_used.0, &both_used.1)
             }
             None => (target, chaser),
         };
         let solution = |epoch: &ObsEpoch, fix: &Fix| {
-            let t_rx = origin.seconds_since_start(epoch.time);
             Some(Solution {
                 t_s: fix.t_s,
                 r_ecef_m: fix.r_ecef_m,
-                v_ecef_mps: records_velocity(&epoch.sats, signals, t_rx, store, fix)?,
+                v_ecef_mps: at.velocity(epoch, fix, signals)?,
             })
         };
         let both = match (&tf, &cf) {

@@ -8,10 +8,12 @@ use super::book_modes::BookModes;
 use super::double_difference::DdEngine;
 use super::single_difference::SdEngine;
 use super::{RelnavConfig, RelnavMode};
-use crate::pvt::PvtConfig;
+use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::relative::files::FixStream;
 use hifitime::Epoch;
 use skyforge_gnss::observation::ObsEpoch;
 use skyforge_gnss::signal::Signal;
+use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::EphemerisStore;
 use skyforge_orbits::time::TimeOrigin;
 
@@ -20,6 +22,27 @@ use skyforge_orbits::time::TimeOrigin;
 pub(crate) struct Context<'a> {
     pub store: &'a EphemerisStore,
     pub origin: &'a TimeOrigin,
+}
+
+impl Context<'_> {
+    /// Both vehicles' next fixes (target, chaser) from their `streams`.
+    pub(crate) fn fixes(
+        &self,
+        streams: &mut [FixStream; 2],
+        (target, chaser): (&ObsEpoch, &ObsEpoch),
+        signals: &[Signal],
+    ) -> [Result<Fix, String>; 2] {
+        [
+            streams[0].fix(target, self.store, self.origin, signals),
+            streams[1].fix(chaser, self.store, self.origin, signals),
+        ]
+    }
+
+    /// The Doppler velocity (ECEF) at `fix` from `epoch`'s records.
+    pub(crate) fn velocity(&self, epoch: &ObsEpoch, fix: &Fix, signals: &[Signal]) -> Option<Vec3> {
+        let t_rx = self.origin.seconds_since_start(epoch.time);
+        records_velocity(&epoch.sats, signals, t_rx, self.store, fix)
+    }
 }
 
 /// One mode epoch by epoch.

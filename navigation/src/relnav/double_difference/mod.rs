@@ -36,7 +36,7 @@ use super::RelativeEstimate;
 use super::engine::{Context, Engine};
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
-use crate::pvt::{Fix, IonosphereCorrection, PvtConfig, records_velocity};
+use crate::pvt::{IonosphereCorrection, PvtConfig};
 use crate::relative::files::FixStream;
 use filter::{Anchor, DdEpoch, DdFilter};
 use observations::{Receiver, Settings, SlipDetector, single_differences};
@@ -129,16 +129,11 @@ impl Engine for DdEngine {
     ) -> Option<RelativeEstimate> {
         let (store, origin) = (at.store, at.origin);
         let signals = &self.signals;
-        let tf = self.fixes[0].fix(te, store, origin, signals);
-        let cf = self.fixes[1].fix(ce, store, origin, signals);
-        let (Ok(tf), Ok(cf)) = (tf, cf) else {
+        let [Ok(tf), Ok(cf)] = at.fixes(&mut self.fixes, (te, ce), signals) else {
             return self.miss();
         };
-        let velocity = |epoch: &ObsEpoch, fix: &Fix| {
-            let t_rx = origin.seconds_since_start(epoch.time);
-            records_velocity(&epoch.sats, signals, t_rx, store, fix)
-        };
-        let (Some(vt), Some(vc)) = (velocity(te, &tf), velocity(ce, &cf)) else {
+        let (Some(vt), Some(vc)) = (at.velocity(te, &tf, signals), at.velocity(ce, &cf, signals))
+        else {
             return self.miss();
         };
         let earth = &self.earth;

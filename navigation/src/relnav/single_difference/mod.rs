@@ -38,7 +38,7 @@ use super::engine::{Context, Engine};
 use super::hill_filter::TargetState;
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
-use crate::pvt::{Fix, PvtConfig, records_velocity};
+use crate::pvt::{Fix, PvtConfig};
 use crate::relative::files::FixStream;
 use filter::SdFilter;
 use measurement::{CLOCK, EpochFrame, State, satellites};
@@ -133,11 +133,9 @@ impl Engine for SdEngine {
     ) -> Option<RelativeEstimate> {
         let (store, origin) = (at.store, at.origin);
         let signals = &self.signals;
-        let t_fix = self.fixes[0].fix(target, store, origin, signals);
-        let c_fix = self.fixes[1].fix(chaser, store, origin, signals);
+        let [t_fix, c_fix] = at.fixes(&mut self.fixes, (target, chaser), signals);
         let solution = |epoch: &ObsEpoch, fix| {
-            let t_rx = origin.seconds_since_start(epoch.time);
-            let v = records_velocity(&epoch.sats, signals, t_rx, store, fix)?;
+            let v = at.velocity(epoch, fix, signals)?;
             Some(Solution { fix, v_ecef_mps: v })
         };
         let both = match (&t_fix, &c_fix) {
