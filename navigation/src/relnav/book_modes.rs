@@ -6,8 +6,9 @@
 
 use super::RelnavConfig;
 use super::engine::{Context, Engine};
-use super::from_files::RelativeEstimate;
-use super::hill_filter::{HillFilter, TargetState};
+use super::estimate::RelativeEstimate;
+use super::hill_dynamics::TargetState;
+use super::hill_filter::HillFilter;
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{Fix, PvtConfig};

@@ -3,14 +3,9 @@
 //! to the target out. `skyforge relnav` loops it over two files, `receive --relnav` calls
 //! it as the chaser's receiver forms each epoch.
 
-use super::RelativeEstimate;
-use super::book_modes::BookModes;
-use super::double_difference::DdEngine;
-use super::single_difference::SdEngine;
-use super::{RelnavConfig, RelnavMode};
-use crate::pvt::{Fix, PvtConfig, records_velocity};
+use super::estimate::RelativeEstimate;
+use crate::pvt::{Fix, records_velocity};
 use crate::relative::files::FixStream;
-use hifitime::Epoch;
 use skyforge_gnss::observation::ObsEpoch;
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::Vec3;
@@ -53,20 +48,4 @@ pub(crate) trait Engine: std::fmt::Debug {
 
     /// Epochs without both fixes and velocities so far.
     fn missed(&self) -> usize;
-}
-
-/// The engine of `config`'s mode on `signals` from `start`, the fixes with `pvt`;
-/// `common`: the book modes' fixes on the satellites both use.
-pub(crate) fn engine(
-    config: &RelnavConfig,
-    pvt: &PvtConfig,
-    signals: &[Signal],
-    start: Epoch,
-    common: bool,
-) -> Box<dyn Engine> {
-    match config.mode {
-        RelnavMode::DoubleDifference => Box::new(DdEngine::new(config, pvt, signals, start)),
-        RelnavMode::SingleDifference => Box::new(SdEngine::new(config, pvt, signals, start)),
-        _ => Box::new(BookModes::new(config, pvt, signals, start, common)),
-    }
 }

@@ -1,13 +1,16 @@
 //! Relative navigation on two observation files (module docs of [`super`]).
 
-use super::engine::{Context, engine};
-use super::{AmbiguityCount, RelnavConfig, RelnavMode, SatelliteSets};
+use super::book_modes::BookModes;
+use super::double_difference::DdEngine;
+use super::engine::{Context, Engine};
+use super::estimate::RelnavRun;
+use super::single_difference::SdEngine;
+use super::{RelnavConfig, RelnavMode, SatelliteSets};
 use crate::pvt::PvtConfig;
 use crate::relative::files::{carrier_smoothed_file, records_at};
 use hifitime::Epoch;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
 use skyforge_gnss::signal::Signal;
-use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
@@ -26,39 +29,6 @@ pub enum RelnavError {
         chaser: String,
         wanted: String,
     },
-}
-
-/// The chaser relative to the target at one epoch (target orbit frame).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct RelativeEstimate {
-    /// The target fix's time, seconds since the target file's first epoch (GPST).
-    pub t_s: f64,
-    pub position_m: Vec3,
-    /// The rate in the rotating frame.
-    pub velocity_mps: Vec3,
-    /// How long both fixes have used the same satellites as each other, neither set
-    /// changed and no epoch missed (s; 0 while the sets differ): the book's steady state
-    /// (5.6.5) needs both vehicles on one set, neither having changed satellites, and the
-    /// smoothing to have run.
-    pub same_satellites_s: f64,
-    /// The baseline chaser minus target in the Earth-fixed frame (m), where the mode
-    /// estimates it as such (`double-difference`): free of the frame's orientation.
-    pub baseline_ecef_m: Option<Vec3>,
-    /// The double-difference ambiguities fixed and float after the epoch
-    /// (`double-difference`).
-    pub ambiguities: Option<AmbiguityCount>,
-}
-
-/// What [`relative_from_files`] estimated.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RelnavRun {
-    /// The epoch `t_s` counts from: the target file's first.
-    pub start: Epoch,
-    pub mode: RelnavMode,
-    pub signals: Vec<Signal>,
-    pub estimates: Vec<RelativeEstimate>,
-    /// Common epochs without both fixes and velocities.
-    pub missed: usize,
 }
 
 /// The records of `signals` with a pseudorange of one epoch of each vehicle: all of them
@@ -111,6 +81,22 @@ fn paired_files(
         c_out.epochs.push(ObsEpoch { time, sats: c_sats });
     }
     (t_out, c_out)
+}
+
+/// The engine of `config`'s mode on `signals` from `start`, the fixes with `pvt`;
+/// `common`: the book modes' fixes on the satellites both use.
+pub(crate) fn engine(
+    config: &RelnavConfig,
+    pvt: &PvtConfig,
+    signals: &[Signal],
+    start: Epoch,
+    common: bool,
+) -> Box<dyn Engine> {
+    match config.mode {
+        RelnavMode::DoubleDifference => Box::new(DdEngine::new(config, pvt, signals, start)),
+        RelnavMode::SingleDifference => Box::new(SdEngine::new(config, pvt, signals, start)),
+        _ => Box::new(BookModes::new(config, pvt, signals, start, common)),
+    }
 }
 
 /// The single-point fixes' settings of `config`'s mode: its mask, the broadcast

@@ -18,12 +18,19 @@
 //! The state is the convention of `orbits::frames::relative_in_frame_of`: position and
 //! its rate in a frame turning about the orbit normal alone.
 
-use super::hill_filter::TargetState;
 use crate::orbit_determination::{input, transition};
 use nalgebra::{Matrix3, Matrix6, Matrix6x3, Vector3, Vector6};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::c_orbital_eci;
 use skyforge_orbits::propagate::{ForceModel, ForceModelConfig};
+
+/// The target's absolute state (ECI) at an epoch: the reference orbit of the frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TargetState {
+    pub t_s: f64,
+    pub r_eci_m: Vec3,
+    pub v_eci_mps: Vec3,
+}
 
 /// Eq. 5-34 about the target's orbit with the exact `U` (module docs).
 #[derive(Debug, Clone)]

@@ -5,7 +5,7 @@
 //! [`super::hill_dynamics`]), and updated by the relative measurements of eq. 5-57 (the
 //! difference of the two fixes, whose noise is the sum of the two receivers', eq. 5-58).
 
-use super::hill_dynamics::HillDynamics;
+use super::hill_dynamics::{HillDynamics, TargetState};
 use nalgebra::{Matrix6, Vector6};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::propagate::ForceModelConfig;
@@ -68,14 +68,6 @@ impl HillFilterConfig {
         ])?;
         crate::orbit_determination::position_filter::check_forces(&self.forces)
     }
-}
-
-/// The target's absolute state (ECI) at an epoch: the reference orbit of the frame.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct TargetState {
-    pub t_s: f64,
-    pub r_eci_m: Vec3,
-    pub v_eci_mps: Vec3,
 }
 
 /// The relative filter's estimate: position and rate in the target's orbit frame.

@@ -40,12 +40,17 @@
 //! target "sends its state", and a single fix's Doppler velocity would turn the frame by
 //! its noise. Each chaser fix is moved to the target fix's instant with its own velocity (the
 //! receivers' clocks tag their epochs differently: a millisecond is 7.5 m along-track).
+//! Every mode is one engine epoch by epoch behind one trait (`engine`): looped over two
+//! files by [`relative_from_files`], or run as the chaser receiver forms each epoch by
+//! [`RelnavStage`] (`skyforge receive --relnav`).
+//!
 //! Reads only what the receivers could: observations, broadcast ephemerides, settings.
 
 mod book_modes;
 mod config;
 mod double_difference;
 mod engine;
+mod estimate;
 mod from_files;
 mod hill_dynamics;
 mod hill_filter;
@@ -56,7 +61,9 @@ mod stage;
 pub use config::{RelnavConfig, RelnavMode, SatelliteSets};
 pub use double_difference::config::DoubleDifferenceConfig;
 pub use double_difference::fixing::AmbiguityCount;
-pub use from_files::{RelativeEstimate, RelnavError, RelnavRun, relative_from_files};
-pub use hill_filter::{HillEstimate, HillFilter, HillFilterConfig, TargetState};
+pub use estimate::{RelativeEstimate, RelnavRun};
+pub use from_files::{RelnavError, relative_from_files};
+pub use hill_dynamics::TargetState;
+pub use hill_filter::{HillEstimate, HillFilter, HillFilterConfig};
 pub use single_difference::config::SingleDifferenceConfig;
 pub use stage::RelnavStage;

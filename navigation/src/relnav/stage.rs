@@ -6,8 +6,9 @@
 //! each vehicle's own satellite sets the chaser's smoother runs along every epoch its
 //! receiver forms, the target's along its whole file, as on files.
 
-use super::engine::{Context, Engine, engine};
-use super::from_files::{RelativeEstimate, RelnavError, RelnavRun, pair_records, pvt_settings};
+use super::engine::{Context, Engine};
+use super::estimate::{RelativeEstimate, RelnavRun};
+use super::from_files::{RelnavError, engine, pair_records, pvt_settings};
 use super::{RelnavConfig, RelnavMode, SatelliteSets};
 use crate::pvt::CarrierSmoother;
 use crate::relative::files::{carrier_smoothed_file, records_at, smoothed};

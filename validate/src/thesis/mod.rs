@@ -14,6 +14,7 @@ pub(crate) mod loop_budget;
 pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
 pub(crate) mod relative_navigation;
+pub(crate) mod relnav_common;
 pub(crate) mod relnav_events;
 pub(crate) mod reverse_filter;
 pub(crate) mod visibility;
@@ -253,13 +254,17 @@ const UNITS: &[Unit] = &[
         figures: None,
     },
     Unit {
-        tables: &[relative_navigation::TABLE],
+        tables: &[relnav_common::TABLE],
         kind: Kind::PerRun,
         scenarios: &[
             Source::Bundled(relative_navigation::SCENARIO),
             Source::Bundled(relnav_events::SCENARIO),
         ],
-        evaluate: |_, _, draw| relative_navigation::rows(draw),
+        evaluate: |_, _, draw| {
+            let mut rows = relative_navigation::rows(draw)?;
+            rows.extend(relnav_events::rows(draw)?);
+            Ok(rows)
+        },
         figures: None,
     },
 ];

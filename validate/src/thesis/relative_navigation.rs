@@ -19,9 +19,13 @@
 //!   `single-difference` with its defaults; registered 2026-12-01 before its first run):
 //!   its 3-D RMS at most half the standalone fixes'.
 //!
-//! Then the events of the book's figures 5-36/5-38 on their own scenario
-//! ([`super::relnav_events`]).
+//! The events of the book's figures 5-36/5-38 have their own scenario and rows
+//! ([`super::relnav_events`]); what both share is [`super::relnav_common`].
 
+use super::relnav_common::{
+    MIN_STEADY_EPOCHS, STEADY_S, TABLE, max_abs, mean_and_note, observe, relnav_config, relnav_run,
+    truth_at,
+};
 use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::stats::rms;
@@ -29,29 +33,17 @@ use crate::thesis::ValidateError;
 use skyforge_gnss::signal::Signal;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_navigation::relative::single_point_fixes;
-use skyforge_navigation::relnav::{
-    HillFilterConfig, RelativeEstimate, RelnavConfig, RelnavMode, RelnavRun, relative_from_files,
-};
+use skyforge_navigation::relnav::{HillFilterConfig, RelativeEstimate, RelnavConfig, RelnavMode};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::EphemerisStore;
-use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::frames::relative_in_target_frame;
 use skyforge_orbits::time::TimeOrigin;
-use skyforge_runner::{ObservationRun, observation_run};
+use skyforge_runner::ObservationRun;
 
-/// Table identifier.
-pub const TABLE: &str = "B-5.6";
 /// The bundled scenario of this table.
 pub const SCENARIO: &str = "book-relnav-leo";
 /// Registered runs: seeds `FIRST_SEED ..` (assumed: four, as B-5.5).
 const FIRST_SEED: u64 = 1;
 const RUNS: u64 = 4;
-/// Steady state from here (s): assumed, the book's "smoothing has run 50-100 s", its
-/// upper end.
-pub(super) const STEADY_S: f64 = 100.0;
-/// Fewest steady-state epochs a run's carrier-smoothed statistics are taken over.
-pub(super) const MIN_STEADY_EPOCHS: usize = 10;
-
 /// One set-up's statistics of one run: the differences as they are, or through the
 /// book's relative filter.
 struct SetupStats {
@@ -80,73 +72,6 @@ struct RunStats {
     single_difference_mps: f64,
 }
 
-/// The two vehicles' observation-level runs of the bundled `name` at `seed`.
-pub(super) fn observe(
-    name: &str,
-    seed: u64,
-) -> Result<(ObservationRun, ObservationRun), ValidateError> {
-    let mut scenario = skyforge_scenarios::named(name)?;
-    scenario.seed = seed;
-    let mut runs = scenario
-        .vehicle_views()
-        .iter()
-        .map(|v| observation_run(v).map_err(|e| ValidateError::Pipeline(e.to_string())))
-        .collect::<Result<Vec<_>, _>>()?;
-    if runs.len() != 2 {
-        return Err(ValidateError::Pipeline(format!(
-            "{name}: {} vehicles, not a target and a chaser",
-            runs.len()
-        )));
-    }
-    let chaser = runs.remove(1);
-    Ok((runs.remove(0), chaser))
-}
-
-/// The settings every B-5.6 run shares: GPS L1 C/A, the target's orbit filter for the
-/// frame with B-5.5's settings (SA-era fixes).
-pub(super) fn relnav_config() -> RelnavConfig {
-    RelnavConfig {
-        signals: vec![Signal::GpsL1Ca],
-        target_orbit: super::orbit_determination::filter_config(),
-        ..RelnavConfig::default()
-    }
-}
-
-/// `skyforge relnav` on the two vehicles' observation files with `config`.
-pub(super) fn relnav_run(
-    target: &ObservationRun,
-    chaser: &ObservationRun,
-    config: &RelnavConfig,
-) -> Result<RelnavRun, ValidateError> {
-    let (t_file, c_file) = match (target.measured.first(), chaser.measured.first()) {
-        (Some(t), Some(c)) => (t, c),
-        _ => return Err(ValidateError::Pipeline("no observations".into())),
-    };
-    relative_from_files(
-        t_file,
-        c_file,
-        target.ephemerides.clone(),
-        &target.iono,
-        config,
-    )
-    .map_err(|e| ValidateError::Pipeline(e.to_string()))
-}
-
-/// The truth of the chaser relative to the target at `t_s` (the nearest geometry epoch:
-/// the fixes are tagged within microseconds of it).
-pub(super) fn truth_at(
-    target: &ObservationRun,
-    chaser: &ObservationRun,
-    t_s: f64,
-) -> Option<(Vec3, Vec3)> {
-    let earth = EarthRotation::at_origin(target.start);
-    let t = t_s.round();
-    let (a, b) = (target.platform_at(t)?, chaser.platform_at(t)?);
-    let (rt, vt) = earth.ecef_to_eci(t, &a.r_ecef_m, &a.v_ecef_mps);
-    let (rc, vc) = earth.ecef_to_eci(t, &b.r_ecef_m, &b.v_ecef_mps);
-    Some(relative_in_target_frame(&rt, &vt, &rc, &vc))
-}
-
 /// Each estimate's position and velocity errors where its fix has used the same
 /// satellites for `steady_s` or more.
 fn errors(
@@ -162,11 +87,6 @@ fn errors(
             Some((e.position_m - p, e.velocity_mps - v))
         })
         .collect()
-}
-
-/// The largest absolute component of `v` over all of them.
-pub(super) fn max_abs(v: impl Iterator<Item = Vec3>) -> f64 {
-    v.fold(0.0, |m, e| m.max(e.amax()))
 }
 
 /// One seed's statistics.
@@ -250,20 +170,6 @@ fn run_stats(seed: u64) -> Result<RunStats, ValidateError> {
     })
 }
 
-/// The mean of `f` over `runs` (those where it is defined; NaN when none is) and the
-/// per-seed values as a note.
-pub(super) fn mean_and_note<R>(runs: &[R], f: impl Fn(&R) -> f64, digits: usize) -> (f64, String) {
-    let v: Vec<f64> = runs.iter().map(f).collect();
-    let defined: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
-    let mean = if defined.is_empty() {
-        f64::NAN
-    } else {
-        defined.iter().sum::<f64>() / defined.len() as f64
-    };
-    let each: Vec<String> = v.iter().map(|x| format!("{x:.digits$}")).collect();
-    (mean, each.join(" / "))
-}
-
 /// The rows of B-5.6 over `draw`'s runs: the registered set-up (the differences as they
 /// are), then the same rows through the book's relative filter.
 pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
@@ -281,7 +187,6 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         &seeds_note,
     ));
     rows.push(single_difference_row(&runs, &seeds_note));
-    rows.extend(super::relnav_events::rows(draw)?);
     Ok(rows)
 }
 

@@ -23,7 +23,7 @@
 //! - velocity: the largest axis velocity error over the [`AFTER_EPOCHS`] epochs after each
 //!   missed one, over the run's steady-state largest: "almost unaffected", < 2.
 
-use super::relative_navigation::{
+use super::relnav_common::{
     MIN_STEADY_EPOCHS, STEADY_S, TABLE, max_abs, mean_and_note, observe, relnav_config, relnav_run,
     truth_at,
 };

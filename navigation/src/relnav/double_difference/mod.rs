@@ -32,8 +32,8 @@ pub(crate) mod observations;
 #[cfg(test)]
 mod tests;
 
-use super::RelativeEstimate;
 use super::engine::{Context, Engine};
+use super::estimate::RelativeEstimate;
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{IonosphereCorrection, PvtConfig};

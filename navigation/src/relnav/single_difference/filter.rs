@@ -12,7 +12,7 @@
 use super::config::SingleDifferenceConfig;
 use super::measurement::{CLOCK, DRIFT, EpochFrame, SdSatellite, State, elevations, predict};
 use crate::relnav::hill_dynamics::HillDynamics;
-use crate::relnav::hill_filter::TargetState;
+use crate::relnav::hill_dynamics::TargetState;
 use nalgebra::{Matrix2, SMatrix, Vector6};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::SatId;

@@ -37,7 +37,7 @@
 //! terms: 8 m/s^2 over a millisecond is 8 mm/s, which would bias the rate rows).
 
 use crate::pvt::{SatView, Transmitted, ViewPoint};
-use crate::relnav::hill_filter::TargetState;
+use crate::relnav::hill_dynamics::TargetState;
 use nalgebra::SVector;
 use skyforge_gnss::observation::ObsRecord;
 use skyforge_gnss::signal::Signal;

@@ -33,9 +33,9 @@ pub(crate) mod measurement;
 #[cfg(test)]
 mod tests;
 
-use super::RelativeEstimate;
 use super::engine::{Context, Engine};
-use super::hill_filter::TargetState;
+use super::estimate::RelativeEstimate;
+use super::hill_dynamics::TargetState;
 use super::same_satellites::SameSatellites;
 use crate::orbit_determination::{FixInput, PositionFilter};
 use crate::pvt::{Fix, PvtConfig};

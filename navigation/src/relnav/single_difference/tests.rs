@@ -7,7 +7,7 @@
 
 use super::measurement::{CLOCK, DRIFT, EpochFrame, State, predict, satellites};
 use crate::pvt::{Transmitted, ViewPoint};
-use crate::relnav::hill_filter::TargetState;
+use crate::relnav::hill_dynamics::TargetState;
 use crate::relnav::{RelnavConfig, RelnavMode, relative_from_files};
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::observation::{ObsEpoch, ObsFile, ObsRecord};
