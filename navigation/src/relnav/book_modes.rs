@@ -83,8 +83,6 @@ pub(crate) struct BookModes {
     relative_filter: Option<HillFilter>,
     sets: SameSatellites<SatelliteSetPair>,
     earth: EarthRotation,
-    /// Epochs without both fixes and velocities.
-    missed: usize,
 }
 
 impl BookModes {
@@ -110,14 +108,13 @@ impl BookModes {
             relative_filter: (config.filter.clone()).map(|f| HillFilter::new(f, start)),
             sets: SameSatellites::new(),
             earth: EarthRotation::at_origin(start),
-            missed: 0,
         }
     }
 }
 
 impl Engine for BookModes {
     fn missed(&self) -> usize {
-        self.missed
+        self.sets.missed()
     }
 
     /// One pair of epochs, each vehicle's records of the run's signals (with `common`,
@@ -160,9 +157,7 @@ impl Engine for BookModes {
             _ => None,
         };
         let Some((t_fix, (t, c))) = both else {
-            self.missed += 1;
-            self.sets.missed();
-            return None;
+            return self.sets.miss();
         };
         let used = SatelliteSetPair::of(&tf, &cf);
         let same = used.same();

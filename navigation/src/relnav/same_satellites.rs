@@ -3,15 +3,19 @@
 //! (`RelativeEstimate::same_satellites_s`).
 
 /// Since when the satellites in use (any comparable description of them) have been the
-/// same.
+/// same, and how many epochs were missed.
 #[derive(Debug)]
 pub(crate) struct SameSatellites<S> {
     last: Option<(S, f64)>,
+    missed: usize,
 }
 
 impl<S: PartialEq> SameSatellites<S> {
     pub(crate) fn new() -> Self {
-        Self { last: None }
+        Self {
+            last: None,
+            missed: 0,
+        }
     }
 
     /// How long `used` has been in use at `t_s` (s; 0 where it has just changed).
@@ -24,9 +28,16 @@ impl<S: PartialEq> SameSatellites<S> {
         t_s - since
     }
 
-    /// An epoch missed: the next set counts afresh.
-    pub(crate) fn missed(&mut self) {
+    /// An epoch missed (no estimate): counted, and the next set counts afresh.
+    pub(crate) fn miss<T>(&mut self) -> Option<T> {
+        self.missed += 1;
         self.last = None;
+        None
+    }
+
+    /// The epochs missed so far.
+    pub(crate) fn missed(&self) -> usize {
+        self.missed
     }
 }
 
@@ -41,7 +52,8 @@ mod tests {
         assert_eq!(s.at([1, 2], 11.0), 1.0);
         assert_eq!(s.at([1, 3], 12.0), 0.0);
         assert_eq!(s.at([1, 3], 14.0), 2.0);
-        s.missed();
+        assert_eq!(s.miss::<()>(), None);
         assert_eq!(s.at([1, 3], 16.0), 0.0);
+        assert_eq!(s.missed(), 1);
     }
 }

@@ -82,8 +82,9 @@ impl RelnavStage {
 
     /// The chaser's epoch tagged `time` by its receiver, with its `records`: paired with
     /// the target's epoch of the same tag (within the files' tolerance), the chaser
-    /// relative to the target. Epochs the target lacks are passed by.
-    pub fn epoch(&mut self, time: Epoch, records: &[ObsRecord]) -> Option<&RelativeEstimate> {
+    /// relative to the target, kept for [`Self::run`]. Epochs the target lacks are passed
+    /// by.
+    pub fn epoch(&mut self, time: Epoch, records: &[ObsRecord]) {
         let own_smoothed;
         let records = match self.chaser_smoother.as_mut() {
             Some(s) => {
@@ -92,7 +93,9 @@ impl RelnavStage {
             }
             None => records,
         };
-        let (t_time, t_records) = records_at(&self.target, &mut self.cursor, time)?;
+        let Some((t_time, t_records)) = records_at(&self.target, &mut self.cursor, time) else {
+            return;
+        };
         let (t_sats, c_sats) = pair_records((t_records, records), &self.signals, self.common);
         let target = ObsEpoch {
             time: t_time,
@@ -103,9 +106,8 @@ impl RelnavStage {
             store: &self.store,
             origin: &self.origin,
         };
-        let estimate = self.engine.epoch((&target, &chaser), &at)?;
-        self.estimates.push(estimate);
-        self.estimates.last()
+        self.estimates
+            .extend(self.engine.epoch((&target, &chaser), &at));
     }
 
     /// What the stage estimated so far.

@@ -195,9 +195,24 @@ fn single_difference_row(runs: &[RunStats], seeds_note: &str) -> Row {
     let (ratio, each_ratio) = mean_and_note(runs, |r| r.single_difference_m / r.standalone_m, 4);
     let (position, each_position) = mean_and_note(runs, |r| r.single_difference_m, 3);
     let (velocity, each_velocity) = mean_and_note(runs, |r| r.single_difference_mps, 4);
+    dgps_ratio_row(
+        "pseudorange relative DGPS (eq. 5-59) / standalone, 3-D RMS".into(),
+        ratio,
+    )
+    .with_note(format!(
+        "relnav mode single-difference (a filter on the single differences of pseudorange \
+         and Doppler range rate, its defaults), every epoch: {position:.3} m \
+         ({each_position}), velocity {velocity:.4} m/s ({each_velocity}); per seed \
+         {each_ratio}; {seeds_note}"
+    ))
+}
+
+/// REL-DGPS's row `name`: a relative DGPS 3-D RMS over the chaser's standalone one,
+/// "clearly better" at most half.
+fn dgps_ratio_row(name: String, ratio: f64) -> Row {
     Row::measured(
         TABLE,
-        "pseudorange relative DGPS (eq. 5-59) / standalone, 3-D RMS",
+        name,
         "ratio",
         "-",
         None,
@@ -207,12 +222,6 @@ fn single_difference_row(runs: &[RunStats], seeds_note: &str) -> Row {
             Verdict::from_ok(ratio <= 0.5),
         ),
     )
-    .with_note(format!(
-        "relnav mode single-difference (a filter on the single differences of pseudorange \
-         and Doppler range rate, its defaults), every epoch: {position:.3} m \
-         ({each_position}), velocity {velocity:.4} m/s ({each_velocity}); per seed \
-         {each_ratio}; {seeds_note}"
-    ))
 }
 
 /// The three rows of one set-up (`pick` of each run), their names ending in `suffix`.
@@ -235,17 +244,9 @@ fn setup_rows(
          target's orbit, its defaults)"
     };
     vec![
-        Row::measured(
-            TABLE,
+        dgps_ratio_row(
             format!("relative DGPS / standalone, 3-D RMS{suffix}"),
-            "ratio",
-            "-",
-            None,
             ratio,
-            (
-                "<= 0.5 (\"clearly better\")".into(),
-                Verdict::from_ok(ratio <= 0.5),
-            ),
         )
         .with_note(format!(
             "relative DGPS (fixes on the common satellites, differenced; {filter_note}) \

@@ -68,7 +68,6 @@ pub(crate) struct DdEngine {
     slips: SlipDetector,
     earth: EarthRotation,
     set: SameSatellites<BTreeSet<SatId>>,
-    missed: usize,
 }
 
 impl DdEngine {
@@ -105,21 +104,13 @@ impl DdEngine {
             slips: SlipDetector::default(),
             earth: EarthRotation::at_origin(start),
             set: SameSatellites::new(),
-            missed: 0,
         }
-    }
-
-    /// An epoch without both fixes and velocities.
-    fn miss(&mut self) -> Option<RelativeEstimate> {
-        self.missed += 1;
-        self.set.missed();
-        None
     }
 }
 
 impl Engine for DdEngine {
     fn missed(&self) -> usize {
-        self.missed
+        self.set.missed()
     }
 
     fn epoch(
@@ -130,11 +121,11 @@ impl Engine for DdEngine {
         let (store, origin) = (at.store, at.origin);
         let signals = &self.signals;
         let [Ok(tf), Ok(cf)] = at.fixes(&mut self.fixes, (te, ce), signals) else {
-            return self.miss();
+            return self.set.miss();
         };
         let (Some(vt), Some(vc)) = (at.velocity(te, &tf, signals), at.velocity(ce, &cf, signals))
         else {
-            return self.miss();
+            return self.set.miss();
         };
         let earth = &self.earth;
         let t = tf.t_s;

@@ -95,7 +95,6 @@ pub(crate) struct SdEngine {
     filter: Option<SdFilter>,
     earth: EarthRotation,
     set: SameSatellites<BTreeSet<SatId>>,
-    missed: usize,
 }
 
 impl SdEngine {
@@ -116,14 +115,13 @@ impl SdEngine {
             filter: None,
             earth: EarthRotation::at_origin(start),
             set: SameSatellites::new(),
-            missed: 0,
         }
     }
 }
 
 impl Engine for SdEngine {
     fn missed(&self) -> usize {
-        self.missed
+        self.set.missed()
     }
 
     fn epoch(
@@ -143,9 +141,7 @@ impl Engine for SdEngine {
             _ => None,
         };
         let Some((ts, cs)) = both else {
-            self.missed += 1;
-            self.set.missed();
-            return None;
+            return self.set.miss();
         };
         let earth = &self.earth;
         let t = ts.fix.t_s;
