@@ -187,6 +187,7 @@ fn a_wrong_held_integer_is_released_and_refixed() {
     let mut filter = pair.filter();
     let mut twin: Option<DdFilter> = None;
     let mut released_at = None;
+    let forced_at = 300;
     for step in 0..600 {
         let (anchor, truth, epoch) = pair.epoch(step);
         match twin.as_mut() {
@@ -202,7 +203,7 @@ fn a_wrong_held_integer_is_released_and_refixed() {
         let pairings = filter.update(f64::from(step), &epoch);
         let twin = twin.as_mut().unwrap();
         twin.update(f64::from(step), &epoch);
-        if step == 300 {
+        if step == forced_at {
             // Fixed by now; one integer then forced one cycle off.
             assert!(pair.integer_error(&filter, &pairings) < 1e-6);
             force_wrong_integer(&mut filter, &pairings[0]);
@@ -218,5 +219,5 @@ fn a_wrong_held_integer_is_released_and_refixed() {
     }
     // At the check of the very epoch it was forced: the twin's float values are then
     // precise to millicycles and resolve, with the tests, to the true integers.
-    assert_eq!(released_at, Some(300), "released at {released_at:?}");
+    assert_eq!(released_at, Some(forced_at), "released at {released_at:?}");
 }
