@@ -28,6 +28,7 @@ fn platform_config() -> PlatformConfig {
         leo: None,
         ground: None,
         trajectory: None,
+        segments: None,
         attitude: AttitudeConfig::default(),
     }
 }

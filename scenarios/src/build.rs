@@ -6,7 +6,7 @@ use crate::checks;
 use crate::error::ScenarioError;
 use crate::parse::locate_invalid;
 use crate::schema::Scenario;
-use skyforge_orbits::check::Invalid;
+use skyforge_orbits::check::{Invalid, shown};
 use skyforge_orbits::ephemeris::read_sp3;
 use skyforge_orbits::ephemeris::rinex_nav::read_nav_file;
 use skyforge_orbits::ephemeris::{
@@ -299,8 +299,11 @@ impl Scenario {
                 }));
             }
         }
-        if platform.kind() == PlatformKind::Trajectory {
-            // Cheap for a trajectory (shared data); checks that the table covers the span.
+        if matches!(
+            platform.kind(),
+            PlatformKind::Trajectory | PlatformKind::Segments
+        ) {
+            // Cheap for a trajectory or legs (shared data); checks that they cover the span.
             platform.window(0.0, end_s).map_err(located)?;
         }
         Ok(platform)
@@ -345,6 +348,11 @@ impl Scenario {
                     ),
                 )
             }
+            PlatformError::OutsideSegments { last_s, .. } => Invalid::new(
+                "platform.segments.legs",
+                format!("{} s in all", shown(last_s)),
+                format!("must cover the scenario span 0..{} s", self.time.duration_s),
+            ),
             PlatformError::OutsideAttitude { .. } => {
                 let value = cfg.attitude.csv.as_ref().map(|c| quoted(c));
                 Invalid::new(

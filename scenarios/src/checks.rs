@@ -354,6 +354,7 @@ fn check_platform(platform: &PlatformConfig) -> Result<(), Invalid> {
         ("leo", platform.leo.is_some()),
         ("ground", platform.ground.is_some()),
         ("trajectory", platform.trajectory.is_some()),
+        ("segments", platform.segments.is_some()),
     ]
     .into_iter()
     .filter_map(|(name, present)| present.then_some(name))
@@ -367,7 +368,7 @@ fn check_platform(platform: &PlatformConfig) -> Result<(), Invalid> {
         return Err(Invalid::new(
             "platform",
             value,
-            "exactly one of [platform.leo], [platform.ground], [platform.trajectory] is required",
+            "exactly one of [platform.leo], [platform.ground], [platform.trajectory], [platform.segments] is required",
         ));
     }
     if let Some(leo) = &platform.leo {

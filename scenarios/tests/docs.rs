@@ -61,6 +61,7 @@ fn every_accepted_key_is_documented() {
         "platform.leo.tle",
         "platform.leo.state",
         "platform.trajectory",
+        "platform.segments",
         "platform.attitude",
         "platform.attitude.yaw",
         "gnss",

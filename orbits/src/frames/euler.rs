@@ -86,6 +86,16 @@ impl YawPitchRoll {
             }
         }
     }
+    /// The angular rate of the body relative to the reference frame, in body axes
+    /// (rad/s), from the angles' rates `rates` (rad/s): the 3-2-1 kinematic relation
+    /// (Groves 2013 eq. 2.59, inverted; Titterton and Weston 2004 eq. 3.35)
+    /// `w = [r' - y' sin p, p' cos r + y' cos p sin r, -p' sin r + y' cos p cos r]`.
+    pub fn body_rate(&self, rates: &YawPitchRoll) -> crate::Vec3 {
+        let (sp, cp) = self.pitch_rad.sin_cos();
+        let (sr, cr) = self.roll_rad.sin_cos();
+        let (y, p, r) = (rates.yaw_rad, rates.pitch_rad, rates.roll_rad);
+        crate::Vec3::new(r - y * sp, p * cr + y * cp * sr, -p * sr + y * cp * cr)
+    }
     /// The rotation as a unit quaternion (body->ref, i.e. rotates body components into ref).
     pub fn q_body_ref(&self) -> UnitQuaternion<f64> {
         // nalgebra's (roll, pitch, yaw) constructor is Rz(yaw) Ry(pitch) Rx(roll) in the
@@ -122,6 +132,21 @@ mod tests {
             cp * sr,
             cp * cr,
         )
+    }
+
+    /// The body rate against the derivative of the attitude matrix by central
+    /// differences: `[w x] = C_body_ref^T dC_body_ref/dt`.
+    #[test]
+    fn body_rate_is_the_attitude_matrix_derivative() {
+        let angles = |t: f64| YawPitchRoll::new(0.3 + 0.2 * t, -0.7 + 0.1 * t * t, 1.9 - 0.4 * t);
+        let t = 0.6;
+        let rates = YawPitchRoll::new(0.2, 0.2 * t, -0.4);
+        let h = 1e-5;
+        let dc = (angles(t + h).c_body_ref() - angles(t - h).c_body_ref()) / (2.0 * h);
+        let skew = angles(t).c_body_ref().transpose() * dc;
+        let w = Vec3::new(skew[(2, 1)], skew[(0, 2)], skew[(1, 0)]);
+        let got = angles(t).body_rate(&rates);
+        assert!((got - w).norm() < 1e-9, "{got} vs {w}");
     }
 
     #[test]

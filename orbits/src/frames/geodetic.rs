@@ -46,6 +46,15 @@ fn prime_vertical_radius_m(sin_lat: f64) -> f64 {
     WGS84_A_M / (1.0 - E2 * sin_lat * sin_lat).sqrt()
 }
 
+/// The meridian and prime-vertical radii of curvature `(M, N)` (m) at `lat_rad`
+/// (Groves 2013 eqs. 2.105/2.106): the rates of latitude and longitude of a point moving
+/// at `v_ned` are `v_N / (M + h)` and `v_E / ((N + h) cos(lat))`.
+pub fn radii_of_curvature_m(lat_rad: f64) -> (f64, f64) {
+    let s2 = lat_rad.sin().powi(2);
+    let n = prime_vertical_radius_m(lat_rad.sin());
+    (WGS84_A_M * (1.0 - E2) / (1.0 - E2 * s2).powf(1.5), n)
+}
+
 /// Geodetic -> ECEF.
 pub fn geodetic_to_ecef(g: &Geodetic) -> Vec3 {
     let (sin_lat, cos_lat) = g.lat_rad.sin_cos();

@@ -64,6 +64,11 @@ impl AxisSinusoid {
             self.offset_rad + self.amplitude_rad * (self.rate_rad_s * t_s + self.phase_rad).sin()
         }
     }
+
+    /// The angle's rate (rad/s) at `t_s`: the derivative of [`Self::at`].
+    pub fn rate(&self, t_s: f64) -> f64 {
+        self.amplitude_rad * self.rate_rad_s * (self.rate_rad_s * t_s + self.phase_rad).cos()
+    }
 }
 
 /// Attitude angles read from CSV, interpolated per axis (cubic Hermite on unwrapped angles).
@@ -185,6 +190,21 @@ impl AttitudeProfile {
                     wrap_pi_upper(a.pitch_rad),
                     wrap_pi_upper(a.roll_rad),
                 )
+            }
+        }
+    }
+
+    /// The angles' rates (rad/s) at `t_s`, as a [`YawPitchRoll`] of rates: the exact
+    /// derivative of [`Self::at`] (a table's, its interpolant's).
+    pub fn rates(&self, t_s: f64) -> YawPitchRoll {
+        match self {
+            Self::Constant(_) => YawPitchRoll::default(),
+            Self::Sinusoid { yaw, pitch, roll } => {
+                YawPitchRoll::new(yaw.rate(t_s), pitch.rate(t_s), roll.rate(t_s))
+            }
+            Self::Table(table) => {
+                let (_, rate) = table.angles.eval(t_s);
+                YawPitchRoll::new(rate.x, rate.y, rate.z)
             }
         }
     }

@@ -1,11 +1,12 @@
-//! The receiving platform: a numerically propagated LEO, a static ground site, or a
-//! trajectory from CSV, each with its attitude.
+//! The receiving platform: a numerically propagated LEO, a static ground site, a
+//! trajectory from CSV, or a vehicle's motion generated from legs, each with its attitude.
 //!
 //! Reference frames of the attitude (thesis section 2.5.1): the orbital frame for a LEO,
 //! built from the ECI position and velocity, with
 //! `c_body_ecef = c_eci_ecef(t) * c_orbital_eci(r_eci, v_eci) * c_body_orbital`; the local
 //! NED frame otherwise (at the site, or at the current trajectory position), with
-//! `c_body_ecef = c_ned_ecef * c_body_ned`. The body frame is the reference
+//! `c_body_ecef = c_ned_ecef * c_body_ned`; for generated legs the reference is the
+//! vehicle's path frame (heading, flight-path angle, bank) within NED. The body frame is the reference
 //! frame turned by the profile's yaw/pitch/roll (3-2-1, thesis eq. 2.5-6), so with zero
 //! attitude a LEO's Zb points to the Earth centre and a ground receiver's -Zb points up.
 //!
@@ -19,10 +20,13 @@ pub(crate) mod csv_table;
 pub(crate) mod ground;
 pub(crate) mod hermite;
 mod leo;
+pub(crate) mod segments;
 pub(crate) mod trajectory;
 
 pub use attitude::{AttitudeConfig, AxisProfileConfig};
-pub use config::{GroundConfig, PlatformConfig, TrajectoryConfig};
+pub use config::{
+    GroundConfig, HeaveConfig, LegConfig, PlatformConfig, SegmentsConfig, TrajectoryConfig,
+};
 
 pub use hermite::Hermite3;
 
@@ -36,6 +40,7 @@ use crate::time::TimeOrigin;
 use crate::{Mat3, Vec3};
 use attitude::AttitudeProfile;
 use ground::GroundSite;
+use segments::Segments;
 use std::path::Path;
 use std::sync::Arc;
 use trajectory::Trajectory;
@@ -74,6 +79,9 @@ pub enum PlatformError {
     /// A window outside the data a trajectory file covers.
     #[error("time {t_s} s is outside the trajectory ({first_s} .. {last_s} s)")]
     OutsideTrajectory { t_s: f64, first_s: f64, last_s: f64 },
+    /// A window outside the span of generated legs.
+    #[error("time {t_s} s is outside the legs' span (0 .. {last_s} s)")]
+    OutsideSegments { t_s: f64, last_s: f64 },
     /// A window outside the data an attitude table covers.
     #[error("time {t_s} s is outside the attitude table ({first_s} .. {last_s} s)")]
     OutsideAttitude { t_s: f64, first_s: f64, last_s: f64 },
@@ -91,6 +99,24 @@ pub enum PlatformKind {
     Ground,
     /// Trajectory from CSV; attitude relative to NED at the current position.
     Trajectory,
+    /// Motion generated from legs; attitude relative to the path frame (heading,
+    /// flight-path angle, bank) within NED at the current position.
+    Segments,
+}
+
+/// The platform's motion at one instant to second order, as an IMU senses it: position,
+/// velocity and acceleration of the centre of mass, attitude and angular rate, all
+/// consistent (each the derivative of the one before).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Kinematics {
+    /// Position, velocity and acceleration relative to the Earth (ECEF; m, m/s, m/s^2).
+    pub r_ecef_m: Vec3,
+    pub v_ecef_mps: Vec3,
+    pub a_ecef_mps2: Vec3,
+    /// Body -> ECEF rotation.
+    pub c_body_ecef: Mat3,
+    /// Angular rate of the body relative to the Earth, body axes (rad/s).
+    pub omega_eb_body_rps: Vec3,
 }
 
 /// How the platform moves.
@@ -102,6 +128,7 @@ enum Motion {
     },
     Ground(GroundSite),
     Trajectory(Arc<Trajectory>),
+    Segments(Arc<Segments>),
 }
 
 /// A receiving platform.
@@ -120,6 +147,7 @@ enum WindowMotion {
     },
     Ground(GroundSite),
     Trajectory(Arc<Trajectory>),
+    Segments(Arc<Segments>),
 }
 
 /// The platform over a window of time; cheap to query from many threads.
@@ -132,8 +160,8 @@ pub struct PlatformWindow {
 }
 
 impl Platform {
-    /// Builds the platform of `[platform]`. Exactly one of `leo`, `ground`, `trajectory`
-    /// must be given; relative CSV paths start at `base_dir` (the scenario file's folder).
+    /// Builds the platform of `[platform]`. Exactly one of `leo`, `ground`, `trajectory`,
+    /// `segments` must be given; relative CSV paths start at `base_dir` (the scenario file's folder).
     /// A LEO's ECI frame is [`EarthRotation::at_origin`] of the scenario start.
     pub fn new(
         cfg: &PlatformConfig,
@@ -141,27 +169,31 @@ impl Platform {
         base_dir: &Path,
     ) -> Result<Platform, PlatformError> {
         let attitude = AttitudeProfile::from_config(&cfg.attitude, base_dir)?;
-        let motion = match (&cfg.leo, &cfg.ground, &cfg.trajectory) {
-            (Some(leo), None, None) => {
+        let motion = match (&cfg.leo, &cfg.ground, &cfg.trajectory, &cfg.segments) {
+            (Some(leo), None, None, None) => {
                 let earth = EarthRotation::at_origin(origin.start());
                 let propagator = Box::new(LeoPropagator::new(leo, origin, &earth)?);
                 Motion::Leo { propagator, earth }
             }
-            (None, Some(ground), None) => Motion::Ground(GroundSite::from_config(ground)?),
-            (None, None, Some(trajectory)) => Motion::Trajectory(Arc::new(Trajectory::from_csv(
-                &base_dir.join(&trajectory.csv),
-            )?)),
+            (None, Some(ground), None, None) => Motion::Ground(GroundSite::from_config(ground)?),
+            (None, None, Some(trajectory), None) => Motion::Trajectory(Arc::new(
+                Trajectory::from_csv(&base_dir.join(&trajectory.csv))?,
+            )),
+            (None, None, None, Some(segments)) => {
+                Motion::Segments(Arc::new(Segments::new(segments)?))
+            }
             _ => {
                 let given = [
                     ("leo", cfg.leo.is_some()),
                     ("ground", cfg.ground.is_some()),
                     ("trajectory", cfg.trajectory.is_some()),
+                    ("segments", cfg.segments.is_some()),
                 ];
                 let names: Vec<&str> = given.iter().filter(|(_, g)| *g).map(|(n, _)| *n).collect();
                 return Err(Invalid::new(
                     "",
                     format!("[{}]", names.join(", ")),
-                    "give exactly one of [platform.leo], [platform.ground], [platform.trajectory]",
+                    "give exactly one of [platform.leo], [platform.ground], [platform.trajectory], [platform.segments]",
                 )
                 .into());
             }
@@ -175,6 +207,7 @@ impl Platform {
             Motion::Leo { .. } => PlatformKind::Leo,
             Motion::Ground(_) => PlatformKind::Ground,
             Motion::Trajectory(_) => PlatformKind::Trajectory,
+            Motion::Segments(_) => PlatformKind::Segments,
         }
     }
 
@@ -208,6 +241,10 @@ impl Platform {
             Motion::Trajectory(trajectory) => {
                 trajectory.check_covers(t0_s, t1_s)?;
                 WindowMotion::Trajectory(Arc::clone(trajectory))
+            }
+            Motion::Segments(segments) => {
+                segments.check_covers(t0_s, t1_s)?;
+                WindowMotion::Segments(Arc::clone(segments))
             }
         };
         Ok(PlatformWindow {
@@ -250,6 +287,50 @@ impl PlatformWindow {
                     attitude,
                 }
             }
+            WindowMotion::Segments(segments) => {
+                let s = segments.state(t_s);
+                let c_body_ned = s.path.c_body_ref() * attitude.c_body_ref();
+                PlatformState {
+                    r_ecef_m: s.r_ecef_m,
+                    v_ecef_mps: s.v_ecef_mps,
+                    c_body_ecef: s.c_ned_ecef * c_body_ned,
+                    attitude: YawPitchRoll::from_c_ref_body(&c_body_ned.transpose()),
+                }
+            }
+        }
+    }
+
+    /// The motion at `t_s` to second order with the angular rate ([`Kinematics`]), for
+    /// the platforms that define it exactly: a ground site and generated legs. `None` for
+    /// a LEO and a CSV trajectory (its cubic interpolation's acceleration jumps at every
+    /// row).
+    pub fn kinematics(&self, t_s: f64) -> Option<Kinematics> {
+        let attitude = self.attitude.at(t_s);
+        let attitude_rate = attitude.body_rate(&self.attitude.rates(t_s));
+        match &self.motion {
+            WindowMotion::Ground(site) => Some(Kinematics {
+                r_ecef_m: site.r_ecef_m,
+                v_ecef_mps: Vec3::zeros(),
+                a_ecef_mps2: Vec3::zeros(),
+                c_body_ecef: site.c_ned_ecef * attitude.c_body_ref(),
+                omega_eb_body_rps: attitude_rate,
+            }),
+            WindowMotion::Segments(segments) => {
+                let s = segments.state(t_s);
+                let c_body_path = attitude.c_body_ref();
+                let c_body_ned = s.path.c_body_ref() * c_body_path;
+                let path_rate = c_body_path.transpose() * s.path.body_rate(&s.path_rates);
+                Some(Kinematics {
+                    r_ecef_m: s.r_ecef_m,
+                    v_ecef_mps: s.v_ecef_mps,
+                    a_ecef_mps2: s.a_ecef_mps2,
+                    c_body_ecef: s.c_ned_ecef * c_body_ned,
+                    omega_eb_body_rps: c_body_ned.transpose() * s.omega_en_ned
+                        + path_rate
+                        + attitude_rate,
+                })
+            }
+            WindowMotion::Leo { .. } | WindowMotion::Trajectory(_) => None,
         }
     }
 }
