@@ -9,6 +9,7 @@
 
 pub mod antenna_name;
 pub mod codes;
+pub mod imu;
 pub mod navmsg;
 pub mod nco;
 pub mod observation;
