@@ -17,6 +17,7 @@ pub mod ephemeris;
 #[cfg(any(test, feature = "test-support"))]
 pub mod fixtures;
 pub mod frames;
+pub mod gravity;
 pub mod platform;
 pub mod propagate;
 pub mod real_data;
