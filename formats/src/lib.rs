@@ -8,6 +8,8 @@
 //!   chain (`skyforge attitude`, `skyforge receive --geometry`) writes per epoch;
 //! - [`geometry_offsets`]: `geometry_offsets.csv` and `geometry_offsets.h5`, the
 //!   geometry-offset estimate (`skyforge attitude --estimate-geometry`);
+//! - [`imu`]: `imu.h5`, an IMU's samples with their truth (the error-free increments,
+//!   the platform's position, velocity and attitude, the sensors' biases);
 //! - [`monitor`]: `monitor.csv`, `monitor.h5` and `summary.json`, what the integrity
 //!   monitor writes (`skyforge monitor run`);
 //! - [`orbit`]: `orbit.csv`, `orbit.h5` and `orbit.sp3`, the estimated orbit of
@@ -31,6 +33,7 @@ pub mod attitude;
 mod csv;
 pub mod geometry_offsets;
 pub mod h5;
+pub mod imu;
 pub mod monitor;
 pub mod orbit;
 pub mod receiver;
