@@ -8,6 +8,7 @@
 
 pub mod antenna;
 pub mod errors;
+pub mod imu;
 pub mod obs_model;
 pub mod synth;
 pub mod truth;

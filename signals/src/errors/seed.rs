@@ -43,6 +43,11 @@ pub enum Stream {
     SatelliteAlong,
     SatelliteCross,
     SatelliteClock,
+    /// An IMU's gyro triad (turn-on errors, then bias instability and noise), its
+    /// accelerometer triad, and its vibration phases; index: the IMU.
+    ImuGyro,
+    ImuAccel,
+    ImuVibration,
     /// A test's own stream, by name (never used by a scenario).
     Named(&'static str),
 }
@@ -62,6 +67,9 @@ impl Stream {
             Stream::SatelliteAlong => "satellite-along",
             Stream::SatelliteCross => "satellite-cross",
             Stream::SatelliteClock => "satellite-clock",
+            Stream::ImuGyro => "imu-gyro",
+            Stream::ImuAccel => "imu-accel",
+            Stream::ImuVibration => "imu-vibration",
             Stream::Named(name) => name,
         }
     }
