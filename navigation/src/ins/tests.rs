@@ -1,0 +1,8 @@
+//! Tests of the strapdown INS against closed-form truth: error-free increments generated
+//! here (tests/truth.rs), never by another crate's simulator.
+
+mod alignment;
+mod bad_input;
+mod mechanisation;
+mod rotation;
+mod truth;
