@@ -278,13 +278,4 @@ impl ImuConfig {
         }
         Ok(())
     }
-
-    /// The gyros' and accelerometers' errors in SI units.
-    pub fn errors(&self) -> (TriadErrors, TriadErrors) {
-        match (self.grade, self.gyro, self.accel) {
-            (ImuGrade::Custom, Some(g), Some(a)) => (g.into(), a.into()),
-            (ImuGrade::Custom, ..) => (TriadErrors::NONE, TriadErrors::NONE),
-            (grade, ..) => super::grades::preset(grade),
-        }
-    }
 }

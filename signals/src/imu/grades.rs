@@ -1,7 +1,7 @@
 //! The IMU grades, each with its source. Values a source leaves open are marked
 //! `assumed` with the reason; none was changed after a run.
 
-use super::config::{AccelSpec, GyroSpec, ImuGrade, TriadErrors};
+use super::config::{AccelSpec, GyroSpec, ImuConfig, ImuGrade, TriadErrors};
 
 /// Paper 001's laser-gyro SINS (section 3.1): gyro drift stability 0.005 deg/h (1 sigma),
 /// which its filter treats as a random constant; the accelerometer bias's exponent is lost
@@ -100,14 +100,20 @@ pub const BOOK_TABLE_3_1: (GyroSpec, AccelSpec) = (
     },
 );
 
-/// The gyros' and accelerometers' errors of a preset grade (`Ideal` and `Custom`: none).
-pub fn preset(grade: ImuGrade) -> (TriadErrors, TriadErrors) {
-    let (g, a) = match grade {
-        ImuGrade::Navigation => NAVIGATION,
-        ImuGrade::Tactical => TACTICAL,
-        ImuGrade::Consumer => CONSUMER,
-        ImuGrade::BookTable31 => BOOK_TABLE_3_1,
-        ImuGrade::Ideal | ImuGrade::Custom => return (TriadErrors::NONE, TriadErrors::NONE),
-    };
-    (g.into(), a.into())
+impl ImuConfig {
+    /// The gyros' and accelerometers' errors in SI units: the grade's preset, or
+    /// `[imu.gyro]` and `[imu.accel]` for `grade = "custom"`.
+    pub fn errors(&self) -> (TriadErrors, TriadErrors) {
+        let (g, a) = match (self.grade, self.gyro, self.accel) {
+            (ImuGrade::Custom, Some(g), Some(a)) => return (g.into(), a.into()),
+            (ImuGrade::Ideal | ImuGrade::Custom, ..) => {
+                return (TriadErrors::NONE, TriadErrors::NONE);
+            }
+            (ImuGrade::Navigation, ..) => NAVIGATION,
+            (ImuGrade::Tactical, ..) => TACTICAL,
+            (ImuGrade::Consumer, ..) => CONSUMER,
+            (ImuGrade::BookTable31, ..) => BOOK_TABLE_3_1,
+        };
+        (g.into(), a.into())
+    }
 }
