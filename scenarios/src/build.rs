@@ -14,7 +14,9 @@ use skyforge_orbits::ephemeris::{
 };
 use skyforge_orbits::ephemeris::{ConstellationConfig, ConstellationSource};
 use skyforge_orbits::frames::earth_rotation::EarthRotation;
-use skyforge_orbits::platform::{EDGE_MARGIN_S, Platform, PlatformError, PlatformKind};
+use skyforge_orbits::platform::{
+    EDGE_MARGIN_S, Platform, PlatformError, PlatformKind, PlatformWindow,
+};
 use skyforge_orbits::propagate::PropagateError;
 use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 use skyforge_signals::antenna::{Antenna, AntennaConfig};
@@ -281,6 +283,18 @@ impl Scenario {
             )));
         }
         Ok(SatelliteErrors::precise(orbits))
+    }
+
+    /// The platform's motion over the run for its IMU: `None` without `[imu]`. The checks
+    /// already refused an IMU on a platform without kinematics (a LEO, a trajectory CSV).
+    pub fn imu_motion(&self) -> Result<Option<PlatformWindow>, ScenarioError> {
+        if self.imu.is_none() {
+            return Ok(None);
+        }
+        let mut platform = self.platform(&TimeOrigin::new(self.time.start))?;
+        (platform.window(0.0, self.time.duration_s))
+            .map(Some)
+            .map_err(|e| self.platform_error(e))
     }
 
     /// The platform of `[platform]`, with its CSV tables checked to cover the span.

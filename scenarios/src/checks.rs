@@ -11,6 +11,7 @@ use skyforge_orbits::platform::{GroundConfig, PlatformConfig};
 use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, parse_epoch};
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::EventConfig;
+use skyforge_signals::imu::ImuConfig;
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Longest scenario (s): 366 days. Longer spans are outside what the embedded
@@ -60,8 +61,13 @@ pub(crate) fn platform_or_vehicles(
 }
 
 /// `[[vehicles]]`: at most [`MAX_VEHICLES`], unique names usable as directory names,
-/// each platform, antenna list and oscillator valid.
-fn check_vehicles(vehicles: &[VehicleConfig], duration_s: f64) -> Result<(), Invalid> {
+/// each platform, antenna list, oscillator and IMU (its own, or the scenario's
+/// `shared_imu`) valid.
+fn check_vehicles(
+    vehicles: &[VehicleConfig],
+    shared_imu: Option<&ImuConfig>,
+    duration_s: f64,
+) -> Result<(), Invalid> {
     if vehicles.len() > MAX_VEHICLES {
         return Err(Invalid::new(
             format!("vehicles[{MAX_VEHICLES}]"),
@@ -91,6 +97,12 @@ fn check_vehicles(vehicles: &[VehicleConfig], duration_s: f64) -> Result<(), Inv
         if let Some(clock) = &v.receiver_clock {
             clock.check().map_err(|e| e.within(&at("receiver_clock")))?;
         }
+        match (&v.imu, shared_imu) {
+            (Some(imu), _) => check_imu(imu, &v.platform, duration_s, &at("imu"))?,
+            (None, Some(imu)) => check_imu(imu, &v.platform, duration_s, "imu")
+                .map_err(|e| e.within(&format!("vehicles[{i}]")))?,
+            (None, None) => {}
+        }
         let names: Vec<&str> = v.antennas.iter().map(|a| a.name.as_str()).collect();
         let list = format!("vehicles[{i}].antennas");
         check_events(
@@ -111,9 +123,16 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     check_time(&scenario.time, &scenario.gnss)?;
     check_truth(&scenario.truth, scenario.time.duration_s)?;
     check_gnss(&scenario.gnss)?;
-    check_vehicles(&scenario.vehicles, scenario.time.duration_s)?;
+    check_vehicles(
+        &scenario.vehicles,
+        scenario.imu.as_ref(),
+        scenario.time.duration_s,
+    )?;
     check_platform(&scenario.platform)?;
     check_antennas(&scenario.antennas)?;
+    if let (Some(imu), true) = (&scenario.imu, scenario.vehicles.is_empty()) {
+        check_imu(imu, &scenario.platform, scenario.time.duration_s, "imu")?;
+    }
     scenario
         .errors
         .ionosphere
@@ -343,6 +362,43 @@ fn check_gnss(gnss: &GnssConfig) -> Result<(), Invalid> {
             "gnss",
             "gps, beidou and galileo disabled",
             "at least one constellation must be enabled",
+        ));
+    }
+    Ok(())
+}
+
+/// Most IMU samples in one run: 10^8, a day at 1 kHz (about 20 GB of CSV).
+pub(crate) const MAX_IMU_SAMPLES: f64 = 1e8;
+
+/// An IMU: its own checks, a platform whose motion is twice differentiable (a ground
+/// site or generated legs), and at most [`MAX_IMU_SAMPLES`] samples over the run.
+/// `at` names the table in errors.
+fn check_imu(
+    imu: &ImuConfig,
+    platform: &PlatformConfig,
+    duration_s: f64,
+    at: &str,
+) -> Result<(), Invalid> {
+    imu.check().map_err(|e| e.within(at))?;
+    if platform.ground.is_none() && platform.segments.is_none() {
+        let kind = if platform.leo.is_some() {
+            "[platform.leo]"
+        } else {
+            "[platform.trajectory]"
+        };
+        return Err(Invalid::new(
+            at,
+            format!("an IMU on {kind}"),
+            "an IMU needs the platform's acceleration and angular rate, which a ground site \
+             and [platform.segments] define exactly; a LEO or a trajectory CSV does not yet",
+        ));
+    }
+    let samples = imu.rate_hz * duration_s;
+    if samples > MAX_IMU_SAMPLES {
+        return Err(Invalid::new(
+            format!("{at}.rate_hz"),
+            imu.rate_hz,
+            format!("gives {samples:.0} samples over the run; at most {MAX_IMU_SAMPLES:e}"),
         ));
     }
     Ok(())

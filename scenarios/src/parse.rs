@@ -50,6 +50,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         signal: file.signal,
         errors: file.errors,
         observation: file.observation,
+        imu: file.imu,
         vehicles: file.vehicles,
         vehicle: None,
         source: source.to_string(),

@@ -8,6 +8,7 @@ use skyforge_orbits::ephemeris::{BeidouSet, ConstellationConfig, ConstellationSo
 use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::{ErrorsConfig, EventConfig, OscillatorConfig, vehicle_seed};
+use skyforge_signals::imu::ImuConfig;
 use skyforge_signals::obs_model::ObservationConfig;
 use skyforge_signals::synth::SignalConfig;
 use std::path::PathBuf;
@@ -38,6 +39,9 @@ pub struct Scenario {
     pub errors: ErrorsConfig,
     /// `[observation]`: signal-level or observation-level observables.
     pub observation: ObservationConfig,
+    /// `[imu]`: the IMU at the platform's body origin (with `[[vehicles]]`: of every
+    /// vehicle without a `[vehicles.imu]` of its own); none when absent.
+    pub imu: Option<ImuConfig>,
     /// `[[vehicles]]`: the platforms of a scenario with several (empty: the one
     /// `[platform]` with its `[[antennas]]`). `platform` and `antennas` are the first
     /// vehicle's; such a scenario runs per vehicle ([`Scenario::vehicle_views`]).
@@ -77,6 +81,9 @@ pub struct VehicleConfig {
     /// receiver), as `[[errors.events]]`, which reach every vehicle.
     #[serde(default)]
     pub events: Vec<EventConfig>,
+    /// `[vehicles.imu]`: its IMU (absent: the scenario's `[imu]`, if any).
+    #[serde(default)]
+    pub imu: Option<ImuConfig>,
 }
 
 impl Scenario {
@@ -97,6 +104,7 @@ impl Scenario {
                     view.errors.receiver_clock = Some(clock.clone());
                 }
                 view.errors.events.extend(v.events.iter().cloned());
+                view.imu = v.imu.clone().or_else(|| self.imu.clone());
                 view.vehicles = Vec::new();
                 view.vehicle = Some(v.name.clone());
                 view
@@ -228,6 +236,8 @@ pub(crate) struct ScenarioFile {
     pub errors: ErrorsConfig,
     #[serde(default)]
     pub observation: ObservationConfig,
+    #[serde(default)]
+    pub imu: Option<ImuConfig>,
     #[serde(default)]
     pub vehicles: Vec<VehicleConfig>,
 }

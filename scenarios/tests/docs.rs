@@ -68,6 +68,10 @@ fn every_accepted_key_is_documented() {
         "gnss.gps",
         "gnss.beidou",
         "truth",
+        "imu",
+        "imu.gyro",
+        "imu.accel",
+        "imu.vibration",
     ];
     let mut texts = vec![
         (String::new(), format!("{unknown}{minimal}")),

@@ -11,6 +11,7 @@ mod text;
 
 pub use record::ImuIncrement;
 pub use text::{
-    CSV_HEADER, CsvReader, DT_S, DTHETA_RAD, DV_MPS, ImuTextError, KF_GINS_GAP_S, KfGinsReader,
-    MAX_LINE_BYTES, MAX_RECORDS, read_csv, read_kf_gins, write_csv, write_kf_gins,
+    CSV_HEADER, CsvReader, CsvWriter, DT_S, DTHETA_RAD, DV_MPS, ImuTextError, KF_GINS_GAP_S,
+    KfGinsReader, KfGinsWriter, MAX_LINE_BYTES, MAX_RECORDS, read_csv, read_kf_gins, write_csv,
+    write_kf_gins,
 };

@@ -503,34 +503,146 @@ fn check_records(increments: &[ImuIncrement]) -> Result<(), ImuTextError> {
     Ok(())
 }
 
+/// Writes SkyForge's IMU CSV record by record: the comments and the header at creation,
+/// then one line per [`CsvWriter::push`], each record checked against the previous one.
+#[derive(Debug)]
+pub struct CsvWriter<W> {
+    out: W,
+    previous: Option<Epoch>,
+    index: usize,
+}
+
+impl<W: Write> CsvWriter<W> {
+    /// Writes each line of `comments` as a `#` line, then the header.
+    pub fn new(mut out: W, comments: &str) -> Result<Self, ImuTextError> {
+        for line in comments.lines() {
+            writeln!(out, "# {line}")?;
+        }
+        writeln!(out, "{CSV_HEADER}")?;
+        Ok(Self {
+            out,
+            previous: None,
+            index: 0,
+        })
+    }
+
+    /// Writes `inc`; refuses (writing nothing) a record out of range or not after the
+    /// previous one.
+    pub fn push(&mut self, inc: &ImuIncrement) -> Result<(), ImuTextError> {
+        check_record(inc, self.previous).map_err(|message| ImuTextError::Record {
+            index: self.index,
+            message,
+        })?;
+        let (week, tow) = gpst_week_sow(inc.t_end);
+        let (a, v) = (inc.dtheta_rad, inc.dv_mps);
+        writeln!(
+            self.out,
+            "{week},{tow},{},{},{},{},{},{},{}",
+            inc.dt_s, a.x, a.y, a.z, v.x, v.y, v.z
+        )?;
+        self.previous = Some(inc.t_end);
+        self.index += 1;
+        Ok(())
+    }
+
+    /// Flushes the output.
+    pub fn finish(mut self) -> Result<W, ImuTextError> {
+        self.out.flush()?;
+        Ok(self.out)
+    }
+}
+
 /// Writes `increments` as SkyForge's IMU CSV: each line of `comments` as a `#` line, the
 /// header, one record per line. Nothing is written when a record is out of range or its
 /// time does not follow the previous one's.
 pub fn write_csv(
-    mut out: impl Write,
+    out: impl Write,
     increments: &[ImuIncrement],
     comments: &str,
 ) -> Result<(), ImuTextError> {
     check_records(increments)?;
-    for line in comments.lines() {
-        writeln!(out, "# {line}")?;
-    }
-    writeln!(out, "{CSV_HEADER}")?;
+    let mut writer = CsvWriter::new(out, comments)?;
     for inc in increments {
-        let (week, tow) = gpst_week_sow(inc.t_end);
-        let (a, v) = (inc.dtheta_rad, inc.dv_mps);
-        writeln!(
-            out,
-            "{week},{tow},{},{},{},{},{},{},{}",
-            inc.dt_s, a.x, a.y, a.z, v.x, v.y, v.z
-        )?;
+        writer.push(inc)?;
     }
-    Ok(())
+    writer.finish().map(drop)
 }
 
 /// The largest difference between a record's interval and the time since the previous
 /// record that [`write_kf_gins`] accepts (s): the file keeps only the times.
 pub const KF_GINS_GAP_S: f64 = 1e-6;
+
+/// Why record `index`, `inc`, cannot follow `previous` in KF-GINS's file: its interval
+/// is not the time since the previous record.
+fn check_gap(
+    previous: &ImuIncrement,
+    inc: &ImuIncrement,
+    index: usize,
+) -> Result<(), ImuTextError> {
+    let since = (inc.t_end - previous.t_end).to_seconds();
+    if (since - inc.dt_s).abs() > KF_GINS_GAP_S {
+        return Err(ImuTextError::Record {
+            index,
+            message: format!(
+                "dt_s = {} but {since} s since the previous record: KF-GINS's file keeps \
+                 only the times, so records must follow each other without gaps",
+                inc.dt_s
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Writes KF-GINS's IMU text file record by record, each checked against the previous
+/// one as [`write_kf_gins`] checks them.
+#[derive(Debug)]
+pub struct KfGinsWriter<W> {
+    out: W,
+    previous: Option<ImuIncrement>,
+    first_week: Option<u32>,
+    index: usize,
+}
+
+impl<W: Write> KfGinsWriter<W> {
+    /// A writer to `out` (the file has no header).
+    pub fn new(out: W) -> Self {
+        Self {
+            out,
+            previous: None,
+            first_week: None,
+            index: 0,
+        }
+    }
+
+    /// Writes `inc`; refuses (writing nothing) a record out of range, not after the
+    /// previous one, or with a gap before it.
+    pub fn push(&mut self, inc: &ImuIncrement) -> Result<(), ImuTextError> {
+        let index = self.index;
+        check_record(inc, self.previous.map(|p| p.t_end))
+            .map_err(|message| ImuTextError::Record { index, message })?;
+        if let Some(previous) = &self.previous {
+            check_gap(previous, inc, index)?;
+        }
+        let (week, sow) = gpst_week_sow(inc.t_end);
+        let (a, v) = (inc.dtheta_rad, inc.dv_mps);
+        writeln!(
+            self.out,
+            "{sow} {} {} {} {} {} {}",
+            a.x, a.y, a.z, v.x, v.y, v.z
+        )?;
+        self.first_week.get_or_insert(week);
+        self.previous = Some(*inc);
+        self.index += 1;
+        Ok(())
+    }
+
+    /// Flushes the output; the GPS week of the first record (none without records),
+    /// which the file does not hold and [`read_kf_gins`] needs.
+    pub fn finish(mut self) -> Result<Option<u32>, ImuTextError> {
+        self.out.flush()?;
+        Ok(self.first_week)
+    }
+}
 
 /// Writes `increments` as KF-GINS's IMU text file and returns the GPS week of the first
 /// record, which the file does not hold ([`read_kf_gins`] needs it). Nothing is written
@@ -538,29 +650,18 @@ pub const KF_GINS_GAP_S: f64 = 1e-6;
 /// differs from the time since the previous record by more than [`KF_GINS_GAP_S`] (the
 /// reader takes the intervals from the times).
 pub fn write_kf_gins(
-    mut out: impl Write,
+    out: impl Write,
     increments: &[ImuIncrement],
 ) -> Result<Option<u32>, ImuTextError> {
     check_records(increments)?;
     for (index, pair) in increments.windows(2).enumerate() {
-        let since = (pair[1].t_end - pair[0].t_end).to_seconds();
-        if (since - pair[1].dt_s).abs() > KF_GINS_GAP_S {
-            return Err(ImuTextError::Record {
-                index: index + 1,
-                message: format!(
-                    "dt_s = {} but {since} s since the previous record: KF-GINS's file keeps \
-                     only the times, so records must follow each other without gaps",
-                    pair[1].dt_s
-                ),
-            });
-        }
+        check_gap(&pair[0], &pair[1], index + 1)?;
     }
+    let mut writer = KfGinsWriter::new(out);
     for inc in increments {
-        let (_, sow) = gpst_week_sow(inc.t_end);
-        let (a, v) = (inc.dtheta_rad, inc.dv_mps);
-        writeln!(out, "{sow} {} {} {} {} {} {}", a.x, a.y, a.z, v.x, v.y, v.z)?;
+        writer.push(inc)?;
     }
-    Ok(increments.first().map(|inc| gpst_week_sow(inc.t_end).0))
+    writer.finish()
 }
 
 #[cfg(test)]

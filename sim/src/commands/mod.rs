@@ -4,6 +4,7 @@ mod ambiguity;
 mod attitude;
 mod calibrate;
 mod dry_run;
+mod imu;
 mod monitor;
 mod od;
 mod receive;

@@ -217,6 +217,7 @@ pub fn synthesise(
     measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     truth.finish().with_context(|| writing(&truth_path))?;
     super::write_truth_sp3(scenario, &staged)?;
+    super::imu::write_imu(scenario, &staged)?;
     bar.finish_and_clear();
     let wrote_recordings = recordings.is_some();
     if let Some(recordings) = recordings {
