@@ -22,3 +22,4 @@ pub mod orbit_determination;
 pub mod pvt;
 pub mod relative;
 pub mod relnav;
+pub mod tdcp;
