@@ -16,6 +16,7 @@ mod config_file;
 pub mod continued_fraction;
 pub mod geometry_file;
 pub mod geometry_offset;
+pub mod gnss_ins;
 pub mod ins;
 pub mod integrity;
 pub mod orbit_determination;

@@ -28,7 +28,7 @@ mod rotation;
 mod state;
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use alignment::{
     StaticMeans, coarse_alignment, heading_error_from_east_gyro_bias_rad, static_means,

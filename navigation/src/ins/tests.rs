@@ -5,4 +5,4 @@ mod alignment;
 mod bad_input;
 mod mechanisation;
 mod rotation;
-mod truth;
+pub(crate) mod truth;

@@ -1,0 +1,229 @@
+//! The loosely coupled GNSS/INS filter: the INS propagated over bias-corrected
+//! increments, its error covariance with it, updates from antenna fixes, and the
+//! estimated errors fed back after each (closed loop, Groves 2013 sec. 14.1.1).
+
+use super::config::{IntegrationError, LooselyCoupledConfig};
+use super::error_state::{ACC, ATT, GYR, Mat15, POS, STATES, VEL, Vec15, skew, transition};
+use super::fix::GnssFix;
+use crate::ins::InsState;
+use nalgebra::{DMatrix, DVector, SMatrix};
+use skyforge_gnss::imu::ImuIncrement;
+use skyforge_orbits::gravity::earth_rate_ecef;
+use skyforge_orbits::{Mat3, Vec3};
+
+/// What one update did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Update {
+    /// Innovations (predicted minus measured): position (m), then velocity (m/s) when
+    /// the fix had one.
+    pub innovation: DVector<f64>,
+    /// Normalised innovation squared `z^T S^-1 z`.
+    pub nis: f64,
+    /// Its degrees of freedom (3, or 6 with velocity).
+    pub dof: usize,
+}
+
+/// The loosely coupled filter (Groves 2013 sec. 14.3.1).
+#[derive(Debug, Clone)]
+pub struct LooselyCoupled {
+    config: LooselyCoupledConfig,
+    ins: InsState,
+    p: Mat15,
+    gyro_bias: Vec3,
+    accel_bias: Vec3,
+    /// The previous bias-corrected increment (coning and sculling).
+    prev: Option<ImuIncrement>,
+    /// The last interval's mean angular rate relative to inertial space (rad/s).
+    omega_ib_body: Vec3,
+}
+
+impl LooselyCoupled {
+    /// A filter starting at `initial` with zero bias estimates and the configured
+    /// initial uncertainties (heading about the local vertical, tilt about the
+    /// horizontal axes).
+    pub fn new(initial: InsState, config: LooselyCoupledConfig) -> Result<Self, IntegrationError> {
+        config.check()?;
+        let up = initial.r_ecef_m.normalize();
+        let tilt = config.initial_tilt_rad.powi(2) * (Mat3::identity() - up * up.transpose());
+        let heading = config.initial_heading_rad.powi(2) * up * up.transpose();
+        let mut p = Mat15::zeros();
+        let diagonal = [
+            (POS, config.initial_position_m.powi(2)),
+            (VEL, config.initial_velocity_mps.powi(2)),
+            (ACC, config.imu.accel_bias.powi(2)),
+            (GYR, config.imu.gyro_bias.powi(2)),
+        ];
+        for (start, variance) in diagonal {
+            for k in start..start + 3 {
+                p[(k, k)] = variance;
+            }
+        }
+        p.fixed_view_mut::<3, 3>(ATT, ATT)
+            .copy_from(&(tilt + heading));
+        Ok(Self {
+            config,
+            ins: initial,
+            p,
+            gyro_bias: Vec3::zeros(),
+            accel_bias: Vec3::zeros(),
+            prev: None,
+            omega_ib_body: Vec3::zeros(),
+        })
+    }
+
+    /// The INS's state (the IMU's position, velocity, attitude).
+    pub fn state(&self) -> &InsState {
+        &self.ins
+    }
+
+    /// The error covariance, in the order position, velocity, attitude, accelerometer
+    /// bias, gyro bias (ECEF; biases in body axes).
+    pub fn covariance(&self) -> SMatrix<f64, STATES, STATES> {
+        self.p
+    }
+
+    /// The bias estimates: gyro (rad/s), accelerometer (m/s^2), body axes.
+    pub fn biases(&self) -> (Vec3, Vec3) {
+        (self.gyro_bias, self.accel_bias)
+    }
+
+    /// The antenna's position (ECEF, m).
+    pub fn antenna_position(&self) -> Vec3 {
+        self.ins.r_ecef_m + self.ins.c_body_ecef * self.config.lever_arm_body_m
+    }
+
+    /// Moves the INS and its covariance over `inc` (its biases removed).
+    pub fn propagate(&mut self, inc: &ImuIncrement) -> Result<(), IntegrationError> {
+        let dt = inc.dt_s;
+        let corrected = ImuIncrement {
+            dtheta_rad: inc.dtheta_rad - self.gyro_bias * dt,
+            dv_mps: inc.dv_mps - self.accel_bias * dt,
+            ..*inc
+        };
+        let before = self.ins;
+        self.ins.propagate(self.prev.as_ref(), &corrected)?;
+        let f_body = corrected.dv_mps / dt;
+        let (phi, q) = transition(
+            &before.r_ecef_m,
+            &before.c_body_ecef,
+            &f_body,
+            &self.config.imu,
+            dt,
+        );
+        self.p = phi * self.p * phi.transpose() + Mat15::from_diagonal(&q);
+        self.p = (self.p + self.p.transpose()) * 0.5;
+        self.omega_ib_body = corrected.dtheta_rad / dt;
+        self.prev = Some(corrected);
+        Ok(())
+    }
+
+    /// Corrects the INS with `fix` (Groves eqs. 14.110-14.111 with the lever arm), which
+    /// must lie within one IMU interval of the INS's time; the INS is extrapolated to it.
+    pub fn update(&mut self, fix: &GnssFix) -> Result<Update, IntegrationError> {
+        check_fix(fix)?;
+        let offset_s = (fix.t - self.ins.t).to_seconds();
+        let step = self.prev.map_or(0.0, |p| p.dt_s);
+        if offset_s.abs() > step + 1e-6 {
+            return Err(IntegrationError::FixOutOfStep {
+                t: fix.t,
+                ins_t: self.ins.t,
+                offset_s,
+            });
+        }
+        let (h, z, r) = self.measurement(fix, offset_s);
+        let s = &h * to_dynamic(&self.p) * h.transpose() + &r;
+        let bad = |what| IntegrationError::BadFix { t: fix.t, what };
+        let s_inv = s
+            .clone()
+            .cholesky()
+            .ok_or_else(|| bad("innovation covariance not positive definite"))?
+            .inverse();
+        let p = to_dynamic(&self.p);
+        let k = &p * h.transpose() * &s_inv;
+        let i_kh = DMatrix::identity(STATES, STATES) - &k * &h;
+        let p_new = &i_kh * p * i_kh.transpose() + &k * r * k.transpose();
+        let x = &k * &z;
+        self.p = Mat15::from_fn(|i, j| 0.5 * (p_new[(i, j)] + p_new[(j, i)]));
+        self.feed_back(&Vec15::from_iterator(x.iter().copied()));
+        Ok(Update {
+            nis: (z.transpose() * &s_inv * &z)[(0, 0)],
+            dof: z.len(),
+            innovation: z,
+        })
+    }
+
+    /// The measurement matrix, innovations and noise covariance of `fix`, `offset_s`
+    /// after the INS's time.
+    fn measurement(
+        &self,
+        fix: &GnssFix,
+        offset_s: f64,
+    ) -> (DMatrix<f64>, DVector<f64>, DMatrix<f64>) {
+        let c = self.ins.c_body_ecef;
+        let lever = self.config.lever_arm_body_m;
+        let c_l = c * lever;
+        let rows = if fix.v_ecef_mps.is_some() { 6 } else { 3 };
+        let mut h = DMatrix::zeros(rows, STATES);
+        let mut z = DVector::zeros(rows);
+        let mut r = DMatrix::zeros(rows, rows);
+        let predicted = self.ins.r_ecef_m + self.ins.v_ecef_mps * offset_s + c_l;
+        h.view_mut((0, POS), (3, 3)).copy_from(&Mat3::identity());
+        h.view_mut((0, ATT), (3, 3)).copy_from(&-skew(&c_l));
+        z.rows_mut(0, 3).copy_from(&(predicted - fix.r_ecef_m));
+        r.view_mut((0, 0), (3, 3)).copy_from(&fix.r_cov_m2);
+        if let Some((v, v_cov)) = fix.v_ecef_mps {
+            let w_ie = earth_rate_ecef();
+            let rotating = c * self.omega_ib_body.cross(&lever) - w_ie.cross(&c_l);
+            let predicted_v = self.ins.v_ecef_mps + rotating;
+            h.view_mut((3, VEL), (3, 3)).copy_from(&Mat3::identity());
+            h.view_mut((3, ATT), (3, 3)).copy_from(&-skew(&rotating));
+            h.view_mut((3, GYR), (3, 3)).copy_from(&(-c * skew(&lever)));
+            z.rows_mut(3, 3).copy_from(&(predicted_v - v));
+            r.view_mut((3, 3), (3, 3)).copy_from(&v_cov);
+        }
+        (h, z, r)
+    }
+
+    /// Closed-loop correction: the estimated errors removed from the INS and added to
+    /// the bias estimates (Groves 2013 sec. 14.2.3: `C = (I - [psi x]) C^`, taken as the
+    /// exact rotation by `-psi`).
+    fn feed_back(&mut self, x: &Vec15) {
+        let block = |k: usize| Vec3::new(x[k], x[k + 1], x[k + 2]);
+        self.ins.r_ecef_m -= block(POS);
+        self.ins.v_ecef_mps -= block(VEL);
+        let undo = nalgebra::Rotation3::new(-block(ATT));
+        self.ins.c_body_ecef = undo.matrix() * self.ins.c_body_ecef;
+        self.accel_bias += block(ACC);
+        self.gyro_bias += block(GYR);
+    }
+}
+
+fn to_dynamic(m: &Mat15) -> DMatrix<f64> {
+    DMatrix::from_fn(STATES, STATES, |i, j| m[(i, j)])
+}
+
+/// A fix with finite values and symmetric covariances with positive diagonals.
+fn check_fix(fix: &GnssFix) -> Result<(), IntegrationError> {
+    let bad = |what| Err(IntegrationError::BadFix { t: fix.t, what });
+    let finite = |m: &Mat3| m.iter().all(|x| x.is_finite());
+    let usable = |m: &Mat3| {
+        finite(m)
+            && (0..3).all(|k| m[(k, k)] > 0.0)
+            && (m - m.transpose()).amax() <= 1e-9 * m.amax()
+    };
+    if !fix.r_ecef_m.iter().all(|x| x.is_finite()) {
+        return bad("position not finite");
+    }
+    if !usable(&fix.r_cov_m2) {
+        return bad("position covariance not finite, symmetric, with positive variances");
+    }
+    if let Some((v, cov)) = &fix.v_ecef_mps {
+        if !v.iter().all(|x| x.is_finite()) {
+            return bad("velocity not finite");
+        }
+        if !usable(cov) {
+            return bad("velocity covariance not finite, symmetric, with positive variances");
+        }
+    }
+    Ok(())
+}

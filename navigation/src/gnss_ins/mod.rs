@@ -1,0 +1,28 @@
+//! GNSS/INS integration: error-state Kalman filters that keep the strapdown INS
+//! (`crate::ins`) on GNSS measurements and estimate the IMU's biases, with the IMU's
+//! lever arm to the antenna.
+//!
+//! The loosely coupled filter ([`LooselyCoupled`]) takes position (and optionally
+//! velocity) fixes of the antenna ([`GnssFix`]) from any GNSS solution. It is closed
+//! loop: after every update the estimated errors are fed back into the INS and the bias
+//! estimates, and the error state restarts at zero.
+//!
+//! Source: Groves 2013, "Principles of GNSS, Inertial, and Multisensor Integrated
+//! Navigation Systems", 2nd ed.: sec. 14.2.3 (the ECEF-frame error equations), 14.2.7
+//! (process noise), 14.1.1 (closed-loop correction), 14.3.1 (loosely coupled measurement
+//! model with the lever arm, eqs. 14.110-14.111).
+
+#![warn(missing_docs)]
+
+mod config;
+mod error_state;
+mod filter;
+mod fix;
+
+#[cfg(test)]
+mod tests;
+
+pub use config::{ImuNoise, IntegrationError, LooselyCoupledConfig};
+pub use error_state::STATES;
+pub use filter::{LooselyCoupled, Update};
+pub use fix::GnssFix;
