@@ -34,6 +34,7 @@ mod csv;
 pub mod geometry_offsets;
 pub mod h5;
 pub mod imu;
+pub mod ins;
 pub mod monitor;
 pub mod orbit;
 pub mod receiver;

@@ -138,6 +138,14 @@ pub enum Command {
         #[command(flatten)]
         args: OdArgs,
     },
+    /// GNSS/INS: an IMU file (SkyForge's CSV or KF-GINS's text file) and one antenna's
+    /// RINEX observation file with a navigation file into the loosely coupled filter,
+    /// after a static alignment; optional GNSS outages made on purpose. Writes
+    /// DIR/ins.csv (docs/ins.md).
+    Ins {
+        #[command(flatten)]
+        args: InsArgs,
+    },
     /// Relative navigation of two spacecraft (book section 5.6): the chaser relative to
     /// the target in the target's orbit frame, from their two RINEX observation files and
     /// a navigation file, as the difference of standalone fixes, of fixes on the common
@@ -209,6 +217,45 @@ pub struct OdArgs {
     /// Filter settings (TOML; docs/orbit-determination.md); default: the documented ones.
     #[arg(long, value_name = "TOML")]
     pub config: Option<PathBuf>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory (only one skyforge wrote).
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// What `ins` is given.
+#[derive(Debug, Args)]
+pub struct InsArgs {
+    /// The antenna's observation file (RINEX 3).
+    pub file: PathBuf,
+    /// Navigation file (RINEX 2/3/4) with the satellites' broadcast ephemerides.
+    #[arg(long, value_name = "NAV")]
+    pub nav: PathBuf,
+    /// The IMU's increments: SkyForge's IMU CSV (`.csv`) or KF-GINS's text file (any
+    /// other name; then --gps-week and --imu-rate-hz say what the file does not).
+    #[arg(long, value_name = "FILE")]
+    pub imu: PathBuf,
+    /// GPS week of a KF-GINS file's first record.
+    #[arg(long, value_name = "WEEK")]
+    pub gps_week: Option<u32>,
+    /// Output rate of a KF-GINS file's IMU (Hz): the first record's interval.
+    #[arg(long, value_name = "HZ")]
+    pub imu_rate_hz: Option<f64>,
+    /// The IMU's grade as its data sheet states it (the filter's noise model): navigation,
+    /// tactical, consumer, book-table-3-1 (docs/imu.md).
+    #[arg(long, value_name = "GRADE", default_value = "navigation")]
+    pub grade: String,
+    /// The antenna from the IMU in body axes (m): x,y,z.
+    #[arg(long, value_name = "X,Y,Z", value_delimiter = ',', default_values_t = [0.0, 0.0, 0.0], allow_hyphen_values = true)]
+    pub lever_arm: Vec<f64>,
+    /// The static start the INS aligns on (s).
+    #[arg(long, value_name = "S", default_value_t = 60.0)]
+    pub alignment_s: f64,
+    /// GNSS outages made on purpose: FIRST,EVERY,LENGTH in seconds after the alignment.
+    #[arg(long, value_name = "FIRST,EVERY,LENGTH", value_delimiter = ',')]
+    pub outages: Option<Vec<f64>>,
     /// Output directory.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -460,6 +507,23 @@ pub enum ValidateSuite {
         /// Leave out the estimates of the first S seconds (the filter's convergence).
         #[arg(long, value_name = "S", default_value_t = 600.0)]
         settle_s: f64,
+        /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
+    },
+    /// Compare `skyforge ins`'s solution with the IMU's truth of the run (imu.h5): the
+    /// RMS position error while GNSS updates the filter, and the drift over each outage
+    /// made on purpose (docs/ins.md).
+    Ins {
+        /// The run's directory (`skyforge run`/`synth --out`): its imu.h5.
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// `skyforge ins`'s output directory (ins.csv).
+        #[arg(long, value_name = "INSDIR")]
+        ins: PathBuf,
         /// Also write the comparison as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,

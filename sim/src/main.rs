@@ -19,6 +19,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Receive { args } => Some(args.out.clone()),
         cli::Command::Attitude { args } => Some(args.out.clone()),
         cli::Command::Od { args } => Some(args.out.clone()),
+        cli::Command::Ins { args } => Some(args.out.clone()),
         cli::Command::Relnav { args } => Some(args.out.clone()),
         cli::Command::Monitor {
             action:
@@ -36,6 +37,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
                 | cli::ValidateSuite::Attitude { .. }
                 | cli::ValidateSuite::Monitor { .. }
                 | cli::ValidateSuite::Od { .. }
+                | cli::ValidateSuite::Ins { .. }
                 | cli::ValidateSuite::Relnav { .. }
                 | cli::ValidateSuite::Agree { .. },
         }

@@ -5,6 +5,7 @@
 
 pub mod attitude;
 pub mod draw;
+pub mod ins;
 pub mod integrity;
 pub mod observables;
 pub mod orbit;

@@ -18,6 +18,7 @@ mod config;
 mod error_state;
 mod filter;
 mod fix;
+mod from_files;
 
 #[cfg(test)]
 mod tests;
@@ -26,3 +27,6 @@ pub use config::{ImuNoise, IntegrationError, LooselyCoupledConfig};
 pub use error_state::STATES;
 pub use filter::{LooselyCoupled, Update};
 pub use fix::GnssFix;
+pub use from_files::{
+    FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
+};

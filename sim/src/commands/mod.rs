@@ -5,6 +5,7 @@ mod attitude;
 mod calibrate;
 mod dry_run;
 mod imu;
+mod ins;
 mod monitor;
 mod od;
 mod receive;
@@ -68,6 +69,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         },
         Command::Attitude { args } => attitude::attitude(&args),
         Command::Od { args } => od::od(&args),
+        Command::Ins { args } => ins::ins(&args),
         Command::Relnav { args } => relnav::relnav(&args),
         Command::Receive { args } => receive::receive(&args),
         Command::Ambiguity {
@@ -184,6 +186,19 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
             &truth,
             &orbit,
             settle_s,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
+        Command::Validate {
+            suite:
+                ValidateSuite::Ins {
+                    truth,
+                    ins,
+                    json,
+                    force,
+                },
+        } => validate::ins(
+            &truth,
+            &ins,
             validate::JsonOut::new(json.as_deref(), force)?,
         ),
         Command::Validate {

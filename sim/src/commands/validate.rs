@@ -5,6 +5,8 @@ use crate::output::staged_dir::StagedDir;
 use crate::output::whole_file;
 use anyhow::Context;
 use hifitime::Epoch;
+use skyforge_formats::imu::{IMU_H5, read_h5};
+use skyforge_formats::ins::{INS_CSV, read_ins_csv};
 use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
 use skyforge_formats::orbit::ORBIT_H5;
 use skyforge_formats::relative::{RELATIVE_CSV, RELNAV_CSV};
@@ -13,6 +15,7 @@ use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
+use skyforge_validate::ins::{compare_ins, print_ins};
 use skyforge_validate::integrity::{check_same_run, print_score, run_scenario, score};
 use skyforge_validate::observables::compare::{
     CompareOptions, SampleSpan, SignalComparison, compare_signals,
@@ -307,6 +310,16 @@ pub fn relnav(truth: &Path, relnav: &Path, settle_s: f64, json: JsonOut<'_>) -> 
 
 /// Compare `skyforge od`'s orbit in `orbit` with the truth of the run in `truth`, print
 /// the table and optionally write the JSON.
+/// `validate ins`: `INSDIR/ins.csv` against `SIMDIR/imu.h5`.
+pub fn ins(truth: &Path, ins: &Path, json: JsonOut<'_>) -> anyhow::Result<()> {
+    let bad = |e: String| BadInput(e);
+    let rows = read_ins_csv(&ins.join(INS_CSV)).map_err(|e| bad(e.to_string()))?;
+    let imu = read_h5(&truth.join(IMU_H5)).map_err(|e| bad(e.to_string()))?;
+    let comparison = compare_ins(&rows, &imu).map_err(bad)?;
+    print_ins(&comparison, &mut std::io::stdout().lock())?;
+    json.write(&comparison)
+}
+
 pub fn od(truth: &Path, orbit: &Path, settle_s: f64, json: JsonOut<'_>) -> anyhow::Result<()> {
     check_settle(settle_s)?;
     let comparison = compare_orbit(&truth.join(TRUTH_H5), &orbit.join(ORBIT_H5), settle_s)

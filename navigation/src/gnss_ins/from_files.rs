@@ -1,0 +1,238 @@
+//! GNSS/INS from files, as a post-processing receiver would run it: the IMU's increments
+//! and one antenna's observations with the broadcast navigation data. The INS aligns on
+//! a static start (coarse alignment over `alignment_s`, its position the mean of the
+//! fixes meanwhile), then the loosely coupled filter takes a single-point fix and Doppler
+//! velocity at every observation epoch, except inside the configured GNSS outages (fixes
+//! dropped on purpose, to measure how the INS bridges them).
+//!
+//! A fix's covariance comes from its geometry: the per-satellite range sigma `uere_m`
+//! (and `range_rate_sigma_mps` for the velocity) times the horizontal and vertical DOP,
+//! NED-diagonal, rotated to ECEF. Errors common to successive fixes (satellite orbits
+//! and clocks, the ionosphere the broadcast model leaves) are not white: the filter
+//! treats them as if they were.
+
+use super::config::{IntegrationError, LooselyCoupledConfig};
+use super::filter::LooselyCoupled;
+use super::fix::GnssFix;
+use crate::ins::{InsError, InsState, coarse_alignment, static_means};
+use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
+use hifitime::Duration;
+use skyforge_gnss::imu::ImuIncrement;
+use skyforge_gnss::observation::{ObsEpoch, ObsFile};
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
+use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
+use skyforge_orbits::time::TimeOrigin;
+use skyforge_orbits::{Mat3, Vec3};
+
+/// GNSS outages made on purpose: from `first_s` after the alignment, `length_s` without
+/// fixes every `every_s`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Outages {
+    /// Start of the first outage after the end of the alignment (s).
+    pub first_s: f64,
+    /// Period (s).
+    pub every_s: f64,
+    /// Length of each (s), less than the period.
+    pub length_s: f64,
+}
+
+impl Outages {
+    /// Whether `t_s` after the alignment lies inside an outage.
+    fn covers(&self, t_s: f64) -> bool {
+        let into = t_s - self.first_s;
+        into >= 0.0 && into % self.every_s < self.length_s
+    }
+}
+
+/// Settings of [`loosely_coupled_from_files`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FromFilesConfig {
+    /// The filter.
+    pub filter: LooselyCoupledConfig,
+    /// The static start the INS aligns on (s from the first IMU record).
+    pub alignment_s: f64,
+    /// A range's 1-sigma error (m), for the fixes' position covariance.
+    pub uere_m: f64,
+    /// A range rate's 1-sigma error (m/s), for their velocity covariance.
+    pub range_rate_sigma_mps: f64,
+    /// Satellites below this elevation are not used (deg).
+    pub elevation_mask_deg: f64,
+    /// GNSS outages made on purpose, if any.
+    pub outages: Option<Outages>,
+}
+
+/// The navigation solution at one observation epoch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InsSolution {
+    /// The IMU's state (its time the epoch's, within one IMU interval).
+    pub state: InsState,
+    /// 1-sigma position error (north, east, down; m) from the filter's covariance.
+    pub sigma_ned_m: Vec3,
+    /// Whether a GNSS fix updated the filter at this epoch.
+    pub gnss: bool,
+    /// Whether the epoch lies inside an outage made on purpose.
+    pub in_outage: bool,
+}
+
+/// What a run made.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InsRun {
+    /// The state the alignment found, at its end.
+    pub aligned: InsState,
+    /// One solution per observation epoch after the alignment.
+    pub solutions: Vec<InsSolution>,
+    /// Epochs with no fix (too few satellites, no convergence).
+    pub no_fix: usize,
+}
+
+/// Why a run could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InsRunError {
+    /// Too little input to start.
+    #[error("{0}")]
+    Input(String),
+    /// The filter refused its settings or a record.
+    #[error(transparent)]
+    Filter(#[from] IntegrationError),
+}
+
+impl From<InsError> for InsRunError {
+    fn from(e: InsError) -> Self {
+        Self::Filter(IntegrationError::Ins(e))
+    }
+}
+
+/// A fix with its Doppler velocity at `epoch`, if one can be made.
+fn gnss_fix(
+    epoch: &ObsEpoch,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    pvt: &PvtConfig,
+    config: &FromFilesConfig,
+) -> Option<GnssFix> {
+    let meas: Vec<Measurement> = epoch
+        .sats
+        .iter()
+        .filter_map(Measurement::of_record)
+        .collect();
+    let tag_s = origin.seconds_since_start(epoch.time);
+    let fix = solve(&meas, tag_s, store, origin, pvt, None).ok()?;
+    let velocity = solve_velocity(&meas, tag_s, store, &fix).ok();
+    let covariance = |sigma: f64| dop_covariance(&fix, sigma);
+    Some(GnssFix {
+        t: origin.epoch_at(fix.t_s),
+        r_ecef_m: fix.r_ecef_m,
+        r_cov_m2: covariance(config.uere_m),
+        v_ecef_mps: velocity.map(|v| (v.v_ecef_mps, covariance(config.range_rate_sigma_mps))),
+    })
+}
+
+/// `sigma^2` times the squared DOPs: half the HDOP's square on each horizontal axis, the
+/// VDOP's square vertically, rotated from NED to ECEF.
+fn dop_covariance(fix: &Fix, sigma: f64) -> Mat3 {
+    let g = ecef_to_geodetic(&fix.r_ecef_m);
+    let c_ned_ecef = c_ecef_ned(g.lat_rad, g.lon_rad).transpose();
+    let h = 0.5 * (sigma * fix.dop.hdop).powi(2);
+    let ned = Mat3::from_diagonal(&Vec3::new(h, h, (sigma * fix.dop.vdop).powi(2)));
+    c_ned_ecef * ned * c_ned_ecef.transpose()
+}
+
+/// The 1-sigma position errors north, east, down of `filter`.
+fn sigma_ned(filter: &LooselyCoupled) -> Vec3 {
+    let s = filter.state();
+    let g = ecef_to_geodetic(&s.r_ecef_m);
+    let c = c_ecef_ned(g.lat_rad, g.lon_rad);
+    let p = filter.covariance().fixed_view::<3, 3>(0, 0).into_owned();
+    (c * p * c.transpose()).diagonal().map(f64::sqrt)
+}
+
+/// The INS aligned on the static start: attitude from the increments' means, position the
+/// mean of the antenna fixes minus the lever arm, at rest, at the last aligning record.
+fn align(
+    increments: &[ImuIncrement],
+    fixes: &[GnssFix],
+    config: &FromFilesConfig,
+) -> Result<(InsState, usize), InsRunError> {
+    let start = increments
+        .first()
+        .map(|i| i.t_end - Duration::from_seconds(i.dt_s))
+        .ok_or_else(|| InsRunError::Input("the IMU file holds no record".into()))?;
+    let end = start + Duration::from_seconds(config.alignment_s);
+    let n = increments.iter().take_while(|i| i.t_end <= end).count();
+    let during: Vec<&GnssFix> = fixes.iter().filter(|f| f.t <= end).collect();
+    if n == 0 || during.is_empty() {
+        return Err(InsRunError::Input(format!(
+            "no IMU record or no GNSS fix in the {} s alignment from {start}",
+            config.alignment_s
+        )));
+    }
+    let antenna = during.iter().map(|f| f.r_ecef_m).sum::<Vec3>() / during.len() as f64;
+    let means = static_means(&increments[..n])?;
+    let c = coarse_alignment(
+        &means.f_body_mps2,
+        &means.w_body_rps,
+        &ecef_to_geodetic(&antenna),
+    )?;
+    let r = antenna - c * config.filter.lever_arm_body_m;
+    Ok((InsState::at_rest(increments[n - 1].t_end, r, c), n))
+}
+
+/// The loosely coupled solution from the IMU's `increments` (in time order) and one
+/// antenna's observations `obs` with the navigation data.
+pub fn loosely_coupled_from_files(
+    increments: &[ImuIncrement],
+    obs: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    config: &FromFilesConfig,
+) -> Result<InsRun, InsRunError> {
+    config.filter.check()?;
+    let first = obs
+        .epochs
+        .first()
+        .ok_or_else(|| InsRunError::Input(format!("{}: no epoch", obs.source.display())))?;
+    let origin = TimeOrigin::new(first.time);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let pvt = PvtConfig {
+        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        ..PvtConfig::default()
+    };
+    let fixes: Vec<Option<GnssFix>> = (obs.epochs.iter())
+        .map(|e| gnss_fix(e, &store, &origin, &pvt, config))
+        .collect();
+    let made: Vec<GnssFix> = fixes.iter().flatten().copied().collect();
+    let (initial, aligned_records) = align(increments, &made, config)?;
+    let mut filter = LooselyCoupled::new(initial, config.filter)?;
+    let mut run = InsRun {
+        aligned: initial,
+        solutions: Vec::new(),
+        no_fix: fixes.iter().filter(|f| f.is_none()).count(),
+    };
+    // Each epoch at its fix's time (the receiver clock removed), or its tag without one.
+    let mut epochs = (obs.epochs.iter().zip(&fixes))
+        .map(|(e, f)| (f.map_or(e.time, |f| f.t), *f))
+        .skip_while(|(t, _)| *t <= initial.t)
+        .peekable();
+    for inc in &increments[aligned_records..] {
+        filter.propagate(inc)?;
+        let half = Duration::from_seconds(inc.dt_s / 2.0);
+        while let Some((t, fix)) = epochs.next_if(|(t, _)| *t <= filter.state().t + half) {
+            let in_outage =
+                (config.outages).is_some_and(|o| o.covers((t - initial.t).to_seconds()));
+            let usable = fix.filter(|_| !in_outage);
+            if let Some(f) = usable {
+                filter.update(&f)?;
+            }
+            run.solutions.push(InsSolution {
+                state: *filter.state(),
+                sigma_ned_m: sigma_ned(&filter),
+                gnss: usable.is_some(),
+                in_outage,
+            });
+        }
+    }
+    Ok(run)
+}

@@ -1,0 +1,165 @@
+//! `skyforge ins`: an IMU file and one antenna's observations with the navigation data
+//! into the loosely coupled GNSS/INS filter (`navigation::gnss_ins`), written to
+//! `DIR/ins.csv` (`formats::ins`).
+
+use crate::bad_input::BadInput;
+use crate::cli::InsArgs;
+use crate::output::staged_dir::StagedDir;
+use anyhow::Context;
+use skyforge_formats::ins::{INS_CSV, write_ins_csv};
+use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
+use skyforge_navigation::gnss_ins::{
+    FromFilesConfig, ImuNoise, InsRun, LooselyCoupledConfig, Outages, loosely_coupled_from_files,
+};
+use skyforge_orbits::Vec3;
+use skyforge_orbits::constants::OMEGA_E_GPS;
+use skyforge_signals::imu::{
+    AccelSpec, BOOK_TABLE_3_1, CONSUMER, GyroSpec, NAVIGATION, TACTICAL, TriadErrors,
+};
+
+/// A range's error for the fixes' covariance (m). # assumed: single-frequency
+/// single-point ranging with the broadcast ionosphere, a few metres.
+const UERE_M: f64 = 2.0;
+/// A Doppler range rate's error (m/s). # assumed: a few centimetres per second.
+const RANGE_RATE_SIGMA_MPS: f64 = 0.05;
+/// Elevation mask (deg). # assumed: the usual 10 degrees.
+const ELEVATION_MASK_DEG: f64 = 10.0;
+/// Standard gravity (m/s^2).
+const G0: f64 = 9.806_65;
+
+/// The grade's data-sheet errors.
+fn grade(name: &str) -> Result<(GyroSpec, AccelSpec), BadInput> {
+    Ok(match name {
+        "navigation" => NAVIGATION,
+        "tactical" => TACTICAL,
+        "consumer" => CONSUMER,
+        "book-table-3-1" => BOOK_TABLE_3_1,
+        other => {
+            return Err(BadInput(format!(
+                "--grade {other:?}: one of navigation, tactical, consumer, book-table-3-1"
+            )));
+        }
+    })
+}
+
+/// The filter's model of a triad: white noise, and the bias as a constant (no
+/// instability) or a Gauss-Markov process of the instability's correlation time with the
+/// turn-on and instability sigmas combined.
+fn noise((gyro, accel): (GyroSpec, AccelSpec)) -> ImuNoise {
+    let (g, a) = (TriadErrors::from(gyro), TriadErrors::from(accel));
+    let tau = |t: &TriadErrors| (t.instability > 0.0).then_some(t.instability_tau_s);
+    ImuNoise {
+        gyro_arw: g.density,
+        accel_vrw: a.density,
+        gyro_bias: g.bias.hypot(g.instability),
+        gyro_bias_tau_s: tau(&g),
+        accel_bias: a.bias.hypot(a.instability),
+        accel_bias_tau_s: tau(&a),
+    }
+}
+
+/// The run's settings from the arguments: the grade's noise, and initial errors a static
+/// alignment of that grade leaves (three times the tilt an accelerometer bias makes and
+/// the heading a gyro bias makes at 45 degrees latitude, with floors).
+fn config(args: &InsArgs) -> Result<FromFilesConfig, BadInput> {
+    let imu = noise(grade(&args.grade)?);
+    let outages = match args.outages.as_deref() {
+        None => None,
+        Some(&[first_s, every_s, length_s]) => {
+            if !(first_s >= 0.0 && every_s > 0.0 && length_s > 0.0 && length_s < every_s) {
+                return Err(BadInput(format!(
+                    "--outages {first_s},{every_s},{length_s}: FIRST >= 0 and 0 < LENGTH < EVERY (s)"
+                )));
+            }
+            Some(Outages {
+                first_s,
+                every_s,
+                length_s,
+            })
+        }
+        Some(other) => return Err(BadInput(format!("--outages {other:?}: three numbers"))),
+    };
+    if !(args.alignment_s > 0.0 && args.alignment_s <= 3600.0) {
+        return Err(BadInput(format!(
+            "--alignment-s {}: in (0, 3600] s",
+            args.alignment_s
+        )));
+    }
+    if args.lever_arm.len() != 3 {
+        return Err(BadInput(format!(
+            "--lever-arm {:?}: three numbers X,Y,Z (m)",
+            args.lever_arm
+        )));
+    }
+    let gyrocompass = OMEGA_E_GPS * std::f64::consts::FRAC_1_SQRT_2;
+    Ok(FromFilesConfig {
+        filter: LooselyCoupledConfig {
+            imu,
+            lever_arm_body_m: Vec3::from_column_slice(&args.lever_arm),
+            initial_position_m: UERE_M,
+            initial_velocity_mps: 0.01,
+            initial_tilt_rad: (3.0 * imu.accel_bias / G0).max(1e-4),
+            initial_heading_rad: (3.0 * imu.gyro_bias / gyrocompass).clamp(1e-3, 0.5),
+        },
+        alignment_s: args.alignment_s,
+        uere_m: UERE_M,
+        range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
+        elevation_mask_deg: ELEVATION_MASK_DEG,
+        outages,
+    })
+}
+
+/// The IMU file's increments.
+fn read_imu(args: &InsArgs) -> anyhow::Result<Vec<ImuIncrement>> {
+    let path = &args.imu;
+    let bad = |e: skyforge_gnss::imu::ImuTextError| BadInput(e.to_string());
+    if path.extension().is_some_and(|e| e == "csv") {
+        return Ok(read_csv(path).map_err(bad)?);
+    }
+    let (Some(week), Some(rate)) = (args.gps_week, args.imu_rate_hz) else {
+        return Err(BadInput(format!(
+            "{}: a KF-GINS file needs --gps-week and --imu-rate-hz (it holds neither)",
+            path.display()
+        ))
+        .into());
+    };
+    if !(rate.is_finite() && (1.0..=10_000.0).contains(&rate)) {
+        return Err(BadInput(format!("--imu-rate-hz {rate}: in [1, 10000] Hz")).into());
+    }
+    Ok(read_kf_gins(path, week, 1.0 / rate).map_err(bad)?)
+}
+
+/// Run `skyforge ins`.
+pub fn ins(args: &InsArgs) -> anyhow::Result<()> {
+    let config = config(args)?;
+    let increments = read_imu(args)?;
+    let file = super::read_observations(&args.file)?;
+    let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
+    let run = loosely_coupled_from_files(&increments, &file, ephemerides, &iono, &config)
+        .map_err(|e| BadInput(e.to_string()))?;
+    let staged = StagedDir::create(&args.out, args.force)?;
+    let path = staged.file(INS_CSV);
+    write_ins_csv(&path, &run.solutions).with_context(|| format!("writing {}", path.display()))?;
+    let dir = staged.commit()?;
+    print_summary(&run, increments.len());
+    println!("wrote      {}", dir.join(INS_CSV).display());
+    Ok(())
+}
+
+fn print_summary(run: &InsRun, records: usize) {
+    let updated = run.solutions.iter().filter(|s| s.gnss).count();
+    let hidden = run.solutions.iter().filter(|s| s.in_outage).count();
+    let attitude = run.aligned.attitude_ned();
+    println!(
+        "aligned    at {}: yaw {:.3} pitch {:.3} roll {:.3} deg",
+        run.aligned.t,
+        attitude.yaw_rad.to_degrees(),
+        attitude.pitch_rad.to_degrees(),
+        attitude.roll_rad.to_degrees()
+    );
+    println!(
+        "solutions  {} from {records} IMU records: {updated} updated by a fix, {hidden} in outages, {} epochs without a fix",
+        run.solutions.len(),
+        run.no_fix
+    );
+}

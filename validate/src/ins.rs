@@ -1,0 +1,144 @@
+//! `skyforge validate ins`: a GNSS/INS solution (`ins.csv`) against the IMU's truth
+//! (`imu.h5`): position errors while GNSS updates the filter, and the drift over each
+//! GNSS outage made on purpose, `|e(end) - e(start)|` between the last updated epoch
+//! before the outage and its last epoch (how far the INS alone wandered, whatever the
+//! GNSS fixes' own error when it began).
+
+use serde::Serialize;
+use skyforge_formats::imu::ImuH5;
+use skyforge_formats::ins::InsRow;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
+
+/// One outage's drift.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OutageDrift {
+    /// Seconds from the first solution to the outage's start and end.
+    pub start_s: f64,
+    pub end_s: f64,
+    /// The drift (m): 3-D and horizontal.
+    pub drift_3d_m: f64,
+    pub drift_horizontal_m: f64,
+}
+
+/// The comparison.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct InsComparison {
+    /// Solutions compared, and how many of them a fix updated.
+    pub epochs: usize,
+    pub updated: usize,
+    /// RMS of the 3-D and horizontal position errors over the updated epochs (m).
+    pub rms_3d_m: f64,
+    pub rms_horizontal_m: f64,
+    /// Every complete outage, in order.
+    pub outages: Vec<OutageDrift>,
+}
+
+impl InsComparison {
+    /// RMS over the outages of their 3-D drift (m); `None` without outages.
+    pub fn rms_outage_drift_3d_m(&self) -> Option<f64> {
+        let n = self.outages.len();
+        (n > 0).then(|| {
+            (self
+                .outages
+                .iter()
+                .map(|o| o.drift_3d_m.powi(2))
+                .sum::<f64>()
+                / n as f64)
+                .sqrt()
+        })
+    }
+}
+
+/// The position error (ECEF, m) of `row` against the truth row of its time.
+fn position_error(row: &InsRow, truth: &ImuH5) -> Result<Vec3, String> {
+    let t_s = (row.t - truth.start).to_seconds();
+    let k = truth.rows.partition_point(|r| r.t_s < t_s - 1e-6);
+    match truth.rows.get(k) {
+        Some(r) if (r.t_s - t_s).abs() <= 1e-6 => Ok(row.r_ecef_m - r.r_ecef_m),
+        _ => Err(format!(
+            "no truth sample at {} ({t_s} s into imu.h5)",
+            row.t
+        )),
+    }
+}
+
+/// The horizontal part of `e` at `r`.
+fn horizontal(e: &Vec3, r: &Vec3) -> f64 {
+    let g = ecef_to_geodetic(r);
+    let ned = c_ecef_ned(g.lat_rad, g.lon_rad) * e;
+    ned.x.hypot(ned.y)
+}
+
+/// Compares `rows` with `truth`, which must hold a sample at every row's time.
+pub fn compare_ins(rows: &[InsRow], truth: &ImuH5) -> Result<InsComparison, String> {
+    let first = rows.first().ok_or("ins.csv holds no solution")?;
+    let errors: Vec<Vec3> = rows
+        .iter()
+        .map(|r| position_error(r, truth))
+        .collect::<Result<_, _>>()?;
+    let updated: Vec<usize> = (0..rows.len()).filter(|&k| rows[k].gnss).collect();
+    let mean_square = |f: &dyn Fn(usize) -> f64| {
+        (updated.iter().map(|&k| f(k).powi(2)).sum::<f64>() / updated.len().max(1) as f64).sqrt()
+    };
+    let mut outages = Vec::new();
+    let mut k = 0;
+    while k < rows.len() {
+        if !rows[k].outage || k == 0 {
+            k += 1;
+            continue;
+        }
+        let start = k - 1;
+        let end = (k..rows.len())
+            .take_while(|&j| rows[j].outage)
+            .last()
+            .unwrap_or(k);
+        if end + 1 < rows.len() {
+            let d = errors[end] - errors[start];
+            let since = |j: usize| (rows[j].t - first.t).to_seconds();
+            outages.push(OutageDrift {
+                start_s: since(start),
+                end_s: since(end),
+                drift_3d_m: d.norm(),
+                drift_horizontal_m: horizontal(&d, &rows[end].r_ecef_m),
+            });
+        }
+        k = end + 1;
+    }
+    Ok(InsComparison {
+        epochs: rows.len(),
+        updated: updated.len(),
+        rms_3d_m: mean_square(&|k| errors[k].norm()),
+        rms_horizontal_m: mean_square(&|k| horizontal(&errors[k], &rows[k].r_ecef_m)),
+        outages,
+    })
+}
+
+/// The comparison as text.
+pub fn print_ins(c: &InsComparison, out: &mut impl std::io::Write) -> std::io::Result<()> {
+    writeln!(
+        out,
+        "epochs     {} ({} updated by a GNSS fix)",
+        c.epochs, c.updated
+    )?;
+    writeln!(
+        out,
+        "position   RMS 3-D {:.3} m, horizontal {:.3} m (updated epochs)",
+        c.rms_3d_m, c.rms_horizontal_m
+    )?;
+    for o in &c.outages {
+        writeln!(
+            out,
+            "outage     {:.1}-{:.1} s: drift 3-D {:.3} m, horizontal {:.3} m",
+            o.start_s, o.end_s, o.drift_3d_m, o.drift_horizontal_m
+        )?;
+    }
+    if let Some(rms) = c.rms_outage_drift_3d_m() {
+        writeln!(
+            out,
+            "outages    {} complete, RMS of the 3-D drift {rms:.3} m",
+            c.outages.len()
+        )?;
+    }
+    Ok(())
+}
