@@ -13,6 +13,7 @@ mod geometry_run;
 pub(crate) mod loop_budget;
 pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
+pub(crate) mod pure_ins;
 pub(crate) mod relative_navigation;
 pub(crate) mod relnav_common;
 pub(crate) mod relnav_events;
@@ -34,6 +35,7 @@ use std::path::{Path, PathBuf};
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
     "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5", "B-5.6",
+    "P1-S",
 ];
 
 /// Why a validation could not run.
@@ -265,6 +267,13 @@ const UNITS: &[Unit] = &[
             rows.extend(relnav_events::rows(draw)?);
             Ok(rows)
         },
+        figures: None,
+    },
+    Unit {
+        tables: &[pure_ins::TABLE],
+        kind: Kind::MonteCarlo,
+        scenarios: &[],
+        evaluate: |_, _, draw| pure_ins::rows(draw),
         figures: None,
     },
 ];
