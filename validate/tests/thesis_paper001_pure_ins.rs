@@ -32,6 +32,10 @@ fn p1_s_pure_ins_errors_are_the_papers_within_a_factor_3() {
         assert_eq!(r.table, "P1-S");
         let v = r.ours.unwrap();
         assert!(v.is_finite() && v > 0.0, "{r:?}");
-        assert_eq!(r.verdict, Verdict::Reproduced, "no longer the recorded pass: {r:?}");
+        assert_eq!(
+            r.verdict,
+            Verdict::Reproduced,
+            "no longer the recorded pass: {r:?}"
+        );
     }
 }
