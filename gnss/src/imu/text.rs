@@ -325,10 +325,7 @@ impl<R: BufRead> Iterator for CsvReader<R> {
 
     /// The next record; after an error, none.
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let next = self.next_record();
+        let next = (!self.failed).then(|| self.next_record())?;
         self.failed = next.is_err();
         next.transpose()
     }
@@ -435,10 +432,7 @@ impl<R: BufRead> Iterator for KfGinsReader<R> {
 
     /// The next record; after an error, none.
     fn next(&mut self) -> Option<Self::Item> {
-        if self.failed {
-            return None;
-        }
-        let next = self.next_record();
+        let next = (!self.failed).then(|| self.next_record())?;
         self.failed = next.is_err();
         next.transpose()
     }
