@@ -64,6 +64,9 @@ pub enum IntegrationError {
         /// What is wrong.
         what: &'static str,
     },
+    /// Time-differenced carrier phase could not be formed.
+    #[error("time-differenced carrier phase: {0}")]
+    Tdcp(String),
     /// A fix more than one IMU interval away from the INS's time.
     #[error(
         "GNSS fix at {t} is {offset_s} s from the INS time {ins_t}; update at most one IMU interval away"

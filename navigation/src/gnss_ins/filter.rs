@@ -6,6 +6,8 @@ use super::config::{IntegrationError, LooselyCoupledConfig};
 use super::error_state::{ACC, ATT, GYR, Mat15, POS, STATES, VEL, Vec15, skew, transition};
 use super::fix::GnssFix;
 use crate::ins::InsState;
+use crate::tdcp::ImuPose;
+use hifitime::Epoch;
 use nalgebra::{DMatrix, DVector, SMatrix};
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_orbits::gravity::earth_rate_ecef;
@@ -21,6 +23,14 @@ pub struct Update {
     pub nis: f64,
     /// Its degrees of freedom (3, or 6 with velocity).
     pub dof: usize,
+}
+
+/// Measurement rows for the error state: `y = H x + v`, `v ~ N(0, R)`, `y` predicted
+/// minus measured.
+pub(crate) struct Rows {
+    pub h: DMatrix<f64>,
+    pub y: DVector<f64>,
+    pub r: DMatrix<f64>,
 }
 
 /// The loosely coupled filter (Groves 2013 sec. 14.3.1).
@@ -122,7 +132,7 @@ impl LooselyCoupled {
     pub fn update(&mut self, fix: &GnssFix) -> Result<Update, IntegrationError> {
         check_fix(fix)?;
         let offset_s = (fix.t - self.ins.t).to_seconds();
-        let step = self.prev.map_or(0.0, |p| p.dt_s);
+        let step = self.step_s();
         if offset_s.abs() > step + 1e-6 {
             return Err(IntegrationError::FixOutOfStep {
                 t: fix.t,
@@ -131,25 +141,51 @@ impl LooselyCoupled {
             });
         }
         let (h, z, r) = self.measurement(fix, offset_s);
-        let s = &h * to_dynamic(&self.p) * h.transpose() + &r;
-        let bad = |what| IntegrationError::BadFix { t: fix.t, what };
-        let s_inv = s
-            .clone()
-            .cholesky()
-            .ok_or_else(|| bad("innovation covariance not positive definite"))?
-            .inverse();
+        self.apply(Rows { h, y: z, r }, fix.t)
+    }
+
+    /// The Kalman update on `rows` (Joseph form), then the closed-loop correction;
+    /// `t` names the measurement in errors.
+    pub(crate) fn apply(&mut self, rows: Rows, t: Epoch) -> Result<Update, IntegrationError> {
+        let Rows { h, y, r } = rows;
         let p = to_dynamic(&self.p);
+        let s = &h * &p * h.transpose() + &r;
+        let s_inv = s
+            .cholesky()
+            .ok_or(IntegrationError::BadFix {
+                t,
+                what: "innovation covariance not positive definite",
+            })?
+            .inverse();
         let k = &p * h.transpose() * &s_inv;
         let i_kh = DMatrix::identity(STATES, STATES) - &k * &h;
         let p_new = &i_kh * p * i_kh.transpose() + &k * r * k.transpose();
-        let x = &k * &z;
+        let x = &k * &y;
         self.p = Mat15::from_fn(|i, j| 0.5 * (p_new[(i, j)] + p_new[(j, i)]));
         self.feed_back(&Vec15::from_iterator(x.iter().copied()));
         Ok(Update {
-            nis: (z.transpose() * &s_inv * &z)[(0, 0)],
-            dof: z.len(),
-            innovation: z,
+            nis: (y.transpose() * &s_inv * &y)[(0, 0)],
+            dof: y.len(),
+            innovation: y,
         })
+    }
+
+    /// The IMU's pose now.
+    pub fn pose(&self) -> ImuPose {
+        ImuPose {
+            r_ecef_m: self.ins.r_ecef_m,
+            c_body_ecef: self.ins.c_body_ecef,
+        }
+    }
+
+    /// The lever arm from the IMU to the antenna (body, m).
+    pub fn lever_arm(&self) -> Vec3 {
+        self.config.lever_arm_body_m
+    }
+
+    /// The time of the last IMU interval (s; 0 before the first).
+    pub(crate) fn step_s(&self) -> f64 {
+        self.prev.map_or(0.0, |p| p.dt_s)
     }
 
     /// The measurement matrix, innovations and noise covariance of `fix`, `offset_s`

@@ -14,12 +14,15 @@
 
 #![warn(missing_docs)]
 
+mod carrier_aiding;
 mod config;
 mod error_state;
 mod filter;
 mod fix;
 mod from_files;
 
+#[cfg(test)]
+mod carrier_tests;
 #[cfg(test)]
 mod tests;
 

@@ -80,7 +80,7 @@ mod lever_arm;
 mod records;
 mod single_difference;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;
 
 pub use config::TdcpConfig;
 pub use displacement::{Displacement, Solver, solve, solve_double, solve_single};

@@ -8,4 +8,4 @@ mod files;
 mod lever_arm;
 mod noise;
 mod solutions;
-mod world;
+pub(crate) mod world;

@@ -13,12 +13,12 @@ use skyforge_orbits::frames::{Geodetic, c_ecef_ned, geodetic_to_ecef};
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_orbits::{Mat3, Vec3};
 
-pub(super) const SIGNAL: Signal = Signal::GpsL1Ca;
+pub(crate) const SIGNAL: Signal = Signal::GpsL1Ca;
 /// Satellites above this elevation are recorded (deg): some fall below the 10 deg mask.
 const HORIZON_DEG: f64 = 5.0;
 const CLOCK_OFFSET_S: f64 = 1e-4;
 
-pub(super) struct World {
+pub(crate) struct World {
     pub start: Epoch,
     pub origin: TimeOrigin,
     pub ephemerides: Vec<BroadcastEphemeris>,
@@ -109,6 +109,6 @@ impl World {
 }
 
 /// No noise.
-pub(super) fn quiet(_: f64) -> f64 {
+pub(crate) fn quiet(_: f64) -> f64 {
     0.0
 }
