@@ -18,4 +18,7 @@ mod chain;
 mod run;
 
 pub use chain::{ChainError, ChainOutput, StreamSinks, StreamedChain, synth_and_receive};
-pub use run::{ObservationRun, PositionFix, RunError, observation_run, run_at_level, signal_run};
+pub use run::{
+    ObservationRun, PositionFix, RunError, observation_run, run_at_level, signal_run,
+    signal_run_with,
+};

@@ -366,6 +366,19 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
 /// `receiver.toml` with the rounded start state) and nothing else. A receiver that finds
 /// no signal leaves the run without observations.
 pub fn signal_run(scenario: &Scenario) -> Result<ObservationRun, RunError> {
+    signal_run_with(scenario, "")
+}
+
+/// [`signal_run`] with the receiver also given `receiver_toml`: tables of its
+/// configuration file (`skyforge receive --config`, docs/receiver.md) beside the `[assist]`
+/// table `synth` writes, as a user adds them to `receiver.toml` before `skyforge synth
+/// --receive --receiver-config` (e.g. `[observables]\nrate_hz = 10.0` for 10 Hz
+/// observables). A table the configuration does not know, a value out of its range or a
+/// second `[assist]` is an error.
+pub fn signal_run_with(
+    scenario: &Scenario,
+    receiver_toml: &str,
+) -> Result<ObservationRun, RunError> {
     let signal = &whole_second_truth(scenario)?;
     let mut world = scenario.build()?;
     let mut run = unmade(&world);
@@ -385,8 +398,9 @@ pub fn signal_run(scenario: &Scenario) -> Result<ObservationRun, RunError> {
             error: e,
         })?;
     let (r, v) = session.start_state()?;
-    let (config, approximate) = parse_config(&assistance_toml(&r, &v), "receiver.toml (in memory)")
-        .map_err(ChainError::Receive)?;
+    let text = format!("{}\n{receiver_toml}", assistance_toml(&r, &v));
+    let (config, approximate) =
+        parse_config(&text, "receiver.toml (in memory)").map_err(ChainError::Receive)?;
     let assistance = Assistance {
         nav: Some(NavSource::Text {
             source: "nav.rnx (in memory)".into(),

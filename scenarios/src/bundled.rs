@@ -171,6 +171,13 @@ const BUNDLED: &[Bundled] = &[
                   orbits, for `skyforge relnav` in mode double-difference",
         text: include_str!("../bundled/grace-relnav.toml"),
     },
+    Bundled {
+        name: "paper001-tdcp-static",
+        summary: "Paper 001 Fig. 2: a static site near Changsha, 300 s, BeiDou B1I from the \
+                  three BDS-3 GEOs, receiver oscillator 1e-7 off frequency, for 10 Hz \
+                  carrier-phase time differences (P1-F2)",
+        text: include_str!("../bundled/paper001-tdcp-static.toml"),
+    },
 ];
 
 /// Every bundled scenario.

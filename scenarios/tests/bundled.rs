@@ -38,7 +38,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "od-leo-dual",
             "book-relnav-leo",
             "book-relnav-events",
-            "grace-relnav"
+            "grace-relnav",
+            "paper001-tdcp-static"
         ]
     );
     for b in bundled() {
@@ -103,6 +104,7 @@ fn every_unstated_value_says_it_is_assumed() {
         "thesis/t-3.2",
         "attitude-leo-gps",
         "attitude-leo-l1-l5",
+        "paper001-tdcp-static",
     ] {
         let text = bundled().iter().find(|b| b.name == name).expect(name).text;
         for key in [

@@ -404,8 +404,11 @@ pub enum ValidateSuite {
     /// (its fault cases, 20 seeds) and P2-PD (detection curves, 1000 runs, minutes), and the
     /// RAIM Monte Carlo B-5.2-1 and B-5.2-2 against Yuan 2000 tables 5-1 and 5-2, and
     /// B-5.5, the book's orbit determination of a LEO (table 5-3, four 2 h runs, seconds),
-    /// and B-5.6, its relative navigation of two spacecraft (four 600 s runs, seconds).
-    /// T-5.4-2 synthesises its
+    /// and B-5.6, its relative navigation of two spacecraft (four 600 s runs, seconds), and
+    /// paper 001's P1-F2 (Fig. 2: the receiver clock in the carrier phase's single
+    /// difference in time, not in the double difference; eight 300 s runs of three GEOs
+    /// synthesised and received at 10 Hz, two minutes) and P1-S (its static SINS alone
+    /// for 2050 s after a static alignment, 20 seeds, seconds). T-5.4-2 synthesises its
     /// bundled scenario (60 s, four recordings, about 2 GB in the temporary directory) and
     /// runs the receiver on it; the attitude tables run observation-level scenarios on
     /// eight seeds (seconds).

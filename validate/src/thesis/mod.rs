@@ -18,6 +18,7 @@ pub(crate) mod relative_navigation;
 pub(crate) mod relnav_common;
 pub(crate) mod relnav_events;
 pub(crate) mod reverse_filter;
+pub(crate) mod tdcp_clock;
 pub(crate) mod visibility;
 pub(crate) mod zero_baseline;
 
@@ -35,7 +36,7 @@ use std::path::{Path, PathBuf};
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
     "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5", "B-5.6",
-    "P1-S",
+    "P1-S", "P1-F2",
 ];
 
 /// Why a validation could not run.
@@ -276,6 +277,13 @@ const UNITS: &[Unit] = &[
         evaluate: |_, _, draw| pure_ins::rows(draw),
         figures: None,
     },
+    Unit {
+        tables: &[tdcp_clock::TABLE],
+        kind: Kind::PerRun,
+        scenarios: &[Source::Bundled(tdcp_clock::SCENARIO)],
+        evaluate: |_, _, draw| tdcp_clock::rows(draw),
+        figures: None,
+    },
 ];
 
 /// A scenario a run used, as `results.json` records it.
@@ -342,6 +350,12 @@ fn source_of(source: Source) -> ScenarioSource {
     }
 }
 
+/// Tables whose runs stream the synthesis into the receiver (`runner::signal_run_with`: two
+/// threads waiting on each other, each parallel inside): under a plan their draws go one at
+/// a time, outside the pool, since draws side by side on the pool's workers would leave no
+/// worker for the synthesis they wait on.
+const ONE_DRAW_AT_A_TIME: &[&str] = &[tdcp_clock::TABLE];
+
 /// One unit's rows under `plan` (`None`: registered seeds) and its figures' data (on its
 /// registered seeds either way).
 fn evaluate_unit(
@@ -358,7 +372,12 @@ fn evaluate_unit(
         (None, _) => eval(Draw::REGISTERED)?,
         (Some(plan), Kind::PerRun) => {
             let draws: Vec<Draw> = plan.each().collect();
-            let rows: Vec<Vec<Row>> = draws.into_par_iter().map(eval).collect::<Result<_, _>>()?;
+            let rows: Vec<Vec<Row>> = if unit.tables.iter().any(|t| ONE_DRAW_AT_A_TIME.contains(t))
+            {
+                draws.into_iter().map(eval).collect::<Result<_, _>>()?
+            } else {
+                draws.into_par_iter().map(eval).collect::<Result<_, _>>()?
+            };
             draw::combine(plan, &rows)
         }
         (Some(plan), kind) => {
