@@ -14,7 +14,7 @@
 
 #![warn(missing_docs)]
 
-mod carrier_aiding;
+mod aiding;
 mod config;
 mod error_state;
 mod filter;
@@ -22,7 +22,7 @@ mod fix;
 mod from_files;
 
 #[cfg(test)]
-mod carrier_tests;
+mod aiding_tests;
 #[cfg(test)]
 mod tests;
 

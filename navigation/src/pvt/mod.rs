@@ -32,7 +32,7 @@ pub use ranging::IonosphereCorrection;
 pub(crate) use ranging::{Ranging, per_satellite};
 pub use smoothing::{CarrierSmoother, CodeAndCarrier, JUMP_SIGMAS, SmoothingConfig};
 pub(crate) use solve::ranging_delay_beyond_tgd_s;
-pub use solve::{solve, solve_with};
+pub use solve::{CodeResidual, code_residuals, solve, solve_with};
 pub use velocity::{records_velocity, solve_velocity};
 
 use skyforge_gnss::signal::Signal;

@@ -54,6 +54,52 @@ pub fn solve(
     )
 }
 
+/// One measurement's code residual at a known receiver position (m): the pseudorange
+/// minus the modelled range, satellite clock, ionosphere and troposphere of `cfg`, so the
+/// receiver clock is left in it. With its unit line of sight and elevation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CodeResidual {
+    pub sat: SatId,
+    pub omc_m: f64,
+    pub los: Vec3,
+    pub el_rad: f64,
+}
+
+/// The code residuals of `meas` received at `t_rx_s` by an antenna at `r` (the fix's
+/// models, satellites above `cfg`'s mask, one ranging per satellite as [`solve`] forms
+/// it): what a filter that knows its position to metres linearises about.
+pub fn code_residuals(
+    meas: &[Measurement],
+    t_rx_s: f64,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    cfg: &PvtConfig,
+    r: &Vec3,
+) -> Vec<CodeResidual> {
+    let ranged = per_satellite(meas, cfg.ionosphere);
+    let usable: Vec<(&Ranging, Transmitted)> = (ranged.iter())
+        .filter_map(|m| {
+            let eph = store.select(m.sat, t_rx_s)?;
+            let tx = FromEphemeris.transmitted(eph, t_rx_s, m.pseudorange_m);
+            Some((m, tx.clock_shifted(ranging_delay_beyond_tgd_s(m, &eph.eph))))
+        })
+        .collect();
+    let (meas, sats): (Vec<&Ranging>, Vec<Transmitted>) = usable.into_iter().unzip();
+    let systems = [System::Gps, System::Beidou, System::Galileo];
+    let clocks = [0.0; 3];
+    linearise(&meas, &sats, t_rx_s, origin, cfg, r, &clocks, &systems)
+        .into_iter()
+        .filter_map(|row| {
+            Some(CodeResidual {
+                sat: row.sat,
+                omc_m: row.omc_m,
+                los: row.view.los,
+                el_rad: row.el_rad?,
+            })
+        })
+        .collect()
+}
+
 /// [`solve`] with the satellites at transmit time taken from `satellites`.
 pub fn solve_with(
     meas: &[Measurement],

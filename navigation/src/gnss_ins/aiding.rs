@@ -1,7 +1,9 @@
-//! Carrier-phase and height aiding of the INS filter, as paper 001 integrates BeiDou with
+//! Measurement updates of the INS filter beyond fixes, as paper 001 integrates BeiDou with
 //! its SINS: time-differenced carrier phase double differences between two epochs
 //! (`crate::tdcp`; paper 001 eqs. (6), (7), (9)-(14) as `BOOK_PAPER001_TARGETS.md`
-//! reconstructs them) and a height constraint (its "altitude aiding").
+//! reconstructs them), a height constraint (its "altitude aiding") and code differences
+//! between satellites (its absolute position from three pseudoranges: the receiver clock
+//! cancels, the height constraint supplies what three satellites cannot).
 //!
 //! A double difference over `[t1, t2]` measures the change of the antenna's position, so
 //! it observes the integral of the velocity error over the interval, approximated as
@@ -13,6 +15,7 @@
 use super::config::IntegrationError;
 use super::error_state::{ATT, POS, STATES, VEL, skew};
 use super::filter::{LooselyCoupled, Rows, Update};
+use crate::pvt::{CodeResidual, Measurement, PvtConfig, code_residuals};
 use crate::tdcp::{ImuPose, LeverArm, TdcpConfig, time_differences_imu};
 use nalgebra::{DMatrix, DVector};
 use skyforge_gnss::observation::ObsEpoch;
@@ -70,6 +73,46 @@ impl LooselyCoupled {
         self.apply(rows, cur.time).map(Some)
     }
 
+    /// Updates with the code of `epoch` (within one IMU interval of the INS's time),
+    /// differenced between satellites so the receiver clock cancels, each pseudorange with
+    /// the error `sigma_m` (`pvt`'s models for the satellite clock, ionosphere and
+    /// troposphere of `pvt_config`); `Ok(None)` with fewer than two satellites.
+    pub fn update_code(
+        &mut self,
+        epoch: &ObsEpoch,
+        store: &EphemerisStore,
+        origin: &TimeOrigin,
+        pvt_config: &PvtConfig,
+        sigma_m: f64,
+    ) -> Result<Option<Update>, IntegrationError> {
+        let state = *self.state();
+        let offset_s = (epoch.time - state.t).to_seconds();
+        if offset_s.abs() > self.step_s() + 1e-6 || !(sigma_m.is_finite() && sigma_m > 0.0) {
+            return Err(IntegrationError::BadFix {
+                t: epoch.time,
+                what: "code epoch more than an IMU interval from the INS, or a bad sigma",
+            });
+        }
+        let c_l = state.c_body_ecef * self.lever_arm();
+        let antenna = state.r_ecef_m + state.v_ecef_mps * offset_s + c_l;
+        let meas: Vec<Measurement> = epoch
+            .sats
+            .iter()
+            .filter_map(Measurement::of_record)
+            .collect();
+        let tag_s = origin.seconds_since_start(epoch.time);
+        let residuals = code_residuals(&meas, tag_s, store, origin, pvt_config, &antenna);
+        let Some((g, y, r)) = code_differences(&residuals, sigma_m) else {
+            return Ok(None);
+        };
+        let n = y.len();
+        let mut h = DMatrix::zeros(n, STATES);
+        h.view_mut((0, POS), (n, 3)).copy_from(&g);
+        h.view_mut((0, ATT), (n, 3))
+            .copy_from(&(-&g * to_dynamic3(&skew(&c_l))));
+        self.apply(Rows { h, y, r }, epoch.time).map(Some)
+    }
+
     /// Updates with the antenna's height above the ellipsoid known to `sigma_m` (a
     /// surveyed site, a lake's surface, a road map).
     pub fn update_height(
@@ -103,6 +146,31 @@ impl LooselyCoupled {
         };
         self.apply(rows, state.t)
     }
+}
+
+/// The code residuals of `epoch` differenced against the highest satellite: `y = -(omc_i -
+/// omc_ref)` with rows `-(e_i - e_ref)^T` on the antenna's position error, covariance
+/// `sigma^2 (I + 1 1^T)`. `None` with fewer than two satellites.
+fn code_differences(
+    residuals: &[CodeResidual],
+    sigma_m: f64,
+) -> Option<(DMatrix<f64>, DVector<f64>, DMatrix<f64>)> {
+    let reference = residuals
+        .iter()
+        .max_by(|a, b| a.el_rad.total_cmp(&b.el_rad))?;
+    let others: Vec<&CodeResidual> = (residuals.iter())
+        .filter(|c| c.sat != reference.sat)
+        .collect();
+    let n = others.len();
+    if n == 0 {
+        return None;
+    }
+    let g = DMatrix::from_fn(n, 3, |i, k| -(others[i].los[k] - reference.los[k]));
+    let y = DVector::from_fn(n, |i, _| -(others[i].omc_m - reference.omc_m));
+    let r = DMatrix::from_fn(n, n, |i, j| {
+        sigma_m.powi(2) * if i == j { 2.0 } else { 1.0 }
+    });
+    Some((g, y, r))
 }
 
 fn to_dynamic3(m: &skyforge_orbits::Mat3) -> DMatrix<f64> {
