@@ -7,8 +7,10 @@
 use serde::Serialize;
 use skyforge_formats::imu::ImuH5;
 use skyforge_formats::ins::InsRow;
+use skyforge_navigation::gnss_ins::ImuNoise;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
+use skyforge_signals::imu::{AccelSpec, GyroSpec, TriadErrors};
 
 /// One outage's drift.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -141,4 +143,21 @@ pub fn print_ins(c: &InsComparison, out: &mut impl std::io::Write) -> std::io::R
         )?;
     }
     Ok(())
+}
+
+/// An INS filter's model of an IMU from its data sheet (a grade's or the user's): white
+/// noise, and each bias a constant (no instability) or a Gauss-Markov process of the
+/// instability's correlation time with the turn-on and instability sigmas combined.
+/// Scale factors and misalignments are left out: errors the filter does not know.
+pub fn filter_noise((gyro, accel): (GyroSpec, AccelSpec)) -> ImuNoise {
+    let (g, a) = (TriadErrors::from(gyro), TriadErrors::from(accel));
+    let tau = |t: &TriadErrors| (t.instability > 0.0).then_some(t.instability_tau_s);
+    ImuNoise {
+        gyro_arw: g.density,
+        accel_vrw: a.density,
+        gyro_bias: g.bias.hypot(g.instability),
+        gyro_bias_tau_s: tau(&g),
+        accel_bias: a.bias.hypot(a.instability),
+        accel_bias_tau_s: tau(&a),
+    }
 }

@@ -139,7 +139,7 @@ fn dop_covariance(fix: &Fix, sigma: f64) -> Mat3 {
 }
 
 /// The 1-sigma position errors north, east, down of `filter`.
-fn sigma_ned(filter: &LooselyCoupled) -> Vec3 {
+pub(crate) fn sigma_ned(filter: &LooselyCoupled) -> Vec3 {
     let s = filter.state();
     let g = ecef_to_geodetic(&s.r_ecef_m);
     let c = c_ecef_ned(g.lat_rad, g.lon_rad);

@@ -20,6 +20,7 @@ mod error_state;
 mod filter;
 mod fix;
 mod from_files;
+mod tdcp_aided;
 
 #[cfg(test)]
 mod aiding_tests;
@@ -33,3 +34,4 @@ pub use fix::GnssFix;
 pub use from_files::{
     FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
 };
+pub use tdcp_aided::{TdcpAidedConfig, tdcp_aided};

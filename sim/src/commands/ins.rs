@@ -9,13 +9,12 @@ use anyhow::Context;
 use skyforge_formats::ins::{INS_CSV, write_ins_csv};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::gnss_ins::{
-    FromFilesConfig, ImuNoise, InsRun, LooselyCoupledConfig, Outages, loosely_coupled_from_files,
+    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, loosely_coupled_from_files,
 };
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::OMEGA_E_GPS;
-use skyforge_signals::imu::{
-    AccelSpec, BOOK_TABLE_3_1, CONSUMER, GyroSpec, NAVIGATION, TACTICAL, TriadErrors,
-};
+use skyforge_signals::imu::{AccelSpec, BOOK_TABLE_3_1, CONSUMER, GyroSpec, NAVIGATION, TACTICAL};
+use skyforge_validate::ins::filter_noise;
 
 /// A range's error for the fixes' covariance (m). # assumed: single-frequency
 /// single-point ranging with the broadcast ionosphere, a few metres.
@@ -42,27 +41,11 @@ fn grade(name: &str) -> Result<(GyroSpec, AccelSpec), BadInput> {
     })
 }
 
-/// The filter's model of a triad: white noise, and the bias as a constant (no
-/// instability) or a Gauss-Markov process of the instability's correlation time with the
-/// turn-on and instability sigmas combined.
-fn noise((gyro, accel): (GyroSpec, AccelSpec)) -> ImuNoise {
-    let (g, a) = (TriadErrors::from(gyro), TriadErrors::from(accel));
-    let tau = |t: &TriadErrors| (t.instability > 0.0).then_some(t.instability_tau_s);
-    ImuNoise {
-        gyro_arw: g.density,
-        accel_vrw: a.density,
-        gyro_bias: g.bias.hypot(g.instability),
-        gyro_bias_tau_s: tau(&g),
-        accel_bias: a.bias.hypot(a.instability),
-        accel_bias_tau_s: tau(&a),
-    }
-}
-
 /// The run's settings from the arguments: the grade's noise, and initial errors a static
 /// alignment of that grade leaves (three times the tilt an accelerometer bias makes and
 /// the heading a gyro bias makes at 45 degrees latitude, with floors).
 fn config(args: &InsArgs) -> Result<FromFilesConfig, BadInput> {
-    let imu = noise(grade(&args.grade)?);
+    let imu = filter_noise(grade(&args.grade)?);
     let outages = match args.outages.as_deref() {
         None => None,
         Some(&[first_s, every_s, length_s]) => {

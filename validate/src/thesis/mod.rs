@@ -13,12 +13,13 @@ mod geometry_run;
 pub(crate) mod loop_budget;
 pub(crate) mod orbit_determination;
 pub(crate) mod pmf_fft;
-pub(crate) mod pure_ins;
 pub(crate) mod relative_navigation;
 pub(crate) mod relnav_common;
 pub(crate) mod relnav_events;
 pub(crate) mod reverse_filter;
+pub(crate) mod static_sins;
 pub(crate) mod tdcp_clock;
+pub(crate) mod tdcp_ins;
 pub(crate) mod visibility;
 pub(crate) mod zero_baseline;
 
@@ -271,10 +272,14 @@ const UNITS: &[Unit] = &[
         figures: None,
     },
     Unit {
-        tables: &[pure_ins::TABLE],
+        tables: &[static_sins::TABLE],
         kind: Kind::MonteCarlo,
-        scenarios: &[],
-        evaluate: |_, _, draw| pure_ins::rows(draw),
+        scenarios: &[Source::Bundled(tdcp_ins::SCENARIO)],
+        evaluate: |_, _, draw| {
+            let mut rows = static_sins::rows(draw)?;
+            rows.extend(tdcp_ins::rows(draw)?);
+            Ok(rows)
+        },
         figures: None,
     },
     Unit {

@@ -1,7 +1,9 @@
-//! P1-S (pure INS): paper 001's static test (`BOOK_PAPER001_TARGETS.md` spec 2, TD-S):
-//! the ring-laser SINS standing on a square in Changsha, aligned, then navigating alone;
-//! at about 2050 s the paper prints its errors: north position about 70 m, east 310 m,
-//! north velocity 0.05 m/s, east 0.33 m/s.
+//! P1-S: paper 001's static test (`BOOK_PAPER001_TARGETS.md` spec 2, TD-S): the
+//! ring-laser SINS standing on a square in Changsha, aligned, then navigating alone (at
+//! about 2050 s the paper prints north position about 70 m, east 310 m, north velocity
+//! 0.05 m/s, east 0.33 m/s) and integrated with the three BeiDou GEOs' time-differenced
+//! carrier phase under an altitude constraint (its integrated standard deviations, maxima,
+//! north/east asymmetry, and the integrated position against the pure INS's).
 //!
 //! **Run** (each seed): the navigation-grade IMU of `signals::imu` (paper 001's gyro
 //! drift 0.005 deg/h as a random constant; the rest of the grade assumed, docs/imu.md)
@@ -21,7 +23,7 @@ use hifitime::{Duration, Epoch};
 use rayon::prelude::*;
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_navigation::ins::{
-    FineAlignmentConfig, InsState, coarse_alignment, fine_alignment, static_means,
+    FineAlignment, FineAlignmentConfig, InsState, coarse_alignment, fine_alignment, static_means,
 };
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::{Geodetic, YawPitchRoll, c_ecef_ned, geodetic_to_ecef};
@@ -57,16 +59,19 @@ const PAPER: [(&str, &str, f64); 4] = [
 const FACTOR: f64 = 3.0;
 
 /// The site's position and the IMU's body-to-ECEF attitude.
-fn site() -> (Geodetic, Vec3, skyforge_orbits::Mat3) {
+pub(crate) fn site() -> (Geodetic, Vec3, skyforge_orbits::Mat3) {
     let g = Geodetic::from_degrees(SITE_DEG.0, SITE_DEG.1, SITE_DEG.2);
     let c_ned_ecef = c_ecef_ned(g.lat_rad, g.lon_rad).transpose();
     let attitude = YawPitchRoll::new(HEADING_DEG.to_radians(), 0.0, 0.0).c_body_ref();
     (g, geodetic_to_ecef(&g), c_ned_ecef * attitude)
 }
 
-/// One seed: the absolute north and east position (m) and velocity (m/s) errors of the
-/// pure INS at the end.
-fn run(seed: u64, start: Epoch) -> Result<[f64; 4], ValidateError> {
+/// One seed's IMU from `start`: its static alignment (coarse over [`COARSE_S`], fine over
+/// [`FINE_S`]) and the [`PURE_S`] of increments after it.
+pub(crate) fn aligned_imu(
+    seed: u64,
+    start: Epoch,
+) -> Result<(FineAlignment, Vec<ImuIncrement>), ValidateError> {
     let (g, r, c) = site();
     let still = Kinematics {
         r_ecef_m: r,
@@ -106,16 +111,29 @@ fn run(seed: u64, start: Epoch) -> Result<[f64; 4], ValidateError> {
         &FineAlignmentConfig::default(),
     )
     .map_err(|e| fail(e.to_string()))?;
-    let mut ins = aligned.state;
-    ins.propagate_all(&take(PURE_S)?)
-        .map_err(|e| fail(e.to_string()))?;
+    Ok((aligned, take(PURE_S)?))
+}
+
+/// North and east position (m) and velocity (m/s) errors of `state` at the static site.
+pub(crate) fn ned_errors(state: &InsState) -> [f64; 4] {
+    let (g, r, _) = site();
     let to_ned = c_ecef_ned(g.lat_rad, g.lon_rad);
-    let (dr, dv) = (to_ned * (ins.r_ecef_m - r), to_ned * ins.v_ecef_mps);
-    Ok([dr.x.abs(), dr.y.abs(), dv.x.abs(), dv.y.abs()])
+    let (dr, dv) = (to_ned * (state.r_ecef_m - r), to_ned * state.v_ecef_mps);
+    [dr.x, dr.y, dv.x, dv.y]
+}
+
+/// One seed: the absolute north and east position (m) and velocity (m/s) errors of the
+/// pure INS at the end.
+fn run(seed: u64, start: Epoch) -> Result<[f64; 4], ValidateError> {
+    let (aligned, free) = aligned_imu(seed, start)?;
+    let mut ins = aligned.state;
+    ins.propagate_all(&free)
+        .map_err(|e| ValidateError::Pipeline(format!("{TABLE} seed {seed}: {e}")))?;
+    Ok(ned_errors(&ins).map(f64::abs))
 }
 
 /// The median of `values`.
-fn median(mut values: Vec<f64>) -> f64 {
+pub(crate) fn median(mut values: Vec<f64>) -> f64 {
     values.sort_by(f64::total_cmp);
     let n = values.len();
     if n % 2 == 1 {
