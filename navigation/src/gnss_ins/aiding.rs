@@ -95,11 +95,7 @@ impl LooselyCoupled {
         }
         let c_l = state.c_body_ecef * self.lever_arm();
         let antenna = state.r_ecef_m + state.v_ecef_mps * offset_s + c_l;
-        let meas: Vec<Measurement> = epoch
-            .sats
-            .iter()
-            .filter_map(Measurement::of_record)
-            .collect();
+        let meas = Measurement::of_records(&epoch.sats);
         let tag_s = origin.seconds_since_start(epoch.time);
         let residuals = code_residuals(&meas, tag_s, store, origin, pvt_config, &antenna);
         let Some((g, y, r)) = code_differences(&residuals, sigma_m) else {

@@ -111,11 +111,7 @@ fn gnss_fix(
     pvt: &PvtConfig,
     config: &FromFilesConfig,
 ) -> Option<GnssFix> {
-    let meas: Vec<Measurement> = epoch
-        .sats
-        .iter()
-        .filter_map(Measurement::of_record)
-        .collect();
+    let meas = Measurement::of_records(&epoch.sats);
     let tag_s = origin.seconds_since_start(epoch.time);
     let fix = solve(&meas, tag_s, store, origin, pvt, None).ok()?;
     let velocity = solve_velocity(&meas, tag_s, store, &fix).ok();

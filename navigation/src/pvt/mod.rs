@@ -125,6 +125,11 @@ impl Measurement {
             signal: r.signal,
         })
     }
+
+    /// The measurements of every record of `records` that has a pseudorange.
+    pub fn of_records(records: &[skyforge_gnss::observation::ObsRecord]) -> Vec<Self> {
+        records.iter().filter_map(Self::of_record).collect()
+    }
 }
 
 /// What the solver applies.
