@@ -253,6 +253,24 @@ pub struct InsArgs {
     /// The static start the INS aligns on (s).
     #[arg(long, value_name = "S", default_value_t = 60.0)]
     pub alignment_s: f64,
+    /// The integration: `loose` (single-point fixes and Doppler velocities) or `tdcp`
+    /// (paper 001's: time-differenced carrier phase double differences, code differenced
+    /// between satellites, and the start's height; needs --start).
+    #[arg(long, value_name = "MODE", default_value = "loose")]
+    pub mode: String,
+    /// The antenna's surveyed position during the alignment (deg, deg, m above the
+    /// ellipsoid): LAT,LON,H. Mode tdcp only.
+    #[arg(
+        long,
+        value_name = "LAT,LON,H",
+        value_delimiter = ',',
+        allow_hyphen_values = true
+    )]
+    pub start: Option<Vec<f64>>,
+    /// Mode tdcp: hold the antenna at the start's height to this sigma (m), as paper 001's
+    /// altitude aiding; absent: no height constraint.
+    #[arg(long, value_name = "M")]
+    pub height_sigma: Option<f64>,
     /// GNSS outages made on purpose: FIRST,EVERY,LENGTH in seconds after the alignment.
     #[arg(long, value_name = "FIRST,EVERY,LENGTH", value_delimiter = ',')]
     pub outages: Option<Vec<f64>>,

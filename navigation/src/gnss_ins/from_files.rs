@@ -16,7 +16,7 @@ use super::filter::LooselyCoupled;
 use super::fix::GnssFix;
 use crate::ins::{InsError, InsState, coarse_alignment, static_means};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
-use hifitime::Duration;
+use hifitime::{Duration, Epoch};
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile};
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
@@ -143,35 +143,62 @@ pub(crate) fn sigma_ned(filter: &LooselyCoupled) -> Vec3 {
     (c * p * c.transpose()).diagonal().map(f64::sqrt)
 }
 
-/// The INS aligned on the static start: attitude from the increments' means, position the
-/// mean of the antenna fixes minus the lever arm, at rest, at the last aligning record.
-fn align(
+/// How many of `increments` fall in the static start of `alignment_s`, and its end.
+fn alignment_span(
     increments: &[ImuIncrement],
-    fixes: &[GnssFix],
-    config: &FromFilesConfig,
-) -> Result<(InsState, usize), InsRunError> {
+    alignment_s: f64,
+) -> Result<(usize, Epoch), InsRunError> {
     let start = increments
         .first()
         .map(|i| i.t_end - Duration::from_seconds(i.dt_s))
         .ok_or_else(|| InsRunError::Input("the IMU file holds no record".into()))?;
-    let end = start + Duration::from_seconds(config.alignment_s);
-    let n = increments.iter().take_while(|i| i.t_end <= end).count();
-    let during: Vec<&GnssFix> = fixes.iter().filter(|f| f.t <= end).collect();
-    if n == 0 || during.is_empty() {
-        return Err(InsRunError::Input(format!(
-            "no IMU record or no GNSS fix in the {} s alignment from {start}",
-            config.alignment_s
-        )));
+    let end = start + Duration::from_seconds(alignment_s);
+    match increments.iter().take_while(|i| i.t_end <= end).count() {
+        0 => Err(InsRunError::Input(format!(
+            "no IMU record in the {alignment_s} s alignment from {start}"
+        ))),
+        n => Ok((n, end)),
     }
-    let antenna = during.iter().map(|f| f.r_ecef_m).sum::<Vec3>() / during.len() as f64;
-    let means = static_means(&increments[..n])?;
-    let c = coarse_alignment(
-        &means.f_body_mps2,
-        &means.w_body_rps,
-        &ecef_to_geodetic(&antenna),
-    )?;
-    let r = antenna - c * config.filter.lever_arm_body_m;
-    Ok((InsState::at_rest(increments[n - 1].t_end, r, c), n))
+}
+
+/// The INS aligned on the static `increments`: attitude from their means (coarse
+/// alignment), at rest with its antenna (`lever` away, body axes) at `antenna`, at the
+/// last of them.
+fn align_at(
+    increments: &[ImuIncrement],
+    antenna: &Vec3,
+    lever: &Vec3,
+) -> Result<InsState, InsRunError> {
+    let means = static_means(increments)?;
+    let g = ecef_to_geodetic(antenna);
+    let c = coarse_alignment(&means.f_body_mps2, &means.w_body_rps, &g)?;
+    let t = increments
+        .last()
+        .map_or_else(|| Epoch::from_gpst_seconds(0.0), |i| i.t_end);
+    Ok(InsState::at_rest(t, antenna - c * lever, c))
+}
+
+/// The INS aligned on the static start, its antenna at `antenna` or, without, at the mean
+/// of the fixes meanwhile; and how many increments the alignment took.
+pub(crate) fn align(
+    increments: &[ImuIncrement],
+    alignment_s: f64,
+    lever: &Vec3,
+    antenna: Option<Vec3>,
+    fixes: &[GnssFix],
+) -> Result<(InsState, usize), InsRunError> {
+    let (n, end) = alignment_span(increments, alignment_s)?;
+    let during: Vec<&GnssFix> = fixes.iter().filter(|f| f.t <= end).collect();
+    let antenna = match antenna {
+        Some(a) => a,
+        None if during.is_empty() => {
+            return Err(InsRunError::Input(format!(
+                "no GNSS fix in the {alignment_s} s alignment to {end}"
+            )));
+        }
+        None => during.iter().map(|f| f.r_ecef_m).sum::<Vec3>() / during.len() as f64,
+    };
+    Ok((align_at(&increments[..n], &antenna, lever)?, n))
 }
 
 /// The loosely coupled solution from the IMU's `increments` (in time order) and one
@@ -200,7 +227,8 @@ pub fn loosely_coupled_from_files(
         .map(|e| gnss_fix(e, &store, &origin, &pvt, config))
         .collect();
     let made: Vec<GnssFix> = fixes.iter().flatten().copied().collect();
-    let (initial, aligned_records) = align(increments, &made, config)?;
+    let lever = config.filter.lever_arm_body_m;
+    let (initial, aligned_records) = align(increments, config.alignment_s, &lever, None, &made)?;
     let mut filter = LooselyCoupled::new(initial, config.filter)?;
     let mut run = InsRun {
         aligned: initial,

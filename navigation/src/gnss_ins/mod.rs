@@ -34,4 +34,4 @@ pub use fix::GnssFix;
 pub use from_files::{
     FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
 };
-pub use tdcp_aided::{TdcpAidedConfig, tdcp_aided};
+pub use tdcp_aided::{TdcpAidedConfig, TdcpFilesConfig, tdcp_aided, tdcp_aided_from_files};

@@ -8,14 +8,16 @@
 use super::LooselyCoupledConfig;
 use super::config::IntegrationError;
 use super::filter::LooselyCoupled;
-use super::from_files::{InsSolution, sigma_ned};
+use super::from_files::{InsRun, InsRunError, InsSolution, align, sigma_ned};
 use crate::ins::InsState;
 use crate::pvt::PvtConfig;
 use crate::tdcp::TdcpConfig;
 use hifitime::Duration;
 use skyforge_gnss::imu::ImuIncrement;
-use skyforge_gnss::observation::ObsEpoch;
-use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_gnss::observation::{ObsEpoch, ObsFile};
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::time::TimeOrigin;
 
 /// Settings of [`tdcp_aided`].
@@ -72,4 +74,56 @@ pub fn tdcp_aided(
         }
     }
     Ok(solutions)
+}
+
+/// Settings of [`tdcp_aided_from_files`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TdcpFilesConfig {
+    /// The run's updates.
+    pub aided: TdcpAidedConfig,
+    /// The static start the INS aligns on (s from the first IMU record).
+    pub alignment_s: f64,
+    /// Where the antenna stood during it (ECEF, m): surveyed, as paper 001's site was
+    /// (three satellites cannot fix it).
+    pub start_antenna_m: Vec3,
+}
+
+/// Paper 001's integration on files: the IMU's `increments` aligned on the static start
+/// at the surveyed point, then [`tdcp_aided`] over `obs`'s epochs with the navigation
+/// data.
+pub fn tdcp_aided_from_files(
+    increments: &[ImuIncrement],
+    obs: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    config: &TdcpFilesConfig,
+) -> Result<InsRun, InsRunError> {
+    config.aided.filter.check()?;
+    let first = obs
+        .epochs
+        .first()
+        .ok_or_else(|| InsRunError::Input(format!("{}: no epoch", obs.source.display())))?;
+    let origin = TimeOrigin::new(first.time);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let pvt = PvtConfig {
+        elevation_mask_rad: config.aided.tdcp.elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        ..PvtConfig::default()
+    };
+    let lever = config.aided.filter.lever_arm_body_m;
+    let antenna = Some(config.start_antenna_m);
+    let (initial, n) = align(increments, config.alignment_s, &lever, antenna, &[])?;
+    let solutions = tdcp_aided(
+        initial,
+        &increments[n..],
+        &obs.epochs,
+        (&store, &origin, &pvt),
+        &config.aided,
+    )?;
+    Ok(InsRun {
+        aligned: initial,
+        solutions,
+        no_fix: 0,
+    })
 }

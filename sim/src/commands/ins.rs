@@ -9,10 +9,13 @@ use anyhow::Context;
 use skyforge_formats::ins::{INS_CSV, write_ins_csv};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::gnss_ins::{
-    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, loosely_coupled_from_files,
+    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, TdcpAidedConfig, TdcpFilesConfig,
+    loosely_coupled_from_files, tdcp_aided_from_files,
 };
+use skyforge_navigation::tdcp::TdcpConfig;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::OMEGA_E_GPS;
+use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
 use skyforge_signals::imu::{AccelSpec, BOOK_TABLE_3_1, CONSUMER, GyroSpec, NAVIGATION, TACTICAL};
 use skyforge_validate::ins::filter_noise;
 
@@ -112,14 +115,53 @@ fn read_imu(args: &InsArgs) -> anyhow::Result<Vec<ImuIncrement>> {
     Ok(read_kf_gins(path, week, 1.0 / rate).map_err(bad)?)
 }
 
+/// Mode tdcp's settings: the loose mode's filter, the surveyed start, the height
+/// constraint, and the TDCP and code errors (assumed: 3 mm and 2 m, as P1-S).
+fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfig, BadInput> {
+    let Some(&[lat, lon, h]) = args.start.as_deref() else {
+        return Err(BadInput(
+            "--mode tdcp needs --start LAT,LON,H: three satellites cannot fix the start".into(),
+        ));
+    };
+    if !(lat.abs() <= 90.0 && lon.abs() <= 360.0 && h.abs() <= 1e5) {
+        return Err(BadInput(format!(
+            "--start {lat},{lon},{h}: latitude in [-90, 90] deg, longitude in [-360, 360] deg, height within 100 km"
+        )));
+    }
+    if let Some(sigma) = args.height_sigma.filter(|s| !(s.is_finite() && *s > 0.0)) {
+        return Err(BadInput(format!("--height-sigma {sigma}: positive (m)")));
+    }
+    Ok(TdcpFilesConfig {
+        aided: TdcpAidedConfig {
+            filter: LooselyCoupledConfig {
+                initial_position_m: 0.1, // assumed: a survey good to 10 cm
+                ..loose.filter
+            },
+            tdcp: TdcpConfig::default(),
+            code_sigma_m: Some(UERE_M),
+            height_m: args.height_sigma.map(|s| (h, s)),
+        },
+        alignment_s: loose.alignment_s,
+        start_antenna_m: geodetic_to_ecef(&Geodetic::from_degrees(lat, lon, h)),
+    })
+}
+
 /// Run `skyforge ins`.
 pub fn ins(args: &InsArgs) -> anyhow::Result<()> {
     let config = config(args)?;
+    let tdcp = match args.mode.as_str() {
+        "loose" => None,
+        "tdcp" => Some(tdcp_config(args, &config)?),
+        other => return Err(BadInput(format!("--mode {other:?}: loose or tdcp")).into()),
+    };
     let increments = read_imu(args)?;
     let file = super::read_observations(&args.file)?;
     let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
-    let run = loosely_coupled_from_files(&increments, &file, ephemerides, &iono, &config)
-        .map_err(|e| BadInput(e.to_string()))?;
+    let run = match &tdcp {
+        None => loosely_coupled_from_files(&increments, &file, ephemerides, &iono, &config),
+        Some(t) => tdcp_aided_from_files(&increments, &file, ephemerides, &iono, t),
+    }
+    .map_err(|e| BadInput(e.to_string()))?;
     let staged = StagedDir::create(&args.out, args.force)?;
     let path = staged.file(INS_CSV);
     write_ins_csv(&path, &run.solutions).with_context(|| format!("writing {}", path.display()))?;
