@@ -21,7 +21,7 @@ use nalgebra::{DMatrix, DVector};
 use skyforge_gnss::observation::ObsEpoch;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::EphemerisStore;
-use skyforge_orbits::frames::ecef_to_geodetic;
+use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
 use skyforge_orbits::time::TimeOrigin;
 
 impl LooselyCoupled {
@@ -37,14 +37,7 @@ impl LooselyCoupled {
         config: &TdcpConfig,
     ) -> Result<Option<Update>, IntegrationError> {
         let state = *self.state();
-        let offset_s = (cur.time - state.t).to_seconds();
-        if offset_s.abs() > self.step_s() + 1e-6 {
-            return Err(IntegrationError::FixOutOfStep {
-                t: cur.time,
-                ins_t: state.t,
-                offset_s,
-            });
-        }
+        let offset_s = self.offset_s(cur.time)?;
         let pose2 = ImuPose {
             r_ecef_m: state.r_ecef_m + state.v_ecef_mps * offset_s,
             c_body_ecef: state.c_body_ecef,
@@ -86,8 +79,13 @@ impl LooselyCoupled {
         sigma_m: f64,
     ) -> Result<Option<Update>, IntegrationError> {
         let state = *self.state();
-        let offset_s = (epoch.time - state.t).to_seconds();
-        if offset_s.abs() > self.step_s() + 1e-6 || !(sigma_m.is_finite() && sigma_m > 0.0) {
+        let offset_s = self
+            .offset_s(epoch.time)
+            .map_err(|_| IntegrationError::BadFix {
+                t: epoch.time,
+                what: "code epoch more than an IMU interval from the INS, or a bad sigma",
+            })?;
+        if !(sigma_m.is_finite() && sigma_m > 0.0) {
             return Err(IntegrationError::BadFix {
                 t: epoch.time,
                 what: "code epoch more than an IMU interval from the INS, or a bad sigma",
@@ -126,11 +124,7 @@ impl LooselyCoupled {
         let c_l = state.c_body_ecef * self.lever_arm();
         let antenna = state.r_ecef_m + c_l;
         let g = ecef_to_geodetic(&antenna);
-        let up = Vec3::new(
-            g.lat_rad.cos() * g.lon_rad.cos(),
-            g.lat_rad.cos() * g.lon_rad.sin(),
-            g.lat_rad.sin(),
-        );
+        let up: Vec3 = -c_ecef_ned(g.lat_rad, g.lon_rad).row(2).transpose();
         let mut h = DMatrix::zeros(1, STATES);
         h.view_mut((0, POS), (1, 3)).copy_from(&up.transpose());
         h.view_mut((0, ATT), (1, 3))

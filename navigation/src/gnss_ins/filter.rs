@@ -131,15 +131,7 @@ impl LooselyCoupled {
     /// must lie within one IMU interval of the INS's time; the INS is extrapolated to it.
     pub fn update(&mut self, fix: &GnssFix) -> Result<Update, IntegrationError> {
         check_fix(fix)?;
-        let offset_s = (fix.t - self.ins.t).to_seconds();
-        let step = self.step_s();
-        if offset_s.abs() > step + 1e-6 {
-            return Err(IntegrationError::FixOutOfStep {
-                t: fix.t,
-                ins_t: self.ins.t,
-                offset_s,
-            });
-        }
+        let offset_s = self.offset_s(fix.t)?;
         let (h, z, r) = self.measurement(fix, offset_s);
         self.apply(Rows { h, y: z, r }, fix.t)
     }
@@ -183,9 +175,18 @@ impl LooselyCoupled {
         self.config.lever_arm_body_m
     }
 
-    /// The time of the last IMU interval (s; 0 before the first).
-    pub(crate) fn step_s(&self) -> f64 {
-        self.prev.map_or(0.0, |p| p.dt_s)
+    /// How far `t` lies after the INS's time (s), when within one IMU interval of it.
+    pub(crate) fn offset_s(&self, t: Epoch) -> Result<f64, IntegrationError> {
+        let offset_s = (t - self.ins.t).to_seconds();
+        let step_s = self.prev.map_or(0.0, |p| p.dt_s);
+        if offset_s.abs() > step_s + 1e-6 {
+            return Err(IntegrationError::FixOutOfStep {
+                t,
+                ins_t: self.ins.t,
+                offset_s,
+            });
+        }
+        Ok(offset_s)
     }
 
     /// The measurement matrix, innovations and noise covariance of `fix`, `offset_s`

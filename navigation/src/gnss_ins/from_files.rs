@@ -201,6 +201,29 @@ pub(crate) fn align(
     Ok((align_at(&increments[..n], &antenna, lever)?, n))
 }
 
+/// What a run on `obs` navigates with: the time origin at its first epoch, the
+/// ephemerides bound to it, and the single-point settings (mask, broadcast ionosphere).
+pub(crate) fn navigation(
+    obs: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    elevation_mask_deg: f64,
+) -> Result<(TimeOrigin, EphemerisStore, PvtConfig), InsRunError> {
+    let first = obs
+        .epochs
+        .first()
+        .ok_or_else(|| InsRunError::Input(format!("{}: no epoch", obs.source.display())))?;
+    let origin = TimeOrigin::new(first.time);
+    let store = EphemerisStore::new(ephemerides, &origin);
+    let pvt = PvtConfig {
+        elevation_mask_rad: elevation_mask_deg.to_radians(),
+        iono_gps: iono.gps,
+        iono_bds: iono.bds,
+        ..PvtConfig::default()
+    };
+    Ok((origin, store, pvt))
+}
+
 /// The loosely coupled solution from the IMU's `increments` (in time order) and one
 /// antenna's observations `obs` with the navigation data.
 pub fn loosely_coupled_from_files(
@@ -211,18 +234,7 @@ pub fn loosely_coupled_from_files(
     config: &FromFilesConfig,
 ) -> Result<InsRun, InsRunError> {
     config.filter.check()?;
-    let first = obs
-        .epochs
-        .first()
-        .ok_or_else(|| InsRunError::Input(format!("{}: no epoch", obs.source.display())))?;
-    let origin = TimeOrigin::new(first.time);
-    let store = EphemerisStore::new(ephemerides, &origin);
-    let pvt = PvtConfig {
-        elevation_mask_rad: config.elevation_mask_deg.to_radians(),
-        iono_gps: iono.gps,
-        iono_bds: iono.bds,
-        ..PvtConfig::default()
-    };
+    let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
     let fixes: Vec<Option<GnssFix>> = (obs.epochs.iter())
         .map(|e| gnss_fix(e, &store, &origin, &pvt, config))
         .collect();

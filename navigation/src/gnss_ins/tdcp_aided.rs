@@ -8,7 +8,7 @@
 use super::LooselyCoupledConfig;
 use super::config::IntegrationError;
 use super::filter::LooselyCoupled;
-use super::from_files::{InsRun, InsRunError, InsSolution, align, sigma_ned};
+use super::from_files::{InsRun, InsRunError, InsSolution, align, navigation, sigma_ned};
 use crate::ins::InsState;
 use crate::pvt::PvtConfig;
 use crate::tdcp::TdcpConfig;
@@ -35,7 +35,7 @@ pub struct TdcpAidedConfig {
 
 /// Runs the INS from `initial` over `increments` (beginning at its time), updated at every
 /// epoch of `epochs` (receiver tags in GPS time) that falls inside them: one solution per
-/// epoch, after its updates.
+/// epoch, after its updates (`gnss`: a time difference or the code updated it).
 pub fn tdcp_aided(
     initial: InsState,
     increments: &[ImuIncrement],
@@ -51,15 +51,19 @@ pub fn tdcp_aided(
         filter.propagate(inc)?;
         let half = Duration::from_seconds(inc.dt_s / 2.0);
         while let Some(epoch) = pending.next_if(|e| e.time <= filter.state().t + half) {
+            let mut gnss = false;
             if let Some((prev, pose)) = &previous {
                 // A gap or too few satellites in lock: no time difference this epoch.
                 match filter.update_tdcp((prev, epoch), pose, store, origin, &config.tdcp) {
-                    Ok(_) | Err(IntegrationError::Tdcp(_)) => {}
+                    Ok(update) => gnss |= update.is_some(),
+                    Err(IntegrationError::Tdcp(_)) => {}
                     Err(e) => return Err(e),
                 }
             }
             if let Some(sigma) = config.code_sigma_m {
-                filter.update_code(epoch, store, origin, pvt, sigma)?;
+                gnss |= filter
+                    .update_code(epoch, store, origin, pvt, sigma)?
+                    .is_some();
             }
             if let Some((h, sigma)) = config.height_m {
                 filter.update_height(h, sigma)?;
@@ -67,7 +71,7 @@ pub fn tdcp_aided(
             solutions.push(InsSolution {
                 state: *filter.state(),
                 sigma_ned_m: sigma_ned(&filter),
-                gnss: true,
+                gnss,
                 in_outage: false,
             });
             previous = Some((epoch, filter.pose()));
@@ -99,18 +103,8 @@ pub fn tdcp_aided_from_files(
     config: &TdcpFilesConfig,
 ) -> Result<InsRun, InsRunError> {
     config.aided.filter.check()?;
-    let first = obs
-        .epochs
-        .first()
-        .ok_or_else(|| InsRunError::Input(format!("{}: no epoch", obs.source.display())))?;
-    let origin = TimeOrigin::new(first.time);
-    let store = EphemerisStore::new(ephemerides, &origin);
-    let pvt = PvtConfig {
-        elevation_mask_rad: config.aided.tdcp.elevation_mask_deg.to_radians(),
-        iono_gps: iono.gps,
-        iono_bds: iono.bds,
-        ..PvtConfig::default()
-    };
+    let mask_deg = config.aided.tdcp.elevation_mask_deg;
+    let (origin, store, pvt) = navigation(obs, ephemerides, iono, mask_deg)?;
     let lever = config.aided.filter.lever_arm_body_m;
     let antenna = Some(config.start_antenna_m);
     let (initial, n) = align(increments, config.alignment_s, &lever, antenna, &[])?;

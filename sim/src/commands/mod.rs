@@ -222,8 +222,18 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
     }
 }
 
-/// Beside the finished `truth.h5` in `staged`, a LEO platform's orbit as `truth.sp3`
-/// (what `skyforge od`'s `orbit.sp3` is compared with by anyone's SP3 tools).
+/// Beside the finished `truth.h5` in `staged`, what `run` and `synth` alike add to the
+/// truth: a LEO's orbit as `truth.sp3` and, with `[imu]`, the IMU's files.
+fn write_truth_sidecars(
+    scenario: &skyforge_scenarios::Scenario,
+    staged: &crate::output::staged_dir::StagedDir,
+) -> anyhow::Result<()> {
+    write_truth_sp3(scenario, staged)?;
+    imu::write_imu(scenario, staged)
+}
+
+/// A LEO platform's orbit as `truth.sp3` (what `skyforge od`'s `orbit.sp3` is compared
+/// with by anyone's SP3 tools).
 fn write_truth_sp3(
     scenario: &skyforge_scenarios::Scenario,
     staged: &crate::output::staged_dir::StagedDir,

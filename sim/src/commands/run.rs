@@ -88,7 +88,7 @@ fn run_geometry(scenario: &Scenario, out: &Path, force: bool) -> anyhow::Result<
         Ok(())
     })?;
     bar.finish_and_clear();
-    super::write_truth_sp3(scenario, &staged)?;
+    super::write_truth_sidecars(scenario, &staged)?;
     let dir = staged.commit()?;
 
     println!("scenario   {} ({})", scenario.name, scenario.source);

@@ -216,8 +216,7 @@ pub fn synthesise(
     obs.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     measured.finish().map_err(|e| anyhow::anyhow!("{e}"))?;
     truth.finish().with_context(|| writing(&truth_path))?;
-    super::write_truth_sp3(scenario, &staged)?;
-    super::imu::write_imu(scenario, &staged)?;
+    super::write_truth_sidecars(scenario, &staged)?;
     bar.finish_and_clear();
     let wrote_recordings = recordings.is_some();
     if let Some(recordings) = recordings {
