@@ -13,8 +13,8 @@
 //! correlation -1/2), which the filter, like the paper's, does not model.
 
 use super::config::IntegrationError;
-use super::error_state::{ATT, POS, STATES, VEL, skew};
-use super::filter::{LooselyCoupled, Rows, Update};
+use super::error_state::{ATT, POS, VEL, skew};
+use super::filter::{InsFilter, Rows, Update};
 use crate::pvt::{CodeResidual, Measurement, PvtConfig, code_residuals};
 use crate::tdcp::{ImuPose, LeverArm, TdcpConfig, time_differences_imu};
 use nalgebra::{DMatrix, DVector};
@@ -24,7 +24,7 @@ use skyforge_orbits::ephemeris::EphemerisStore;
 use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
 use skyforge_orbits::time::TimeOrigin;
 
-impl LooselyCoupled {
+impl<const N: usize> InsFilter<N> {
     /// Updates with the TDCP double differences between `prev` (whose IMU pose the filter
     /// had, `pose1`) and `cur`, whose time must lie within one IMU interval of the INS's;
     /// `Ok(None)` when fewer than two satellites kept lock.
@@ -54,7 +54,7 @@ impl LooselyCoupled {
         let dt = (cur.time - prev.time).to_seconds();
         let turned = skew(&((pose2.c_body_ecef - pose1.c_body_ecef) * lever.body_m));
         let n = dd.z_m.len();
-        let mut h = DMatrix::zeros(n, STATES);
+        let mut h = DMatrix::zeros(n, N);
         h.view_mut((0, VEL), (n, 3)).copy_from(&(&dd.h * dt));
         h.view_mut((0, ATT), (n, 3))
             .copy_from(&(-&dd.h * to_dynamic3(&turned)));
@@ -100,7 +100,7 @@ impl LooselyCoupled {
             return Ok(None);
         };
         let n = y.len();
-        let mut h = DMatrix::zeros(n, STATES);
+        let mut h = DMatrix::zeros(n, N);
         h.view_mut((0, POS), (n, 3)).copy_from(&g);
         h.view_mut((0, ATT), (n, 3))
             .copy_from(&(-&g * to_dynamic3(&skew(&c_l))));
@@ -125,7 +125,7 @@ impl LooselyCoupled {
         let antenna = state.r_ecef_m + c_l;
         let g = ecef_to_geodetic(&antenna);
         let up: Vec3 = -c_ecef_ned(g.lat_rad, g.lon_rad).row(2).transpose();
-        let mut h = DMatrix::zeros(1, STATES);
+        let mut h = DMatrix::zeros(1, N);
         h.view_mut((0, POS), (1, 3)).copy_from(&up.transpose());
         h.view_mut((0, ATT), (1, 3))
             .copy_from(&(-up.transpose() * skew(&c_l)));

@@ -1,14 +1,17 @@
-//! The loosely coupled GNSS/INS filter: the INS propagated over bias-corrected
-//! increments, its error covariance with it, updates from antenna fixes, and the
-//! estimated errors fed back after each (closed loop, Groves 2013 sec. 14.1.1).
+//! The GNSS/INS error-state filter: the INS propagated over bias-corrected increments,
+//! its error covariance with it, updates, and the estimated errors fed back after each
+//! (closed loop, Groves 2013 sec. 14.1.1). One filter for both couplings: the loosely
+//! coupled one has the 15 INS error states and takes fixes; the tightly coupled one adds
+//! the receiver's states (`super::receiver_states`) and takes ranges.
 
 use super::config::{IntegrationError, LooselyCoupledConfig};
-use super::error_state::{ACC, ATT, GYR, Mat15, POS, STATES, VEL, Vec15, skew, transition};
+use super::error_state::{ACC, ATT, GYR, POS, STATES, VEL, skew, transition};
 use super::fix::GnssFix;
+use super::receiver_states::ReceiverStates;
 use crate::ins::InsState;
 use crate::tdcp::ImuPose;
 use hifitime::Epoch;
-use nalgebra::{DMatrix, DVector, SMatrix};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_orbits::gravity::earth_rate_ecef;
 use skyforge_orbits::{Mat3, Vec3};
@@ -33,12 +36,15 @@ pub(crate) struct Rows {
     pub r: DMatrix<f64>,
 }
 
-/// The loosely coupled filter (Groves 2013 sec. 14.3.1).
+/// The error-state filter over `N` states: the INS's 15 first, the receiver's after them
+/// (none for [`LooselyCoupled`]).
 #[derive(Debug, Clone)]
-pub struct LooselyCoupled {
+pub struct InsFilter<const N: usize> {
     config: LooselyCoupledConfig,
     ins: InsState,
-    p: Mat15,
+    p: SMatrix<f64, N, N>,
+    /// The receiver's clock (and barometer) states and estimates, tightly coupled only.
+    pub(crate) receiver: Option<ReceiverStates>,
     gyro_bias: Vec3,
     accel_bias: Vec3,
     /// The previous bias-corrected increment (coning and sculling).
@@ -47,16 +53,31 @@ pub struct LooselyCoupled {
     omega_ib_body: Vec3,
 }
 
+/// The loosely coupled filter (Groves 2013 sec. 14.3.1): the 15 INS error states.
+pub type LooselyCoupled = InsFilter<STATES>;
+
 impl LooselyCoupled {
     /// A filter starting at `initial` with zero bias estimates and the configured
     /// initial uncertainties (heading about the local vertical, tilt about the
     /// horizontal axes).
     pub fn new(initial: InsState, config: LooselyCoupledConfig) -> Result<Self, IntegrationError> {
+        Self::with_receiver(initial, config, None)
+    }
+}
+
+impl<const N: usize> InsFilter<N> {
+    /// The filter with the INS's initial covariance; `receiver`'s states (when any) after
+    /// the INS's, their covariance set by the caller.
+    pub(crate) fn with_receiver(
+        initial: InsState,
+        config: LooselyCoupledConfig,
+        receiver: Option<ReceiverStates>,
+    ) -> Result<Self, IntegrationError> {
         config.check()?;
         let up = initial.r_ecef_m.normalize();
         let tilt = config.initial_tilt_rad.powi(2) * (Mat3::identity() - up * up.transpose());
         let heading = config.initial_heading_rad.powi(2) * up * up.transpose();
-        let mut p = Mat15::zeros();
+        let mut p = SMatrix::<f64, N, N>::zeros();
         let diagonal = [
             (POS, config.initial_position_m.powi(2)),
             (VEL, config.initial_velocity_mps.powi(2)),
@@ -70,10 +91,14 @@ impl LooselyCoupled {
         }
         p.fixed_view_mut::<3, 3>(ATT, ATT)
             .copy_from(&(tilt + heading));
+        if let Some(r) = &receiver {
+            r.initial_covariance(&mut p);
+        }
         Ok(Self {
             config,
             ins: initial,
             p,
+            receiver,
             gyro_bias: Vec3::zeros(),
             accel_bias: Vec3::zeros(),
             prev: None,
@@ -87,8 +112,8 @@ impl LooselyCoupled {
     }
 
     /// The error covariance, in the order position, velocity, attitude, accelerometer
-    /// bias, gyro bias (ECEF; biases in body axes).
-    pub fn covariance(&self) -> SMatrix<f64, STATES, STATES> {
+    /// bias, gyro bias (ECEF; biases in body axes), then the receiver's states.
+    pub fn covariance(&self) -> SMatrix<f64, N, N> {
         self.p
     }
 
@@ -113,14 +138,21 @@ impl LooselyCoupled {
         let before = self.ins;
         self.ins.propagate(self.prev.as_ref(), &corrected)?;
         let f_body = corrected.dv_mps / dt;
-        let (phi, q) = transition(
+        let (phi15, q15) = transition(
             &before.r_ecef_m,
             &before.c_body_ecef,
             &f_body,
             &self.config.imu,
             dt,
         );
-        self.p = phi * self.p * phi.transpose() + Mat15::from_diagonal(&q);
+        let mut phi = SMatrix::<f64, N, N>::identity();
+        phi.fixed_view_mut::<STATES, STATES>(0, 0).copy_from(&phi15);
+        let mut q = SVector::<f64, N>::zeros();
+        q.fixed_rows_mut::<STATES>(0).copy_from(&q15);
+        if let Some(r) = &mut self.receiver {
+            r.propagate(&mut phi, &mut q, dt, self.ins.v_ecef_mps.norm());
+        }
+        self.p = phi * self.p * phi.transpose() + SMatrix::<f64, N, N>::from_diagonal(&q);
         self.p = (self.p + self.p.transpose()) * 0.5;
         self.omega_ib_body = corrected.dtheta_rad / dt;
         self.prev = Some(corrected);
@@ -140,7 +172,7 @@ impl LooselyCoupled {
     /// `t` names the measurement in errors.
     pub(crate) fn apply(&mut self, rows: Rows, t: Epoch) -> Result<Update, IntegrationError> {
         let Rows { h, y, r } = rows;
-        let p = to_dynamic(&self.p);
+        let p = DMatrix::from_fn(N, N, |i, j| self.p[(i, j)]);
         let s = &h * &p * h.transpose() + &r;
         let s_inv = s
             .cholesky()
@@ -150,11 +182,11 @@ impl LooselyCoupled {
             })?
             .inverse();
         let k = &p * h.transpose() * &s_inv;
-        let i_kh = DMatrix::identity(STATES, STATES) - &k * &h;
+        let i_kh = DMatrix::identity(N, N) - &k * &h;
         let p_new = &i_kh * p * i_kh.transpose() + &k * r * k.transpose();
         let x = &k * &y;
-        self.p = Mat15::from_fn(|i, j| 0.5 * (p_new[(i, j)] + p_new[(j, i)]));
-        self.feed_back(&Vec15::from_iterator(x.iter().copied()));
+        self.p = SMatrix::from_fn(|i, j| 0.5 * (p_new[(i, j)] + p_new[(j, i)]));
+        self.feed_back(&SVector::<f64, N>::from_iterator(x.iter().copied()));
         Ok(Update {
             nis: (y.transpose() * &s_inv * &y)[(0, 0)],
             dof: y.len(),
@@ -200,7 +232,7 @@ impl LooselyCoupled {
         let lever = self.config.lever_arm_body_m;
         let c_l = c * lever;
         let rows = if fix.v_ecef_mps.is_some() { 6 } else { 3 };
-        let mut h = DMatrix::zeros(rows, STATES);
+        let mut h = DMatrix::zeros(rows, N);
         let mut z = DVector::zeros(rows);
         let mut r = DMatrix::zeros(rows, rows);
         let predicted = self.ins.r_ecef_m + self.ins.v_ecef_mps * offset_s + c_l;
@@ -224,7 +256,7 @@ impl LooselyCoupled {
     /// Closed-loop correction: the estimated errors removed from the INS and added to
     /// the bias estimates (Groves 2013 sec. 14.2.3: `C = (I - [psi x]) C^`, taken as the
     /// exact rotation by `-psi`).
-    fn feed_back(&mut self, x: &Vec15) {
+    fn feed_back(&mut self, x: &SVector<f64, N>) {
         let block = |k: usize| Vec3::new(x[k], x[k + 1], x[k + 2]);
         self.ins.r_ecef_m -= block(POS);
         self.ins.v_ecef_mps -= block(VEL);
@@ -232,11 +264,15 @@ impl LooselyCoupled {
         self.ins.c_body_ecef = undo.matrix() * self.ins.c_body_ecef;
         self.accel_bias += block(ACC);
         self.gyro_bias += block(GYR);
+        if let Some(r) = &mut self.receiver {
+            r.feed_back(x.as_slice());
+        }
     }
-}
 
-fn to_dynamic(m: &Mat15) -> DMatrix<f64> {
-    DMatrix::from_fn(STATES, STATES, |i, j| m[(i, j)])
+    /// The last IMU interval's mean angular rate relative to inertial space (rad/s).
+    pub(crate) fn omega_ib_body(&self) -> Vec3 {
+        self.omega_ib_body
+    }
 }
 
 /// A fix with finite values and symmetric covariances with positive diagonals.

@@ -12,7 +12,7 @@
 //! treats them as if they were.
 
 use super::config::{IntegrationError, LooselyCoupledConfig};
-use super::filter::LooselyCoupled;
+use super::filter::{InsFilter, LooselyCoupled};
 use super::fix::GnssFix;
 use crate::ins::{InsError, InsState, coarse_alignment, static_means};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
@@ -135,7 +135,7 @@ fn dop_covariance(fix: &Fix, sigma: f64) -> Mat3 {
 }
 
 /// The 1-sigma position errors north, east, down of `filter`.
-pub(crate) fn sigma_ned(filter: &LooselyCoupled) -> Vec3 {
+pub(crate) fn sigma_ned<const N: usize>(filter: &InsFilter<N>) -> Vec3 {
     let s = filter.state();
     let g = ecef_to_geodetic(&s.r_ecef_m);
     let c = c_ecef_ned(g.lat_rad, g.lon_rad);

@@ -5,7 +5,9 @@
 //! The loosely coupled filter ([`LooselyCoupled`]) takes position (and optionally
 //! velocity) fixes of the antenna ([`GnssFix`]) from any GNSS solution. It is closed
 //! loop: after every update the estimated errors are fed back into the INS and the bias
-//! estimates, and the error state restarts at zero.
+//! estimates, and the error state restarts at zero. The tightly coupled filter
+//! ([`TightlyCoupled`], book 3.2.2's 18 states) adds the receiver clock and a barometer
+//! and takes every satellite's pseudorange and range rate.
 //!
 //! Source: Groves 2013, "Principles of GNSS, Inertial, and Multisensor Integrated
 //! Navigation Systems", 2nd ed.: sec. 14.2.3 (the ECEF-frame error equations), 14.2.7
@@ -20,18 +22,24 @@ mod error_state;
 mod filter;
 mod fix;
 mod from_files;
+mod receiver_states;
 mod tdcp_aided;
+mod tightly_coupled;
 
 #[cfg(test)]
 mod aiding_tests;
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tightly_coupled_tests;
 
 pub use config::{ImuNoise, IntegrationError, LooselyCoupledConfig};
 pub use error_state::STATES;
-pub use filter::{LooselyCoupled, Update};
+pub use filter::{InsFilter, LooselyCoupled, Update};
 pub use fix::GnssFix;
 pub use from_files::{
     FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
 };
+pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};
 pub use tdcp_aided::{TdcpAidedConfig, TdcpFilesConfig, tdcp_aided, tdcp_aided_from_files};
+pub use tightly_coupled::TightlyCoupled;

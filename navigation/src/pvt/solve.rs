@@ -56,13 +56,16 @@ pub fn solve(
 
 /// One measurement's code residual at a known receiver position (m): the pseudorange
 /// minus the modelled range, satellite clock, ionosphere and troposphere of `cfg`, so the
-/// receiver clock is left in it. With its unit line of sight and elevation.
+/// receiver clock is left in it. With its unit line of sight and elevation, and the
+/// satellite's share of the range rate, `los . v_sat - c drift_sat` (m/s), which a
+/// range rate `-lambda D` less it leaves `-los . v_rx + c drift_rx`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CodeResidual {
     pub sat: SatId,
     pub omc_m: f64,
     pub los: Vec3,
     pub el_rad: f64,
+    pub sat_rate_mps: f64,
 }
 
 /// The code residuals of `meas` received at `t_rx_s` by an antenna at `r` (the fix's
@@ -95,6 +98,7 @@ pub fn code_residuals(
                 omc_m: row.omc_m,
                 los: row.view.los,
                 el_rad: row.el_rad?,
+                sat_rate_mps: row.view.los.dot(&row.view.v_ecef_mps) - C_MPS * row.view.clock_drift,
             })
         })
         .collect()
