@@ -178,9 +178,22 @@ fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
     }
     match &obs.noise {
         ObsNoiseConfig::Calibrated { .. } => Ok(()),
-        ObsNoiseConfig::Constant { phase_m, code_m } => {
+        ObsNoiseConfig::Constant {
+            phase_m,
+            code_m,
+            doppler_mps,
+        } => {
             NOISE_SIGMA0_M.check("observation.noise.phase_m", *phase_m)?;
-            NOISE_SIGMA0_M.check("observation.noise.code_m", *code_m)
+            NOISE_SIGMA0_M.check("observation.noise.code_m", *code_m)?;
+            match doppler_mps {
+                Some(d) if !obs.doppler_noise => Err(Invalid::new(
+                    "observation.noise.doppler_mps",
+                    d,
+                    "draws the Doppler's noise only with [observation] doppler_noise = true",
+                )),
+                Some(d) => NOISE_SIGMA0_M.check("observation.noise.doppler_mps", *d),
+                None => Ok(()),
+            }
         }
         ObsNoiseConfig::Elevation { phase, code } => {
             phase.check("observation.noise.phase", NOISE_SIGMA0_M)?;

@@ -44,9 +44,14 @@ impl Scenario {
     /// (the bundled one when none is named) read and checked.
     pub fn observation_noise(&self) -> Result<ObsNoise, ScenarioError> {
         match &self.observation.noise {
-            ObsNoiseConfig::Constant { phase_m, code_m } => Ok(ObsNoise::Constant {
+            ObsNoiseConfig::Constant {
+                phase_m,
+                code_m,
+                doppler_mps,
+            } => Ok(ObsNoise::Constant {
                 phase_m: *phase_m,
                 code_m: *code_m,
+                doppler_mps: *doppler_mps,
             }),
             ObsNoiseConfig::Elevation { phase, code } => Ok(ObsNoise::Elevation {
                 phase: *phase,

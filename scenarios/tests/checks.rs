@@ -251,16 +251,26 @@ fn a_precise_model_needs_a_readable_sp3_file_of_the_day() {
 }
 
 #[test]
-fn doppler_noise_needs_the_calibrated_model() {
-    let text = format!(
-        "{BASE}\n[signal]\ncn0_dbhz = 45.0\n[observation]\nlevel = \"observation\"\n\
-         doppler_noise = true\n[observation.noise]\nmodel = \"constant\"\nphase_m = 0.003\n\
-         code_m = 0.3\n"
-    );
-    let scenario = parse_in(&text, Path::new(".")).expect("parses");
+fn doppler_noise_needs_the_calibrated_model_or_a_constant_doppler_sigma() {
+    let constant = |doppler_noise: bool, doppler: &str| {
+        format!(
+            "{BASE}\n[signal]\ncn0_dbhz = 45.0\n[observation]\nlevel = \"observation\"\n\
+             doppler_noise = {doppler_noise}\n[observation.noise]\nmodel = \"constant\"\n\
+             phase_m = 0.003\ncode_m = 0.3\n{doppler}"
+        )
+    };
+    let scenario = parse_in(&constant(true, ""), Path::new(".")).expect("parses");
     let err = scenario.observation_model(1, 1.0).unwrap_err();
     assert_eq!(err.field, "observation.doppler_noise");
-    assert!(err.to_string().contains("calibrated"), "{err}");
+    assert!(err.to_string().contains("doppler_mps"), "{err}");
+    let with_sigma = constant(true, "doppler_mps = 0.1\n");
+    let scenario = parse_in(&with_sigma, Path::new(".")).expect("parses");
+    assert!(scenario.observation_model(1, 1.0).is_ok());
+    let err = parse_error(&constant(false, "doppler_mps = 0.1\n"));
+    assert_eq!(err.field, "observation.noise.doppler_mps");
+    assert!(err.to_string().contains("doppler_noise = true"), "{err}");
+    let err = parse_error(&constant(true, "doppler_mps = -1.0\n"));
+    assert_eq!(err.field, "observation.noise.doppler_mps");
     let calibrated = format!(
         "{BASE}\n[signal]\ncn0_dbhz = 45.0\n[observation]\nlevel = \"observation\"\n\
          doppler_noise = true\n"

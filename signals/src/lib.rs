@@ -7,6 +7,7 @@
 #![cfg_attr(not(test), deny(clippy::unwrap_used, clippy::expect_used))]
 
 pub mod antenna;
+pub mod barometer;
 pub mod errors;
 pub mod imu;
 pub mod obs_model;

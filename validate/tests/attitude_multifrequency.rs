@@ -32,6 +32,7 @@ fn scenario() -> skyforge_scenarios::Scenario {
     s.observation.noise = ObsNoiseConfig::Constant {
         phase_m: PHASE_M,
         code_m: CODE_M,
+        doppler_mps: None,
     };
     s.observation.observed_signals = OBSERVED.to_vec();
     s

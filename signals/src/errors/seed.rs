@@ -48,6 +48,8 @@ pub enum Stream {
     ImuGyro,
     ImuAccel,
     ImuVibration,
+    /// A barometric altimeter's bias and noise; index: the barometer.
+    Barometer,
     /// A test's own stream, by name (never used by a scenario).
     Named(&'static str),
 }
@@ -70,6 +72,7 @@ impl Stream {
             Stream::ImuGyro => "imu-gyro",
             Stream::ImuAccel => "imu-accel",
             Stream::ImuVibration => "imu-vibration",
+            Stream::Barometer => "barometer",
             Stream::Named(name) => name,
         }
     }

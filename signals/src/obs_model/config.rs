@@ -50,8 +50,13 @@ pub enum ObsNoiseConfig {
         phase: ElevationNoise,
         code: ElevationNoise,
     },
-    /// Constant standard deviations (m), white.
-    Constant { phase_m: f64, code_m: f64 },
+    /// Constant standard deviations (m), white; the Doppler's as a range rate (m/s), for
+    /// `doppler_noise`.
+    Constant {
+        phase_m: f64,
+        code_m: f64,
+        doppler_mps: Option<f64>,
+    },
 }
 
 /// `[observation.noise]` field by field: read as a plain table (not an internally tagged
@@ -66,6 +71,7 @@ struct NoiseTable {
     code: Option<ElevationNoise>,
     phase_m: Option<f64>,
     code_m: Option<f64>,
+    doppler_mps: Option<f64>,
 }
 
 /// The `model` names.
@@ -87,11 +93,12 @@ impl TryFrom<NoiseTable> for ObsNoiseConfig {
             ("code", t.code.is_some()),
             ("phase_m", t.phase_m.is_some()),
             ("code_m", t.code_m.is_some()),
+            ("doppler_mps", t.doppler_mps.is_some()),
         ];
         let (name, fields): (&str, &[&str]) = match t.model {
             NoiseModel::Calibrated => ("calibrated", &["file"]),
             NoiseModel::Elevation => ("elevation", &["phase", "code"]),
-            NoiseModel::Constant => ("constant", &["phase_m", "code_m"]),
+            NoiseModel::Constant => ("constant", &["phase_m", "code_m", "doppler_mps"]),
         };
         if let Some((extra, _)) = given.iter().find(|(f, set)| *set && !fields.contains(f)) {
             return Err(format!(
@@ -109,6 +116,7 @@ impl TryFrom<NoiseTable> for ObsNoiseConfig {
             NoiseModel::Constant => Self::Constant {
                 phase_m: t.phase_m.ok_or_else(|| missing("phase_m"))?,
                 code_m: t.code_m.ok_or_else(|| missing("code_m"))?,
+                doppler_mps: t.doppler_mps,
             },
         })
     }
@@ -131,6 +139,7 @@ pub enum ObsNoise {
     Constant {
         phase_m: f64,
         code_m: f64,
+        doppler_mps: Option<f64>,
     },
 }
 
@@ -155,7 +164,8 @@ mod tests {
             ok,
             Ok(ObsNoiseConfig::Constant {
                 phase_m: 0.001,
-                code_m: 0.3
+                code_m: 0.3,
+                doppler_mps: None,
             })
         );
         let e = noise("[noise]\nmodel = \"constant\"\nphase_m = 0.001\n").unwrap_err();

@@ -72,19 +72,29 @@ impl ObservationModel {
         }
     }
 
-    /// The Doppler gets white noise of the calibrated model's `doppler_factor` times
+    /// The Doppler gets white noise, from streams of its own (the code and phase draws
+    /// stay as they were): the calibrated model's `doppler_factor` times
     /// [`LoopNoise::doppler_sigma_hz`](super::LoopNoise::doppler_sigma_hz) at each link's
-    /// C/N0, from streams of its own (the code and phase draws stay as they were). Refused
-    /// for the other noise models and for a calibration without a Doppler factor.
+    /// C/N0, or the constant model's `doppler_mps`. Refused for the elevation model, a
+    /// constant model without `doppler_mps` and a calibration without a Doppler factor.
     pub fn with_doppler_noise(self, seed: u64) -> Result<Self, String> {
-        let ObsNoise::Calibrated(cal) = &self.noise else {
-            return Err("Doppler noise needs the calibrated noise model".into());
-        };
-        if let Some(s) = cal.signals.iter().find(|s| s.doppler_factor.is_none()) {
-            return Err(format!(
-                "the calibration has no doppler_factor for {}: re-run skyforge calibrate",
-                s.signal
-            ));
+        match &self.noise {
+            ObsNoise::Calibrated(cal) => {
+                if let Some(s) = cal.signals.iter().find(|s| s.doppler_factor.is_none()) {
+                    return Err(format!(
+                        "the calibration has no doppler_factor for {}: re-run skyforge calibrate",
+                        s.signal
+                    ));
+                }
+            }
+            ObsNoise::Constant { doppler_mps, .. } if doppler_mps.is_some() => {}
+            _ => {
+                return Err(
+                    "Doppler noise needs the calibrated noise model, or the constant \
+                            model with doppler_mps"
+                        .into(),
+                );
+            }
         }
         let n = self.noise_rngs.len();
         Ok(Self {
@@ -104,6 +114,9 @@ impl ObservationModel {
             (ObsNoise::Calibrated(cal), Some(_)) => cal.of(signal).map_or(0.0, |c| {
                 c.doppler_factor.unwrap_or(0.0) * c.loops.doppler_sigma_hz(cn0_dbhz)
             }),
+            (ObsNoise::Constant { doppler_mps, .. }, Some(_)) => {
+                doppler_mps.unwrap_or(0.0) / signal.wavelength_m()
+            }
             _ => 0.0,
         }
     }
@@ -120,7 +133,9 @@ impl ObservationModel {
     /// Code and phase standard deviations (m) and their correlation times (s).
     fn sigmas(&self, signal: Signal, cn0_dbhz: f64, elevation_rad: f64) -> ([f64; 2], [f64; 2]) {
         match &self.noise {
-            ObsNoise::Constant { phase_m, code_m } => ([*code_m, *phase_m], [0.0, 0.0]),
+            ObsNoise::Constant {
+                phase_m, code_m, ..
+            } => ([*code_m, *phase_m], [0.0, 0.0]),
             ObsNoise::Elevation { phase, code } => (
                 [code.sigma_m(elevation_rad), phase.sigma_m(elevation_rad)],
                 [0.0, 0.0],
@@ -291,6 +306,7 @@ mod tests {
         let noise = ObsNoise::Constant {
             phase_m: 0.003,
             code_m: 0.5,
+            doppler_mps: None,
         };
         let mut model = ObservationModel::new(noise, 3, 1, 1.0);
         let out = run(&mut model, (0..20_000).map(f64::from));
@@ -370,12 +386,35 @@ mod tests {
         let constant = ObsNoise::Constant {
             phase_m: 0.0,
             code_m: 0.0,
+            doppler_mps: None,
         };
         assert!(
             ObservationModel::new(constant, 4, 1, 1.0)
                 .with_doppler_noise(4)
                 .is_err()
         );
+    }
+
+    /// The constant model's Doppler noise: white, `doppler_mps` as a range rate over the
+    /// wavelength (N = 20000: 3 % is six standard errors of a std).
+    #[test]
+    fn constant_doppler_noise_has_the_configured_std() {
+        let noise = ObsNoise::Constant {
+            phase_m: 0.003,
+            code_m: 0.5,
+            doppler_mps: Some(0.1),
+        };
+        let mut model = ObservationModel::new(noise, 4, 1, 1.0)
+            .with_doppler_noise(4)
+            .unwrap();
+        let rate: Vec<f64> = (0..20_000)
+            .map(|t| {
+                let tr = truth(f64::from(t));
+                let a = model.observe(0, SatId::gps(7), Signal::GpsL1Ca, &tr, 0.5);
+                (a.doppler_hz.unwrap() - tr.doppler_hz) * Signal::GpsL1Ca.wavelength_m()
+            })
+            .collect();
+        assert!((std(&rate) / 0.1 - 1.0).abs() < 0.03, "{}", std(&rate));
     }
 
     /// A gap longer than the epoch step ends the track: a new ambiguity and the RINEX
@@ -385,6 +424,7 @@ mod tests {
         let noise = ObsNoise::Constant {
             phase_m: 0.0,
             code_m: 0.0,
+            doppler_mps: None,
         };
         let mut model = ObservationModel::new(noise, 5, 1, 1.0);
         let times = [0.0, 1.0, 2.0, 6.0, 7.0];

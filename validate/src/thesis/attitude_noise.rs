@@ -64,7 +64,11 @@ fn runs(name: &str, phase_m: f64, draw: Draw) -> Result<Vec<ChainComparison>, Va
             "{name}: the scenario's [observation.noise] is not the constant model"
         )));
     };
-    scenario.observation.noise = ObsNoiseConfig::Constant { phase_m, code_m };
+    scenario.observation.noise = ObsNoiseConfig::Constant {
+        phase_m,
+        code_m,
+        doppler_mps: None,
+    };
     let [runs] = seed_runs(&scenario, [config(phase_m, code_m)], draw)?;
     Ok(runs)
 }

@@ -134,7 +134,10 @@ struct Runs {
 /// The scenario's runs on the seeds of `draw`.
 fn runs(draw: Draw) -> Result<Runs, ValidateError> {
     let scenario = skyforge_scenarios::named(SCENARIO)?;
-    let ObsNoiseConfig::Constant { phase_m, code_m } = scenario.observation.noise else {
+    let ObsNoiseConfig::Constant {
+        phase_m, code_m, ..
+    } = scenario.observation.noise
+    else {
         return Err(ValidateError::Pipeline(format!(
             "{SCENARIO}: the scenario's [observation.noise] is not the constant model"
         )));
