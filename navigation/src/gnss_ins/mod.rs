@@ -42,4 +42,4 @@ pub use from_files::{
 };
 pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};
 pub use tdcp_aided::{TdcpAidedConfig, TdcpFilesConfig, tdcp_aided, tdcp_aided_from_files};
-pub use tightly_coupled::TightlyCoupled;
+pub use tightly_coupled::{TightlyCoupled, clock_from_epoch};

@@ -23,7 +23,7 @@ use nalgebra::{DMatrix, DVector};
 use skyforge_gnss::observation::ObsEpoch;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::C_MPS;
-use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::ephemeris::{EphemerisStore, SatId};
 use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
 use skyforge_orbits::gravity::earth_rate_ecef;
 use skyforge_orbits::time::TimeOrigin;
@@ -110,11 +110,7 @@ impl TightlyCoupled {
                 h,
                 variance: noise.code_sigma_m.powi(2),
             });
-            let doppler = meas
-                .iter()
-                .find(|m| m.sat == res.sat && m.doppler_hz.is_some());
-            if let Some(m) = doppler {
-                let rate = -m.doppler_hz.unwrap_or(0.0) * C_MPS / m.signal.carrier_hz();
+            if let Some(rate) = range_rate(&meas, res.sat) {
                 let mut h = [0.0; TIGHT_STATES];
                 put(&mut h, VEL, &-e);
                 put(&mut h, ATT, &(skew(&rotating).transpose() * e));
@@ -164,6 +160,43 @@ impl TightlyCoupled {
         };
         self.apply(rows, state.t)
     }
+}
+
+/// The receiver clock's bias (m) and drift (m/s) that explain `epoch`'s pseudoranges and
+/// range rates at an antenna at `r_m` moving at `v_mps` (ECEF): the means over its
+/// satellites, a start for [`TightlyCoupled::new`] when the clock is not known. The drift
+/// is 0 without Dopplers; `None` without a usable satellite.
+pub fn clock_from_epoch(
+    epoch: &ObsEpoch,
+    (r_m, v_mps): (&Vec3, &Vec3),
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    pvt: &PvtConfig,
+) -> Option<(f64, f64)> {
+    let meas = Measurement::of_records(&epoch.sats);
+    let tag_s = origin.seconds_since_start(epoch.time);
+    let residuals = code_residuals(&meas, tag_s, store, origin, pvt, r_m);
+    if residuals.is_empty() {
+        return None;
+    }
+    let bias = residuals.iter().map(|r| r.omc_m).sum::<f64>() / residuals.len() as f64;
+    let drifts: Vec<f64> = (residuals.iter())
+        .filter_map(|r| Some(range_rate(&meas, r.sat)? - r.sat_rate_mps + r.los.dot(v_mps)))
+        .collect();
+    let drift = if drifts.is_empty() {
+        0.0
+    } else {
+        drifts.iter().sum::<f64>() / drifts.len() as f64
+    };
+    Some((bias, drift))
+}
+
+/// The range rate `-lambda D` (m/s) of `sat`'s first measurement with a Doppler.
+fn range_rate(meas: &[Measurement], sat: SatId) -> Option<f64> {
+    let m = meas
+        .iter()
+        .find(|m| m.sat == sat && m.doppler_hz.is_some())?;
+    Some(-m.doppler_hz? * C_MPS / m.signal.carrier_hz())
 }
 
 /// Writes the row vector `v^T` into `h` from column `at`.

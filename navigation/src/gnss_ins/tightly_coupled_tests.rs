@@ -64,7 +64,9 @@ fn epoch_with_doppler(world: &World, t: f64, antenna: &dyn Fn(f64) -> Vec3) -> O
 }
 
 /// Runs `seconds` of the circle with range updates every second (and barometric heights
-/// `baro_offset_m` above the truth when `barometer`), started with the INS 5 m and
+/// `baro_offset_m` above the truth when `barometer`), after checking that the first
+/// epoch's noise-free ranges give the clock at the true antenna ([`clock_from_epoch`]: to
+/// a centimetre and a centimetre per second); started with the INS 5 m and
 /// 0.14 m/s off and the clock 20 m and 0.2 m/s off. Returns the filter and the truth's
 /// IMU position and velocity at the end.
 fn run(seconds: usize, barometer: Option<(BarometerNoise, f64)>) -> (TightlyCoupled, Vec3, Vec3) {
@@ -81,13 +83,22 @@ fn run(seconds: usize, barometer: Option<(BarometerNoise, f64)>) -> (TightlyCoup
     start.t = shift(start.t);
     start.r_ecef_m += world.ned(3.0, -4.0, 0.0);
     start.v_ecef_mps += world.ned(0.1, -0.1, 0.0);
-    let clock = (C_MPS * world.clock_s(0.0) + 20.0, C_MPS * DRIFT - 0.2);
-    let noise = receiver(barometer.map(|b| b.0));
-    let mut filter = TightlyCoupled::new(start, filter_config(), noise, clock).unwrap();
     let pvt = PvtConfig {
         troposphere: false,
         ..Default::default()
     };
+    let first = epoch_with_doppler(&world, 0.0, &antenna);
+    let v0 = (antenna(1e-3) - antenna(-1e-3)) / 2e-3;
+    let r0 = antenna(0.0);
+    let found = clock_from_epoch(&first, (&r0, &v0), &world.store, &world.origin, &pvt).unwrap();
+    assert!(
+        (found.0 - C_MPS * world.clock_s(0.0)).abs() < 0.01,
+        "{found:?}"
+    );
+    assert!((found.1 - C_MPS * DRIFT).abs() < 0.01, "{found:?}");
+    let clock = (C_MPS * world.clock_s(0.0) + 20.0, C_MPS * DRIFT - 0.2);
+    let noise = receiver(barometer.map(|b| b.0));
+    let mut filter = TightlyCoupled::new(start, filter_config(), noise, clock).unwrap();
     for (k, inc) in incs.iter().enumerate() {
         filter.propagate(inc).unwrap();
         if (k + 1) % 100 == 0 {
