@@ -178,6 +178,14 @@ const BUNDLED: &[Bundled] = &[
                   carrier-phase time differences (P1-F2)",
         text: include_str!("../bundled/paper001-tdcp-static.toml"),
     },
+    Bundled {
+        name: "paper001-boat-lake",
+        summary: "Paper 001 Fig. 5: a boat on a park lake near Changsha, 600 s moored, then \
+                  a closed loop of 4458 s (six squares at 3 m/s) with heave, pitch and roll \
+                  waves, a navigation-grade IMU with hull vibration and the three BDS-3 \
+                  GEOs at the observation level (P1-D)",
+        text: include_str!("../bundled/paper001-boat-lake.toml"),
+    },
 ];
 
 /// Every bundled scenario.

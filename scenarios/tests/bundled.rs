@@ -39,7 +39,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "book-relnav-leo",
             "book-relnav-events",
             "grace-relnav",
-            "paper001-tdcp-static"
+            "paper001-tdcp-static",
+            "paper001-boat-lake"
         ]
     );
     for b in bundled() {
@@ -105,6 +106,7 @@ fn every_unstated_value_says_it_is_assumed() {
         "attitude-leo-gps",
         "attitude-leo-l1-l5",
         "paper001-tdcp-static",
+        "paper001-boat-lake",
     ] {
         let text = bundled().iter().find(|b| b.name == name).expect(name).text;
         for key in [

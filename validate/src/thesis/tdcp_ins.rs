@@ -25,12 +25,14 @@ use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
 use rayon::prelude::*;
 use skyforge_gnss::signal::Signal;
-use skyforge_navigation::gnss_ins::{LooselyCoupledConfig, TdcpAidedConfig, tdcp_aided};
+use skyforge_navigation::gnss_ins::{ImuNoise, LooselyCoupledConfig, TdcpAidedConfig, tdcp_aided};
+use skyforge_navigation::ins::FineAlignment;
 use skyforge_navigation::pvt::PvtConfig;
 use skyforge_navigation::tdcp::TdcpConfig;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::OMEGA_E_GPS;
 use skyforge_orbits::ephemeris::EphemerisStore;
+use skyforge_orbits::frames::Geodetic;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_runner::observation_run;
 use skyforge_scenarios::Scenario;
@@ -71,6 +73,25 @@ fn scenario(seed: u64) -> Result<Scenario, ValidateError> {
     Ok(s)
 }
 
+/// The filter's initial tilt and heading sigmas (rad) after a static alignment at `g`:
+/// the alignment's own, or what the grade's accelerometer bias (tilt `b / g`) and gyro
+/// bias (heading `b / (w_ie cos L)`) leave, at three sigma, when larger.
+pub(crate) fn initial_attitude_sigmas(
+    aligned: &FineAlignment,
+    g: &Geodetic,
+    noise: &ImuNoise,
+) -> (f64, f64) {
+    let gyrocompass = OMEGA_E_GPS * g.lat_rad.cos();
+    (
+        aligned
+            .level_sigma_rad
+            .max(3.0 * noise.accel_bias / 9.80665),
+        aligned
+            .heading_sigma_rad
+            .hypot(3.0 * noise.gyro_bias / gyrocompass),
+    )
+}
+
 fn run(seed: u64) -> Result<SeedStats, ValidateError> {
     let fail = |e: String| ValidateError::Pipeline(format!("{TABLE} integrated seed {seed}: {e}"));
     let scenario = scenario(seed)?;
@@ -86,19 +107,15 @@ fn run(seed: u64) -> Result<SeedStats, ValidateError> {
         ..PvtConfig::default()
     };
     let noise = crate::ins::filter_noise(NAVIGATION);
-    let gyrocompass = OMEGA_E_GPS * g.lat_rad.cos();
+    let (initial_tilt_rad, initial_heading_rad) = initial_attitude_sigmas(&aligned, &g, &noise);
     let config = TdcpAidedConfig {
         filter: LooselyCoupledConfig {
             imu: noise,
             lever_arm_body_m: Vec3::zeros(),
             initial_position_m: 0.1, // the surveyed site
             initial_velocity_mps: 0.01,
-            initial_tilt_rad: aligned
-                .level_sigma_rad
-                .max(3.0 * noise.accel_bias / 9.80665),
-            initial_heading_rad: aligned
-                .heading_sigma_rad
-                .hypot(3.0 * noise.gyro_bias / gyrocompass),
+            initial_tilt_rad,
+            initial_heading_rad,
         },
         tdcp: TdcpConfig {
             signal: Some(Signal::BdsB1I),
