@@ -186,6 +186,13 @@ const BUNDLED: &[Bundled] = &[
                   GEOs at the observation level (P1-D)",
         text: include_str!("../bundled/paper001-boat-lake.toml"),
     },
+    Bundled {
+        name: "book-gps-ins-flight",
+        summary: "The book's GPS/INS flight (3.2): an aircraft at 3000 m, 550 s with a climb, \
+                  a 180-deg turn and a descent, the Table 3-1 SINS and a GPS receiver with \
+                  Table 3-4's errors at the observation level (B-3.2)",
+        text: include_str!("../bundled/book-gps-ins-flight.toml"),
+    },
 ];
 
 /// Every bundled scenario.

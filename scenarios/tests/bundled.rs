@@ -40,7 +40,8 @@ fn every_bundled_scenario_parses_and_builds() {
             "book-relnav-events",
             "grace-relnav",
             "paper001-tdcp-static",
-            "paper001-boat-lake"
+            "paper001-boat-lake",
+            "book-gps-ins-flight"
         ]
     );
     for b in bundled() {
@@ -107,6 +108,7 @@ fn every_unstated_value_says_it_is_assumed() {
         "attitude-leo-l1-l5",
         "paper001-tdcp-static",
         "paper001-boat-lake",
+        "book-gps-ins-flight",
     ] {
         let text = bundled().iter().find(|b| b.name == name).expect(name).text;
         for key in [

@@ -253,9 +253,11 @@ pub struct InsArgs {
     /// The static start the INS aligns on (s).
     #[arg(long, value_name = "S", default_value_t = 60.0)]
     pub alignment_s: f64,
-    /// The integration: `loose` (single-point fixes and Doppler velocities) or `tdcp`
-    /// (paper 001's: time-differenced carrier phase double differences, code differenced
-    /// between satellites, and the start's height; needs --start).
+    /// The integration: `loose` (single-point fixes and Doppler velocities), `tight` (book
+    /// 3.2.2's: every satellite's pseudorange and range rate, the receiver clock's bias
+    /// and drift estimated) or `tdcp` (paper 001's: time-differenced carrier phase double
+    /// differences, code differenced between satellites, and the start's height; needs
+    /// --start).
     #[arg(long, value_name = "MODE", default_value = "loose")]
     pub mode: String,
     /// The antenna's surveyed position during the alignment (deg, deg, m above the

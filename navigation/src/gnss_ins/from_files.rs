@@ -39,7 +39,7 @@ pub struct Outages {
 
 impl Outages {
     /// Whether `t_s` after the alignment lies inside an outage.
-    fn covers(&self, t_s: f64) -> bool {
+    pub(crate) fn covers(&self, t_s: f64) -> bool {
         let into = t_s - self.first_s;
         into >= 0.0 && into % self.every_s < self.length_s
     }
@@ -101,6 +101,19 @@ impl From<InsError> for InsRunError {
     fn from(e: InsError) -> Self {
         Self::Filter(IntegrationError::Ins(e))
     }
+}
+
+/// The single-point fix of `epoch`: its time (the receiver clock removed) and position.
+pub(crate) fn point_fix(
+    epoch: &ObsEpoch,
+    store: &EphemerisStore,
+    origin: &TimeOrigin,
+    pvt: &PvtConfig,
+) -> Option<(Epoch, Vec3)> {
+    let meas = Measurement::of_records(&epoch.sats);
+    let tag_s = origin.seconds_since_start(epoch.time);
+    let fix = solve(&meas, tag_s, store, origin, pvt, None).ok()?;
+    Some((origin.epoch_at(fix.t_s), fix.r_ecef_m))
 }
 
 /// A fix with its Doppler velocity at `epoch`, if one can be made.
@@ -179,16 +192,17 @@ fn align_at(
 }
 
 /// The INS aligned on the static start, its antenna at `antenna` or, without, at the mean
-/// of the fixes meanwhile; and how many increments the alignment took.
+/// of the fixes (time, antenna position) meanwhile; and how many increments the
+/// alignment took.
 pub(crate) fn align(
     increments: &[ImuIncrement],
     alignment_s: f64,
     lever: &Vec3,
     antenna: Option<Vec3>,
-    fixes: &[GnssFix],
+    fixes: &[(Epoch, Vec3)],
 ) -> Result<(InsState, usize), InsRunError> {
     let (n, end) = alignment_span(increments, alignment_s)?;
-    let during: Vec<&GnssFix> = fixes.iter().filter(|f| f.t <= end).collect();
+    let during: Vec<Vec3> = (fixes.iter()).filter(|f| f.0 <= end).map(|f| f.1).collect();
     let antenna = match antenna {
         Some(a) => a,
         None if during.is_empty() => {
@@ -196,7 +210,7 @@ pub(crate) fn align(
                 "no GNSS fix in the {alignment_s} s alignment to {end}"
             )));
         }
-        None => during.iter().map(|f| f.r_ecef_m).sum::<Vec3>() / during.len() as f64,
+        None => during.iter().sum::<Vec3>() / during.len() as f64,
     };
     Ok((align_at(&increments[..n], &antenna, lever)?, n))
 }
@@ -238,7 +252,9 @@ pub fn loosely_coupled_from_files(
     let fixes: Vec<Option<GnssFix>> = (obs.epochs.iter())
         .map(|e| gnss_fix(e, &store, &origin, &pvt, config))
         .collect();
-    let made: Vec<GnssFix> = fixes.iter().flatten().copied().collect();
+    let made: Vec<(Epoch, Vec3)> = (fixes.iter().flatten())
+        .map(|f| (f.t, f.r_ecef_m))
+        .collect();
     let lever = config.filter.lever_arm_body_m;
     let (initial, aligned_records) = align(increments, config.alignment_s, &lever, None, &made)?;
     let mut filter = LooselyCoupled::new(initial, config.filter)?;

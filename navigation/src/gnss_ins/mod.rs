@@ -24,6 +24,7 @@ mod fix;
 mod from_files;
 mod receiver_states;
 mod tdcp_aided;
+mod tight_from_files;
 mod tightly_coupled;
 
 #[cfg(test)]
@@ -42,4 +43,5 @@ pub use from_files::{
 };
 pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};
 pub use tdcp_aided::{TdcpAidedConfig, TdcpFilesConfig, tdcp_aided, tdcp_aided_from_files};
+pub use tight_from_files::{TightFilesConfig, tightly_coupled_from_files};
 pub use tightly_coupled::{TightlyCoupled, clock_from_epoch};

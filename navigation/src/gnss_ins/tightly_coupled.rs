@@ -87,7 +87,8 @@ impl TightlyCoupled {
             return Ok(None);
         };
         let state = *self.state();
-        let offset_s = self.offset_s(epoch.time)?;
+        // The antenna at the true time of reception: the tag less the clock's bias.
+        let offset_s = self.offset_s(epoch.time)? - receiver.clock_m / C_MPS;
         let lever = self.lever_arm();
         let c = state.c_body_ecef;
         let c_l = c * lever;

@@ -1,6 +1,6 @@
 //! `skyforge ins`: an IMU file and one antenna's observations with the navigation data
-//! into the loosely coupled GNSS/INS filter (`navigation::gnss_ins`), written to
-//! `DIR/ins.csv` (`formats::ins`).
+//! into a GNSS/INS filter (`navigation::gnss_ins`: loosely coupled, tightly coupled, or
+//! paper 001's TDCP-aided), written to `DIR/ins.csv` (`formats::ins`).
 
 use crate::bad_input::BadInput;
 use crate::cli::InsArgs;
@@ -9,8 +9,9 @@ use anyhow::Context;
 use skyforge_formats::ins::{INS_CSV, write_ins_csv};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::gnss_ins::{
-    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, TdcpAidedConfig, TdcpFilesConfig,
-    loosely_coupled_from_files, tdcp_aided_from_files,
+    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, ReceiverNoise, TdcpAidedConfig,
+    TdcpFilesConfig, TightFilesConfig, loosely_coupled_from_files, tdcp_aided_from_files,
+    tightly_coupled_from_files,
 };
 use skyforge_navigation::tdcp::TdcpConfig;
 use skyforge_orbits::Vec3;
@@ -146,20 +147,51 @@ fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfi
     })
 }
 
+/// Mode tight's settings: the loose mode's filter, alignment, mask and outages, and the
+/// receiver as the filter assumes it (assumed: the clock known to 5 m and 1 m/s after its
+/// start from the first epoch, the drift wandering by 1 m/s over 10 minutes and the phase
+/// by 0.01 m^2/s, a TCXO's; the loose mode's range and range-rate errors).
+fn tight_config(loose: &FromFilesConfig) -> TightFilesConfig {
+    TightFilesConfig {
+        filter: loose.filter,
+        receiver: ReceiverNoise {
+            clock_bias_m: 5.0,
+            clock_drift_mps: 1.0,
+            clock_drift_tau_s: Some(600.0),
+            clock_phase_psd_m2_s: 0.01,
+            code_sigma_m: UERE_M,
+            range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
+            barometer: None,
+        },
+        alignment_s: loose.alignment_s,
+        elevation_mask_deg: loose.elevation_mask_deg,
+        outages: loose.outages,
+    }
+}
+
+/// The integration `--mode` chose.
+enum Mode {
+    Loose,
+    Tight(TightFilesConfig),
+    Tdcp(TdcpFilesConfig),
+}
+
 /// Run `skyforge ins`.
 pub fn ins(args: &InsArgs) -> anyhow::Result<()> {
     let config = config(args)?;
-    let tdcp = match args.mode.as_str() {
-        "loose" => None,
-        "tdcp" => Some(tdcp_config(args, &config)?),
-        other => return Err(BadInput(format!("--mode {other:?}: loose or tdcp")).into()),
+    let mode = match args.mode.as_str() {
+        "loose" => Mode::Loose,
+        "tight" => Mode::Tight(tight_config(&config)),
+        "tdcp" => Mode::Tdcp(tdcp_config(args, &config)?),
+        other => return Err(BadInput(format!("--mode {other:?}: loose, tight or tdcp")).into()),
     };
     let increments = read_imu(args)?;
     let file = super::read_observations(&args.file)?;
     let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
-    let run = match &tdcp {
-        None => loosely_coupled_from_files(&increments, &file, ephemerides, &iono, &config),
-        Some(t) => tdcp_aided_from_files(&increments, &file, ephemerides, &iono, t),
+    let run = match &mode {
+        Mode::Loose => loosely_coupled_from_files(&increments, &file, ephemerides, &iono, &config),
+        Mode::Tight(t) => tightly_coupled_from_files(&increments, &file, ephemerides, &iono, t),
+        Mode::Tdcp(t) => tdcp_aided_from_files(&increments, &file, ephemerides, &iono, t),
     }
     .map_err(|e| BadInput(e.to_string()))?;
     let staged = StagedDir::create(&args.out, args.force)?;
@@ -183,7 +215,7 @@ fn print_summary(run: &InsRun, records: usize) {
         attitude.roll_rad.to_degrees()
     );
     println!(
-        "solutions  {} from {records} IMU records: {updated} updated by a fix, {hidden} in outages, {} epochs without a fix",
+        "solutions  {} from {records} IMU records: {updated} updated by GNSS, {hidden} in outages, {} epochs without a fix or a usable satellite",
         run.solutions.len(),
         run.no_fix
     );

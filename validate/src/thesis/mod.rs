@@ -7,6 +7,7 @@ pub(crate) mod attitude_noise;
 pub(crate) mod attitude_realtime;
 mod attitude_runs;
 pub(crate) mod boat_lake;
+pub(crate) mod book_gps_ins;
 pub mod curves;
 pub(crate) mod fast_sync;
 pub(crate) mod geometry_offsets;
@@ -38,7 +39,7 @@ use std::path::{Path, PathBuf};
 pub const TABLES: &[&str] = &[
     "V-1.2.1", "T-1.2-2", "T-1.2-3", "T-3.2", "T-3.3-R", "T-3.3-S", "T-4.3", "T-5.4-2", "T-5.4-3",
     "T-5.4-4", "T-5.4-5", "T-5.5", "P2-4.2", "P2-PD", "B-5.2-1", "B-5.2-2", "B-5.5", "B-5.6",
-    "P1-S", "P1-F2", "P1-D",
+    "P1-S", "P1-F2", "P1-D", "B-3.2",
 ];
 
 /// Why a validation could not run.
@@ -295,6 +296,13 @@ const UNITS: &[Unit] = &[
         kind: Kind::MonteCarlo,
         scenarios: &[Source::Bundled(boat_lake::SCENARIO)],
         evaluate: |_, _, draw| boat_lake::rows(draw),
+        figures: None,
+    },
+    Unit {
+        tables: &[book_gps_ins::TABLE],
+        kind: Kind::MonteCarlo,
+        scenarios: &[Source::Bundled(book_gps_ins::SCENARIO)],
+        evaluate: |_, _, draw| book_gps_ins::rows(draw),
         figures: None,
     },
 ];

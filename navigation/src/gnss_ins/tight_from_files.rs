@@ -1,0 +1,96 @@
+//! The tightly coupled filter on files (book 3.2.2's integration as a post-processing
+//! receiver runs it): the INS aligned on a static start at the mean of the single-point
+//! fixes meanwhile, the receiver clock started from the first epoch after it
+//! ([`clock_from_epoch`]), then every epoch's pseudoranges and range rates, except inside
+//! the configured outages.
+
+use super::config::LooselyCoupledConfig;
+use super::from_files::{
+    InsRun, InsRunError, InsSolution, Outages, align, navigation, point_fix, sigma_ned,
+};
+use super::receiver_states::ReceiverNoise;
+use super::tightly_coupled::{TightlyCoupled, clock_from_epoch};
+use hifitime::Duration;
+use skyforge_gnss::imu::ImuIncrement;
+use skyforge_gnss::observation::ObsFile;
+use skyforge_orbits::Vec3;
+use skyforge_orbits::ephemeris::BroadcastEphemeris;
+use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+
+/// Settings of [`tightly_coupled_from_files`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TightFilesConfig {
+    /// The INS's error model, lever arm and initial errors.
+    pub filter: LooselyCoupledConfig,
+    /// The receiver's clock and measurement errors (no barometer: files carry none).
+    pub receiver: ReceiverNoise,
+    /// The static start the INS aligns on (s from the first IMU record).
+    pub alignment_s: f64,
+    /// Satellites below this elevation are not used (deg).
+    pub elevation_mask_deg: f64,
+    /// GNSS outages made on purpose, if any.
+    pub outages: Option<Outages>,
+}
+
+/// The tightly coupled solution from the IMU's `increments` (in time order) and one
+/// antenna's observations `obs` with the navigation data: one solution per epoch after
+/// the alignment (`gnss`: ranges updated it; `no_fix`: epochs with no usable satellite).
+pub fn tightly_coupled_from_files(
+    increments: &[ImuIncrement],
+    obs: &ObsFile,
+    ephemerides: Vec<BroadcastEphemeris>,
+    iono: &BroadcastIono,
+    config: &TightFilesConfig,
+) -> Result<InsRun, InsRunError> {
+    config.filter.check()?;
+    config.receiver.check()?;
+    let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
+    let end = (increments.first())
+        .map(|i| i.t_end + Duration::from_seconds(config.alignment_s - i.dt_s))
+        .ok_or_else(|| InsRunError::Input("the IMU file holds no record".into()))?;
+    // The fixes of the alignment (and a second beyond: a fix's time is its tag less the
+    // receiver clock).
+    let fixes: Vec<_> = (obs.epochs.iter())
+        .take_while(|e| e.time <= end + Duration::from_seconds(1.0))
+        .filter_map(|e| point_fix(e, &store, &origin, &pvt))
+        .collect();
+    let lever = config.filter.lever_arm_body_m;
+    let (initial, aligned_records) = align(increments, config.alignment_s, &lever, None, &fixes)?;
+    let mut epochs = obs
+        .epochs
+        .iter()
+        .skip_while(|e| e.time <= initial.t)
+        .peekable();
+    let antenna = initial.r_ecef_m + initial.c_body_ecef * lever;
+    let clock = (epochs.clone())
+        .find_map(|e| clock_from_epoch(e, (&antenna, &Vec3::zeros()), &store, &origin, &pvt))
+        .ok_or_else(|| InsRunError::Input("no epoch after the alignment has a satellite".into()))?;
+    let mut filter = TightlyCoupled::new(initial, config.filter, config.receiver, clock)?;
+    let mut run = InsRun {
+        aligned: initial,
+        solutions: Vec::new(),
+        no_fix: 0,
+    };
+    for inc in &increments[aligned_records..] {
+        filter.propagate(inc)?;
+        let half = Duration::from_seconds(inc.dt_s / 2.0);
+        while let Some(epoch) = epochs.next_if(|e| e.time <= filter.state().t + half) {
+            let since_s = (epoch.time - initial.t).to_seconds();
+            let in_outage = (config.outages).is_some_and(|o| o.covers(since_s));
+            let updated = if in_outage {
+                false
+            } else {
+                let update = filter.update_ranges(epoch, &store, &origin, &pvt)?;
+                run.no_fix += usize::from(update.is_none());
+                update.is_some()
+            };
+            run.solutions.push(InsSolution {
+                state: *filter.state(),
+                sigma_ned_m: sigma_ned(&filter),
+                gnss: updated,
+                in_outage,
+            });
+        }
+    }
+    Ok(run)
+}
