@@ -429,7 +429,9 @@ pub enum ValidateSuite {
     /// difference in time, not in the double difference; eight 300 s runs of three GEOs
     /// synthesised and received at 10 Hz, two minutes) and P1-S (its static SINS alone
     /// for 2050 s after a static alignment, 20 seeds, seconds) and P1-D (its boat on a
-    /// lake, a closed loop of 4458 s, eight seeds, under a minute). T-5.4-2 synthesises its
+    /// lake, a closed loop of 4458 s, eight seeds, under a minute), and B-3.2, the book's
+    /// GPS/INS flight (the pure INS and the 18-state filter, 20 seeds of 550 s, seconds).
+    /// T-5.4-2 synthesises its
     /// bundled scenario (60 s, four recordings, about 2 GB in the temporary directory) and
     /// runs the receiver on it; the attitude tables run observation-level scenarios on
     /// eight seeds (seconds).

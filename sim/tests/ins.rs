@@ -321,6 +321,7 @@ fn the_tight_mode_bridges_the_outages_within_the_same_bar() {
         );
     }
     let rms = (squares.iter().sum::<f64>() / squares.len() as f64).sqrt();
+    println!("RMS 3-D drift over {} outages: {rms} m", squares.len());
     assert!(
         rms <= 1.0,
         "RMS 3-D drift over {} outages: {rms} m",
