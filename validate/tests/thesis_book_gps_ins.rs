@@ -43,7 +43,11 @@ fn b_3_2_pure_ins_and_the_18_state_filter() {
         let v = r.ours.unwrap();
         assert!(v.is_finite() && v > 0.0, "{r:?}");
         if REPRODUCED.contains(&r.row.as_str()) {
-            assert_eq!(r.verdict, Verdict::Reproduced, "no longer reproduced: {r:?}");
+            assert_eq!(
+                r.verdict,
+                Verdict::Reproduced,
+                "no longer reproduced: {r:?}"
+            );
         }
     }
 }
