@@ -263,11 +263,11 @@ impl TruthSink for PlatformTruth {
     }
 }
 
-/// `scenario`'s signal settings with the signal truth at whole seconds only: a run keeps
-/// nothing between them, so the session computes the truth once a second instead of
-/// `truth_rate_hz` times (1000 by default); the whole-second records, all a run uses (the
-/// observation truth, and the observation level's observables), and the samples are the
-/// same.
+/// `scenario`'s signal settings with the signal truth at the observation epochs only
+/// (whole seconds, or `[observation] rate_hz`): a run keeps nothing between them, so the
+/// session computes the truth that often instead of `truth_rate_hz` times a second (1000
+/// by default); those records, all a run uses (the observation truth, and the observation
+/// level's observables), and the samples are the same.
 fn whole_second_truth(scenario: &Scenario) -> Result<SignalConfig, RunError> {
     let signal = scenario.signal.as_ref().ok_or_else(|| {
         RunError::Setup(
@@ -276,7 +276,7 @@ fn whole_second_truth(scenario: &Scenario) -> Result<SignalConfig, RunError> {
         )
     })?;
     Ok(SignalConfig {
-        truth_rate_hz: 1,
+        truth_rate_hz: scenario.observation.rate_hz(),
         ..signal.clone()
     })
 }
@@ -331,7 +331,7 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
     let mut world = scenario.build()?;
     let mut run = unmade(&world);
     let antennas = &run.antennas;
-    let model = scenario.observation_model(antennas.len(), GEOMETRY_STEP_S)?;
+    let model = scenario.observation_model(antennas.len(), scenario.observation.step_s())?;
     let session = SynthSession::new(
         world.synth_world(),
         signal,

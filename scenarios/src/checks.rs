@@ -167,6 +167,32 @@ fn check_observation(scenario: &Scenario) -> Result<(), Invalid> {
             "the observation level draws its noise at the links' C/N0: add a [signal] table",
         ));
     }
+    if let Some(rate) = obs.rate_hz {
+        if obs.level == Level::Signal {
+            return Err(Invalid::new(
+                "observation.rate_hz",
+                rate,
+                "sets the observation level's rate; the signal level's is the receiver's ([observables] rate_hz of its configuration)",
+            ));
+        }
+        if !(1..=100).contains(&rate) || !1000u32.is_multiple_of(rate) {
+            return Err(Invalid::new(
+                "observation.rate_hz",
+                rate,
+                "a divisor of 1000 from 1 to 100 (1, 2, 4, 5, 8, 10, 20, 25, 40, 50, 100)",
+            ));
+        }
+        let truth = scenario.signal.as_ref().map_or(0, |s| s.truth_rate_hz);
+        if !truth.is_multiple_of(rate) {
+            return Err(Invalid::new(
+                "signal.truth_rate_hz",
+                truth,
+                format!(
+                    "a multiple of [observation] rate_hz = {rate}: the observations are drawn from the signal truth's records"
+                ),
+            ));
+        }
+    }
     if obs.level == Level::Signal
         && let Some(s) = obs.observed_signals.first()
     {

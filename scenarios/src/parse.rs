@@ -63,8 +63,9 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
 }
 
 /// At the observation level no sample is made, and the signal truth serves only its
-/// whole-second records (the observation truth RINEX): unless the file sets
-/// `[signal] truth_rate_hz`, it is written at 1 Hz there, not at the signal level's 1 kHz
+/// observation epochs' records (the observation truth RINEX): unless the file sets
+/// `[signal] truth_rate_hz`, it is written at 1 Hz there (or `[observation] rate_hz`), not
+/// at the signal level's 1 kHz
 /// (which over hours fills disks: about 3 GB per antenna-hour with 10 satellites).
 fn observation_level_truth_rate(scenario: &mut Scenario, explicit: bool) {
     if let (Some(signal), false, Level::Observation) = (
@@ -72,7 +73,7 @@ fn observation_level_truth_rate(scenario: &mut Scenario, explicit: bool) {
         explicit,
         scenario.observation.level,
     ) {
-        signal.truth_rate_hz = OBSERVATION_LEVEL_TRUTH_RATE_HZ;
+        signal.truth_rate_hz = OBSERVATION_LEVEL_TRUTH_RATE_HZ.max(scenario.observation.rate_hz());
     }
 }
 

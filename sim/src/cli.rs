@@ -139,9 +139,9 @@ pub enum Command {
         args: OdArgs,
     },
     /// GNSS/INS: an IMU file (SkyForge's CSV or KF-GINS's text file) and one antenna's
-    /// RINEX observation file with a navigation file into the loosely coupled filter,
-    /// after a static alignment; optional GNSS outages made on purpose. Writes
-    /// DIR/ins.csv (docs/ins.md).
+    /// RINEX observation file with a navigation file into the loosely coupled, tightly
+    /// coupled or TDCP-aided filter (--mode), after a static alignment; optional GNSS
+    /// outages made on purpose. Writes DIR/ins.csv (docs/ins.md).
     Ins {
         #[command(flatten)]
         args: InsArgs,

@@ -108,6 +108,54 @@ fn observation_level_writes_receiver_style_files_with_the_configured_noise() {
     }
 }
 
+/// `[observation] rate_hz = 10`: the truth's and the observables' files hold an epoch
+/// every 0.1 s, and the noise is the configured one (as the 1 Hz test: about 800
+/// observations per system, 12 %); a rate that does not divide 1000 and a rate at the
+/// signal level are refused.
+#[test]
+fn observation_level_at_ten_hertz_writes_ten_epochs_a_second() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = run_with_constant_noise(dir.path(), "obs10", 8, 11, "rate_hz = 10\n");
+    for file in [
+        out.join("ant1.obs.rnx"),
+        out.join("observations/ant1.obs.rnx"),
+    ] {
+        let obs = read_obs_file(&file).unwrap();
+        let steps: Vec<f64> = (obs.epochs.windows(2))
+            .map(|w| (w[1].time - w[0].time).to_seconds())
+            .collect();
+        assert!(steps.len() >= 78, "{} epochs", obs.epochs.len());
+        assert!(
+            steps.iter().all(|s| (s - 0.1).abs() < 1e-6),
+            "{}: {steps:?}",
+            file.display()
+        );
+    }
+    let c = comparison(&out, &out.join("observations"), "ant1");
+    assert!(c.matched_epochs >= 78, "{}", c.matched_epochs);
+    for system in [System::Gps, System::Beidou] {
+        let (code, phase) = stds(&c, system);
+        assert!((code / 0.4 - 1.0).abs() < 0.12, "{system:?} code {code}");
+        assert!(
+            (phase / 0.002 - 1.0).abs() < 0.12,
+            "{system:?} phase {phase}"
+        );
+    }
+    for (observation, named) in [
+        ("level = \"observation\"\nrate_hz = 3\n", "divisor of 1000"),
+        ("rate_hz = 10\n", "signal level"),
+    ] {
+        let text = format!("{TWO_ANTENNAS}\n[observation]\n{observation}");
+        let path = scenario(dir.path(), "bad", 8, 11, &text);
+        let o = support::skyforge(&["run", &path, "--out", "bad"], dir.path());
+        assert!(
+            !o.status.success() && support::text(&o).contains(named),
+            "{}",
+            support::text(&o)
+        );
+    }
+}
+
 /// A calibration file that is not one: one located error, nothing written.
 #[test]
 fn a_bad_calibration_file_is_one_clear_error() {

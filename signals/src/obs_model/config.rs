@@ -32,10 +32,26 @@ pub struct ObservationConfig {
     /// multi-frequency baseline models of thesis 2.4.2 and 2.4.4.
     #[serde(default)]
     pub observed_signals: Vec<Signal>,
-    /// Draw Doppler noise at the observation level (calibrated model only; default off:
-    /// the Doppler is the truth's).
+    /// Draw Doppler noise at the observation level (the calibrated model, or the constant
+    /// one with `doppler_mps`; default off: the Doppler is the truth's).
     #[serde(default)]
     pub doppler_noise: bool,
+    /// Observation epochs per second at the observation level (a divisor of 1000, at most
+    /// 100; default 1). The signal level's rate is the receiver's (`[observables]`).
+    #[serde(default)]
+    pub rate_hz: Option<u32>,
+}
+
+impl ObservationConfig {
+    /// Observation epochs per second (1 unless set).
+    pub fn rate_hz(&self) -> u32 {
+        self.rate_hz.unwrap_or(1)
+    }
+
+    /// The interval between observation epochs (s).
+    pub fn step_s(&self) -> f64 {
+        1.0 / f64::from(self.rate_hz())
+    }
 }
 
 /// `[observation.noise]` as written in the scenario.

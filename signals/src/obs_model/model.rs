@@ -35,6 +35,8 @@ pub struct ObservationModel {
     noise_rngs: Vec<ChaCha20Rng>,
     ambiguity_rng: ChaCha20Rng,
     tracks: HashMap<(usize, SatId, Signal), Track>,
+    /// The interval between epochs (s).
+    step_s: f64,
     /// Epoch spacing (s) beyond which a track counts as lost.
     max_gap_s: f64,
     /// Per antenna, the Doppler noise stream (none: the Doppler is the truth's).
@@ -67,9 +69,15 @@ impl ObservationModel {
                 .collect(),
             ambiguity_rng: stream_rng(seed, Stream::CarrierAmbiguity, 0),
             tracks: HashMap::new(),
+            step_s,
             max_gap_s: 1.5 * step_s,
             doppler_rngs: None,
         }
+    }
+
+    /// The interval between the model's epochs (s).
+    pub fn step_s(&self) -> f64 {
+        self.step_s
     }
 
     /// The Doppler gets white noise, from streams of its own (the code and phase draws

@@ -35,6 +35,7 @@ use skyforge_orbits::ephemeris::{
 };
 use skyforge_orbits::platform::{Platform, PlatformError};
 use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
+use std::collections::BTreeMap;
 
 /// Geometry epochs the renderer interpolates between (s).
 pub const GEOMETRY_STEP_S: f64 = 1.0;
@@ -791,10 +792,11 @@ impl Running<'_, '_, '_> {
             .collect();
         let at = self.origin.epoch_at(chunk.t_s[k]);
         let sow = |system: System| system.week_sow(at).1;
-        let mut whole_second: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
-        let mut measured: Vec<Vec<ObsRecord>> = vec![Vec::new(); n_ant];
+        // The observation epochs of this step, by tick of the observation interval: their
+        // time, and per antenna the truth's records and the model's.
+        let step_s = self.model.as_ref().map_or(1.0, ObservationModel::step_s);
+        let mut ticks: BTreeMap<i64, ObsTick> = BTreeMap::new();
         let n_sats = self.sats.len();
-        let mut whole_t = None;
         for (b, (band, synth)) in self.bands.iter().zip(self.synths.iter_mut()).enumerate() {
             let links = (0..n_ant * band.count)
                 .map(|l| {
@@ -819,11 +821,16 @@ impl Running<'_, '_, '_> {
                 samples.samples(b, a, bytes)
             })?;
             let truth = synth.take_truth();
-            for r in truth.iter().filter(|r| r.t_s.fract() == 0.0) {
-                whole_t = Some(r.t_s);
+            for (tick, r) in truth
+                .iter()
+                .filter_map(|r| Some((on_grid(r.t_s, step_s)?, r)))
+            {
+                let epoch = ticks
+                    .entry(tick)
+                    .or_insert_with(|| ObsTick::new(r.t_s, n_ant));
                 let s = self.sat_of[band.first + r.tx];
                 let sat = self.sats[s];
-                whole_second[r.antenna].push(ObsRecord::complete(
+                epoch.truth[r.antenna].push(ObsRecord::complete(
                     sat,
                     r.signal,
                     r.pseudorange_m,
@@ -833,7 +840,8 @@ impl Running<'_, '_, '_> {
                 ));
                 if let Some(model) = self.model.as_mut() {
                     let elevation = self.elevations[r.antenna * n_sats + s];
-                    measured[r.antenna].push(model.observe(r.antenna, sat, r.signal, r, elevation));
+                    epoch.measured[r.antenna]
+                        .push(model.observe(r.antenna, sat, r.signal, r, elevation));
                 }
             }
             // The truth file holds the transmitted signal's truth.
@@ -847,9 +855,10 @@ impl Running<'_, '_, '_> {
                 self.sinks.truth.signal(a, &records, sat_index)?;
             }
         }
-        if let Some(t) = whole_t {
-            let at = self.origin.epoch_at(t);
-            for (a, (records, measured)) in whole_second.iter_mut().zip(&mut measured).enumerate() {
+        for epoch in ticks.into_values() {
+            let at = self.origin.epoch_at(epoch.t_s);
+            let (mut truth, mut measured) = (epoch.truth, epoch.measured);
+            for (a, (records, measured)) in truth.iter_mut().zip(&mut measured).enumerate() {
                 records.sort_by_key(|r| r.sat);
                 let r0 = st.r_ecef_m + st.c_body_ecef * self.antennas[a].true_body_m;
                 self.sinks.observations.epoch(a, at, &r0, records)?;
@@ -868,6 +877,31 @@ impl Running<'_, '_, '_> {
         }
         Ok(())
     }
+}
+
+/// One observation epoch within a geometry step: its time and, per antenna, the truth's
+/// records and the observation model's.
+struct ObsTick {
+    t_s: f64,
+    truth: Vec<Vec<ObsRecord>>,
+    measured: Vec<Vec<ObsRecord>>,
+}
+
+impl ObsTick {
+    fn new(t_s: f64, antennas: usize) -> Self {
+        Self {
+            t_s,
+            truth: vec![Vec::new(); antennas],
+            measured: vec![Vec::new(); antennas],
+        }
+    }
+}
+
+/// The tick of `t_s` on the grid of `step_s` (whole seconds, or the observation level's
+/// interval), when it lies on it: within a microsecond, far below the truth's interval.
+fn on_grid(t_s: f64, step_s: f64) -> Option<i64> {
+    let tick = (t_s / step_s).round();
+    ((t_s - tick * step_s).abs() < 1e-6).then_some(tick as i64)
 }
 
 /// What every recording of a synthesis shares.

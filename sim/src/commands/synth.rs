@@ -88,7 +88,7 @@ fn session<'a>(
 ) -> anyhow::Result<SynthSession<'a>> {
     let model = match scenario.observation.level {
         Level::Observation => {
-            Some(scenario.observation_model(world.antennas.len(), GEOMETRY_STEP_S)?)
+            Some(scenario.observation_model(world.antennas.len(), scenario.observation.step_s())?)
         }
         Level::Signal => None,
     };

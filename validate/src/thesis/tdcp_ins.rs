@@ -6,8 +6,9 @@
 //!
 //! **Run** (each seed; the IMU and alignment of [`super::static_sins`] on the same seed):
 //! the bundled `paper001-tdcp-static` (the site, the three GEOs, the oscillator) at the
-//! observation level over the alignment and the 2050 s (assumed: 1 Hz, the observation
-//! level's rate, where the paper's phase is 10 Hz), into `navigation::gnss_ins::tdcp_aided`:
+//! observation level over the alignment and the 2050 s at the paper's 10 Hz
+//! (`[observation] rate_hz = 10`; until 2026-12-02 the observation level had whole seconds
+//! only and the rows ran at 1 Hz), into `navigation::gnss_ins::tdcp_aided`:
 //! the time-differenced carrier phase's double differences, the code differenced between
 //! the GEOs, and the site's height. The estimator reads the observations, the navigation
 //! data and the surveyed site (its start and height); the comparison is with the site.
@@ -45,6 +46,8 @@ pub(crate) const SCENARIO: &str = "paper001-tdcp-static";
 /// because each needs a 2650 s GNSS run).
 const FIRST_SEED: u64 = 1;
 const RUNS: u64 = 8;
+/// Paper 001: the filter at 10 Hz.
+const RATE_HZ: u32 = 10;
 /// The alignment and the integrated span (s): [`super::static_sins`]'s.
 const ALIGNMENT_S: f64 = 600.0;
 const INTEGRATED_S: f64 = 2050.0;
@@ -69,6 +72,7 @@ fn scenario(seed: u64) -> Result<Scenario, ValidateError> {
     let mut s = skyforge_scenarios::named(SCENARIO)?;
     s.seed = seed;
     s.time.duration_s = ALIGNMENT_S + INTEGRATED_S + 1.0;
+    s.observation.rate_hz = Some(RATE_HZ);
     s.observation.level = Level::Observation;
     Ok(s)
 }
@@ -186,8 +190,9 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         .collect::<Result<_, _>>()?;
     let med = |f: &dyn Fn(&SeedStats) -> f64| median(stats.iter().map(f).collect());
     let note = format!(
-        "seeds {}..{}; 1 Hz observation level (paper: 10 Hz), TDCP double differences + code \
-         differences (sigma {CODE_SIGMA_M} m) + height ({HEIGHT_SIGMA_M} m), all assumed",
+        "seeds {}..{}; {RATE_HZ} Hz observation level (the paper's rate), TDCP double \
+         differences + code differences (sigma {CODE_SIGMA_M} m) + height ({HEIGHT_SIGMA_M} m), \
+         the sigmas assumed",
         seeds.start,
         seeds.end - 1
     );
