@@ -241,16 +241,48 @@ impl<const N: usize> InsFilter<N> {
         z.rows_mut(0, 3).copy_from(&(predicted - fix.r_ecef_m));
         r.view_mut((0, 0), (3, 3)).copy_from(&fix.r_cov_m2);
         if let Some((v, v_cov)) = fix.v_ecef_mps {
-            let w_ie = earth_rate_ecef();
-            let rotating = c * self.omega_ib_body.cross(&lever) - w_ie.cross(&c_l);
-            let predicted_v = self.ins.v_ecef_mps + rotating;
-            h.view_mut((3, VEL), (3, 3)).copy_from(&Mat3::identity());
-            h.view_mut((3, ATT), (3, 3)).copy_from(&-skew(&rotating));
-            h.view_mut((3, GYR), (3, 3)).copy_from(&(-c * skew(&lever)));
-            z.rows_mut(3, 3).copy_from(&(predicted_v - v));
+            let (hv, zv) = self.velocity_rows(&v);
+            h.rows_mut(3, 3).copy_from(&hv);
+            z.rows_mut(3, 3).copy_from(&zv);
             r.view_mut((3, 3), (3, 3)).copy_from(&v_cov);
         }
         (h, z, r)
+    }
+
+    /// The rows of the antenna's velocity `v` (Groves eq. 14.111): `H` on the velocity,
+    /// attitude and gyro-bias errors, and the innovation (predicted minus measured).
+    fn velocity_rows(&self, v: &Vec3) -> (DMatrix<f64>, DVector<f64>) {
+        let c = self.ins.c_body_ecef;
+        let lever = self.config.lever_arm_body_m;
+        let rotating = c * self.omega_ib_body.cross(&lever) - earth_rate_ecef().cross(&(c * lever));
+        let mut h = DMatrix::zeros(3, N);
+        h.view_mut((0, VEL), (3, 3)).copy_from(&Mat3::identity());
+        h.view_mut((0, ATT), (3, 3)).copy_from(&-skew(&rotating));
+        h.view_mut((0, GYR), (3, 3)).copy_from(&(-c * skew(&lever)));
+        let z = DVector::from_column_slice((self.ins.v_ecef_mps + rotating - v).as_slice());
+        (h, z)
+    }
+
+    /// Corrects the INS with the antenna's velocity alone (`v_cov` its covariance), valid
+    /// at `t` within one IMU interval of the INS's time: a velocity-only aiding, as the
+    /// book's velocity sub-filter (3.2.1).
+    pub fn update_velocity(
+        &mut self,
+        t: Epoch,
+        v: &Vec3,
+        v_cov: &Mat3,
+    ) -> Result<Update, IntegrationError> {
+        self.offset_s(t)?;
+        let fix = GnssFix {
+            t,
+            r_ecef_m: Vec3::zeros(),
+            r_cov_m2: Mat3::identity(),
+            v_ecef_mps: Some((*v, *v_cov)),
+        };
+        check_fix(&fix)?;
+        let (h, y) = self.velocity_rows(v);
+        let r = DMatrix::from_fn(3, 3, |i, j| v_cov[(i, j)]);
+        self.apply(Rows { h, y, r }, t)
     }
 
     /// Closed-loop correction: the estimated errors removed from the INS and added to

@@ -116,7 +116,7 @@ fn perturbed(truth: &InsState, seed: u64) -> InsState {
 }
 
 /// Position and velocity errors of `est` against `truth` in north, west, up.
-fn nwu_errors(est: &InsState, truth: &InsState) -> ([f64; 3], [f64; 3]) {
+pub(crate) fn nwu_errors(est: &InsState, truth: &InsState) -> ([f64; 3], [f64; 3]) {
     let g = ecef_to_geodetic(&truth.r_ecef_m);
     let c = c_ecef_ned(g.lat_rad, g.lon_rad);
     let nwu = |v: Vec3| [v.x, -v.y, -v.z];
@@ -128,7 +128,7 @@ fn nwu_errors(est: &InsState, truth: &InsState) -> ([f64; 3], [f64; 3]) {
 
 /// The azimuth error (rad): the down component of the small rotation from the true
 /// attitude to `est`'s.
-fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
+pub(crate) fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
     let d: Mat3 = est.c_body_ecef * truth.c_body_ecef.transpose();
     let psi = Vec3::new(
         d[(2, 1)] - d[(1, 2)],
@@ -141,7 +141,7 @@ fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
 
 /// The filter's settings: Table 3-1's IMU model, Table 3-2's initial errors, Table 3-4's
 /// receiver and the book's barometer.
-fn settings(lever_arm_body_m: Vec3) -> (LooselyCoupledConfig, ReceiverNoise) {
+pub(crate) fn settings(lever_arm_body_m: Vec3) -> (LooselyCoupledConfig, ReceiverNoise) {
     let filter = LooselyCoupledConfig {
         imu: crate::ins::filter_noise(BOOK_TABLE_3_1),
         lever_arm_body_m,
@@ -166,61 +166,103 @@ fn settings(lever_arm_body_m: Vec3) -> (LooselyCoupledConfig, ReceiverNoise) {
     (filter, receiver)
 }
 
+/// One seed's flight without GNSS: the scenario, its motion and time origin, the IMU's
+/// increments over [`END_S`], the INS's perturbed start and the antenna's lever arm.
+pub(crate) struct Flight {
+    pub scenario: skyforge_scenarios::Scenario,
+    pub motion: PlatformWindow,
+    pub origin: TimeOrigin,
+    pub increments: Vec<ImuIncrement>,
+    pub start: InsState,
+    pub lever: Vec3,
+}
+
+impl Flight {
+    /// The flight of `seed`.
+    pub fn new(seed: u64) -> Result<Self, ValidateError> {
+        let fail = |e: String| ValidateError::Pipeline(format!("{TABLE} seed {seed}: {e}"));
+        let mut scenario = skyforge_scenarios::named(SCENARIO)?;
+        scenario.seed = seed;
+        let motion = (scenario.imu_motion()?).ok_or_else(|| fail("no [imu] motion".into()))?;
+        let imu = (scenario.imu.clone()).ok_or_else(|| fail("no [imu]".into()))?;
+        let origin = TimeOrigin::new(scenario.time.start);
+        let mut simulator = ImuSimulator::new(&imu, scenario.receiver_seed(), 0);
+        let kinematics = |t_s| PlatformWindow::kinematics(&motion, t_s);
+        let n = (END_S * imu.rate_hz).round() as usize;
+        let increments: Vec<ImuIncrement> = (0..n)
+            .map(|_| {
+                let s = (simulator.next_sample(&kinematics)).map_err(|e| fail(e.to_string()))?;
+                Ok(ImuIncrement {
+                    t_end: origin.start() + Duration::from_seconds(s.t_s),
+                    dt_s: s.dt_s,
+                    dtheta_rad: s.dtheta_rad,
+                    dv_mps: s.dv_mps,
+                })
+            })
+            .collect::<Result<_, ValidateError>>()?;
+        let start = perturbed(&truth(&motion, &origin, 0.0).map_err(fail)?, seed);
+        let antenna = (scenario.antennas.first()).ok_or_else(|| fail("no antenna".into()))?;
+        let lever = Vec3::from(antenna.position_body_m);
+        Ok(Self {
+            scenario,
+            motion,
+            origin,
+            increments,
+            start,
+            lever,
+        })
+    }
+
+    /// The truth `t_s` into the flight.
+    pub fn truth(&self, t_s: f64) -> Result<InsState, ValidateError> {
+        truth(&self.motion, &self.origin, t_s)
+            .map_err(|e| ValidateError::Pipeline(format!("{TABLE}: {e}")))
+    }
+
+    /// The pure INS's position error at [`END_S`] (north, west, up; m).
+    pub fn pure_ins(&self) -> Result<[f64; 3], ValidateError> {
+        let mut pure = self.start;
+        pure.propagate_all(&self.increments)
+            .map_err(|e| ValidateError::Pipeline(format!("{TABLE}: {e}")))?;
+        Ok(nwu_errors(&pure, &self.truth(END_S)?).0)
+    }
+}
+
 fn run(seed: u64) -> Result<SeedErrors, ValidateError> {
     let fail = |e: String| ValidateError::Pipeline(format!("{TABLE} seed {seed}: {e}"));
-    let mut scenario = skyforge_scenarios::named(SCENARIO)?;
-    scenario.seed = seed;
-    let gnss = observation_run(&scenario).map_err(|e| fail(e.to_string()))?;
-    let motion = (scenario.imu_motion()?).ok_or_else(|| fail("no [imu] motion".into()))?;
-    let imu = (scenario.imu.as_ref()).ok_or_else(|| fail("no [imu]".into()))?;
-    let origin = TimeOrigin::new(gnss.start);
-    let mut simulator = ImuSimulator::new(imu, scenario.receiver_seed(), 0);
-    let kinematics = |t_s| PlatformWindow::kinematics(&motion, t_s);
-    let n = (END_S * imu.rate_hz).round() as usize;
-    let increments: Vec<ImuIncrement> = (0..n)
-        .map(|_| {
-            let s = (simulator.next_sample(&kinematics)).map_err(|e| fail(e.to_string()))?;
-            Ok(ImuIncrement {
-                t_end: gnss.start + Duration::from_seconds(s.t_s),
-                dt_s: s.dt_s,
-                dtheta_rad: s.dtheta_rad,
-                dv_mps: s.dv_mps,
-            })
-        })
-        .collect::<Result<_, ValidateError>>()?;
-    let at = |t_s: f64| truth(&motion, &origin, t_s).map_err(fail);
-    let start = perturbed(&at(0.0)?, seed);
+    let flight = Flight::new(seed)?;
+    let gnss = observation_run(&flight.scenario).map_err(|e| fail(e.to_string()))?;
+    let (origin, start, increments) = (&flight.origin, flight.start, &flight.increments);
+    let at = |t_s: f64| flight.truth(t_s);
     let end = at(END_S)?;
-    let mut pure = start;
-    pure.propagate_all(&increments)
-        .map_err(|e| fail(e.to_string()))?;
-    let (pure_position, _) = nwu_errors(&pure, &end);
+    let pure_position = flight.pure_ins()?;
 
-    let store = skyforge_orbits::ephemeris::EphemerisStore::new(gnss.ephemerides.clone(), &origin);
+    let store = skyforge_orbits::ephemeris::EphemerisStore::new(gnss.ephemerides.clone(), origin);
     let pvt = PvtConfig {
         elevation_mask_rad: 5f64.to_radians(),
         iono_gps: gnss.iono.gps,
         ..PvtConfig::default()
     };
-    let lever = gnss.nominal_body_m[0];
+    let lever = flight.lever;
     let (filter_config, receiver) = settings(lever);
     let epochs = &gnss.measured[0].epochs;
     let first = (epochs.first()).ok_or_else(|| fail("no observation epoch".into()))?;
     let antenna = start.r_ecef_m + start.c_body_ecef * lever;
-    let clock = clock_from_epoch(first, (&antenna, &start.v_ecef_mps), &store, &origin, &pvt)
+    let clock = clock_from_epoch(first, (&antenna, &start.v_ecef_mps), &store, origin, &pvt)
         .ok_or_else(|| fail("no satellite at the first epoch".into()))?;
     let mut filter = TightlyCoupled::new(start, filter_config, receiver, clock)
         .map_err(|e| fail(e.to_string()))?;
-    let mut barometer = Barometer::new(BOOK_BAROMETER, scenario.receiver_seed(), BAROMETER);
+    let seed_of_receiver = flight.scenario.receiver_seed();
+    let mut barometer = Barometer::new(BOOK_BAROMETER, seed_of_receiver, BAROMETER);
     let mut pending = epochs.iter().skip_while(|e| e.time <= start.t).peekable();
     let mut azimuth_rad = None;
     let mut last_baro_s = 0.0;
-    for inc in &increments {
+    for inc in increments {
         filter.propagate(inc).map_err(|e| fail(e.to_string()))?;
         let half = Duration::from_seconds(inc.dt_s / 2.0);
         while let Some(epoch) = pending.next_if(|e| e.time <= filter.state().t + half) {
             filter
-                .update_ranges(epoch, &store, &origin, &pvt)
+                .update_ranges(epoch, &store, origin, &pvt)
                 .map_err(|e| fail(e.to_string()))?;
             let t_s = (filter.state().t - gnss.start).to_seconds();
             let now = at(t_s)?;
@@ -245,7 +287,7 @@ fn run(seed: u64) -> Result<SeedErrors, ValidateError> {
 }
 
 /// The root mean square of `values`.
-fn rms(values: impl Iterator<Item = f64>) -> f64 {
+pub(crate) fn rms(values: impl Iterator<Item = f64>) -> f64 {
     let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
     (sum / n as f64).sqrt()
 }

@@ -7,6 +7,7 @@ pub(crate) mod attitude_noise;
 pub(crate) mod attitude_realtime;
 mod attitude_runs;
 pub(crate) mod boat_lake;
+pub(crate) mod book_cascade;
 pub(crate) mod book_gps_ins;
 pub mod curves;
 pub(crate) mod fast_sync;
@@ -302,7 +303,11 @@ const UNITS: &[Unit] = &[
         tables: &[book_gps_ins::TABLE],
         kind: Kind::MonteCarlo,
         scenarios: &[Source::Bundled(book_gps_ins::SCENARIO)],
-        evaluate: |_, _, draw| book_gps_ins::rows(draw),
+        evaluate: |_, _, draw| {
+            let mut rows = book_gps_ins::rows(draw)?;
+            rows.extend(book_cascade::rows(draw)?);
+            Ok(rows)
+        },
         figures: None,
     },
 ];
