@@ -419,17 +419,12 @@ fn check_imu(
     at: &str,
 ) -> Result<(), Invalid> {
     imu.check().map_err(|e| e.within(at))?;
-    if platform.ground.is_none() && platform.segments.is_none() {
-        let kind = if platform.leo.is_some() {
-            "[platform.leo]"
-        } else {
-            "[platform.trajectory]"
-        };
+    if platform.trajectory.is_some() {
         return Err(Invalid::new(
             at,
-            format!("an IMU on {kind}"),
-            "an IMU needs the platform's acceleration and angular rate, which a ground site \
-             and [platform.segments] define exactly; a LEO or a trajectory CSV does not yet",
+            "an IMU on [platform.trajectory]",
+            "an IMU needs the platform's acceleration and angular rate, which a ground site, \
+             [platform.segments] and a LEO define; a trajectory CSV's interpolation does not",
         ));
     }
     let samples = imu.rate_hz * duration_s;

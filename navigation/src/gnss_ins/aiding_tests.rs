@@ -11,7 +11,7 @@ use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
 
 const LEVER: [f64; 3] = [0.8, -0.3, -1.2];
 
-fn config() -> LooselyCoupledConfig {
+pub(super) fn config() -> LooselyCoupledConfig {
     LooselyCoupledConfig {
         imu: ImuNoise {
             gyro_arw: 0.1_f64.to_radians() / 60.0,

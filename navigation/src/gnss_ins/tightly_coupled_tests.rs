@@ -16,21 +16,11 @@ const LEVER: [f64; 3] = [0.8, -0.3, -1.2];
 /// The world's receiver clock drift (s/s).
 const DRIFT: f64 = 1e-7;
 
+/// The aiding tests' filter, started 5 m off.
 fn filter_config() -> LooselyCoupledConfig {
     LooselyCoupledConfig {
-        imu: ImuNoise {
-            gyro_arw: 0.1_f64.to_radians() / 60.0,
-            accel_vrw: 0.05 / 60.0,
-            gyro_bias: 1.0_f64.to_radians() / 3600.0,
-            gyro_bias_tau_s: None,
-            accel_bias: 1e-3 * 9.80665,
-            accel_bias_tau_s: None,
-        },
-        lever_arm_body_m: Vec3::from(LEVER),
         initial_position_m: 5.0,
-        initial_velocity_mps: 0.2,
-        initial_tilt_rad: 1e-3,
-        initial_heading_rad: 5e-3,
+        ..super::aiding_tests::config()
     }
 }
 

@@ -14,12 +14,20 @@
 //!
 //! With zero attitude the body axes are the orbital axes: Zb points to the Earth centre and
 //! Xb along the inertial flight direction (exactly along `v_eci` for a circular orbit).
+//!
+//! The kinematics an IMU needs ([`leo_kinematics`]): the propagator's ECI acceleration
+//! (its force model at the interpolated state) in ECEF, `a_e = C a_i - 2 w x v_e - w x (w
+//! x r_e)`, the gravity acting, `C g_i - w x (w x r_e)` (so the specific force is the
+//! drag: a free-falling body's accelerometers read the non-gravitational forces alone),
+//! and the body's angular rate relative to the Earth from the attitude chain's central
+//! difference over [`RATE_STEP_S`], `[w_eb x] = C^T dC/dt`.
 
-use super::PlatformState;
+use super::{Kinematics, PlatformState};
 use crate::Vec3;
 use crate::frames::earth_rotation::EarthRotation;
 use crate::frames::euler::YawPitchRoll;
 use crate::frames::orbital::c_orbital_eci;
+use crate::propagate::leo::DenseTrajectory;
 
 /// The platform state of a LEO at ECI position `r_eci_m` and velocity `v_eci_mps` at
 /// `t_s`, with `attitude` relative to its orbital frame.
@@ -38,6 +46,48 @@ pub(crate) fn leo_state(
         v_ecef_mps,
         c_body_ecef,
         attitude,
+    }
+}
+
+/// The step of the central difference that gives a LEO body's angular rate (s): its
+/// truncation, `h^2 / 6` times the rate's second derivative (`n^3`, 1e-9 rad/s^3 at the
+/// orbit rate: 1e-14 rad/s), and the rounding of the attitude matrix (1e-16 / h: 1e-14
+/// rad/s) both far below any gyro's resolution.
+const RATE_STEP_S: f64 = 0.01;
+
+/// The kinematics at `t_s` of the LEO of `dense` with `attitude(t)` relative to its
+/// orbital frame.
+pub(crate) fn leo_kinematics(
+    dense: &DenseTrajectory,
+    earth: &EarthRotation,
+    t_s: f64,
+    attitude: &dyn Fn(f64) -> YawPitchRoll,
+) -> Kinematics {
+    let (r_i, v_i, a_i) = dense.state_eci(t_s);
+    let now = leo_state(earth, t_s, &r_i, &v_i, attitude(t_s));
+    let c_body_ecef = |t: f64| {
+        let (r, v) = dense.position_velocity_eci(t);
+        leo_state(earth, t, &r, &v, attitude(t)).c_body_ecef
+    };
+    let h = RATE_STEP_S;
+    let dc = (c_body_ecef(t_s + h) - c_body_ecef(t_s - h)) / (2.0 * h);
+    let skew = now.c_body_ecef.transpose() * dc;
+    let omega_eb = Vec3::new(
+        skew[(2, 1)] - skew[(1, 2)],
+        skew[(0, 2)] - skew[(2, 0)],
+        skew[(1, 0)] - skew[(0, 1)],
+    ) / 2.0;
+    let w = earth.omega_rad_s();
+    let c = earth.c_eci_ecef(t_s);
+    let (r_e, v_e) = (now.r_ecef_m, now.v_ecef_mps);
+    let centrifugal = -w.cross(&w.cross(&r_e));
+    Kinematics {
+        r_ecef_m: r_e,
+        v_ecef_mps: v_e,
+        a_ecef_mps2: c * a_i - 2.0 * w.cross(&v_e) + centrifugal,
+        c_body_ecef: now.c_body_ecef,
+        omega_eb_body_rps: omega_eb,
+        gravity_ecef_mps2: c * dense.gravity_eci(&r_i) + centrifugal,
     }
 }
 

@@ -35,6 +35,7 @@ use crate::frames::earth_rotation::EarthRotation;
 use crate::frames::euler::YawPitchRoll;
 use crate::frames::geodetic::ecef_to_geodetic;
 use crate::frames::ned::c_ecef_ned;
+use crate::gravity::normal_gravity_ecef;
 use crate::propagate::leo::{DenseTrajectory, LeoPropagator};
 use crate::time::TimeOrigin;
 use crate::{Mat3, Vec3};
@@ -117,6 +118,11 @@ pub struct Kinematics {
     pub c_body_ecef: Mat3,
     /// Angular rate of the body relative to the Earth, body axes (rad/s).
     pub omega_eb_body_rps: Vec3,
+    /// The gravity acting at the platform (ECEF, m/s^2): the gravitation plus the
+    /// centrifugal acceleration of the Earth's rotation, what accelerometers do not sense.
+    /// Normal gravity near the surface (`crate::gravity`); a LEO's propagator's
+    /// gravitation in orbit.
+    pub gravity_ecef_mps2: Vec3,
 }
 
 /// How the platform moves.
@@ -300,10 +306,10 @@ impl PlatformWindow {
         }
     }
 
-    /// The motion at `t_s` to second order with the angular rate ([`Kinematics`]), for
-    /// the platforms that define it exactly: a ground site and generated legs. `None` for
-    /// a LEO and a CSV trajectory (its cubic interpolation's acceleration jumps at every
-    /// row).
+    /// The motion at `t_s` to second order with the angular rate and the gravity acting
+    /// ([`Kinematics`]), for the platforms that define it: a ground site, generated legs
+    /// and a LEO (its propagator's acceleration). `None` for a CSV trajectory (its cubic
+    /// interpolation's acceleration jumps at every row).
     pub fn kinematics(&self, t_s: f64) -> Option<Kinematics> {
         let attitude = self.attitude.at(t_s);
         let attitude_rate = attitude.body_rate(&self.attitude.rates(t_s));
@@ -314,6 +320,7 @@ impl PlatformWindow {
                 a_ecef_mps2: Vec3::zeros(),
                 c_body_ecef: site.c_ned_ecef * attitude.c_body_ref(),
                 omega_eb_body_rps: attitude_rate,
+                gravity_ecef_mps2: normal_gravity_ecef(&ecef_to_geodetic(&site.r_ecef_m)),
             }),
             WindowMotion::Segments(segments) => {
                 let s = segments.state(t_s);
@@ -328,9 +335,15 @@ impl PlatformWindow {
                     omega_eb_body_rps: c_body_ned.transpose() * s.omega_en_ned
                         + path_rate
                         + attitude_rate,
+                    gravity_ecef_mps2: normal_gravity_ecef(&ecef_to_geodetic(&s.r_ecef_m)),
                 })
             }
-            WindowMotion::Leo { .. } | WindowMotion::Trajectory(_) => None,
+            WindowMotion::Leo { dense, earth } => {
+                Some(leo::leo_kinematics(dense, earth, t_s, &|t| {
+                    self.attitude.at(t)
+                }))
+            }
+            WindowMotion::Trajectory(_) => None,
         }
     }
 }

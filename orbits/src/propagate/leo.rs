@@ -66,6 +66,12 @@ impl DenseTrajectory {
         (r, v, a)
     }
 
+    /// The force model's gravitation at `r_eci_m` (ECI, m/s^2): the part of
+    /// [`Self::state_eci`]'s acceleration an accelerometer does not sense.
+    pub fn gravity_eci(&self, r_eci_m: &Vec3) -> Vec3 {
+        self.force.gravity_eci(r_eci_m)
+    }
+
     /// ECI position and velocity at `t_s` (as [`Self::state_eci`], without the force
     /// evaluation).
     pub fn position_velocity_eci(&self, t_s: f64) -> (Vec3, Vec3) {

@@ -3,8 +3,7 @@
 //! specific force, in body axes, and their integrals over a sampling interval.
 
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::ecef_to_geodetic;
-use skyforge_orbits::gravity::{earth_rate_ecef, normal_gravity_ecef};
+use skyforge_orbits::gravity::earth_rate_ecef;
 use skyforge_orbits::platform::Kinematics;
 
 /// The body's angular rate relative to inertial space (rad/s) and the specific force
@@ -16,13 +15,14 @@ pub struct Sensed {
 }
 
 /// Groves (2013) eqs. 2.48 and 5.34 rearranged: `w_ib^b = w_eb^b + C_e^b w_ie^e`, and
-/// `f^b = C_e^b (a^e + 2 w_ie x v^e - g^e)`, where `g` is normal gravity (gravitation
-/// plus the centrifugal term `-w_ie x (w_ie x r)`), so the centripetal acceleration of
-/// the rotating frame cancels between the two.
+/// `f^b = C_e^b (a^e + 2 w_ie x v^e - g^e)`, where `g` is the gravity acting at the
+/// platform (gravitation plus the centrifugal term `-w_ie x (w_ie x r)`: normal gravity
+/// near the surface, the propagator's in orbit), so the centripetal acceleration of the
+/// rotating frame cancels between the two.
 pub fn sensed(k: &Kinematics) -> Sensed {
     let w_ie = earth_rate_ecef();
     let c_ecef_body = k.c_body_ecef.transpose();
-    let g = normal_gravity_ecef(&ecef_to_geodetic(&k.r_ecef_m));
+    let g = k.gravity_ecef_mps2;
     Sensed {
         omega_ib_body_rps: k.omega_eb_body_rps + c_ecef_body * w_ie,
         f_body_mps2: c_ecef_body * (k.a_ecef_mps2 + 2.0 * w_ie.cross(&k.v_ecef_mps) - g),

@@ -1,7 +1,7 @@
 use super::*;
 use crate::errors::{Stream, overlapping_adev, overlapping_avar, stream_rng};
 use skyforge_orbits::frames::{Geodetic, c_ecef_ned, geodetic_to_ecef};
-use skyforge_orbits::gravity::{earth_rate_ecef, normal_gravity_ned};
+use skyforge_orbits::gravity::{earth_rate_ecef, normal_gravity_ecef, normal_gravity_ned};
 use skyforge_orbits::platform::Kinematics;
 use skyforge_orbits::{Mat3, Vec3};
 
@@ -33,6 +33,7 @@ fn turning(t: f64) -> Option<Kinematics> {
         a_ecef_mps2: Vec3::zeros(),
         c_body_ecef: c_ecef_ned(g.lat_rad, g.lon_rad).transpose() * rot_z(psi),
         omega_eb_body_rps: Vec3::new(0.0, 0.0, rate),
+        gravity_ecef_mps2: normal_gravity_ecef(&g),
     })
 }
 
@@ -215,6 +216,7 @@ fn at_rest(_t: f64) -> Option<Kinematics> {
         a_ecef_mps2: Vec3::zeros(),
         c_body_ecef: c_ecef_ned(g.lat_rad, g.lon_rad).transpose(),
         omega_eb_body_rps: Vec3::zeros(),
+        gravity_ecef_mps2: normal_gravity_ecef(&g),
     })
 }
 

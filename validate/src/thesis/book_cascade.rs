@@ -22,7 +22,9 @@
 //! level and azimuth errors at 500 s; for velocity only, of the velocity error's RMS over
 //! 320-550 s and of the azimuth error at 150 s. Each within a factor 2.
 
-use super::book_gps_ins::{Flight, TABLE, azimuth_error, nwu_errors, rms, settings};
+use super::book_gps_ins::{
+    Flight, TABLE, attitude_error_ned, azimuth_error, nwu_errors, rms, settings,
+};
 use crate::draw::Draw;
 use crate::report::{Row, Verdict};
 use crate::thesis::ValidateError;
@@ -217,21 +219,13 @@ fn run(seed: u64, aiding: Aiding) -> Result<CascadeStats, ValidateError> {
     })
 }
 
-/// The level (tilt) error per axis (rad): the horizontal part of the small rotation from
-/// the true attitude to `est`'s, its magnitude over sqrt(2) (the book gives one value for
-/// north and west).
+/// The level (tilt) error per axis (rad): the horizontal part of the attitude error, its
+/// magnitude over sqrt(2) (the book gives one value for north and west).
 fn level_error(
     est: &skyforge_navigation::ins::InsState,
     truth: &skyforge_navigation::ins::InsState,
 ) -> f64 {
-    let d: Mat3 = est.c_body_ecef * truth.c_body_ecef.transpose();
-    let psi = Vec3::new(
-        d[(2, 1)] - d[(1, 2)],
-        d[(0, 2)] - d[(2, 0)],
-        d[(1, 0)] - d[(0, 1)],
-    ) / 2.0;
-    let g = ecef_to_geodetic(&truth.r_ecef_m);
-    let ned = c_ecef_ned(g.lat_rad, g.lon_rad) * psi;
+    let ned = attitude_error_ned(est, truth);
     ned.x.hypot(ned.y) / std::f64::consts::SQRT_2
 }
 

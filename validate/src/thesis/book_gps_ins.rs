@@ -126,9 +126,8 @@ pub(crate) fn nwu_errors(est: &InsState, truth: &InsState) -> ([f64; 3], [f64; 3
     )
 }
 
-/// The azimuth error (rad): the down component of the small rotation from the true
-/// attitude to `est`'s.
-pub(crate) fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
+/// The small rotation from the true attitude to `est`'s, NED (rad).
+pub(crate) fn attitude_error_ned(est: &InsState, truth: &InsState) -> Vec3 {
     let d: Mat3 = est.c_body_ecef * truth.c_body_ecef.transpose();
     let psi = Vec3::new(
         d[(2, 1)] - d[(1, 2)],
@@ -136,7 +135,12 @@ pub(crate) fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
         d[(1, 0)] - d[(0, 1)],
     ) / 2.0;
     let g = ecef_to_geodetic(&truth.r_ecef_m);
-    (c_ecef_ned(g.lat_rad, g.lon_rad) * psi).z
+    c_ecef_ned(g.lat_rad, g.lon_rad) * psi
+}
+
+/// The azimuth error (rad): the down component of [`attitude_error_ned`].
+pub(crate) fn azimuth_error(est: &InsState, truth: &InsState) -> f64 {
+    attitude_error_ned(est, truth).z
 }
 
 /// The filter's settings: Table 3-1's IMU model, Table 3-2's initial errors, Table 3-4's

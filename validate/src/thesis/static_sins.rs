@@ -27,6 +27,7 @@ use skyforge_navigation::ins::{
 };
 use skyforge_orbits::Vec3;
 use skyforge_orbits::frames::{Geodetic, YawPitchRoll, c_ecef_ned, geodetic_to_ecef};
+use skyforge_orbits::gravity::normal_gravity_ecef;
 use skyforge_orbits::platform::Kinematics;
 use skyforge_signals::imu::{ImuConfig, ImuGrade, ImuSimulator};
 
@@ -79,6 +80,7 @@ pub(crate) fn aligned_imu(
         a_ecef_mps2: Vec3::zeros(),
         c_body_ecef: c,
         omega_eb_body_rps: Vec3::zeros(),
+        gravity_ecef_mps2: normal_gravity_ecef(&g),
     };
     let config = ImuConfig::of_grade(ImuGrade::Navigation, RATE_HZ);
     let mut imu = ImuSimulator::new(&config, seed, 0);
