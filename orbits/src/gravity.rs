@@ -11,9 +11,11 @@
 //! component `g_N = -8.08e-9 h sin 2L` m/s^2 (Groves eq. 2.140).
 
 use crate::Vec3;
+use crate::constants::J2;
 use crate::constants::{OMEGA_E_GPS, WGS84_A_M, WGS84_F};
 use crate::frames::geodetic::Geodetic;
 use crate::frames::ned::c_ecef_ned;
+use crate::propagate::forces::{J3, J4, J5, J6, zonal_gravitation};
 
 /// Normal gravity at the equator (m/s^2), TR8350.2 table 3.4.
 const GAMMA_E_MPS2: f64 = 9.780_325_335_9;
@@ -39,6 +41,37 @@ pub fn normal_gravity_ned(g: &Geodetic) -> Vec3 {
 /// Normal gravity (m/s^2) in ECEF at `g`.
 pub fn normal_gravity_ecef(g: &Geodetic) -> Vec3 {
     c_ecef_ned(g.lat_rad, g.lon_rad).transpose() * normal_gravity_ned(g)
+}
+
+/// The gravity a strapdown INS subtracts (ECEF, gravitation plus the centrifugal term).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum GravityModel {
+    /// Normal gravity of the WGS-84 ellipsoid ([`normal_gravity_ecef`]): near the surface.
+    #[default]
+    Normal,
+    /// In orbit: the point mass and the zonal harmonics `J_2 .. J_degree` (degree 0: the
+    /// point mass alone; 2: J2; at most 6) of the LEO propagator's force model, plus the
+    /// centrifugal acceleration `-w_ie x (w_ie x r)`: the gravity a LEO propagated with
+    /// the same terms obeys.
+    Zonal {
+        /// The highest degree, 0 or 2..=6.
+        degree: u8,
+    },
+}
+
+impl GravityModel {
+    /// The gravity at `r_ecef_m` (m/s^2, ECEF).
+    pub fn ecef(&self, r_ecef_m: &Vec3) -> Vec3 {
+        match *self {
+            GravityModel::Normal => normal_gravity_ecef(&crate::frames::ecef_to_geodetic(r_ecef_m)),
+            GravityModel::Zonal { degree } => {
+                let zonals = [0.0, 0.0, J2, J3, J4, J5, J6];
+                let degree = usize::from(degree.min(6));
+                let w = earth_rate_ecef();
+                zonal_gravitation(r_ecef_m, &zonals, degree) - w.cross(&w.cross(r_ecef_m))
+            }
+        }
+    }
 }
 
 /// The Earth's rotation vector in ECEF (rad/s): WGS-84's rate about the z axis.

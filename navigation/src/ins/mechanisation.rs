@@ -9,8 +9,9 @@
 //!    relative to the Earth over the interval, `A` the interval-mean matrix (exact when
 //!    that rotation is at a constant rate, as at rest or in a steady turn) and `dv_scul`
 //!    the two-sample sculling term on Earth-relative angle increments;
-//! 3. velocity: `v+ = v + dv_sf + g(r_mid) tau - w_ie x (v + v+) tau`, normal gravity at
-//!    the extrapolated mid-interval position, the Coriolis term by the trapezoid rule
+//! 3. velocity: `v+ = v + dv_sf + g(r_mid) tau - w_ie x (v + v+) tau`, normal gravity (or
+//!    the orbit's zonal field, [`InsState::propagate_in`]) at the extrapolated
+//!    mid-interval position, the Coriolis term by the trapezoid rule
 //!    (solved in closed form for `v+`);
 //! 4. position: `r+ = r + (v + v+) tau / 2`.
 //!
@@ -26,8 +27,7 @@ use super::error::InsError;
 use super::rotation::{interval_mean, orthonormalise, rodrigues};
 use super::state::InsState;
 use skyforge_gnss::imu::ImuIncrement;
-use skyforge_orbits::frames::ecef_to_geodetic;
-use skyforge_orbits::gravity::{earth_rate_ecef, normal_gravity_ecef};
+use skyforge_orbits::gravity::{GravityModel, earth_rate_ecef};
 use skyforge_orbits::{Mat3, Vec3};
 
 impl InsState {
@@ -41,12 +41,23 @@ impl InsState {
         prev: Option<&ImuIncrement>,
         inc: &ImuIncrement,
     ) -> Result<(), InsError> {
+        self.propagate_in(GravityModel::Normal, prev, inc)
+    }
+
+    /// [`Self::propagate`] subtracting `gravity` (normal gravity near the surface, the
+    /// orbit's zonal field in orbit).
+    pub fn propagate_in(
+        &mut self,
+        gravity: GravityModel,
+        prev: Option<&ImuIncrement>,
+        inc: &ImuIncrement,
+    ) -> Result<(), InsError> {
         check_step(self.t, prev, inc)?;
         let tau = inc.dt_s;
         let earth_turn = earth_rate_ecef() * tau;
         let phi = rotation_vector(prev, inc);
         let dv_sf = specific_force_increment(&self.c_body_ecef, &phi, &earth_turn, prev, inc);
-        let v_new = velocity_update(&self.r_ecef_m, &self.v_ecef_mps, &dv_sf, tau);
+        let v_new = velocity_update(gravity, &self.r_ecef_m, &self.v_ecef_mps, &dv_sf, tau);
         self.r_ecef_m += (self.v_ecef_mps + v_new) * (0.5 * tau);
         self.v_ecef_mps = v_new;
         self.c_body_ecef = attitude_update(&self.c_body_ecef, &phi, &earth_turn);
@@ -58,9 +69,18 @@ impl InsState {
     /// and sculling corrections (the first one without). Stops at the first bad increment,
     /// leaving the state at the last good one.
     pub fn propagate_all(&mut self, increments: &[ImuIncrement]) -> Result<(), InsError> {
+        self.propagate_all_in(GravityModel::Normal, increments)
+    }
+
+    /// [`Self::propagate_all`] subtracting `gravity`.
+    pub fn propagate_all_in(
+        &mut self,
+        gravity: GravityModel,
+        increments: &[ImuIncrement],
+    ) -> Result<(), InsError> {
         let mut prev = None;
         for inc in increments {
-            self.propagate(prev, inc)?;
+            self.propagate_in(gravity, prev, inc)?;
             prev = Some(inc);
         }
         Ok(())
@@ -95,9 +115,9 @@ fn specific_force_increment(
 /// `v+ = v + dv_sf + g(r_mid) tau - w_ie x (v + v+) tau`, solved for `v+`:
 /// `(I + [a x]) v+ = b` with `a = w_ie tau` has the closed-form solution
 /// `v+ = (b - a x b + (a . b) a) / (1 + |a|^2)`.
-fn velocity_update(r: &Vec3, v: &Vec3, dv_sf: &Vec3, tau: f64) -> Vec3 {
+fn velocity_update(model: GravityModel, r: &Vec3, v: &Vec3, dv_sf: &Vec3, tau: f64) -> Vec3 {
     let r_mid = r + v * (0.5 * tau);
-    let gravity = normal_gravity_ecef(&ecef_to_geodetic(&r_mid));
+    let gravity = model.ecef(&r_mid);
     let a = earth_rate_ecef() * tau;
     let b = v + dv_sf + gravity * tau - a.cross(v);
     (b - a.cross(&b) + a * a.dot(&b)) / (1.0 + a.norm_squared())

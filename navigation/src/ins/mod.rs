@@ -13,7 +13,8 @@
 //! Inputs are `skyforge_gnss::imu::ImuIncrement`s: the integrals of the body's angular
 //! rate relative to inertial space and of the specific force over each interval, body
 //! axes front-right-down. Gravity is the normal gravity of
-//! `skyforge_orbits::gravity` (gravitation plus centrifugal). Increments that are not
+//! `skyforge_orbits::gravity` (gravitation plus centrifugal), or in orbit its zonal field
+//! (`InsState::propagate_in` with a `GravityModel`). Increments that are not
 //! positive, not finite, out of order or leave gaps are refused with an [`InsError`].
 
 #![warn(missing_docs)]

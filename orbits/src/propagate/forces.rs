@@ -103,35 +103,7 @@ impl ForceModel {
     /// (Legendre polynomials and derivatives by their three-term recurrences, no
     /// singularity at the poles).
     pub fn gravity_eci(&self, r_eci_m: &Vec3) -> Vec3 {
-        let r2 = r_eci_m.norm_squared();
-        let r = r2.sqrt();
-        let r_hat = r_eci_m / r;
-        let mu_over_r2 = GM_GPS / r2;
-        let mut acc = -r_hat * mu_over_r2;
-        if self.max_degree < 2 {
-            return acc;
-        }
-        let s = r_hat.z;
-        let rho = R_EARTH_M / r;
-        // P_{n-1}, P_n and their derivatives, starting at n = 1.
-        let (mut p_prev, mut p) = (1.0, s);
-        let (mut dp_prev, mut dp) = (0.0, 1.0);
-        let mut rho_n = rho;
-        let mut radial = 0.0;
-        let mut axial = 0.0;
-        for n in 2..=self.max_degree {
-            let nf = n as f64;
-            let p_next = ((2.0 * nf - 1.0) * s * p - (nf - 1.0) * p_prev) / nf;
-            let dp_next = dp_prev + (2.0 * nf - 1.0) * p;
-            (p_prev, p) = (p, p_next);
-            (dp_prev, dp) = (dp, dp_next);
-            rho_n *= rho;
-            let jn = self.zonals[n] * rho_n;
-            radial += jn * ((nf + 1.0) * p + s * dp);
-            axial += jn * dp;
-        }
-        acc += (r_hat * radial - Vec3::z() * axial) * mu_over_r2;
-        acc
+        zonal_gravitation(r_eci_m, &self.zonals, self.max_degree)
     }
 
     /// Drag acceleration `-1/2 rho (Cd A / m) |v_rel| v_rel` with `v_rel = v - w_E x r`
@@ -168,6 +140,41 @@ impl ForceModel {
             }
         }
     }
+}
+
+/// The zonal field's gravitation at `r_m` (m/s^2; any frame whose z is the Earth's axis):
+/// the point mass plus `J_n` of `zonals` for n = 2..=`max_degree` ([`ForceModel::gravity_eci`]'s
+/// formula).
+pub fn zonal_gravitation(r_m: &Vec3, zonals: &[f64; 7], max_degree: usize) -> Vec3 {
+    let r2 = r_m.norm_squared();
+    let r = r2.sqrt();
+    let r_hat = r_m / r;
+    let mu_over_r2 = GM_GPS / r2;
+    let mut acc = -r_hat * mu_over_r2;
+    if max_degree < 2 {
+        return acc;
+    }
+    let s = r_hat.z;
+    let rho = R_EARTH_M / r;
+    // P_{n-1}, P_n and their derivatives, starting at n = 1.
+    let (mut p_prev, mut p) = (1.0, s);
+    let (mut dp_prev, mut dp) = (0.0, 1.0);
+    let mut rho_n = rho;
+    let mut radial = 0.0;
+    let mut axial = 0.0;
+    for (n, j_n) in zonals.iter().enumerate().take(max_degree + 1).skip(2) {
+        let nf = n as f64;
+        let p_next = ((2.0 * nf - 1.0) * s * p - (nf - 1.0) * p_prev) / nf;
+        let dp_next = dp_prev + (2.0 * nf - 1.0) * p;
+        (p_prev, p) = (p, p_next);
+        (dp_prev, dp) = (dp, dp_next);
+        rho_n *= rho;
+        let jn = j_n * rho_n;
+        radial += jn * ((nf + 1.0) * p + s * dp);
+        axial += jn * dp;
+    }
+    acc += (r_hat * radial - Vec3::z() * axial) * mu_over_r2;
+    acc
 }
 
 #[cfg(test)]
