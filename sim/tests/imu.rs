@@ -10,6 +10,7 @@ use skyforge_formats::imu::{ImuH5, ImuRow, read_h5};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::ins::InsState;
 use skyforge_orbits::Mat3;
+use skyforge_orbits::constants::GM_GPS;
 use skyforge_orbits::gravity::GravityModel;
 use std::path::Path;
 
@@ -142,15 +143,11 @@ fn a_biased_imu_errs_by_the_biases_it_records_and_repeats_with_its_seed() {
     assert_eq!(text(&sim_a), text(&sim_b), "the same seed, the same IMU");
 }
 
-/// An IMU on a LEO (the bundled `od-leo`, 10 s, an ideal IMU at 100 Hz): `synth` writes
-/// its files, and the truth's increments are what a free-falling, Earth-pointing body
-/// senses: a specific force of the drag alone (under 1e-5 m/s^2) and a turn at the orbit
-/// rate about the pitch axis (1.1e-3 rad/s for its 7000-km orbit, within 1 %).
-#[test]
-fn an_imu_on_a_leo_senses_the_drag_and_the_orbit_rate() {
+/// The `imu.h5` of an ideal IMU at 100 Hz on the bundled `od-leo` over `seconds`.
+fn leo_imu(seconds: u32) -> ImuH5 {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let path = support::short_scenario(d, "od-leo", 10);
+    let path = support::short_scenario(d, "od-leo", seconds);
     let text = std::fs::read_to_string(&path).unwrap();
     std::fs::write(
         &path,
@@ -158,10 +155,19 @@ fn an_imu_on_a_leo_senses_the_drag_and_the_orbit_rate() {
     )
     .unwrap();
     support::skyforge_ok(&["synth", path.to_str().unwrap(), "--out", "sim"], d);
-    let h5 = read_h5(&d.join("sim/imu.h5")).unwrap();
+    read_h5(&d.join("sim/imu.h5")).unwrap()
+}
+
+/// An IMU on a LEO (the bundled `od-leo`, 10 s, an ideal IMU at 100 Hz): `synth` writes
+/// its files, and the truth's increments are what a free-falling, Earth-pointing body
+/// senses: a specific force of the drag alone (under 1e-5 m/s^2) and a turn at the orbit
+/// rate about the pitch axis (1.1e-3 rad/s for its 7000-km orbit, within 1 %).
+#[test]
+fn an_imu_on_a_leo_senses_the_drag_and_the_orbit_rate() {
+    let h5 = leo_imu(10);
     assert_eq!(h5.rows.len(), 1000);
     let a = h5.rows[0].r_ecef_m.norm();
-    let n = (3.986_004_418e14 / a.powi(3)).sqrt();
+    let n = (GM_GPS / a.powi(3)).sqrt();
     for r in &h5.rows {
         let f = r.ideal_dv_mps / r.dt_s;
         let w = r.ideal_dtheta_rad / r.dt_s;
@@ -179,17 +185,7 @@ fn an_imu_on_a_leo_senses_the_drag_and_the_orbit_rate() {
 /// field (`GravityModel::Zonal { degree: 6 }`): the position within 1 mm of the truth.
 #[test]
 fn an_ideal_imu_on_a_leo_carries_the_orbit_through_the_ins() {
-    let dir = tempfile::tempdir().unwrap();
-    let d = dir.path();
-    let path = support::short_scenario(d, "od-leo", 600);
-    let text = std::fs::read_to_string(&path).unwrap();
-    std::fs::write(
-        &path,
-        format!("{text}\n[imu]\nrate_hz = 100.0\ngrade = \"ideal\"\n"),
-    )
-    .unwrap();
-    support::skyforge_ok(&["synth", path.to_str().unwrap(), "--out", "sim"], d);
-    let h5 = read_h5(&d.join("sim/imu.h5")).unwrap();
+    let h5 = leo_imu(600);
     assert_eq!(h5.rows.len(), 60_000);
     let increments: Vec<ImuIncrement> = (h5.rows.iter())
         .map(|r| ImuIncrement {

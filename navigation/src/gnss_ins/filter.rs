@@ -273,13 +273,7 @@ impl<const N: usize> InsFilter<N> {
         v_cov: &Mat3,
     ) -> Result<Update, IntegrationError> {
         self.offset_s(t)?;
-        let fix = GnssFix {
-            t,
-            r_ecef_m: Vec3::zeros(),
-            r_cov_m2: Mat3::identity(),
-            v_ecef_mps: Some((*v, *v_cov)),
-        };
-        check_fix(&fix)?;
+        check_vector(t, v, v_cov, VELOCITY_CHECKS)?;
         let (h, y) = self.velocity_rows(v);
         let r = DMatrix::from_fn(3, 3, |i, j| v_cov[(i, j)]);
         self.apply(Rows { h, y, r }, t)
@@ -309,26 +303,44 @@ impl<const N: usize> InsFilter<N> {
 
 /// A fix with finite values and symmetric covariances with positive diagonals.
 fn check_fix(fix: &GnssFix) -> Result<(), IntegrationError> {
-    let bad = |what| Err(IntegrationError::BadFix { t: fix.t, what });
-    let finite = |m: &Mat3| m.iter().all(|x| x.is_finite());
-    let usable = |m: &Mat3| {
-        finite(m)
-            && (0..3).all(|k| m[(k, k)] > 0.0)
-            && (m - m.transpose()).amax() <= 1e-9 * m.amax()
-    };
-    if !fix.r_ecef_m.iter().all(|x| x.is_finite()) {
-        return bad("position not finite");
-    }
-    if !usable(&fix.r_cov_m2) {
-        return bad("position covariance not finite, symmetric, with positive variances");
-    }
+    check_vector(
+        fix.t,
+        &fix.r_ecef_m,
+        &fix.r_cov_m2,
+        [
+            "position not finite",
+            "position covariance not finite, symmetric, with positive variances",
+        ],
+    )?;
     if let Some((v, cov)) = &fix.v_ecef_mps {
-        if !v.iter().all(|x| x.is_finite()) {
-            return bad("velocity not finite");
-        }
-        if !usable(cov) {
-            return bad("velocity covariance not finite, symmetric, with positive variances");
-        }
+        check_vector(fix.t, v, cov, VELOCITY_CHECKS)?;
+    }
+    Ok(())
+}
+
+/// What a bad velocity is called.
+const VELOCITY_CHECKS: [&str; 2] = [
+    "velocity not finite",
+    "velocity covariance not finite, symmetric, with positive variances",
+];
+
+/// A measured vector with finite values and a symmetric covariance with positive
+/// diagonals; `what` names the two failures.
+fn check_vector(
+    t: Epoch,
+    x: &Vec3,
+    cov: &Mat3,
+    what: [&'static str; 2],
+) -> Result<(), IntegrationError> {
+    let bad = |what| Err(IntegrationError::BadFix { t, what });
+    if !x.iter().all(|x| x.is_finite()) {
+        return bad(what[0]);
+    }
+    let usable = cov.iter().all(|x| x.is_finite())
+        && (0..3).all(|k| cov[(k, k)] > 0.0)
+        && (cov - cov.transpose()).amax() <= 1e-9 * cov.amax();
+    if !usable {
+        return bad(what[1]);
     }
     Ok(())
 }

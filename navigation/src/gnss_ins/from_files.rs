@@ -157,7 +157,7 @@ pub(crate) fn sigma_ned<const N: usize>(filter: &InsFilter<N>) -> Vec3 {
 }
 
 /// How many of `increments` fall in the static start of `alignment_s`, and its end.
-fn alignment_span(
+pub(crate) fn alignment_span(
     increments: &[ImuIncrement],
     alignment_s: f64,
 ) -> Result<(usize, Epoch), InsRunError> {

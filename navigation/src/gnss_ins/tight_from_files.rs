@@ -6,7 +6,8 @@
 
 use super::config::LooselyCoupledConfig;
 use super::from_files::{
-    InsRun, InsRunError, InsSolution, Outages, align, navigation, point_fix, sigma_ned,
+    InsRun, InsRunError, InsSolution, Outages, align, alignment_span, navigation, point_fix,
+    sigma_ned,
 };
 use super::receiver_states::ReceiverNoise;
 use super::tightly_coupled::{TightlyCoupled, clock_from_epoch};
@@ -45,9 +46,7 @@ pub fn tightly_coupled_from_files(
     config.filter.check()?;
     config.receiver.check()?;
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
-    let end = (increments.first())
-        .map(|i| i.t_end + Duration::from_seconds(config.alignment_s - i.dt_s))
-        .ok_or_else(|| InsRunError::Input("the IMU file holds no record".into()))?;
+    let (_, end) = alignment_span(increments, config.alignment_s)?;
     // The fixes of the alignment (and a second beyond: a fix's time is its tag less the
     // receiver clock).
     let fixes: Vec<_> = (obs.epochs.iter())

@@ -23,10 +23,11 @@
 //! 320-550 s and of the azimuth error at 150 s. Each within a factor 2.
 
 use super::book_gps_ins::{
-    Flight, TABLE, attitude_error_ned, azimuth_error, nwu_errors, rms, settings,
+    FACTOR_TWO, Flight, TABLE, attitude_error_ned, azimuth_error, band_row, nwu_errors, rms,
+    settings,
 };
 use crate::draw::Draw;
-use crate::report::{Row, Verdict};
+use crate::report::Row;
 use crate::thesis::ValidateError;
 use rand_chacha::ChaCha20Rng;
 use rand_distr::{Distribution, StandardNormal};
@@ -247,17 +248,7 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         seeds.end - 1
     );
     let row = |name: &str, unit: &str, book: f64, ours: f64| {
-        let ok = ours >= book / 2.0 && ours <= book * 2.0;
-        Row::measured(
-            TABLE,
-            name,
-            "RMS over seeds",
-            unit,
-            Some(book),
-            ours,
-            ("within a factor 2".into(), Verdict::from_ok(ok)),
-        )
-        .with_note(note.clone())
+        band_row(name, unit, (book, ours), FACTOR_TWO, &note)
     };
     let of = |stats: &[CascadeStats], f: fn(&CascadeStats) -> f64| rms(stats.iter().map(f));
     Ok(vec![

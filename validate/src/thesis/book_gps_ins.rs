@@ -290,6 +290,34 @@ fn run(seed: u64) -> Result<SeedErrors, ValidateError> {
     })
 }
 
+/// A tolerance band: the lowest and highest ratio to the book's value, and its words.
+pub(crate) type Band = (f64, f64, &'static str);
+
+/// Within a factor 2 of the book's value.
+pub(crate) const FACTOR_TWO: Band = (0.5, 2.0, "within a factor 2");
+
+/// A row of [`TABLE`]: the RMS over seeds `ours` against the book's `book` with `band`.
+pub(crate) fn band_row(
+    name: &str,
+    unit: &str,
+    (book, ours): (f64, f64),
+    band: Band,
+    note: &str,
+) -> Row {
+    let (low, high, check) = band;
+    let ok = ours >= book * low && ours <= book * high;
+    Row::measured(
+        TABLE,
+        name,
+        "RMS over seeds",
+        unit,
+        Some(book),
+        ours,
+        (check.into(), Verdict::from_ok(ok)),
+    )
+    .with_note(note.into())
+}
+
 /// The root mean square of `values`.
 pub(crate) fn rms(values: impl Iterator<Item = f64>) -> f64 {
     let (sum, n) = values.fold((0.0, 0usize), |(s, n), v| (s + v * v, n + 1));
@@ -313,22 +341,8 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
     let axes = ["north", "west", "up"];
     let mut rows = Vec::new();
     let thirty = (0.7, 1.3, "within 30 %");
-    let two = (0.5, 2.0, "within a factor 2");
-    let mut push = |name: String, unit: &str, book: f64, ours: f64, band: (f64, f64, &str)| {
-        let (low, high, check) = band;
-        let ok = ours >= book * low && ours <= book * high;
-        rows.push(
-            Row::measured(
-                TABLE,
-                name,
-                "RMS over seeds",
-                unit,
-                Some(book),
-                ours,
-                (check.into(), Verdict::from_ok(ok)),
-            )
-            .with_note(note.clone()),
-        );
+    let mut push = |name: String, unit: &str, book: f64, ours: f64, band: Band| {
+        rows.push(band_row(&name, unit, (book, ours), band, &note));
     };
     for (k, book) in [2150.0, 2500.0, 840.0].into_iter().enumerate() {
         let ours = rms(errors.iter().map(|e| e.pure[k]));
@@ -343,12 +357,12 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
     for (k, book) in [0.035, 0.032, 0.045].into_iter().enumerate() {
         let ours = rms(errors.iter().map(|e| e.velocity[k]));
         let name = format!("18-state filter {} velocity at 550 s", axes[k]);
-        push(name, "m/s", book, ours, two);
+        push(name, "m/s", book, ours, FACTOR_TWO);
     }
     for (k, book) in [6.5, 6.2, 12.5].into_iter().enumerate() {
         let ours = rms(errors.iter().map(|e| e.position[k]));
         let name = format!("18-state filter {} position at 550 s", axes[k]);
-        push(name, "m", book, ours, two);
+        push(name, "m", book, ours, FACTOR_TWO);
     }
     let arcmin = rms(errors.iter().map(|e| e.azimuth_rad.to_degrees() * 60.0));
     push(
@@ -356,7 +370,7 @@ pub fn rows(draw: Draw) -> Result<Vec<Row>, ValidateError> {
         "arcmin",
         3.0,
         arcmin,
-        two,
+        FACTOR_TWO,
     );
     Ok(rows)
 }
