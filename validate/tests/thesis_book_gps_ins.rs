@@ -13,11 +13,10 @@
 //! with velocities alone the heading is unobservable until a horizontal manoeuvre, and
 //! the assumed profile's first is the turn at 200 s. 18-state and pure INS: the pure INS
 //! north 2589 m and up 751 m against 2150 and 840, the filter's north and up velocity
-//! 0.020 and 0.024 m/s against 0.035 and 0.045 reproduced; the other seven deviated: the pure INS west 1711 m against 2500 (0.68, the band is
-//! 0.7-1.3), and the filter is 2-5 times better than the book (west velocity 0.013 m/s,
-//! position 3.1 / 1.6 / 5.3 m, azimuth 0.62' against 3'): twelve satellites of today's
-//! GPS in view against the book's era, its own covariance agreeing (2.6 / 2.5 / 4.6 m,
-//! 0.017 / 0.015 / 0.023 m/s). The table is printed
+//! 0.020 and 0.024 m/s against 0.035 and 0.045 reproduced; the other seven deviated:
+//! the pure INS west 1711 m against 2500 (0.68, the band is 0.7-1.3), and the filter is 2-5 times better than the book (west velocity 0.013 m/s,
+//! position 3.1 / 1.6 / 5.3 m, azimuth 0.62' against 3'): today's full GPS
+//! constellation against the book's era, most likely (docs/ins.md). The table is printed
 //! (`cargo test -p skyforge-validate --test thesis_book_gps_ins -- --nocapture`).
 
 mod thesis_support;
