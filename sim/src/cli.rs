@@ -253,6 +253,11 @@ pub struct InsArgs {
     /// The static start the INS aligns on (s).
     #[arg(long, value_name = "S", default_value_t = 60.0)]
     pub alignment_s: f64,
+    /// How it aligns: `coarse` (attitude from the static start's mean specific force and
+    /// rate) or `fine` (then a Kalman filter of zero-velocity updates through the same
+    /// start, which prints its heading and tilt sigmas; docs/ins.md).
+    #[arg(long, value_name = "HOW", default_value = "coarse")]
+    pub align: String,
     /// The integration: `loose` (single-point fixes and Doppler velocities), `tight` (book
     /// 3.2.2's: every satellite's pseudorange and range rate, the receiver clock's bias
     /// and drift estimated) or `tdcp` (paper 001's: time-differenced carrier phase double

@@ -2,14 +2,19 @@
 //! (`imu.h5`): position errors while GNSS updates the filter, and the drift over each
 //! GNSS outage made on purpose, `|e(end) - e(start)|` between the last updated epoch
 //! before the outage and its last epoch (how far the INS alone wandered, whatever the
-//! GNSS fixes' own error when it began).
+//! GNSS fixes' own error when it began); and the attitude's errors, yaw (heading), pitch
+//! and roll from the local NED frame, at the first solution (what the alignment left) and
+//! as RMS over the updated epochs.
 
+use crate::attitude::compare::attitude_errors_deg;
+use nalgebra::{Quaternion, UnitQuaternion};
 use serde::Serialize;
-use skyforge_formats::imu::ImuH5;
+use skyforge_formats::imu::{ImuH5, ImuRow};
 use skyforge_formats::ins::InsRow;
 use skyforge_navigation::gnss_ins::ImuNoise;
+use skyforge_navigation::ins::attitude_ned;
 use skyforge_orbits::Vec3;
-use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
+use skyforge_orbits::frames::{YawPitchRoll, c_ecef_ned, ecef_to_geodetic};
 use skyforge_signals::imu::{AccelSpec, GyroSpec, TriadErrors};
 
 /// One outage's drift.
@@ -32,6 +37,11 @@ pub struct InsComparison {
     /// RMS of the 3-D and horizontal position errors over the updated epochs (m).
     pub rms_3d_m: f64,
     pub rms_horizontal_m: f64,
+    /// Estimated minus true yaw, pitch and roll (deg) at the first solution: what the
+    /// alignment left.
+    pub first_attitude_error_deg: [f64; 3],
+    /// RMS of the yaw, pitch and roll errors over the updated epochs (deg).
+    pub rms_attitude_deg: [f64; 3],
     /// Every complete outage, in order.
     pub outages: Vec<OutageDrift>,
 }
@@ -52,17 +62,37 @@ impl InsComparison {
     }
 }
 
-/// The position error (ECEF, m) of `row` against the truth row of its time.
-fn position_error(row: &InsRow, truth: &ImuH5) -> Result<Vec3, String> {
+/// The truth row at `row`'s time.
+fn truth_at<'a>(row: &InsRow, truth: &'a ImuH5) -> Result<&'a ImuRow, String> {
     let t_s = (row.t - truth.start).to_seconds();
     let k = truth.rows.partition_point(|r| r.t_s < t_s - 1e-6);
     match truth.rows.get(k) {
-        Some(r) if (r.t_s - t_s).abs() <= 1e-6 => Ok(row.r_ecef_m - r.r_ecef_m),
+        Some(r) if (r.t_s - t_s).abs() <= 1e-6 => Ok(r),
         _ => Err(format!(
             "no truth sample at {} ({t_s} s into imu.h5)",
             row.t
         )),
     }
+}
+
+/// `row`'s errors against its truth row: position (ECEF, m), and yaw, pitch, roll (deg).
+fn errors(row: &InsRow, truth: &ImuRow) -> (Vec3, [f64; 3]) {
+    let [w, x, y, z] = truth.q_body_ecef;
+    let c = UnitQuaternion::from_quaternion(Quaternion::new(w, x, y, z));
+    let true_attitude = attitude_ned(
+        &c.to_rotation_matrix().into_inner(),
+        &ecef_to_geodetic(&truth.r_ecef_m),
+    );
+    let ypr = row.ypr_deg.map(f64::to_radians);
+    let estimate = YawPitchRoll {
+        yaw_rad: ypr.x,
+        pitch_rad: ypr.y,
+        roll_rad: ypr.z,
+    };
+    (
+        row.r_ecef_m - truth.r_ecef_m,
+        attitude_errors_deg(&estimate, &true_attitude),
+    )
 }
 
 /// The horizontal part of `e` at `r`.
@@ -75,10 +105,12 @@ fn horizontal(e: &Vec3, r: &Vec3) -> f64 {
 /// Compares `rows` with `truth`, which must hold a sample at every row's time.
 pub fn compare_ins(rows: &[InsRow], truth: &ImuH5) -> Result<InsComparison, String> {
     let first = rows.first().ok_or("ins.csv holds no solution")?;
-    let errors: Vec<Vec3> = rows
+    let (errors, attitude): (Vec<Vec3>, Vec<[f64; 3]>) = rows
         .iter()
-        .map(|r| position_error(r, truth))
-        .collect::<Result<_, _>>()?;
+        .map(|r| truth_at(r, truth).map(|t| errors(r, t)))
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .unzip();
     let updated: Vec<usize> = (0..rows.len()).filter(|&k| rows[k].gnss).collect();
     let mean_square = |f: &dyn Fn(usize) -> f64| {
         (updated.iter().map(|&k| f(k).powi(2)).sum::<f64>() / updated.len().max(1) as f64).sqrt()
@@ -112,6 +144,8 @@ pub fn compare_ins(rows: &[InsRow], truth: &ImuH5) -> Result<InsComparison, Stri
         updated: updated.len(),
         rms_3d_m: mean_square(&|k| errors[k].norm()),
         rms_horizontal_m: mean_square(&|k| horizontal(&errors[k], &rows[k].r_ecef_m)),
+        first_attitude_error_deg: attitude[0],
+        rms_attitude_deg: [0, 1, 2].map(|i| mean_square(&|k| attitude[k][i])),
         outages,
     })
 }
@@ -127,6 +161,16 @@ pub fn print_ins(c: &InsComparison, out: &mut impl std::io::Write) -> std::io::R
         out,
         "position   RMS 3-D {:.3} m, horizontal {:.3} m (updated epochs)",
         c.rms_3d_m, c.rms_horizontal_m
+    )?;
+    let [y, p, r] = c.first_attitude_error_deg;
+    writeln!(
+        out,
+        "aligned    yaw {y:.4} pitch {p:.4} roll {r:.4} deg off (the first solution)"
+    )?;
+    let [y, p, r] = c.rms_attitude_deg;
+    writeln!(
+        out,
+        "attitude   RMS yaw {y:.4} pitch {p:.4} roll {r:.4} deg (updated epochs)"
     )?;
     for o in &c.outages {
         writeln!(

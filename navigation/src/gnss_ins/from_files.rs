@@ -1,7 +1,7 @@
 //! GNSS/INS from files, as a post-processing receiver would run it: the IMU's increments
 //! and one antenna's observations with the broadcast navigation data. The INS aligns on
-//! a static start (coarse alignment over `alignment_s`, its position the mean of the
-//! fixes meanwhile), then the loosely coupled filter takes a single-point fix and Doppler
+//! a static start (coarse alignment, and optionally fine, over `alignment`, its position
+//! the mean of the fixes meanwhile), then the loosely coupled filter takes a single-point fix and Doppler
 //! velocity at every observation epoch, except inside the configured GNSS outages (fixes
 //! dropped on purpose, to measure how the INS bridges them).
 //!
@@ -14,7 +14,8 @@
 use super::config::{IntegrationError, LooselyCoupledConfig};
 use super::filter::{InsFilter, LooselyCoupled};
 use super::fix::GnssFix;
-use crate::ins::{InsError, InsState, coarse_alignment, static_means};
+use super::static_start::{StaticAlignment, align};
+use crate::ins::{FineAlignment, InsError, InsState};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
 use hifitime::{Duration, Epoch};
 use skyforge_gnss::imu::ImuIncrement;
@@ -50,8 +51,8 @@ impl Outages {
 pub struct FromFilesConfig {
     /// The filter.
     pub filter: LooselyCoupledConfig,
-    /// The static start the INS aligns on (s from the first IMU record).
-    pub alignment_s: f64,
+    /// The static start the INS aligns on.
+    pub alignment: StaticAlignment,
     /// A range's 1-sigma error (m), for the fixes' position covariance.
     pub uere_m: f64,
     /// A range rate's 1-sigma error (m/s), for their velocity covariance.
@@ -80,6 +81,8 @@ pub struct InsSolution {
 pub struct InsRun {
     /// The state the alignment found, at its end.
     pub aligned: InsState,
+    /// The fine alignment's diagnostics, where one ran.
+    pub fine: Option<FineAlignment>,
     /// One solution per observation epoch after the alignment.
     pub solutions: Vec<InsSolution>,
     /// Epochs with no fix (too few satellites, no convergence).
@@ -156,65 +159,6 @@ pub(crate) fn sigma_ned<const N: usize>(filter: &InsFilter<N>) -> Vec3 {
     (c * p * c.transpose()).diagonal().map(f64::sqrt)
 }
 
-/// How many of `increments` fall in the static start of `alignment_s`, and its end.
-pub(crate) fn alignment_span(
-    increments: &[ImuIncrement],
-    alignment_s: f64,
-) -> Result<(usize, Epoch), InsRunError> {
-    let start = increments
-        .first()
-        .map(|i| i.t_end - Duration::from_seconds(i.dt_s))
-        .ok_or_else(|| InsRunError::Input("the IMU file holds no record".into()))?;
-    let end = start + Duration::from_seconds(alignment_s);
-    match increments.iter().take_while(|i| i.t_end <= end).count() {
-        0 => Err(InsRunError::Input(format!(
-            "no IMU record in the {alignment_s} s alignment from {start}"
-        ))),
-        n => Ok((n, end)),
-    }
-}
-
-/// The INS aligned on the static `increments`: attitude from their means (coarse
-/// alignment), at rest with its antenna (`lever` away, body axes) at `antenna`, at the
-/// last of them.
-fn align_at(
-    increments: &[ImuIncrement],
-    antenna: &Vec3,
-    lever: &Vec3,
-) -> Result<InsState, InsRunError> {
-    let means = static_means(increments)?;
-    let g = ecef_to_geodetic(antenna);
-    let c = coarse_alignment(&means.f_body_mps2, &means.w_body_rps, &g)?;
-    let t = increments
-        .last()
-        .map_or_else(|| Epoch::from_gpst_seconds(0.0), |i| i.t_end);
-    Ok(InsState::at_rest(t, antenna - c * lever, c))
-}
-
-/// The INS aligned on the static start, its antenna at `antenna` or, without, at the mean
-/// of the fixes (time, antenna position) meanwhile; and how many increments the
-/// alignment took.
-pub(crate) fn align(
-    increments: &[ImuIncrement],
-    alignment_s: f64,
-    lever: &Vec3,
-    antenna: Option<Vec3>,
-    fixes: &[(Epoch, Vec3)],
-) -> Result<(InsState, usize), InsRunError> {
-    let (n, end) = alignment_span(increments, alignment_s)?;
-    let during: Vec<Vec3> = (fixes.iter()).filter(|f| f.0 <= end).map(|f| f.1).collect();
-    let antenna = match antenna {
-        Some(a) => a,
-        None if during.is_empty() => {
-            return Err(InsRunError::Input(format!(
-                "no GNSS fix in the {alignment_s} s alignment to {end}"
-            )));
-        }
-        None => during.iter().sum::<Vec3>() / during.len() as f64,
-    };
-    Ok((align_at(&increments[..n], &antenna, lever)?, n))
-}
-
 /// What a run on `obs` navigates with: the time origin at its first epoch, the
 /// ephemerides bound to it, and the single-point settings (mask, broadcast ionosphere).
 pub(crate) fn navigation(
@@ -256,10 +200,12 @@ pub fn loosely_coupled_from_files(
         .map(|f| (f.t, f.r_ecef_m))
         .collect();
     let lever = config.filter.lever_arm_body_m;
-    let (initial, aligned_records) = align(increments, config.alignment_s, &lever, None, &made)?;
+    let start = align(increments, &config.alignment, &lever, None, &made)?;
+    let (initial, aligned_records) = (start.state, start.records);
     let mut filter = LooselyCoupled::new(initial, config.filter)?;
     let mut run = InsRun {
         aligned: initial,
+        fine: start.fine,
         solutions: Vec::new(),
         no_fix: fixes.iter().filter(|f| f.is_none()).count(),
     };

@@ -8,7 +8,8 @@
 use super::LooselyCoupledConfig;
 use super::config::IntegrationError;
 use super::filter::LooselyCoupled;
-use super::from_files::{InsRun, InsRunError, InsSolution, align, navigation, sigma_ned};
+use super::from_files::{InsRun, InsRunError, InsSolution, navigation, sigma_ned};
+use super::static_start::{StaticAlignment, align};
 use crate::ins::InsState;
 use crate::pvt::PvtConfig;
 use crate::tdcp::TdcpConfig;
@@ -85,8 +86,8 @@ pub fn tdcp_aided(
 pub struct TdcpFilesConfig {
     /// The run's updates.
     pub aided: TdcpAidedConfig,
-    /// The static start the INS aligns on (s from the first IMU record).
-    pub alignment_s: f64,
+    /// The static start the INS aligns on.
+    pub alignment: StaticAlignment,
     /// Where the antenna stood during it (ECEF, m): surveyed, as paper 001's site was
     /// (three satellites cannot fix it).
     pub start_antenna_m: Vec3,
@@ -107,7 +108,8 @@ pub fn tdcp_aided_from_files(
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, mask_deg)?;
     let lever = config.aided.filter.lever_arm_body_m;
     let antenna = Some(config.start_antenna_m);
-    let (initial, n) = align(increments, config.alignment_s, &lever, antenna, &[])?;
+    let start = align(increments, &config.alignment, &lever, antenna, &[])?;
+    let (initial, n) = (start.state, start.records);
     let solutions = tdcp_aided(
         initial,
         &increments[n..],
@@ -117,6 +119,7 @@ pub fn tdcp_aided_from_files(
     )?;
     Ok(InsRun {
         aligned: initial,
+        fine: start.fine,
         solutions,
         no_fix: 0,
     })

@@ -6,10 +6,10 @@
 
 use super::config::LooselyCoupledConfig;
 use super::from_files::{
-    InsRun, InsRunError, InsSolution, Outages, align, alignment_span, navigation, point_fix,
-    sigma_ned,
+    InsRun, InsRunError, InsSolution, Outages, navigation, point_fix, sigma_ned,
 };
 use super::receiver_states::ReceiverNoise;
+use super::static_start::{StaticAlignment, align, alignment_span};
 use super::tightly_coupled::{TightlyCoupled, clock_from_epoch};
 use hifitime::Duration;
 use skyforge_gnss::imu::ImuIncrement;
@@ -25,8 +25,8 @@ pub struct TightFilesConfig {
     pub filter: LooselyCoupledConfig,
     /// The receiver's clock and measurement errors (no barometer: files carry none).
     pub receiver: ReceiverNoise,
-    /// The static start the INS aligns on (s from the first IMU record).
-    pub alignment_s: f64,
+    /// The static start the INS aligns on.
+    pub alignment: StaticAlignment,
     /// Satellites below this elevation are not used (deg).
     pub elevation_mask_deg: f64,
     /// GNSS outages made on purpose, if any.
@@ -46,7 +46,7 @@ pub fn tightly_coupled_from_files(
     config.filter.check()?;
     config.receiver.check()?;
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
-    let (_, end) = alignment_span(increments, config.alignment_s)?;
+    let (_, end) = alignment_span(increments, config.alignment.span_s)?;
     // The fixes of the alignment (and a second beyond: a fix's time is its tag less the
     // receiver clock).
     let fixes: Vec<_> = (obs.epochs.iter())
@@ -54,7 +54,8 @@ pub fn tightly_coupled_from_files(
         .filter_map(|e| point_fix(e, &store, &origin, &pvt))
         .collect();
     let lever = config.filter.lever_arm_body_m;
-    let (initial, aligned_records) = align(increments, config.alignment_s, &lever, None, &fixes)?;
+    let start = align(increments, &config.alignment, &lever, None, &fixes)?;
+    let (initial, aligned_records) = (start.state, start.records);
     let mut epochs = obs
         .epochs
         .iter()
@@ -67,6 +68,7 @@ pub fn tightly_coupled_from_files(
     let mut filter = TightlyCoupled::new(initial, config.filter, config.receiver, clock)?;
     let mut run = InsRun {
         aligned: initial,
+        fine: start.fine,
         solutions: Vec::new(),
         no_fix: 0,
     };

@@ -3,7 +3,7 @@
 use hifitime::Epoch;
 use skyforge_orbits::frames::YawPitchRoll;
 use skyforge_orbits::frames::c_ecef_ned;
-use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic};
+use skyforge_orbits::frames::{Geodetic, ecef_to_geodetic, geodetic_to_ecef};
 use skyforge_orbits::{Mat3, Vec3};
 
 /// Position, velocity and attitude of the IMU's body frame at time `t`, ECEF-resolved
@@ -50,6 +50,19 @@ impl InsState {
     /// position.
     pub fn attitude_ned(&self) -> YawPitchRoll {
         attitude_ned(&self.c_body_ecef, &self.geodetic())
+    }
+
+    /// Height held, as a marine INS holds it (the free vertical channel diverges with a
+    /// time constant of about `sqrt(R / 2g)`, 570 s, and a vessel knows its height): the
+    /// state moved along its local vertical to `h_m` above the ellipsoid and its
+    /// vertical velocity removed.
+    pub fn hold_height(&mut self, h_m: f64) {
+        let g = self.geodetic();
+        let c = c_ecef_ned(g.lat_rad, g.lon_rad);
+        let mut v_ned = c * self.v_ecef_mps;
+        v_ned.z = 0.0;
+        self.v_ecef_mps = c.transpose() * v_ned;
+        self.r_ecef_m = geodetic_to_ecef(&Geodetic { h_m, ..g });
     }
 }
 

@@ -9,10 +9,11 @@ use anyhow::Context;
 use skyforge_formats::ins::{INS_CSV, write_ins_csv};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::gnss_ins::{
-    FromFilesConfig, InsRun, LooselyCoupledConfig, Outages, ReceiverNoise, TdcpAidedConfig,
-    TdcpFilesConfig, TightFilesConfig, loosely_coupled_from_files, tdcp_aided_from_files,
-    tightly_coupled_from_files,
+    FromFilesConfig, ImuNoise, InsRun, LooselyCoupledConfig, Outages, ReceiverNoise,
+    StaticAlignment, TdcpAidedConfig, TdcpFilesConfig, TightFilesConfig,
+    loosely_coupled_from_files, tdcp_aided_from_files, tightly_coupled_from_files,
 };
+use skyforge_navigation::ins::FineAlignmentConfig;
 use skyforge_navigation::tdcp::TdcpConfig;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::OMEGA_E_GPS;
@@ -29,6 +30,11 @@ const RANGE_RATE_SIGMA_MPS: f64 = 0.05;
 const ELEVATION_MASK_DEG: f64 = 10.0;
 /// Standard gravity (m/s^2).
 const G0: f64 = 9.806_65;
+/// The fine alignment's zero-velocity updates: their rate (Hz) and sigma (m/s).
+/// # assumed: 10 Hz and 1 mm/s, a vehicle parked with its engine running
+/// (`FineAlignmentConfig::default`'s).
+const ZUPT_RATE_HZ: f64 = 10.0;
+const ZUPT_SIGMA_MPS: f64 = 1e-3;
 
 /// The grade's data-sheet errors.
 fn grade(name: &str) -> Result<(GyroSpec, AccelSpec), BadInput> {
@@ -48,7 +54,9 @@ fn grade(name: &str) -> Result<(GyroSpec, AccelSpec), BadInput> {
 /// The run's settings from the arguments: the grade's noise, and initial errors a static
 /// alignment of that grade leaves (three times the tilt an accelerometer bias makes and
 /// the heading a gyro bias makes at 45 degrees latitude, with floors).
-fn config(args: &InsArgs) -> Result<FromFilesConfig, BadInput> {
+/// `interval_s`: the IMU's interval, which sets how many increments lie between two
+/// zero-velocity updates of a fine alignment.
+fn config(args: &InsArgs, interval_s: f64) -> Result<FromFilesConfig, BadInput> {
     let imu = filter_noise(grade(&args.grade)?);
     let outages = match args.outages.as_deref() {
         None => None,
@@ -79,21 +87,48 @@ fn config(args: &InsArgs) -> Result<FromFilesConfig, BadInput> {
         )));
     }
     let gyrocompass = OMEGA_E_GPS * std::f64::consts::FRAC_1_SQRT_2;
+    let filter = LooselyCoupledConfig {
+        imu,
+        lever_arm_body_m: Vec3::from_column_slice(&args.lever_arm),
+        initial_position_m: UERE_M,
+        initial_velocity_mps: 0.01,
+        initial_tilt_rad: (3.0 * imu.accel_bias / G0).max(1e-4),
+        initial_heading_rad: (3.0 * imu.gyro_bias / gyrocompass).clamp(1e-3, 0.5),
+    };
+    let fine = match args.align.as_str() {
+        "coarse" => None,
+        "fine" => Some(fine_alignment(&imu, &filter, interval_s)),
+        other => return Err(BadInput(format!("--align {other:?}: coarse or fine"))),
+    };
     Ok(FromFilesConfig {
-        filter: LooselyCoupledConfig {
-            imu,
-            lever_arm_body_m: Vec3::from_column_slice(&args.lever_arm),
-            initial_position_m: UERE_M,
-            initial_velocity_mps: 0.01,
-            initial_tilt_rad: (3.0 * imu.accel_bias / G0).max(1e-4),
-            initial_heading_rad: (3.0 * imu.gyro_bias / gyrocompass).clamp(1e-3, 0.5),
+        filter,
+        alignment: StaticAlignment {
+            span_s: args.alignment_s,
+            fine,
         },
-        alignment_s: args.alignment_s,
         uere_m: UERE_M,
         range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
         elevation_mask_deg: ELEVATION_MASK_DEG,
         outages,
     })
+}
+
+/// The fine alignment's settings: the grade's white noise, the coarse alignment's
+/// errors as the filter's (`filter`'s initial tilt and heading), and the updates at
+/// [`ZUPT_RATE_HZ`] for an IMU of `interval_s`.
+fn fine_alignment(
+    imu: &ImuNoise,
+    filter: &LooselyCoupledConfig,
+    interval_s: f64,
+) -> FineAlignmentConfig {
+    FineAlignmentConfig {
+        gyro_arw_rad_per_sqrt_s: imu.gyro_arw,
+        accel_vrw_mps_per_sqrt_s: imu.accel_vrw,
+        zupt_sigma_mps: ZUPT_SIGMA_MPS,
+        level_sigma_rad: filter.initial_tilt_rad,
+        heading_sigma_rad: filter.initial_heading_rad,
+        update_every: ((1.0 / (ZUPT_RATE_HZ * interval_s)).round() as usize).max(1),
+    }
 }
 
 /// The IMU file's increments.
@@ -142,7 +177,7 @@ fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfi
             code_sigma_m: Some(UERE_M),
             height_m: args.height_sigma.map(|s| (h, s)),
         },
-        alignment_s: loose.alignment_s,
+        alignment: loose.alignment,
         start_antenna_m: geodetic_to_ecef(&Geodetic::from_degrees(lat, lon, h)),
     })
 }
@@ -163,7 +198,7 @@ fn tight_config(loose: &FromFilesConfig) -> TightFilesConfig {
             range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
             barometer: None,
         },
-        alignment_s: loose.alignment_s,
+        alignment: loose.alignment,
         elevation_mask_deg: loose.elevation_mask_deg,
         outages: loose.outages,
     }
@@ -178,14 +213,15 @@ enum Mode {
 
 /// Run `skyforge ins`.
 pub fn ins(args: &InsArgs) -> anyhow::Result<()> {
-    let config = config(args)?;
+    let increments = read_imu(args)?;
+    let interval_s = increments.first().map_or(0.01, |i| i.dt_s);
+    let config = config(args, interval_s)?;
     let mode = match args.mode.as_str() {
         "loose" => Mode::Loose,
         "tight" => Mode::Tight(tight_config(&config)),
         "tdcp" => Mode::Tdcp(tdcp_config(args, &config)?),
         other => return Err(BadInput(format!("--mode {other:?}: loose, tight or tdcp")).into()),
     };
-    let increments = read_imu(args)?;
     let file = super::read_observations(&args.file)?;
     let (ephemerides, iono) = super::attitude::read_nav_with_iono(&args.nav)?;
     let run = match &mode {
@@ -214,6 +250,16 @@ fn print_summary(run: &InsRun, records: usize) {
         attitude.pitch_rad.to_degrees(),
         attitude.roll_rad.to_degrees()
     );
+    if let Some(fine) = &run.fine {
+        println!(
+            "fine       {} zero-velocity updates (innovation RMS {:.2e} m/s): heading corrected by {:.4} deg, sigma heading {:.4} deg, tilt {:.4} deg (an east gyro bias's heading error not included)",
+            fine.updates,
+            fine.innovation_rms_mps,
+            fine.heading_correction_rad.to_degrees(),
+            fine.heading_sigma_rad.to_degrees(),
+            fine.level_sigma_rad.to_degrees()
+        );
+    }
     println!(
         "solutions  {} from {records} IMU records: {updated} updated by GNSS, {hidden} in outages, {} epochs without a fix or a usable satellite",
         run.solutions.len(),
