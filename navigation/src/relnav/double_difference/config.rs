@@ -53,9 +53,51 @@ pub struct DoubleDifferenceConfig {
     /// A satellite missing for longer than this (s) starts afresh.
     /// # assumed: 1.5 s, one missed epoch at 1 Hz.
     pub max_gap_s: f64,
-    /// Check the held integers every epoch against a float filter that never holds
-    /// (`fixing::check_held`); `false`: fix and hold without a check.
+    /// Check the held integers every epoch against a float filter that never holds, by
+    /// `held_test` (`fixing::check_held`); `false`: fix and hold without a check.
     pub check_held: bool,
+    /// The tests of that check. # assumed: both, chosen before the first run (issue #35):
+    /// the twin-LAMBDA test alone released `grace-relnav` seed 1's wrong integers under
+    /// `modern` satellite errors 364 s after they were fixed. Measured since: without
+    /// satellite errors both change nothing; with `modern` ones the consistency test
+    /// releases right integers as well (docs/orbit-determination.md).
+    pub held_test: HeldTest,
+    /// The consistency test's false-alarm probability per epoch (`fixing::inconsistent`).
+    /// # assumed: 1e-6, chosen before the first run: the test runs every epoch, 86 400 a
+    /// day at 1 Hz, so a day of right integers is released by chance 0.09 times at most
+    /// (fewer: successive epochs' statistics are correlated), and a false release costs
+    /// only a refix from the twin's float values.
+    pub consistency_false_alarm: f64,
+}
+
+/// Which tests of the held integers against the float twin run (`fixing::check_held`);
+/// either releases them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
+pub enum HeldTest {
+    /// LAMBDA on the twin's float values of the held double differences resolves, with
+    /// the ratio and success-rate tests, to other integers (`fixing::resolves_otherwise`).
+    #[serde(rename = "twin-lambda")]
+    TwinLambda,
+    /// The held double differences' values differ from the twin's by more than their
+    /// covariance allows, a chi-square test (`fixing::inconsistent`).
+    #[serde(rename = "consistency")]
+    Consistency,
+    /// Both.
+    #[default]
+    #[serde(rename = "twin-lambda+consistency")]
+    TwinLambdaAndConsistency,
+}
+
+impl HeldTest {
+    /// Whether the twin-LAMBDA test runs.
+    pub fn lambda(self) -> bool {
+        self != HeldTest::Consistency
+    }
+
+    /// Whether the consistency test runs.
+    pub fn consistency(self) -> bool {
+        self != HeldTest::TwinLambda
+    }
 }
 
 impl Default for DoubleDifferenceConfig {
@@ -73,6 +115,8 @@ impl Default for DoubleDifferenceConfig {
             slip_threshold_m: 0.05,
             max_gap_s: 1.5,
             check_held: true,
+            held_test: HeldTest::default(),
+            consistency_false_alarm: 1e-6,
         }
     }
 }
@@ -128,6 +172,11 @@ impl DoubleDifferenceConfig {
                 "max_gap_s",
                 self.max_gap_s,
                 Allowed::above(0.0, 3600.0, "s"),
+            ),
+            (
+                "consistency_false_alarm",
+                self.consistency_false_alarm,
+                Allowed::above(0.0, 0.5, ""),
             ),
         ])
         .map_err(within)

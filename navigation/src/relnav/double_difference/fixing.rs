@@ -18,11 +18,14 @@
 //! errors the model lacks (the satellites' orbit errors through a 200 km baseline bias
 //! the double differences by centimetres) can make a wrong candidate look right. So a
 //! float filter runs beside the holding one on the same epochs, never constrained
-//! ([`check_held`]): once its own float values of the held double differences resolve,
-//! with the same tests, to other integers, the held ones are released.
+//! ([`check_held`]), and the held integers are released once either test finds them
+//! wrong: its own float values of the held double differences resolve, with the same
+//! tests, to other integers ([`resolves_otherwise`]), or they are farther from the held
+//! values than their covariance allows ([`inconsistent`]).
 
 use super::filter::{DdFilter, Key, Pairing};
 use crate::ambiguity::lambda;
+use crate::pvt::raim::test_threshold;
 use nalgebra::{DMatrix, DVector};
 
 /// A double-difference ambiguity with a variance below this (cycles^2) counts as fixed.
@@ -86,32 +89,71 @@ fn float_of(filter: &DdFilter, d: &DMatrix<f64>) -> (DVector<f64>, DMatrix<f64>)
 }
 
 /// Fix and hold's check: `twin`, a float filter on the same epochs that never holds,
-/// against the integers `filter` holds on `pairings`. Where LAMBDA on the twin's float
-/// values of the held double differences finds other integers and they pass the ratio
-/// and success-rate tests, the held integers are wrong: `filter` becomes the twin (every
-/// hold released) and resolves afresh. Whether it released.
+/// against the integers `filter` holds on `pairings`, by the tests of `held_test`
+/// ([`resolves_otherwise`], [`inconsistent`]). Where one finds them wrong, `filter`
+/// becomes the twin (every hold released) and resolves afresh. Whether it released.
 pub(crate) fn check_held(filter: &mut DdFilter, twin: &DdFilter, pairings: &[Pairing]) -> bool {
     if filter.keys != twin.keys {
         return false;
     }
+    let Some(d) = held_rows(filter, pairings) else {
+        return false;
+    };
+    let test = filter.config.held_test;
+    let wrong = (test.lambda() && resolves_otherwise(filter, twin, &d))
+        || (test.consistency() && inconsistent(filter, twin, &d));
+    if wrong {
+        *filter = twin.clone();
+    }
+    wrong
+}
+
+/// The rows `D` of the double differences of `pairings` that `filter` holds; `None` where
+/// it holds none.
+fn held_rows(filter: &DdFilter, pairings: &[Pairing]) -> Option<DMatrix<f64>> {
     let held: Vec<DVector<f64>> = (pairings.iter())
         .filter_map(|p| row(filter, p))
         .filter(|d| (d.transpose() * &filter.p * d)[(0, 0)] < HELD_VARIANCE)
         .collect();
-    if held.is_empty() {
-        return false;
-    }
-    let d = DMatrix::from_fn(held.len(), filter.x.len(), |i, j| held[i][j]);
-    let (a_float, q) = float_of(twin, &d);
+    (!held.is_empty()).then(|| DMatrix::from_fn(held.len(), filter.x.len(), |i, j| held[i][j]))
+}
+
+/// The twin-LAMBDA test: LAMBDA on `twin`'s float values of the held double differences
+/// `d` finds integers other than `filter`'s, and they pass the ratio and success-rate
+/// tests.
+fn resolves_otherwise(filter: &DdFilter, twin: &DdFilter, d: &DMatrix<f64>) -> bool {
+    let (a_float, q) = float_of(twin, d);
     let Some(integers) = fixed_integers(twin, &a_float, &q) else {
         return false;
     };
-    let holding = &d * &filter.x;
-    let same = (integers.iter().zip(holding.iter())).all(|(&k, a)| k as f64 == a.round());
-    if !same {
-        *filter = twin.clone();
-    }
-    !same
+    let holding = d * &filter.x;
+    (integers.iter().zip(holding.iter())).any(|(&k, a)| k as f64 != a.round())
+}
+
+/// The consistency test of the held double differences `a = D x` (k of them) between
+/// `filter` (`a_h`, covariance `Q_h = D P_h D^T`) and `twin` (`a_t`, `Q_t`):
+///
+/// `T = (a_h - a_t)^T (Q_t - Q_h)^-1 (a_h - a_t) > chi2_k^-1(1 - alpha)`
+///
+/// (`alpha`: `consistency_false_alarm`). With the right integers the holding filter is
+/// the twin conditioned on them (the constant ambiguities make an old hold one on
+/// today's states), and the difference of two conditional means on nested information
+/// has the difference of their covariances: `a_h - a_t ~ N(0, Q_t - Q_h)`, so `T` is
+/// chi-square with k degrees of freedom. It is Teunissen's ellipsoidal integer aperture
+/// test of the integers (as Verhagen describes it): they stand while the float solution
+/// lies in the ellipsoid about them that the float covariance and the false-alarm
+/// probability set. Where rounding makes `Q_t - Q_h` not positive definite, no decision.
+/// Errors the model lacks raise `T` for right integers too: under broadcast-quality
+/// satellite orbits it releases them as well (docs/orbit-determination.md).
+fn inconsistent(filter: &DdFilter, twin: &DdFilter, d: &DMatrix<f64>) -> bool {
+    let (a_h, q_h) = float_of(filter, d);
+    let (a_t, q_t) = float_of(twin, d);
+    let Some(chol) = (q_t - q_h).cholesky() else {
+        return false;
+    };
+    let e = a_h - a_t;
+    let t = e.dot(&chol.solve(&e));
+    t > test_threshold(d.nrows(), filter.config.consistency_false_alarm)
 }
 
 /// The integers of `a_hat` (covariance `q`) when the ratio and success-rate tests pass.

@@ -3,9 +3,10 @@
 //! differences of range (code) and of range plus integer ambiguities (phase) on two
 //! signals, no ionosphere, no clocks. After 600 s the filter must have the baseline to a
 //! micrometre and the double-difference integers exactly, all 14 fixed; a wrong integer
-//! forced into the hold must be released by the float twin's check and refixed.
+//! forced into the hold must be released by the float twin's check and refixed, by each
+//! of its two tests alone and by both.
 
-use super::config::DoubleDifferenceConfig;
+use super::config::{DoubleDifferenceConfig, HeldTest};
 use super::dynamics::{gravity_field, propagate_pair};
 use super::filter::{Anchor, DdEpoch, DdFilter, Key, Pairing, SatPair, SignalSd};
 use super::fixing::{AmbiguityCount, check_held, resolve};
@@ -68,10 +69,12 @@ impl Synthetic {
         }
     }
 
-    /// A loose dynamics model: the float epochs' error is forgotten within the run.
-    fn filter(&self) -> DdFilter {
+    /// A loose dynamics model: the float epochs' error is forgotten within the run; the
+    /// held integers checked by `held_test`.
+    fn filter(&self, held_test: HeldTest) -> DdFilter {
         let config = DoubleDifferenceConfig {
             acceleration_sigma_mps2: 1e-4,
+            held_test,
             ..Default::default()
         };
         DdFilter::new(config, self.forces.clone())
@@ -148,7 +151,7 @@ fn force_wrong_integer(filter: &mut DdFilter, pairing: &Pairing) {
 #[test]
 fn perfect_ranges_give_the_baseline_and_the_integers() {
     let mut pair = Synthetic::new();
-    let mut filter = pair.filter();
+    let mut filter = pair.filter(HeldTest::default());
     let mut twin: Option<DdFilter> = None;
     let (mut count, mut releases) = (AmbiguityCount::default(), 0);
     let mut truth = (Vec3::zeros(), Vec3::zeros());
@@ -181,13 +184,13 @@ fn perfect_ranges_give_the_baseline_and_the_integers() {
     assert_eq!(releases, 0, "right integers released");
 }
 
-#[test]
-fn a_wrong_held_integer_is_released_and_refixed() {
+/// The epoch at which the check by `held_test` first releases the held integers when one
+/// is forced one cycle off at `forced_at`; the integers right again at the end.
+fn release_of_a_wrong_integer(held_test: HeldTest, forced_at: u32) -> Option<u32> {
     let mut pair = Synthetic::new();
-    let mut filter = pair.filter();
+    let mut filter = pair.filter(held_test);
     let mut twin: Option<DdFilter> = None;
     let mut released_at = None;
-    let forced_at = 300;
     for step in 0..600 {
         let (anchor, truth, epoch) = pair.epoch(step);
         match twin.as_mut() {
@@ -217,7 +220,50 @@ fn a_wrong_held_integer_is_released_and_refixed() {
             assert!(pair.integer_error(&filter, &pairings) < 1e-6);
         }
     }
-    // At the check of the very epoch it was forced: the twin's float values are then
-    // precise to millicycles and resolve, with the tests, to the true integers.
-    assert_eq!(released_at, Some(forced_at), "released at {released_at:?}");
+    released_at
+}
+
+#[test]
+fn a_wrong_held_integer_is_released_and_refixed() {
+    let forced_at = 300;
+    // At the check of the very epoch it was forced, by either test alone and by both: the
+    // twin's float values are then precise to millicycles, so they resolve, with the
+    // tests, to the true integers, and the held value is a cycle from them where the
+    // covariance of the difference allows millicycles.
+    for held_test in [
+        HeldTest::TwinLambda,
+        HeldTest::Consistency,
+        HeldTest::TwinLambdaAndConsistency,
+    ] {
+        let released_at = release_of_a_wrong_integer(held_test, forced_at);
+        assert_eq!(
+            released_at,
+            Some(forced_at),
+            "{held_test:?}: {released_at:?}"
+        );
+    }
+}
+
+#[test]
+fn the_held_tests_by_name_and_the_false_alarm_checked() {
+    for (name, test) in [
+        ("twin-lambda", HeldTest::TwinLambda),
+        ("consistency", HeldTest::Consistency),
+        (
+            "twin-lambda+consistency",
+            HeldTest::TwinLambdaAndConsistency,
+        ),
+    ] {
+        let c: DoubleDifferenceConfig = toml::from_str(&format!("held_test = \"{name}\"")).unwrap();
+        assert_eq!(c.held_test, test);
+    }
+    let c = DoubleDifferenceConfig {
+        consistency_false_alarm: 0.0,
+        ..Default::default()
+    };
+    let e = c.check().unwrap_err().to_string();
+    assert!(
+        e.contains("double_difference.consistency_false_alarm = 0"),
+        "{e}"
+    );
 }
