@@ -254,8 +254,10 @@ pub struct InsArgs {
     #[arg(long, value_name = "S", default_value_t = 60.0)]
     pub alignment_s: f64,
     /// How it aligns: `coarse` (attitude from the static start's mean specific force and
-    /// rate) or `fine` (then a Kalman filter of zero-velocity updates through the same
-    /// start, which prints its heading and tilt sigmas; docs/ins.md).
+    /// rate), `fine` (then a Kalman filter of zero-velocity updates through the same
+    /// start, which prints its heading and tilt sigmas) or `track` (in motion: heading and
+    /// pitch from the first fix at 5 m/s or faster, roll zero; any grade; --alignment-s
+    /// unused; docs/ins.md).
     #[arg(long, value_name = "HOW", default_value = "coarse")]
     pub align: String,
     /// The integration: `loose` (single-point fixes and Doppler velocities), `tight` (book

@@ -1,7 +1,7 @@
 //! GNSS/INS from files, as a post-processing receiver would run it: the IMU's increments
 //! and one antenna's observations with the broadcast navigation data. The INS aligns on
-//! a static start (coarse alignment, and optionally fine, over `alignment`, its position
-//! the mean of the fixes meanwhile), then the loosely coupled filter takes a single-point fix and Doppler
+//! a static start (coarse alignment, and optionally fine, its position the mean of the
+//! fixes meanwhile) or in motion on the fixes' track (`start::Alignment`), then the loosely coupled filter takes a single-point fix and Doppler
 //! velocity at every observation epoch, except inside the configured GNSS outages (fixes
 //! dropped on purpose, to measure how the INS bridges them).
 //!
@@ -14,10 +14,10 @@
 use super::config::{IntegrationError, LooselyCoupledConfig};
 use super::filter::{InsFilter, LooselyCoupled};
 use super::fix::GnssFix;
-use super::static_start::{StaticAlignment, align};
+use super::start::{Alignment, align};
 use crate::ins::{FineAlignment, InsError, InsState};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
-use hifitime::{Duration, Epoch};
+use hifitime::Duration;
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_gnss::observation::{ObsEpoch, ObsFile};
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
@@ -51,8 +51,8 @@ impl Outages {
 pub struct FromFilesConfig {
     /// The filter.
     pub filter: LooselyCoupledConfig,
-    /// The static start the INS aligns on.
-    pub alignment: StaticAlignment,
+    /// How the INS aligns.
+    pub alignment: Alignment,
     /// A range's 1-sigma error (m), for the fixes' position covariance.
     pub uere_m: f64,
     /// A range rate's 1-sigma error (m/s), for their velocity covariance.
@@ -106,26 +106,18 @@ impl From<InsError> for InsRunError {
     }
 }
 
-/// The single-point fix of `epoch`: its time (the receiver clock removed) and position.
-pub(crate) fn point_fix(
-    epoch: &ObsEpoch,
-    store: &EphemerisStore,
-    origin: &TimeOrigin,
-    pvt: &PvtConfig,
-) -> Option<(Epoch, Vec3)> {
-    let meas = Measurement::of_records(&epoch.sats);
-    let tag_s = origin.seconds_since_start(epoch.time);
-    let fix = solve(&meas, tag_s, store, origin, pvt, None).ok()?;
-    Some((origin.epoch_at(fix.t_s), fix.r_ecef_m))
-}
+/// A range's and a range rate's 1-sigma errors (m, m/s), which make a fix's covariance
+/// with its DOPs.
+pub(crate) type FixSigmas = (f64, f64);
 
-/// A fix with its Doppler velocity at `epoch`, if one can be made.
-fn gnss_fix(
+/// The single-point fix of `epoch` (its time the receiver clock removed) with its Doppler
+/// velocity, if one can be made; covariances from `sigmas` and the DOPs.
+pub(crate) fn gnss_fix(
     epoch: &ObsEpoch,
     store: &EphemerisStore,
     origin: &TimeOrigin,
     pvt: &PvtConfig,
-    config: &FromFilesConfig,
+    (uere_m, range_rate_sigma_mps): FixSigmas,
 ) -> Option<GnssFix> {
     let meas = Measurement::of_records(&epoch.sats);
     let tag_s = origin.seconds_since_start(epoch.time);
@@ -135,8 +127,8 @@ fn gnss_fix(
     Some(GnssFix {
         t: origin.epoch_at(fix.t_s),
         r_ecef_m: fix.r_ecef_m,
-        r_cov_m2: covariance(config.uere_m),
-        v_ecef_mps: velocity.map(|v| (v.v_ecef_mps, covariance(config.range_rate_sigma_mps))),
+        r_cov_m2: covariance(uere_m),
+        v_ecef_mps: velocity.map(|v| (v.v_ecef_mps, covariance(range_rate_sigma_mps))),
     })
 }
 
@@ -193,12 +185,11 @@ pub fn loosely_coupled_from_files(
 ) -> Result<InsRun, InsRunError> {
     config.filter.check()?;
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
+    let sigmas = (config.uere_m, config.range_rate_sigma_mps);
     let fixes: Vec<Option<GnssFix>> = (obs.epochs.iter())
-        .map(|e| gnss_fix(e, &store, &origin, &pvt, config))
+        .map(|e| gnss_fix(e, &store, &origin, &pvt, sigmas))
         .collect();
-    let made: Vec<(Epoch, Vec3)> = (fixes.iter().flatten())
-        .map(|f| (f.t, f.r_ecef_m))
-        .collect();
+    let made: Vec<GnssFix> = fixes.iter().flatten().copied().collect();
     let lever = config.filter.lever_arm_body_m;
     let start = align(increments, &config.alignment, &lever, None, &made)?;
     let (initial, aligned_records) = (start.state, start.records);

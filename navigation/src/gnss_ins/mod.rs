@@ -23,7 +23,7 @@ mod filter;
 mod fix;
 mod from_files;
 mod receiver_states;
-mod static_start;
+mod start;
 mod tdcp_aided;
 mod tight_from_files;
 mod tightly_coupled;
@@ -43,7 +43,7 @@ pub use from_files::{
     FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
 };
 pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};
-pub use static_start::StaticAlignment;
+pub use start::{Alignment, StaticAlignment, TrackAlignment};
 pub use tdcp_aided::{TdcpAidedConfig, TdcpFilesConfig, tdcp_aided, tdcp_aided_from_files};
 pub use tight_from_files::{TightFilesConfig, tightly_coupled_from_files};
 pub use tightly_coupled::{TightlyCoupled, clock_from_epoch};

@@ -9,7 +9,7 @@ use super::LooselyCoupledConfig;
 use super::config::IntegrationError;
 use super::filter::LooselyCoupled;
 use super::from_files::{InsRun, InsRunError, InsSolution, navigation, sigma_ned};
-use super::static_start::{StaticAlignment, align};
+use super::start::{Alignment, StaticAlignment, align};
 use crate::ins::InsState;
 use crate::pvt::PvtConfig;
 use crate::tdcp::TdcpConfig;
@@ -108,7 +108,13 @@ pub fn tdcp_aided_from_files(
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, mask_deg)?;
     let lever = config.aided.filter.lever_arm_body_m;
     let antenna = Some(config.start_antenna_m);
-    let start = align(increments, &config.alignment, &lever, antenna, &[])?;
+    let start = align(
+        increments,
+        &Alignment::Static(config.alignment),
+        &lever,
+        antenna,
+        &[],
+    )?;
     let (initial, n) = (start.state, start.records);
     let solutions = tdcp_aided(
         initial,

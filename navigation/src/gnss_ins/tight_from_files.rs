@@ -1,20 +1,19 @@
 //! The tightly coupled filter on files (book 3.2.2's integration as a post-processing
 //! receiver runs it): the INS aligned on a static start at the mean of the single-point
-//! fixes meanwhile, the receiver clock started from the first epoch after it
+//! fixes meanwhile or on the track ([`Alignment`]), the receiver clock started from the first epoch after it
 //! ([`clock_from_epoch`]), then every epoch's pseudoranges and range rates, except inside
 //! the configured outages.
 
 use super::config::LooselyCoupledConfig;
 use super::from_files::{
-    InsRun, InsRunError, InsSolution, Outages, navigation, point_fix, sigma_ned,
+    InsRun, InsRunError, InsSolution, Outages, gnss_fix, navigation, sigma_ned,
 };
 use super::receiver_states::ReceiverNoise;
-use super::static_start::{StaticAlignment, align, alignment_span};
+use super::start::{Alignment, align, alignment_span};
 use super::tightly_coupled::{TightlyCoupled, clock_from_epoch};
 use hifitime::Duration;
 use skyforge_gnss::imu::ImuIncrement;
 use skyforge_gnss::observation::ObsFile;
-use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 
@@ -25,8 +24,8 @@ pub struct TightFilesConfig {
     pub filter: LooselyCoupledConfig,
     /// The receiver's clock and measurement errors (no barometer: files carry none).
     pub receiver: ReceiverNoise,
-    /// The static start the INS aligns on.
-    pub alignment: StaticAlignment,
+    /// How the INS aligns.
+    pub alignment: Alignment,
     /// Satellites below this elevation are not used (deg).
     pub elevation_mask_deg: f64,
     /// GNSS outages made on purpose, if any.
@@ -46,12 +45,19 @@ pub fn tightly_coupled_from_files(
     config.filter.check()?;
     config.receiver.check()?;
     let (origin, store, pvt) = navigation(obs, ephemerides, iono, config.elevation_mask_deg)?;
-    let (_, end) = alignment_span(increments, config.alignment.span_s)?;
-    // The fixes of the alignment (and a second beyond: a fix's time is its tag less the
-    // receiver clock).
+    // The fixes to align on: at rest those of the static start (and a second beyond: a
+    // fix's time is its tag less the receiver clock), in motion every epoch's.
+    let until = match &config.alignment {
+        Alignment::Static(a) => Some(alignment_span(increments, a.span_s)?.1),
+        Alignment::Track(_) => None,
+    };
+    let sigmas = (
+        config.receiver.code_sigma_m,
+        config.receiver.range_rate_sigma_mps,
+    );
     let fixes: Vec<_> = (obs.epochs.iter())
-        .take_while(|e| e.time <= end + Duration::from_seconds(1.0))
-        .filter_map(|e| point_fix(e, &store, &origin, &pvt))
+        .take_while(|e| until.is_none_or(|end| e.time <= end + Duration::from_seconds(1.0)))
+        .filter_map(|e| gnss_fix(e, &store, &origin, &pvt, sigmas))
         .collect();
     let lever = config.filter.lever_arm_body_m;
     let start = align(increments, &config.alignment, &lever, None, &fixes)?;
@@ -63,7 +69,7 @@ pub fn tightly_coupled_from_files(
         .peekable();
     let antenna = initial.r_ecef_m + initial.c_body_ecef * lever;
     let clock = (epochs.clone())
-        .find_map(|e| clock_from_epoch(e, (&antenna, &Vec3::zeros()), &store, &origin, &pvt))
+        .find_map(|e| clock_from_epoch(e, (&antenna, &initial.v_ecef_mps), &store, &origin, &pvt))
         .ok_or_else(|| InsRunError::Input("no epoch after the alignment has a satellite".into()))?;
     let mut filter = TightlyCoupled::new(initial, config.filter, config.receiver, clock)?;
     let mut run = InsRun {

@@ -9,8 +9,8 @@ use anyhow::Context;
 use skyforge_formats::ins::{INS_CSV, write_ins_csv};
 use skyforge_gnss::imu::{ImuIncrement, read_csv, read_kf_gins};
 use skyforge_navigation::gnss_ins::{
-    FromFilesConfig, ImuNoise, InsRun, LooselyCoupledConfig, Outages, ReceiverNoise,
-    StaticAlignment, TdcpAidedConfig, TdcpFilesConfig, TightFilesConfig,
+    Alignment, FromFilesConfig, ImuNoise, InsRun, LooselyCoupledConfig, Outages, ReceiverNoise,
+    StaticAlignment, TdcpAidedConfig, TdcpFilesConfig, TightFilesConfig, TrackAlignment,
     loosely_coupled_from_files, tdcp_aided_from_files, tightly_coupled_from_files,
 };
 use skyforge_navigation::ins::FineAlignmentConfig;
@@ -35,6 +35,14 @@ const G0: f64 = 9.806_65;
 /// (`FineAlignmentConfig::default`'s).
 const ZUPT_RATE_HZ: f64 = 10.0;
 const ZUPT_SIGMA_MPS: f64 = 1e-3;
+/// Alignment on the track: the horizontal speed from which a fix's velocity gives the
+/// heading (m/s), and the initial attitude and velocity sigmas (rad, m/s).
+/// # assumed: 5 m/s (a Doppler velocity's 0.05 m/s is then 0.6 deg of heading); 2 deg of
+/// tilt and heading (a road's camber and grade against the body, a car's sideslip);
+/// 0.1 m/s, twice the range rate's error.
+const TRACK_SPEED_MPS: f64 = 5.0;
+const TRACK_ATTITUDE_RAD: f64 = 2.0 * std::f64::consts::PI / 180.0;
+const TRACK_VELOCITY_MPS: f64 = 0.1;
 
 /// The grade's data-sheet errors.
 fn grade(name: &str) -> Result<(GyroSpec, AccelSpec), BadInput> {
@@ -87,7 +95,7 @@ fn config(args: &InsArgs, interval_s: f64) -> Result<FromFilesConfig, BadInput> 
         )));
     }
     let gyrocompass = OMEGA_E_GPS * std::f64::consts::FRAC_1_SQRT_2;
-    let filter = LooselyCoupledConfig {
+    let at_rest = LooselyCoupledConfig {
         imu,
         lever_arm_body_m: Vec3::from_column_slice(&args.lever_arm),
         initial_position_m: UERE_M,
@@ -95,17 +103,38 @@ fn config(args: &InsArgs, interval_s: f64) -> Result<FromFilesConfig, BadInput> 
         initial_tilt_rad: (3.0 * imu.accel_bias / G0).max(1e-4),
         initial_heading_rad: (3.0 * imu.gyro_bias / gyrocompass).clamp(1e-3, 0.5),
     };
-    let fine = match args.align.as_str() {
-        "coarse" => None,
-        "fine" => Some(fine_alignment(&imu, &filter, interval_s)),
-        other => return Err(BadInput(format!("--align {other:?}: coarse or fine"))),
+    let still = |fine| {
+        Alignment::Static(StaticAlignment {
+            span_s: args.alignment_s,
+            fine,
+        })
+    };
+    let (filter, alignment) = match args.align.as_str() {
+        "coarse" => (at_rest, still(None)),
+        "fine" => (
+            at_rest,
+            still(Some(fine_alignment(&imu, &at_rest, interval_s))),
+        ),
+        "track" => (
+            LooselyCoupledConfig {
+                initial_velocity_mps: TRACK_VELOCITY_MPS,
+                initial_tilt_rad: TRACK_ATTITUDE_RAD,
+                initial_heading_rad: TRACK_ATTITUDE_RAD,
+                ..at_rest
+            },
+            Alignment::Track(TrackAlignment {
+                min_speed_mps: TRACK_SPEED_MPS,
+            }),
+        ),
+        other => {
+            return Err(BadInput(format!(
+                "--align {other:?}: coarse, fine or track"
+            )));
+        }
     };
     Ok(FromFilesConfig {
         filter,
-        alignment: StaticAlignment {
-            span_s: args.alignment_s,
-            fine,
-        },
+        alignment,
         uere_m: UERE_M,
         range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
         elevation_mask_deg: ELEVATION_MASK_DEG,
@@ -164,6 +193,11 @@ fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfi
             "--start {lat},{lon},{h}: latitude in [-90, 90] deg, longitude in [-360, 360] deg, height within 100 km"
         )));
     }
+    let Alignment::Static(still) = loose.alignment else {
+        return Err(BadInput(
+            "--mode tdcp aligns at the surveyed start: --align coarse or fine".into(),
+        ));
+    };
     if let Some(sigma) = args.height_sigma.filter(|s| !(s.is_finite() && *s > 0.0)) {
         return Err(BadInput(format!("--height-sigma {sigma}: positive (m)")));
     }
@@ -177,7 +211,7 @@ fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfi
             code_sigma_m: Some(UERE_M),
             height_m: args.height_sigma.map(|s| (h, s)),
         },
-        alignment: loose.alignment,
+        alignment: still,
         start_antenna_m: geodetic_to_ecef(&Geodetic::from_degrees(lat, lon, h)),
     })
 }
