@@ -260,6 +260,11 @@ pub struct InsArgs {
     /// unused; docs/ins.md).
     #[arg(long, value_name = "HOW", default_value = "coarse")]
     pub align: String,
+    /// The gravity the INS subtracts: `normal` (the WGS-84 ellipsoid's, near the Earth),
+    /// `zonal` (the orbit's: the point mass, J2..J6 and the centrifugal term, as the LEO
+    /// propagator's) or `auto` (normal below 50 km, zonal above). Modes loose and tight.
+    #[arg(long, value_name = "MODEL", default_value = "auto")]
+    pub gravity: String,
     /// The integration: `loose` (single-point fixes and Doppler velocities), `tight` (book
     /// 3.2.2's: every satellite's pseudorange and range rate, the receiver clock's bias
     /// and drift estimated) or `tdcp` (paper 001's: time-differenced carrier phase double

@@ -13,7 +13,7 @@ use crate::tdcp::ImuPose;
 use hifitime::Epoch;
 use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use skyforge_gnss::imu::ImuIncrement;
-use skyforge_orbits::gravity::earth_rate_ecef;
+use skyforge_orbits::gravity::{GravityModel, earth_rate_ecef};
 use skyforge_orbits::{Mat3, Vec3};
 
 /// What one update did.
@@ -51,6 +51,8 @@ pub struct InsFilter<const N: usize> {
     prev: Option<ImuIncrement>,
     /// The last interval's mean angular rate relative to inertial space (rad/s).
     omega_ib_body: Vec3,
+    /// The gravity the INS subtracts (normal gravity unless [`Self::in_gravity`]).
+    gravity: GravityModel,
 }
 
 /// The loosely coupled filter (Groves 2013 sec. 14.3.1): the 15 INS error states.
@@ -103,6 +105,7 @@ impl<const N: usize> InsFilter<N> {
             accel_bias: Vec3::zeros(),
             prev: None,
             omega_ib_body: Vec3::zeros(),
+            gravity: GravityModel::Normal,
         })
     }
 
@@ -127,6 +130,14 @@ impl<const N: usize> InsFilter<N> {
         self.ins.r_ecef_m + self.ins.c_body_ecef * self.config.lever_arm_body_m
     }
 
+    /// The filter with its INS subtracting `gravity` (the orbit's zonal field in orbit).
+    /// The error dynamics keep the point mass's gravity gradient (error_state.rs), which
+    /// the zonal terms change by about a thousandth.
+    pub fn in_gravity(mut self, gravity: GravityModel) -> Self {
+        self.gravity = gravity;
+        self
+    }
+
     /// Moves the INS and its covariance over `inc` (its biases removed).
     pub fn propagate(&mut self, inc: &ImuIncrement) -> Result<(), IntegrationError> {
         let dt = inc.dt_s;
@@ -136,7 +147,7 @@ impl<const N: usize> InsFilter<N> {
             ..*inc
         };
         let before = self.ins;
-        self.ins.propagate(self.prev.as_ref(), &corrected)?;
+        (self.ins).propagate_in(self.gravity, self.prev.as_ref(), &corrected)?;
         let f_body = corrected.dv_mps / dt;
         let (phi15, q15) = transition(
             &before.r_ecef_m,

@@ -23,6 +23,7 @@ use skyforge_gnss::observation::{ObsEpoch, ObsFile};
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
 use skyforge_orbits::frames::{c_ecef_ned, ecef_to_geodetic};
+use skyforge_orbits::gravity::GravityModel;
 use skyforge_orbits::time::TimeOrigin;
 use skyforge_orbits::{Mat3, Vec3};
 
@@ -53,6 +54,8 @@ pub struct FromFilesConfig {
     pub filter: LooselyCoupledConfig,
     /// How the INS aligns.
     pub alignment: Alignment,
+    /// The gravity the INS subtracts; `None`: [`gravity_for`] the aligned state.
+    pub gravity: Option<GravityModel>,
     /// A range's 1-sigma error (m), for the fixes' position covariance.
     pub uere_m: f64,
     /// A range rate's 1-sigma error (m/s), for their velocity covariance.
@@ -83,6 +86,8 @@ pub struct InsRun {
     pub aligned: InsState,
     /// The fine alignment's diagnostics, where one ran.
     pub fine: Option<FineAlignment>,
+    /// The gravity the INS subtracted.
+    pub gravity: GravityModel,
     /// One solution per observation epoch after the alignment.
     pub solutions: Vec<InsSolution>,
     /// Epochs with no fix (too few satellites, no convergence).
@@ -142,6 +147,21 @@ fn dop_covariance(fix: &Fix, sigma: f64) -> Mat3 {
     c_ned_ecef * ned * c_ned_ecef.transpose()
 }
 
+/// Above this height (m) a run's INS subtracts the orbit's gravity by default.
+/// # assumed: 50 km, above any aircraft and below any orbit.
+pub const ORBIT_HEIGHT_M: f64 = 50_000.0;
+
+/// The gravity an INS at `state` subtracts unless told otherwise: normal gravity near the
+/// Earth, the zonal field J2..J6 (the LEO propagator's, `orbits::gravity`) above
+/// [`ORBIT_HEIGHT_M`].
+pub fn gravity_for(state: &InsState) -> GravityModel {
+    if state.geodetic().h_m > ORBIT_HEIGHT_M {
+        GravityModel::Zonal { degree: 6 }
+    } else {
+        GravityModel::Normal
+    }
+}
+
 /// The 1-sigma position errors north, east, down of `filter`.
 pub(crate) fn sigma_ned<const N: usize>(filter: &InsFilter<N>) -> Vec3 {
     let s = filter.state();
@@ -193,10 +213,12 @@ pub fn loosely_coupled_from_files(
     let lever = config.filter.lever_arm_body_m;
     let start = align(increments, &config.alignment, &lever, None, &made)?;
     let (initial, aligned_records) = (start.state, start.records);
-    let mut filter = LooselyCoupled::new(initial, config.filter)?;
+    let gravity = config.gravity.unwrap_or_else(|| gravity_for(&initial));
+    let mut filter = LooselyCoupled::new(initial, config.filter)?.in_gravity(gravity);
     let mut run = InsRun {
         aligned: initial,
         fine: start.fine,
+        gravity,
         solutions: Vec::new(),
         no_fix: fixes.iter().filter(|f| f.is_none()).count(),
     };

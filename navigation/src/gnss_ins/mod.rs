@@ -40,7 +40,8 @@ pub use error_state::STATES;
 pub use filter::{InsFilter, LooselyCoupled, Update};
 pub use fix::GnssFix;
 pub use from_files::{
-    FromFilesConfig, InsRun, InsRunError, InsSolution, Outages, loosely_coupled_from_files,
+    FromFilesConfig, InsRun, InsRunError, InsSolution, ORBIT_HEIGHT_M, Outages, gravity_for,
+    loosely_coupled_from_files,
 };
 pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};
 pub use start::{Alignment, StaticAlignment, TrackAlignment};

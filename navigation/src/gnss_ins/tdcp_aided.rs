@@ -19,6 +19,7 @@ use skyforge_gnss::observation::{ObsEpoch, ObsFile};
 use skyforge_orbits::Vec3;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
 use skyforge_orbits::ephemeris::{BroadcastEphemeris, EphemerisStore};
+use skyforge_orbits::gravity::GravityModel;
 use skyforge_orbits::time::TimeOrigin;
 
 /// Settings of [`tdcp_aided`].
@@ -126,6 +127,7 @@ pub fn tdcp_aided_from_files(
     Ok(InsRun {
         aligned: initial,
         fine: start.fine,
+        gravity: GravityModel::Normal,
         solutions,
         no_fix: 0,
     })

@@ -6,7 +6,7 @@
 
 use super::config::LooselyCoupledConfig;
 use super::from_files::{
-    InsRun, InsRunError, InsSolution, Outages, gnss_fix, navigation, sigma_ned,
+    InsRun, InsRunError, InsSolution, Outages, gnss_fix, gravity_for, navigation, sigma_ned,
 };
 use super::receiver_states::ReceiverNoise;
 use super::start::{Alignment, align, alignment_span};
@@ -16,6 +16,7 @@ use skyforge_gnss::imu::ImuIncrement;
 use skyforge_gnss::observation::ObsFile;
 use skyforge_orbits::ephemeris::BroadcastEphemeris;
 use skyforge_orbits::ephemeris::rinex_nav_iono::BroadcastIono;
+use skyforge_orbits::gravity::GravityModel;
 
 /// Settings of [`tightly_coupled_from_files`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,6 +27,8 @@ pub struct TightFilesConfig {
     pub receiver: ReceiverNoise,
     /// How the INS aligns.
     pub alignment: Alignment,
+    /// The gravity the INS subtracts; `None`: [`gravity_for`] the aligned state.
+    pub gravity: Option<GravityModel>,
     /// Satellites below this elevation are not used (deg).
     pub elevation_mask_deg: f64,
     /// GNSS outages made on purpose, if any.
@@ -71,10 +74,13 @@ pub fn tightly_coupled_from_files(
     let clock = (epochs.clone())
         .find_map(|e| clock_from_epoch(e, (&antenna, &initial.v_ecef_mps), &store, &origin, &pvt))
         .ok_or_else(|| InsRunError::Input("no epoch after the alignment has a satellite".into()))?;
-    let mut filter = TightlyCoupled::new(initial, config.filter, config.receiver, clock)?;
+    let gravity = config.gravity.unwrap_or_else(|| gravity_for(&initial));
+    let mut filter =
+        TightlyCoupled::new(initial, config.filter, config.receiver, clock)?.in_gravity(gravity);
     let mut run = InsRun {
         aligned: initial,
         fine: start.fine,
+        gravity,
         solutions: Vec::new(),
         no_fix: 0,
     };

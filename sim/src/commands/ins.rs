@@ -18,6 +18,7 @@ use skyforge_navigation::tdcp::TdcpConfig;
 use skyforge_orbits::Vec3;
 use skyforge_orbits::constants::OMEGA_E_GPS;
 use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};
+use skyforge_orbits::gravity::GravityModel;
 use skyforge_signals::imu::{AccelSpec, BOOK_TABLE_3_1, CONSUMER, GyroSpec, NAVIGATION, TACTICAL};
 use skyforge_validate::ins::filter_noise;
 
@@ -132,9 +133,20 @@ fn config(args: &InsArgs, interval_s: f64) -> Result<FromFilesConfig, BadInput> 
             )));
         }
     };
+    let gravity = match args.gravity.as_str() {
+        "auto" => None,
+        "normal" => Some(GravityModel::Normal),
+        "zonal" => Some(GravityModel::Zonal { degree: 6 }),
+        other => {
+            return Err(BadInput(format!(
+                "--gravity {other:?}: auto, normal or zonal"
+            )));
+        }
+    };
     Ok(FromFilesConfig {
         filter,
         alignment,
+        gravity,
         uere_m: UERE_M,
         range_rate_sigma_mps: RANGE_RATE_SIGMA_MPS,
         elevation_mask_deg: ELEVATION_MASK_DEG,
@@ -193,6 +205,11 @@ fn tdcp_config(args: &InsArgs, loose: &FromFilesConfig) -> Result<TdcpFilesConfi
             "--start {lat},{lon},{h}: latitude in [-90, 90] deg, longitude in [-360, 360] deg, height within 100 km"
         )));
     }
+    if loose.gravity.is_some_and(|g| g != GravityModel::Normal) {
+        return Err(BadInput(
+            "--mode tdcp runs near the Earth: --gravity auto or normal".into(),
+        ));
+    }
     let Alignment::Static(still) = loose.alignment else {
         return Err(BadInput(
             "--mode tdcp aligns at the surveyed start: --align coarse or fine".into(),
@@ -233,6 +250,7 @@ fn tight_config(loose: &FromFilesConfig) -> TightFilesConfig {
             barometer: None,
         },
         alignment: loose.alignment,
+        gravity: loose.gravity,
         elevation_mask_deg: loose.elevation_mask_deg,
         outages: loose.outages,
     }
@@ -284,6 +302,9 @@ fn print_summary(run: &InsRun, records: usize) {
         attitude.pitch_rad.to_degrees(),
         attitude.roll_rad.to_degrees()
     );
+    if let GravityModel::Zonal { degree } = run.gravity {
+        println!("gravity    the orbit's: the point mass, J2..J{degree}, the centrifugal term");
+    }
     if let Some(fine) = &run.fine {
         println!(
             "fine       {} zero-velocity updates (innovation RMS {:.2e} m/s): heading corrected by {:.4} deg, sigma heading {:.4} deg, tilt {:.4} deg (an east gyro bias's heading error not included)",
