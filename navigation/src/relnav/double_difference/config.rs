@@ -3,6 +3,7 @@
 //! dynamics and of the ionosphere, and the integer tests. Every default is an assumption a
 //! user can change; each is checked against a range (docs/orbit-determination.md).
 
+use crate::orbit_determination::reduced_dynamic::ReducedDynamicConfig;
 use serde::Deserialize;
 use skyforge_gnss::observation::{ElevationNoise, WEIGHT_SIGMA0_M};
 use skyforge_orbits::check::{Allowed, Invalid, check_table};
@@ -61,7 +62,8 @@ pub struct DoubleDifferenceConfig {
     /// chosen before it), which measured that without satellite errors both change
     /// nothing and that with `modern` ones the consistency test releases right integers
     /// as often as wrong ones (seeds 2 and 3: 26 -> 55 mm, 99.8 -> 70-93 % fixed; the
-    /// filter has no model of the satellites' orbit errors, docs/orbit-determination.md);
+    /// filter had no model of the satellites' orbit errors, now `orbit_error_sigma_m`,
+    /// docs/orbit-determination.md);
     /// the default went back after that run, a design decision, not a reproduction's.
     pub held_test: HeldTest,
     /// The consistency test's false-alarm probability per epoch (`fixing::inconsistent`).
@@ -70,6 +72,22 @@ pub struct DoubleDifferenceConfig {
     /// (fewer: successive epochs' statistics are correlated), and a false release costs
     /// only a refix from the twin's float values.
     pub consistency_false_alarm: f64,
+    /// Steady-state 1-sigma per ECEF axis of the position error at either end of a line
+    /// of sight, each satellite's broadcast orbit and the target's from its orbit filter
+    /// (the anchor): first-order Gauss-Markov states in the single differences
+    /// ([`super::filter`]'s module docs, "Orbit errors"). 0, the default, keeps the states
+    /// out and every output as before: the bar's navigation file is exact (`grace-relnav`).
+    /// With broadcast orbits set about 1 m. # assumed: 1 m is the order of both ends'
+    /// errors: the along-track error of GPS broadcast orbits, the largest of their three
+    /// and across the line of sight (radial and clock, most of the reduced-dynamic filter's
+    /// 0.6 m SISRE, lie along it or cancel between the receivers), and a fix on those
+    /// orbits (PDOP 1.5-2 times that SISRE), rounded up.
+    pub orbit_error_sigma_m: f64,
+    /// Correlation time of the satellites' orbit-error states (s).
+    /// # assumed: 2 h, the reduced-dynamic filter's `satellite_tau_s` (broadcast
+    /// ephemerides are fitted over 4 h and replaced every 2 h). The anchor's own,
+    /// shorter one is `filter::ANCHOR_TAU_S`.
+    pub orbit_error_tau_s: f64,
 }
 
 /// Which tests of the held integers against the float twin run (`fixing::check_held`);
@@ -119,6 +137,8 @@ impl Default for DoubleDifferenceConfig {
             check_held: true,
             held_test: HeldTest::default(),
             consistency_false_alarm: 1e-6,
+            orbit_error_sigma_m: 0.0,
+            orbit_error_tau_s: ReducedDynamicConfig::default().satellite_tau_s,
         }
     }
 }
@@ -179,6 +199,16 @@ impl DoubleDifferenceConfig {
                 "consistency_false_alarm",
                 self.consistency_false_alarm,
                 Allowed::above(0.0, 0.5, ""),
+            ),
+            (
+                "orbit_error_sigma_m",
+                self.orbit_error_sigma_m,
+                Allowed::closed(0.0, 1000.0, "m"),
+            ),
+            (
+                "orbit_error_tau_s",
+                self.orbit_error_tau_s,
+                Allowed::above(0.0, 1e7, "s"),
             ),
         ])
         .map_err(within)

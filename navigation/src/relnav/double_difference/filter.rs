@@ -22,6 +22,27 @@
 //! estimates it through the constant single-difference ambiguities (the phase ties the
 //! clock's change to millimetres), `d SD / d (c dt) = 1 + (e_c . v_c) / c`.
 //!
+//! **Orbit errors** (`orbit_error_sigma_m` > 0; off by default). A satellite's broadcast
+//! position is off by `o_s` (true minus broadcast, ECEF) and the anchor, the target's
+//! position from its orbit filter, by `o_t`; both move the single difference by
+//!
+//! `d SD = (e_c - e_t) . (o_s - o_t)`, `|e_c - e_t| ~ |b_perp| / rho`
+//!
+//! (`e` each receiver's unit line of sight to the satellite, `b_perp` the baseline across
+//! it): 1 % across 200 km, a centimetre per metre, on code and phase alike, against the
+//! phase's millimetres. The satellite clock cancels. Each `o` is three states, each axis
+//! a first-order Gauss-Markov process (Gelb table 4.4-1; as the reduced-dynamic filter's
+//! range errors): over a step `dt`, `o <- exp(-dt / tau) o` with the variance
+//! `sigma^2 (1 - exp(-2 dt / tau))` added, `sigma` = `orbit_error_sigma_m`, `tau` =
+//! `orbit_error_tau_s` for the satellites and [`ANCHOR_TAU_S`] for the anchor; a new
+//! satellite's start at zero with `sigma^2`. Why states of the orbit error and not a
+//! measurement covariance or one single-difference range-error state per satellite:
+//! the errors are correlated over hours, which a covariance per epoch would let the
+//! filter average away in minutes; and the direction `e_c - e_t` turns with the
+//! baseline, which turns with the orbit (38 deg in 10 min), so one orbit error's effect
+//! changes within minutes while the error itself does not: the three states keep the
+//! error's hours and the geometry's known turn.
+//!
 //! The ranges are computed exactly at each receiver (no short-baseline `-los . b`), so
 //! 200 km costs nothing. The single differences of one epoch are independent, of variance
 //! `sigma_t(el_t)^2 + sigma_c(el_c)^2` (thesis eqs. 2.4-9/2.4-10). The integers are those
@@ -41,6 +62,12 @@ use std::collections::BTreeMap;
 
 /// The GPS L1 frequency the ionosphere states refer to (Hz).
 const F_IONO_REF_HZ: f64 = 1_575.42e6;
+
+/// Correlation time of the anchor's position error (s), with orbit errors on.
+/// # assumed: 10 min: the anchor follows the target's fixes, whose satellites change every
+/// few minutes on a LEO (about ten in view, each for about 45 min), and with them the
+/// broadcast errors the fixes take; the satellites' own errors last hours.
+pub(crate) const ANCHOR_TAU_S: f64 = 600.0;
 
 /// One signal's single differences of one satellite (chaser minus target).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -97,6 +124,10 @@ pub(crate) enum Key {
     Clock(System),
     Iono(SatId),
     Ambiguity(SatId, Signal),
+    /// One ECEF axis (0-2) of a satellite's orbit error, true minus broadcast (m).
+    Orbit(SatId, usize),
+    /// One ECEF axis (0-2) of the anchor's error, true minus the orbit filter's (m).
+    Anchor(usize),
 }
 
 /// One double difference of the epoch: satellite `sat` against `reference` on `signal`.
@@ -209,12 +240,28 @@ impl DdFilter {
             .copy_from(&process_noise(self.config.acceleration_sigma_mps2, dt));
         let iono_var = self.config.iono_sigma_m_per_sqrt_s.powi(2) * dt.abs();
         let clock_var = self.config.clock_sigma_m_per_sqrt_s.powi(2) * dt.abs();
+        // The orbit errors: first-order Gauss-Markov (module docs).
+        let sigma2 = self.config.orbit_error_sigma_m.powi(2);
+        let decay = |tau_s: f64| (-dt.abs() / tau_s).exp();
+        let orbit_decay = [decay(self.config.orbit_error_tau_s), decay(ANCHOR_TAU_S)];
         for (i, key) in self.keys.iter().enumerate() {
-            match key {
-                Key::Iono(_) => q[(i + 6, i + 6)] = iono_var,
-                Key::Clock(_) => q[(i + 6, i + 6)] = clock_var,
-                Key::Ambiguity(..) => {}
-            }
+            let k = i + 6;
+            let d = match key {
+                Key::Iono(_) => {
+                    q[(k, k)] = iono_var;
+                    continue;
+                }
+                Key::Clock(_) => {
+                    q[(k, k)] = clock_var;
+                    continue;
+                }
+                Key::Ambiguity(..) => continue,
+                Key::Orbit(..) => orbit_decay[0],
+                Key::Anchor(_) => orbit_decay[1],
+            };
+            phi[(k, k)] = d;
+            q[(k, k)] = sigma2 * (1.0 - d * d);
+            self.x[k] *= d;
         }
         for i in 0..3 {
             self.x[i] = b1[i];
@@ -253,8 +300,10 @@ impl DdFilter {
         };
         let keep: Vec<bool> = (self.keys.iter())
             .map(|k| match k {
-                Key::Clock(_) => true,
-                Key::Iono(sat) | Key::Ambiguity(sat, _) => !gone(sat, &self.last_seen),
+                Key::Clock(_) | Key::Anchor(_) => true,
+                Key::Iono(sat) | Key::Ambiguity(sat, _) | Key::Orbit(sat, _) => {
+                    !gone(sat, &self.last_seen)
+                }
             })
             .collect();
         if keep.iter().any(|k| !k) {
@@ -272,6 +321,8 @@ impl DdFilter {
         }
         let iono0 = self.config.iono_initial_sigma_m.powi(2);
         let amb0 = self.config.ambiguity_initial_sigma_cycles.powi(2);
+        let orbit0 = self.config.orbit_error_sigma_m.powi(2);
+        let orbits = orbit0 > 0.0;
         for s in sats {
             if self.index(Key::Clock(s.sat.system)).is_none() {
                 // # assumed: 10 m about the fixes' difference (nanoseconds of two code fixes).
@@ -279,6 +330,14 @@ impl DdFilter {
             }
             if self.index(Key::Iono(s.sat)).is_none() {
                 self.add(Key::Iono(s.sat), 0.0, iono0);
+            }
+            for axis in 0..3 {
+                if orbits && self.index(Key::Anchor(axis)).is_none() {
+                    self.add(Key::Anchor(axis), 0.0, orbit0);
+                }
+                if orbits && self.index(Key::Orbit(s.sat, axis)).is_none() {
+                    self.add(Key::Orbit(s.sat, axis), 0.0, orbit0);
+                }
             }
             for f in &s.signals {
                 // Code minus phase: the clocks cancel, the ionosphere (2 mu I) is left to
@@ -291,6 +350,19 @@ impl DdFilter {
                 }
             }
         }
+    }
+
+    /// The indices of satellite `sat`'s and the anchor's orbit-error states per axis;
+    /// `None` with orbit errors off.
+    fn orbit_indices(&self, sat: SatId) -> Option<[(usize, usize); 3]> {
+        let mut out = [(0, 0); 3];
+        for (axis, o) in out.iter_mut().enumerate() {
+            *o = (
+                self.index(Key::Orbit(sat, axis))?,
+                self.index(Key::Anchor(axis))?,
+            );
+        }
+        Some(out)
     }
 
     /// The double differences of the epoch: per system and signal the satellite highest
@@ -351,7 +423,14 @@ impl DdFilter {
             let r_c = r_t + c * b + v_c * (epoch.tag_difference_s - clock_m / C_MPS);
             let (dt, dc) = (s.at_target_m - r_t, s.at_chaser_m - r_c);
             let los = dc / dc.norm();
-            let geometry = dc.norm() - dt.norm() - s.clock_sd_m;
+            // The orbit errors' states (satellite's, anchor's) per axis and their row
+            // `e_c - e_t` (module docs).
+            let orbit = self.orbit_indices(s.sat);
+            let g = los - dt / dt.norm();
+            let orbit_m: f64 = (orbit.iter().flatten().enumerate())
+                .map(|(k, &(is, ia))| g[k] * (self.x[is] - self.x[ia]))
+                .sum();
+            let geometry = dc.norm() - dt.norm() - s.clock_sd_m + orbit_m;
             // d rho_c / d b_eci = -los^T C; d rho_c / d (c dt) = los . v_c / c.
             let row_b = -los.transpose() * c;
             let d_clock = 1.0 + los.dot(&v_c) / C_MPS;
@@ -373,6 +452,12 @@ impl DdFilter {
                 h[(code, ii)] = mu;
                 h[(phase, ii)] = -mu;
                 h[(phase, ia)] = lambda;
+                for (k, &(is, ia)) in orbit.iter().flatten().enumerate() {
+                    for r in [code, phase] {
+                        h[(r, is)] = g[k];
+                        h[(r, ia)] = -g[k];
+                    }
+                }
                 innovation[code] = f.code_m - (geometry + clock_m + mu * iono);
                 innovation[phase] = f.phase_cycles * lambda
                     - (geometry + clock_m - mu * iono + lambda * self.x[ia]);

@@ -16,12 +16,13 @@
 //!
 //! A held integer can be wrong: the tests judge the float solution of the moment, and
 //! errors the model lacks (the satellites' orbit errors through a 200 km baseline bias
-//! the double differences by centimetres) can make a wrong candidate look right. So a
-//! float filter runs beside the holding one on the same epochs, never constrained
-//! ([`check_held`]), and the held integers are released once either test finds them
-//! wrong: its own float values of the held double differences resolve, with the same
-//! tests, to other integers ([`resolves_otherwise`]), or they are farther from the held
-//! values than their covariance allows ([`inconsistent`]).
+//! the double differences by centimetres, without `orbit_error_sigma_m`'s states) can
+//! make a wrong candidate look right. So a float filter runs beside the holding one on
+//! the same epochs, never constrained ([`check_held`]), and the held integers are
+//! released once either test finds them wrong: its own float values of the held double
+//! differences resolve, with the same tests, to other integers ([`resolves_otherwise`]),
+//! or they are farther from the held values than their covariance allows
+//! ([`inconsistent`]).
 
 use super::filter::{DdFilter, Key, Pairing};
 use crate::ambiguity::lambda;
@@ -144,7 +145,8 @@ fn resolves_otherwise(filter: &DdFilter, twin: &DdFilter, d: &DMatrix<f64>) -> b
 /// lies in the ellipsoid about them that the float covariance and the false-alarm
 /// probability set. Where rounding makes `Q_t - Q_h` not positive definite, no decision.
 /// Errors the model lacks raise `T` for right integers too: under broadcast-quality
-/// satellite orbits it releases them as well (docs/orbit-determination.md).
+/// satellite orbits it releases them as well unless `orbit_error_sigma_m` gives the
+/// filter their states (docs/orbit-determination.md).
 fn inconsistent(filter: &DdFilter, twin: &DdFilter, d: &DMatrix<f64>) -> bool {
     let (a_h, q_h) = float_of(filter, d);
     let (a_t, q_t) = float_of(twin, d);
