@@ -81,7 +81,9 @@ pub struct DoubleDifferenceConfig {
     /// errors: the along-track error of GPS broadcast orbits, the largest of their three
     /// and across the line of sight (radial and clock, most of the reduced-dynamic filter's
     /// 0.6 m SISRE, lie along it or cancel between the receivers), and a fix on those
-    /// orbits (PDOP 1.5-2 times that SISRE), rounded up.
+    /// orbits (PDOP 1.5-2 times that SISRE), rounded up. Measured with 1 m under `modern`
+    /// errors (2026-12-02, docs/orbit-determination.md): the covariance honest and the
+    /// consistency test calibrated, but the integers fixed only from 947 s.
     pub orbit_error_sigma_m: f64,
     /// Correlation time of the satellites' orbit-error states (s).
     /// # assumed: 2 h, the reduced-dynamic filter's `satellite_tau_s` (broadcast

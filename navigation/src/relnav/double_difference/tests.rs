@@ -263,7 +263,7 @@ fn a_wrong_held_integer_is_released_and_refixed() {
 }
 
 #[test]
-fn the_held_tests_by_name_and_the_false_alarm_checked() {
+fn the_held_tests_by_name_and_the_ranges_checked() {
     for (name, test) in [
         ("twin-lambda", HeldTest::TwinLambda),
         ("consistency", HeldTest::Consistency),
@@ -282,6 +282,19 @@ fn the_held_tests_by_name_and_the_false_alarm_checked() {
     let e = c.check().unwrap_err().to_string();
     assert!(
         e.contains("double_difference.consistency_false_alarm = 0"),
+        "{e}"
+    );
+    // Orbit errors off unless set; a negative sigma refused.
+    let c: DoubleDifferenceConfig = toml::from_str("orbit_error_sigma_m = 1.0").unwrap();
+    assert_eq!(DoubleDifferenceConfig::default().orbit_error_sigma_m, 0.0);
+    assert!(c.check().is_ok());
+    let c = DoubleDifferenceConfig {
+        orbit_error_sigma_m: -1.0,
+        ..Default::default()
+    };
+    let e = c.check().unwrap_err().to_string();
+    assert!(
+        e.contains("double_difference.orbit_error_sigma_m = -1"),
         "{e}"
     );
 }
