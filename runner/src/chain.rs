@@ -127,7 +127,8 @@ pub fn synth_and_receive(
         signal,
         &scenario.errors,
         scenario.receiver_seed(),
-    )?;
+    )?
+    .with_jammers(&scenario.jammers)?;
     let bands = session.bands().to_vec();
     let info = session.recording_info(&scenario.name, scenario.seed, scenario.vehicle.as_deref());
     let antennas = session.world().antennas;

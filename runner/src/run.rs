@@ -387,7 +387,8 @@ pub fn signal_run_with(
         signal,
         &scenario.errors,
         scenario.receiver_seed(),
-    )?;
+    )?
+    .with_jammers(&scenario.jammers)?;
     run.ephemerides = session.broadcast_ephemerides().to_vec();
     run.iono = broadcast_iono(&session);
     let mut nav = Vec::new();

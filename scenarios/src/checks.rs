@@ -140,6 +140,7 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
         .map_err(|e| e.within("errors.ionosphere"))?;
     check_errors(scenario)?;
     check_observation(scenario)?;
+    check_jammers(scenario)?;
     if let Some(signal) = &scenario.signal {
         signal.check().map_err(|e| e.within("signal"))?;
         let enabled = scenario.gnss.enabled_systems();
@@ -151,6 +152,35 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
                 .check_band(s.name(), s.main_lobe_half_width_hz())
                 .map_err(|e| e.within("signal"))?;
         }
+    }
+    Ok(())
+}
+
+/// `[[jammers]]`: each entry's values (`JammerConfig::check`), unique names, and samples
+/// to receive them: a `[signal]` table of a complex format at the signal level (the
+/// observation level does not model interference).
+fn check_jammers(scenario: &Scenario) -> Result<(), Invalid> {
+    let Some(first) = scenario.jammers.first() else {
+        return Ok(());
+    };
+    for (k, j) in scenario.jammers.iter().enumerate() {
+        j.check(scenario.time.duration_s)
+            .map_err(|e| e.within(&format!("jammers[{k}]")))?;
+        if scenario.jammers[..k].iter().any(|o| o.name == j.name) {
+            return Err(Invalid::new(
+                format!("jammers[{k}].name"),
+                format!("{:?}", j.name),
+                "must differ from the other jammers' names",
+            ));
+        }
+    }
+    let complex = scenario.signal.as_ref().map(|s| s.format.is_complex());
+    if scenario.observation.level == Level::Observation || complex != Some(true) {
+        return Err(Invalid::new(
+            "jammers[0].name",
+            format!("{:?}", first.name),
+            "jammers need [signal] samples of a complex format at the signal level (the observation level does not model interference)",
+        ));
     }
     Ok(())
 }

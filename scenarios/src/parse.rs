@@ -52,6 +52,7 @@ pub fn parse(text: &str, source: &str, base_dir: &Path) -> Result<Scenario, Scen
         observation: file.observation,
         imu: file.imu,
         vehicles: file.vehicles,
+        jammers: file.jammers,
         vehicle: None,
         source: source.to_string(),
         base_dir: base_dir.to_path_buf(),

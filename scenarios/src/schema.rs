@@ -9,6 +9,7 @@ use skyforge_orbits::platform::PlatformConfig;
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::{ErrorsConfig, EventConfig, OscillatorConfig, vehicle_seed};
 use skyforge_signals::imu::ImuConfig;
+use skyforge_signals::interference::JammerConfig;
 use skyforge_signals::obs_model::ObservationConfig;
 use skyforge_signals::synth::SignalConfig;
 use std::path::PathBuf;
@@ -46,6 +47,9 @@ pub struct Scenario {
     /// `[platform]` with its `[[antennas]]`). `platform` and `antennas` are the first
     /// vehicle's; such a scenario runs per vehicle ([`Scenario::vehicle_views`]).
     pub vehicles: Vec<VehicleConfig>,
+    /// `[[jammers]]`: transmitters of interference the samples receive (none: a clean
+    /// sky); unique names, `[signal]` samples of a complex format.
+    pub jammers: Vec<JammerConfig>,
     /// The vehicle this scenario is the view of ([`Scenario::vehicle_views`]): its
     /// receiver-side random streams are keyed by its name ([`Scenario::receiver_seed`]).
     /// `None` for a single-platform scenario, whose streams keep the scenario seed.
@@ -240,6 +244,8 @@ pub(crate) struct ScenarioFile {
     pub imu: Option<ImuConfig>,
     #[serde(default)]
     pub vehicles: Vec<VehicleConfig>,
+    #[serde(default)]
+    pub jammers: Vec<JammerConfig>,
 }
 
 /// `[time]` as written.

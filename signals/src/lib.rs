@@ -10,6 +10,7 @@ pub mod antenna;
 pub mod barometer;
 pub mod errors;
 pub mod imu;
+pub mod interference;
 pub mod obs_model;
 pub mod synth;
 pub mod truth;

@@ -3,9 +3,11 @@
 //! and the report use ([`TruthFile`]), and the names of its groups, datasets and
 //! attributes, once. The schema is documented in `docs/truth-h5.md`; change both together.
 
+mod jammers;
 mod read;
 mod write;
 
+pub use jammers::{JAMMERS_GROUP, JammerTruth};
 pub use read::{PlatformSeries, TruthFile, VisibleLinks};
 pub use write::{RunMeta, SCHEMA_VERSION, TruthWriter, size_bound};
 

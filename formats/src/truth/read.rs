@@ -2,6 +2,7 @@
 //! each read bounded and checked for shape, every error naming the file and the dataset
 //! or attribute.
 
+use super::jammers::{JammerTruth, read_jammers};
 use super::{
     ANTENNAS_GROUP, EPOCH_INDEX, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
     SATELLITES_GROUP, SCENARIO_ATTR, SCENARIO_TOML_ATTR, START_EPOCH_ATTR, T_S, TIME_GROUP,
@@ -68,6 +69,11 @@ impl TruthFile {
     /// The scenario file's text the run was made from.
     pub fn scenario_toml(&self) -> Result<String, FormatError> {
         self.text_attr(SCENARIO_TOML_ATTR)
+    }
+
+    /// The `jammers` group (`None`: the run had no jammer), at most `max_rows` epochs.
+    pub fn jammers(&self, max_rows: usize) -> Result<Option<JammerTruth>, FormatError> {
+        read_jammers(&self.file, &self.path, max_rows)
     }
 
     /// The scenario's name.

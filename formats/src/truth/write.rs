@@ -1,6 +1,7 @@
 //! The `truth.h5` writer: geometry truth streamed chunk by chunk into resizable HDF5
 //! datasets, and the signal truth beside it.
 
+use super::jammers::JammerSets;
 use super::{
     ANTENNAS_GROUP, DOPPLER_ACCEL_HZPS2, DOPPLER_HZ, DOPPLER_RATE_HZPS, EPOCH_INDEX,
     NOMINAL_BODY_ATTR, PLATFORM_GROUP, POSITION, ROTATION, SAT_INDEX, SATELLITE_ID,
@@ -13,6 +14,7 @@ use hdf5::{Dataset, Group, H5Type, Location};
 use skyforge_gnss::signal::Signal;
 use skyforge_orbits::ephemeris::SatId;
 use skyforge_signals::antenna::Antenna;
+use skyforge_signals::interference::{Jammer, JammerLink};
 use skyforge_signals::synth::render::LinkTruth;
 use skyforge_signals::synth::{SinkError, TruthSink};
 use skyforge_signals::truth::{GeometryChunk, LinkGeometry};
@@ -170,6 +172,10 @@ pub struct TruthWriter {
     signal: Vec<SignalSets>,
     rows: usize,
     n_sat: usize,
+    /// The `jammers` group, once a run with jammers writes it.
+    jammers: Option<JammerSets>,
+    /// The antennas' names, in the run's order.
+    antenna_names: Vec<String>,
 }
 
 /// Signal truth of one antenna: one row per link and truth epoch.
@@ -440,6 +446,8 @@ impl TruthWriter {
             signal: Vec::new(),
             rows: 0,
             n_sat: sats.len(),
+            jammers: None,
+            antenna_names: antennas.iter().map(|a| a.name.clone()).collect(),
         })
     }
 
@@ -599,5 +607,22 @@ impl TruthSink for TruthWriter {
 
     fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
         self.append(chunk).map_err(|e| self.writing(e))
+    }
+
+    fn jammers(
+        &mut self,
+        t_s: f64,
+        jammers: &[Jammer],
+        links: &[JammerLink],
+    ) -> Result<(), SinkError> {
+        let sets = match self.jammers.as_mut() {
+            Some(sets) => sets,
+            None => {
+                let made = JammerSets::create(&self.file, jammers, &self.antenna_names);
+                self.jammers.insert(made.map_err(|e| self.writing(e))?)
+            }
+        };
+        let appended = sets.append(t_s, links);
+        appended.map_err(|e| self.writing(e))
     }
 }

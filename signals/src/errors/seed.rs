@@ -50,6 +50,9 @@ pub enum Stream {
     ImuVibration,
     /// A barometric altimeter's bias and noise; index: the barometer.
     Barometer,
+    /// A noise jammer's waveform (`[[jammers]]`); index: the jammer, so every antenna
+    /// receives the one waveform it transmits.
+    JammerNoise,
     /// A test's own stream, by name (never used by a scenario).
     Named(&'static str),
 }
@@ -73,6 +76,7 @@ impl Stream {
             Stream::ImuAccel => "imu-accel",
             Stream::ImuVibration => "imu-vibration",
             Stream::Barometer => "barometer",
+            Stream::JammerNoise => "jammer-noise",
             Stream::Named(name) => name,
         }
     }

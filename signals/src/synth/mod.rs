@@ -6,6 +6,7 @@ pub(crate) mod budget;
 pub(crate) mod config;
 pub mod constellation;
 pub(crate) mod filter;
+pub(crate) mod jamming;
 pub mod gnss_sdr;
 pub mod link;
 pub(crate) mod link_terms;

@@ -31,9 +31,15 @@ pub struct ThermalNoise {
 impl ThermalNoise {
     /// Noise with standard deviation `sigma` per component for antenna `antenna`.
     pub fn new(seed: u64, antenna: u32, sigma: f32) -> Self {
+        Self::of_stream(seed, Stream::Thermal, antenna, sigma)
+    }
+
+    /// White complex Gaussian noise of `sigma` per component drawn from `stream`'s
+    /// `index` (a noise jammer's waveform: `Stream::JammerNoise`).
+    pub fn of_stream(seed: u64, stream: Stream, index: u32, sigma: f32) -> Self {
         normal_table::init();
         Self {
-            key: stream_seed(seed, Stream::Thermal, antenna),
+            key: stream_seed(seed, stream, index),
             sigma,
             words: Vec::new(),
             frame: Vec::new(),

@@ -15,6 +15,7 @@
 
 use super::config::{BLOCK_S, SignalConfig};
 use super::filter::BandFilter;
+use super::jamming::{Jamming, Span};
 use super::mix::{ChannelBlock, Chips, MixScratch, mix_into, mix_pair_into};
 use super::noise::ThermalNoise;
 use super::quantise::{QuantiseError, Quantiser};
@@ -22,6 +23,7 @@ use super::transmitter::Transmitter;
 use crate::errors::clock::{ClockModel, ClockSample, OffsetPoint, interpolate};
 use crate::errors::events::{EventEffect, EventSchedule};
 use crate::errors::multipath::{Path, dll_bias_m};
+use crate::interference::{Jammer, JammerLink};
 use rayon::prelude::*;
 use skyforge_gnss::sample_format::SampleFormat;
 use skyforge_gnss::signal::Signal;
@@ -69,6 +71,9 @@ struct Scratch {
     levels: Vec<f32>,
     /// BeiDou B1C's quadrature sub-chip levels.
     levels_q: Vec<f32>,
+    /// This thread's copies of the noise jammers' streams, and a waveform buffer.
+    jam_noise: Vec<ThermalNoise>,
+    jam_buffer: (Vec<f32>, Vec<f32>),
     /// Per transmitter, the last data bit looked up (`Transmitter::chip_signs_after`).
     bits: Vec<Option<(u64, u8)>>,
     mix: MixScratch,
@@ -112,6 +117,8 @@ pub struct Synthesiser<'a> {
     /// ([`Self::set_clock_relativity`]), added to every clock sample between them.
     relativity: Option<(OffsetPoint, OffsetPoint)>,
     events: Option<EventSchedule>,
+    /// The jammers this recording's band sees ([`Self::with_jammers`]).
+    jamming: Option<Jamming>,
     filter: Option<BandFilter>,
     /// Rendered bytes held at once per antenna ([`SLICE_BYTES`] by default).
     slice_bytes: usize,
@@ -160,6 +167,7 @@ impl<'a> Synthesiser<'a> {
             clock_last: Vec::new(),
             relativity: None,
             events: None,
+            jamming: None,
             filter: None,
             slice_bytes: SLICE_BYTES,
             slice: Vec::new(),
@@ -211,6 +219,28 @@ impl<'a> Synthesiser<'a> {
     pub fn with_events(mut self, events: EventSchedule) -> Self {
         self.events = (!events.is_empty()).then_some(events);
         self
+    }
+
+    /// The `jammers` whose frequency lies in this recording's band, their noise drawn
+    /// from `seed`'s streams; their links come with [`Self::set_jammer_links`].
+    pub fn with_jammers(mut self, jammers: &[Jammer], seed: u64) -> Self {
+        let band_hz = self.transmitters.first().map(|t| t.signal.carrier_hz());
+        self.jamming =
+            band_hz.and_then(|hz| Jamming::new(jammers, hz, self.cfg.sample_rate_hz, seed));
+        self
+    }
+
+    /// The jammers this recording sees, in the order of its links.
+    pub fn jammers(&self) -> &[Jammer] {
+        self.jamming.as_ref().map_or(&[], Jamming::jammers)
+    }
+
+    /// Every seen jammer's link to every antenna at the next epoch handed over
+    /// (`links[a * n + j]`, `n` = [`Self::jammers`]'s length), before [`Self::push_epoch`].
+    pub fn set_jammer_links(&mut self, t_s: f64, links: Vec<JammerLink>) {
+        if let Some(j) = self.jamming.as_mut() {
+            j.set_links(t_s, links);
+        }
     }
 
     /// A band-limiting front-end filter; the quantiser's scale follows the filtered noise.
@@ -589,8 +619,31 @@ impl<'a> Synthesiser<'a> {
                 }
             }
         }
+        let agc = match &self.jamming {
+            Some(jamming) => {
+                if s.jam_noise.len() != jamming.noise.len() {
+                    s.jam_noise = jamming.noise.clone();
+                }
+                let span = Span {
+                    m,
+                    first_sample: b * n as u64,
+                    t: (t0, t1),
+                    dt: (dt0, dt1),
+                    if_phase: (if_phase0, if_phase0 + if_span),
+                };
+                let iq = (&mut s.i[..], &mut s.q[..]);
+                jamming.add(a, &span, iq, &mut s.jam_noise, &mut s.jam_buffer)
+            }
+            None => 1.0,
+        };
         // Noise is keyed by the absolute sample index, offset by the filter margin.
         noise.add(b * n as u64, &mut s.i, &mut s.q);
+        if agc > 1.0 {
+            let gain = (1.0 / agc.sqrt()) as f32;
+            s.i.iter_mut()
+                .chain(s.q.iter_mut())
+                .for_each(|x| *x *= gain);
+        }
         match &self.filter {
             Some(f) => {
                 s.fi.clear();

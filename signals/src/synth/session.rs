@@ -22,6 +22,7 @@ use crate::errors::events::EventSchedule;
 use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
 use crate::errors::seed::{Stream, stream_rng};
 use crate::errors::{ErrorsConfig, SatelliteErrors, clock::OscillatorConfig};
+use crate::interference::{Jammer, JammerConfig, JammerLink};
 use crate::obs_model::ObservationModel;
 use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
 use hifitime::Epoch;
@@ -33,7 +34,7 @@ use skyforge_orbits::check::Invalid;
 use skyforge_orbits::ephemeris::{
     BroadcastEphemeris, EphemerisStore, NavHeader, SatId, System, TimeSystemCorr,
 };
-use skyforge_orbits::platform::{Platform, PlatformError};
+use skyforge_orbits::platform::{Platform, PlatformError, PlatformState};
 use skyforge_orbits::time::{GstGpsOffset, TimeOrigin};
 use std::collections::BTreeMap;
 
@@ -71,6 +72,16 @@ pub trait TruthSink {
     ) -> Result<(), SinkError>;
     /// One chunk of geometry epochs, after its samples.
     fn geometry(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError>;
+    /// The `jammers`' links at geometry epoch `t_s` (`links[a * n + j]` for antenna `a`
+    /// and jammer `j` of `n`), before the epoch's samples; never called without jammers.
+    fn jammers(
+        &mut self,
+        _t_s: f64,
+        _jammers: &[Jammer],
+        _links: &[JammerLink],
+    ) -> Result<(), SinkError> {
+        Ok(())
+    }
 }
 
 /// Receives the observation truth of each antenna at whole seconds.
@@ -259,6 +270,8 @@ pub struct SynthSession<'a> {
     observation_model: Option<ObservationModel>,
     /// Observed-only signals drawn besides the synthesised ones (observation level).
     observed: Vec<Signal>,
+    /// The jammers ([`Self::with_jammers`]).
+    jammers: Vec<Jammer>,
 }
 
 /// The satellites of `transmitters`, each once in the order they first appear, and each
@@ -434,7 +447,30 @@ impl<'a> SynthSession<'a> {
             filter,
             observation_model: None,
             observed: Vec::new(),
+            jammers: Vec::new(),
         })
+    }
+
+    /// The samples receive `jammers` (`[[jammers]]`), each J/S referred to a satellite
+    /// at `[signal] cn0_dbhz` at the platform's start. Not at the observation level
+    /// (an error: its observables do not model interference).
+    pub fn with_jammers(mut self, jammers: &[JammerConfig]) -> Result<Self, SynthError> {
+        if jammers.is_empty() {
+            return Ok(self);
+        }
+        if self.observation_model.is_some() {
+            return Err(SynthError::Invalid(Invalid::new(
+                "jammers",
+                jammers.len(),
+                "jammers need [signal] samples: the observation level does not model interference",
+            )));
+        }
+        let (start, _) = self.start_state()?;
+        let cn0 = self.signal.cn0_dbhz;
+        self.jammers = (jammers.iter())
+            .map(|j| Jammer::new(j, cn0, &start))
+            .collect();
+        Ok(self)
     }
 
     /// Run at the observation level: no samples; at each whole second `model` turns every
@@ -664,7 +700,8 @@ impl<'a> SynthSession<'a> {
                 )?
                 .with_truth_every(truth_every)
                 .with_clocks(clocks.clone())
-                .with_events(self.events.clone());
+                .with_events(self.events.clone())
+                .with_jammers(&self.jammers, self.seed);
                 // Observed-only signals come from their system's first band alone.
                 let first_band_of = |system: System| {
                     self.bands
@@ -721,6 +758,7 @@ impl<'a> SynthSession<'a> {
             relativity: (self.errors.receiver_clock.as_ref())
                 .filter(|c| c.relativity)
                 .map(|_| RelativisticOffset::new()),
+            jammers: &self.jammers,
         };
         truth
             .stream(world.platform, world.duration_s, chunk_epochs, |chunk| {
@@ -761,9 +799,31 @@ struct Running<'r, 't, 's> {
     /// The receiver clocks' relativistic offset along the platform's trajectory
     /// (`[errors.receiver_clock] relativity`).
     relativity: Option<RelativisticOffset>,
+    /// The session's jammers.
+    jammers: &'r [Jammer],
 }
 
 impl Running<'_, '_, '_> {
+    /// Every jammer's link to every antenna at the epoch `t_s` (platform state `st`):
+    /// handed to each recording for the jammers its band sees, and to the truth.
+    fn jammer_links(&mut self, t_s: f64, st: &PlatformState) -> Result<(), SinkError> {
+        let at = |jammers: &[Jammer]| -> Vec<JammerLink> {
+            (self.antennas.iter())
+                .flat_map(|a| {
+                    let r = st.r_ecef_m + st.c_body_ecef * a.true_body_m;
+                    jammers.iter().map(move |j| j.link(a, &r, &st.c_body_ecef))
+                })
+                .collect()
+        };
+        for synth in self.synths.iter_mut() {
+            let links = at(synth.jammers());
+            synth.set_jammer_links(t_s, links);
+        }
+        self.sinks
+            .truth
+            .jammers(t_s, self.jammers, &at(self.jammers))
+    }
+
     /// Render, hand over and record one chunk of geometry epochs.
     fn chunk(&mut self, chunk: &GeometryChunk) -> Result<(), SinkError> {
         for k in 0..chunk.t_s.len() {
@@ -790,6 +850,9 @@ impl Running<'_, '_, '_> {
             .iter()
             .map(|a| AntennaEpoch::new(st, a))
             .collect();
+        if !self.jammers.is_empty() {
+            self.jammer_links(chunk.t_s[k], st)?;
+        }
         let at = self.origin.epoch_at(chunk.t_s[k]);
         let sow = |system: System| system.week_sow(at).1;
         // The observation epochs of this step, by tick of the observation interval: their

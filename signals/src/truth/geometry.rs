@@ -108,12 +108,12 @@ impl GeometryChunk {
 /// An antenna's fixed frame: rows are the antenna axes in body components; Z = boresight,
 /// X = body X (or body Y when the boresight is along X) made orthogonal to it.
 #[derive(Debug, Clone, Copy)]
-struct AntennaFrame {
-    c_body_antenna: Mat3,
+pub(crate) struct AntennaFrame {
+    pub(crate) c_body_antenna: Mat3,
 }
 
 impl AntennaFrame {
-    fn new(boresight_body: &Vec3) -> Self {
+    pub(crate) fn new(boresight_body: &Vec3) -> Self {
         let z = boresight_body.normalize();
         let seed = if z.x.abs() < 0.9 {
             Vec3::x()
@@ -147,7 +147,7 @@ impl AntennaAt {
 }
 
 /// Azimuth (from X towards Y, [0, 2pi)) and elevation above the XY plane of a vector.
-fn az_el_xyz(v: &Vec3) -> (f64, f64) {
+pub(crate) fn az_el_xyz(v: &Vec3) -> (f64, f64) {
     let az = v.y.atan2(v.x).rem_euclid(std::f64::consts::TAU);
     (az, (v.z / v.norm()).clamp(-1.0, 1.0).asin())
 }

@@ -103,7 +103,9 @@ fn session<'a>(
         Some(model) => session
             .observation_level(model, &scenario.observation.observed_signals)
             .map_err(|e| setup_error(scenario, e))?,
-        None => session,
+        None => session
+            .with_jammers(&scenario.jammers)
+            .map_err(|e| setup_error(scenario, e))?,
     })
 }
 

@@ -1,0 +1,189 @@
+//! `truth.h5`'s `jammers` group (docs/truth-h5.md): what each antenna received of each
+//! jammer at every geometry epoch, written beside the samples and read by validation.
+//! Matrices are `[epoch, antenna * n_jammers + jammer]`, antennas in the order of the
+//! group's `antennas` attribute (the scenario's), jammers in that of its `names`
+//! attribute (both comma-separated).
+
+use crate::FormatError;
+use crate::h5::{append_rows, create_group, create_rows, read_column, text_attr};
+use hdf5::Dataset;
+use skyforge_signals::interference::{Jammer, JammerLink};
+use std::path::Path;
+
+/// The group.
+pub const JAMMERS_GROUP: &str = "jammers";
+/// Rows per chunk.
+const CHUNK_ROWS: usize = 64;
+
+/// A column: name, unit, description, the value of a link.
+type Column = (
+    &'static str,
+    &'static str,
+    &'static str,
+    fn(&JammerLink) -> f64,
+);
+
+/// The columns.
+const COLUMNS: [Column; 4] = [
+    (
+        "range_m",
+        "m",
+        "range from the jammer to the antenna",
+        |l| l.range_m,
+    ),
+    (
+        "jn0_dbhz",
+        "dB-Hz",
+        "jammer power over the thermal noise density, with the antenna's gain",
+        |l| l.jn0_dbhz,
+    ),
+    (
+        "azimuth_deg",
+        "deg",
+        "its azimuth in the antenna frame",
+        |l| l.azimuth_rad.to_degrees(),
+    ),
+    (
+        "elevation_deg",
+        "deg",
+        "its elevation above the antenna's XY plane",
+        |l| l.elevation_rad.to_degrees(),
+    ),
+];
+
+/// The group's datasets while a run writes them.
+#[derive(Debug)]
+pub(crate) struct JammerSets {
+    t_s: Dataset,
+    columns: Vec<Dataset>,
+    width: usize,
+    rows: usize,
+}
+
+impl JammerSets {
+    /// The group in `file` for `jammers` received by `antennas` antennas.
+    pub fn create(
+        file: &hdf5::File,
+        jammers: &[Jammer],
+        antennas: &[String],
+    ) -> hdf5::Result<Self> {
+        let group = create_group(file, JAMMERS_GROUP)?;
+        let names: Vec<&str> = jammers.iter().map(|j| j.config.name.as_str()).collect();
+        text_attr(&group, "names", &names.join(","))?;
+        text_attr(&group, "antennas", &antennas.join(","))?;
+        let width = antennas.len() * jammers.len();
+        let t_s = create_rows::<f64>(
+            &group,
+            "t_s",
+            0,
+            CHUNK_ROWS,
+            "s",
+            "seconds since start_epoch",
+        )?;
+        let columns = (COLUMNS.iter())
+            .map(|(name, unit, what, _)| {
+                create_rows::<f64>(&group, name, width, CHUNK_ROWS, unit, what)
+            })
+            .collect::<hdf5::Result<_>>()?;
+        Ok(Self {
+            t_s,
+            columns,
+            width,
+            rows: 0,
+        })
+    }
+
+    /// One epoch's links (`links[a * n_jammers + j]`).
+    pub fn append(&mut self, t_s: f64, links: &[JammerLink]) -> hdf5::Result<()> {
+        if links.len() != self.width {
+            return Err(hdf5::Error::from(format!(
+                "{} jammer links for {} columns",
+                links.len(),
+                self.width
+            )));
+        }
+        append_rows(&self.t_s, self.rows, &[t_s], 0)?;
+        for ((_, _, _, get), ds) in COLUMNS.iter().zip(&self.columns) {
+            let values: Vec<f64> = links.iter().map(get).collect();
+            append_rows(ds, self.rows, &values, self.width)?;
+        }
+        self.rows += 1;
+        Ok(())
+    }
+}
+
+/// The `jammers` group as read: names, times, and per epoch one value per antenna and
+/// jammer (`[k][a * names.len() + j]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct JammerTruth {
+    pub names: Vec<String>,
+    pub antennas: Vec<String>,
+    pub t_s: Vec<f64>,
+    pub range_m: Vec<Vec<f64>>,
+    pub jn0_dbhz: Vec<Vec<f64>>,
+    pub azimuth_deg: Vec<Vec<f64>>,
+    pub elevation_deg: Vec<Vec<f64>>,
+}
+
+/// Reads the `jammers` group of `file` (at `path`), at most `max_rows` epochs; `None`
+/// when the run had no jammer.
+pub fn read_jammers(
+    file: &hdf5::File,
+    path: &Path,
+    max_rows: usize,
+) -> Result<Option<JammerTruth>, FormatError> {
+    let Ok(group) = file.group(JAMMERS_GROUP) else {
+        return Ok(None);
+    };
+    let err = |m: String| FormatError::file(path, format!("group {JAMMERS_GROUP}: {m}"));
+    let list = |attr: &str| {
+        let text = group
+            .attr(attr)
+            .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
+            .map_err(|e| err(format!("attribute {attr}: {e}")))?;
+        Ok::<_, FormatError>(
+            text.as_str()
+                .split(',')
+                .map(str::to_string)
+                .collect::<Vec<_>>(),
+        )
+    };
+    let (names, antennas) = (list("names")?, list("antennas")?);
+    let t_s: Vec<f64> = read_column(file, path, &format!("{JAMMERS_GROUP}/t_s"), max_rows)?;
+    let mut matrices = Vec::new();
+    for (name, ..) in COLUMNS {
+        let dataset = format!("{JAMMERS_GROUP}/{name}");
+        let width = file
+            .dataset(&dataset)
+            .map(|d| d.shape().get(1).copied().unwrap_or(0))
+            .map_err(|e| err(format!("{name}: {e}")))?;
+        let values: Vec<f64> = read_column(file, path, &dataset, max_rows.saturating_mul(width))?;
+        if width != names.len() * antennas.len() || values.len() != t_s.len() * width {
+            return Err(err(format!(
+                "{name}: {} values for {} epochs of width {width}, {} jammers, {} antennas",
+                values.len(),
+                t_s.len(),
+                names.len(),
+                antennas.len()
+            )));
+        }
+        matrices.push(
+            values
+                .chunks(width)
+                .map(<[f64]>::to_vec)
+                .collect::<Vec<_>>(),
+        );
+    }
+    let Ok([range_m, jn0_dbhz, azimuth_deg, elevation_deg]) = <[_; 4]>::try_from(matrices) else {
+        return Err(err("not four columns".into()));
+    };
+    Ok(Some(JammerTruth {
+        names,
+        antennas,
+        t_s,
+        range_m,
+        jn0_dbhz,
+        azimuth_deg,
+        elevation_deg,
+    }))
+}
