@@ -164,25 +164,12 @@ fn the_fine_alignment_starts_the_filter_as_well_as_the_coarse() {
         args.extend_from_slice(&["--align", "fine"]);
         let printed = support::skyforge_ok(&args, d);
         assert!(printed.contains("zero-velocity updates"), "{printed}");
-        let validate = [
-            "validate",
-            "ins",
-            "--truth",
-            "sim",
-            "--ins",
-            "fine",
-            "--json",
-            "fine.json",
-        ];
-        support::skyforge_ok(&validate, d);
-        let fine = support::json_file(&d.join("fine.json"));
+        let fine = validate_into(d, "fine");
         for c in [&coarse, &fine] {
             let yaw = c["first_attitude_error_deg"][0].as_f64().unwrap();
             assert!(yaw.abs() <= 0.2, "seed {seed}: heading {yaw} deg off");
         }
-        let drift = fine["outages"].as_array().unwrap().iter();
-        let drifts: Vec<f64> = drift.map(|o| o["drift_3d_m"].as_f64().unwrap()).collect();
-        let rms = (drifts.iter().map(|x| x * x).sum::<f64>() / drifts.len() as f64).sqrt();
+        let (drifts, rms) = outage_drifts(&fine);
         assert!(drifts.len() == 6 && rms <= 1.0, "seed {seed}: {drifts:?}");
     }
 }
@@ -211,9 +198,7 @@ fn the_track_alignment_starts_in_motion_with_any_grade() {
         let c = validate_into(d, "track");
         let yaw = c["first_attitude_error_deg"][0].as_f64().unwrap();
         assert!(yaw.abs() <= 2.0, "seed {seed}: heading {yaw} deg off");
-        let drift = c["outages"].as_array().unwrap().iter();
-        let drifts: Vec<f64> = drift.map(|o| o["drift_3d_m"].as_f64().unwrap()).collect();
-        let rms = (drifts.iter().map(|x| x * x).sum::<f64>() / drifts.len() as f64).sqrt();
+        let (drifts, rms) = outage_drifts(&c);
         // Five complete outages: aligned at about 127 s, the sixth would end after 1200 s.
         assert!(drifts.len() == 5 && rms <= 1.0, "seed {seed}: {drifts:?}");
     }
@@ -236,6 +221,14 @@ fn the_track_alignment_starts_in_motion_with_any_grade() {
         rms <= 3.0 && yaw <= 3.0,
         "RMS {rms} m, heading RMS {yaw} deg"
     );
+}
+
+/// The 3-D drift of each outage of a comparison's JSON `c` (m), and their RMS.
+fn outage_drifts(c: &serde_json::Value) -> (Vec<f64>, f64) {
+    let drift = c["outages"].as_array().unwrap().iter();
+    let drifts: Vec<f64> = drift.map(|o| o["drift_3d_m"].as_f64().unwrap()).collect();
+    let rms = (drifts.iter().map(|x| x * x).sum::<f64>() / drifts.len() as f64).sqrt();
+    (drifts, rms)
 }
 
 /// `validate ins` of `sim`'s truth against the solution in `ins`: the comparison's JSON.
@@ -457,13 +450,9 @@ fn on_a_leo_the_ins_subtracts_the_orbits_gravity() {
         ];
         let printed = support::skyforge_ok(&args, d);
         assert_eq!(printed.contains("J2..J6"), gravity == "auto", "{printed}");
-        let c = validate_into(d, out);
-        let outages = c["outages"].as_array().unwrap();
-        let squares = outages
-            .iter()
-            .map(|o| o["drift_3d_m"].as_f64().unwrap().powi(2));
-        drifts.push((squares.sum::<f64>() / outages.len() as f64).sqrt());
-        assert_eq!(outages.len(), 3, "{gravity}");
+        let (each, rms) = outage_drifts(&validate_into(d, out));
+        drifts.push(rms);
+        assert_eq!(each.len(), 3, "{gravity}");
     }
     assert!(
         drifts[0] <= 6.0 && drifts[1] >= 5.0 * drifts[0],
