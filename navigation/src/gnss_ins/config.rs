@@ -142,3 +142,20 @@ fn config(field: &'static str, value: f64, allowed: &'static str) -> Integration
         allowed,
     }
 }
+
+/// Why a run could not be made.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InsRunError {
+    /// Too little input to start.
+    #[error("{0}")]
+    Input(String),
+    /// The filter refused its settings or a record.
+    #[error(transparent)]
+    Filter(#[from] IntegrationError),
+}
+
+impl From<InsError> for InsRunError {
+    fn from(e: InsError) -> Self {
+        Self::Filter(IntegrationError::Ins(e))
+    }
+}

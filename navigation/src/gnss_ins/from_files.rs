@@ -11,11 +11,11 @@
 //! and clocks, the ionosphere the broadcast model leaves) are not white: the filter
 //! treats them as if they were.
 
-use super::config::{IntegrationError, LooselyCoupledConfig};
+use super::config::{InsRunError, LooselyCoupledConfig};
 use super::filter::{InsFilter, LooselyCoupled};
 use super::fix::GnssFix;
 use super::start::{Alignment, align};
-use crate::ins::{FineAlignment, InsError, InsState};
+use crate::ins::{FineAlignment, InsState};
 use crate::pvt::{Fix, Measurement, PvtConfig, solve, solve_velocity};
 use hifitime::Duration;
 use skyforge_gnss::imu::ImuIncrement;
@@ -92,23 +92,6 @@ pub struct InsRun {
     pub solutions: Vec<InsSolution>,
     /// Epochs with no fix (too few satellites, no convergence).
     pub no_fix: usize,
-}
-
-/// Why a run could not be made.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum InsRunError {
-    /// Too little input to start.
-    #[error("{0}")]
-    Input(String),
-    /// The filter refused its settings or a record.
-    #[error(transparent)]
-    Filter(#[from] IntegrationError),
-}
-
-impl From<InsError> for InsRunError {
-    fn from(e: InsError) -> Self {
-        Self::Filter(IntegrationError::Ins(e))
-    }
 }
 
 /// A range's and a range rate's 1-sigma errors (m, m/s), which make a fix's covariance

@@ -35,12 +35,12 @@ mod tests;
 #[cfg(test)]
 mod tightly_coupled_tests;
 
-pub use config::{ImuNoise, IntegrationError, LooselyCoupledConfig};
+pub use config::{ImuNoise, InsRunError, IntegrationError, LooselyCoupledConfig};
 pub use error_state::STATES;
 pub use filter::{InsFilter, LooselyCoupled, Update};
 pub use fix::GnssFix;
 pub use from_files::{
-    FromFilesConfig, InsRun, InsRunError, InsSolution, ORBIT_HEIGHT_M, Outages, gravity_for,
+    FromFilesConfig, InsRun, InsSolution, ORBIT_HEIGHT_M, Outages, gravity_for,
     loosely_coupled_from_files,
 };
 pub use receiver_states::{BarometerNoise, ReceiverNoise, TIGHT_STATES};

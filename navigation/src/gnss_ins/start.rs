@@ -13,8 +13,8 @@
 //! fix's less the lever arm. Any grade of IMU starts so; the filter's initial attitude
 //! sigmas must cover the sideslip, the road's camber and the velocity's own error.
 
+use super::config::InsRunError;
 use super::fix::GnssFix;
-use super::from_files::InsRunError;
 use crate::ins::{
     FineAlignment, FineAlignmentConfig, InsState, coarse_alignment, fine_alignment, static_means,
 };

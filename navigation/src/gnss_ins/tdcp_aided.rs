@@ -6,9 +6,10 @@
 //! code and height updates).
 
 use super::LooselyCoupledConfig;
+use super::config::InsRunError;
 use super::config::IntegrationError;
 use super::filter::LooselyCoupled;
-use super::from_files::{InsRun, InsRunError, InsSolution, navigation, sigma_ned};
+use super::from_files::{InsRun, InsSolution, navigation, sigma_ned};
 use super::start::{Alignment, StaticAlignment, align};
 use crate::ins::InsState;
 use crate::pvt::PvtConfig;

@@ -4,9 +4,9 @@
 //! ([`clock_from_epoch`]), then every epoch's pseudoranges and range rates, except inside
 //! the configured outages.
 
-use super::config::LooselyCoupledConfig;
+use super::config::{InsRunError, LooselyCoupledConfig};
 use super::from_files::{
-    InsRun, InsRunError, InsSolution, Outages, gnss_fix, gravity_for, navigation, sigma_ned,
+    InsRun, InsSolution, Outages, gnss_fix, gravity_for, navigation, sigma_ned,
 };
 use super::receiver_states::ReceiverNoise;
 use super::start::{Alignment, align, alignment_span};
