@@ -338,7 +338,8 @@ pub fn observation_run(scenario: &Scenario) -> Result<ObservationRun, RunError> 
         &scenario.errors,
         scenario.receiver_seed(),
     )?
-    .observation_level(model, &scenario.observation.observed_signals)?;
+    .observation_level(model, &scenario.observation.observed_signals)?
+    .with_jammers(&scenario.jammers)?;
     let mut measured = Collect::new(antennas, "observations");
     let mut truth = Collect::new(antennas, "observation truth");
     let mut platform = PlatformTruth::default();

@@ -12,6 +12,7 @@ use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, pars
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::EventConfig;
 use skyforge_signals::imu::ImuConfig;
+use skyforge_signals::interference::JammerWaveform;
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Longest scenario (s): 366 days. Longer spans are outside what the embedded
@@ -156,9 +157,8 @@ pub(crate) fn check(scenario: &Scenario) -> Result<(), Invalid> {
     Ok(())
 }
 
-/// `[[jammers]]`: each entry's values (`JammerConfig::check`), unique names, and samples
-/// to receive them: a `[signal]` table of a complex format at the signal level (the
-/// observation level does not model interference).
+/// `[[jammers]]`: each entry's values (`JammerConfig::check`), unique names; at the
+/// signal level samples of a complex format, at the observation level noise jammers only.
 fn check_jammers(scenario: &Scenario) -> Result<(), Invalid> {
     let Some(first) = scenario.jammers.first() else {
         return Ok(());
@@ -174,12 +174,25 @@ fn check_jammers(scenario: &Scenario) -> Result<(), Invalid> {
             ));
         }
     }
-    let complex = scenario.signal.as_ref().map(|s| s.format.is_complex());
-    if scenario.observation.level == Level::Observation || complex != Some(true) {
+    if scenario.observation.level == Level::Observation {
+        let cw = scenario
+            .jammers
+            .iter()
+            .position(|j| j.waveform == JammerWaveform::Cw);
+        return match cw {
+            Some(k) => Err(Invalid::new(
+                format!("jammers[{k}].waveform"),
+                "\"cw\"",
+                "the observation level models noise jammers only (a CW's effect depends on the code's line spectrum: render samples)",
+            )),
+            None => Ok(()),
+        };
+    }
+    if scenario.signal.as_ref().map(|s| s.format.is_complex()) != Some(true) {
         return Err(Invalid::new(
             "jammers[0].name",
             format!("{:?}", first.name),
-            "jammers need [signal] samples of a complex format at the signal level (the observation level does not model interference)",
+            "jammers need [signal] samples of a complex format",
         ));
     }
     Ok(())

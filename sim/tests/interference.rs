@@ -8,6 +8,7 @@ mod support;
 use hifitime::Epoch;
 use skyforge_formats::truth::TruthFile;
 use skyforge_gnss::observation::{ObsFile, read_obs_file};
+use skyforge_signals::interference::cn0_loss_db;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -151,4 +152,64 @@ fn a_noise_jammer_lowers_the_cn0_as_the_effective_cn0_relation_says() {
         (lost - predicted).abs() <= 3.0,
         "lost at {lost}, predicted {predicted}"
     );
+}
+
+/// At the observation level a noise jammer lowers each link's C/N0 by the effective-C/N0
+/// relation (the one the signal level's receiver follows, above) and drops the links it
+/// takes below the receiver's 25 dB-Hz: J/S 30 dB from 10 to 20 s, 45 dB from 20 to 30 s
+/// (45 - 23 = 22 dB-Hz), off after. Checked (the model's wiring, exact): every
+/// measurement's C/N0 in the first window is the truth's less `cn0_loss_db` of the
+/// truth's J/N0 within the RINEX file's 0.001 dB, the second window has no measurement,
+/// and after it every satellite is back with its loss-of-lock flag on its first phase.
+#[test]
+fn at_the_observation_level_a_noise_jammer_lowers_the_cn0_and_breaks_lock() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = support::short_scenario(d, "interop-gps-static", 40);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    text.push_str("\n[observation]\nlevel = \"observation\"\n");
+    for (k, (js, start)) in [(30.0, 10.0), (45.0, 20.0)].iter().enumerate() {
+        text.push_str(&format!(
+            "\n[[jammers]]\nname = \"noise{k}\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
+             longitude_deg = 114.0\nheight_m = 52.0\njs_db = {js}\nstart_s = {start}\n\
+             stop_s = {}\n",
+            start + 10.0
+        ));
+    }
+    std::fs::write(&path, text).unwrap();
+    support::skyforge_ok(&["synth", path.to_str().unwrap(), "--out", "sim"], d);
+    let truth = read_obs_file(&d.join("sim/ant1.obs.rnx")).unwrap();
+    let measured = read_obs_file(&d.join("sim/observations/ant1.obs.rnx")).unwrap();
+    let jammers = (TruthFile::open(&d.join("sim/truth.h5")).unwrap())
+        .jammers(1000)
+        .unwrap()
+        .unwrap();
+    let first = truth.epochs[0].time;
+    let (true_cn0, cn0) = (cn0_series(&truth, first), cn0_series(&measured, first));
+    let jn0 = jammers.jn0_dbhz[15][0];
+    let loss = cn0_loss_db([jn0], 4.0e6);
+    assert!((loss - 9.49).abs() < 0.01, "{loss}");
+    for (sat, series) in &cn0 {
+        let at = |t: f64| series.iter().find(|p| p.0 == t).map(|p| p.1);
+        let truth_at = |t: f64| true_cn0[sat].iter().find(|p| p.0 == t).map(|p| p.1);
+        for t in 11..20 {
+            let (m, c) = (at(f64::from(t)).unwrap(), truth_at(f64::from(t)).unwrap());
+            assert!(
+                (m - (c - loss)).abs() < 6e-4,
+                "{sat} at {t} s: {m} against {c} - {loss}"
+            );
+        }
+        assert!(
+            (21..30).all(|t| at(f64::from(t)).is_none()),
+            "{sat} tracked at 45 dB"
+        );
+        assert_eq!(at(31.0), truth_at(31.0), "{sat} back at full C/N0");
+    }
+    // The first phase after the gap carries the loss-of-lock flag.
+    let back = measured
+        .epochs
+        .iter()
+        .find(|e| (e.time - first).to_seconds().round() >= 30.0)
+        .unwrap();
+    assert!(!back.sats.is_empty() && back.sats.iter().all(|r| r.phase_lli & 1 == 1));
 }

@@ -9,6 +9,22 @@ mod config;
 
 pub use config::{JammerConfig, JammerWaveform, MAX_JS_DB};
 
+/// The C/N0 below which a receiver loses lock (dB-Hz), for the observation level's
+/// jammed links. # assumed: the bundled receiver's default `cn0_lock_threshold_dbhz`.
+pub const LOCK_THRESHOLD_DBHZ: f64 = 25.0;
+
+/// The effective-C/N0 relation for noise jammers filling a band of `bandwidth_hz`
+/// (docs/interference.md): `(C/N0)_eff = [ (C/N0)^-1 + (J/S) / B ]^-1`, i.e. the noise
+/// density raised by `J/B`; returns the loss `10 log10(1 + sum J/(N0 B))` (dB) for the
+/// jammers' J/N0 values `jn0_dbhz`.
+pub fn cn0_loss_db(jn0_dbhz: impl IntoIterator<Item = f64>, bandwidth_hz: f64) -> f64 {
+    let raised: f64 = jn0_dbhz
+        .into_iter()
+        .map(|j| 10f64.powf(j / 10.0) / bandwidth_hz)
+        .sum();
+    10.0 * (1.0 + raised).log10()
+}
+
 use crate::antenna::Antenna;
 use crate::truth::geometry::{AntennaFrame, az_el_xyz};
 use skyforge_orbits::frames::{Geodetic, geodetic_to_ecef};

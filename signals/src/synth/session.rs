@@ -22,7 +22,9 @@ use crate::errors::events::EventSchedule;
 use crate::errors::ionosphere::{IonoConfig, IonoModel, KlobucharCoeffs};
 use crate::errors::seed::{Stream, stream_rng};
 use crate::errors::{ErrorsConfig, SatelliteErrors, clock::OscillatorConfig};
-use crate::interference::{Jammer, JammerConfig, JammerLink};
+use crate::interference::{
+    Jammer, JammerConfig, JammerLink, JammerWaveform, LOCK_THRESHOLD_DBHZ, cn0_loss_db,
+};
 use crate::obs_model::ObservationModel;
 use crate::truth::geometry::{GeometryChunk, GeometryTruth, StreamError};
 use hifitime::Epoch;
@@ -452,17 +454,22 @@ impl<'a> SynthSession<'a> {
     }
 
     /// The samples receive `jammers` (`[[jammers]]`), each J/S referred to a satellite
-    /// at `[signal] cn0_dbhz` at the platform's start. Not at the observation level
-    /// (an error: its observables do not model interference).
+    /// at `[signal] cn0_dbhz` at the platform's start. At the observation level (call
+    /// [`Self::observation_level`] first) noise jammers lower each link's C/N0 by the
+    /// effective-C/N0 relation over the band `[signal] sample_rate_hz` and the link is
+    /// lost below [`LOCK_THRESHOLD_DBHZ`]; a CW there is an error.
     pub fn with_jammers(mut self, jammers: &[JammerConfig]) -> Result<Self, SynthError> {
         if jammers.is_empty() {
             return Ok(self);
         }
-        if self.observation_model.is_some() {
+        let cw = jammers
+            .iter()
+            .position(|j| j.waveform == JammerWaveform::Cw);
+        if let (Some(k), true) = (cw, self.observation_model.is_some()) {
             return Err(SynthError::Invalid(Invalid::new(
-                "jammers",
-                jammers.len(),
-                "jammers need [signal] samples: the observation level does not model interference",
+                format!("jammers[{k}].waveform"),
+                "\"cw\"",
+                "the observation level models noise jammers only (a CW's effect depends on the code's line spectrum: render samples)",
             )));
         }
         let (start, _) = self.start_state()?;
@@ -759,6 +766,8 @@ impl<'a> SynthSession<'a> {
                 .filter(|c| c.relativity)
                 .map(|_| RelativisticOffset::new()),
             jammers: &self.jammers,
+            jammer_links: Vec::new(),
+            jammed_band_hz: self.signal.sample_rate_hz,
         };
         truth
             .stream(world.platform, world.duration_s, chunk_epochs, |chunk| {
@@ -799,8 +808,11 @@ struct Running<'r, 't, 's> {
     /// The receiver clocks' relativistic offset along the platform's trajectory
     /// (`[errors.receiver_clock] relativity`).
     relativity: Option<RelativisticOffset>,
-    /// The session's jammers.
+    /// The session's jammers, their links at the latest epoch (`a * n + j`), and the band
+    /// the observation level's noise jammers fill (the sample rate).
     jammers: &'r [Jammer],
+    jammer_links: Vec<JammerLink>,
+    jammed_band_hz: f64,
 }
 
 impl Running<'_, '_, '_> {
@@ -819,9 +831,10 @@ impl Running<'_, '_, '_> {
             let links = at(synth.jammers());
             synth.set_jammer_links(t_s, links);
         }
+        self.jammer_links = at(self.jammers);
         self.sinks
             .truth
-            .jammers(t_s, self.jammers, &at(self.jammers))
+            .jammers(t_s, self.jammers, &self.jammer_links)
     }
 
     /// Render, hand over and record one chunk of geometry epochs.
@@ -901,10 +914,21 @@ impl Running<'_, '_, '_> {
                     r.doppler_hz,
                     r.cn0_dbhz,
                 ));
-                if let Some(model) = self.model.as_mut() {
+                let jamming = (self.jammers, &self.jammer_links[..], self.jammed_band_hz);
+                let loss = match self.jammer_links.is_empty() {
+                    true => 0.0,
+                    false => jamming_loss_db(jamming, r.antenna, r.signal, r.t_s),
+                };
+                let jammed = LinkTruth {
+                    cn0_dbhz: r.cn0_dbhz - loss,
+                    ..*r
+                };
+                if let Some(model) = self.model.as_mut()
+                    && (loss == 0.0 || jammed.cn0_dbhz >= LOCK_THRESHOLD_DBHZ)
+                {
                     let elevation = self.elevations[r.antenna * n_sats + s];
-                    epoch.measured[r.antenna]
-                        .push(model.observe(r.antenna, sat, r.signal, r, elevation));
+                    let observed = model.observe(r.antenna, sat, r.signal, &jammed, elevation);
+                    epoch.measured[r.antenna].push(observed);
                 }
             }
             // The truth file holds the transmitted signal's truth.
@@ -940,6 +964,23 @@ impl Running<'_, '_, '_> {
         }
         Ok(())
     }
+}
+
+/// The effective-C/N0 loss (dB) at antenna `a` of a link of `signal` at `t_s`: the noise
+/// `jammers` on then whose band (`band_hz` wide, the samples') holds its carrier, with
+/// their `links` (`a * n + j`).
+fn jamming_loss_db(
+    (jammers, links, band_hz): (&[Jammer], &[JammerLink], f64),
+    a: usize,
+    signal: Signal,
+    t_s: f64,
+) -> f64 {
+    let n = jammers.len();
+    let on = (jammers.iter().zip(&links[a * n..(a + 1) * n]))
+        .filter(|(j, _)| j.config.on_at(t_s))
+        .filter(|(j, _)| (j.config.frequency_hz - signal.carrier_hz()).abs() < band_hz / 2.0)
+        .map(|(_, l)| l.jn0_dbhz);
+    cn0_loss_db(on, band_hz)
 }
 
 /// One observation epoch within a geometry step: its time and, per antenna, the truth's

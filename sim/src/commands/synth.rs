@@ -99,14 +99,13 @@ fn session<'a>(
         scenario.receiver_seed(),
     )
     .map_err(|e| setup_error(scenario, e))?;
-    Ok(match model {
+    let session = match model {
         Some(model) => session
             .observation_level(model, &scenario.observation.observed_signals)
             .map_err(|e| setup_error(scenario, e))?,
-        None => session
-            .with_jammers(&scenario.jammers)
-            .map_err(|e| setup_error(scenario, e))?,
-    })
+        None => session,
+    };
+    (session.with_jammers(&scenario.jammers)).map_err(|e| setup_error(scenario, e))
 }
 
 /// Synthesise `scenario` with `signal` into `out`, computing geometry `chunk_epochs`
