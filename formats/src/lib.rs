@@ -35,6 +35,7 @@ pub mod geometry_offsets;
 pub mod h5;
 pub mod imu;
 pub mod ins;
+pub mod interference;
 pub mod monitor;
 pub mod orbit;
 pub mod receiver;

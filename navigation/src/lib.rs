@@ -19,6 +19,7 @@ pub mod geometry_offset;
 pub mod gnss_ins;
 pub mod ins;
 pub mod integrity;
+pub mod interference;
 pub mod orbit_determination;
 pub mod pvt;
 pub mod relative;

@@ -146,6 +146,14 @@ pub enum Command {
         #[command(flatten)]
         args: InsArgs,
     },
+    /// Jamming detection from one antenna's RINEX observation file: every tracked
+    /// satellite's C/N0 against its own reference, an alarm when their median falls by
+    /// more than the configured false-alarm probability allows, or when most satellites
+    /// are lost at once. Writes DIR/interference.csv (docs/interference.md).
+    Jamming {
+        #[command(flatten)]
+        args: JammingArgs,
+    },
     /// Relative navigation of two spacecraft (book section 5.6): the chaser relative to
     /// the target in the target's orbit frame, from their two RINEX observation files and
     /// a navigation file, as the difference of standalone fixes, of fixes on the common
@@ -288,6 +296,22 @@ pub struct InsArgs {
     /// GNSS outages made on purpose: FIRST,EVERY,LENGTH in seconds after the alignment.
     #[arg(long, value_name = "FIRST,EVERY,LENGTH", value_delimiter = ',')]
     pub outages: Option<Vec<f64>>,
+    /// Output directory.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+    /// Replace an existing output directory (only one skyforge wrote).
+    #[arg(long)]
+    pub force: bool,
+}
+
+/// What `jamming` is given.
+#[derive(Debug, Args)]
+pub struct JammingArgs {
+    /// The antenna's observation file (RINEX 3) with C/N0.
+    pub file: PathBuf,
+    /// False-alarm probability per epoch (0 < P < 0.5).
+    #[arg(long, value_name = "P", default_value_t = 1e-6)]
+    pub false_alarm: f64,
     /// Output directory.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
@@ -563,6 +587,23 @@ pub enum ValidateSuite {
         #[arg(long, value_name = "INSDIR")]
         ins: PathBuf,
         /// Also write the comparison as JSON to this file.
+        #[arg(long, value_name = "FILE")]
+        json: Option<PathBuf>,
+        /// Replace an existing --json file (only one `validate` wrote).
+        #[arg(long, requires = "json")]
+        force: bool,
+    },
+    /// Score `skyforge jamming`'s alarms against the run's jammers (truth.h5): for each
+    /// span with a jammer on, the time to the first alarm; the false alarms outside them
+    /// (docs/interference.md).
+    Interference {
+        /// The run's directory (`skyforge synth --out`): its truth.h5.
+        #[arg(long, value_name = "SIMDIR")]
+        truth: PathBuf,
+        /// `skyforge jamming`'s output directory (interference.csv).
+        #[arg(long, value_name = "DIR")]
+        detections: PathBuf,
+        /// Also write the score as JSON to this file.
         #[arg(long, value_name = "FILE")]
         json: Option<PathBuf>,
         /// Replace an existing --json file (only one `validate` wrote).

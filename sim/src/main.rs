@@ -21,6 +21,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
         cli::Command::Od { args } => Some(args.out.clone()),
         cli::Command::Ins { args } => Some(args.out.clone()),
         cli::Command::Relnav { args } => Some(args.out.clone()),
+        cli::Command::Jamming { args } => Some(args.out.clone()),
         cli::Command::Monitor {
             action:
                 cli::MonitorAction::Run { args } | cli::MonitorAction::CalibrateFiles { args, .. },
@@ -38,6 +39,7 @@ fn output_dir(args: &cli::Cli) -> Option<PathBuf> {
                 | cli::ValidateSuite::Monitor { .. }
                 | cli::ValidateSuite::Od { .. }
                 | cli::ValidateSuite::Ins { .. }
+                | cli::ValidateSuite::Interference { .. }
                 | cli::ValidateSuite::Relnav { .. }
                 | cli::ValidateSuite::Agree { .. },
         }

@@ -213,3 +213,55 @@ fn at_the_observation_level_a_noise_jammer_lowers_the_cn0_and_breaks_lock() {
         .unwrap();
     assert!(!back.sats.is_empty() && back.sats.iter().all(|r| r.phase_lli & 1 == 1));
 }
+
+/// Jamming detection (`skyforge jamming`, `validate interference`): a noise jammer at
+/// J/S 31 dB, 10 dB below the 40.98 dB where the receiver loses lock, on from 30 to 40 s
+/// of a 60-s static run, synthesised and received as rendered, ten seeds. Bars (issue
+/// #37's, set before the first run): detected within 1 s of its start on every seed (the
+/// issue asks for a probability of at least 0.99: ten seeds can only fail it, not show
+/// it), and no false alarm on any seed's clean epochs (about 35 each at the configured
+/// 1e-6 per epoch). First run (2026-12-02): detected on all ten seeds at the first
+/// epoch after the start (1.0 s; the observations are at 1 Hz), no false alarm in 350
+/// clean epochs.
+#[test]
+fn a_jammer_10_db_below_the_loss_of_lock_is_detected_within_a_second() {
+    let mut clean = 0;
+    for seed in 1..=10 {
+        let dir = tempfile::tempdir().unwrap();
+        let d = dir.path();
+        let path = support::short_scenario(d, "interop-gps-static", 60);
+        let mut text = std::fs::read_to_string(&path).unwrap();
+        text = text.replacen("seed = 1", &format!("seed = {seed}"), 1);
+        text.push_str(
+            "\n[[jammers]]\nname = \"noise\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
+             longitude_deg = 114.0\nheight_m = 52.0\njs_db = 31.0\nstart_s = 30.0\n\
+             stop_s = 40.0\n",
+        );
+        std::fs::write(&path, text).unwrap();
+        let scenario = path.to_str().unwrap();
+        support::skyforge_ok(&["synth", scenario, "--receive", "--out", "sim"], d);
+        support::skyforge_ok(&["jamming", "sim/receive/ant1.obs.rnx", "--out", "jam"], d);
+        let validate = [
+            "validate",
+            "interference",
+            "--truth",
+            "sim",
+            "--detections",
+            "jam",
+            "--json",
+            "score.json",
+        ];
+        support::skyforge_ok(&validate, d);
+        let score = support::json_file(&d.join("score.json"));
+        let after = score["spans"][0]["detected_after_s"].as_f64();
+        println!("seed {seed}: detected after {after:?} s, {score}");
+        assert!(after.is_some_and(|a| a <= 1.0), "seed {seed}: {score}");
+        assert_eq!(
+            score["false_alarms"].as_u64(),
+            Some(0),
+            "seed {seed}: {score}"
+        );
+        clean += score["clean_epochs"].as_u64().unwrap();
+    }
+    println!("{clean} clean epochs without a false alarm");
+}

@@ -7,6 +7,7 @@ pub mod attitude;
 pub mod draw;
 pub mod ins;
 pub mod integrity;
+pub mod interference;
 pub mod observables;
 pub mod orbit;
 pub mod relnav;

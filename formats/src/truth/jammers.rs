@@ -55,6 +55,8 @@ const COLUMNS: [Column; 4] = [
 #[derive(Debug)]
 pub(crate) struct JammerSets {
     t_s: Dataset,
+    /// `[epoch, jammer]`: 1 while it transmits.
+    on: Dataset,
     columns: Vec<Dataset>,
     width: usize,
     rows: usize,
@@ -80,6 +82,14 @@ impl JammerSets {
             "s",
             "seconds since start_epoch",
         )?;
+        let on = create_rows::<u8>(
+            &group,
+            "on",
+            jammers.len(),
+            CHUNK_ROWS,
+            "1",
+            "1 while the jammer transmits",
+        )?;
         let columns = (COLUMNS.iter())
             .map(|(name, unit, what, _)| {
                 create_rows::<f64>(&group, name, width, CHUNK_ROWS, unit, what)
@@ -87,14 +97,15 @@ impl JammerSets {
             .collect::<hdf5::Result<_>>()?;
         Ok(Self {
             t_s,
+            on,
             columns,
             width,
             rows: 0,
         })
     }
 
-    /// One epoch's links (`links[a * n_jammers + j]`).
-    pub fn append(&mut self, t_s: f64, links: &[JammerLink]) -> hdf5::Result<()> {
+    /// One epoch's links (`links[a * n_jammers + j]`) and whether each jammer transmits.
+    pub fn append(&mut self, t_s: f64, on: &[bool], links: &[JammerLink]) -> hdf5::Result<()> {
         if links.len() != self.width {
             return Err(hdf5::Error::from(format!(
                 "{} jammer links for {} columns",
@@ -103,6 +114,8 @@ impl JammerSets {
             )));
         }
         append_rows(&self.t_s, self.rows, &[t_s], 0)?;
+        let on: Vec<u8> = on.iter().map(|o| u8::from(*o)).collect();
+        append_rows(&self.on, self.rows, &on, on.len())?;
         for ((_, _, _, get), ds) in COLUMNS.iter().zip(&self.columns) {
             let values: Vec<f64> = links.iter().map(get).collect();
             append_rows(ds, self.rows, &values, self.width)?;
@@ -119,6 +132,8 @@ pub struct JammerTruth {
     pub names: Vec<String>,
     pub antennas: Vec<String>,
     pub t_s: Vec<f64>,
+    /// `[k][j]`: whether jammer `j` transmits at epoch `k`.
+    pub on: Vec<Vec<bool>>,
     pub range_m: Vec<Vec<f64>>,
     pub jn0_dbhz: Vec<Vec<f64>>,
     pub azimuth_deg: Vec<Vec<f64>>,
@@ -150,6 +165,23 @@ pub fn read_jammers(
     };
     let (names, antennas) = (list("names")?, list("antennas")?);
     let t_s: Vec<f64> = read_column(file, path, &format!("{JAMMERS_GROUP}/t_s"), max_rows)?;
+    let on: Vec<u8> = read_column(
+        file,
+        path,
+        &format!("{JAMMERS_GROUP}/on"),
+        max_rows.saturating_mul(names.len()),
+    )?;
+    if on.len() != t_s.len() * names.len() {
+        return Err(err(format!(
+            "on: {} values for {} epochs",
+            on.len(),
+            t_s.len()
+        )));
+    }
+    let on = on
+        .chunks(names.len())
+        .map(|r| r.iter().map(|v| *v != 0).collect())
+        .collect();
     let mut matrices = Vec::new();
     for (name, ..) in COLUMNS {
         let dataset = format!("{JAMMERS_GROUP}/{name}");
@@ -181,6 +213,7 @@ pub fn read_jammers(
         names,
         antennas,
         t_s,
+        on,
         range_m,
         jn0_dbhz,
         azimuth_deg,

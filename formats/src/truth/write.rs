@@ -622,7 +622,8 @@ impl TruthSink for TruthWriter {
                 self.jammers.insert(made.map_err(|e| self.writing(e))?)
             }
         };
-        let appended = sets.append(t_s, links);
+        let on: Vec<bool> = jammers.iter().map(|j| j.config.on_at(t_s)).collect();
+        let appended = sets.append(t_s, &on, links);
         appended.map_err(|e| self.writing(e))
     }
 }

@@ -6,6 +6,7 @@ mod calibrate;
 mod dry_run;
 mod imu;
 mod ins;
+mod jamming;
 mod monitor;
 mod od;
 mod receive;
@@ -71,6 +72,7 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         Command::Od { args } => od::od(&args),
         Command::Ins { args } => ins::ins(&args),
         Command::Relnav { args } => relnav::relnav(&args),
+        Command::Jamming { args } => jamming::jamming(&args),
         Command::Receive { args } => receive::receive(&args),
         Command::Ambiguity {
             file,
@@ -199,6 +201,19 @@ pub fn dispatch(cli: Cli) -> anyhow::Result<()> {
         } => validate::ins(
             &truth,
             &ins,
+            validate::JsonOut::new(json.as_deref(), force)?,
+        ),
+        Command::Validate {
+            suite:
+                ValidateSuite::Interference {
+                    truth,
+                    detections,
+                    json,
+                    force,
+                },
+        } => validate::interference(
+            &truth,
+            &detections,
             validate::JsonOut::new(json.as_deref(), force)?,
         ),
         Command::Validate {

@@ -7,16 +7,18 @@ use anyhow::Context;
 use hifitime::Epoch;
 use skyforge_formats::imu::{IMU_H5, read_h5};
 use skyforge_formats::ins::{INS_CSV, read_ins_csv};
+use skyforge_formats::interference::{INTERFERENCE_CSV, read_interference_csv};
 use skyforge_formats::monitor::{MONITOR_CSV, read_monitor_csv};
 use skyforge_formats::orbit::ORBIT_H5;
 use skyforge_formats::relative::{RELATIVE_CSV, RELNAV_CSV};
-use skyforge_formats::truth::TRUTH_H5;
+use skyforge_formats::truth::{TRUTH_H5, TruthFile};
 use skyforge_validate::attitude::compare_outputs;
 use skyforge_validate::attitude::print_validation;
 use skyforge_validate::draw::Agreement;
 use skyforge_validate::draw::SeedPlan;
 use skyforge_validate::ins::{compare_ins, print_ins};
 use skyforge_validate::integrity::{check_same_run, print_score, run_scenario, score};
+use skyforge_validate::interference::{print_jamming, score_jamming};
 use skyforge_validate::observables::compare::{
     CompareOptions, SampleSpan, SignalComparison, compare_signals,
 };
@@ -310,6 +312,26 @@ pub fn relnav(truth: &Path, relnav: &Path, settle_s: f64, json: JsonOut<'_>) -> 
 
 /// Compare `skyforge od`'s orbit in `orbit` with the truth of the run in `truth`, print
 /// the table and optionally write the JSON.
+/// `validate interference`: `DIR/interference.csv` against `SIMDIR/truth.h5`'s jammers.
+pub fn interference(truth: &Path, detections: &Path, json: JsonOut<'_>) -> anyhow::Result<()> {
+    let bad = |e: skyforge_formats::FormatError| BadInput(e.to_string());
+    let epochs = read_interference_csv(&detections.join(INTERFERENCE_CSV)).map_err(bad)?;
+    let file = TruthFile::open(&truth.join(TRUTH_H5)).map_err(bad)?;
+    let start = file.start_epoch().map_err(bad)?;
+    let jammers = (file.jammers(MAX_JAMMER_EPOCHS).map_err(bad)?).ok_or_else(|| {
+        BadInput(format!(
+            "{}: the run had no jammer (no group jammers)",
+            truth.join(TRUTH_H5).display()
+        ))
+    })?;
+    let score = score_jamming(&epochs, &jammers, |e| (e.t - start).to_seconds());
+    print_jamming(&score, &mut std::io::stdout().lock())?;
+    json.write(&score)
+}
+
+/// The most geometry epochs of jammer truth read (a day at 10 Hz).
+const MAX_JAMMER_EPOCHS: usize = 864_000;
+
 /// `validate ins`: `INSDIR/ins.csv` against `SIMDIR/imu.h5`.
 pub fn ins(truth: &Path, ins: &Path, json: JsonOut<'_>) -> anyhow::Result<()> {
     let bad = |e: String| BadInput(e);
