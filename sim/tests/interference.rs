@@ -265,3 +265,47 @@ fn a_jammer_10_db_below_the_loss_of_lock_is_detected_within_a_second() {
     }
     println!("{clean} clean epochs without a false alarm");
 }
+
+/// Bad input to `jamming` and `validate interference`: one clear error each (exit 2),
+/// nothing written: a missing file, a false-alarm probability out of range, a run
+/// without jammers.
+#[test]
+fn bad_jamming_input_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = support::short_scenario(d, "interop-gps-static", 5);
+    support::skyforge_ok(&["synth", path.to_str().unwrap(), "--out", "sim"], d);
+    support::skyforge_ok(&["jamming", "sim/ant1.obs.rnx", "--out", "jam"], d);
+    let cases: [(&[&str], &str); 3] = [
+        (&["jamming", "absent.rnx", "--out", "bad"], "absent.rnx"),
+        (
+            &[
+                "jamming",
+                "sim/ant1.obs.rnx",
+                "--false-alarm",
+                "0.7",
+                "--out",
+                "bad",
+            ],
+            "--false-alarm",
+        ),
+        (
+            &[
+                "validate",
+                "interference",
+                "--truth",
+                "sim",
+                "--detections",
+                "jam",
+            ],
+            "no jammer",
+        ),
+    ];
+    for (args, named) in cases {
+        let o = support::skyforge(args, d);
+        let text = support::text(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {text}");
+        assert!(text.contains(named), "{args:?}: {text}");
+        assert!(!d.join("bad").exists());
+    }
+}
