@@ -155,6 +155,15 @@ impl<'a> Fields<'a> {
             .map_err(|_| self.error(format!("{column} = {t:?} is not {what}")))
     }
 
+    /// A flag written `0` or `1`.
+    pub(crate) fn flag(&self, column: &str) -> Result<bool, FormatError> {
+        match self.text(column)? {
+            "0" => Ok(false),
+            "1" => Ok(true),
+            t => Err(self.error(format!("{column} = {t:?}: 0 or 1"))),
+        }
+    }
+
     pub(crate) fn epoch(&self, column: &str) -> Result<Epoch, FormatError> {
         let t = self.text(column)?;
         parse_epoch(t).map_err(|e| self.error(format!("{column}: {e}")))

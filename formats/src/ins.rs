@@ -101,11 +101,6 @@ pub fn read_ins_csv(path: &Path) -> Result<Vec<InsRow>, FormatError> {
             let vec = |a: &str, b: &str, c: &str| -> Result<Vec3, FormatError> {
                 Ok(Vec3::new(number(a)?, number(b)?, number(c)?))
             };
-            let flag = |c: &str| match f.text(c)? {
-                "0" => Ok(false),
-                "1" => Ok(true),
-                t => Err(f.error(format!("{c} = {t:?}: 0 or 1"))),
-            };
             let t = f.epoch("time_gpst")?;
             if rows.last().is_some_and(|r| r.t >= t) {
                 return Err(f.error("time_gpst does not increase".into()));
@@ -116,8 +111,8 @@ pub fn read_ins_csv(path: &Path) -> Result<Vec<InsRow>, FormatError> {
                 v_ecef_mps: vec("vx_mps", "vy_mps", "vz_mps")?,
                 ypr_deg: vec("yaw_deg", "pitch_deg", "roll_deg")?,
                 sigma_ned_m: vec("sigma_n_m", "sigma_e_m", "sigma_d_m")?,
-                gnss: flag("gnss")?,
-                outage: flag("outage")?,
+                gnss: f.flag("gnss")?,
+                outage: f.flag("outage")?,
             });
             Ok(())
         },

@@ -54,27 +54,18 @@ pub fn read_interference_csv(path: &Path) -> Result<Vec<JammingEpoch>, FormatErr
         |header| require_columns(path, header, &columns),
         |header, line, text| {
             let f = Fields::new(path, line, header, text)?;
-            let count = |c: &str| {
-                let t = f.text(c)?;
-                t.parse::<usize>()
-                    .map_err(|_| f.error(format!("{c} = {t:?}: a count")))
-            };
+            let count = |c: &str| f.parse::<usize>(c, "a count");
             let t = f.epoch("time_gpst")?;
             if rows.last().is_some_and(|r| r.t >= t) {
                 return Err(f.error("time_gpst does not increase".into()));
             }
-            let alarm = match f.text("alarm")? {
-                "0" => false,
-                "1" => true,
-                other => return Err(f.error(format!("alarm = {other:?}: 0 or 1"))),
-            };
             rows.push(JammingEpoch {
                 t,
                 tracked: count("tracked")?,
                 referenced: count("referenced")?,
                 change_db: f.number("change_db")?.unwrap_or(f64::NAN),
                 threshold_db: f.number("threshold_db")?.unwrap_or(f64::NAN),
-                alarm,
+                alarm: f.flag("alarm")?,
             });
             Ok(())
         },
