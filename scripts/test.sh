@@ -36,7 +36,7 @@ elif [ $require_data -eq 1 ]; then
   exit 1
 else
   echo "test: interoperability tier (GNSS-SDR, RTKLIB)"
-  cargo test -p skyforge-sim --test interop_gnss_sdr --test interop_rtklib --test interop_rtklib_receiver --test interop_slurm --test report -- --ignored 2>&1 | tee -a "$log"
+  cargo test -p skyforge-sim --test interop_gnss_sdr --test interop_jamming --test interop_rtklib --test interop_rtklib_receiver --test interop_slurm --test report -- --ignored 2>&1 | tee -a "$log"
   echo "test: ************************************************************"
   echo "test: real-data tier SKIPPED: no data folder at $data (set SKYFORGE_DATA)"
   echo "test: ************************************************************"
