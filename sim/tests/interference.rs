@@ -27,11 +27,11 @@ fn scenario(dir: &Path) -> std::path::PathBuf {
     let mut text = std::fs::read_to_string(&path).unwrap();
     for (k, js) in STEPS_DB.iter().enumerate() {
         let start = CLEAN_S + STEP_S * k as f64;
-        text.push_str(&format!(
-            "\n[[jammers]]\nname = \"noise{k}\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
-             longitude_deg = 114.0\nheight_m = 52.0\njs_db = {js}\nstart_s = {start}\n\
-             stop_s = {}\n",
-            start + STEP_S
+        let window = (start, start + STEP_S);
+        text.push_str(&support::noise_jammer_toml(
+            &format!("noise{k}"),
+            *js,
+            window,
         ));
     }
     std::fs::write(&path, text).unwrap();
@@ -169,11 +169,11 @@ fn at_the_observation_level_a_noise_jammer_lowers_the_cn0_and_breaks_lock() {
     let mut text = std::fs::read_to_string(&path).unwrap();
     text.push_str("\n[observation]\nlevel = \"observation\"\n");
     for (k, (js, start)) in [(30.0, 10.0), (45.0, 20.0)].iter().enumerate() {
-        text.push_str(&format!(
-            "\n[[jammers]]\nname = \"noise{k}\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
-             longitude_deg = 114.0\nheight_m = 52.0\njs_db = {js}\nstart_s = {start}\n\
-             stop_s = {}\n",
-            start + 10.0
+        let window = (*start, start + 10.0);
+        text.push_str(&support::noise_jammer_toml(
+            &format!("noise{k}"),
+            *js,
+            window,
         ));
     }
     std::fs::write(&path, text).unwrap();
@@ -232,11 +232,7 @@ fn a_jammer_10_db_below_the_loss_of_lock_is_detected_within_a_second() {
         let path = support::short_scenario(d, "interop-gps-static", 60);
         let mut text = std::fs::read_to_string(&path).unwrap();
         text = text.replacen("seed = 1", &format!("seed = {seed}"), 1);
-        text.push_str(
-            "\n[[jammers]]\nname = \"noise\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
-             longitude_deg = 114.0\nheight_m = 52.0\njs_db = 31.0\nstart_s = 30.0\n\
-             stop_s = 40.0\n",
-        );
+        text.push_str(&support::noise_jammer_toml("noise", 31.0, (30.0, 40.0)));
         std::fs::write(&path, text).unwrap();
         let scenario = path.to_str().unwrap();
         support::skyforge_ok(&["synth", scenario, "--receive", "--out", "sim"], d);

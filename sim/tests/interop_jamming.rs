@@ -91,11 +91,11 @@ fn gnss_sdr_loses_lock_where_skyforges_receiver_does() {
     let mut text = std::fs::read_to_string(&path).unwrap();
     for (k, js) in STEPS_DB.iter().enumerate() {
         let start = CLEAN_S + STEP_S * k as f64;
-        text.push_str(&format!(
-            "\n[[jammers]]\nname = \"noise{k}\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
-             longitude_deg = 114.0\nheight_m = 52.0\njs_db = {js}\nstart_s = {start}\n\
-             stop_s = {}\n",
-            start + STEP_S
+        let window = (start, start + STEP_S);
+        text.push_str(&support::noise_jammer_toml(
+            &format!("noise{k}"),
+            *js,
+            window,
         ));
     }
     std::fs::write(&path, text).unwrap();

@@ -96,6 +96,11 @@ impl JammerConfig {
         Ok(())
     }
 
+    /// Whether a band `bandwidth_hz` wide around `carrier_hz` holds its frequency.
+    pub fn in_band(&self, carrier_hz: f64, bandwidth_hz: f64) -> bool {
+        (self.frequency_hz - carrier_hz).abs() < bandwidth_hz / 2.0
+    }
+
     /// Whether it transmits at `t_s` (s from the start).
     pub fn on_at(&self, t_s: f64) -> bool {
         t_s >= self.start_s && self.stop_s.is_none_or(|stop| t_s < stop)

@@ -30,19 +30,21 @@ use std::f64::consts::TAU;
 #[derive(Debug, Clone)]
 pub(crate) struct Jamming {
     jammers: Vec<Jammer>,
+    /// Each seen jammer's index among the session's, and how many the session has.
+    index: Vec<usize>,
+    all: usize,
     band_hz: f64,
     sample_rate_hz: f64,
     /// Each jammer's noise stream (noise jammers; clones per rendering thread).
     pub noise: Vec<ThermalNoise>,
-    /// `(t_s, links[a * n_jammers + j])` at the previous and the next epoch.
+    /// `(t_s, links[a * n_seen + j])` at the previous and the next epoch.
     ends: Option<(EpochLinks, EpochLinks)>,
 }
 
 type EpochLinks = (f64, Vec<JammerLink>);
 
-/// One block's span of samples: `m` samples from receiver time `t_rx0`, true times `t0`
-/// and `t1` at its ends, the receiver clock `dt0` and `dt1` there, the IF phase at its
-/// first sample and its growth over the span (cycles), the first sample's absolute index.
+/// One block's span of `m` samples: the first sample's absolute index, true times at
+/// its ends, the receiver clock there, and the IF phase at its ends (cycles).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Span {
     pub m: usize,
@@ -53,18 +55,19 @@ pub(crate) struct Span {
 }
 
 impl Jamming {
-    /// The jammers within half the sample rate of the recording's carrier `band_hz`
-    /// (none: `None`), their noise drawn from `seed`'s jammer streams.
+    /// The session's `jammers` within half the sample rate of the recording's carrier
+    /// `band_hz` (none: `None`), their noise drawn from `seed`'s jammer streams.
     pub fn new(jammers: &[Jammer], band_hz: f64, sample_rate_hz: f64, seed: u64) -> Option<Self> {
-        let seen: Vec<Jammer> = (jammers.iter())
-            .filter(|j| (j.config.frequency_hz - band_hz).abs() < sample_rate_hz / 2.0)
-            .cloned()
+        let index: Vec<usize> = (0..jammers.len())
+            .filter(|&j| jammers[j].config.in_band(band_hz, sample_rate_hz))
             .collect();
-        let noise = (0..seen.len())
+        let noise = (0..index.len())
             .map(|j| ThermalNoise::of_stream(seed, Stream::JammerNoise, j as u32, 1.0))
             .collect();
-        (!seen.is_empty()).then_some(Self {
-            jammers: seen,
+        (!index.is_empty()).then(|| Self {
+            jammers: index.iter().map(|&j| jammers[j].clone()).collect(),
+            index,
+            all: jammers.len(),
             band_hz,
             sample_rate_hz,
             noise,
@@ -72,19 +75,20 @@ impl Jamming {
         })
     }
 
-    /// The jammers seen.
-    pub fn jammers(&self) -> &[Jammer] {
-        &self.jammers
-    }
-
-    /// The links at the next geometry epoch `t_s` (`links[a * n_jammers + j]`): the
-    /// samples rendered up to it interpolate from the previous epoch's.
-    pub fn set_links(&mut self, t_s: f64, links: Vec<JammerLink>) {
+    /// The links of every session jammer at the next geometry epoch `t_s`
+    /// (`links[a * n_all + j]`), of which it keeps its own: the samples rendered up to it
+    /// interpolate from the previous epoch's.
+    pub fn set_links(&mut self, t_s: f64, links: &[JammerLink]) {
+        let antennas = links.len() / self.all.max(1);
+        let own: Vec<JammerLink> = (0..antennas)
+            .flat_map(|a| self.index.iter().map(move |&j| (a, j)))
+            .map(|(a, j)| links[a * self.all + j])
+            .collect();
         let previous = match self.ends.take() {
             Some((_, next)) => next,
-            None => (t_s, links.clone()),
+            None => (t_s, own.clone()),
         };
-        self.ends = Some((previous, (t_s, links)));
+        self.ends = Some((previous, (t_s, own)));
     }
 
     /// Jammer `j`'s link at antenna `a` at true time `t`, interpolated (range, J/N0).
@@ -249,7 +253,7 @@ mod tests {
     #[test]
     fn a_cw_has_its_power_and_frequency() {
         let mut j = jamming(JammerWaveform::Cw, 1e3, 15.0);
-        j.set_links(0.0, vec![link(1000.0, 60.0)]);
+        j.set_links(0.0, &[link(1000.0, 60.0)]);
         let (out, factor) = render(&j, 1);
         let (i, q) = &out[0];
         let power: f64 = (i.iter().zip(q))
@@ -278,7 +282,7 @@ mod tests {
     fn a_noise_jammer_is_one_waveform_turned_at_each_antenna() {
         let mut j = jamming(JammerWaveform::Noise, 0.0, 25.0);
         let quarter = C_MPS / L1 / 4.0;
-        j.set_links(0.0, vec![link(1000.0, 70.0), link(1000.0 + quarter, 70.0)]);
+        j.set_links(0.0, &[link(1000.0, 70.0), link(1000.0 + quarter, 70.0)]);
         let (out, _) = render(&j, 2);
         let variance = |x: &[f32]| x.iter().map(|v| f64::from(v * v)).sum::<f64>() / x.len() as f64;
         let expected = 1e7 / FS;

@@ -221,8 +221,9 @@ impl<'a> Synthesiser<'a> {
         self
     }
 
-    /// The `jammers` whose frequency lies in this recording's band, their noise drawn
-    /// from `seed`'s streams; their links come with [`Self::set_jammer_links`].
+    /// The session's `jammers` whose frequency lies in this recording's band, their
+    /// noise drawn from `seed`'s streams; their links come with
+    /// [`Self::set_jammer_links`].
     pub fn with_jammers(mut self, jammers: &[Jammer], seed: u64) -> Self {
         let band_hz = self.transmitters.first().map(|t| t.signal.carrier_hz());
         self.jamming =
@@ -230,14 +231,9 @@ impl<'a> Synthesiser<'a> {
         self
     }
 
-    /// The jammers this recording sees, in the order of its links.
-    pub fn jammers(&self) -> &[Jammer] {
-        self.jamming.as_ref().map_or(&[], Jamming::jammers)
-    }
-
-    /// Every seen jammer's link to every antenna at the next epoch handed over
-    /// (`links[a * n + j]`, `n` = [`Self::jammers`]'s length), before [`Self::push_epoch`].
-    pub fn set_jammer_links(&mut self, t_s: f64, links: Vec<JammerLink>) {
+    /// Every session jammer's link to every antenna at the next epoch handed over
+    /// (`links[a * n + j]`, `n` the session's jammers), before [`Self::push_epoch`].
+    pub fn set_jammer_links(&mut self, t_s: f64, links: &[JammerLink]) {
         if let Some(j) = self.jamming.as_mut() {
             j.set_links(t_s, links);
         }

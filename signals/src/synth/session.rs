@@ -817,21 +817,18 @@ struct Running<'r, 't, 's> {
 
 impl Running<'_, '_, '_> {
     /// Every jammer's link to every antenna at the epoch `t_s` (platform state `st`):
-    /// handed to each recording for the jammers its band sees, and to the truth.
+    /// handed to each recording, which keeps those of the jammers its band sees, and to
+    /// the truth.
     fn jammer_links(&mut self, t_s: f64, st: &PlatformState) -> Result<(), SinkError> {
-        let at = |jammers: &[Jammer]| -> Vec<JammerLink> {
-            (self.antennas.iter())
-                .flat_map(|a| {
-                    let r = st.r_ecef_m + st.c_body_ecef * a.true_body_m;
-                    jammers.iter().map(move |j| j.link(a, &r, &st.c_body_ecef))
-                })
-                .collect()
-        };
+        self.jammer_links = (self.antennas.iter())
+            .flat_map(|a| {
+                let r = st.r_ecef_m + st.c_body_ecef * a.true_body_m;
+                (self.jammers.iter()).map(move |j| j.link(a, &r, &st.c_body_ecef))
+            })
+            .collect();
         for synth in self.synths.iter_mut() {
-            let links = at(synth.jammers());
-            synth.set_jammer_links(t_s, links);
+            synth.set_jammer_links(t_s, &self.jammer_links);
         }
-        self.jammer_links = at(self.jammers);
         self.sinks
             .truth
             .jammers(t_s, self.jammers, &self.jammer_links)
@@ -978,7 +975,7 @@ fn jamming_loss_db(
     let n = jammers.len();
     let on = (jammers.iter().zip(&links[a * n..(a + 1) * n]))
         .filter(|(j, _)| j.config.on_at(t_s))
-        .filter(|(j, _)| (j.config.frequency_hz - signal.carrier_hz()).abs() < band_hz / 2.0)
+        .filter(|(j, _)| j.config.in_band(signal.carrier_hz(), band_hz))
         .map(|(_, l)| l.jn0_dbhz);
     cn0_loss_db(on, band_hz)
 }

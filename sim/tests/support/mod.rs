@@ -636,3 +636,13 @@ position_body_m = [0.0, 0.0, 0.0]
 "#
     )
 }
+
+/// A `[[jammers]]` entry of the interference tests: a noise jammer `name` 111 m north of
+/// `interop-gps-static`'s site, 2 m above it, at J/S `js_db` from `start_s` to `stop_s`.
+pub fn noise_jammer_toml(name: &str, js_db: f64, (start_s, stop_s): (f64, f64)) -> String {
+    format!(
+        "\n[[jammers]]\nname = \"{name}\"\nwaveform = \"noise\"\nlatitude_deg = 30.001\n\
+         longitude_deg = 114.0\nheight_m = 52.0\njs_db = {js_db}\nstart_s = {start_s}\n\
+         stop_s = {stop_s}\n"
+    )
+}
