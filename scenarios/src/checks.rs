@@ -12,7 +12,7 @@ use skyforge_orbits::time::{SUPPORTED_RANGE, TimeError, in_supported_range, pars
 use skyforge_signals::antenna::AntennaConfig;
 use skyforge_signals::errors::EventConfig;
 use skyforge_signals::imu::ImuConfig;
-use skyforge_signals::interference::JammerWaveform;
+use skyforge_signals::interference::{JammerWaveform, MAX_JAMMERS};
 use skyforge_signals::obs_model::{Level, ObsNoiseConfig};
 
 /// Longest scenario (s): 366 days. Longer spans are outside what the embedded
@@ -163,6 +163,13 @@ fn check_jammers(scenario: &Scenario) -> Result<(), Invalid> {
     let Some(first) = scenario.jammers.first() else {
         return Ok(());
     };
+    if scenario.jammers.len() > MAX_JAMMERS {
+        return Err(Invalid::new(
+            "jammers",
+            format!("{} entries", scenario.jammers.len()),
+            format!("at most {MAX_JAMMERS}"),
+        ));
+    }
     for (k, j) in scenario.jammers.iter().enumerate() {
         j.check(scenario.time.duration_s)
             .map_err(|e| e.within(&format!("jammers[{k}]")))?;

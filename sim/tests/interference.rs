@@ -305,3 +305,28 @@ fn bad_jamming_input_is_refused() {
         assert!(!d.join("bad").exists());
     }
 }
+
+/// Hostile scenarios: more than 16 jammers, or a name with a control character, are
+/// refused at their line (exit 2), nothing written.
+#[test]
+fn too_many_or_badly_named_jammers_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let path = support::short_scenario(d, "interop-gps-static", 5);
+    let base = std::fs::read_to_string(&path).unwrap();
+    let many: String = (0..17)
+        .map(|k| support::noise_jammer_toml(&format!("j{k}"), 1.0, (0.0, 1.0)))
+        .collect();
+    let control = support::noise_jammer_toml("a\\tb", 1.0, (0.0, 1.0));
+    for (extra, named) in [(many, "at most 16"), (control, "printable")] {
+        std::fs::write(&path, format!("{base}{extra}")).unwrap();
+        let o = support::skyforge(&["synth", path.to_str().unwrap(), "--out", "bad"], d);
+        let text = support::text(&o);
+        assert_eq!(o.status.code(), Some(2), "{text}");
+        assert!(
+            text.contains(named) && text.contains("short.toml:"),
+            "{text}"
+        );
+        assert!(!d.join("bad").exists());
+    }
+}

@@ -1,12 +1,13 @@
 //! `truth.h5`'s `jammers` group (docs/truth-h5.md): what each antenna received of each
 //! jammer at every geometry epoch, written beside the samples and read by validation.
 //! Matrices are `[epoch, antenna * n_jammers + jammer]`, antennas in the order of the
-//! group's `antennas` attribute (the scenario's), jammers in that of its `names`
-//! attribute (both comma-separated).
+//! group's `antennas` dataset (the scenario's), jammers in that of its `names` dataset
+//! (strings: a name may hold any printable character).
 
 use crate::FormatError;
-use crate::h5::{append_rows, create_group, create_rows, read_column, text_attr};
+use crate::h5::{append_rows, create_group, create_rows, read_column};
 use hdf5::Dataset;
+use hdf5::types::VarLenUnicode;
 use skyforge_signals::interference::{Jammer, JammerLink};
 use std::path::Path;
 
@@ -14,6 +15,8 @@ use std::path::Path;
 pub const JAMMERS_GROUP: &str = "jammers";
 /// Rows per chunk.
 const CHUNK_ROWS: usize = 64;
+/// The most jammer or antenna names read.
+const MAX_NAMES: usize = 4096;
 
 /// A column: name, unit, description, the value of a link.
 type Column = (
@@ -51,6 +54,20 @@ const COLUMNS: [Column; 4] = [
     ),
 ];
 
+/// A 1-D dataset `name` of `values` in `group`.
+fn strings(group: &hdf5::Group, name: &str, values: &[impl AsRef<str>]) -> hdf5::Result<()> {
+    let texts = (values.iter())
+        .map(|v| v.as_ref().parse::<VarLenUnicode>())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| hdf5::Error::from(e.to_string()))?;
+    group
+        .new_dataset_builder()
+        .obj_track_times(false)
+        .with_data(&texts)
+        .create(name)?;
+    Ok(())
+}
+
 /// The group's datasets while a run writes them.
 #[derive(Debug)]
 pub(crate) struct JammerSets {
@@ -71,8 +88,8 @@ impl JammerSets {
     ) -> hdf5::Result<Self> {
         let group = create_group(file, JAMMERS_GROUP)?;
         let names: Vec<&str> = jammers.iter().map(|j| j.config.name.as_str()).collect();
-        text_attr(&group, "names", &names.join(","))?;
-        text_attr(&group, "antennas", &antennas.join(","))?;
+        strings(&group, "names", &names)?;
+        strings(&group, "antennas", antennas)?;
         let width = antennas.len() * jammers.len();
         let t_s = create_rows::<f64>(
             &group,
@@ -147,21 +164,14 @@ pub fn read_jammers(
     path: &Path,
     max_rows: usize,
 ) -> Result<Option<JammerTruth>, FormatError> {
-    let Ok(group) = file.group(JAMMERS_GROUP) else {
+    if file.group(JAMMERS_GROUP).is_err() {
         return Ok(None);
-    };
+    }
     let err = |m: String| FormatError::file(path, format!("group {JAMMERS_GROUP}: {m}"));
-    let list = |attr: &str| {
-        let text = group
-            .attr(attr)
-            .and_then(|a| a.read_scalar::<hdf5::types::VarLenUnicode>())
-            .map_err(|e| err(format!("attribute {attr}: {e}")))?;
-        Ok::<_, FormatError>(
-            text.as_str()
-                .split(',')
-                .map(str::to_string)
-                .collect::<Vec<_>>(),
-        )
+    let list = |name: &str| -> Result<Vec<String>, FormatError> {
+        let dataset = format!("{JAMMERS_GROUP}/{name}");
+        let texts: Vec<VarLenUnicode> = read_column(file, path, &dataset, MAX_NAMES)?;
+        Ok(texts.iter().map(|t| t.as_str().to_string()).collect())
     };
     let (names, antennas) = (list("names")?, list("antennas")?);
     let t_s: Vec<f64> = read_column(file, path, &format!("{JAMMERS_GROUP}/t_s"), max_rows)?;

@@ -49,6 +49,10 @@ fn default_frequency_hz() -> f64 {
     1_575.42e6
 }
 
+/// The most jammers a scenario may hold: each is rendered into every sample of every
+/// antenna. # assumed: 16, a dense jamming scene.
+pub const MAX_JAMMERS: usize = 16;
+
 /// The most a J/S may be (dB): far above any receiver's loss of lock (about 40-50 dB for
 /// GPS L1 C/A) and below a sample buffer's overflow.
 pub const MAX_JS_DB: f64 = 120.0;
@@ -86,11 +90,12 @@ impl JammerConfig {
                 ),
             ));
         }
-        if self.name.is_empty() || self.name.len() > 64 {
+        let printable = self.name.chars().all(|c| c.is_ascii_graphic() || c == ' ');
+        if self.name.is_empty() || self.name.len() > 64 || !printable {
             return Err(Invalid::new(
                 "name",
                 format!("{:?}", self.name),
-                "must be 1 to 64 characters",
+                "must be 1 to 64 printable ASCII characters",
             ));
         }
         Ok(())

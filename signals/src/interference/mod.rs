@@ -7,7 +7,7 @@
 
 mod config;
 
-pub use config::{JammerConfig, JammerWaveform, MAX_JS_DB};
+pub use config::{JammerConfig, JammerWaveform, MAX_JAMMERS, MAX_JS_DB};
 
 /// The C/N0 below which a receiver loses lock (dB-Hz), for the observation level's
 /// jammed links. # assumed: the bundled receiver's default `cn0_lock_threshold_dbhz`.
